@@ -1,0 +1,8 @@
+//! Servo Studio: pose robot servos live, author actions and macros, bind them to
+//! remote-control buttons, and back up and upload servo controller boards.
+//!
+//! Layers, top to bottom (see `docs/ARCHITECTURE.md`): `cli` → `device` →
+//! `link` / [`protocol`]; [`project`] stands alone.
+
+pub mod project;
+pub mod protocol;

@@ -1,0 +1,267 @@
+//! The project file: versioned JSON, loaded with precise errors and saved
+//! atomically. Field by field in `docs/project-format.md`.
+
+use std::fs::File;
+use std::io::{self, Write};
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+
+use super::model::Project;
+
+/// The `format` tag every project file carries.
+pub const FORMAT_TAG: &str = "servo-studio-project";
+/// The version this build writes. Every older version keeps loading.
+pub const CURRENT_VERSION: u32 = 1;
+
+/// A project file could not be read.
+#[derive(Debug, thiserror::Error)]
+pub enum LoadError {
+    /// The file could not be opened or read.
+    #[error("cannot read {path}: {source}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The cause.
+        source: io::Error,
+    },
+    /// The text is not valid JSON for a project.
+    #[error("line {line}, column {column}: {message}")]
+    Syntax {
+        /// 1-based line of the problem.
+        line: usize,
+        /// 1-based column of the problem.
+        column: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// The JSON is not a Servo Studio project.
+    #[error("not a Servo Studio project: expected \"format\": \"{FORMAT_TAG}\", found {found}")]
+    WrongFormat {
+        /// What the `format` key held (or that it was missing).
+        found: String,
+    },
+    /// The file was written by a newer Servo Studio.
+    #[error(
+        "project file version {found} is newer than this Servo Studio understands (up to {supported}); update Servo Studio to open it"
+    )]
+    NewerVersion {
+        /// The file's version.
+        found: u32,
+        /// The newest version this build reads.
+        supported: u32,
+    },
+}
+
+/// A project file could not be written. The previous file, if any, is intact.
+#[derive(Debug, thiserror::Error)]
+#[error("cannot save {path}: {source}; the previous file is unchanged")]
+pub struct SaveError {
+    /// The file.
+    pub path: PathBuf,
+    /// The cause.
+    pub source: io::Error,
+}
+
+#[derive(Deserialize)]
+struct Header {
+    format: Option<String>,
+    version: Option<u32>,
+}
+
+#[derive(Serialize)]
+struct Envelope<'a> {
+    format: &'static str,
+    version: u32,
+    #[serde(flatten)]
+    project: &'a Project,
+}
+
+fn syntax(error: &serde_json::Error) -> LoadError {
+    // serde_json appends " at line L column C" to its message; the numbers are kept separately.
+    let text = error.to_string();
+    let message = match text.rfind(" at line ") {
+        Some(cut) => text[..cut].to_string(),
+        None => text,
+    };
+    LoadError::Syntax {
+        line: error.line(),
+        column: error.column(),
+        message,
+    }
+}
+
+/// Parses a project from the text of a project file, of any supported version.
+pub fn from_json(text: &str) -> Result<Project, LoadError> {
+    let header: Header = serde_json::from_str(text).map_err(|error| syntax(&error))?;
+    match header.format.as_deref() {
+        Some(FORMAT_TAG) => {}
+        Some(other) => {
+            return Err(LoadError::WrongFormat {
+                found: format!("{other:?}"),
+            });
+        }
+        None => {
+            return Err(LoadError::WrongFormat {
+                found: "no \"format\" key".into(),
+            });
+        }
+    }
+    match header.version {
+        // Version 1 is today's layout. A later version adds an arm that reads
+        // the old layout and migrates it here, so every old file keeps loading.
+        Some(1) | None => serde_json::from_str(text).map_err(|error| syntax(&error)),
+        Some(found) => Err(LoadError::NewerVersion {
+            found,
+            supported: CURRENT_VERSION,
+        }),
+    }
+}
+
+/// The text of a project file for `project`, in the current version.
+pub fn to_json(project: &Project) -> String {
+    let envelope = Envelope {
+        format: FORMAT_TAG,
+        version: CURRENT_VERSION,
+        project,
+    };
+    // Serializing plain structs of strings and integers to a String cannot fail.
+    let mut text = serde_json::to_string_pretty(&envelope).unwrap_or_default();
+    text.push('\n');
+    text
+}
+
+/// Reads a project file.
+pub fn load(path: &Path) -> Result<Project, LoadError> {
+    let text = std::fs::read_to_string(path).map_err(|source| LoadError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    from_json(&text)
+}
+
+/// Writes a project file atomically: a failure leaves the previous file intact.
+pub fn save(path: &Path, project: &Project) -> Result<(), SaveError> {
+    let text = to_json(project);
+    atomic_write(path, |file| file.write_all(text.as_bytes())).map_err(|source| SaveError {
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
+/// Writes `path` by writing a temporary file in the same folder with `write`,
+/// flushing it to disk, and renaming it over `path`. If anything fails, the
+/// temporary file is removed and `path` is untouched.
+pub fn atomic_write(
+    path: &Path,
+    write: impl FnOnce(&mut File) -> io::Result<()>,
+) -> io::Result<()> {
+    let folder = match path.parent() {
+        Some(parent) if !parent.as_os_str().is_empty() => parent.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    let name = path
+        .file_name()
+        .ok_or_else(|| io::Error::new(io::ErrorKind::InvalidInput, "path has no file name"))?;
+    let mut temp_name = std::ffi::OsString::from(".");
+    temp_name.push(name);
+    temp_name.push(format!(".{}.tmp", std::process::id()));
+    let temp_path = folder.join(temp_name);
+
+    let result = (|| {
+        let mut file = File::create(&temp_path)?;
+        write(&mut file)?;
+        file.sync_all()?;
+        drop(file);
+        std::fs::rename(&temp_path, path)
+    })();
+    if result.is_err() {
+        // Best effort: the temporary file may not exist if creating it failed.
+        let _ = std::fs::remove_file(&temp_path);
+    }
+    result
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn malformed_json_reports_line_and_column() {
+        let text = "{\n  \"format\": \"servo-studio-project\",\n  \"version\": 1,\n  \"project_id\": \"seven\"\n}";
+        match from_json(text) {
+            Err(LoadError::Syntax {
+                line,
+                column,
+                message,
+            }) => {
+                assert_eq!(line, 4);
+                assert!(column > 10, "column {column}");
+                assert!(message.contains("invalid type"), "{message}");
+            }
+            other => panic!("expected a syntax error, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn truncated_file_is_an_error_with_position() {
+        let text = to_json(&Project::default());
+        let err = from_json(&text[..text.len() / 2]).unwrap_err();
+        assert!(
+            matches!(err, LoadError::Syntax { line, .. } if line > 1),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn wrong_format_and_newer_versions_are_refused_clearly() {
+        assert!(matches!(
+            from_json(r#"{"format": "other"}"#),
+            Err(LoadError::WrongFormat { .. })
+        ));
+        assert!(matches!(
+            from_json(r#"{"servos": []}"#),
+            Err(LoadError::WrongFormat { .. })
+        ));
+        let err = from_json(r#"{"format": "servo-studio-project", "version": 99}"#).unwrap_err();
+        assert!(matches!(
+            err,
+            LoadError::NewerVersion {
+                found: 99,
+                supported: CURRENT_VERSION
+            }
+        ));
+        assert!(err.to_string().contains("update Servo Studio"));
+    }
+
+    #[test]
+    fn a_failed_write_leaves_the_previous_file_intact_and_no_temp_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("robot.json");
+        std::fs::write(&path, "previous").unwrap();
+        let err = atomic_write(&path, |file| {
+            file.write_all(b"half a proj")?;
+            Err(io::Error::other("disk full"))
+        })
+        .unwrap_err();
+        assert_eq!(err.to_string(), "disk full");
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), "previous");
+        let names: Vec<_> = std::fs::read_dir(dir.path())
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .collect();
+        assert_eq!(names, [std::ffi::OsString::from("robot.json")]);
+    }
+
+    #[test]
+    fn saving_into_a_missing_folder_fails_without_creating_anything() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("missing").join("robot.json");
+        let err = save(&path, &Project::default()).unwrap_err();
+        assert!(
+            err.to_string().contains("previous file is unchanged"),
+            "{err}"
+        );
+        assert!(!dir.path().join("missing").exists());
+    }
+}

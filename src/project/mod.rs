@@ -1,0 +1,16 @@
+//! The project document: the serde model, the versioned file format,
+//! derived timing, and validation. Stands alone: no protocol I/O, no UI.
+
+mod file;
+mod model;
+mod timing;
+mod validate;
+
+pub use file::{
+    CURRENT_VERSION, FORMAT_TAG, LoadError, SaveError, atomic_write, from_json, load, save, to_json,
+};
+pub use model::{
+    Action, BoardKind, Button, Command, JoystickTable, Macro, Project, Run, Servo, Step,
+};
+pub use timing::{Timing, TimingError, action_duration_ms};
+pub use validate::{Location, Problem, Severity, has_errors, validate};

@@ -1,0 +1,245 @@
+//! The project document: what a user saves and what a board stores, plus the
+//! client-side safety settings the board protocol does not carry.
+//! Field by field in `docs/project-format.md`.
+
+use serde::{Deserialize, Serialize};
+
+/// The board family a project is written for.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum BoardKind {
+    /// The servo controller board of `board.md`.
+    #[default]
+    ServoBoard,
+}
+
+/// A whole project: servos, actions, macros and joystick tables.
+#[derive(Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Project {
+    /// The board family.
+    #[serde(default)]
+    pub board: BoardKind,
+    /// The project id written to the board (30120); 0 means none.
+    #[serde(default)]
+    pub project_id: i32,
+    /// The servos, in display order.
+    #[serde(default)]
+    pub servos: Vec<Servo>,
+    /// The actions (poses), in display order.
+    #[serde(default)]
+    pub actions: Vec<Action>,
+    /// The macros (sequences of actions and delays), in display order.
+    #[serde(default)]
+    pub macros: Vec<Macro>,
+    /// The remote-control button tables, in display order.
+    #[serde(default)]
+    pub joystick_tables: Vec<JoystickTable>,
+    /// The table the board uses, if any.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub active_table: Option<i32>,
+}
+
+/// One servo: its board parameters and its client-side limits.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Servo {
+    /// `servoID` on the board (0..=254; 255 addresses all servos).
+    pub id: u8,
+    /// `servoCaption`, at most 32 UTF-8 bytes.
+    #[serde(default)]
+    pub caption: String,
+    /// `adjustedDegree`: the calibration offset the board stores for this servo.
+    #[serde(default)]
+    pub calibration_offset_deg: i16,
+    /// Lowest angle the app will ever send to this servo (client-side only).
+    #[serde(default = "Servo::default_min_deg")]
+    pub min_deg: i16,
+    /// Highest angle the app will ever send to this servo (client-side only).
+    #[serde(default = "Servo::default_max_deg")]
+    pub max_deg: i16,
+    /// The rest angle, between `min_deg` and `max_deg` (client-side only).
+    #[serde(default)]
+    pub home_deg: i16,
+}
+
+impl Servo {
+    fn default_min_deg() -> i16 {
+        -180
+    }
+
+    fn default_max_deg() -> i16 {
+        180
+    }
+
+    /// A servo with the given id and caption, full ±180° range, home at 0.
+    pub fn new(id: u8, caption: impl Into<String>) -> Self {
+        Self {
+            id,
+            caption: caption.into(),
+            calibration_offset_deg: 0,
+            min_deg: Self::default_min_deg(),
+            max_deg: Self::default_max_deg(),
+            home_deg: 0,
+        }
+    }
+
+    /// `degree` clamped into this servo's limits.
+    pub fn clamp(&self, degree: i16) -> i16 {
+        degree.clamp(
+            self.min_deg.min(self.max_deg),
+            self.max_deg.max(self.min_deg),
+        )
+    }
+}
+
+/// A pose: servos moving together. All steps start at once; the action lasts
+/// as long as its longest step.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Action {
+    /// `actionID` (1..=2147483647).
+    pub id: i32,
+    /// `actionCaption`, at most 32 UTF-8 bytes.
+    #[serde(default)]
+    pub caption: String,
+    /// One step per servo.
+    #[serde(default)]
+    pub steps: Vec<Step>,
+}
+
+/// One servo's part of an action.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Step {
+    /// The servo that moves.
+    pub servo_id: u8,
+    /// The angle it moves to.
+    pub degree: i16,
+    /// How long the move takes, in units of 10 ms.
+    pub interval_10ms: i16,
+}
+
+/// A sequence of commands run one after another.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Macro {
+    /// `macroID` (1..=2147483647).
+    pub id: i32,
+    /// `macroCaption`, at most 32 UTF-8 bytes.
+    #[serde(default)]
+    pub caption: String,
+    /// The commands, in order.
+    #[serde(default)]
+    pub commands: Vec<Command>,
+}
+
+/// One command of a macro. Its total run time is derived, never stored
+/// (see [`crate::project::Timing`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Command {
+    /// What the command runs.
+    #[serde(flatten)]
+    pub run: Run,
+    /// Speed in percent, 1..=100 (100 = as authored).
+    #[serde(default = "Command::default_ratio_percent")]
+    pub ratio_percent: u8,
+    /// Repetitions, 1 or more.
+    #[serde(default = "Command::default_loop_count")]
+    pub loop_count: i16,
+}
+
+impl Command {
+    fn default_ratio_percent() -> u8 {
+        100
+    }
+
+    fn default_loop_count() -> i16 {
+        1
+    }
+
+    /// A command run once at full speed.
+    pub fn once(run: Run) -> Self {
+        Self {
+            run,
+            ratio_percent: 100,
+            loop_count: 1,
+        }
+    }
+}
+
+/// What a macro command runs (wire `type` 0, 1, 2).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum Run {
+    /// Run an action.
+    Action {
+        /// The action's id.
+        action_id: i32,
+    },
+    /// Wait.
+    Delay {
+        /// How long, in milliseconds.
+        delay_ms: i32,
+    },
+    /// Run another macro.
+    Macro {
+        /// The macro's id.
+        macro_id: i32,
+    },
+}
+
+/// A remote-control mapping: which macros each button runs.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct JoystickTable {
+    /// `tableID` (1..=2147483647).
+    pub id: i32,
+    /// `tableCaption`, at most 32 UTF-8 bytes.
+    #[serde(default)]
+    pub caption: String,
+    /// The buttons.
+    #[serde(default)]
+    pub buttons: Vec<Button>,
+}
+
+/// One button of a joystick table.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Button {
+    /// `buttonID` as the remote reports it (any 32-bit value).
+    pub id: u32,
+    /// `buttonCaption`, at most 32 UTF-8 bytes.
+    #[serde(default)]
+    pub caption: String,
+    /// Macro run when the button goes down.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub press_macro: Option<i32>,
+    /// Macro run when the button is held long.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub long_press_macro: Option<i32>,
+    /// Macro run when the button comes up.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub release_macro: Option<i32>,
+    /// After a long press is released, let the long-press macro finish instead
+    /// of cutting it short with the release macro.
+    #[serde(default)]
+    pub uninterruptible: bool,
+}
+
+impl Project {
+    /// The servo with this id.
+    pub fn servo(&self, servo_id: u8) -> Option<&Servo> {
+        self.servos.iter().find(|servo| servo.id == servo_id)
+    }
+
+    /// The action with this id.
+    pub fn action(&self, action_id: i32) -> Option<&Action> {
+        self.actions.iter().find(|action| action.id == action_id)
+    }
+
+    /// The macro with this id.
+    pub fn macro_by_id(&self, macro_id: i32) -> Option<&Macro> {
+        self.macros.iter().find(|item| item.id == macro_id)
+    }
+
+    /// The joystick table with this id.
+    pub fn table(&self, table_id: i32) -> Option<&JoystickTable> {
+        self.joystick_tables
+            .iter()
+            .find(|table| table.id == table_id)
+    }
+}
