@@ -4,5 +4,8 @@
 //! Layers, top to bottom (see `docs/ARCHITECTURE.md`): `cli` → `device` →
 //! `link` / [`protocol`]; [`project`] stands alone.
 
+pub mod device;
+pub mod link;
 pub mod project;
 pub mod protocol;
+pub mod sim;

@@ -6,12 +6,12 @@ use clap::{CommandFactory, Parser};
 
 mod cli;
 
-use cli::{Cli, CliCommand};
+use cli::Cli;
 
 fn main() -> ExitCode {
     let args = Cli::parse();
     match args.command {
-        Some(CliCommand::Check { file }) => cli::check(&file),
+        Some(command) => cli::run(command),
         None => {
             // The editor window arrives with the GUI; until then, show the commands.
             let _ = Cli::command().print_help();

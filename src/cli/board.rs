@@ -1,0 +1,253 @@
+//! The commands that talk to a board, and the emulated board's runner.
+
+use std::io::{BufRead, IsTerminal, Write};
+use std::net::SocketAddr;
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+use anyhow::{Context, bail};
+use clap::Args;
+use indicatif::{ProgressBar, ProgressStyle};
+
+use super::PortArgs;
+use servo_studio::device::board::{
+    self as device, Board, BoardImage, Cancel, ImportOptions, Phase, Progress, Requester,
+    SessionConfig,
+};
+use servo_studio::link::{self, LinkEvent, PortName, no_waker};
+use servo_studio::project;
+use servo_studio::sim::{self, BoardSim, Faults, SimConfig};
+
+/// `servo-studio sim` options.
+#[derive(Debug, Args)]
+pub struct SimArgs {
+    /// Serve on a pseudo-terminal (the default on Linux and macOS).
+    #[arg(long, conflicts_with = "tcp")]
+    pub pty: bool,
+    /// Serve on TCP at this address, e.g. 127.0.0.1:5000 (port 0 picks one).
+    #[arg(long)]
+    pub tcp: Option<SocketAddr>,
+    /// Preload the board from this project file.
+    #[arg(long)]
+    pub state: Option<PathBuf>,
+    /// Emulate this line rate (bytes take 10 bits each); default: as fast as the link goes.
+    #[arg(long)]
+    pub baud: Option<u32>,
+    /// Time between a request and its response, in milliseconds.
+    #[arg(long, default_value_t = 0)]
+    pub turnaround_ms: u64,
+    /// The board's memory in bytes.
+    #[arg(long, default_value_t = 256 * 1024)]
+    pub memory: i32,
+    /// Faults to inject, e.g. garbage-every=3,drop-every=7,disconnect-after=40,refuse-add=42.
+    #[arg(long, default_value = "")]
+    pub faults: Faults,
+}
+
+fn session_config(port: &PortArgs) -> SessionConfig {
+    SessionConfig {
+        response_timeout: Duration::from_millis(port.timeout_ms),
+        ..SessionConfig::default()
+    }
+}
+
+fn connect(port: &PortArgs) -> anyhow::Result<Board> {
+    let name = PortName::parse(&port.port)?;
+    Ok(Board::connect(
+        &name,
+        port.baud,
+        session_config(port),
+        no_waker(),
+    )?)
+}
+
+/// A progress bar on stderr (hidden when stderr is not a terminal).
+fn progress_bar() -> (ProgressBar, impl FnMut(&Progress)) {
+    let bar = ProgressBar::new(0);
+    bar.set_style(
+        ProgressStyle::with_template("{prefix:>8} [{bar:30}] {pos}/{len} {wide_msg}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar())
+            .progress_chars("=> "),
+    );
+    let shown = bar.clone();
+    let update = move |progress: &Progress| {
+        shown.set_prefix(match progress.phase {
+            Phase::Read => "reading",
+            Phase::Write => "writing",
+            Phase::Verify => "verifying",
+        });
+        shown.set_length(u64::try_from(progress.total).unwrap_or(u64::MAX));
+        shown.set_position(u64::try_from(progress.done).unwrap_or(u64::MAX));
+        shown.set_message(progress.item.clone());
+    };
+    (bar, update)
+}
+
+pub fn ports() -> anyhow::Result<()> {
+    let ports = link::list_ports()?;
+    if ports.is_empty() {
+        println!(
+            "no serial ports found (a board on a network bridge is reached as tcp://HOST:PORT)"
+        );
+    }
+    for port in ports {
+        println!("{}\t{}", port.name, port.description);
+    }
+    Ok(())
+}
+
+pub fn sim(args: &SimArgs) -> anyhow::Result<()> {
+    let image = match &args.state {
+        Some(path) => {
+            let loaded = project::load(path)
+                .with_context(|| format!("cannot preload the board from {}", path.display()))?;
+            BoardImage::from_project(&loaded)
+                .with_context(|| format!("{} cannot be stored on a board", path.display()))?
+        }
+        None => BoardImage::default(),
+    };
+    let config = SimConfig {
+        total_memory_bytes: args.memory,
+        baud: args.baud,
+        turnaround: Duration::from_millis(args.turnaround_ms),
+        faults: args.faults.clone(),
+        ..SimConfig::default()
+    };
+    let board = BoardSim::new(config, image);
+    let handle = match args.tcp {
+        Some(address) => sim::spawn_tcp(board, address, no_waker())?,
+        None => spawn_pty(board)?,
+    };
+    let mut stdout = std::io::stdout();
+    writeln!(stdout, "{}", handle.port_name)?;
+    stdout.flush()?;
+    eprintln!(
+        "emulated board ready on {} (Ctrl-C to stop)",
+        handle.port_name
+    );
+    for event in handle.events() {
+        if let LinkEvent::Disconnected { reason } = event {
+            eprintln!("client disconnected: {reason}");
+            if args.tcp.is_none() {
+                return Ok(());
+            }
+        }
+    }
+    Ok(())
+}
+
+#[cfg(unix)]
+fn spawn_pty(board: BoardSim) -> anyhow::Result<sim::SimHandle> {
+    Ok(sim::spawn_pty(board, no_waker())?)
+}
+
+#[cfg(not(unix))]
+fn spawn_pty(_board: BoardSim) -> anyhow::Result<sim::SimHandle> {
+    bail!("pseudo-terminals exist only on Linux and macOS; use --tcp 127.0.0.1:5000")
+}
+
+pub fn export(port: &PortArgs, out: &Path) -> anyhow::Result<()> {
+    let board = connect(port)?;
+    let (bar, mut update) = progress_bar();
+    let exported = device::export(&board.requester(), &mut update, &Cancel::never());
+    bar.finish_and_clear();
+    let exported = exported.with_context(|| {
+        format!(
+            "export from {} failed; {} was not written",
+            port.port,
+            out.display()
+        )
+    })?;
+    project::save(out, &exported)?;
+    eprintln!(
+        "exported project {} ({} servos, {} actions, {} macros, {} joystick tables) to {}",
+        exported.project_id,
+        exported.servos.len(),
+        exported.actions.len(),
+        exported.macros.len(),
+        exported.joystick_tables.len(),
+        out.display()
+    );
+    Ok(())
+}
+
+fn confirm(port: &str, input: &Path, backup: bool) -> anyhow::Result<()> {
+    let stdin = std::io::stdin();
+    if !stdin.is_terminal() {
+        bail!(
+            "refusing to overwrite the board on {port} without confirmation (standard input is not a terminal); pass --yes"
+        );
+    }
+    eprint!(
+        "This erases everything on the board on {port} and writes {}.{} Type yes to continue: ",
+        input.display(),
+        if backup {
+            " A backup of the board is saved first."
+        } else {
+            " No backup is saved (--no-backup)."
+        }
+    );
+    let mut answer = String::new();
+    stdin.lock().read_line(&mut answer)?;
+    if answer.trim() != "yes" {
+        bail!("not confirmed; the board is unchanged");
+    }
+    Ok(())
+}
+
+pub fn import(
+    port: &PortArgs,
+    input: &Path,
+    yes: bool,
+    backup_dir: Option<PathBuf>,
+) -> anyhow::Result<()> {
+    let loaded =
+        project::load(input).with_context(|| format!("cannot read {}", input.display()))?;
+    let board = connect(port)?;
+    if !yes {
+        confirm(&port.port, input, backup_dir.is_some())?;
+    }
+    let options = ImportOptions {
+        backup_dir,
+        verify: true,
+    };
+    let (bar, mut update) = progress_bar();
+    let requester: Requester = board.requester();
+    let report = device::import(&requester, &loaded, &options, &mut update, &Cancel::never());
+    bar.finish_and_clear();
+    let report = report
+        .with_context(|| format!("import of {} into {} failed", input.display(), port.port))?;
+    if let Some(backup) = &report.backup {
+        eprintln!("backup of the previous contents: {}", backup.display());
+    }
+    eprintln!(
+        "wrote {} item(s) to {} and verified them",
+        report.written, port.port
+    );
+    Ok(())
+}
+
+pub fn info(port: &PortArgs) -> anyhow::Result<()> {
+    let board = connect(port)?;
+    let info = device::board_info(&board.requester())?;
+    println!("project id: {}", info.project_id);
+    match info.total_bytes {
+        Some(total) => println!("memory: {} of {total} bytes free", info.free_bytes),
+        None => println!("memory: {} bytes free", info.free_bytes),
+    }
+    println!("battery: {}‰", info.battery_permil);
+    println!("servos: {}", info.servos.len());
+    for servo in &info.servos {
+        println!(
+            "  servo {:>3}: angle {:>5}  current {:>5}  temperature {:>5}  type {}  {}  {}",
+            servo.servo_id,
+            servo.angle,
+            servo.current_adc,
+            servo.temperature_adc,
+            servo.servo_type,
+            if servo.is_start { "running" } else { "stopped" },
+            if servo.is_hold { "holding" } else { "released" },
+        );
+    }
+    Ok(())
+}

@@ -1,0 +1,235 @@
+//! The servo board over a link: the driver the I/O thread runs, the owner's
+//! handle, and a cloneable [`Requester`] for blocking request/response calls
+//! from worker threads.
+
+use std::collections::HashMap;
+use std::io;
+use std::time::Instant;
+
+use crossbeam_channel::{Receiver, Sender};
+
+use super::session::{RequestError, RequestId, Session, SessionConfig, SessionEvent, Traffic};
+use crate::link::{self, Connection, Driver, LinkError, LinkEvent, LinkHandle, PortName, Waker};
+use crate::protocol::board::{ButtonEvent, Message};
+
+/// Where a request's outcome goes.
+pub type Reply = Sender<Result<Message, RequestError>>;
+
+/// What the owner asks of the board driver.
+#[derive(Debug)]
+pub enum BoardCommand {
+    /// Send a request and deliver its response (or error) to `reply`.
+    Request {
+        /// The request.
+        message: Message,
+        /// Where the outcome goes.
+        reply: Reply,
+    },
+    /// Send a message that has no response (e.g. a live move, 20050).
+    Send {
+        /// The message.
+        message: Message,
+    },
+}
+
+/// What the board driver reports to its owner (responses go to each request's reply).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum BoardEvent {
+    /// A remote-control button event.
+    Button {
+        /// `buttonID`.
+        button_id: u32,
+        /// What happened.
+        event: ButtonEvent,
+    },
+    /// A frame that answers no request.
+    Unsolicited(Message),
+    /// A packet-log entry.
+    Traffic(Traffic),
+    /// A message could not be sent.
+    SendFailed(String),
+}
+
+/// The driver the I/O thread runs for a servo board.
+#[derive(Debug)]
+pub struct BoardDriver {
+    session: Session,
+    replies: HashMap<RequestId, Reply>,
+    events: std::collections::VecDeque<BoardEvent>,
+}
+
+impl BoardDriver {
+    /// A driver with the given session timing.
+    pub fn new(config: SessionConfig) -> Self {
+        Self {
+            session: Session::new(config),
+            replies: HashMap::new(),
+            events: std::collections::VecDeque::new(),
+        }
+    }
+
+    fn drain_session(&mut self) {
+        while let Some(event) = self.session.poll_event() {
+            match event {
+                SessionEvent::Response { id, result } => {
+                    if let Some(reply) = self.replies.remove(&id) {
+                        // The asker may have given up (cancelled); that is fine.
+                        let _ = reply.send(result);
+                    }
+                }
+                SessionEvent::Button { button_id, event } => self
+                    .events
+                    .push_back(BoardEvent::Button { button_id, event }),
+                SessionEvent::Unsolicited(message) => {
+                    self.events.push_back(BoardEvent::Unsolicited(message));
+                }
+                SessionEvent::Traffic(entry) => self.events.push_back(BoardEvent::Traffic(entry)),
+            }
+        }
+    }
+}
+
+impl Driver for BoardDriver {
+    type Command = BoardCommand;
+    type Event = BoardEvent;
+
+    fn handle_command(&mut self, now: Instant, command: BoardCommand) {
+        match command {
+            BoardCommand::Request { message, reply } => match self.session.submit(now, message) {
+                Ok(id) => {
+                    self.replies.insert(id, reply);
+                }
+                Err(error) => {
+                    let _ = reply.send(Err(RequestError::Encode(error)));
+                }
+            },
+            BoardCommand::Send { message } => {
+                if let Err(error) = self.session.send(message) {
+                    self.events
+                        .push_back(BoardEvent::SendFailed(error.to_string()));
+                }
+            }
+        }
+        self.drain_session();
+    }
+
+    fn handle_input(&mut self, now: Instant, bytes: &[u8]) {
+        self.session.handle_input(now, bytes);
+        self.drain_session();
+    }
+
+    fn handle_timeout(&mut self, now: Instant) {
+        self.session.handle_timeout(now);
+        self.drain_session();
+    }
+
+    fn handle_disconnect(&mut self, reason: &str) {
+        self.session.handle_disconnect(reason);
+        self.drain_session();
+    }
+
+    fn poll_transmit(&mut self, _now: Instant) -> Option<Vec<u8>> {
+        self.session.poll_transmit()
+    }
+
+    fn poll_event(&mut self) -> Option<BoardEvent> {
+        self.events.pop_front()
+    }
+
+    fn poll_timeout(&self) -> Option<Instant> {
+        self.session.poll_timeout()
+    }
+}
+
+/// A connected servo board. Dropping it closes the link.
+#[derive(Debug)]
+pub struct Board {
+    link: LinkHandle<BoardCommand, BoardEvent>,
+}
+
+impl Board {
+    /// Opens `port` and starts the I/O thread.
+    pub fn connect(
+        port: &PortName,
+        baud: u32,
+        config: SessionConfig,
+        waker: Waker,
+    ) -> Result<Self, LinkError> {
+        let connection = link::open(port, baud)?;
+        let description = connection.description.clone();
+        Self::over(connection, config, waker).map_err(|source| LinkError::Open {
+            port: description,
+            source,
+        })
+    }
+
+    /// Starts the I/O thread over an already open connection.
+    pub fn over(connection: Connection, config: SessionConfig, waker: Waker) -> io::Result<Self> {
+        Ok(Self {
+            link: link::spawn(connection, BoardDriver::new(config), waker)?,
+        })
+    }
+
+    /// A handle for requests, cloneable into worker threads.
+    pub fn requester(&self) -> Requester {
+        Requester {
+            commands: self.link.commands(),
+        }
+    }
+
+    /// Button events, unsolicited frames, the packet log, and the disconnect.
+    pub fn events(&self) -> &Receiver<LinkEvent<BoardEvent>> {
+        self.link.events()
+    }
+
+    /// What the board is connected through.
+    pub fn description(&self) -> &str {
+        self.link.description()
+    }
+}
+
+/// Sends requests to a board and waits for their responses.
+#[derive(Clone, Debug)]
+pub struct Requester {
+    commands: Sender<BoardCommand>,
+}
+
+impl Requester {
+    /// A requester over a raw command channel (for drivers run by other means).
+    pub fn from_sender(commands: Sender<BoardCommand>) -> Self {
+        Self { commands }
+    }
+
+    /// Sends `message` and waits for its response. The session bounds the
+    /// wait (timeouts, retries); a lost link ends it with `Disconnected`.
+    pub fn request(&self, message: Message) -> Result<Message, RequestError> {
+        self.request_async(message)?
+            .recv()
+            .unwrap_or_else(|_| Err(lost()))
+    }
+
+    /// Sends `message`; its outcome arrives on the returned receiver.
+    pub fn request_async(
+        &self,
+        message: Message,
+    ) -> Result<Receiver<Result<Message, RequestError>>, RequestError> {
+        let (reply, outcome) = crossbeam_channel::bounded(1);
+        self.commands
+            .send(BoardCommand::Request { message, reply })
+            .map_err(|_| lost())?;
+        Ok(outcome)
+    }
+
+    /// Sends a message that has no response.
+    pub fn send(&self, message: Message) -> Result<(), RequestError> {
+        self.commands
+            .send(BoardCommand::Send { message })
+            .map_err(|_| lost())
+    }
+}
+
+fn lost() -> RequestError {
+    RequestError::Disconnected {
+        reason: "the link is closed".into(),
+    }
+}

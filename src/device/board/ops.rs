@@ -1,0 +1,557 @@
+//! Operations on a servo board: read it whole (export / backup), write a
+//! project onto it (import, with validation, a fit check, a backup and a
+//! verification), and read its status. Each reports progress and can be
+//! cancelled between steps.
+
+use std::path::{Path, PathBuf};
+
+use crossbeam_channel::{Receiver, Sender};
+
+use super::client::Requester;
+use super::image::{BoardImage, ImageError};
+use super::session::RequestError;
+use crate::project::{self, Problem, Project, SaveError};
+use crate::protocol::board::{ALL_SERVOS, EncodeError, Message, ServoStatus};
+
+/// Which part of an operation is running.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Phase {
+    /// Reading the board (export, or the backup before an import).
+    Read,
+    /// Writing the project onto the board.
+    Write,
+    /// Reading the board back to compare.
+    Verify,
+}
+
+/// How far an operation has come.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Progress {
+    /// The part running.
+    pub phase: Phase,
+    /// Steps done in this part.
+    pub done: usize,
+    /// Steps this part has (it can grow as lists are read).
+    pub total: usize,
+    /// What is being done now, e.g. `action 3 "揮手"`.
+    pub item: String,
+}
+
+/// Lets the owner stop an operation between two steps.
+#[derive(Clone, Debug)]
+pub struct Cancel {
+    requested: Receiver<()>,
+}
+
+impl Cancel {
+    /// A cancel token and the sender that triggers it.
+    pub fn new() -> (Sender<()>, Self) {
+        let (sender, requested) = crossbeam_channel::bounded(1);
+        (sender, Self { requested })
+    }
+
+    /// A token that is never triggered.
+    pub fn never() -> Self {
+        Self {
+            requested: crossbeam_channel::never(),
+        }
+    }
+
+    fn check(&self) -> Result<(), OpError> {
+        match self.requested.try_recv() {
+            Ok(()) => Err(OpError::Cancelled),
+            Err(_) => Ok(()),
+        }
+    }
+}
+
+/// An operation failed. Each message says what failed and what to try.
+#[derive(Debug, thiserror::Error)]
+pub enum OpError {
+    /// A request got no usable response.
+    #[error("{item}: {source}")]
+    Request {
+        /// What was being done.
+        item: String,
+        /// Why it failed.
+        source: RequestError,
+    },
+    /// The board answered `result = 0`.
+    #[error("{item}: the board refused it (result 0). Is its memory full, or the item malformed?")]
+    Refused {
+        /// What was refused.
+        item: String,
+    },
+    /// The board answered a query with its "failure" value.
+    #[error("{item}: the board reported a failure reading it")]
+    ReadFailed {
+        /// What could not be read.
+        item: String,
+    },
+    /// The project has validation errors; nothing was written.
+    #[error("the project has {} error(s); nothing was written:\n{}", .problems.len(), list(.problems))]
+    Invalid {
+        /// The errors.
+        problems: Vec<Problem>,
+    },
+    /// The project is larger than the board's memory; nothing was written.
+    #[error(
+        "the project needs {needed_bytes} bytes but the board holds {total_bytes}; nothing was written. Remove actions or macros"
+    )]
+    DoesNotFit {
+        /// Bytes the project needs.
+        needed_bytes: usize,
+        /// The board's total memory.
+        total_bytes: i64,
+    },
+    /// The project cannot be turned into board records.
+    #[error(transparent)]
+    Image(#[from] ImageError),
+    /// A record cannot be encoded.
+    #[error(transparent)]
+    Encode(#[from] EncodeError),
+    /// The backup could not be saved; nothing was written.
+    #[error("backup failed, so nothing was written: {0}")]
+    Backup(SaveError),
+    /// What the board holds after writing differs from the project.
+    #[error("verification failed: the board differs from the project:\n{}", .differences.join("\n"))]
+    Verify {
+        /// Each difference, in words.
+        differences: Vec<String>,
+    },
+    /// The owner cancelled.
+    #[error("cancelled")]
+    Cancelled,
+    /// A response of the wrong kind (a protocol error by the board).
+    #[error("{item}: unexpected response {response}")]
+    Unexpected {
+        /// What was being done.
+        item: String,
+        /// The response's name.
+        response: &'static str,
+    },
+}
+
+fn list(problems: &[Problem]) -> String {
+    problems
+        .iter()
+        .map(ToString::to_string)
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+struct Run<'a> {
+    requester: &'a Requester,
+    progress: &'a mut dyn FnMut(&Progress),
+    cancel: &'a Cancel,
+    phase: Phase,
+    done: usize,
+    total: usize,
+}
+
+impl Run<'_> {
+    fn step(&mut self, item: String, message: Message) -> Result<Message, OpError> {
+        self.cancel.check()?;
+        (self.progress)(&Progress {
+            phase: self.phase,
+            done: self.done,
+            total: self.total,
+            item: item.clone(),
+        });
+        let response = self
+            .requester
+            .request(message)
+            .map_err(|source| OpError::Request {
+                item: item.clone(),
+                source,
+            })?;
+        self.done += 1;
+        (self.progress)(&Progress {
+            phase: self.phase,
+            done: self.done,
+            total: self.total,
+            item,
+        });
+        Ok(response)
+    }
+
+    /// A write step whose response carries `result`.
+    fn write(&mut self, item: String, message: Message) -> Result<(), OpError> {
+        let response = self.step(item.clone(), message)?;
+        match result_of(&response) {
+            Some(true) => Ok(()),
+            Some(false) => Err(OpError::Refused { item }),
+            None => Err(OpError::Unexpected {
+                item,
+                response: response.name(),
+            }),
+        }
+    }
+}
+
+/// The `result` of a write's response.
+fn result_of(message: &Message) -> Option<bool> {
+    use Message as M;
+    match message {
+        M::ClearAllDataResponse { ok }
+        | M::AddActionResponse { ok }
+        | M::DeleteActionResponse { ok }
+        | M::AddMacroResponse { ok }
+        | M::DeleteMacroResponse { ok }
+        | M::ExecuteMacroResponse { ok }
+        | M::AddServoParameterResponse { ok }
+        | M::WriteProjectIdResponse { ok }
+        | M::AddJoystickTableResponse { ok }
+        | M::DeleteJoystickTableResponse { ok }
+        | M::SetActiveJoystickTableResponse { ok }
+        | M::SubscribeButtonEventResponse { ok } => Some(*ok),
+        _ => None,
+    }
+}
+
+fn unexpected(item: &str, response: &Message) -> OpError {
+    OpError::Unexpected {
+        item: item.to_string(),
+        response: response.name(),
+    }
+}
+
+/// Reads everything the board stores, in the order of the export conversation:
+/// project id → servo parameters → action list, each action → macro list, each
+/// macro → joystick table list, each table → the active table.
+pub fn read_image(
+    requester: &Requester,
+    progress: &mut dyn FnMut(&Progress),
+    cancel: &Cancel,
+) -> Result<BoardImage, OpError> {
+    read_image_as(requester, Phase::Read, progress, cancel)
+}
+
+fn read_image_as(
+    requester: &Requester,
+    phase: Phase,
+    progress: &mut dyn FnMut(&Progress),
+    cancel: &Cancel,
+) -> Result<BoardImage, OpError> {
+    use Message as M;
+    let mut run = Run {
+        requester,
+        progress,
+        cancel,
+        phase,
+        done: 0,
+        total: 6,
+    };
+    let mut image = BoardImage::default();
+
+    let item = "project id".to_string();
+    image.project_id = match run.step(item.clone(), M::QueryProjectIdRequest)? {
+        M::QueryProjectIdResponse { project_id } => project_id,
+        other => return Err(unexpected(&item, &other)),
+    };
+    let item = "servo parameters".to_string();
+    image.servos = match run.step(item.clone(), M::QueryServoParameterRequest)? {
+        M::QueryServoParameterResponse { servos } => servos,
+        other => return Err(unexpected(&item, &other)),
+    };
+
+    let item = "action list".to_string();
+    let actions = match run.step(item.clone(), M::QueryActionListRequest)? {
+        M::QueryActionListResponse { actions } => actions,
+        other => return Err(unexpected(&item, &other)),
+    };
+    run.total += actions.len();
+    for entry in actions {
+        let item = format!("action {} {:?}", entry.id, entry.caption);
+        match run.step(
+            item.clone(),
+            M::QueryActionRequest {
+                action_id: entry.id,
+            },
+        )? {
+            M::QueryActionResponse {
+                action: Some(action),
+            } => image.actions.push(action),
+            M::QueryActionResponse { action: None } => return Err(OpError::ReadFailed { item }),
+            other => return Err(unexpected(&item, &other)),
+        }
+    }
+
+    let item = "macro list".to_string();
+    let macros = match run.step(item.clone(), M::QueryMacroListRequest)? {
+        M::QueryMacroListResponse { macros } => macros,
+        other => return Err(unexpected(&item, &other)),
+    };
+    run.total += macros.len();
+    for entry in macros {
+        let item = format!("macro {} {:?}", entry.id, entry.caption);
+        match run.step(item.clone(), M::QueryMacroRequest { macro_id: entry.id })? {
+            M::QueryMacroResponse {
+                macro_record: Some(record),
+            } => image.macros.push(record),
+            M::QueryMacroResponse { macro_record: None } => {
+                return Err(OpError::ReadFailed { item });
+            }
+            other => return Err(unexpected(&item, &other)),
+        }
+    }
+
+    let item = "joystick table list".to_string();
+    let tables = match run.step(item.clone(), M::QueryJoystickTableListRequest)? {
+        M::QueryJoystickTableListResponse { tables } => tables,
+        other => return Err(unexpected(&item, &other)),
+    };
+    run.total += tables.len();
+    for entry in tables {
+        let item = format!("joystick table {} {:?}", entry.id, entry.caption);
+        match run.step(
+            item.clone(),
+            M::QueryJoystickTableRequest { table_id: entry.id },
+        )? {
+            M::QueryJoystickTableResponse { table: Some(table) } => image.tables.push(table),
+            M::QueryJoystickTableResponse { table: None } => {
+                return Err(OpError::ReadFailed { item });
+            }
+            other => return Err(unexpected(&item, &other)),
+        }
+    }
+
+    let item = "active joystick table".to_string();
+    image.active_table = match run.step(item.clone(), M::QueryActiveJoystickTableRequest)? {
+        M::QueryActiveJoystickTableResponse { table_id } => table_id,
+        other => return Err(unexpected(&item, &other)),
+    };
+    Ok(image)
+}
+
+/// Reads the whole board into a project.
+pub fn export(
+    requester: &Requester,
+    progress: &mut dyn FnMut(&Progress),
+    cancel: &Cancel,
+) -> Result<Project, OpError> {
+    Ok(read_image(requester, progress, cancel)?.to_project())
+}
+
+/// How to import.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ImportOptions {
+    /// Folder for the backup of the board's current contents; `None` = no backup.
+    pub backup_dir: Option<PathBuf>,
+    /// Read everything back afterwards and compare.
+    pub verify: bool,
+}
+
+/// What an import did.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ImportReport {
+    /// Where the board's previous contents were saved.
+    pub backup: Option<PathBuf>,
+    /// How many write requests were acknowledged.
+    pub written: usize,
+    /// Whether the read-back matched exactly.
+    pub verified: bool,
+}
+
+/// The file name a backup gets: `board-backup-YYYYMMDD-HHMMSS-project<ID>.json`,
+/// local time, with a counter if that name is taken.
+pub fn backup_path(folder: &Path, project_id: i32) -> PathBuf {
+    let stamp = chrono::Local::now().format("%Y%m%d-%H%M%S");
+    let base = format!("board-backup-{stamp}-project{project_id}");
+    let mut path = folder.join(format!("{base}.json"));
+    let mut counter = 1;
+    while path.exists() {
+        counter += 1;
+        path = folder.join(format!("{base}-{counter}.json"));
+    }
+    path
+}
+
+/// Writes `project` onto the board. Before anything is cleared: validates it
+/// (errors stop the import), checks that it fits the board's memory, and saves
+/// a backup of the board. Then clears and writes in the order of the import
+/// conversation, and verifies by reading everything back.
+pub fn import(
+    requester: &Requester,
+    project: &Project,
+    options: &ImportOptions,
+    progress: &mut dyn FnMut(&Progress),
+    cancel: &Cancel,
+) -> Result<ImportReport, OpError> {
+    use Message as M;
+    let problems: Vec<Problem> = project::validate(project)
+        .into_iter()
+        .filter(|p| p.severity == project::Severity::Error)
+        .collect();
+    if !problems.is_empty() {
+        return Err(OpError::Invalid { problems });
+    }
+    let image = BoardImage::from_project(project)?;
+    let needed_bytes = image.footprint_bytes()?;
+
+    let mut run = Run {
+        requester,
+        progress,
+        cancel,
+        phase: Phase::Write,
+        done: 0,
+        total: 0,
+    };
+    let item = "memory size".to_string();
+    let total_bytes = match run.step(item.clone(), M::QueryMemorySizeRequest)? {
+        // Boards that report only the free size: after clearing, free is all there is.
+        M::QueryMemorySizeResponse {
+            free_bytes,
+            total_bytes,
+        } => i64::from(total_bytes.unwrap_or(free_bytes)),
+        other => return Err(unexpected(&item, &other)),
+    };
+    if i64::try_from(needed_bytes).unwrap_or(i64::MAX) > total_bytes {
+        return Err(OpError::DoesNotFit {
+            needed_bytes,
+            total_bytes,
+        });
+    }
+
+    let backup = match &options.backup_dir {
+        Some(folder) => {
+            let previous = read_image_as(requester, Phase::Read, progress, cancel)?.to_project();
+            let path = backup_path(folder, previous.project_id);
+            project::save(&path, &previous).map_err(OpError::Backup)?;
+            Some(path)
+        }
+        None => None,
+    };
+
+    let mut run = Run {
+        requester,
+        progress,
+        cancel,
+        phase: Phase::Write,
+        done: 0,
+        total: 0,
+    };
+    run.total = 3
+        + usize::from(!image.servos.is_empty())
+        + image.actions.len()
+        + image.macros.len()
+        + image.tables.len()
+        + usize::from(image.active_table != 0);
+    run.write("clear all data".into(), M::ClearAllDataRequest)?;
+    run.write(
+        format!("project id {}", image.project_id),
+        M::WriteProjectIdRequest {
+            project_id: image.project_id,
+        },
+    )?;
+    if !image.servos.is_empty() {
+        run.write(
+            format!("{} servo parameter(s)", image.servos.len()),
+            M::AddServoParameterRequest {
+                servos: image.servos.clone(),
+            },
+        )?;
+    }
+    for action in &image.actions {
+        run.write(
+            format!("action {} {:?}", action.action_id, action.caption),
+            M::AddActionRequest(action.clone()),
+        )?;
+    }
+    for record in &image.macros {
+        run.write(
+            format!("macro {} {:?}", record.macro_id, record.caption),
+            M::AddMacroRequest(record.clone()),
+        )?;
+    }
+    for table in &image.tables {
+        run.write(
+            format!("joystick table {} {:?}", table.table_id, table.caption),
+            M::AddJoystickTableRequest(table.clone()),
+        )?;
+    }
+    if image.active_table != 0 {
+        run.write(
+            format!("active joystick table {}", image.active_table),
+            M::SetActiveJoystickTableRequest {
+                table_id: image.active_table,
+            },
+        )?;
+    }
+    let written = run.done;
+
+    let verified = if options.verify {
+        let actual = read_image_as(requester, Phase::Verify, progress, cancel)?;
+        let differences = image.differences(&actual);
+        if !differences.is_empty() {
+            return Err(OpError::Verify { differences });
+        }
+        true
+    } else {
+        false
+    };
+    Ok(ImportReport {
+        backup,
+        written,
+        verified,
+    })
+}
+
+/// A board's status at a glance.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct BoardInfo {
+    /// `projectID` (0 = none).
+    pub project_id: i32,
+    /// Free memory in bytes.
+    pub free_bytes: i32,
+    /// Total memory in bytes, if the board reports it.
+    pub total_bytes: Option<i32>,
+    /// Battery in ‰.
+    pub battery_permil: i16,
+    /// Every attached servo's state.
+    pub servos: Vec<ServoStatus>,
+}
+
+/// Reads project id, memory, battery and the servos' states.
+pub fn board_info(requester: &Requester) -> Result<BoardInfo, OpError> {
+    use Message as M;
+    let ask = |item: &str, message: Message| {
+        requester
+            .request(message)
+            .map_err(|source| OpError::Request {
+                item: item.to_string(),
+                source,
+            })
+    };
+    let project_id = match ask("project id", M::QueryProjectIdRequest)? {
+        M::QueryProjectIdResponse { project_id } => project_id,
+        other => return Err(unexpected("project id", &other)),
+    };
+    let (free_bytes, total_bytes) = match ask("memory size", M::QueryMemorySizeRequest)? {
+        M::QueryMemorySizeResponse {
+            free_bytes,
+            total_bytes,
+        } => (free_bytes, total_bytes),
+        other => return Err(unexpected("memory size", &other)),
+    };
+    let battery_permil = match ask("battery", M::QueryRemainPowerRequest)? {
+        M::QueryRemainPowerResponse { permil } => permil,
+        other => return Err(unexpected("battery", &other)),
+    };
+    let servos = match ask(
+        "servos",
+        M::QueryServoRequest {
+            servo_id: ALL_SERVOS,
+        },
+    )? {
+        M::QueryServoResponse { servos } => servos,
+        other => return Err(unexpected("servos", &other)),
+    };
+    Ok(BoardInfo {
+        project_id,
+        free_bytes,
+        total_bytes,
+        battery_permil,
+        servos,
+    })
+}

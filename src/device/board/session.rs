@@ -1,0 +1,694 @@
+//! The board session: a sans-IO state machine that matches each request to its
+//! response by message id (response id = request id + 1), one request in
+//! flight, the rest queued in order; retries idempotent queries on timeout; and
+//! passes unsolicited button events (40081) through, also between a request and
+//! its response. Time comes in as `now`, so every behaviour is tested without
+//! sleeping.
+
+use std::collections::VecDeque;
+use std::time::{Duration, Instant};
+
+use crate::protocol::board::{
+    ContentError, DecoderEvent, EncodeError, Frame, FrameDecoder, Message, SkipReason,
+};
+
+/// Timing of a session.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SessionConfig {
+    /// How long to wait for a response after the request's last byte was
+    /// queued; the wait restarts whenever bytes arrive.
+    pub response_timeout: Duration,
+    /// How many times an idempotent query is sent again after a timeout.
+    pub query_retries: u8,
+    /// How long the line may stay quiet inside a frame before the decoder
+    /// gives that frame up and re-scans what it holds.
+    pub idle_gap: Duration,
+    /// Whether to report every frame sent and received ([`SessionEvent::Traffic`]).
+    pub traffic: bool,
+}
+
+impl Default for SessionConfig {
+    fn default() -> Self {
+        Self {
+            response_timeout: Duration::from_millis(1000),
+            query_retries: 2,
+            idle_gap: Duration::from_millis(100),
+            traffic: false,
+        }
+    }
+}
+
+/// Identifies one submitted request.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct RequestId(pub u64);
+
+/// Why a request got no usable response.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum RequestError {
+    /// No response came in time, after every retry.
+    #[error(
+        "{request}: no response after {attempts} attempt(s). Check that the board is powered, the baud rate matches, and the cable is in"
+    )]
+    Timeout {
+        /// The request's name.
+        request: &'static str,
+        /// How many times it was sent.
+        attempts: u8,
+    },
+    /// The response came but its content does not match its layout.
+    #[error("{request}: malformed response: {error}")]
+    Malformed {
+        /// The request's name.
+        request: &'static str,
+        /// What is wrong with it.
+        error: ContentError,
+    },
+    /// The request cannot be encoded.
+    #[error(transparent)]
+    Encode(#[from] EncodeError),
+    /// The link ended before the response came.
+    #[error("the link to the board was lost: {reason}")]
+    Disconnected {
+        /// Why the link ended.
+        reason: String,
+    },
+}
+
+/// One entry of the packet log.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Traffic {
+    /// A frame written to the board.
+    Sent {
+        /// The frame.
+        frame: Frame,
+        /// What it says.
+        message: Message,
+    },
+    /// A frame received from the board.
+    Received {
+        /// The frame.
+        frame: Frame,
+        /// What it says, or why it cannot be read.
+        message: Result<Message, ContentError>,
+    },
+    /// Bytes dropped while resynchronising.
+    Skipped {
+        /// How many.
+        bytes: usize,
+        /// Why.
+        reason: SkipReason,
+    },
+}
+
+/// What the session reports.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum SessionEvent {
+    /// The outcome of a request.
+    Response {
+        /// Which request.
+        id: RequestId,
+        /// Its response, or why there is none.
+        result: Result<Message, RequestError>,
+    },
+    /// A remote-control button event (40081).
+    Button {
+        /// `buttonID`.
+        button_id: u32,
+        /// What happened.
+        event: crate::protocol::board::ButtonEvent,
+    },
+    /// A frame that answers no pending request.
+    Unsolicited(Message),
+    /// Packet-log entry (only when [`SessionConfig::traffic`] is on).
+    Traffic(Traffic),
+}
+
+#[derive(Debug)]
+struct Pending {
+    id: RequestId,
+    message: Message,
+    frame: Frame,
+    bytes: Vec<u8>,
+    retries_left: u8,
+    attempts: u8,
+}
+
+#[derive(Debug)]
+struct InFlight {
+    request: Pending,
+    deadline: Instant,
+}
+
+/// The session state machine (see the module documentation).
+#[derive(Debug)]
+pub struct Session {
+    config: SessionConfig,
+    decoder: FrameDecoder,
+    queue: VecDeque<Pending>,
+    in_flight: Option<InFlight>,
+    outbox: VecDeque<Vec<u8>>,
+    events: VecDeque<SessionEvent>,
+    next_id: u64,
+    last_input: Option<Instant>,
+}
+
+/// Whether a request only reads, so that sending it twice is harmless.
+pub fn is_idempotent(message: &Message) -> bool {
+    matches!(message.name(), name if name.starts_with("Query"))
+}
+
+impl Session {
+    /// A session with the given timing.
+    pub fn new(config: SessionConfig) -> Self {
+        Self {
+            config,
+            decoder: FrameDecoder::new(),
+            queue: VecDeque::new(),
+            in_flight: None,
+            outbox: VecDeque::new(),
+            events: VecDeque::new(),
+            next_id: 0,
+            last_input: None,
+        }
+    }
+
+    /// Queues a request that expects a response; queries are retried on timeout.
+    pub fn submit(&mut self, now: Instant, message: Message) -> Result<RequestId, EncodeError> {
+        let retries = if is_idempotent(&message) {
+            self.config.query_retries
+        } else {
+            0
+        };
+        self.submit_with_retries(now, message, retries)
+    }
+
+    /// Queues a request with an explicit retry count.
+    pub fn submit_with_retries(
+        &mut self,
+        now: Instant,
+        message: Message,
+        retries: u8,
+    ) -> Result<RequestId, EncodeError> {
+        let frame = message.to_frame()?;
+        let bytes = frame.to_bytes()?;
+        self.next_id += 1;
+        let id = RequestId(self.next_id);
+        self.queue.push_back(Pending {
+            id,
+            message,
+            frame,
+            bytes,
+            retries_left: retries,
+            attempts: 0,
+        });
+        self.start_next(now);
+        Ok(id)
+    }
+
+    /// Sends a message that has no response (20050, 20060, 10050) at once,
+    /// ahead of queued requests.
+    pub fn send(&mut self, message: Message) -> Result<(), EncodeError> {
+        let frame = message.to_frame()?;
+        self.outbox.push_back(frame.to_bytes()?);
+        self.log(|| Traffic::Sent { frame, message });
+        Ok(())
+    }
+
+    /// Requests waiting, including the one in flight.
+    pub fn pending_requests(&self) -> usize {
+        self.queue.len() + usize::from(self.in_flight.is_some())
+    }
+
+    fn log(&mut self, entry: impl FnOnce() -> Traffic) {
+        if self.config.traffic {
+            self.events.push_back(SessionEvent::Traffic(entry()));
+        }
+    }
+
+    fn start_next(&mut self, now: Instant) {
+        if self.in_flight.is_some() {
+            return;
+        }
+        if let Some(request) = self.queue.pop_front() {
+            self.transmit(now, request);
+        }
+    }
+
+    fn transmit(&mut self, now: Instant, mut request: Pending) {
+        request.attempts += 1;
+        self.outbox.push_back(request.bytes.clone());
+        let (frame, message) = (request.frame.clone(), request.message.clone());
+        self.log(|| Traffic::Sent { frame, message });
+        self.in_flight = Some(InFlight {
+            request,
+            deadline: now + self.config.response_timeout,
+        });
+    }
+
+    /// Bytes received from the board.
+    pub fn handle_input(&mut self, now: Instant, bytes: &[u8]) {
+        self.last_input = Some(now);
+        if let Some(in_flight) = &mut self.in_flight {
+            // A long response is still arriving: keep waiting for it.
+            in_flight.deadline = in_flight.deadline.max(now + self.config.response_timeout);
+        }
+        self.decoder.push(bytes);
+        self.drain_decoder(now);
+    }
+
+    fn drain_decoder(&mut self, now: Instant) {
+        while let Some(event) = self.decoder.poll() {
+            match event {
+                DecoderEvent::Frame(frame) => self.handle_frame(now, &frame),
+                DecoderEvent::Skipped { bytes, reason } => {
+                    self.log(|| Traffic::Skipped { bytes, reason });
+                }
+            }
+        }
+    }
+
+    fn handle_frame(&mut self, now: Instant, frame: &Frame) {
+        let decoded = Message::from_frame(frame);
+        if self.config.traffic {
+            self.events
+                .push_back(SessionEvent::Traffic(Traffic::Received {
+                    frame: frame.clone(),
+                    message: decoded.clone(),
+                }));
+        }
+        let answers_in_flight = self
+            .in_flight
+            .as_ref()
+            .is_some_and(|f| f.request.frame.packet_id.checked_add(1) == Some(frame.packet_id));
+        if answers_in_flight {
+            let Some(InFlight { request, .. }) = self.in_flight.take() else {
+                return;
+            };
+            match decoded {
+                Ok(message) => self.events.push_back(SessionEvent::Response {
+                    id: request.id,
+                    result: Ok(message),
+                }),
+                Err(error) => self.retry_or_fail(now, request, |request| RequestError::Malformed {
+                    request,
+                    error,
+                }),
+            }
+            self.start_next(now);
+            return;
+        }
+        match decoded {
+            Ok(Message::ButtonEventResponse { button_id, event }) => {
+                self.events
+                    .push_back(SessionEvent::Button { button_id, event });
+            }
+            Ok(message) => self.events.push_back(SessionEvent::Unsolicited(message)),
+            // Already in the packet log; nothing waits for it.
+            Err(_) => {}
+        }
+    }
+
+    fn retry_or_fail(
+        &mut self,
+        now: Instant,
+        mut request: Pending,
+        error: impl FnOnce(&'static str) -> RequestError,
+    ) {
+        if request.retries_left > 0 {
+            request.retries_left -= 1;
+            self.transmit(now, request);
+        } else {
+            let error = error(request.message.name());
+            self.events.push_back(SessionEvent::Response {
+                id: request.id,
+                result: Err(error),
+            });
+        }
+    }
+
+    /// Called when `now` has reached [`Session::poll_timeout`].
+    pub fn handle_timeout(&mut self, now: Instant) {
+        if self.decoder.pending_len() > 0
+            && self
+                .last_input
+                .is_some_and(|at| now >= at + self.config.idle_gap)
+        {
+            self.decoder.abandon_partial();
+            self.drain_decoder(now);
+        }
+        if self.in_flight.as_ref().is_some_and(|f| now >= f.deadline) {
+            let Some(InFlight { request, .. }) = self.in_flight.take() else {
+                return;
+            };
+            let attempts = request.attempts;
+            self.retry_or_fail(now, request, |request| RequestError::Timeout {
+                request,
+                attempts,
+            });
+            self.start_next(now);
+        }
+    }
+
+    /// The link is gone: every pending request fails with `reason`.
+    pub fn handle_disconnect(&mut self, reason: &str) {
+        let pending = self
+            .in_flight
+            .take()
+            .map(|f| f.request)
+            .into_iter()
+            .chain(self.queue.drain(..));
+        let failed: Vec<SessionEvent> = pending
+            .map(|request| SessionEvent::Response {
+                id: request.id,
+                result: Err(RequestError::Disconnected {
+                    reason: reason.to_string(),
+                }),
+            })
+            .collect();
+        self.events.extend(failed);
+        self.outbox.clear();
+    }
+
+    /// Bytes to write now.
+    pub fn poll_transmit(&mut self) -> Option<Vec<u8>> {
+        self.outbox.pop_front()
+    }
+
+    /// The next event.
+    pub fn poll_event(&mut self) -> Option<SessionEvent> {
+        self.events.pop_front()
+    }
+
+    /// When [`Session::handle_timeout`] is next needed.
+    pub fn poll_timeout(&self) -> Option<Instant> {
+        let response = self.in_flight.as_ref().map(|f| f.deadline);
+        let idle = (self.decoder.pending_len() > 0)
+            .then(|| self.last_input.map(|at| at + self.config.idle_gap))
+            .flatten();
+        match (response, idle) {
+            (Some(a), Some(b)) => Some(a.min(b)),
+            (a, b) => a.or(b),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::protocol::board::ButtonEvent;
+
+    fn config() -> SessionConfig {
+        SessionConfig {
+            response_timeout: Duration::from_millis(100),
+            query_retries: 1,
+            idle_gap: Duration::from_millis(20),
+            traffic: false,
+        }
+    }
+
+    fn bytes(message: &Message) -> Vec<u8> {
+        message.encode().unwrap()
+    }
+
+    fn sent(session: &mut Session) -> Vec<Message> {
+        std::iter::from_fn(|| session.poll_transmit())
+            .map(|raw| {
+                let mut decoder = FrameDecoder::new();
+                decoder.push(&raw);
+                match decoder.poll() {
+                    Some(DecoderEvent::Frame(frame)) => Message::from_frame(&frame).unwrap(),
+                    other => panic!("not a frame: {other:?}"),
+                }
+            })
+            .collect()
+    }
+
+    fn events(session: &mut Session) -> Vec<SessionEvent> {
+        std::iter::from_fn(|| session.poll_event()).collect()
+    }
+
+    #[test]
+    fn one_request_in_flight_and_fifo_order() {
+        let t0 = Instant::now();
+        let mut session = Session::new(config());
+        let first = session.submit(t0, Message::QueryProjectIdRequest).unwrap();
+        let second = session
+            .submit(t0, Message::QueryRemainPowerRequest)
+            .unwrap();
+        assert_eq!(
+            sent(&mut session),
+            [Message::QueryProjectIdRequest],
+            "only the first goes out"
+        );
+        assert_eq!(session.pending_requests(), 2);
+
+        session.handle_input(
+            t0,
+            &bytes(&Message::QueryProjectIdResponse { project_id: 7 }),
+        );
+        assert_eq!(
+            events(&mut session),
+            [SessionEvent::Response {
+                id: first,
+                result: Ok(Message::QueryProjectIdResponse { project_id: 7 })
+            }]
+        );
+        assert_eq!(
+            sent(&mut session),
+            [Message::QueryRemainPowerRequest],
+            "then the second"
+        );
+        session.handle_input(
+            t0,
+            &bytes(&Message::QueryRemainPowerResponse { permil: 900 }),
+        );
+        assert_eq!(
+            events(&mut session),
+            [SessionEvent::Response {
+                id: second,
+                result: Ok(Message::QueryRemainPowerResponse { permil: 900 })
+            }]
+        );
+        assert_eq!(session.poll_timeout(), None);
+    }
+
+    #[test]
+    fn a_query_is_retried_after_a_timeout_then_fails() {
+        let t0 = Instant::now();
+        let mut session = Session::new(config());
+        let id = session.submit(t0, Message::QueryProjectIdRequest).unwrap();
+        assert_eq!(sent(&mut session).len(), 1);
+        assert_eq!(
+            session.poll_timeout(),
+            Some(t0 + Duration::from_millis(100))
+        );
+
+        session.handle_timeout(t0 + Duration::from_millis(99));
+        assert_eq!(sent(&mut session), [], "not yet");
+        let t1 = t0 + Duration::from_millis(100);
+        session.handle_timeout(t1);
+        assert_eq!(
+            sent(&mut session),
+            [Message::QueryProjectIdRequest],
+            "retried once"
+        );
+        assert_eq!(events(&mut session), []);
+
+        session.handle_timeout(t1 + Duration::from_millis(100));
+        assert_eq!(
+            events(&mut session),
+            [SessionEvent::Response {
+                id,
+                result: Err(RequestError::Timeout {
+                    request: "QueryProjectIDRequest",
+                    attempts: 2
+                })
+            }]
+        );
+    }
+
+    #[test]
+    fn a_retried_query_succeeds_when_the_second_response_comes() {
+        let t0 = Instant::now();
+        let mut session = Session::new(config());
+        let id = session
+            .submit(t0, Message::QueryActiveJoystickTableRequest)
+            .unwrap();
+        session.handle_timeout(t0 + Duration::from_millis(100));
+        assert_eq!(sent(&mut session).len(), 2);
+        session.handle_input(
+            t0 + Duration::from_millis(150),
+            &bytes(&Message::QueryActiveJoystickTableResponse { table_id: 3 }),
+        );
+        assert_eq!(
+            events(&mut session),
+            [SessionEvent::Response {
+                id,
+                result: Ok(Message::QueryActiveJoystickTableResponse { table_id: 3 })
+            }]
+        );
+    }
+
+    #[test]
+    fn writes_are_not_retried() {
+        let t0 = Instant::now();
+        let mut session = Session::new(config());
+        let id = session.submit(t0, Message::ClearAllDataRequest).unwrap();
+        session.handle_timeout(t0 + Duration::from_millis(100));
+        assert_eq!(
+            sent(&mut session),
+            [Message::ClearAllDataRequest],
+            "sent once only"
+        );
+        assert!(matches!(
+            events(&mut session).as_slice(),
+            [SessionEvent::Response { id: got, result: Err(RequestError::Timeout { attempts: 1, .. }) }] if *got == id
+        ));
+    }
+
+    #[test]
+    fn button_events_pass_through_between_a_request_and_its_response() {
+        let t0 = Instant::now();
+        let mut session = Session::new(config());
+        let id = session.submit(t0, Message::QueryProjectIdRequest).unwrap();
+        let mut stream = bytes(&Message::ButtonEventResponse {
+            button_id: 0x8000_0001,
+            event: ButtonEvent::Press,
+        });
+        stream.extend(bytes(&Message::QueryProjectIdResponse { project_id: 5 }));
+        // Split mid-frame, as a serial port delivers it.
+        session.handle_input(t0, &stream[..7]);
+        session.handle_input(t0, &stream[7..]);
+        assert_eq!(
+            events(&mut session),
+            [
+                SessionEvent::Button {
+                    button_id: 0x8000_0001,
+                    event: ButtonEvent::Press
+                },
+                SessionEvent::Response {
+                    id,
+                    result: Ok(Message::QueryProjectIdResponse { project_id: 5 })
+                },
+            ]
+        );
+    }
+
+    #[test]
+    fn a_frame_answering_nothing_is_unsolicited() {
+        let t0 = Instant::now();
+        let mut session = Session::new(config());
+        session.handle_input(t0, &bytes(&Message::AddActionResponse { ok: true }));
+        assert_eq!(
+            events(&mut session),
+            [SessionEvent::Unsolicited(Message::AddActionResponse {
+                ok: true
+            })]
+        );
+    }
+
+    #[test]
+    fn a_malformed_response_is_retried_for_queries() {
+        let t0 = Instant::now();
+        let mut session = Session::new(config());
+        let id = session.submit(t0, Message::QueryProjectIdRequest).unwrap();
+        sent(&mut session);
+        // 30131 with 2 content bytes instead of 4: passes the checksum, fails the layout.
+        session.handle_input(t0, &Frame::new(30131, vec![1, 2]).to_bytes().unwrap());
+        assert_eq!(sent(&mut session), [Message::QueryProjectIdRequest]);
+        session.handle_input(t0, &Frame::new(30131, vec![1, 2]).to_bytes().unwrap());
+        assert!(matches!(
+            events(&mut session).as_slice(),
+            [SessionEvent::Response { id: got, result: Err(RequestError::Malformed { request: "QueryProjectIDRequest", .. }) }] if *got == id
+        ));
+    }
+
+    #[test]
+    fn a_stalled_partial_frame_is_given_up_after_the_idle_gap() {
+        let t0 = Instant::now();
+        let mut session = Session::new(SessionConfig {
+            traffic: true,
+            ..config()
+        });
+        // A header claiming 200 bytes, then silence.
+        session.handle_input(t0, &[0x13, 0x4c, 0x05, 0x1d, 0x33, 0x75, 200, 0]);
+        assert_eq!(session.poll_timeout(), Some(t0 + Duration::from_millis(20)));
+        session.handle_timeout(t0 + Duration::from_millis(20));
+        assert!(matches!(
+            events(&mut session).as_slice(),
+            [SessionEvent::Traffic(Traffic::Skipped {
+                bytes: 8,
+                reason: SkipReason::Truncated { .. }
+            })]
+        ));
+        assert_eq!(session.poll_timeout(), None);
+    }
+
+    #[test]
+    fn incoming_bytes_extend_the_wait_for_a_long_response() {
+        let t0 = Instant::now();
+        let mut session = Session::new(config());
+        session
+            .submit(t0, Message::QueryJoystickTableRequest { table_id: 1 })
+            .unwrap();
+        session.handle_input(t0 + Duration::from_millis(90), &[0x13, 0x4c]);
+        assert_eq!(
+            session.poll_timeout(),
+            Some(t0 + Duration::from_millis(110)),
+            "idle gap first"
+        );
+        session.handle_input(t0 + Duration::from_millis(105), &[0x05]);
+        assert_eq!(
+            session.poll_timeout(),
+            Some(t0 + Duration::from_millis(125))
+        );
+        session.handle_timeout(t0 + Duration::from_millis(125));
+        // The partial frame is dropped, but the request still waits until 205 ms.
+        assert_eq!(
+            session.poll_timeout(),
+            Some(t0 + Duration::from_millis(205))
+        );
+    }
+
+    #[test]
+    fn disconnect_fails_every_pending_request() {
+        let t0 = Instant::now();
+        let mut session = Session::new(config());
+        let a = session.submit(t0, Message::QueryProjectIdRequest).unwrap();
+        let b = session.submit(t0, Message::QueryMacroListRequest).unwrap();
+        session.handle_disconnect("cable pulled");
+        let failed = RequestError::Disconnected {
+            reason: "cable pulled".into(),
+        };
+        assert_eq!(
+            events(&mut session),
+            [
+                SessionEvent::Response {
+                    id: a,
+                    result: Err(failed.clone())
+                },
+                SessionEvent::Response {
+                    id: b,
+                    result: Err(failed)
+                }
+            ]
+        );
+        assert_eq!(session.pending_requests(), 0);
+    }
+
+    #[test]
+    fn fire_and_forget_messages_go_out_at_once() {
+        let t0 = Instant::now();
+        let mut session = Session::new(config());
+        session.submit(t0, Message::QueryProjectIdRequest).unwrap();
+        sent(&mut session);
+        session
+            .send(Message::ExecuteActionExRequest { action_id: 4 })
+            .unwrap();
+        assert_eq!(
+            sent(&mut session),
+            [Message::ExecuteActionExRequest { action_id: 4 }]
+        );
+        assert_eq!(session.pending_requests(), 1);
+    }
+}

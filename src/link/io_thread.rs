@@ -1,0 +1,306 @@
+//! The one I/O thread: the only code that touches a port. It drives a sans-IO
+//! [`Driver`] (a protocol session, or an emulated board): commands in over a
+//! channel, bytes in from the port, timeouts from the driver's own deadline;
+//! bytes out to the port, events out over a channel.
+//!
+//! A helper thread blocks in the port's `read` and forwards what arrives, so
+//! the I/O thread wakes the moment bytes, a command, or a deadline arrives,
+//! with no polling sleep anywhere on the path.
+
+use std::io::{self, Read, Write};
+use std::sync::Arc;
+use std::thread::JoinHandle;
+use std::time::Instant;
+
+use crossbeam_channel::{Receiver, Select, Sender};
+
+use super::connection::Connection;
+
+/// A sans-IO state machine the I/O thread can drive. Time is passed in, so a
+/// driver is tested by stepping it with fake instants.
+pub trait Driver: Send + 'static {
+    /// What the owner asks of the driver.
+    type Command: Send + 'static;
+    /// What the driver reports to the owner.
+    type Event: Send + 'static;
+
+    /// A command from the owner.
+    fn handle_command(&mut self, now: Instant, command: Self::Command);
+    /// Bytes received from the port.
+    fn handle_input(&mut self, now: Instant, bytes: &[u8]);
+    /// Called when `now` has reached [`Driver::poll_timeout`].
+    fn handle_timeout(&mut self, now: Instant);
+    /// The link is gone; `reason` says why. Fail whatever is pending.
+    fn handle_disconnect(&mut self, reason: &str);
+    /// Bytes to write to the port now, if any.
+    fn poll_transmit(&mut self, now: Instant) -> Option<Vec<u8>>;
+    /// An event for the owner, if any.
+    fn poll_event(&mut self) -> Option<Self::Event>;
+    /// When the driver next needs [`Driver::handle_timeout`].
+    fn poll_timeout(&self) -> Option<Instant>;
+    /// Whether the driver wants the link closed (e.g. an injected disconnect).
+    fn wants_close(&self) -> bool {
+        false
+    }
+}
+
+/// What the I/O thread reports.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum LinkEvent<E> {
+    /// An event of the driver.
+    Driver(E),
+    /// The link ended; nothing more will come. `reason` is readable.
+    Disconnected {
+        /// Why, in words (e.g. "the port was closed by the other end").
+        reason: String,
+    },
+}
+
+/// Called after the I/O thread has queued events, to wake the owner (the GUI
+/// passes a closure that requests a repaint).
+pub type Waker = Arc<dyn Fn() + Send + Sync>;
+
+/// A waker that does nothing, for owners that block on the event channel.
+pub fn no_waker() -> Waker {
+    Arc::new(|| {})
+}
+
+/// The owner's side of a running link. Dropping it closes the link and waits
+/// for the I/O thread to release the port.
+pub struct LinkHandle<C, E> {
+    commands: Sender<C>,
+    /// Dropping this tells the I/O thread to end, even while workers still
+    /// hold clones of `commands`.
+    close: Option<Sender<()>>,
+    events: Receiver<LinkEvent<E>>,
+    thread: Option<JoinHandle<()>>,
+    description: String,
+}
+
+impl<C, E> std::fmt::Debug for LinkHandle<C, E> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("LinkHandle")
+            .field("description", &self.description)
+            .finish_non_exhaustive()
+    }
+}
+
+impl<C, E> LinkHandle<C, E> {
+    /// A sender for commands; clone it freely (e.g. for an operation's worker thread).
+    pub fn commands(&self) -> Sender<C> {
+        self.commands.clone()
+    }
+
+    /// The event receiver.
+    pub fn events(&self) -> &Receiver<LinkEvent<E>> {
+        &self.events
+    }
+
+    /// What the link is connected to.
+    pub fn description(&self) -> &str {
+        &self.description
+    }
+
+    /// Closes the link and waits for the I/O thread to release the port.
+    pub fn close(self) {
+        drop(self);
+    }
+}
+
+impl<C, E> Drop for LinkHandle<C, E> {
+    fn drop(&mut self) {
+        self.close = None;
+        if let Some(thread) = self.thread.take() {
+            // A panic inside the thread has already been reported as a disconnect.
+            let _ = thread.join();
+        }
+    }
+}
+
+/// The owner's channels, as the I/O thread sees them.
+pub struct Owner<C> {
+    /// Commands for the driver.
+    pub commands: Receiver<C>,
+    /// Disconnected when the owner wants the link closed.
+    pub close: Receiver<()>,
+}
+
+enum Input {
+    Bytes(Vec<u8>),
+    Ended(String),
+}
+
+/// Starts the I/O thread for `driver` over `connection`.
+pub fn spawn<D: Driver>(
+    connection: Connection,
+    driver: D,
+    waker: Waker,
+) -> io::Result<LinkHandle<D::Command, D::Event>> {
+    let (command_tx, command_rx) = crossbeam_channel::unbounded();
+    let (close_tx, close_rx) = crossbeam_channel::bounded(0);
+    let (event_tx, event_rx) = crossbeam_channel::unbounded();
+    let description = connection.description.clone();
+    let thread = std::thread::Builder::new()
+        .name(format!("io {description}"))
+        .spawn(move || {
+            let owner = Owner {
+                commands: command_rx,
+                close: close_rx,
+            };
+            run(connection, driver, &owner, &event_tx, &waker);
+        })?;
+    Ok(LinkHandle {
+        commands: command_tx,
+        close: Some(close_tx),
+        events: event_rx,
+        thread: Some(thread),
+        description,
+    })
+}
+
+/// Drives `driver` over `connection` on the calling thread until the link
+/// ends, then hands the driver back (a server keeps its state across clients).
+pub fn run<D: Driver>(
+    connection: Connection,
+    mut driver: D,
+    owner: &Owner<D::Command>,
+    events: &Sender<LinkEvent<D::Event>>,
+    waker: &Waker,
+) -> D {
+    let Connection {
+        reader,
+        mut writer,
+        shutdown,
+        keep,
+        ..
+    } = connection;
+    let (input_tx, input_rx) = crossbeam_channel::unbounded();
+    let (stop_tx, stop_rx) = crossbeam_channel::bounded::<()>(0);
+    let reader_thread = std::thread::Builder::new()
+        .name("io reader".into())
+        .spawn(move || read_loop(reader, &input_tx, &stop_rx));
+    let reason = match &reader_thread {
+        Ok(_) => drive(&mut driver, &mut *writer, owner, &input_rx, events, waker),
+        Err(error) => format!("cannot start the reader thread: {error}"),
+    };
+    driver.handle_disconnect(&reason);
+    forward_events(&mut driver, events);
+    let _ = events.send(LinkEvent::Disconnected { reason });
+    waker();
+    // Release the port: stop and wake the reader, then wait for it to let go
+    // (at once for TCP and memory, within one read timeout for serial ports).
+    drop(stop_tx);
+    drop(input_rx);
+    if let Some(shutdown) = shutdown {
+        shutdown();
+    }
+    drop(writer);
+    if let Ok(handle) = reader_thread {
+        let _ = handle.join();
+    }
+    drop(keep);
+    driver
+}
+
+fn forward_events<D: Driver>(driver: &mut D, events: &Sender<LinkEvent<D::Event>>) -> bool {
+    let mut any = false;
+    while let Some(event) = driver.poll_event() {
+        // The owner may have gone; then nobody needs the event.
+        let _ = events.send(LinkEvent::Driver(event));
+        any = true;
+    }
+    any
+}
+
+/// Runs until the link ends; returns why.
+fn drive<D: Driver>(
+    driver: &mut D,
+    writer: &mut dyn Write,
+    owner: &Owner<D::Command>,
+    input: &Receiver<Input>,
+    events: &Sender<LinkEvent<D::Event>>,
+    waker: &Waker,
+) -> String {
+    loop {
+        let now = Instant::now();
+        if driver
+            .poll_timeout()
+            .is_some_and(|deadline| deadline <= now)
+        {
+            driver.handle_timeout(now);
+        }
+        while let Some(bytes) = driver.poll_transmit(now) {
+            if let Err(error) = writer.write_all(&bytes).and_then(|()| writer.flush()) {
+                return format!("writing to the port failed: {error}");
+            }
+        }
+        if forward_events(driver, events) {
+            waker();
+        }
+        if driver.wants_close() {
+            return "the link was closed by the driver".into();
+        }
+        let mut select = Select::new();
+        let command_index = select.recv(&owner.commands);
+        let close_index = select.recv(&owner.close);
+        let input_index = select.recv(input);
+        let operation = match driver.poll_timeout() {
+            Some(deadline) => match select.select_deadline(deadline) {
+                Ok(operation) => operation,
+                Err(_) => continue, // deadline reached: handled at the top
+            },
+            None => select.select(),
+        };
+        let now = Instant::now();
+        match operation.index() {
+            index if index == command_index => match operation.recv(&owner.commands) {
+                Ok(command) => driver.handle_command(now, command),
+                Err(_) => return "the link was closed".into(),
+            },
+            index if index == close_index => {
+                let _ = operation.recv(&owner.close);
+                return "the link was closed".into();
+            }
+            index if index == input_index => match operation.recv(input) {
+                Ok(Input::Bytes(bytes)) => driver.handle_input(now, &bytes),
+                Ok(Input::Ended(reason)) => return reason,
+                Err(_) => return "the port reader stopped".into(),
+            },
+            _ => {}
+        }
+    }
+}
+
+fn read_loop(mut reader: Box<dyn Read + Send>, input: &Sender<Input>, stop: &Receiver<()>) {
+    let mut buffer = vec![0u8; 4096];
+    loop {
+        if matches!(
+            stop.try_recv(),
+            Err(crossbeam_channel::TryRecvError::Disconnected)
+        ) {
+            return;
+        }
+        let ended = match reader.read(&mut buffer) {
+            Ok(0) => "the port was closed by the other end".to_string(),
+            Ok(len) => {
+                if input.send(Input::Bytes(buffer[..len].to_vec())).is_err() {
+                    return;
+                }
+                continue;
+            }
+            Err(error)
+                if matches!(
+                    error.kind(),
+                    io::ErrorKind::TimedOut
+                        | io::ErrorKind::WouldBlock
+                        | io::ErrorKind::Interrupted
+                ) =>
+            {
+                continue;
+            }
+            Err(error) => format!("reading from the port failed: {error} (was the cable pulled?)"),
+        };
+        let _ = input.send(Input::Ended(ended));
+        return;
+    }
+}

@@ -1,0 +1,11 @@
+//! Transports and the one I/O thread. A link moves bytes; it does not know
+//! which protocol reads them (the [`Driver`] it runs does).
+
+mod connection;
+mod io_thread;
+mod port;
+
+pub use connection::Connection;
+pub use io_thread::{Driver, LinkEvent, LinkHandle, Owner, Waker, no_waker, run, spawn};
+pub(crate) use port::READ_WAKE;
+pub use port::{DEFAULT_BAUD, LinkError, PortInfo, PortName, list_ports, open};

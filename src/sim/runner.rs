@@ -1,0 +1,155 @@
+//! Running the emulated board: in-process, behind a pseudo-terminal, or on TCP.
+
+use std::io;
+use std::net::{SocketAddr, TcpListener};
+use std::thread::JoinHandle;
+
+use crossbeam_channel::{Receiver, Sender};
+
+use super::board::{BoardSim, SimCommand, SimEvent};
+use crate::link::{Connection, LinkEvent, LinkHandle, Owner, Waker, run, spawn};
+
+/// A running emulated board.
+pub struct SimHandle {
+    /// The port a client connects to (`/dev/pts/N`, `tcp://127.0.0.1:PORT`,
+    /// or `memory` for the in-process board).
+    pub port_name: String,
+    inner: Inner,
+}
+
+enum Inner {
+    Link(LinkHandle<SimCommand, SimEvent>),
+    Server {
+        commands: Sender<SimCommand>,
+        events: Receiver<LinkEvent<SimEvent>>,
+        close: Option<Sender<()>>,
+        thread: Option<JoinHandle<()>>,
+        address: SocketAddr,
+    },
+}
+
+impl std::fmt::Debug for SimHandle {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("SimHandle")
+            .field("port_name", &self.port_name)
+            .finish_non_exhaustive()
+    }
+}
+
+impl SimHandle {
+    /// Sends a command to the board (e.g. a button press on the remote).
+    pub fn command(&self, command: SimCommand) {
+        // If the board has stopped, there is nobody to press buttons for.
+        let _ = match &self.inner {
+            Inner::Link(link) => link.commands().send(command),
+            Inner::Server { commands, .. } => commands.send(command),
+        };
+    }
+
+    /// What the board reports (requests handled, disconnects).
+    pub fn events(&self) -> &Receiver<LinkEvent<SimEvent>> {
+        match &self.inner {
+            Inner::Link(link) => link.events(),
+            Inner::Server { events, .. } => events,
+        }
+    }
+}
+
+impl Drop for SimHandle {
+    fn drop(&mut self) {
+        if let Inner::Server {
+            close,
+            thread,
+            address,
+            ..
+        } = &mut self.inner
+        {
+            *close = None;
+            // The accept loop blocks in `accept`: a throwaway connection wakes it.
+            let _ = std::net::TcpStream::connect(*address);
+            if let Some(thread) = thread.take() {
+                let _ = thread.join();
+            }
+        }
+    }
+}
+
+/// Runs `sim` in this process; returns its handle and the client's end of the link.
+pub fn spawn_in_memory(sim: BoardSim, waker: Waker) -> io::Result<(SimHandle, Connection)> {
+    let (board_end, client_end) = Connection::memory_pair();
+    let link = spawn(board_end, sim, waker)?;
+    Ok((
+        SimHandle {
+            port_name: "memory".into(),
+            inner: Inner::Link(link),
+        },
+        client_end,
+    ))
+}
+
+/// Runs `sim` behind a pseudo-terminal; clients open [`SimHandle::port_name`].
+#[cfg(unix)]
+pub fn spawn_pty(sim: BoardSim, waker: Waker) -> io::Result<SimHandle> {
+    use serialport::SerialPort;
+    let to_io = |error: serialport::Error| io::Error::other(error.description);
+    let (mut master, slave) = serialport::TTYPort::pair().map_err(to_io)?;
+    master.set_timeout(crate::link::READ_WAKE).map_err(to_io)?;
+    let port_name = slave
+        .name()
+        .ok_or_else(|| io::Error::other("the pseudo-terminal has no name"))?;
+    let mut connection = Connection::from_serial(Box::new(master), port_name.clone())?;
+    // Keep the client's end open ourselves, so that the board's end never
+    // reads "end of file" between clients: the board outlives each of them.
+    connection.keep_alive(Box::new(slave));
+    let link = spawn(connection, sim, waker)?;
+    Ok(SimHandle {
+        port_name,
+        inner: Inner::Link(link),
+    })
+}
+
+/// Runs `sim` as a TCP server on `address` (port 0 picks a free one). One
+/// client at a time; the board keeps its contents from one client to the next.
+pub fn spawn_tcp(sim: BoardSim, address: SocketAddr, waker: Waker) -> io::Result<SimHandle> {
+    let listener = TcpListener::bind(address)?;
+    let port_name = format!("tcp://{}", listener.local_addr()?);
+    let (command_tx, command_rx) = crossbeam_channel::unbounded();
+    let (close_tx, close_rx) = crossbeam_channel::bounded::<()>(0);
+    let (event_tx, event_rx) = crossbeam_channel::unbounded();
+    let wake_listener = listener.local_addr()?;
+    let thread = std::thread::Builder::new()
+        .name("sim tcp".into())
+        .spawn(move || {
+            let owner = Owner {
+                commands: command_rx,
+                close: close_rx,
+            };
+            let mut sim = sim;
+            for stream in listener.incoming() {
+                if matches!(
+                    owner.close.try_recv(),
+                    Err(crossbeam_channel::TryRecvError::Disconnected)
+                ) {
+                    return;
+                }
+                let Ok(stream) = stream else { continue };
+                let description = stream
+                    .peer_addr()
+                    .map_or_else(|_| "client".to_string(), |peer| peer.to_string());
+                let Ok(connection) = Connection::from_tcp(stream, description) else {
+                    continue;
+                };
+                sim = run(connection, sim, &owner, &event_tx, &waker);
+            }
+        })?;
+    Ok(SimHandle {
+        port_name,
+        inner: Inner::Server {
+            commands: command_tx,
+            events: event_rx,
+            close: Some(close_tx),
+            thread: Some(thread),
+            address: wake_listener,
+        },
+    })
+}
