@@ -431,7 +431,7 @@ pub fn import(
         done: 0,
         total: 0,
     };
-    run.total = 3
+    run.total = 2
         + usize::from(!image.servos.is_empty())
         + image.actions.len()
         + image.macros.len()
