@@ -3,6 +3,7 @@
 
 mod client;
 mod image;
+mod live;
 mod ops;
 mod session;
 

@@ -514,39 +514,10 @@ pub struct BoardInfo {
 
 /// Reads project id, memory, battery and the servos' states.
 pub fn board_info(requester: &Requester) -> Result<BoardInfo, OpError> {
-    use Message as M;
-    let ask = |item: &str, message: Message| {
-        requester
-            .request(message)
-            .map_err(|source| OpError::Request {
-                item: item.to_string(),
-                source,
-            })
-    };
-    let project_id = match ask("project id", M::QueryProjectIdRequest)? {
-        M::QueryProjectIdResponse { project_id } => project_id,
-        other => return Err(unexpected("project id", &other)),
-    };
-    let (free_bytes, total_bytes) = match ask("memory size", M::QueryMemorySizeRequest)? {
-        M::QueryMemorySizeResponse {
-            free_bytes,
-            total_bytes,
-        } => (free_bytes, total_bytes),
-        other => return Err(unexpected("memory size", &other)),
-    };
-    let battery_permil = match ask("battery", M::QueryRemainPowerRequest)? {
-        M::QueryRemainPowerResponse { permil } => permil,
-        other => return Err(unexpected("battery", &other)),
-    };
-    let servos = match ask(
-        "servos",
-        M::QueryServoRequest {
-            servo_id: ALL_SERVOS,
-        },
-    )? {
-        M::QueryServoResponse { servos } => servos,
-        other => return Err(unexpected("servos", &other)),
-    };
+    let project_id = requester.project_id()?;
+    let (free_bytes, total_bytes) = requester.memory()?;
+    let battery_permil = requester.battery_permil()?;
+    let servos = requester.query_servos(ALL_SERVOS)?;
     Ok(BoardInfo {
         project_id,
         free_bytes,
