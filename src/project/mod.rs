@@ -2,6 +2,7 @@
 //! derived timing, and validation. Stands alone: no protocol I/O, no UI.
 
 mod file;
+mod history;
 mod model;
 mod timing;
 mod validate;
@@ -9,6 +10,7 @@ mod validate;
 pub use file::{
     CURRENT_VERSION, FORMAT_TAG, LoadError, SaveError, atomic_write, from_json, load, save, to_json,
 };
+pub use history::{History, MAX_UNDO_STEPS};
 pub use model::{
     Action, BoardKind, Button, Command, JoystickTable, Macro, Project, Run, Servo, Step,
 };

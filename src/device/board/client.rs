@@ -25,10 +25,15 @@ pub enum BoardCommand {
         /// Where the outcome goes.
         reply: Reply,
     },
-    /// Send a message that has no response (e.g. a live move, 20050).
+    /// Send a message that has no response (e.g. 20060).
     Send {
         /// The message.
         message: Message,
+    },
+    /// Live move targets (20050), coalesced: the latest value per servo wins.
+    LiveMove {
+        /// The targets.
+        moves: Vec<crate::protocol::board::ServoMove>,
     },
 }
 
@@ -104,11 +109,12 @@ impl Driver for BoardDriver {
                 }
             },
             BoardCommand::Send { message } => {
-                if let Err(error) = self.session.send(message) {
+                if let Err(error) = self.session.send(now, message) {
                     self.events
                         .push_back(BoardEvent::SendFailed(error.to_string()));
                 }
             }
+            BoardCommand::LiveMove { moves } => self.session.set_live_moves(now, &moves),
         }
         self.drain_session();
     }
@@ -224,6 +230,17 @@ impl Requester {
     pub fn send(&self, message: Message) -> Result<(), RequestError> {
         self.commands
             .send(BoardCommand::Send { message })
+            .map_err(|_| lost())
+    }
+
+    /// Sets live move targets; the session coalesces them: at most one move is
+    /// on the line, and the latest value per servo wins.
+    pub fn live_move(
+        &self,
+        moves: Vec<crate::protocol::board::ServoMove>,
+    ) -> Result<(), RequestError> {
+        self.commands
+            .send(BoardCommand::LiveMove { moves })
             .map_err(|_| lost())
     }
 }

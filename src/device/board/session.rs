@@ -9,7 +9,7 @@ use std::collections::VecDeque;
 use std::time::{Duration, Instant};
 
 use crate::protocol::board::{
-    ContentError, DecoderEvent, EncodeError, Frame, FrameDecoder, Message, SkipReason,
+    ContentError, DecoderEvent, EncodeError, Frame, FrameDecoder, Message, ServoMove, SkipReason,
 };
 
 /// Timing of a session.
@@ -25,6 +25,9 @@ pub struct SessionConfig {
     pub idle_gap: Duration,
     /// Whether to report every frame sent and received ([`SessionEvent::Traffic`]).
     pub traffic: bool,
+    /// The line rate, used to pace live moves: a new move goes out only when
+    /// the bytes before it have had time to cross the line (`None`: no pacing).
+    pub line_baud: Option<u32>,
 }
 
 impl Default for SessionConfig {
@@ -34,6 +37,7 @@ impl Default for SessionConfig {
             query_retries: 2,
             idle_gap: Duration::from_millis(100),
             traffic: false,
+            line_baud: Some(115_200),
         }
     }
 }
@@ -150,6 +154,10 @@ pub struct Session {
     events: VecDeque<SessionEvent>,
     next_id: u64,
     last_input: Option<Instant>,
+    /// Live move targets not sent yet, one per servo: the latest value wins.
+    live: Vec<ServoMove>,
+    /// When the bytes written so far will have crossed the line.
+    line_free_at: Option<Instant>,
 }
 
 /// Whether a request only reads, so that sending it twice is harmless.
@@ -169,6 +177,53 @@ impl Session {
             events: VecDeque::new(),
             next_id: 0,
             last_input: None,
+            live: Vec::new(),
+            line_free_at: None,
+        }
+    }
+
+    fn wire_time(&self, len: usize) -> Duration {
+        self.config.line_baud.map_or(Duration::ZERO, |baud| {
+            Duration::from_secs_f64(10.0 * len as f64 / f64::from(baud.max(1)))
+        })
+    }
+
+    fn write(&mut self, now: Instant, bytes: Vec<u8>) {
+        let start = self.line_free_at.map_or(now, |free| free.max(now));
+        self.line_free_at = Some(start + self.wire_time(bytes.len()));
+        self.outbox.push_back(bytes);
+    }
+
+    /// Sets live move targets (20050). Moves are coalesced: at most one is on
+    /// the line at a time, and while one is, newer targets replace older ones
+    /// per servo, so the latest value always goes out and nothing stale does.
+    pub fn set_live_moves(&mut self, now: Instant, moves: &[ServoMove]) {
+        for servo_move in moves {
+            match self
+                .live
+                .iter_mut()
+                .find(|pending| pending.servo_id == servo_move.servo_id)
+            {
+                Some(pending) => *pending = *servo_move,
+                None => self.live.push(*servo_move),
+            }
+        }
+        self.flush_live(now);
+    }
+
+    fn flush_live(&mut self, now: Instant) {
+        if self.live.is_empty() || self.line_free_at.is_some_and(|free| free > now) {
+            return;
+        }
+        let message = Message::ExecuteActionRequest {
+            moves: std::mem::take(&mut self.live),
+        };
+        // At most 255 servos exist, so a live move always encodes.
+        if let Ok(frame) = message.to_frame()
+            && let Ok(bytes) = frame.to_bytes()
+        {
+            self.write(now, bytes);
+            self.log(|| Traffic::Sent { frame, message });
         }
     }
 
@@ -207,9 +262,9 @@ impl Session {
 
     /// Sends a message that has no response (20050, 20060, 10050) at once,
     /// ahead of queued requests.
-    pub fn send(&mut self, message: Message) -> Result<(), EncodeError> {
+    pub fn send(&mut self, now: Instant, message: Message) -> Result<(), EncodeError> {
         let frame = message.to_frame()?;
-        self.outbox.push_back(frame.to_bytes()?);
+        self.write(now, frame.to_bytes()?);
         self.log(|| Traffic::Sent { frame, message });
         Ok(())
     }
@@ -236,7 +291,7 @@ impl Session {
 
     fn transmit(&mut self, now: Instant, mut request: Pending) {
         request.attempts += 1;
-        self.outbox.push_back(request.bytes.clone());
+        self.write(now, request.bytes.clone());
         let (frame, message) = (request.frame.clone(), request.message.clone());
         self.log(|| Traffic::Sent { frame, message });
         self.in_flight = Some(InFlight {
@@ -328,6 +383,7 @@ impl Session {
 
     /// Called when `now` has reached [`Session::poll_timeout`].
     pub fn handle_timeout(&mut self, now: Instant) {
+        self.flush_live(now);
         if self.decoder.pending_len() > 0
             && self
                 .last_input
@@ -367,6 +423,7 @@ impl Session {
             .collect();
         self.events.extend(failed);
         self.outbox.clear();
+        self.live.clear();
     }
 
     /// Bytes to write now.
@@ -385,10 +442,12 @@ impl Session {
         let idle = (self.decoder.pending_len() > 0)
             .then(|| self.last_input.map(|at| at + self.config.idle_gap))
             .flatten();
-        match (response, idle) {
-            (Some(a), Some(b)) => Some(a.min(b)),
-            (a, b) => a.or(b),
-        }
+        let live = if self.live.is_empty() {
+            None
+        } else {
+            self.line_free_at
+        };
+        [response, idle, live].into_iter().flatten().min()
     }
 }
 
@@ -403,6 +462,7 @@ mod tests {
             query_retries: 1,
             idle_gap: Duration::from_millis(20),
             traffic: false,
+            line_baud: None,
         }
     }
 
@@ -683,12 +743,69 @@ mod tests {
         session.submit(t0, Message::QueryProjectIdRequest).unwrap();
         sent(&mut session);
         session
-            .send(Message::ExecuteActionExRequest { action_id: 4 })
+            .send(t0, Message::ExecuteActionExRequest { action_id: 4 })
             .unwrap();
         assert_eq!(
             sent(&mut session),
             [Message::ExecuteActionExRequest { action_id: 4 }]
         );
         assert_eq!(session.pending_requests(), 1);
+    }
+
+    #[test]
+    fn live_moves_are_coalesced_while_the_line_is_busy() {
+        let t0 = Instant::now();
+        // 10 000 baud: a 15-byte one-servo move (9 + 1 + 5) takes 15 ms on the wire.
+        let mut session = Session::new(SessionConfig {
+            line_baud: Some(10_000),
+            ..config()
+        });
+        let to = |degree| {
+            [ServoMove {
+                servo_id: 1,
+                degree,
+                interval_10ms: 0,
+            }]
+        };
+        session.set_live_moves(t0, &to(10));
+        assert_eq!(
+            sent(&mut session),
+            [Message::ExecuteActionRequest {
+                moves: to(10).to_vec()
+            }]
+        );
+        for (ms, degree) in [(1, 20), (5, 30), (14, 40)] {
+            session.set_live_moves(t0 + Duration::from_millis(ms), &to(degree));
+            assert_eq!(sent(&mut session), [], "the line is busy at {ms} ms");
+        }
+        // Another servo joins the pending move.
+        session.set_live_moves(
+            t0 + Duration::from_millis(14),
+            &[ServoMove {
+                servo_id: 2,
+                degree: -5,
+                interval_10ms: 0,
+            }],
+        );
+        assert_eq!(session.poll_timeout(), Some(t0 + Duration::from_millis(15)));
+        session.handle_timeout(t0 + Duration::from_millis(15));
+        assert_eq!(
+            sent(&mut session),
+            [Message::ExecuteActionRequest {
+                moves: vec![
+                    to(40)[0],
+                    ServoMove {
+                        servo_id: 2,
+                        degree: -5,
+                        interval_10ms: 0
+                    }
+                ]
+            }],
+            "only the latest value of each servo"
+        );
+        // Nothing stale follows.
+        session.handle_timeout(t0 + Duration::from_secs(1));
+        assert_eq!(sent(&mut session), []);
+        assert_eq!(session.poll_timeout(), None);
     }
 }
