@@ -76,6 +76,14 @@ pub enum CliCommand {
         #[arg(long, default_value = ".")]
         backup_dir: PathBuf,
     },
+    /// Open the editor window (the default with no command).
+    Gui {
+        /// A project file to open.
+        file: Option<PathBuf>,
+        /// Start connected to the built-in emulated board.
+        #[arg(long)]
+        demo: bool,
+    },
     /// Board status.
     Board {
         /// What to show.
@@ -112,6 +120,7 @@ pub fn run(command: CliCommand) -> ExitCode {
         CliCommand::Board {
             command: BoardCommand::Info { port },
         } => board::info(&port),
+        CliCommand::Gui { file, demo } => gui(file, demo),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -120,6 +129,19 @@ pub fn run(command: CliCommand) -> ExitCode {
             ExitCode::FAILURE
         }
     }
+}
+
+/// Opens the editor, with `file` if given.
+pub fn gui(file: Option<PathBuf>, demo: bool) -> anyhow::Result<()> {
+    let project = match &file {
+        Some(path) => {
+            project::load(path).map_err(|error| anyhow::anyhow!("{}: {error}", path.display()))?
+        }
+        None => project::Project::default(),
+    };
+    servo_studio::ui::run(project, file, demo).map_err(|error| {
+        anyhow::anyhow!("cannot open the window: {error}. On Linux, a desktop session (X11 or Wayland) and OpenGL drivers are needed")
+    })
 }
 
 /// Runs `servo-studio check FILE`.

@@ -9,3 +9,4 @@ pub mod link;
 pub mod project;
 pub mod protocol;
 pub mod sim;
+pub mod ui;

@@ -2,7 +2,7 @@
 
 use std::process::ExitCode;
 
-use clap::{CommandFactory, Parser};
+use clap::Parser;
 
 mod cli;
 
@@ -12,10 +12,9 @@ fn main() -> ExitCode {
     let args = Cli::parse();
     match args.command {
         Some(command) => cli::run(command),
-        None => {
-            // The editor window arrives with the GUI; until then, show the commands.
-            let _ = Cli::command().print_help();
-            ExitCode::SUCCESS
-        }
+        None => cli::run(cli::CliCommand::Gui {
+            file: None,
+            demo: false,
+        }),
     }
 }

@@ -1,12 +1,14 @@
 //! The project document: the serde model, the versioned file format,
 //! derived timing, and validation. Stands alone: no protocol I/O, no UI.
 
+mod edit;
 mod file;
 mod history;
 mod model;
 mod timing;
 mod validate;
 
+pub use edit::{Edit, next_free_id};
 pub use file::{
     CURRENT_VERSION, FORMAT_TAG, LoadError, SaveError, atomic_write, from_json, load, save, to_json,
 };

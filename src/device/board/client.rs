@@ -30,6 +30,11 @@ pub enum BoardCommand {
         /// The message.
         message: Message,
     },
+    /// Drop pending live moves, then send `message` at once (the STOP path).
+    Stop {
+        /// What stops the servos (e.g. 20030 for all servos).
+        message: Message,
+    },
     /// Live move targets (20050), coalesced: the latest value per servo wins.
     LiveMove {
         /// The targets.
@@ -115,6 +120,13 @@ impl Driver for BoardDriver {
                 }
             }
             BoardCommand::LiveMove { moves } => self.session.set_live_moves(now, &moves),
+            BoardCommand::Stop { message } => {
+                self.session.cancel_live_moves();
+                if let Err(error) = self.session.send(now, message) {
+                    self.events
+                        .push_back(BoardEvent::SendFailed(error.to_string()));
+                }
+            }
         }
         self.drain_session();
     }
@@ -230,6 +242,14 @@ impl Requester {
     pub fn send(&self, message: Message) -> Result<(), RequestError> {
         self.commands
             .send(BoardCommand::Send { message })
+            .map_err(|_| lost())
+    }
+
+    /// Drops pending live moves and sends `message` at once, ahead of queued
+    /// requests; its response, if any, arrives as an unsolicited event.
+    pub fn stop(&self, message: Message) -> Result<(), RequestError> {
+        self.commands
+            .send(BoardCommand::Stop { message })
             .map_err(|_| lost())
     }
 

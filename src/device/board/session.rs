@@ -211,6 +211,11 @@ impl Session {
         self.flush_live(now);
     }
 
+    /// Drops live move targets not sent yet (STOP: nothing queued may follow).
+    pub fn cancel_live_moves(&mut self) {
+        self.live.clear();
+    }
+
     fn flush_live(&mut self, now: Instant) {
         if self.live.is_empty() || self.line_free_at.is_some_and(|free| free > now) {
             return;

@@ -1,0 +1,188 @@
+//! Typed edits of a project: everything the editor changes goes through one of
+//! these, so that undo, autosave and validation see every change in one place.
+
+use super::model::{Action, JoystickTable, Macro, Project, Servo};
+
+/// One change to a project.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Edit {
+    /// Replace the servo at `index`.
+    SetServo {
+        /// Position in the servo list.
+        index: usize,
+        /// The new servo.
+        servo: Servo,
+    },
+    /// Append a servo.
+    AddServo(Servo),
+    /// Remove the servo at `index`.
+    RemoveServo {
+        /// Position in the servo list.
+        index: usize,
+    },
+    /// Replace the action at `index`.
+    SetAction {
+        /// Position in the action list.
+        index: usize,
+        /// The new action.
+        action: Action,
+    },
+    /// Append an action.
+    AddAction(Action),
+    /// Remove the action at `index`.
+    RemoveAction {
+        /// Position in the action list.
+        index: usize,
+    },
+    /// Replace the macro at `index`.
+    SetMacro {
+        /// Position in the macro list.
+        index: usize,
+        /// The new macro.
+        item: Macro,
+    },
+    /// Append a macro.
+    AddMacro(Macro),
+    /// Remove the macro at `index`.
+    RemoveMacro {
+        /// Position in the macro list.
+        index: usize,
+    },
+    /// Replace the joystick table at `index`.
+    SetTable {
+        /// Position in the table list.
+        index: usize,
+        /// The new table.
+        table: JoystickTable,
+    },
+    /// Append a joystick table.
+    AddTable(JoystickTable),
+    /// Remove the joystick table at `index`.
+    RemoveTable {
+        /// Position in the table list.
+        index: usize,
+    },
+    /// Choose the active table.
+    SetActiveTable(Option<i32>),
+    /// Set the project id.
+    SetProjectId(i32),
+    /// Replace the whole project (e.g. read from a board).
+    ReplaceAll(Box<Project>),
+}
+
+fn set<T>(items: &mut [T], index: usize, value: T) -> bool {
+    match items.get_mut(index) {
+        Some(slot) => {
+            *slot = value;
+            true
+        }
+        None => false,
+    }
+}
+
+fn remove<T>(items: &mut Vec<T>, index: usize) -> bool {
+    if index < items.len() {
+        items.remove(index);
+        true
+    } else {
+        false
+    }
+}
+
+impl Edit {
+    /// Applies the edit; false (and no change) when its index is out of range.
+    pub fn apply(self, project: &mut Project) -> bool {
+        match self {
+            Self::SetServo { index, servo } => set(&mut project.servos, index, servo),
+            Self::AddServo(servo) => {
+                project.servos.push(servo);
+                true
+            }
+            Self::RemoveServo { index } => remove(&mut project.servos, index),
+            Self::SetAction { index, action } => set(&mut project.actions, index, action),
+            Self::AddAction(action) => {
+                project.actions.push(action);
+                true
+            }
+            Self::RemoveAction { index } => remove(&mut project.actions, index),
+            Self::SetMacro { index, item } => set(&mut project.macros, index, item),
+            Self::AddMacro(item) => {
+                project.macros.push(item);
+                true
+            }
+            Self::RemoveMacro { index } => remove(&mut project.macros, index),
+            Self::SetTable { index, table } => set(&mut project.joystick_tables, index, table),
+            Self::AddTable(table) => {
+                project.joystick_tables.push(table);
+                true
+            }
+            Self::RemoveTable { index } => remove(&mut project.joystick_tables, index),
+            Self::SetActiveTable(table_id) => {
+                project.active_table = table_id;
+                true
+            }
+            Self::SetProjectId(project_id) => {
+                project.project_id = project_id;
+                true
+            }
+            Self::ReplaceAll(replacement) => {
+                *project = *replacement;
+                true
+            }
+        }
+    }
+}
+
+/// The smallest id of 1 or more that `used` does not contain.
+pub fn next_free_id(used: impl IntoIterator<Item = i32>) -> i32 {
+    let mut used: Vec<i32> = used.into_iter().filter(|id| *id > 0).collect();
+    used.sort_unstable();
+    let mut candidate = 1;
+    for id in used {
+        if id == candidate {
+            candidate += 1;
+        } else if id > candidate {
+            break;
+        }
+    }
+    candidate
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn edits_apply_and_out_of_range_changes_nothing() {
+        let mut project = Project::default();
+        assert!(Edit::AddServo(Servo::new(1, "a")).apply(&mut project));
+        assert!(
+            Edit::SetServo {
+                index: 0,
+                servo: Servo::new(1, "b")
+            }
+            .apply(&mut project)
+        );
+        assert_eq!(project.servos[0].caption, "b");
+        let before = project.clone();
+        assert!(
+            !Edit::SetServo {
+                index: 5,
+                servo: Servo::new(9, "x")
+            }
+            .apply(&mut project)
+        );
+        assert!(!Edit::RemoveAction { index: 0 }.apply(&mut project));
+        assert_eq!(project, before);
+        assert!(Edit::SetActiveTable(Some(3)).apply(&mut project));
+        assert_eq!(project.active_table, Some(3));
+    }
+
+    #[test]
+    fn next_free_id_fills_the_first_gap() {
+        assert_eq!(next_free_id([]), 1);
+        assert_eq!(next_free_id([1, 2, 4]), 3);
+        assert_eq!(next_free_id([3, 1, 2]), 4);
+        assert_eq!(next_free_id([-5, 0, 2]), 1);
+    }
+}

@@ -1,0 +1,61 @@
+//! What panels ask for. Panels never change state themselves: they push
+//! actions, and the app shell applies them in one place.
+
+use crate::project::Edit;
+use crate::ui::i18n::Language;
+
+/// One request from a panel to the app shell.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Action {
+    /// Change the project; edits sharing `coalesce` form one undo step.
+    Edit {
+        /// The change.
+        edit: Edit,
+        /// Undo coalescing key (e.g. `"servo 3 limits"`), if any.
+        coalesce: Option<String>,
+    },
+    /// Close the open coalesced undo step.
+    SealEdit,
+    /// Undo the last step.
+    Undo,
+    /// Redo the last undone step.
+    Redo,
+    /// Open a port.
+    Connect {
+        /// As typed: `/dev/ttyUSB0`, `COM3`, `tcp://host:port`.
+        port: String,
+        /// Line rate.
+        baud: u32,
+    },
+    /// Start the in-process emulated board and connect to it.
+    ConnectDemo,
+    /// Close the link.
+    Disconnect,
+    /// A slider moved: set the pose of one servo (sent live when connected).
+    SetPose {
+        /// The servo.
+        servo_id: u8,
+        /// The angle asked for (clamped to the servo's limits).
+        degree: i16,
+    },
+    /// Hold or release one servo's torque.
+    SetHold {
+        /// The servo.
+        servo_id: u8,
+        /// Hold (true) or release (false).
+        hold: bool,
+    },
+    /// Stop every servo where it is, holding torque.
+    Stop,
+    /// Let servos move again after a STOP.
+    Resume,
+    /// Turn the current pose into a new action.
+    CapturePose {
+        /// Use the angles read back from the board instead of the sliders.
+        from_board: bool,
+    },
+    /// Read servo angles from the board continuously.
+    SetPolling(bool),
+    /// Switch the interface language.
+    SetLanguage(Language),
+}

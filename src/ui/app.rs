@@ -1,0 +1,379 @@
+//! The app shell: owns the document, the board link and the panels; panels
+//! push [`Action`]s and only [`StudioApp::apply`] changes anything.
+
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+use std::time::Instant;
+
+use crate::link::Waker;
+use crate::project::{Action as ProjectAction, Edit, Project, Step, next_free_id};
+use crate::protocol::board::ServoMove;
+use crate::ui::action::Action;
+use crate::ui::board_link::{BoardLink, LinkNotice};
+use crate::ui::connection_bar::{ConnectionBar, LinkStatus};
+use crate::ui::document::Document;
+use crate::ui::i18n::Language;
+use crate::ui::servo_panel::{ServoPanel, ServoView};
+
+/// Interval of a live move, in 10 ms: two frames' worth, so that a dragged
+/// servo follows smoothly instead of jumping at full speed.
+pub const LIVE_MOVE_INTERVAL_10MS: i16 = 2;
+/// Interval given to each step of a captured pose, in 10 ms.
+pub const CAPTURED_STEP_INTERVAL_10MS: i16 = 50;
+
+/// A line for the status bar.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct StatusLine {
+    /// The text.
+    pub text: String,
+    /// Whether it reports a failure.
+    pub is_error: bool,
+}
+
+/// The whole editor.
+pub struct StudioApp {
+    /// The open document.
+    pub document: Document,
+    /// The board, when connected.
+    pub link: Option<BoardLink>,
+    /// Slider values per servo id.
+    pub pose: BTreeMap<u8, i16>,
+    /// Reading angles back continuously.
+    pub polling: bool,
+    /// The interface language.
+    pub language: Language,
+    /// The latest message for the user.
+    pub status: Option<StatusLine>,
+    /// Remote button events seen, newest last.
+    pub button_events: Vec<(u32, crate::protocol::board::ButtonEvent)>,
+    waker: Waker,
+    connection_bar: ConnectionBar,
+    servo_panel: ServoPanel,
+}
+
+impl std::fmt::Debug for StudioApp {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("StudioApp")
+            .field("document", &self.document)
+            .field("link", &self.link)
+            .finish_non_exhaustive()
+    }
+}
+
+impl StudioApp {
+    /// An editor showing `project` (saved at `path`, if any). `waker` is called
+    /// from the I/O thread when the board has something to show.
+    pub fn new(project: Project, path: Option<PathBuf>, waker: Waker) -> Self {
+        let pose = project
+            .servos
+            .iter()
+            .map(|servo| (servo.id, servo.home_deg))
+            .collect();
+        Self {
+            document: Document::new(project, path),
+            link: None,
+            pose,
+            polling: false,
+            language: Language::detect(),
+            status: None,
+            button_events: Vec::new(),
+            waker,
+            connection_bar: ConnectionBar::default(),
+            servo_panel: ServoPanel::default(),
+        }
+    }
+
+    fn report(&mut self, text: impl Into<String>, is_error: bool) {
+        self.status = Some(StatusLine {
+            text: text.into(),
+            is_error,
+        });
+    }
+
+    /// Applies one action. The only place that changes the editor's state.
+    pub fn apply(&mut self, action: Action) {
+        match action {
+            Action::Edit { edit, coalesce } => self.document.apply(edit, coalesce.as_deref()),
+            Action::SealEdit => self.document.seal(),
+            Action::Undo => {
+                self.document.undo();
+            }
+            Action::Redo => {
+                self.document.redo();
+            }
+            Action::Connect { port, baud } => {
+                match BoardLink::connect(&port, baud, self.waker.clone()) {
+                    Ok(link) => {
+                        self.report(format!("connected to {}", link.label), false);
+                        self.link = Some(link);
+                    }
+                    Err(error) => self.report(error, true),
+                }
+            }
+            Action::ConnectDemo => {
+                match BoardLink::demo(&self.document.project, self.waker.clone()) {
+                    Ok(link) => {
+                        self.report(
+                            "connected to the demo board (emulated, preloaded with this project)",
+                            false,
+                        );
+                        self.link = Some(link);
+                    }
+                    Err(error) => self.report(error, true),
+                }
+            }
+            Action::Disconnect => {
+                self.link = None;
+                self.polling = false;
+                self.report("disconnected", false);
+            }
+            Action::SetPose { servo_id, degree } => self.set_pose(servo_id, degree),
+            Action::SetHold { servo_id, hold } => {
+                if let Some(link) = &mut self.link {
+                    link.set_hold(servo_id, hold);
+                }
+            }
+            Action::Stop => match &mut self.link {
+                Some(link) => match link.stop() {
+                    Ok(()) => self.report(
+                        "STOP: every servo stopped where it is, holding torque",
+                        false,
+                    ),
+                    Err(error) => self.report(error, true),
+                },
+                None => self.report("STOP: no board is connected", false),
+            },
+            Action::Resume => {
+                if let Some(link) = &mut self.link {
+                    link.resume();
+                    self.report("servos may move again", false);
+                }
+            }
+            Action::CapturePose { from_board } => self.capture_pose(from_board),
+            Action::SetPolling(polling) => self.polling = polling,
+            Action::SetLanguage(language) => self.language = language,
+        }
+    }
+
+    fn set_pose(&mut self, servo_id: u8, degree: i16) {
+        let Some(servo) = self.document.project.servo(servo_id) else {
+            return;
+        };
+        // The limits clamp every move the app sends, whatever asked for it.
+        let degree = servo.clamp(degree);
+        self.pose.insert(servo_id, degree);
+        if let Some(link) = &self.link {
+            if link.stopped {
+                self.report("stopped: press Resume before moving servos", true);
+                return;
+            }
+            let servo_move = ServoMove {
+                servo_id,
+                degree,
+                interval_10ms: LIVE_MOVE_INTERVAL_10MS,
+            };
+            if let Err(error) = link.live_move(vec![servo_move]) {
+                self.report(error, true);
+            }
+        }
+    }
+
+    fn capture_pose(&mut self, from_board: bool) {
+        let project = &self.document.project;
+        let angle = |servo_id: u8, home: i16| -> i16 {
+            if from_board {
+                let read = self
+                    .link
+                    .as_ref()
+                    .and_then(|link| link.servos.get(&servo_id))
+                    .map(|state| state.angle);
+                read.unwrap_or(home)
+            } else {
+                self.pose.get(&servo_id).copied().unwrap_or(home)
+            }
+        };
+        let steps: Vec<Step> = project
+            .servos
+            .iter()
+            .map(|servo| Step {
+                servo_id: servo.id,
+                degree: servo.clamp(angle(servo.id, servo.home_deg)),
+                interval_10ms: CAPTURED_STEP_INTERVAL_10MS,
+            })
+            .collect();
+        if steps.is_empty() {
+            self.report("nothing to capture: the project has no servos", true);
+            return;
+        }
+        let id = next_free_id(project.actions.iter().map(|action| action.id));
+        let caption = format!("{} {id}", self.language.strings().pose);
+        self.document.apply(
+            Edit::AddAction(ProjectAction {
+                id,
+                caption: caption.clone(),
+                steps,
+            }),
+            None,
+        );
+        self.report(
+            format!("captured the pose as action {id} \"{caption}\""),
+            false,
+        );
+    }
+
+    /// Picks up what the board sent since the last frame.
+    pub fn pump(&mut self, now: Instant) {
+        let Some(link) = &mut self.link else { return };
+        for notice in link.pump(now, self.polling) {
+            match notice {
+                LinkNotice::Error(error) => {
+                    self.status = Some(StatusLine {
+                        text: error,
+                        is_error: true,
+                    });
+                }
+                LinkNotice::Disconnected(reason) => {
+                    self.status = Some(StatusLine {
+                        text: format!(
+                            "the board link ended: {reason}. Your project is unchanged; reconnect when ready"
+                        ),
+                        is_error: true,
+                    });
+                    self.link = None;
+                    self.polling = false;
+                    return;
+                }
+                LinkNotice::Button { button_id, event } => {
+                    self.button_events.push((button_id, event));
+                }
+            }
+        }
+    }
+
+    fn link_status(&self) -> LinkStatus {
+        match &self.link {
+            None => LinkStatus::default(),
+            Some(link) => LinkStatus {
+                label: Some(link.label.clone()),
+                project_id: link.project_id,
+                battery_permil: link.battery_permil,
+                memory: link.memory,
+            },
+        }
+    }
+
+    fn shortcuts(ui: &egui::Ui, actions: &mut Vec<Action>) {
+        ui.input_mut(|input| {
+            if input.consume_key(egui::Modifiers::NONE, egui::Key::Escape) {
+                actions.push(Action::Stop);
+            }
+            if input.consume_key(
+                egui::Modifiers::COMMAND | egui::Modifiers::SHIFT,
+                egui::Key::Z,
+            ) || input.consume_key(egui::Modifiers::COMMAND, egui::Key::Y)
+            {
+                actions.push(Action::Redo);
+            }
+            if input.consume_key(egui::Modifiers::COMMAND, egui::Key::Z) {
+                actions.push(Action::Undo);
+            }
+        });
+    }
+
+    /// Draws the editor and applies what its panels asked for.
+    pub fn show(&mut self, ui: &mut egui::Ui) {
+        let now = Instant::now();
+        self.pump(now);
+        let mut actions = Vec::new();
+        Self::shortcuts(ui, &mut actions);
+        let words = self.language.strings();
+
+        egui::Panel::top("toolbar").show(ui, |ui| {
+            ui.horizontal(|ui| {
+                if ui
+                    .add_enabled(self.document.can_undo(), egui::Button::new(words.undo))
+                    .clicked()
+                {
+                    actions.push(Action::Undo);
+                }
+                if ui
+                    .add_enabled(self.document.can_redo(), egui::Button::new(words.redo))
+                    .clicked()
+                {
+                    actions.push(Action::Redo);
+                }
+                ui.separator();
+                let mut language = self.language;
+                let language_label = ui.label(words.language);
+                let picked = egui::ComboBox::from_id_salt("language")
+                    .selected_text(language.name())
+                    .show_ui(ui, |ui| {
+                        for option in [Language::English, Language::TraditionalChinese] {
+                            ui.selectable_value(&mut language, option, option.name());
+                        }
+                    });
+                picked.response.labelled_by(language_label.id);
+                if language != self.language {
+                    actions.push(Action::SetLanguage(language));
+                }
+                ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
+                    let stop = egui::Button::new(
+                        egui::RichText::new(format!("■ {}", words.stop))
+                            .strong()
+                            .size(18.0)
+                            .color(egui::Color32::WHITE),
+                    )
+                    .fill(egui::Color32::from_rgb(200, 30, 30));
+                    if ui.add(stop).on_hover_text("Esc").clicked() {
+                        actions.push(Action::Stop);
+                    }
+                    if self.link.as_ref().is_some_and(|link| link.stopped)
+                        && ui.button(words.resume).clicked()
+                    {
+                        actions.push(Action::Resume);
+                    }
+                });
+            });
+            self.connection_bar
+                .ui(ui, &self.link_status(), words, &mut actions);
+        });
+
+        egui::Panel::bottom("status").show(ui, |ui| match &self.status {
+            Some(line) if line.is_error => {
+                ui.colored_label(ui.visuals().error_fg_color, &line.text);
+            }
+            Some(line) => {
+                ui.label(&line.text);
+            }
+            None => {
+                ui.label("");
+            }
+        });
+
+        egui::CentralPanel::default().show(ui, |ui| {
+            let view = ServoView {
+                project: &self.document.project,
+                pose: &self.pose,
+                readback: self.link.as_ref().map(|link| &link.servos),
+                polling: self.polling,
+            };
+            self.servo_panel.ui(ui, &view, words, &mut actions);
+        });
+
+        for action in actions {
+            self.apply(action);
+        }
+        if let Some(link) = &self.link {
+            let wait = link
+                .next_refresh(self.polling)
+                .saturating_duration_since(Instant::now());
+            ui.ctx().request_repaint_after(wait);
+        }
+    }
+}
+
+impl eframe::App for StudioApp {
+    fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
+        self.show(ui);
+    }
+}

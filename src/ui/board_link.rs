@@ -1,0 +1,290 @@
+//! The app shell's side of a connected board: the link, the demo board when
+//! there is one, and the status it keeps up to date without ever blocking the
+//! UI (requests are asynchronous; their answers are picked up each frame).
+
+use std::collections::BTreeMap;
+use std::time::{Duration, Instant};
+
+use crossbeam_channel::Receiver;
+
+use crate::device::board::{Board, BoardEvent, BoardImage, RequestError, Requester, SessionConfig};
+use crate::link::{LinkEvent, PortName, Waker};
+use crate::project::Project;
+use crate::protocol::board::{
+    ALL_SERVOS, ButtonEvent, Message, ServoMove, ServoStatus, ServoSwitches,
+};
+use crate::sim::{BoardSim, SimConfig, SimHandle, spawn_in_memory};
+
+/// How often status (project id, battery, memory) is refreshed.
+const STATUS_EVERY: Duration = Duration::from_secs(2);
+/// How often angles are read back while polling is on.
+const ANGLES_EVERY: Duration = Duration::from_millis(100);
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Query {
+    ProjectId,
+    Battery,
+    Memory,
+    Angles,
+    Switches,
+}
+
+/// Something the app shell should show the user.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum LinkNotice {
+    /// A request failed; the text says what to try.
+    Error(String),
+    /// The link ended.
+    Disconnected(String),
+    /// A remote button event.
+    Button {
+        /// `buttonID`.
+        button_id: u32,
+        /// What happened.
+        event: ButtonEvent,
+    },
+}
+
+/// A connected board as the app shell sees it.
+pub struct BoardLink {
+    board: Board,
+    requester: Requester,
+    demo: Option<SimHandle>,
+    /// What it is connected to.
+    pub label: String,
+    /// The board's project id, once read.
+    pub project_id: Option<i32>,
+    /// Battery in ‰, once read.
+    pub battery_permil: Option<i16>,
+    /// Free and total memory, once read.
+    pub memory: Option<(i32, Option<i32>)>,
+    /// The latest servo states read back.
+    pub servos: BTreeMap<u8, ServoStatus>,
+    /// Servos were stopped with STOP and not resumed.
+    pub stopped: bool,
+    inflight: Vec<(Query, Receiver<Result<Message, RequestError>>)>,
+    next_status_at: Instant,
+    next_angles_at: Instant,
+}
+
+impl std::fmt::Debug for BoardLink {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("BoardLink")
+            .field("label", &self.label)
+            .finish_non_exhaustive()
+    }
+}
+
+impl BoardLink {
+    /// Opens a port as typed by the user. The error says what to try.
+    pub fn connect(port: &str, baud: u32, waker: Waker) -> Result<Self, String> {
+        let name = PortName::parse(port).map_err(|error| error.to_string())?;
+        let config = SessionConfig {
+            line_baud: Some(baud),
+            traffic: true,
+            ..SessionConfig::default()
+        };
+        let board =
+            Board::connect(&name, baud, config, waker).map_err(|error| error.to_string())?;
+        Ok(Self::over(board, None, name.to_string()))
+    }
+
+    /// Starts the emulated board in this process, preloaded with `project`,
+    /// and connects to it.
+    pub fn demo(project: &Project, waker: Waker) -> Result<Self, String> {
+        let image = BoardImage::from_project(project).unwrap_or_default();
+        let (sim, connection) =
+            spawn_in_memory(BoardSim::new(SimConfig::default(), image), waker.clone())
+                .map_err(|error| format!("cannot start the demo board: {error}"))?;
+        let config = SessionConfig {
+            traffic: true,
+            ..SessionConfig::default()
+        };
+        let board = Board::over(connection, config, waker)
+            .map_err(|error| format!("cannot start the demo board: {error}"))?;
+        Ok(Self::over(board, Some(sim), "demo board".into()))
+    }
+
+    fn over(board: Board, demo: Option<SimHandle>, label: String) -> Self {
+        let requester = board.requester();
+        let now = Instant::now();
+        Self {
+            board,
+            requester,
+            demo,
+            label,
+            project_id: None,
+            battery_permil: None,
+            memory: None,
+            servos: BTreeMap::new(),
+            stopped: false,
+            inflight: Vec::new(),
+            next_status_at: now,
+            next_angles_at: now,
+        }
+    }
+
+    /// The emulated board, when this is the demo.
+    pub fn demo_board(&self) -> Option<&SimHandle> {
+        self.demo.as_ref()
+    }
+
+    /// A requester for worker threads (upload, read back).
+    pub fn requester(&self) -> Requester {
+        self.requester.clone()
+    }
+
+    fn ask(&mut self, query: Query, message: Message) {
+        if self.inflight.iter().any(|(pending, _)| *pending == query) {
+            return;
+        }
+        if let Ok(reply) = self.requester.request_async(message) {
+            self.inflight.push((query, reply));
+        }
+    }
+
+    /// Picks up answers and events, and asks for fresh status when due.
+    /// Returns what the user should see; `Disconnected` means drop this link.
+    pub fn pump(&mut self, now: Instant, polling: bool) -> Vec<LinkNotice> {
+        let mut notices = Vec::new();
+        for event in self.board.events().try_iter() {
+            match event {
+                LinkEvent::Driver(BoardEvent::Button { button_id, event }) => {
+                    notices.push(LinkNotice::Button { button_id, event });
+                }
+                LinkEvent::Driver(BoardEvent::SendFailed(error)) => {
+                    notices.push(LinkNotice::Error(error));
+                }
+                LinkEvent::Driver(_) => {}
+                LinkEvent::Disconnected { reason } => {
+                    notices.push(LinkNotice::Disconnected(reason));
+                }
+            }
+        }
+        let mut still = Vec::new();
+        for (query, reply) in std::mem::take(&mut self.inflight) {
+            match reply.try_recv() {
+                Ok(Ok(message)) => self.absorb(message),
+                Ok(Err(error)) => {
+                    if !matches!(error, RequestError::Disconnected { .. }) {
+                        notices.push(LinkNotice::Error(error.to_string()));
+                    }
+                }
+                Err(crossbeam_channel::TryRecvError::Empty) => still.push((query, reply)),
+                Err(crossbeam_channel::TryRecvError::Disconnected) => {}
+            }
+        }
+        self.inflight = still;
+        if now >= self.next_status_at {
+            self.next_status_at = now + STATUS_EVERY;
+            self.ask(Query::ProjectId, Message::QueryProjectIdRequest);
+            self.ask(Query::Battery, Message::QueryRemainPowerRequest);
+            self.ask(Query::Memory, Message::QueryMemorySizeRequest);
+            // Torque switches show once the servos' states are known.
+            self.ask(
+                Query::Angles,
+                Message::QueryServoRequest {
+                    servo_id: ALL_SERVOS,
+                },
+            );
+        }
+        if polling && now >= self.next_angles_at {
+            self.next_angles_at = now + ANGLES_EVERY;
+            self.ask(
+                Query::Angles,
+                Message::QueryServoRequest {
+                    servo_id: ALL_SERVOS,
+                },
+            );
+        }
+        notices
+    }
+
+    /// When the link next needs a frame to refresh its status.
+    pub fn next_refresh(&self, polling: bool) -> Instant {
+        if polling {
+            self.next_angles_at.min(self.next_status_at)
+        } else {
+            self.next_status_at
+        }
+    }
+
+    fn absorb(&mut self, message: Message) {
+        match message {
+            Message::QueryProjectIdResponse { project_id } => self.project_id = Some(project_id),
+            Message::QueryRemainPowerResponse { permil } => self.battery_permil = Some(permil),
+            Message::QueryMemorySizeResponse {
+                free_bytes,
+                total_bytes,
+            } => self.memory = Some((free_bytes, total_bytes)),
+            Message::QueryServoResponse { servos } => {
+                self.servos = servos
+                    .into_iter()
+                    .map(|servo| (servo.servo_id, servo))
+                    .collect();
+            }
+            Message::SetServoParameterResponse(switches) => {
+                for servo in self
+                    .servos
+                    .values_mut()
+                    .filter(|s| switches.servo_id == ALL_SERVOS || s.servo_id == switches.servo_id)
+                {
+                    servo.is_hold = switches.is_hold;
+                    servo.is_start = switches.is_start;
+                }
+            }
+            _ => {}
+        }
+    }
+
+    /// Sends a live move (coalesced by the session).
+    pub fn live_move(&self, moves: Vec<ServoMove>) -> Result<(), String> {
+        self.requester
+            .live_move(moves)
+            .map_err(|error| error.to_string())
+    }
+
+    /// STOP: drops queued moves and stops every servo where it is, holding
+    /// torque, ahead of any queued request.
+    pub fn stop(&mut self) -> Result<(), String> {
+        self.stopped = true;
+        let all = ServoSwitches {
+            servo_id: ALL_SERVOS,
+            is_start: false,
+            is_hold: true,
+        };
+        self.requester
+            .stop(Message::SetServoParameterRequest(all))
+            .map_err(|error| error.to_string())
+    }
+
+    /// Lets servos move again after a STOP.
+    pub fn resume(&mut self) {
+        self.stopped = false;
+        let all = ServoSwitches {
+            servo_id: ALL_SERVOS,
+            is_start: true,
+            is_hold: true,
+        };
+        self.ask(Query::Switches, Message::SetServoParameterRequest(all));
+    }
+
+    /// Holds or releases one servo's torque.
+    pub fn set_hold(&mut self, servo_id: u8, hold: bool) {
+        let switches = ServoSwitches {
+            servo_id,
+            is_start: !self.stopped,
+            is_hold: hold,
+        };
+        if let Some(servo) = self.servos.get_mut(&servo_id) {
+            servo.is_hold = hold;
+        }
+        // Not de-duplicated: each toggle must reach the board.
+        if let Ok(reply) = self
+            .requester
+            .request_async(Message::SetServoParameterRequest(switches))
+        {
+            self.inflight.push((Query::Switches, reply));
+        }
+    }
+}

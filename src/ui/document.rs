@@ -1,0 +1,79 @@
+//! The open document: the project, its undo history, its file and whether it
+//! has unsaved changes.
+
+use std::path::PathBuf;
+
+use crate::project::{Edit, History, Project};
+
+/// The project being edited.
+#[derive(Debug, Default)]
+pub struct Document {
+    /// The project.
+    pub project: Project,
+    /// Where it is saved, if it has been.
+    pub path: Option<PathBuf>,
+    /// Changed since it was last saved or opened.
+    pub dirty: bool,
+    history: History,
+}
+
+impl Document {
+    /// A document showing `project`, saved at `path`.
+    pub fn new(project: Project, path: Option<PathBuf>) -> Self {
+        Self {
+            project,
+            path,
+            dirty: false,
+            history: History::default(),
+        }
+    }
+
+    /// Applies an edit as one undo step, or as part of the open step with the
+    /// same `coalesce` key (one slider drag is one step).
+    pub fn apply(&mut self, edit: Edit, coalesce: Option<&str>) {
+        let before = self.project.clone();
+        if edit.apply(&mut self.project) && self.project != before {
+            self.history.record(&before, coalesce);
+            self.dirty = true;
+        }
+    }
+
+    /// Closes the current coalesced undo step.
+    pub fn seal(&mut self) {
+        self.history.seal();
+    }
+
+    /// Undoes the last step.
+    pub fn undo(&mut self) -> bool {
+        match self.history.undo(&self.project) {
+            Some(previous) => {
+                self.project = previous;
+                self.dirty = true;
+                true
+            }
+            None => false,
+        }
+    }
+
+    /// Redoes the last undone step.
+    pub fn redo(&mut self) -> bool {
+        match self.history.redo(&self.project) {
+            Some(next) => {
+                self.project = next;
+                self.dirty = true;
+                true
+            }
+            None => false,
+        }
+    }
+
+    /// Whether there is something to undo.
+    pub fn can_undo(&self) -> bool {
+        self.history.can_undo()
+    }
+
+    /// Whether there is something to redo.
+    pub fn can_redo(&self) -> bool {
+        self.history.can_redo()
+    }
+}

@@ -1,0 +1,180 @@
+//! The interface's words in English and Traditional Chinese, chosen from the
+//! OS locale and switchable at run time.
+
+/// A language of the interface.
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize,
+)]
+pub enum Language {
+    /// English.
+    #[default]
+    English,
+    /// 繁體中文.
+    TraditionalChinese,
+}
+
+impl Language {
+    /// The language the OS locale asks for: Traditional Chinese for `zh_TW`,
+    /// `zh_HK`, `zh_MO` and `zh-Hant`, English otherwise.
+    pub fn from_locale(locale: &str) -> Self {
+        let locale = locale.to_ascii_lowercase().replace('-', "_");
+        let traditional = ["zh_tw", "zh_hk", "zh_mo", "zh_hant"];
+        if traditional.iter().any(|prefix| locale.starts_with(prefix)) {
+            Self::TraditionalChinese
+        } else {
+            Self::English
+        }
+    }
+
+    /// The language of this process's locale (`LC_ALL`, `LC_MESSAGES`, `LANG`).
+    pub fn detect() -> Self {
+        ["LC_ALL", "LC_MESSAGES", "LANG"]
+            .iter()
+            .filter_map(|name| std::env::var(name).ok())
+            .find(|value| !value.is_empty())
+            .map_or(Self::English, |locale| Self::from_locale(&locale))
+    }
+
+    /// The words of this language.
+    pub fn strings(self) -> &'static Strings {
+        match self {
+            Self::English => &ENGLISH,
+            Self::TraditionalChinese => &TRADITIONAL_CHINESE,
+        }
+    }
+
+    /// The language's own name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::English => "English",
+            Self::TraditionalChinese => "繁體中文",
+        }
+    }
+}
+
+/// Every caption of the interface.
+#[derive(Debug)]
+pub struct Strings {
+    /// "Port".
+    pub port: &'static str,
+    /// "Baud".
+    pub baud: &'static str,
+    /// "Connect".
+    pub connect: &'static str,
+    /// "Disconnect".
+    pub disconnect: &'static str,
+    /// "Demo board".
+    pub demo_board: &'static str,
+    /// "Refresh".
+    pub refresh: &'static str,
+    /// "Not connected".
+    pub not_connected: &'static str,
+    /// "Connected to".
+    pub connected_to: &'static str,
+    /// "Project".
+    pub project: &'static str,
+    /// "Battery".
+    pub battery: &'static str,
+    /// "Free memory".
+    pub free_memory: &'static str,
+    /// "STOP".
+    pub stop: &'static str,
+    /// "Resume".
+    pub resume: &'static str,
+    /// "Servos".
+    pub servos: &'static str,
+    /// "Hold".
+    pub hold: &'static str,
+    /// "Read angles".
+    pub read_angles: &'static str,
+    /// "Capture pose".
+    pub capture_pose: &'static str,
+    /// "Capture from board".
+    pub capture_from_board: &'static str,
+    /// "Undo".
+    pub undo: &'static str,
+    /// "Redo".
+    pub redo: &'static str,
+    /// "Language".
+    pub language: &'static str,
+    /// "No servos yet: read a board, or add one".
+    pub no_servos: &'static str,
+    /// "Add servo".
+    pub add_servo: &'static str,
+    /// "Pose".
+    pub pose: &'static str,
+}
+
+const ENGLISH: Strings = Strings {
+    port: "Port",
+    baud: "Baud",
+    connect: "Connect",
+    disconnect: "Disconnect",
+    demo_board: "Demo board",
+    refresh: "Refresh",
+    not_connected: "Not connected",
+    connected_to: "Connected to",
+    project: "Project",
+    battery: "Battery",
+    free_memory: "Free memory",
+    stop: "STOP",
+    resume: "Resume",
+    servos: "Servos",
+    hold: "Hold",
+    read_angles: "Read angles",
+    capture_pose: "Capture pose",
+    capture_from_board: "Capture from board",
+    undo: "Undo",
+    redo: "Redo",
+    language: "Language",
+    no_servos: "No servos yet: read a board, or add one",
+    add_servo: "Add servo",
+    pose: "Pose",
+};
+
+const TRADITIONAL_CHINESE: Strings = Strings {
+    port: "連接埠",
+    baud: "鮑率",
+    connect: "連線",
+    disconnect: "中斷連線",
+    demo_board: "示範控制板",
+    refresh: "重新整理",
+    not_connected: "未連線",
+    connected_to: "已連線至",
+    project: "專案",
+    battery: "電量",
+    free_memory: "可用記憶體",
+    stop: "停止",
+    resume: "繼續",
+    servos: "舵機",
+    hold: "鎖定",
+    read_angles: "讀取角度",
+    capture_pose: "擷取姿勢",
+    capture_from_board: "從控制板擷取",
+    undo: "復原",
+    redo: "重做",
+    language: "語言",
+    no_servos: "尚無舵機：請讀取控制板或新增舵機",
+    add_servo: "新增舵機",
+    pose: "姿勢",
+};
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn locales_choose_the_language() {
+        assert_eq!(
+            Language::from_locale("zh_TW.UTF-8"),
+            Language::TraditionalChinese
+        );
+        assert_eq!(
+            Language::from_locale("zh-Hant-TW"),
+            Language::TraditionalChinese
+        );
+        assert_eq!(Language::from_locale("zh_HK"), Language::TraditionalChinese);
+        assert_eq!(Language::from_locale("en_US.UTF-8"), Language::English);
+        assert_eq!(Language::from_locale("C"), Language::English);
+    }
+}

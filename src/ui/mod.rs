@@ -1,0 +1,45 @@
+//! The editor window (egui / eframe). Panels read state and push
+//! [`Action`]s; only the app shell ([`StudioApp::apply`]) applies them.
+
+mod action;
+mod app;
+mod board_link;
+mod connection_bar;
+mod document;
+pub mod fonts;
+mod i18n;
+mod servo_panel;
+
+pub use action::Action;
+pub use app::{CAPTURED_STEP_INTERVAL_10MS, LIVE_MOVE_INTERVAL_10MS, StatusLine, StudioApp};
+pub use board_link::{BoardLink, LinkNotice};
+pub use document::Document;
+pub use i18n::{Language, Strings};
+
+/// Opens the editor window and runs until it is closed.
+pub fn run(
+    project: crate::project::Project,
+    path: Option<std::path::PathBuf>,
+    demo: bool,
+) -> eframe::Result {
+    let options = eframe::NativeOptions {
+        viewport: egui::ViewportBuilder::default()
+            .with_title("Servo Studio")
+            .with_inner_size([1100.0, 720.0]),
+        ..Default::default()
+    };
+    eframe::run_native(
+        "Servo Studio",
+        options,
+        Box::new(move |creation| {
+            fonts::install(&creation.egui_ctx);
+            let ctx = creation.egui_ctx.clone();
+            let waker: crate::link::Waker = std::sync::Arc::new(move || ctx.request_repaint());
+            let mut app = StudioApp::new(project, path, waker);
+            if demo {
+                app.apply(Action::ConnectDemo);
+            }
+            Ok(Box::new(app))
+        }),
+    )
+}
