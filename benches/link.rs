@@ -4,12 +4,7 @@
 //! 2. Export and import of a rich project through a link throttled to
 //!    115200 baud: elapsed time against the pure wire time of the bytes exchanged.
 
-#![allow(
-    clippy::unwrap_used,
-    clippy::expect_used,
-    clippy::cast_possible_truncation,
-    missing_docs
-)]
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::cast_possible_truncation, missing_docs)]
 
 #[path = "../tests/common/mod.rs"]
 mod common;
@@ -29,24 +24,13 @@ fn start(config: SimConfig, preload: &Project) -> SimHandle {
     #[cfg(unix)]
     let handle = servo_studio::sim::spawn_pty(sim, no_waker()).unwrap();
     #[cfg(not(unix))]
-    let handle =
-        servo_studio::sim::spawn_tcp(sim, "127.0.0.1:0".parse().unwrap(), no_waker()).unwrap();
+    let handle = servo_studio::sim::spawn_tcp(sim, "127.0.0.1:0".parse().unwrap(), no_waker()).unwrap();
     handle
 }
 
 fn connect(sim: &SimHandle, traffic: bool) -> Board {
-    let config = SessionConfig {
-        traffic,
-        response_timeout: Duration::from_secs(5),
-        ..SessionConfig::default()
-    };
-    Board::connect(
-        &PortName::parse(&sim.port_name).unwrap(),
-        DEFAULT_BAUD,
-        config,
-        no_waker(),
-    )
-    .unwrap()
+    let config = SessionConfig { traffic, response_timeout: Duration::from_secs(5), ..SessionConfig::default() };
+    Board::connect(&PortName::parse(&sim.port_name).unwrap(), DEFAULT_BAUD, config, no_waker()).unwrap()
 }
 
 fn percentile(sorted: &[Duration], fraction: f64) -> Duration {
@@ -87,9 +71,9 @@ fn bytes_exchanged(board: &Board) -> usize {
         .events()
         .try_iter()
         .map(|event| match event {
-            LinkEvent::Driver(BoardEvent::Traffic(
-                Traffic::Sent { frame, .. } | Traffic::Received { frame, .. },
-            )) => frame.wire_len(),
+            LinkEvent::Driver(BoardEvent::Traffic(Traffic::Sent { frame, .. } | Traffic::Received { frame, .. })) => {
+                frame.wire_len()
+            }
             LinkEvent::Driver(BoardEvent::Traffic(Traffic::Skipped { bytes, .. })) => bytes,
             _ => 0,
         })
@@ -108,10 +92,7 @@ fn report(name: &str, elapsed: Duration, bytes: usize) {
 
 fn throttled_transfers() {
     let rich = common::rich_project();
-    let config = SimConfig {
-        baud: Some(DEFAULT_BAUD),
-        ..SimConfig::default()
-    };
+    let config = SimConfig { baud: Some(DEFAULT_BAUD), ..SimConfig::default() };
 
     let sim = start(config.clone(), &rich);
     let board = connect(&sim, true);
@@ -123,25 +104,11 @@ fn throttled_transfers() {
 
     let sim = start(config, &Project::default());
     let board = connect(&sim, true);
-    let options = ImportOptions {
-        backup_dir: None,
-        verify: false,
-    };
+    let options = ImportOptions { backup_dir: None, verify: false };
     let began = Instant::now();
-    import(
-        &board.requester(),
-        &rich,
-        &options,
-        &mut |_| {},
-        &Cancel::never(),
-    )
-    .unwrap();
+    import(&board.requester(), &rich, &options, &mut |_| {}, &Cancel::never()).unwrap();
     let elapsed = began.elapsed();
-    report(
-        "import (no backup, no verify)",
-        elapsed,
-        bytes_exchanged(&board),
-    );
+    report("import (no backup, no verify)", elapsed, bytes_exchanged(&board));
 }
 
 fn main() {

@@ -110,16 +110,10 @@ pub fn run(command: CliCommand) -> ExitCode {
         CliCommand::Ports => board::ports(),
         CliCommand::Sim(args) => board::sim(&args),
         CliCommand::Export { port, out } => board::export(&port, &out),
-        CliCommand::Import {
-            port,
-            input,
-            yes,
-            no_backup,
-            backup_dir,
-        } => board::import(&port, &input, yes, (!no_backup).then_some(backup_dir)),
-        CliCommand::Board {
-            command: BoardCommand::Info { port },
-        } => board::info(&port),
+        CliCommand::Import { port, input, yes, no_backup, backup_dir } => {
+            board::import(&port, &input, yes, (!no_backup).then_some(backup_dir))
+        }
+        CliCommand::Board { command: BoardCommand::Info { port } } => board::info(&port),
         CliCommand::Gui { file, demo } => gui(file, demo),
     };
     match result {
@@ -134,9 +128,7 @@ pub fn run(command: CliCommand) -> ExitCode {
 /// Opens the editor, with `file` if given.
 pub fn gui(file: Option<PathBuf>, demo: bool) -> anyhow::Result<()> {
     let project = match &file {
-        Some(path) => {
-            project::load(path).map_err(|error| anyhow::anyhow!("{}: {error}", path.display()))?
-        }
+        Some(path) => project::load(path).map_err(|error| anyhow::anyhow!("{}: {error}", path.display()))?,
         None => project::Project::default(),
     };
     servo_studio::ui::run(project, file, demo).map_err(|error| {
@@ -157,18 +149,8 @@ pub fn check(file: &std::path::Path) -> ExitCode {
     for problem in &problems {
         println!("{problem}");
     }
-    let errors = problems
-        .iter()
-        .filter(|p| p.severity == Severity::Error)
-        .count();
+    let errors = problems.iter().filter(|p| p.severity == Severity::Error).count();
     let warnings = problems.len() - errors;
-    println!(
-        "{}: {errors} error(s), {warnings} warning(s)",
-        file.display()
-    );
-    if errors > 0 {
-        ExitCode::FAILURE
-    } else {
-        ExitCode::SUCCESS
-    }
+    println!("{}: {errors} error(s), {warnings} warning(s)", file.display());
+    if errors > 0 { ExitCode::FAILURE } else { ExitCode::SUCCESS }
 }

@@ -1,39 +1,25 @@
 //! Golden bytes from `board.md`, and the typed errors of malformed content.
 
-#![allow(
-    clippy::unwrap_used,
-    clippy::expect_used,
-    clippy::needless_pass_by_value
-)]
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::needless_pass_by_value)]
 
 use servo_studio::protocol::board::{
-    ActionRecord, ButtonEvent, ButtonRecord, CommandType, ContentError, EncodeError, Frame,
-    FrameDecoder, JoystickTableRecord, MESSAGE_TABLE, MacroCommandRecord, MacroRecord, Message,
-    ServoMove, ServoStatus, ServoSwitches, is_request_id, message_name,
+    ActionRecord, ButtonEvent, ButtonRecord, CommandType, ContentError, EncodeError, Frame, FrameDecoder,
+    JoystickTableRecord, MESSAGE_TABLE, MacroCommandRecord, MacroRecord, Message, ServoMove, ServoStatus,
+    ServoSwitches, is_request_id, message_name,
 };
 
 fn hex(text: &str) -> Vec<u8> {
-    text.split_whitespace()
-        .map(|byte| u8::from_str_radix(byte, 16).unwrap())
-        .collect()
+    text.split_whitespace().map(|byte| u8::from_str_radix(byte, 16).unwrap()).collect()
 }
 
 /// Encodes `message`, compares with `golden`, and decodes `golden` back.
 fn assert_golden(message: Message, golden: &str) {
     let bytes = hex(golden);
-    assert_eq!(
-        message.encode().unwrap(),
-        bytes,
-        "encoding {}",
-        message.name()
-    );
+    assert_eq!(message.encode().unwrap(), bytes, "encoding {}", message.name());
     let mut decoder = FrameDecoder::new();
     decoder.push(&bytes);
     let Some(servo_studio::protocol::board::DecoderEvent::Frame(frame)) = decoder.poll() else {
-        panic!(
-            "golden bytes of {} do not decode to a frame",
-            message.name()
-        );
+        panic!("golden bytes of {} do not decode to a frame", message.name());
     };
     assert_eq!(Message::from_frame(&frame).unwrap(), message);
     assert_eq!(decoder.poll(), None);
@@ -41,33 +27,19 @@ fn assert_golden(message: Message, golden: &str) {
 
 #[test]
 fn golden_query_action_list_request() {
-    assert_golden(
-        Message::QueryActionListRequest,
-        "13 4c 05 1d 3a 75 00 00 30",
-    );
+    assert_golden(Message::QueryActionListRequest, "13 4c 05 1d 3a 75 00 00 30");
 }
 
 #[test]
 fn golden_add_action_response_ok() {
-    assert_golden(
-        Message::AddActionResponse { ok: true },
-        "13 4c 05 1d 4f 75 01 00 01 47",
-    );
+    assert_golden(Message::AddActionResponse { ok: true }, "13 4c 05 1d 4f 75 01 00 01 47");
 }
 
 #[test]
 fn golden_execute_action_request() {
     let moves = vec![
-        ServoMove {
-            servo_id: 1,
-            degree: -90,
-            interval_10ms: 50,
-        },
-        ServoMove {
-            servo_id: 2,
-            degree: 45,
-            interval_10ms: 100,
-        },
+        ServoMove { servo_id: 1, degree: -90, interval_10ms: 50 },
+        ServoMove { servo_id: 2, degree: 45, interval_10ms: 100 },
     ];
     assert_golden(
         Message::ExecuteActionRequest { moves },
@@ -78,10 +50,7 @@ fn golden_execute_action_request() {
 #[test]
 fn golden_button_event_response() {
     assert_golden(
-        Message::ButtonEventResponse {
-            button_id: 0x8000_0001,
-            event: ButtonEvent::Release,
-        },
+        Message::ButtonEventResponse { button_id: 0x8000_0001, event: ButtonEvent::Release },
         "13 4c 05 1d 91 9c 05 00 01 00 00 80 04 38",
     );
 }
@@ -91,11 +60,7 @@ fn golden_add_action_request_with_cjk_caption() {
     let action = ActionRecord {
         action_id: 7,
         caption: "揮手".into(),
-        steps: vec![ServoMove {
-            servo_id: 3,
-            degree: -45,
-            interval_10ms: 20,
-        }],
+        steps: vec![ServoMove { servo_id: 3, degree: -45, interval_10ms: 20 }],
     };
     assert_golden(
         Message::AddActionRequest(action),
@@ -107,10 +72,7 @@ fn golden_add_action_request_with_cjk_caption() {
 #[test]
 fn golden_query_memory_size_response() {
     assert_golden(
-        Message::QueryMemorySizeResponse {
-            free_bytes: 1000,
-            total_bytes: Some(4096),
-        },
+        Message::QueryMemorySizeResponse { free_bytes: 1000, total_bytes: Some(4096) },
         "13 4c 05 1d 2f 27 08 00 e8 03 00 00 00 10 00 00 da",
     );
 }
@@ -179,9 +141,7 @@ fn golden_query_servo_response() {
         is_hold: false,
     };
     assert_golden(
-        Message::QueryServoResponse {
-            servos: vec![servo],
-        },
+        Message::QueryServoResponse { servos: vec![servo] },
         "13 4c 05 1d 35 4e 0c 00 01 05 e2 ff 78 00 2c 01 01 00 01 00 9e",
     );
 }
@@ -189,21 +149,12 @@ fn golden_query_servo_response() {
 #[test]
 fn golden_small_messages() {
     assert_golden(
-        Message::SetServoParameterRequest(ServoSwitches {
-            servo_id: 0xff,
-            is_start: true,
-            is_hold: false,
-        }),
+        Message::SetServoParameterRequest(ServoSwitches { servo_id: 0xff, is_start: true, is_hold: false }),
         "13 4c 05 1d 3e 4e 03 00 ff 01 00 10",
     );
+    assert_golden(Message::SubscribeButtonEventRequest { subscribe: true }, "13 4c 05 1d 86 9c 01 00 01 a5");
     assert_golden(
-        Message::SubscribeButtonEventRequest { subscribe: true },
-        "13 4c 05 1d 86 9c 01 00 01 a5",
-    );
-    assert_golden(
-        Message::QueryProjectIdResponse {
-            project_id: 0x1234_5678,
-        },
+        Message::QueryProjectIdResponse { project_id: 0x1234_5678 },
         "13 4c 05 1d b3 75 04 00 78 56 34 12 c1",
     );
 }
@@ -231,19 +182,10 @@ fn the_table_lists_all_sixty_ids_once_with_request_response_parity() {
 #[test]
 fn unknown_ids_decode_to_unknown_and_re_encode_unchanged() {
     let message = Message::decode(12345, &[1, 2, 3]).unwrap();
-    assert_eq!(
-        message,
-        Message::Unknown {
-            packet_id: 12345,
-            content: vec![1, 2, 3]
-        }
-    );
+    assert_eq!(message, Message::Unknown { packet_id: 12345, content: vec![1, 2, 3] });
     assert_eq!(message.name(), "Unknown");
     assert_eq!(message_name(12345), None);
-    assert_eq!(
-        Message::from_frame(&message.to_frame().unwrap()).unwrap(),
-        message
-    );
+    assert_eq!(Message::from_frame(&message.to_frame().unwrap()).unwrap(), message);
 }
 
 #[test]
@@ -266,11 +208,7 @@ fn too_short_content_names_message_field_expected_and_actual() {
 fn trailing_bytes_are_an_error() {
     assert_eq!(
         Message::decode(30031, &[1, 0]).unwrap_err(),
-        ContentError::TrailingBytes {
-            message: "AddActionResponse",
-            expected_len: 1,
-            actual_len: 2
-        }
+        ContentError::TrailingBytes { message: "AddActionResponse", expected_len: 1, actual_len: 2 }
     );
 }
 
@@ -279,11 +217,7 @@ fn negative_count_is_an_error() {
     let content = (-3i16).to_le_bytes();
     assert_eq!(
         Message::decode(30011, &content).unwrap_err(),
-        ContentError::NegativeCount {
-            message: "QueryActionListResponse",
-            field: "actionCount",
-            actual: -3
-        }
+        ContentError::NegativeCount { message: "QueryActionListResponse", field: "actionCount", actual: -3 }
     );
 }
 
@@ -318,11 +252,7 @@ fn undefined_enum_values_are_typed_errors() {
     );
     assert!(matches!(
         Message::decode(20040, &[1, 9]).unwrap_err(),
-        ContentError::InvalidValue {
-            field: "unitType",
-            actual: 9,
-            ..
-        }
+        ContentError::InvalidValue { field: "unitType", actual: 9, .. }
     ));
 }
 
@@ -332,59 +262,27 @@ fn failure_responses_decode_to_none_whatever_follows_the_zero_id() {
     let mut content = vec![0, 0, 0, 0];
     content.extend_from_slice(&[0xAB; 32]);
     content.extend_from_slice(&[0, 0]);
-    assert_eq!(
-        Message::decode(30021, &content).unwrap(),
-        Message::QueryActionResponse { action: None }
-    );
-    assert_eq!(
-        Message::decode(30061, &content).unwrap(),
-        Message::QueryMacroResponse { macro_record: None }
-    );
-    assert_eq!(
-        Message::decode(40021, &content[..4]).unwrap(),
-        Message::QueryJoystickTableResponse { table: None }
-    );
+    assert_eq!(Message::decode(30021, &content).unwrap(), Message::QueryActionResponse { action: None });
+    assert_eq!(Message::decode(30061, &content).unwrap(), Message::QueryMacroResponse { macro_record: None });
+    assert_eq!(Message::decode(40021, &content[..4]).unwrap(), Message::QueryJoystickTableResponse { table: None });
     // Encoding a failure writes the full 38 bytes.
-    assert_eq!(
-        Message::QueryActionResponse { action: None }
-            .encode_content()
-            .unwrap()
-            .len(),
-        38
-    );
+    assert_eq!(Message::QueryActionResponse { action: None }.encode_content().unwrap().len(), 38);
 }
 
 #[test]
 fn memory_size_response_also_accepts_the_originals_four_bytes() {
     assert_eq!(
         Message::decode(10031, &500i32.to_le_bytes()).unwrap(),
-        Message::QueryMemorySizeResponse {
-            free_bytes: 500,
-            total_bytes: None
-        }
+        Message::QueryMemorySizeResponse { free_bytes: 500, total_bytes: None }
     );
 }
 
 #[test]
 fn too_many_entries_is_an_encode_error() {
-    let moves = vec![
-        ServoMove {
-            servo_id: 0,
-            degree: 0,
-            interval_10ms: 0
-        };
-        256
-    ];
+    let moves = vec![ServoMove { servo_id: 0, degree: 0, interval_10ms: 0 }; 256];
     assert_eq!(
-        Message::ExecuteActionRequest { moves }
-            .encode()
-            .unwrap_err(),
-        EncodeError::TooMany {
-            message: "ExecuteActionRequest",
-            field: "servoCount",
-            max: 255,
-            actual: 256
-        }
+        Message::ExecuteActionRequest { moves }.encode().unwrap_err(),
+        EncodeError::TooMany { message: "ExecuteActionRequest", field: "servoCount", max: 255, actual: 256 }
     );
 }
 

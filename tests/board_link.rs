@@ -1,11 +1,7 @@
 //! Export and import against the emulated board over real pseudo-terminals and
 //! TCP, with faults injected.
 
-#![allow(
-    clippy::unwrap_used,
-    clippy::expect_used,
-    clippy::needless_pass_by_value
-)]
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::needless_pass_by_value)]
 
 mod common;
 
@@ -13,8 +9,8 @@ use std::time::Duration;
 
 use common::rich_project;
 use servo_studio::device::board::{
-    Board, BoardEvent, BoardImage, Cancel, ImportOptions, OpError, Progress, RequestError,
-    SessionConfig, export, import,
+    Board, BoardEvent, BoardImage, Cancel, ImportOptions, OpError, Progress, RequestError, SessionConfig, export,
+    import,
 };
 use servo_studio::link::{DEFAULT_BAUD, LinkEvent, PortName, no_waker};
 use servo_studio::project::{self, Project};
@@ -36,17 +32,8 @@ fn start(transport: Transport, config: SimConfig, preload: &Project) -> SimHandl
 }
 
 fn connect(sim: &SimHandle, response_timeout: Duration) -> Board {
-    let config = SessionConfig {
-        response_timeout,
-        ..SessionConfig::default()
-    };
-    Board::connect(
-        &PortName::parse(&sim.port_name).unwrap(),
-        DEFAULT_BAUD,
-        config,
-        no_waker(),
-    )
-    .unwrap()
+    let config = SessionConfig { response_timeout, ..SessionConfig::default() };
+    Board::connect(&PortName::parse(&sim.port_name).unwrap(), DEFAULT_BAUD, config, no_waker()).unwrap()
 }
 
 fn quiet(_: &Progress) {}
@@ -61,78 +48,37 @@ fn export_from(transport: Transport, config: SimConfig, preload: &Project) -> Pr
 fn export_reproduces_a_rich_project_exactly_over_a_pty() {
     let original = rich_project();
     assert_eq!(project::validate(&original), []);
-    assert_eq!(
-        export_from(Transport::Pty, SimConfig::default(), &original),
-        original
-    );
+    assert_eq!(export_from(Transport::Pty, SimConfig::default(), &original), original);
 }
 
 #[test]
 fn export_reproduces_a_rich_project_exactly_over_tcp() {
     let original = rich_project();
-    assert_eq!(
-        export_from(Transport::Tcp, SimConfig::default(), &original),
-        original
-    );
+    assert_eq!(export_from(Transport::Tcp, SimConfig::default(), &original), original);
 }
 
 fn import_then_export(transport: Transport) {
-    let sim = start(
-        transport,
-        SimConfig::default(),
-        &Project {
-            project_id: 5,
-            ..Project::default()
-        },
-    );
+    let sim = start(transport, SimConfig::default(), &Project { project_id: 5, ..Project::default() });
     let board = connect(&sim, Duration::from_secs(2));
     let requester = board.requester();
     let backups = tempfile::tempdir().unwrap();
-    let options = ImportOptions {
-        backup_dir: Some(backups.path().to_path_buf()),
-        verify: true,
-    };
+    let options = ImportOptions { backup_dir: Some(backups.path().to_path_buf()), verify: true };
     let mut seen = Vec::new();
-    let report = import(
-        &requester,
-        &rich_project(),
-        &options,
-        &mut |p: &Progress| seen.push(p.clone()),
-        &Cancel::never(),
-    )
-    .unwrap();
+    let report =
+        import(&requester, &rich_project(), &options, &mut |p: &Progress| seen.push(p.clone()), &Cancel::never())
+            .unwrap();
     assert!(report.verified);
     // clear, project id, servo parameters, 3 actions, 2 macros, 2 tables, active table
     assert_eq!(report.written, 11);
-    let last_write = seen
-        .iter()
-        .rev()
-        .find(|p| p.phase == servo_studio::device::board::Phase::Write)
-        .unwrap();
+    let last_write = seen.iter().rev().find(|p| p.phase == servo_studio::device::board::Phase::Write).unwrap();
     assert_eq!((last_write.done, last_write.total), (11, 11));
 
     // The backup holds what the board had before: project 5, nothing else.
     let backup = report.backup.unwrap();
-    assert!(
-        backup
-            .file_name()
-            .unwrap()
-            .to_str()
-            .unwrap()
-            .starts_with("board-backup-")
-    );
-    assert_eq!(
-        project::load(&backup).unwrap(),
-        Project {
-            project_id: 5,
-            ..Project::default()
-        }
-    );
+    assert!(backup.file_name().unwrap().to_str().unwrap().starts_with("board-backup-"));
+    assert_eq!(project::load(&backup).unwrap(), Project { project_id: 5, ..Project::default() });
 
-    assert_eq!(
-        export(&requester, &mut quiet, &Cancel::never()).unwrap(),
-        rich_project()
-    );
+    assert_eq!(export(&requester, &mut quiet, &Cancel::never()).unwrap(), rich_project());
 }
 
 #[test]
@@ -147,32 +93,16 @@ fn import_then_export_round_trips_over_tcp() {
 
 #[test]
 fn garbage_and_interleaved_button_events_do_not_disturb_an_export() {
-    let faults = Faults {
-        garbage_every: Some(2),
-        button_every: Some(3),
-        ..Faults::default()
-    };
-    let sim = start(
-        Transport::Pty,
-        SimConfig {
-            faults,
-            ..SimConfig::default()
-        },
-        &rich_project(),
-    );
+    let faults = Faults { garbage_every: Some(2), button_every: Some(3), ..Faults::default() };
+    let sim = start(Transport::Pty, SimConfig { faults, ..SimConfig::default() }, &rich_project());
     let board = connect(&sim, Duration::from_secs(2));
     let requester = board.requester();
     // Subscribe, so that the board sends button events in the middle of the export.
     assert_eq!(
-        requester
-            .request(Message::SubscribeButtonEventRequest { subscribe: true })
-            .unwrap(),
+        requester.request(Message::SubscribeButtonEventRequest { subscribe: true }).unwrap(),
         Message::SubscribeButtonEventResponse { ok: true }
     );
-    assert_eq!(
-        export(&requester, &mut quiet, &Cancel::never()).unwrap(),
-        rich_project()
-    );
+    assert_eq!(export(&requester, &mut quiet, &Cancel::never()).unwrap(), rich_project());
     let buttons: Vec<u32> = board
         .events()
         .try_iter()
@@ -188,101 +118,34 @@ fn garbage_and_interleaved_button_events_do_not_disturb_an_export() {
 
 #[test]
 fn dropped_and_corrupted_responses_are_retried() {
-    let faults = Faults {
-        drop_every: Some(4),
-        corrupt_every: Some(7),
-        ..Faults::default()
-    };
-    let sim = start(
-        Transport::Tcp,
-        SimConfig {
-            faults,
-            ..SimConfig::default()
-        },
-        &rich_project(),
-    );
+    let faults = Faults { drop_every: Some(4), corrupt_every: Some(7), ..Faults::default() };
+    let sim = start(Transport::Tcp, SimConfig { faults, ..SimConfig::default() }, &rich_project());
     let board = connect(&sim, Duration::from_millis(150));
-    assert_eq!(
-        export(&board.requester(), &mut quiet, &Cancel::never()).unwrap(),
-        rich_project()
-    );
+    assert_eq!(export(&board.requester(), &mut quiet, &Cancel::never()).unwrap(), rich_project());
 }
 
 #[test]
 fn a_refused_add_stops_the_import_naming_the_item() {
-    let faults = Faults {
-        refuse_add: vec![42],
-        ..Faults::default()
-    };
-    let sim = start(
-        Transport::Pty,
-        SimConfig {
-            faults,
-            ..SimConfig::default()
-        },
-        &Project::default(),
-    );
+    let faults = Faults { refuse_add: vec![42], ..Faults::default() };
+    let sim = start(Transport::Pty, SimConfig { faults, ..SimConfig::default() }, &Project::default());
     let board = connect(&sim, Duration::from_secs(2));
-    let options = ImportOptions {
-        backup_dir: None,
-        verify: true,
-    };
-    let error = import(
-        &board.requester(),
-        &rich_project(),
-        &options,
-        &mut quiet,
-        &Cancel::never(),
-    )
-    .unwrap_err();
-    assert!(
-        matches!(&error, OpError::Refused { item } if item == "action 42 \"揮手\""),
-        "{error:?}"
-    );
-    assert!(
-        error
-            .to_string()
-            .contains("action 42 \"揮手\": the board refused it"),
-        "{error}"
-    );
+    let options = ImportOptions { backup_dir: None, verify: true };
+    let error = import(&board.requester(), &rich_project(), &options, &mut quiet, &Cancel::never()).unwrap_err();
+    assert!(matches!(&error, OpError::Refused { item } if item == "action 42 \"揮手\""), "{error:?}");
+    assert!(error.to_string().contains("action 42 \"揮手\": the board refused it"), "{error}");
 }
 
 #[test]
 fn a_project_too_large_for_the_board_is_refused_before_anything_is_cleared() {
     let sim = start(
         Transport::Tcp,
-        SimConfig {
-            total_memory_bytes: 1000,
-            ..SimConfig::default()
-        },
-        &Project {
-            project_id: 9,
-            ..Project::default()
-        },
+        SimConfig { total_memory_bytes: 1000, ..SimConfig::default() },
+        &Project { project_id: 9, ..Project::default() },
     );
     let board = connect(&sim, Duration::from_secs(2));
-    let options = ImportOptions {
-        backup_dir: None,
-        verify: true,
-    };
-    let error = import(
-        &board.requester(),
-        &rich_project(),
-        &options,
-        &mut quiet,
-        &Cancel::never(),
-    )
-    .unwrap_err();
-    assert!(
-        matches!(
-            error,
-            OpError::DoesNotFit {
-                total_bytes: 1000,
-                ..
-            }
-        ),
-        "{error:?}"
-    );
+    let options = ImportOptions { backup_dir: None, verify: true };
+    let error = import(&board.requester(), &rich_project(), &options, &mut quiet, &Cancel::never()).unwrap_err();
+    assert!(matches!(error, OpError::DoesNotFit { total_bytes: 1000, .. }), "{error:?}");
     // Nothing was cleared.
     let still = export(&board.requester(), &mut quiet, &Cancel::never()).unwrap();
     assert_eq!(still.project_id, 9);
@@ -294,75 +157,32 @@ fn an_invalid_project_is_refused_before_anything_is_cleared() {
     let board = connect(&sim, Duration::from_secs(2));
     let mut broken = rich_project();
     broken.macros[0].commands[0].ratio_percent = 0;
-    let options = ImportOptions {
-        backup_dir: None,
-        verify: true,
-    };
-    let error = import(
-        &board.requester(),
-        &broken,
-        &options,
-        &mut quiet,
-        &Cancel::never(),
-    )
-    .unwrap_err();
-    assert!(
-        error.to_string().contains("ratio 0 % is outside 1..=100"),
-        "{error}"
-    );
-    assert_eq!(
-        export(&board.requester(), &mut quiet, &Cancel::never()).unwrap(),
-        rich_project()
-    );
+    let options = ImportOptions { backup_dir: None, verify: true };
+    let error = import(&board.requester(), &broken, &options, &mut quiet, &Cancel::never()).unwrap_err();
+    assert!(error.to_string().contains("ratio 0 % is outside 1..=100"), "{error}");
+    assert_eq!(export(&board.requester(), &mut quiet, &Cancel::never()).unwrap(), rich_project());
 }
 
 #[test]
 fn a_disconnect_mid_import_is_a_clear_error_and_the_backup_is_whole() {
     // Frames: memory (1), backup reads (6 + 3 actions + 2 macros + 2 tables = 13),
     // clear (15), project id (16), servo parameters (17), then the link drops.
-    let faults = Faults {
-        disconnect_after: Some(17),
-        ..Faults::default()
-    };
-    let sim = start(
-        Transport::Pty,
-        SimConfig {
-            faults,
-            ..SimConfig::default()
-        },
-        &rich_project(),
-    );
+    let faults = Faults { disconnect_after: Some(17), ..Faults::default() };
+    let sim = start(Transport::Pty, SimConfig { faults, ..SimConfig::default() }, &rich_project());
     let board = connect(&sim, Duration::from_secs(2));
     let backups = tempfile::tempdir().unwrap();
-    let options = ImportOptions {
-        backup_dir: Some(backups.path().to_path_buf()),
-        verify: true,
-    };
+    let options = ImportOptions { backup_dir: Some(backups.path().to_path_buf()), verify: true };
     let mut fresh = rich_project();
     fresh.project_id = 1;
-    let error = import(
-        &board.requester(),
-        &fresh,
-        &options,
-        &mut quiet,
-        &Cancel::never(),
-    )
-    .unwrap_err();
+    let error = import(&board.requester(), &fresh, &options, &mut quiet, &Cancel::never()).unwrap_err();
     match &error {
-        OpError::Request {
-            item,
-            source: RequestError::Disconnected { .. },
-        } => assert_eq!(item, "action 1 \"六十步的大動作\""),
+        OpError::Request { item, source: RequestError::Disconnected { .. } } => {
+            assert_eq!(item, "action 1 \"六十步的大動作\"");
+        }
         other => panic!("expected a disconnect while writing action 1, got {other:?}"),
     }
-    assert!(
-        error.to_string().contains("the link to the board was lost"),
-        "{error}"
-    );
-    let files: Vec<_> = std::fs::read_dir(backups.path())
-        .unwrap()
-        .map(|entry| entry.unwrap().path())
-        .collect();
+    assert!(error.to_string().contains("the link to the board was lost"), "{error}");
+    let files: Vec<_> = std::fs::read_dir(backups.path()).unwrap().map(|entry| entry.unwrap().path()).collect();
     assert_eq!(files.len(), 1, "one backup, no temporary file: {files:?}");
     assert_eq!(project::load(&files[0]).unwrap(), rich_project());
     // And the link reports its end.

@@ -13,8 +13,7 @@ use servo_studio::sim::{BoardSim, SimCommand, SimConfig, SimEvent, SimHandle, sp
 
 fn start() -> (SimHandle, Board) {
     let image = BoardImage::from_project(&common::rich_project()).unwrap();
-    let (sim, connection) =
-        spawn_in_memory(BoardSim::new(SimConfig::default(), image), no_waker()).unwrap();
+    let (sim, connection) = spawn_in_memory(BoardSim::new(SimConfig::default(), image), no_waker()).unwrap();
     let board = Board::over(connection, SessionConfig::default(), no_waker()).unwrap();
     (sim, board)
 }
@@ -39,28 +38,16 @@ fn status_queries() {
     assert_eq!(requester.project_id().unwrap(), i32::MAX);
     assert_eq!(requester.battery_permil().unwrap(), 870);
     let (free, total) = requester.memory().unwrap();
-    assert!(
-        free > 0 && total == Some(256 * 1024) && free < 256 * 1024,
-        "{free} {total:?}"
-    );
+    assert!(free > 0 && total == Some(256 * 1024) && free < 256 * 1024, "{free} {total:?}");
     assert_eq!(requester.query_servos(ALL_SERVOS).unwrap().len(), 60);
-    assert_eq!(
-        requester.set_angle_unit(3, AngleUnit::Adc).unwrap(),
-        AngleUnit::Adc
-    );
+    assert_eq!(requester.set_angle_unit(3, AngleUnit::Adc).unwrap(), AngleUnit::Adc);
 }
 
 #[test]
 fn a_live_move_reaches_its_angle() {
     let (sim, board) = start();
     let requester = board.requester();
-    requester
-        .move_servos(vec![ServoMove {
-            servo_id: 5,
-            degree: -75,
-            interval_10ms: 0,
-        }])
-        .unwrap();
+    requester.move_servos(vec![ServoMove { servo_id: 5, degree: -75, interval_10ms: 0 }]).unwrap();
     wait_handled(&sim, 1);
     assert_eq!(requester.query_servos(5).unwrap()[0].angle, -75);
 }
@@ -82,16 +69,9 @@ fn running_a_stored_action_and_macro() {
 fn torque_off_then_teach_by_hand() {
     let (sim, board) = start();
     let requester = board.requester();
-    let released = ServoSwitches {
-        servo_id: ALL_SERVOS,
-        is_start: true,
-        is_hold: false,
-    };
+    let released = ServoSwitches { servo_id: ALL_SERVOS, is_start: true, is_hold: false };
     assert_eq!(requester.set_servo_switches(released).unwrap(), released);
-    sim.command(SimCommand::TurnByHand {
-        servo_id: 2,
-        angle: 44,
-    });
+    sim.command(SimCommand::TurnByHand { servo_id: 2, angle: 44 });
     // The command and the query travel different channels: ask until the turn shows.
     let deadline = Instant::now() + Duration::from_secs(5);
     while requester.query_servos(2).unwrap()[0].angle != 44 {
@@ -105,18 +85,9 @@ fn torque_off_then_teach_by_hand() {
 fn subscribed_button_events_arrive() {
     let (sim, board) = start();
     board.requester().subscribe_buttons(true).unwrap();
-    sim.command(SimCommand::Button {
-        button_id: 0x8000_0001,
-        event: ButtonEvent::LongPress,
-    });
+    sim.command(SimCommand::Button { button_id: 0x8000_0001, event: ButtonEvent::LongPress });
     let event = board.events().recv_timeout(Duration::from_secs(5)).unwrap();
-    assert_eq!(
-        event,
-        LinkEvent::Driver(BoardEvent::Button {
-            button_id: 0x8000_0001,
-            event: ButtonEvent::LongPress
-        })
-    );
+    assert_eq!(event, LinkEvent::Driver(BoardEvent::Button { button_id: 0x8000_0001, event: ButtonEvent::LongPress }));
 }
 
 #[test]

@@ -1,18 +1,11 @@
 //! The `servo-studio` command line, run as a user runs it.
 
-#![allow(
-    clippy::unwrap_used,
-    clippy::expect_used,
-    clippy::needless_pass_by_value
-)]
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::needless_pass_by_value)]
 
 use std::process::{Command, Output};
 
 fn run(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_servo-studio"))
-        .args(args)
-        .output()
-        .unwrap()
+    Command::new(env!("CARGO_BIN_EXE_servo-studio")).args(args).output().unwrap()
 }
 
 fn stdout(output: &Output) -> String {
@@ -20,10 +13,7 @@ fn stdout(output: &Output) -> String {
 }
 
 fn fixture() -> String {
-    format!(
-        "{}/tests/fixtures/project-v1.json",
-        env!("CARGO_MANIFEST_DIR")
-    )
+    format!("{}/tests/fixtures/project-v1.json", env!("CARGO_MANIFEST_DIR"))
 }
 
 #[test]
@@ -33,43 +23,29 @@ fn help_and_version() {
     assert!(stdout(&help).contains("check"), "{}", stdout(&help));
     let version = run(&["--version"]);
     assert!(version.status.success());
-    assert_eq!(
-        stdout(&version).trim(),
-        format!("servo-studio {}", env!("CARGO_PKG_VERSION"))
-    );
+    assert_eq!(stdout(&version).trim(), format!("servo-studio {}", env!("CARGO_PKG_VERSION")));
 }
 
 #[test]
 fn check_of_a_valid_project_exits_0() {
     let output = run(&["check", &fixture()]);
     assert!(output.status.success(), "{}", stdout(&output));
-    assert!(
-        stdout(&output).ends_with("0 error(s), 0 warning(s)\n"),
-        "{}",
-        stdout(&output)
-    );
+    assert!(stdout(&output).ends_with("0 error(s), 0 warning(s)\n"), "{}", stdout(&output));
 }
 
 #[test]
 fn check_prints_every_problem_and_exits_1_on_errors() {
     let text = std::fs::read_to_string(fixture()).unwrap();
-    let broken = text
-        .replace("\"action_id\": 2,", "\"action_id\": 42,")
-        .replace("\"active_table\": 1", "\"active_table\": 5");
+    let broken =
+        text.replace("\"action_id\": 2,", "\"action_id\": 42,").replace("\"active_table\": 1", "\"active_table\": 5");
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("broken.json");
     std::fs::write(&path, broken).unwrap();
     let output = run(&["check", path.to_str().unwrap()]);
     assert_eq!(output.status.code(), Some(1));
     let printed = stdout(&output);
-    assert!(
-        printed.contains("error: macro 100 \"巨集1\", command 3: action 42 does not exist"),
-        "{printed}"
-    );
-    assert!(
-        printed.contains("error: project: active joystick table 5 does not exist"),
-        "{printed}"
-    );
+    assert!(printed.contains("error: macro 100 \"巨集1\", command 3: action 42 does not exist"), "{printed}");
+    assert!(printed.contains("error: project: active joystick table 5 does not exist"), "{printed}");
     assert!(printed.contains("2 error(s)"), "{printed}");
 }
 
@@ -77,11 +53,7 @@ fn check_prints_every_problem_and_exits_1_on_errors() {
 fn check_of_a_malformed_file_gives_line_and_column() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("bad.json");
-    std::fs::write(
-        &path,
-        "{\"format\": \"servo-studio-project\",\n \"servos\": [ }",
-    )
-    .unwrap();
+    std::fs::write(&path, "{\"format\": \"servo-studio-project\",\n \"servos\": [ }").unwrap();
     let output = run(&["check", path.to_str().unwrap()]);
     assert_eq!(output.status.code(), Some(1));
     let printed = String::from_utf8_lossy(&output.stderr);

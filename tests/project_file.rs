@@ -1,14 +1,9 @@
 //! The project file: round trips, the checked-in fixture, and derived timing.
 
-#![allow(
-    clippy::unwrap_used,
-    clippy::expect_used,
-    clippy::needless_pass_by_value
-)]
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::needless_pass_by_value)]
 
 use servo_studio::project::{
-    self, Action, Button, Command, JoystickTable, LoadError, Macro, Project, Run, Servo, Step,
-    Timing,
+    self, Action, Button, Command, JoystickTable, LoadError, Macro, Project, Run, Servo, Step, Timing,
 };
 
 fn fixture_path() -> std::path::PathBuf {
@@ -17,9 +12,7 @@ fn fixture_path() -> std::path::PathBuf {
 
 /// A project that uses every field, with CJK captions and extreme values.
 fn rich_project() -> Project {
-    let mut servos: Vec<Servo> = (0..8u8)
-        .map(|id| Servo::new(id, format!("關節{id}")))
-        .collect();
+    let mut servos: Vec<Servo> = (0..8u8).map(|id| Servo::new(id, format!("關節{id}"))).collect();
     servos[0].calibration_offset_deg = -12;
     servos[0].min_deg = -120;
     servos[0].max_deg = 120;
@@ -31,27 +24,15 @@ fn rich_project() -> Project {
             Action {
                 id: 1,
                 caption: "動作一二三四五六七八九十".into(),
-                steps: vec![Step {
-                    servo_id: 0,
-                    degree: -120,
-                    interval_10ms: 0,
-                }],
+                steps: vec![Step { servo_id: 0, degree: -120, interval_10ms: 0 }],
             },
-            Action {
-                id: i32::MAX,
-                caption: String::new(),
-                steps: vec![],
-            },
+            Action { id: i32::MAX, caption: String::new(), steps: vec![] },
         ],
         macros: vec![Macro {
             id: 7,
             caption: "巨集".into(),
             commands: vec![
-                Command {
-                    run: Run::Action { action_id: 1 },
-                    ratio_percent: 1,
-                    loop_count: i16::MAX,
-                },
+                Command { run: Run::Action { action_id: 1 }, ratio_percent: 1, loop_count: i16::MAX },
                 Command::once(Run::Delay { delay_ms: 0 }),
                 Command::once(Run::Macro { macro_id: 8 }),
             ],
@@ -80,10 +61,7 @@ fn save_then_load_is_lossless_including_cjk_captions() {
     let original = rich_project();
     project::save(&path, &original).unwrap();
     let text = std::fs::read_to_string(&path).unwrap();
-    assert!(
-        text.contains("動作一二三四五六七八九十"),
-        "CJK is stored as text, not escapes"
-    );
+    assert!(text.contains("動作一二三四五六七八九十"), "CJK is stored as text, not escapes");
     assert!(text.starts_with("{\n  \"format\": \"servo-studio-project\",\n  \"version\": 1,"));
     assert_eq!(project::load(&path).unwrap(), original);
 }
@@ -96,11 +74,7 @@ fn saving_over_an_existing_file_replaces_it() {
     let project = rich_project();
     project::save(&path, &project).unwrap();
     assert_eq!(project::load(&path).unwrap(), project);
-    assert_eq!(
-        std::fs::read_dir(dir.path()).unwrap().count(),
-        1,
-        "no temporary file is left behind"
-    );
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1, "no temporary file is left behind");
 }
 
 #[test]
@@ -113,18 +87,12 @@ fn the_checked_in_version_1_fixture_keeps_loading() {
     assert_eq!(loaded.servos[2].calibration_offset_deg, 0);
     assert_eq!(loaded.servos[2].home_deg, 0);
     assert_eq!(loaded.macros[0].caption, "巨集1");
-    assert_eq!(
-        loaded.macros[0].commands[1],
-        Command::once(Run::Delay { delay_ms: 500 })
-    );
+    assert_eq!(loaded.macros[0].commands[1], Command::once(Run::Delay { delay_ms: 500 }));
     assert_eq!(loaded.joystick_tables[0].buttons[1].id, 0x8000_0001);
     assert_eq!(loaded.active_table, Some(1));
     assert_eq!(project::validate(&loaded), []);
     // And what this build writes for it loads back identically.
-    assert_eq!(
-        project::from_json(&project::to_json(&loaded)).unwrap(),
-        loaded
-    );
+    assert_eq!(project::from_json(&project::to_json(&loaded)).unwrap(), loaded);
 }
 
 #[test]
@@ -154,9 +122,7 @@ fn a_value_out_of_its_type_range_is_a_positioned_error() {
     let text = r#"{"format": "servo-studio-project", "version": 1,
 "servos": [{"id": 300}]}"#;
     match project::from_json(text) {
-        Err(LoadError::Syntax {
-            line: 2, message, ..
-        }) => assert!(message.contains("300"), "{message}"),
+        Err(LoadError::Syntax { line: 2, message, .. }) => assert!(message.contains("300"), "{message}"),
         other => panic!("expected a syntax error on line 2, got {other:?}"),
     }
 }

@@ -1,23 +1,14 @@
 //! One test per validation rule: each builds a valid project, breaks one thing,
 //! and checks that exactly that problem is reported, with its location.
 
-#![allow(
-    clippy::unwrap_used,
-    clippy::expect_used,
-    clippy::needless_pass_by_value
-)]
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::needless_pass_by_value)]
 
 use servo_studio::project::{
-    Action, Button, Command, JoystickTable, Macro, Problem, Project, Run, Servo, Severity, Step,
-    has_errors, validate,
+    Action, Button, Command, JoystickTable, Macro, Problem, Project, Run, Servo, Severity, Step, has_errors, validate,
 };
 
 fn step(servo_id: u8, degree: i16) -> Step {
-    Step {
-        servo_id,
-        degree,
-        interval_10ms: 50,
-    }
+    Step { servo_id, degree, interval_10ms: 50 }
 }
 
 /// A small valid project: two servos, two actions, two macros, one table.
@@ -26,16 +17,8 @@ fn valid() -> Project {
         project_id: 1,
         servos: vec![Servo::new(1, "左肩"), Servo::new(2, "右肩")],
         actions: vec![
-            Action {
-                id: 1,
-                caption: "舉手".into(),
-                steps: vec![step(1, -90), step(2, 45)],
-            },
-            Action {
-                id: 42,
-                caption: "放下".into(),
-                steps: vec![step(1, 0)],
-            },
+            Action { id: 1, caption: "舉手".into(), steps: vec![step(1, -90), step(2, 45)] },
+            Action { id: 42, caption: "放下".into(), steps: vec![step(1, 0)] },
         ],
         macros: vec![
             Macro {
@@ -47,11 +30,7 @@ fn valid() -> Project {
                     Command::once(Run::Action { action_id: 42 }),
                 ],
             },
-            Macro {
-                id: 101,
-                caption: "巨集2".into(),
-                commands: vec![Command::once(Run::Macro { macro_id: 100 })],
-            },
+            Macro { id: 101, caption: "巨集2".into(), commands: vec![Command::once(Run::Macro { macro_id: 100 })] },
         ],
         joystick_tables: vec![JoystickTable {
             id: 1,
@@ -73,11 +52,7 @@ fn valid() -> Project {
 /// The single problem `project` has; fails if it has none or several.
 fn only_problem(project: &Project) -> Problem {
     let problems = validate(project);
-    assert_eq!(
-        problems.len(),
-        1,
-        "expected exactly one problem, got {problems:#?}"
-    );
+    assert_eq!(problems.len(), 1, "expected exactly one problem, got {problems:#?}");
     problems.into_iter().next().unwrap()
 }
 
@@ -96,20 +71,14 @@ fn the_base_project_is_valid() {
 fn dangling_action_reference_names_macro_and_command() {
     let mut project = valid();
     project.actions.remove(1);
-    assert_eq!(
-        only_error_text(&project),
-        "error: macro 100 \"巨集1\", command 3: action 42 does not exist"
-    );
+    assert_eq!(only_error_text(&project), "error: macro 100 \"巨集1\", command 3: action 42 does not exist");
 }
 
 #[test]
 fn dangling_macro_references_in_commands_buttons_and_active_table() {
     let mut project = valid();
     project.macros[1].commands[0] = Command::once(Run::Macro { macro_id: 9 });
-    assert_eq!(
-        only_error_text(&project),
-        "error: macro 101 \"巨集2\", command 1: macro 9 does not exist"
-    );
+    assert_eq!(only_error_text(&project), "error: macro 101 \"巨集2\", command 1: macro 9 does not exist");
 
     let mut project = valid();
     project.joystick_tables[0].buttons[0].release_macro = Some(555);
@@ -120,10 +89,7 @@ fn dangling_macro_references_in_commands_buttons_and_active_table() {
 
     let mut project = valid();
     project.active_table = Some(2);
-    assert_eq!(
-        only_error_text(&project),
-        "error: project: active joystick table 2 does not exist"
-    );
+    assert_eq!(only_error_text(&project), "error: project: active joystick table 2 does not exist");
 }
 
 #[test]
@@ -133,23 +99,14 @@ fn duplicate_ids_of_every_kind() {
     assert!(only_error_text(&project).contains("duplicate servo id 2"));
 
     let mut project = valid();
-    project.actions.push(Action {
-        id: 1,
-        caption: "又一個".into(),
-        steps: vec![step(2, 0)],
-    });
+    project.actions.push(Action { id: 1, caption: "又一個".into(), steps: vec![step(2, 0)] });
     assert!(only_error_text(&project).contains("action 1 \"又一個\": duplicate action id 1"));
 
     let mut project = valid();
     project.macros[1].id = 100;
     project.macros[1].commands.clear();
     let problems = validate(&project);
-    assert!(
-        problems
-            .iter()
-            .any(|p| p.to_string().contains("duplicate macro id 100")),
-        "{problems:#?}"
-    );
+    assert!(problems.iter().any(|p| p.to_string().contains("duplicate macro id 100")), "{problems:#?}");
 
     let mut project = valid();
     let table = project.joystick_tables[0].clone();
@@ -166,10 +123,7 @@ fn duplicate_ids_of_every_kind() {
 fn unknown_servo_in_a_step() {
     let mut project = valid();
     project.actions[0].steps[1].servo_id = 7;
-    assert_eq!(
-        only_error_text(&project),
-        "error: action 1 \"舉手\", step 2: servo 7 does not exist"
-    );
+    assert_eq!(only_error_text(&project), "error: action 1 \"舉手\", step 2: servo 7 does not exist");
 }
 
 #[test]
@@ -185,9 +139,7 @@ fn the_same_servo_twice_in_one_action() {
 #[test]
 fn macro_cycles_direct_and_indirect() {
     let mut project = valid();
-    project.macros[0]
-        .commands
-        .push(Command::once(Run::Macro { macro_id: 101 }));
+    project.macros[0].commands.push(Command::once(Run::Macro { macro_id: 101 }));
     // Reported once, at the command that closes the loop.
     assert_eq!(
         only_error_text(&project),
@@ -195,9 +147,7 @@ fn macro_cycles_direct_and_indirect() {
     );
 
     let mut project = valid();
-    project.macros[0]
-        .commands
-        .push(Command::once(Run::Macro { macro_id: 100 }));
+    project.macros[0].commands.push(Command::once(Run::Macro { macro_id: 100 }));
     assert_eq!(
         only_error_text(&project),
         "error: macro 100 \"巨集1\", command 4: macro cycle 100 → 100: a macro must not reach itself"
@@ -209,10 +159,7 @@ fn captions_longer_than_32_bytes() {
     // 11 CJK characters are 33 UTF-8 bytes.
     let mut project = valid();
     project.macros[0].caption = "一二三四五六七八九十壹".into();
-    assert!(
-        only_error_text(&project)
-            .contains("caption is 33 UTF-8 bytes; the board stores at most 32")
-    );
+    assert!(only_error_text(&project).contains("caption is 33 UTF-8 bytes; the board stores at most 32"));
 
     let mut project = valid();
     project.servos[0].caption = "x".repeat(33);
@@ -234,10 +181,7 @@ fn ratio_outside_1_to_100() {
         let mut project = valid();
         project.macros[0].commands[0].ratio_percent = ratio_percent;
         let text = only_error_text(&project);
-        assert!(
-            text.contains(&format!("ratio {ratio_percent} % is outside 1..=100")),
-            "{text}"
-        );
+        assert!(text.contains(&format!("ratio {ratio_percent} % is outside 1..=100")), "{text}");
     }
 }
 
@@ -289,11 +233,8 @@ fn values_outside_their_field_range() {
     let mut project = valid();
     project.macros.truncate(1); // macro 101 would overflow too, by running macro 100
     project.actions[0].steps[0].interval_10ms = i16::MAX;
-    project.macros[0].commands[0] = Command {
-        run: Run::Action { action_id: 1 },
-        ratio_percent: 1,
-        loop_count: i16::MAX,
-    };
+    project.macros[0].commands[0] =
+        Command { run: Run::Action { action_id: 1 }, ratio_percent: 1, loop_count: i16::MAX };
     assert!(only_error_text(&project).contains("more than the board can count"));
 }
 
@@ -315,9 +256,6 @@ fn warnings_alone_are_not_errors() {
     project.joystick_tables[0].buttons[0].press_macro = None;
     let problem = only_problem(&project);
     assert_eq!(problem.severity, Severity::Warning);
-    assert_eq!(
-        problem.to_string(),
-        "warning: joystick table 1 \"遙控器\", button 0x80000001 \"A\": runs no macro"
-    );
+    assert_eq!(problem.to_string(), "warning: joystick table 1 \"遙控器\", button 0x80000001 \"A\": runs no macro");
     assert!(!has_errors(&[problem]));
 }

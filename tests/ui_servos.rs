@@ -21,11 +21,7 @@ fn project() -> Project {
     let mut head = Servo::new(3, "頭部");
     head.min_deg = -45;
     head.max_deg = 45;
-    Project {
-        project_id: 7,
-        servos: vec![left, head],
-        ..Project::default()
-    }
+    Project { project_id: 7, servos: vec![left, head], ..Project::default() }
 }
 
 fn harness(app: StudioApp) -> Harness<'static, StudioApp> {
@@ -46,29 +42,15 @@ fn demo_harness() -> Harness<'static, StudioApp> {
 
 /// The live moves the demo board handled, as (servo, degree), waiting (with a
 /// deadline) until the board has handled one that puts `servo_id` at `last`.
-fn moves_until(
-    harness: &mut Harness<'static, StudioApp>,
-    servo_id: u8,
-    last: i16,
-) -> Vec<(u8, i16)> {
+fn moves_until(harness: &mut Harness<'static, StudioApp>, servo_id: u8, last: i16) -> Vec<(u8, i16)> {
     let deadline = Instant::now() + Duration::from_secs(5);
     let mut moves = Vec::new();
     loop {
         let link = harness.state().link.as_ref().unwrap();
-        let event = link
-            .demo_board()
-            .unwrap()
-            .events()
-            .recv_deadline(deadline)
-            .expect("the move arrived in time");
-        if let LinkEvent::Driver(SimEvent::Handled(Message::ExecuteActionRequest { moves: sent })) =
-            event
-        {
+        let event = link.demo_board().unwrap().events().recv_deadline(deadline).expect("the move arrived in time");
+        if let LinkEvent::Driver(SimEvent::Handled(Message::ExecuteActionRequest { moves: sent })) = event {
             moves.extend(sent.iter().map(|m| (m.servo_id, m.degree)));
-            if sent
-                .iter()
-                .any(|m| m.servo_id == servo_id && m.degree == last)
-            {
+            if sent.iter().any(|m| m.servo_id == servo_id && m.degree == last) {
                 return moves;
             }
         }
@@ -83,10 +65,7 @@ fn a_drag_sends_coalesced_live_moves_and_the_last_value_arrives() {
     harness.drag_at(egui::pos2(slider.center().x, y));
     harness.run();
     for step in 1..=20 {
-        harness.hover_at(egui::pos2(
-            slider.center().x + slider.width() * 0.02 * step as f32,
-            y,
-        ));
+        harness.hover_at(egui::pos2(slider.center().x + slider.width() * 0.02 * step as f32, y));
         harness.run();
     }
     harness.drop_at(egui::pos2(slider.right() + 50.0, y));
@@ -97,14 +76,8 @@ fn a_drag_sends_coalesced_live_moves_and_the_last_value_arrives() {
     assert!(!moves.is_empty());
     assert!(moves.iter().all(|(servo, _)| *servo == 1), "{moves:?}");
     let degrees: Vec<i16> = moves.iter().map(|(_, degree)| *degree).collect();
-    assert!(
-        degrees.windows(2).all(|pair| pair[0] < pair[1]),
-        "moves follow the drag, never back: {degrees:?}"
-    );
-    assert!(
-        degrees.len() <= 22,
-        "at most one move per frame: {degrees:?}"
-    );
+    assert!(degrees.windows(2).all(|pair| pair[0] < pair[1]), "moves follow the drag, never back: {degrees:?}");
+    assert!(degrees.len() <= 22, "at most one move per frame: {degrees:?}");
     // Nothing stale after the release: the board ends at the last value.
     let requester = harness.state().link.as_ref().unwrap().requester();
     let deadline = Instant::now() + Duration::from_secs(5);
@@ -117,11 +90,7 @@ fn a_drag_sends_coalesced_live_moves_and_the_last_value_arrives() {
 fn keyboard_nudges_the_focused_servo_by_1_and_10() {
     let mut harness = harness(StudioApp::new(project(), None, no_waker()));
     harness.run();
-    harness
-        .get_all_by_role(Role::Slider)
-        .nth(1)
-        .unwrap()
-        .focus();
+    harness.get_all_by_role(Role::Slider).nth(1).unwrap().focus();
     harness.run();
     harness.key_press(egui::Key::ArrowRight);
     harness.run();
@@ -137,24 +106,14 @@ fn keyboard_nudges_the_focused_servo_by_1_and_10() {
         harness.run();
     }
     assert_eq!(harness.state().pose.get(&3), Some(&45), "the limit holds");
-    assert_eq!(
-        harness.state().pose.get(&1),
-        Some(&0),
-        "the other servo did not move"
-    );
+    assert_eq!(harness.state().pose.get(&1), Some(&0), "the other servo did not move");
 }
 
 #[test]
 fn capture_pose_creates_an_action_and_undo_redo_restore_exact_states() {
     let mut app = StudioApp::new(project(), None, no_waker());
-    app.apply(Action::SetPose {
-        servo_id: 1,
-        degree: -30,
-    });
-    app.apply(Action::SetPose {
-        servo_id: 3,
-        degree: 200,
-    });
+    app.apply(Action::SetPose { servo_id: 1, degree: -30 });
+    app.apply(Action::SetPose { servo_id: 3, degree: 200 });
     let mut harness = harness(app);
     harness.run();
     let before = harness.state().document.project.clone();
@@ -164,29 +123,14 @@ fn capture_pose_creates_an_action_and_undo_redo_restore_exact_states() {
     assert_eq!(after.actions.len(), 1);
     let action = &after.actions[0];
     assert_eq!(action.id, 1);
-    let steps: Vec<(u8, i16)> = action
-        .steps
-        .iter()
-        .map(|s| (s.servo_id, s.degree))
-        .collect();
-    assert_eq!(
-        steps,
-        [(1, -30), (3, 45)],
-        "the captured pose, within limits"
-    );
-    assert_eq!(
-        project::validate(&after),
-        [],
-        "a captured pose is a valid action"
-    );
+    let steps: Vec<(u8, i16)> = action.steps.iter().map(|s| (s.servo_id, s.degree)).collect();
+    assert_eq!(steps, [(1, -30), (3, 45)], "the captured pose, within limits");
+    assert_eq!(project::validate(&after), [], "a captured pose is a valid action");
 
     harness.get_by_label("Undo").click();
     harness.run();
     assert_eq!(harness.state().document.project, before);
-    harness.key_press_modifiers(
-        egui::Modifiers::COMMAND | egui::Modifiers::SHIFT,
-        egui::Key::Z,
-    );
+    harness.key_press_modifiers(egui::Modifiers::COMMAND | egui::Modifiers::SHIFT, egui::Key::Z);
     harness.run();
     assert_eq!(harness.state().document.project, after);
     harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Z);
@@ -203,14 +147,8 @@ fn escape_stops_every_servo_holding_torque_and_blocks_moves_until_resume() {
     // The STOP frame is written ahead of this query, so the query sees it applied.
     let servos = requester.query_servos(1).unwrap();
     assert!(!servos[0].is_start && servos[0].is_hold, "{servos:?}");
-    harness.state_mut().apply(Action::SetPose {
-        servo_id: 1,
-        degree: 40,
-    });
-    assert!(
-        harness.state().status.as_ref().unwrap().is_error,
-        "moving while stopped is refused"
-    );
+    harness.state_mut().apply(Action::SetPose { servo_id: 1, degree: 40 });
+    assert!(harness.state().status.as_ref().unwrap().is_error, "moving while stopped is refused");
     harness.get_by_label("Resume").click();
     harness.run();
 }
@@ -218,34 +156,20 @@ fn escape_stops_every_servo_holding_torque_and_blocks_moves_until_resume() {
 #[test]
 fn a_bad_port_is_a_readable_error() {
     let mut app = StudioApp::new(project(), None, no_waker());
-    app.apply(Action::Connect {
-        port: "/dev/ttyNOPE-servo".into(),
-        baud: 115_200,
-    });
+    app.apply(Action::Connect { port: "/dev/ttyNOPE-servo".into(), baud: 115_200 });
     let status = app.status.clone().unwrap();
     assert!(status.is_error);
-    assert!(
-        status.text.contains("servo-studio ports"),
-        "{}",
-        status.text
-    );
+    assert!(status.text.contains("servo-studio ports"), "{}", status.text);
     assert!(app.link.is_none());
 }
 
 #[test]
 fn the_interface_switches_to_traditional_chinese() {
     let mut app = StudioApp::new(project(), None, no_waker());
-    app.apply(Action::SetLanguage(
-        servo_studio::ui::Language::TraditionalChinese,
-    ));
+    app.apply(Action::SetLanguage(servo_studio::ui::Language::TraditionalChinese));
     let mut harness = harness(app);
     harness.run();
     assert!(harness.query_by_label("擷取姿勢").is_some());
     assert!(harness.query_by_label("示範控制板").is_some());
-    assert!(
-        harness
-            .query_all_by_label_contains("左肩 #1")
-            .next()
-            .is_some()
-    );
+    assert!(harness.query_all_by_label_contains("左肩 #1").next().is_some());
 }

@@ -11,8 +11,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 
 use super::PortArgs;
 use servo_studio::device::board::{
-    self as device, Board, BoardImage, Cancel, ImportOptions, Phase, Progress, Requester,
-    SessionConfig,
+    self as device, Board, BoardImage, Cancel, ImportOptions, Phase, Progress, Requester, SessionConfig,
 };
 use servo_studio::link::{self, LinkEvent, PortName, no_waker};
 use servo_studio::project;
@@ -45,20 +44,12 @@ pub struct SimArgs {
 }
 
 fn session_config(port: &PortArgs) -> SessionConfig {
-    SessionConfig {
-        response_timeout: Duration::from_millis(port.timeout_ms),
-        ..SessionConfig::default()
-    }
+    SessionConfig { response_timeout: Duration::from_millis(port.timeout_ms), ..SessionConfig::default() }
 }
 
 fn connect(port: &PortArgs) -> anyhow::Result<Board> {
     let name = PortName::parse(&port.port)?;
-    Ok(Board::connect(
-        &name,
-        port.baud,
-        session_config(port),
-        no_waker(),
-    )?)
+    Ok(Board::connect(&name, port.baud, session_config(port), no_waker())?)
 }
 
 /// A progress bar on stderr (hidden when stderr is not a terminal).
@@ -86,9 +77,7 @@ fn progress_bar() -> (ProgressBar, impl FnMut(&Progress)) {
 pub fn ports() -> anyhow::Result<()> {
     let ports = link::list_ports()?;
     if ports.is_empty() {
-        println!(
-            "no serial ports found (a board on a network bridge is reached as tcp://HOST:PORT)"
-        );
+        println!("no serial ports found (a board on a network bridge is reached as tcp://HOST:PORT)");
     }
     for port in ports {
         println!("{}\t{}", port.name, port.description);
@@ -99,8 +88,8 @@ pub fn ports() -> anyhow::Result<()> {
 pub fn sim(args: &SimArgs) -> anyhow::Result<()> {
     let image = match &args.state {
         Some(path) => {
-            let loaded = project::load(path)
-                .with_context(|| format!("cannot preload the board from {}", path.display()))?;
+            let loaded =
+                project::load(path).with_context(|| format!("cannot preload the board from {}", path.display()))?;
             BoardImage::from_project(&loaded)
                 .with_context(|| format!("{} cannot be stored on a board", path.display()))?
         }
@@ -121,10 +110,7 @@ pub fn sim(args: &SimArgs) -> anyhow::Result<()> {
     let mut stdout = std::io::stdout();
     writeln!(stdout, "{}", handle.port_name)?;
     stdout.flush()?;
-    eprintln!(
-        "emulated board ready on {} (Ctrl-C to stop)",
-        handle.port_name
-    );
+    eprintln!("emulated board ready on {} (Ctrl-C to stop)", handle.port_name);
     for event in handle.events() {
         if let LinkEvent::Disconnected { reason } = event {
             eprintln!("client disconnected: {reason}");
@@ -151,13 +137,8 @@ pub fn export(port: &PortArgs, out: &Path) -> anyhow::Result<()> {
     let (bar, mut update) = progress_bar();
     let exported = device::export(&board.requester(), &mut update, &Cancel::never());
     bar.finish_and_clear();
-    let exported = exported.with_context(|| {
-        format!(
-            "export from {} failed; {} was not written",
-            port.port,
-            out.display()
-        )
-    })?;
+    let exported =
+        exported.with_context(|| format!("export from {} failed; {} was not written", port.port, out.display()))?;
     project::save(out, &exported)?;
     eprintln!(
         "exported project {} ({} servos, {} actions, {} macros, {} joystick tables) to {}",
@@ -181,11 +162,7 @@ fn confirm(port: &str, input: &Path, backup: bool) -> anyhow::Result<()> {
     eprint!(
         "This erases everything on the board on {port} and writes {}.{} Type yes to continue: ",
         input.display(),
-        if backup {
-            " A backup of the board is saved first."
-        } else {
-            " No backup is saved (--no-backup)."
-        }
+        if backup { " A backup of the board is saved first." } else { " No backup is saved (--no-backup)." }
     );
     let mut answer = String::new();
     stdin.lock().read_line(&mut answer)?;
@@ -195,35 +172,22 @@ fn confirm(port: &str, input: &Path, backup: bool) -> anyhow::Result<()> {
     Ok(())
 }
 
-pub fn import(
-    port: &PortArgs,
-    input: &Path,
-    yes: bool,
-    backup_dir: Option<PathBuf>,
-) -> anyhow::Result<()> {
-    let loaded =
-        project::load(input).with_context(|| format!("cannot read {}", input.display()))?;
+pub fn import(port: &PortArgs, input: &Path, yes: bool, backup_dir: Option<PathBuf>) -> anyhow::Result<()> {
+    let loaded = project::load(input).with_context(|| format!("cannot read {}", input.display()))?;
     let board = connect(port)?;
     if !yes {
         confirm(&port.port, input, backup_dir.is_some())?;
     }
-    let options = ImportOptions {
-        backup_dir,
-        verify: true,
-    };
+    let options = ImportOptions { backup_dir, verify: true };
     let (bar, mut update) = progress_bar();
     let requester: Requester = board.requester();
     let report = device::import(&requester, &loaded, &options, &mut update, &Cancel::never());
     bar.finish_and_clear();
-    let report = report
-        .with_context(|| format!("import of {} into {} failed", input.display(), port.port))?;
+    let report = report.with_context(|| format!("import of {} into {} failed", input.display(), port.port))?;
     if let Some(backup) = &report.backup {
         eprintln!("backup of the previous contents: {}", backup.display());
     }
-    eprintln!(
-        "wrote {} item(s) to {} and verified them",
-        report.written, port.port
-    );
+    eprintln!("wrote {} item(s) to {} and verified them", report.written, port.port);
     Ok(())
 }
 

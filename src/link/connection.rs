@@ -19,29 +19,16 @@ pub struct Connection {
 
 impl std::fmt::Debug for Connection {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("Connection")
-            .field("description", &self.description)
-            .finish_non_exhaustive()
+        f.debug_struct("Connection").field("description", &self.description).finish_non_exhaustive()
     }
 }
 
 impl Connection {
     /// A connection over an open serial port (its read timeout bounds how long
     /// closing takes).
-    pub fn from_serial(
-        port: Box<dyn serialport::SerialPort>,
-        description: String,
-    ) -> io::Result<Self> {
-        let reader = port
-            .try_clone()
-            .map_err(|error| io::Error::other(error.description))?;
-        Ok(Self {
-            description,
-            reader: Box::new(reader),
-            writer: Box::new(port),
-            shutdown: None,
-            keep: Vec::new(),
-        })
+    pub fn from_serial(port: Box<dyn serialport::SerialPort>, description: String) -> io::Result<Self> {
+        let reader = port.try_clone().map_err(|error| io::Error::other(error.description))?;
+        Ok(Self { description, reader: Box::new(reader), writer: Box::new(port), shutdown: None, keep: Vec::new() })
     }
 
     /// A connection over a TCP stream.
@@ -66,25 +53,14 @@ impl Connection {
     pub fn memory_pair() -> (Self, Self) {
         let (a_to_b, b_from_a) = crossbeam_channel::unbounded();
         let (b_to_a, a_from_b) = crossbeam_channel::unbounded();
-        (
-            Self::memory_end("memory:a", a_to_b, a_from_b),
-            Self::memory_end("memory:b", b_to_a, b_from_a),
-        )
+        (Self::memory_end("memory:a", a_to_b, a_from_b), Self::memory_end("memory:b", b_to_a, b_from_a))
     }
 
-    fn memory_end(
-        description: &str,
-        to_peer: Sender<Vec<u8>>,
-        from_peer: Receiver<Vec<u8>>,
-    ) -> Self {
+    fn memory_end(description: &str, to_peer: Sender<Vec<u8>>, from_peer: Receiver<Vec<u8>>) -> Self {
         let (wake, woken) = crossbeam_channel::bounded::<()>(0);
         Self {
             description: description.to_string(),
-            reader: Box::new(MemoryReader {
-                from_peer,
-                woken,
-                leftover: Vec::new(),
-            }),
+            reader: Box::new(MemoryReader { from_peer, woken, leftover: Vec::new() }),
             writer: Box::new(MemoryWriter { to_peer }),
             shutdown: Some(Box::new(move || drop(wake))),
             keep: Vec::new(),

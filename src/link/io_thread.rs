@@ -79,9 +79,7 @@ pub struct LinkHandle<C, E> {
 
 impl<C, E> std::fmt::Debug for LinkHandle<C, E> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("LinkHandle")
-            .field("description", &self.description)
-            .finish_non_exhaustive()
+        f.debug_struct("LinkHandle").field("description", &self.description).finish_non_exhaustive()
     }
 }
 
@@ -140,22 +138,11 @@ pub fn spawn<D: Driver>(
     let (close_tx, close_rx) = crossbeam_channel::bounded(0);
     let (event_tx, event_rx) = crossbeam_channel::unbounded();
     let description = connection.description.clone();
-    let thread = std::thread::Builder::new()
-        .name(format!("io {description}"))
-        .spawn(move || {
-            let owner = Owner {
-                commands: command_rx,
-                close: close_rx,
-            };
-            run(connection, driver, &owner, &event_tx, &waker);
-        })?;
-    Ok(LinkHandle {
-        commands: command_tx,
-        close: Some(close_tx),
-        events: event_rx,
-        thread: Some(thread),
-        description,
-    })
+    let thread = std::thread::Builder::new().name(format!("io {description}")).spawn(move || {
+        let owner = Owner { commands: command_rx, close: close_rx };
+        run(connection, driver, &owner, &event_tx, &waker);
+    })?;
+    Ok(LinkHandle { commands: command_tx, close: Some(close_tx), events: event_rx, thread: Some(thread), description })
 }
 
 /// Drives `driver` over `connection` on the calling thread until the link
@@ -167,18 +154,11 @@ pub fn run<D: Driver>(
     events: &Sender<LinkEvent<D::Event>>,
     waker: &Waker,
 ) -> D {
-    let Connection {
-        reader,
-        mut writer,
-        shutdown,
-        keep,
-        ..
-    } = connection;
+    let Connection { reader, mut writer, shutdown, keep, .. } = connection;
     let (input_tx, input_rx) = crossbeam_channel::unbounded();
     let (stop_tx, stop_rx) = crossbeam_channel::bounded::<()>(0);
-    let reader_thread = std::thread::Builder::new()
-        .name("io reader".into())
-        .spawn(move || read_loop(reader, &input_tx, &stop_rx));
+    let reader_thread =
+        std::thread::Builder::new().name("io reader".into()).spawn(move || read_loop(reader, &input_tx, &stop_rx));
     let reason = match &reader_thread {
         Ok(_) => drive(&mut driver, &mut *writer, owner, &input_rx, events, waker),
         Err(error) => format!("cannot start the reader thread: {error}"),
@@ -223,10 +203,7 @@ fn drive<D: Driver>(
 ) -> String {
     loop {
         let now = Instant::now();
-        if driver
-            .poll_timeout()
-            .is_some_and(|deadline| deadline <= now)
-        {
+        if driver.poll_timeout().is_some_and(|deadline| deadline <= now) {
             driver.handle_timeout(now);
         }
         while let Some(bytes) = driver.poll_transmit(now) {
@@ -274,10 +251,7 @@ fn drive<D: Driver>(
 fn read_loop(mut reader: Box<dyn Read + Send>, input: &Sender<Input>, stop: &Receiver<()>) {
     let mut buffer = vec![0u8; 4096];
     loop {
-        if matches!(
-            stop.try_recv(),
-            Err(crossbeam_channel::TryRecvError::Disconnected)
-        ) {
+        if matches!(stop.try_recv(), Err(crossbeam_channel::TryRecvError::Disconnected)) {
             return;
         }
         let ended = match reader.read(&mut buffer) {
@@ -291,9 +265,7 @@ fn read_loop(mut reader: Box<dyn Read + Send>, input: &Sender<Input>, stop: &Rec
             Err(error)
                 if matches!(
                     error.kind(),
-                    io::ErrorKind::TimedOut
-                        | io::ErrorKind::WouldBlock
-                        | io::ErrorKind::Interrupted
+                    io::ErrorKind::TimedOut | io::ErrorKind::WouldBlock | io::ErrorKind::Interrupted
                 ) =>
             {
                 continue;

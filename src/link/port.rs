@@ -25,10 +25,7 @@ impl PortName {
     pub fn parse(text: &str) -> Result<Self, LinkError> {
         let text = text.trim();
         if let Some(address) = text.strip_prefix("tcp://") {
-            if address
-                .rsplit_once(':')
-                .is_none_or(|(host, port)| host.is_empty() || port.parse::<u16>().is_err())
-            {
+            if address.rsplit_once(':').is_none_or(|(host, port)| host.is_empty() || port.parse::<u16>().is_err()) {
                 return Err(LinkError::BadPortName {
                     name: text.to_string(),
                     hint: "a network port is written tcp://HOST:PORT, e.g. tcp://127.0.0.1:5000",
@@ -67,9 +64,7 @@ pub enum LinkError {
         hint: &'static str,
     },
     /// The device does not exist.
-    #[error(
-        "{port}: no such port. Is the board plugged in? `servo-studio ports` lists the ports this computer sees"
-    )]
+    #[error("{port}: no such port. Is the board plugged in? `servo-studio ports` lists the ports this computer sees")]
     NotFound {
         /// The port.
         port: String,
@@ -91,9 +86,7 @@ pub enum LinkError {
         port: String,
     },
     /// Nothing accepted the TCP connection.
-    #[error(
-        "{port}: connection refused. Is the bridge (or `servo-studio sim --tcp`) running on that address?"
-    )]
+    #[error("{port}: connection refused. Is the bridge (or `servo-studio sim --tcp`) running on that address?")]
     Refused {
         /// The port.
         port: String,
@@ -119,10 +112,7 @@ impl LinkError {
             _ => match error.raw_os_error() {
                 // EBUSY: a serial port held exclusively by another program.
                 Some(16) => Self::Busy { port },
-                _ => Self::Open {
-                    port,
-                    source: error,
-                },
+                _ => Self::Open { port, source: error },
             },
         }
     }
@@ -138,13 +128,8 @@ impl LinkError {
                     Self::NotFound { port: path }
                 }
             }
-            serialport::ErrorKind::Io(kind) => {
-                Self::from_io(port, io::Error::new(kind, error.description))
-            }
-            _ => Self::Open {
-                port: port.to_string(),
-                source: io::Error::other(error.description),
-            },
+            serialport::ErrorKind::Io(kind) => Self::from_io(port, io::Error::new(kind, error.description)),
+            _ => Self::Open { port: port.to_string(), source: io::Error::other(error.description) },
         }
     }
 }
@@ -160,14 +145,11 @@ pub fn open(port: &PortName, baud: u32) -> Result<Connection, LinkError> {
                 .timeout(READ_WAKE)
                 .open()
                 .map_err(|error| LinkError::from_serial(port, error))?;
-            Connection::from_serial(serial, port.to_string())
-                .map_err(|error| LinkError::from_io(port, error))
+            Connection::from_serial(serial, port.to_string()).map_err(|error| LinkError::from_io(port, error))
         }
         PortName::Tcp(address) => {
-            let stream =
-                TcpStream::connect(address).map_err(|error| LinkError::from_io(port, error))?;
-            Connection::from_tcp(stream, port.to_string())
-                .map_err(|error| LinkError::from_io(port, error))
+            let stream = TcpStream::connect(address).map_err(|error| LinkError::from_io(port, error))?;
+            Connection::from_tcp(stream, port.to_string()).map_err(|error| LinkError::from_io(port, error))
         }
     }
 }
@@ -183,10 +165,8 @@ pub struct PortInfo {
 
 /// The serial ports this computer sees, with USB vendor / product ids and strings.
 pub fn list_ports() -> Result<Vec<PortInfo>, LinkError> {
-    let ports = serialport::available_ports().map_err(|error| LinkError::Open {
-        port: "(port list)".into(),
-        source: io::Error::other(error.description),
-    })?;
+    let ports = serialport::available_ports()
+        .map_err(|error| LinkError::Open { port: "(port list)".into(), source: io::Error::other(error.description) })?;
     Ok(ports
         .into_iter()
         .map(|port| {
@@ -208,10 +188,7 @@ pub fn list_ports() -> Result<Vec<PortInfo>, LinkError> {
                 serialport::SerialPortType::BluetoothPort => "Bluetooth".into(),
                 serialport::SerialPortType::Unknown => "serial".into(),
             };
-            PortInfo {
-                name: port.port_name,
-                description,
-            }
+            PortInfo { name: port.port_name, description }
         })
         .collect())
 }
@@ -222,37 +199,18 @@ mod tests {
 
     #[test]
     fn port_names_parse() {
-        assert_eq!(
-            PortName::parse("/dev/ttyUSB0").unwrap(),
-            PortName::Serial("/dev/ttyUSB0".into())
-        );
-        assert_eq!(
-            PortName::parse(" COM3 ").unwrap(),
-            PortName::Serial("COM3".into())
-        );
-        assert_eq!(
-            PortName::parse("tcp://127.0.0.1:5000").unwrap(),
-            PortName::Tcp("127.0.0.1:5000".into())
-        );
-        assert_eq!(
-            PortName::parse("tcp://[::1]:7").unwrap().to_string(),
-            "tcp://[::1]:7"
-        );
+        assert_eq!(PortName::parse("/dev/ttyUSB0").unwrap(), PortName::Serial("/dev/ttyUSB0".into()));
+        assert_eq!(PortName::parse(" COM3 ").unwrap(), PortName::Serial("COM3".into()));
+        assert_eq!(PortName::parse("tcp://127.0.0.1:5000").unwrap(), PortName::Tcp("127.0.0.1:5000".into()));
+        assert_eq!(PortName::parse("tcp://[::1]:7").unwrap().to_string(), "tcp://[::1]:7");
         for bad in ["", "tcp://", "tcp://host", "tcp://:80", "tcp://host:99999"] {
-            assert!(
-                matches!(PortName::parse(bad), Err(LinkError::BadPortName { .. })),
-                "{bad:?}"
-            );
+            assert!(matches!(PortName::parse(bad), Err(LinkError::BadPortName { .. })), "{bad:?}");
         }
     }
 
     #[test]
     fn open_errors_say_what_to_try() {
-        let missing = open(
-            &PortName::Serial("/dev/does-not-exist-servo".into()),
-            DEFAULT_BAUD,
-        )
-        .unwrap_err();
+        let missing = open(&PortName::Serial("/dev/does-not-exist-servo".into()), DEFAULT_BAUD).unwrap_err();
         assert!(matches!(missing, LinkError::NotFound { .. }), "{missing:?}");
         assert!(missing.to_string().contains("servo-studio ports"));
 

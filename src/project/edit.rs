@@ -156,22 +156,10 @@ mod tests {
     fn edits_apply_and_out_of_range_changes_nothing() {
         let mut project = Project::default();
         assert!(Edit::AddServo(Servo::new(1, "a")).apply(&mut project));
-        assert!(
-            Edit::SetServo {
-                index: 0,
-                servo: Servo::new(1, "b")
-            }
-            .apply(&mut project)
-        );
+        assert!(Edit::SetServo { index: 0, servo: Servo::new(1, "b") }.apply(&mut project));
         assert_eq!(project.servos[0].caption, "b");
         let before = project.clone();
-        assert!(
-            !Edit::SetServo {
-                index: 5,
-                servo: Servo::new(9, "x")
-            }
-            .apply(&mut project)
-        );
+        assert!(!Edit::SetServo { index: 5, servo: Servo::new(9, "x") }.apply(&mut project));
         assert!(!Edit::RemoveAction { index: 0 }.apply(&mut project));
         assert_eq!(project, before);
         assert!(Edit::SetActiveTable(Some(3)).apply(&mut project));

@@ -84,11 +84,7 @@ fn syntax(error: &serde_json::Error) -> LoadError {
         Some(cut) => text[..cut].to_string(),
         None => text,
     };
-    LoadError::Syntax {
-        line: error.line(),
-        column: error.column(),
-        message,
-    }
+    LoadError::Syntax { line: error.line(), column: error.column(), message }
 }
 
 /// Parses a project from the text of a project file, of any supported version.
@@ -97,34 +93,23 @@ pub fn from_json(text: &str) -> Result<Project, LoadError> {
     match header.format.as_deref() {
         Some(FORMAT_TAG) => {}
         Some(other) => {
-            return Err(LoadError::WrongFormat {
-                found: format!("{other:?}"),
-            });
+            return Err(LoadError::WrongFormat { found: format!("{other:?}") });
         }
         None => {
-            return Err(LoadError::WrongFormat {
-                found: "no \"format\" key".into(),
-            });
+            return Err(LoadError::WrongFormat { found: "no \"format\" key".into() });
         }
     }
     match header.version {
         // Version 1 is today's layout. A later version adds an arm that reads
         // the old layout and migrates it here, so every old file keeps loading.
         Some(1) | None => serde_json::from_str(text).map_err(|error| syntax(&error)),
-        Some(found) => Err(LoadError::NewerVersion {
-            found,
-            supported: CURRENT_VERSION,
-        }),
+        Some(found) => Err(LoadError::NewerVersion { found, supported: CURRENT_VERSION }),
     }
 }
 
 /// The text of a project file for `project`, in the current version.
 pub fn to_json(project: &Project) -> String {
-    let envelope = Envelope {
-        format: FORMAT_TAG,
-        version: CURRENT_VERSION,
-        project,
-    };
+    let envelope = Envelope { format: FORMAT_TAG, version: CURRENT_VERSION, project };
     // Serializing plain structs of strings and integers to a String cannot fail.
     let mut text = serde_json::to_string_pretty(&envelope).unwrap_or_default();
     text.push('\n');
@@ -133,36 +118,26 @@ pub fn to_json(project: &Project) -> String {
 
 /// Reads a project file.
 pub fn load(path: &Path) -> Result<Project, LoadError> {
-    let text = std::fs::read_to_string(path).map_err(|source| LoadError::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let text = std::fs::read_to_string(path).map_err(|source| LoadError::Io { path: path.to_path_buf(), source })?;
     from_json(&text)
 }
 
 /// Writes a project file atomically: a failure leaves the previous file intact.
 pub fn save(path: &Path, project: &Project) -> Result<(), SaveError> {
     let text = to_json(project);
-    atomic_write(path, |file| file.write_all(text.as_bytes())).map_err(|source| SaveError {
-        path: path.to_path_buf(),
-        source,
-    })
+    atomic_write(path, |file| file.write_all(text.as_bytes()))
+        .map_err(|source| SaveError { path: path.to_path_buf(), source })
 }
 
 /// Writes `path` by writing a temporary file in the same folder with `write`,
 /// flushing it to disk, and renaming it over `path`. If anything fails, the
 /// temporary file is removed and `path` is untouched.
-pub fn atomic_write(
-    path: &Path,
-    write: impl FnOnce(&mut File) -> io::Result<()>,
-) -> io::Result<()> {
+pub fn atomic_write(path: &Path, write: impl FnOnce(&mut File) -> io::Result<()>) -> io::Result<()> {
     let folder = match path.parent() {
         Some(parent) if !parent.as_os_str().is_empty() => parent.to_path_buf(),
         _ => PathBuf::from("."),
     };
-    let name = path
-        .file_name()
-        .ok_or_else(|| io::Error::new(io::ErrorKind::InvalidInput, "path has no file name"))?;
+    let name = path.file_name().ok_or_else(|| io::Error::new(io::ErrorKind::InvalidInput, "path has no file name"))?;
     let mut temp_name = std::ffi::OsString::from(".");
     temp_name.push(name);
     temp_name.push(format!(".{}.tmp", std::process::id()));
@@ -190,11 +165,7 @@ mod tests {
     fn malformed_json_reports_line_and_column() {
         let text = "{\n  \"format\": \"servo-studio-project\",\n  \"version\": 1,\n  \"project_id\": \"seven\"\n}";
         match from_json(text) {
-            Err(LoadError::Syntax {
-                line,
-                column,
-                message,
-            }) => {
+            Err(LoadError::Syntax { line, column, message }) => {
                 assert_eq!(line, 4);
                 assert!(column > 10, "column {column}");
                 assert!(message.contains("invalid type"), "{message}");
@@ -207,30 +178,15 @@ mod tests {
     fn truncated_file_is_an_error_with_position() {
         let text = to_json(&Project::default());
         let err = from_json(&text[..text.len() / 2]).unwrap_err();
-        assert!(
-            matches!(err, LoadError::Syntax { line, .. } if line > 1),
-            "{err}"
-        );
+        assert!(matches!(err, LoadError::Syntax { line, .. } if line > 1), "{err}");
     }
 
     #[test]
     fn wrong_format_and_newer_versions_are_refused_clearly() {
-        assert!(matches!(
-            from_json(r#"{"format": "other"}"#),
-            Err(LoadError::WrongFormat { .. })
-        ));
-        assert!(matches!(
-            from_json(r#"{"servos": []}"#),
-            Err(LoadError::WrongFormat { .. })
-        ));
+        assert!(matches!(from_json(r#"{"format": "other"}"#), Err(LoadError::WrongFormat { .. })));
+        assert!(matches!(from_json(r#"{"servos": []}"#), Err(LoadError::WrongFormat { .. })));
         let err = from_json(r#"{"format": "servo-studio-project", "version": 99}"#).unwrap_err();
-        assert!(matches!(
-            err,
-            LoadError::NewerVersion {
-                found: 99,
-                supported: CURRENT_VERSION
-            }
-        ));
+        assert!(matches!(err, LoadError::NewerVersion { found: 99, supported: CURRENT_VERSION }));
         assert!(err.to_string().contains("update Servo Studio"));
     }
 
@@ -246,10 +202,7 @@ mod tests {
         .unwrap_err();
         assert_eq!(err.to_string(), "disk full");
         assert_eq!(std::fs::read_to_string(&path).unwrap(), "previous");
-        let names: Vec<_> = std::fs::read_dir(dir.path())
-            .unwrap()
-            .map(|e| e.unwrap().file_name())
-            .collect();
+        let names: Vec<_> = std::fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().file_name()).collect();
         assert_eq!(names, [std::ffi::OsString::from("robot.json")]);
     }
 
@@ -258,10 +211,7 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("missing").join("robot.json");
         let err = save(&path, &Project::default()).unwrap_err();
-        assert!(
-            err.to_string().contains("previous file is unchanged"),
-            "{err}"
-        );
+        assert!(err.to_string().contains("previous file is unchanged"), "{err}");
         assert!(!dir.path().join("missing").exists());
     }
 }

@@ -74,10 +74,7 @@ mod tests {
     use super::*;
 
     fn with_id(project_id: i32) -> Project {
-        Project {
-            project_id,
-            ..Project::default()
-        }
+        Project { project_id, ..Project::default() }
     }
 
     #[test]
@@ -114,11 +111,7 @@ mod tests {
         current = with_id(11);
         let back = history.undo(&current).unwrap();
         assert_eq!(back, with_id(10), "the second drag is its own step");
-        assert_eq!(
-            history.undo(&back).unwrap(),
-            with_id(0),
-            "the first drag was one step"
-        );
+        assert_eq!(history.undo(&back).unwrap(), with_id(0), "the first drag was one step");
         assert!(!history.can_undo());
     }
 

@@ -9,12 +9,8 @@ mod timing;
 mod validate;
 
 pub use edit::{Edit, next_free_id};
-pub use file::{
-    CURRENT_VERSION, FORMAT_TAG, LoadError, SaveError, atomic_write, from_json, load, save, to_json,
-};
+pub use file::{CURRENT_VERSION, FORMAT_TAG, LoadError, SaveError, atomic_write, from_json, load, save, to_json};
 pub use history::{History, MAX_UNDO_STEPS};
-pub use model::{
-    Action, BoardKind, Button, Command, JoystickTable, Macro, Project, Run, Servo, Step,
-};
+pub use model::{Action, BoardKind, Button, Command, JoystickTable, Macro, Project, Run, Servo, Step};
 pub use timing::{Timing, TimingError, action_duration_ms};
 pub use validate::{Location, Problem, Severity, has_errors, validate};

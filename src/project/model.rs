@@ -84,10 +84,7 @@ impl Servo {
 
     /// `degree` clamped into this servo's limits.
     pub fn clamp(&self, degree: i16) -> i16 {
-        degree.clamp(
-            self.min_deg.min(self.max_deg),
-            self.max_deg.max(self.min_deg),
-        )
+        degree.clamp(self.min_deg.min(self.max_deg), self.max_deg.max(self.min_deg))
     }
 }
 
@@ -155,11 +152,7 @@ impl Command {
 
     /// A command run once at full speed.
     pub fn once(run: Run) -> Self {
-        Self {
-            run,
-            ratio_percent: 100,
-            loop_count: 1,
-        }
+        Self { run, ratio_percent: 100, loop_count: 1 }
     }
 }
 
@@ -238,8 +231,6 @@ impl Project {
 
     /// The joystick table with this id.
     pub fn table(&self, table_id: i32) -> Option<&JoystickTable> {
-        self.joystick_tables
-            .iter()
-            .find(|table| table.id == table_id)
+        self.joystick_tables.iter().find(|table| table.id == table_id)
     }
 }

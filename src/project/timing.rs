@@ -32,12 +32,7 @@ pub enum TimingError {
 
 /// The duration of an action in ms: its longest step (0 for an empty action).
 pub fn action_duration_ms(action: &Action) -> i64 {
-    action
-        .steps
-        .iter()
-        .map(|step| i64::from(step.interval_10ms.max(0)) * 10)
-        .max()
-        .unwrap_or(0)
+    action.steps.iter().map(|step| i64::from(step.interval_10ms.max(0)) * 10).max().unwrap_or(0)
 }
 
 /// Run times of every macro of a project, computed once.
@@ -50,10 +45,7 @@ pub struct Timing<'a> {
 impl<'a> Timing<'a> {
     /// Computes the totals of all macros of `project`.
     pub fn new(project: &'a Project) -> Self {
-        let mut timing = Self {
-            project,
-            macro_totals_ms: HashMap::new(),
-        };
+        let mut timing = Self { project, macro_totals_ms: HashMap::new() };
         let mut visiting = Vec::new();
         for item in &project.macros {
             let _ = timing.compute_macro(item.id, &mut visiting);
@@ -63,10 +55,7 @@ impl<'a> Timing<'a> {
 
     /// The total run time of a macro in ms.
     pub fn macro_total_ms(&self, macro_id: i32) -> Result<i64, TimingError> {
-        self.macro_totals_ms
-            .get(&macro_id)
-            .copied()
-            .unwrap_or(Err(TimingError::MissingMacro(macro_id)))
+        self.macro_totals_ms.get(&macro_id).copied().unwrap_or(Err(TimingError::MissingMacro(macro_id)))
     }
 
     /// A command's `totalInterval` in ms.
@@ -75,21 +64,15 @@ impl<'a> Timing<'a> {
             Run::Delay { delay_ms } => {
                 return Ok(i64::from(delay_ms).saturating_mul(i64::from(command.loop_count)));
             }
-            Run::Action { action_id } => action_duration_ms(
-                self.project
-                    .action(action_id)
-                    .ok_or(TimingError::MissingAction(action_id))?,
-            ),
+            Run::Action { action_id } => {
+                action_duration_ms(self.project.action(action_id).ok_or(TimingError::MissingAction(action_id))?)
+            }
             Run::Macro { macro_id } => self.macro_total_ms(macro_id)?,
         };
         scale(inner, command)
     }
 
-    fn compute_macro(
-        &mut self,
-        macro_id: i32,
-        visiting: &mut Vec<i32>,
-    ) -> Result<i64, TimingError> {
+    fn compute_macro(&mut self, macro_id: i32, visiting: &mut Vec<i32>) -> Result<i64, TimingError> {
         if let Some(done) = self.macro_totals_ms.get(&macro_id) {
             return *done;
         }
@@ -103,17 +86,15 @@ impl<'a> Timing<'a> {
         let mut total: Result<i64, TimingError> = Ok(0);
         for command in &item.commands {
             let part = match command.run {
-                Run::Macro { macro_id: inner } => self
-                    .compute_macro(inner, visiting)
-                    .and_then(|inner_ms| scale(inner_ms, command)),
+                Run::Macro { macro_id: inner } => {
+                    self.compute_macro(inner, visiting).and_then(|inner_ms| scale(inner_ms, command))
+                }
                 _ => self.command_total_ms(command),
             };
             total = match (total, part) {
                 (Ok(sum), Ok(part)) => Ok(sum.saturating_add(part)),
                 // A cycle through this macro is the problem to report first.
-                (Err(TimingError::Cycle(id)), _) | (_, Err(TimingError::Cycle(id))) => {
-                    Err(TimingError::Cycle(id))
-                }
+                (Err(TimingError::Cycle(id)), _) | (_, Err(TimingError::Cycle(id))) => Err(TimingError::Cycle(id)),
                 (Err(error), _) | (_, Err(error)) => Err(error),
             };
         }
@@ -128,10 +109,7 @@ fn scale(inner_ms: i64, command: &Command) -> Result<i64, TimingError> {
     if command.ratio_percent == 0 {
         return Err(TimingError::ZeroRatio);
     }
-    Ok(inner_ms
-        .saturating_mul(i64::from(command.loop_count))
-        .saturating_mul(100)
-        / i64::from(command.ratio_percent))
+    Ok(inner_ms.saturating_mul(i64::from(command.loop_count)).saturating_mul(100) / i64::from(command.ratio_percent))
 }
 
 #[cfg(test)]
@@ -142,33 +120,17 @@ mod tests {
     fn action(id: i32, intervals_10ms: &[i16]) -> Action {
         let steps = (0u8..)
             .zip(intervals_10ms)
-            .map(|(servo_id, &interval_10ms)| Step {
-                servo_id,
-                degree: 0,
-                interval_10ms,
-            })
+            .map(|(servo_id, &interval_10ms)| Step { servo_id, degree: 0, interval_10ms })
             .collect();
-        Action {
-            id,
-            caption: String::new(),
-            steps,
-        }
+        Action { id, caption: String::new(), steps }
     }
 
     fn command(run: Run, ratio_percent: u8, loop_count: i16) -> Command {
-        Command {
-            run,
-            ratio_percent,
-            loop_count,
-        }
+        Command { run, ratio_percent, loop_count }
     }
 
     fn macro_of(id: i32, commands: Vec<Command>) -> Macro {
-        Macro {
-            id,
-            caption: String::new(),
-            commands,
-        }
+        Macro { id, caption: String::new(), commands }
     }
 
     #[test]
@@ -183,30 +145,18 @@ mod tests {
             actions: vec![action(1, &[50, 150])],
             macros: vec![macro_of(
                 10,
-                vec![
-                    command(Run::Action { action_id: 1 }, 100, 1),
-                    command(Run::Delay { delay_ms: 250 }, 40, 2),
-                ],
+                vec![command(Run::Action { action_id: 1 }, 100, 1), command(Run::Delay { delay_ms: 250 }, 40, 2)],
             )],
             ..Project::default()
         };
         let timing = Timing::new(&project);
         // action: 1500 ms × 3 loops × 100 / 50 % = 9000 ms
-        assert_eq!(
-            timing.command_total_ms(&command(Run::Action { action_id: 1 }, 50, 3)),
-            Ok(9000)
-        );
+        assert_eq!(timing.command_total_ms(&command(Run::Action { action_id: 1 }, 50, 3)), Ok(9000));
         // delay: 250 × 2, ratio ignored
-        assert_eq!(
-            timing.command_total_ms(&command(Run::Delay { delay_ms: 250 }, 40, 2)),
-            Ok(500)
-        );
+        assert_eq!(timing.command_total_ms(&command(Run::Delay { delay_ms: 250 }, 40, 2)), Ok(500));
         // macro 10 = 1500 + 500 = 2000; × 2 loops × 100 / 30 % = 13333 (rounded down)
         assert_eq!(timing.macro_total_ms(10), Ok(2000));
-        assert_eq!(
-            timing.command_total_ms(&command(Run::Macro { macro_id: 10 }, 30, 2)),
-            Ok(13333)
-        );
+        assert_eq!(timing.command_total_ms(&command(Run::Macro { macro_id: 10 }, 30, 2)), Ok(13333));
     }
 
     #[test]
@@ -225,10 +175,7 @@ mod tests {
         assert_eq!(timing.macro_total_ms(2), Err(TimingError::Cycle(1)));
         assert_eq!(timing.macro_total_ms(4), Err(TimingError::Cycle(1)));
         assert_eq!(timing.macro_total_ms(3), Err(TimingError::MissingAction(9)));
-        assert_eq!(
-            timing.macro_total_ms(77),
-            Err(TimingError::MissingMacro(77))
-        );
+        assert_eq!(timing.macro_total_ms(77), Err(TimingError::MissingMacro(77)));
         assert_eq!(
             timing.command_total_ms(&command(Run::Action { action_id: 9 }, 0, 1)),
             Err(TimingError::MissingAction(9))

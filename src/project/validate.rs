@@ -5,9 +5,7 @@ use std::fmt;
 
 use super::model::{Command, Project, Run};
 use super::timing::Timing;
-use crate::protocol::board::{
-    ALL_SERVOS, ButtonRecord, MAX_CONTENT_LEN, MacroCommandRecord, STR32_LEN,
-};
+use crate::protocol::board::{ALL_SERVOS, ButtonRecord, MAX_CONTENT_LEN, MacroCommandRecord, STR32_LEN};
 
 /// How serious a problem is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -88,30 +86,14 @@ impl fmt::Display for Location {
             Self::Project => write!(f, "project"),
             Self::Servo { servo_id, caption } => write!(f, "servo {servo_id} {caption:?}"),
             Self::Action { action_id, caption } => write!(f, "action {action_id} {caption:?}"),
-            Self::Step {
-                action_id,
-                caption,
-                step,
-            } => write!(f, "action {action_id} {caption:?}, step {step}"),
+            Self::Step { action_id, caption, step } => write!(f, "action {action_id} {caption:?}, step {step}"),
             Self::Macro { macro_id, caption } => write!(f, "macro {macro_id} {caption:?}"),
-            Self::Command {
-                macro_id,
-                caption,
-                command,
-            } => {
+            Self::Command { macro_id, caption, command } => {
                 write!(f, "macro {macro_id} {caption:?}, command {command}")
             }
             Self::Table { table_id, caption } => write!(f, "joystick table {table_id} {caption:?}"),
-            Self::Button {
-                table_id,
-                table_caption,
-                button_id,
-                caption,
-            } => {
-                write!(
-                    f,
-                    "joystick table {table_id} {table_caption:?}, button 0x{button_id:08x} {caption:?}"
-                )
+            Self::Button { table_id, table_caption, button_id, caption } => {
+                write!(f, "joystick table {table_id} {table_caption:?}, button 0x{button_id:08x} {caption:?}")
             }
         }
     }
@@ -140,16 +122,12 @@ impl fmt::Display for Problem {
 
 /// Whether any problem is an error.
 pub fn has_errors(problems: &[Problem]) -> bool {
-    problems
-        .iter()
-        .any(|problem| problem.severity == Severity::Error)
+    problems.iter().any(|problem| problem.severity == Severity::Error)
 }
 
 /// Every problem of `project`, in document order.
 pub fn validate(project: &Project) -> Vec<Problem> {
-    let mut check = Checker {
-        problems: Vec::new(),
-    };
+    let mut check = Checker { problems: Vec::new() };
     check.servos(project);
     check.actions(project);
     check.macros(project);
@@ -169,29 +147,18 @@ struct Checker {
 
 impl Checker {
     fn error(&mut self, location: &Location, message: String) {
-        self.problems.push(Problem {
-            severity: Severity::Error,
-            location: location.clone(),
-            message,
-        });
+        self.problems.push(Problem { severity: Severity::Error, location: location.clone(), message });
     }
 
     fn warning(&mut self, location: &Location, message: String) {
-        self.problems.push(Problem {
-            severity: Severity::Warning,
-            location: location.clone(),
-            message,
-        });
+        self.problems.push(Problem { severity: Severity::Warning, location: location.clone(), message });
     }
 
     fn caption(&mut self, location: &Location, caption: &str) {
         if caption.len() > STR32_LEN {
             self.error(
                 location,
-                format!(
-                    "caption is {} UTF-8 bytes; the board stores at most {STR32_LEN}",
-                    caption.len()
-                ),
+                format!("caption is {} UTF-8 bytes; the board stores at most {STR32_LEN}", caption.len()),
             );
         }
     }
@@ -199,10 +166,7 @@ impl Checker {
     /// Ids must be 1..=i32::MAX: the board answers id 0 to mean "failure".
     fn positive_id(&mut self, location: &Location, kind: &str, id: i32) {
         if id <= 0 {
-            self.error(
-                location,
-                format!("{kind} id must be 1 or more (0 means \"none\" on the board), not {id}"),
-            );
+            self.error(location, format!("{kind} id must be 1 or more (0 means \"none\" on the board), not {id}"));
         }
     }
 
@@ -222,30 +186,18 @@ impl Checker {
     fn servos(&mut self, project: &Project) {
         let mut seen = HashSet::new();
         for servo in &project.servos {
-            let at = Location::Servo {
-                servo_id: servo.id,
-                caption: servo.caption.clone(),
-            };
+            let at = Location::Servo { servo_id: servo.id, caption: servo.caption.clone() };
             self.duplicate(&mut seen, &at, "servo", servo.id);
             self.caption(&at, &servo.caption);
             if servo.id == ALL_SERVOS {
-                self.error(
-                    &at,
-                    "servo id 255 is reserved (it addresses all servos); use 0..=254".into(),
-                );
+                self.error(&at, "servo id 255 is reserved (it addresses all servos); use 0..=254".into());
             }
             if servo.min_deg > servo.max_deg {
-                self.error(
-                    &at,
-                    format!("min {}° is above max {}°", servo.min_deg, servo.max_deg),
-                );
+                self.error(&at, format!("min {}° is above max {}°", servo.min_deg, servo.max_deg));
             } else if servo.home_deg < servo.min_deg || servo.home_deg > servo.max_deg {
                 self.error(
                     &at,
-                    format!(
-                        "home {}° is outside the limits {}°..{}°",
-                        servo.home_deg, servo.min_deg, servo.max_deg
-                    ),
+                    format!("home {}° is outside the limits {}°..{}°", servo.home_deg, servo.min_deg, servo.max_deg),
                 );
             }
         }
@@ -254,10 +206,7 @@ impl Checker {
     fn actions(&mut self, project: &Project) {
         let mut seen = HashSet::new();
         for action in &project.actions {
-            let at = Location::Action {
-                action_id: action.id,
-                caption: action.caption.clone(),
-            };
+            let at = Location::Action { action_id: action.id, caption: action.caption.clone() };
             self.duplicate(&mut seen, &at, "action", action.id);
             self.positive_id(&at, "action", action.id);
             self.caption(&at, &action.caption);
@@ -266,22 +215,12 @@ impl Checker {
             }
             let mut servos_in_action = HashSet::new();
             for (index, step) in action.steps.iter().enumerate() {
-                let at = Location::Step {
-                    action_id: action.id,
-                    caption: action.caption.clone(),
-                    step: index + 1,
-                };
+                let at = Location::Step { action_id: action.id, caption: action.caption.clone(), step: index + 1 };
                 if !servos_in_action.insert(step.servo_id) {
-                    self.error(
-                        &at,
-                        format!("servo {} already has a step in this action", step.servo_id),
-                    );
+                    self.error(&at, format!("servo {} already has a step in this action", step.servo_id));
                 }
                 if step.interval_10ms < 0 {
-                    self.error(
-                        &at,
-                        format!("interval {} × 10 ms is negative", step.interval_10ms),
-                    );
+                    self.error(&at, format!("interval {} × 10 ms is negative", step.interval_10ms));
                 }
                 match project.servo(step.servo_id) {
                     None => self.error(&at, format!("servo {} does not exist", step.servo_id)),
@@ -302,10 +241,7 @@ impl Checker {
         let timing = Timing::new(project);
         let mut seen = HashSet::new();
         for item in &project.macros {
-            let at = Location::Macro {
-                macro_id: item.id,
-                caption: item.caption.clone(),
-            };
+            let at = Location::Macro { macro_id: item.id, caption: item.caption.clone() };
             self.duplicate(&mut seen, &at, "macro", item.id);
             self.positive_id(&at, "macro", item.id);
             self.caption(&at, &item.caption);
@@ -314,44 +250,22 @@ impl Checker {
             }
             let max = max_entries(MacroCommandRecord::WIRE_LEN);
             if item.commands.len() > max {
-                self.error(
-                    &at,
-                    format!(
-                        "has {} commands; one board frame holds at most {max}",
-                        item.commands.len()
-                    ),
-                );
+                self.error(&at, format!("has {} commands; one board frame holds at most {max}", item.commands.len()));
             }
             for (index, command) in item.commands.iter().enumerate() {
-                let at = Location::Command {
-                    macro_id: item.id,
-                    caption: item.caption.clone(),
-                    command: index + 1,
-                };
+                let at = Location::Command { macro_id: item.id, caption: item.caption.clone(), command: index + 1 };
                 self.command(project, &timing, &at, command);
             }
         }
         self.cycles(project);
     }
 
-    fn command(
-        &mut self,
-        project: &Project,
-        timing: &Timing<'_>,
-        at: &Location,
-        command: &Command,
-    ) {
+    fn command(&mut self, project: &Project, timing: &Timing<'_>, at: &Location, command: &Command) {
         if !(1..=100).contains(&command.ratio_percent) {
-            self.error(
-                at,
-                format!("ratio {} % is outside 1..=100", command.ratio_percent),
-            );
+            self.error(at, format!("ratio {} % is outside 1..=100", command.ratio_percent));
         }
         if command.loop_count < 1 {
-            self.error(
-                at,
-                format!("loop count {} must be 1 or more", command.loop_count),
-            );
+            self.error(at, format!("loop count {} must be 1 or more", command.loop_count));
         }
         match command.run {
             Run::Action { action_id } if project.action(action_id).is_none() => {
@@ -368,25 +282,14 @@ impl Checker {
         if let Ok(total_ms) = timing.command_total_ms(command)
             && i32::try_from(total_ms).is_err()
         {
-            self.error(
-                at,
-                format!(
-                    "runs for {total_ms} ms, more than the board can count ({} ms)",
-                    i32::MAX
-                ),
-            );
+            self.error(at, format!("runs for {total_ms} ms, more than the board can count ({} ms)", i32::MAX));
         }
     }
 
     /// Reports each macro cycle once, at the command that closes it.
     fn cycles(&mut self, project: &Project) {
-        let index: HashMap<i32, usize> = project
-            .macros
-            .iter()
-            .enumerate()
-            .rev()
-            .map(|(position, item)| (item.id, position))
-            .collect();
+        let index: HashMap<i32, usize> =
+            project.macros.iter().enumerate().rev().map(|(position, item)| (item.id, position)).collect();
         // 0 = not visited, 1 = on the current path, 2 = done.
         let mut state = vec![0u8; project.macros.len()];
         let mut path = Vec::new();
@@ -418,23 +321,11 @@ impl Checker {
             };
             if state[next] == 1 {
                 let from = path.iter().position(|&p| p == next).unwrap_or(0);
-                let mut names: Vec<String> = path[from..]
-                    .iter()
-                    .map(|&p| project.macros[p].id.to_string())
-                    .collect();
+                let mut names: Vec<String> = path[from..].iter().map(|&p| project.macros[p].id.to_string()).collect();
                 names.push(macro_id.to_string());
-                let at = Location::Command {
-                    macro_id: item.id,
-                    caption: item.caption.clone(),
-                    command: command_index + 1,
-                };
-                self.error(
-                    &at,
-                    format!(
-                        "macro cycle {}: a macro must not reach itself",
-                        names.join(" → ")
-                    ),
-                );
+                let at =
+                    Location::Command { macro_id: item.id, caption: item.caption.clone(), command: command_index + 1 };
+                self.error(&at, format!("macro cycle {}: a macro must not reach itself", names.join(" → ")));
             } else {
                 self.visit(project, index, next, state, path);
             }
@@ -446,22 +337,13 @@ impl Checker {
     fn tables(&mut self, project: &Project) {
         let mut seen = HashSet::new();
         for table in &project.joystick_tables {
-            let at = Location::Table {
-                table_id: table.id,
-                caption: table.caption.clone(),
-            };
+            let at = Location::Table { table_id: table.id, caption: table.caption.clone() };
             self.duplicate(&mut seen, &at, "joystick table", table.id);
             self.positive_id(&at, "joystick table", table.id);
             self.caption(&at, &table.caption);
             let max = max_entries(ButtonRecord::WIRE_LEN);
             if table.buttons.len() > max {
-                self.error(
-                    &at,
-                    format!(
-                        "has {} buttons; one board frame holds at most {max}",
-                        table.buttons.len()
-                    ),
-                );
+                self.error(&at, format!("has {} buttons; one board frame holds at most {max}", table.buttons.len()));
             }
             let mut buttons = HashSet::new();
             for button in &table.buttons {
@@ -472,10 +354,7 @@ impl Checker {
                     caption: button.caption.clone(),
                 };
                 if !buttons.insert(button.id) {
-                    self.error(
-                        &at,
-                        format!("duplicate button id 0x{:08x} in this table", button.id),
-                    );
+                    self.error(&at, format!("duplicate button id 0x{:08x} in this table", button.id));
                 }
                 self.caption(&at, &button.caption);
                 let bindings = [
@@ -498,10 +377,7 @@ impl Checker {
         if let Some(table_id) = project.active_table
             && project.table(table_id).is_none()
         {
-            self.error(
-                &Location::Project,
-                format!("active joystick table {table_id} does not exist"),
-            );
+            self.error(&Location::Project, format!("active joystick table {table_id} does not exist"));
         }
     }
 }

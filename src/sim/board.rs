@@ -10,8 +10,8 @@ use super::faults::{Faults, hits};
 use crate::device::board::BoardImage;
 use crate::link::Driver;
 use crate::protocol::board::{
-    ALL_SERVOS, ActionRecord, AngleUnit, ButtonEvent, CommandType, DecoderEvent, FrameDecoder,
-    ListEntry, MacroRecord, Message, ServoMove, ServoStatus, ServoSwitches, TransmissionMode,
+    ALL_SERVOS, ActionRecord, AngleUnit, ButtonEvent, CommandType, DecoderEvent, FrameDecoder, ListEntry, MacroRecord,
+    Message, ServoMove, ServoStatus, ServoSwitches, TransmissionMode,
 };
 
 /// How the emulated board behaves.
@@ -89,8 +89,7 @@ impl ServoState {
         }
         let total = (self.end - self.start).as_secs_f64();
         let done = now.saturating_duration_since(self.start).as_secs_f64();
-        let angle =
-            f64::from(self.from) + (f64::from(self.to) - f64::from(self.from)) * done / total;
+        let angle = f64::from(self.from) + (f64::from(self.to) - f64::from(self.from)) * done / total;
         // Between two i16 values, so it fits.
         #[allow(clippy::cast_possible_truncation)]
         let angle = angle.round() as i16;
@@ -138,11 +137,7 @@ impl BoardSim {
                 to: 0,
                 start: now,
                 end: now,
-                switches: ServoSwitches {
-                    servo_id,
-                    is_start: true,
-                    is_hold: true,
-                },
+                switches: ServoSwitches { servo_id, is_start: true, is_hold: true },
                 unit: AngleUnit::Degree,
             })
             .collect();
@@ -172,23 +167,16 @@ impl BoardSim {
 
     /// A servo's angle at `now`.
     pub fn angle(&self, servo_id: u8, now: Instant) -> Option<i16> {
-        self.servos
-            .iter()
-            .find(|s| s.servo_id == servo_id)
-            .map(|s| s.angle(now))
+        self.servos.iter().find(|s| s.servo_id == servo_id).map(|s| s.angle(now))
     }
 
     fn byte_time(&self) -> Option<Duration> {
         // 8N1: ten bits per byte.
-        self.config
-            .baud
-            .map(|baud| Duration::from_secs_f64(10.0 / f64::from(baud.max(1))))
+        self.config.baud.map(|baud| Duration::from_secs_f64(10.0 / f64::from(baud.max(1))))
     }
 
     fn wire_time(&self, len: usize) -> Duration {
-        self.byte_time().map_or(Duration::ZERO, |byte| {
-            byte * u32::try_from(len).unwrap_or(u32::MAX)
-        })
+        self.byte_time().map_or(Duration::ZERO, |byte| byte * u32::try_from(len).unwrap_or(u32::MAX))
     }
 
     fn used_bytes(&self) -> i32 {
@@ -198,9 +186,7 @@ impl BoardSim {
     fn fits_after(&self, change: impl FnOnce(&mut BoardImage)) -> bool {
         let mut trial = self.image.clone();
         change(&mut trial);
-        trial.footprint_bytes().is_ok_and(|bytes| {
-            bytes <= usize::try_from(self.config.total_memory_bytes).unwrap_or(0)
-        })
+        trial.footprint_bytes().is_ok_and(|bytes| bytes <= usize::try_from(self.config.total_memory_bytes).unwrap_or(0))
     }
 
     /// Queues a response frame, with any faults, to go out after the turnaround.
@@ -248,14 +234,12 @@ impl BoardSim {
                 .iter()
                 .enumerate()
                 .filter(|(_, s)| {
-                    (servo_move.servo_id == ALL_SERVOS || s.servo_id == servo_move.servo_id)
-                        && s.switches.is_start
+                    (servo_move.servo_id == ALL_SERVOS || s.servo_id == servo_move.servo_id) && s.switches.is_start
                 })
                 .map(|(index, _)| index)
                 .collect();
-            let interval_ms =
-                u64::try_from(servo_move.interval_10ms.max(0)).unwrap_or(0) * 10 * 100
-                    / u64::from(speed_percent.max(1));
+            let interval_ms = u64::try_from(servo_move.interval_10ms.max(0)).unwrap_or(0) * 10 * 100
+                / u64::from(speed_percent.max(1));
             for index in targets {
                 let state = &mut self.servos[index];
                 state.from = state.angle(now);
@@ -268,20 +252,8 @@ impl BoardSim {
 
     /// Lays out a macro's moves in time; returns when it ends. Nested macros
     /// beyond a small depth are ignored (the client validates against cycles).
-    fn schedule_macro(
-        &mut self,
-        start: Instant,
-        macro_id: i32,
-        speed_percent: u32,
-        depth: u8,
-    ) -> Instant {
-        let Some(record) = self
-            .image
-            .macros
-            .iter()
-            .find(|m| m.macro_id == macro_id)
-            .cloned()
-        else {
+    fn schedule_macro(&mut self, start: Instant, macro_id: i32, speed_percent: u32, depth: u8) -> Instant {
+        let Some(record) = self.image.macros.iter().find(|m| m.macro_id == macro_id).cloned() else {
             return start;
         };
         if depth > 8 {
@@ -293,12 +265,7 @@ impl BoardSim {
             for _ in 0..command.loop_count.max(0) {
                 match command.command_type {
                     CommandType::RunAction => {
-                        let Some(action) = self
-                            .image
-                            .actions
-                            .iter()
-                            .find(|a| a.action_id == command.command_id)
-                        else {
+                        let Some(action) = self.image.actions.iter().find(|a| a.action_id == command.command_id) else {
                             break;
                         };
                         let scaled: Vec<ServoMove> = action.steps.clone();
@@ -311,9 +278,7 @@ impl BoardSim {
                         at += Duration::from_millis(longest_ms * 100 / u64::from(ratio.max(1)));
                     }
                     CommandType::Delay => {
-                        at += Duration::from_millis(
-                            u64::try_from(command.command_id.max(0)).unwrap_or(0),
-                        );
+                        at += Duration::from_millis(u64::try_from(command.command_id.max(0)).unwrap_or(0));
                     }
                     CommandType::RunMacro => {
                         at = self.schedule_macro(at, command.command_id, ratio.max(1), depth + 1);
@@ -327,221 +292,157 @@ impl BoardSim {
     fn handle_message(&mut self, now: Instant, message: Message) {
         use Message as M;
         let image = &mut self.image;
-        let response =
-            match &message {
-                M::TransmissionModeSettingRequest { mode } => {
-                    self.mode = *mode;
-                    Some(M::TransmissionModeSettingResponse { mode: self.mode })
-                }
-                M::ClearAllDataRequest => {
-                    *image = BoardImage::default();
-                    Some(M::ClearAllDataResponse { ok: true })
-                }
-                M::QueryMemorySizeRequest => Some(M::QueryMemorySizeResponse {
-                    free_bytes: self
-                        .config
-                        .total_memory_bytes
-                        .saturating_sub(self.used_bytes()),
-                    total_bytes: Some(self.config.total_memory_bytes),
-                }),
-                M::QueryRemainPowerRequest => Some(M::QueryRemainPowerResponse {
-                    permil: self.config.battery_permil,
-                }),
-                M::QueryServoListRequest => Some(M::QueryServoListResponse {
-                    servo_ids: self.servos.iter().map(|s| s.servo_id).collect(),
-                }),
-                M::QueryServoRequest { servo_id } => Some(M::QueryServoResponse {
-                    servos: self
-                        .servos
-                        .iter()
-                        .filter(|s| *servo_id == ALL_SERVOS || s.servo_id == *servo_id)
-                        .map(|s| ServoStatus {
-                            servo_id: s.servo_id,
-                            angle: s.angle(now),
-                            current_adc: if s.angle(now) == s.to { 12 } else { 180 },
-                            temperature_adc: 310,
-                            servo_type: 1,
-                            is_start: s.switches.is_start,
-                            is_hold: s.switches.is_hold,
-                        })
-                        .collect(),
-                }),
-                M::SetServoParameterRequest(switches) => {
-                    for state in self.servos.iter_mut().filter(|s| {
-                        switches.servo_id == ALL_SERVOS || s.servo_id == switches.servo_id
-                    }) {
-                        let angle = state.angle(now);
-                        state.switches = ServoSwitches {
-                            servo_id: state.servo_id,
-                            ..*switches
-                        };
-                        if !switches.is_start || !switches.is_hold {
-                            // Stopped or released: the servo stays where it is.
-                            state.from = angle;
-                            state.to = angle;
-                            state.end = now;
-                        }
-                    }
-                    Some(M::SetServoParameterResponse(*switches))
-                }
-                M::SetAngleUnitRequest { servo_id, unit } => {
-                    for state in self
-                        .servos
-                        .iter_mut()
-                        .filter(|s| *servo_id == ALL_SERVOS || s.servo_id == *servo_id)
-                    {
-                        state.unit = *unit;
-                    }
-                    Some(M::SetAngleUnitResponse {
-                        servo_id: *servo_id,
-                        unit: *unit,
+        let response = match &message {
+            M::TransmissionModeSettingRequest { mode } => {
+                self.mode = *mode;
+                Some(M::TransmissionModeSettingResponse { mode: self.mode })
+            }
+            M::ClearAllDataRequest => {
+                *image = BoardImage::default();
+                Some(M::ClearAllDataResponse { ok: true })
+            }
+            M::QueryMemorySizeRequest => Some(M::QueryMemorySizeResponse {
+                free_bytes: self.config.total_memory_bytes.saturating_sub(self.used_bytes()),
+                total_bytes: Some(self.config.total_memory_bytes),
+            }),
+            M::QueryRemainPowerRequest => Some(M::QueryRemainPowerResponse { permil: self.config.battery_permil }),
+            M::QueryServoListRequest => {
+                Some(M::QueryServoListResponse { servo_ids: self.servos.iter().map(|s| s.servo_id).collect() })
+            }
+            M::QueryServoRequest { servo_id } => Some(M::QueryServoResponse {
+                servos: self
+                    .servos
+                    .iter()
+                    .filter(|s| *servo_id == ALL_SERVOS || s.servo_id == *servo_id)
+                    .map(|s| ServoStatus {
+                        servo_id: s.servo_id,
+                        angle: s.angle(now),
+                        current_adc: if s.angle(now) == s.to { 12 } else { 180 },
+                        temperature_adc: 310,
+                        servo_type: 1,
+                        is_start: s.switches.is_start,
+                        is_hold: s.switches.is_hold,
                     })
-                }
-                M::ExecuteActionRequest { moves } => {
-                    self.start_moves(now, moves, 100);
-                    None
-                }
-                M::ExecuteActionExRequest { action_id } => {
-                    if let Some(action) = image
-                        .actions
-                        .iter()
-                        .find(|a| a.action_id == *action_id)
-                        .cloned()
-                    {
-                        self.start_moves(now, &action.steps, 100);
+                    .collect(),
+            }),
+            M::SetServoParameterRequest(switches) => {
+                for state in self
+                    .servos
+                    .iter_mut()
+                    .filter(|s| switches.servo_id == ALL_SERVOS || s.servo_id == switches.servo_id)
+                {
+                    let angle = state.angle(now);
+                    state.switches = ServoSwitches { servo_id: state.servo_id, ..*switches };
+                    if !switches.is_start || !switches.is_hold {
+                        // Stopped or released: the servo stays where it is.
+                        state.from = angle;
+                        state.to = angle;
+                        state.end = now;
                     }
-                    None
                 }
-                M::QueryActionListRequest => Some(M::QueryActionListResponse {
-                    actions: image
-                        .actions
-                        .iter()
-                        .map(|a| ListEntry {
-                            id: a.action_id,
-                            caption: a.caption.clone(),
-                        })
-                        .collect(),
-                }),
-                M::QueryActionRequest { action_id } => Some(M::QueryActionResponse {
-                    action: image
-                        .actions
-                        .iter()
-                        .find(|a| a.action_id == *action_id)
-                        .cloned(),
-                }),
-                M::AddActionRequest(record) => Some(M::AddActionResponse {
-                    ok: self.add_action(record),
-                }),
-                M::DeleteActionRequest { action_id } => {
-                    let before = image.actions.len();
-                    image.actions.retain(|a| a.action_id != *action_id);
-                    Some(M::DeleteActionResponse {
-                        ok: image.actions.len() < before,
-                    })
+                Some(M::SetServoParameterResponse(*switches))
+            }
+            M::SetAngleUnitRequest { servo_id, unit } => {
+                for state in self.servos.iter_mut().filter(|s| *servo_id == ALL_SERVOS || s.servo_id == *servo_id) {
+                    state.unit = *unit;
                 }
-                M::QueryMacroListRequest => Some(M::QueryMacroListResponse {
-                    macros: image
-                        .macros
-                        .iter()
-                        .map(|m| ListEntry {
-                            id: m.macro_id,
-                            caption: m.caption.clone(),
-                        })
-                        .collect(),
-                }),
-                M::QueryMacroRequest { macro_id } => Some(M::QueryMacroResponse {
-                    macro_record: image
-                        .macros
-                        .iter()
-                        .find(|m| m.macro_id == *macro_id)
-                        .cloned(),
-                }),
-                M::AddMacroRequest(record) => Some(M::AddMacroResponse {
-                    ok: self.add_macro(record),
-                }),
-                M::DeleteMacroRequest { macro_id } => {
-                    let before = image.macros.len();
-                    image.macros.retain(|m| m.macro_id != *macro_id);
-                    Some(M::DeleteMacroResponse {
-                        ok: image.macros.len() < before,
-                    })
+                Some(M::SetAngleUnitResponse { servo_id: *servo_id, unit: *unit })
+            }
+            M::ExecuteActionRequest { moves } => {
+                self.start_moves(now, moves, 100);
+                None
+            }
+            M::ExecuteActionExRequest { action_id } => {
+                if let Some(action) = image.actions.iter().find(|a| a.action_id == *action_id).cloned() {
+                    self.start_moves(now, &action.steps, 100);
                 }
-                M::ExecuteMacroRequest { macro_id } => {
-                    let exists = image.macros.iter().any(|m| m.macro_id == *macro_id);
-                    if exists {
-                        self.schedule_macro(now, *macro_id, 100, 0);
-                        self.apply_schedule(now);
-                    }
-                    Some(M::ExecuteMacroResponse { ok: exists })
+                None
+            }
+            M::QueryActionListRequest => Some(M::QueryActionListResponse {
+                actions: image
+                    .actions
+                    .iter()
+                    .map(|a| ListEntry { id: a.action_id, caption: a.caption.clone() })
+                    .collect(),
+            }),
+            M::QueryActionRequest { action_id } => Some(M::QueryActionResponse {
+                action: image.actions.iter().find(|a| a.action_id == *action_id).cloned(),
+            }),
+            M::AddActionRequest(record) => Some(M::AddActionResponse { ok: self.add_action(record) }),
+            M::DeleteActionRequest { action_id } => {
+                let before = image.actions.len();
+                image.actions.retain(|a| a.action_id != *action_id);
+                Some(M::DeleteActionResponse { ok: image.actions.len() < before })
+            }
+            M::QueryMacroListRequest => Some(M::QueryMacroListResponse {
+                macros: image.macros.iter().map(|m| ListEntry { id: m.macro_id, caption: m.caption.clone() }).collect(),
+            }),
+            M::QueryMacroRequest { macro_id } => Some(M::QueryMacroResponse {
+                macro_record: image.macros.iter().find(|m| m.macro_id == *macro_id).cloned(),
+            }),
+            M::AddMacroRequest(record) => Some(M::AddMacroResponse { ok: self.add_macro(record) }),
+            M::DeleteMacroRequest { macro_id } => {
+                let before = image.macros.len();
+                image.macros.retain(|m| m.macro_id != *macro_id);
+                Some(M::DeleteMacroResponse { ok: image.macros.len() < before })
+            }
+            M::ExecuteMacroRequest { macro_id } => {
+                let exists = image.macros.iter().any(|m| m.macro_id == *macro_id);
+                if exists {
+                    self.schedule_macro(now, *macro_id, 100, 0);
+                    self.apply_schedule(now);
                 }
-                M::QueryServoParameterRequest => Some(M::QueryServoParameterResponse {
-                    servos: image.servos.clone(),
-                }),
-                M::AddServoParameterRequest { servos } => {
-                    let ok = self.fits_after(|trial| merge_servos(trial, servos));
-                    if ok {
-                        merge_servos(&mut self.image, servos);
-                    }
-                    Some(M::AddServoParameterResponse { ok })
+                Some(M::ExecuteMacroResponse { ok: exists })
+            }
+            M::QueryServoParameterRequest => Some(M::QueryServoParameterResponse { servos: image.servos.clone() }),
+            M::AddServoParameterRequest { servos } => {
+                let ok = self.fits_after(|trial| merge_servos(trial, servos));
+                if ok {
+                    merge_servos(&mut self.image, servos);
                 }
-                M::WriteProjectIdRequest { project_id } => {
-                    image.project_id = *project_id;
-                    Some(M::WriteProjectIdResponse { ok: true })
+                Some(M::AddServoParameterResponse { ok })
+            }
+            M::WriteProjectIdRequest { project_id } => {
+                image.project_id = *project_id;
+                Some(M::WriteProjectIdResponse { ok: true })
+            }
+            M::QueryProjectIdRequest => Some(M::QueryProjectIdResponse { project_id: image.project_id }),
+            M::QueryJoystickTableListRequest => Some(M::QueryJoystickTableListResponse {
+                tables: image.tables.iter().map(|t| ListEntry { id: t.table_id, caption: t.caption.clone() }).collect(),
+            }),
+            M::QueryJoystickTableRequest { table_id } => Some(M::QueryJoystickTableResponse {
+                table: image.tables.iter().find(|t| t.table_id == *table_id).cloned(),
+            }),
+            M::AddJoystickTableRequest(record) => Some(M::AddJoystickTableResponse { ok: self.add_table(record) }),
+            M::DeleteJoystickTableRequest { table_id } => {
+                let before = image.tables.len();
+                image.tables.retain(|t| t.table_id != *table_id);
+                if image.active_table == *table_id {
+                    image.active_table = 0;
                 }
-                M::QueryProjectIdRequest => Some(M::QueryProjectIdResponse {
-                    project_id: image.project_id,
-                }),
-                M::QueryJoystickTableListRequest => Some(M::QueryJoystickTableListResponse {
-                    tables: image
-                        .tables
-                        .iter()
-                        .map(|t| ListEntry {
-                            id: t.table_id,
-                            caption: t.caption.clone(),
-                        })
-                        .collect(),
-                }),
-                M::QueryJoystickTableRequest { table_id } => Some(M::QueryJoystickTableResponse {
-                    table: image
-                        .tables
-                        .iter()
-                        .find(|t| t.table_id == *table_id)
-                        .cloned(),
-                }),
-                M::AddJoystickTableRequest(record) => Some(M::AddJoystickTableResponse {
-                    ok: self.add_table(record),
-                }),
-                M::DeleteJoystickTableRequest { table_id } => {
-                    let before = image.tables.len();
-                    image.tables.retain(|t| t.table_id != *table_id);
-                    if image.active_table == *table_id {
-                        image.active_table = 0;
-                    }
-                    Some(M::DeleteJoystickTableResponse {
-                        ok: image.tables.len() < before,
-                    })
+                Some(M::DeleteJoystickTableResponse { ok: image.tables.len() < before })
+            }
+            M::SetActiveJoystickTableRequest { table_id } => {
+                let ok = image.tables.iter().any(|t| t.table_id == *table_id);
+                if ok {
+                    image.active_table = *table_id;
                 }
-                M::SetActiveJoystickTableRequest { table_id } => {
-                    let ok = image.tables.iter().any(|t| t.table_id == *table_id);
-                    if ok {
-                        image.active_table = *table_id;
-                    }
-                    Some(M::SetActiveJoystickTableResponse { ok })
-                }
-                M::QueryActiveJoystickTableRequest => {
-                    let table_id = match (image.active_table, image.tables.as_slice()) {
-                        (0, [only]) => only.table_id,
-                        (active, _) => active,
-                    };
-                    Some(M::QueryActiveJoystickTableResponse { table_id })
-                }
-                M::SubscribeButtonEventRequest { subscribe } => {
-                    self.subscribed = *subscribe;
-                    Some(M::SubscribeButtonEventResponse { ok: true })
-                }
-                // Test data and anything a board would not answer: discarded.
-                _ => None,
-            };
+                Some(M::SetActiveJoystickTableResponse { ok })
+            }
+            M::QueryActiveJoystickTableRequest => {
+                let table_id = match (image.active_table, image.tables.as_slice()) {
+                    (0, [only]) => only.table_id,
+                    (active, _) => active,
+                };
+                Some(M::QueryActiveJoystickTableResponse { table_id })
+            }
+            M::SubscribeButtonEventRequest { subscribe } => {
+                self.subscribed = *subscribe;
+                Some(M::SubscribeButtonEventResponse { ok: true })
+            }
+            // Test data and anything a board would not answer: discarded.
+            _ => None,
+        };
         if let Some(response) = response {
             self.respond(now, &response);
         }
@@ -556,8 +457,7 @@ impl BoardSim {
         if record.action_id == 0 || self.refused(record.action_id) {
             return false;
         }
-        let ok =
-            self.fits_after(|trial| upsert(&mut trial.actions, record.clone(), |a| a.action_id));
+        let ok = self.fits_after(|trial| upsert(&mut trial.actions, record.clone(), |a| a.action_id));
         if ok {
             upsert(&mut self.image.actions, record.clone(), |a| a.action_id);
         }
@@ -587,9 +487,8 @@ impl BoardSim {
     }
 
     fn apply_schedule(&mut self, now: Instant) {
-        let (due, later): (Vec<_>, Vec<_>) = std::mem::take(&mut self.schedule)
-            .into_iter()
-            .partition(|(at, _)| *at <= now);
+        let (due, later): (Vec<_>, Vec<_>) =
+            std::mem::take(&mut self.schedule).into_iter().partition(|(at, _)| *at <= now);
         self.schedule = later;
         for (at, moves) in due {
             self.start_moves(at, &moves, 100);
@@ -607,12 +506,7 @@ impl BoardSim {
                     continue;
                 };
                 self.frames_received += 1;
-                if self
-                    .config
-                    .faults
-                    .disconnect_after
-                    .is_some_and(|limit| self.frames_received > limit)
-                {
+                if self.config.faults.disconnect_after.is_some_and(|limit| self.frames_received > limit) {
                     self.closed = true;
                     return;
                 }
@@ -629,10 +523,8 @@ fn scale_moves(moves: &[ServoMove], ratio_percent: u32) -> Vec<ServoMove> {
     moves
         .iter()
         .map(|m| ServoMove {
-            interval_10ms: i16::try_from(
-                i64::from(m.interval_10ms) * 100 / i64::from(ratio_percent.max(1)),
-            )
-            .unwrap_or(i16::MAX),
+            interval_10ms: i16::try_from(i64::from(m.interval_10ms) * 100 / i64::from(ratio_percent.max(1)))
+                .unwrap_or(i16::MAX),
             ..*m
         })
         .collect()
@@ -647,11 +539,7 @@ fn upsert<T>(items: &mut Vec<T>, item: T, id: impl Fn(&T) -> i32) {
 
 fn merge_servos(image: &mut BoardImage, servos: &[crate::protocol::board::ServoParameter]) {
     for servo in servos {
-        match image
-            .servos
-            .iter_mut()
-            .find(|s| s.servo_id == servo.servo_id)
-        {
+        match image.servos.iter_mut().find(|s| s.servo_id == servo.servo_id) {
             Some(existing) => *existing = servo.clone(),
             None => image.servos.push(servo.clone()),
         }
@@ -666,18 +554,12 @@ impl Driver for BoardSim {
         match command {
             SimCommand::Button { button_id, event } => {
                 if self.subscribed {
-                    let bytes = Message::ButtonEventResponse { button_id, event }
-                        .encode()
-                        .unwrap_or_default();
+                    let bytes = Message::ButtonEventResponse { button_id, event }.encode().unwrap_or_default();
                     self.transmit(now, bytes);
                 }
             }
             SimCommand::TurnByHand { servo_id, angle } => {
-                if let Some(state) = self
-                    .servos
-                    .iter_mut()
-                    .find(|s| s.servo_id == servo_id && !s.switches.is_hold)
-                {
+                if let Some(state) = self.servos.iter_mut().find(|s| s.servo_id == servo_id && !s.switches.is_hold) {
                     state.from = angle;
                     state.to = angle;
                     state.end = now;
@@ -757,13 +639,7 @@ mod tests {
 
     fn angle_of(responses: &[Message], servo_id: u8) -> i16 {
         match responses {
-            [Message::QueryServoResponse { servos }] => {
-                servos
-                    .iter()
-                    .find(|s| s.servo_id == servo_id)
-                    .unwrap()
-                    .angle
-            }
+            [Message::QueryServoResponse { servos }] => servos.iter().find(|s| s.servo_id == servo_id).unwrap().angle,
             other => panic!("unexpected {other:?}"),
         }
     }
@@ -772,97 +648,47 @@ mod tests {
     fn servos_move_linearly_over_their_interval() {
         let t0 = Instant::now();
         let mut sim = BoardSim::new(SimConfig::default(), BoardImage::default());
-        let moves = vec![ServoMove {
-            servo_id: 2,
-            degree: 90,
-            interval_10ms: 100,
-        }];
-        assert_eq!(
-            ask(&mut sim, t0, &Message::ExecuteActionRequest { moves }, t0),
-            []
-        );
+        let moves = vec![ServoMove { servo_id: 2, degree: 90, interval_10ms: 100 }];
+        assert_eq!(ask(&mut sim, t0, &Message::ExecuteActionRequest { moves }, t0), []);
         let query = Message::QueryServoRequest { servo_id: 2 };
         assert_eq!(
-            angle_of(
-                &ask(
-                    &mut sim,
-                    t0 + Duration::from_millis(500),
-                    &query,
-                    t0 + Duration::from_secs(9)
-                ),
-                2
-            ),
+            angle_of(&ask(&mut sim, t0 + Duration::from_millis(500), &query, t0 + Duration::from_secs(9)), 2),
             45
         );
         assert_eq!(
-            angle_of(
-                &ask(
-                    &mut sim,
-                    t0 + Duration::from_millis(1000),
-                    &query,
-                    t0 + Duration::from_secs(9)
-                ),
-                2
-            ),
+            angle_of(&ask(&mut sim, t0 + Duration::from_millis(1000), &query, t0 + Duration::from_secs(9)), 2),
             90
         );
         // An unknown servo: an empty answer.
         let later = t0 + Duration::from_secs(10);
-        let unknown = ask(
-            &mut sim,
-            later,
-            &Message::QueryServoRequest { servo_id: 200 },
-            later,
-        );
+        let unknown = ask(&mut sim, later, &Message::QueryServoRequest { servo_id: 200 }, later);
         assert_eq!(unknown, [Message::QueryServoResponse { servos: vec![] }]);
     }
 
     #[test]
     fn memory_shrinks_with_what_is_stored_and_a_full_board_refuses() {
         let t0 = Instant::now();
-        let config = SimConfig {
-            total_memory_bytes: 100,
-            ..SimConfig::default()
-        };
+        let config = SimConfig { total_memory_bytes: 100, ..SimConfig::default() };
         let mut sim = BoardSim::new(config, BoardImage::default());
         assert_eq!(
             ask(&mut sim, t0, &Message::QueryMemorySizeRequest, t0),
-            [Message::QueryMemorySizeResponse {
-                free_bytes: 92,
-                total_bytes: Some(100)
-            }]
+            [Message::QueryMemorySizeResponse { free_bytes: 92, total_bytes: Some(100) }]
         );
         let action = |action_id| {
             Message::AddActionRequest(ActionRecord {
                 action_id,
                 caption: "a".into(),
-                steps: vec![ServoMove {
-                    servo_id: 1,
-                    degree: 0,
-                    interval_10ms: 1,
-                }],
+                steps: vec![ServoMove { servo_id: 1, degree: 0, interval_10ms: 1 }],
             })
         };
-        assert_eq!(
-            ask(&mut sim, t0, &action(1), t0),
-            [Message::AddActionResponse { ok: true }]
-        );
+        assert_eq!(ask(&mut sim, t0, &action(1), t0), [Message::AddActionResponse { ok: true }]);
         assert_eq!(
             ask(&mut sim, t0, &Message::QueryMemorySizeRequest, t0),
-            [Message::QueryMemorySizeResponse {
-                free_bytes: 49,
-                total_bytes: Some(100)
-            }]
+            [Message::QueryMemorySizeResponse { free_bytes: 49, total_bytes: Some(100) }]
         );
         // Each action takes 43 bytes: a second fits (49 free), a third does not (6 free).
-        assert_eq!(
-            ask(&mut sim, t0, &action(2), t0),
-            [Message::AddActionResponse { ok: true }]
-        );
-        assert_eq!(
-            ask(&mut sim, t0, &action(3), t0),
-            [Message::AddActionResponse { ok: false }]
-        );
+        assert_eq!(ask(&mut sim, t0, &action(2), t0), [Message::AddActionResponse { ok: true }]);
+        assert_eq!(ask(&mut sim, t0, &action(3), t0), [Message::AddActionResponse { ok: false }]);
         assert_eq!(sim.image().actions.len(), 2);
     }
 
@@ -871,30 +697,15 @@ mod tests {
         let t0 = Instant::now();
         let mut sim = BoardSim::new(SimConfig::default(), BoardImage::default());
         assert_eq!(
-            ask(
-                &mut sim,
-                t0,
-                &Message::QueryActionRequest { action_id: 5 },
-                t0
-            ),
+            ask(&mut sim, t0, &Message::QueryActionRequest { action_id: 5 }, t0),
             [Message::QueryActionResponse { action: None }]
         );
         assert_eq!(
-            ask(
-                &mut sim,
-                t0,
-                &Message::DeleteMacroRequest { macro_id: 5 },
-                t0
-            ),
+            ask(&mut sim, t0, &Message::DeleteMacroRequest { macro_id: 5 }, t0),
             [Message::DeleteMacroResponse { ok: false }]
         );
         assert_eq!(
-            ask(
-                &mut sim,
-                t0,
-                &Message::SetActiveJoystickTableRequest { table_id: 5 },
-                t0
-            ),
+            ask(&mut sim, t0, &Message::SetActiveJoystickTableRequest { table_id: 5 }, t0),
             [Message::SetActiveJoystickTableResponse { ok: false }]
         );
     }
@@ -903,29 +714,17 @@ mod tests {
     fn a_stored_macro_runs_its_actions_in_time() {
         let t0 = Instant::now();
         let image = BoardImage {
-            servos: vec![ServoParameter {
-                servo_id: 1,
-                adjusted_degree: 0,
-                caption: String::new(),
-            }],
+            servos: vec![ServoParameter { servo_id: 1, adjusted_degree: 0, caption: String::new() }],
             actions: vec![
                 ActionRecord {
                     action_id: 1,
                     caption: String::new(),
-                    steps: vec![ServoMove {
-                        servo_id: 1,
-                        degree: 60,
-                        interval_10ms: 50,
-                    }],
+                    steps: vec![ServoMove { servo_id: 1, degree: 60, interval_10ms: 50 }],
                 },
                 ActionRecord {
                     action_id: 2,
                     caption: String::new(),
-                    steps: vec![ServoMove {
-                        servo_id: 1,
-                        degree: -60,
-                        interval_10ms: 50,
-                    }],
+                    steps: vec![ServoMove { servo_id: 1, degree: -60, interval_10ms: 50 }],
                 },
             ],
             macros: vec![MacroRecord {
@@ -952,12 +751,7 @@ mod tests {
         };
         let mut sim = BoardSim::new(SimConfig::default(), image);
         assert_eq!(
-            ask(
-                &mut sim,
-                t0,
-                &Message::ExecuteMacroRequest { macro_id: 9 },
-                t0
-            ),
+            ask(&mut sim, t0, &Message::ExecuteMacroRequest { macro_id: 9 }, t0),
             [Message::ExecuteMacroResponse { ok: true }]
         );
         assert_eq!(sim.angle(1, t0 + Duration::from_millis(500)), Some(60));
@@ -970,11 +764,7 @@ mod tests {
     #[test]
     fn a_line_rate_delays_requests_and_responses_by_their_wire_time() {
         let t0 = Instant::now();
-        let config = SimConfig {
-            baud: Some(10_000),
-            turnaround: Duration::from_millis(2),
-            ..SimConfig::default()
-        };
+        let config = SimConfig { baud: Some(10_000), turnaround: Duration::from_millis(2), ..SimConfig::default() };
         let mut sim = BoardSim::new(config, BoardImage::default());
         // 9 request bytes at 1 ms each arrive at 9 ms; the 13-byte response leaves
         // after 2 ms of turnaround and 13 ms on the wire: at 24 ms.
@@ -984,75 +774,31 @@ mod tests {
         assert_eq!(sim.poll_timeout(), Some(t0 + Duration::from_millis(24)));
         assert_eq!(sim.poll_transmit(t0 + Duration::from_millis(23)), None);
         let bytes = sim.poll_transmit(t0 + Duration::from_millis(24)).unwrap();
-        assert_eq!(
-            bytes,
-            Message::QueryProjectIdResponse { project_id: 0 }
-                .encode()
-                .unwrap()
-        );
+        assert_eq!(bytes, Message::QueryProjectIdResponse { project_id: 0 }.encode().unwrap());
     }
 
     #[test]
     fn button_events_only_while_subscribed() {
         let t0 = Instant::now();
         let mut sim = BoardSim::new(SimConfig::default(), BoardImage::default());
-        sim.handle_command(
-            t0,
-            SimCommand::Button {
-                button_id: 3,
-                event: ButtonEvent::Press,
-            },
-        );
+        sim.handle_command(t0, SimCommand::Button { button_id: 3, event: ButtonEvent::Press });
         assert_eq!(sim.poll_transmit(t0), None);
-        ask(
-            &mut sim,
-            t0,
-            &Message::SubscribeButtonEventRequest { subscribe: true },
-            t0,
-        );
-        sim.handle_command(
-            t0,
-            SimCommand::Button {
-                button_id: 3,
-                event: ButtonEvent::Press,
-            },
-        );
+        ask(&mut sim, t0, &Message::SubscribeButtonEventRequest { subscribe: true }, t0);
+        sim.handle_command(t0, SimCommand::Button { button_id: 3, event: ButtonEvent::Press });
         let bytes = sim.poll_transmit(t0).unwrap();
-        assert_eq!(
-            bytes,
-            Frame::new(40081, vec![3, 0, 0, 0, 1]).to_bytes().unwrap()
-        );
+        assert_eq!(bytes, Frame::new(40081, vec![3, 0, 0, 0, 1]).to_bytes().unwrap());
     }
 
     #[test]
     fn a_released_servo_can_be_turned_by_hand() {
         let t0 = Instant::now();
         let mut sim = BoardSim::new(SimConfig::default(), BoardImage::default());
-        sim.handle_command(
-            t0,
-            SimCommand::TurnByHand {
-                servo_id: 1,
-                angle: 33,
-            },
-        );
-        assert_eq!(
-            sim.angle(1, t0),
-            Some(0),
-            "holding torque: it does not give"
-        );
-        let release = Message::SetServoParameterRequest(ServoSwitches {
-            servo_id: ALL_SERVOS,
-            is_start: true,
-            is_hold: false,
-        });
+        sim.handle_command(t0, SimCommand::TurnByHand { servo_id: 1, angle: 33 });
+        assert_eq!(sim.angle(1, t0), Some(0), "holding torque: it does not give");
+        let release =
+            Message::SetServoParameterRequest(ServoSwitches { servo_id: ALL_SERVOS, is_start: true, is_hold: false });
         ask(&mut sim, t0, &release, t0);
-        sim.handle_command(
-            t0,
-            SimCommand::TurnByHand {
-                servo_id: 1,
-                angle: 33,
-            },
-        );
+        sim.handle_command(t0, SimCommand::TurnByHand { servo_id: 1, angle: 33 });
         assert_eq!(sim.angle(1, t0), Some(33));
     }
 }

@@ -38,22 +38,10 @@ impl FromStr for Faults {
 
     fn from_str(text: &str) -> Result<Self, Self::Err> {
         let mut faults = Self::default();
-        for item in text
-            .split(',')
-            .map(str::trim)
-            .filter(|item| !item.is_empty())
-        {
-            let error = || FaultsError {
-                item: item.to_string(),
-            };
+        for item in text.split(',').map(str::trim).filter(|item| !item.is_empty()) {
+            let error = || FaultsError { item: item.to_string() };
             let (key, value) = item.split_once('=').ok_or_else(error)?;
-            let every = || {
-                value
-                    .parse::<u32>()
-                    .ok()
-                    .filter(|n| *n > 0)
-                    .ok_or_else(error)
-            };
+            let every = || value.parse::<u32>().ok().filter(|n| *n > 0).ok_or_else(error);
             match key {
                 "garbage-every" => faults.garbage_every = Some(every()?),
                 "corrupt-every" => faults.corrupt_every = Some(every()?),
@@ -82,9 +70,7 @@ mod tests {
     #[test]
     fn fault_lists_parse() {
         let faults: Faults =
-            "garbage-every=3, drop-every=7,disconnect-after=40,refuse-add=42,refuse-add=-1"
-                .parse()
-                .unwrap();
+            "garbage-every=3, drop-every=7,disconnect-after=40,refuse-add=42,refuse-add=-1".parse().unwrap();
         assert_eq!(
             faults,
             Faults {

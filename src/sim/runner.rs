@@ -30,9 +30,7 @@ enum Inner {
 
 impl std::fmt::Debug for SimHandle {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("SimHandle")
-            .field("port_name", &self.port_name)
-            .finish_non_exhaustive()
+        f.debug_struct("SimHandle").field("port_name", &self.port_name).finish_non_exhaustive()
     }
 }
 
@@ -57,13 +55,7 @@ impl SimHandle {
 
 impl Drop for SimHandle {
     fn drop(&mut self) {
-        if let Inner::Server {
-            close,
-            thread,
-            address,
-            ..
-        } = &mut self.inner
-        {
+        if let Inner::Server { close, thread, address, .. } = &mut self.inner {
             *close = None;
             // The accept loop blocks in `accept`: a throwaway connection wakes it.
             let _ = std::net::TcpStream::connect(*address);
@@ -78,13 +70,7 @@ impl Drop for SimHandle {
 pub fn spawn_in_memory(sim: BoardSim, waker: Waker) -> io::Result<(SimHandle, Connection)> {
     let (board_end, client_end) = Connection::memory_pair();
     let link = spawn(board_end, sim, waker)?;
-    Ok((
-        SimHandle {
-            port_name: "memory".into(),
-            inner: Inner::Link(link),
-        },
-        client_end,
-    ))
+    Ok((SimHandle { port_name: "memory".into(), inner: Inner::Link(link) }, client_end))
 }
 
 /// Runs `sim` behind a pseudo-terminal; clients open [`SimHandle::port_name`].
@@ -94,18 +80,13 @@ pub fn spawn_pty(sim: BoardSim, waker: Waker) -> io::Result<SimHandle> {
     let to_io = |error: serialport::Error| io::Error::other(error.description);
     let (mut master, slave) = serialport::TTYPort::pair().map_err(to_io)?;
     master.set_timeout(crate::link::READ_WAKE).map_err(to_io)?;
-    let port_name = slave
-        .name()
-        .ok_or_else(|| io::Error::other("the pseudo-terminal has no name"))?;
+    let port_name = slave.name().ok_or_else(|| io::Error::other("the pseudo-terminal has no name"))?;
     let mut connection = Connection::from_serial(Box::new(master), port_name.clone())?;
     // Keep the client's end open ourselves, so that the board's end never
     // reads "end of file" between clients: the board outlives each of them.
     connection.keep_alive(Box::new(slave));
     let link = spawn(connection, sim, waker)?;
-    Ok(SimHandle {
-        port_name,
-        inner: Inner::Link(link),
-    })
+    Ok(SimHandle { port_name, inner: Inner::Link(link) })
 }
 
 /// Runs `sim` as a TCP server on `address` (port 0 picks a free one). One
@@ -117,31 +98,21 @@ pub fn spawn_tcp(sim: BoardSim, address: SocketAddr, waker: Waker) -> io::Result
     let (close_tx, close_rx) = crossbeam_channel::bounded::<()>(0);
     let (event_tx, event_rx) = crossbeam_channel::unbounded();
     let wake_listener = listener.local_addr()?;
-    let thread = std::thread::Builder::new()
-        .name("sim tcp".into())
-        .spawn(move || {
-            let owner = Owner {
-                commands: command_rx,
-                close: close_rx,
-            };
-            let mut sim = sim;
-            for stream in listener.incoming() {
-                if matches!(
-                    owner.close.try_recv(),
-                    Err(crossbeam_channel::TryRecvError::Disconnected)
-                ) {
-                    return;
-                }
-                let Ok(stream) = stream else { continue };
-                let description = stream
-                    .peer_addr()
-                    .map_or_else(|_| "client".to_string(), |peer| peer.to_string());
-                let Ok(connection) = Connection::from_tcp(stream, description) else {
-                    continue;
-                };
-                sim = run(connection, sim, &owner, &event_tx, &waker);
+    let thread = std::thread::Builder::new().name("sim tcp".into()).spawn(move || {
+        let owner = Owner { commands: command_rx, close: close_rx };
+        let mut sim = sim;
+        for stream in listener.incoming() {
+            if matches!(owner.close.try_recv(), Err(crossbeam_channel::TryRecvError::Disconnected)) {
+                return;
             }
-        })?;
+            let Ok(stream) = stream else { continue };
+            let description = stream.peer_addr().map_or_else(|_| "client".to_string(), |peer| peer.to_string());
+            let Ok(connection) = Connection::from_tcp(stream, description) else {
+                continue;
+            };
+            sim = run(connection, sim, &owner, &event_tx, &waker);
+        }
+    })?;
     Ok(SimHandle {
         port_name,
         inner: Inner::Server {

@@ -4,6 +4,27 @@
 use crate::project::Edit;
 use crate::ui::i18n::Language;
 
+/// What happens after a board comparison is confirmed.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum BoardIntent {
+    /// Write the project onto the board.
+    Upload,
+    /// Replace the project with the board's contents.
+    ReadIntoProject,
+    /// Save the board's contents to a file.
+    ExportToFile(std::path::PathBuf),
+}
+
+/// The editor's tabs.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+pub enum Tab {
+    /// Servo sliders.
+    #[default]
+    Servos,
+    /// Upload / read / export.
+    Board,
+}
+
 /// One request from a panel to the app shell.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Action {
@@ -58,4 +79,14 @@ pub enum Action {
     SetPolling(bool),
     /// Switch the interface language.
     SetLanguage(Language),
+    /// Show a tab.
+    ShowTab(Tab),
+    /// Read the board and show what differs, before doing `intent`.
+    BoardCompare(BoardIntent),
+    /// Go ahead with the compared intent.
+    BoardConfirm,
+    /// Drop the compared intent.
+    BoardDismiss,
+    /// Stop the running board operation after its current step.
+    BoardCancel,
 }

@@ -5,14 +5,18 @@ use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::time::Instant;
 
+use crate::device::board::{BoardImage, Phase};
 use crate::link::Waker;
 use crate::project::{Action as ProjectAction, Edit, Project, Step, next_free_id};
+use crate::project::{has_errors, validate};
 use crate::protocol::board::ServoMove;
-use crate::ui::action::Action;
+use crate::ui::action::{Action, BoardIntent, Tab};
 use crate::ui::board_link::{BoardLink, LinkNotice};
+use crate::ui::board_panel::{self, BoardResult, BoardView, PendingConfirm};
 use crate::ui::connection_bar::{ConnectionBar, LinkStatus};
 use crate::ui::document::Document;
 use crate::ui::i18n::Language;
+use crate::ui::job::{Job, JobKind, JobOutcome};
 use crate::ui::servo_panel::{ServoPanel, ServoView};
 
 /// Interval of a live move, in 10 ms: two frames' worth, so that a dragged
@@ -46,6 +50,18 @@ pub struct StudioApp {
     pub status: Option<StatusLine>,
     /// Remote button events seen, newest last.
     pub button_events: Vec<(u32, crate::protocol::board::ButtonEvent)>,
+    /// The tab shown.
+    pub tab: Tab,
+    /// The running board operation.
+    pub job: Option<Job>,
+    /// A board comparison waiting for the user's go-ahead.
+    pub pending: Option<PendingConfirm>,
+    /// The outcome of the last board operation.
+    pub board_result: Option<BoardResult>,
+    /// Folder for backups and the recovery file.
+    pub data_dir: PathBuf,
+    compare_intent: Option<BoardIntent>,
+    compared_board: Option<Project>,
     waker: Waker,
     connection_bar: ConnectionBar,
     servo_panel: ServoPanel,
@@ -53,10 +69,7 @@ pub struct StudioApp {
 
 impl std::fmt::Debug for StudioApp {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("StudioApp")
-            .field("document", &self.document)
-            .field("link", &self.link)
-            .finish_non_exhaustive()
+        f.debug_struct("StudioApp").field("document", &self.document).field("link", &self.link).finish_non_exhaustive()
     }
 }
 
@@ -64,11 +77,7 @@ impl StudioApp {
     /// An editor showing `project` (saved at `path`, if any). `waker` is called
     /// from the I/O thread when the board has something to show.
     pub fn new(project: Project, path: Option<PathBuf>, waker: Waker) -> Self {
-        let pose = project
-            .servos
-            .iter()
-            .map(|servo| (servo.id, servo.home_deg))
-            .collect();
+        let pose = project.servos.iter().map(|servo| (servo.id, servo.home_deg)).collect();
         Self {
             document: Document::new(project, path),
             link: None,
@@ -77,17 +86,110 @@ impl StudioApp {
             language: Language::detect(),
             status: None,
             button_events: Vec::new(),
+            tab: Tab::default(),
+            job: None,
+            pending: None,
+            board_result: None,
+            data_dir: eframe::storage_dir("Servo Studio").unwrap_or_else(|| std::env::temp_dir().join("servo-studio")),
+            compare_intent: None,
+            compared_board: None,
             waker,
             connection_bar: ConnectionBar::default(),
             servo_panel: ServoPanel::default(),
         }
     }
 
+    /// Keeps backups and the recovery file in `data_dir` instead of the
+    /// platform's data folder.
+    pub fn with_data_dir(mut self, data_dir: PathBuf) -> Self {
+        self.data_dir = data_dir;
+        self
+    }
+
+    fn start_job(&mut self, kind: JobKind) {
+        let Some(link) = &self.link else {
+            self.report("connect a board (or the demo board) first", true);
+            return;
+        };
+        self.board_result = None;
+        let backups = self.data_dir.join("backups");
+        self.job = Some(Job::start(kind, link.requester(), self.document.project.clone(), backups, self.waker.clone()));
+    }
+
+    fn board_compare(&mut self, intent: BoardIntent) {
+        if self.job.is_some() {
+            return;
+        }
+        if intent == BoardIntent::Upload {
+            let problems = validate(&self.document.project);
+            if has_errors(&problems) {
+                let list: Vec<String> = problems.iter().map(ToString::to_string).collect();
+                self.board_result = Some(BoardResult::Failed {
+                    items: Vec::new(),
+                    error: format!("the project has errors; nothing was written:\n{}", list.join("\n")),
+                });
+                return;
+            }
+        }
+        self.compare_intent = Some(intent);
+        self.start_job(JobKind::Compare);
+    }
+
+    fn board_confirm(&mut self) {
+        let Some(pending) = self.pending.take() else { return };
+        let board = self.compared_board.take().unwrap_or_default();
+        match pending.intent {
+            BoardIntent::Upload => self.start_job(JobKind::Upload),
+            BoardIntent::ReadIntoProject => {
+                // The board does not store the client-side safety limits: keep the
+                // project's for servos it already knows.
+                let mut board = board;
+                for servo in &mut board.servos {
+                    if let Some(known) = self.document.project.servo(servo.id) {
+                        servo.min_deg = known.min_deg;
+                        servo.max_deg = known.max_deg;
+                        servo.home_deg = known.home_deg;
+                    }
+                }
+                self.pose = board.servos.iter().map(|servo| (servo.id, servo.home_deg)).collect();
+                self.document.apply(Edit::ReplaceAll(Box::new(board)), None);
+                self.board_result = Some(BoardResult::ReadIntoProject);
+            }
+            BoardIntent::ExportToFile(path) => {
+                self.board_result = Some(match crate::project::save(&path, &board) {
+                    Ok(()) => BoardResult::Exported(path),
+                    Err(error) => BoardResult::Failed { items: Vec::new(), error: error.to_string() },
+                });
+            }
+        }
+    }
+
+    fn poll_job(&mut self) {
+        let Some(job) = &mut self.job else { return };
+        let Some(outcome) = job.poll() else { return };
+        let written: Vec<String> =
+            job.done_items.iter().filter(|(phase, _)| *phase == Phase::Write).map(|(_, item)| item.clone()).collect();
+        self.job = None;
+        match outcome {
+            JobOutcome::Compared { differences, board } => {
+                if let Some(intent) = self.compare_intent.take() {
+                    self.pending = Some(PendingConfirm { intent, differences });
+                    self.compared_board = Some(*board);
+                }
+            }
+            JobOutcome::Uploaded(report) => {
+                self.board_result = Some(BoardResult::Uploaded { items: written, backup: report.backup });
+            }
+            JobOutcome::Read(board) => {
+                self.compared_board = Some(*board);
+            }
+            JobOutcome::Failed(error) => self.board_result = Some(BoardResult::Failed { items: written, error }),
+            JobOutcome::Cancelled => self.board_result = Some(BoardResult::Cancelled),
+        }
+    }
+
     fn report(&mut self, text: impl Into<String>, is_error: bool) {
-        self.status = Some(StatusLine {
-            text: text.into(),
-            is_error,
-        });
+        self.status = Some(StatusLine { text: text.into(), is_error });
     }
 
     /// Applies one action. The only place that changes the editor's state.
@@ -101,27 +203,20 @@ impl StudioApp {
             Action::Redo => {
                 self.document.redo();
             }
-            Action::Connect { port, baud } => {
-                match BoardLink::connect(&port, baud, self.waker.clone()) {
-                    Ok(link) => {
-                        self.report(format!("connected to {}", link.label), false);
-                        self.link = Some(link);
-                    }
-                    Err(error) => self.report(error, true),
+            Action::Connect { port, baud } => match BoardLink::connect(&port, baud, self.waker.clone()) {
+                Ok(link) => {
+                    self.report(format!("connected to {}", link.label), false);
+                    self.link = Some(link);
                 }
-            }
-            Action::ConnectDemo => {
-                match BoardLink::demo(&self.document.project, self.waker.clone()) {
-                    Ok(link) => {
-                        self.report(
-                            "connected to the demo board (emulated, preloaded with this project)",
-                            false,
-                        );
-                        self.link = Some(link);
-                    }
-                    Err(error) => self.report(error, true),
+                Err(error) => self.report(error, true),
+            },
+            Action::ConnectDemo => match BoardLink::demo(&self.document.project, self.waker.clone()) {
+                Ok(link) => {
+                    self.report("connected to the demo board (emulated, preloaded with this project)", false);
+                    self.link = Some(link);
                 }
-            }
+                Err(error) => self.report(error, true),
+            },
             Action::Disconnect => {
                 self.link = None;
                 self.polling = false;
@@ -135,10 +230,7 @@ impl StudioApp {
             }
             Action::Stop => match &mut self.link {
                 Some(link) => match link.stop() {
-                    Ok(()) => self.report(
-                        "STOP: every servo stopped where it is, holding torque",
-                        false,
-                    ),
+                    Ok(()) => self.report("STOP: every servo stopped where it is, holding torque", false),
                     Err(error) => self.report(error, true),
                 },
                 None => self.report("STOP: no board is connected", false),
@@ -152,6 +244,18 @@ impl StudioApp {
             Action::CapturePose { from_board } => self.capture_pose(from_board),
             Action::SetPolling(polling) => self.polling = polling,
             Action::SetLanguage(language) => self.language = language,
+            Action::ShowTab(tab) => self.tab = tab,
+            Action::BoardCompare(intent) => self.board_compare(intent),
+            Action::BoardConfirm => self.board_confirm(),
+            Action::BoardDismiss => {
+                self.pending = None;
+                self.compared_board = None;
+            }
+            Action::BoardCancel => {
+                if let Some(job) = &self.job {
+                    job.cancel();
+                }
+            }
         }
     }
 
@@ -167,11 +271,7 @@ impl StudioApp {
                 self.report("stopped: press Resume before moving servos", true);
                 return;
             }
-            let servo_move = ServoMove {
-                servo_id,
-                degree,
-                interval_10ms: LIVE_MOVE_INTERVAL_10MS,
-            };
+            let servo_move = ServoMove { servo_id, degree, interval_10ms: LIVE_MOVE_INTERVAL_10MS };
             if let Err(error) = link.live_move(vec![servo_move]) {
                 self.report(error, true);
             }
@@ -182,11 +282,7 @@ impl StudioApp {
         let project = &self.document.project;
         let angle = |servo_id: u8, home: i16| -> i16 {
             if from_board {
-                let read = self
-                    .link
-                    .as_ref()
-                    .and_then(|link| link.servos.get(&servo_id))
-                    .map(|state| state.angle);
+                let read = self.link.as_ref().and_then(|link| link.servos.get(&servo_id)).map(|state| state.angle);
                 read.unwrap_or(home)
             } else {
                 self.pose.get(&servo_id).copied().unwrap_or(home)
@@ -207,30 +303,18 @@ impl StudioApp {
         }
         let id = next_free_id(project.actions.iter().map(|action| action.id));
         let caption = format!("{} {id}", self.language.strings().pose);
-        self.document.apply(
-            Edit::AddAction(ProjectAction {
-                id,
-                caption: caption.clone(),
-                steps,
-            }),
-            None,
-        );
-        self.report(
-            format!("captured the pose as action {id} \"{caption}\""),
-            false,
-        );
+        self.document.apply(Edit::AddAction(ProjectAction { id, caption: caption.clone(), steps }), None);
+        self.report(format!("captured the pose as action {id} \"{caption}\""), false);
     }
 
     /// Picks up what the board sent since the last frame.
     pub fn pump(&mut self, now: Instant) {
+        self.poll_job();
         let Some(link) = &mut self.link else { return };
         for notice in link.pump(now, self.polling) {
             match notice {
                 LinkNotice::Error(error) => {
-                    self.status = Some(StatusLine {
-                        text: error,
-                        is_error: true,
-                    });
+                    self.status = Some(StatusLine { text: error, is_error: true });
                 }
                 LinkNotice::Disconnected(reason) => {
                     self.status = Some(StatusLine {
@@ -267,10 +351,8 @@ impl StudioApp {
             if input.consume_key(egui::Modifiers::NONE, egui::Key::Escape) {
                 actions.push(Action::Stop);
             }
-            if input.consume_key(
-                egui::Modifiers::COMMAND | egui::Modifiers::SHIFT,
-                egui::Key::Z,
-            ) || input.consume_key(egui::Modifiers::COMMAND, egui::Key::Y)
+            if input.consume_key(egui::Modifiers::COMMAND | egui::Modifiers::SHIFT, egui::Key::Z)
+                || input.consume_key(egui::Modifiers::COMMAND, egui::Key::Y)
             {
                 actions.push(Action::Redo);
             }
@@ -290,24 +372,17 @@ impl StudioApp {
 
         egui::Panel::top("toolbar").show(ui, |ui| {
             ui.horizontal(|ui| {
-                if ui
-                    .add_enabled(self.document.can_undo(), egui::Button::new(words.undo))
-                    .clicked()
-                {
+                if ui.add_enabled(self.document.can_undo(), egui::Button::new(words.undo)).clicked() {
                     actions.push(Action::Undo);
                 }
-                if ui
-                    .add_enabled(self.document.can_redo(), egui::Button::new(words.redo))
-                    .clicked()
-                {
+                if ui.add_enabled(self.document.can_redo(), egui::Button::new(words.redo)).clicked() {
                     actions.push(Action::Redo);
                 }
                 ui.separator();
                 let mut language = self.language;
                 let language_label = ui.label(words.language);
-                let picked = egui::ComboBox::from_id_salt("language")
-                    .selected_text(language.name())
-                    .show_ui(ui, |ui| {
+                let picked =
+                    egui::ComboBox::from_id_salt("language").selected_text(language.name()).show_ui(ui, |ui| {
                         for option in [Language::English, Language::TraditionalChinese] {
                             ui.selectable_value(&mut language, option, option.name());
                         }
@@ -327,15 +402,20 @@ impl StudioApp {
                     if ui.add(stop).on_hover_text("Esc").clicked() {
                         actions.push(Action::Stop);
                     }
-                    if self.link.as_ref().is_some_and(|link| link.stopped)
-                        && ui.button(words.resume).clicked()
-                    {
+                    if self.link.as_ref().is_some_and(|link| link.stopped) && ui.button(words.resume).clicked() {
                         actions.push(Action::Resume);
                     }
                 });
             });
-            self.connection_bar
-                .ui(ui, &self.link_status(), words, &mut actions);
+            self.connection_bar.ui(ui, &self.link_status(), words, &mut actions);
+            ui.horizontal(|ui| {
+                let mut tab = self.tab;
+                ui.selectable_value(&mut tab, Tab::Servos, words.servos);
+                ui.selectable_value(&mut tab, Tab::Board, words.board);
+                if tab != self.tab {
+                    actions.push(Action::ShowTab(tab));
+                }
+            });
         });
 
         egui::Panel::bottom("status").show(ui, |ui| match &self.status {
@@ -350,23 +430,41 @@ impl StudioApp {
             }
         });
 
-        egui::CentralPanel::default().show(ui, |ui| {
-            let view = ServoView {
-                project: &self.document.project,
-                pose: &self.pose,
-                readback: self.link.as_ref().map(|link| &link.servos),
-                polling: self.polling,
-            };
-            self.servo_panel.ui(ui, &view, words, &mut actions);
+        egui::CentralPanel::default().show(ui, |ui| match self.tab {
+            Tab::Servos => {
+                let view = ServoView {
+                    project: &self.document.project,
+                    pose: &self.pose,
+                    readback: self.link.as_ref().map(|link| &link.servos),
+                    polling: self.polling,
+                };
+                self.servo_panel.ui(ui, &view, words, &mut actions);
+            }
+            Tab::Board => {
+                let project_bytes = BoardImage::from_project(&self.document.project)
+                    .map_err(|error| error.to_string())
+                    .and_then(|image| image.footprint_bytes().map_err(|error| error.to_string()));
+                let view = BoardView {
+                    connected: self.link.is_some(),
+                    project_bytes,
+                    board_total_bytes: self
+                        .link
+                        .as_ref()
+                        .and_then(|link| link.memory)
+                        .map(|(free, total)| i64::from(total.unwrap_or(free))),
+                    job: self.job.as_ref(),
+                    pending: self.pending.as_ref(),
+                    result: self.board_result.as_ref(),
+                };
+                board_panel::ui(ui, &view, &mut actions);
+            }
         });
 
         for action in actions {
             self.apply(action);
         }
         if let Some(link) = &self.link {
-            let wait = link
-                .next_refresh(self.polling)
-                .saturating_duration_since(Instant::now());
+            let wait = link.next_refresh(self.polling).saturating_duration_since(Instant::now());
             ui.ctx().request_repaint_after(wait);
         }
     }

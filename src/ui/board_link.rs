@@ -10,9 +10,7 @@ use crossbeam_channel::Receiver;
 use crate::device::board::{Board, BoardEvent, BoardImage, RequestError, Requester, SessionConfig};
 use crate::link::{LinkEvent, PortName, Waker};
 use crate::project::Project;
-use crate::protocol::board::{
-    ALL_SERVOS, ButtonEvent, Message, ServoMove, ServoStatus, ServoSwitches,
-};
+use crate::protocol::board::{ALL_SERVOS, ButtonEvent, Message, ServoMove, ServoStatus, ServoSwitches};
 use crate::sim::{BoardSim, SimConfig, SimHandle, spawn_in_memory};
 
 /// How often status (project id, battery, memory) is refreshed.
@@ -69,9 +67,7 @@ pub struct BoardLink {
 
 impl std::fmt::Debug for BoardLink {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("BoardLink")
-            .field("label", &self.label)
-            .finish_non_exhaustive()
+        f.debug_struct("BoardLink").field("label", &self.label).finish_non_exhaustive()
     }
 }
 
@@ -79,29 +75,25 @@ impl BoardLink {
     /// Opens a port as typed by the user. The error says what to try.
     pub fn connect(port: &str, baud: u32, waker: Waker) -> Result<Self, String> {
         let name = PortName::parse(port).map_err(|error| error.to_string())?;
-        let config = SessionConfig {
-            line_baud: Some(baud),
-            traffic: true,
-            ..SessionConfig::default()
-        };
-        let board =
-            Board::connect(&name, baud, config, waker).map_err(|error| error.to_string())?;
+        let config = SessionConfig { line_baud: Some(baud), traffic: true, ..SessionConfig::default() };
+        let board = Board::connect(&name, baud, config, waker).map_err(|error| error.to_string())?;
         Ok(Self::over(board, None, name.to_string()))
     }
 
     /// Starts the emulated board in this process, preloaded with `project`,
     /// and connects to it.
     pub fn demo(project: &Project, waker: Waker) -> Result<Self, String> {
+        Self::demo_with(project, SimConfig::default(), waker)
+    }
+
+    /// Like [`BoardLink::demo`], with the emulated board configured (faults, memory…).
+    pub fn demo_with(project: &Project, sim_config: SimConfig, waker: Waker) -> Result<Self, String> {
         let image = BoardImage::from_project(project).unwrap_or_default();
-        let (sim, connection) =
-            spawn_in_memory(BoardSim::new(SimConfig::default(), image), waker.clone())
-                .map_err(|error| format!("cannot start the demo board: {error}"))?;
-        let config = SessionConfig {
-            traffic: true,
-            ..SessionConfig::default()
-        };
-        let board = Board::over(connection, config, waker)
+        let (sim, connection) = spawn_in_memory(BoardSim::new(sim_config, image), waker.clone())
             .map_err(|error| format!("cannot start the demo board: {error}"))?;
+        let config = SessionConfig { traffic: true, ..SessionConfig::default() };
+        let board =
+            Board::over(connection, config, waker).map_err(|error| format!("cannot start the demo board: {error}"))?;
         Ok(Self::over(board, Some(sim), "demo board".into()))
     }
 
@@ -181,47 +173,29 @@ impl BoardLink {
             self.ask(Query::Battery, Message::QueryRemainPowerRequest);
             self.ask(Query::Memory, Message::QueryMemorySizeRequest);
             // Torque switches show once the servos' states are known.
-            self.ask(
-                Query::Angles,
-                Message::QueryServoRequest {
-                    servo_id: ALL_SERVOS,
-                },
-            );
+            self.ask(Query::Angles, Message::QueryServoRequest { servo_id: ALL_SERVOS });
         }
         if polling && now >= self.next_angles_at {
             self.next_angles_at = now + ANGLES_EVERY;
-            self.ask(
-                Query::Angles,
-                Message::QueryServoRequest {
-                    servo_id: ALL_SERVOS,
-                },
-            );
+            self.ask(Query::Angles, Message::QueryServoRequest { servo_id: ALL_SERVOS });
         }
         notices
     }
 
     /// When the link next needs a frame to refresh its status.
     pub fn next_refresh(&self, polling: bool) -> Instant {
-        if polling {
-            self.next_angles_at.min(self.next_status_at)
-        } else {
-            self.next_status_at
-        }
+        if polling { self.next_angles_at.min(self.next_status_at) } else { self.next_status_at }
     }
 
     fn absorb(&mut self, message: Message) {
         match message {
             Message::QueryProjectIdResponse { project_id } => self.project_id = Some(project_id),
             Message::QueryRemainPowerResponse { permil } => self.battery_permil = Some(permil),
-            Message::QueryMemorySizeResponse {
-                free_bytes,
-                total_bytes,
-            } => self.memory = Some((free_bytes, total_bytes)),
+            Message::QueryMemorySizeResponse { free_bytes, total_bytes } => {
+                self.memory = Some((free_bytes, total_bytes));
+            }
             Message::QueryServoResponse { servos } => {
-                self.servos = servos
-                    .into_iter()
-                    .map(|servo| (servo.servo_id, servo))
-                    .collect();
+                self.servos = servos.into_iter().map(|servo| (servo.servo_id, servo)).collect();
             }
             Message::SetServoParameterResponse(switches) => {
                 for servo in self
@@ -239,51 +213,32 @@ impl BoardLink {
 
     /// Sends a live move (coalesced by the session).
     pub fn live_move(&self, moves: Vec<ServoMove>) -> Result<(), String> {
-        self.requester
-            .live_move(moves)
-            .map_err(|error| error.to_string())
+        self.requester.live_move(moves).map_err(|error| error.to_string())
     }
 
     /// STOP: drops queued moves and stops every servo where it is, holding
     /// torque, ahead of any queued request.
     pub fn stop(&mut self) -> Result<(), String> {
         self.stopped = true;
-        let all = ServoSwitches {
-            servo_id: ALL_SERVOS,
-            is_start: false,
-            is_hold: true,
-        };
-        self.requester
-            .stop(Message::SetServoParameterRequest(all))
-            .map_err(|error| error.to_string())
+        let all = ServoSwitches { servo_id: ALL_SERVOS, is_start: false, is_hold: true };
+        self.requester.stop(Message::SetServoParameterRequest(all)).map_err(|error| error.to_string())
     }
 
     /// Lets servos move again after a STOP.
     pub fn resume(&mut self) {
         self.stopped = false;
-        let all = ServoSwitches {
-            servo_id: ALL_SERVOS,
-            is_start: true,
-            is_hold: true,
-        };
+        let all = ServoSwitches { servo_id: ALL_SERVOS, is_start: true, is_hold: true };
         self.ask(Query::Switches, Message::SetServoParameterRequest(all));
     }
 
     /// Holds or releases one servo's torque.
     pub fn set_hold(&mut self, servo_id: u8, hold: bool) {
-        let switches = ServoSwitches {
-            servo_id,
-            is_start: !self.stopped,
-            is_hold: hold,
-        };
+        let switches = ServoSwitches { servo_id, is_start: !self.stopped, is_hold: hold };
         if let Some(servo) = self.servos.get_mut(&servo_id) {
             servo.is_hold = hold;
         }
         // Not de-duplicated: each toggle must reach the board.
-        if let Ok(reply) = self
-            .requester
-            .request_async(Message::SetServoParameterRequest(switches))
-        {
+        if let Ok(reply) = self.requester.request_async(Message::SetServoParameterRequest(switches)) {
             self.inflight.push((Query::Switches, reply));
         }
     }

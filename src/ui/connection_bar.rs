@@ -8,9 +8,7 @@ use crate::ui::action::Action;
 use crate::ui::i18n::Strings;
 
 /// Standard line rates offered in the picker.
-const BAUDS: [u32; 8] = [
-    9_600, 19_200, 38_400, 57_600, 115_200, 230_400, 460_800, 1_000_000,
-];
+const BAUDS: [u32; 8] = [9_600, 19_200, 38_400, 57_600, 115_200, 230_400, 460_800, 1_000_000];
 /// How often the port list is read again.
 const RESCAN_EVERY: Duration = Duration::from_secs(2);
 
@@ -38,12 +36,7 @@ pub struct ConnectionBar {
 
 impl Default for ConnectionBar {
     fn default() -> Self {
-        Self {
-            port: String::new(),
-            baud: DEFAULT_BAUD,
-            ports: Vec::new(),
-            next_scan: None,
-        }
+        Self { port: String::new(), baud: DEFAULT_BAUD, ports: Vec::new(), next_scan: None }
     }
 }
 
@@ -65,13 +58,7 @@ impl ConnectionBar {
     }
 
     /// Draws the bar.
-    pub fn ui(
-        &mut self,
-        ui: &mut egui::Ui,
-        status: &LinkStatus,
-        words: &Strings,
-        actions: &mut Vec<Action>,
-    ) {
+    pub fn ui(&mut self, ui: &mut egui::Ui, status: &LinkStatus, words: &Strings, actions: &mut Vec<Action>) {
         self.rescan(Instant::now());
         ui.horizontal_wrapped(|ui| {
             let connected = status.label.is_some();
@@ -83,10 +70,8 @@ impl ConnectionBar {
                         .desired_width(180.0),
                 )
                 .labelled_by(port_label.id);
-                let picked = egui::ComboBox::from_id_salt("port-picker")
-                    .selected_text("")
-                    .width(24.0)
-                    .show_ui(ui, |ui| {
+                let picked =
+                    egui::ComboBox::from_id_salt("port-picker").selected_text("").width(24.0).show_ui(ui, |ui| {
                         for port in &self.ports {
                             ui.selectable_value(
                                 &mut self.port,
@@ -100,13 +85,14 @@ impl ConnectionBar {
                     });
                 picked.response.labelled_by(port_label.id);
                 let baud_label = ui.label(words.baud);
-                let picked = egui::ComboBox::from_id_salt("baud-picker")
-                    .selected_text(self.baud.to_string())
-                    .show_ui(ui, |ui| {
+                let picked = egui::ComboBox::from_id_salt("baud-picker").selected_text(self.baud.to_string()).show_ui(
+                    ui,
+                    |ui| {
                         for baud in BAUDS {
                             ui.selectable_value(&mut self.baud, baud, baud.to_string());
                         }
-                    });
+                    },
+                );
                 picked.response.labelled_by(baud_label.id);
             });
             if connected {
@@ -114,17 +100,8 @@ impl ConnectionBar {
                     actions.push(Action::Disconnect);
                 }
             } else {
-                if ui
-                    .add_enabled(
-                        !self.port.trim().is_empty(),
-                        egui::Button::new(words.connect),
-                    )
-                    .clicked()
-                {
-                    actions.push(Action::Connect {
-                        port: self.port.trim().to_string(),
-                        baud: self.baud,
-                    });
+                if ui.add_enabled(!self.port.trim().is_empty(), egui::Button::new(words.connect)).clicked() {
+                    actions.push(Action::Connect { port: self.port.trim().to_string(), baud: self.baud });
                 }
                 if ui.button(words.demo_board).clicked() {
                     actions.push(Action::ConnectDemo);

@@ -20,12 +20,7 @@ pub struct Document {
 impl Document {
     /// A document showing `project`, saved at `path`.
     pub fn new(project: Project, path: Option<PathBuf>) -> Self {
-        Self {
-            project,
-            path,
-            dirty: false,
-            history: History::default(),
-        }
+        Self { project, path, dirty: false, history: History::default() }
     }
 
     /// Applies an edit as one undo step, or as part of the open step with the

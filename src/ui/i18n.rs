@@ -2,9 +2,7 @@
 //! OS locale and switchable at run time.
 
 /// A language of the interface.
-#[derive(
-    Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize,
-)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 pub enum Language {
     /// English.
     #[default]
@@ -103,6 +101,8 @@ pub struct Strings {
     pub add_servo: &'static str,
     /// "Pose".
     pub pose: &'static str,
+    /// "Board".
+    pub board: &'static str,
 }
 
 const ENGLISH: Strings = Strings {
@@ -130,6 +130,7 @@ const ENGLISH: Strings = Strings {
     no_servos: "No servos yet: read a board, or add one",
     add_servo: "Add servo",
     pose: "Pose",
+    board: "Board",
 };
 
 const TRADITIONAL_CHINESE: Strings = Strings {
@@ -157,6 +158,7 @@ const TRADITIONAL_CHINESE: Strings = Strings {
     no_servos: "尚無舵機：請讀取控制板或新增舵機",
     add_servo: "新增舵機",
     pose: "姿勢",
+    board: "控制板",
 };
 
 #[cfg(test)]
@@ -165,14 +167,8 @@ mod tests {
 
     #[test]
     fn locales_choose_the_language() {
-        assert_eq!(
-            Language::from_locale("zh_TW.UTF-8"),
-            Language::TraditionalChinese
-        );
-        assert_eq!(
-            Language::from_locale("zh-Hant-TW"),
-            Language::TraditionalChinese
-        );
+        assert_eq!(Language::from_locale("zh_TW.UTF-8"), Language::TraditionalChinese);
+        assert_eq!(Language::from_locale("zh-Hant-TW"), Language::TraditionalChinese);
         assert_eq!(Language::from_locale("zh_HK"), Language::TraditionalChinese);
         assert_eq!(Language::from_locale("en_US.UTF-8"), Language::English);
         assert_eq!(Language::from_locale("C"), Language::English);

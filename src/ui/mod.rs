@@ -4,28 +4,26 @@
 mod action;
 mod app;
 mod board_link;
+mod board_panel;
 mod connection_bar;
 mod document;
 pub mod fonts;
 mod i18n;
+mod job;
 mod servo_panel;
 
-pub use action::Action;
+pub use action::{Action, BoardIntent, Tab};
 pub use app::{CAPTURED_STEP_INTERVAL_10MS, LIVE_MOVE_INTERVAL_10MS, StatusLine, StudioApp};
 pub use board_link::{BoardLink, LinkNotice};
+pub use board_panel::{BoardResult, PendingConfirm};
 pub use document::Document;
 pub use i18n::{Language, Strings};
+pub use job::{Job, JobKind, JobOutcome};
 
 /// Opens the editor window and runs until it is closed.
-pub fn run(
-    project: crate::project::Project,
-    path: Option<std::path::PathBuf>,
-    demo: bool,
-) -> eframe::Result {
+pub fn run(project: crate::project::Project, path: Option<std::path::PathBuf>, demo: bool) -> eframe::Result {
     let options = eframe::NativeOptions {
-        viewport: egui::ViewportBuilder::default()
-            .with_title("Servo Studio")
-            .with_inner_size([1100.0, 720.0]),
+        viewport: egui::ViewportBuilder::default().with_title("Servo Studio").with_inner_size([1100.0, 720.0]),
         ..Default::default()
     };
     eframe::run_native(

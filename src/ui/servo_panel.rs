@@ -36,38 +36,19 @@ impl ServoPanel {
     fn keyboard_nudge(ui: &egui::Ui) -> i32 {
         ui.input_mut(|input| {
             let mut delta = 0i32;
-            for (key, step) in [
-                (Key::ArrowRight, 1),
-                (Key::ArrowUp, 1),
-                (Key::ArrowLeft, -1),
-                (Key::ArrowDown, -1),
-            ] {
+            for (key, step) in [(Key::ArrowRight, 1), (Key::ArrowUp, 1), (Key::ArrowLeft, -1), (Key::ArrowDown, -1)] {
                 // Shift first: a plain match would also take Shift+key (shift is ignored logically).
-                delta += 10
-                    * step
-                    * i32::try_from(input.count_and_consume_key(Modifiers::SHIFT, key))
-                        .unwrap_or(0);
-                delta += step
-                    * i32::try_from(input.count_and_consume_key(Modifiers::NONE, key)).unwrap_or(0);
+                delta += 10 * step * i32::try_from(input.count_and_consume_key(Modifiers::SHIFT, key)).unwrap_or(0);
+                delta += step * i32::try_from(input.count_and_consume_key(Modifiers::NONE, key)).unwrap_or(0);
             }
-            delta += 10
-                * i32::try_from(input.count_and_consume_key(Modifiers::NONE, Key::PageUp))
-                    .unwrap_or(0);
-            delta -= 10
-                * i32::try_from(input.count_and_consume_key(Modifiers::NONE, Key::PageDown))
-                    .unwrap_or(0);
+            delta += 10 * i32::try_from(input.count_and_consume_key(Modifiers::NONE, Key::PageUp)).unwrap_or(0);
+            delta -= 10 * i32::try_from(input.count_and_consume_key(Modifiers::NONE, Key::PageDown)).unwrap_or(0);
             delta
         })
     }
 
     /// Draws the panel.
-    pub fn ui(
-        &mut self,
-        ui: &mut egui::Ui,
-        view: &ServoView<'_>,
-        words: &Strings,
-        actions: &mut Vec<Action>,
-    ) {
+    pub fn ui(&mut self, ui: &mut egui::Ui, view: &ServoView<'_>, words: &Strings, actions: &mut Vec<Action>) {
         ui.horizontal(|ui| {
             ui.heading(words.servos);
             if ui.button(words.capture_pose).clicked() {
@@ -87,69 +68,48 @@ impl ServoPanel {
             ui.label(words.no_servos);
             return;
         }
-        let focused = ui
-            .memory(|memory| memory.focused())
-            .and_then(|id| self.slider_ids.get(&id).copied());
-        let nudge = if focused.is_some() {
-            Self::keyboard_nudge(ui)
-        } else {
-            0
-        };
+        let focused = ui.memory(|memory| memory.focused()).and_then(|id| self.slider_ids.get(&id).copied());
+        let nudge = if focused.is_some() { Self::keyboard_nudge(ui) } else { 0 };
         self.slider_ids.clear();
         ui.spacing_mut().slider_width = 360.0;
-        egui::ScrollArea::vertical()
-            .auto_shrink([false, true])
-            .show(ui, |ui| {
-                egui::Grid::new("servo-grid")
-                    .striped(true)
-                    .num_columns(5)
-                    .show(ui, |ui| {
-                        for servo in &view.project.servos {
-                            let current =
-                                view.pose.get(&servo.id).copied().unwrap_or(servo.home_deg);
-                            let label = ui.label(format!("{} #{}", servo.caption, servo.id));
-                            let mut value = i32::from(current);
-                            let slider = egui::Slider::new(
-                                &mut value,
-                                i32::from(servo.min_deg)..=i32::from(servo.max_deg),
-                            )
-                            .step_by(1.0)
-                            .suffix("°");
-                            let response = ui.add(slider).labelled_by(label.id);
-                            self.slider_ids.insert(response.id, servo.id);
-                            if focused == Some(servo.id) && nudge != 0 {
-                                value += nudge;
+        egui::ScrollArea::vertical().auto_shrink([false, true]).show(ui, |ui| {
+            egui::Grid::new("servo-grid").striped(true).num_columns(5).show(ui, |ui| {
+                for servo in &view.project.servos {
+                    let current = view.pose.get(&servo.id).copied().unwrap_or(servo.home_deg);
+                    let label = ui.label(format!("{} #{}", servo.caption, servo.id));
+                    let mut value = i32::from(current);
+                    let slider = egui::Slider::new(&mut value, i32::from(servo.min_deg)..=i32::from(servo.max_deg))
+                        .step_by(1.0)
+                        .suffix("°");
+                    let response = ui.add(slider).labelled_by(label.id);
+                    self.slider_ids.insert(response.id, servo.id);
+                    if focused == Some(servo.id) && nudge != 0 {
+                        value += nudge;
+                    }
+                    if value != i32::from(current) {
+                        let degree = i16::try_from(value).unwrap_or(current);
+                        actions.push(Action::SetPose { servo_id: servo.id, degree: servo.clamp(degree) });
+                    }
+                    match view.readback.and_then(|servos| servos.get(&servo.id)) {
+                        Some(state) => {
+                            let mut hold = state.is_hold;
+                            if ui.checkbox(&mut hold, words.hold).changed() {
+                                actions.push(Action::SetHold { servo_id: servo.id, hold });
                             }
-                            if value != i32::from(current) {
-                                let degree = i16::try_from(value).unwrap_or(current);
-                                actions.push(Action::SetPose {
-                                    servo_id: servo.id,
-                                    degree: servo.clamp(degree),
-                                });
+                            if view.polling {
+                                ui.monospace(format!("{:>5}°", state.angle));
+                            } else {
+                                ui.label("");
                             }
-                            match view.readback.and_then(|servos| servos.get(&servo.id)) {
-                                Some(state) => {
-                                    let mut hold = state.is_hold;
-                                    if ui.checkbox(&mut hold, words.hold).changed() {
-                                        actions.push(Action::SetHold {
-                                            servo_id: servo.id,
-                                            hold,
-                                        });
-                                    }
-                                    if view.polling {
-                                        ui.monospace(format!("{:>5}°", state.angle));
-                                    } else {
-                                        ui.label("");
-                                    }
-                                }
-                                None => {
-                                    ui.label("");
-                                    ui.label("");
-                                }
-                            }
-                            ui.end_row();
                         }
-                    });
+                        None => {
+                            ui.label("");
+                            ui.label("");
+                        }
+                    }
+                    ui.end_row();
+                }
             });
+        });
     }
 }

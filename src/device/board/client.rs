@@ -71,11 +71,7 @@ pub struct BoardDriver {
 impl BoardDriver {
     /// A driver with the given session timing.
     pub fn new(config: SessionConfig) -> Self {
-        Self {
-            session: Session::new(config),
-            replies: HashMap::new(),
-            events: std::collections::VecDeque::new(),
-        }
+        Self { session: Session::new(config), replies: HashMap::new(), events: std::collections::VecDeque::new() }
     }
 
     fn drain_session(&mut self) {
@@ -87,9 +83,9 @@ impl BoardDriver {
                         let _ = reply.send(result);
                     }
                 }
-                SessionEvent::Button { button_id, event } => self
-                    .events
-                    .push_back(BoardEvent::Button { button_id, event }),
+                SessionEvent::Button { button_id, event } => {
+                    self.events.push_back(BoardEvent::Button { button_id, event });
+                }
                 SessionEvent::Unsolicited(message) => {
                     self.events.push_back(BoardEvent::Unsolicited(message));
                 }
@@ -115,16 +111,14 @@ impl Driver for BoardDriver {
             },
             BoardCommand::Send { message } => {
                 if let Err(error) = self.session.send(now, message) {
-                    self.events
-                        .push_back(BoardEvent::SendFailed(error.to_string()));
+                    self.events.push_back(BoardEvent::SendFailed(error.to_string()));
                 }
             }
             BoardCommand::LiveMove { moves } => self.session.set_live_moves(now, &moves),
             BoardCommand::Stop { message } => {
                 self.session.cancel_live_moves();
                 if let Err(error) = self.session.send(now, message) {
-                    self.events
-                        .push_back(BoardEvent::SendFailed(error.to_string()));
+                    self.events.push_back(BoardEvent::SendFailed(error.to_string()));
                 }
             }
         }
@@ -167,32 +161,20 @@ pub struct Board {
 
 impl Board {
     /// Opens `port` and starts the I/O thread.
-    pub fn connect(
-        port: &PortName,
-        baud: u32,
-        config: SessionConfig,
-        waker: Waker,
-    ) -> Result<Self, LinkError> {
+    pub fn connect(port: &PortName, baud: u32, config: SessionConfig, waker: Waker) -> Result<Self, LinkError> {
         let connection = link::open(port, baud)?;
         let description = connection.description.clone();
-        Self::over(connection, config, waker).map_err(|source| LinkError::Open {
-            port: description,
-            source,
-        })
+        Self::over(connection, config, waker).map_err(|source| LinkError::Open { port: description, source })
     }
 
     /// Starts the I/O thread over an already open connection.
     pub fn over(connection: Connection, config: SessionConfig, waker: Waker) -> io::Result<Self> {
-        Ok(Self {
-            link: link::spawn(connection, BoardDriver::new(config), waker)?,
-        })
+        Ok(Self { link: link::spawn(connection, BoardDriver::new(config), waker)? })
     }
 
     /// A handle for requests, cloneable into worker threads.
     pub fn requester(&self) -> Requester {
-        Requester {
-            commands: self.link.commands(),
-        }
+        Requester { commands: self.link.commands() }
     }
 
     /// Button events, unsolicited frames, the packet log, and the disconnect.
@@ -221,52 +203,34 @@ impl Requester {
     /// Sends `message` and waits for its response. The session bounds the
     /// wait (timeouts, retries); a lost link ends it with `Disconnected`.
     pub fn request(&self, message: Message) -> Result<Message, RequestError> {
-        self.request_async(message)?
-            .recv()
-            .unwrap_or_else(|_| Err(lost()))
+        self.request_async(message)?.recv().unwrap_or_else(|_| Err(lost()))
     }
 
     /// Sends `message`; its outcome arrives on the returned receiver.
-    pub fn request_async(
-        &self,
-        message: Message,
-    ) -> Result<Receiver<Result<Message, RequestError>>, RequestError> {
+    pub fn request_async(&self, message: Message) -> Result<Receiver<Result<Message, RequestError>>, RequestError> {
         let (reply, outcome) = crossbeam_channel::bounded(1);
-        self.commands
-            .send(BoardCommand::Request { message, reply })
-            .map_err(|_| lost())?;
+        self.commands.send(BoardCommand::Request { message, reply }).map_err(|_| lost())?;
         Ok(outcome)
     }
 
     /// Sends a message that has no response.
     pub fn send(&self, message: Message) -> Result<(), RequestError> {
-        self.commands
-            .send(BoardCommand::Send { message })
-            .map_err(|_| lost())
+        self.commands.send(BoardCommand::Send { message }).map_err(|_| lost())
     }
 
     /// Drops pending live moves and sends `message` at once, ahead of queued
     /// requests; its response, if any, arrives as an unsolicited event.
     pub fn stop(&self, message: Message) -> Result<(), RequestError> {
-        self.commands
-            .send(BoardCommand::Stop { message })
-            .map_err(|_| lost())
+        self.commands.send(BoardCommand::Stop { message }).map_err(|_| lost())
     }
 
     /// Sets live move targets; the session coalesces them: at most one move is
     /// on the line, and the latest value per servo wins.
-    pub fn live_move(
-        &self,
-        moves: Vec<crate::protocol::board::ServoMove>,
-    ) -> Result<(), RequestError> {
-        self.commands
-            .send(BoardCommand::LiveMove { moves })
-            .map_err(|_| lost())
+    pub fn live_move(&self, moves: Vec<crate::protocol::board::ServoMove>) -> Result<(), RequestError> {
+        self.commands.send(BoardCommand::LiveMove { moves }).map_err(|_| lost())
     }
 }
 
 fn lost() -> RequestError {
-    RequestError::Disconnected {
-        reason: "the link is closed".into(),
-    }
+    RequestError::Disconnected { reason: "the link is closed".into() }
 }

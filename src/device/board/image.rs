@@ -3,12 +3,11 @@
 //! project) go through here, and so does the emulated board's storage.
 
 use crate::project::{
-    Action, BoardKind, Button, Command, JoystickTable, Macro, Project, Run, Servo, Step, Timing,
-    TimingError,
+    Action, BoardKind, Button, Command, JoystickTable, Macro, Project, Run, Servo, Step, Timing, TimingError,
 };
 use crate::protocol::board::{
-    ActionRecord, ButtonRecord, CommandType, EncodeError, JoystickTableRecord, MacroCommandRecord,
-    MacroRecord, Message, ServoMove, ServoParameter,
+    ActionRecord, ButtonRecord, CommandType, EncodeError, JoystickTableRecord, MacroCommandRecord, MacroRecord,
+    Message, ServoMove, ServoParameter,
 };
 
 /// Everything a servo board stores, in the order the board lists it.
@@ -42,9 +41,7 @@ pub enum ImageError {
         error: TimingError,
     },
     /// A command's run time does not fit the board's 32-bit field.
-    #[error(
-        "macro {macro_id}, command {command}: runs for {total_ms} ms, more than the board can count"
-    )]
+    #[error("macro {macro_id}, command {command}: runs for {total_ms} ms, more than the board can count")]
     TooLong {
         /// The macro.
         macro_id: i32,
@@ -90,20 +87,16 @@ impl BoardImage {
             let mut commands = Vec::with_capacity(item.commands.len());
             for (index, command) in item.commands.iter().enumerate() {
                 let at = index + 1;
-                let total_ms =
-                    timing
-                        .command_total_ms(command)
-                        .map_err(|error| ImageError::Timing {
-                            macro_id: item.id,
-                            command: at,
-                            error,
-                        })?;
-                let total_interval_ms =
-                    i32::try_from(total_ms).map_err(|_| ImageError::TooLong {
-                        macro_id: item.id,
-                        command: at,
-                        total_ms,
-                    })?;
+                let total_ms = timing.command_total_ms(command).map_err(|error| ImageError::Timing {
+                    macro_id: item.id,
+                    command: at,
+                    error,
+                })?;
+                let total_interval_ms = i32::try_from(total_ms).map_err(|_| ImageError::TooLong {
+                    macro_id: item.id,
+                    command: at,
+                    total_ms,
+                })?;
                 let (command_type, command_id) = match command.run {
                     Run::Action { action_id } => (CommandType::RunAction, action_id),
                     Run::Delay { delay_ms } => (CommandType::Delay, delay_ms),
@@ -117,11 +110,7 @@ impl BoardImage {
                     total_interval_ms,
                 });
             }
-            macros.push(MacroRecord {
-                macro_id: item.id,
-                caption: item.caption.clone(),
-                commands,
-            });
+            macros.push(MacroRecord { macro_id: item.id, caption: item.caption.clone(), commands });
         }
         let tables = project
             .joystick_tables
@@ -208,15 +197,9 @@ impl BoardImage {
                         .iter()
                         .map(|command| Command {
                             run: match command.command_type {
-                                CommandType::RunAction => Run::Action {
-                                    action_id: command.command_id,
-                                },
-                                CommandType::Delay => Run::Delay {
-                                    delay_ms: command.command_id,
-                                },
-                                CommandType::RunMacro => Run::Macro {
-                                    macro_id: command.command_id,
-                                },
+                                CommandType::RunAction => Run::Action { action_id: command.command_id },
+                                CommandType::Delay => Run::Delay { delay_ms: command.command_id },
+                                CommandType::RunMacro => Run::Macro { macro_id: command.command_id },
                             },
                             ratio_percent: command.ratio_percent,
                             loop_count: command.loop_count,
@@ -254,26 +237,16 @@ impl BoardImage {
     pub fn footprint_bytes(&self) -> Result<usize, EncodeError> {
         let mut total = 8;
         if !self.servos.is_empty() {
-            total += Message::AddServoParameterRequest {
-                servos: self.servos.clone(),
-            }
-            .encode_content()?
-            .len();
+            total += Message::AddServoParameterRequest { servos: self.servos.clone() }.encode_content()?.len();
         }
         for action in &self.actions {
-            total += Message::AddActionRequest(action.clone())
-                .encode_content()?
-                .len();
+            total += Message::AddActionRequest(action.clone()).encode_content()?.len();
         }
         for record in &self.macros {
-            total += Message::AddMacroRequest(record.clone())
-                .encode_content()?
-                .len();
+            total += Message::AddMacroRequest(record.clone()).encode_content()?.len();
         }
         for table in &self.tables {
-            total += Message::AddJoystickTableRequest(table.clone())
-                .encode_content()?
-                .len();
+            total += Message::AddJoystickTableRequest(table.clone()).encode_content()?.len();
         }
         Ok(total)
     }
@@ -283,44 +256,20 @@ impl BoardImage {
     pub fn differences(&self, actual: &Self) -> Vec<String> {
         let mut out = Vec::new();
         if self.project_id != actual.project_id {
-            out.push(format!(
-                "project id: expected {}, board has {}",
-                self.project_id, actual.project_id
-            ));
+            out.push(format!("project id: expected {}, board has {}", self.project_id, actual.project_id));
         }
-        diff_items(&mut out, "servo", &self.servos, &actual.servos, |s| {
-            i64::from(s.servo_id)
-        });
-        diff_items(&mut out, "action", &self.actions, &actual.actions, |a| {
-            i64::from(a.action_id)
-        });
-        diff_items(&mut out, "macro", &self.macros, &actual.macros, |m| {
-            i64::from(m.macro_id)
-        });
-        diff_items(
-            &mut out,
-            "joystick table",
-            &self.tables,
-            &actual.tables,
-            |t| i64::from(t.table_id),
-        );
+        diff_items(&mut out, "servo", &self.servos, &actual.servos, |s| i64::from(s.servo_id));
+        diff_items(&mut out, "action", &self.actions, &actual.actions, |a| i64::from(a.action_id));
+        diff_items(&mut out, "macro", &self.macros, &actual.macros, |m| i64::from(m.macro_id));
+        diff_items(&mut out, "joystick table", &self.tables, &actual.tables, |t| i64::from(t.table_id));
         if self.active_table != actual.active_table {
-            out.push(format!(
-                "active table: expected {}, board has {}",
-                self.active_table, actual.active_table
-            ));
+            out.push(format!("active table: expected {}, board has {}", self.active_table, actual.active_table));
         }
         out
     }
 }
 
-fn diff_items<T: PartialEq>(
-    out: &mut Vec<String>,
-    kind: &str,
-    expected: &[T],
-    actual: &[T],
-    id: impl Fn(&T) -> i64,
-) {
+fn diff_items<T: PartialEq>(out: &mut Vec<String>, kind: &str, expected: &[T], actual: &[T], id: impl Fn(&T) -> i64) {
     let before = out.len();
     for item in expected {
         match actual.iter().find(|other| id(other) == id(item)) {
@@ -333,14 +282,10 @@ fn diff_items<T: PartialEq>(
     }
     for item in actual {
         if !expected.iter().any(|other| id(other) == id(item)) {
-            out.push(format!(
-                "{kind} {}: on the board but not in the project",
-                id(item)
-            ));
+            out.push(format!("{kind} {}: on the board but not in the project", id(item)));
         }
     }
-    let same_ids =
-        expected.len() == actual.len() && expected.iter().zip(actual).all(|(a, b)| id(a) == id(b));
+    let same_ids = expected.len() == actual.len() && expected.iter().zip(actual).all(|(a, b)| id(a) == id(b));
     if !same_ids && out.len() == before {
         out.push(format!("{kind}s: stored in a different order"));
     }

@@ -6,48 +6,28 @@ use super::ops::OpError;
 use crate::protocol::board::{AngleUnit, Message, ServoMove, ServoStatus, ServoSwitches};
 
 fn ask(requester: &Requester, item: &str, message: Message) -> Result<Message, OpError> {
-    requester
-        .request(message)
-        .map_err(|source| OpError::Request {
-            item: item.to_string(),
-            source,
-        })
+    requester.request(message).map_err(|source| OpError::Request { item: item.to_string(), source })
 }
 
 fn refused_unless(ok: bool, item: &str) -> Result<(), OpError> {
-    if ok {
-        Ok(())
-    } else {
-        Err(OpError::Refused {
-            item: item.to_string(),
-        })
-    }
+    if ok { Ok(()) } else { Err(OpError::Refused { item: item.to_string() }) }
 }
 
 fn unexpected(item: &str, response: &Message) -> OpError {
-    OpError::Unexpected {
-        item: item.to_string(),
-        response: response.name(),
-    }
+    OpError::Unexpected { item: item.to_string(), response: response.name() }
 }
 
 impl Requester {
     /// Moves servos now (20050, no response). `interval_10ms` is the move's duration.
     pub fn move_servos(&self, moves: Vec<ServoMove>) -> Result<(), OpError> {
         self.send(Message::ExecuteActionRequest { moves })
-            .map_err(|source| OpError::Request {
-                item: "move servos".into(),
-                source,
-            })
+            .map_err(|source| OpError::Request { item: "move servos".into(), source })
     }
 
     /// Runs a stored action (20060, no response).
     pub fn run_action(&self, action_id: i32) -> Result<(), OpError> {
         self.send(Message::ExecuteActionExRequest { action_id })
-            .map_err(|source| OpError::Request {
-                item: format!("run action {action_id}"),
-                source,
-            })
+            .map_err(|source| OpError::Request { item: format!("run action {action_id}"), source })
     }
 
     /// Runs a stored macro (30090).
@@ -97,10 +77,7 @@ impl Requester {
     /// Free and total memory in bytes (10030).
     pub fn memory(&self) -> Result<(i32, Option<i32>), OpError> {
         match ask(self, "memory size", Message::QueryMemorySizeRequest)? {
-            Message::QueryMemorySizeResponse {
-                free_bytes,
-                total_bytes,
-            } => Ok((free_bytes, total_bytes)),
+            Message::QueryMemorySizeResponse { free_bytes, total_bytes } => Ok((free_bytes, total_bytes)),
             other => Err(unexpected("memory size", &other)),
         }
     }
@@ -116,11 +93,7 @@ impl Requester {
     /// Subscribes to (or cancels) remote button events (40070).
     pub fn subscribe_buttons(&self, subscribe: bool) -> Result<(), OpError> {
         let item = "button events";
-        match ask(
-            self,
-            item,
-            Message::SubscribeButtonEventRequest { subscribe },
-        )? {
+        match ask(self, item, Message::SubscribeButtonEventRequest { subscribe })? {
             Message::SubscribeButtonEventResponse { ok } => refused_unless(ok, item),
             other => Err(unexpected(item, &other)),
         }

@@ -10,9 +10,7 @@ mod session;
 pub use client::{Board, BoardCommand, BoardDriver, BoardEvent, Reply, Requester};
 pub use image::{BoardImage, ImageError};
 pub use ops::{
-    BoardInfo, Cancel, ImportOptions, ImportReport, OpError, Phase, Progress, backup_path,
-    board_info, export, import, read_image,
+    BoardInfo, Cancel, ImportOptions, ImportReport, OpError, Phase, Progress, backup_path, board_info, export, import,
+    read_image,
 };
-pub use session::{
-    RequestError, RequestId, Session, SessionConfig, SessionEvent, Traffic, is_idempotent,
-};
+pub use session::{RequestError, RequestId, Session, SessionConfig, SessionEvent, Traffic, is_idempotent};

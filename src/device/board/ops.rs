@@ -52,9 +52,7 @@ impl Cancel {
 
     /// A token that is never triggered.
     pub fn never() -> Self {
-        Self {
-            requested: crossbeam_channel::never(),
-        }
+        Self { requested: crossbeam_channel::never() }
     }
 
     fn check(&self) -> Result<(), OpError> {
@@ -133,11 +131,7 @@ pub enum OpError {
 }
 
 fn list(problems: &[Problem]) -> String {
-    problems
-        .iter()
-        .map(ToString::to_string)
-        .collect::<Vec<_>>()
-        .join("\n")
+    problems.iter().map(ToString::to_string).collect::<Vec<_>>().join("\n")
 }
 
 struct Run<'a> {
@@ -152,26 +146,11 @@ struct Run<'a> {
 impl Run<'_> {
     fn step(&mut self, item: String, message: Message) -> Result<Message, OpError> {
         self.cancel.check()?;
-        (self.progress)(&Progress {
-            phase: self.phase,
-            done: self.done,
-            total: self.total,
-            item: item.clone(),
-        });
-        let response = self
-            .requester
-            .request(message)
-            .map_err(|source| OpError::Request {
-                item: item.clone(),
-                source,
-            })?;
+        (self.progress)(&Progress { phase: self.phase, done: self.done, total: self.total, item: item.clone() });
+        let response =
+            self.requester.request(message).map_err(|source| OpError::Request { item: item.clone(), source })?;
         self.done += 1;
-        (self.progress)(&Progress {
-            phase: self.phase,
-            done: self.done,
-            total: self.total,
-            item,
-        });
+        (self.progress)(&Progress { phase: self.phase, done: self.done, total: self.total, item });
         Ok(response)
     }
 
@@ -181,10 +160,7 @@ impl Run<'_> {
         match result_of(&response) {
             Some(true) => Ok(()),
             Some(false) => Err(OpError::Refused { item }),
-            None => Err(OpError::Unexpected {
-                item,
-                response: response.name(),
-            }),
+            None => Err(OpError::Unexpected { item, response: response.name() }),
         }
     }
 }
@@ -210,10 +186,7 @@ fn result_of(message: &Message) -> Option<bool> {
 }
 
 fn unexpected(item: &str, response: &Message) -> OpError {
-    OpError::Unexpected {
-        item: item.to_string(),
-        response: response.name(),
-    }
+    OpError::Unexpected { item: item.to_string(), response: response.name() }
 }
 
 /// Reads everything the board stores, in the order of the export conversation:
@@ -234,14 +207,7 @@ fn read_image_as(
     cancel: &Cancel,
 ) -> Result<BoardImage, OpError> {
     use Message as M;
-    let mut run = Run {
-        requester,
-        progress,
-        cancel,
-        phase,
-        done: 0,
-        total: 6,
-    };
+    let mut run = Run { requester, progress, cancel, phase, done: 0, total: 6 };
     let mut image = BoardImage::default();
 
     let item = "project id".to_string();
@@ -263,15 +229,8 @@ fn read_image_as(
     run.total += actions.len();
     for entry in actions {
         let item = format!("action {} {:?}", entry.id, entry.caption);
-        match run.step(
-            item.clone(),
-            M::QueryActionRequest {
-                action_id: entry.id,
-            },
-        )? {
-            M::QueryActionResponse {
-                action: Some(action),
-            } => image.actions.push(action),
+        match run.step(item.clone(), M::QueryActionRequest { action_id: entry.id })? {
+            M::QueryActionResponse { action: Some(action) } => image.actions.push(action),
             M::QueryActionResponse { action: None } => return Err(OpError::ReadFailed { item }),
             other => return Err(unexpected(&item, &other)),
         }
@@ -286,9 +245,7 @@ fn read_image_as(
     for entry in macros {
         let item = format!("macro {} {:?}", entry.id, entry.caption);
         match run.step(item.clone(), M::QueryMacroRequest { macro_id: entry.id })? {
-            M::QueryMacroResponse {
-                macro_record: Some(record),
-            } => image.macros.push(record),
+            M::QueryMacroResponse { macro_record: Some(record) } => image.macros.push(record),
             M::QueryMacroResponse { macro_record: None } => {
                 return Err(OpError::ReadFailed { item });
             }
@@ -304,10 +261,7 @@ fn read_image_as(
     run.total += tables.len();
     for entry in tables {
         let item = format!("joystick table {} {:?}", entry.id, entry.caption);
-        match run.step(
-            item.clone(),
-            M::QueryJoystickTableRequest { table_id: entry.id },
-        )? {
+        match run.step(item.clone(), M::QueryJoystickTableRequest { table_id: entry.id })? {
             M::QueryJoystickTableResponse { table: Some(table) } => image.tables.push(table),
             M::QueryJoystickTableResponse { table: None } => {
                 return Err(OpError::ReadFailed { item });
@@ -325,11 +279,7 @@ fn read_image_as(
 }
 
 /// Reads the whole board into a project.
-pub fn export(
-    requester: &Requester,
-    progress: &mut dyn FnMut(&Progress),
-    cancel: &Cancel,
-) -> Result<Project, OpError> {
+pub fn export(requester: &Requester, progress: &mut dyn FnMut(&Progress), cancel: &Cancel) -> Result<Project, OpError> {
     Ok(read_image(requester, progress, cancel)?.to_project())
 }
 
@@ -379,38 +329,24 @@ pub fn import(
     cancel: &Cancel,
 ) -> Result<ImportReport, OpError> {
     use Message as M;
-    let problems: Vec<Problem> = project::validate(project)
-        .into_iter()
-        .filter(|p| p.severity == project::Severity::Error)
-        .collect();
+    let problems: Vec<Problem> =
+        project::validate(project).into_iter().filter(|p| p.severity == project::Severity::Error).collect();
     if !problems.is_empty() {
         return Err(OpError::Invalid { problems });
     }
     let image = BoardImage::from_project(project)?;
     let needed_bytes = image.footprint_bytes()?;
 
-    let mut run = Run {
-        requester,
-        progress,
-        cancel,
-        phase: Phase::Write,
-        done: 0,
-        total: 0,
-    };
+    // The fit check reads; the write phase proper starts after the backup.
+    let mut run = Run { requester, progress, cancel, phase: Phase::Read, done: 0, total: 1 };
     let item = "memory size".to_string();
     let total_bytes = match run.step(item.clone(), M::QueryMemorySizeRequest)? {
         // Boards that report only the free size: after clearing, free is all there is.
-        M::QueryMemorySizeResponse {
-            free_bytes,
-            total_bytes,
-        } => i64::from(total_bytes.unwrap_or(free_bytes)),
+        M::QueryMemorySizeResponse { free_bytes, total_bytes } => i64::from(total_bytes.unwrap_or(free_bytes)),
         other => return Err(unexpected(&item, &other)),
     };
     if i64::try_from(needed_bytes).unwrap_or(i64::MAX) > total_bytes {
-        return Err(OpError::DoesNotFit {
-            needed_bytes,
-            total_bytes,
-        });
+        return Err(OpError::DoesNotFit { needed_bytes, total_bytes });
     }
 
     let backup = match &options.backup_dir {
@@ -423,14 +359,7 @@ pub fn import(
         None => None,
     };
 
-    let mut run = Run {
-        requester,
-        progress,
-        cancel,
-        phase: Phase::Write,
-        done: 0,
-        total: 0,
-    };
+    let mut run = Run { requester, progress, cancel, phase: Phase::Write, done: 0, total: 0 };
     run.total = 2
         + usize::from(!image.servos.is_empty())
         + image.actions.len()
@@ -438,31 +367,18 @@ pub fn import(
         + image.tables.len()
         + usize::from(image.active_table != 0);
     run.write("clear all data".into(), M::ClearAllDataRequest)?;
-    run.write(
-        format!("project id {}", image.project_id),
-        M::WriteProjectIdRequest {
-            project_id: image.project_id,
-        },
-    )?;
+    run.write(format!("project id {}", image.project_id), M::WriteProjectIdRequest { project_id: image.project_id })?;
     if !image.servos.is_empty() {
         run.write(
             format!("{} servo parameter(s)", image.servos.len()),
-            M::AddServoParameterRequest {
-                servos: image.servos.clone(),
-            },
+            M::AddServoParameterRequest { servos: image.servos.clone() },
         )?;
     }
     for action in &image.actions {
-        run.write(
-            format!("action {} {:?}", action.action_id, action.caption),
-            M::AddActionRequest(action.clone()),
-        )?;
+        run.write(format!("action {} {:?}", action.action_id, action.caption), M::AddActionRequest(action.clone()))?;
     }
     for record in &image.macros {
-        run.write(
-            format!("macro {} {:?}", record.macro_id, record.caption),
-            M::AddMacroRequest(record.clone()),
-        )?;
+        run.write(format!("macro {} {:?}", record.macro_id, record.caption), M::AddMacroRequest(record.clone()))?;
     }
     for table in &image.tables {
         run.write(
@@ -473,9 +389,7 @@ pub fn import(
     if image.active_table != 0 {
         run.write(
             format!("active joystick table {}", image.active_table),
-            M::SetActiveJoystickTableRequest {
-                table_id: image.active_table,
-            },
+            M::SetActiveJoystickTableRequest { table_id: image.active_table },
         )?;
     }
     let written = run.done;
@@ -490,11 +404,7 @@ pub fn import(
     } else {
         false
     };
-    Ok(ImportReport {
-        backup,
-        written,
-        verified,
-    })
+    Ok(ImportReport { backup, written, verified })
 }
 
 /// A board's status at a glance.
@@ -518,11 +428,5 @@ pub fn board_info(requester: &Requester) -> Result<BoardInfo, OpError> {
     let (free_bytes, total_bytes) = requester.memory()?;
     let battery_permil = requester.battery_permil()?;
     let servos = requester.query_servos(ALL_SERVOS)?;
-    Ok(BoardInfo {
-        project_id,
-        free_bytes,
-        total_bytes,
-        battery_permil,
-        servos,
-    })
+    Ok(BoardInfo { project_id, free_bytes, total_bytes, battery_permil, servos })
 }

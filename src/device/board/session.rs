@@ -183,9 +183,9 @@ impl Session {
     }
 
     fn wire_time(&self, len: usize) -> Duration {
-        self.config.line_baud.map_or(Duration::ZERO, |baud| {
-            Duration::from_secs_f64(10.0 * len as f64 / f64::from(baud.max(1)))
-        })
+        self.config
+            .line_baud
+            .map_or(Duration::ZERO, |baud| Duration::from_secs_f64(10.0 * len as f64 / f64::from(baud.max(1))))
     }
 
     fn write(&mut self, now: Instant, bytes: Vec<u8>) {
@@ -199,11 +199,7 @@ impl Session {
     /// per servo, so the latest value always goes out and nothing stale does.
     pub fn set_live_moves(&mut self, now: Instant, moves: &[ServoMove]) {
         for servo_move in moves {
-            match self
-                .live
-                .iter_mut()
-                .find(|pending| pending.servo_id == servo_move.servo_id)
-            {
+            match self.live.iter_mut().find(|pending| pending.servo_id == servo_move.servo_id) {
                 Some(pending) => *pending = *servo_move,
                 None => self.live.push(*servo_move),
             }
@@ -220,9 +216,7 @@ impl Session {
         if self.live.is_empty() || self.line_free_at.is_some_and(|free| free > now) {
             return;
         }
-        let message = Message::ExecuteActionRequest {
-            moves: std::mem::take(&mut self.live),
-        };
+        let message = Message::ExecuteActionRequest { moves: std::mem::take(&mut self.live) };
         // At most 255 servos exist, so a live move always encodes.
         if let Ok(frame) = message.to_frame()
             && let Ok(bytes) = frame.to_bytes()
@@ -234,11 +228,7 @@ impl Session {
 
     /// Queues a request that expects a response; queries are retried on timeout.
     pub fn submit(&mut self, now: Instant, message: Message) -> Result<RequestId, EncodeError> {
-        let retries = if is_idempotent(&message) {
-            self.config.query_retries
-        } else {
-            0
-        };
+        let retries = if is_idempotent(&message) { self.config.query_retries } else { 0 };
         self.submit_with_retries(now, message, retries)
     }
 
@@ -253,14 +243,7 @@ impl Session {
         let bytes = frame.to_bytes()?;
         self.next_id += 1;
         let id = RequestId(self.next_id);
-        self.queue.push_back(Pending {
-            id,
-            message,
-            frame,
-            bytes,
-            retries_left: retries,
-            attempts: 0,
-        });
+        self.queue.push_back(Pending { id, message, frame, bytes, retries_left: retries, attempts: 0 });
         self.start_next(now);
         Ok(id)
     }
@@ -299,10 +282,7 @@ impl Session {
         self.write(now, request.bytes.clone());
         let (frame, message) = (request.frame.clone(), request.message.clone());
         self.log(|| Traffic::Sent { frame, message });
-        self.in_flight = Some(InFlight {
-            request,
-            deadline: now + self.config.response_timeout,
-        });
+        self.in_flight = Some(InFlight { request, deadline: now + self.config.response_timeout });
     }
 
     /// Bytes received from the board.
@@ -331,36 +311,24 @@ impl Session {
         let decoded = Message::from_frame(frame);
         if self.config.traffic {
             self.events
-                .push_back(SessionEvent::Traffic(Traffic::Received {
-                    frame: frame.clone(),
-                    message: decoded.clone(),
-                }));
+                .push_back(SessionEvent::Traffic(Traffic::Received { frame: frame.clone(), message: decoded.clone() }));
         }
-        let answers_in_flight = self
-            .in_flight
-            .as_ref()
-            .is_some_and(|f| f.request.frame.packet_id.checked_add(1) == Some(frame.packet_id));
+        let answers_in_flight =
+            self.in_flight.as_ref().is_some_and(|f| f.request.frame.packet_id.checked_add(1) == Some(frame.packet_id));
         if answers_in_flight {
             let Some(InFlight { request, .. }) = self.in_flight.take() else {
                 return;
             };
             match decoded {
-                Ok(message) => self.events.push_back(SessionEvent::Response {
-                    id: request.id,
-                    result: Ok(message),
-                }),
-                Err(error) => self.retry_or_fail(now, request, |request| RequestError::Malformed {
-                    request,
-                    error,
-                }),
+                Ok(message) => self.events.push_back(SessionEvent::Response { id: request.id, result: Ok(message) }),
+                Err(error) => self.retry_or_fail(now, request, |request| RequestError::Malformed { request, error }),
             }
             self.start_next(now);
             return;
         }
         match decoded {
             Ok(Message::ButtonEventResponse { button_id, event }) => {
-                self.events
-                    .push_back(SessionEvent::Button { button_id, event });
+                self.events.push_back(SessionEvent::Button { button_id, event });
             }
             Ok(message) => self.events.push_back(SessionEvent::Unsolicited(message)),
             // Already in the packet log; nothing waits for it.
@@ -368,32 +336,20 @@ impl Session {
         }
     }
 
-    fn retry_or_fail(
-        &mut self,
-        now: Instant,
-        mut request: Pending,
-        error: impl FnOnce(&'static str) -> RequestError,
-    ) {
+    fn retry_or_fail(&mut self, now: Instant, mut request: Pending, error: impl FnOnce(&'static str) -> RequestError) {
         if request.retries_left > 0 {
             request.retries_left -= 1;
             self.transmit(now, request);
         } else {
             let error = error(request.message.name());
-            self.events.push_back(SessionEvent::Response {
-                id: request.id,
-                result: Err(error),
-            });
+            self.events.push_back(SessionEvent::Response { id: request.id, result: Err(error) });
         }
     }
 
     /// Called when `now` has reached [`Session::poll_timeout`].
     pub fn handle_timeout(&mut self, now: Instant) {
         self.flush_live(now);
-        if self.decoder.pending_len() > 0
-            && self
-                .last_input
-                .is_some_and(|at| now >= at + self.config.idle_gap)
-        {
+        if self.decoder.pending_len() > 0 && self.last_input.is_some_and(|at| now >= at + self.config.idle_gap) {
             self.decoder.abandon_partial();
             self.drain_decoder(now);
         }
@@ -402,28 +358,18 @@ impl Session {
                 return;
             };
             let attempts = request.attempts;
-            self.retry_or_fail(now, request, |request| RequestError::Timeout {
-                request,
-                attempts,
-            });
+            self.retry_or_fail(now, request, |request| RequestError::Timeout { request, attempts });
             self.start_next(now);
         }
     }
 
     /// The link is gone: every pending request fails with `reason`.
     pub fn handle_disconnect(&mut self, reason: &str) {
-        let pending = self
-            .in_flight
-            .take()
-            .map(|f| f.request)
-            .into_iter()
-            .chain(self.queue.drain(..));
+        let pending = self.in_flight.take().map(|f| f.request).into_iter().chain(self.queue.drain(..));
         let failed: Vec<SessionEvent> = pending
             .map(|request| SessionEvent::Response {
                 id: request.id,
-                result: Err(RequestError::Disconnected {
-                    reason: reason.to_string(),
-                }),
+                result: Err(RequestError::Disconnected { reason: reason.to_string() }),
             })
             .collect();
         self.events.extend(failed);
@@ -444,14 +390,9 @@ impl Session {
     /// When [`Session::handle_timeout`] is next needed.
     pub fn poll_timeout(&self) -> Option<Instant> {
         let response = self.in_flight.as_ref().map(|f| f.deadline);
-        let idle = (self.decoder.pending_len() > 0)
-            .then(|| self.last_input.map(|at| at + self.config.idle_gap))
-            .flatten();
-        let live = if self.live.is_empty() {
-            None
-        } else {
-            self.line_free_at
-        };
+        let idle =
+            (self.decoder.pending_len() > 0).then(|| self.last_input.map(|at| at + self.config.idle_gap)).flatten();
+        let live = if self.live.is_empty() { None } else { self.line_free_at };
         [response, idle, live].into_iter().flatten().min()
     }
 }
@@ -497,42 +438,20 @@ mod tests {
         let t0 = Instant::now();
         let mut session = Session::new(config());
         let first = session.submit(t0, Message::QueryProjectIdRequest).unwrap();
-        let second = session
-            .submit(t0, Message::QueryRemainPowerRequest)
-            .unwrap();
-        assert_eq!(
-            sent(&mut session),
-            [Message::QueryProjectIdRequest],
-            "only the first goes out"
-        );
+        let second = session.submit(t0, Message::QueryRemainPowerRequest).unwrap();
+        assert_eq!(sent(&mut session), [Message::QueryProjectIdRequest], "only the first goes out");
         assert_eq!(session.pending_requests(), 2);
 
-        session.handle_input(
-            t0,
-            &bytes(&Message::QueryProjectIdResponse { project_id: 7 }),
-        );
+        session.handle_input(t0, &bytes(&Message::QueryProjectIdResponse { project_id: 7 }));
         assert_eq!(
             events(&mut session),
-            [SessionEvent::Response {
-                id: first,
-                result: Ok(Message::QueryProjectIdResponse { project_id: 7 })
-            }]
+            [SessionEvent::Response { id: first, result: Ok(Message::QueryProjectIdResponse { project_id: 7 }) }]
         );
-        assert_eq!(
-            sent(&mut session),
-            [Message::QueryRemainPowerRequest],
-            "then the second"
-        );
-        session.handle_input(
-            t0,
-            &bytes(&Message::QueryRemainPowerResponse { permil: 900 }),
-        );
+        assert_eq!(sent(&mut session), [Message::QueryRemainPowerRequest], "then the second");
+        session.handle_input(t0, &bytes(&Message::QueryRemainPowerResponse { permil: 900 }));
         assert_eq!(
             events(&mut session),
-            [SessionEvent::Response {
-                id: second,
-                result: Ok(Message::QueryRemainPowerResponse { permil: 900 })
-            }]
+            [SessionEvent::Response { id: second, result: Ok(Message::QueryRemainPowerResponse { permil: 900 }) }]
         );
         assert_eq!(session.poll_timeout(), None);
     }
@@ -543,20 +462,13 @@ mod tests {
         let mut session = Session::new(config());
         let id = session.submit(t0, Message::QueryProjectIdRequest).unwrap();
         assert_eq!(sent(&mut session).len(), 1);
-        assert_eq!(
-            session.poll_timeout(),
-            Some(t0 + Duration::from_millis(100))
-        );
+        assert_eq!(session.poll_timeout(), Some(t0 + Duration::from_millis(100)));
 
         session.handle_timeout(t0 + Duration::from_millis(99));
         assert_eq!(sent(&mut session), [], "not yet");
         let t1 = t0 + Duration::from_millis(100);
         session.handle_timeout(t1);
-        assert_eq!(
-            sent(&mut session),
-            [Message::QueryProjectIdRequest],
-            "retried once"
-        );
+        assert_eq!(sent(&mut session), [Message::QueryProjectIdRequest], "retried once");
         assert_eq!(events(&mut session), []);
 
         session.handle_timeout(t1 + Duration::from_millis(100));
@@ -564,10 +476,7 @@ mod tests {
             events(&mut session),
             [SessionEvent::Response {
                 id,
-                result: Err(RequestError::Timeout {
-                    request: "QueryProjectIDRequest",
-                    attempts: 2
-                })
+                result: Err(RequestError::Timeout { request: "QueryProjectIDRequest", attempts: 2 })
             }]
         );
     }
@@ -576,9 +485,7 @@ mod tests {
     fn a_retried_query_succeeds_when_the_second_response_comes() {
         let t0 = Instant::now();
         let mut session = Session::new(config());
-        let id = session
-            .submit(t0, Message::QueryActiveJoystickTableRequest)
-            .unwrap();
+        let id = session.submit(t0, Message::QueryActiveJoystickTableRequest).unwrap();
         session.handle_timeout(t0 + Duration::from_millis(100));
         assert_eq!(sent(&mut session).len(), 2);
         session.handle_input(
@@ -587,10 +494,7 @@ mod tests {
         );
         assert_eq!(
             events(&mut session),
-            [SessionEvent::Response {
-                id,
-                result: Ok(Message::QueryActiveJoystickTableResponse { table_id: 3 })
-            }]
+            [SessionEvent::Response { id, result: Ok(Message::QueryActiveJoystickTableResponse { table_id: 3 }) }]
         );
     }
 
@@ -600,11 +504,7 @@ mod tests {
         let mut session = Session::new(config());
         let id = session.submit(t0, Message::ClearAllDataRequest).unwrap();
         session.handle_timeout(t0 + Duration::from_millis(100));
-        assert_eq!(
-            sent(&mut session),
-            [Message::ClearAllDataRequest],
-            "sent once only"
-        );
+        assert_eq!(sent(&mut session), [Message::ClearAllDataRequest], "sent once only");
         assert!(matches!(
             events(&mut session).as_slice(),
             [SessionEvent::Response { id: got, result: Err(RequestError::Timeout { attempts: 1, .. }) }] if *got == id
@@ -616,10 +516,7 @@ mod tests {
         let t0 = Instant::now();
         let mut session = Session::new(config());
         let id = session.submit(t0, Message::QueryProjectIdRequest).unwrap();
-        let mut stream = bytes(&Message::ButtonEventResponse {
-            button_id: 0x8000_0001,
-            event: ButtonEvent::Press,
-        });
+        let mut stream = bytes(&Message::ButtonEventResponse { button_id: 0x8000_0001, event: ButtonEvent::Press });
         stream.extend(bytes(&Message::QueryProjectIdResponse { project_id: 5 }));
         // Split mid-frame, as a serial port delivers it.
         session.handle_input(t0, &stream[..7]);
@@ -627,14 +524,8 @@ mod tests {
         assert_eq!(
             events(&mut session),
             [
-                SessionEvent::Button {
-                    button_id: 0x8000_0001,
-                    event: ButtonEvent::Press
-                },
-                SessionEvent::Response {
-                    id,
-                    result: Ok(Message::QueryProjectIdResponse { project_id: 5 })
-                },
+                SessionEvent::Button { button_id: 0x8000_0001, event: ButtonEvent::Press },
+                SessionEvent::Response { id, result: Ok(Message::QueryProjectIdResponse { project_id: 5 }) },
             ]
         );
     }
@@ -644,12 +535,7 @@ mod tests {
         let t0 = Instant::now();
         let mut session = Session::new(config());
         session.handle_input(t0, &bytes(&Message::AddActionResponse { ok: true }));
-        assert_eq!(
-            events(&mut session),
-            [SessionEvent::Unsolicited(Message::AddActionResponse {
-                ok: true
-            })]
-        );
+        assert_eq!(events(&mut session), [SessionEvent::Unsolicited(Message::AddActionResponse { ok: true })]);
     }
 
     #[test]
@@ -671,20 +557,14 @@ mod tests {
     #[test]
     fn a_stalled_partial_frame_is_given_up_after_the_idle_gap() {
         let t0 = Instant::now();
-        let mut session = Session::new(SessionConfig {
-            traffic: true,
-            ..config()
-        });
+        let mut session = Session::new(SessionConfig { traffic: true, ..config() });
         // A header claiming 200 bytes, then silence.
         session.handle_input(t0, &[0x13, 0x4c, 0x05, 0x1d, 0x33, 0x75, 200, 0]);
         assert_eq!(session.poll_timeout(), Some(t0 + Duration::from_millis(20)));
         session.handle_timeout(t0 + Duration::from_millis(20));
         assert!(matches!(
             events(&mut session).as_slice(),
-            [SessionEvent::Traffic(Traffic::Skipped {
-                bytes: 8,
-                reason: SkipReason::Truncated { .. }
-            })]
+            [SessionEvent::Traffic(Traffic::Skipped { bytes: 8, reason: SkipReason::Truncated { .. } })]
         ));
         assert_eq!(session.poll_timeout(), None);
     }
@@ -693,26 +573,14 @@ mod tests {
     fn incoming_bytes_extend_the_wait_for_a_long_response() {
         let t0 = Instant::now();
         let mut session = Session::new(config());
-        session
-            .submit(t0, Message::QueryJoystickTableRequest { table_id: 1 })
-            .unwrap();
+        session.submit(t0, Message::QueryJoystickTableRequest { table_id: 1 }).unwrap();
         session.handle_input(t0 + Duration::from_millis(90), &[0x13, 0x4c]);
-        assert_eq!(
-            session.poll_timeout(),
-            Some(t0 + Duration::from_millis(110)),
-            "idle gap first"
-        );
+        assert_eq!(session.poll_timeout(), Some(t0 + Duration::from_millis(110)), "idle gap first");
         session.handle_input(t0 + Duration::from_millis(105), &[0x05]);
-        assert_eq!(
-            session.poll_timeout(),
-            Some(t0 + Duration::from_millis(125))
-        );
+        assert_eq!(session.poll_timeout(), Some(t0 + Duration::from_millis(125)));
         session.handle_timeout(t0 + Duration::from_millis(125));
         // The partial frame is dropped, but the request still waits until 205 ms.
-        assert_eq!(
-            session.poll_timeout(),
-            Some(t0 + Duration::from_millis(205))
-        );
+        assert_eq!(session.poll_timeout(), Some(t0 + Duration::from_millis(205)));
     }
 
     #[test]
@@ -722,20 +590,12 @@ mod tests {
         let a = session.submit(t0, Message::QueryProjectIdRequest).unwrap();
         let b = session.submit(t0, Message::QueryMacroListRequest).unwrap();
         session.handle_disconnect("cable pulled");
-        let failed = RequestError::Disconnected {
-            reason: "cable pulled".into(),
-        };
+        let failed = RequestError::Disconnected { reason: "cable pulled".into() };
         assert_eq!(
             events(&mut session),
             [
-                SessionEvent::Response {
-                    id: a,
-                    result: Err(failed.clone())
-                },
-                SessionEvent::Response {
-                    id: b,
-                    result: Err(failed)
-                }
+                SessionEvent::Response { id: a, result: Err(failed.clone()) },
+                SessionEvent::Response { id: b, result: Err(failed) }
             ]
         );
         assert_eq!(session.pending_requests(), 0);
@@ -747,13 +607,8 @@ mod tests {
         let mut session = Session::new(config());
         session.submit(t0, Message::QueryProjectIdRequest).unwrap();
         sent(&mut session);
-        session
-            .send(t0, Message::ExecuteActionExRequest { action_id: 4 })
-            .unwrap();
-        assert_eq!(
-            sent(&mut session),
-            [Message::ExecuteActionExRequest { action_id: 4 }]
-        );
+        session.send(t0, Message::ExecuteActionExRequest { action_id: 4 }).unwrap();
+        assert_eq!(sent(&mut session), [Message::ExecuteActionExRequest { action_id: 4 }]);
         assert_eq!(session.pending_requests(), 1);
     }
 
@@ -761,50 +616,23 @@ mod tests {
     fn live_moves_are_coalesced_while_the_line_is_busy() {
         let t0 = Instant::now();
         // 10 000 baud: a 15-byte one-servo move (9 + 1 + 5) takes 15 ms on the wire.
-        let mut session = Session::new(SessionConfig {
-            line_baud: Some(10_000),
-            ..config()
-        });
-        let to = |degree| {
-            [ServoMove {
-                servo_id: 1,
-                degree,
-                interval_10ms: 0,
-            }]
-        };
+        let mut session = Session::new(SessionConfig { line_baud: Some(10_000), ..config() });
+        let to = |degree| [ServoMove { servo_id: 1, degree, interval_10ms: 0 }];
         session.set_live_moves(t0, &to(10));
-        assert_eq!(
-            sent(&mut session),
-            [Message::ExecuteActionRequest {
-                moves: to(10).to_vec()
-            }]
-        );
+        assert_eq!(sent(&mut session), [Message::ExecuteActionRequest { moves: to(10).to_vec() }]);
         for (ms, degree) in [(1, 20), (5, 30), (14, 40)] {
             session.set_live_moves(t0 + Duration::from_millis(ms), &to(degree));
             assert_eq!(sent(&mut session), [], "the line is busy at {ms} ms");
         }
         // Another servo joins the pending move.
-        session.set_live_moves(
-            t0 + Duration::from_millis(14),
-            &[ServoMove {
-                servo_id: 2,
-                degree: -5,
-                interval_10ms: 0,
-            }],
-        );
+        session
+            .set_live_moves(t0 + Duration::from_millis(14), &[ServoMove { servo_id: 2, degree: -5, interval_10ms: 0 }]);
         assert_eq!(session.poll_timeout(), Some(t0 + Duration::from_millis(15)));
         session.handle_timeout(t0 + Duration::from_millis(15));
         assert_eq!(
             sent(&mut session),
             [Message::ExecuteActionRequest {
-                moves: vec![
-                    to(40)[0],
-                    ServoMove {
-                        servo_id: 2,
-                        degree: -5,
-                        interval_10ms: 0
-                    }
-                ]
+                moves: vec![to(40)[0], ServoMove { servo_id: 2, degree: -5, interval_10ms: 0 }]
             }],
             "only the latest value of each servo"
         );

@@ -9,9 +9,7 @@
 //! so the bytes held for it are skipped and re-scanned.
 
 use super::frame::Frame;
-use super::frame::{
-    HEADER_LEN, MAX_CONTENT_LEN, OVERHEAD_LEN, checksum, find_magic, magic_prefix_suffix_len,
-};
+use super::frame::{HEADER_LEN, MAX_CONTENT_LEN, OVERHEAD_LEN, checksum, find_magic, magic_prefix_suffix_len};
 
 /// Why the decoder skipped bytes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -81,12 +79,7 @@ impl FrameDecoder {
     /// A decoder that treats a header claiming more than `max_content_len`
     /// content bytes as corrupt, without waiting for those bytes.
     pub fn with_max_content_len(max_content_len: usize) -> Self {
-        Self {
-            buffer: Vec::new(),
-            start: 0,
-            max_content_len,
-            abandon: false,
-        }
+        Self { buffer: Vec::new(), start: 0, max_content_len, abandon: false }
     }
 
     /// Adds received bytes.
@@ -137,10 +130,7 @@ impl FrameDecoder {
         }
         let length = usize::from(u16::from_le_bytes([available[6], available[7]]));
         if length > self.max_content_len {
-            return Some(self.skip_candidate(SkipReason::LengthTooLong {
-                length,
-                max: self.max_content_len,
-            }));
+            return Some(self.skip_candidate(SkipReason::LengthTooLong { length, max: self.max_content_len }));
         }
         let frame_len = length + OVERHEAD_LEN;
         if available.len() < frame_len {
@@ -157,18 +147,11 @@ impl FrameDecoder {
         Some(DecoderEvent::Frame(Frame { packet_id, content }))
     }
 
-    fn give_up_if_abandoned(
-        &mut self,
-        actual_len: usize,
-        expected_len: usize,
-    ) -> Option<DecoderEvent> {
+    fn give_up_if_abandoned(&mut self, actual_len: usize, expected_len: usize) -> Option<DecoderEvent> {
         if !self.abandon {
             return None;
         }
-        Some(self.skip_candidate(SkipReason::Truncated {
-            expected_len,
-            actual_len,
-        }))
+        Some(self.skip_candidate(SkipReason::Truncated { expected_len, actual_len }))
     }
 
     /// Drops the candidate frame at the front: its first byte, and everything
@@ -211,10 +194,7 @@ mod tests {
         assert_eq!(
             drain(&mut decoder),
             [
-                DecoderEvent::Skipped {
-                    bytes: 3,
-                    reason: SkipReason::Garbage
-                },
+                DecoderEvent::Skipped { bytes: 3, reason: SkipReason::Garbage },
                 DecoderEvent::Frame(Frame::new(30010, vec![])),
             ]
         );
@@ -228,10 +208,7 @@ mod tests {
         decoder.push(&bytes[..2]);
         assert_eq!(drain(&mut decoder), []);
         decoder.push(&bytes[2..]);
-        assert_eq!(
-            drain(&mut decoder),
-            [DecoderEvent::Frame(Frame::new(30131, vec![7, 0, 0, 0]))]
-        );
+        assert_eq!(drain(&mut decoder), [DecoderEvent::Frame(Frame::new(30131, vec![7, 0, 0, 0]))]);
     }
 
     #[test]
@@ -249,23 +226,11 @@ mod tests {
             events[0],
             DecoderEvent::Skipped {
                 bytes: HEADER_LEN,
-                reason: SkipReason::BadChecksum {
-                    expected: outer[last].wrapping_sub(1),
-                    actual: outer[last]
-                }
+                reason: SkipReason::BadChecksum { expected: outer[last].wrapping_sub(1), actual: outer[last] }
             }
         );
-        assert_eq!(
-            events[1],
-            DecoderEvent::Frame(Frame::new(30131, vec![1, 2, 3, 4]))
-        );
-        assert_eq!(
-            events[2],
-            DecoderEvent::Skipped {
-                bytes: 1,
-                reason: SkipReason::Garbage
-            }
-        );
+        assert_eq!(events[1], DecoderEvent::Frame(Frame::new(30131, vec![1, 2, 3, 4])));
+        assert_eq!(events[2], DecoderEvent::Skipped { bytes: 1, reason: SkipReason::Garbage });
         assert_eq!(events.len(), 3);
     }
 
@@ -279,13 +244,7 @@ mod tests {
         assert_eq!(
             drain(&mut decoder),
             [
-                DecoderEvent::Skipped {
-                    bytes: 8,
-                    reason: SkipReason::LengthTooLong {
-                        length: 32767,
-                        max: 100
-                    }
-                },
+                DecoderEvent::Skipped { bytes: 8, reason: SkipReason::LengthTooLong { length: 32767, max: 100 } },
                 DecoderEvent::Frame(Frame::new(30010, vec![])),
             ]
         );
@@ -308,10 +267,7 @@ mod tests {
             [
                 DecoderEvent::Skipped {
                     bytes: 8,
-                    reason: SkipReason::Truncated {
-                        expected_len: 1009,
-                        actual_len: bytes.len()
-                    }
+                    reason: SkipReason::Truncated { expected_len: 1009, actual_len: bytes.len() }
                 },
                 DecoderEvent::Frame(Frame::new(30131, vec![9, 0, 0, 0])),
             ]
@@ -327,13 +283,7 @@ mod tests {
         decoder.abandon_partial();
         assert_eq!(
             drain(&mut decoder),
-            [DecoderEvent::Skipped {
-                bytes: 2,
-                reason: SkipReason::Truncated {
-                    expected_len: 8,
-                    actual_len: 2
-                }
-            }]
+            [DecoderEvent::Skipped { bytes: 2, reason: SkipReason::Truncated { expected_len: 8, actual_len: 2 } }]
         );
         assert_eq!(decoder.pending_len(), 0);
     }
@@ -348,10 +298,6 @@ mod tests {
             assert_eq!(decoder.poll(), None);
         }
         decoder.push(&bytes[..3]);
-        assert!(
-            decoder.buffer.len() < 8192,
-            "buffer grew to {}",
-            decoder.buffer.len()
-        );
+        assert!(decoder.buffer.len() < 8192, "buffer grew to {}", decoder.buffer.len());
     }
 }

@@ -4,9 +4,7 @@
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum ContentError {
     /// The content ended before a field was complete.
-    #[error(
-        "{message}: field `{field}` needs {expected_bytes} more byte(s), but only {actual_bytes} remain"
-    )]
+    #[error("{message}: field `{field}` needs {expected_bytes} more byte(s), but only {actual_bytes} remain")]
     TooShort {
         /// The message being decoded, e.g. `QueryActionResponse`.
         message: &'static str,
@@ -67,9 +65,7 @@ pub enum EncodeError {
         actual: usize,
     },
     /// The content does not fit the frame's 16-bit length field.
-    #[error(
-        "packet {packet_id}: content is {actual_bytes} bytes, but a frame carries at most {max_bytes}"
-    )]
+    #[error("packet {packet_id}: content is {actual_bytes} bytes, but a frame carries at most {max_bytes}")]
     ContentTooLong {
         /// The packet id.
         packet_id: u16,

@@ -50,12 +50,11 @@ impl Frame {
 
     /// Appends the frame's bytes to `out`.
     pub fn write_to(&self, out: &mut Vec<u8>) -> Result<(), EncodeError> {
-        let length =
-            u16::try_from(self.content.len()).map_err(|_| EncodeError::ContentTooLong {
-                packet_id: self.packet_id,
-                max_bytes: MAX_CONTENT_LEN,
-                actual_bytes: self.content.len(),
-            })?;
+        let length = u16::try_from(self.content.len()).map_err(|_| EncodeError::ContentTooLong {
+            packet_id: self.packet_id,
+            max_bytes: MAX_CONTENT_LEN,
+            actual_bytes: self.content.len(),
+        })?;
         let begin = out.len();
         out.extend_from_slice(&MAGIC);
         out.extend_from_slice(&self.packet_id.to_le_bytes());
@@ -74,18 +73,13 @@ pub fn checksum(bytes: &[u8]) -> u8 {
 
 /// Position of the first complete magic in `bytes`, if any.
 pub fn find_magic(bytes: &[u8]) -> Option<usize> {
-    bytes
-        .windows(MAGIC.len())
-        .position(|window| window == MAGIC)
+    bytes.windows(MAGIC.len()).position(|window| window == MAGIC)
 }
 
 /// Length of the longest suffix of `bytes` that is a proper prefix of the magic:
 /// those bytes may still become a frame once more bytes arrive.
 pub fn magic_prefix_suffix_len(bytes: &[u8]) -> usize {
-    (1..MAGIC.len())
-        .rev()
-        .find(|&len| bytes.len() >= len && bytes[bytes.len() - len..] == MAGIC[..len])
-        .unwrap_or(0)
+    (1..MAGIC.len()).rev().find(|&len| bytes.len() >= len && bytes[bytes.len() - len..] == MAGIC[..len]).unwrap_or(0)
 }
 
 #[cfg(test)]
@@ -96,25 +90,13 @@ mod tests {
     fn empty_request_frame_matches_the_page() {
         // QueryActionListRequest (30010) from the golden bytes.
         let bytes = Frame::new(30010, vec![]).to_bytes().unwrap();
-        assert_eq!(
-            bytes,
-            [0x13, 0x4c, 0x05, 0x1d, 0x3a, 0x75, 0x00, 0x00, 0x30]
-        );
+        assert_eq!(bytes, [0x13, 0x4c, 0x05, 0x1d, 0x3a, 0x75, 0x00, 0x00, 0x30]);
     }
 
     #[test]
     fn oversized_content_is_an_error_not_a_truncation() {
-        let err = Frame::new(10050, vec![0; MAX_CONTENT_LEN + 1])
-            .to_bytes()
-            .unwrap_err();
-        assert_eq!(
-            err,
-            EncodeError::ContentTooLong {
-                packet_id: 10050,
-                max_bytes: 65535,
-                actual_bytes: 65536
-            }
-        );
+        let err = Frame::new(10050, vec![0; MAX_CONTENT_LEN + 1]).to_bytes().unwrap_err();
+        assert_eq!(err, EncodeError::ContentTooLong { packet_id: 10050, max_bytes: 65535, actual_bytes: 65536 });
     }
 
     #[test]

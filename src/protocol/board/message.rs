@@ -4,8 +4,8 @@
 use super::error::{ContentError, EncodeError};
 use super::frame::Frame;
 use super::records::{
-    ActionRecord, AngleUnit, ButtonEvent, JoystickTableRecord, ListEntry, MacroRecord, ServoMove,
-    ServoParameter, ServoStatus, ServoSwitches, TransmissionMode,
+    ActionRecord, AngleUnit, ButtonEvent, JoystickTableRecord, ListEntry, MacroRecord, ServoMove, ServoParameter,
+    ServoStatus, ServoSwitches, TransmissionMode,
 };
 use super::wire::{Reader, Writer};
 
@@ -78,10 +78,7 @@ pub const MESSAGE_TABLE: [(u16, &str); 60] = [
 
 /// The protocol's name for a packet id, if the page defines it.
 pub fn message_name(packet_id: u16) -> Option<&'static str> {
-    MESSAGE_TABLE
-        .iter()
-        .find(|(id, _)| *id == packet_id)
-        .map(|(_, name)| *name)
+    MESSAGE_TABLE.iter().find(|(id, _)| *id == packet_id).map(|(_, name)| *name)
 }
 
 /// Whether a packet id is a request (ends in 0) rather than a response (decision D5).
@@ -445,8 +442,7 @@ impl Message {
         use Message as M;
         let mut w = Writer::new(self.name());
         match self {
-            M::TransmissionModeSettingRequest { mode }
-            | M::TransmissionModeSettingResponse { mode } => {
+            M::TransmissionModeSettingRequest { mode } | M::TransmissionModeSettingResponse { mode } => {
                 w.u8(mode.code());
             }
             M::ClearAllDataRequest
@@ -473,10 +469,7 @@ impl Message {
             | M::SubscribeButtonEventResponse { ok } => {
                 w.flag(*ok);
             }
-            M::QueryMemorySizeResponse {
-                free_bytes,
-                total_bytes,
-            } => {
+            M::QueryMemorySizeResponse { free_bytes, total_bytes } => {
                 w.i32(*free_bytes);
                 if let Some(total) = total_bytes {
                     w.i32(*total);
@@ -501,8 +494,7 @@ impl Message {
             M::SetServoParameterRequest(switches) | M::SetServoParameterResponse(switches) => {
                 switches.write(&mut w);
             }
-            M::SetAngleUnitRequest { servo_id, unit }
-            | M::SetAngleUnitResponse { servo_id, unit } => {
+            M::SetAngleUnitRequest { servo_id, unit } | M::SetAngleUnitResponse { servo_id, unit } => {
                 w.u8(*servo_id).u8(unit.code());
             }
             M::ExecuteActionRequest { moves } => {
@@ -529,16 +521,11 @@ impl Message {
                 w.count_i16(list_count_field(self.packet_id()), entries.len())?;
                 entries.iter().for_each(|entry| entry.write(&mut w));
             }
-            M::QueryActionResponse {
-                action: Some(action),
+            M::QueryActionResponse { action: Some(action) } | M::AddActionRequest(action) => action.write(&mut w)?,
+            M::QueryMacroResponse { macro_record: Some(record) } | M::AddMacroRequest(record) => {
+                record.write(&mut w)?;
             }
-            | M::AddActionRequest(action) => action.write(&mut w)?,
-            M::QueryMacroResponse {
-                macro_record: Some(record),
-            }
-            | M::AddMacroRequest(record) => record.write(&mut w)?,
-            M::QueryJoystickTableResponse { table: Some(table) }
-            | M::AddJoystickTableRequest(table) => {
+            M::QueryJoystickTableResponse { table: Some(table) } | M::AddJoystickTableRequest(table) => {
                 table.write(&mut w)?;
             }
             M::QueryActionResponse { action: None }
@@ -580,223 +567,122 @@ impl Message {
     pub fn decode(packet_id: u16, content: &[u8]) -> Result<Self, ContentError> {
         use Message as M;
         let Some(name) = message_name(packet_id) else {
-            return Ok(M::Unknown {
-                packet_id,
-                content: content.to_vec(),
-            });
+            return Ok(M::Unknown { packet_id, content: content.to_vec() });
         };
         let mut r = Reader::new(name, content);
         let message = match packet_id {
-            10010 => M::TransmissionModeSettingRequest {
-                mode: TransmissionMode::read(&mut r, "mode")?,
-            },
-            10011 => M::TransmissionModeSettingResponse {
-                mode: TransmissionMode::read(&mut r, "result")?,
-            },
+            10010 => M::TransmissionModeSettingRequest { mode: TransmissionMode::read(&mut r, "mode")? },
+            10011 => M::TransmissionModeSettingResponse { mode: TransmissionMode::read(&mut r, "result")? },
             10020 => M::ClearAllDataRequest,
-            10021 => M::ClearAllDataResponse {
-                ok: r.flag("result")?,
-            },
+            10021 => M::ClearAllDataResponse { ok: r.flag("result")? },
             10030 => M::QueryMemorySizeRequest,
             10031 => {
                 let free_bytes = r.i32("size")?;
                 // The original page gives length 4 (free size only): accept both.
-                let total_bytes = if content.len() == 4 {
-                    None
-                } else {
-                    Some(r.i32("totalSize")?)
-                };
-                M::QueryMemorySizeResponse {
-                    free_bytes,
-                    total_bytes,
-                }
+                let total_bytes = if content.len() == 4 { None } else { Some(r.i32("totalSize")?) };
+                M::QueryMemorySizeResponse { free_bytes, total_bytes }
             }
             10040 => M::QueryRemainPowerRequest,
-            10041 => M::QueryRemainPowerResponse {
-                permil: r.i16("permil")?,
-            },
+            10041 => M::QueryRemainPowerResponse { permil: r.i16("permil")? },
             10050 => M::SendDummyDataRequest { data: r.rest() },
             20010 => M::QueryServoListRequest,
             20011 => {
                 let count = usize::from(r.u8("servoCount")?);
-                M::QueryServoListResponse {
-                    servo_ids: r.group("servoCount", count, 1, |r| r.u8("servoID"))?,
-                }
+                M::QueryServoListResponse { servo_ids: r.group("servoCount", count, 1, |r| r.u8("servoID"))? }
             }
-            20020 => M::QueryServoRequest {
-                servo_id: r.u8("servoID")?,
-            },
+            20020 => M::QueryServoRequest { servo_id: r.u8("servoID")? },
             20021 => {
                 let count = usize::from(r.u8("servoCount")?);
                 M::QueryServoResponse {
-                    servos: r.group(
-                        "servoCount",
-                        count,
-                        ServoStatus::WIRE_LEN,
-                        ServoStatus::read,
-                    )?,
+                    servos: r.group("servoCount", count, ServoStatus::WIRE_LEN, ServoStatus::read)?,
                 }
             }
             20030 => M::SetServoParameterRequest(ServoSwitches::read(&mut r)?),
             20031 => M::SetServoParameterResponse(ServoSwitches::read(&mut r)?),
-            20040 => M::SetAngleUnitRequest {
-                servo_id: r.u8("servoID")?,
-                unit: AngleUnit::read(&mut r, "unitType")?,
-            },
-            20041 => M::SetAngleUnitResponse {
-                servo_id: r.u8("servoID")?,
-                unit: AngleUnit::read(&mut r, "unitType")?,
-            },
+            20040 => M::SetAngleUnitRequest { servo_id: r.u8("servoID")?, unit: AngleUnit::read(&mut r, "unitType")? },
+            20041 => M::SetAngleUnitResponse { servo_id: r.u8("servoID")?, unit: AngleUnit::read(&mut r, "unitType")? },
             20050 => {
                 let count = usize::from(r.u8("servoCount")?);
-                M::ExecuteActionRequest {
-                    moves: r.group("servoCount", count, ServoMove::WIRE_LEN, ServoMove::read)?,
-                }
+                M::ExecuteActionRequest { moves: r.group("servoCount", count, ServoMove::WIRE_LEN, ServoMove::read)? }
             }
-            20060 => M::ExecuteActionExRequest {
-                action_id: r.i32("actionID")?,
-            },
+            20060 => M::ExecuteActionExRequest { action_id: r.i32("actionID")? },
             30010 => M::QueryActionListRequest,
-            30011 => M::QueryActionListResponse {
-                actions: read_list(&mut r, "actionCount", "actionID", "actionCaption")?,
-            },
-            30020 => M::QueryActionRequest {
-                action_id: r.i32("actionID")?,
-            },
+            30011 => {
+                M::QueryActionListResponse { actions: read_list(&mut r, "actionCount", "actionID", "actionCaption")? }
+            }
+            30020 => M::QueryActionRequest { action_id: r.i32("actionID")? },
             30021 => {
                 let action_id = r.i32("actionID")?;
                 if action_id == 0 {
                     // Failure: whatever follows the id is arbitrary.
                     return Ok(M::QueryActionResponse { action: None });
                 }
-                M::QueryActionResponse {
-                    action: Some(ActionRecord::read_after_id(&mut r, action_id)?),
-                }
+                M::QueryActionResponse { action: Some(ActionRecord::read_after_id(&mut r, action_id)?) }
             }
             30030 => {
                 let action_id = r.i32("actionID")?;
                 M::AddActionRequest(ActionRecord::read_after_id(&mut r, action_id)?)
             }
-            30031 => M::AddActionResponse {
-                ok: r.flag("result")?,
-            },
-            30040 => M::DeleteActionRequest {
-                action_id: r.i32("actionID")?,
-            },
-            30041 => M::DeleteActionResponse {
-                ok: r.flag("result")?,
-            },
+            30031 => M::AddActionResponse { ok: r.flag("result")? },
+            30040 => M::DeleteActionRequest { action_id: r.i32("actionID")? },
+            30041 => M::DeleteActionResponse { ok: r.flag("result")? },
             30050 => M::QueryMacroListRequest,
-            30051 => M::QueryMacroListResponse {
-                macros: read_list(&mut r, "macroCount", "macroID", "macroCaption")?,
-            },
-            30060 => M::QueryMacroRequest {
-                macro_id: r.i32("macroID")?,
-            },
+            30051 => M::QueryMacroListResponse { macros: read_list(&mut r, "macroCount", "macroID", "macroCaption")? },
+            30060 => M::QueryMacroRequest { macro_id: r.i32("macroID")? },
             30061 => {
                 let macro_id = r.i32("macroID")?;
                 if macro_id == 0 {
                     return Ok(M::QueryMacroResponse { macro_record: None });
                 }
-                M::QueryMacroResponse {
-                    macro_record: Some(MacroRecord::read_after_id(&mut r, macro_id)?),
-                }
+                M::QueryMacroResponse { macro_record: Some(MacroRecord::read_after_id(&mut r, macro_id)?) }
             }
             30070 => {
                 let macro_id = r.i32("macroID")?;
                 M::AddMacroRequest(MacroRecord::read_after_id(&mut r, macro_id)?)
             }
-            30071 => M::AddMacroResponse {
-                ok: r.flag("result")?,
-            },
-            30080 => M::DeleteMacroRequest {
-                macro_id: r.i32("macroID")?,
-            },
-            30081 => M::DeleteMacroResponse {
-                ok: r.flag("result")?,
-            },
-            30090 => M::ExecuteMacroRequest {
-                macro_id: r.i32("macroID")?,
-            },
-            30091 => M::ExecuteMacroResponse {
-                ok: r.flag("result")?,
-            },
+            30071 => M::AddMacroResponse { ok: r.flag("result")? },
+            30080 => M::DeleteMacroRequest { macro_id: r.i32("macroID")? },
+            30081 => M::DeleteMacroResponse { ok: r.flag("result")? },
+            30090 => M::ExecuteMacroRequest { macro_id: r.i32("macroID")? },
+            30091 => M::ExecuteMacroResponse { ok: r.flag("result")? },
             30100 => M::QueryServoParameterRequest,
-            30101 => M::QueryServoParameterResponse {
-                servos: read_servo_parameters(&mut r)?,
-            },
-            30110 => M::AddServoParameterRequest {
-                servos: read_servo_parameters(&mut r)?,
-            },
-            30111 => M::AddServoParameterResponse {
-                ok: r.flag("result")?,
-            },
-            30120 => M::WriteProjectIdRequest {
-                project_id: r.i32("projectID")?,
-            },
-            30121 => M::WriteProjectIdResponse {
-                ok: r.flag("result")?,
-            },
+            30101 => M::QueryServoParameterResponse { servos: read_servo_parameters(&mut r)? },
+            30110 => M::AddServoParameterRequest { servos: read_servo_parameters(&mut r)? },
+            30111 => M::AddServoParameterResponse { ok: r.flag("result")? },
+            30120 => M::WriteProjectIdRequest { project_id: r.i32("projectID")? },
+            30121 => M::WriteProjectIdResponse { ok: r.flag("result")? },
             30130 => M::QueryProjectIdRequest,
-            30131 => M::QueryProjectIdResponse {
-                project_id: r.i32("projectID")?,
-            },
+            30131 => M::QueryProjectIdResponse { project_id: r.i32("projectID")? },
             40010 => M::QueryJoystickTableListRequest,
             40011 => M::QueryJoystickTableListResponse {
                 tables: read_list(&mut r, "tableCount", "tableID", "tableCaption")?,
             },
-            40020 => M::QueryJoystickTableRequest {
-                table_id: r.i32("tableID")?,
-            },
+            40020 => M::QueryJoystickTableRequest { table_id: r.i32("tableID")? },
             40021 => {
                 let table_id = r.i32("tableID")?;
                 if table_id == 0 {
                     return Ok(M::QueryJoystickTableResponse { table: None });
                 }
-                M::QueryJoystickTableResponse {
-                    table: Some(JoystickTableRecord::read_after_id(&mut r, table_id)?),
-                }
+                M::QueryJoystickTableResponse { table: Some(JoystickTableRecord::read_after_id(&mut r, table_id)?) }
             }
             40030 => {
                 let table_id = r.i32("tableID")?;
                 M::AddJoystickTableRequest(JoystickTableRecord::read_after_id(&mut r, table_id)?)
             }
-            40031 => M::AddJoystickTableResponse {
-                ok: r.flag("result")?,
-            },
-            40040 => M::DeleteJoystickTableRequest {
-                table_id: r.i32("tableID")?,
-            },
-            40041 => M::DeleteJoystickTableResponse {
-                ok: r.flag("result")?,
-            },
-            40050 => M::SetActiveJoystickTableRequest {
-                table_id: r.i32("tableID")?,
-            },
-            40051 => M::SetActiveJoystickTableResponse {
-                ok: r.flag("result")?,
-            },
+            40031 => M::AddJoystickTableResponse { ok: r.flag("result")? },
+            40040 => M::DeleteJoystickTableRequest { table_id: r.i32("tableID")? },
+            40041 => M::DeleteJoystickTableResponse { ok: r.flag("result")? },
+            40050 => M::SetActiveJoystickTableRequest { table_id: r.i32("tableID")? },
+            40051 => M::SetActiveJoystickTableResponse { ok: r.flag("result")? },
             40060 => M::QueryActiveJoystickTableRequest,
-            40061 => M::QueryActiveJoystickTableResponse {
-                table_id: r.i32("tableID")?,
-            },
-            40070 => M::SubscribeButtonEventRequest {
-                subscribe: r.flag("subscribe")?,
-            },
-            40071 => M::SubscribeButtonEventResponse {
-                ok: r.flag("result")?,
-            },
-            40081 => M::ButtonEventResponse {
-                button_id: r.u32("buttonID")?,
-                event: ButtonEvent::read(&mut r)?,
-            },
+            40061 => M::QueryActiveJoystickTableResponse { table_id: r.i32("tableID")? },
+            40070 => M::SubscribeButtonEventRequest { subscribe: r.flag("subscribe")? },
+            40071 => M::SubscribeButtonEventResponse { ok: r.flag("result")? },
+            40081 => M::ButtonEventResponse { button_id: r.u32("buttonID")?, event: ButtonEvent::read(&mut r)? },
             // Every id of MESSAGE_TABLE has an arm above; a table entry without
             // one is a programming error caught by the tests, reported here as unknown.
             _ => {
-                return Ok(M::Unknown {
-                    packet_id,
-                    content: content.to_vec(),
-                });
+                return Ok(M::Unknown { packet_id, content: content.to_vec() });
             }
         };
         r.finish()?;
@@ -819,17 +705,10 @@ fn read_list(
     caption_field: &'static str,
 ) -> Result<Vec<ListEntry>, ContentError> {
     let count = r.count_i16(count_field)?;
-    r.group(count_field, count, ListEntry::WIRE_LEN, |r| {
-        ListEntry::read(r, id_field, caption_field)
-    })
+    r.group(count_field, count, ListEntry::WIRE_LEN, |r| ListEntry::read(r, id_field, caption_field))
 }
 
 fn read_servo_parameters(r: &mut Reader<'_>) -> Result<Vec<ServoParameter>, ContentError> {
     let count = r.count_i16("servoCount")?;
-    r.group(
-        "servoCount",
-        count,
-        ServoParameter::WIRE_LEN,
-        ServoParameter::read,
-    )
+    r.group("servoCount", count, ServoParameter::WIRE_LEN, ServoParameter::read)
 }

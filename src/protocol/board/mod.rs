@@ -18,8 +18,7 @@ pub use error::{ContentError, EncodeError};
 pub use frame::{Frame, HEADER_LEN, MAGIC, MAX_CONTENT_LEN, OVERHEAD_LEN, checksum};
 pub use message::{ALL_SERVOS, MESSAGE_TABLE, Message, is_request_id, message_name};
 pub use records::{
-    ActionRecord, AngleUnit, ButtonEvent, ButtonRecord, CommandType, JoystickTableRecord,
-    ListEntry, MacroCommandRecord, MacroRecord, ServoMove, ServoParameter, ServoStatus,
-    ServoSwitches, TransmissionMode,
+    ActionRecord, AngleUnit, ButtonEvent, ButtonRecord, CommandType, JoystickTableRecord, ListEntry,
+    MacroCommandRecord, MacroRecord, ServoMove, ServoParameter, ServoStatus, ServoSwitches, TransmissionMode,
 };
 pub use wire::{STR32_LEN, truncate_utf8};

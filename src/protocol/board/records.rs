@@ -73,11 +73,7 @@ impl CommandType {
             0 => Ok(Self::RunAction),
             1 => Ok(Self::Delay),
             2 => Ok(Self::RunMacro),
-            other => Err(r.invalid(
-                "type",
-                "0 (action), 1 (delay) or 2 (macro)",
-                i64::from(other),
-            )),
+            other => Err(r.invalid("type", "0 (action), 1 (delay) or 2 (macro)", i64::from(other))),
         }
     }
 
@@ -107,11 +103,7 @@ impl ButtonEvent {
             1 => Ok(Self::Press),
             2 => Ok(Self::LongPress),
             4 => Ok(Self::Release),
-            other => Err(r.invalid(
-                "event",
-                "1 (press), 2 (long press) or 4 (release)",
-                i64::from(other),
-            )),
+            other => Err(r.invalid("event", "1 (press), 2 (long press) or 4 (release)", i64::from(other))),
         }
     }
 
@@ -183,11 +175,7 @@ pub struct ServoSwitches {
 
 impl ServoSwitches {
     pub(crate) fn read(r: &mut Reader<'_>) -> Result<Self, ContentError> {
-        Ok(Self {
-            servo_id: r.u8("servoID")?,
-            is_start: r.flag("isStart")?,
-            is_hold: r.flag("isHold")?,
-        })
+        Ok(Self { servo_id: r.u8("servoID")?, is_start: r.flag("isStart")?, is_hold: r.flag("isHold")? })
     }
 
     pub(crate) fn write(&self, w: &mut Writer) {
@@ -212,11 +200,7 @@ impl ServoMove {
     pub const WIRE_LEN: usize = 5;
 
     pub(crate) fn read(r: &mut Reader<'_>) -> Result<Self, ContentError> {
-        Ok(Self {
-            servo_id: r.u8("servoID")?,
-            degree: r.i16("degree")?,
-            interval_10ms: r.i16("interval")?,
-        })
+        Ok(Self { servo_id: r.u8("servoID")?, degree: r.i16("degree")?, interval_10ms: r.i16("interval")? })
     }
 
     pub(crate) fn write(&self, w: &mut Writer) {
@@ -243,10 +227,7 @@ impl ListEntry {
         id_field: &'static str,
         caption_field: &'static str,
     ) -> Result<Self, ContentError> {
-        Ok(Self {
-            id: r.i32(id_field)?,
-            caption: r.str32(caption_field)?,
-        })
+        Ok(Self { id: r.i32(id_field)?, caption: r.str32(caption_field)? })
     }
 
     pub(crate) fn write(&self, w: &mut Writer) {
@@ -270,17 +251,11 @@ impl ActionRecord {
         let caption = r.str32("actionCaption")?;
         let count = r.count_i16("stepCount")?;
         let steps = r.group("stepCount", count, ServoMove::WIRE_LEN, ServoMove::read)?;
-        Ok(Self {
-            action_id,
-            caption,
-            steps,
-        })
+        Ok(Self { action_id, caption, steps })
     }
 
     pub(crate) fn write(&self, w: &mut Writer) -> Result<(), EncodeError> {
-        w.i32(self.action_id)
-            .str32(&self.caption)
-            .count_i16("stepCount", self.steps.len())?;
+        w.i32(self.action_id).str32(&self.caption).count_i16("stepCount", self.steps.len())?;
         self.steps.iter().for_each(|step| step.write(w));
         Ok(())
     }
@@ -339,23 +314,12 @@ impl MacroRecord {
     pub(crate) fn read_after_id(r: &mut Reader<'_>, macro_id: i32) -> Result<Self, ContentError> {
         let caption = r.str32("macroCaption")?;
         let count = r.count_i16("commandCount")?;
-        let commands = r.group(
-            "commandCount",
-            count,
-            MacroCommandRecord::WIRE_LEN,
-            MacroCommandRecord::read,
-        )?;
-        Ok(Self {
-            macro_id,
-            caption,
-            commands,
-        })
+        let commands = r.group("commandCount", count, MacroCommandRecord::WIRE_LEN, MacroCommandRecord::read)?;
+        Ok(Self { macro_id, caption, commands })
     }
 
     pub(crate) fn write(&self, w: &mut Writer) -> Result<(), EncodeError> {
-        w.i32(self.macro_id)
-            .str32(&self.caption)
-            .count_i16("commandCount", self.commands.len())?;
+        w.i32(self.macro_id).str32(&self.caption).count_i16("commandCount", self.commands.len())?;
         self.commands.iter().for_each(|command| command.write(w));
         Ok(())
     }
@@ -385,9 +349,7 @@ impl ServoParameter {
     }
 
     pub(crate) fn write(&self, w: &mut Writer) {
-        w.u8(self.servo_id)
-            .i16(self.adjusted_degree)
-            .str32(&self.caption);
+        w.u8(self.servo_id).i16(self.adjusted_degree).str32(&self.caption);
     }
 }
 
@@ -448,23 +410,12 @@ impl JoystickTableRecord {
     pub(crate) fn read_after_id(r: &mut Reader<'_>, table_id: i32) -> Result<Self, ContentError> {
         let caption = r.str32("tableCaption")?;
         let count = r.count_i16("buttonCount")?;
-        let buttons = r.group(
-            "buttonCount",
-            count,
-            ButtonRecord::WIRE_LEN,
-            ButtonRecord::read,
-        )?;
-        Ok(Self {
-            table_id,
-            caption,
-            buttons,
-        })
+        let buttons = r.group("buttonCount", count, ButtonRecord::WIRE_LEN, ButtonRecord::read)?;
+        Ok(Self { table_id, caption, buttons })
     }
 
     pub(crate) fn write(&self, w: &mut Writer) -> Result<(), EncodeError> {
-        w.i32(self.table_id)
-            .str32(&self.caption)
-            .count_i16("buttonCount", self.buttons.len())?;
+        w.i32(self.table_id).str32(&self.caption).count_i16("buttonCount", self.buttons.len())?;
         self.buttons.iter().for_each(|button| button.write(w));
         Ok(())
     }

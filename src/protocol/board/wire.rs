@@ -15,11 +15,7 @@ pub(crate) struct Reader<'a> {
 
 impl<'a> Reader<'a> {
     pub(crate) fn new(message: &'static str, bytes: &'a [u8]) -> Self {
-        Self {
-            message,
-            bytes,
-            pos: 0,
-        }
+        Self { message, bytes, pos: 0 }
     }
 
     fn remaining(&self) -> usize {
@@ -105,11 +101,7 @@ impl<'a> Reader<'a> {
     /// A signed 16-bit repetition count, which must not be negative (decision D2).
     pub(crate) fn count_i16(&mut self, field: &'static str) -> Result<usize, ContentError> {
         let value = self.i16(field)?;
-        usize::try_from(value).map_err(|_| ContentError::NegativeCount {
-            message: self.message,
-            field,
-            actual: value,
-        })
+        usize::try_from(value).map_err(|_| ContentError::NegativeCount { message: self.message, field, actual: value })
     }
 
     /// Ends the read: the content must hold nothing more.
@@ -125,18 +117,8 @@ impl<'a> Reader<'a> {
         }
     }
 
-    pub(crate) fn invalid(
-        &self,
-        field: &'static str,
-        expected: &'static str,
-        actual: i64,
-    ) -> ContentError {
-        ContentError::InvalidValue {
-            message: self.message,
-            field,
-            expected,
-            actual,
-        }
+    pub(crate) fn invalid(&self, field: &'static str, expected: &'static str, actual: i64) -> ContentError {
+        ContentError::InvalidValue { message: self.message, field, expected, actual }
     }
 }
 
@@ -148,10 +130,7 @@ pub(crate) struct Writer {
 
 impl Writer {
     pub(crate) fn new(message: &'static str) -> Self {
-        Self {
-            message,
-            out: Vec::new(),
-        }
+        Self { message, out: Vec::new() }
     }
 
     pub(crate) fn u8(&mut self, value: u8) -> &mut Self {
@@ -186,40 +165,25 @@ impl Writer {
     pub(crate) fn str32(&mut self, value: &str) -> &mut Self {
         let fitted = truncate_utf8(value, STR32_LEN);
         self.out.extend_from_slice(fitted.as_bytes());
-        self.out
-            .resize(self.out.len() + STR32_LEN - fitted.len(), 0);
+        self.out.resize(self.out.len() + STR32_LEN - fitted.len(), 0);
         self
     }
 
     /// Writes an 8-bit count for a group of `len` entries.
-    pub(crate) fn count_u8(
-        &mut self,
-        field: &'static str,
-        len: usize,
-    ) -> Result<&mut Self, EncodeError> {
-        let count =
-            u8::try_from(len).map_err(|_| self.too_many(field, usize::from(u8::MAX), len))?;
+    pub(crate) fn count_u8(&mut self, field: &'static str, len: usize) -> Result<&mut Self, EncodeError> {
+        let count = u8::try_from(len).map_err(|_| self.too_many(field, usize::from(u8::MAX), len))?;
         Ok(self.u8(count))
     }
 
     /// Writes a signed 16-bit count for a group of `len` entries.
-    pub(crate) fn count_i16(
-        &mut self,
-        field: &'static str,
-        len: usize,
-    ) -> Result<&mut Self, EncodeError> {
+    pub(crate) fn count_i16(&mut self, field: &'static str, len: usize) -> Result<&mut Self, EncodeError> {
         let max = usize::try_from(i16::MAX).unwrap_or(usize::MAX);
         let count = i16::try_from(len).map_err(|_| self.too_many(field, max, len))?;
         Ok(self.i16(count))
     }
 
     fn too_many(&self, field: &'static str, max: usize, actual: usize) -> EncodeError {
-        EncodeError::TooMany {
-            message: self.message,
-            field,
-            max,
-            actual,
-        }
+        EncodeError::TooMany { message: self.message, field, max, actual }
     }
 
     pub(crate) fn finish(&mut self) -> Vec<u8> {
@@ -268,10 +232,7 @@ mod tests {
         let mut raw = [0u8; 32];
         raw[..3].copy_from_slice(&[b'a', 0xff, b'b']);
         raw[4] = b'z'; // after the NUL at 3: ignored
-        assert_eq!(
-            Reader::new("t", &raw).str32("caption").unwrap(),
-            "a\u{fffd}b"
-        );
+        assert_eq!(Reader::new("t", &raw).str32("caption").unwrap(), "a\u{fffd}b");
     }
 
     #[test]
@@ -285,9 +246,7 @@ mod tests {
     #[test]
     fn group_refuses_a_count_larger_than_the_content() {
         let mut reader = Reader::new("QueryActionListResponse", &[1, 2, 3]);
-        let err = reader
-            .group("actionCount", 30_000, 36, |r| r.u8("x"))
-            .unwrap_err();
+        let err = reader.group("actionCount", 30_000, 36, |r| r.u8("x")).unwrap_err();
         assert_eq!(
             err,
             ContentError::TooShort {

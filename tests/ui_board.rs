@@ -1,0 +1,147 @@
+//! The board panel, driven through egui_kittest against the in-process
+//! emulated board: upload with backup and verification, a refused item, and
+//! the end-to-end compose → upload → read back round trip.
+
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use std::time::{Duration, Instant};
+
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use servo_studio::device::board::BoardImage;
+use servo_studio::link::no_waker;
+use servo_studio::project::{Project, Servo};
+use servo_studio::sim::{Faults, SimConfig};
+use servo_studio::ui::{Action, BoardLink, BoardResult, StudioApp};
+
+fn harness(app: StudioApp) -> Harness<'static, StudioApp> {
+    Harness::builder()
+        .with_size(egui::vec2(1200.0, 800.0))
+        .with_context_setup(servo_studio::ui::fonts::install)
+        .build_ui_state(|ui, app: &mut StudioApp| app.show(ui), app)
+}
+
+/// Runs frames until `done` holds, failing after a deadline (the job runs on its own thread).
+fn run_until(harness: &mut Harness<'static, StudioApp>, what: &str, done: impl Fn(&StudioApp) -> bool) {
+    let deadline = Instant::now() + Duration::from_secs(10);
+    while !done(harness.state()) {
+        assert!(Instant::now() < deadline, "timed out waiting for {what}");
+        harness.step();
+    }
+    frames(harness);
+}
+
+/// A few frames: the app keeps repainting while a board is connected, so it never "settles".
+fn frames(harness: &mut Harness<'static, StudioApp>) {
+    harness.run_steps(3);
+}
+
+fn servos_only() -> Project {
+    let mut left = Servo::new(1, "左肩");
+    left.min_deg = -90;
+    left.max_deg = 90;
+    left.home_deg = 5;
+    Project { project_id: 42, servos: vec![left, Servo::new(2, "右肩")], ..Project::default() }
+}
+
+/// An app with a composed project (two captured poses) connected to a demo board
+/// that starts out holding `board`.
+fn composed(board: &Project, config: SimConfig, data_dir: &std::path::Path) -> Harness<'static, StudioApp> {
+    let mut app = StudioApp::new(servos_only(), None, no_waker()).with_data_dir(data_dir.to_path_buf());
+    app.link = Some(BoardLink::demo_with(board, config, no_waker()).unwrap());
+    let mut harness = harness(app);
+    frames(&mut harness);
+    // Compose through the UI: two poses.
+    harness.state_mut().apply(Action::SetPose { servo_id: 1, degree: -40 });
+    harness.get_by_label("Capture pose").click();
+    frames(&mut harness);
+    harness.state_mut().apply(Action::SetPose { servo_id: 2, degree: 25 });
+    harness.get_by_label("Capture pose").click();
+    frames(&mut harness);
+    assert_eq!(harness.state().document.project.actions.len(), 2);
+    harness.get_by_label("Board").click();
+    frames(&mut harness);
+    harness
+}
+
+#[test]
+fn upload_then_read_back_round_trips_and_keeps_a_backup() {
+    let data = tempfile::tempdir().unwrap();
+    let previous = Project { project_id: 9, ..Project::default() };
+    let mut harness = composed(&previous, SimConfig::default(), data.path());
+    let composed_project = harness.state().document.project.clone();
+
+    harness.get_by_label("Upload to board").click();
+    frames(&mut harness);
+    run_until(&mut harness, "the comparison", |app| app.pending.is_some());
+    let differences = harness.state().pending.as_ref().unwrap().differences.clone();
+    assert!(differences.iter().any(|d| d.contains("project id")), "{differences:?}");
+    harness.get_by_label("Back up the board, then overwrite it").click();
+    frames(&mut harness);
+    run_until(&mut harness, "the upload", |app| app.board_result.is_some());
+    match harness.state().board_result.clone().unwrap() {
+        BoardResult::Uploaded { items, backup } => {
+            // clear, project id, servo parameters, 2 actions
+            assert_eq!(items.len(), 5, "{items:?}");
+            assert!(items.iter().any(|item| item.starts_with("action 2")), "{items:?}");
+            let backup = backup.unwrap();
+            assert!(backup.starts_with(data.path().join("backups")));
+            assert_eq!(servo_studio::project::load(&backup).unwrap(), previous);
+        }
+        other => panic!("expected an upload, got {other:?}"),
+    }
+    assert!(harness.query_by_label_contains("Uploaded and verified 5 item(s)").is_some());
+
+    // Read it back: identical, and the project is replaced by what the board holds.
+    harness.get_by_label("Read board into project").click();
+    frames(&mut harness);
+    run_until(&mut harness, "the comparison", |app| app.pending.is_some());
+    assert_eq!(harness.state().pending.as_ref().unwrap().differences, Vec::<String>::new());
+    assert!(harness.query_by_label("The board already holds exactly this project.").is_some());
+    harness.get_by_label("Replace the project with the board").click();
+    frames(&mut harness);
+    let read_back = harness.state().document.project.clone();
+    assert_eq!(BoardImage::from_project(&read_back).unwrap(), BoardImage::from_project(&composed_project).unwrap());
+    // The client-side limits, which the board does not store, are kept: the
+    // project read back is exactly the one composed.
+    assert_eq!(read_back, composed_project);
+}
+
+#[test]
+fn an_upload_with_a_refused_item_shows_that_items_error() {
+    let data = tempfile::tempdir().unwrap();
+    let config = SimConfig { faults: Faults { refuse_add: vec![2], ..Faults::default() }, ..SimConfig::default() };
+    let mut harness = composed(&Project::default(), config, data.path());
+    harness.get_by_label("Upload to board").click();
+    frames(&mut harness);
+    run_until(&mut harness, "the comparison", |app| app.pending.is_some());
+    harness.get_by_label("Back up the board, then overwrite it").click();
+    frames(&mut harness);
+    run_until(&mut harness, "the upload", |app| app.board_result.is_some());
+    match harness.state().board_result.clone().unwrap() {
+        BoardResult::Failed { items, error } => {
+            assert!(error.contains("action 2 \"Pose 2\": the board refused it"), "{error}");
+            assert!(items.iter().any(|item| item.starts_with("action 1")), "action 1 was written: {items:?}");
+        }
+        other => panic!("expected a failure, got {other:?}"),
+    }
+    assert!(harness.query_by_label_contains("action 2 \"Pose 2\": the board refused it").is_some());
+}
+
+#[test]
+fn an_invalid_project_is_not_uploaded() {
+    let data = tempfile::tempdir().unwrap();
+    let mut harness = composed(&Project::default(), SimConfig::default(), data.path());
+    let mut broken = harness.state().document.project.clone();
+    broken.actions[0].steps[0].servo_id = 77;
+    harness
+        .state_mut()
+        .apply(Action::Edit { edit: servo_studio::project::Edit::ReplaceAll(Box::new(broken)), coalesce: None });
+    harness.get_by_label("Upload to board").click();
+    frames(&mut harness);
+    assert!(harness.state().job.is_none(), "no board operation starts");
+    match harness.state().board_result.clone().unwrap() {
+        BoardResult::Failed { error, .. } => assert!(error.contains("servo 77 does not exist"), "{error}"),
+        other => panic!("expected a failure, got {other:?}"),
+    }
+}
