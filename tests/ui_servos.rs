@@ -24,6 +24,12 @@ fn project() -> Project {
     Project { project_id: 7, servos: vec![left, head], ..Project::default() }
 }
 
+/// An app whose backups and recovery file go to a fresh folder, not the user's.
+fn new_app(project: Project) -> StudioApp {
+    let data = tempfile::tempdir().unwrap().keep();
+    StudioApp::new(project, None, no_waker()).with_data_dir(data)
+}
+
 fn harness(app: StudioApp) -> Harness<'static, StudioApp> {
     // Missing glyphs panic in the harness: the shipped CJK font must cover every caption.
     Harness::builder()
@@ -33,7 +39,7 @@ fn harness(app: StudioApp) -> Harness<'static, StudioApp> {
 }
 
 fn demo_harness() -> Harness<'static, StudioApp> {
-    let mut app = StudioApp::new(project(), None, no_waker());
+    let mut app = new_app(project());
     app.apply(Action::ConnectDemo);
     let mut harness = harness(app);
     harness.run();
@@ -88,7 +94,7 @@ fn a_drag_sends_coalesced_live_moves_and_the_last_value_arrives() {
 
 #[test]
 fn keyboard_nudges_the_focused_servo_by_1_and_10() {
-    let mut harness = harness(StudioApp::new(project(), None, no_waker()));
+    let mut harness = harness(new_app(project()));
     harness.run();
     harness.get_all_by_role(Role::Slider).nth(1).unwrap().focus();
     harness.run();
@@ -111,7 +117,7 @@ fn keyboard_nudges_the_focused_servo_by_1_and_10() {
 
 #[test]
 fn capture_pose_creates_an_action_and_undo_redo_restore_exact_states() {
-    let mut app = StudioApp::new(project(), None, no_waker());
+    let mut app = new_app(project());
     app.apply(Action::SetPose { servo_id: 1, degree: -30 });
     app.apply(Action::SetPose { servo_id: 3, degree: 200 });
     let mut harness = harness(app);
@@ -155,7 +161,7 @@ fn escape_stops_every_servo_holding_torque_and_blocks_moves_until_resume() {
 
 #[test]
 fn a_bad_port_is_a_readable_error() {
-    let mut app = StudioApp::new(project(), None, no_waker());
+    let mut app = new_app(project());
     app.apply(Action::Connect { port: "/dev/ttyNOPE-servo".into(), baud: 115_200 });
     let status = app.status.clone().unwrap();
     assert!(status.is_error);
@@ -165,7 +171,7 @@ fn a_bad_port_is_a_readable_error() {
 
 #[test]
 fn the_interface_switches_to_traditional_chinese() {
-    let mut app = StudioApp::new(project(), None, no_waker());
+    let mut app = new_app(project());
     app.apply(Action::SetLanguage(servo_studio::ui::Language::TraditionalChinese));
     let mut harness = harness(app);
     harness.run();

@@ -89,4 +89,35 @@ pub enum Action {
     BoardDismiss,
     /// Stop the running board operation after its current step.
     BoardCancel,
+    /// Start an empty project (asks first if there are unsaved changes).
+    NewProject,
+    /// Open a project file (asks first if there are unsaved changes).
+    Open(std::path::PathBuf),
+    /// Save to the document's file (or ask where, if it has none).
+    Save,
+    /// Save to this file.
+    SaveAs(std::path::PathBuf),
+    /// Answer to "unsaved changes": save first, then go on.
+    UnsavedSave,
+    /// Answer to "unsaved changes": drop them and go on.
+    UnsavedDiscard,
+    /// Answer to "unsaved changes": do nothing.
+    UnsavedCancel,
+    /// Take the autosaved project offered at start.
+    Recover,
+    /// Decline the autosaved project offered at start.
+    DeclineRecovery,
+    /// Write the recovery file now if there are unsaved changes.
+    Autosave,
+}
+
+/// What was asked for when the document had unsaved changes.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum AfterUnsaved {
+    /// Start an empty project.
+    New,
+    /// Open this file.
+    Open(std::path::PathBuf),
+    /// Close the window.
+    Quit,
 }

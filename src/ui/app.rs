@@ -10,11 +10,12 @@ use crate::link::Waker;
 use crate::project::{Action as ProjectAction, Edit, Project, Step, next_free_id};
 use crate::project::{has_errors, validate};
 use crate::protocol::board::ServoMove;
-use crate::ui::action::{Action, BoardIntent, Tab};
+use crate::ui::action::{Action, AfterUnsaved, BoardIntent, Tab};
 use crate::ui::board_link::{BoardLink, LinkNotice};
 use crate::ui::board_panel::{self, BoardResult, BoardView, PendingConfirm};
 use crate::ui::connection_bar::{ConnectionBar, LinkStatus};
 use crate::ui::document::Document;
+use crate::ui::files::{self, AUTOSAVE_EVERY, Recovery};
 use crate::ui::i18n::Language;
 use crate::ui::job::{Job, JobKind, JobOutcome};
 use crate::ui::servo_panel::{ServoPanel, ServoView};
@@ -60,6 +61,14 @@ pub struct StudioApp {
     pub board_result: Option<BoardResult>,
     /// Folder for backups and the recovery file.
     pub data_dir: PathBuf,
+    /// Recently opened or saved files, newest first.
+    pub recent: Vec<PathBuf>,
+    /// What waits on the "unsaved changes" question.
+    pub unsaved_prompt: Option<AfterUnsaved>,
+    /// Work autosaved by a session that did not end cleanly, offered at start.
+    pub recovery_offer: Option<Recovery>,
+    last_autosave: Instant,
+    quit_allowed: bool,
     compare_intent: Option<BoardIntent>,
     compared_board: Option<Project>,
     waker: Waker,
@@ -78,7 +87,7 @@ impl StudioApp {
     /// from the I/O thread when the board has something to show.
     pub fn new(project: Project, path: Option<PathBuf>, waker: Waker) -> Self {
         let pose = project.servos.iter().map(|servo| (servo.id, servo.home_deg)).collect();
-        Self {
+        let mut app = Self {
             document: Document::new(project, path),
             link: None,
             pose,
@@ -91,19 +100,93 @@ impl StudioApp {
             pending: None,
             board_result: None,
             data_dir: eframe::storage_dir("Servo Studio").unwrap_or_else(|| std::env::temp_dir().join("servo-studio")),
+            recent: Vec::new(),
+            unsaved_prompt: None,
+            recovery_offer: None,
+            last_autosave: Instant::now(),
+            quit_allowed: false,
             compare_intent: None,
             compared_board: None,
             waker,
             connection_bar: ConnectionBar::default(),
             servo_panel: ServoPanel::default(),
-        }
+        };
+        app.recovery_offer = files::read_recovery(&app.data_dir);
+        app
     }
 
     /// Keeps backups and the recovery file in `data_dir` instead of the
     /// platform's data folder.
     pub fn with_data_dir(mut self, data_dir: PathBuf) -> Self {
         self.data_dir = data_dir;
+        self.recovery_offer = files::read_recovery(&self.data_dir);
         self
+    }
+
+    fn replace_document(&mut self, project: Project, path: Option<PathBuf>) {
+        self.pose = project.servos.iter().map(|servo| (servo.id, servo.home_deg)).collect();
+        self.document = Document::new(project, path);
+        self.pending = None;
+        self.compared_board = None;
+    }
+
+    fn open_now(&mut self, path: PathBuf) {
+        match crate::project::load(&path) {
+            Ok(project) => {
+                files::remember(&mut self.recent, &path);
+                self.report(format!("opened {}", path.display()), false);
+                self.replace_document(project, Some(path));
+            }
+            Err(error) => self.report(format!("cannot open {}: {error}", path.display()), true),
+        }
+    }
+
+    fn save_to(&mut self, path: PathBuf) -> bool {
+        match crate::project::save(&path, &self.document.project) {
+            Ok(()) => {
+                files::remember(&mut self.recent, &path);
+                files::clear_recovery(&self.data_dir);
+                self.report(format!("saved {}", path.display()), false);
+                self.document.path = Some(path);
+                self.document.dirty = false;
+                true
+            }
+            Err(error) => {
+                self.report(error.to_string(), true);
+                false
+            }
+        }
+    }
+
+    fn after_unsaved(&mut self, next: AfterUnsaved) {
+        match next {
+            AfterUnsaved::New => {
+                self.replace_document(Project::default(), None);
+                self.report("new project", false);
+            }
+            AfterUnsaved::Open(path) => self.open_now(path),
+            AfterUnsaved::Quit => {
+                files::clear_recovery(&self.data_dir);
+                self.quit_allowed = true;
+            }
+        }
+    }
+
+    /// Asks about unsaved changes before `next`, or does it at once.
+    fn guard_unsaved(&mut self, next: AfterUnsaved) {
+        if self.document.dirty {
+            self.unsaved_prompt = Some(next);
+        } else {
+            self.after_unsaved(next);
+        }
+    }
+
+    /// Writes the recovery file if there are unsaved changes and it is due.
+    pub fn autosave_if_due(&mut self, now: Instant) {
+        if self.document.dirty && now.saturating_duration_since(self.last_autosave) >= AUTOSAVE_EVERY {
+            self.apply(Action::Autosave);
+            self.last_autosave = now;
+        }
     }
 
     fn start_job(&mut self, kind: JobKind) {
@@ -256,6 +339,52 @@ impl StudioApp {
                     job.cancel();
                 }
             }
+            Action::NewProject => self.guard_unsaved(AfterUnsaved::New),
+            Action::Open(path) => self.guard_unsaved(AfterUnsaved::Open(path)),
+            Action::Save => match self.document.path.clone() {
+                Some(path) => {
+                    self.save_to(path);
+                }
+                None => self.report("this project has no file yet: use Save As", true),
+            },
+            Action::SaveAs(path) => {
+                self.save_to(path);
+            }
+            Action::UnsavedSave => {
+                let saved = match self.document.path.clone() {
+                    Some(path) => self.save_to(path),
+                    None => false,
+                };
+                if saved && let Some(next) = self.unsaved_prompt.take() {
+                    self.after_unsaved(next);
+                }
+            }
+            Action::UnsavedDiscard => {
+                if let Some(next) = self.unsaved_prompt.take() {
+                    self.after_unsaved(next);
+                }
+            }
+            Action::UnsavedCancel => self.unsaved_prompt = None,
+            Action::Recover => {
+                if let Some(recovery) = self.recovery_offer.take() {
+                    self.replace_document(recovery.project, recovery.path);
+                    // Recovered work is unsaved until the user saves it.
+                    self.document.dirty = true;
+                    self.report("recovered the autosaved project: save it to keep it", false);
+                }
+            }
+            Action::DeclineRecovery => {
+                self.recovery_offer = None;
+                files::clear_recovery(&self.data_dir);
+            }
+            Action::Autosave => {
+                if self.document.dirty
+                    && let Err(error) =
+                        files::write_recovery(&self.data_dir, self.document.path.as_deref(), &self.document.project)
+                {
+                    self.report(format!("autosave failed: {error}"), true);
+                }
+            }
         }
     }
 
@@ -346,6 +475,113 @@ impl StudioApp {
         }
     }
 
+    /// Dropped files, the window's close button, and the autosave tick.
+    fn file_events(&mut self, ui: &egui::Ui, now: Instant, actions: &mut Vec<Action>) {
+        let dropped: Vec<PathBuf> = ui.ctx().input(|input| {
+            input
+                .raw
+                .dropped_files
+                .iter()
+                .map(|file| file.path().to_path_buf())
+                .filter(|path| !path.as_os_str().is_empty())
+                .collect()
+        });
+        if let Some(path) = dropped.into_iter().next() {
+            actions.push(Action::Open(path));
+        }
+        if ui.ctx().input(|input| input.viewport().close_requested()) && self.document.dirty && !self.quit_allowed {
+            ui.ctx().send_viewport_cmd(egui::ViewportCommand::CancelClose);
+            self.unsaved_prompt = Some(AfterUnsaved::Quit);
+        }
+        self.autosave_if_due(now);
+    }
+
+    fn file_menu(&self, ui: &mut egui::Ui, actions: &mut Vec<Action>) {
+        let words = self.language.strings();
+        ui.menu_button(words.file, |ui| {
+            if ui.button(words.new_project).clicked() {
+                actions.push(Action::NewProject);
+            }
+            if ui.button(words.open).clicked()
+                && let Some(path) = rfd::FileDialog::new().add_filter("Servo Studio project", &["json"]).pick_file()
+            {
+                actions.push(Action::Open(path));
+            }
+            if ui.button(words.save).clicked() {
+                match &self.document.path {
+                    Some(_) => actions.push(Action::Save),
+                    None => {
+                        if let Some(path) = save_dialog() {
+                            actions.push(Action::SaveAs(path));
+                        }
+                    }
+                }
+            }
+            if ui.button(words.save_as).clicked()
+                && let Some(path) = save_dialog()
+            {
+                actions.push(Action::SaveAs(path));
+            }
+            if !self.recent.is_empty() {
+                ui.separator();
+                ui.label(words.recent);
+                for path in &self.recent {
+                    if ui.button(path.display().to_string()).clicked() {
+                        actions.push(Action::Open(path.clone()));
+                    }
+                }
+            }
+        });
+    }
+
+    /// The "unsaved changes" question and the recovery offer.
+    fn dialogs(&self, ui: &egui::Ui, actions: &mut Vec<Action>) {
+        let words = self.language.strings();
+        if let Some(recovery) = &self.recovery_offer {
+            egui::Window::new(words.recover_title).collapsible(false).resizable(false).show(ui.ctx(), |ui| {
+                let file = recovery
+                    .path
+                    .as_ref()
+                    .map_or_else(|| "an unsaved project".to_string(), |p| p.display().to_string());
+                ui.label(format!(
+                    "Servo Studio did not close cleanly. Autosaved work from {} ({file}) can be recovered.",
+                    recovery.saved_at
+                ));
+                ui.horizontal(|ui| {
+                    if ui.button(words.recover).clicked() {
+                        actions.push(Action::Recover);
+                    }
+                    if ui.button(words.discard).clicked() {
+                        actions.push(Action::DeclineRecovery);
+                    }
+                });
+            });
+        }
+        if self.unsaved_prompt.is_some() {
+            egui::Window::new(words.unsaved_title).collapsible(false).resizable(false).show(ui.ctx(), |ui| {
+                ui.label(words.unsaved_question);
+                ui.horizontal(|ui| {
+                    if self.document.path.is_some() {
+                        if ui.button(words.save).clicked() {
+                            actions.push(Action::UnsavedSave);
+                        }
+                    } else if ui.button(words.save_as).clicked()
+                        && let Some(path) = save_dialog()
+                    {
+                        actions.push(Action::SaveAs(path));
+                        actions.push(Action::UnsavedSave);
+                    }
+                    if ui.button(words.discard).clicked() {
+                        actions.push(Action::UnsavedDiscard);
+                    }
+                    if ui.button(words.cancel).clicked() {
+                        actions.push(Action::UnsavedCancel);
+                    }
+                });
+            });
+        }
+    }
+
     fn shortcuts(ui: &egui::Ui, actions: &mut Vec<Action>) {
         ui.input_mut(|input| {
             if input.consume_key(egui::Modifiers::NONE, egui::Key::Escape) {
@@ -370,8 +606,11 @@ impl StudioApp {
         Self::shortcuts(ui, &mut actions);
         let words = self.language.strings();
 
+        self.file_events(ui, now, &mut actions);
         egui::Panel::top("toolbar").show(ui, |ui| {
             ui.horizontal(|ui| {
+                self.file_menu(ui, &mut actions);
+                ui.separator();
                 if ui.add_enabled(self.document.can_undo(), egui::Button::new(words.undo)).clicked() {
                     actions.push(Action::Undo);
                 }
@@ -460,8 +699,15 @@ impl StudioApp {
             }
         });
 
+        self.dialogs(ui, &mut actions);
         for action in actions {
             self.apply(action);
+        }
+        if self.quit_allowed {
+            ui.ctx().send_viewport_cmd(egui::ViewportCommand::Close);
+        }
+        if self.document.dirty {
+            ui.ctx().request_repaint_after(AUTOSAVE_EVERY);
         }
         if let Some(link) = &self.link {
             let wait = link.next_refresh(self.polling).saturating_duration_since(Instant::now());
@@ -470,8 +716,45 @@ impl StudioApp {
     }
 }
 
+fn save_dialog() -> Option<PathBuf> {
+    rfd::FileDialog::new().add_filter("Servo Studio project", &["json"]).set_file_name("project.json").save_file()
+}
+
+/// What is remembered between runs (the window's size and place are
+/// remembered by eframe itself).
+#[derive(Clone, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub struct Remembered {
+    /// Recent files, newest first.
+    pub recent: Vec<PathBuf>,
+    /// The interface language.
+    pub language: Language,
+    /// The tab shown.
+    pub tab: Tab,
+}
+
+/// The key under which [`Remembered`] is stored.
+pub const REMEMBERED_KEY: &str = "servo-studio";
+
+impl StudioApp {
+    /// What to remember between runs.
+    pub fn remembered(&self) -> Remembered {
+        Remembered { recent: self.recent.clone(), language: self.language, tab: self.tab }
+    }
+
+    /// Restores what was remembered.
+    pub fn restore(&mut self, remembered: Remembered) {
+        self.recent = remembered.recent;
+        self.language = remembered.language;
+        self.tab = remembered.tab;
+    }
+}
+
 impl eframe::App for StudioApp {
     fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
         self.show(ui);
+    }
+
+    fn save(&mut self, storage: &mut dyn eframe::Storage) {
+        eframe::set_value(storage, REMEMBERED_KEY, &self.remembered());
     }
 }

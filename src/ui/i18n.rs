@@ -103,6 +103,30 @@ pub struct Strings {
     pub pose: &'static str,
     /// "Board".
     pub board: &'static str,
+    /// "File".
+    pub file: &'static str,
+    /// "New".
+    pub new_project: &'static str,
+    /// "Open…".
+    pub open: &'static str,
+    /// "Save".
+    pub save: &'static str,
+    /// "Save As…".
+    pub save_as: &'static str,
+    /// "Recent".
+    pub recent: &'static str,
+    /// "Recover unsaved work?".
+    pub recover_title: &'static str,
+    /// "Recover".
+    pub recover: &'static str,
+    /// "Discard".
+    pub discard: &'static str,
+    /// "Cancel".
+    pub cancel: &'static str,
+    /// "Unsaved changes".
+    pub unsaved_title: &'static str,
+    /// "This project has unsaved changes. Save them first?".
+    pub unsaved_question: &'static str,
 }
 
 const ENGLISH: Strings = Strings {
@@ -131,6 +155,18 @@ const ENGLISH: Strings = Strings {
     add_servo: "Add servo",
     pose: "Pose",
     board: "Board",
+    file: "File",
+    new_project: "New",
+    open: "Open…",
+    save: "Save",
+    save_as: "Save As…",
+    recent: "Recent",
+    recover_title: "Recover unsaved work?",
+    recover: "Recover",
+    discard: "Discard",
+    cancel: "Cancel",
+    unsaved_title: "Unsaved changes",
+    unsaved_question: "This project has unsaved changes. Save them first?",
 };
 
 const TRADITIONAL_CHINESE: Strings = Strings {
@@ -159,6 +195,18 @@ const TRADITIONAL_CHINESE: Strings = Strings {
     add_servo: "新增舵機",
     pose: "姿勢",
     board: "控制板",
+    file: "檔案",
+    new_project: "新增",
+    open: "開啟…",
+    save: "儲存",
+    save_as: "另存新檔…",
+    recent: "最近的檔案",
+    recover_title: "復原未儲存的工作？",
+    recover: "復原",
+    discard: "捨棄",
+    cancel: "取消",
+    unsaved_title: "未儲存的變更",
+    unsaved_question: "此專案有未儲存的變更，要先儲存嗎？",
 };
 
 #[cfg(test)]

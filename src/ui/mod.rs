@@ -7,13 +7,16 @@ mod board_link;
 mod board_panel;
 mod connection_bar;
 mod document;
+pub mod files;
 pub mod fonts;
 mod i18n;
 mod job;
 mod servo_panel;
 
-pub use action::{Action, BoardIntent, Tab};
-pub use app::{CAPTURED_STEP_INTERVAL_10MS, LIVE_MOVE_INTERVAL_10MS, StatusLine, StudioApp};
+pub use action::{Action, AfterUnsaved, BoardIntent, Tab};
+pub use app::{
+    CAPTURED_STEP_INTERVAL_10MS, LIVE_MOVE_INTERVAL_10MS, REMEMBERED_KEY, Remembered, StatusLine, StudioApp,
+};
 pub use board_link::{BoardLink, LinkNotice};
 pub use board_panel::{BoardResult, PendingConfirm};
 pub use document::Document;
@@ -34,6 +37,9 @@ pub fn run(project: crate::project::Project, path: Option<std::path::PathBuf>, d
             let ctx = creation.egui_ctx.clone();
             let waker: crate::link::Waker = std::sync::Arc::new(move || ctx.request_repaint());
             let mut app = StudioApp::new(project, path, waker);
+            if let Some(remembered) = creation.storage.and_then(|storage| eframe::get_value(storage, REMEMBERED_KEY)) {
+                app.restore(remembered);
+            }
             if demo {
                 app.apply(Action::ConnectDemo);
             }

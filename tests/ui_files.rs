@@ -1,0 +1,169 @@
+//! Files and the safety of work: save / open, the unsaved-changes question,
+//! drag-and-drop, autosave and recovery after a crash.
+
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use servo_studio::link::no_waker;
+use servo_studio::project::{self, Project, Servo};
+use servo_studio::ui::{Action, AfterUnsaved, StudioApp};
+
+fn fixture() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/project-v1.json")
+}
+
+fn app(data_dir: &Path) -> StudioApp {
+    let project = Project { servos: vec![Servo::new(1, "左肩")], ..Project::default() };
+    StudioApp::new(project, None, no_waker()).with_data_dir(data_dir.to_path_buf())
+}
+
+fn harness(app: StudioApp) -> Harness<'static, StudioApp> {
+    Harness::builder()
+        .with_size(egui::vec2(1200.0, 800.0))
+        .with_context_setup(servo_studio::ui::fonts::install)
+        .build_ui_state(|ui, app: &mut StudioApp| app.show(ui), app)
+}
+
+#[test]
+fn autosave_then_recovery_after_a_crash() {
+    let data = tempfile::tempdir().unwrap();
+    let mut first = app(data.path());
+    first.apply(Action::CapturePose { from_board: false });
+    assert!(first.document.dirty);
+    first.autosave_if_due(Instant::now() + Duration::from_secs(1));
+    assert!(!data.path().join("recovery.json").exists(), "not due yet");
+    first.autosave_if_due(Instant::now() + Duration::from_secs(31));
+    assert!(data.path().join("recovery.json").exists());
+    let unsaved = first.document.project.clone();
+    drop(first); // the "crash": no save
+
+    let mut harness = harness(app(data.path()));
+    harness.run();
+    assert!(harness.query_by_label("Recover unsaved work?").is_some());
+    harness.get_by_label("Recover").click();
+    harness.run();
+    assert_eq!(harness.state().document.project, unsaved);
+    assert!(harness.state().document.dirty, "recovered work is unsaved until saved");
+
+    // Saving clears the recovery file, so the next start offers nothing.
+    let saved = data.path().join("saved.json");
+    harness.state_mut().apply(Action::SaveAs(saved.clone()));
+    assert!(!data.path().join("recovery.json").exists());
+    assert_eq!(project::load(&saved).unwrap(), unsaved);
+    assert!(app(data.path()).recovery_offer.is_none());
+}
+
+#[test]
+fn declining_recovery_removes_it() {
+    let data = tempfile::tempdir().unwrap();
+    let mut first = app(data.path());
+    first.apply(Action::CapturePose { from_board: false });
+    first.apply(Action::Autosave);
+    let mut harness = harness(app(data.path()));
+    harness.run();
+    harness.get_by_label("Discard").click();
+    harness.run();
+    assert!(harness.state().recovery_offer.is_none());
+    assert!(!data.path().join("recovery.json").exists());
+    assert!(harness.state().document.project.actions.is_empty());
+}
+
+#[test]
+fn opening_with_unsaved_changes_asks_first() {
+    let data = tempfile::tempdir().unwrap();
+    let mut start = app(data.path());
+    start.apply(Action::CapturePose { from_board: false });
+    let mut harness = harness(start);
+    harness.run();
+    harness.state_mut().apply(Action::Open(fixture()));
+    harness.run();
+    assert_eq!(harness.state().unsaved_prompt, Some(AfterUnsaved::Open(fixture())));
+    assert!(harness.query_by_label("Unsaved changes").is_some());
+    harness.get_by_label("Cancel").click();
+    harness.run();
+    assert_eq!(harness.state().document.project.actions.len(), 1, "cancel keeps the work");
+
+    harness.state_mut().apply(Action::Open(fixture()));
+    harness.run();
+    harness.get_by_label("Discard").click();
+    harness.run();
+    assert_eq!(harness.state().document.project, project::load(&fixture()).unwrap());
+    assert_eq!(harness.state().document.path, Some(fixture()));
+    assert!(!harness.state().document.dirty);
+    assert_eq!(harness.state().recent, vec![fixture()]);
+}
+
+#[test]
+fn save_in_the_question_saves_then_goes_on() {
+    let data = tempfile::tempdir().unwrap();
+    let path = data.path().join("mine.json");
+    let mut start = app(data.path());
+    start.apply(Action::SaveAs(path.clone()));
+    start.apply(Action::CapturePose { from_board: false });
+    let edited = start.document.project.clone();
+    let mut harness = harness(start);
+    harness.run();
+    harness.state_mut().apply(Action::NewProject);
+    harness.run();
+    harness.get_by_label("Save").click();
+    harness.run();
+    assert_eq!(project::load(&path).unwrap(), edited, "saved first");
+    assert_eq!(harness.state().document.project, Project::default(), "then the new project");
+}
+
+#[test]
+fn a_malformed_file_is_reported_not_opened() {
+    let data = tempfile::tempdir().unwrap();
+    let bad = data.path().join("bad.json");
+    std::fs::write(&bad, "{\"format\": \"servo-studio-project\", \"servos\": [ }").unwrap();
+    let mut app = app(data.path());
+    let before = app.document.project.clone();
+    app.apply(Action::Open(bad));
+    let status = app.status.clone().unwrap();
+    assert!(status.is_error && status.text.contains("line 1, column"), "{}", status.text);
+    assert_eq!(app.document.project, before);
+}
+
+#[derive(Debug)]
+struct Dropped(PathBuf);
+
+impl egui::DroppedFile for Dropped {
+    fn path(&self) -> &Path {
+        &self.0
+    }
+
+    fn bytes(&self) -> Result<Vec<u8>, String> {
+        std::fs::read(&self.0).map_err(|error| error.to_string())
+    }
+}
+
+#[test]
+fn a_dropped_project_file_opens() {
+    let data = tempfile::tempdir().unwrap();
+    let mut harness = harness(app(data.path()));
+    harness.run();
+    harness.input_mut().dropped_files.push(Arc::new(Dropped(fixture())));
+    harness.run();
+    assert_eq!(harness.state().document.path, Some(fixture()));
+    assert_eq!(harness.state().document.project.project_id, 20261121);
+}
+
+#[test]
+fn remembered_settings_round_trip() {
+    let data = tempfile::tempdir().unwrap();
+    let mut first = app(data.path());
+    first.apply(Action::Open(fixture()));
+    first.apply(Action::SetLanguage(servo_studio::ui::Language::TraditionalChinese));
+    first.apply(Action::ShowTab(servo_studio::ui::Tab::Board));
+    let remembered = first.remembered();
+    let text = serde_json::to_string(&remembered).unwrap();
+    let mut second = app(data.path());
+    second.restore(serde_json::from_str(&text).unwrap());
+    assert_eq!(second.remembered(), remembered);
+    assert_eq!(second.recent, vec![fixture()]);
+}
