@@ -21,6 +21,10 @@ pub enum Tab {
     /// Servo sliders.
     #[default]
     Servos,
+    /// The macro composer.
+    Macros,
+    /// Joystick mapping.
+    Joystick,
     /// Upload / read / export.
     Board,
 }
@@ -109,6 +113,13 @@ pub enum Action {
     DeclineRecovery,
     /// Write the recovery file now if there are unsaved changes.
     Autosave,
+    /// Run a stored macro on the board.
+    RunMacro(i32),
+    /// Start (with the table to pick into) or stop picking a button by pressing it on the remote.
+    PickButton {
+        /// The table a pressed button is selected in (or added to); `None` stops picking.
+        table_index: Option<usize>,
+    },
 }
 
 /// What was asked for when the document had unsaved changes.

@@ -18,6 +18,8 @@ use crate::ui::document::Document;
 use crate::ui::files::{self, AUTOSAVE_EVERY, Recovery};
 use crate::ui::i18n::Language;
 use crate::ui::job::{Job, JobKind, JobOutcome};
+use crate::ui::joystick_panel::{JoystickPanel, JoystickView};
+use crate::ui::macro_panel::MacroPanel;
 use crate::ui::servo_panel::{ServoPanel, ServoView};
 
 /// Interval of a live move, in 10 ms: two frames' worth, so that a dragged
@@ -69,11 +71,17 @@ pub struct StudioApp {
     pub recovery_offer: Option<Recovery>,
     last_autosave: Instant,
     quit_allowed: bool,
+    /// Picking a button on the remote into this table (index).
+    pub picking: Option<usize>,
+    /// The button last picked on the remote.
+    pub picked_button: Option<u32>,
     compare_intent: Option<BoardIntent>,
     compared_board: Option<Project>,
     waker: Waker,
     connection_bar: ConnectionBar,
     servo_panel: ServoPanel,
+    macro_panel: MacroPanel,
+    joystick_panel: JoystickPanel,
 }
 
 impl std::fmt::Debug for StudioApp {
@@ -110,6 +118,10 @@ impl StudioApp {
             waker,
             connection_bar: ConnectionBar::default(),
             servo_panel: ServoPanel::default(),
+            macro_panel: MacroPanel::default(),
+            joystick_panel: JoystickPanel::default(),
+            picking: None,
+            picked_button: None,
         };
         app.recovery_offer = files::read_recovery(&app.data_dir);
         app
@@ -377,6 +389,17 @@ impl StudioApp {
                 self.recovery_offer = None;
                 files::clear_recovery(&self.data_dir);
             }
+            Action::RunMacro(macro_id) => match &mut self.link {
+                Some(link) => link.run_macro(macro_id),
+                None => self.report("connect a board to run a macro", true),
+            },
+            Action::PickButton { table_index } => match &mut self.link {
+                Some(link) => {
+                    link.subscribe_buttons(true);
+                    self.picking = table_index;
+                }
+                None => self.report("connect a board to pick buttons from its remote", true),
+            },
             Action::Autosave => {
                 if self.document.dirty
                     && let Err(error) =
@@ -458,9 +481,33 @@ impl StudioApp {
                 }
                 LinkNotice::Button { button_id, event } => {
                     self.button_events.push((button_id, event));
+                    if let Some(table_index) = self.picking.take() {
+                        self.pick_button(table_index, button_id);
+                    }
                 }
             }
         }
+    }
+
+    /// Selects the pressed button in the table, adding it if the table lacks it.
+    fn pick_button(&mut self, table_index: usize, button_id: u32) {
+        self.picked_button = Some(button_id);
+        let Some(table) = self.document.project.joystick_tables.get(table_index) else { return };
+        if table.buttons.iter().any(|button| button.id == button_id) {
+            self.report(format!("picked button 0x{button_id:08x}"), false);
+            return;
+        }
+        let mut table = table.clone();
+        table.buttons.push(crate::project::Button {
+            id: button_id,
+            caption: String::new(),
+            press_macro: None,
+            long_press_macro: None,
+            release_macro: None,
+            uninterruptible: false,
+        });
+        self.document.apply(Edit::SetTable { index: table_index, table }, None);
+        self.report(format!("added button 0x{button_id:08x} to the table"), false);
     }
 
     fn link_status(&self) -> LinkStatus {
@@ -650,6 +697,8 @@ impl StudioApp {
             ui.horizontal(|ui| {
                 let mut tab = self.tab;
                 ui.selectable_value(&mut tab, Tab::Servos, words.servos);
+                ui.selectable_value(&mut tab, Tab::Macros, words.macros);
+                ui.selectable_value(&mut tab, Tab::Joystick, words.joystick);
                 ui.selectable_value(&mut tab, Tab::Board, words.board);
                 if tab != self.tab {
                     actions.push(Action::ShowTab(tab));
@@ -678,6 +727,19 @@ impl StudioApp {
                     polling: self.polling,
                 };
                 self.servo_panel.ui(ui, &view, words, &mut actions);
+            }
+            Tab::Macros => {
+                self.macro_panel.ui(ui, &self.document.project, self.link.is_some(), words, &mut actions);
+            }
+            Tab::Joystick => {
+                let view = JoystickView {
+                    project: &self.document.project,
+                    events: &self.button_events,
+                    picked: self.picked_button,
+                    picking: self.picking.is_some(),
+                    connected: self.link.is_some(),
+                };
+                self.joystick_panel.ui(ui, &view, words, &mut actions);
             }
             Tab::Board => {
                 let project_bytes = BoardImage::from_project(&self.document.project)

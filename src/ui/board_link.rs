@@ -20,6 +20,8 @@ const ANGLES_EVERY: Duration = Duration::from_millis(100);
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Query {
+    RunMacro,
+    Subscribe,
     ProjectId,
     Battery,
     Memory,
@@ -156,6 +158,10 @@ impl BoardLink {
         let mut still = Vec::new();
         for (query, reply) in std::mem::take(&mut self.inflight) {
             match reply.try_recv() {
+                Ok(Ok(Message::ExecuteMacroResponse { ok: false })) => {
+                    notices
+                        .push(LinkNotice::Error("the board refused to run the macro: upload the project first".into()));
+                }
                 Ok(Ok(message)) => self.absorb(message),
                 Ok(Err(error)) => {
                     if !matches!(error, RequestError::Disconnected { .. }) {
@@ -229,6 +235,20 @@ impl BoardLink {
         self.stopped = false;
         let all = ServoSwitches { servo_id: ALL_SERVOS, is_start: true, is_hold: true };
         self.ask(Query::Switches, Message::SetServoParameterRequest(all));
+    }
+
+    /// Runs a stored macro; a refusal comes back as an error notice.
+    pub fn run_macro(&mut self, macro_id: i32) {
+        if let Ok(reply) = self.requester.request_async(Message::ExecuteMacroRequest { macro_id }) {
+            self.inflight.push((Query::RunMacro, reply));
+        }
+    }
+
+    /// Starts or stops the board's button events.
+    pub fn subscribe_buttons(&mut self, subscribe: bool) {
+        if let Ok(reply) = self.requester.request_async(Message::SubscribeButtonEventRequest { subscribe }) {
+            self.inflight.push((Query::Subscribe, reply));
+        }
     }
 
     /// Holds or releases one servo's torque.

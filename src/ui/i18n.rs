@@ -127,6 +127,60 @@ pub struct Strings {
     pub unsaved_title: &'static str,
     /// "This project has unsaved changes. Save them first?".
     pub unsaved_question: &'static str,
+    /// "Macros".
+    pub macros: &'static str,
+    /// "Macro".
+    pub macro_word: &'static str,
+    /// "Add macro".
+    pub add_macro: &'static str,
+    /// "No macros yet".
+    pub no_macros: &'static str,
+    /// "Total".
+    pub total: &'static str,
+    /// "Run on board".
+    pub run_on_board: &'static str,
+    /// "Remove".
+    pub remove: &'static str,
+    /// "Action".
+    pub action_word: &'static str,
+    /// "Delay".
+    pub delay: &'static str,
+    /// "+ Action".
+    pub add_action_command: &'static str,
+    /// "+ Delay".
+    pub add_delay: &'static str,
+    /// "+ Macro".
+    pub add_macro_command: &'static str,
+    /// "Joystick".
+    pub joystick: &'static str,
+    /// "Add table".
+    pub add_table: &'static str,
+    /// "Table".
+    pub table: &'static str,
+    /// "No joystick tables yet".
+    pub no_tables: &'static str,
+    /// "Live button events".
+    pub live_events: &'static str,
+    /// "Active".
+    pub active: &'static str,
+    /// "Press a button to pick it".
+    pub pick_button: &'static str,
+    /// "Waiting for a button… (click to stop)".
+    pub waiting_for_button: &'static str,
+    /// "Add button".
+    pub add_button: &'static str,
+    /// "Button".
+    pub button: &'static str,
+    /// "Caption".
+    pub caption: &'static str,
+    /// "Press".
+    pub on_press: &'static str,
+    /// "Long press".
+    pub on_long_press: &'static str,
+    /// "Release".
+    pub on_release: &'static str,
+    /// "Uninterruptible".
+    pub uninterruptible: &'static str,
 }
 
 const ENGLISH: Strings = Strings {
@@ -167,6 +221,33 @@ const ENGLISH: Strings = Strings {
     cancel: "Cancel",
     unsaved_title: "Unsaved changes",
     unsaved_question: "This project has unsaved changes. Save them first?",
+    macros: "Macros",
+    macro_word: "Macro",
+    add_macro: "Add macro",
+    no_macros: "No macros yet",
+    total: "Total",
+    run_on_board: "Run on board",
+    remove: "Remove",
+    action_word: "Action",
+    delay: "Delay",
+    add_action_command: "+ Action",
+    add_delay: "+ Delay",
+    add_macro_command: "+ Macro",
+    joystick: "Joystick",
+    add_table: "Add table",
+    table: "Table",
+    no_tables: "No joystick tables yet",
+    live_events: "Live button events",
+    active: "Active",
+    pick_button: "Press a button to pick it",
+    waiting_for_button: "Waiting for a button… (click to stop)",
+    add_button: "Add button",
+    button: "Button",
+    caption: "Caption",
+    on_press: "Press",
+    on_long_press: "Long press",
+    on_release: "Release",
+    uninterruptible: "Uninterruptible",
 };
 
 const TRADITIONAL_CHINESE: Strings = Strings {
@@ -207,6 +288,33 @@ const TRADITIONAL_CHINESE: Strings = Strings {
     cancel: "取消",
     unsaved_title: "未儲存的變更",
     unsaved_question: "此專案有未儲存的變更，要先儲存嗎？",
+    macros: "巨集",
+    macro_word: "巨集",
+    add_macro: "新增巨集",
+    no_macros: "尚無巨集",
+    total: "總長",
+    run_on_board: "在控制板上執行",
+    remove: "移除",
+    action_word: "動作",
+    delay: "延遲",
+    add_action_command: "+ 動作",
+    add_delay: "+ 延遲",
+    add_macro_command: "+ 巨集",
+    joystick: "遙控器",
+    add_table: "新增對應表",
+    table: "對應表",
+    no_tables: "尚無遙控對應表",
+    live_events: "即時按鍵事件",
+    active: "使用中",
+    pick_button: "按下遙控器按鍵以選取",
+    waiting_for_button: "等待按鍵…（按此停止）",
+    add_button: "新增按鍵",
+    button: "按鍵",
+    caption: "標題",
+    on_press: "按下",
+    on_long_press: "長按",
+    on_release: "放開",
+    uninterruptible: "不可中斷",
 };
 
 #[cfg(test)]

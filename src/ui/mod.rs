@@ -11,6 +11,8 @@ pub mod files;
 pub mod fonts;
 mod i18n;
 mod job;
+mod joystick_panel;
+mod macro_panel;
 mod servo_panel;
 
 pub use action::{Action, AfterUnsaved, BoardIntent, Tab};

@@ -1,0 +1,213 @@
+//! Joystick mapping: tables and their buttons (caption, press / long-press /
+//! release macros, uninterruptible), the active table, live button events, and
+//! "press a button to pick it".
+
+use crate::project::{Button, Edit, JoystickTable, Project, next_free_id};
+use crate::protocol::board::ButtonEvent;
+use crate::ui::action::Action;
+use crate::ui::i18n::Strings;
+
+/// What the panel draws besides the project.
+#[derive(Debug)]
+pub struct JoystickView<'a> {
+    /// The project.
+    pub project: &'a Project,
+    /// Button events seen, newest last.
+    pub events: &'a [(u32, ButtonEvent)],
+    /// The button picked on the remote (highlighted).
+    pub picked: Option<u32>,
+    /// Waiting for a button press to pick.
+    pub picking: bool,
+    /// A board is connected.
+    pub connected: bool,
+}
+
+/// The panel's own state: which table is open.
+#[derive(Debug, Default)]
+pub struct JoystickPanel {
+    selected: usize,
+}
+
+fn event_name(event: ButtonEvent) -> &'static str {
+    match event {
+        ButtonEvent::Press => "press",
+        ButtonEvent::LongPress => "long press",
+        ButtonEvent::Release => "release",
+    }
+}
+
+impl JoystickPanel {
+    /// The table shown, if any.
+    pub fn selected(&self, project: &Project) -> Option<usize> {
+        (!project.joystick_tables.is_empty()).then(|| self.selected.min(project.joystick_tables.len() - 1))
+    }
+
+    /// Draws the panel.
+    pub fn ui(&mut self, ui: &mut egui::Ui, view: &JoystickView<'_>, words: &Strings, actions: &mut Vec<Action>) {
+        let project = view.project;
+        ui.horizontal(|ui| {
+            ui.heading(words.joystick);
+            if ui.button(words.add_table).clicked() {
+                let id = next_free_id(project.joystick_tables.iter().map(|t| t.id));
+                let table = JoystickTable { id, caption: format!("{} {id}", words.table), buttons: Vec::new() };
+                actions.push(Action::Edit { edit: Edit::AddTable(table), coalesce: None });
+                self.selected = project.joystick_tables.len();
+            }
+        });
+        let Some(index) = self.selected(project) else {
+            ui.label(words.no_tables);
+            return;
+        };
+        self.selected = index;
+        ui.horizontal_top(|ui| {
+            ui.vertical(|ui| {
+                ui.set_width(200.0);
+                for (position, table) in project.joystick_tables.iter().enumerate() {
+                    let active = if project.active_table == Some(table.id) { " ★" } else { "" };
+                    if ui
+                        .selectable_label(position == index, format!("{} {}{active}", table.id, table.caption))
+                        .clicked()
+                    {
+                        self.selected = position;
+                    }
+                }
+                ui.separator();
+                ui.label(words.live_events);
+                for (button_id, event) in view.events.iter().rev().take(12) {
+                    ui.monospace(format!("0x{button_id:08x} {}", event_name(*event)));
+                }
+            });
+            ui.separator();
+            ui.vertical(|ui| self.table_editor(ui, view, index, words, actions));
+        });
+    }
+
+    fn table_editor(
+        &self,
+        ui: &mut egui::Ui,
+        view: &JoystickView<'_>,
+        index: usize,
+        words: &Strings,
+        actions: &mut Vec<Action>,
+    ) {
+        let project = view.project;
+        let table = &project.joystick_tables[index];
+        let set = |table: JoystickTable, key: Option<String>| Action::Edit {
+            edit: Edit::SetTable { index, table },
+            coalesce: key,
+        };
+        ui.horizontal(|ui| {
+            let label = ui.label(format!("{} {}", words.table, table.id));
+            let mut caption = table.caption.clone();
+            if ui.text_edit_singleline(&mut caption).labelled_by(label.id).changed() {
+                actions
+                    .push(set(JoystickTable { caption, ..table.clone() }, Some(format!("table {} caption", table.id))));
+            }
+            let mut active = project.active_table == Some(table.id);
+            if ui.checkbox(&mut active, words.active).changed() {
+                actions.push(Action::Edit { edit: Edit::SetActiveTable(active.then_some(table.id)), coalesce: None });
+            }
+            if ui.button(words.remove).clicked() {
+                actions.push(Action::Edit { edit: Edit::RemoveTable { index }, coalesce: None });
+            }
+        });
+        ui.horizontal(|ui| {
+            let pick_text = if view.picking { words.waiting_for_button } else { words.pick_button };
+            if ui.add_enabled(view.connected, egui::Button::new(pick_text).selected(view.picking)).clicked() {
+                actions.push(Action::PickButton { table_index: (!view.picking).then_some(index) });
+            }
+            if ui.button(words.add_button).clicked() {
+                let used: Vec<i32> = table.buttons.iter().filter_map(|b| i32::try_from(b.id).ok()).collect();
+                let id = u32::try_from(next_free_id(used)).unwrap_or(1);
+                let mut more = table.clone();
+                more.buttons.push(Button {
+                    id,
+                    caption: String::new(),
+                    press_macro: None,
+                    long_press_macro: None,
+                    release_macro: None,
+                    uninterruptible: false,
+                });
+                actions.push(set(more, None));
+            }
+        });
+        let macro_text = |id: Option<i32>| match id {
+            None => "—".to_string(),
+            Some(id) => {
+                project.macro_by_id(id).map_or_else(|| format!("{id} ?"), |m| format!("{} {}", m.id, m.caption))
+            }
+        };
+        egui::Grid::new("buttons").striped(true).show(ui, |ui| {
+            for heading in [
+                words.button,
+                words.caption,
+                words.on_press,
+                words.on_long_press,
+                words.on_release,
+                words.uninterruptible,
+                "",
+            ] {
+                ui.strong(heading);
+            }
+            ui.end_row();
+            for (position, button) in table.buttons.iter().enumerate() {
+                let with = |changed: Button, key: Option<String>| {
+                    let mut table = table.clone();
+                    table.buttons[position] = changed;
+                    set(table, key)
+                };
+                let id_text = format!("0x{:08x}", button.id);
+                let row = if view.picked == Some(button.id) {
+                    ui.label(egui::RichText::new(format!("→ {id_text}")).strong())
+                } else {
+                    ui.monospace(id_text)
+                };
+                let mut caption = button.caption.clone();
+                if ui.add(egui::TextEdit::singleline(&mut caption).desired_width(140.0)).labelled_by(row.id).changed() {
+                    actions.push(with(
+                        Button { caption, ..button.clone() },
+                        Some(format!("table {} button {} caption", table.id, button.id)),
+                    ));
+                }
+                for (slot, current) in
+                    [(0, button.press_macro), (1, button.long_press_macro), (2, button.release_macro)]
+                {
+                    let mut chosen = current;
+                    egui::ComboBox::from_id_salt(("macro", position, slot))
+                        .selected_text(macro_text(current))
+                        .show_ui(ui, |ui| {
+                            ui.selectable_value(&mut chosen, None, "—");
+                            for item in &project.macros {
+                                ui.selectable_value(
+                                    &mut chosen,
+                                    Some(item.id),
+                                    format!("{} {}", item.id, item.caption),
+                                );
+                            }
+                        })
+                        .response
+                        .labelled_by(row.id);
+                    if chosen != current {
+                        let mut changed = button.clone();
+                        match slot {
+                            0 => changed.press_macro = chosen,
+                            1 => changed.long_press_macro = chosen,
+                            _ => changed.release_macro = chosen,
+                        }
+                        actions.push(with(changed, None));
+                    }
+                }
+                let mut uninterruptible = button.uninterruptible;
+                if ui.checkbox(&mut uninterruptible, "").labelled_by(row.id).changed() {
+                    actions.push(with(Button { uninterruptible, ..button.clone() }, None));
+                }
+                if ui.button("×").on_hover_text(words.remove).clicked() {
+                    let mut fewer = table.clone();
+                    fewer.buttons.remove(position);
+                    actions.push(set(fewer, None));
+                }
+                ui.end_row();
+            }
+        });
+    }
+}

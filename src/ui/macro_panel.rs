@@ -1,0 +1,267 @@
+//! The macro composer: the command list (run action / delay / run macro, each
+//! with ratio and loop), reordering, each command's and the macro's computed
+//! duration, a plot of every servo's trajectory over the whole macro, and the
+//! validation problems of the macro shown inline.
+
+use egui_plot::{Legend, Line, Plot};
+
+use crate::project::{
+    Command, Edit, Location, Macro, Project, Run, Timing, macro_trajectories, next_free_id, validate,
+};
+use crate::ui::action::Action;
+use crate::ui::i18n::Strings;
+
+/// The composer's own state: which macro is open.
+#[derive(Debug, Default)]
+pub struct MacroPanel {
+    selected: usize,
+}
+
+fn seconds(ms: i64) -> String {
+    format!("{:.2} s", ms as f64 / 1000.0)
+}
+
+fn edit(index: usize, item: Macro, key: Option<String>) -> Action {
+    Action::Edit { edit: Edit::SetMacro { index, item }, coalesce: key }
+}
+
+impl MacroPanel {
+    /// Draws the composer.
+    pub fn ui(
+        &mut self,
+        ui: &mut egui::Ui,
+        project: &Project,
+        connected: bool,
+        words: &Strings,
+        actions: &mut Vec<Action>,
+    ) {
+        ui.horizontal(|ui| {
+            ui.heading(words.macros);
+            if ui.button(words.add_macro).clicked() {
+                let id = next_free_id(project.macros.iter().map(|m| m.id));
+                actions.push(Action::Edit {
+                    edit: Edit::AddMacro(Macro {
+                        id,
+                        caption: format!("{} {id}", words.macro_word),
+                        commands: Vec::new(),
+                    }),
+                    coalesce: None,
+                });
+                self.selected = project.macros.len();
+            }
+        });
+        if project.macros.is_empty() {
+            ui.label(words.no_macros);
+            return;
+        }
+        self.selected = self.selected.min(project.macros.len() - 1);
+        let problems = validate(project);
+        ui.horizontal_top(|ui| {
+            ui.vertical(|ui| {
+                ui.set_width(200.0);
+                for (index, item) in project.macros.iter().enumerate() {
+                    let flagged = problems.iter().any(|p| match &p.location {
+                        Location::Macro { macro_id, .. } | Location::Command { macro_id, .. } => *macro_id == item.id,
+                        _ => false,
+                    });
+                    let text = format!("{}{} {}", if flagged { "! " } else { "" }, item.id, item.caption);
+                    if ui.selectable_label(index == self.selected, text).clicked() {
+                        self.selected = index;
+                    }
+                }
+            });
+            ui.separator();
+            ui.vertical(|ui| self.editor(ui, project, &problems, connected, words, actions));
+        });
+    }
+
+    fn editor(
+        &self,
+        ui: &mut egui::Ui,
+        project: &Project,
+        problems: &[crate::project::Problem],
+        connected: bool,
+        words: &Strings,
+        actions: &mut Vec<Action>,
+    ) {
+        let index = self.selected;
+        let item = &project.macros[index];
+        let timing = Timing::new(project);
+        ui.horizontal(|ui| {
+            let label = ui.label(format!("{} {}", words.macro_word, item.id));
+            let mut caption = item.caption.clone();
+            if ui.text_edit_singleline(&mut caption).labelled_by(label.id).changed() {
+                let key = format!("macro {} caption", item.id);
+                actions.push(edit(index, Macro { caption, ..item.clone() }, Some(key)));
+            }
+            match timing.macro_total_ms(item.id) {
+                Ok(total) => ui.label(format!("{} {}", words.total, seconds(total))),
+                Err(error) => ui.colored_label(ui.visuals().warn_fg_color, error.to_string()),
+            };
+            if ui.add_enabled(connected, egui::Button::new(words.run_on_board)).clicked() {
+                actions.push(Action::RunMacro(item.id));
+            }
+            if ui.button(words.remove).clicked() {
+                actions.push(Action::Edit { edit: Edit::RemoveMacro { index }, coalesce: None });
+            }
+        });
+        for problem in
+            problems.iter().filter(|p| matches!(&p.location, Location::Macro { macro_id, .. } if *macro_id == item.id))
+        {
+            ui.colored_label(ui.visuals().warn_fg_color, &problem.message);
+        }
+        egui::Grid::new("commands").striped(true).show(ui, |ui| {
+            for (position, command) in item.commands.iter().enumerate() {
+                self.command_row(ui, project, &timing, item, index, position, command, words, actions);
+                let at = position + 1;
+                let mut notes = problems.iter().filter(
+                    |p| matches!(&p.location, Location::Command { macro_id, command, .. } if *macro_id == item.id && *command == at),
+                );
+                if let Some(problem) = notes.next() {
+                    ui.colored_label(ui.visuals().error_fg_color, &problem.message);
+                }
+                ui.end_row();
+            }
+        });
+        ui.horizontal(|ui| {
+            let add = |run: Run| {
+                let mut changed = item.clone();
+                changed.commands.push(Command::once(run));
+                edit(index, changed, None)
+            };
+            if ui.button(words.add_action_command).clicked() {
+                let action_id = project.actions.first().map_or(1, |a| a.id);
+                actions.push(add(Run::Action { action_id }));
+            }
+            if ui.button(words.add_delay).clicked() {
+                actions.push(add(Run::Delay { delay_ms: 500 }));
+            }
+            if ui.button(words.add_macro_command).clicked() {
+                let macro_id = project.macros.iter().find(|m| m.id != item.id).map_or(item.id, |m| m.id);
+                actions.push(add(Run::Macro { macro_id }));
+            }
+        });
+        let (trajectories, _end_ms) = macro_trajectories(project, item.id);
+        if !trajectories.is_empty() {
+            Plot::new("macro-plot").height(220.0).legend(Legend::default()).x_axis_label("ms").y_axis_label("°").show(
+                ui,
+                |plot| {
+                    for (servo_id, points) in trajectories {
+                        let caption = project.servo(servo_id).map_or_else(String::new, |s| s.caption.clone());
+                        let series: Vec<[f64; 2]> = points.into_iter().map(|(t, angle)| [t, angle]).collect();
+                        plot.line(Line::new(format!("{servo_id} {caption}"), series));
+                    }
+                },
+            );
+        }
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn command_row(
+        &self,
+        ui: &mut egui::Ui,
+        project: &Project,
+        timing: &Timing<'_>,
+        item: &Macro,
+        index: usize,
+        position: usize,
+        command: &Command,
+        words: &Strings,
+        actions: &mut Vec<Action>,
+    ) {
+        let with = |changed: Command, key: Option<String>| {
+            let mut item = item.clone();
+            item.commands[position] = changed;
+            edit(index, item, key)
+        };
+        let row = ui.label(format!("{}", position + 1));
+        let mut run = command.run;
+        let kind_label = match run {
+            Run::Action { .. } => words.action_word,
+            Run::Delay { .. } => words.delay,
+            Run::Macro { .. } => words.macro_word,
+        };
+        egui::ComboBox::from_id_salt(("kind", position))
+            .selected_text(kind_label)
+            .show_ui(ui, |ui| {
+                let first_action = project.actions.first().map_or(1, |a| a.id);
+                ui.selectable_value(&mut run, Run::Action { action_id: first_action }, words.action_word);
+                ui.selectable_value(&mut run, Run::Delay { delay_ms: 500 }, words.delay);
+                ui.selectable_value(&mut run, Run::Macro { macro_id: item.id }, words.macro_word);
+            })
+            .response
+            .labelled_by(row.id);
+        match &mut run {
+            Run::Action { action_id } => {
+                let shown = project
+                    .action(*action_id)
+                    .map_or_else(|| format!("{action_id} ?"), |a| format!("{} {}", a.id, a.caption));
+                egui::ComboBox::from_id_salt(("target", position))
+                    .selected_text(shown)
+                    .show_ui(ui, |ui| {
+                        for action in &project.actions {
+                            ui.selectable_value(action_id, action.id, format!("{} {}", action.id, action.caption));
+                        }
+                    })
+                    .response
+                    .labelled_by(row.id);
+            }
+            Run::Macro { macro_id } => {
+                let shown = project
+                    .macro_by_id(*macro_id)
+                    .map_or_else(|| format!("{macro_id} ?"), |m| format!("{} {}", m.id, m.caption));
+                egui::ComboBox::from_id_salt(("target", position))
+                    .selected_text(shown)
+                    .show_ui(ui, |ui| {
+                        for other in &project.macros {
+                            ui.selectable_value(macro_id, other.id, format!("{} {}", other.id, other.caption));
+                        }
+                    })
+                    .response
+                    .labelled_by(row.id);
+            }
+            Run::Delay { delay_ms } => {
+                ui.add(egui::DragValue::new(delay_ms).range(0..=i32::MAX).suffix(" ms"));
+            }
+        }
+        if run != command.run {
+            let key = matches!(run, Run::Delay { .. }).then(|| format!("macro {} command {position} delay", item.id));
+            actions.push(with(Command { run, ..*command }, key));
+        }
+        let mut ratio = command.ratio_percent;
+        if ui.add(egui::DragValue::new(&mut ratio).range(1..=100).suffix(" %")).changed() {
+            actions.push(with(
+                Command { ratio_percent: ratio, ..*command },
+                Some(format!("macro {} command {position} ratio", item.id)),
+            ));
+        }
+        let mut loops = command.loop_count;
+        if ui.add(egui::DragValue::new(&mut loops).range(1..=i16::MAX).prefix("× ")).changed() {
+            actions.push(with(
+                Command { loop_count: loops, ..*command },
+                Some(format!("macro {} command {position} loop", item.id)),
+            ));
+        }
+        match timing.command_total_ms(command) {
+            Ok(total) => ui.monospace(seconds(total)),
+            Err(_) => ui.monospace("—"),
+        };
+        ui.horizontal(|ui| {
+            if ui.add_enabled(position > 0, egui::Button::new("↑")).clicked() {
+                let mut moved = item.clone();
+                moved.commands.swap(position, position - 1);
+                actions.push(edit(index, moved, None));
+            }
+            if ui.add_enabled(position + 1 < item.commands.len(), egui::Button::new("↓")).clicked() {
+                let mut moved = item.clone();
+                moved.commands.swap(position, position + 1);
+                actions.push(edit(index, moved, None));
+            }
+            if ui.button("×").on_hover_text(words.remove).clicked() {
+                let mut fewer = item.clone();
+                fewer.commands.remove(position);
+                actions.push(edit(index, fewer, None));
+            }
+        });
+    }
+}

@@ -1,0 +1,132 @@
+//! The macro composer and the joystick mapping panel, through egui_kittest.
+
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use std::path::Path;
+use std::time::{Duration, Instant};
+
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use servo_studio::link::no_waker;
+use servo_studio::project::{self, Command, Macro, Project, Run};
+use servo_studio::protocol::board::ButtonEvent;
+use servo_studio::sim::SimCommand;
+use servo_studio::ui::{Action, StudioApp, Tab};
+
+fn fixture() -> Project {
+    project::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/project-v1.json")).unwrap()
+}
+
+fn harness(project: Project, tab: Tab) -> Harness<'static, StudioApp> {
+    let data = tempfile::tempdir().unwrap().keep();
+    let mut app = StudioApp::new(project, None, no_waker()).with_data_dir(data);
+    app.apply(Action::ShowTab(tab));
+    let mut harness = Harness::builder()
+        .with_size(egui::vec2(1300.0, 900.0))
+        .with_context_setup(servo_studio::ui::fonts::install)
+        .build_ui_state(|ui, app: &mut StudioApp| app.show(ui), app);
+    harness.run_steps(3);
+    harness
+}
+
+#[test]
+fn the_composer_shows_command_and_macro_durations() {
+    let harness = harness(fixture(), Tab::Macros);
+    // Macro 100: 1.00 s + 0.50 s + 1.20 s.
+    assert!(harness.query_all_by_label("Total 2.70 s").next().is_some());
+    for each in ["1.00 s", "0.50 s", "1.20 s"] {
+        assert!(harness.query_by_label(each).is_some(), "{each}");
+    }
+}
+
+#[test]
+fn a_macro_cycle_shows_its_warning_inline() {
+    let mut project = fixture();
+    project.macros[0].commands.push(Command::once(Run::Macro { macro_id: 101 }));
+    let mut harness = harness(project, Tab::Macros);
+    // Macro 100 is open: it has no total, because it reaches itself.
+    assert!(harness.query_by_label_contains("is part of a cycle").is_some());
+    // The cycle is reported at the command that closes it, in macro 101, which the list flags.
+    assert!(harness.query_by_label_contains("! 101").is_some(), "the list flags the macro");
+    harness.get_by_label_contains("101 打招呼").click();
+    harness.run_steps(2);
+    assert!(harness.query_by_label_contains("macro cycle 100 → 101 → 100").is_some(), "the warning is inline");
+}
+
+#[test]
+fn commands_are_added_reordered_and_undone() {
+    let mut harness = harness(fixture(), Tab::Macros);
+    let original = harness.state().document.project.clone();
+    harness.get_by_label("+ Delay").click();
+    harness.run_steps(2);
+    let commands = &harness.state().document.project.macros[0].commands;
+    assert_eq!(commands.len(), 4);
+    assert_eq!(commands[3], Command::once(Run::Delay { delay_ms: 500 }));
+    // Move the new delay up one place.
+    harness.get_all_by_label("↑").nth(2).unwrap().click();
+    harness.run_steps(2);
+    let commands = &harness.state().document.project.macros[0].commands;
+    assert_eq!(commands[2], Command::once(Run::Delay { delay_ms: 500 }));
+    harness.state_mut().apply(Action::Undo);
+    harness.state_mut().apply(Action::Undo);
+    assert_eq!(harness.state().document.project, original);
+}
+
+#[test]
+fn adding_a_macro_opens_it() {
+    let mut harness = harness(Project::default(), Tab::Macros);
+    harness.get_by_label("Add macro").click();
+    harness.run_steps(2);
+    assert_eq!(harness.state().document.project.macros, [Macro { id: 1, caption: "Macro 1".into(), commands: vec![] }]);
+}
+
+/// Runs frames until `done`, failing after a deadline (events come from the board's thread).
+fn run_until(harness: &mut Harness<'static, StudioApp>, what: &str, done: impl Fn(&StudioApp) -> bool) {
+    let deadline = Instant::now() + Duration::from_secs(10);
+    while !done(harness.state()) {
+        assert!(Instant::now() < deadline, "timed out waiting for {what}");
+        harness.step();
+    }
+}
+
+#[test]
+fn a_button_pressed_on_the_remote_is_picked_or_added() {
+    let mut harness = harness(fixture(), Tab::Joystick);
+    harness.state_mut().apply(Action::ConnectDemo);
+    harness.run_steps(2);
+    harness.get_by_label("Press a button to pick it").click();
+    harness.run_steps(2);
+    assert!(harness.state().picking.is_some());
+    // The subscription must reach the board before the press; wait for the board to have handled it.
+    let press = |harness: &Harness<'static, StudioApp>, button_id| {
+        let link = harness.state().link.as_ref().unwrap();
+        link.demo_board().unwrap().command(SimCommand::Button { button_id, event: ButtonEvent::Press });
+    };
+    run_until(&mut harness, "the subscription", |app| {
+        app.link
+            .as_ref()
+            .unwrap()
+            .requester()
+            .request(servo_studio::protocol::board::Message::QueryProjectIdRequest)
+            .is_ok()
+    });
+    press(&harness, 0x8000_0001);
+    run_until(&mut harness, "the picked button", |app| app.picked_button == Some(0x8000_0001));
+    harness.run_steps(2);
+    assert_eq!(
+        harness.state().document.project.joystick_tables[0].buttons.len(),
+        2,
+        "an existing button is selected, not added"
+    );
+    assert!(harness.query_all_by_label_contains("→ 0x80000001").next().is_some());
+    assert!(harness.query_by_label_contains("0x80000001 press").is_some(), "shown among the live events");
+
+    // A button the table does not have yet is added.
+    harness.get_by_label("Press a button to pick it").click();
+    harness.run_steps(2);
+    press(&harness, 0x0000_0042);
+    run_until(&mut harness, "the new button", |app| app.picked_button == Some(0x42));
+    let buttons = &harness.state().document.project.joystick_tables[0].buttons;
+    assert_eq!(buttons.len(), 3);
+    assert_eq!(buttons[2].id, 0x42);
+}
