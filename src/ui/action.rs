@@ -27,6 +27,8 @@ pub enum Tab {
     Joystick,
     /// Upload / read / export.
     Board,
+    /// Every frame sent and received.
+    Log,
 }
 
 /// One request from a panel to the app shell.

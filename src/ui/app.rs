@@ -700,6 +700,7 @@ impl StudioApp {
                 ui.selectable_value(&mut tab, Tab::Macros, words.macros);
                 ui.selectable_value(&mut tab, Tab::Joystick, words.joystick);
                 ui.selectable_value(&mut tab, Tab::Board, words.board);
+                ui.selectable_value(&mut tab, Tab::Log, words.packet_log);
                 if tab != self.tab {
                     actions.push(Action::ShowTab(tab));
                 }
@@ -741,6 +742,12 @@ impl StudioApp {
                 };
                 self.joystick_panel.ui(ui, &view, words, &mut actions);
             }
+            Tab::Log => match &mut self.link {
+                Some(link) => link.log.ui(ui, words.packet_log),
+                None => {
+                    ui.label(words.not_connected);
+                }
+            },
             Tab::Board => {
                 let project_bytes = BoardImage::from_project(&self.document.project)
                     .map_err(|error| error.to_string())

@@ -62,6 +62,9 @@ pub struct BoardLink {
     pub servos: BTreeMap<u8, ServoStatus>,
     /// Servos were stopped with STOP and not resumed.
     pub stopped: bool,
+    /// Every frame sent and received.
+    pub log: crate::ui::packet_log::PacketLog,
+    opened_at: Instant,
     inflight: Vec<(Query, Receiver<Result<Message, RequestError>>)>,
     next_status_at: Instant,
     next_angles_at: Instant,
@@ -112,6 +115,8 @@ impl BoardLink {
             memory: None,
             servos: BTreeMap::new(),
             stopped: false,
+            log: crate::ui::packet_log::PacketLog::default(),
+            opened_at: now,
             inflight: Vec::new(),
             next_status_at: now,
             next_angles_at: now,
@@ -149,7 +154,10 @@ impl BoardLink {
                 LinkEvent::Driver(BoardEvent::SendFailed(error)) => {
                     notices.push(LinkNotice::Error(error));
                 }
-                LinkEvent::Driver(_) => {}
+                LinkEvent::Driver(BoardEvent::Traffic(traffic)) => {
+                    self.log.record(now.saturating_duration_since(self.opened_at).as_secs_f64(), &traffic);
+                }
+                LinkEvent::Driver(BoardEvent::Unsolicited(_)) => {}
                 LinkEvent::Disconnected { reason } => {
                     notices.push(LinkNotice::Disconnected(reason));
                 }

@@ -103,6 +103,8 @@ pub struct Strings {
     pub pose: &'static str,
     /// "Board".
     pub board: &'static str,
+    /// "Packet log".
+    pub packet_log: &'static str,
     /// "File".
     pub file: &'static str,
     /// "New".
@@ -209,6 +211,7 @@ const ENGLISH: Strings = Strings {
     add_servo: "Add servo",
     pose: "Pose",
     board: "Board",
+    packet_log: "Packet log",
     file: "File",
     new_project: "New",
     open: "Open…",
@@ -276,6 +279,7 @@ const TRADITIONAL_CHINESE: Strings = Strings {
     add_servo: "新增舵機",
     pose: "姿勢",
     board: "控制板",
+    packet_log: "封包紀錄",
     file: "檔案",
     new_project: "新增",
     open: "開啟…",

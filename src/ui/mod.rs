@@ -13,6 +13,7 @@ mod i18n;
 mod job;
 mod joystick_panel;
 mod macro_panel;
+pub mod packet_log;
 mod servo_panel;
 
 pub use action::{Action, AfterUnsaved, BoardIntent, Tab};

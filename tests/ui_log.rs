@@ -1,0 +1,39 @@
+//! The packet log tab, against the in-process emulated board.
+
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use std::time::{Duration, Instant};
+
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use servo_studio::link::no_waker;
+use servo_studio::project::Project;
+use servo_studio::ui::{Action, StudioApp, Tab};
+
+#[test]
+fn the_log_shows_decoded_frames_and_filters_them() {
+    let data = tempfile::tempdir().unwrap().keep();
+    let mut app = StudioApp::new(Project::default(), None, no_waker()).with_data_dir(data);
+    app.apply(Action::ConnectDemo);
+    app.apply(Action::ShowTab(Tab::Log));
+    let mut harness = Harness::builder()
+        .with_size(egui::vec2(1300.0, 800.0))
+        .with_context_setup(servo_studio::ui::fonts::install)
+        .build_ui_state(|ui, app: &mut StudioApp| app.show(ui), app);
+    // The status queries on connecting and their answers fill the log.
+    let deadline = Instant::now() + Duration::from_secs(10);
+    while harness.state().link.as_ref().unwrap().log.len() < 8 {
+        assert!(Instant::now() < deadline, "the log stayed empty");
+        harness.step();
+    }
+    harness.run_steps(2);
+    assert!(harness.query_all_by_label_contains("→ QueryProjectIDRequest").next().is_some());
+    assert!(harness.query_all_by_label_contains("← QueryProjectIDResponse").next().is_some());
+    assert!(harness.query_all_by_label_contains("13 4c 05 1d").next().is_some(), "hex is shown");
+    harness.get_by_role_and_label(egui::accesskit::Role::TextInput, "Filter").focus();
+    harness.run_steps(1);
+    harness.get_by_role_and_label(egui::accesskit::Role::TextInput, "Filter").type_text("RemainPower");
+    harness.run_steps(2);
+    assert!(harness.query_all_by_label_contains("QueryProjectID").next().is_none(), "filtered out");
+    assert!(harness.query_all_by_label_contains("QueryRemainPowerResponse").next().is_some());
+}
