@@ -130,3 +130,13 @@ fn a_button_pressed_on_the_remote_is_picked_or_added() {
     assert_eq!(buttons.len(), 3);
     assert_eq!(buttons[2].id, 0x42);
 }
+
+#[test]
+fn drawing_an_invalid_ratio_does_not_silently_change_it() {
+    let mut project = fixture();
+    project.macros[0].commands[0].ratio_percent = 0;
+    let harness = harness(project.clone(), Tab::Macros);
+    assert_eq!(harness.state().document.project, project);
+    assert!(!harness.state().document.dirty);
+    assert!(harness.query_all_by_label_contains("ratio 0 % is outside 1..=100").next().is_some());
+}

@@ -14,5 +14,5 @@ pub use file::{CURRENT_VERSION, FORMAT_TAG, LoadError, SaveError, atomic_write, 
 pub use history::{History, MAX_UNDO_STEPS};
 pub use model::{Action, BoardKind, Button, Command, JoystickTable, Macro, Project, Run, Servo, Step};
 pub use timing::{Timing, TimingError, action_duration_ms};
-pub use trajectory::{Trajectories, action_trajectories, macro_trajectories};
+pub use trajectory::{Trajectories, action_trajectories, angle_at, macro_trajectories};
 pub use validate::{Location, Problem, Severity, has_errors, validate};

@@ -75,6 +75,26 @@ pub fn macro_trajectories(project: &Project, macro_id: i32) -> (Trajectories, f6
     (tracer.points, end)
 }
 
+/// The angle at `time_ms` on a trajectory: linear between points, held after
+/// the last one; `None` before the first point.
+pub fn angle_at(points: &[(f64, f64)], time_ms: f64) -> Option<f64> {
+    let first = points.first()?;
+    if time_ms < first.0 {
+        return None;
+    }
+    let mut angle = first.1;
+    for pair in points.windows(2) {
+        let ((t0, a0), (t1, a1)) = (pair[0], pair[1]);
+        if time_ms >= t1 {
+            angle = a1;
+        } else if time_ms >= t0 {
+            angle = if t1 > t0 { a0 + (a1 - a0) * (time_ms - t0) / (t1 - t0) } else { a1 };
+            break;
+        }
+    }
+    Some(angle)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -127,6 +147,16 @@ mod tests {
         let (points, end) = macro_trajectories(&project(), 6);
         assert!(points.is_empty());
         assert_eq!(end, 0.0);
+    }
+
+    #[test]
+    fn angles_are_interpolated_and_held() {
+        let points = [(0.0, 10.0), (1000.0, 90.0), (1200.0, 90.0), (2200.0, -90.0)];
+        assert_eq!(angle_at(&points, -1.0), None);
+        assert_eq!(angle_at(&points, 500.0), Some(50.0));
+        assert_eq!(angle_at(&points, 1100.0), Some(90.0));
+        assert_eq!(angle_at(&points, 1700.0), Some(0.0));
+        assert_eq!(angle_at(&points, 9999.0), Some(-90.0));
     }
 
     #[test]

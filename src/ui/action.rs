@@ -21,6 +21,8 @@ pub enum Tab {
     /// Servo sliders.
     #[default]
     Servos,
+    /// The action editor.
+    Actions,
     /// The macro composer.
     Macros,
     /// Joystick mapping.
@@ -117,6 +119,10 @@ pub enum Action {
     Autosave,
     /// Run a stored macro on the board.
     RunMacro(i32),
+    /// Move the servos through an action of the project now (live).
+    PlayAction(i32),
+    /// Play an action on the sliders, without a board.
+    PreviewAction(i32),
     /// Start (with the table to pick into) or stop picking a button by pressing it on the remote.
     PickButton {
         /// The table a pressed button is selected in (or added to); `None` stops picking.

@@ -11,6 +11,7 @@ use crate::project::{Action as ProjectAction, Edit, Project, Step, next_free_id}
 use crate::project::{has_errors, validate};
 use crate::protocol::board::ServoMove;
 use crate::ui::action::{Action, AfterUnsaved, BoardIntent, Tab};
+use crate::ui::action_panel::ActionPanel;
 use crate::ui::board_link::{BoardLink, LinkNotice};
 use crate::ui::board_panel::{self, BoardResult, BoardView, PendingConfirm};
 use crate::ui::connection_bar::{ConnectionBar, LinkStatus};
@@ -75,6 +76,8 @@ pub struct StudioApp {
     pub picking: Option<usize>,
     /// The button last picked on the remote.
     pub picked_button: Option<u32>,
+    /// An action being previewed on the sliders, and when it started.
+    pub preview: Option<(i32, Instant)>,
     compare_intent: Option<BoardIntent>,
     compared_board: Option<Project>,
     waker: Waker,
@@ -82,6 +85,7 @@ pub struct StudioApp {
     servo_panel: ServoPanel,
     macro_panel: MacroPanel,
     joystick_panel: JoystickPanel,
+    action_panel: ActionPanel,
 }
 
 impl std::fmt::Debug for StudioApp {
@@ -119,6 +123,8 @@ impl StudioApp {
             connection_bar: ConnectionBar::default(),
             servo_panel: ServoPanel::default(),
             macro_panel: MacroPanel::default(),
+            action_panel: ActionPanel::default(),
+            preview: None,
             joystick_panel: JoystickPanel::default(),
             picking: None,
             picked_button: None,
@@ -389,6 +395,8 @@ impl StudioApp {
                 self.recovery_offer = None;
                 files::clear_recovery(&self.data_dir);
             }
+            Action::PlayAction(action_id) => self.play_action(action_id),
+            Action::PreviewAction(action_id) => self.preview = Some((action_id, Instant::now())),
             Action::RunMacro(macro_id) => match &mut self.link {
                 Some(link) => link.run_macro(macro_id),
                 None => self.report("connect a board to run a macro", true),
@@ -486,6 +494,57 @@ impl StudioApp {
                     }
                 }
             }
+        }
+    }
+
+    /// Sends an action's steps as one live move (clamped to each servo's limits)
+    /// and shows the targets on the sliders.
+    fn play_action(&mut self, action_id: i32) {
+        let Some(action) = self.document.project.action(action_id) else { return };
+        let moves: Vec<ServoMove> = action
+            .steps
+            .iter()
+            .filter_map(|step| {
+                let servo = self.document.project.servo(step.servo_id)?;
+                Some(ServoMove {
+                    servo_id: step.servo_id,
+                    degree: servo.clamp(step.degree),
+                    interval_10ms: step.interval_10ms,
+                })
+            })
+            .collect();
+        let Some(link) = &self.link else {
+            self.report("connect a board to play an action on it (Preview works without one)", true);
+            return;
+        };
+        if link.stopped {
+            self.report("stopped: press Resume before moving servos", true);
+            return;
+        }
+        if let Err(error) = link.requester().move_servos(moves.clone()) {
+            self.report(error.to_string(), true);
+            return;
+        }
+        for servo_move in moves {
+            self.pose.insert(servo_move.servo_id, servo_move.degree);
+        }
+    }
+
+    /// Moves the sliders along the previewed action at `now`; ends the preview after its last step.
+    pub fn advance_preview(&mut self, now: Instant) {
+        let Some((action_id, started)) = self.preview else { return };
+        let (trajectories, end_ms) = crate::project::action_trajectories(&self.document.project, action_id);
+        let elapsed_ms = now.saturating_duration_since(started).as_secs_f64() * 1000.0;
+        for (servo_id, points) in &trajectories {
+            if let Some(angle) = crate::project::angle_at(points, elapsed_ms) {
+                // Within the servo's limits, as every step is.
+                #[allow(clippy::cast_possible_truncation)]
+                let degree = angle.round() as i16;
+                self.pose.insert(*servo_id, degree);
+            }
+        }
+        if elapsed_ms >= end_ms {
+            self.preview = None;
         }
     }
 
@@ -654,6 +713,10 @@ impl StudioApp {
         let words = self.language.strings();
 
         self.file_events(ui, now, &mut actions);
+        if self.preview.is_some() {
+            self.advance_preview(now);
+            ui.ctx().request_repaint();
+        }
         egui::Panel::top("toolbar").show(ui, |ui| {
             ui.horizontal(|ui| {
                 self.file_menu(ui, &mut actions);
@@ -697,6 +760,7 @@ impl StudioApp {
             ui.horizontal(|ui| {
                 let mut tab = self.tab;
                 ui.selectable_value(&mut tab, Tab::Servos, words.servos);
+                ui.selectable_value(&mut tab, Tab::Actions, words.actions);
                 ui.selectable_value(&mut tab, Tab::Macros, words.macros);
                 ui.selectable_value(&mut tab, Tab::Joystick, words.joystick);
                 ui.selectable_value(&mut tab, Tab::Board, words.board);
@@ -728,6 +792,9 @@ impl StudioApp {
                     polling: self.polling,
                 };
                 self.servo_panel.ui(ui, &view, words, &mut actions);
+            }
+            Tab::Actions => {
+                self.action_panel.ui(ui, &self.document.project, self.link.is_some(), words, &mut actions);
             }
             Tab::Macros => {
                 self.macro_panel.ui(ui, &self.document.project, self.link.is_some(), words, &mut actions);

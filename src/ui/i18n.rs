@@ -105,6 +105,18 @@ pub struct Strings {
     pub board: &'static str,
     /// "Packet log".
     pub packet_log: &'static str,
+    /// "Actions".
+    pub actions: &'static str,
+    /// "Add action".
+    pub add_action: &'static str,
+    /// "No actions yet: capture a pose, or add one".
+    pub no_actions: &'static str,
+    /// "Play on board".
+    pub play_on_board: &'static str,
+    /// "Preview".
+    pub preview: &'static str,
+    /// "Add step".
+    pub add_step: &'static str,
     /// "File".
     pub file: &'static str,
     /// "New".
@@ -212,6 +224,12 @@ const ENGLISH: Strings = Strings {
     pose: "Pose",
     board: "Board",
     packet_log: "Packet log",
+    actions: "Actions",
+    add_action: "Add action",
+    no_actions: "No actions yet: capture a pose, or add one",
+    play_on_board: "Play on board",
+    preview: "Preview",
+    add_step: "Add step",
     file: "File",
     new_project: "New",
     open: "Open…",
@@ -280,6 +298,12 @@ const TRADITIONAL_CHINESE: Strings = Strings {
     pose: "姿勢",
     board: "控制板",
     packet_log: "封包紀錄",
+    actions: "動作",
+    add_action: "新增動作",
+    no_actions: "尚無動作：擷取姿勢或新增動作",
+    play_on_board: "在控制板上播放",
+    preview: "預覽",
+    add_step: "新增步驟",
     file: "檔案",
     new_project: "新增",
     open: "開啟…",

@@ -221,7 +221,7 @@ impl MacroPanel {
                     .labelled_by(row.id);
             }
             Run::Delay { delay_ms } => {
-                ui.add(egui::DragValue::new(delay_ms).range(0..=i32::MAX).suffix(" ms"));
+                ui.add(egui::DragValue::new(delay_ms).clamp_existing_to_range(false).range(0..=i32::MAX).suffix(" ms"));
             }
         }
         if run != command.run {
@@ -229,14 +229,18 @@ impl MacroPanel {
             actions.push(with(Command { run, ..*command }, key));
         }
         let mut ratio = command.ratio_percent;
-        if ui.add(egui::DragValue::new(&mut ratio).range(1..=100).suffix(" %")).changed() {
+        if ui.add(egui::DragValue::new(&mut ratio).clamp_existing_to_range(false).range(1..=100).suffix(" %")).changed()
+        {
             actions.push(with(
                 Command { ratio_percent: ratio, ..*command },
                 Some(format!("macro {} command {position} ratio", item.id)),
             ));
         }
         let mut loops = command.loop_count;
-        if ui.add(egui::DragValue::new(&mut loops).range(1..=i16::MAX).prefix("× ")).changed() {
+        if ui
+            .add(egui::DragValue::new(&mut loops).clamp_existing_to_range(false).range(1..=i16::MAX).prefix("× "))
+            .changed()
+        {
             actions.push(with(
                 Command { loop_count: loops, ..*command },
                 Some(format!("macro {} command {position} loop", item.id)),

@@ -2,6 +2,7 @@
 //! [`Action`]s; only the app shell ([`StudioApp::apply`]) applies them.
 
 mod action;
+mod action_panel;
 mod app;
 mod board_link;
 mod board_panel;
@@ -17,6 +18,7 @@ pub mod packet_log;
 mod servo_panel;
 
 pub use action::{Action, AfterUnsaved, BoardIntent, Tab};
+pub use action_panel::timeline_bars;
 pub use app::{
     CAPTURED_STEP_INTERVAL_10MS, LIVE_MOVE_INTERVAL_10MS, REMEMBERED_KEY, Remembered, StatusLine, StudioApp,
 };

@@ -1,0 +1,250 @@
+//! The action editor: an action's steps as an editable table, as a timeline
+//! (a lane per servo, a bar per step from 0 to its interval — all steps start
+//! together), and as a plot of each servo's angle over time; play it on the
+//! board, or preview it on the sliders without one.
+
+use egui_plot::{Legend, Line, Plot};
+
+use crate::project::{
+    Action as ProjectAction, Edit, Location, Project, Step, action_trajectories, next_free_id, validate,
+};
+use crate::ui::action::Action;
+use crate::ui::i18n::Strings;
+
+/// The editor's own state: which action is open.
+#[derive(Debug, Default)]
+pub struct ActionPanel {
+    selected: usize,
+}
+
+fn set(index: usize, action: ProjectAction, key: Option<String>) -> Action {
+    Action::Edit { edit: Edit::SetAction { index, action }, coalesce: key }
+}
+
+impl ActionPanel {
+    /// Draws the editor.
+    pub fn ui(
+        &mut self,
+        ui: &mut egui::Ui,
+        project: &Project,
+        connected: bool,
+        words: &Strings,
+        actions: &mut Vec<Action>,
+    ) {
+        ui.horizontal(|ui| {
+            ui.heading(words.actions);
+            if ui.button(words.add_action).clicked() {
+                let id = next_free_id(project.actions.iter().map(|a| a.id));
+                let action = ProjectAction { id, caption: format!("{} {id}", words.action_word), steps: Vec::new() };
+                actions.push(Action::Edit { edit: Edit::AddAction(action), coalesce: None });
+                self.selected = project.actions.len();
+            }
+        });
+        if project.actions.is_empty() {
+            ui.label(words.no_actions);
+            return;
+        }
+        self.selected = self.selected.min(project.actions.len() - 1);
+        ui.horizontal_top(|ui| {
+            ui.vertical(|ui| {
+                ui.set_width(200.0);
+                egui::ScrollArea::vertical().id_salt("action-list").show(ui, |ui| {
+                    for (index, action) in project.actions.iter().enumerate() {
+                        if ui
+                            .selectable_label(index == self.selected, format!("{} {}", action.id, action.caption))
+                            .clicked()
+                        {
+                            self.selected = index;
+                        }
+                    }
+                });
+            });
+            ui.separator();
+            ui.vertical(|ui| self.editor(ui, project, connected, words, actions));
+        });
+    }
+
+    fn editor(
+        &self,
+        ui: &mut egui::Ui,
+        project: &Project,
+        connected: bool,
+        words: &Strings,
+        actions: &mut Vec<Action>,
+    ) {
+        let index = self.selected;
+        let action = &project.actions[index];
+        ui.horizontal(|ui| {
+            let label = ui.label(format!("{} {}", words.action_word, action.id));
+            let mut caption = action.caption.clone();
+            if ui.text_edit_singleline(&mut caption).labelled_by(label.id).changed() {
+                actions.push(set(
+                    index,
+                    ProjectAction { caption, ..action.clone() },
+                    Some(format!("action {} caption", action.id)),
+                ));
+            }
+            if ui.add_enabled(connected, egui::Button::new(words.play_on_board)).clicked() {
+                actions.push(Action::PlayAction(action.id));
+            }
+            if ui.button(words.preview).clicked() {
+                actions.push(Action::PreviewAction(action.id));
+            }
+            if ui.button(words.remove).clicked() {
+                actions.push(Action::Edit { edit: Edit::RemoveAction { index }, coalesce: None });
+            }
+        });
+        let problems = validate(project);
+        for problem in problems
+            .iter()
+            .filter(|p| matches!(&p.location, Location::Action { action_id, .. } if *action_id == action.id))
+        {
+            ui.colored_label(ui.visuals().warn_fg_color, &problem.message);
+        }
+        egui::Grid::new("steps").striped(true).show(ui, |ui| {
+            for (position, step) in action.steps.iter().enumerate() {
+                let with = |changed: Step, key: Option<String>| {
+                    let mut action = action.clone();
+                    action.steps[position] = changed;
+                    set(index, action, key)
+                };
+                let row = ui.label(format!("{}", position + 1));
+                let servo_text = project.servo(step.servo_id).map_or_else(|| format!("{} ?", step.servo_id), |s| format!("{} {}", s.id, s.caption));
+                let mut servo_id = step.servo_id;
+                egui::ComboBox::from_id_salt(("step-servo", position))
+                    .selected_text(servo_text)
+                    .show_ui(ui, |ui| {
+                        for servo in &project.servos {
+                            ui.selectable_value(&mut servo_id, servo.id, format!("{} {}", servo.id, servo.caption));
+                        }
+                    })
+                    .response
+                    .labelled_by(row.id);
+                if servo_id != step.servo_id {
+                    actions.push(with(Step { servo_id, ..*step }, None));
+                }
+                let (low, high) = project.servo(step.servo_id).map_or((i16::MIN, i16::MAX), |s| (s.min_deg, s.max_deg));
+                let mut degree = step.degree;
+                if ui.add(egui::DragValue::new(&mut degree).clamp_existing_to_range(false).range(low..=high).suffix("°")).labelled_by(row.id).changed() {
+                    actions.push(with(Step { degree, ..*step }, Some(format!("action {} step {position} degree", action.id))));
+                }
+                let mut interval = step.interval_10ms;
+                if ui.add(egui::DragValue::new(&mut interval).clamp_existing_to_range(false).range(0..=i16::MAX).suffix(" × 10 ms")).labelled_by(row.id).changed() {
+                    actions.push(with(
+                        Step { interval_10ms: interval, ..*step },
+                        Some(format!("action {} step {position} interval", action.id)),
+                    ));
+                }
+                ui.horizontal(|ui| {
+                    if ui.add_enabled(position > 0, egui::Button::new("↑")).clicked() {
+                        let mut moved = action.clone();
+                        moved.steps.swap(position, position - 1);
+                        actions.push(set(index, moved, None));
+                    }
+                    if ui.add_enabled(position + 1 < action.steps.len(), egui::Button::new("↓")).clicked() {
+                        let mut moved = action.clone();
+                        moved.steps.swap(position, position + 1);
+                        actions.push(set(index, moved, None));
+                    }
+                    if ui.button("×").on_hover_text(words.remove).clicked() {
+                        let mut fewer = action.clone();
+                        fewer.steps.remove(position);
+                        actions.push(set(index, fewer, None));
+                    }
+                });
+                let at = position + 1;
+                if let Some(problem) = problems
+                    .iter()
+                    .find(|p| matches!(&p.location, Location::Step { action_id, step, .. } if *action_id == action.id && *step == at))
+                {
+                    ui.colored_label(ui.visuals().error_fg_color, &problem.message);
+                }
+                ui.end_row();
+            }
+        });
+        let unused = project.servos.iter().find(|servo| action.steps.iter().all(|step| step.servo_id != servo.id));
+        if ui.add_enabled(unused.is_some(), egui::Button::new(words.add_step)).clicked()
+            && let Some(servo) = unused
+        {
+            let mut more = action.clone();
+            more.steps.push(Step { servo_id: servo.id, degree: servo.home_deg, interval_10ms: 50 });
+            actions.push(set(index, more, None));
+        }
+        timeline(ui, project, action);
+        let (trajectories, _) = action_trajectories(project, action.id);
+        if !trajectories.is_empty() {
+            Plot::new("action-plot").height(180.0).legend(Legend::default()).x_axis_label("ms").show(ui, |plot| {
+                for (servo_id, points) in trajectories {
+                    let caption = project.servo(servo_id).map_or_else(String::new, |s| s.caption.clone());
+                    let series: Vec<[f64; 2]> = points.into_iter().map(|(t, angle)| [t, angle]).collect();
+                    plot.line(Line::new(format!("{servo_id} {caption}"), series));
+                }
+            });
+        }
+    }
+}
+
+/// The timeline's bars: per step, its servo and its span in ms (every step
+/// starts at 0: all steps of an action start together).
+pub fn timeline_bars(action: &ProjectAction) -> Vec<(u8, f32, f32)> {
+    action.steps.iter().map(|step| (step.servo_id, 0.0, f32::from(step.interval_10ms.max(0)) * 10.0)).collect()
+}
+
+/// A lane per servo, a bar per step from 0 to its interval.
+fn timeline(ui: &mut egui::Ui, project: &Project, action: &ProjectAction) {
+    if action.steps.is_empty() {
+        return;
+    }
+    let bars = timeline_bars(action);
+    let longest_ms = bars.iter().map(|(_, _, end)| *end).fold(0.0, f32::max).max(10.0);
+    let lane_height = 18.0;
+    let label_width = 110.0;
+    let height = lane_height * action.steps.len() as f32 + 16.0;
+    let (rect, _) = ui.allocate_exact_size(egui::vec2(ui.available_width().min(900.0), height), egui::Sense::hover());
+    let painter = ui.painter_at(rect);
+    let visuals = ui.visuals();
+    // Room on the right for the longest bar's label.
+    let track = egui::Rect::from_min_max(
+        egui::pos2(rect.left() + label_width, rect.top()),
+        egui::pos2(rect.right() - 110.0, rect.bottom()),
+    );
+    let x_of = |ms: f32| track.left() + track.width() * ms / longest_ms;
+    for (lane, (step, (_, start_ms, end_ms))) in action.steps.iter().zip(bars).enumerate() {
+        let top = rect.top() + lane as f32 * lane_height;
+        let caption = project.servo(step.servo_id).map_or_else(String::new, |s| s.caption.clone());
+        painter.text(
+            egui::pos2(rect.left(), top + lane_height / 2.0),
+            egui::Align2::LEFT_CENTER,
+            format!("{} {caption}", step.servo_id),
+            egui::TextStyle::Small.resolve(ui.style()),
+            visuals.text_color(),
+        );
+        let bar = egui::Rect::from_min_max(
+            egui::pos2(x_of(start_ms), top + 3.0),
+            egui::pos2(x_of(end_ms).max(x_of(0.0) + 2.0), top + lane_height - 3.0),
+        );
+        painter.rect_filled(bar, 3.0, visuals.selection.bg_fill);
+        painter.text(
+            bar.right_center() + egui::vec2(4.0, 0.0),
+            egui::Align2::LEFT_CENTER,
+            format!("{}° · {} ms", step.degree, end_ms),
+            egui::TextStyle::Small.resolve(ui.style()),
+            visuals.weak_text_color(),
+        );
+    }
+    let axis_y = rect.bottom() - 8.0;
+    painter.text(
+        egui::pos2(x_of(0.0), axis_y),
+        egui::Align2::LEFT_CENTER,
+        "0",
+        egui::TextStyle::Small.resolve(ui.style()),
+        visuals.weak_text_color(),
+    );
+    painter.text(
+        egui::pos2(x_of(longest_ms), axis_y),
+        egui::Align2::RIGHT_CENTER,
+        format!("{longest_ms} ms"),
+        egui::TextStyle::Small.resolve(ui.style()),
+        visuals.weak_text_color(),
+    );
+}

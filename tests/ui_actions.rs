@@ -1,0 +1,95 @@
+//! The action editor: editing steps, the timeline, play on board and preview.
+
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use std::path::Path;
+use std::time::{Duration, Instant};
+
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use servo_studio::link::no_waker;
+use servo_studio::project::{self, Project, Step};
+use servo_studio::ui::{Action, StudioApp, Tab};
+
+fn fixture() -> Project {
+    project::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/project-v1.json")).unwrap()
+}
+
+fn harness(project: Project) -> Harness<'static, StudioApp> {
+    let data = tempfile::tempdir().unwrap().keep();
+    let mut app = StudioApp::new(project, None, no_waker()).with_data_dir(data);
+    app.apply(Action::ShowTab(Tab::Actions));
+    let mut harness = Harness::builder()
+        .with_size(egui::vec2(1300.0, 900.0))
+        .with_context_setup(servo_studio::ui::fonts::install)
+        .build_ui_state(|ui, app: &mut StudioApp| app.show(ui), app);
+    harness.run_steps(3);
+    harness
+}
+
+#[test]
+fn the_timeline_has_a_bar_per_step_and_steps_can_be_added() {
+    let mut harness = harness(fixture());
+    // Action 1 "舉手": servo 1 to -90° over 500 ms, servo 2 to 45° over 1000 ms; all start at 0.
+    let bars = servo_studio::ui::timeline_bars(&harness.state().document.project.actions[0]);
+    assert_eq!(bars, [(1, 0.0, 500.0), (2, 0.0, 1000.0)]);
+    harness.get_by_label("Add step").click();
+    harness.run_steps(2);
+    let steps = &harness.state().document.project.actions[0].steps;
+    assert_eq!(steps.len(), 3);
+    assert_eq!(steps[2], Step { servo_id: 3, degree: 0, interval_10ms: 50 }, "the unused servo, at home");
+}
+
+#[test]
+fn preview_moves_the_sliders_along_the_action_without_a_board() {
+    let mut harness = harness(fixture());
+    harness.get_by_label("Preview").click();
+    harness.run_steps(1);
+    let (_, started) = harness.state().preview.unwrap();
+    // Half-way through servo 1's 500 ms move from home 0° to -90°.
+    harness.state_mut().advance_preview(started + Duration::from_millis(250));
+    assert_eq!(harness.state().pose.get(&1), Some(&-45));
+    harness.state_mut().advance_preview(started + Duration::from_millis(1000));
+    assert_eq!(harness.state().pose.get(&1), Some(&-90));
+    assert_eq!(harness.state().pose.get(&2), Some(&45));
+    assert!(harness.state().preview.is_none(), "the preview ends after the last step");
+}
+
+#[test]
+fn play_on_board_moves_the_emulated_servos() {
+    let mut harness = harness(fixture());
+    harness.state_mut().apply(Action::ConnectDemo);
+    harness.run_steps(2);
+    harness.get_by_label("Play on board").click();
+    harness.run_steps(2);
+    let requester = harness.state().link.as_ref().unwrap().requester();
+    let deadline = Instant::now() + Duration::from_secs(5);
+    loop {
+        let servos = requester.query_servos(255).unwrap();
+        let angle = |id: u8| servos.iter().find(|s| s.servo_id == id).unwrap().angle;
+        if angle(1) == -90 && angle(2) == 45 {
+            break;
+        }
+        assert!(Instant::now() < deadline, "the servos never reached the action's angles");
+    }
+}
+
+#[test]
+fn an_out_of_range_degree_is_flagged_not_silently_changed_and_undoable() {
+    let mut harness = harness(fixture());
+    let before = harness.state().document.project.clone();
+    let mut changed = before.actions[0].clone();
+    changed.steps[0].degree = -200; // outside servo 1's -90..90
+    harness
+        .state_mut()
+        .apply(Action::Edit { edit: project::Edit::SetAction { index: 0, action: changed }, coalesce: None });
+    harness.run_steps(2);
+    assert!(
+        harness.query_all_by_label_contains("outside servo 1's limits").next().is_some(),
+        "the problem shows inline"
+    );
+    // Drawing the out-of-range value does not silently "fix" the document.
+    assert_eq!(harness.state().document.project.actions[0].steps[0].degree, -200);
+    harness.state_mut().apply(Action::Undo);
+    assert_eq!(harness.state().document.project, before);
+}
