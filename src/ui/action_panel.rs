@@ -6,15 +6,39 @@
 use egui_plot::{Legend, Line, Plot};
 
 use crate::project::{
-    Action as ProjectAction, Edit, Location, Project, Step, action_trajectories, next_free_id, validate,
+    Action as ProjectAction, Edit, Location, Problem, Project, Step, action_trajectories, next_free_id, validate,
 };
 use crate::ui::action::Action;
 use crate::ui::i18n::Strings;
 
-/// The editor's own state: which action is open.
+/// Validation and the plot's series, computed once per document revision.
+#[derive(Debug)]
+struct Derived {
+    revision: u64,
+    selected: usize,
+    problems: Vec<Problem>,
+    series: Vec<(String, Vec<[f64; 2]>)>,
+}
+
+impl Derived {
+    fn compute(project: &Project, revision: u64, selected: usize) -> Self {
+        let (trajectories, _) = action_trajectories(project, project.actions[selected].id);
+        let series = trajectories
+            .into_iter()
+            .map(|(servo_id, points)| {
+                let caption = project.servo(servo_id).map_or_else(String::new, |s| s.caption.clone());
+                (format!("{servo_id} {caption}"), points.into_iter().map(|(t, angle)| [t, angle]).collect())
+            })
+            .collect();
+        Self { revision, selected, problems: validate(project), series }
+    }
+}
+
+/// The editor's own state: which action is open, and what was derived for it.
 #[derive(Debug, Default)]
 pub struct ActionPanel {
     selected: usize,
+    derived: Option<Derived>,
 }
 
 fn set(index: usize, action: ProjectAction, key: Option<String>) -> Action {
@@ -27,6 +51,7 @@ impl ActionPanel {
         &mut self,
         ui: &mut egui::Ui,
         project: &Project,
+        revision: u64,
         connected: bool,
         words: &Strings,
         actions: &mut Vec<Action>,
@@ -45,6 +70,10 @@ impl ActionPanel {
             return;
         }
         self.selected = self.selected.min(project.actions.len() - 1);
+        if self.derived.as_ref().is_none_or(|d| d.revision != revision || d.selected != self.selected) {
+            self.derived = Some(Derived::compute(project, revision, self.selected));
+        }
+        let Some(derived) = self.derived.take() else { return };
         ui.horizontal_top(|ui| {
             ui.vertical(|ui| {
                 ui.set_width(200.0);
@@ -60,14 +89,16 @@ impl ActionPanel {
                 });
             });
             ui.separator();
-            ui.vertical(|ui| self.editor(ui, project, connected, words, actions));
+            ui.vertical(|ui| self.editor(ui, project, &derived, connected, words, actions));
         });
+        self.derived = Some(derived);
     }
 
     fn editor(
         &self,
         ui: &mut egui::Ui,
         project: &Project,
+        derived: &Derived,
         connected: bool,
         words: &Strings,
         actions: &mut Vec<Action>,
@@ -94,7 +125,7 @@ impl ActionPanel {
                 actions.push(Action::Edit { edit: Edit::RemoveAction { index }, coalesce: None });
             }
         });
-        let problems = validate(project);
+        let problems = &derived.problems;
         for problem in problems
             .iter()
             .filter(|p| matches!(&p.location, Location::Action { action_id, .. } if *action_id == action.id))
@@ -171,13 +202,10 @@ impl ActionPanel {
             actions.push(set(index, more, None));
         }
         timeline(ui, project, action);
-        let (trajectories, _) = action_trajectories(project, action.id);
-        if !trajectories.is_empty() {
+        if !derived.series.is_empty() {
             Plot::new("action-plot").height(180.0).legend(Legend::default()).x_axis_label("ms").show(ui, |plot| {
-                for (servo_id, points) in trajectories {
-                    let caption = project.servo(servo_id).map_or_else(String::new, |s| s.caption.clone());
-                    let series: Vec<[f64; 2]> = points.into_iter().map(|(t, angle)| [t, angle]).collect();
-                    plot.line(Line::new(format!("{servo_id} {caption}"), series));
+                for (name, series) in &derived.series {
+                    plot.line(Line::new(name.clone(), series.clone()));
                 }
             });
         }

@@ -794,10 +794,12 @@ impl StudioApp {
                 self.servo_panel.ui(ui, &view, words, &mut actions);
             }
             Tab::Actions => {
-                self.action_panel.ui(ui, &self.document.project, self.link.is_some(), words, &mut actions);
+                let revision = self.document.revision();
+                self.action_panel.ui(ui, &self.document.project, revision, self.link.is_some(), words, &mut actions);
             }
             Tab::Macros => {
-                self.macro_panel.ui(ui, &self.document.project, self.link.is_some(), words, &mut actions);
+                let revision = self.document.revision();
+                self.macro_panel.ui(ui, &self.document.project, revision, self.link.is_some(), words, &mut actions);
             }
             Tab::Joystick => {
                 let view = JoystickView {

@@ -2,6 +2,7 @@
 //! has unsaved changes.
 
 use std::path::PathBuf;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 use crate::project::{Edit, History, Project};
 
@@ -15,12 +16,26 @@ pub struct Document {
     /// Changed since it was last saved or opened.
     pub dirty: bool,
     history: History,
+    revision: u64,
+}
+
+/// Revisions are unique across documents, so a cache keyed by one never
+/// mistakes a newly opened project for the previous one.
+static NEXT_REVISION: AtomicU64 = AtomicU64::new(1);
+
+fn next_revision() -> u64 {
+    NEXT_REVISION.fetch_add(1, Ordering::Relaxed)
 }
 
 impl Document {
     /// A document showing `project`, saved at `path`.
     pub fn new(project: Project, path: Option<PathBuf>) -> Self {
-        Self { project, path, dirty: false, history: History::default() }
+        Self { project, path, dirty: false, history: History::default(), revision: next_revision() }
+    }
+
+    /// Changes whenever the project does: a key for caches of derived data.
+    pub fn revision(&self) -> u64 {
+        self.revision
     }
 
     /// Applies an edit as one undo step, or as part of the open step with the
@@ -30,6 +45,7 @@ impl Document {
         if edit.apply(&mut self.project) && self.project != before {
             self.history.record(&before, coalesce);
             self.dirty = true;
+            self.revision = next_revision();
         }
     }
 
@@ -44,6 +60,7 @@ impl Document {
             Some(previous) => {
                 self.project = previous;
                 self.dirty = true;
+                self.revision = next_revision();
                 true
             }
             None => false,
@@ -56,6 +73,7 @@ impl Document {
             Some(next) => {
                 self.project = next;
                 self.dirty = true;
+                self.revision = next_revision();
                 true
             }
             None => false,

@@ -6,15 +6,52 @@
 use egui_plot::{Legend, Line, Plot};
 
 use crate::project::{
-    Command, Edit, Location, Macro, Project, Run, Timing, macro_trajectories, next_free_id, validate,
+    Command, Edit, Location, Macro, Problem, Project, Run, Timing, TimingError, macro_trajectories, next_free_id,
+    validate,
 };
 use crate::ui::action::Action;
 use crate::ui::i18n::Strings;
 
-/// The composer's own state: which macro is open.
+/// What the composer derives from the project, computed once per document
+/// revision (validation and timing of a large project take milliseconds).
+#[derive(Debug)]
+struct Derived {
+    revision: u64,
+    selected: usize,
+    problems: Vec<Problem>,
+    command_totals_ms: Vec<Result<i64, TimingError>>,
+    macro_total_ms: Result<i64, TimingError>,
+    series: Vec<(String, Vec<[f64; 2]>)>,
+}
+
+impl Derived {
+    fn compute(project: &Project, revision: u64, selected: usize) -> Self {
+        let item = &project.macros[selected];
+        let timing = Timing::new(project);
+        let (trajectories, _) = macro_trajectories(project, item.id);
+        let series = trajectories
+            .into_iter()
+            .map(|(servo_id, points)| {
+                let caption = project.servo(servo_id).map_or_else(String::new, |s| s.caption.clone());
+                (format!("{servo_id} {caption}"), points.into_iter().map(|(t, angle)| [t, angle]).collect())
+            })
+            .collect();
+        Self {
+            revision,
+            selected,
+            problems: validate(project),
+            command_totals_ms: item.commands.iter().map(|command| timing.command_total_ms(command)).collect(),
+            macro_total_ms: timing.macro_total_ms(item.id),
+            series,
+        }
+    }
+}
+
+/// The composer's own state: which macro is open, and what was derived for it.
 #[derive(Debug, Default)]
 pub struct MacroPanel {
     selected: usize,
+    derived: Option<Derived>,
 }
 
 fn seconds(ms: i64) -> String {
@@ -31,6 +68,7 @@ impl MacroPanel {
         &mut self,
         ui: &mut egui::Ui,
         project: &Project,
+        revision: u64,
         connected: bool,
         words: &Strings,
         actions: &mut Vec<Action>,
@@ -55,7 +93,11 @@ impl MacroPanel {
             return;
         }
         self.selected = self.selected.min(project.macros.len() - 1);
-        let problems = validate(project);
+        if self.derived.as_ref().is_none_or(|d| d.revision != revision || d.selected != self.selected) {
+            self.derived = Some(Derived::compute(project, revision, self.selected));
+        }
+        let Some(derived) = self.derived.take() else { return };
+        let problems = &derived.problems;
         ui.horizontal_top(|ui| {
             ui.vertical(|ui| {
                 ui.set_width(200.0);
@@ -71,22 +113,23 @@ impl MacroPanel {
                 }
             });
             ui.separator();
-            ui.vertical(|ui| self.editor(ui, project, &problems, connected, words, actions));
+            ui.vertical(|ui| self.editor(ui, project, &derived, connected, words, actions));
         });
+        self.derived = Some(derived);
     }
 
     fn editor(
         &self,
         ui: &mut egui::Ui,
         project: &Project,
-        problems: &[crate::project::Problem],
+        derived: &Derived,
         connected: bool,
         words: &Strings,
         actions: &mut Vec<Action>,
     ) {
         let index = self.selected;
         let item = &project.macros[index];
-        let timing = Timing::new(project);
+        let problems = &derived.problems;
         ui.horizontal(|ui| {
             let label = ui.label(format!("{} {}", words.macro_word, item.id));
             let mut caption = item.caption.clone();
@@ -94,7 +137,7 @@ impl MacroPanel {
                 let key = format!("macro {} caption", item.id);
                 actions.push(edit(index, Macro { caption, ..item.clone() }, Some(key)));
             }
-            match timing.macro_total_ms(item.id) {
+            match derived.macro_total_ms {
                 Ok(total) => ui.label(format!("{} {}", words.total, seconds(total))),
                 Err(error) => ui.colored_label(ui.visuals().warn_fg_color, error.to_string()),
             };
@@ -112,7 +155,8 @@ impl MacroPanel {
         }
         egui::Grid::new("commands").striped(true).show(ui, |ui| {
             for (position, command) in item.commands.iter().enumerate() {
-                self.command_row(ui, project, &timing, item, index, position, command, words, actions);
+                let total = derived.command_totals_ms.get(position).copied().unwrap_or(Err(TimingError::ZeroRatio));
+                self.command_row(ui, project, total, item, index, position, command, words, actions);
                 let at = position + 1;
                 let mut notes = problems.iter().filter(
                     |p| matches!(&p.location, Location::Command { macro_id, command, .. } if *macro_id == item.id && *command == at),
@@ -141,15 +185,12 @@ impl MacroPanel {
                 actions.push(add(Run::Macro { macro_id }));
             }
         });
-        let (trajectories, _end_ms) = macro_trajectories(project, item.id);
-        if !trajectories.is_empty() {
+        if !derived.series.is_empty() {
             Plot::new("macro-plot").height(220.0).legend(Legend::default()).x_axis_label("ms").y_axis_label("°").show(
                 ui,
                 |plot| {
-                    for (servo_id, points) in trajectories {
-                        let caption = project.servo(servo_id).map_or_else(String::new, |s| s.caption.clone());
-                        let series: Vec<[f64; 2]> = points.into_iter().map(|(t, angle)| [t, angle]).collect();
-                        plot.line(Line::new(format!("{servo_id} {caption}"), series));
+                    for (name, series) in &derived.series {
+                        plot.line(Line::new(name.clone(), series.clone()));
                     }
                 },
             );
@@ -161,7 +202,7 @@ impl MacroPanel {
         &self,
         ui: &mut egui::Ui,
         project: &Project,
-        timing: &Timing<'_>,
+        total_ms: Result<i64, TimingError>,
         item: &Macro,
         index: usize,
         position: usize,
@@ -246,7 +287,7 @@ impl MacroPanel {
                 Some(format!("macro {} command {position} loop", item.id)),
             ));
         }
-        match timing.command_total_ms(command) {
+        match total_ms {
             Ok(total) => ui.monospace(seconds(total)),
             Err(_) => ui.monospace("—"),
         };
