@@ -179,3 +179,45 @@ fn the_interface_switches_to_traditional_chinese() {
     assert!(harness.query_by_label("示範控制板").is_some());
     assert!(harness.query_all_by_label_contains("左肩 #1").next().is_some());
 }
+
+#[test]
+fn servos_are_added_and_edited_in_the_settings() {
+    let mut harness = harness(new_app(project()));
+    harness.run();
+    harness.get_by_label("Servo settings").click();
+    harness.run();
+    harness.get_by_label("Add servo").click();
+    harness.run();
+    let servos = &harness.state().document.project.servos;
+    assert_eq!(servos.len(), 3);
+    assert_eq!((servos[2].id, servos[2].caption.as_str()), (0, "Servo 0"), "the first free id");
+    assert_eq!(harness.get_all_by_role(Role::Slider).count(), 3, "and it gets a slider");
+}
+
+#[test]
+fn two_separate_drags_of_one_value_are_two_undo_steps() {
+    let mut harness = harness(new_app(project()));
+    harness.run();
+    let original = harness.state().document.project.clone();
+    let set_min = |harness: &mut Harness<'static, StudioApp>, min_deg: i16| {
+        let mut servo = harness.state().document.project.servos[0].clone();
+        servo.min_deg = min_deg;
+        harness.state_mut().apply(Action::Edit {
+            edit: project::Edit::SetServo { index: 0, servo },
+            coalesce: Some("servo 1 min".into()),
+        });
+    };
+    // First drag: three values, one step.
+    for min_deg in [-85, -80, -75] {
+        set_min(&mut harness, min_deg);
+    }
+    harness.run(); // pointer up, nothing focused: the step is sealed
+    // Second drag of the same value.
+    for min_deg in [-70, -60] {
+        set_min(&mut harness, min_deg);
+    }
+    harness.state_mut().apply(Action::Undo);
+    assert_eq!(harness.state().document.project.servos[0].min_deg, -75);
+    harness.state_mut().apply(Action::Undo);
+    assert_eq!(harness.state().document.project, original);
+}

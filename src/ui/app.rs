@@ -792,6 +792,8 @@ impl StudioApp {
                     polling: self.polling,
                 };
                 self.servo_panel.ui(ui, &view, words, &mut actions);
+                ui.separator();
+                crate::ui::servo_panel::settings_ui(ui, &self.document.project, words, &mut actions);
             }
             Tab::Actions => {
                 let revision = self.document.revision();
@@ -840,6 +842,11 @@ impl StudioApp {
         self.dialogs(ui, &mut actions);
         for action in actions {
             self.apply(action);
+        }
+        // A drag or a typing run is one undo step: it ends when the pointer is
+        // up and no field has focus.
+        if !ui.input(|input| input.pointer.any_down()) && ui.memory(|memory| memory.focused().is_none()) {
+            self.document.seal();
         }
         if self.quit_allowed {
             ui.ctx().send_viewport_cmd(egui::ViewportCommand::Close);

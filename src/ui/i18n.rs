@@ -105,6 +105,20 @@ pub struct Strings {
     pub board: &'static str,
     /// "Packet log".
     pub packet_log: &'static str,
+    /// "Servo settings".
+    pub servo_settings: &'static str,
+    /// "Id".
+    pub servo_id: &'static str,
+    /// "Calibration".
+    pub offset: &'static str,
+    /// "Min".
+    pub min: &'static str,
+    /// "Max".
+    pub max: &'static str,
+    /// "Home".
+    pub home: &'static str,
+    /// "Servo".
+    pub servo_word: &'static str,
     /// "Actions".
     pub actions: &'static str,
     /// "Add action".
@@ -224,6 +238,13 @@ const ENGLISH: Strings = Strings {
     pose: "Pose",
     board: "Board",
     packet_log: "Packet log",
+    servo_settings: "Servo settings",
+    servo_id: "Id",
+    offset: "Calibration",
+    min: "Min",
+    max: "Max",
+    home: "Home",
+    servo_word: "Servo",
     actions: "Actions",
     add_action: "Add action",
     no_actions: "No actions yet: capture a pose, or add one",
@@ -298,6 +319,13 @@ const TRADITIONAL_CHINESE: Strings = Strings {
     pose: "姿勢",
     board: "控制板",
     packet_log: "封包紀錄",
+    servo_settings: "舵機設定",
+    servo_id: "編號",
+    offset: "校正",
+    min: "最小",
+    max: "最大",
+    home: "原點",
+    servo_word: "舵機",
     actions: "動作",
     add_action: "新增動作",
     no_actions: "尚無動作：擷取姿勢或新增動作",

@@ -6,7 +6,7 @@ use std::collections::{BTreeMap, HashMap};
 
 use egui::{Key, Modifiers};
 
-use crate::project::Project;
+use crate::project::{Edit, Project, Servo};
 use crate::protocol::board::ServoStatus;
 use crate::ui::action::Action;
 use crate::ui::i18n::Strings;
@@ -66,7 +66,6 @@ impl ServoPanel {
         });
         if view.project.servos.is_empty() {
             ui.label(words.no_servos);
-            return;
         }
         let focused = ui.memory(|memory| memory.focused()).and_then(|id| self.slider_ids.get(&id).copied());
         let nudge = if focused.is_some() { Self::keyboard_nudge(ui) } else { 0 };
@@ -112,4 +111,61 @@ impl ServoPanel {
             });
         });
     }
+}
+
+/// The servos' settings: caption, calibration offset, limits and home; add and
+/// remove servos. A drag of one value is one undo step.
+pub fn settings_ui(ui: &mut egui::Ui, project: &Project, words: &Strings, actions: &mut Vec<Action>) {
+    egui::CollapsingHeader::new(words.servo_settings).id_salt("servo-settings").show(ui, |ui| {
+        egui::Grid::new("servo-settings-grid").striped(true).show(ui, |ui| {
+            for heading in [words.servo_id, words.caption, words.offset, words.min, words.max, words.home, ""] {
+                ui.strong(heading);
+            }
+            ui.end_row();
+            for (index, servo) in project.servos.iter().enumerate() {
+                let set = |changed: Servo, field: &str| Action::Edit {
+                    edit: Edit::SetServo { index, servo: changed },
+                    coalesce: Some(format!("servo {} {field}", servo.id)),
+                };
+                let row = ui.label(format!("{}", servo.id));
+                let mut caption = servo.caption.clone();
+                if ui.add(egui::TextEdit::singleline(&mut caption).desired_width(140.0)).labelled_by(row.id).changed() {
+                    actions.push(set(Servo { caption, ..servo.clone() }, "caption"));
+                }
+                let fields: [(&str, i16); 4] = [
+                    ("offset", servo.calibration_offset_deg),
+                    ("min", servo.min_deg),
+                    ("max", servo.max_deg),
+                    ("home", servo.home_deg),
+                ];
+                for (field, value) in fields {
+                    let mut edited = value;
+                    let drag = egui::DragValue::new(&mut edited).clamp_existing_to_range(false).suffix("°");
+                    if ui.add(drag).labelled_by(row.id).changed() {
+                        let mut changed = servo.clone();
+                        match field {
+                            "offset" => changed.calibration_offset_deg = edited,
+                            "min" => changed.min_deg = edited,
+                            "max" => changed.max_deg = edited,
+                            _ => changed.home_deg = edited,
+                        }
+                        actions.push(set(changed, field));
+                    }
+                }
+                if ui.button("×").on_hover_text(words.remove).clicked() {
+                    actions.push(Action::Edit { edit: Edit::RemoveServo { index }, coalesce: None });
+                }
+                ui.end_row();
+            }
+        });
+        let free = (0..=254u8).find(|id| project.servo(*id).is_none());
+        if ui.add_enabled(free.is_some(), egui::Button::new(words.add_servo)).clicked()
+            && let Some(id) = free
+        {
+            actions.push(Action::Edit {
+                edit: Edit::AddServo(Servo::new(id, format!("{} {id}", words.servo_word))),
+                coalesce: None,
+            });
+        }
+    });
 }
