@@ -140,3 +140,22 @@ fn drawing_an_invalid_ratio_does_not_silently_change_it() {
     assert!(!harness.state().document.dirty);
     assert!(harness.query_all_by_label_contains("ratio 0 % is outside 1..=100").next().is_some());
 }
+
+#[test]
+fn a_command_is_dragged_to_a_new_place() {
+    let mut harness = harness(fixture(), Tab::Macros);
+    let original = harness.state().document.project.macros[0].commands.clone();
+    let from = harness.get_by_role_and_label(egui::accesskit::Role::Label, "≡ 3").rect().center();
+    let to = harness.get_by_role_and_label(egui::accesskit::Role::Label, "≡ 1").rect().center();
+    harness.drag_at(from);
+    harness.run_steps(2);
+    for step in 1..=10 {
+        harness.hover_at(from + (to - from) * (step as f32 / 10.0));
+        harness.run_steps(1);
+    }
+    harness.drop_at(to);
+    harness.run_steps(3);
+    let commands = &harness.state().document.project.macros[0].commands;
+    assert_eq!(commands[0], original[2], "the third command is now first");
+    assert_eq!(&commands[1..], &original[..2]);
+}

@@ -215,7 +215,19 @@ impl MacroPanel {
             item.commands[position] = changed;
             edit(index, item, key)
         };
-        let row = ui.label(format!("{}", position + 1));
+        // Drag a row by its number onto another row's number to move it there.
+        let handle_id = egui::Id::new(("command-drag", item.id, position));
+        let handle = ui.dnd_drag_source(handle_id, position, |ui| ui.label(format!("≡ {}", position + 1)));
+        let row = handle.inner;
+        if let Some(from) = handle.response.dnd_release_payload::<usize>()
+            && *from != position
+            && *from < item.commands.len()
+        {
+            let mut moved = item.clone();
+            let command = moved.commands.remove(*from);
+            moved.commands.insert(position, command);
+            actions.push(edit(index, moved, None));
+        }
         let mut run = command.run;
         let kind_label = match run {
             Run::Action { .. } => words.action_word,
