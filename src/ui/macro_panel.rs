@@ -216,7 +216,7 @@ impl MacroPanel {
             edit(index, item, key)
         };
         // Drag a row by its number onto another row's number to move it there.
-        let handle_id = egui::Id::new(("command-drag", item.id, position));
+        let handle_id = ui.make_persistent_id(("command-drag", item.id, position));
         let handle = ui.dnd_drag_source(handle_id, position, |ui| ui.label(format!("≡ {}", position + 1)));
         let row = handle.inner;
         if let Some(from) = handle.response.dnd_release_payload::<usize>()
