@@ -90,7 +90,7 @@ fn upload_then_read_back_round_trips_and_keeps_a_backup() {
         }
         other => panic!("expected an upload, got {other:?}"),
     }
-    assert!(harness.query_by_label_contains("Uploaded and verified 5 item(s)").is_some());
+    assert!(harness.query_by_label_contains("Uploaded and verified, items: 5").is_some());
 
     // Read it back: identical, and the project is replaced by what the board holds.
     harness.get_by_label("Read board into project").click();
@@ -143,5 +143,16 @@ fn an_invalid_project_is_not_uploaded() {
     match harness.state().board_result.clone().unwrap() {
         BoardResult::Failed { error, .. } => assert!(error.contains("servo 77 does not exist"), "{error}"),
         other => panic!("expected a failure, got {other:?}"),
+    }
+}
+
+#[test]
+fn the_board_panel_speaks_traditional_chinese() {
+    let data = tempfile::tempdir().unwrap();
+    let mut harness = composed(&Project::default(), SimConfig::default(), data.path());
+    harness.state_mut().apply(Action::SetLanguage(servo_studio::ui::Language::TraditionalChinese));
+    frames(&mut harness);
+    for caption in ["上傳至控制板", "讀取控制板至專案", "匯出控制板至檔案…"] {
+        assert!(harness.query_by_label(caption).is_some(), "{caption}");
     }
 }

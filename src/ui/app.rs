@@ -645,14 +645,8 @@ impl StudioApp {
         let words = self.language.strings();
         if let Some(recovery) = &self.recovery_offer {
             egui::Window::new(words.recover_title).collapsible(false).resizable(false).show(ui.ctx(), |ui| {
-                let file = recovery
-                    .path
-                    .as_ref()
-                    .map_or_else(|| "an unsaved project".to_string(), |p| p.display().to_string());
-                ui.label(format!(
-                    "Servo Studio did not close cleanly. Autosaved work from {} ({file}) can be recovered.",
-                    recovery.saved_at
-                ));
+                let file = recovery.path.as_ref().map_or_else(|| "—".to_string(), |p| p.display().to_string());
+                ui.label(format!("{} {} ({file})", words.recover_body, recovery.saved_at));
                 ui.horizontal(|ui| {
                     if ui.button(words.recover).clicked() {
                         actions.push(Action::Recover);
@@ -835,7 +829,7 @@ impl StudioApp {
                     pending: self.pending.as_ref(),
                     result: self.board_result.as_ref(),
                 };
-                board_panel::ui(ui, &view, &mut actions);
+                board_panel::ui(ui, &view, words, &mut actions);
             }
         });
 

@@ -59,16 +59,17 @@ pub struct BoardView<'a> {
 }
 
 /// Draws the board panel.
-pub fn ui(ui: &mut egui::Ui, view: &BoardView<'_>, actions: &mut Vec<Action>) {
-    ui.heading("Board");
+pub fn ui(ui: &mut egui::Ui, view: &BoardView<'_>, words: &crate::ui::i18n::Strings, actions: &mut Vec<Action>) {
+    ui.heading(words.board);
     match (&view.project_bytes, view.board_total_bytes) {
         (Ok(bytes), Some(total)) if total > 0 => {
             let fraction = *bytes as f32 / total as f32;
-            let bar = egui::ProgressBar::new(fraction.min(1.0)).text(format!("project needs {bytes} of {total} bytes"));
+            let bar = egui::ProgressBar::new(fraction.min(1.0))
+                .text(format!("{} {bytes} {} {total}", words.project_needs, words.of_capacity));
             ui.add(bar.fill(if fraction > 1.0 { ui.visuals().error_fg_color } else { ui.visuals().selection.bg_fill }));
         }
         (Ok(bytes), _) => {
-            ui.label(format!("project needs {bytes} bytes (connect to see the board's capacity)"));
+            ui.label(format!("{} {bytes}", words.project_needs));
         }
         (Err(error), _) => {
             ui.colored_label(ui.visuals().error_fg_color, error);
@@ -78,21 +79,13 @@ pub fn ui(ui: &mut egui::Ui, view: &BoardView<'_>, actions: &mut Vec<Action>) {
     let idle = view.job.is_none() && view.pending.is_none();
     ui.horizontal(|ui| {
         ui.add_enabled_ui(view.connected && idle, |ui| {
-            if ui
-                .button("Upload to board")
-                .on_hover_text("Compare, then back the board up, write, and verify")
-                .clicked()
-            {
+            if ui.button(words.upload_to_board).on_hover_text(words.upload_hint).clicked() {
                 actions.push(Action::BoardCompare(BoardIntent::Upload));
             }
-            if ui
-                .button("Read board into project")
-                .on_hover_text("Compare, then replace the project (undoable)")
-                .clicked()
-            {
+            if ui.button(words.read_board).on_hover_text(words.read_hint).clicked() {
                 actions.push(Action::BoardCompare(BoardIntent::ReadIntoProject));
             }
-            if ui.button("Export board to file…").clicked()
+            if ui.button(words.export_board).clicked()
                 && let Some(path) = rfd::FileDialog::new()
                     .add_filter("Servo Studio project", &["json"])
                     .set_file_name("board.json")
@@ -103,15 +96,15 @@ pub fn ui(ui: &mut egui::Ui, view: &BoardView<'_>, actions: &mut Vec<Action>) {
         });
     });
     if !view.connected {
-        ui.label("Connect a board (or the demo board) to upload or read.");
+        ui.label(words.connect_to_transfer);
     }
 
     if let Some(job) = view.job {
         ui.separator();
         let what = match job.kind {
-            JobKind::Compare => "Reading the board to compare",
-            JobKind::Upload => "Uploading",
-            JobKind::Read => "Reading the board",
+            JobKind::Compare => words.reading_to_compare,
+            JobKind::Upload => words.uploading,
+            JobKind::Read => words.reading_board,
         };
         ui.label(what);
         if let Some(progress) = &job.progress {
@@ -122,7 +115,7 @@ pub fn ui(ui: &mut egui::Ui, view: &BoardView<'_>, actions: &mut Vec<Action>) {
                     .text(format!("{:?} {}/{} {}", progress.phase, progress.done, progress.total, progress.item)),
             );
         }
-        if ui.button("Cancel").clicked() {
+        if ui.button(words.cancel).clicked() {
             actions.push(Action::BoardCancel);
         }
     }
@@ -130,9 +123,9 @@ pub fn ui(ui: &mut egui::Ui, view: &BoardView<'_>, actions: &mut Vec<Action>) {
     if let Some(pending) = view.pending {
         ui.separator();
         if pending.differences.is_empty() {
-            ui.label("The board already holds exactly this project.");
+            ui.label(words.already_identical);
         } else {
-            ui.label(format!("{} difference(s) between the project and the board:", pending.differences.len()));
+            ui.label(format!("{} {}", pending.differences.len(), words.differences));
             egui::ScrollArea::vertical().max_height(180.0).id_salt("differences").show(ui, |ui| {
                 for difference in &pending.differences {
                     ui.monospace(difference);
@@ -141,14 +134,14 @@ pub fn ui(ui: &mut egui::Ui, view: &BoardView<'_>, actions: &mut Vec<Action>) {
         }
         ui.horizontal(|ui| {
             let confirm = match &pending.intent {
-                BoardIntent::Upload => "Back up the board, then overwrite it",
-                BoardIntent::ReadIntoProject => "Replace the project with the board",
-                BoardIntent::ExportToFile(_) => "Save the board to the file",
+                BoardIntent::Upload => words.confirm_upload,
+                BoardIntent::ReadIntoProject => words.confirm_read,
+                BoardIntent::ExportToFile(_) => words.confirm_export,
             };
             if ui.button(confirm).clicked() {
                 actions.push(Action::BoardConfirm);
             }
-            if ui.button("Cancel").clicked() {
+            if ui.button(words.cancel).clicked() {
                 actions.push(Action::BoardDismiss);
             }
         });
@@ -158,9 +151,9 @@ pub fn ui(ui: &mut egui::Ui, view: &BoardView<'_>, actions: &mut Vec<Action>) {
         ui.separator();
         let items = match result {
             BoardResult::Uploaded { items, backup } => {
-                ui.label(format!("Uploaded and verified {} item(s).", items.len()));
+                ui.label(format!("{} {}", words.uploaded_items, items.len()));
                 if let Some(backup) = backup {
-                    ui.label(format!("Backup of the previous contents: {}", backup.display()));
+                    ui.label(format!("{} {}", words.backup_at, backup.display()));
                 }
                 items.as_slice()
             }
@@ -169,15 +162,15 @@ pub fn ui(ui: &mut egui::Ui, view: &BoardView<'_>, actions: &mut Vec<Action>) {
                 items.as_slice()
             }
             BoardResult::ReadIntoProject => {
-                ui.label("The project now holds the board's contents (Undo brings the previous project back).");
+                ui.label(words.read_done);
                 &[]
             }
             BoardResult::Exported(path) => {
-                ui.label(format!("Saved the board to {}", path.display()));
+                ui.label(format!("{} {}", words.saved_board_to, path.display()));
                 &[]
             }
             BoardResult::Cancelled => {
-                ui.label("Cancelled.");
+                ui.label(words.cancelled);
                 &[]
             }
         };

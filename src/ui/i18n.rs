@@ -105,6 +105,50 @@ pub struct Strings {
     pub board: &'static str,
     /// "Packet log".
     pub packet_log: &'static str,
+    /// "Upload to board".
+    pub upload_to_board: &'static str,
+    /// "Compare, then back the board up, write, and verify".
+    pub upload_hint: &'static str,
+    /// "Read board into project".
+    pub read_board: &'static str,
+    /// "Compare, then replace the project (undoable)".
+    pub read_hint: &'static str,
+    /// "Export board to file…".
+    pub export_board: &'static str,
+    /// "Connect a board (or the demo board) to upload or read.".
+    pub connect_to_transfer: &'static str,
+    /// "Reading the board to compare".
+    pub reading_to_compare: &'static str,
+    /// "Uploading".
+    pub uploading: &'static str,
+    /// "Reading the board".
+    pub reading_board: &'static str,
+    /// "The board already holds exactly this project.".
+    pub already_identical: &'static str,
+    /// "difference(s) between the project and the board:".
+    pub differences: &'static str,
+    /// "Back up the board, then overwrite it".
+    pub confirm_upload: &'static str,
+    /// "Replace the project with the board".
+    pub confirm_read: &'static str,
+    /// "Save the board to the file".
+    pub confirm_export: &'static str,
+    /// "Uploaded and verified, items:".
+    pub uploaded_items: &'static str,
+    /// "Backup of the previous contents:".
+    pub backup_at: &'static str,
+    /// "The project now holds the board's contents (Undo brings the previous project back).".
+    pub read_done: &'static str,
+    /// "Saved the board to".
+    pub saved_board_to: &'static str,
+    /// "Cancelled.".
+    pub cancelled: &'static str,
+    /// "Servo Studio did not close cleanly. Autosaved work can be recovered from".
+    pub recover_body: &'static str,
+    /// "project needs (bytes)".
+    pub project_needs: &'static str,
+    /// "of".
+    pub of_capacity: &'static str,
     /// "Servo settings".
     pub servo_settings: &'static str,
     /// "Id".
@@ -238,6 +282,28 @@ const ENGLISH: Strings = Strings {
     pose: "Pose",
     board: "Board",
     packet_log: "Packet log",
+    upload_to_board: "Upload to board",
+    upload_hint: "Compare, then back the board up, write, and verify",
+    read_board: "Read board into project",
+    read_hint: "Compare, then replace the project (undoable)",
+    export_board: "Export board to file…",
+    connect_to_transfer: "Connect a board (or the demo board) to upload or read.",
+    reading_to_compare: "Reading the board to compare",
+    uploading: "Uploading",
+    reading_board: "Reading the board",
+    already_identical: "The board already holds exactly this project.",
+    differences: "difference(s) between the project and the board:",
+    confirm_upload: "Back up the board, then overwrite it",
+    confirm_read: "Replace the project with the board",
+    confirm_export: "Save the board to the file",
+    uploaded_items: "Uploaded and verified, items:",
+    backup_at: "Backup of the previous contents:",
+    read_done: "The project now holds the board's contents (Undo brings the previous project back).",
+    saved_board_to: "Saved the board to",
+    cancelled: "Cancelled.",
+    recover_body: "Servo Studio did not close cleanly. Autosaved work can be recovered from",
+    project_needs: "project needs (bytes)",
+    of_capacity: "of",
     servo_settings: "Servo settings",
     servo_id: "Id",
     offset: "Calibration",
@@ -319,6 +385,28 @@ const TRADITIONAL_CHINESE: Strings = Strings {
     pose: "姿勢",
     board: "控制板",
     packet_log: "封包紀錄",
+    upload_to_board: "上傳至控制板",
+    upload_hint: "先比較，再備份控制板、寫入並驗證",
+    read_board: "讀取控制板至專案",
+    read_hint: "先比較，再取代專案（可復原）",
+    export_board: "匯出控制板至檔案…",
+    connect_to_transfer: "請連接控制板（或示範控制板）以上傳或讀取。",
+    reading_to_compare: "讀取控制板以比較",
+    uploading: "上傳中",
+    reading_board: "讀取控制板中",
+    already_identical: "控制板內容已與此專案完全相同。",
+    differences: "項專案與控制板的差異：",
+    confirm_upload: "備份控制板後覆寫",
+    confirm_read: "以控制板內容取代專案",
+    confirm_export: "將控制板存成檔案",
+    uploaded_items: "已上傳並驗證，項目數：",
+    backup_at: "先前內容的備份：",
+    read_done: "專案已換成控制板的內容（復原可取回先前的專案）。",
+    saved_board_to: "已將控制板存至",
+    cancelled: "已取消。",
+    recover_body: "Servo Studio 未正常關閉。可以復原自動儲存的工作，時間：",
+    project_needs: "專案所需（位元組）",
+    of_capacity: "／",
     servo_settings: "舵機設定",
     servo_id: "編號",
     offset: "校正",
