@@ -221,3 +221,13 @@ fn two_separate_drags_of_one_value_are_two_undo_steps() {
     harness.state_mut().apply(Action::Undo);
     assert_eq!(harness.state().document.project, original);
 }
+
+#[test]
+fn status_messages_follow_the_language() {
+    let mut app = new_app(project());
+    app.apply(Action::SetLanguage(servo_studio::ui::Language::TraditionalChinese));
+    app.apply(Action::ConnectDemo);
+    assert!(app.status.as_ref().unwrap().text.starts_with("已連線至示範控制板"), "{:?}", app.status);
+    app.apply(Action::Stop);
+    assert_eq!(app.status.as_ref().unwrap().text, "停止：所有舵機停在原處並保持鎖定");
+}

@@ -152,10 +152,10 @@ impl StudioApp {
         match crate::project::load(&path) {
             Ok(project) => {
                 files::remember(&mut self.recent, &path);
-                self.report(format!("opened {}", path.display()), false);
+                self.report(format!("{} {}", self.words().msg_opened, path.display()), false);
                 self.replace_document(project, Some(path));
             }
-            Err(error) => self.report(format!("cannot open {}: {error}", path.display()), true),
+            Err(error) => self.report(format!("{} {}: {error}", self.words().msg_cannot_open, path.display()), true),
         }
     }
 
@@ -164,7 +164,7 @@ impl StudioApp {
             Ok(()) => {
                 files::remember(&mut self.recent, &path);
                 files::clear_recovery(&self.data_dir);
-                self.report(format!("saved {}", path.display()), false);
+                self.report(format!("{} {}", self.words().msg_saved, path.display()), false);
                 self.document.path = Some(path);
                 self.document.dirty = false;
                 true
@@ -180,7 +180,7 @@ impl StudioApp {
         match next {
             AfterUnsaved::New => {
                 self.replace_document(Project::default(), None);
-                self.report("new project", false);
+                self.report(self.words().msg_new_project, false);
             }
             AfterUnsaved::Open(path) => self.open_now(path),
             AfterUnsaved::Quit => {
@@ -209,7 +209,7 @@ impl StudioApp {
 
     fn start_job(&mut self, kind: JobKind) {
         let Some(link) = &self.link else {
-            self.report("connect a board (or the demo board) first", true);
+            self.report(self.words().msg_connect_first, true);
             return;
         };
         self.board_result = None;
@@ -289,6 +289,10 @@ impl StudioApp {
         }
     }
 
+    fn words(&self) -> &'static crate::ui::i18n::Strings {
+        self.language.strings()
+    }
+
     fn report(&mut self, text: impl Into<String>, is_error: bool) {
         self.status = Some(StatusLine { text: text.into(), is_error });
     }
@@ -306,14 +310,14 @@ impl StudioApp {
             }
             Action::Connect { port, baud } => match BoardLink::connect(&port, baud, self.waker.clone()) {
                 Ok(link) => {
-                    self.report(format!("connected to {}", link.label), false);
+                    self.report(format!("{} {}", self.words().msg_connected_to, link.label), false);
                     self.link = Some(link);
                 }
                 Err(error) => self.report(error, true),
             },
             Action::ConnectDemo => match BoardLink::demo(&self.document.project, self.waker.clone()) {
                 Ok(link) => {
-                    self.report("connected to the demo board (emulated, preloaded with this project)", false);
+                    self.report(self.words().msg_connected_demo, false);
                     self.link = Some(link);
                 }
                 Err(error) => self.report(error, true),
@@ -321,7 +325,7 @@ impl StudioApp {
             Action::Disconnect => {
                 self.link = None;
                 self.polling = false;
-                self.report("disconnected", false);
+                self.report(self.words().msg_disconnected, false);
             }
             Action::SetPose { servo_id, degree } => self.set_pose(servo_id, degree),
             Action::SetHold { servo_id, hold } => {
@@ -331,15 +335,15 @@ impl StudioApp {
             }
             Action::Stop => match &mut self.link {
                 Some(link) => match link.stop() {
-                    Ok(()) => self.report("STOP: every servo stopped where it is, holding torque", false),
+                    Ok(()) => self.report(self.words().msg_stopped_all, false),
                     Err(error) => self.report(error, true),
                 },
-                None => self.report("STOP: no board is connected", false),
+                None => self.report(self.words().msg_stop_no_board, false),
             },
             Action::Resume => {
                 if let Some(link) = &mut self.link {
                     link.resume();
-                    self.report("servos may move again", false);
+                    self.report(self.words().msg_resumed, false);
                 }
             }
             Action::CapturePose { from_board } => self.capture_pose(from_board),
@@ -363,7 +367,7 @@ impl StudioApp {
                 Some(path) => {
                     self.save_to(path);
                 }
-                None => self.report("this project has no file yet: use Save As", true),
+                None => self.report(self.words().msg_no_file, true),
             },
             Action::SaveAs(path) => {
                 self.save_to(path);
@@ -388,7 +392,7 @@ impl StudioApp {
                     self.replace_document(recovery.project, recovery.path);
                     // Recovered work is unsaved until the user saves it.
                     self.document.dirty = true;
-                    self.report("recovered the autosaved project: save it to keep it", false);
+                    self.report(self.words().msg_recovered, false);
                 }
             }
             Action::DeclineRecovery => {
@@ -399,21 +403,21 @@ impl StudioApp {
             Action::PreviewAction(action_id) => self.preview = Some((action_id, Instant::now())),
             Action::RunMacro(macro_id) => match &mut self.link {
                 Some(link) => link.run_macro(macro_id),
-                None => self.report("connect a board to run a macro", true),
+                None => self.report(self.words().msg_connect_for_macro, true),
             },
             Action::PickButton { table_index } => match &mut self.link {
                 Some(link) => {
                     link.subscribe_buttons(true);
                     self.picking = table_index;
                 }
-                None => self.report("connect a board to pick buttons from its remote", true),
+                None => self.report(self.words().msg_connect_for_pick, true),
             },
             Action::Autosave => {
                 if self.document.dirty
                     && let Err(error) =
                         files::write_recovery(&self.data_dir, self.document.path.as_deref(), &self.document.project)
                 {
-                    self.report(format!("autosave failed: {error}"), true);
+                    self.report(format!("{}: {error}", self.words().msg_autosave_failed), true);
                 }
             }
         }
@@ -428,7 +432,7 @@ impl StudioApp {
         self.pose.insert(servo_id, degree);
         if let Some(link) = &self.link {
             if link.stopped {
-                self.report("stopped: press Resume before moving servos", true);
+                self.report(self.words().msg_press_resume, true);
                 return;
             }
             let servo_move = ServoMove { servo_id, degree, interval_10ms: LIVE_MOVE_INTERVAL_10MS };
@@ -458,13 +462,13 @@ impl StudioApp {
             })
             .collect();
         if steps.is_empty() {
-            self.report("nothing to capture: the project has no servos", true);
+            self.report(self.words().msg_nothing_to_capture, true);
             return;
         }
         let id = next_free_id(project.actions.iter().map(|action| action.id));
         let caption = format!("{} {id}", self.language.strings().pose);
         self.document.apply(Edit::AddAction(ProjectAction { id, caption: caption.clone(), steps }), None);
-        self.report(format!("captured the pose as action {id} \"{caption}\""), false);
+        self.report(format!("{} {id} \"{caption}\"", self.words().msg_captured), false);
     }
 
     /// Picks up what the board sent since the last frame.
@@ -478,9 +482,7 @@ impl StudioApp {
                 }
                 LinkNotice::Disconnected(reason) => {
                     self.status = Some(StatusLine {
-                        text: format!(
-                            "the board link ended: {reason}. Your project is unchanged; reconnect when ready"
-                        ),
+                        text: format!("{} {reason}", self.language.strings().msg_link_ended),
                         is_error: true,
                     });
                     self.link = None;
@@ -514,11 +516,11 @@ impl StudioApp {
             })
             .collect();
         let Some(link) = &self.link else {
-            self.report("connect a board to play an action on it (Preview works without one)", true);
+            self.report(self.words().msg_connect_for_play, true);
             return;
         };
         if link.stopped {
-            self.report("stopped: press Resume before moving servos", true);
+            self.report(self.words().msg_press_resume, true);
             return;
         }
         if let Err(error) = link.requester().move_servos(moves.clone()) {
@@ -553,7 +555,7 @@ impl StudioApp {
         self.picked_button = Some(button_id);
         let Some(table) = self.document.project.joystick_tables.get(table_index) else { return };
         if table.buttons.iter().any(|button| button.id == button_id) {
-            self.report(format!("picked button 0x{button_id:08x}"), false);
+            self.report(format!("{} 0x{button_id:08x}", self.words().msg_picked), false);
             return;
         }
         let mut table = table.clone();
@@ -566,7 +568,7 @@ impl StudioApp {
             uninterruptible: false,
         });
         self.document.apply(Edit::SetTable { index: table_index, table }, None);
-        self.report(format!("added button 0x{button_id:08x} to the table"), false);
+        self.report(format!("{} 0x{button_id:08x}", self.words().msg_added_button), false);
     }
 
     fn link_status(&self) -> LinkStatus {
@@ -808,7 +810,7 @@ impl StudioApp {
                 self.joystick_panel.ui(ui, &view, words, &mut actions);
             }
             Tab::Log => match &mut self.link {
-                Some(link) => link.log.ui(ui, words.packet_log),
+                Some(link) => link.log.ui(ui, words),
                 None => {
                     ui.label(words.not_connected);
                 }

@@ -105,6 +105,62 @@ pub struct Strings {
     pub board: &'static str,
     /// "Packet log".
     pub packet_log: &'static str,
+    /// "opened".
+    pub msg_opened: &'static str,
+    /// "cannot open".
+    pub msg_cannot_open: &'static str,
+    /// "saved".
+    pub msg_saved: &'static str,
+    /// "new project".
+    pub msg_new_project: &'static str,
+    /// "connect a board (or the demo board) first".
+    pub msg_connect_first: &'static str,
+    /// "connected to".
+    pub msg_connected_to: &'static str,
+    /// "connected to the demo board (emulated, preloaded with this project)".
+    pub msg_connected_demo: &'static str,
+    /// "disconnected".
+    pub msg_disconnected: &'static str,
+    /// "STOP: every servo stopped where it is, holding torque".
+    pub msg_stopped_all: &'static str,
+    /// "STOP: no board is connected".
+    pub msg_stop_no_board: &'static str,
+    /// "servos may move again".
+    pub msg_resumed: &'static str,
+    /// "this project has no file yet: use Save As".
+    pub msg_no_file: &'static str,
+    /// "recovered the autosaved project: save it to keep it".
+    pub msg_recovered: &'static str,
+    /// "connect a board to run a macro".
+    pub msg_connect_for_macro: &'static str,
+    /// "connect a board to pick buttons from its remote".
+    pub msg_connect_for_pick: &'static str,
+    /// "autosave failed".
+    pub msg_autosave_failed: &'static str,
+    /// "stopped: press Resume before moving servos".
+    pub msg_press_resume: &'static str,
+    /// "nothing to capture: the project has no servos".
+    pub msg_nothing_to_capture: &'static str,
+    /// "captured the pose as action".
+    pub msg_captured: &'static str,
+    /// "the board link ended; your project is unchanged, reconnect when ready:".
+    pub msg_link_ended: &'static str,
+    /// "connect a board to play an action on it (Preview works without one)".
+    pub msg_connect_for_play: &'static str,
+    /// "picked button".
+    pub msg_picked: &'static str,
+    /// "added to the table: button".
+    pub msg_added_button: &'static str,
+    /// "Filter".
+    pub filter: &'static str,
+    /// "name, field or hex".
+    pub filter_hint: &'static str,
+    /// "Copy".
+    pub copy: &'static str,
+    /// "Copy the shown lines".
+    pub copy_hint: &'static str,
+    /// "Clear".
+    pub clear: &'static str,
     /// "Upload to board".
     pub upload_to_board: &'static str,
     /// "Compare, then back the board up, write, and verify".
@@ -282,6 +338,34 @@ const ENGLISH: Strings = Strings {
     pose: "Pose",
     board: "Board",
     packet_log: "Packet log",
+    msg_opened: "opened",
+    msg_cannot_open: "cannot open",
+    msg_saved: "saved",
+    msg_new_project: "new project",
+    msg_connect_first: "connect a board (or the demo board) first",
+    msg_connected_to: "connected to",
+    msg_connected_demo: "connected to the demo board (emulated, preloaded with this project)",
+    msg_disconnected: "disconnected",
+    msg_stopped_all: "STOP: every servo stopped where it is, holding torque",
+    msg_stop_no_board: "STOP: no board is connected",
+    msg_resumed: "servos may move again",
+    msg_no_file: "this project has no file yet: use Save As",
+    msg_recovered: "recovered the autosaved project: save it to keep it",
+    msg_connect_for_macro: "connect a board to run a macro",
+    msg_connect_for_pick: "connect a board to pick buttons from its remote",
+    msg_autosave_failed: "autosave failed",
+    msg_press_resume: "stopped: press Resume before moving servos",
+    msg_nothing_to_capture: "nothing to capture: the project has no servos",
+    msg_captured: "captured the pose as action",
+    msg_link_ended: "the board link ended; your project is unchanged, reconnect when ready:",
+    msg_connect_for_play: "connect a board to play an action on it (Preview works without one)",
+    msg_picked: "picked button",
+    msg_added_button: "added to the table: button",
+    filter: "Filter",
+    filter_hint: "name, field or hex",
+    copy: "Copy",
+    copy_hint: "Copy the shown lines",
+    clear: "Clear",
     upload_to_board: "Upload to board",
     upload_hint: "Compare, then back the board up, write, and verify",
     read_board: "Read board into project",
@@ -385,6 +469,34 @@ const TRADITIONAL_CHINESE: Strings = Strings {
     pose: "姿勢",
     board: "控制板",
     packet_log: "封包紀錄",
+    msg_opened: "已開啟",
+    msg_cannot_open: "無法開啟",
+    msg_saved: "已儲存",
+    msg_new_project: "新專案",
+    msg_connect_first: "請先連接控制板（或示範控制板）",
+    msg_connected_to: "已連線至",
+    msg_connected_demo: "已連線至示範控制板（模擬，已載入此專案）",
+    msg_disconnected: "已中斷連線",
+    msg_stopped_all: "停止：所有舵機停在原處並保持鎖定",
+    msg_stop_no_board: "停止：尚未連接控制板",
+    msg_resumed: "舵機可以再次移動",
+    msg_no_file: "此專案尚未存檔：請使用另存新檔",
+    msg_recovered: "已復原自動儲存的專案：請儲存以保留",
+    msg_connect_for_macro: "請連接控制板以執行巨集",
+    msg_connect_for_pick: "請連接控制板以從遙控器選取按鍵",
+    msg_autosave_failed: "自動儲存失敗",
+    msg_press_resume: "已停止：移動舵機前請按「繼續」",
+    msg_nothing_to_capture: "無法擷取：專案沒有舵機",
+    msg_captured: "已將姿勢擷取為動作",
+    msg_link_ended: "與控制板的連線已中斷；專案未變更，準備好後請重新連線：",
+    msg_connect_for_play: "請連接控制板以播放動作（預覽不需控制板）",
+    msg_picked: "已選取按鍵",
+    msg_added_button: "已加入對應表：按鍵",
+    filter: "篩選",
+    filter_hint: "名稱、欄位或十六進位",
+    copy: "複製",
+    copy_hint: "複製顯示的列",
+    clear: "清除",
     upload_to_board: "上傳至控制板",
     upload_hint: "先比較，再備份控制板、寫入並驗證",
     read_board: "讀取控制板至專案",

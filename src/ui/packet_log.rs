@@ -120,17 +120,17 @@ impl PacketLog {
     }
 
     /// Draws the log.
-    pub fn ui(&mut self, ui: &mut egui::Ui, title: &str) {
+    pub fn ui(&mut self, ui: &mut egui::Ui, words: &crate::ui::i18n::Strings) {
         ui.horizontal(|ui| {
-            ui.heading(title);
-            let label = ui.label("Filter");
-            ui.add(egui::TextEdit::singleline(&mut self.filter).hint_text("name, field or hex").desired_width(240.0))
+            ui.heading(words.packet_log);
+            let label = ui.label(words.filter);
+            ui.add(egui::TextEdit::singleline(&mut self.filter).hint_text(words.filter_hint).desired_width(240.0))
                 .labelled_by(label.id);
-            if ui.button("Copy").on_hover_text("Copy the shown lines").clicked() {
+            if ui.button(words.copy).on_hover_text(words.copy_hint).clicked() {
                 let text: Vec<String> = self.visible().iter().map(|entry| entry.line()).collect();
                 ui.ctx().copy_text(text.join("\n"));
             }
-            if ui.button("Clear").clicked() {
+            if ui.button(words.clear).clicked() {
                 self.entries.clear();
             }
             ui.label(format!("{} / {}", self.visible().len(), self.entries.len()));
