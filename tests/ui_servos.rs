@@ -231,3 +231,16 @@ fn status_messages_follow_the_language() {
     app.apply(Action::Stop);
     assert_eq!(app.status.as_ref().unwrap().text, "停止：所有舵機停在原處並保持鎖定");
 }
+
+#[test]
+fn a_bad_port_is_explained_in_traditional_chinese_too() {
+    let mut app = new_app(project());
+    app.apply(Action::SetLanguage(servo_studio::ui::Language::TraditionalChinese));
+    app.apply(Action::Connect { port: "/dev/ttyNOPE-servo".into(), baud: 115_200 });
+    let status = app.status.clone().unwrap();
+    assert!(
+        status.is_error && status.text.contains("找不到此連接埠") && status.text.contains("servo-studio ports"),
+        "{}",
+        status.text
+    );
+}

@@ -313,7 +313,7 @@ impl StudioApp {
                     self.report(format!("{} {}", self.words().msg_connected_to, link.label), false);
                     self.link = Some(link);
                 }
-                Err(error) => self.report(error, true),
+                Err(error) => self.report(self.language.link_error(&error), true),
             },
             Action::ConnectDemo => match BoardLink::demo(&self.document.project, self.waker.clone()) {
                 Ok(link) => {

@@ -78,10 +78,10 @@ impl std::fmt::Debug for BoardLink {
 
 impl BoardLink {
     /// Opens a port as typed by the user. The error says what to try.
-    pub fn connect(port: &str, baud: u32, waker: Waker) -> Result<Self, String> {
-        let name = PortName::parse(port).map_err(|error| error.to_string())?;
+    pub fn connect(port: &str, baud: u32, waker: Waker) -> Result<Self, crate::link::LinkError> {
+        let name = PortName::parse(port)?;
         let config = SessionConfig { line_baud: Some(baud), traffic: true, ..SessionConfig::default() };
-        let board = Board::connect(&name, baud, config, waker).map_err(|error| error.to_string())?;
+        let board = Board::connect(&name, baud, config, waker)?;
         Ok(Self::over(board, None, name.to_string()))
     }
 

@@ -41,6 +41,30 @@ impl Language {
         }
     }
 
+    /// A link error in this language, with what to try.
+    pub fn link_error(self, error: &crate::link::LinkError) -> String {
+        use crate::link::LinkError as E;
+        match (self, error) {
+            (Self::English, _) => error.to_string(),
+            (Self::TraditionalChinese, E::BadPortName { name, .. }) => {
+                format!("無法辨識連接埠名稱 {name:?}：請輸入序列埠（例如 /dev/ttyUSB0 或 COM3）或 tcp://主機:埠號")
+            }
+            (Self::TraditionalChinese, E::NotFound { port }) => {
+                format!("{port}：找不到此連接埠。控制板是否已插上？`servo-studio ports` 會列出電腦看到的連接埠")
+            }
+            (Self::TraditionalChinese, E::PermissionDenied { port }) => format!(
+                "{port}：沒有權限。在 Linux 上請把自己加入 `dialout` 群組（sudo usermod -aG dialout $USER）後重新登入"
+            ),
+            (Self::TraditionalChinese, E::Busy { port }) => {
+                format!("{port}：連接埠使用中。請關閉其他使用它的程式（另一個 Servo Studio、序列埠監看程式）後重試")
+            }
+            (Self::TraditionalChinese, E::Refused { port }) => {
+                format!("{port}：連線被拒。該位址上的橋接程式（或 `servo-studio sim --tcp`）是否正在執行？")
+            }
+            (Self::TraditionalChinese, E::Open { port, source }) => format!("{port}：無法開啟：{source}"),
+        }
+    }
+
     /// The language's own name.
     pub fn name(self) -> &'static str {
         match self {
@@ -576,6 +600,14 @@ const TRADITIONAL_CHINESE: Strings = Strings {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn link_errors_are_translated_with_what_to_try() {
+        let error = crate::link::LinkError::PermissionDenied { port: "/dev/ttyUSB0".into() };
+        assert!(Language::English.link_error(&error).contains("dialout"));
+        let chinese = Language::TraditionalChinese.link_error(&error);
+        assert!(chinese.starts_with("/dev/ttyUSB0：沒有權限") && chinese.contains("dialout"), "{chinese}");
+    }
 
     #[test]
     fn locales_choose_the_language() {
