@@ -159,3 +159,17 @@ fn a_command_is_dragged_to_a_new_place() {
     assert_eq!(commands[0], original[2], "the third command is now first");
     assert_eq!(&commands[1..], &original[..2]);
 }
+
+#[test]
+fn inline_problems_speak_the_interface_language() {
+    let mut project = fixture();
+    project.macros[0].commands.push(Command::once(Run::Macro { macro_id: 101 }));
+    project.macros[0].commands[0].ratio_percent = 0;
+    let mut harness = harness(project, Tab::Macros);
+    harness.state_mut().apply(Action::SetLanguage(servo_studio::ui::Language::TraditionalChinese));
+    harness.run_steps(2);
+    assert!(harness.query_all_by_label_contains("速度比例 0 % 不在 1..=100 之間").next().is_some());
+    harness.get_by_label_contains("101 打招呼").click();
+    harness.run_steps(2);
+    assert!(harness.query_all_by_label_contains("巨集循環 100 → 101 → 100").next().is_some());
+}

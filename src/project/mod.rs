@@ -15,4 +15,4 @@ pub use history::{History, MAX_UNDO_STEPS};
 pub use model::{Action, BoardKind, Button, Command, JoystickTable, Macro, Project, Run, Servo, Step};
 pub use timing::{Timing, TimingError, action_duration_ms};
 pub use trajectory::{Trajectories, action_trajectories, angle_at, macro_trajectories};
-pub use validate::{Location, Problem, Severity, has_errors, validate};
+pub use validate::{ButtonSlot, ItemKind, Location, Problem, ProblemKind, Severity, has_errors, validate};

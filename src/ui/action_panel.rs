@@ -130,7 +130,7 @@ impl ActionPanel {
             .iter()
             .filter(|p| matches!(&p.location, Location::Action { action_id, .. } if *action_id == action.id))
         {
-            ui.colored_label(ui.visuals().warn_fg_color, &problem.message);
+            ui.colored_label(ui.visuals().warn_fg_color, words.lang.problem(&problem.kind));
         }
         egui::Grid::new("steps").striped(true).show(ui, |ui| {
             for (position, step) in action.steps.iter().enumerate() {
@@ -188,7 +188,7 @@ impl ActionPanel {
                     .iter()
                     .find(|p| matches!(&p.location, Location::Step { action_id, step, .. } if *action_id == action.id && *step == at))
                 {
-                    ui.colored_label(ui.visuals().error_fg_color, &problem.message);
+                    ui.colored_label(ui.visuals().error_fg_color, words.lang.problem(&problem.kind));
                 }
                 ui.end_row();
             }

@@ -65,6 +65,63 @@ impl Language {
         }
     }
 
+    /// A validation problem in this language.
+    pub fn problem(self, kind: &crate::project::ProblemKind) -> String {
+        use crate::project::{ButtonSlot, ItemKind, ProblemKind as P};
+        if self == Self::English {
+            return kind.to_string();
+        }
+        let item = |kind: &ItemKind| match kind {
+            ItemKind::Servo => "舵機",
+            ItemKind::Action => "動作",
+            ItemKind::Macro => "巨集",
+            ItemKind::Table => "遙控對應表",
+        };
+        match kind {
+            P::CaptionTooLong { bytes } => format!("標題有 {bytes} 個 UTF-8 位元組；控制板最多儲存 32 個"),
+            P::IdNotPositive { kind, id } => {
+                format!("{}編號必須大於或等於 1（0 在控制板上表示「無」），目前為 {id}", item(kind))
+            }
+            P::DuplicateId { kind, id } => format!("{}編號 {id} 重複", item(kind)),
+            P::ReservedServoId => "舵機編號 255 保留給「所有舵機」；請使用 0..=254".to_string(),
+            P::MinAboveMax { min_deg, max_deg } => format!("最小值 {min_deg}° 大於最大值 {max_deg}°"),
+            P::HomeOutsideLimits { home_deg, min_deg, max_deg } => {
+                format!("原點 {home_deg}° 超出範圍 {min_deg}°..{max_deg}°")
+            }
+            P::NoSteps => "沒有步驟：執行它不會有動作".to_string(),
+            P::ServoTwiceInAction { servo_id } => format!("舵機 {servo_id} 在此動作中已有步驟"),
+            P::NegativeInterval { interval_10ms } => format!("時間 {interval_10ms} × 10 ms 為負值"),
+            P::MissingServo { servo_id } => format!("舵機 {servo_id} 不存在"),
+            P::StepOutsideLimits { degree, servo_id, min_deg, max_deg } => {
+                format!("{degree}° 超出舵機 {servo_id} 的範圍 {min_deg}°..{max_deg}°")
+            }
+            P::NoCommands => "沒有指令：執行它不會有動作".to_string(),
+            P::TooManyCommands { count, max } => format!("有 {count} 個指令；一個封包最多容納 {max} 個"),
+            P::RatioOutOfRange { ratio_percent } => format!("速度比例 {ratio_percent} % 不在 1..=100 之間"),
+            P::LoopBelowOne { loop_count } => format!("重複次數 {loop_count} 必須至少為 1"),
+            P::MissingAction { action_id } => format!("動作 {action_id} 不存在"),
+            P::MissingMacro { macro_id } => format!("巨集 {macro_id} 不存在"),
+            P::NegativeDelay { delay_ms } => format!("延遲 {delay_ms} ms 為負值"),
+            P::TotalTooLong { total_ms } => format!("執行 {total_ms} ms，超過控制板能計算的長度（{} ms）", i32::MAX),
+            P::MacroCycle { path } => {
+                let names: Vec<String> = path.iter().map(ToString::to_string).collect();
+                format!("巨集循環 {}：巨集不可呼叫到自己", names.join(" → "))
+            }
+            P::TooManyButtons { count, max } => format!("有 {count} 個按鍵；一個封包最多容納 {max} 個"),
+            P::DuplicateButton { button_id } => format!("按鍵編號 0x{button_id:08x} 在此對應表中重複"),
+            P::MissingButtonMacro { slot, macro_id } => {
+                let event = match slot {
+                    ButtonSlot::Press => "按下",
+                    ButtonSlot::LongPress => "長按",
+                    ButtonSlot::Release => "放開",
+                };
+                format!("{event}巨集 {macro_id} 不存在")
+            }
+            P::ButtonRunsNothing => "不會執行任何巨集".to_string(),
+            P::MissingActiveTable { table_id } => format!("使用中的遙控對應表 {table_id} 不存在"),
+        }
+    }
+
     /// The language's own name.
     pub fn name(self) -> &'static str {
         match self {
@@ -77,6 +134,8 @@ impl Language {
 /// Every caption of the interface.
 #[derive(Debug)]
 pub struct Strings {
+    /// The language these words are in.
+    pub lang: Language,
     /// "Port".
     pub port: &'static str,
     /// "Baud".
@@ -336,6 +395,7 @@ pub struct Strings {
 }
 
 const ENGLISH: Strings = Strings {
+    lang: Language::English,
     port: "Port",
     baud: "Baud",
     connect: "Connect",
@@ -467,6 +527,7 @@ const ENGLISH: Strings = Strings {
 };
 
 const TRADITIONAL_CHINESE: Strings = Strings {
+    lang: Language::TraditionalChinese,
     port: "連接埠",
     baud: "鮑率",
     connect: "連線",

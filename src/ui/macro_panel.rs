@@ -151,7 +151,7 @@ impl MacroPanel {
         for problem in
             problems.iter().filter(|p| matches!(&p.location, Location::Macro { macro_id, .. } if *macro_id == item.id))
         {
-            ui.colored_label(ui.visuals().warn_fg_color, &problem.message);
+            ui.colored_label(ui.visuals().warn_fg_color, words.lang.problem(&problem.kind));
         }
         egui::Grid::new("commands").striped(true).show(ui, |ui| {
             for (position, command) in item.commands.iter().enumerate() {
@@ -162,7 +162,7 @@ impl MacroPanel {
                     |p| matches!(&p.location, Location::Command { macro_id, command, .. } if *macro_id == item.id && *command == at),
                 );
                 if let Some(problem) = notes.next() {
-                    ui.colored_label(ui.visuals().error_fg_color, &problem.message);
+                    ui.colored_label(ui.visuals().error_fg_color, words.lang.problem(&problem.kind));
                 }
                 ui.end_row();
             }
