@@ -9,7 +9,7 @@ use std::time::Duration;
 
 use common::rich_project;
 use servo_studio::device::board::{
-    Board, BoardEvent, BoardImage, Cancel, ImportOptions, OpError, Progress, RequestError, SessionConfig, export,
+    Board, BoardEvent, BoardImage, Cancel, ImportOptions, Item, OpError, Progress, RequestError, SessionConfig, export,
     import,
 };
 use servo_studio::link::{DEFAULT_BAUD, LinkEvent, PortName, no_waker};
@@ -131,7 +131,10 @@ fn a_refused_add_stops_the_import_naming_the_item() {
     let board = connect(&sim, Duration::from_secs(2));
     let options = ImportOptions { backup_dir: None, verify: true };
     let error = import(&board.requester(), &rich_project(), &options, &mut quiet, &Cancel::never()).unwrap_err();
-    assert!(matches!(&error, OpError::Refused { item } if item == "action 42 \"揮手\""), "{error:?}");
+    assert!(
+        matches!(&error, OpError::Refused { item } if *item == Item::Action { id: 42, caption: "揮手".into() }),
+        "{error:?}"
+    );
     assert!(error.to_string().contains("action 42 \"揮手\": the board refused it"), "{error}");
 }
 
@@ -177,7 +180,7 @@ fn a_disconnect_mid_import_is_a_clear_error_and_the_backup_is_whole() {
     let error = import(&board.requester(), &fresh, &options, &mut quiet, &Cancel::never()).unwrap_err();
     match &error {
         OpError::Request { item, source: RequestError::Disconnected { .. } } => {
-            assert_eq!(item, "action 1 \"六十步的大動作\"");
+            assert_eq!(item.to_string(), "action 1 \"六十步的大動作\"");
         }
         other => panic!("expected a disconnect while writing action 1, got {other:?}"),
     }

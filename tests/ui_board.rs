@@ -156,3 +156,27 @@ fn the_board_panel_speaks_traditional_chinese() {
         assert!(harness.query_by_label(caption).is_some(), "{caption}");
     }
 }
+
+#[test]
+fn a_refused_item_is_named_in_traditional_chinese() {
+    let data = tempfile::tempdir().unwrap();
+    let config = SimConfig { faults: Faults { refuse_add: vec![2], ..Faults::default() }, ..SimConfig::default() };
+    let mut harness = composed(&Project::default(), config, data.path());
+    harness.state_mut().apply(Action::SetLanguage(servo_studio::ui::Language::TraditionalChinese));
+    frames(&mut harness);
+    harness.get_by_label("上傳至控制板").click();
+    frames(&mut harness);
+    run_until(&mut harness, "the comparison", |app| app.pending.is_some());
+    let differences = &harness.state().pending.as_ref().unwrap().differences;
+    assert!(differences.iter().any(|d| d == "動作 1：控制板上沒有"), "{differences:?}");
+    harness.get_by_label("備份控制板後覆寫").click();
+    frames(&mut harness);
+    run_until(&mut harness, "the upload", |app| app.board_result.is_some());
+    match harness.state().board_result.clone().unwrap() {
+        BoardResult::Failed { items, error } => {
+            assert!(error.starts_with("動作 2 \"Pose 2\"：控制板拒絕了"), "{error}");
+            assert!(items.iter().any(|item| item.starts_with("動作 1")), "{items:?}");
+        }
+        other => panic!("expected a failure, got {other:?}"),
+    }
+}

@@ -69,7 +69,7 @@ fn progress_bar() -> (ProgressBar, impl FnMut(&Progress)) {
         });
         shown.set_length(u64::try_from(progress.total).unwrap_or(u64::MAX));
         shown.set_position(u64::try_from(progress.done).unwrap_or(u64::MAX));
-        shown.set_message(progress.item.clone());
+        shown.set_message(progress.item.to_string());
     };
     (bar, update)
 }

@@ -214,7 +214,14 @@ impl StudioApp {
         };
         self.board_result = None;
         let backups = self.data_dir.join("backups");
-        self.job = Some(Job::start(kind, link.requester(), self.document.project.clone(), backups, self.waker.clone()));
+        self.job = Some(Job::start(
+            kind,
+            link.requester(),
+            self.document.project.clone(),
+            backups,
+            self.language,
+            self.waker.clone(),
+        ));
     }
 
     fn board_compare(&mut self, intent: BoardIntent) {
@@ -224,11 +231,10 @@ impl StudioApp {
         if intent == BoardIntent::Upload {
             let problems = validate(&self.document.project);
             if has_errors(&problems) {
-                let list: Vec<String> = problems.iter().map(ToString::to_string).collect();
-                self.board_result = Some(BoardResult::Failed {
-                    items: Vec::new(),
-                    error: format!("the project has errors; nothing was written:\n{}", list.join("\n")),
-                });
+                let errors: Vec<_> =
+                    problems.into_iter().filter(|p| p.severity == crate::project::Severity::Error).collect();
+                let error = self.language.op_error(&crate::device::board::OpError::Invalid { problems: errors });
+                self.board_result = Some(BoardResult::Failed { items: Vec::new(), error });
                 return;
             }
         }
@@ -268,8 +274,12 @@ impl StudioApp {
     fn poll_job(&mut self) {
         let Some(job) = &mut self.job else { return };
         let Some(outcome) = job.poll() else { return };
-        let written: Vec<String> =
-            job.done_items.iter().filter(|(phase, _)| *phase == Phase::Write).map(|(_, item)| item.clone()).collect();
+        let written: Vec<String> = job
+            .done_items
+            .iter()
+            .filter(|(phase, _)| *phase == Phase::Write)
+            .map(|(_, item)| self.language.item(item))
+            .collect();
         self.job = None;
         match outcome {
             JobOutcome::Compared { differences, board } => {

@@ -109,11 +109,12 @@ pub fn ui(ui: &mut egui::Ui, view: &BoardView<'_>, words: &crate::ui::i18n::Stri
         ui.label(what);
         if let Some(progress) = &job.progress {
             let fraction = if progress.total == 0 { 0.0 } else { progress.done as f32 / progress.total as f32 };
-            ui.add(
-                egui::ProgressBar::new(fraction)
-                    .show_percentage()
-                    .text(format!("{:?} {}/{} {}", progress.phase, progress.done, progress.total, progress.item)),
-            );
+            ui.add(egui::ProgressBar::new(fraction).show_percentage().text(format!(
+                "{}/{} {}",
+                progress.done,
+                progress.total,
+                words.lang.item(&progress.item)
+            )));
         }
         if ui.button(words.cancel).clicked() {
             actions.push(Action::BoardCancel);

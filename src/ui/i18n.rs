@@ -122,6 +122,108 @@ impl Language {
         }
     }
 
+    /// What an operation step is about, in this language.
+    pub fn item(self, item: &crate::device::board::Item) -> String {
+        use crate::device::board::Item as I;
+        if self == Self::English {
+            return item.to_string();
+        }
+        match item {
+            I::ProjectId => "專案編號".into(),
+            I::ServoParameters => "舵機參數".into(),
+            I::ActionList => "動作清單".into(),
+            I::Action { id, caption } => format!("動作 {id} {caption:?}"),
+            I::MacroList => "巨集清單".into(),
+            I::Macro { id, caption } => format!("巨集 {id} {caption:?}"),
+            I::TableList => "遙控對應表清單".into(),
+            I::Table { id, caption } => format!("遙控對應表 {id} {caption:?}"),
+            I::ActiveTable => "使用中的遙控對應表".into(),
+            I::MemorySize => "記憶體容量".into(),
+            I::ClearAll => "清除所有資料".into(),
+            I::WriteProjectId(id) => format!("專案編號 {id}"),
+            I::AddServoParameters(count) => format!("{count} 個舵機參數"),
+            I::SetActiveTable(id) => format!("使用中的遙控對應表 {id}"),
+            I::MoveServos => "移動舵機".into(),
+            I::RunAction(id) => format!("執行動作 {id}"),
+            I::RunMacro(id) => format!("執行巨集 {id}"),
+            I::ServoSwitches(id) => format!("舵機 {id} 開關"),
+            I::AngleUnit(id) => format!("舵機 {id} 角度單位"),
+            I::ServoState(id) => format!("舵機 {id} 狀態"),
+            I::Battery => "電量".into(),
+            I::ButtonEvents => "按鍵事件".into(),
+        }
+    }
+
+    /// A difference between project and board, in this language.
+    pub fn difference(self, difference: &crate::device::board::Difference) -> String {
+        use crate::device::board::{Difference as D, RecordKind as K};
+        if self == Self::English {
+            return difference.to_string();
+        }
+        let kind = |kind: &K| match kind {
+            K::Servo => "舵機",
+            K::Action => "動作",
+            K::Macro => "巨集",
+            K::Table => "遙控對應表",
+        };
+        match difference {
+            D::ProjectId { expected, actual } => format!("專案編號：應為 {expected}，控制板為 {actual}"),
+            D::Missing { kind: k, id } => format!("{} {id}：控制板上沒有", kind(k)),
+            D::Differs { kind: k, id } => format!("{} {id}：控制板上的內容不同", kind(k)),
+            D::Extra { kind: k, id } => format!("{} {id}：控制板上有，專案中沒有", kind(k)),
+            D::Order { kind: k } => format!("{}：儲存順序不同", kind(k)),
+            D::ActiveTable { expected, actual } => format!("使用中的對應表：應為 {expected}，控制板為 {actual}"),
+        }
+    }
+
+    /// Why a request failed, in this language, with what to try.
+    pub fn request_error(self, error: &crate::device::board::RequestError) -> String {
+        use crate::device::board::RequestError as R;
+        match (self, error) {
+            (Self::English, _) => error.to_string(),
+            (_, R::Timeout { request, attempts }) => {
+                format!("{request}：嘗試 {attempts} 次都沒有回應。請確認控制板已開機、鮑率相符、線材已接好")
+            }
+            (_, R::Malformed { request, error }) => format!("{request}：回應格式錯誤：{error}"),
+            (_, R::Encode(error)) => format!("無法編碼：{error}"),
+            (_, R::Disconnected { reason }) => format!("與控制板的連線已中斷：{reason}"),
+        }
+    }
+
+    /// Why a board operation failed, in this language, with what to try.
+    pub fn op_error(self, error: &crate::device::board::OpError) -> String {
+        use crate::device::board::OpError as O;
+        if self == Self::English {
+            return error.to_string();
+        }
+        match error {
+            O::Request { item, source } => format!("{}：{}", self.item(item), self.request_error(source)),
+            O::Refused { item } => {
+                format!("{}：控制板拒絕了（result 0）。記憶體是否已滿，或項目格式有誤？", self.item(item))
+            }
+            O::ReadFailed { item } => format!("{}：控制板回報讀取失敗", self.item(item)),
+            O::Invalid { problems } => {
+                let list: Vec<String> =
+                    problems.iter().map(|p| format!("{}：{}", p.location, self.problem(&p.kind))).collect();
+                format!("專案有 {} 個錯誤，沒有寫入任何資料：\n{}", problems.len(), list.join("\n"))
+            }
+            O::DoesNotFit { needed_bytes, total_bytes } => {
+                format!(
+                    "專案需要 {needed_bytes} 位元組，但控制板只有 {total_bytes}；沒有寫入任何資料。請移除一些動作或巨集"
+                )
+            }
+            O::Image(error) => format!("此專案無法存入控制板：{error}"),
+            O::Encode(error) => format!("無法編碼：{error}"),
+            O::Backup(error) => format!("備份失敗，因此沒有寫入任何資料：{error}"),
+            O::Verify { differences } => {
+                let list: Vec<String> = differences.iter().map(|d| self.difference(d)).collect();
+                format!("驗證失敗：控制板與專案不同：\n{}", list.join("\n"))
+            }
+            O::Cancelled => "已取消".into(),
+            O::Unexpected { item, response } => format!("{}：非預期的回應 {response}", self.item(item)),
+        }
+    }
+
     /// The language's own name.
     pub fn name(self) -> &'static str {
         match self {

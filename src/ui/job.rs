@@ -51,7 +51,7 @@ pub struct Job {
     /// The latest progress.
     pub progress: Option<Progress>,
     /// Every item finished so far, in order, with the phase it belonged to.
-    pub done_items: Vec<(Phase, String)>,
+    pub done_items: Vec<(Phase, crate::device::board::Item)>,
     progress_rx: Receiver<Progress>,
     outcome_rx: Receiver<JobOutcome>,
     cancel: Sender<()>,
@@ -59,7 +59,14 @@ pub struct Job {
 
 impl Job {
     /// Starts `kind` on a worker thread. `waker` is called after each step.
-    pub fn start(kind: JobKind, requester: Requester, project: Project, backup_dir: PathBuf, waker: Waker) -> Self {
+    pub fn start(
+        kind: JobKind,
+        requester: Requester,
+        project: Project,
+        backup_dir: PathBuf,
+        language: crate::ui::i18n::Language,
+        waker: Waker,
+    ) -> Self {
         let (progress_tx, progress_rx) = crossbeam_channel::unbounded();
         let (outcome_tx, outcome_rx) = crossbeam_channel::bounded(1);
         let (cancel, token) = Cancel::new();
@@ -70,7 +77,7 @@ impl Job {
                 let _ = progress_tx.send(progress.clone());
                 worker_waker();
             };
-            let outcome = run(&job_kind, &requester, &project, backup_dir, &mut report, &token);
+            let outcome = run(&job_kind, &requester, &project, backup_dir, language, &mut report, &token);
             let _ = outcome_tx.send(outcome);
             worker_waker();
         });
@@ -107,18 +114,19 @@ fn run(
     requester: &Requester,
     project: &Project,
     backup_dir: PathBuf,
+    language: crate::ui::i18n::Language,
     report: &mut dyn FnMut(&Progress),
     cancel: &Cancel,
 ) -> JobOutcome {
     let failed = |error: crate::device::board::OpError| match error {
         crate::device::board::OpError::Cancelled => JobOutcome::Cancelled,
-        other => JobOutcome::Failed(other.to_string()),
+        other => JobOutcome::Failed(language.op_error(&other)),
     };
     match kind {
         JobKind::Compare => match read_image(requester, report, cancel) {
             Ok(board) => {
                 let differences = match BoardImage::from_project(project) {
-                    Ok(ours) => ours.differences(&board),
+                    Ok(ours) => ours.differences(&board).iter().map(|d| language.difference(d)).collect(),
                     Err(error) => vec![format!("the project cannot be stored on a board: {error}")],
                 };
                 JobOutcome::Compared { differences, board: Box::new(board.to_project()) }

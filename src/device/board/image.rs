@@ -252,41 +252,130 @@ impl BoardImage {
     }
 
     /// Every difference between `self` (what was meant) and `actual` (what the
-    /// board holds), in words. Empty when they match exactly.
-    pub fn differences(&self, actual: &Self) -> Vec<String> {
+    /// board holds). Empty when they match exactly.
+    pub fn differences(&self, actual: &Self) -> Vec<Difference> {
         let mut out = Vec::new();
         if self.project_id != actual.project_id {
-            out.push(format!("project id: expected {}, board has {}", self.project_id, actual.project_id));
+            out.push(Difference::ProjectId { expected: self.project_id, actual: actual.project_id });
         }
-        diff_items(&mut out, "servo", &self.servos, &actual.servos, |s| i64::from(s.servo_id));
-        diff_items(&mut out, "action", &self.actions, &actual.actions, |a| i64::from(a.action_id));
-        diff_items(&mut out, "macro", &self.macros, &actual.macros, |m| i64::from(m.macro_id));
-        diff_items(&mut out, "joystick table", &self.tables, &actual.tables, |t| i64::from(t.table_id));
+        diff_items(&mut out, RecordKind::Servo, &self.servos, &actual.servos, |s| i64::from(s.servo_id));
+        diff_items(&mut out, RecordKind::Action, &self.actions, &actual.actions, |a| i64::from(a.action_id));
+        diff_items(&mut out, RecordKind::Macro, &self.macros, &actual.macros, |m| i64::from(m.macro_id));
+        diff_items(&mut out, RecordKind::Table, &self.tables, &actual.tables, |t| i64::from(t.table_id));
         if self.active_table != actual.active_table {
-            out.push(format!("active table: expected {}, board has {}", self.active_table, actual.active_table));
+            out.push(Difference::ActiveTable { expected: self.active_table, actual: actual.active_table });
         }
         out
     }
 }
 
-fn diff_items<T: PartialEq>(out: &mut Vec<String>, kind: &str, expected: &[T], actual: &[T], id: impl Fn(&T) -> i64) {
+/// Which kind of stored record a difference is about.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum RecordKind {
+    /// Servo parameters.
+    Servo,
+    /// An action.
+    Action,
+    /// A macro.
+    Macro,
+    /// A joystick table.
+    Table,
+}
+
+impl RecordKind {
+    /// The English word.
+    pub fn word(self) -> &'static str {
+        match self {
+            Self::Servo => "servo",
+            Self::Action => "action",
+            Self::Macro => "macro",
+            Self::Table => "joystick table",
+        }
+    }
+}
+
+/// One difference between a project and a board, as data; `Display` gives English.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub enum Difference {
+    /// The project ids differ.
+    ProjectId {
+        /// The project's.
+        expected: i32,
+        /// The board's.
+        actual: i32,
+    },
+    /// In the project, not on the board.
+    Missing {
+        /// Of what.
+        kind: RecordKind,
+        /// Its id.
+        id: i64,
+    },
+    /// On both, with different contents.
+    Differs {
+        /// Of what.
+        kind: RecordKind,
+        /// Its id.
+        id: i64,
+    },
+    /// On the board, not in the project.
+    Extra {
+        /// Of what.
+        kind: RecordKind,
+        /// Its id.
+        id: i64,
+    },
+    /// The same records in another order.
+    Order {
+        /// Of what.
+        kind: RecordKind,
+    },
+    /// The active tables differ.
+    ActiveTable {
+        /// The project's.
+        expected: i32,
+        /// The board's.
+        actual: i32,
+    },
+}
+
+impl std::fmt::Display for Difference {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::ProjectId { expected, actual } => write!(f, "project id: expected {expected}, board has {actual}"),
+            Self::Missing { kind, id } => write!(f, "{} {id}: missing on the board", kind.word()),
+            Self::Differs { kind, id } => write!(f, "{} {id}: differs on the board", kind.word()),
+            Self::Extra { kind, id } => write!(f, "{} {id}: on the board but not in the project", kind.word()),
+            Self::Order { kind } => write!(f, "{}s: stored in a different order", kind.word()),
+            Self::ActiveTable { expected, actual } => {
+                write!(f, "active table: expected {expected}, board has {actual}")
+            }
+        }
+    }
+}
+
+fn diff_items<T: PartialEq>(
+    out: &mut Vec<Difference>,
+    kind: RecordKind,
+    expected: &[T],
+    actual: &[T],
+    id: impl Fn(&T) -> i64,
+) {
     let before = out.len();
     for item in expected {
         match actual.iter().find(|other| id(other) == id(item)) {
-            None => out.push(format!("{kind} {}: missing on the board", id(item))),
-            Some(other) if other != item => {
-                out.push(format!("{kind} {}: differs on the board", id(item)));
-            }
+            None => out.push(Difference::Missing { kind, id: id(item) }),
+            Some(other) if other != item => out.push(Difference::Differs { kind, id: id(item) }),
             Some(_) => {}
         }
     }
     for item in actual {
         if !expected.iter().any(|other| id(other) == id(item)) {
-            out.push(format!("{kind} {}: on the board but not in the project", id(item)));
+            out.push(Difference::Extra { kind, id: id(item) });
         }
     }
     let same_ids = expected.len() == actual.len() && expected.iter().zip(actual).all(|(a, b)| id(a) == id(b));
     if !same_ids && out.len() == before {
-        out.push(format!("{kind}s: stored in a different order"));
+        out.push(Difference::Order { kind });
     }
 }

@@ -3,12 +3,14 @@
 
 mod client;
 mod image;
+mod item;
 mod live;
 mod ops;
 mod session;
 
 pub use client::{Board, BoardCommand, BoardDriver, BoardEvent, Reply, Requester};
-pub use image::{BoardImage, ImageError};
+pub use image::{BoardImage, Difference, ImageError, RecordKind};
+pub use item::Item;
 pub use ops::{
     BoardInfo, Cancel, ImportOptions, ImportReport, OpError, Phase, Progress, backup_path, board_info, export, import,
     read_image,

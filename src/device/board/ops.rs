@@ -9,6 +9,7 @@ use crossbeam_channel::{Receiver, Sender};
 
 use super::client::Requester;
 use super::image::{BoardImage, ImageError};
+use super::item::Item;
 use super::session::RequestError;
 use crate::project::{self, Problem, Project, SaveError};
 use crate::protocol::board::{ALL_SERVOS, EncodeError, Message, ServoStatus};
@@ -34,7 +35,7 @@ pub struct Progress {
     /// Steps this part has (it can grow as lists are read).
     pub total: usize,
     /// What is being done now, e.g. `action 3 "揮手"`.
-    pub item: String,
+    pub item: Item,
 }
 
 /// Lets the owner stop an operation between two steps.
@@ -70,7 +71,7 @@ pub enum OpError {
     #[error("{item}: {source}")]
     Request {
         /// What was being done.
-        item: String,
+        item: Item,
         /// Why it failed.
         source: RequestError,
     },
@@ -78,13 +79,13 @@ pub enum OpError {
     #[error("{item}: the board refused it (result 0). Is its memory full, or the item malformed?")]
     Refused {
         /// What was refused.
-        item: String,
+        item: Item,
     },
     /// The board answered a query with its "failure" value.
     #[error("{item}: the board reported a failure reading it")]
     ReadFailed {
         /// What could not be read.
-        item: String,
+        item: Item,
     },
     /// The project has validation errors; nothing was written.
     #[error("the project has {} error(s); nothing was written:\n{}", .problems.len(), list(.problems))]
@@ -112,10 +113,10 @@ pub enum OpError {
     #[error("backup failed, so nothing was written: {0}")]
     Backup(SaveError),
     /// What the board holds after writing differs from the project.
-    #[error("verification failed: the board differs from the project:\n{}", .differences.join("\n"))]
+    #[error("verification failed: the board differs from the project:\n{}", list(.differences))]
     Verify {
-        /// Each difference, in words.
-        differences: Vec<String>,
+        /// Each difference.
+        differences: Vec<super::image::Difference>,
     },
     /// The owner cancelled.
     #[error("cancelled")]
@@ -124,14 +125,14 @@ pub enum OpError {
     #[error("{item}: unexpected response {response}")]
     Unexpected {
         /// What was being done.
-        item: String,
+        item: Item,
         /// The response's name.
         response: &'static str,
     },
 }
 
-fn list(problems: &[Problem]) -> String {
-    problems.iter().map(ToString::to_string).collect::<Vec<_>>().join("\n")
+fn list<T: std::fmt::Display>(items: &[T]) -> String {
+    items.iter().map(ToString::to_string).collect::<Vec<_>>().join("\n")
 }
 
 struct Run<'a> {
@@ -144,7 +145,7 @@ struct Run<'a> {
 }
 
 impl Run<'_> {
-    fn step(&mut self, item: String, message: Message) -> Result<Message, OpError> {
+    fn step(&mut self, item: Item, message: Message) -> Result<Message, OpError> {
         self.cancel.check()?;
         (self.progress)(&Progress { phase: self.phase, done: self.done, total: self.total, item: item.clone() });
         let response =
@@ -155,7 +156,7 @@ impl Run<'_> {
     }
 
     /// A write step whose response carries `result`.
-    fn write(&mut self, item: String, message: Message) -> Result<(), OpError> {
+    fn write(&mut self, item: Item, message: Message) -> Result<(), OpError> {
         let response = self.step(item.clone(), message)?;
         match result_of(&response) {
             Some(true) => Ok(()),
@@ -185,8 +186,8 @@ fn result_of(message: &Message) -> Option<bool> {
     }
 }
 
-fn unexpected(item: &str, response: &Message) -> OpError {
-    OpError::Unexpected { item: item.to_string(), response: response.name() }
+fn unexpected(item: &Item, response: &Message) -> OpError {
+    OpError::Unexpected { item: item.clone(), response: response.name() }
 }
 
 /// Reads everything the board stores, in the order of the export conversation:
@@ -210,25 +211,25 @@ fn read_image_as(
     let mut run = Run { requester, progress, cancel, phase, done: 0, total: 6 };
     let mut image = BoardImage::default();
 
-    let item = "project id".to_string();
+    let item = Item::ProjectId;
     image.project_id = match run.step(item.clone(), M::QueryProjectIdRequest)? {
         M::QueryProjectIdResponse { project_id } => project_id,
         other => return Err(unexpected(&item, &other)),
     };
-    let item = "servo parameters".to_string();
+    let item = Item::ServoParameters;
     image.servos = match run.step(item.clone(), M::QueryServoParameterRequest)? {
         M::QueryServoParameterResponse { servos } => servos,
         other => return Err(unexpected(&item, &other)),
     };
 
-    let item = "action list".to_string();
+    let item = Item::ActionList;
     let actions = match run.step(item.clone(), M::QueryActionListRequest)? {
         M::QueryActionListResponse { actions } => actions,
         other => return Err(unexpected(&item, &other)),
     };
     run.total += actions.len();
     for entry in actions {
-        let item = format!("action {} {:?}", entry.id, entry.caption);
+        let item = Item::Action { id: entry.id, caption: entry.caption.clone() };
         match run.step(item.clone(), M::QueryActionRequest { action_id: entry.id })? {
             M::QueryActionResponse { action: Some(action) } => image.actions.push(action),
             M::QueryActionResponse { action: None } => return Err(OpError::ReadFailed { item }),
@@ -236,14 +237,14 @@ fn read_image_as(
         }
     }
 
-    let item = "macro list".to_string();
+    let item = Item::MacroList;
     let macros = match run.step(item.clone(), M::QueryMacroListRequest)? {
         M::QueryMacroListResponse { macros } => macros,
         other => return Err(unexpected(&item, &other)),
     };
     run.total += macros.len();
     for entry in macros {
-        let item = format!("macro {} {:?}", entry.id, entry.caption);
+        let item = Item::Macro { id: entry.id, caption: entry.caption.clone() };
         match run.step(item.clone(), M::QueryMacroRequest { macro_id: entry.id })? {
             M::QueryMacroResponse { macro_record: Some(record) } => image.macros.push(record),
             M::QueryMacroResponse { macro_record: None } => {
@@ -253,14 +254,14 @@ fn read_image_as(
         }
     }
 
-    let item = "joystick table list".to_string();
+    let item = Item::TableList;
     let tables = match run.step(item.clone(), M::QueryJoystickTableListRequest)? {
         M::QueryJoystickTableListResponse { tables } => tables,
         other => return Err(unexpected(&item, &other)),
     };
     run.total += tables.len();
     for entry in tables {
-        let item = format!("joystick table {} {:?}", entry.id, entry.caption);
+        let item = Item::Table { id: entry.id, caption: entry.caption.clone() };
         match run.step(item.clone(), M::QueryJoystickTableRequest { table_id: entry.id })? {
             M::QueryJoystickTableResponse { table: Some(table) } => image.tables.push(table),
             M::QueryJoystickTableResponse { table: None } => {
@@ -270,7 +271,7 @@ fn read_image_as(
         }
     }
 
-    let item = "active joystick table".to_string();
+    let item = Item::ActiveTable;
     image.active_table = match run.step(item.clone(), M::QueryActiveJoystickTableRequest)? {
         M::QueryActiveJoystickTableResponse { table_id } => table_id,
         other => return Err(unexpected(&item, &other)),
@@ -339,7 +340,7 @@ pub fn import(
 
     // The fit check reads; the write phase proper starts after the backup.
     let mut run = Run { requester, progress, cancel, phase: Phase::Read, done: 0, total: 1 };
-    let item = "memory size".to_string();
+    let item = Item::MemorySize;
     let total_bytes = match run.step(item.clone(), M::QueryMemorySizeRequest)? {
         // Boards that report only the free size: after clearing, free is all there is.
         M::QueryMemorySizeResponse { free_bytes, total_bytes } => i64::from(total_bytes.unwrap_or(free_bytes)),
@@ -366,29 +367,35 @@ pub fn import(
         + image.macros.len()
         + image.tables.len()
         + usize::from(image.active_table != 0);
-    run.write("clear all data".into(), M::ClearAllDataRequest)?;
-    run.write(format!("project id {}", image.project_id), M::WriteProjectIdRequest { project_id: image.project_id })?;
+    run.write(Item::ClearAll, M::ClearAllDataRequest)?;
+    run.write(Item::WriteProjectId(image.project_id), M::WriteProjectIdRequest { project_id: image.project_id })?;
     if !image.servos.is_empty() {
         run.write(
-            format!("{} servo parameter(s)", image.servos.len()),
+            Item::AddServoParameters(image.servos.len()),
             M::AddServoParameterRequest { servos: image.servos.clone() },
         )?;
     }
     for action in &image.actions {
-        run.write(format!("action {} {:?}", action.action_id, action.caption), M::AddActionRequest(action.clone()))?;
+        run.write(
+            Item::Action { id: action.action_id, caption: action.caption.clone() },
+            M::AddActionRequest(action.clone()),
+        )?;
     }
     for record in &image.macros {
-        run.write(format!("macro {} {:?}", record.macro_id, record.caption), M::AddMacroRequest(record.clone()))?;
+        run.write(
+            Item::Macro { id: record.macro_id, caption: record.caption.clone() },
+            M::AddMacroRequest(record.clone()),
+        )?;
     }
     for table in &image.tables {
         run.write(
-            format!("joystick table {} {:?}", table.table_id, table.caption),
+            Item::Table { id: table.table_id, caption: table.caption.clone() },
             M::AddJoystickTableRequest(table.clone()),
         )?;
     }
     if image.active_table != 0 {
         run.write(
-            format!("active joystick table {}", image.active_table),
+            Item::SetActiveTable(image.active_table),
             M::SetActiveJoystickTableRequest { table_id: image.active_table },
         )?;
     }
