@@ -180,3 +180,23 @@ fn a_refused_item_is_named_in_traditional_chinese() {
         other => panic!("expected a failure, got {other:?}"),
     }
 }
+
+#[test]
+fn an_invalid_project_is_explained_in_traditional_chinese() {
+    let data = tempfile::tempdir().unwrap();
+    let mut harness = composed(&Project::default(), SimConfig::default(), data.path());
+    let mut broken = harness.state().document.project.clone();
+    broken.actions[0].steps[0].servo_id = 77;
+    harness
+        .state_mut()
+        .apply(Action::Edit { edit: servo_studio::project::Edit::ReplaceAll(Box::new(broken)), coalesce: None });
+    harness.state_mut().apply(Action::SetLanguage(servo_studio::ui::Language::TraditionalChinese));
+    harness.state_mut().apply(Action::BoardCompare(servo_studio::ui::BoardIntent::Upload));
+    match harness.state().board_result.clone().unwrap() {
+        BoardResult::Failed { error, .. } => {
+            assert!(error.contains("動作 1 \"Pose 1\"，步驟 1：舵機 77 不存在"), "{error}");
+            assert!(error.starts_with("專案有 1 個錯誤"), "{error}");
+        }
+        other => panic!("expected a failure, got {other:?}"),
+    }
+}

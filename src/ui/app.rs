@@ -490,6 +490,13 @@ impl StudioApp {
                 LinkNotice::Error(error) => {
                     self.status = Some(StatusLine { text: error, is_error: true });
                 }
+                LinkNotice::RequestFailed(error) => {
+                    self.status = Some(StatusLine { text: self.language.request_error(&error), is_error: true });
+                }
+                LinkNotice::MacroRefused => {
+                    self.status =
+                        Some(StatusLine { text: self.language.strings().msg_macro_refused.into(), is_error: true });
+                }
                 LinkNotice::Disconnected(reason) => {
                     self.status = Some(StatusLine {
                         text: format!("{} {reason}", self.language.strings().msg_link_ended),

@@ -32,8 +32,12 @@ enum Query {
 /// Something the app shell should show the user.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum LinkNotice {
-    /// A request failed; the text says what to try.
+    /// Something could not be sent; the text says why.
     Error(String),
+    /// A request failed.
+    RequestFailed(RequestError),
+    /// The board refused to run a macro (it does not store it).
+    MacroRefused,
     /// The link ended.
     Disconnected(String),
     /// A remote button event.
@@ -167,13 +171,12 @@ impl BoardLink {
         for (query, reply) in std::mem::take(&mut self.inflight) {
             match reply.try_recv() {
                 Ok(Ok(Message::ExecuteMacroResponse { ok: false })) => {
-                    notices
-                        .push(LinkNotice::Error("the board refused to run the macro: upload the project first".into()));
+                    notices.push(LinkNotice::MacroRefused);
                 }
                 Ok(Ok(message)) => self.absorb(message),
                 Ok(Err(error)) => {
                     if !matches!(error, RequestError::Disconnected { .. }) {
-                        notices.push(LinkNotice::Error(error.to_string()));
+                        notices.push(LinkNotice::RequestFailed(error));
                     }
                 }
                 Err(crossbeam_channel::TryRecvError::Empty) => still.push((query, reply)),

@@ -122,6 +122,26 @@ impl Language {
         }
     }
 
+    /// Where a problem is, in this language.
+    pub fn location(self, location: &crate::project::Location) -> String {
+        use crate::project::Location as L;
+        if self == Self::English {
+            return location.to_string();
+        }
+        match location {
+            L::Project => "專案".into(),
+            L::Servo { servo_id, caption } => format!("舵機 {servo_id} {caption:?}"),
+            L::Action { action_id, caption } => format!("動作 {action_id} {caption:?}"),
+            L::Step { action_id, caption, step } => format!("動作 {action_id} {caption:?}，步驟 {step}"),
+            L::Macro { macro_id, caption } => format!("巨集 {macro_id} {caption:?}"),
+            L::Command { macro_id, caption, command } => format!("巨集 {macro_id} {caption:?}，指令 {command}"),
+            L::Table { table_id, caption } => format!("遙控對應表 {table_id} {caption:?}"),
+            L::Button { table_id, table_caption, button_id, caption } => {
+                format!("遙控對應表 {table_id} {table_caption:?}，按鍵 0x{button_id:08x} {caption:?}")
+            }
+        }
+    }
+
     /// What an operation step is about, in this language.
     pub fn item(self, item: &crate::device::board::Item) -> String {
         use crate::device::board::Item as I;
@@ -203,8 +223,10 @@ impl Language {
             }
             O::ReadFailed { item } => format!("{}：控制板回報讀取失敗", self.item(item)),
             O::Invalid { problems } => {
-                let list: Vec<String> =
-                    problems.iter().map(|p| format!("{}：{}", p.location, self.problem(&p.kind))).collect();
+                let list: Vec<String> = problems
+                    .iter()
+                    .map(|p| format!("{}：{}", self.location(&p.location), self.problem(&p.kind)))
+                    .collect();
                 format!("專案有 {} 個錯誤，沒有寫入任何資料：\n{}", problems.len(), list.join("\n"))
             }
             O::DoesNotFit { needed_bytes, total_bytes } => {
@@ -290,6 +312,14 @@ pub struct Strings {
     pub board: &'static str,
     /// "Packet log".
     pub packet_log: &'static str,
+    /// "the board refused to run the macro: upload the project first".
+    pub msg_macro_refused: &'static str,
+    /// "press".
+    pub event_press: &'static str,
+    /// "long press".
+    pub event_long_press: &'static str,
+    /// "release".
+    pub event_release: &'static str,
     /// "opened".
     pub msg_opened: &'static str,
     /// "cannot open".
@@ -524,6 +554,10 @@ const ENGLISH: Strings = Strings {
     pose: "Pose",
     board: "Board",
     packet_log: "Packet log",
+    msg_macro_refused: "the board refused to run the macro: upload the project first",
+    event_press: "press",
+    event_long_press: "long press",
+    event_release: "release",
     msg_opened: "opened",
     msg_cannot_open: "cannot open",
     msg_saved: "saved",
@@ -656,6 +690,10 @@ const TRADITIONAL_CHINESE: Strings = Strings {
     pose: "姿勢",
     board: "控制板",
     packet_log: "封包紀錄",
+    msg_macro_refused: "控制板拒絕執行巨集：請先上傳專案",
+    event_press: "按下",
+    event_long_press: "長按",
+    event_release: "放開",
     msg_opened: "已開啟",
     msg_cannot_open: "無法開啟",
     msg_saved: "已儲存",

@@ -28,11 +28,11 @@ pub struct JoystickPanel {
     selected: usize,
 }
 
-fn event_name(event: ButtonEvent) -> &'static str {
+fn event_name(event: ButtonEvent, words: &Strings) -> &'static str {
     match event {
-        ButtonEvent::Press => "press",
-        ButtonEvent::LongPress => "long press",
-        ButtonEvent::Release => "release",
+        ButtonEvent::Press => words.event_press,
+        ButtonEvent::LongPress => words.event_long_press,
+        ButtonEvent::Release => words.event_release,
     }
 }
 
@@ -74,7 +74,7 @@ impl JoystickPanel {
                 ui.separator();
                 ui.label(words.live_events);
                 for (button_id, event) in view.events.iter().rev().take(12) {
-                    ui.monospace(format!("0x{button_id:08x} {}", event_name(*event)));
+                    ui.monospace(format!("0x{button_id:08x} {}", event_name(*event, words)));
                 }
             });
             ui.separator();
