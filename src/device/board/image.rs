@@ -269,30 +269,8 @@ impl BoardImage {
     }
 }
 
-/// Which kind of stored record a difference is about.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum RecordKind {
-    /// Servo parameters.
-    Servo,
-    /// An action.
-    Action,
-    /// A macro.
-    Macro,
-    /// A joystick table.
-    Table,
-}
-
-impl RecordKind {
-    /// The English word.
-    pub fn word(self) -> &'static str {
-        match self {
-            Self::Servo => "servo",
-            Self::Action => "action",
-            Self::Macro => "macro",
-            Self::Table => "joystick table",
-        }
-    }
-}
+/// Which kind of stored record a difference is about: the project's own item kinds.
+pub use crate::project::ItemKind as RecordKind;
 
 /// One difference between a project and a board, as data; `Display` gives English.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
