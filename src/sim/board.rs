@@ -10,8 +10,8 @@ use super::faults::{Faults, hits};
 use crate::device::board::BoardImage;
 use crate::link::Driver;
 use crate::protocol::board::{
-    ALL_SERVOS, ActionRecord, AngleUnit, ButtonEvent, CommandType, DecoderEvent, FrameDecoder, ListEntry, MacroRecord,
-    Message, ServoMove, ServoStatus, ServoSwitches, TransmissionMode,
+    ALL_SERVOS, AngleUnit, ButtonEvent, CommandType, DecoderEvent, FrameDecoder, ListEntry, Message, ServoMove,
+    ServoStatus, ServoSwitches, TransmissionMode,
 };
 
 /// How the emulated board behaves.
@@ -368,7 +368,9 @@ impl BoardSim {
             M::QueryActionRequest { action_id } => Some(M::QueryActionResponse {
                 action: image.actions.iter().find(|a| a.action_id == *action_id).cloned(),
             }),
-            M::AddActionRequest(record) => Some(M::AddActionResponse { ok: self.add_action(record) }),
+            M::AddActionRequest(record) => {
+                Some(M::AddActionResponse { ok: self.add(record, |a| a.action_id, |image| &mut image.actions) })
+            }
             M::DeleteActionRequest { action_id } => {
                 let before = image.actions.len();
                 image.actions.retain(|a| a.action_id != *action_id);
@@ -380,7 +382,9 @@ impl BoardSim {
             M::QueryMacroRequest { macro_id } => Some(M::QueryMacroResponse {
                 macro_record: image.macros.iter().find(|m| m.macro_id == *macro_id).cloned(),
             }),
-            M::AddMacroRequest(record) => Some(M::AddMacroResponse { ok: self.add_macro(record) }),
+            M::AddMacroRequest(record) => {
+                Some(M::AddMacroResponse { ok: self.add(record, |m| m.macro_id, |image| &mut image.macros) })
+            }
             M::DeleteMacroRequest { macro_id } => {
                 let before = image.macros.len();
                 image.macros.retain(|m| m.macro_id != *macro_id);
@@ -413,7 +417,9 @@ impl BoardSim {
             M::QueryJoystickTableRequest { table_id } => Some(M::QueryJoystickTableResponse {
                 table: image.tables.iter().find(|t| t.table_id == *table_id).cloned(),
             }),
-            M::AddJoystickTableRequest(record) => Some(M::AddJoystickTableResponse { ok: self.add_table(record) }),
+            M::AddJoystickTableRequest(record) => {
+                Some(M::AddJoystickTableResponse { ok: self.add(record, |t| t.table_id, |image| &mut image.tables) })
+            }
             M::DeleteJoystickTableRequest { table_id } => {
                 let before = image.tables.len();
                 image.tables.retain(|t| t.table_id != *table_id);
@@ -453,35 +459,20 @@ impl BoardSim {
         self.config.faults.refuse_add.contains(&id)
     }
 
-    fn add_action(&mut self, record: &ActionRecord) -> bool {
-        if record.action_id == 0 || self.refused(record.action_id) {
+    /// Stores (or replaces) a record in the list `list` picks, if its id is
+    /// valid, not refused by a fault, and the result fits in memory.
+    fn add<T: Clone>(
+        &mut self,
+        record: &T,
+        id: impl Fn(&T) -> i32 + Copy,
+        list: impl Fn(&mut BoardImage) -> &mut Vec<T> + Copy,
+    ) -> bool {
+        if id(record) == 0 || self.refused(id(record)) {
             return false;
         }
-        let ok = self.fits_after(|trial| upsert(&mut trial.actions, record.clone(), |a| a.action_id));
+        let ok = self.fits_after(|trial| upsert(list(trial), record.clone(), id));
         if ok {
-            upsert(&mut self.image.actions, record.clone(), |a| a.action_id);
-        }
-        ok
-    }
-
-    fn add_macro(&mut self, record: &MacroRecord) -> bool {
-        if record.macro_id == 0 || self.refused(record.macro_id) {
-            return false;
-        }
-        let ok = self.fits_after(|trial| upsert(&mut trial.macros, record.clone(), |m| m.macro_id));
-        if ok {
-            upsert(&mut self.image.macros, record.clone(), |m| m.macro_id);
-        }
-        ok
-    }
-
-    fn add_table(&mut self, record: &crate::protocol::board::JoystickTableRecord) -> bool {
-        if record.table_id == 0 || self.refused(record.table_id) {
-            return false;
-        }
-        let ok = self.fits_after(|trial| upsert(&mut trial.tables, record.clone(), |t| t.table_id));
-        if ok {
-            upsert(&mut self.image.tables, record.clone(), |t| t.table_id);
+            upsert(list(&mut self.image), record.clone(), id);
         }
         ok
     }
@@ -617,7 +608,7 @@ impl Driver for BoardSim {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::protocol::board::{Frame, ServoParameter};
+    use crate::protocol::board::{ActionRecord, Frame, MacroRecord, ServoParameter};
 
     /// Feeds `message` at `now` and returns every response the board sends by `until`.
     fn ask(sim: &mut BoardSim, now: Instant, message: &Message, until: Instant) -> Vec<Message> {

@@ -158,31 +158,11 @@ impl Run<'_> {
     /// A write step whose response carries `result`.
     fn write(&mut self, item: Item, message: Message) -> Result<(), OpError> {
         let response = self.step(item.clone(), message)?;
-        match result_of(&response) {
+        match response.result() {
             Some(true) => Ok(()),
             Some(false) => Err(OpError::Refused { item }),
             None => Err(OpError::Unexpected { item, response: response.name() }),
         }
-    }
-}
-
-/// The `result` of a write's response.
-fn result_of(message: &Message) -> Option<bool> {
-    use Message as M;
-    match message {
-        M::ClearAllDataResponse { ok }
-        | M::AddActionResponse { ok }
-        | M::DeleteActionResponse { ok }
-        | M::AddMacroResponse { ok }
-        | M::DeleteMacroResponse { ok }
-        | M::ExecuteMacroResponse { ok }
-        | M::AddServoParameterResponse { ok }
-        | M::WriteProjectIdResponse { ok }
-        | M::AddJoystickTableResponse { ok }
-        | M::DeleteJoystickTableResponse { ok }
-        | M::SetActiveJoystickTableResponse { ok }
-        | M::SubscribeButtonEventResponse { ok } => Some(*ok),
-        _ => None,
     }
 }
 

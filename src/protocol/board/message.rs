@@ -437,6 +437,27 @@ impl Message {
         message_name(self.packet_id()).unwrap_or("Unknown")
     }
 
+    /// The `result` byte of a response that carries one (0 = failure), or
+    /// `None` for every other message.
+    pub fn result(&self) -> Option<bool> {
+        use Message as M;
+        match self {
+            M::ClearAllDataResponse { ok }
+            | M::AddActionResponse { ok }
+            | M::DeleteActionResponse { ok }
+            | M::AddMacroResponse { ok }
+            | M::DeleteMacroResponse { ok }
+            | M::ExecuteMacroResponse { ok }
+            | M::AddServoParameterResponse { ok }
+            | M::WriteProjectIdResponse { ok }
+            | M::AddJoystickTableResponse { ok }
+            | M::DeleteJoystickTableResponse { ok }
+            | M::SetActiveJoystickTableResponse { ok }
+            | M::SubscribeButtonEventResponse { ok } => Some(*ok),
+            _ => None,
+        }
+    }
+
     /// The message's content bytes, fields in table order.
     pub fn encode_content(&self) -> Result<Vec<u8>, EncodeError> {
         use Message as M;
