@@ -11,16 +11,17 @@ mod common;
 
 use std::time::{Duration, Instant};
 
-use servo_studio::device::board::{
-    Board, BoardEvent, BoardImage, Cancel, ImportOptions, SessionConfig, Traffic, export, import,
+use servo_studio::device::servo::DEFAULT_BAUD;
+use servo_studio::device::servo::{
+    Cancel, ImportOptions, ServoBoard, ServoEvent, ServoImage, SessionConfig, Traffic, export, import,
 };
-use servo_studio::link::{DEFAULT_BAUD, LinkEvent, PortName, no_waker};
-use servo_studio::project::Project;
-use servo_studio::protocol::board::Message;
-use servo_studio::sim::{BoardSim, SimConfig, SimHandle};
+use servo_studio::link::{LinkEvent, PortName, no_waker};
+use servo_studio::project::ServoProject;
+use servo_studio::protocol::servo::Message;
+use servo_studio::sim::{ServoSim, SimConfig, SimHandle};
 
-fn start(config: SimConfig, preload: &Project) -> SimHandle {
-    let sim = BoardSim::new(config, BoardImage::from_project(preload).unwrap());
+fn start(config: SimConfig, preload: &ServoProject) -> SimHandle {
+    let sim = ServoSim::new(config, ServoImage::from_project(preload).unwrap());
     #[cfg(unix)]
     let handle = servo_studio::sim::spawn_pty(sim, no_waker()).unwrap();
     #[cfg(not(unix))]
@@ -28,9 +29,9 @@ fn start(config: SimConfig, preload: &Project) -> SimHandle {
     handle
 }
 
-fn connect(sim: &SimHandle, traffic: bool) -> Board {
+fn connect(sim: &SimHandle, traffic: bool) -> ServoBoard {
     let config = SessionConfig { traffic, response_timeout: Duration::from_secs(5), ..SessionConfig::default() };
-    Board::connect(&PortName::parse(&sim.port_name).unwrap(), DEFAULT_BAUD, config, no_waker()).unwrap()
+    ServoBoard::connect(&PortName::parse(&sim.port_name).unwrap(), DEFAULT_BAUD, config, no_waker()).unwrap()
 }
 
 fn percentile(sorted: &[Duration], fraction: f64) -> Duration {
@@ -39,7 +40,7 @@ fn percentile(sorted: &[Duration], fraction: f64) -> Duration {
 }
 
 fn round_trips() {
-    let sim = start(SimConfig::default(), &Project::default());
+    let sim = start(SimConfig::default(), &ServoProject::default());
     let board = connect(&sim, false);
     let requester = board.requester();
     for _ in 0..50 {
@@ -66,15 +67,15 @@ fn round_trips() {
 }
 
 /// Bytes that crossed the link in either direction, from the packet log.
-fn bytes_exchanged(board: &Board) -> usize {
+fn bytes_exchanged(board: &ServoBoard) -> usize {
     board
         .events()
         .try_iter()
         .map(|event| match event {
-            LinkEvent::Driver(BoardEvent::Traffic(Traffic::Sent { frame, .. } | Traffic::Received { frame, .. })) => {
+            LinkEvent::Driver(ServoEvent::Traffic(Traffic::Sent { frame, .. } | Traffic::Received { frame, .. })) => {
                 frame.wire_len()
             }
-            LinkEvent::Driver(BoardEvent::Traffic(Traffic::Skipped { bytes, .. })) => bytes,
+            LinkEvent::Driver(ServoEvent::Traffic(Traffic::Skipped { bytes, .. })) => bytes,
             _ => 0,
         })
         .sum()
@@ -102,9 +103,9 @@ fn throttled_transfers() {
     assert_eq!(exported, rich);
     report("export", elapsed, bytes_exchanged(&board));
 
-    let sim = start(config, &Project::default());
+    let sim = start(config, &ServoProject::default());
     let board = connect(&sim, true);
-    let options = ImportOptions { backup_dir: None, verify: false };
+    let options = ImportOptions { backup_dir: None, verify: false, force: false };
     let began = Instant::now();
     import(&board.requester(), &rich, &options, &mut |_| {}, &Cancel::never()).unwrap();
     let elapsed = began.elapsed();

@@ -11,12 +11,12 @@ use std::time::{Duration, Instant};
 
 use egui_kittest::Harness;
 use servo_studio::link::{LinkEvent, no_waker};
-use servo_studio::project::{Action, Button, Command, JoystickTable, Macro, Project, Run, Servo, Step};
-use servo_studio::protocol::board::Message;
+use servo_studio::project::{Action, Button, Command, JoystickTable, Macro, Project, Run, Servo, ServoProject, Step};
+use servo_studio::protocol::servo::Message;
 use servo_studio::sim::{SimConfig, SimEvent};
 use servo_studio::ui::{Action as UiAction, BoardLink, StudioApp, Tab};
 
-fn large_project() -> Project {
+fn large_project() -> ServoProject {
     let servos: Vec<Servo> = (0..64u8).map(|id| Servo::new(id, format!("關節{id}"))).collect();
     let actions = (1..=500)
         .map(|id| Action {
@@ -62,7 +62,7 @@ fn large_project() -> Project {
                 .collect(),
         })
         .collect();
-    Project { project_id: 1, servos, actions, macros, joystick_tables, active_table: Some(1), ..Project::default() }
+    ServoProject { project_id: 1, servos, actions, macros, joystick_tables, active_table: Some(1) }
 }
 
 fn frame_times() {
@@ -105,10 +105,10 @@ fn frame_times() {
 }
 
 fn slider_latency() {
-    let project = Project { servos: vec![Servo::new(1, "左肩")], ..Project::default() };
+    let project = ServoProject { servos: vec![Servo::new(1, "左肩")], ..ServoProject::default() };
     let mut app = StudioApp::new(project.clone(), None, no_waker());
     let config = SimConfig { baud: Some(115_200), ..SimConfig::default() };
-    app.link = Some(BoardLink::demo_with(&project, config, no_waker()).unwrap());
+    app.link = Some(BoardLink::demo_with(&Project::servo(project.clone()), config, no_waker()).unwrap());
     let mut latencies = Vec::new();
     for drag in 0..20 {
         // A drag: a new angle every frame (60 Hz), then the user lets go.

@@ -1,15 +1,15 @@
 //! The command line: argument parsing and the commands. Errors are handled
 //! here, once: printed with what to try, and turned into the exit status.
 
-mod board;
+mod servo;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Args, Parser, Subcommand};
 
-use servo_studio::link::DEFAULT_BAUD;
-use servo_studio::project::{self, Severity};
+use servo_studio::device;
+use servo_studio::project::{self, Family, Severity};
 
 /// Servo Studio: pose robot servos live, author actions and macros, and back up
 /// and upload servo controller boards.
@@ -21,18 +21,33 @@ pub struct Cli {
     pub command: Option<CliCommand>,
 }
 
+fn parse_family(text: &str) -> Result<Family, String> {
+    Family::from_tag(&text.to_ascii_lowercase())
+        .ok_or_else(|| format!("{text:?} is not a family: use servo, plen2 or rflex"))
+}
+
 /// Where the board is and how to talk to it.
 #[derive(Debug, Args)]
 pub struct PortArgs {
     /// Serial port (/dev/ttyUSB0, COM3) or tcp://HOST:PORT.
     #[arg(long)]
     pub port: String,
-    /// Line rate of a serial port.
-    #[arg(long, default_value_t = DEFAULT_BAUD)]
-    pub baud: u32,
+    /// Line rate of a serial port (default: the family's, 115200 for servo boards).
+    #[arg(long)]
+    pub baud: Option<u32>,
     /// How long to wait for each response, in milliseconds.
     #[arg(long, default_value_t = 1000)]
     pub timeout_ms: u64,
+    /// The board's family: servo, plen2 or rflex (default: the project file's, else servo).
+    #[arg(long, value_parser = parse_family)]
+    pub protocol: Option<Family>,
+}
+
+impl PortArgs {
+    /// The line rate asked for, or the family's default.
+    pub fn baud(&self, family: Family) -> u32 {
+        self.baud.unwrap_or_else(|| device::line_settings(family).baud)
+    }
 }
 
 /// The subcommands.
@@ -46,8 +61,15 @@ pub enum CliCommand {
     },
     /// List the serial ports this computer sees.
     Ports,
-    /// Run the emulated board. Prints the port to connect to on the first line.
-    Sim(board::SimArgs),
+    /// Run an emulated board. Prints the port to connect to on the first line.
+    Sim {
+        /// The emulator's options.
+        #[command(flatten)]
+        args: servo::SimArgs,
+        /// Which family to emulate: servo, plen2 or rflex.
+        #[arg(long, value_parser = parse_family, default_value = "servo")]
+        protocol: Family,
+    },
     /// Read everything from a board into a project file.
     Export {
         /// The board.
@@ -58,7 +80,8 @@ pub enum CliCommand {
         out: PathBuf,
     },
     /// Write a project file onto a board: validates, backs the board up,
-    /// clears it, writes, and verifies.
+    /// clears it, writes, and verifies. A file with validation errors (a
+    /// backup of content Servo Studio would not author) needs --force.
     Import {
         /// The board.
         #[command(flatten)]
@@ -69,6 +92,9 @@ pub enum CliCommand {
         /// Do not ask for confirmation.
         #[arg(long)]
         yes: bool,
+        /// Write even if validation finds errors (restores a backup exactly).
+        #[arg(long)]
+        force: bool,
         /// Do not save a backup of the board first.
         #[arg(long)]
         no_backup: bool,
@@ -80,9 +106,12 @@ pub enum CliCommand {
     Gui {
         /// A project file to open.
         file: Option<PathBuf>,
-        /// Start connected to the built-in emulated board.
+        /// Start connected to the built-in emulated board (with a sample robot when no file is given).
         #[arg(long)]
         demo: bool,
+        /// The board family to start with (default: the project file's, else the last one used).
+        #[arg(long, value_parser = parse_family)]
+        protocol: Option<Family>,
     },
     /// Board status.
     Board {
@@ -103,18 +132,33 @@ pub enum BoardCommand {
     },
 }
 
+/// Refuses a family whose driver this build does not have yet.
+fn servo_only(family: Family, what: &str) -> anyhow::Result<()> {
+    match family {
+        Family::Servo => Ok(()),
+        other => anyhow::bail!(
+            "{what} for the {} family is not in this build of Servo Studio yet; only servo boards (--protocol servo) are supported",
+            other.name()
+        ),
+    }
+}
+
 /// Runs a parsed command line.
 pub fn run(command: CliCommand) -> ExitCode {
     let result = match command {
         CliCommand::Check { file } => return check(&file),
-        CliCommand::Ports => board::ports(),
-        CliCommand::Sim(args) => board::sim(&args),
-        CliCommand::Export { port, out } => board::export(&port, &out),
-        CliCommand::Import { port, input, yes, no_backup, backup_dir } => {
-            board::import(&port, &input, yes, (!no_backup).then_some(backup_dir))
+        CliCommand::Ports => servo::ports(),
+        CliCommand::Sim { args, protocol } => servo_only(protocol, "the emulator").and_then(|()| servo::sim(&args)),
+        CliCommand::Export { port, out } => {
+            servo_only(port.protocol.unwrap_or_default(), "export").and_then(|()| servo::export(&port, &out))
         }
-        CliCommand::Board { command: BoardCommand::Info { port } } => board::info(&port),
-        CliCommand::Gui { file, demo } => gui(file, demo),
+        CliCommand::Import { port, input, yes, force, no_backup, backup_dir } => {
+            import(&port, &input, servo::ImportChoices { yes, force, backup_dir: (!no_backup).then_some(backup_dir) })
+        }
+        CliCommand::Board { command: BoardCommand::Info { port } } => {
+            servo_only(port.protocol.unwrap_or_default(), "board info").and_then(|()| servo::info(&port))
+        }
+        CliCommand::Gui { file, demo, protocol } => gui(file, demo, protocol),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -125,13 +169,28 @@ pub fn run(command: CliCommand) -> ExitCode {
     }
 }
 
-/// Opens the editor, with `file` if given.
-pub fn gui(file: Option<PathBuf>, demo: bool) -> anyhow::Result<()> {
+fn import(port: &PortArgs, input: &std::path::Path, choices: servo::ImportChoices) -> anyhow::Result<()> {
+    let loaded = project::load(input).map_err(|error| anyhow::anyhow!("cannot read {}: {error}", input.display()))?;
+    let family = port.protocol.unwrap_or(loaded.family);
+    if family != loaded.family {
+        anyhow::bail!(
+            "{} is a {} project but --protocol {family} was given; nothing was written",
+            input.display(),
+            loaded.family
+        );
+    }
+    servo_only(family, "import")?;
+    servo::import(port, input, &loaded, choices)
+}
+
+/// Opens the editor, with `file` if given; with `demo` and no file, on the sample robot.
+pub fn gui(file: Option<PathBuf>, demo: bool, protocol: Option<Family>) -> anyhow::Result<()> {
     let project = match &file {
-        Some(path) => project::load(path).map_err(|error| anyhow::anyhow!("{}: {error}", path.display()))?,
-        None => project::Project::default(),
+        Some(path) => Some(project::load(path).map_err(|error| anyhow::anyhow!("{}: {error}", path.display()))?),
+        None => None,
     };
-    servo_studio::ui::run(project, file, demo).map_err(|error| {
+    let start = servo_studio::ui::Start { project, path: file, demo, family: protocol };
+    servo_studio::ui::run(start).map_err(|error| {
         anyhow::anyhow!("cannot open the window: {error}. On Linux, a desktop session (X11 or Wayland) and OpenGL drivers are needed")
     })
 }

@@ -4,7 +4,8 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::needless_pass_by_value)]
 
 use servo_studio::project::{
-    Action, Button, Command, JoystickTable, Macro, Problem, Project, Run, Servo, Severity, Step, has_errors, validate,
+    Action, Button, Command, JoystickTable, Macro, Problem, Run, Servo, ServoProject, Severity, Step, has_errors,
+    validate_servo,
 };
 
 fn step(servo_id: u8, degree: i16) -> Step {
@@ -12,8 +13,8 @@ fn step(servo_id: u8, degree: i16) -> Step {
 }
 
 /// A small valid project: two servos, two actions, two macros, one table.
-fn valid() -> Project {
-    Project {
+fn valid() -> ServoProject {
+    ServoProject {
         project_id: 1,
         servos: vec![Servo::new(1, "左肩"), Servo::new(2, "右肩")],
         actions: vec![
@@ -45,18 +46,17 @@ fn valid() -> Project {
             }],
         }],
         active_table: Some(1),
-        ..Project::default()
     }
 }
 
 /// The single problem `project` has; fails if it has none or several.
-fn only_problem(project: &Project) -> Problem {
-    let problems = validate(project);
+fn only_problem(project: &ServoProject) -> Problem {
+    let problems = validate_servo(project);
     assert_eq!(problems.len(), 1, "expected exactly one problem, got {problems:#?}");
     problems.into_iter().next().unwrap()
 }
 
-fn only_error_text(project: &Project) -> String {
+fn only_error_text(project: &ServoProject) -> String {
     let problem = only_problem(project);
     assert_eq!(problem.severity, Severity::Error, "{problem}");
     problem.to_string()
@@ -64,7 +64,7 @@ fn only_error_text(project: &Project) -> String {
 
 #[test]
 fn the_base_project_is_valid() {
-    assert_eq!(validate(&valid()), []);
+    assert_eq!(validate_servo(&valid()), []);
 }
 
 #[test]
@@ -105,7 +105,7 @@ fn duplicate_ids_of_every_kind() {
     let mut project = valid();
     project.macros[1].id = 100;
     project.macros[1].commands.clear();
-    let problems = validate(&project);
+    let problems = validate_servo(&project);
     assert!(problems.iter().any(|p| p.to_string().contains("duplicate macro id 100")), "{problems:#?}");
 
     let mut project = valid();
@@ -172,7 +172,7 @@ fn captions_longer_than_32_bytes() {
     // Exactly 32 bytes is fine.
     let mut project = valid();
     project.actions[0].caption = "x".repeat(32);
-    assert_eq!(validate(&project), []);
+    assert_eq!(validate_servo(&project), []);
 }
 
 #[test]
@@ -234,7 +234,7 @@ fn values_outside_their_field_range() {
     project.macros.truncate(1); // macro 101 would overflow too, by running macro 100
     project.actions[0].steps[0].interval_10ms = i16::MAX;
     project.macros[0].commands[0] =
-        Command { run: Run::Action { action_id: 1 }, ratio_percent: 1, loop_count: i16::MAX };
+        Command { run: Run::Action { action_id: 1 }, ratio_percent: 1, loop_count: i16::MAX, stored_total_ms: None };
     assert!(only_error_text(&project).contains("more than the board can count"));
 }
 
@@ -245,7 +245,7 @@ fn every_problem_is_reported_not_just_the_first() {
     project.macros[0].commands[0].ratio_percent = 0;
     project.servos[0].caption = "x".repeat(40);
     project.active_table = Some(9);
-    let problems = validate(&project);
+    let problems = validate_servo(&project);
     assert_eq!(problems.len(), 4, "{problems:#?}");
     assert!(has_errors(&problems));
 }
@@ -258,4 +258,15 @@ fn warnings_alone_are_not_errors() {
     assert_eq!(problem.severity, Severity::Warning);
     assert_eq!(problem.to_string(), "warning: joystick table 1 \"遙控器\", button 0x80000001 \"A\": runs no macro");
     assert!(!has_errors(&[problem]));
+}
+
+#[test]
+fn a_stored_total_unlike_the_derived_one_is_a_warning_naming_both() {
+    let mut project = valid();
+    project.macros[0].commands[0].stored_total_ms = Some(1234);
+    let problems = validate_servo(&project);
+    let texts: Vec<String> = problems.iter().map(ToString::to_string).collect();
+    assert_eq!(problems.len(), 1, "{texts:?}");
+    assert_eq!(problems[0].severity, Severity::Warning);
+    assert!(texts[0].contains("stored a total of 1234 ms") && texts[0].contains("derives"), "{}", texts[0]);
 }

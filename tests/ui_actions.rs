@@ -8,14 +8,14 @@ use std::time::{Duration, Instant};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use servo_studio::link::no_waker;
-use servo_studio::project::{self, Project, Step};
+use servo_studio::project::{self, ServoProject, Step};
 use servo_studio::ui::{Action, StudioApp, Tab};
 
-fn fixture() -> Project {
-    project::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/project-v1.json")).unwrap()
+fn fixture() -> ServoProject {
+    project::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/project-v1.json")).unwrap().servo
 }
 
-fn harness(project: Project) -> Harness<'static, StudioApp> {
+fn harness(project: ServoProject) -> Harness<'static, StudioApp> {
     let data = tempfile::tempdir().unwrap().keep();
     let mut app = StudioApp::new(project, None, no_waker()).with_data_dir(data);
     app.apply(Action::ShowTab(Tab::Actions));
@@ -31,11 +31,11 @@ fn harness(project: Project) -> Harness<'static, StudioApp> {
 fn the_timeline_has_a_bar_per_step_and_steps_can_be_added() {
     let mut harness = harness(fixture());
     // Action 1 "舉手": servo 1 to -90° over 500 ms, servo 2 to 45° over 1000 ms; all start at 0.
-    let bars = servo_studio::ui::timeline_bars(&harness.state().document.project.actions[0]);
+    let bars = servo_studio::ui::timeline_bars(&harness.state().document.project.servo.actions[0]);
     assert_eq!(bars, [(1, 0.0, 500.0), (2, 0.0, 1000.0)]);
     harness.get_by_label("Add step").click();
     harness.run_steps(2);
-    let steps = &harness.state().document.project.actions[0].steps;
+    let steps = &harness.state().document.project.servo.actions[0].steps;
     assert_eq!(steps.len(), 3);
     assert_eq!(steps[2], Step { servo_id: 3, degree: 0, interval_10ms: 50 }, "the unused servo, at home");
 }
@@ -62,7 +62,7 @@ fn play_on_board_moves_the_emulated_servos() {
     harness.run_steps(2);
     harness.get_by_label("Play on board").click();
     harness.run_steps(2);
-    let requester = harness.state().link.as_ref().unwrap().requester();
+    let requester = harness.state().servo().unwrap().requester();
     let deadline = Instant::now() + Duration::from_secs(5);
     loop {
         let servos = requester.query_servos(255).unwrap();
@@ -77,7 +77,7 @@ fn play_on_board_moves_the_emulated_servos() {
 #[test]
 fn an_out_of_range_degree_is_flagged_not_silently_changed_and_undoable() {
     let mut harness = harness(fixture());
-    let before = harness.state().document.project.clone();
+    let before = harness.state().document.project.servo.clone();
     let mut changed = before.actions[0].clone();
     changed.steps[0].degree = -200; // outside servo 1's -90..90
     harness
@@ -89,7 +89,7 @@ fn an_out_of_range_degree_is_flagged_not_silently_changed_and_undoable() {
         "the problem shows inline"
     );
     // Drawing the out-of-range value does not silently "fix" the document.
-    assert_eq!(harness.state().document.project.actions[0].steps[0].degree, -200);
+    assert_eq!(harness.state().document.project.servo.actions[0].steps[0].degree, -200);
     harness.state_mut().apply(Action::Undo);
-    assert_eq!(harness.state().document.project, before);
+    assert_eq!(harness.state().document.project.servo, before);
 }

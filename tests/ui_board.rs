@@ -4,13 +4,15 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
+mod common;
+
 use std::time::{Duration, Instant};
 
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
-use servo_studio::device::board::BoardImage;
+use servo_studio::device::servo::ServoImage;
 use servo_studio::link::no_waker;
-use servo_studio::project::{Project, Servo};
+use servo_studio::project::{Project, Servo, ServoProject};
 use servo_studio::sim::{Faults, SimConfig};
 use servo_studio::ui::{Action, BoardLink, BoardResult, StudioApp};
 
@@ -36,19 +38,19 @@ fn frames(harness: &mut Harness<'static, StudioApp>) {
     harness.run_steps(3);
 }
 
-fn servos_only() -> Project {
+fn servos_only() -> ServoProject {
     let mut left = Servo::new(1, "左肩");
     left.min_deg = -90;
     left.max_deg = 90;
     left.home_deg = 5;
-    Project { project_id: 42, servos: vec![left, Servo::new(2, "右肩")], ..Project::default() }
+    ServoProject { project_id: 42, servos: vec![left, Servo::new(2, "右肩")], ..ServoProject::default() }
 }
 
 /// An app with a composed project (two captured poses) connected to a demo board
 /// that starts out holding `board`.
-fn composed(board: &Project, config: SimConfig, data_dir: &std::path::Path) -> Harness<'static, StudioApp> {
+fn composed(board: &ServoProject, config: SimConfig, data_dir: &std::path::Path) -> Harness<'static, StudioApp> {
     let mut app = StudioApp::new(servos_only(), None, no_waker()).with_data_dir(data_dir.to_path_buf());
-    app.link = Some(BoardLink::demo_with(board, config, no_waker()).unwrap());
+    app.link = Some(BoardLink::demo_with(&Project::servo(board.clone()), config, no_waker()).unwrap());
     let mut harness = harness(app);
     frames(&mut harness);
     // Compose through the UI: two poses.
@@ -58,7 +60,7 @@ fn composed(board: &Project, config: SimConfig, data_dir: &std::path::Path) -> H
     harness.state_mut().apply(Action::SetPose { servo_id: 2, degree: 25 });
     harness.get_by_label("Capture pose").click();
     frames(&mut harness);
-    assert_eq!(harness.state().document.project.actions.len(), 2);
+    assert_eq!(harness.state().document.project.servo.actions.len(), 2);
     harness.get_by_label("Board").click();
     frames(&mut harness);
     harness
@@ -67,9 +69,9 @@ fn composed(board: &Project, config: SimConfig, data_dir: &std::path::Path) -> H
 #[test]
 fn upload_then_read_back_round_trips_and_keeps_a_backup() {
     let data = tempfile::tempdir().unwrap();
-    let previous = Project { project_id: 9, ..Project::default() };
+    let previous = ServoProject { project_id: 9, ..ServoProject::default() };
     let mut harness = composed(&previous, SimConfig::default(), data.path());
-    let composed_project = harness.state().document.project.clone();
+    let composed_project = harness.state().document.project.servo.clone();
 
     harness.get_by_label("Upload to board").click();
     frames(&mut harness);
@@ -86,7 +88,7 @@ fn upload_then_read_back_round_trips_and_keeps_a_backup() {
             assert!(items.iter().any(|item| item.starts_with("action 2")), "{items:?}");
             let backup = backup.unwrap();
             assert!(backup.starts_with(data.path().join("backups")));
-            assert_eq!(servo_studio::project::load(&backup).unwrap(), previous);
+            assert_eq!(servo_studio::project::load(&backup).unwrap().servo, previous);
         }
         other => panic!("expected an upload, got {other:?}"),
     }
@@ -100,8 +102,8 @@ fn upload_then_read_back_round_trips_and_keeps_a_backup() {
     assert!(harness.query_by_label("The board already holds exactly this project.").is_some());
     harness.get_by_label("Replace the project with the board").click();
     frames(&mut harness);
-    let read_back = harness.state().document.project.clone();
-    assert_eq!(BoardImage::from_project(&read_back).unwrap(), BoardImage::from_project(&composed_project).unwrap());
+    let read_back = harness.state().document.project.servo.clone();
+    assert_eq!(ServoImage::from_project(&read_back).unwrap(), ServoImage::from_project(&composed_project).unwrap());
     // The client-side limits, which the board does not store, are kept: the
     // project read back is exactly the one composed.
     assert_eq!(read_back, composed_project);
@@ -111,7 +113,7 @@ fn upload_then_read_back_round_trips_and_keeps_a_backup() {
 fn an_upload_with_a_refused_item_shows_that_items_error() {
     let data = tempfile::tempdir().unwrap();
     let config = SimConfig { faults: Faults { refuse_add: vec![2], ..Faults::default() }, ..SimConfig::default() };
-    let mut harness = composed(&Project::default(), config, data.path());
+    let mut harness = composed(&ServoProject::default(), config, data.path());
     harness.get_by_label("Upload to board").click();
     frames(&mut harness);
     run_until(&mut harness, "the comparison", |app| app.pending.is_some());
@@ -131,8 +133,8 @@ fn an_upload_with_a_refused_item_shows_that_items_error() {
 #[test]
 fn an_invalid_project_is_not_uploaded() {
     let data = tempfile::tempdir().unwrap();
-    let mut harness = composed(&Project::default(), SimConfig::default(), data.path());
-    let mut broken = harness.state().document.project.clone();
+    let mut harness = composed(&ServoProject::default(), SimConfig::default(), data.path());
+    let mut broken = harness.state().document.project.servo.clone();
     broken.actions[0].steps[0].servo_id = 77;
     harness
         .state_mut()
@@ -141,15 +143,16 @@ fn an_invalid_project_is_not_uploaded() {
     frames(&mut harness);
     assert!(harness.state().job.is_none(), "no board operation starts");
     match harness.state().board_result.clone().unwrap() {
-        BoardResult::Failed { error, .. } => assert!(error.contains("servo 77 does not exist"), "{error}"),
-        other => panic!("expected a failure, got {other:?}"),
+        BoardResult::Invalid { error } => assert!(error.contains("servo 77 does not exist"), "{error}"),
+        other => panic!("expected the problems, got {other:?}"),
     }
+    assert!(harness.query_by_label("Upload anyway").is_some(), "the user may restore it as it is");
 }
 
 #[test]
 fn the_board_panel_speaks_traditional_chinese() {
     let data = tempfile::tempdir().unwrap();
-    let mut harness = composed(&Project::default(), SimConfig::default(), data.path());
+    let mut harness = composed(&ServoProject::default(), SimConfig::default(), data.path());
     harness.state_mut().apply(Action::SetLanguage(servo_studio::ui::Language::TraditionalChinese));
     frames(&mut harness);
     for caption in ["上傳至控制板", "讀取控制板至專案", "匯出控制板至檔案…"] {
@@ -161,7 +164,7 @@ fn the_board_panel_speaks_traditional_chinese() {
 fn a_refused_item_is_named_in_traditional_chinese() {
     let data = tempfile::tempdir().unwrap();
     let config = SimConfig { faults: Faults { refuse_add: vec![2], ..Faults::default() }, ..SimConfig::default() };
-    let mut harness = composed(&Project::default(), config, data.path());
+    let mut harness = composed(&ServoProject::default(), config, data.path());
     harness.state_mut().apply(Action::SetLanguage(servo_studio::ui::Language::TraditionalChinese));
     frames(&mut harness);
     harness.get_by_label("上傳至控制板").click();
@@ -184,8 +187,8 @@ fn a_refused_item_is_named_in_traditional_chinese() {
 #[test]
 fn an_invalid_project_is_explained_in_traditional_chinese() {
     let data = tempfile::tempdir().unwrap();
-    let mut harness = composed(&Project::default(), SimConfig::default(), data.path());
-    let mut broken = harness.state().document.project.clone();
+    let mut harness = composed(&ServoProject::default(), SimConfig::default(), data.path());
+    let mut broken = harness.state().document.project.servo.clone();
     broken.actions[0].steps[0].servo_id = 77;
     harness
         .state_mut()
@@ -193,10 +196,48 @@ fn an_invalid_project_is_explained_in_traditional_chinese() {
     harness.state_mut().apply(Action::SetLanguage(servo_studio::ui::Language::TraditionalChinese));
     harness.state_mut().apply(Action::BoardCompare(servo_studio::ui::BoardIntent::Upload));
     match harness.state().board_result.clone().unwrap() {
-        BoardResult::Failed { error, .. } => {
+        BoardResult::Invalid { error } => {
             assert!(error.contains("動作 1 \"Pose 1\"，步驟 1：舵機 77 不存在"), "{error}");
             assert!(error.starts_with("專案有 1 個錯誤"), "{error}");
         }
-        other => panic!("expected a failure, got {other:?}"),
+        other => panic!("expected the problems, got {other:?}"),
     }
+}
+
+#[test]
+fn upload_anyway_restores_a_board_image_with_authoring_problems_exactly() {
+    let data = tempfile::tempdir().unwrap();
+    let image = common::unauthorable_image();
+    // A backup of a board another tool wrote, opened as the project.
+    let mut app = StudioApp::new(image.to_project(), None, no_waker()).with_data_dir(data.path().to_path_buf());
+    app.link = Some(BoardLink::demo_with(&Project::default(), SimConfig::default(), no_waker()).unwrap());
+    app.apply(Action::ShowTab(servo_studio::ui::Tab::Board));
+    let mut harness = harness(app);
+    frames(&mut harness);
+    harness.get_by_label("Upload to board").click();
+    frames(&mut harness);
+    match harness.state().board_result.clone().unwrap() {
+        BoardResult::Invalid { error } => {
+            assert!(error.contains("servo 1 already has a step in this action"), "{error}");
+            assert!(error.contains("macro 999 does not exist"), "{error}");
+        }
+        other => panic!("expected the problems, got {other:?}"),
+    }
+    assert!(harness.state().job.is_none(), "nothing starts until the user says so");
+    harness.get_by_label("Upload anyway").click();
+    frames(&mut harness);
+    run_until(&mut harness, "the comparison", |app| app.pending.is_some());
+    harness.get_by_label("Back up the board, then overwrite it").click();
+    frames(&mut harness);
+    run_until(&mut harness, "the upload", |app| app.board_result.is_some() && app.job.is_none());
+    assert!(
+        matches!(harness.state().board_result, Some(BoardResult::Uploaded { .. })),
+        "{:?}",
+        harness.state().board_result
+    );
+    let requester = harness.state().servo().unwrap().requester();
+    let board =
+        servo_studio::device::servo::read_image(&requester, &mut |_| {}, &servo_studio::device::servo::Cancel::never())
+            .unwrap();
+    assert_eq!(common::record_bytes(&board), common::record_bytes(&image), "the board holds the image byte for byte");
 }

@@ -10,7 +10,7 @@ use std::time::{Duration, Instant};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use servo_studio::link::no_waker;
-use servo_studio::project::{self, Project, Servo};
+use servo_studio::project::{self, Servo, ServoProject};
 use servo_studio::ui::{Action, AfterUnsaved, StudioApp};
 
 fn fixture() -> PathBuf {
@@ -18,7 +18,7 @@ fn fixture() -> PathBuf {
 }
 
 fn app(data_dir: &Path) -> StudioApp {
-    let project = Project { servos: vec![Servo::new(1, "左肩")], ..Project::default() };
+    let project = ServoProject { servos: vec![Servo::new(1, "左肩")], ..ServoProject::default() };
     StudioApp::new(project, None, no_waker()).with_data_dir(data_dir.to_path_buf())
 }
 
@@ -39,7 +39,7 @@ fn autosave_then_recovery_after_a_crash() {
     assert!(!data.path().join("recovery.json").exists(), "not due yet");
     first.autosave_if_due(Instant::now() + Duration::from_secs(31));
     assert!(data.path().join("recovery.json").exists());
-    let unsaved = first.document.project.clone();
+    let unsaved = first.document.project.servo.clone();
     drop(first); // the "crash": no save
 
     let mut harness = harness(app(data.path()));
@@ -47,14 +47,14 @@ fn autosave_then_recovery_after_a_crash() {
     assert!(harness.query_by_label("Recover unsaved work?").is_some());
     harness.get_by_label("Recover").click();
     harness.run();
-    assert_eq!(harness.state().document.project, unsaved);
+    assert_eq!(harness.state().document.project.servo, unsaved);
     assert!(harness.state().document.dirty, "recovered work is unsaved until saved");
 
     // Saving clears the recovery file, so the next start offers nothing.
     let saved = data.path().join("saved.json");
     harness.state_mut().apply(Action::SaveAs(saved.clone()));
     assert!(!data.path().join("recovery.json").exists());
-    assert_eq!(project::load(&saved).unwrap(), unsaved);
+    assert_eq!(project::load(&saved).unwrap().servo, unsaved);
     assert!(app(data.path()).recovery_offer.is_none());
 }
 
@@ -70,7 +70,7 @@ fn declining_recovery_removes_it() {
     harness.run();
     assert!(harness.state().recovery_offer.is_none());
     assert!(!data.path().join("recovery.json").exists());
-    assert!(harness.state().document.project.actions.is_empty());
+    assert!(harness.state().document.project.servo.actions.is_empty());
 }
 
 #[test]
@@ -86,13 +86,13 @@ fn opening_with_unsaved_changes_asks_first() {
     assert!(harness.query_by_label("Unsaved changes").is_some());
     harness.get_by_label("Cancel").click();
     harness.run();
-    assert_eq!(harness.state().document.project.actions.len(), 1, "cancel keeps the work");
+    assert_eq!(harness.state().document.project.servo.actions.len(), 1, "cancel keeps the work");
 
     harness.state_mut().apply(Action::Open(fixture()));
     harness.run();
     harness.get_by_label("Discard").click();
     harness.run();
-    assert_eq!(harness.state().document.project, project::load(&fixture()).unwrap());
+    assert_eq!(harness.state().document.project.servo, project::load(&fixture()).unwrap().servo);
     assert_eq!(harness.state().document.path, Some(fixture()));
     assert!(!harness.state().document.dirty);
     assert_eq!(harness.state().recent, vec![fixture()]);
@@ -105,15 +105,15 @@ fn save_in_the_question_saves_then_goes_on() {
     let mut start = app(data.path());
     start.apply(Action::SaveAs(path.clone()));
     start.apply(Action::CapturePose { from_board: false });
-    let edited = start.document.project.clone();
+    let edited = start.document.project.servo.clone();
     let mut harness = harness(start);
     harness.run();
     harness.state_mut().apply(Action::NewProject);
     harness.run();
     harness.get_by_label("Save").click();
     harness.run();
-    assert_eq!(project::load(&path).unwrap(), edited, "saved first");
-    assert_eq!(harness.state().document.project, Project::default(), "then the new project");
+    assert_eq!(project::load(&path).unwrap().servo, edited, "saved first");
+    assert_eq!(harness.state().document.project.servo, ServoProject::default(), "then the new project");
 }
 
 #[test]
@@ -122,11 +122,11 @@ fn a_malformed_file_is_reported_not_opened() {
     let bad = data.path().join("bad.json");
     std::fs::write(&bad, "{\"format\": \"servo-studio-project\", \"servos\": [ }").unwrap();
     let mut app = app(data.path());
-    let before = app.document.project.clone();
+    let before = app.document.project.servo.clone();
     app.apply(Action::Open(bad));
     let status = app.status.clone().unwrap();
     assert!(status.is_error && status.text.contains("line 1, column"), "{}", status.text);
-    assert_eq!(app.document.project, before);
+    assert_eq!(app.document.project.servo, before);
 }
 
 #[derive(Debug)]
@@ -150,7 +150,7 @@ fn a_dropped_project_file_opens() {
     harness.input_mut().dropped_files.push(Arc::new(Dropped(fixture())));
     harness.run();
     assert_eq!(harness.state().document.path, Some(fixture()));
-    assert_eq!(harness.state().document.project.project_id, 20261121);
+    assert_eq!(harness.state().document.project.servo.project_id, 20261121);
 }
 
 #[test]

@@ -7,13 +7,13 @@ use std::time::{Duration, Instant};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use servo_studio::link::no_waker;
-use servo_studio::project::Project;
+use servo_studio::project::ServoProject;
 use servo_studio::ui::{Action, StudioApp, Tab};
 
 #[test]
 fn the_log_shows_decoded_frames_and_filters_them() {
     let data = tempfile::tempdir().unwrap().keep();
-    let mut app = StudioApp::new(Project::default(), None, no_waker()).with_data_dir(data);
+    let mut app = StudioApp::new(ServoProject::default(), None, no_waker()).with_data_dir(data);
     app.apply(Action::ConnectDemo);
     app.apply(Action::ShowTab(Tab::Log));
     let mut harness = Harness::builder()

@@ -8,16 +8,16 @@ use std::time::{Duration, Instant};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use servo_studio::link::no_waker;
-use servo_studio::project::{self, Command, Macro, Project, Run};
-use servo_studio::protocol::board::ButtonEvent;
+use servo_studio::project::{self, Command, Macro, Run, ServoProject};
+use servo_studio::protocol::servo::ButtonEvent;
 use servo_studio::sim::SimCommand;
 use servo_studio::ui::{Action, StudioApp, Tab};
 
-fn fixture() -> Project {
-    project::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/project-v1.json")).unwrap()
+fn fixture() -> ServoProject {
+    project::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/project-v1.json")).unwrap().servo
 }
 
-fn harness(project: Project, tab: Tab) -> Harness<'static, StudioApp> {
+fn harness(project: ServoProject, tab: Tab) -> Harness<'static, StudioApp> {
     let data = tempfile::tempdir().unwrap().keep();
     let mut app = StudioApp::new(project, None, no_waker()).with_data_dir(data);
     app.apply(Action::ShowTab(tab));
@@ -56,28 +56,31 @@ fn a_macro_cycle_shows_its_warning_inline() {
 #[test]
 fn commands_are_added_reordered_and_undone() {
     let mut harness = harness(fixture(), Tab::Macros);
-    let original = harness.state().document.project.clone();
+    let original = harness.state().document.project.servo.clone();
     harness.get_by_label("+ Delay").click();
     harness.run_steps(2);
-    let commands = &harness.state().document.project.macros[0].commands;
+    let commands = &harness.state().document.project.servo.macros[0].commands;
     assert_eq!(commands.len(), 4);
     assert_eq!(commands[3], Command::once(Run::Delay { delay_ms: 500 }));
     // Move the new delay up one place.
     harness.get_all_by_label("↑").nth(2).unwrap().click();
     harness.run_steps(2);
-    let commands = &harness.state().document.project.macros[0].commands;
+    let commands = &harness.state().document.project.servo.macros[0].commands;
     assert_eq!(commands[2], Command::once(Run::Delay { delay_ms: 500 }));
     harness.state_mut().apply(Action::Undo);
     harness.state_mut().apply(Action::Undo);
-    assert_eq!(harness.state().document.project, original);
+    assert_eq!(harness.state().document.project.servo, original);
 }
 
 #[test]
 fn adding_a_macro_opens_it() {
-    let mut harness = harness(Project::default(), Tab::Macros);
+    let mut harness = harness(ServoProject::default(), Tab::Macros);
     harness.get_by_label("Add macro").click();
     harness.run_steps(2);
-    assert_eq!(harness.state().document.project.macros, [Macro { id: 1, caption: "Macro 1".into(), commands: vec![] }]);
+    assert_eq!(
+        harness.state().document.project.servo.macros,
+        [Macro { id: 1, caption: "Macro 1".into(), commands: vec![] }]
+    );
 }
 
 /// Runs frames until `done`, failing after a deadline (events come from the board's thread).
@@ -103,18 +106,13 @@ fn a_button_pressed_on_the_remote_is_picked_or_added() {
         link.demo_board().unwrap().command(SimCommand::Button { button_id, event: ButtonEvent::Press });
     };
     run_until(&mut harness, "the subscription", |app| {
-        app.link
-            .as_ref()
-            .unwrap()
-            .requester()
-            .request(servo_studio::protocol::board::Message::QueryProjectIdRequest)
-            .is_ok()
+        app.servo().unwrap().requester().request(servo_studio::protocol::servo::Message::QueryProjectIdRequest).is_ok()
     });
     press(&harness, 0x8000_0001);
     run_until(&mut harness, "the picked button", |app| app.picked_button == Some(0x8000_0001));
     harness.run_steps(2);
     assert_eq!(
-        harness.state().document.project.joystick_tables[0].buttons.len(),
+        harness.state().document.project.servo.joystick_tables[0].buttons.len(),
         2,
         "an existing button is selected, not added"
     );
@@ -126,7 +124,7 @@ fn a_button_pressed_on_the_remote_is_picked_or_added() {
     harness.run_steps(2);
     press(&harness, 0x0000_0042);
     run_until(&mut harness, "the new button", |app| app.picked_button == Some(0x42));
-    let buttons = &harness.state().document.project.joystick_tables[0].buttons;
+    let buttons = &harness.state().document.project.servo.joystick_tables[0].buttons;
     assert_eq!(buttons.len(), 3);
     assert_eq!(buttons[2].id, 0x42);
 }
@@ -136,7 +134,7 @@ fn drawing_an_invalid_ratio_does_not_silently_change_it() {
     let mut project = fixture();
     project.macros[0].commands[0].ratio_percent = 0;
     let harness = harness(project.clone(), Tab::Macros);
-    assert_eq!(harness.state().document.project, project);
+    assert_eq!(harness.state().document.project.servo, project);
     assert!(!harness.state().document.dirty);
     assert!(harness.query_all_by_label_contains("ratio 0 % is outside 1..=100").next().is_some());
 }
@@ -144,7 +142,7 @@ fn drawing_an_invalid_ratio_does_not_silently_change_it() {
 #[test]
 fn a_command_is_dragged_to_a_new_place() {
     let mut harness = harness(fixture(), Tab::Macros);
-    let original = harness.state().document.project.macros[0].commands.clone();
+    let original = harness.state().document.project.servo.macros[0].commands.clone();
     let from = harness.get_by_role_and_label(egui::accesskit::Role::Label, "≡ 3").rect().center();
     let to = harness.get_by_role_and_label(egui::accesskit::Role::Label, "≡ 1").rect().center();
     harness.drag_at(from);
@@ -155,7 +153,7 @@ fn a_command_is_dragged_to_a_new_place() {
     }
     harness.drop_at(to);
     harness.run_steps(3);
-    let commands = &harness.state().document.project.macros[0].commands;
+    let commands = &harness.state().document.project.servo.macros[0].commands;
     assert_eq!(commands[0], original[2], "the third command is now first");
     assert_eq!(&commands[1..], &original[..2]);
 }

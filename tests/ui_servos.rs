@@ -9,23 +9,23 @@ use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use servo_studio::link::{LinkEvent, no_waker};
-use servo_studio::project::{self, Project, Servo};
-use servo_studio::protocol::board::Message;
+use servo_studio::project::{self, Servo, ServoProject};
+use servo_studio::protocol::servo::Message;
 use servo_studio::sim::SimEvent;
 use servo_studio::ui::{Action, StudioApp};
 
-fn project() -> Project {
+fn project() -> ServoProject {
     let mut left = Servo::new(1, "左肩");
     left.min_deg = -90;
     left.max_deg = 90;
     let mut head = Servo::new(3, "頭部");
     head.min_deg = -45;
     head.max_deg = 45;
-    Project { project_id: 7, servos: vec![left, head], ..Project::default() }
+    ServoProject { project_id: 7, servos: vec![left, head], ..ServoProject::default() }
 }
 
 /// An app whose backups and recovery file go to a fresh folder, not the user's.
-fn new_app(project: Project) -> StudioApp {
+fn new_app(project: ServoProject) -> StudioApp {
     let data = tempfile::tempdir().unwrap().keep();
     StudioApp::new(project, None, no_waker()).with_data_dir(data)
 }
@@ -85,7 +85,7 @@ fn a_drag_sends_coalesced_live_moves_and_the_last_value_arrives() {
     assert!(degrees.windows(2).all(|pair| pair[0] < pair[1]), "moves follow the drag, never back: {degrees:?}");
     assert!(degrees.len() <= 22, "at most one move per frame: {degrees:?}");
     // Nothing stale after the release: the board ends at the last value.
-    let requester = harness.state().link.as_ref().unwrap().requester();
+    let requester = harness.state().servo().unwrap().requester();
     let deadline = Instant::now() + Duration::from_secs(5);
     while requester.query_servos(1).unwrap()[0].angle != 90 {
         assert!(Instant::now() < deadline, "the servo never reached 90°");
@@ -122,26 +122,26 @@ fn capture_pose_creates_an_action_and_undo_redo_restore_exact_states() {
     app.apply(Action::SetPose { servo_id: 3, degree: 200 });
     let mut harness = harness(app);
     harness.run();
-    let before = harness.state().document.project.clone();
+    let before = harness.state().document.project.servo.clone();
     harness.get_by_label("Capture pose").click();
     harness.run();
-    let after = harness.state().document.project.clone();
+    let after = harness.state().document.project.servo.clone();
     assert_eq!(after.actions.len(), 1);
     let action = &after.actions[0];
     assert_eq!(action.id, 1);
     let steps: Vec<(u8, i16)> = action.steps.iter().map(|s| (s.servo_id, s.degree)).collect();
     assert_eq!(steps, [(1, -30), (3, 45)], "the captured pose, within limits");
-    assert_eq!(project::validate(&after), [], "a captured pose is a valid action");
+    assert_eq!(project::validate_servo(&after), [], "a captured pose is a valid action");
 
     harness.get_by_label("Undo").click();
     harness.run();
-    assert_eq!(harness.state().document.project, before);
+    assert_eq!(harness.state().document.project.servo, before);
     harness.key_press_modifiers(egui::Modifiers::COMMAND | egui::Modifiers::SHIFT, egui::Key::Z);
     harness.run();
-    assert_eq!(harness.state().document.project, after);
+    assert_eq!(harness.state().document.project.servo, after);
     harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Z);
     harness.run();
-    assert_eq!(harness.state().document.project, before);
+    assert_eq!(harness.state().document.project.servo, before);
 }
 
 #[test]
@@ -149,7 +149,7 @@ fn escape_stops_every_servo_holding_torque_and_blocks_moves_until_resume() {
     let mut harness = demo_harness();
     harness.key_press(egui::Key::Escape);
     harness.run();
-    let requester = harness.state().link.as_ref().unwrap().requester();
+    let requester = harness.state().servo().unwrap().requester();
     // The STOP frame is written ahead of this query, so the query sees it applied.
     let servos = requester.query_servos(1).unwrap();
     assert!(!servos[0].is_start && servos[0].is_hold, "{servos:?}");
@@ -157,16 +157,6 @@ fn escape_stops_every_servo_holding_torque_and_blocks_moves_until_resume() {
     assert!(harness.state().status.as_ref().unwrap().is_error, "moving while stopped is refused");
     harness.get_by_label("Resume").click();
     harness.run();
-}
-
-#[test]
-fn a_bad_port_is_a_readable_error() {
-    let mut app = new_app(project());
-    app.apply(Action::Connect { port: "/dev/ttyNOPE-servo".into(), baud: 115_200 });
-    let status = app.status.clone().unwrap();
-    assert!(status.is_error);
-    assert!(status.text.contains("servo-studio ports"), "{}", status.text);
-    assert!(app.link.is_none());
 }
 
 #[test]
@@ -188,7 +178,7 @@ fn servos_are_added_and_edited_in_the_settings() {
     harness.run();
     harness.get_by_label("Add servo").click();
     harness.run();
-    let servos = &harness.state().document.project.servos;
+    let servos = &harness.state().document.project.servo.servos;
     assert_eq!(servos.len(), 3);
     assert_eq!((servos[2].id, servos[2].caption.as_str()), (0, "Servo 0"), "the first free id");
     assert_eq!(harness.get_all_by_role(Role::Slider).count(), 3, "and it gets a slider");
@@ -198,9 +188,9 @@ fn servos_are_added_and_edited_in_the_settings() {
 fn two_separate_drags_of_one_value_are_two_undo_steps() {
     let mut harness = harness(new_app(project()));
     harness.run();
-    let original = harness.state().document.project.clone();
+    let original = harness.state().document.project.servo.clone();
     let set_min = |harness: &mut Harness<'static, StudioApp>, min_deg: i16| {
-        let mut servo = harness.state().document.project.servos[0].clone();
+        let mut servo = harness.state().document.project.servo.servos[0].clone();
         servo.min_deg = min_deg;
         harness.state_mut().apply(Action::Edit {
             edit: project::Edit::SetServo { index: 0, servo },
@@ -217,9 +207,9 @@ fn two_separate_drags_of_one_value_are_two_undo_steps() {
         set_min(&mut harness, min_deg);
     }
     harness.state_mut().apply(Action::Undo);
-    assert_eq!(harness.state().document.project.servos[0].min_deg, -75);
+    assert_eq!(harness.state().document.project.servo.servos[0].min_deg, -75);
     harness.state_mut().apply(Action::Undo);
-    assert_eq!(harness.state().document.project, original);
+    assert_eq!(harness.state().document.project.servo, original);
 }
 
 #[test]
@@ -230,17 +220,4 @@ fn status_messages_follow_the_language() {
     assert!(app.status.as_ref().unwrap().text.starts_with("已連線至示範控制板"), "{:?}", app.status);
     app.apply(Action::Stop);
     assert_eq!(app.status.as_ref().unwrap().text, "停止：所有舵機停在原處並保持鎖定");
-}
-
-#[test]
-fn a_bad_port_is_explained_in_traditional_chinese_too() {
-    let mut app = new_app(project());
-    app.apply(Action::SetLanguage(servo_studio::ui::Language::TraditionalChinese));
-    app.apply(Action::Connect { port: "/dev/ttyNOPE-servo".into(), baud: 115_200 });
-    let status = app.status.clone().unwrap();
-    assert!(
-        status.is_error && status.text.contains("找不到此連接埠") && status.text.contains("servo-studio ports"),
-        "{}",
-        status.text
-    );
 }

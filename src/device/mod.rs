@@ -1,4 +1,75 @@
-//! Drivers, one per board family, over a link: sessions and high-level
-//! operations that speak typed events. Today: [`board`], the servo board.
+//! Drivers, one per board family, over a link: sessions, high-level operations
+//! and a non-blocking handle each, all speaking typed events. Today: [`servo`],
+//! the servo controller board; PLEN2 and rFLEX join as siblings.
+//!
+//! What is shared by every family lives here: the line settings each family
+//! needs, and the family-neutral packet-log entry.
 
-pub mod board;
+pub mod servo;
+
+use std::time::Duration;
+
+use crate::link::LineSettings;
+use crate::project::Family;
+
+/// How the line to a board of `family` is set up: the family's default line
+/// rate, DTR and RTS asserted on open, and the gap its firmware needs between writes.
+pub fn line_settings(family: Family) -> LineSettings {
+    match family {
+        Family::Servo => LineSettings::new(servo::DEFAULT_BAUD),
+        // plen2.md §1: USB CDC at 2,000,000 baud; DTR must be asserted.
+        Family::Plen2 => LineSettings::new(2_000_000),
+        // rflex.md §1: 115200 baud; the drivers pause about 1 ms after each write.
+        Family::Rflex => LineSettings { min_write_gap: Duration::from_millis(1), ..LineSettings::new(115_200) },
+    }
+}
+
+/// Which way a logged packet went.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Direction {
+    /// Written to the board.
+    Sent,
+    /// Read from the board.
+    Received,
+    /// Bytes dropped while resynchronising.
+    Skipped,
+}
+
+impl Direction {
+    /// `→`, `←` or `!`.
+    pub fn arrow(self) -> &'static str {
+        match self {
+            Self::Sent => "→",
+            Self::Received => "←",
+            Self::Skipped => "!",
+        }
+    }
+}
+
+/// One packet-log entry, the same for every family: the driver turns its own
+/// frames into these, and the log panel shows them.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LogEntry {
+    /// Seconds since the link opened.
+    pub seconds: f64,
+    /// Which way it went.
+    pub direction: Direction,
+    /// The message's name (`QueryServoRequest`, `>MF`, `MOT_AXIS_SET_DIR`…) or what was skipped.
+    pub name: String,
+    /// The fields as a person reads them: `servo 1 → 72°, 20 ms`.
+    pub fields: String,
+    /// The bytes, in hex.
+    pub hex: String,
+}
+
+impl LogEntry {
+    /// The entry as one line of text (for copying).
+    pub fn line(&self) -> String {
+        format!("{:9.3} {} {} {} [{}]", self.seconds, self.direction.arrow(), self.name, self.fields, self.hex)
+    }
+}
+
+/// Bytes as space-separated hex pairs.
+pub fn hex(bytes: &[u8]) -> String {
+    bytes.iter().map(|byte| format!("{byte:02x}")).collect::<Vec<_>>().join(" ")
+}

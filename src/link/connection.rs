@@ -15,6 +15,8 @@ pub struct Connection {
     pub(crate) shutdown: Option<Box<dyn FnOnce() + Send>>,
     /// Whatever must stay open as long as the connection does.
     pub(crate) keep: Vec<Box<dyn Send>>,
+    /// Least time between two writes (zero: none).
+    pub(crate) min_write_gap: std::time::Duration,
 }
 
 impl std::fmt::Debug for Connection {
@@ -28,7 +30,14 @@ impl Connection {
     /// closing takes).
     pub fn from_serial(port: Box<dyn serialport::SerialPort>, description: String) -> io::Result<Self> {
         let reader = port.try_clone().map_err(|error| io::Error::other(error.description))?;
-        Ok(Self { description, reader: Box::new(reader), writer: Box::new(port), shutdown: None, keep: Vec::new() })
+        Ok(Self {
+            description,
+            reader: Box::new(reader),
+            writer: Box::new(port),
+            shutdown: None,
+            keep: Vec::new(),
+            min_write_gap: std::time::Duration::ZERO,
+        })
     }
 
     /// A connection over a TCP stream.
@@ -45,6 +54,7 @@ impl Connection {
                 let _ = closer.shutdown(Shutdown::Both);
             })),
             keep: Vec::new(),
+            min_write_gap: std::time::Duration::ZERO,
         })
     }
 
@@ -64,7 +74,24 @@ impl Connection {
             writer: Box::new(MemoryWriter { to_peer }),
             shutdown: Some(Box::new(move || drop(wake))),
             keep: Vec::new(),
+            min_write_gap: std::time::Duration::ZERO,
         }
+    }
+
+    /// Spaces writes at least `gap` apart (the I/O thread holds bytes back until then).
+    pub fn with_min_write_gap(mut self, gap: std::time::Duration) -> Self {
+        self.min_write_gap = gap;
+        self
+    }
+
+    /// The reading half (for tests and tools that play the other end).
+    pub fn reader_mut(&mut self) -> &mut (dyn Read + Send) {
+        &mut *self.reader
+    }
+
+    /// The writing half.
+    pub fn writer_mut(&mut self) -> &mut (dyn Write + Send) {
+        &mut *self.writer
     }
 
     /// Keeps `resource` open for as long as this connection lives.

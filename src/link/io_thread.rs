@@ -44,15 +44,39 @@ pub trait Driver: Send + 'static {
     }
 }
 
+/// Why a link ended, as data (an interface words it in its own language);
+/// `Display` gives English.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum DisconnectReason {
+    /// The owner closed it.
+    #[error("the link was closed")]
+    Closed,
+    /// The driver asked to close it (e.g. an emulated board's injected disconnect).
+    #[error("the link was closed by the driver")]
+    ClosedByDriver,
+    /// The other end closed the port or connection.
+    #[error("the port was closed by the other end")]
+    ClosedByPeer,
+    /// Reading failed: usually a pulled cable or a board that lost power.
+    #[error("reading from the port failed: {0} (was the cable pulled?)")]
+    ReadFailed(String),
+    /// Writing failed: usually a pulled cable or a board that lost power.
+    #[error("writing to the port failed: {0} (was the cable pulled?)")]
+    WriteFailed(String),
+    /// The link's helper thread could not start or stopped.
+    #[error("the link's reader thread failed: {0}")]
+    ThreadFailed(String),
+}
+
 /// What the I/O thread reports.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum LinkEvent<E> {
     /// An event of the driver.
     Driver(E),
-    /// The link ended; nothing more will come. `reason` is readable.
+    /// The link ended; nothing more will come.
     Disconnected {
-        /// Why, in words (e.g. "the port was closed by the other end").
-        reason: String,
+        /// Why.
+        reason: DisconnectReason,
     },
 }
 
@@ -125,7 +149,7 @@ pub struct Owner<C> {
 
 enum Input {
     Bytes(Vec<u8>),
-    Ended(String),
+    Ended(DisconnectReason),
 }
 
 /// Starts the I/O thread for `driver` over `connection`.
@@ -154,16 +178,19 @@ pub fn run<D: Driver>(
     events: &Sender<LinkEvent<D::Event>>,
     waker: &Waker,
 ) -> D {
-    let Connection { reader, mut writer, shutdown, keep, .. } = connection;
+    let Connection { reader, mut writer, shutdown, keep, min_write_gap, .. } = connection;
     let (input_tx, input_rx) = crossbeam_channel::unbounded();
     let (stop_tx, stop_rx) = crossbeam_channel::bounded::<()>(0);
     let reader_thread =
         std::thread::Builder::new().name("io reader".into()).spawn(move || read_loop(reader, &input_tx, &stop_rx));
     let reason = match &reader_thread {
-        Ok(_) => drive(&mut driver, &mut *writer, owner, &input_rx, events, waker),
-        Err(error) => format!("cannot start the reader thread: {error}"),
+        Ok(_) => {
+            let mut output = Output { writer: &mut *writer, min_gap: min_write_gap, last_write: None, held: None };
+            drive(&mut driver, &mut output, owner, &input_rx, events, waker)
+        }
+        Err(error) => DisconnectReason::ThreadFailed(error.to_string()),
     };
-    driver.handle_disconnect(&reason);
+    driver.handle_disconnect(&reason.to_string());
     forward_events(&mut driver, events);
     let _ = events.send(LinkEvent::Disconnected { reason });
     waker();
@@ -192,39 +219,75 @@ fn forward_events<D: Driver>(driver: &mut D, events: &Sender<LinkEvent<D::Event>
     any
 }
 
+/// The port's writing half, spacing writes at least `min_gap` apart.
+struct Output<'a> {
+    writer: &'a mut dyn Write,
+    min_gap: std::time::Duration,
+    last_write: Option<Instant>,
+    /// Bytes taken from the driver that wait for the gap to pass.
+    held: Option<Vec<u8>>,
+}
+
+impl Output<'_> {
+    /// When held bytes may go out, if the gap holds any back.
+    fn ready_at(&self) -> Option<Instant> {
+        self.held.as_ref()?;
+        self.last_write.map(|last| last + self.min_gap)
+    }
+
+    /// Writes what the driver has, as far as the gap allows.
+    fn flush_from<D: Driver>(&mut self, driver: &mut D, now: Instant) -> io::Result<()> {
+        loop {
+            if self.held.is_none() {
+                self.held = driver.poll_transmit(now);
+            }
+            let Some(bytes) = self.held.take() else { return Ok(()) };
+            if !self.min_gap.is_zero() && self.last_write.is_some_and(|last| Instant::now() < last + self.min_gap) {
+                self.held = Some(bytes);
+                return Ok(());
+            }
+            self.writer.write_all(&bytes)?;
+            self.writer.flush()?;
+            self.last_write = Some(Instant::now());
+        }
+    }
+}
+
 /// Runs until the link ends; returns why.
 fn drive<D: Driver>(
     driver: &mut D,
-    writer: &mut dyn Write,
+    output: &mut Output<'_>,
     owner: &Owner<D::Command>,
     input: &Receiver<Input>,
     events: &Sender<LinkEvent<D::Event>>,
     waker: &Waker,
-) -> String {
+) -> DisconnectReason {
     loop {
         let now = Instant::now();
         if driver.poll_timeout().is_some_and(|deadline| deadline <= now) {
             driver.handle_timeout(now);
         }
-        while let Some(bytes) = driver.poll_transmit(now) {
-            if let Err(error) = writer.write_all(&bytes).and_then(|()| writer.flush()) {
-                return format!("writing to the port failed: {error}");
-            }
+        if let Err(error) = output.flush_from(driver, now) {
+            return DisconnectReason::WriteFailed(error.to_string());
         }
         if forward_events(driver, events) {
             waker();
         }
         if driver.wants_close() {
-            return "the link was closed by the driver".into();
+            return DisconnectReason::ClosedByDriver;
         }
         let mut select = Select::new();
         let command_index = select.recv(&owner.commands);
         let close_index = select.recv(&owner.close);
         let input_index = select.recv(input);
-        let operation = match driver.poll_timeout() {
+        let deadline = match (driver.poll_timeout(), output.ready_at()) {
+            (Some(a), Some(b)) => Some(a.min(b)),
+            (a, b) => a.or(b),
+        };
+        let operation = match deadline {
             Some(deadline) => match select.select_deadline(deadline) {
                 Ok(operation) => operation,
-                Err(_) => continue, // deadline reached: handled at the top
+                Err(_) => continue, // deadline reached: handled at the top (timeouts, held bytes)
             },
             None => select.select(),
         };
@@ -232,16 +295,16 @@ fn drive<D: Driver>(
         match operation.index() {
             index if index == command_index => match operation.recv(&owner.commands) {
                 Ok(command) => driver.handle_command(now, command),
-                Err(_) => return "the link was closed".into(),
+                Err(_) => return DisconnectReason::Closed,
             },
             index if index == close_index => {
                 let _ = operation.recv(&owner.close);
-                return "the link was closed".into();
+                return DisconnectReason::Closed;
             }
             index if index == input_index => match operation.recv(input) {
                 Ok(Input::Bytes(bytes)) => driver.handle_input(now, &bytes),
                 Ok(Input::Ended(reason)) => return reason,
-                Err(_) => return "the port reader stopped".into(),
+                Err(_) => return DisconnectReason::ThreadFailed("the port reader stopped".into()),
             },
             _ => {}
         }
@@ -255,7 +318,7 @@ fn read_loop(mut reader: Box<dyn Read + Send>, input: &Sender<Input>, stop: &Rec
             return;
         }
         let ended = match reader.read(&mut buffer) {
-            Ok(0) => "the port was closed by the other end".to_string(),
+            Ok(0) => DisconnectReason::ClosedByPeer,
             Ok(len) => {
                 if input.send(Input::Bytes(buffer[..len].to_vec())).is_err() {
                     return;
@@ -270,7 +333,7 @@ fn read_loop(mut reader: Box<dyn Read + Send>, input: &Sender<Input>, stop: &Rec
             {
                 continue;
             }
-            Err(error) => format!("reading from the port failed: {error} (was the cable pulled?)"),
+            Err(error) => DisconnectReason::ReadFailed(error.to_string()),
         };
         let _ = input.send(Input::Ended(ended));
         return;

@@ -3,13 +3,39 @@
 
 use std::fmt;
 use std::io;
-use std::net::TcpStream;
+use std::net::{TcpStream, ToSocketAddrs};
 use std::time::Duration;
 
 use super::connection::Connection;
 
-/// Default line rate of the servo board.
-pub const DEFAULT_BAUD: u32 = 115_200;
+/// How a line is set up: each board family has its own (see `device::line_settings`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LineSettings {
+    /// Line rate of a serial port (up to 2,000,000).
+    pub baud: u32,
+    /// Assert DTR on open (a PLEN2 drops its replies while DTR is low).
+    pub assert_dtr: bool,
+    /// Assert RTS on open.
+    pub assert_rts: bool,
+    /// Least time between two writes (an rFLEX base ignores commands sent too
+    /// rapidly); zero for none.
+    pub min_write_gap: Duration,
+    /// How long a TCP connect may take before it is given up.
+    pub connect_timeout: Duration,
+}
+
+impl LineSettings {
+    /// Line rate `baud`, DTR and RTS asserted, no gap, a 3 s TCP connect timeout.
+    pub fn new(baud: u32) -> Self {
+        Self {
+            baud,
+            assert_dtr: true,
+            assert_rts: true,
+            min_write_gap: Duration::ZERO,
+            connect_timeout: Duration::from_secs(3),
+        }
+    }
+}
 
 /// Where a board is attached.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
@@ -85,6 +111,16 @@ pub enum LinkError {
         /// The port.
         port: String,
     },
+    /// The TCP connection was not accepted in time.
+    #[error(
+        "{port}: no answer within {timeout_ms} ms. Is the address right, the bridge switched on and on this network?"
+    )]
+    TimedOut {
+        /// The port.
+        port: String,
+        /// How long was waited, ms.
+        timeout_ms: u128,
+    },
     /// Nothing accepted the TCP connection.
     #[error("{port}: connection refused. Is the bridge (or `servo-studio sim --tcp`) running on that address?")]
     Refused {
@@ -137,21 +173,48 @@ impl LinkError {
 /// How long a blocked read waits before checking whether the link is closing.
 pub(crate) const READ_WAKE: Duration = Duration::from_millis(50);
 
-/// Opens a port at the given baud rate.
-pub fn open(port: &PortName, baud: u32) -> Result<Connection, LinkError> {
-    match port {
+/// Opens a port with the given line settings. Blocks (a TCP connect for at
+/// most `settings.connect_timeout`): call it off the UI thread, e.g. through
+/// [`super::Opening`].
+pub fn open(port: &PortName, settings: &LineSettings) -> Result<Connection, LinkError> {
+    let mut connection = match port {
         PortName::Serial(path) => {
-            let serial = serialport::new(path, baud)
+            let mut serial = serialport::new(path, settings.baud)
                 .timeout(READ_WAKE)
                 .open()
                 .map_err(|error| LinkError::from_serial(port, error))?;
-            Connection::from_serial(serial, port.to_string()).map_err(|error| LinkError::from_io(port, error))
+            // Some USB serial chips do not implement the lines; the port still works.
+            if settings.assert_dtr {
+                let _ = serial.write_data_terminal_ready(true);
+            }
+            if settings.assert_rts {
+                let _ = serial.write_request_to_send(true);
+            }
+            Connection::from_serial(serial, port.to_string()).map_err(|error| LinkError::from_io(port, error))?
         }
         PortName::Tcp(address) => {
-            let stream = TcpStream::connect(address).map_err(|error| LinkError::from_io(port, error))?;
-            Connection::from_tcp(stream, port.to_string()).map_err(|error| LinkError::from_io(port, error))
+            let stream = connect_tcp(port, address, settings.connect_timeout)?;
+            Connection::from_tcp(stream, port.to_string()).map_err(|error| LinkError::from_io(port, error))?
+        }
+    };
+    connection.min_write_gap = settings.min_write_gap;
+    Ok(connection)
+}
+
+/// Tries each address `address` resolves to, each for at most `timeout`.
+fn connect_tcp(port: &PortName, address: &str, timeout: Duration) -> Result<TcpStream, LinkError> {
+    let addresses = address.to_socket_addrs().map_err(|error| LinkError::from_io(port, error))?;
+    let mut last = io::Error::new(io::ErrorKind::NotFound, "the host name has no address");
+    for candidate in addresses {
+        match TcpStream::connect_timeout(&candidate, timeout) {
+            Ok(stream) => return Ok(stream),
+            Err(error) => last = error,
         }
     }
+    if matches!(last.kind(), io::ErrorKind::TimedOut | io::ErrorKind::WouldBlock) {
+        return Err(LinkError::TimedOut { port: port.to_string(), timeout_ms: timeout.as_millis() });
+    }
+    Err(LinkError::from_io(port, last))
 }
 
 /// A serial port this computer sees.
@@ -210,7 +273,8 @@ mod tests {
 
     #[test]
     fn open_errors_say_what_to_try() {
-        let missing = open(&PortName::Serial("/dev/does-not-exist-servo".into()), DEFAULT_BAUD).unwrap_err();
+        let missing =
+            open(&PortName::Serial("/dev/does-not-exist-servo".into()), &LineSettings::new(115_200)).unwrap_err();
         assert!(matches!(missing, LinkError::NotFound { .. }), "{missing:?}");
         assert!(missing.to_string().contains("servo-studio ports"));
 
@@ -218,7 +282,7 @@ mod tests {
         let listener = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
         let address = listener.local_addr().unwrap();
         drop(listener);
-        let refused = open(&PortName::Tcp(address.to_string()), DEFAULT_BAUD).unwrap_err();
+        let refused = open(&PortName::Tcp(address.to_string()), &LineSettings::new(115_200)).unwrap_err();
         assert!(matches!(refused, LinkError::Refused { .. }), "{refused:?}");
         assert!(refused.to_string().contains("sim --tcp"));
     }
@@ -228,8 +292,8 @@ mod tests {
     fn a_port_held_by_another_program_is_busy() {
         let (_master, slave) = serialport::TTYPort::pair().unwrap();
         let name = serialport::SerialPort::name(&slave).unwrap();
-        let first = open(&PortName::Serial(name.clone()), DEFAULT_BAUD).unwrap();
-        let second = open(&PortName::Serial(name), DEFAULT_BAUD);
+        let first = open(&PortName::Serial(name.clone()), &LineSettings::new(115_200)).unwrap();
+        let second = open(&PortName::Serial(name), &LineSettings::new(115_200));
         assert!(matches!(second, Err(LinkError::Busy { .. })), "{second:?}");
         drop(first);
     }

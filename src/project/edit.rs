@@ -1,7 +1,8 @@
 //! Typed edits of a project: everything the editor changes goes through one of
 //! these, so that undo, autosave and validation see every change in one place.
 
-use super::model::{Action, JoystickTable, Macro, Project, Servo};
+use super::document::{Family, Project};
+use super::servo::{Action, JoystickTable, Macro, Servo, ServoProject};
 
 /// One change to a project.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -66,8 +67,10 @@ pub enum Edit {
     SetActiveTable(Option<i32>),
     /// Set the project id.
     SetProjectId(i32),
-    /// Replace the whole project (e.g. read from a board).
-    ReplaceAll(Box<Project>),
+    /// Replace the whole servo section (e.g. read from a board).
+    ReplaceAll(Box<ServoProject>),
+    /// Switch the family the project is for (each section is kept).
+    SetFamily(Family),
 }
 
 fn set<T>(items: &mut [T], index: usize, value: T) -> bool {
@@ -90,9 +93,16 @@ fn remove<T>(items: &mut Vec<T>, index: usize) -> bool {
 }
 
 impl Edit {
-    /// Applies the edit; false (and no change) when its index is out of range.
+    /// Applies the edit to the project's servo section; false (and no change)
+    /// when its index is out of range.
     pub fn apply(self, project: &mut Project) -> bool {
+        if let Self::SetFamily(family) = self {
+            project.family = family;
+            return true;
+        }
+        let project = &mut project.servo;
         match self {
+            Self::SetFamily(_) => false,
             Self::SetServo { index, servo } => set(&mut project.servos, index, servo),
             Self::AddServo(servo) => {
                 project.servos.push(servo);
@@ -105,7 +115,12 @@ impl Edit {
                 true
             }
             Self::RemoveAction { index } => remove(&mut project.actions, index),
-            Self::SetMacro { index, item } => set(&mut project.macros, index, item),
+            Self::SetMacro { index, mut item } => {
+                if let Some(old) = project.macros.get(index) {
+                    keep_stored_totals(&old.commands, &mut item);
+                }
+                set(&mut project.macros, index, item)
+            }
             Self::AddMacro(item) => {
                 project.macros.push(item);
                 true
@@ -129,6 +144,16 @@ impl Edit {
                 *project = *replacement;
                 true
             }
+        }
+    }
+}
+
+/// A command keeps the total a board stored only while it is unchanged (moving
+/// it is no change); an edited command's total is derived again.
+fn keep_stored_totals(old: &[super::servo::Command], item: &mut Macro) {
+    for command in &mut item.commands {
+        if command.stored_total_ms.is_some() && !old.contains(command) {
+            command.stored_total_ms = None;
         }
     }
 }
@@ -157,13 +182,37 @@ mod tests {
         let mut project = Project::default();
         assert!(Edit::AddServo(Servo::new(1, "a")).apply(&mut project));
         assert!(Edit::SetServo { index: 0, servo: Servo::new(1, "b") }.apply(&mut project));
-        assert_eq!(project.servos[0].caption, "b");
+        assert_eq!(project.servo.servos[0].caption, "b");
         let before = project.clone();
         assert!(!Edit::SetServo { index: 5, servo: Servo::new(9, "x") }.apply(&mut project));
         assert!(!Edit::RemoveAction { index: 0 }.apply(&mut project));
         assert_eq!(project, before);
         assert!(Edit::SetActiveTable(Some(3)).apply(&mut project));
-        assert_eq!(project.active_table, Some(3));
+        assert_eq!(project.servo.active_table, Some(3));
+    }
+
+    #[test]
+    fn an_edited_command_loses_its_stored_total_and_a_moved_one_keeps_it() {
+        use crate::project::{Command, Run};
+        let stored = |run, total| Command { stored_total_ms: Some(total), ..Command::once(run) };
+        let first = stored(Run::Action { action_id: 1 }, 1234);
+        let second = stored(Run::Delay { delay_ms: 10 }, 99);
+        let item = Macro { id: 5, caption: String::new(), commands: vec![first, second] };
+        let mut project = Project::servo(ServoProject { macros: vec![item.clone()], ..ServoProject::default() });
+
+        // Reordered: nothing about either command changed.
+        let mut moved = item.clone();
+        moved.commands.reverse();
+        assert!(Edit::SetMacro { index: 0, item: moved }.apply(&mut project));
+        let totals: Vec<_> = project.servo.macros[0].commands.iter().map(|c| c.stored_total_ms).collect();
+        assert_eq!(totals, [Some(99), Some(1234)]);
+
+        // The ratio of one changed: its total is derived from now on.
+        let mut edited = project.servo.macros[0].clone();
+        edited.commands[1].ratio_percent = 50;
+        assert!(Edit::SetMacro { index: 0, item: edited }.apply(&mut project));
+        let totals: Vec<_> = project.servo.macros[0].commands.iter().map(|c| c.stored_total_ms).collect();
+        assert_eq!(totals, [Some(99), None]);
     }
 
     #[test]

@@ -7,12 +7,15 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use super::model::Project;
+use super::document::{Family, Project};
+use super::plen2::Plen2Project;
+use super::rflex::RflexProject;
+use super::servo::ServoProject;
 
 /// The `format` tag every project file carries.
 pub const FORMAT_TAG: &str = "servo-studio-project";
 /// The version this build writes. Every older version keeps loading.
-pub const CURRENT_VERSION: u32 = 1;
+pub const CURRENT_VERSION: u32 = 2;
 
 /// A project file could not be read.
 #[derive(Debug, thiserror::Error)]
@@ -69,12 +72,30 @@ struct Header {
     version: Option<u32>,
 }
 
+/// Version 2: the family, then one section per family.
 #[derive(Serialize)]
 struct Envelope<'a> {
     format: &'static str,
     version: u32,
-    #[serde(flatten)]
-    project: &'a Project,
+    family: Family,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    servo: Option<&'a ServoProject>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    plen2: Option<&'a Plen2Project>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    rflex: Option<&'a RflexProject>,
+}
+
+#[derive(Deserialize)]
+struct Sections {
+    #[serde(default)]
+    family: Family,
+    #[serde(default)]
+    servo: ServoProject,
+    #[serde(default)]
+    plen2: Plen2Project,
+    #[serde(default)]
+    rflex: RflexProject,
 }
 
 fn syntax(error: &serde_json::Error) -> LoadError {
@@ -100,16 +121,30 @@ pub fn from_json(text: &str) -> Result<Project, LoadError> {
         }
     }
     match header.version {
-        // Version 1 is today's layout. A later version adds an arm that reads
-        // the old layout and migrates it here, so every old file keeps loading.
-        Some(1) | None => serde_json::from_str(text).map_err(|error| syntax(&error)),
+        // Version 1 held a servo board's content at the top level: it becomes
+        // the servo section. Every later version adds an arm here.
+        Some(1) | None => serde_json::from_str(text).map(Project::servo).map_err(|error| syntax(&error)),
+        Some(2) => {
+            let sections: Sections = serde_json::from_str(text).map_err(|error| syntax(&error))?;
+            Ok(Project { family: sections.family, servo: sections.servo, plen2: sections.plen2, rflex: sections.rflex })
+        }
         Some(found) => Err(LoadError::NewerVersion { found, supported: CURRENT_VERSION }),
     }
 }
 
-/// The text of a project file for `project`, in the current version.
+/// The text of a project file for `project`, in the current version. The
+/// family's own section is always written; another only when it holds something.
 pub fn to_json(project: &Project) -> String {
-    let envelope = Envelope { format: FORMAT_TAG, version: CURRENT_VERSION, project };
+    let family = project.family;
+    let wanted = |own: Family, empty: bool| family == own || !empty;
+    let envelope = Envelope {
+        format: FORMAT_TAG,
+        version: CURRENT_VERSION,
+        family,
+        servo: wanted(Family::Servo, project.servo == ServoProject::default()).then_some(&project.servo),
+        plen2: wanted(Family::Plen2, project.plen2 == Plen2Project::default()).then_some(&project.plen2),
+        rflex: wanted(Family::Rflex, project.rflex == RflexProject::default()).then_some(&project.rflex),
+    };
     // Serializing plain structs of strings and integers to a String cannot fail.
     let mut text = serde_json::to_string_pretty(&envelope).unwrap_or_default();
     text.push('\n');

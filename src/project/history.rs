@@ -2,7 +2,9 @@
 //! Consecutive edits that share a coalescing key (one slider drag, one text
 //! field being typed into) make a single undo step.
 
-use super::model::Project;
+use super::document::Project;
+#[cfg(test)]
+use super::servo::ServoProject;
 
 /// Most undo steps kept.
 pub const MAX_UNDO_STEPS: usize = 200;
@@ -74,7 +76,7 @@ mod tests {
     use super::*;
 
     fn with_id(project_id: i32) -> Project {
-        Project { project_id, ..Project::default() }
+        Project::servo(ServoProject { project_id, ..ServoProject::default() })
     }
 
     #[test]

@@ -11,7 +11,7 @@
 
 use std::collections::HashMap;
 
-use super::model::{Action, Command, Project, Run};
+use super::servo::{Action, Command, Run, ServoProject};
 
 /// Why a run time cannot be computed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
@@ -38,13 +38,13 @@ pub fn action_duration_ms(action: &Action) -> i64 {
 /// Run times of every macro of a project, computed once.
 #[derive(Debug)]
 pub struct Timing<'a> {
-    project: &'a Project,
+    project: &'a ServoProject,
     macro_totals_ms: HashMap<i32, Result<i64, TimingError>>,
 }
 
 impl<'a> Timing<'a> {
     /// Computes the totals of all macros of `project`.
-    pub fn new(project: &'a Project) -> Self {
+    pub fn new(project: &'a ServoProject) -> Self {
         let mut timing = Self { project, macro_totals_ms: HashMap::new() };
         let mut visiting = Vec::new();
         for item in &project.macros {
@@ -115,7 +115,7 @@ fn scale(inner_ms: i64, command: &Command) -> Result<i64, TimingError> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::project::model::{Macro, Step};
+    use crate::project::servo::{Macro, Step};
 
     fn action(id: i32, intervals_10ms: &[i16]) -> Action {
         let steps = (0u8..)
@@ -126,7 +126,7 @@ mod tests {
     }
 
     fn command(run: Run, ratio_percent: u8, loop_count: i16) -> Command {
-        Command { run, ratio_percent, loop_count }
+        Command { run, ratio_percent, loop_count, stored_total_ms: None }
     }
 
     fn macro_of(id: i32, commands: Vec<Command>) -> Macro {
@@ -141,13 +141,13 @@ mod tests {
 
     #[test]
     fn command_totals_follow_the_documented_formulas() {
-        let project = Project {
+        let project = ServoProject {
             actions: vec![action(1, &[50, 150])],
             macros: vec![macro_of(
                 10,
                 vec![command(Run::Action { action_id: 1 }, 100, 1), command(Run::Delay { delay_ms: 250 }, 40, 2)],
             )],
-            ..Project::default()
+            ..ServoProject::default()
         };
         let timing = Timing::new(&project);
         // action: 1500 ms × 3 loops × 100 / 50 % = 9000 ms
@@ -161,14 +161,14 @@ mod tests {
 
     #[test]
     fn missing_references_and_cycles_have_no_total() {
-        let project = Project {
+        let project = ServoProject {
             macros: vec![
                 macro_of(1, vec![Command::once(Run::Macro { macro_id: 2 })]),
                 macro_of(2, vec![Command::once(Run::Macro { macro_id: 1 })]),
                 macro_of(3, vec![Command::once(Run::Action { action_id: 9 })]),
                 macro_of(4, vec![Command::once(Run::Macro { macro_id: 1 })]),
             ],
-            ..Project::default()
+            ..ServoProject::default()
         };
         let timing = Timing::new(&project);
         assert_eq!(timing.macro_total_ms(1), Err(TimingError::Cycle(1)));

@@ -4,7 +4,7 @@
 
 use std::collections::BTreeMap;
 
-use super::model::{Project, Run};
+use super::servo::{Run, ServoProject};
 
 /// Points per servo: (time in ms, angle), in time order.
 pub type Trajectories = BTreeMap<u8, Vec<(f64, f64)>>;
@@ -13,7 +13,7 @@ pub type Trajectories = BTreeMap<u8, Vec<(f64, f64)>>;
 const MAX_DEPTH: u8 = 8;
 
 struct Tracer<'a> {
-    project: &'a Project,
+    project: &'a ServoProject,
     angles: BTreeMap<u8, f64>,
     points: Trajectories,
 }
@@ -55,13 +55,13 @@ impl Tracer<'_> {
     }
 }
 
-fn tracer(project: &Project) -> Tracer<'_> {
+fn tracer(project: &ServoProject) -> Tracer<'_> {
     let angles = project.servos.iter().map(|servo| (servo.id, f64::from(servo.home_deg))).collect();
     Tracer { project, angles, points: Trajectories::new() }
 }
 
 /// The trajectories of one action, starting from each servo's home angle.
-pub fn action_trajectories(project: &Project, action_id: i32) -> (Trajectories, f64) {
+pub fn action_trajectories(project: &ServoProject, action_id: i32) -> (Trajectories, f64) {
     let mut tracer = tracer(project);
     let end = tracer.run_action(0.0, action_id, 1.0);
     (tracer.points, end)
@@ -69,7 +69,7 @@ pub fn action_trajectories(project: &Project, action_id: i32) -> (Trajectories, 
 
 /// The trajectories of a whole macro, starting from each servo's home angle,
 /// and when it ends (ms).
-pub fn macro_trajectories(project: &Project, macro_id: i32) -> (Trajectories, f64) {
+pub fn macro_trajectories(project: &ServoProject, macro_id: i32) -> (Trajectories, f64) {
     let mut tracer = tracer(project);
     let end = tracer.run_macro(0.0, macro_id, 1.0, 0);
     (tracer.points, end)
@@ -100,10 +100,10 @@ mod tests {
     use super::*;
     use crate::project::{Action, Command, Macro, Servo, Step, Timing};
 
-    fn project() -> Project {
+    fn project() -> ServoProject {
         let mut servo = Servo::new(1, "a");
         servo.home_deg = 10;
-        Project {
+        ServoProject {
             servos: vec![servo],
             actions: vec![
                 Action {
@@ -124,12 +124,17 @@ mod tests {
                     commands: vec![
                         Command::once(Run::Action { action_id: 1 }),
                         Command::once(Run::Delay { delay_ms: 200 }),
-                        Command { run: Run::Action { action_id: 2 }, ratio_percent: 50, loop_count: 1 },
+                        Command {
+                            run: Run::Action { action_id: 2 },
+                            ratio_percent: 50,
+                            loop_count: 1,
+                            stored_total_ms: None,
+                        },
                     ],
                 },
                 Macro { id: 6, caption: String::new(), commands: vec![Command::once(Run::Macro { macro_id: 6 })] },
             ],
-            ..Project::default()
+            ..ServoProject::default()
         }
     }
 

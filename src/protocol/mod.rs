@@ -1,9 +1,10 @@
 //! Sans-IO protocol codecs, one folder per board family. Nothing here does I/O
 //! or knows about the UI: bytes in, typed values out, and back.
 //!
-//! Today: [`board`], the servo controller board. The PLEN2 humanoid (ASCII
-//! commands, JSON replies) and rFLEX mobile bases (stuffed, XOR-checked frames)
-//! will sit beside it as `plen2` and `rflex`, each with its own decoder and
-//! message types; see `docs/ARCHITECTURE.md`.
+//! [`servo`]: the servo controller board (all 60 messages, streaming decoder).
+//! [`plen2`]: the PLEN2 humanoid (device map and field limits so far).
+//! [`rflex`]: rFLEX mobile bases (robot presets so far). See `docs/ARCHITECTURE.md`.
 
-pub mod board;
+pub mod plen2;
+pub mod rflex;
+pub mod servo;

@@ -1,9 +1,10 @@
-//! Emulated boards, with fault injection. Today: the servo board.
+//! Emulated boards, with fault injection, and the runners that serve any of
+//! them (in-process, pseudo-terminal, TCP). Today: the servo board.
 
-mod board;
 mod faults;
 mod runner;
+mod servo;
 
-pub use board::{BoardSim, SimCommand, SimConfig, SimEvent};
 pub use faults::{Faults, FaultsError};
-pub use runner::{SimHandle, spawn_in_memory, spawn_pty, spawn_tcp};
+pub use runner::{InMemory, SimHandle, spawn_in_memory, spawn_pty, spawn_tcp};
+pub use servo::{ServoSim, SimCommand, SimConfig, SimEvent};

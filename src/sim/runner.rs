@@ -1,4 +1,6 @@
-//! Running the emulated board: in-process, behind a pseudo-terminal, or on TCP.
+//! Running an emulated board of any family: in-process, behind a
+//! pseudo-terminal, or on TCP. The runners take any emulator that is a
+//! [`Driver`] (the server side of its protocol).
 
 use std::io;
 use std::net::{SocketAddr, TcpListener};
@@ -6,37 +8,38 @@ use std::thread::JoinHandle;
 
 use crossbeam_channel::{Receiver, Sender};
 
-use super::board::{BoardSim, SimCommand, SimEvent};
-use crate::link::{Connection, LinkEvent, LinkHandle, Owner, Waker, run, spawn};
+use super::servo::{SimCommand, SimEvent};
+use crate::link::{Connection, Driver, LinkEvent, LinkHandle, Owner, Waker, run, spawn};
 
-/// A running emulated board.
-pub struct SimHandle {
+/// A running emulated board; `C` and `E` are its emulator's commands and
+/// events (the servo board's by default).
+pub struct SimHandle<C = SimCommand, E = SimEvent> {
     /// The port a client connects to (`/dev/pts/N`, `tcp://127.0.0.1:PORT`,
     /// or `memory` for the in-process board).
     pub port_name: String,
-    inner: Inner,
+    inner: Inner<C, E>,
 }
 
-enum Inner {
-    Link(LinkHandle<SimCommand, SimEvent>),
+enum Inner<C, E> {
+    Link(LinkHandle<C, E>),
     Server {
-        commands: Sender<SimCommand>,
-        events: Receiver<LinkEvent<SimEvent>>,
+        commands: Sender<C>,
+        events: Receiver<LinkEvent<E>>,
         close: Option<Sender<()>>,
         thread: Option<JoinHandle<()>>,
         address: SocketAddr,
     },
 }
 
-impl std::fmt::Debug for SimHandle {
+impl<C, E> std::fmt::Debug for SimHandle<C, E> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("SimHandle").field("port_name", &self.port_name).finish_non_exhaustive()
     }
 }
 
-impl SimHandle {
+impl<C, E> SimHandle<C, E> {
     /// Sends a command to the board (e.g. a button press on the remote).
-    pub fn command(&self, command: SimCommand) {
+    pub fn command(&self, command: C) {
         // If the board has stopped, there is nobody to press buttons for.
         let _ = match &self.inner {
             Inner::Link(link) => link.commands().send(command),
@@ -45,7 +48,7 @@ impl SimHandle {
     }
 
     /// What the board reports (requests handled, disconnects).
-    pub fn events(&self) -> &Receiver<LinkEvent<SimEvent>> {
+    pub fn events(&self) -> &Receiver<LinkEvent<E>> {
         match &self.inner {
             Inner::Link(link) => link.events(),
             Inner::Server { events, .. } => events,
@@ -53,7 +56,7 @@ impl SimHandle {
     }
 }
 
-impl Drop for SimHandle {
+impl<C, E> Drop for SimHandle<C, E> {
     fn drop(&mut self) {
         if let Inner::Server { close, thread, address, .. } = &mut self.inner {
             *close = None;
@@ -66,8 +69,11 @@ impl Drop for SimHandle {
     }
 }
 
+/// An in-process emulator's handle and the client's end of its link.
+pub type InMemory<D> = (SimHandle<<D as Driver>::Command, <D as Driver>::Event>, Connection);
+
 /// Runs `sim` in this process; returns its handle and the client's end of the link.
-pub fn spawn_in_memory(sim: BoardSim, waker: Waker) -> io::Result<(SimHandle, Connection)> {
+pub fn spawn_in_memory<D: Driver>(sim: D, waker: Waker) -> io::Result<InMemory<D>> {
     let (board_end, client_end) = Connection::memory_pair();
     let link = spawn(board_end, sim, waker)?;
     Ok((SimHandle { port_name: "memory".into(), inner: Inner::Link(link) }, client_end))
@@ -75,7 +81,7 @@ pub fn spawn_in_memory(sim: BoardSim, waker: Waker) -> io::Result<(SimHandle, Co
 
 /// Runs `sim` behind a pseudo-terminal; clients open [`SimHandle::port_name`].
 #[cfg(unix)]
-pub fn spawn_pty(sim: BoardSim, waker: Waker) -> io::Result<SimHandle> {
+pub fn spawn_pty<D: Driver>(sim: D, waker: Waker) -> io::Result<SimHandle<D::Command, D::Event>> {
     use serialport::SerialPort;
     let to_io = |error: serialport::Error| io::Error::other(error.description);
     let (mut master, slave) = serialport::TTYPort::pair().map_err(to_io)?;
@@ -91,7 +97,7 @@ pub fn spawn_pty(sim: BoardSim, waker: Waker) -> io::Result<SimHandle> {
 
 /// Runs `sim` as a TCP server on `address` (port 0 picks a free one). One
 /// client at a time; the board keeps its contents from one client to the next.
-pub fn spawn_tcp(sim: BoardSim, address: SocketAddr, waker: Waker) -> io::Result<SimHandle> {
+pub fn spawn_tcp<D: Driver>(sim: D, address: SocketAddr, waker: Waker) -> io::Result<SimHandle<D::Command, D::Event>> {
     let listener = TcpListener::bind(address)?;
     let port_name = format!("tcp://{}", listener.local_addr()?);
     let (command_tx, command_rx) = crossbeam_channel::unbounded();

@@ -1,14 +1,17 @@
 //! What panels ask for. Panels never change state themselves: they push
 //! actions, and the app shell applies them in one place.
 
-use crate::project::Edit;
-use crate::ui::i18n::Language;
+use crate::project::{Edit, Family};
+use crate::ui::i18n::{Language, Strings};
 
 /// What happens after a board comparison is confirmed.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum BoardIntent {
     /// Write the project onto the board.
     Upload,
+    /// Write the project onto the board although validation found errors
+    /// (restoring a backup of content Servo Studio would not author).
+    UploadAnyway,
     /// Replace the project with the board's contents.
     ReadIntoProject,
     /// Save the board's contents to a file.
@@ -31,6 +34,29 @@ pub enum Tab {
     Board,
     /// Every frame sent and received.
     Log,
+}
+
+impl Tab {
+    /// The tabs that apply to a family, in order; the first is where a switch lands.
+    pub fn for_family(family: Family) -> &'static [Self] {
+        match family {
+            Family::Servo => &[Self::Servos, Self::Actions, Self::Macros, Self::Joystick, Self::Board, Self::Log],
+            // Their panels come with their drivers; until then the log is all that applies.
+            Family::Plen2 | Family::Rflex => &[Self::Log],
+        }
+    }
+
+    /// The tab's title.
+    pub fn title(self, words: &Strings) -> &'static str {
+        match self {
+            Self::Servos => words.servos,
+            Self::Actions => words.actions,
+            Self::Macros => words.macros,
+            Self::Joystick => words.joystick,
+            Self::Board => words.board,
+            Self::Log => words.packet_log,
+        }
+    }
 }
 
 /// One request from a panel to the app shell.
@@ -56,6 +82,10 @@ pub enum Action {
         /// Line rate.
         baud: u32,
     },
+    /// Stop opening the port.
+    CancelConnect,
+    /// Switch the document's board family (servo, PLEN2, rFLEX).
+    SetFamily(Family),
     /// Start the in-process emulated board and connect to it.
     ConnectDemo,
     /// Close the link.

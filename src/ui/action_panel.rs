@@ -6,7 +6,8 @@
 use egui_plot::{Legend, Line, Plot};
 
 use crate::project::{
-    Action as ProjectAction, Edit, Location, Problem, Project, Step, action_trajectories, next_free_id, validate,
+    Action as ProjectAction, Edit, Location, Problem, ServoProject, Step, action_trajectories, next_free_id,
+    validate_servo,
 };
 use crate::ui::action::Action;
 use crate::ui::i18n::Strings;
@@ -21,7 +22,7 @@ struct Derived {
 }
 
 impl Derived {
-    fn compute(project: &Project, revision: u64, selected: usize) -> Self {
+    fn compute(project: &ServoProject, revision: u64, selected: usize) -> Self {
         let (trajectories, _) = action_trajectories(project, project.actions[selected].id);
         let series = trajectories
             .into_iter()
@@ -30,7 +31,7 @@ impl Derived {
                 (format!("{servo_id} {caption}"), points.into_iter().map(|(t, angle)| [t, angle]).collect())
             })
             .collect();
-        Self { revision, selected, problems: validate(project), series }
+        Self { revision, selected, problems: validate_servo(project), series }
     }
 }
 
@@ -50,7 +51,7 @@ impl ActionPanel {
     pub fn ui(
         &mut self,
         ui: &mut egui::Ui,
-        project: &Project,
+        project: &ServoProject,
         revision: u64,
         connected: bool,
         words: &Strings,
@@ -97,7 +98,7 @@ impl ActionPanel {
     fn editor(
         &self,
         ui: &mut egui::Ui,
-        project: &Project,
+        project: &ServoProject,
         derived: &Derived,
         connected: bool,
         words: &Strings,
@@ -219,7 +220,7 @@ pub fn timeline_bars(action: &ProjectAction) -> Vec<(u8, f32, f32)> {
 }
 
 /// A lane per servo, a bar per step from 0 to its interval.
-fn timeline(ui: &mut egui::Ui, project: &Project, action: &ProjectAction) {
+fn timeline(ui: &mut egui::Ui, project: &ServoProject, action: &ProjectAction) {
     if action.steps.is_empty() {
         return;
     }

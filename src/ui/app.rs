@@ -5,11 +5,11 @@ use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::time::Instant;
 
-use crate::device::board::{BoardImage, Phase};
-use crate::link::Waker;
-use crate::project::{Action as ProjectAction, Edit, Project, Step, next_free_id};
-use crate::project::{has_errors, validate};
-use crate::protocol::board::ServoMove;
+use crate::device::servo::{ButtonEvent, ServoHandle, ServoMove};
+use crate::device::servo::{Phase, ServoImage};
+use crate::link::{Opener, Opening, PortName, Waker, system_opener};
+use crate::project::{Action as ProjectAction, Edit, Family, Project, ServoProject, Step, next_free_id};
+use crate::project::{has_errors, validate_servo};
 use crate::ui::action::{Action, AfterUnsaved, BoardIntent, Tab};
 use crate::ui::action_panel::ActionPanel;
 use crate::ui::board_link::{BoardLink, LinkNotice};
@@ -38,6 +38,17 @@ pub struct StatusLine {
     pub is_error: bool,
 }
 
+/// A port being opened.
+#[derive(Debug)]
+pub struct Connecting {
+    /// The opening, on its own thread.
+    pub opening: Opening,
+    /// The family whose driver starts once it is open.
+    pub family: Family,
+    /// The line rate asked for.
+    pub baud: u32,
+}
+
 /// The whole editor.
 pub struct StudioApp {
     /// The open document.
@@ -53,7 +64,9 @@ pub struct StudioApp {
     /// The latest message for the user.
     pub status: Option<StatusLine>,
     /// Remote button events seen, newest last.
-    pub button_events: Vec<(u32, crate::protocol::board::ButtonEvent)>,
+    pub button_events: Vec<(u32, ButtonEvent)>,
+    /// A port being opened (off the UI thread), with the family and line rate to start.
+    pub connecting: Option<Connecting>,
     /// The tab shown.
     pub tab: Tab,
     /// The running board operation.
@@ -79,8 +92,9 @@ pub struct StudioApp {
     /// An action being previewed on the sliders, and when it started.
     pub preview: Option<(i32, Instant)>,
     compare_intent: Option<BoardIntent>,
-    compared_board: Option<Project>,
+    compared_board: Option<ServoProject>,
     waker: Waker,
+    opener: Opener,
     connection_bar: ConnectionBar,
     servo_panel: ServoPanel,
     macro_panel: MacroPanel,
@@ -97,11 +111,14 @@ impl std::fmt::Debug for StudioApp {
 impl StudioApp {
     /// An editor showing `project` (saved at `path`, if any). `waker` is called
     /// from the I/O thread when the board has something to show.
-    pub fn new(project: Project, path: Option<PathBuf>, waker: Waker) -> Self {
-        let pose = project.servos.iter().map(|servo| (servo.id, servo.home_deg)).collect();
+    pub fn new(project: impl Into<Project>, path: Option<PathBuf>, waker: Waker) -> Self {
+        let project = project.into();
+        let pose = project.servo.servos.iter().map(|servo| (servo.id, servo.home_deg)).collect();
         let mut app = Self {
             document: Document::new(project, path),
             link: None,
+            connecting: None,
+            opener: system_opener(),
             pose,
             polling: false,
             language: Language::detect(),
@@ -142,7 +159,7 @@ impl StudioApp {
     }
 
     fn replace_document(&mut self, project: Project, path: Option<PathBuf>) {
-        self.pose = project.servos.iter().map(|servo| (servo.id, servo.home_deg)).collect();
+        self.pose = project.servo.servos.iter().map(|servo| (servo.id, servo.home_deg)).collect();
         self.document = Document::new(project, path);
         self.pending = None;
         self.compared_board = None;
@@ -179,7 +196,7 @@ impl StudioApp {
     fn after_unsaved(&mut self, next: AfterUnsaved) {
         match next {
             AfterUnsaved::New => {
-                self.replace_document(Project::default(), None);
+                self.replace_document(Project::empty(self.document.project.family), None);
                 self.report(self.words().msg_new_project, false);
             }
             AfterUnsaved::Open(path) => self.open_now(path),
@@ -208,7 +225,7 @@ impl StudioApp {
     }
 
     fn start_job(&mut self, kind: JobKind) {
-        let Some(link) = &self.link else {
+        let Some(link) = self.link.as_ref().and_then(BoardLink::servo) else {
             self.report(self.words().msg_connect_first, true);
             return;
         };
@@ -217,7 +234,7 @@ impl StudioApp {
         self.job = Some(Job::start(
             kind,
             link.requester(),
-            self.document.project.clone(),
+            self.document.project.servo.clone(),
             backups,
             self.language,
             self.waker.clone(),
@@ -229,12 +246,12 @@ impl StudioApp {
             return;
         }
         if intent == BoardIntent::Upload {
-            let problems = validate(&self.document.project);
+            let problems = validate_servo(&self.document.project.servo);
             if has_errors(&problems) {
                 let errors: Vec<_> =
                     problems.into_iter().filter(|p| p.severity == crate::project::Severity::Error).collect();
-                let error = self.language.op_error(&crate::device::board::OpError::Invalid { problems: errors });
-                self.board_result = Some(BoardResult::Failed { items: Vec::new(), error });
+                let error = self.language.op_error(&crate::device::servo::OpError::Invalid { problems: errors });
+                self.board_result = Some(BoardResult::Invalid { error });
                 return;
             }
         }
@@ -246,13 +263,14 @@ impl StudioApp {
         let Some(pending) = self.pending.take() else { return };
         let board = self.compared_board.take().unwrap_or_default();
         match pending.intent {
-            BoardIntent::Upload => self.start_job(JobKind::Upload),
+            BoardIntent::Upload => self.start_job(JobKind::Upload { force: false }),
+            BoardIntent::UploadAnyway => self.start_job(JobKind::Upload { force: true }),
             BoardIntent::ReadIntoProject => {
                 // The board does not store the client-side safety limits: keep the
                 // project's for servos it already knows.
                 let mut board = board;
                 for servo in &mut board.servos {
-                    if let Some(known) = self.document.project.servo(servo.id) {
+                    if let Some(known) = self.document.project.servo.servo(servo.id) {
                         servo.min_deg = known.min_deg;
                         servo.max_deg = known.max_deg;
                         servo.home_deg = known.home_deg;
@@ -263,7 +281,7 @@ impl StudioApp {
                 self.board_result = Some(BoardResult::ReadIntoProject);
             }
             BoardIntent::ExportToFile(path) => {
-                self.board_result = Some(match crate::project::save(&path, &board) {
+                self.board_result = Some(match crate::project::save(&path, &Project::servo(board)) {
                     Ok(()) => BoardResult::Exported(path),
                     Err(error) => BoardResult::Failed { items: Vec::new(), error: error.to_string() },
                 });
@@ -318,20 +336,20 @@ impl StudioApp {
             Action::Redo => {
                 self.document.redo();
             }
-            Action::Connect { port, baud } => match BoardLink::connect(&port, baud, self.waker.clone()) {
-                Ok(link) => {
-                    self.report(format!("{} {}", self.words().msg_connected_to, link.label), false);
-                    self.link = Some(link);
+            Action::Connect { port, baud } => self.connect(&port, baud),
+            Action::CancelConnect => {
+                if let Some(connecting) = self.connecting.take() {
+                    self.report(self.language.connect_cancelled(&connecting.opening.port.to_string()), false);
                 }
-                Err(error) => self.report(self.language.link_error(&error), true),
-            },
+            }
             Action::ConnectDemo => match BoardLink::demo(&self.document.project, self.waker.clone()) {
                 Ok(link) => {
                     self.report(self.words().msg_connected_demo, false);
                     self.link = Some(link);
                 }
-                Err(error) => self.report(error, true),
+                Err(error) => self.report(self.language.start_error(&error), true),
             },
+            Action::SetFamily(family) => self.set_family(family),
             Action::Disconnect => {
                 self.link = None;
                 self.polling = false;
@@ -339,8 +357,8 @@ impl StudioApp {
             }
             Action::SetPose { servo_id, degree } => self.set_pose(servo_id, degree),
             Action::SetHold { servo_id, hold } => {
-                if let Some(link) = &mut self.link {
-                    link.set_hold(servo_id, hold);
+                if let Some(servo) = self.servo_mut() {
+                    servo.set_hold(servo_id, hold);
                 }
             }
             Action::Stop => match &mut self.link {
@@ -351,8 +369,8 @@ impl StudioApp {
                 None => self.report(self.words().msg_stop_no_board, false),
             },
             Action::Resume => {
-                if let Some(link) = &mut self.link {
-                    link.resume();
+                if let Some(servo) = self.servo_mut() {
+                    servo.resume();
                     self.report(self.words().msg_resumed, false);
                 }
             }
@@ -411,13 +429,13 @@ impl StudioApp {
             }
             Action::PlayAction(action_id) => self.play_action(action_id),
             Action::PreviewAction(action_id) => self.preview = Some((action_id, Instant::now())),
-            Action::RunMacro(macro_id) => match &mut self.link {
-                Some(link) => link.run_macro(macro_id),
+            Action::RunMacro(macro_id) => match self.servo_mut() {
+                Some(servo) => servo.run_macro(macro_id),
                 None => self.report(self.words().msg_connect_for_macro, true),
             },
-            Action::PickButton { table_index } => match &mut self.link {
-                Some(link) => {
-                    link.subscribe_buttons(true);
+            Action::PickButton { table_index } => match self.servo_mut() {
+                Some(servo) => {
+                    servo.subscribe_buttons(true);
                     self.picking = table_index;
                 }
                 None => self.report(self.words().msg_connect_for_pick, true),
@@ -434,13 +452,13 @@ impl StudioApp {
     }
 
     fn set_pose(&mut self, servo_id: u8, degree: i16) {
-        let Some(servo) = self.document.project.servo(servo_id) else {
+        let Some(servo) = self.document.project.servo.servo(servo_id) else {
             return;
         };
         // The limits clamp every move the app sends, whatever asked for it.
         let degree = servo.clamp(degree);
         self.pose.insert(servo_id, degree);
-        if let Some(link) = &self.link {
+        if let Some(link) = self.servo() {
             if link.stopped {
                 self.report(self.words().msg_press_resume, true);
                 return;
@@ -453,10 +471,10 @@ impl StudioApp {
     }
 
     fn capture_pose(&mut self, from_board: bool) {
-        let project = &self.document.project;
+        let project = &self.document.project.servo;
         let angle = |servo_id: u8, home: i16| -> i16 {
             if from_board {
-                let read = self.link.as_ref().and_then(|link| link.servos.get(&servo_id)).map(|state| state.angle);
+                let read = self.servo().and_then(|link| link.servos.get(&servo_id)).map(|state| state.angle);
                 read.unwrap_or(home)
             } else {
                 self.pose.get(&servo_id).copied().unwrap_or(home)
@@ -484,11 +502,12 @@ impl StudioApp {
     /// Picks up what the board sent since the last frame.
     pub fn pump(&mut self, now: Instant) {
         self.poll_job();
+        self.poll_connecting();
         let Some(link) = &mut self.link else { return };
         for notice in link.pump(now, self.polling) {
             match notice {
-                LinkNotice::Error(error) => {
-                    self.status = Some(StatusLine { text: error, is_error: true });
+                LinkNotice::SendFailed(error) => {
+                    self.status = Some(StatusLine { text: self.language.send_failed(&error), is_error: true });
                 }
                 LinkNotice::RequestFailed(error) => {
                     self.status = Some(StatusLine { text: self.language.request_error(&error), is_error: true });
@@ -498,10 +517,7 @@ impl StudioApp {
                         Some(StatusLine { text: self.language.strings().msg_macro_refused.into(), is_error: true });
                 }
                 LinkNotice::Disconnected(reason) => {
-                    self.status = Some(StatusLine {
-                        text: format!("{} {reason}", self.language.strings().msg_link_ended),
-                        is_error: true,
-                    });
+                    self.status = Some(StatusLine { text: self.language.link_ended(&reason), is_error: true });
                     self.link = None;
                     self.polling = false;
                     return;
@@ -516,15 +532,75 @@ impl StudioApp {
         }
     }
 
+    /// The connected servo board, if any.
+    pub fn servo(&self) -> Option<&ServoHandle> {
+        self.link.as_ref().and_then(BoardLink::servo)
+    }
+
+    fn servo_mut(&mut self) -> Option<&mut ServoHandle> {
+        self.link.as_mut().and_then(BoardLink::servo_mut)
+    }
+
+    /// Opens `port` off the UI thread with the document's family's line settings.
+    fn connect(&mut self, port: &str, baud: u32) {
+        let name = match PortName::parse(port) {
+            Ok(name) => name,
+            Err(error) => {
+                self.report(self.language.link_error(&error), true);
+                return;
+            }
+        };
+        let family = self.document.project.family;
+        let settings = crate::link::LineSettings { baud, ..crate::device::line_settings(family) };
+        self.report(self.language.connecting_to(&name.to_string()), false);
+        let opening = Opening::start(name, settings, self.opener.clone(), self.waker.clone());
+        self.connecting = Some(Connecting { opening, family, baud });
+    }
+
+    /// Starts the driver once the port is open, or reports why it did not open.
+    fn poll_connecting(&mut self) {
+        let Some(connecting) = &self.connecting else { return };
+        let Some(result) = connecting.opening.poll() else { return };
+        let Some(Connecting { opening, family, baud }) = self.connecting.take() else { return };
+        match result {
+            Ok(connection) => match BoardLink::start(family, connection, baud, self.waker.clone()) {
+                Ok(mut link) => {
+                    link.label = opening.port.to_string();
+                    self.report(format!("{} {}", self.words().msg_connected_to, link.label), false);
+                    self.link = Some(link);
+                }
+                Err(error) => self.report(self.language.start_error(&error), true),
+            },
+            Err(error) => self.report(self.language.link_error(&error), true),
+        }
+    }
+
+    /// Switches the document's family (one undo step); the tabs follow.
+    fn set_family(&mut self, family: Family) {
+        if self.link.is_some() || self.connecting.is_some() {
+            return;
+        }
+        self.document.apply(Edit::SetFamily(family), None);
+        if !Tab::for_family(family).contains(&self.tab) {
+            self.tab = Tab::for_family(family)[0];
+        }
+    }
+
+    /// Opens ports with `opener` instead of the system's (tests use a double).
+    pub fn with_opener(mut self, opener: Opener) -> Self {
+        self.opener = opener;
+        self
+    }
+
     /// Sends an action's steps as one live move (clamped to each servo's limits)
     /// and shows the targets on the sliders.
     fn play_action(&mut self, action_id: i32) {
-        let Some(action) = self.document.project.action(action_id) else { return };
+        let Some(action) = self.document.project.servo.action(action_id) else { return };
         let moves: Vec<ServoMove> = action
             .steps
             .iter()
             .filter_map(|step| {
-                let servo = self.document.project.servo(step.servo_id)?;
+                let servo = self.document.project.servo.servo(step.servo_id)?;
                 Some(ServoMove {
                     servo_id: step.servo_id,
                     degree: servo.clamp(step.degree),
@@ -532,7 +608,7 @@ impl StudioApp {
                 })
             })
             .collect();
-        let Some(link) = &self.link else {
+        let Some(link) = self.servo() else {
             self.report(self.words().msg_connect_for_play, true);
             return;
         };
@@ -540,8 +616,8 @@ impl StudioApp {
             self.report(self.words().msg_press_resume, true);
             return;
         }
-        if let Err(error) = link.requester().move_servos(moves.clone()) {
-            self.report(error.to_string(), true);
+        if let Err(error) = link.move_now(moves.clone()) {
+            self.report(error, true);
             return;
         }
         for servo_move in moves {
@@ -552,7 +628,7 @@ impl StudioApp {
     /// Moves the sliders along the previewed action at `now`; ends the preview after its last step.
     pub fn advance_preview(&mut self, now: Instant) {
         let Some((action_id, started)) = self.preview else { return };
-        let (trajectories, end_ms) = crate::project::action_trajectories(&self.document.project, action_id);
+        let (trajectories, end_ms) = crate::project::action_trajectories(&self.document.project.servo, action_id);
         let elapsed_ms = now.saturating_duration_since(started).as_secs_f64() * 1000.0;
         for (servo_id, points) in &trajectories {
             if let Some(angle) = crate::project::angle_at(points, elapsed_ms) {
@@ -570,7 +646,7 @@ impl StudioApp {
     /// Selects the pressed button in the table, adding it if the table lacks it.
     fn pick_button(&mut self, table_index: usize, button_id: u32) {
         self.picked_button = Some(button_id);
-        let Some(table) = self.document.project.joystick_tables.get(table_index) else { return };
+        let Some(table) = self.document.project.servo.joystick_tables.get(table_index) else { return };
         if table.buttons.iter().any(|button| button.id == button_id) {
             self.report(format!("{} 0x{button_id:08x}", self.words().msg_picked), false);
             return;
@@ -589,14 +665,22 @@ impl StudioApp {
     }
 
     fn link_status(&self) -> LinkStatus {
+        let family = self.document.project.family;
+        let connecting = self.connecting.as_ref().map(|connecting| connecting.opening.port.to_string());
         match &self.link {
-            None => LinkStatus::default(),
-            Some(link) => LinkStatus {
-                label: Some(link.label.clone()),
-                project_id: link.project_id,
-                battery_permil: link.battery_permil,
-                memory: link.memory,
-            },
+            None => LinkStatus { family, connecting, ..LinkStatus::default() },
+            Some(link) => {
+                let label = if link.is_demo() { self.words().demo_board.to_string() } else { link.label.clone() };
+                let servo = link.servo();
+                LinkStatus {
+                    family,
+                    label: Some(label),
+                    connecting,
+                    project_id: servo.and_then(|servo| servo.project_id),
+                    battery_permil: servo.and_then(|servo| servo.battery_permil),
+                    memory: servo.and_then(|servo| servo.memory),
+                }
+            }
         }
     }
 
@@ -764,20 +848,18 @@ impl StudioApp {
                     if ui.add(stop).on_hover_text("Esc").clicked() {
                         actions.push(Action::Stop);
                     }
-                    if self.link.as_ref().is_some_and(|link| link.stopped) && ui.button(words.resume).clicked() {
+                    if self.link.as_ref().is_some_and(BoardLink::stopped) && ui.button(words.resume).clicked() {
                         actions.push(Action::Resume);
                     }
                 });
             });
-            self.connection_bar.ui(ui, &self.link_status(), words, &mut actions);
+            self.connection_bar.ui(ui, &self.link_status(), self.language, words, &mut actions);
             ui.horizontal(|ui| {
                 let mut tab = self.tab;
-                ui.selectable_value(&mut tab, Tab::Servos, words.servos);
-                ui.selectable_value(&mut tab, Tab::Actions, words.actions);
-                ui.selectable_value(&mut tab, Tab::Macros, words.macros);
-                ui.selectable_value(&mut tab, Tab::Joystick, words.joystick);
-                ui.selectable_value(&mut tab, Tab::Board, words.board);
-                ui.selectable_value(&mut tab, Tab::Log, words.packet_log);
+                // Only the panels that apply to the document's family are offered.
+                for option in Tab::for_family(self.document.project.family) {
+                    ui.selectable_value(&mut tab, *option, option.title(words));
+                }
                 if tab != self.tab {
                     actions.push(Action::ShowTab(tab));
                 }
@@ -796,29 +878,47 @@ impl StudioApp {
             }
         });
 
+        let family = self.document.project.family;
+        if !Tab::for_family(family).contains(&self.tab) {
+            self.tab = Tab::for_family(family)[0];
+        }
         egui::CentralPanel::default().show(ui, |ui| match self.tab {
             Tab::Servos => {
                 let view = ServoView {
-                    project: &self.document.project,
+                    project: &self.document.project.servo,
                     pose: &self.pose,
-                    readback: self.link.as_ref().map(|link| &link.servos),
+                    readback: self.link.as_ref().and_then(BoardLink::servo).map(|servo| &servo.servos),
                     polling: self.polling,
                 };
                 self.servo_panel.ui(ui, &view, words, &mut actions);
                 ui.separator();
-                crate::ui::servo_panel::settings_ui(ui, &self.document.project, words, &mut actions);
+                crate::ui::servo_panel::settings_ui(ui, &self.document.project.servo, words, &mut actions);
             }
             Tab::Actions => {
                 let revision = self.document.revision();
-                self.action_panel.ui(ui, &self.document.project, revision, self.link.is_some(), words, &mut actions);
+                self.action_panel.ui(
+                    ui,
+                    &self.document.project.servo,
+                    revision,
+                    self.link.is_some(),
+                    words,
+                    &mut actions,
+                );
             }
             Tab::Macros => {
                 let revision = self.document.revision();
-                self.macro_panel.ui(ui, &self.document.project, revision, self.link.is_some(), words, &mut actions);
+                self.macro_panel.ui(
+                    ui,
+                    &self.document.project.servo,
+                    revision,
+                    self.link.is_some(),
+                    words,
+                    &mut actions,
+                );
             }
             Tab::Joystick => {
                 let view = JoystickView {
-                    project: &self.document.project,
+                    project: &self.document.project.servo,
                     events: &self.button_events,
                     picked: self.picked_button,
                     picking: self.picking.is_some(),
@@ -830,19 +930,21 @@ impl StudioApp {
                 Some(link) => link.log.ui(ui, words),
                 None => {
                     ui.label(words.not_connected);
+                    if family != Family::Servo {
+                        ui.label(self.language.family_not_in_build(family));
+                    }
                 }
             },
             Tab::Board => {
-                let project_bytes = BoardImage::from_project(&self.document.project)
+                let project_bytes = ServoImage::from_project(&self.document.project.servo)
                     .map_err(|error| error.to_string())
                     .and_then(|image| image.footprint_bytes().map_err(|error| error.to_string()));
                 let view = BoardView {
                     connected: self.link.is_some(),
                     project_bytes,
                     board_total_bytes: self
-                        .link
-                        .as_ref()
-                        .and_then(|link| link.memory)
+                        .servo()
+                        .and_then(|servo| servo.memory)
                         .map(|(free, total)| i64::from(total.unwrap_or(free))),
                     job: self.job.as_ref(),
                     pending: self.pending.as_ref(),
@@ -888,6 +990,9 @@ pub struct Remembered {
     pub language: Language,
     /// The tab shown.
     pub tab: Tab,
+    /// The board family last used.
+    #[serde(default)]
+    pub family: Family,
 }
 
 /// The key under which [`Remembered`] is stored.
@@ -896,7 +1001,12 @@ pub const REMEMBERED_KEY: &str = "servo-studio";
 impl StudioApp {
     /// What to remember between runs.
     pub fn remembered(&self) -> Remembered {
-        Remembered { recent: self.recent.clone(), language: self.language, tab: self.tab }
+        Remembered {
+            recent: self.recent.clone(),
+            language: self.language,
+            tab: self.tab,
+            family: self.document.project.family,
+        }
     }
 
     /// Restores what was remembered.

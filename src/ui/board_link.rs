@@ -1,77 +1,51 @@
-//! The app shell's side of a connected board: the link, the demo board when
-//! there is one, and the status it keeps up to date without ever blocking the
-//! UI (requests are asynchronous; their answers are picked up each frame).
+//! The app shell's side of a connection: one board of one family, the demo
+//! board when there is one, and the packet log. The family's handle in
+//! `device` does the talking; this only routes its notices to the shell.
 
-use std::collections::BTreeMap;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
-use crossbeam_channel::Receiver;
-
-use crate::device::board::{Board, BoardEvent, BoardImage, RequestError, Requester, SessionConfig};
-use crate::link::{LinkEvent, PortName, Waker};
-use crate::project::Project;
-use crate::protocol::board::{ALL_SERVOS, ButtonEvent, Message, ServoMove, ServoStatus, ServoSwitches};
-use crate::sim::{BoardSim, SimConfig, SimHandle, spawn_in_memory};
-
-/// How often status (project id, battery, memory) is refreshed.
-const STATUS_EVERY: Duration = Duration::from_secs(2);
-/// How often angles are read back while polling is on.
-const ANGLES_EVERY: Duration = Duration::from_millis(100);
-
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Query {
-    RunMacro,
-    Subscribe,
-    ProjectId,
-    Battery,
-    Memory,
-    Angles,
-    Switches,
-}
+use crate::device::LogEntry;
+use crate::device::servo::{RequestError, ServoHandle, ServoImage, ServoNotice};
+use crate::link::{Connection, DisconnectReason, Waker};
+use crate::project::{Family, Project};
+use crate::sim::{ServoSim, SimConfig, SimHandle, spawn_in_memory};
+use crate::ui::packet_log::PacketLog;
 
 /// Something the app shell should show the user.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum LinkNotice {
     /// Something could not be sent; the text says why.
-    Error(String),
+    SendFailed(String),
     /// A request failed.
     RequestFailed(RequestError),
     /// The board refused to run a macro (it does not store it).
     MacroRefused,
     /// The link ended.
-    Disconnected(String),
+    Disconnected(DisconnectReason),
     /// A remote button event.
     Button {
         /// `buttonID`.
         button_id: u32,
         /// What happened.
-        event: ButtonEvent,
+        event: crate::device::servo::ButtonEvent,
     },
+}
+
+/// The connected board's driver, by family.
+#[derive(Debug)]
+pub enum Device {
+    /// A servo controller board.
+    Servo(ServoHandle),
 }
 
 /// A connected board as the app shell sees it.
 pub struct BoardLink {
-    board: Board,
-    requester: Requester,
+    device: Device,
     demo: Option<SimHandle>,
     /// What it is connected to.
     pub label: String,
-    /// The board's project id, once read.
-    pub project_id: Option<i32>,
-    /// Battery in ‰, once read.
-    pub battery_permil: Option<i16>,
-    /// Free and total memory, once read.
-    pub memory: Option<(i32, Option<i32>)>,
-    /// The latest servo states read back.
-    pub servos: BTreeMap<u8, ServoStatus>,
-    /// Servos were stopped with STOP and not resumed.
-    pub stopped: bool,
     /// Every frame sent and received.
-    pub log: crate::ui::packet_log::PacketLog,
-    opened_at: Instant,
-    inflight: Vec<(Query, Receiver<Result<Message, RequestError>>)>,
-    next_status_at: Instant,
-    next_angles_at: Instant,
+    pub log: PacketLog,
 }
 
 impl std::fmt::Debug for BoardLink {
@@ -80,51 +54,57 @@ impl std::fmt::Debug for BoardLink {
     }
 }
 
+/// Why a connection could not start, for the status line.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum StartError {
+    /// This build has no driver for the family yet.
+    Unsupported(Family),
+    /// The I/O thread (or the demo board) could not start.
+    Thread(String),
+}
+
 impl BoardLink {
-    /// Opens a port as typed by the user. The error says what to try.
-    pub fn connect(port: &str, baud: u32, waker: Waker) -> Result<Self, crate::link::LinkError> {
-        let name = PortName::parse(port)?;
-        let config = SessionConfig { line_baud: Some(baud), traffic: true, ..SessionConfig::default() };
-        let board = Board::connect(&name, baud, config, waker)?;
-        Ok(Self::over(board, None, name.to_string()))
+    /// Starts `family`'s driver over an opened connection.
+    pub fn start(family: Family, connection: Connection, baud: u32, waker: Waker) -> Result<Self, StartError> {
+        let label = connection.description.clone();
+        let device = match family {
+            Family::Servo => Device::Servo(
+                ServoHandle::over(connection, Some(baud), waker)
+                    .map_err(|error| StartError::Thread(error.to_string()))?,
+            ),
+            other => return Err(StartError::Unsupported(other)),
+        };
+        Ok(Self { device, demo: None, label, log: PacketLog::default() })
     }
 
-    /// Starts the emulated board in this process, preloaded with `project`,
-    /// and connects to it.
-    pub fn demo(project: &Project, waker: Waker) -> Result<Self, String> {
+    /// Starts the emulated board of the project's family in this process,
+    /// preloaded with the project, and connects to it.
+    pub fn demo(project: &Project, waker: Waker) -> Result<Self, StartError> {
         Self::demo_with(project, SimConfig::default(), waker)
     }
 
     /// Like [`BoardLink::demo`], with the emulated board configured (faults, memory…).
-    pub fn demo_with(project: &Project, sim_config: SimConfig, waker: Waker) -> Result<Self, String> {
-        let image = BoardImage::from_project(project).unwrap_or_default();
-        let (sim, connection) = spawn_in_memory(BoardSim::new(sim_config, image), waker.clone())
-            .map_err(|error| format!("cannot start the demo board: {error}"))?;
-        let config = SessionConfig { traffic: true, ..SessionConfig::default() };
-        let board =
-            Board::over(connection, config, waker).map_err(|error| format!("cannot start the demo board: {error}"))?;
-        Ok(Self::over(board, Some(sim), "demo board".into()))
+    pub fn demo_with(project: &Project, sim_config: SimConfig, waker: Waker) -> Result<Self, StartError> {
+        if project.family != Family::Servo {
+            return Err(StartError::Unsupported(project.family));
+        }
+        let image = ServoImage::from_project(&project.servo).unwrap_or_default();
+        let thread = |error: std::io::Error| StartError::Thread(error.to_string());
+        let (sim, connection) = spawn_in_memory(ServoSim::new(sim_config, image), waker.clone()).map_err(thread)?;
+        let handle = ServoHandle::over(connection, None, waker).map_err(thread)?;
+        Ok(Self { device: Device::Servo(handle), demo: Some(sim), label: String::new(), log: PacketLog::default() })
     }
 
-    fn over(board: Board, demo: Option<SimHandle>, label: String) -> Self {
-        let requester = board.requester();
-        let now = Instant::now();
-        Self {
-            board,
-            requester,
-            demo,
-            label,
-            project_id: None,
-            battery_permil: None,
-            memory: None,
-            servos: BTreeMap::new(),
-            stopped: false,
-            log: crate::ui::packet_log::PacketLog::default(),
-            opened_at: now,
-            inflight: Vec::new(),
-            next_status_at: now,
-            next_angles_at: now,
+    /// The family connected.
+    pub fn family(&self) -> Family {
+        match self.device {
+            Device::Servo(_) => Family::Servo,
         }
+    }
+
+    /// Whether this is the in-process demo board.
+    pub fn is_demo(&self) -> bool {
+        self.demo.is_some()
     }
 
     /// The emulated board, when this is the demo.
@@ -132,145 +112,62 @@ impl BoardLink {
         self.demo.as_ref()
     }
 
-    /// A requester for worker threads (upload, read back).
-    pub fn requester(&self) -> Requester {
-        self.requester.clone()
-    }
-
-    fn ask(&mut self, query: Query, message: Message) {
-        if self.inflight.iter().any(|(pending, _)| *pending == query) {
-            return;
-        }
-        if let Ok(reply) = self.requester.request_async(message) {
-            self.inflight.push((query, reply));
+    /// The servo board's handle, when a servo board is connected.
+    pub fn servo(&self) -> Option<&ServoHandle> {
+        match &self.device {
+            Device::Servo(handle) => Some(handle),
         }
     }
 
-    /// Picks up answers and events, and asks for fresh status when due.
-    /// Returns what the user should see; `Disconnected` means drop this link.
+    /// The servo board's handle, mutably.
+    pub fn servo_mut(&mut self) -> Option<&mut ServoHandle> {
+        match &mut self.device {
+            Device::Servo(handle) => Some(handle),
+        }
+    }
+
+    /// Servos (or joints, or wheels) were stopped with STOP and not resumed.
+    pub fn stopped(&self) -> bool {
+        match &self.device {
+            Device::Servo(handle) => handle.stopped,
+        }
+    }
+
+    /// STOP, the family's way: for a servo board, drop queued moves and stop
+    /// every servo where it is, holding torque, ahead of any queued request.
+    pub fn stop(&mut self) -> Result<(), String> {
+        match &mut self.device {
+            Device::Servo(handle) => handle.stop(),
+        }
+    }
+
+    /// Picks up what the board sent; records the packet log.
     pub fn pump(&mut self, now: Instant, polling: bool) -> Vec<LinkNotice> {
-        let mut notices = Vec::new();
-        for event in self.board.events().try_iter() {
-            match event {
-                LinkEvent::Driver(BoardEvent::Button { button_id, event }) => {
-                    notices.push(LinkNotice::Button { button_id, event });
-                }
-                LinkEvent::Driver(BoardEvent::SendFailed(error)) => {
-                    notices.push(LinkNotice::Error(error));
-                }
-                LinkEvent::Driver(BoardEvent::Traffic(traffic)) => {
-                    self.log.record(now.saturating_duration_since(self.opened_at).as_secs_f64(), &traffic);
-                }
-                LinkEvent::Driver(BoardEvent::Unsolicited(_)) => {}
-                LinkEvent::Disconnected { reason } => {
-                    notices.push(LinkNotice::Disconnected(reason));
-                }
+        let notices = match &mut self.device {
+            Device::Servo(handle) => handle.pump(now, polling),
+        };
+        let mut out = Vec::new();
+        for notice in notices {
+            match notice {
+                ServoNotice::Log(entry) => self.record(entry),
+                ServoNotice::SendFailed(text) => out.push(LinkNotice::SendFailed(text)),
+                ServoNotice::RequestFailed(error) => out.push(LinkNotice::RequestFailed(error)),
+                ServoNotice::MacroRefused => out.push(LinkNotice::MacroRefused),
+                ServoNotice::Disconnected(reason) => out.push(LinkNotice::Disconnected(reason)),
+                ServoNotice::Button { button_id, event } => out.push(LinkNotice::Button { button_id, event }),
             }
         }
-        let mut still = Vec::new();
-        for (query, reply) in std::mem::take(&mut self.inflight) {
-            match reply.try_recv() {
-                Ok(Ok(Message::ExecuteMacroResponse { ok: false })) => {
-                    notices.push(LinkNotice::MacroRefused);
-                }
-                Ok(Ok(message)) => self.absorb(message),
-                Ok(Err(error)) => {
-                    if !matches!(error, RequestError::Disconnected { .. }) {
-                        notices.push(LinkNotice::RequestFailed(error));
-                    }
-                }
-                Err(crossbeam_channel::TryRecvError::Empty) => still.push((query, reply)),
-                Err(crossbeam_channel::TryRecvError::Disconnected) => {}
-            }
-        }
-        self.inflight = still;
-        if now >= self.next_status_at {
-            self.next_status_at = now + STATUS_EVERY;
-            self.ask(Query::ProjectId, Message::QueryProjectIdRequest);
-            self.ask(Query::Battery, Message::QueryRemainPowerRequest);
-            self.ask(Query::Memory, Message::QueryMemorySizeRequest);
-            // Torque switches show once the servos' states are known.
-            self.ask(Query::Angles, Message::QueryServoRequest { servo_id: ALL_SERVOS });
-        }
-        if polling && now >= self.next_angles_at {
-            self.next_angles_at = now + ANGLES_EVERY;
-            self.ask(Query::Angles, Message::QueryServoRequest { servo_id: ALL_SERVOS });
-        }
-        notices
+        out
+    }
+
+    fn record(&mut self, entry: LogEntry) {
+        self.log.record(entry);
     }
 
     /// When the link next needs a frame to refresh its status.
     pub fn next_refresh(&self, polling: bool) -> Instant {
-        if polling { self.next_angles_at.min(self.next_status_at) } else { self.next_status_at }
-    }
-
-    fn absorb(&mut self, message: Message) {
-        match message {
-            Message::QueryProjectIdResponse { project_id } => self.project_id = Some(project_id),
-            Message::QueryRemainPowerResponse { permil } => self.battery_permil = Some(permil),
-            Message::QueryMemorySizeResponse { free_bytes, total_bytes } => {
-                self.memory = Some((free_bytes, total_bytes));
-            }
-            Message::QueryServoResponse { servos } => {
-                self.servos = servos.into_iter().map(|servo| (servo.servo_id, servo)).collect();
-            }
-            Message::SetServoParameterResponse(switches) => {
-                for servo in self
-                    .servos
-                    .values_mut()
-                    .filter(|s| switches.servo_id == ALL_SERVOS || s.servo_id == switches.servo_id)
-                {
-                    servo.is_hold = switches.is_hold;
-                    servo.is_start = switches.is_start;
-                }
-            }
-            _ => {}
-        }
-    }
-
-    /// Sends a live move (coalesced by the session).
-    pub fn live_move(&self, moves: Vec<ServoMove>) -> Result<(), String> {
-        self.requester.live_move(moves).map_err(|error| error.to_string())
-    }
-
-    /// STOP: drops queued moves and stops every servo where it is, holding
-    /// torque, ahead of any queued request.
-    pub fn stop(&mut self) -> Result<(), String> {
-        self.stopped = true;
-        let all = ServoSwitches { servo_id: ALL_SERVOS, is_start: false, is_hold: true };
-        self.requester.stop(Message::SetServoParameterRequest(all)).map_err(|error| error.to_string())
-    }
-
-    /// Lets servos move again after a STOP.
-    pub fn resume(&mut self) {
-        self.stopped = false;
-        let all = ServoSwitches { servo_id: ALL_SERVOS, is_start: true, is_hold: true };
-        self.ask(Query::Switches, Message::SetServoParameterRequest(all));
-    }
-
-    /// Runs a stored macro; a refusal comes back as an error notice.
-    pub fn run_macro(&mut self, macro_id: i32) {
-        if let Ok(reply) = self.requester.request_async(Message::ExecuteMacroRequest { macro_id }) {
-            self.inflight.push((Query::RunMacro, reply));
-        }
-    }
-
-    /// Starts or stops the board's button events.
-    pub fn subscribe_buttons(&mut self, subscribe: bool) {
-        if let Ok(reply) = self.requester.request_async(Message::SubscribeButtonEventRequest { subscribe }) {
-            self.inflight.push((Query::Subscribe, reply));
-        }
-    }
-
-    /// Holds or releases one servo's torque.
-    pub fn set_hold(&mut self, servo_id: u8, hold: bool) {
-        let switches = ServoSwitches { servo_id, is_start: !self.stopped, is_hold: hold };
-        if let Some(servo) = self.servos.get_mut(&servo_id) {
-            servo.is_hold = hold;
-        }
-        // Not de-duplicated: each toggle must reach the board.
-        if let Ok(reply) = self.requester.request_async(Message::SetServoParameterRequest(switches)) {
-            self.inflight.push((Query::Switches, reply));
+        match &self.device {
+            Device::Servo(handle) => handle.next_refresh(polling),
         }
     }
 }

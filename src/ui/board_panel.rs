@@ -26,6 +26,11 @@ pub enum BoardResult {
         /// Where the board's previous contents were saved.
         backup: Option<PathBuf>,
     },
+    /// The project has authoring errors; nothing was written. The user may upload anyway.
+    Invalid {
+        /// The problems, with their locations.
+        error: String,
+    },
     /// Stopped with an error.
     Failed {
         /// Items finished before the failure.
@@ -103,7 +108,7 @@ pub fn ui(ui: &mut egui::Ui, view: &BoardView<'_>, words: &crate::ui::i18n::Stri
         ui.separator();
         let what = match job.kind {
             JobKind::Compare => words.reading_to_compare,
-            JobKind::Upload => words.uploading,
+            JobKind::Upload { .. } => words.uploading,
             JobKind::Read => words.reading_board,
         };
         ui.label(what);
@@ -135,7 +140,7 @@ pub fn ui(ui: &mut egui::Ui, view: &BoardView<'_>, words: &crate::ui::i18n::Stri
         }
         ui.horizontal(|ui| {
             let confirm = match &pending.intent {
-                BoardIntent::Upload => words.confirm_upload,
+                BoardIntent::Upload | BoardIntent::UploadAnyway => words.confirm_upload,
                 BoardIntent::ReadIntoProject => words.confirm_read,
                 BoardIntent::ExportToFile(_) => words.confirm_export,
             };
@@ -157,6 +162,14 @@ pub fn ui(ui: &mut egui::Ui, view: &BoardView<'_>, words: &crate::ui::i18n::Stri
                     ui.label(format!("{} {}", words.backup_at, backup.display()));
                 }
                 items.as_slice()
+            }
+            BoardResult::Invalid { error } => {
+                ui.colored_label(ui.visuals().error_fg_color, error);
+                let anyway = ui.add_enabled(view.connected && idle, egui::Button::new(words.upload_anyway));
+                if anyway.on_hover_text(words.upload_anyway_hint).clicked() {
+                    actions.push(Action::BoardCompare(BoardIntent::UploadAnyway));
+                }
+                &[]
             }
             BoardResult::Failed { items, error } => {
                 ui.colored_label(ui.visuals().error_fg_color, error);

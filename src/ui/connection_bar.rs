@@ -1,22 +1,30 @@
-//! The connection bar: port picker (refreshed as devices come and go, or
-//! typed), baud, connect / disconnect, the demo board, and the board's status.
+//! The connection bar: the board family, the port picker (refreshed as
+//! devices come and go, or typed), baud, connect / cancel / disconnect, the
+//! demo board, and the board's status.
 
 use std::time::{Duration, Instant};
 
-use crate::link::{DEFAULT_BAUD, PortInfo, list_ports};
+use crate::device::line_settings;
+use crate::link::{PortInfo, list_ports};
+use crate::project::Family;
 use crate::ui::action::Action;
-use crate::ui::i18n::Strings;
+use crate::ui::i18n::{Language, Strings};
 
-/// Standard line rates offered in the picker.
-const BAUDS: [u32; 8] = [9_600, 19_200, 38_400, 57_600, 115_200, 230_400, 460_800, 1_000_000];
+/// Standard line rates offered in the picker, up to the PLEN2's 2,000,000.
+const BAUDS: [u32; 11] =
+    [9_600, 19_200, 38_400, 57_600, 115_200, 230_400, 460_800, 500_000, 921_600, 1_000_000, 2_000_000];
 /// How often the port list is read again.
 const RESCAN_EVERY: Duration = Duration::from_secs(2);
 
 /// What the bar shows of the current link.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct LinkStatus {
+    /// The family of the document and of the connection.
+    pub family: Family,
     /// What it is connected to, if connected.
     pub label: Option<String>,
+    /// The port being opened, while connecting.
+    pub connecting: Option<String>,
     /// The board's project id.
     pub project_id: Option<i32>,
     /// Battery, ‰.
@@ -30,13 +38,21 @@ pub struct LinkStatus {
 pub struct ConnectionBar {
     port: String,
     baud: u32,
+    /// The family whose default baud `baud` was set from.
+    baud_family: Option<Family>,
     ports: Vec<PortInfo>,
     next_scan: Option<Instant>,
 }
 
 impl Default for ConnectionBar {
     fn default() -> Self {
-        Self { port: String::new(), baud: DEFAULT_BAUD, ports: Vec::new(), next_scan: None }
+        Self {
+            port: String::new(),
+            baud: line_settings(Family::Servo).baud,
+            baud_family: None,
+            ports: Vec::new(),
+            next_scan: None,
+        }
     }
 }
 
@@ -58,11 +74,36 @@ impl ConnectionBar {
     }
 
     /// Draws the bar.
-    pub fn ui(&mut self, ui: &mut egui::Ui, status: &LinkStatus, words: &Strings, actions: &mut Vec<Action>) {
+    pub fn ui(
+        &mut self,
+        ui: &mut egui::Ui,
+        status: &LinkStatus,
+        language: Language,
+        words: &Strings,
+        actions: &mut Vec<Action>,
+    ) {
         self.rescan(Instant::now());
+        if self.baud_family != Some(status.family) {
+            // Each family has its own line rate; switching family picks it.
+            self.baud_family = Some(status.family);
+            self.baud = line_settings(status.family).baud;
+        }
         ui.horizontal_wrapped(|ui| {
-            let connected = status.label.is_some();
-            ui.add_enabled_ui(!connected, |ui| {
+            let busy = status.label.is_some() || status.connecting.is_some();
+            ui.add_enabled_ui(!busy, |ui| {
+                let family_label = ui.label(words.family);
+                let mut family = status.family;
+                let picked = egui::ComboBox::from_id_salt("family-picker")
+                    .selected_text(language.family(family))
+                    .show_ui(ui, |ui| {
+                        for option in Family::ALL {
+                            ui.selectable_value(&mut family, option, language.family(option));
+                        }
+                    });
+                picked.response.labelled_by(family_label.id);
+                if family != status.family {
+                    actions.push(Action::SetFamily(family));
+                }
                 let port_label = ui.label(words.port);
                 ui.add(
                     egui::TextEdit::singleline(&mut self.port)
@@ -95,7 +136,12 @@ impl ConnectionBar {
                 );
                 picked.response.labelled_by(baud_label.id);
             });
-            if connected {
+            if status.connecting.is_some() {
+                ui.spinner();
+                if ui.button(words.cancel).clicked() {
+                    actions.push(Action::CancelConnect);
+                }
+            } else if status.label.is_some() {
                 if ui.button(words.disconnect).clicked() {
                     actions.push(Action::Disconnect);
                 }
@@ -108,27 +154,30 @@ impl ConnectionBar {
                 }
             }
             ui.separator();
-            match &status.label {
-                None => {
-                    ui.label(words.not_connected);
-                }
-                Some(label) => {
-                    ui.label(format!("{} {label}", words.connected_to));
-                    if let Some(project_id) = status.project_id {
-                        ui.label(format!("{} {project_id}", words.project));
-                    }
-                    if let Some(permil) = status.battery_permil {
-                        ui.label(format!("{} {permil}‰", words.battery));
-                    }
-                    if let Some((free, total)) = status.memory {
-                        let text = match total {
-                            Some(total) => format!("{} {free} / {total} B", words.free_memory),
-                            None => format!("{} {free} B", words.free_memory),
-                        };
-                        ui.label(text);
-                    }
-                }
-            }
+            ui.label(status_text(status, language));
         });
     }
+}
+
+/// The bar's status words: one sentence in the interface's language.
+pub fn status_text(status: &LinkStatus, language: Language) -> String {
+    let words = language.strings();
+    if let Some(port) = &status.connecting {
+        return language.connecting_to(port);
+    }
+    let Some(label) = &status.label else { return words.not_connected.to_string() };
+    let mut parts = vec![format!("{} {label}", words.connected_to)];
+    if let Some(project_id) = status.project_id {
+        parts.push(format!("{} {project_id}", words.project));
+    }
+    if let Some(permil) = status.battery_permil {
+        parts.push(format!("{} {}", words.battery, crate::device::servo::battery_text(permil)));
+    }
+    if let Some((free, total)) = status.memory {
+        parts.push(match total {
+            Some(total) => format!("{} {free} / {total} B", words.free_memory),
+            None => format!("{} {free} B", words.free_memory),
+        });
+    }
+    parts.join(" · ")
 }

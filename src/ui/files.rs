@@ -6,7 +6,7 @@ use std::time::Duration;
 
 use serde::{Deserialize, Serialize};
 
-use crate::project::{Project, atomic_write};
+use crate::project::{Project, atomic_write, from_json, to_json};
 
 /// How often unsaved changes are written to the recovery file.
 pub const AUTOSAVE_EVERY: Duration = Duration::from_secs(30);
@@ -14,7 +14,7 @@ pub const AUTOSAVE_EVERY: Duration = Duration::from_secs(30);
 pub const MAX_RECENT: usize = 8;
 
 /// What autosave keeps: the unsaved project and the file it belongs to.
-#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Recovery {
     /// The file the project was opened from or saved to, if any.
     pub path: Option<PathBuf>,
@@ -22,6 +22,15 @@ pub struct Recovery {
     pub saved_at: String,
     /// The unsaved project.
     pub project: Project,
+}
+
+/// The recovery file: the project is kept as a project file, so that it
+/// migrates like one.
+#[derive(Serialize, Deserialize)]
+struct RecoveryFile {
+    path: Option<PathBuf>,
+    saved_at: String,
+    project: serde_json::Value,
 }
 
 /// The recovery file inside a data folder.
@@ -32,10 +41,10 @@ pub fn recovery_path(data_dir: &Path) -> PathBuf {
 /// Writes the recovery file atomically.
 pub fn write_recovery(data_dir: &Path, path: Option<&Path>, project: &Project) -> std::io::Result<()> {
     std::fs::create_dir_all(data_dir)?;
-    let recovery = Recovery {
+    let recovery = RecoveryFile {
         path: path.map(Path::to_path_buf),
         saved_at: chrono::Local::now().format("%Y-%m-%d %H:%M:%S").to_string(),
-        project: project.clone(),
+        project: serde_json::from_str(&to_json(project)).map_err(std::io::Error::other)?,
     };
     let text = serde_json::to_string_pretty(&recovery).map_err(std::io::Error::other)?;
     atomic_write(&recovery_path(data_dir), |file| std::io::Write::write_all(file, text.as_bytes()))
@@ -44,7 +53,9 @@ pub fn write_recovery(data_dir: &Path, path: Option<&Path>, project: &Project) -
 /// The recovery file left by a session that did not end cleanly, if any.
 pub fn read_recovery(data_dir: &Path) -> Option<Recovery> {
     let text = std::fs::read_to_string(recovery_path(data_dir)).ok()?;
-    serde_json::from_str(&text).ok()
+    let file: RecoveryFile = serde_json::from_str(&text).ok()?;
+    let project = from_json(&file.project.to_string()).ok()?;
+    Some(Recovery { path: file.path, saved_at: file.saved_at, project })
 }
 
 /// Removes the recovery file (after a save, or when the user declines it).
@@ -68,7 +79,7 @@ mod tests {
     fn recovery_round_trips_and_clears() {
         let dir = tempfile::tempdir().unwrap();
         assert_eq!(read_recovery(dir.path()), None);
-        let project = Project { project_id: 3, ..Project::default() };
+        let project = Project::servo(crate::project::ServoProject { project_id: 3, ..Default::default() });
         write_recovery(dir.path(), Some(Path::new("/tmp/robot.json")), &project).unwrap();
         let recovered = read_recovery(dir.path()).unwrap();
         assert_eq!(recovered.project, project);

@@ -6,19 +6,23 @@ use std::path::PathBuf;
 
 use crossbeam_channel::{Receiver, Sender};
 
-use crate::device::board::{
-    BoardImage, Cancel, ImportOptions, ImportReport, Phase, Progress, Requester, export, import, read_image,
+use crate::device::servo::{
+    Cancel, ImportOptions, ImportReport, Phase, Progress, Requester, ServoImage, export, import, read_image,
 };
 use crate::link::Waker;
-use crate::project::Project;
+use crate::project::ServoProject;
 
 /// What a job does.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum JobKind {
     /// Read the board and compare it with the project.
     Compare,
-    /// Write the project onto the board (with backup and verification).
-    Upload,
+    /// Write the project onto the board (with backup and verification);
+    /// `force` writes even with validation errors (Upload anyway).
+    Upload {
+        /// Write despite validation errors.
+        force: bool,
+    },
     /// Read the board into a project.
     Read,
 }
@@ -31,12 +35,12 @@ pub enum JobOutcome {
         /// Differences, project first (empty = identical).
         differences: Vec<String>,
         /// The board's contents.
-        board: Box<Project>,
+        board: Box<ServoProject>,
     },
     /// The project was written and verified.
     Uploaded(ImportReport),
     /// The board was read.
-    Read(Box<Project>),
+    Read(Box<ServoProject>),
     /// The operation failed; the text says what and what to try.
     Failed(String),
     /// The user cancelled.
@@ -51,7 +55,7 @@ pub struct Job {
     /// The latest progress.
     pub progress: Option<Progress>,
     /// Every item finished so far, in order, with the phase it belonged to.
-    pub done_items: Vec<(Phase, crate::device::board::Item)>,
+    pub done_items: Vec<(Phase, crate::device::servo::Item)>,
     progress_rx: Receiver<Progress>,
     outcome_rx: Receiver<JobOutcome>,
     cancel: Sender<()>,
@@ -62,7 +66,7 @@ impl Job {
     pub fn start(
         kind: JobKind,
         requester: Requester,
-        project: Project,
+        project: ServoProject,
         backup_dir: PathBuf,
         language: crate::ui::i18n::Language,
         waker: Waker,
@@ -112,35 +116,32 @@ impl Job {
 fn run(
     kind: &JobKind,
     requester: &Requester,
-    project: &Project,
+    project: &ServoProject,
     backup_dir: PathBuf,
     language: crate::ui::i18n::Language,
     report: &mut dyn FnMut(&Progress),
     cancel: &Cancel,
 ) -> JobOutcome {
-    let failed = |error: crate::device::board::OpError| match error {
-        crate::device::board::OpError::Cancelled => JobOutcome::Cancelled,
+    let failed = |error: crate::device::servo::OpError| match error {
+        crate::device::servo::OpError::Cancelled => JobOutcome::Cancelled,
         other => JobOutcome::Failed(language.op_error(&other)),
     };
     match kind {
         JobKind::Compare => match read_image(requester, report, cancel) {
             Ok(board) => {
-                let differences = match BoardImage::from_project(project) {
+                let differences = match ServoImage::from_project(project) {
                     Ok(ours) => ours.differences(&board).iter().map(|d| language.difference(d)).collect(),
-                    Err(error) => vec![format!("the project cannot be stored on a board: {error}")],
+                    Err(error) => vec![language.op_error(&crate::device::servo::OpError::Image(error))],
                 };
                 JobOutcome::Compared { differences, board: Box::new(board.to_project()) }
             }
             Err(error) => failed(error),
         },
-        JobKind::Upload => {
+        JobKind::Upload { force } => {
             if let Err(error) = std::fs::create_dir_all(&backup_dir) {
-                return JobOutcome::Failed(format!(
-                    "cannot create the backup folder {}: {error}; nothing was written",
-                    backup_dir.display()
-                ));
+                return JobOutcome::Failed(language.backup_folder_failed(&backup_dir, &error));
             }
-            let options = ImportOptions { backup_dir: Some(backup_dir), verify: true };
+            let options = ImportOptions { backup_dir: Some(backup_dir), verify: true, force: *force };
             match import(requester, project, &options, report, cancel) {
                 Ok(done) => JobOutcome::Uploaded(done),
                 Err(error) => failed(error),

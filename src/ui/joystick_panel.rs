@@ -2,8 +2,8 @@
 //! release macros, uninterruptible), the active table, live button events, and
 //! "press a button to pick it".
 
-use crate::project::{Button, Edit, JoystickTable, Project, next_free_id};
-use crate::protocol::board::ButtonEvent;
+use crate::project::{Button, Edit, JoystickTable, ServoProject, next_free_id};
+use crate::protocol::servo::ButtonEvent;
 use crate::ui::action::Action;
 use crate::ui::i18n::Strings;
 
@@ -11,7 +11,7 @@ use crate::ui::i18n::Strings;
 #[derive(Debug)]
 pub struct JoystickView<'a> {
     /// The project.
-    pub project: &'a Project,
+    pub project: &'a ServoProject,
     /// Button events seen, newest last.
     pub events: &'a [(u32, ButtonEvent)],
     /// The button picked on the remote (highlighted).
@@ -38,7 +38,7 @@ fn event_name(event: ButtonEvent, words: &Strings) -> &'static str {
 
 impl JoystickPanel {
     /// The table shown, if any.
-    pub fn selected(&self, project: &Project) -> Option<usize> {
+    pub fn selected(&self, project: &ServoProject) -> Option<usize> {
         (!project.joystick_tables.is_empty()).then(|| self.selected.min(project.joystick_tables.len() - 1))
     }
 

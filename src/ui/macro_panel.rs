@@ -6,8 +6,8 @@
 use egui_plot::{Legend, Line, Plot};
 
 use crate::project::{
-    Command, Edit, Location, Macro, Problem, Project, Run, Timing, TimingError, macro_trajectories, next_free_id,
-    validate,
+    Command, Edit, Location, Macro, Problem, Run, ServoProject, Timing, TimingError, macro_trajectories, next_free_id,
+    validate_servo,
 };
 use crate::ui::action::Action;
 use crate::ui::i18n::Strings;
@@ -25,7 +25,7 @@ struct Derived {
 }
 
 impl Derived {
-    fn compute(project: &Project, revision: u64, selected: usize) -> Self {
+    fn compute(project: &ServoProject, revision: u64, selected: usize) -> Self {
         let item = &project.macros[selected];
         let timing = Timing::new(project);
         let (trajectories, _) = macro_trajectories(project, item.id);
@@ -39,7 +39,7 @@ impl Derived {
         Self {
             revision,
             selected,
-            problems: validate(project),
+            problems: validate_servo(project),
             command_totals_ms: item.commands.iter().map(|command| timing.command_total_ms(command)).collect(),
             macro_total_ms: timing.macro_total_ms(item.id),
             series,
@@ -67,7 +67,7 @@ impl MacroPanel {
     pub fn ui(
         &mut self,
         ui: &mut egui::Ui,
-        project: &Project,
+        project: &ServoProject,
         revision: u64,
         connected: bool,
         words: &Strings,
@@ -121,7 +121,7 @@ impl MacroPanel {
     fn editor(
         &self,
         ui: &mut egui::Ui,
-        project: &Project,
+        project: &ServoProject,
         derived: &Derived,
         connected: bool,
         words: &Strings,
@@ -201,7 +201,7 @@ impl MacroPanel {
     fn command_row(
         &self,
         ui: &mut egui::Ui,
-        project: &Project,
+        project: &ServoProject,
         total_ms: Result<i64, TimingError>,
         item: &Macro,
         index: usize,

@@ -20,16 +20,65 @@ mod servo_panel;
 pub use action::{Action, AfterUnsaved, BoardIntent, Tab};
 pub use action_panel::timeline_bars;
 pub use app::{
-    CAPTURED_STEP_INTERVAL_10MS, LIVE_MOVE_INTERVAL_10MS, REMEMBERED_KEY, Remembered, StatusLine, StudioApp,
+    CAPTURED_STEP_INTERVAL_10MS, Connecting, LIVE_MOVE_INTERVAL_10MS, REMEMBERED_KEY, Remembered, StatusLine, StudioApp,
 };
-pub use board_link::{BoardLink, LinkNotice};
+pub use board_link::{BoardLink, Device, LinkNotice, StartError};
 pub use board_panel::{BoardResult, PendingConfirm};
 pub use document::Document;
 pub use i18n::{Language, Strings};
 pub use job::{Job, JobKind, JobOutcome};
 
+/// The sample robot `gui --demo` opens when no file is given: a 16-servo
+/// biped with captions in English and Traditional Chinese, a few actions, a
+/// macro and a joystick table.
+pub fn sample_project() -> crate::project::Project {
+    // The file ships with the binary and has a test; an unreadable copy opens an empty project.
+    crate::project::from_json(include_str!("../../assets/sample-biped.json")).unwrap_or_default()
+}
+
+/// How the editor starts.
+#[derive(Debug, Default)]
+pub struct Start {
+    /// The project to open (`None`: the sample with `demo`, else an empty one).
+    pub project: Option<crate::project::Project>,
+    /// Where it was read from.
+    pub path: Option<std::path::PathBuf>,
+    /// Connect to the built-in emulated board.
+    pub demo: bool,
+    /// The family to start with (else the project's, else the one used last).
+    pub family: Option<crate::project::Family>,
+}
+
+impl Start {
+    /// The editor this start describes: the document, its family and the demo board.
+    pub fn into_app(self, waker: crate::link::Waker, remembered: Option<Remembered>) -> StudioApp {
+        let from_file = self.project.is_some();
+        let project = match self.project {
+            Some(project) => project,
+            None if self.demo => sample_project(),
+            None => crate::project::Project::default(),
+        };
+        let mut app = StudioApp::new(project, self.path, waker);
+        if let Some(remembered) = remembered {
+            // A project's family wins over the one used last.
+            let family = remembered.family;
+            app.restore(remembered);
+            if !from_file && !self.demo {
+                app.document.project.family = family;
+            }
+        }
+        if let Some(family) = self.family {
+            app.document.project.family = family;
+        }
+        if self.demo {
+            app.apply(Action::ConnectDemo);
+        }
+        app
+    }
+}
+
 /// Opens the editor window and runs until it is closed.
-pub fn run(project: crate::project::Project, path: Option<std::path::PathBuf>, demo: bool) -> eframe::Result {
+pub fn run(start: Start) -> eframe::Result {
     let options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default().with_title("Servo Studio").with_inner_size([1100.0, 720.0]),
         ..Default::default()
@@ -41,14 +90,8 @@ pub fn run(project: crate::project::Project, path: Option<std::path::PathBuf>, d
             fonts::install(&creation.egui_ctx);
             let ctx = creation.egui_ctx.clone();
             let waker: crate::link::Waker = std::sync::Arc::new(move || ctx.request_repaint());
-            let mut app = StudioApp::new(project, path, waker);
-            if let Some(remembered) = creation.storage.and_then(|storage| eframe::get_value(storage, REMEMBERED_KEY)) {
-                app.restore(remembered);
-            }
-            if demo {
-                app.apply(Action::ConnectDemo);
-            }
-            Ok(Box::new(app))
+            let remembered = creation.storage.and_then(|storage| eframe::get_value(storage, REMEMBERED_KEY));
+            Ok(Box::new(start.into_app(waker, remembered)))
         }),
     )
 }

@@ -6,8 +6,8 @@ use std::collections::{BTreeMap, HashMap};
 
 use egui::{Key, Modifiers};
 
-use crate::project::{Edit, Project, Servo};
-use crate::protocol::board::ServoStatus;
+use crate::project::{Edit, Servo, ServoProject};
+use crate::protocol::servo::ServoStatus;
 use crate::ui::action::Action;
 use crate::ui::i18n::Strings;
 
@@ -15,7 +15,7 @@ use crate::ui::i18n::Strings;
 #[derive(Debug)]
 pub struct ServoView<'a> {
     /// The project, for its servos and limits.
-    pub project: &'a Project,
+    pub project: &'a ServoProject,
     /// The slider values.
     pub pose: &'a BTreeMap<u8, i16>,
     /// States read back from the board, when connected.
@@ -115,7 +115,7 @@ impl ServoPanel {
 
 /// The servos' settings: caption, calibration offset, limits and home; add and
 /// remove servos. A drag of one value is one undo step.
-pub fn settings_ui(ui: &mut egui::Ui, project: &Project, words: &Strings, actions: &mut Vec<Action>) {
+pub fn settings_ui(ui: &mut egui::Ui, project: &ServoProject, words: &Strings, actions: &mut Vec<Action>) {
     egui::CollapsingHeader::new(words.servo_settings).id_salt("servo-settings").show(ui, |ui| {
         egui::Grid::new("servo-settings-grid").striped(true).show(ui, |ui| {
             for heading in [words.servo_id, words.caption, words.offset, words.min, words.max, words.home, ""] {

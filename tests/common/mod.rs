@@ -1,16 +1,16 @@
 //! Shared test fixtures.
 #![allow(dead_code, clippy::unwrap_used)]
 
-use servo_studio::project::{Action, Button, Command, JoystickTable, Macro, Project, Run, Servo, Step};
+use servo_studio::project::{Action, Button, Command, JoystickTable, Macro, Run, Servo, ServoProject, Step};
 
 /// A project that exercises the whole protocol: CJK captions, negative angles,
 /// button ids with the high bit set, an action with 60 steps, ids up to i32::MAX.
-pub fn rich_project() -> Project {
+pub fn rich_project() -> ServoProject {
     let servos: Vec<Servo> = (0..60u8)
         .map(|id| Servo { calibration_offset_deg: i16::from(id) - 30, ..Servo::new(id, format!("關節{id}號")) })
         .collect();
     let big_step = |id: u8| Step { servo_id: id, degree: -180 + 6 * i16::from(id), interval_10ms: 10 + i16::from(id) };
-    Project {
+    ServoProject {
         project_id: i32::MAX,
         servos,
         actions: vec![
@@ -34,7 +34,12 @@ pub fn rich_project() -> Project {
                 id: 100,
                 caption: "巨集1".into(),
                 commands: vec![
-                    Command { run: Run::Action { action_id: 42 }, ratio_percent: 50, loop_count: 3 },
+                    Command {
+                        run: Run::Action { action_id: 42 },
+                        ratio_percent: 50,
+                        loop_count: 3,
+                        stored_total_ms: None,
+                    },
                     Command::once(Run::Delay { delay_ms: 250 }),
                     Command::once(Run::Action { action_id: i32::MAX }),
                 ],
@@ -42,7 +47,12 @@ pub fn rich_project() -> Project {
             Macro {
                 id: i32::MAX,
                 caption: "打招呼".into(),
-                commands: vec![Command { run: Run::Macro { macro_id: 100 }, ratio_percent: 100, loop_count: 2 }],
+                commands: vec![Command {
+                    run: Run::Macro { macro_id: 100 },
+                    ratio_percent: 100,
+                    loop_count: 2,
+                    stored_total_ms: None,
+                }],
             },
         ],
         joystick_tables: vec![
@@ -71,6 +81,113 @@ pub fn rich_project() -> Project {
             JoystickTable { id: i32::MAX, caption: "備用".into(), buttons: vec![] },
         ],
         active_table: Some(7),
-        ..Project::default()
     }
+}
+
+/// `project` as an export of a board it was written to returns it: each macro
+/// command carries the total the board stored, which for a project Servo
+/// Studio wrote is the derived one.
+pub fn exported(mut project: ServoProject) -> ServoProject {
+    let totals: Vec<Vec<Option<i32>>> = {
+        let timing = servo_studio::project::Timing::new(&project);
+        project
+            .macros
+            .iter()
+            .map(|item| {
+                item.commands
+                    .iter()
+                    .map(|command| i32::try_from(timing.command_total_ms(command).unwrap()).ok())
+                    .collect()
+            })
+            .collect()
+    };
+    for (item, totals) in project.macros.iter_mut().zip(totals) {
+        for (command, total) in item.commands.iter_mut().zip(totals) {
+            command.stored_total_ms = total;
+        }
+    }
+    project
+}
+
+/// What a board can hold that Servo Studio would never author: a servo twice
+/// in one action, a step for a servo without parameters, macros calling a
+/// macro that is not there, stored totals unlike the derived ones, a macro
+/// whose derived total overflows the board's 32-bit counter, a button bound
+/// to a missing macro.
+pub fn unauthorable_image() -> servo_studio::device::servo::ServoImage {
+    use servo_studio::device::servo::{ServoImage, ServoMove};
+    use servo_studio::protocol::servo::{
+        ActionRecord, ButtonRecord, CommandType, JoystickTableRecord, MacroCommandRecord, MacroRecord, ServoParameter,
+    };
+    let command = |command_type, command_id, ratio_percent, loop_count, total_interval_ms| MacroCommandRecord {
+        command_id,
+        command_type,
+        ratio_percent,
+        loop_count,
+        total_interval_ms,
+    };
+    ServoImage {
+        project_id: 31,
+        servos: vec![
+            ServoParameter { servo_id: 1, adjusted_degree: -4, caption: "左臂".into() },
+            ServoParameter { servo_id: 2, adjusted_degree: 3, caption: "右臂".into() },
+        ],
+        actions: vec![
+            ActionRecord {
+                action_id: 1,
+                caption: "重複".into(),
+                steps: vec![
+                    ServoMove { servo_id: 1, degree: 10, interval_10ms: 20 },
+                    ServoMove { servo_id: 1, degree: 20, interval_10ms: 40 },
+                    ServoMove { servo_id: 9, degree: 5, interval_10ms: 10 },
+                ],
+            },
+            ActionRecord {
+                action_id: 2,
+                caption: "很長".into(),
+                steps: vec![ServoMove { servo_id: 2, degree: 30, interval_10ms: 30_000 }],
+            },
+        ],
+        macros: vec![
+            MacroRecord {
+                macro_id: 10,
+                caption: "懸空".into(),
+                commands: vec![
+                    command(CommandType::RunMacro, 999, 100, 1, 1234),
+                    command(CommandType::RunAction, 1, 100, 1, 777),
+                ],
+            },
+            MacroRecord {
+                macro_id: 11,
+                caption: "溢位".into(),
+                commands: vec![command(CommandType::RunAction, 2, 1, i16::MAX, i32::MAX)],
+            },
+        ],
+        tables: vec![JoystickTableRecord {
+            table_id: 3,
+            caption: "遙控".into(),
+            buttons: vec![ButtonRecord {
+                button_id: 0x8000_0010,
+                caption: "A".into(),
+                press_macro: 55,
+                long_press_macro: 0,
+                up_macro: 10,
+                uninterruptible: false,
+            }],
+        }],
+        active_table: 3,
+    }
+}
+
+/// The encoded add requests a board image is written with, in order: equal
+/// when two images hold the same records byte for byte.
+pub fn record_bytes(image: &servo_studio::device::servo::ServoImage) -> Vec<Vec<u8>> {
+    use servo_studio::protocol::servo::Message;
+    let mut out = vec![Message::WriteProjectIdRequest { project_id: image.project_id }.encode().unwrap()];
+    out.push(Message::AddServoParameterRequest { servos: image.servos.clone() }.encode().unwrap());
+    out.extend(image.actions.iter().map(|a| Message::AddActionRequest(a.clone()).encode().unwrap()));
+    out.extend(image.macros.iter().map(|m| Message::AddMacroRequest(m.clone()).encode().unwrap()));
+    out.extend(image.tables.iter().map(|t| Message::AddJoystickTableRequest(t.clone()).encode().unwrap()));
+    out.push(Message::SetActiveJoystickTableRequest { table_id: image.active_table }.encode().unwrap());
+    out
 }

@@ -9,15 +9,16 @@ use std::time::Instant;
 use crossbeam_channel::{Receiver, Sender};
 
 use super::session::{RequestError, RequestId, Session, SessionConfig, SessionEvent, Traffic};
-use crate::link::{self, Connection, Driver, LinkError, LinkEvent, LinkHandle, PortName, Waker};
-use crate::protocol::board::{ButtonEvent, Message};
+use crate::link::{self, Connection, Driver, LineSettings, LinkError, LinkEvent, LinkHandle, PortName, Waker};
+use crate::project::Family;
+use crate::protocol::servo::{ButtonEvent, Message};
 
 /// Where a request's outcome goes.
 pub type Reply = Sender<Result<Message, RequestError>>;
 
 /// What the owner asks of the board driver.
 #[derive(Debug)]
-pub enum BoardCommand {
+pub enum ServoCommand {
     /// Send a request and deliver its response (or error) to `reply`.
     Request {
         /// The request.
@@ -38,13 +39,13 @@ pub enum BoardCommand {
     /// Live move targets (20050), coalesced: the latest value per servo wins.
     LiveMove {
         /// The targets.
-        moves: Vec<crate::protocol::board::ServoMove>,
+        moves: Vec<crate::protocol::servo::ServoMove>,
     },
 }
 
 /// What the board driver reports to its owner (responses go to each request's reply).
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub enum BoardEvent {
+pub enum ServoEvent {
     /// A remote-control button event.
     Button {
         /// `buttonID`.
@@ -62,13 +63,13 @@ pub enum BoardEvent {
 
 /// The driver the I/O thread runs for a servo board.
 #[derive(Debug)]
-pub struct BoardDriver {
+pub struct ServoDriver {
     session: Session,
     replies: HashMap<RequestId, Reply>,
-    events: std::collections::VecDeque<BoardEvent>,
+    events: std::collections::VecDeque<ServoEvent>,
 }
 
-impl BoardDriver {
+impl ServoDriver {
     /// A driver with the given session timing.
     pub fn new(config: SessionConfig) -> Self {
         Self { session: Session::new(config), replies: HashMap::new(), events: std::collections::VecDeque::new() }
@@ -84,24 +85,24 @@ impl BoardDriver {
                     }
                 }
                 SessionEvent::Button { button_id, event } => {
-                    self.events.push_back(BoardEvent::Button { button_id, event });
+                    self.events.push_back(ServoEvent::Button { button_id, event });
                 }
                 SessionEvent::Unsolicited(message) => {
-                    self.events.push_back(BoardEvent::Unsolicited(message));
+                    self.events.push_back(ServoEvent::Unsolicited(message));
                 }
-                SessionEvent::Traffic(entry) => self.events.push_back(BoardEvent::Traffic(entry)),
+                SessionEvent::Traffic(entry) => self.events.push_back(ServoEvent::Traffic(entry)),
             }
         }
     }
 }
 
-impl Driver for BoardDriver {
-    type Command = BoardCommand;
-    type Event = BoardEvent;
+impl Driver for ServoDriver {
+    type Command = ServoCommand;
+    type Event = ServoEvent;
 
-    fn handle_command(&mut self, now: Instant, command: BoardCommand) {
+    fn handle_command(&mut self, now: Instant, command: ServoCommand) {
         match command {
-            BoardCommand::Request { message, reply } => match self.session.submit(now, message) {
+            ServoCommand::Request { message, reply } => match self.session.submit(now, message) {
                 Ok(id) => {
                     self.replies.insert(id, reply);
                 }
@@ -109,16 +110,16 @@ impl Driver for BoardDriver {
                     let _ = reply.send(Err(RequestError::Encode(error)));
                 }
             },
-            BoardCommand::Send { message } => {
+            ServoCommand::Send { message } => {
                 if let Err(error) = self.session.send(now, message) {
-                    self.events.push_back(BoardEvent::SendFailed(error.to_string()));
+                    self.events.push_back(ServoEvent::SendFailed(error.to_string()));
                 }
             }
-            BoardCommand::LiveMove { moves } => self.session.set_live_moves(now, &moves),
-            BoardCommand::Stop { message } => {
+            ServoCommand::LiveMove { moves } => self.session.set_live_moves(now, &moves),
+            ServoCommand::Stop { message } => {
                 self.session.cancel_live_moves();
                 if let Err(error) = self.session.send(now, message) {
-                    self.events.push_back(BoardEvent::SendFailed(error.to_string()));
+                    self.events.push_back(ServoEvent::SendFailed(error.to_string()));
                 }
             }
         }
@@ -144,7 +145,7 @@ impl Driver for BoardDriver {
         self.session.poll_transmit()
     }
 
-    fn poll_event(&mut self) -> Option<BoardEvent> {
+    fn poll_event(&mut self) -> Option<ServoEvent> {
         self.events.pop_front()
     }
 
@@ -155,21 +156,22 @@ impl Driver for BoardDriver {
 
 /// A connected servo board. Dropping it closes the link.
 #[derive(Debug)]
-pub struct Board {
-    link: LinkHandle<BoardCommand, BoardEvent>,
+pub struct ServoBoard {
+    link: LinkHandle<ServoCommand, ServoEvent>,
 }
 
-impl Board {
-    /// Opens `port` and starts the I/O thread.
+impl ServoBoard {
+    /// Opens `port` at `baud` with the servo family's line settings and starts the I/O thread.
     pub fn connect(port: &PortName, baud: u32, config: SessionConfig, waker: Waker) -> Result<Self, LinkError> {
-        let connection = link::open(port, baud)?;
+        let settings = LineSettings { baud, ..crate::device::line_settings(Family::Servo) };
+        let connection = link::open(port, &settings)?;
         let description = connection.description.clone();
         Self::over(connection, config, waker).map_err(|source| LinkError::Open { port: description, source })
     }
 
     /// Starts the I/O thread over an already open connection.
     pub fn over(connection: Connection, config: SessionConfig, waker: Waker) -> io::Result<Self> {
-        Ok(Self { link: link::spawn(connection, BoardDriver::new(config), waker)? })
+        Ok(Self { link: link::spawn(connection, ServoDriver::new(config), waker)? })
     }
 
     /// A handle for requests, cloneable into worker threads.
@@ -178,7 +180,7 @@ impl Board {
     }
 
     /// Button events, unsolicited frames, the packet log, and the disconnect.
-    pub fn events(&self) -> &Receiver<LinkEvent<BoardEvent>> {
+    pub fn events(&self) -> &Receiver<LinkEvent<ServoEvent>> {
         self.link.events()
     }
 
@@ -191,12 +193,12 @@ impl Board {
 /// Sends requests to a board and waits for their responses.
 #[derive(Clone, Debug)]
 pub struct Requester {
-    commands: Sender<BoardCommand>,
+    commands: Sender<ServoCommand>,
 }
 
 impl Requester {
     /// A requester over a raw command channel (for drivers run by other means).
-    pub fn from_sender(commands: Sender<BoardCommand>) -> Self {
+    pub fn from_sender(commands: Sender<ServoCommand>) -> Self {
         Self { commands }
     }
 
@@ -209,25 +211,25 @@ impl Requester {
     /// Sends `message`; its outcome arrives on the returned receiver.
     pub fn request_async(&self, message: Message) -> Result<Receiver<Result<Message, RequestError>>, RequestError> {
         let (reply, outcome) = crossbeam_channel::bounded(1);
-        self.commands.send(BoardCommand::Request { message, reply }).map_err(|_| lost())?;
+        self.commands.send(ServoCommand::Request { message, reply }).map_err(|_| lost())?;
         Ok(outcome)
     }
 
     /// Sends a message that has no response.
     pub fn send(&self, message: Message) -> Result<(), RequestError> {
-        self.commands.send(BoardCommand::Send { message }).map_err(|_| lost())
+        self.commands.send(ServoCommand::Send { message }).map_err(|_| lost())
     }
 
     /// Drops pending live moves and sends `message` at once, ahead of queued
     /// requests; its response, if any, arrives as an unsolicited event.
     pub fn stop(&self, message: Message) -> Result<(), RequestError> {
-        self.commands.send(BoardCommand::Stop { message }).map_err(|_| lost())
+        self.commands.send(ServoCommand::Stop { message }).map_err(|_| lost())
     }
 
     /// Sets live move targets; the session coalesces them: at most one move is
     /// on the line, and the latest value per servo wins.
-    pub fn live_move(&self, moves: Vec<crate::protocol::board::ServoMove>) -> Result<(), RequestError> {
-        self.commands.send(BoardCommand::LiveMove { moves }).map_err(|_| lost())
+    pub fn live_move(&self, moves: Vec<crate::protocol::servo::ServoMove>) -> Result<(), RequestError> {
+        self.commands.send(ServoCommand::LiveMove { moves }).map_err(|_| lost())
     }
 }
 

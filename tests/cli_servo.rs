@@ -8,6 +8,8 @@ use std::path::Path;
 use std::process::{Child, Command, Output, Stdio};
 use std::time::Duration;
 
+mod common;
+
 const EXE: &str = env!("CARGO_BIN_EXE_servo-studio");
 
 fn fixture() -> String {
@@ -51,8 +53,8 @@ fn stderr(output: &Output) -> String {
 }
 
 /// The board-carried parts of a project file (client-side limits aside).
-fn board_view(path: &Path) -> servo_studio::device::board::BoardImage {
-    servo_studio::device::board::BoardImage::from_project(&servo_studio::project::load(path).unwrap()).unwrap()
+fn board_view(path: &Path) -> servo_studio::device::servo::ServoImage {
+    servo_studio::device::servo::ServoImage::from_project(&servo_studio::project::load(path).unwrap().servo).unwrap()
 }
 
 #[test]
@@ -65,7 +67,7 @@ fn sim_on_tcp_then_info_export_and_import() {
     assert!(info.status.success(), "{}", stderr(&info));
     let printed = String::from_utf8_lossy(&info.stdout);
     assert!(printed.contains("project id: 20261121"), "{printed}");
-    assert!(printed.contains("battery: 870‰"), "{printed}");
+    assert!(printed.contains("battery: 87.0 %"), "{printed}");
 
     let out = dir.path().join("exported.json");
     let export = run(&["export", "--port", &sim.port, "--out", out.to_str().unwrap()]);
@@ -136,4 +138,95 @@ fn sim_on_a_pty_serves_the_board() {
 fn ports_lists_without_failing() {
     let output = run(&["ports"]);
     assert!(output.status.success(), "{}", stderr(&output));
+}
+
+#[cfg(unix)]
+#[test]
+fn a_board_holding_content_servo_studio_would_not_author_is_restored_byte_for_byte() {
+    use servo_studio::device::servo::ServoImage;
+    use servo_studio::project::{self, Project};
+    let dir = tempfile::tempdir().unwrap();
+    let image = common::unauthorable_image();
+    let state = dir.path().join("state.json");
+    project::save(&state, &Project::servo(image.to_project())).unwrap();
+    let original = sim(&["--pty", "--state", state.to_str().unwrap()]);
+
+    // Export the board as a user would.
+    let exported = dir.path().join("exported.json");
+    let export = run(&["export", "--port", &original.port, "--out", exported.to_str().unwrap()]);
+    assert!(export.status.success(), "{}", stderr(&export));
+    let file = project::load(&exported).unwrap();
+    let stored: Vec<Option<i32>> =
+        file.servo.macros.iter().flat_map(|m| m.commands.iter().map(|c| c.stored_total_ms)).collect();
+    assert_eq!(stored, [Some(1234), Some(777), Some(i32::MAX)], "every stored total is kept");
+
+    // Onto an empty board: refused without --force, listing the problems; nothing written.
+    let empty = sim(&["--pty"]);
+    let refused = run(&["import", "--port", &empty.port, "--in", exported.to_str().unwrap(), "--yes", "--no-backup"]);
+    assert_eq!(refused.status.code(), Some(1));
+    let message = stderr(&refused);
+    for problem in [
+        "action 1 \"重複\", step 2: servo 1 already has a step in this action",
+        "action 1 \"重複\", step 3: servo 9 does not exist",
+        "macro 10 \"懸空\", command 1: macro 999 does not exist",
+        "macro 11 \"溢位\", command 1: runs for",
+        "button 0x80000010 \"A\": press macro 55 does not exist",
+        "--force",
+    ] {
+        assert!(message.contains(problem), "{problem:?} missing from: {message}");
+    }
+    let untouched = dir.path().join("untouched.json");
+    let check = run(&["export", "--port", &empty.port, "--out", untouched.to_str().unwrap()]);
+    assert!(check.status.success(), "{}", stderr(&check));
+    assert_eq!(board_view(&untouched), ServoImage::default(), "nothing was written");
+
+    // With --force: restored, verified, and the same records byte for byte.
+    let forced =
+        run(&["import", "--port", &empty.port, "--in", exported.to_str().unwrap(), "--yes", "--no-backup", "--force"]);
+    assert!(forced.status.success(), "{}", stderr(&forced));
+    assert!(stderr(&forced).contains("verified"), "{}", stderr(&forced));
+    let restored = dir.path().join("restored.json");
+    let again = run(&["export", "--port", &empty.port, "--out", restored.to_str().unwrap()]);
+    assert!(again.status.success(), "{}", stderr(&again));
+    assert_eq!(common::record_bytes(&board_view(&restored)), common::record_bytes(&image));
+
+    // The automatic backup before an upload restores exactly too.
+    let backups = dir.path().join("backups");
+    std::fs::create_dir(&backups).unwrap();
+    let overwrite = run(&[
+        "import",
+        "--port",
+        &original.port,
+        "--in",
+        &fixture(),
+        "--yes",
+        "--backup-dir",
+        backups.to_str().unwrap(),
+    ]);
+    assert!(overwrite.status.success(), "{}", stderr(&overwrite));
+    let backup: Vec<_> = std::fs::read_dir(&backups).unwrap().map(|e| e.unwrap().path()).collect();
+    assert_eq!(backup.len(), 1);
+    let third = sim(&["--pty"]);
+    let restore =
+        run(&["import", "--port", &third.port, "--in", backup[0].to_str().unwrap(), "--yes", "--no-backup", "--force"]);
+    assert!(restore.status.success(), "{}", stderr(&restore));
+    let from_backup = dir.path().join("from-backup.json");
+    assert!(run(&["export", "--port", &third.port, "--out", from_backup.to_str().unwrap()]).status.success());
+    assert_eq!(common::record_bytes(&board_view(&from_backup)), common::record_bytes(&image));
+}
+
+#[test]
+fn plen2_and_rflex_commands_say_they_are_not_in_this_build() {
+    for args in [
+        vec!["board", "info", "--port", "/dev/null", "--protocol", "plen2"],
+        vec!["export", "--port", "/dev/null", "--out", "x.json", "--protocol", "rflex"],
+        vec!["sim", "--protocol", "plen2"],
+    ] {
+        let output = run(&args);
+        assert_eq!(output.status.code(), Some(1), "{args:?}");
+        assert!(stderr(&output).contains("not in this build"), "{args:?}: {}", stderr(&output));
+    }
+    let bad = run(&["sim", "--protocol", "nope"]);
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(stderr(&bad).contains("use servo, plen2 or rflex"), "{}", stderr(&bad));
 }

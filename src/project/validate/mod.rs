@@ -1,11 +1,15 @@
 //! Validation: every problem of a project, each with where it is.
 
-use std::collections::{HashMap, HashSet};
 use std::fmt;
 
-use super::model::{Command, Project, Run};
-use super::timing::Timing;
-use crate::protocol::board::{ALL_SERVOS, ButtonRecord, MAX_CONTENT_LEN, MacroCommandRecord, STR32_LEN};
+use super::document::{Family, Project};
+use crate::protocol::servo::STR32_LEN;
+
+mod plen2;
+mod rflex;
+mod servo;
+
+pub use servo::validate_servo;
 
 /// How serious a problem is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -78,6 +82,36 @@ pub enum Location {
         /// The button's caption.
         caption: String,
     },
+    /// A PLEN2 joint's settings.
+    Joint {
+        /// The device map's name, e.g. `left_knee_pitch`.
+        joint: &'static str,
+    },
+    /// A PLEN2 motion.
+    Motion {
+        /// Its slot (0..=89).
+        slot: u8,
+        /// Its name.
+        name: String,
+    },
+    /// One frame of a PLEN2 motion.
+    Frame {
+        /// The motion's slot.
+        slot: u8,
+        /// The motion's name.
+        name: String,
+        /// The frame's position, from 1.
+        frame: usize,
+    },
+    /// A PLEN2 play list.
+    PlayList {
+        /// Its position, from 1.
+        index: usize,
+        /// Its name.
+        name: String,
+    },
+    /// The rFLEX robot settings.
+    Robot,
 }
 
 impl fmt::Display for Location {
@@ -95,6 +129,11 @@ impl fmt::Display for Location {
             Self::Button { table_id, table_caption, button_id, caption } => {
                 write!(f, "joystick table {table_id} {table_caption:?}, button 0x{button_id:08x} {caption:?}")
             }
+            Self::Joint { joint } => write!(f, "joint {joint}"),
+            Self::Motion { slot, name } => write!(f, "motion {slot} {name:?}"),
+            Self::Frame { slot, name, frame } => write!(f, "motion {slot} {name:?}, frame {frame}"),
+            Self::PlayList { index, name } => write!(f, "play list {index} {name:?}"),
+            Self::Robot => write!(f, "robot"),
         }
     }
 }
@@ -274,6 +313,61 @@ pub enum ProblemKind {
         /// The table.
         table_id: i32,
     },
+    /// A macro command's total as stored on the board differs from the one derived from the project.
+    StoredTotalDiffers {
+        /// The stored total, ms (written back unless the command is edited).
+        stored_ms: i32,
+        /// The derived total, ms.
+        derived_ms: i64,
+    },
+    /// A number outside the range the hardware takes.
+    OutOfRange {
+        /// The field, as the protocol names it (e.g. `transition_ms`).
+        field: &'static str,
+        /// The value.
+        value: i64,
+        /// Lowest allowed.
+        min: i64,
+        /// Highest allowed.
+        max: i64,
+    },
+    /// A slot used by two motions.
+    DuplicateSlot {
+        /// The slot.
+        slot: u8,
+    },
+    /// A joint listed twice in the joint settings.
+    DuplicateJoint,
+    /// A name longer than the hardware stores.
+    NameTooLong {
+        /// Its length in bytes.
+        bytes: usize,
+        /// The most stored.
+        max: usize,
+    },
+    /// A name with characters that are not printable ASCII.
+    NameNotAscii,
+    /// A motion without frames.
+    NoFrames,
+    /// A loop range that is not inside the motion's frames.
+    BadLoopRange {
+        /// First looped frame, from 0.
+        begin_frame: u8,
+        /// Last looped frame, from 0.
+        end_frame: u8,
+        /// The motion's frame count.
+        frames: usize,
+    },
+    /// A play list or jump naming a slot the project has no motion in.
+    MissingMotion {
+        /// The slot.
+        slot: u8,
+    },
+    /// A conversion constant that is not a positive number.
+    NotPositive {
+        /// The field.
+        field: &'static str,
+    },
 }
 
 impl fmt::Display for ProblemKind {
@@ -328,6 +422,21 @@ impl fmt::Display for ProblemKind {
             }
             Self::ButtonRunsNothing => write!(f, "runs no macro"),
             Self::MissingActiveTable { table_id } => write!(f, "active joystick table {table_id} does not exist"),
+            Self::StoredTotalDiffers { stored_ms, derived_ms } => write!(
+                f,
+                "the board stored a total of {stored_ms} ms but the project derives {derived_ms} ms; the stored total is written back until the command is edited"
+            ),
+            Self::OutOfRange { field, value, min, max } => write!(f, "{field} {value} is outside {min}..={max}"),
+            Self::DuplicateSlot { slot } => write!(f, "slot {slot} holds another motion already"),
+            Self::DuplicateJoint => write!(f, "listed twice"),
+            Self::NameTooLong { bytes, max } => write!(f, "name is {bytes} bytes; the robot stores at most {max}"),
+            Self::NameNotAscii => write!(f, "name must be printable ASCII (the robot stores bytes, not text)"),
+            Self::NoFrames => write!(f, "has no frames"),
+            Self::BadLoopRange { begin_frame, end_frame, frames } => {
+                write!(f, "loop from frame {begin_frame} to {end_frame} is not inside its {frames} frame(s)")
+            }
+            Self::MissingMotion { slot } => write!(f, "no motion in slot {slot}"),
+            Self::NotPositive { field } => write!(f, "{field} must be a positive number"),
         }
     }
 }
@@ -353,267 +462,16 @@ impl fmt::Display for Problem {
     }
 }
 
+/// Every problem of the document's own family's section, in document order.
+pub fn validate(project: &Project) -> Vec<Problem> {
+    match project.family {
+        Family::Servo => validate_servo(&project.servo),
+        Family::Plen2 => plen2::validate_plen2(&project.plen2),
+        Family::Rflex => rflex::validate_rflex(&project.rflex),
+    }
+}
+
 /// Whether any problem is an error.
 pub fn has_errors(problems: &[Problem]) -> bool {
     problems.iter().any(|problem| problem.severity == Severity::Error)
-}
-
-/// Every problem of `project`, in document order.
-pub fn validate(project: &Project) -> Vec<Problem> {
-    let mut check = Checker { problems: Vec::new() };
-    check.servos(project);
-    check.actions(project);
-    check.macros(project);
-    check.tables(project);
-    check.problems
-}
-
-/// Largest number of entries of `entry_len` bytes that fits one frame after a
-/// 38-byte record header (id, caption, count).
-fn max_entries(entry_len: usize) -> usize {
-    (MAX_CONTENT_LEN - 38) / entry_len
-}
-
-struct Checker {
-    problems: Vec<Problem>,
-}
-
-impl Checker {
-    fn error(&mut self, location: &Location, kind: ProblemKind) {
-        self.problems.push(Problem { severity: Severity::Error, location: location.clone(), kind });
-    }
-
-    fn warning(&mut self, location: &Location, kind: ProblemKind) {
-        self.problems.push(Problem { severity: Severity::Warning, location: location.clone(), kind });
-    }
-
-    fn caption(&mut self, location: &Location, caption: &str) {
-        if caption.len() > STR32_LEN {
-            self.error(location, ProblemKind::CaptionTooLong { bytes: caption.len() });
-        }
-    }
-
-    /// Ids must be 1..=i32::MAX: the board answers id 0 to mean "failure".
-    fn positive_id(&mut self, location: &Location, kind: ItemKind, id: i32) {
-        if id <= 0 {
-            self.error(location, ProblemKind::IdNotPositive { kind, id });
-        }
-    }
-
-    fn duplicate<T: Eq + std::hash::Hash + fmt::Display>(
-        &mut self,
-        seen: &mut HashSet<T>,
-        location: &Location,
-        kind: ItemKind,
-        id: T,
-    ) {
-        let text = id.to_string();
-        if !seen.insert(id) {
-            self.error(location, ProblemKind::DuplicateId { kind, id: text });
-        }
-    }
-
-    fn servos(&mut self, project: &Project) {
-        let mut seen = HashSet::new();
-        for servo in &project.servos {
-            let at = Location::Servo { servo_id: servo.id, caption: servo.caption.clone() };
-            self.duplicate(&mut seen, &at, ItemKind::Servo, servo.id);
-            self.caption(&at, &servo.caption);
-            if servo.id == ALL_SERVOS {
-                self.error(&at, ProblemKind::ReservedServoId);
-            }
-            if servo.min_deg > servo.max_deg {
-                self.error(&at, ProblemKind::MinAboveMax { min_deg: servo.min_deg, max_deg: servo.max_deg });
-            } else if servo.home_deg < servo.min_deg || servo.home_deg > servo.max_deg {
-                self.error(
-                    &at,
-                    ProblemKind::HomeOutsideLimits {
-                        home_deg: servo.home_deg,
-                        min_deg: servo.min_deg,
-                        max_deg: servo.max_deg,
-                    },
-                );
-            }
-        }
-    }
-
-    fn actions(&mut self, project: &Project) {
-        let mut seen = HashSet::new();
-        for action in &project.actions {
-            let at = Location::Action { action_id: action.id, caption: action.caption.clone() };
-            self.duplicate(&mut seen, &at, ItemKind::Action, action.id);
-            self.positive_id(&at, ItemKind::Action, action.id);
-            self.caption(&at, &action.caption);
-            if action.steps.is_empty() {
-                self.warning(&at, ProblemKind::NoSteps);
-            }
-            let mut servos_in_action = HashSet::new();
-            for (index, step) in action.steps.iter().enumerate() {
-                let at = Location::Step { action_id: action.id, caption: action.caption.clone(), step: index + 1 };
-                if !servos_in_action.insert(step.servo_id) {
-                    self.error(&at, ProblemKind::ServoTwiceInAction { servo_id: step.servo_id });
-                }
-                if step.interval_10ms < 0 {
-                    self.error(&at, ProblemKind::NegativeInterval { interval_10ms: step.interval_10ms });
-                }
-                match project.servo(step.servo_id) {
-                    None => self.error(&at, ProblemKind::MissingServo { servo_id: step.servo_id }),
-                    Some(servo) if servo.clamp(step.degree) != step.degree => self.error(
-                        &at,
-                        ProblemKind::StepOutsideLimits {
-                            degree: step.degree,
-                            servo_id: servo.id,
-                            min_deg: servo.min_deg,
-                            max_deg: servo.max_deg,
-                        },
-                    ),
-                    Some(_) => {}
-                }
-            }
-        }
-    }
-
-    fn macros(&mut self, project: &Project) {
-        let timing = Timing::new(project);
-        let mut seen = HashSet::new();
-        for item in &project.macros {
-            let at = Location::Macro { macro_id: item.id, caption: item.caption.clone() };
-            self.duplicate(&mut seen, &at, ItemKind::Macro, item.id);
-            self.positive_id(&at, ItemKind::Macro, item.id);
-            self.caption(&at, &item.caption);
-            if item.commands.is_empty() {
-                self.warning(&at, ProblemKind::NoCommands);
-            }
-            let max = max_entries(MacroCommandRecord::WIRE_LEN);
-            if item.commands.len() > max {
-                self.error(&at, ProblemKind::TooManyCommands { count: item.commands.len(), max });
-            }
-            for (index, command) in item.commands.iter().enumerate() {
-                let at = Location::Command { macro_id: item.id, caption: item.caption.clone(), command: index + 1 };
-                self.command(project, &timing, &at, command);
-            }
-        }
-        self.cycles(project);
-    }
-
-    fn command(&mut self, project: &Project, timing: &Timing<'_>, at: &Location, command: &Command) {
-        if !(1..=100).contains(&command.ratio_percent) {
-            self.error(at, ProblemKind::RatioOutOfRange { ratio_percent: command.ratio_percent });
-        }
-        if command.loop_count < 1 {
-            self.error(at, ProblemKind::LoopBelowOne { loop_count: command.loop_count });
-        }
-        match command.run {
-            Run::Action { action_id } if project.action(action_id).is_none() => {
-                self.error(at, ProblemKind::MissingAction { action_id });
-            }
-            Run::Macro { macro_id } if project.macro_by_id(macro_id).is_none() => {
-                self.error(at, ProblemKind::MissingMacro { macro_id });
-            }
-            Run::Delay { delay_ms } if delay_ms < 0 => {
-                self.error(at, ProblemKind::NegativeDelay { delay_ms });
-            }
-            _ => {}
-        }
-        if let Ok(total_ms) = timing.command_total_ms(command)
-            && i32::try_from(total_ms).is_err()
-        {
-            self.error(at, ProblemKind::TotalTooLong { total_ms });
-        }
-    }
-
-    /// Reports each macro cycle once, at the command that closes it.
-    fn cycles(&mut self, project: &Project) {
-        let index: HashMap<i32, usize> =
-            project.macros.iter().enumerate().rev().map(|(position, item)| (item.id, position)).collect();
-        // 0 = not visited, 1 = on the current path, 2 = done.
-        let mut state = vec![0u8; project.macros.len()];
-        let mut path = Vec::new();
-        for start in 0..project.macros.len() {
-            self.visit(project, &index, start, &mut state, &mut path);
-        }
-    }
-
-    fn visit(
-        &mut self,
-        project: &Project,
-        index: &HashMap<i32, usize>,
-        position: usize,
-        state: &mut [u8],
-        path: &mut Vec<usize>,
-    ) {
-        if state[position] != 0 {
-            return;
-        }
-        state[position] = 1;
-        path.push(position);
-        let item = &project.macros[position];
-        for (command_index, command) in item.commands.iter().enumerate() {
-            let Run::Macro { macro_id } = command.run else {
-                continue;
-            };
-            let Some(&next) = index.get(&macro_id) else {
-                continue;
-            };
-            if state[next] == 1 {
-                let from = path.iter().position(|&p| p == next).unwrap_or(0);
-                let mut cycle: Vec<i32> = path[from..].iter().map(|&p| project.macros[p].id).collect();
-                cycle.push(macro_id);
-                let at =
-                    Location::Command { macro_id: item.id, caption: item.caption.clone(), command: command_index + 1 };
-                self.error(&at, ProblemKind::MacroCycle { path: cycle });
-            } else {
-                self.visit(project, index, next, state, path);
-            }
-        }
-        path.pop();
-        state[position] = 2;
-    }
-
-    fn tables(&mut self, project: &Project) {
-        let mut seen = HashSet::new();
-        for table in &project.joystick_tables {
-            let at = Location::Table { table_id: table.id, caption: table.caption.clone() };
-            self.duplicate(&mut seen, &at, ItemKind::Table, table.id);
-            self.positive_id(&at, ItemKind::Table, table.id);
-            self.caption(&at, &table.caption);
-            let max = max_entries(ButtonRecord::WIRE_LEN);
-            if table.buttons.len() > max {
-                self.error(&at, ProblemKind::TooManyButtons { count: table.buttons.len(), max });
-            }
-            let mut buttons = HashSet::new();
-            for button in &table.buttons {
-                let at = Location::Button {
-                    table_id: table.id,
-                    table_caption: table.caption.clone(),
-                    button_id: button.id,
-                    caption: button.caption.clone(),
-                };
-                if !buttons.insert(button.id) {
-                    self.error(&at, ProblemKind::DuplicateButton { button_id: button.id });
-                }
-                self.caption(&at, &button.caption);
-                let bindings = [
-                    (ButtonSlot::Press, button.press_macro),
-                    (ButtonSlot::LongPress, button.long_press_macro),
-                    (ButtonSlot::Release, button.release_macro),
-                ];
-                for (slot, macro_id) in bindings {
-                    if let Some(macro_id) = macro_id
-                        && project.macro_by_id(macro_id).is_none()
-                    {
-                        self.error(&at, ProblemKind::MissingButtonMacro { slot, macro_id });
-                    }
-                }
-                if bindings.iter().all(|(_, macro_id)| macro_id.is_none()) {
-                    self.warning(&at, ProblemKind::ButtonRunsNothing);
-                }
-            }
-        }
-        if let Some(table_id) = project.active_table
-            && project.table(table_id).is_none()
-        {
-            self.error(&Location::Project, ProblemKind::MissingActiveTable { table_id });
-        }
-    }
 }

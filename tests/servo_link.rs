@@ -7,15 +7,16 @@ mod common;
 
 use std::time::Duration;
 
-use common::rich_project;
-use servo_studio::device::board::{
-    Board, BoardEvent, BoardImage, Cancel, ImportOptions, Item, OpError, Progress, RequestError, SessionConfig, export,
-    import,
+use common::{exported, rich_project};
+use servo_studio::device::servo::DEFAULT_BAUD;
+use servo_studio::device::servo::{
+    Cancel, ImportOptions, Item, OpError, Progress, RequestError, ServoBoard, ServoEvent, ServoImage, SessionConfig,
+    export, import,
 };
-use servo_studio::link::{DEFAULT_BAUD, LinkEvent, PortName, no_waker};
-use servo_studio::project::{self, Project};
-use servo_studio::protocol::board::Message;
-use servo_studio::sim::{BoardSim, Faults, SimConfig, SimHandle, spawn_pty, spawn_tcp};
+use servo_studio::link::{LinkEvent, PortName, no_waker};
+use servo_studio::project::{self, ServoProject};
+use servo_studio::protocol::servo::Message;
+use servo_studio::sim::{Faults, ServoSim, SimConfig, SimHandle, spawn_pty, spawn_tcp};
 
 #[derive(Clone, Copy, Debug)]
 enum Transport {
@@ -23,22 +24,22 @@ enum Transport {
     Tcp,
 }
 
-fn start(transport: Transport, config: SimConfig, preload: &Project) -> SimHandle {
-    let board = BoardSim::new(config, BoardImage::from_project(preload).unwrap());
+fn start(transport: Transport, config: SimConfig, preload: &ServoProject) -> SimHandle {
+    let board = ServoSim::new(config, ServoImage::from_project(preload).unwrap());
     match transport {
         Transport::Pty => spawn_pty(board, no_waker()).unwrap(),
         Transport::Tcp => spawn_tcp(board, "127.0.0.1:0".parse().unwrap(), no_waker()).unwrap(),
     }
 }
 
-fn connect(sim: &SimHandle, response_timeout: Duration) -> Board {
+fn connect(sim: &SimHandle, response_timeout: Duration) -> ServoBoard {
     let config = SessionConfig { response_timeout, ..SessionConfig::default() };
-    Board::connect(&PortName::parse(&sim.port_name).unwrap(), DEFAULT_BAUD, config, no_waker()).unwrap()
+    ServoBoard::connect(&PortName::parse(&sim.port_name).unwrap(), DEFAULT_BAUD, config, no_waker()).unwrap()
 }
 
 fn quiet(_: &Progress) {}
 
-fn export_from(transport: Transport, config: SimConfig, preload: &Project) -> Project {
+fn export_from(transport: Transport, config: SimConfig, preload: &ServoProject) -> ServoProject {
     let sim = start(transport, config, preload);
     let board = connect(&sim, Duration::from_secs(2));
     export(&board.requester(), &mut quiet, &Cancel::never()).unwrap()
@@ -47,22 +48,22 @@ fn export_from(transport: Transport, config: SimConfig, preload: &Project) -> Pr
 #[test]
 fn export_reproduces_a_rich_project_exactly_over_a_pty() {
     let original = rich_project();
-    assert_eq!(project::validate(&original), []);
-    assert_eq!(export_from(Transport::Pty, SimConfig::default(), &original), original);
+    assert_eq!(project::validate_servo(&original), []);
+    assert_eq!(export_from(Transport::Pty, SimConfig::default(), &original), exported(original));
 }
 
 #[test]
 fn export_reproduces_a_rich_project_exactly_over_tcp() {
     let original = rich_project();
-    assert_eq!(export_from(Transport::Tcp, SimConfig::default(), &original), original);
+    assert_eq!(export_from(Transport::Tcp, SimConfig::default(), &original), exported(original));
 }
 
 fn import_then_export(transport: Transport) {
-    let sim = start(transport, SimConfig::default(), &Project { project_id: 5, ..Project::default() });
+    let sim = start(transport, SimConfig::default(), &ServoProject { project_id: 5, ..ServoProject::default() });
     let board = connect(&sim, Duration::from_secs(2));
     let requester = board.requester();
     let backups = tempfile::tempdir().unwrap();
-    let options = ImportOptions { backup_dir: Some(backups.path().to_path_buf()), verify: true };
+    let options = ImportOptions { backup_dir: Some(backups.path().to_path_buf()), verify: true, force: false };
     let mut seen = Vec::new();
     let report =
         import(&requester, &rich_project(), &options, &mut |p: &Progress| seen.push(p.clone()), &Cancel::never())
@@ -70,15 +71,15 @@ fn import_then_export(transport: Transport) {
     assert!(report.verified);
     // clear, project id, servo parameters, 3 actions, 2 macros, 2 tables, active table
     assert_eq!(report.written, 11);
-    let last_write = seen.iter().rev().find(|p| p.phase == servo_studio::device::board::Phase::Write).unwrap();
+    let last_write = seen.iter().rev().find(|p| p.phase == servo_studio::device::servo::Phase::Write).unwrap();
     assert_eq!((last_write.done, last_write.total), (11, 11));
 
     // The backup holds what the board had before: project 5, nothing else.
     let backup = report.backup.unwrap();
     assert!(backup.file_name().unwrap().to_str().unwrap().starts_with("board-backup-"));
-    assert_eq!(project::load(&backup).unwrap(), Project { project_id: 5, ..Project::default() });
+    assert_eq!(project::load(&backup).unwrap().servo, ServoProject { project_id: 5, ..ServoProject::default() });
 
-    assert_eq!(export(&requester, &mut quiet, &Cancel::never()).unwrap(), rich_project());
+    assert_eq!(export(&requester, &mut quiet, &Cancel::never()).unwrap(), exported(rich_project()));
 }
 
 #[test]
@@ -102,12 +103,12 @@ fn garbage_and_interleaved_button_events_do_not_disturb_an_export() {
         requester.request(Message::SubscribeButtonEventRequest { subscribe: true }).unwrap(),
         Message::SubscribeButtonEventResponse { ok: true }
     );
-    assert_eq!(export(&requester, &mut quiet, &Cancel::never()).unwrap(), rich_project());
+    assert_eq!(export(&requester, &mut quiet, &Cancel::never()).unwrap(), exported(rich_project()));
     let buttons: Vec<u32> = board
         .events()
         .try_iter()
         .filter_map(|event| match event {
-            LinkEvent::Driver(BoardEvent::Button { button_id, .. }) => Some(button_id),
+            LinkEvent::Driver(ServoEvent::Button { button_id, .. }) => Some(button_id),
             _ => None,
         })
         .collect();
@@ -121,15 +122,15 @@ fn dropped_and_corrupted_responses_are_retried() {
     let faults = Faults { drop_every: Some(4), corrupt_every: Some(7), ..Faults::default() };
     let sim = start(Transport::Tcp, SimConfig { faults, ..SimConfig::default() }, &rich_project());
     let board = connect(&sim, Duration::from_millis(150));
-    assert_eq!(export(&board.requester(), &mut quiet, &Cancel::never()).unwrap(), rich_project());
+    assert_eq!(export(&board.requester(), &mut quiet, &Cancel::never()).unwrap(), exported(rich_project()));
 }
 
 #[test]
 fn a_refused_add_stops_the_import_naming_the_item() {
     let faults = Faults { refuse_add: vec![42], ..Faults::default() };
-    let sim = start(Transport::Pty, SimConfig { faults, ..SimConfig::default() }, &Project::default());
+    let sim = start(Transport::Pty, SimConfig { faults, ..SimConfig::default() }, &ServoProject::default());
     let board = connect(&sim, Duration::from_secs(2));
-    let options = ImportOptions { backup_dir: None, verify: true };
+    let options = ImportOptions { backup_dir: None, verify: true, force: false };
     let error = import(&board.requester(), &rich_project(), &options, &mut quiet, &Cancel::never()).unwrap_err();
     assert!(
         matches!(&error, OpError::Refused { item } if *item == Item::Action { id: 42, caption: "揮手".into() }),
@@ -143,10 +144,10 @@ fn a_project_too_large_for_the_board_is_refused_before_anything_is_cleared() {
     let sim = start(
         Transport::Tcp,
         SimConfig { total_memory_bytes: 1000, ..SimConfig::default() },
-        &Project { project_id: 9, ..Project::default() },
+        &ServoProject { project_id: 9, ..ServoProject::default() },
     );
     let board = connect(&sim, Duration::from_secs(2));
-    let options = ImportOptions { backup_dir: None, verify: true };
+    let options = ImportOptions { backup_dir: None, verify: true, force: false };
     let error = import(&board.requester(), &rich_project(), &options, &mut quiet, &Cancel::never()).unwrap_err();
     assert!(matches!(error, OpError::DoesNotFit { total_bytes: 1000, .. }), "{error:?}");
     // Nothing was cleared.
@@ -160,10 +161,10 @@ fn an_invalid_project_is_refused_before_anything_is_cleared() {
     let board = connect(&sim, Duration::from_secs(2));
     let mut broken = rich_project();
     broken.macros[0].commands[0].ratio_percent = 0;
-    let options = ImportOptions { backup_dir: None, verify: true };
+    let options = ImportOptions { backup_dir: None, verify: true, force: false };
     let error = import(&board.requester(), &broken, &options, &mut quiet, &Cancel::never()).unwrap_err();
     assert!(error.to_string().contains("ratio 0 % is outside 1..=100"), "{error}");
-    assert_eq!(export(&board.requester(), &mut quiet, &Cancel::never()).unwrap(), rich_project());
+    assert_eq!(export(&board.requester(), &mut quiet, &Cancel::never()).unwrap(), exported(rich_project()));
 }
 
 #[test]
@@ -174,7 +175,7 @@ fn a_disconnect_mid_import_is_a_clear_error_and_the_backup_is_whole() {
     let sim = start(Transport::Pty, SimConfig { faults, ..SimConfig::default() }, &rich_project());
     let board = connect(&sim, Duration::from_secs(2));
     let backups = tempfile::tempdir().unwrap();
-    let options = ImportOptions { backup_dir: Some(backups.path().to_path_buf()), verify: true };
+    let options = ImportOptions { backup_dir: Some(backups.path().to_path_buf()), verify: true, force: false };
     let mut fresh = rich_project();
     fresh.project_id = 1;
     let error = import(&board.requester(), &fresh, &options, &mut quiet, &Cancel::never()).unwrap_err();
@@ -187,7 +188,7 @@ fn a_disconnect_mid_import_is_a_clear_error_and_the_backup_is_whole() {
     assert!(error.to_string().contains("the link to the board was lost"), "{error}");
     let files: Vec<_> = std::fs::read_dir(backups.path()).unwrap().map(|entry| entry.unwrap().path()).collect();
     assert_eq!(files.len(), 1, "one backup, no temporary file: {files:?}");
-    assert_eq!(project::load(&files[0]).unwrap(), rich_project());
+    assert_eq!(project::load(&files[0]).unwrap().servo, exported(rich_project()));
     // And the link reports its end.
     let ended = board
         .events()

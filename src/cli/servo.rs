@@ -1,4 +1,4 @@
-//! The commands that talk to a board, and the emulated board's runner.
+//! The commands that talk to a servo board, and the emulated servo board's runner.
 
 use std::io::{BufRead, IsTerminal, Write};
 use std::net::SocketAddr;
@@ -10,12 +10,12 @@ use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 
 use super::PortArgs;
-use servo_studio::device::board::{
-    self as device, Board, BoardImage, Cancel, ImportOptions, Phase, Progress, Requester, SessionConfig,
+use servo_studio::device::servo::{
+    self as device, Cancel, ImportOptions, Phase, Progress, Requester, ServoBoard, ServoImage, SessionConfig,
 };
 use servo_studio::link::{self, LinkEvent, PortName, no_waker};
-use servo_studio::project;
-use servo_studio::sim::{self, BoardSim, Faults, SimConfig};
+use servo_studio::project::{self, Family, Project};
+use servo_studio::sim::{self, Faults, ServoSim, SimConfig};
 
 /// `servo-studio sim` options.
 #[derive(Debug, Args)]
@@ -47,9 +47,9 @@ fn session_config(port: &PortArgs) -> SessionConfig {
     SessionConfig { response_timeout: Duration::from_millis(port.timeout_ms), ..SessionConfig::default() }
 }
 
-fn connect(port: &PortArgs) -> anyhow::Result<Board> {
+fn connect(port: &PortArgs) -> anyhow::Result<ServoBoard> {
     let name = PortName::parse(&port.port)?;
-    Ok(Board::connect(&name, port.baud, session_config(port), no_waker())?)
+    Ok(ServoBoard::connect(&name, port.baud(Family::Servo), session_config(port), no_waker())?)
 }
 
 /// A progress bar on stderr (hidden when stderr is not a terminal).
@@ -90,10 +90,17 @@ pub fn sim(args: &SimArgs) -> anyhow::Result<()> {
         Some(path) => {
             let loaded =
                 project::load(path).with_context(|| format!("cannot preload the board from {}", path.display()))?;
-            BoardImage::from_project(&loaded)
+            if loaded.family != Family::Servo {
+                bail!(
+                    "{} is a {} project; the emulated servo board takes a servo project",
+                    path.display(),
+                    loaded.family
+                );
+            }
+            ServoImage::from_project(&loaded.servo)
                 .with_context(|| format!("{} cannot be stored on a board", path.display()))?
         }
-        None => BoardImage::default(),
+        None => ServoImage::default(),
     };
     let config = SimConfig {
         total_memory_bytes: args.memory,
@@ -102,7 +109,7 @@ pub fn sim(args: &SimArgs) -> anyhow::Result<()> {
         faults: args.faults.clone(),
         ..SimConfig::default()
     };
-    let board = BoardSim::new(config, image);
+    let board = ServoSim::new(config, image);
     let handle = match args.tcp {
         Some(address) => sim::spawn_tcp(board, address, no_waker())?,
         None => spawn_pty(board)?,
@@ -123,12 +130,12 @@ pub fn sim(args: &SimArgs) -> anyhow::Result<()> {
 }
 
 #[cfg(unix)]
-fn spawn_pty(board: BoardSim) -> anyhow::Result<sim::SimHandle> {
+fn spawn_pty(board: ServoSim) -> anyhow::Result<sim::SimHandle> {
     Ok(sim::spawn_pty(board, no_waker())?)
 }
 
 #[cfg(not(unix))]
-fn spawn_pty(_board: BoardSim) -> anyhow::Result<sim::SimHandle> {
+fn spawn_pty(_board: ServoSim) -> anyhow::Result<sim::SimHandle> {
     bail!("pseudo-terminals exist only on Linux and macOS; use --tcp 127.0.0.1:5000")
 }
 
@@ -139,7 +146,7 @@ pub fn export(port: &PortArgs, out: &Path) -> anyhow::Result<()> {
     bar.finish_and_clear();
     let exported =
         exported.with_context(|| format!("export from {} failed; {} was not written", port.port, out.display()))?;
-    project::save(out, &exported)?;
+    project::save(out, &Project::servo(exported.clone()))?;
     eprintln!(
         "exported project {} ({} servos, {} actions, {} macros, {} joystick tables) to {}",
         exported.project_id,
@@ -172,16 +179,34 @@ fn confirm(port: &str, input: &Path, backup: bool) -> anyhow::Result<()> {
     Ok(())
 }
 
-pub fn import(port: &PortArgs, input: &Path, yes: bool, backup_dir: Option<PathBuf>) -> anyhow::Result<()> {
-    let loaded = project::load(input).with_context(|| format!("cannot read {}", input.display()))?;
+/// How `import` runs.
+#[derive(Debug)]
+pub struct ImportChoices {
+    /// Do not ask.
+    pub yes: bool,
+    /// Write even when validation finds errors.
+    pub force: bool,
+    /// Where the backup goes; `None` = no backup.
+    pub backup_dir: Option<PathBuf>,
+}
+
+pub fn import(port: &PortArgs, input: &Path, loaded: &Project, choices: ImportChoices) -> anyhow::Result<()> {
+    let ImportChoices { yes, force, backup_dir } = choices;
+    // Refuse before connecting and before asking: nothing is written either way.
+    let problems: Vec<project::Problem> =
+        project::validate_servo(&loaded.servo).into_iter().filter(|p| p.severity == project::Severity::Error).collect();
+    if !problems.is_empty() && !force {
+        return Err(device::OpError::Invalid { problems })
+            .with_context(|| format!("{} was not imported into {}", input.display(), port.port));
+    }
     let board = connect(port)?;
     if !yes {
         confirm(&port.port, input, backup_dir.is_some())?;
     }
-    let options = ImportOptions { backup_dir, verify: true };
+    let options = ImportOptions { backup_dir, verify: true, force };
     let (bar, mut update) = progress_bar();
     let requester: Requester = board.requester();
-    let report = device::import(&requester, &loaded, &options, &mut update, &Cancel::never());
+    let report = device::import(&requester, &loaded.servo, &options, &mut update, &Cancel::never());
     bar.finish_and_clear();
     let report = report.with_context(|| format!("import of {} into {} failed", input.display(), port.port))?;
     if let Some(backup) = &report.backup {
@@ -199,7 +224,7 @@ pub fn info(port: &PortArgs) -> anyhow::Result<()> {
         Some(total) => println!("memory: {} of {total} bytes free", info.free_bytes),
         None => println!("memory: {} bytes free", info.free_bytes),
     }
-    println!("battery: {}‰", info.battery_permil);
+    println!("battery: {}", device::battery_text(info.battery_permil));
     println!("servos: {}", info.servos.len());
     for servo in &info.servos {
         println!(

@@ -8,7 +8,7 @@
 use std::collections::VecDeque;
 use std::time::{Duration, Instant};
 
-use crate::protocol::board::{
+use crate::protocol::servo::{
     ContentError, DecoderEvent, EncodeError, Frame, FrameDecoder, Message, ServoMove, SkipReason,
 };
 
@@ -119,7 +119,7 @@ pub enum SessionEvent {
         /// `buttonID`.
         button_id: u32,
         /// What happened.
-        event: crate::protocol::board::ButtonEvent,
+        event: crate::protocol::servo::ButtonEvent,
     },
     /// A frame that answers no pending request.
     Unsolicited(Message),
@@ -400,7 +400,7 @@ impl Session {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::protocol::board::ButtonEvent;
+    use crate::protocol::servo::ButtonEvent;
 
     fn config() -> SessionConfig {
         SessionConfig {

@@ -4,7 +4,7 @@
 use super::client::Requester;
 use super::item::Item;
 use super::ops::OpError;
-use crate::protocol::board::{AngleUnit, Message, ServoMove, ServoStatus, ServoSwitches};
+use crate::protocol::servo::{AngleUnit, Message, ServoMove, ServoStatus, ServoSwitches};
 
 fn ask(requester: &Requester, item: &Item, message: Message) -> Result<Message, OpError> {
     requester.request(message).map_err(|source| OpError::Request { item: item.clone(), source })

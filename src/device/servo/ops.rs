@@ -8,11 +8,11 @@ use std::path::{Path, PathBuf};
 use crossbeam_channel::{Receiver, Sender};
 
 use super::client::Requester;
-use super::image::{BoardImage, ImageError};
+use super::image::{ImageError, ServoImage};
 use super::item::Item;
 use super::session::RequestError;
-use crate::project::{self, Problem, Project, SaveError};
-use crate::protocol::board::{ALL_SERVOS, EncodeError, Message, ServoStatus};
+use crate::project::{self, Problem, Project, SaveError, ServoProject};
+use crate::protocol::servo::{ALL_SERVOS, EncodeError, Message, ServoStatus};
 
 /// Which part of an operation is running.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -88,7 +88,11 @@ pub enum OpError {
         item: Item,
     },
     /// The project has validation errors; nothing was written.
-    #[error("the project has {} error(s); nothing was written:\n{}", .problems.len(), list(.problems))]
+    #[error(
+        "the project has {} error(s); nothing was written:\n{}\nFix them, or restore it as it is with `import --force` (Upload anyway in the editor)",
+        .problems.len(),
+        list(.problems)
+    )]
     Invalid {
         /// The errors.
         problems: Vec<Problem>,
@@ -177,7 +181,7 @@ pub fn read_image(
     requester: &Requester,
     progress: &mut dyn FnMut(&Progress),
     cancel: &Cancel,
-) -> Result<BoardImage, OpError> {
+) -> Result<ServoImage, OpError> {
     read_image_as(requester, Phase::Read, progress, cancel)
 }
 
@@ -186,10 +190,10 @@ fn read_image_as(
     phase: Phase,
     progress: &mut dyn FnMut(&Progress),
     cancel: &Cancel,
-) -> Result<BoardImage, OpError> {
+) -> Result<ServoImage, OpError> {
     use Message as M;
     let mut run = Run { requester, progress, cancel, phase, done: 0, total: 6 };
-    let mut image = BoardImage::default();
+    let mut image = ServoImage::default();
 
     let item = Item::ProjectId;
     image.project_id = match run.step(item.clone(), M::QueryProjectIdRequest)? {
@@ -260,7 +264,11 @@ fn read_image_as(
 }
 
 /// Reads the whole board into a project.
-pub fn export(requester: &Requester, progress: &mut dyn FnMut(&Progress), cancel: &Cancel) -> Result<Project, OpError> {
+pub fn export(
+    requester: &Requester,
+    progress: &mut dyn FnMut(&Progress),
+    cancel: &Cancel,
+) -> Result<ServoProject, OpError> {
     Ok(read_image(requester, progress, cancel)?.to_project())
 }
 
@@ -271,6 +279,10 @@ pub struct ImportOptions {
     pub backup_dir: Option<PathBuf>,
     /// Read everything back afterwards and compare.
     pub verify: bool,
+    /// Write even when validation finds errors (restoring a backup holding
+    /// content Servo Studio would not author). What cannot be encoded at all
+    /// is still refused.
+    pub force: bool,
 }
 
 /// What an import did.
@@ -299,23 +311,23 @@ pub fn backup_path(folder: &Path, project_id: i32) -> PathBuf {
 }
 
 /// Writes `project` onto the board. Before anything is cleared: validates it
-/// (errors stop the import), checks that it fits the board's memory, and saves
+/// (errors stop the import unless `force`), checks that it fits the board's memory, and saves
 /// a backup of the board. Then clears and writes in the order of the import
 /// conversation, and verifies by reading everything back.
 pub fn import(
     requester: &Requester,
-    project: &Project,
+    project: &ServoProject,
     options: &ImportOptions,
     progress: &mut dyn FnMut(&Progress),
     cancel: &Cancel,
 ) -> Result<ImportReport, OpError> {
     use Message as M;
     let problems: Vec<Problem> =
-        project::validate(project).into_iter().filter(|p| p.severity == project::Severity::Error).collect();
-    if !problems.is_empty() {
+        project::validate_servo(project).into_iter().filter(|p| p.severity == project::Severity::Error).collect();
+    if !problems.is_empty() && !options.force {
         return Err(OpError::Invalid { problems });
     }
-    let image = BoardImage::from_project(project)?;
+    let image = ServoImage::from_project(project)?;
     let needed_bytes = image.footprint_bytes()?;
 
     // The fit check reads; the write phase proper starts after the backup.
@@ -334,7 +346,7 @@ pub fn import(
         Some(folder) => {
             let previous = read_image_as(requester, Phase::Read, progress, cancel)?.to_project();
             let path = backup_path(folder, previous.project_id);
-            project::save(&path, &previous).map_err(OpError::Backup)?;
+            project::save(&path, &Project::servo(previous)).map_err(OpError::Backup)?;
             Some(path)
         }
         None => None,
@@ -396,7 +408,7 @@ pub fn import(
 
 /// A board's status at a glance.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub struct BoardInfo {
+pub struct ServoInfo {
     /// `projectID` (0 = none).
     pub project_id: i32,
     /// Free memory in bytes.
@@ -410,10 +422,10 @@ pub struct BoardInfo {
 }
 
 /// Reads project id, memory, battery and the servos' states.
-pub fn board_info(requester: &Requester) -> Result<BoardInfo, OpError> {
+pub fn board_info(requester: &Requester) -> Result<ServoInfo, OpError> {
     let project_id = requester.project_id()?;
     let (free_bytes, total_bytes) = requester.memory()?;
     let battery_permil = requester.battery_permil()?;
     let servos = requester.query_servos(ALL_SERVOS)?;
-    Ok(BoardInfo { project_id, free_bytes, total_bytes, battery_permil, servos })
+    Ok(ServoInfo { project_id, free_bytes, total_bytes, battery_permil, servos })
 }

@@ -2,7 +2,7 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::needless_pass_by_value)]
 
-use servo_studio::protocol::board::{
+use servo_studio::protocol::servo::{
     ActionRecord, ButtonEvent, ButtonRecord, CommandType, ContentError, EncodeError, Frame, FrameDecoder,
     JoystickTableRecord, MESSAGE_TABLE, MacroCommandRecord, MacroRecord, Message, ServoMove, ServoStatus,
     ServoSwitches, is_request_id, message_name,
@@ -18,7 +18,7 @@ fn assert_golden(message: Message, golden: &str) {
     assert_eq!(message.encode().unwrap(), bytes, "encoding {}", message.name());
     let mut decoder = FrameDecoder::new();
     decoder.push(&bytes);
-    let Some(servo_studio::protocol::board::DecoderEvent::Frame(frame)) = decoder.poll() else {
+    let Some(servo_studio::protocol::servo::DecoderEvent::Frame(frame)) = decoder.poll() else {
         panic!("golden bytes of {} do not decode to a frame", message.name());
     };
     assert_eq!(Message::from_frame(&frame).unwrap(), message);

@@ -6,15 +6,15 @@ mod common;
 
 use std::time::{Duration, Instant};
 
-use servo_studio::device::board::{Board, BoardEvent, BoardImage, OpError, SessionConfig};
+use servo_studio::device::servo::{OpError, ServoBoard, ServoEvent, ServoImage, SessionConfig};
 use servo_studio::link::{LinkEvent, no_waker};
-use servo_studio::protocol::board::{ALL_SERVOS, AngleUnit, ButtonEvent, ServoMove, ServoSwitches};
-use servo_studio::sim::{BoardSim, SimCommand, SimConfig, SimEvent, SimHandle, spawn_in_memory};
+use servo_studio::protocol::servo::{ALL_SERVOS, AngleUnit, ButtonEvent, ServoMove, ServoSwitches};
+use servo_studio::sim::{ServoSim, SimCommand, SimConfig, SimEvent, SimHandle, spawn_in_memory};
 
-fn start() -> (SimHandle, Board) {
-    let image = BoardImage::from_project(&common::rich_project()).unwrap();
-    let (sim, connection) = spawn_in_memory(BoardSim::new(SimConfig::default(), image), no_waker()).unwrap();
-    let board = Board::over(connection, SessionConfig::default(), no_waker()).unwrap();
+fn start() -> (SimHandle, ServoBoard) {
+    let image = ServoImage::from_project(&common::rich_project()).unwrap();
+    let (sim, connection) = spawn_in_memory(ServoSim::new(SimConfig::default(), image), no_waker()).unwrap();
+    let board = ServoBoard::over(connection, SessionConfig::default(), no_waker()).unwrap();
     (sim, board)
 }
 
@@ -87,7 +87,7 @@ fn subscribed_button_events_arrive() {
     board.requester().subscribe_buttons(true).unwrap();
     sim.command(SimCommand::Button { button_id: 0x8000_0001, event: ButtonEvent::LongPress });
     let event = board.events().recv_timeout(Duration::from_secs(5)).unwrap();
-    assert_eq!(event, LinkEvent::Driver(BoardEvent::Button { button_id: 0x8000_0001, event: ButtonEvent::LongPress }));
+    assert_eq!(event, LinkEvent::Driver(ServoEvent::Button { button_id: 0x8000_0001, event: ButtonEvent::LongPress }));
 }
 
 #[test]

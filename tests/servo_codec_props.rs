@@ -4,7 +4,7 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::needless_pass_by_value)]
 
 use proptest::prelude::*;
-use servo_studio::protocol::board::{
+use servo_studio::protocol::servo::{
     ActionRecord, AngleUnit, ButtonEvent, ButtonRecord, CommandType, DecoderEvent, Frame, FrameDecoder,
     JoystickTableRecord, ListEntry, MAGIC, MESSAGE_TABLE, MacroCommandRecord, MacroRecord, Message, ServoMove,
     ServoParameter, ServoStatus, ServoSwitches, TransmissionMode, truncate_utf8,

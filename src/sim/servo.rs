@@ -7,9 +7,9 @@ use std::collections::VecDeque;
 use std::time::{Duration, Instant};
 
 use super::faults::{Faults, hits};
-use crate::device::board::BoardImage;
+use crate::device::servo::ServoImage;
 use crate::link::Driver;
-use crate::protocol::board::{
+use crate::protocol::servo::{
     ALL_SERVOS, AngleUnit, ButtonEvent, CommandType, DecoderEvent, FrameDecoder, ListEntry, Message, ServoMove,
     ServoStatus, ServoSwitches, TransmissionMode,
 };
@@ -99,9 +99,9 @@ impl ServoState {
 
 /// The emulated board (see the module documentation).
 #[derive(Debug)]
-pub struct BoardSim {
+pub struct ServoSim {
     config: SimConfig,
-    image: BoardImage,
+    image: ServoImage,
     servos: Vec<ServoState>,
     mode: TransmissionMode,
     subscribed: bool,
@@ -120,9 +120,9 @@ pub struct BoardSim {
     closed: bool,
 }
 
-impl BoardSim {
+impl ServoSim {
     /// A board with the given behaviour, storing `image`.
-    pub fn new(config: SimConfig, image: BoardImage) -> Self {
+    pub fn new(config: SimConfig, image: ServoImage) -> Self {
         let now = Instant::now();
         let mut ids: Vec<u8> = config.attached_servos.clone();
         ids.extend(image.servos.iter().map(|servo| servo.servo_id));
@@ -161,7 +161,7 @@ impl BoardSim {
     }
 
     /// What the board stores now.
-    pub fn image(&self) -> &BoardImage {
+    pub fn image(&self) -> &ServoImage {
         &self.image
     }
 
@@ -183,7 +183,7 @@ impl BoardSim {
         i32::try_from(self.image.footprint_bytes().unwrap_or(usize::MAX)).unwrap_or(i32::MAX)
     }
 
-    fn fits_after(&self, change: impl FnOnce(&mut BoardImage)) -> bool {
+    fn fits_after(&self, change: impl FnOnce(&mut ServoImage)) -> bool {
         let mut trial = self.image.clone();
         change(&mut trial);
         trial.footprint_bytes().is_ok_and(|bytes| bytes <= usize::try_from(self.config.total_memory_bytes).unwrap_or(0))
@@ -298,7 +298,7 @@ impl BoardSim {
                 Some(M::TransmissionModeSettingResponse { mode: self.mode })
             }
             M::ClearAllDataRequest => {
-                *image = BoardImage::default();
+                *image = ServoImage::default();
                 Some(M::ClearAllDataResponse { ok: true })
             }
             M::QueryMemorySizeRequest => Some(M::QueryMemorySizeResponse {
@@ -465,7 +465,7 @@ impl BoardSim {
         &mut self,
         record: &T,
         id: impl Fn(&T) -> i32 + Copy,
-        list: impl Fn(&mut BoardImage) -> &mut Vec<T> + Copy,
+        list: impl Fn(&mut ServoImage) -> &mut Vec<T> + Copy,
     ) -> bool {
         if id(record) == 0 || self.refused(id(record)) {
             return false;
@@ -528,7 +528,7 @@ fn upsert<T>(items: &mut Vec<T>, item: T, id: impl Fn(&T) -> i32) {
     }
 }
 
-fn merge_servos(image: &mut BoardImage, servos: &[crate::protocol::board::ServoParameter]) {
+fn merge_servos(image: &mut ServoImage, servos: &[crate::protocol::servo::ServoParameter]) {
     for servo in servos {
         match image.servos.iter_mut().find(|s| s.servo_id == servo.servo_id) {
             Some(existing) => *existing = servo.clone(),
@@ -537,7 +537,7 @@ fn merge_servos(image: &mut BoardImage, servos: &[crate::protocol::board::ServoP
     }
 }
 
-impl Driver for BoardSim {
+impl Driver for ServoSim {
     type Command = SimCommand;
     type Event = SimEvent;
 
@@ -608,10 +608,10 @@ impl Driver for BoardSim {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::protocol::board::{ActionRecord, Frame, MacroRecord, ServoParameter};
+    use crate::protocol::servo::{ActionRecord, Frame, MacroRecord, ServoParameter};
 
     /// Feeds `message` at `now` and returns every response the board sends by `until`.
-    fn ask(sim: &mut BoardSim, now: Instant, message: &Message, until: Instant) -> Vec<Message> {
+    fn ask(sim: &mut ServoSim, now: Instant, message: &Message, until: Instant) -> Vec<Message> {
         sim.handle_input(now, &message.encode().unwrap());
         if let Some(deadline) = sim.poll_timeout().filter(|deadline| *deadline <= until) {
             sim.handle_timeout(deadline);
@@ -638,7 +638,7 @@ mod tests {
     #[test]
     fn servos_move_linearly_over_their_interval() {
         let t0 = Instant::now();
-        let mut sim = BoardSim::new(SimConfig::default(), BoardImage::default());
+        let mut sim = ServoSim::new(SimConfig::default(), ServoImage::default());
         let moves = vec![ServoMove { servo_id: 2, degree: 90, interval_10ms: 100 }];
         assert_eq!(ask(&mut sim, t0, &Message::ExecuteActionRequest { moves }, t0), []);
         let query = Message::QueryServoRequest { servo_id: 2 };
@@ -660,7 +660,7 @@ mod tests {
     fn memory_shrinks_with_what_is_stored_and_a_full_board_refuses() {
         let t0 = Instant::now();
         let config = SimConfig { total_memory_bytes: 100, ..SimConfig::default() };
-        let mut sim = BoardSim::new(config, BoardImage::default());
+        let mut sim = ServoSim::new(config, ServoImage::default());
         assert_eq!(
             ask(&mut sim, t0, &Message::QueryMemorySizeRequest, t0),
             [Message::QueryMemorySizeResponse { free_bytes: 92, total_bytes: Some(100) }]
@@ -686,7 +686,7 @@ mod tests {
     #[test]
     fn failure_responses_for_missing_items() {
         let t0 = Instant::now();
-        let mut sim = BoardSim::new(SimConfig::default(), BoardImage::default());
+        let mut sim = ServoSim::new(SimConfig::default(), ServoImage::default());
         assert_eq!(
             ask(&mut sim, t0, &Message::QueryActionRequest { action_id: 5 }, t0),
             [Message::QueryActionResponse { action: None }]
@@ -704,7 +704,7 @@ mod tests {
     #[test]
     fn a_stored_macro_runs_its_actions_in_time() {
         let t0 = Instant::now();
-        let image = BoardImage {
+        let image = ServoImage {
             servos: vec![ServoParameter { servo_id: 1, adjusted_degree: 0, caption: String::new() }],
             actions: vec![
                 ActionRecord {
@@ -722,14 +722,14 @@ mod tests {
                 macro_id: 9,
                 caption: String::new(),
                 commands: vec![
-                    crate::protocol::board::MacroCommandRecord {
+                    crate::protocol::servo::MacroCommandRecord {
                         command_id: 1,
                         command_type: CommandType::RunAction,
                         ratio_percent: 100,
                         loop_count: 1,
                         total_interval_ms: 500,
                     },
-                    crate::protocol::board::MacroCommandRecord {
+                    crate::protocol::servo::MacroCommandRecord {
                         command_id: 2,
                         command_type: CommandType::RunAction,
                         ratio_percent: 100,
@@ -738,9 +738,9 @@ mod tests {
                     },
                 ],
             }],
-            ..BoardImage::default()
+            ..ServoImage::default()
         };
-        let mut sim = BoardSim::new(SimConfig::default(), image);
+        let mut sim = ServoSim::new(SimConfig::default(), image);
         assert_eq!(
             ask(&mut sim, t0, &Message::ExecuteMacroRequest { macro_id: 9 }, t0),
             [Message::ExecuteMacroResponse { ok: true }]
@@ -756,7 +756,7 @@ mod tests {
     fn a_line_rate_delays_requests_and_responses_by_their_wire_time() {
         let t0 = Instant::now();
         let config = SimConfig { baud: Some(10_000), turnaround: Duration::from_millis(2), ..SimConfig::default() };
-        let mut sim = BoardSim::new(config, BoardImage::default());
+        let mut sim = ServoSim::new(config, ServoImage::default());
         // 9 request bytes at 1 ms each arrive at 9 ms; the 13-byte response leaves
         // after 2 ms of turnaround and 13 ms on the wire: at 24 ms.
         sim.handle_input(t0, &Message::QueryProjectIdRequest.encode().unwrap());
@@ -771,7 +771,7 @@ mod tests {
     #[test]
     fn button_events_only_while_subscribed() {
         let t0 = Instant::now();
-        let mut sim = BoardSim::new(SimConfig::default(), BoardImage::default());
+        let mut sim = ServoSim::new(SimConfig::default(), ServoImage::default());
         sim.handle_command(t0, SimCommand::Button { button_id: 3, event: ButtonEvent::Press });
         assert_eq!(sim.poll_transmit(t0), None);
         ask(&mut sim, t0, &Message::SubscribeButtonEventRequest { subscribe: true }, t0);
@@ -783,7 +783,7 @@ mod tests {
     #[test]
     fn a_released_servo_can_be_turned_by_hand() {
         let t0 = Instant::now();
-        let mut sim = BoardSim::new(SimConfig::default(), BoardImage::default());
+        let mut sim = ServoSim::new(SimConfig::default(), ServoImage::default());
         sim.handle_command(t0, SimCommand::TurnByHand { servo_id: 1, angle: 33 });
         assert_eq!(sim.angle(1, t0), Some(0), "holding torque: it does not give");
         let release =

@@ -40,6 +40,21 @@ pub enum SkipReason {
     },
 }
 
+impl std::fmt::Display for SkipReason {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Garbage => write!(f, "not a frame"),
+            Self::BadChecksum { expected, actual } => {
+                write!(f, "bad checksum: expected 0x{expected:02x}, got 0x{actual:02x}")
+            }
+            Self::LengthTooLong { length, max } => write!(f, "length {length} is over the limit of {max}"),
+            Self::Truncated { expected_len, actual_len } => {
+                write!(f, "cut short: {actual_len} of {expected_len} bytes arrived")
+            }
+        }
+    }
+}
+
 /// What the decoder found in the stream.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum DecoderEvent {

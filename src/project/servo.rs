@@ -4,21 +4,9 @@
 
 use serde::{Deserialize, Serialize};
 
-/// The board family a project is written for.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum BoardKind {
-    /// The servo controller board of `board.md`.
-    #[default]
-    ServoBoard,
-}
-
-/// A whole project: servos, actions, macros and joystick tables.
+/// The servo section of a project: servos, actions, macros and joystick tables.
 #[derive(Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-pub struct Project {
-    /// The board family.
-    #[serde(default)]
-    pub board: BoardKind,
+pub struct ServoProject {
     /// The project id written to the board (30120); 0 means none.
     #[serde(default)]
     pub project_id: i32,
@@ -126,8 +114,9 @@ pub struct Macro {
     pub commands: Vec<Command>,
 }
 
-/// One command of a macro. Its total run time is derived, never stored
-/// (see [`crate::project::Timing`]).
+/// One command of a macro. Its total run time is derived (see
+/// [`crate::project::Timing`]), except that a total read from a board is kept
+/// and written back as it was until the command is edited.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Command {
     /// What the command runs.
@@ -139,6 +128,9 @@ pub struct Command {
     /// Repetitions, 1 or more.
     #[serde(default = "Command::default_loop_count")]
     pub loop_count: i16,
+    /// `totalInterval` as a board stored it, in ms; `None` once edited (then derived).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stored_total_ms: Option<i32>,
 }
 
 impl Command {
@@ -152,7 +144,7 @@ impl Command {
 
     /// A command run once at full speed.
     pub fn once(run: Run) -> Self {
-        Self { run, ratio_percent: 100, loop_count: 1 }
+        Self { run, ratio_percent: 100, loop_count: 1, stored_total_ms: None }
     }
 }
 
@@ -213,7 +205,7 @@ pub struct Button {
     pub uninterruptible: bool,
 }
 
-impl Project {
+impl ServoProject {
     /// The servo with this id.
     pub fn servo(&self, servo_id: u8) -> Option<&Servo> {
         self.servos.iter().find(|servo| servo.id == servo_id)

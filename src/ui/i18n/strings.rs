@@ -1,267 +1,20 @@
-//! The interface's words in English and Traditional Chinese, chosen from the
-//! OS locale and switchable at run time.
+//! Every caption of the interface, in English and Traditional Chinese.
 
-/// A language of the interface.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
-pub enum Language {
-    /// English.
-    #[default]
-    English,
-    /// 繁體中文.
-    TraditionalChinese,
-}
-
-impl Language {
-    /// The language the OS locale asks for: Traditional Chinese for `zh_TW`,
-    /// `zh_HK`, `zh_MO` and `zh-Hant`, English otherwise.
-    pub fn from_locale(locale: &str) -> Self {
-        let locale = locale.to_ascii_lowercase().replace('-', "_");
-        let traditional = ["zh_tw", "zh_hk", "zh_mo", "zh_hant"];
-        if traditional.iter().any(|prefix| locale.starts_with(prefix)) {
-            Self::TraditionalChinese
-        } else {
-            Self::English
-        }
-    }
-
-    /// The language of this process's locale (`LC_ALL`, `LC_MESSAGES`, `LANG`).
-    pub fn detect() -> Self {
-        ["LC_ALL", "LC_MESSAGES", "LANG"]
-            .iter()
-            .filter_map(|name| std::env::var(name).ok())
-            .find(|value| !value.is_empty())
-            .map_or(Self::English, |locale| Self::from_locale(&locale))
-    }
-
-    /// The words of this language.
-    pub fn strings(self) -> &'static Strings {
-        match self {
-            Self::English => &ENGLISH,
-            Self::TraditionalChinese => &TRADITIONAL_CHINESE,
-        }
-    }
-
-    /// A link error in this language, with what to try.
-    pub fn link_error(self, error: &crate::link::LinkError) -> String {
-        use crate::link::LinkError as E;
-        match (self, error) {
-            (Self::English, _) => error.to_string(),
-            (Self::TraditionalChinese, E::BadPortName { name, .. }) => {
-                format!("無法辨識連接埠名稱 {name:?}：請輸入序列埠（例如 /dev/ttyUSB0 或 COM3）或 tcp://主機:埠號")
-            }
-            (Self::TraditionalChinese, E::NotFound { port }) => {
-                format!("{port}：找不到此連接埠。控制板是否已插上？`servo-studio ports` 會列出電腦看到的連接埠")
-            }
-            (Self::TraditionalChinese, E::PermissionDenied { port }) => format!(
-                "{port}：沒有權限。在 Linux 上請把自己加入 `dialout` 群組（sudo usermod -aG dialout $USER）後重新登入"
-            ),
-            (Self::TraditionalChinese, E::Busy { port }) => {
-                format!("{port}：連接埠使用中。請關閉其他使用它的程式（另一個 Servo Studio、序列埠監看程式）後重試")
-            }
-            (Self::TraditionalChinese, E::Refused { port }) => {
-                format!("{port}：連線被拒。該位址上的橋接程式（或 `servo-studio sim --tcp`）是否正在執行？")
-            }
-            (Self::TraditionalChinese, E::Open { port, source }) => format!("{port}：無法開啟：{source}"),
-        }
-    }
-
-    /// A validation problem in this language.
-    pub fn problem(self, kind: &crate::project::ProblemKind) -> String {
-        use crate::project::{ButtonSlot, ItemKind, ProblemKind as P};
-        if self == Self::English {
-            return kind.to_string();
-        }
-        let item = |kind: &ItemKind| match kind {
-            ItemKind::Servo => "舵機",
-            ItemKind::Action => "動作",
-            ItemKind::Macro => "巨集",
-            ItemKind::Table => "遙控對應表",
-        };
-        match kind {
-            P::CaptionTooLong { bytes } => format!("標題有 {bytes} 個 UTF-8 位元組；控制板最多儲存 32 個"),
-            P::IdNotPositive { kind, id } => {
-                format!("{}編號必須大於或等於 1（0 在控制板上表示「無」），目前為 {id}", item(kind))
-            }
-            P::DuplicateId { kind, id } => format!("{}編號 {id} 重複", item(kind)),
-            P::ReservedServoId => "舵機編號 255 保留給「所有舵機」；請使用 0..=254".to_string(),
-            P::MinAboveMax { min_deg, max_deg } => format!("最小值 {min_deg}° 大於最大值 {max_deg}°"),
-            P::HomeOutsideLimits { home_deg, min_deg, max_deg } => {
-                format!("原點 {home_deg}° 超出範圍 {min_deg}°..{max_deg}°")
-            }
-            P::NoSteps => "沒有步驟：執行它不會有動作".to_string(),
-            P::ServoTwiceInAction { servo_id } => format!("舵機 {servo_id} 在此動作中已有步驟"),
-            P::NegativeInterval { interval_10ms } => format!("時間 {interval_10ms} × 10 ms 為負值"),
-            P::MissingServo { servo_id } => format!("舵機 {servo_id} 不存在"),
-            P::StepOutsideLimits { degree, servo_id, min_deg, max_deg } => {
-                format!("{degree}° 超出舵機 {servo_id} 的範圍 {min_deg}°..{max_deg}°")
-            }
-            P::NoCommands => "沒有指令：執行它不會有動作".to_string(),
-            P::TooManyCommands { count, max } => format!("有 {count} 個指令；一個封包最多容納 {max} 個"),
-            P::RatioOutOfRange { ratio_percent } => format!("速度比例 {ratio_percent} % 不在 1..=100 之間"),
-            P::LoopBelowOne { loop_count } => format!("重複次數 {loop_count} 必須至少為 1"),
-            P::MissingAction { action_id } => format!("動作 {action_id} 不存在"),
-            P::MissingMacro { macro_id } => format!("巨集 {macro_id} 不存在"),
-            P::NegativeDelay { delay_ms } => format!("延遲 {delay_ms} ms 為負值"),
-            P::TotalTooLong { total_ms } => format!("執行 {total_ms} ms，超過控制板能計算的長度（{} ms）", i32::MAX),
-            P::MacroCycle { path } => {
-                let names: Vec<String> = path.iter().map(ToString::to_string).collect();
-                format!("巨集循環 {}：巨集不可呼叫到自己", names.join(" → "))
-            }
-            P::TooManyButtons { count, max } => format!("有 {count} 個按鍵；一個封包最多容納 {max} 個"),
-            P::DuplicateButton { button_id } => format!("按鍵編號 0x{button_id:08x} 在此對應表中重複"),
-            P::MissingButtonMacro { slot, macro_id } => {
-                let event = match slot {
-                    ButtonSlot::Press => "按下",
-                    ButtonSlot::LongPress => "長按",
-                    ButtonSlot::Release => "放開",
-                };
-                format!("{event}巨集 {macro_id} 不存在")
-            }
-            P::ButtonRunsNothing => "不會執行任何巨集".to_string(),
-            P::MissingActiveTable { table_id } => format!("使用中的遙控對應表 {table_id} 不存在"),
-        }
-    }
-
-    /// Where a problem is, in this language.
-    pub fn location(self, location: &crate::project::Location) -> String {
-        use crate::project::Location as L;
-        if self == Self::English {
-            return location.to_string();
-        }
-        match location {
-            L::Project => "專案".into(),
-            L::Servo { servo_id, caption } => format!("舵機 {servo_id} {caption:?}"),
-            L::Action { action_id, caption } => format!("動作 {action_id} {caption:?}"),
-            L::Step { action_id, caption, step } => format!("動作 {action_id} {caption:?}，步驟 {step}"),
-            L::Macro { macro_id, caption } => format!("巨集 {macro_id} {caption:?}"),
-            L::Command { macro_id, caption, command } => format!("巨集 {macro_id} {caption:?}，指令 {command}"),
-            L::Table { table_id, caption } => format!("遙控對應表 {table_id} {caption:?}"),
-            L::Button { table_id, table_caption, button_id, caption } => {
-                format!("遙控對應表 {table_id} {table_caption:?}，按鍵 0x{button_id:08x} {caption:?}")
-            }
-        }
-    }
-
-    /// What an operation step is about, in this language.
-    pub fn item(self, item: &crate::device::board::Item) -> String {
-        use crate::device::board::Item as I;
-        if self == Self::English {
-            return item.to_string();
-        }
-        match item {
-            I::ProjectId => "專案編號".into(),
-            I::ServoParameters => "舵機參數".into(),
-            I::ActionList => "動作清單".into(),
-            I::Action { id, caption } => format!("動作 {id} {caption:?}"),
-            I::MacroList => "巨集清單".into(),
-            I::Macro { id, caption } => format!("巨集 {id} {caption:?}"),
-            I::TableList => "遙控對應表清單".into(),
-            I::Table { id, caption } => format!("遙控對應表 {id} {caption:?}"),
-            I::ActiveTable => "使用中的遙控對應表".into(),
-            I::MemorySize => "記憶體容量".into(),
-            I::ClearAll => "清除所有資料".into(),
-            I::WriteProjectId(id) => format!("專案編號 {id}"),
-            I::AddServoParameters(count) => format!("{count} 個舵機參數"),
-            I::SetActiveTable(id) => format!("使用中的遙控對應表 {id}"),
-            I::MoveServos => "移動舵機".into(),
-            I::RunAction(id) => format!("執行動作 {id}"),
-            I::RunMacro(id) => format!("執行巨集 {id}"),
-            I::ServoSwitches(id) => format!("舵機 {id} 開關"),
-            I::AngleUnit(id) => format!("舵機 {id} 角度單位"),
-            I::ServoState(id) => format!("舵機 {id} 狀態"),
-            I::Battery => "電量".into(),
-            I::ButtonEvents => "按鍵事件".into(),
-        }
-    }
-
-    /// A difference between project and board, in this language.
-    pub fn difference(self, difference: &crate::device::board::Difference) -> String {
-        use crate::device::board::{Difference as D, RecordKind as K};
-        if self == Self::English {
-            return difference.to_string();
-        }
-        let kind = |kind: &K| match kind {
-            K::Servo => "舵機",
-            K::Action => "動作",
-            K::Macro => "巨集",
-            K::Table => "遙控對應表",
-        };
-        match difference {
-            D::ProjectId { expected, actual } => format!("專案編號：應為 {expected}，控制板為 {actual}"),
-            D::Missing { kind: k, id } => format!("{} {id}：控制板上沒有", kind(k)),
-            D::Differs { kind: k, id } => format!("{} {id}：控制板上的內容不同", kind(k)),
-            D::Extra { kind: k, id } => format!("{} {id}：控制板上有，專案中沒有", kind(k)),
-            D::Order { kind: k } => format!("{}：儲存順序不同", kind(k)),
-            D::ActiveTable { expected, actual } => format!("使用中的對應表：應為 {expected}，控制板為 {actual}"),
-        }
-    }
-
-    /// Why a request failed, in this language, with what to try.
-    pub fn request_error(self, error: &crate::device::board::RequestError) -> String {
-        use crate::device::board::RequestError as R;
-        match (self, error) {
-            (Self::English, _) => error.to_string(),
-            (_, R::Timeout { request, attempts }) => {
-                format!("{request}：嘗試 {attempts} 次都沒有回應。請確認控制板已開機、鮑率相符、線材已接好")
-            }
-            (_, R::Malformed { request, error }) => format!("{request}：回應格式錯誤：{error}"),
-            (_, R::Encode(error)) => format!("無法編碼：{error}"),
-            (_, R::Disconnected { reason }) => format!("與控制板的連線已中斷：{reason}"),
-        }
-    }
-
-    /// Why a board operation failed, in this language, with what to try.
-    pub fn op_error(self, error: &crate::device::board::OpError) -> String {
-        use crate::device::board::OpError as O;
-        if self == Self::English {
-            return error.to_string();
-        }
-        match error {
-            O::Request { item, source } => format!("{}：{}", self.item(item), self.request_error(source)),
-            O::Refused { item } => {
-                format!("{}：控制板拒絕了（result 0）。記憶體是否已滿，或項目格式有誤？", self.item(item))
-            }
-            O::ReadFailed { item } => format!("{}：控制板回報讀取失敗", self.item(item)),
-            O::Invalid { problems } => {
-                let list: Vec<String> = problems
-                    .iter()
-                    .map(|p| format!("{}：{}", self.location(&p.location), self.problem(&p.kind)))
-                    .collect();
-                format!("專案有 {} 個錯誤，沒有寫入任何資料：\n{}", problems.len(), list.join("\n"))
-            }
-            O::DoesNotFit { needed_bytes, total_bytes } => {
-                format!(
-                    "專案需要 {needed_bytes} 位元組，但控制板只有 {total_bytes}；沒有寫入任何資料。請移除一些動作或巨集"
-                )
-            }
-            O::Image(error) => format!("此專案無法存入控制板：{error}"),
-            O::Encode(error) => format!("無法編碼：{error}"),
-            O::Backup(error) => format!("備份失敗，因此沒有寫入任何資料：{error}"),
-            O::Verify { differences } => {
-                let list: Vec<String> = differences.iter().map(|d| self.difference(d)).collect();
-                format!("驗證失敗：控制板與專案不同：\n{}", list.join("\n"))
-            }
-            O::Cancelled => "已取消".into(),
-            O::Unexpected { item, response } => format!("{}：非預期的回應 {response}", self.item(item)),
-        }
-    }
-
-    /// The language's own name.
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::English => "English",
-            Self::TraditionalChinese => "繁體中文",
-        }
-    }
-}
+use super::Language;
 
 /// Every caption of the interface.
 #[derive(Debug)]
 pub struct Strings {
     /// The language these words are in.
     pub lang: Language,
+    /// "Hardware" (the family chooser).
+    pub family: &'static str,
     /// "Port".
     pub port: &'static str,
+    /// "Upload anyway".
+    pub upload_anyway: &'static str,
+    /// Hover text of "Upload anyway".
+    pub upload_anyway_hint: &'static str,
     /// "Baud".
     pub baud: &'static str,
     /// "Connect".
@@ -526,8 +279,11 @@ pub struct Strings {
     pub uninterruptible: &'static str,
 }
 
-const ENGLISH: Strings = Strings {
+pub(super) const ENGLISH: Strings = Strings {
     lang: Language::English,
+    family: "Hardware",
+    upload_anyway: "Upload anyway",
+    upload_anyway_hint: "Restore it exactly as it is (e.g. a backup of a board another tool wrote). The board is still compared first, backed up, and verified after writing.",
     port: "Port",
     baud: "Baud",
     connect: "Connect",
@@ -662,8 +418,11 @@ const ENGLISH: Strings = Strings {
     uninterruptible: "Uninterruptible",
 };
 
-const TRADITIONAL_CHINESE: Strings = Strings {
+pub(super) const TRADITIONAL_CHINESE: Strings = Strings {
     lang: Language::TraditionalChinese,
+    family: "硬體",
+    upload_anyway: "仍要上傳",
+    upload_anyway_hint: "照原樣還原（例如其他工具寫入的控制板備份）。仍會先比較、備份控制板，寫入後再驗證。",
     port: "連接埠",
     baud: "鮑率",
     connect: "連線",
@@ -797,25 +556,3 @@ const TRADITIONAL_CHINESE: Strings = Strings {
     on_release: "放開",
     uninterruptible: "不可中斷",
 };
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn link_errors_are_translated_with_what_to_try() {
-        let error = crate::link::LinkError::PermissionDenied { port: "/dev/ttyUSB0".into() };
-        assert!(Language::English.link_error(&error).contains("dialout"));
-        let chinese = Language::TraditionalChinese.link_error(&error);
-        assert!(chinese.starts_with("/dev/ttyUSB0：沒有權限") && chinese.contains("dialout"), "{chinese}");
-    }
-
-    #[test]
-    fn locales_choose_the_language() {
-        assert_eq!(Language::from_locale("zh_TW.UTF-8"), Language::TraditionalChinese);
-        assert_eq!(Language::from_locale("zh-Hant-TW"), Language::TraditionalChinese);
-        assert_eq!(Language::from_locale("zh_HK"), Language::TraditionalChinese);
-        assert_eq!(Language::from_locale("en_US.UTF-8"), Language::English);
-        assert_eq!(Language::from_locale("C"), Language::English);
-    }
-}

@@ -2,17 +2,15 @@
 //! from a project. Both the upload (project → board) and the backup (board →
 //! project) go through here, and so does the emulated board's storage.
 
-use crate::project::{
-    Action, BoardKind, Button, Command, JoystickTable, Macro, Project, Run, Servo, Step, Timing, TimingError,
-};
-use crate::protocol::board::{
+use crate::project::{Action, Button, Command, JoystickTable, Macro, Run, Servo, ServoProject, Step, Timing};
+use crate::protocol::servo::{
     ActionRecord, ButtonRecord, CommandType, EncodeError, JoystickTableRecord, MacroCommandRecord, MacroRecord,
-    Message, ServoMove, ServoParameter,
+    Message, STR32_LEN, ServoMove, ServoParameter,
 };
 
 /// Everything a servo board stores, in the order the board lists it.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
-pub struct BoardImage {
+pub struct ServoImage {
     /// `projectID` (0 = none).
     pub project_id: i32,
     /// Stored servo parameters (30101).
@@ -27,50 +25,61 @@ pub struct BoardImage {
     pub active_table: i32,
 }
 
-/// A project cannot be turned into board records.
+/// A project cannot be written onto a board at all (whatever `--force` says).
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum ImageError {
-    /// A macro's run time cannot be computed (dangling reference or cycle).
-    #[error("macro {macro_id}, command {command}: {error}")]
-    Timing {
-        /// The macro.
-        macro_id: i32,
-        /// The command, from 1.
-        command: usize,
-        /// Why.
-        error: TimingError,
-    },
-    /// A command's run time does not fit the board's 32-bit field.
-    #[error("macro {macro_id}, command {command}: runs for {total_ms} ms, more than the board can count")]
-    TooLong {
-        /// The macro.
-        macro_id: i32,
-        /// The command, from 1.
-        command: usize,
-        /// The run time.
-        total_ms: i64,
+    /// A caption longer than the board's 32-byte field.
+    #[error("{item}: the caption is {bytes} UTF-8 bytes; the board stores at most {STR32_LEN}. Shorten it")]
+    CaptionTooLong {
+        /// Whose caption, e.g. `action 3 "揮手"`.
+        item: String,
+        /// Its length.
+        bytes: usize,
     },
 }
 
-impl BoardImage {
-    /// The records a project becomes on the board.
-    pub fn from_project(project: &Project) -> Result<Self, ImageError> {
+fn caption(item: impl FnOnce() -> String, caption: &str) -> Result<String, ImageError> {
+    if caption.len() > STR32_LEN {
+        return Err(ImageError::CaptionTooLong { item: item(), bytes: caption.len() });
+    }
+    Ok(caption.to_string())
+}
+
+/// The `totalInterval` written for `command`: the one the board stored, while
+/// the command is unedited; else the derived one. A total that cannot be
+/// derived (a missing action, a cycle) is written as 0 and one past the
+/// board's counter as its largest value: validation reports both, and only a
+/// forced restore gets this far with them.
+fn total_interval_ms(timing: &Timing<'_>, command: &Command) -> i32 {
+    if let Some(stored_ms) = command.stored_total_ms {
+        return stored_ms;
+    }
+    match timing.command_total_ms(command) {
+        Ok(total_ms) => i32::try_from(total_ms).unwrap_or(if total_ms < 0 { i32::MIN } else { i32::MAX }),
+        Err(_) => 0,
+    }
+}
+
+impl ServoImage {
+    /// The records a project becomes on the board. Content Servo Studio would
+    /// not author (a servo twice in an action, dangling references) is kept
+    /// as it is, so that a backup restores exactly; only what cannot be
+    /// encoded at all is refused.
+    pub fn from_project(project: &ServoProject) -> Result<Self, ImageError> {
         let timing = Timing::new(project);
-        let servos = project
-            .servos
-            .iter()
-            .map(|servo| ServoParameter {
+        let mut servos = Vec::with_capacity(project.servos.len());
+        for servo in &project.servos {
+            servos.push(ServoParameter {
                 servo_id: servo.id,
                 adjusted_degree: servo.calibration_offset_deg,
-                caption: servo.caption.clone(),
-            })
-            .collect();
-        let actions = project
-            .actions
-            .iter()
-            .map(|action| ActionRecord {
+                caption: caption(|| format!("servo {} {:?}", servo.id, servo.caption), &servo.caption)?,
+            });
+        }
+        let mut actions = Vec::with_capacity(project.actions.len());
+        for action in &project.actions {
+            actions.push(ActionRecord {
                 action_id: action.id,
-                caption: action.caption.clone(),
+                caption: caption(|| format!("action {} {:?}", action.id, action.caption), &action.caption)?,
                 steps: action
                     .steps
                     .iter()
@@ -80,58 +89,56 @@ impl BoardImage {
                         interval_10ms: step.interval_10ms,
                     })
                     .collect(),
-            })
-            .collect();
+            });
+        }
         let mut macros = Vec::with_capacity(project.macros.len());
         for item in &project.macros {
-            let mut commands = Vec::with_capacity(item.commands.len());
-            for (index, command) in item.commands.iter().enumerate() {
-                let at = index + 1;
-                let total_ms = timing.command_total_ms(command).map_err(|error| ImageError::Timing {
-                    macro_id: item.id,
-                    command: at,
-                    error,
-                })?;
-                let total_interval_ms = i32::try_from(total_ms).map_err(|_| ImageError::TooLong {
-                    macro_id: item.id,
-                    command: at,
-                    total_ms,
-                })?;
-                let (command_type, command_id) = match command.run {
-                    Run::Action { action_id } => (CommandType::RunAction, action_id),
-                    Run::Delay { delay_ms } => (CommandType::Delay, delay_ms),
-                    Run::Macro { macro_id } => (CommandType::RunMacro, macro_id),
-                };
-                commands.push(MacroCommandRecord {
-                    command_id,
-                    command_type,
-                    ratio_percent: command.ratio_percent,
-                    loop_count: command.loop_count,
-                    total_interval_ms,
+            let commands = item
+                .commands
+                .iter()
+                .map(|command| {
+                    let (command_type, command_id) = match command.run {
+                        Run::Action { action_id } => (CommandType::RunAction, action_id),
+                        Run::Delay { delay_ms } => (CommandType::Delay, delay_ms),
+                        Run::Macro { macro_id } => (CommandType::RunMacro, macro_id),
+                    };
+                    MacroCommandRecord {
+                        command_id,
+                        command_type,
+                        ratio_percent: command.ratio_percent,
+                        loop_count: command.loop_count,
+                        total_interval_ms: total_interval_ms(&timing, command),
+                    }
+                })
+                .collect();
+            macros.push(MacroRecord {
+                macro_id: item.id,
+                caption: caption(|| format!("macro {} {:?}", item.id, item.caption), &item.caption)?,
+                commands,
+            });
+        }
+        let mut tables = Vec::with_capacity(project.joystick_tables.len());
+        for table in &project.joystick_tables {
+            let mut buttons = Vec::with_capacity(table.buttons.len());
+            for button in &table.buttons {
+                buttons.push(ButtonRecord {
+                    button_id: button.id,
+                    caption: caption(
+                        || format!("joystick table {} button 0x{:08x} {:?}", table.id, button.id, button.caption),
+                        &button.caption,
+                    )?,
+                    press_macro: button.press_macro.unwrap_or(0),
+                    long_press_macro: button.long_press_macro.unwrap_or(0),
+                    up_macro: button.release_macro.unwrap_or(0),
+                    uninterruptible: button.uninterruptible,
                 });
             }
-            macros.push(MacroRecord { macro_id: item.id, caption: item.caption.clone(), commands });
-        }
-        let tables = project
-            .joystick_tables
-            .iter()
-            .map(|table| JoystickTableRecord {
+            tables.push(JoystickTableRecord {
                 table_id: table.id,
-                caption: table.caption.clone(),
-                buttons: table
-                    .buttons
-                    .iter()
-                    .map(|button| ButtonRecord {
-                        button_id: button.id,
-                        caption: button.caption.clone(),
-                        press_macro: button.press_macro.unwrap_or(0),
-                        long_press_macro: button.long_press_macro.unwrap_or(0),
-                        up_macro: button.release_macro.unwrap_or(0),
-                        uninterruptible: button.uninterruptible,
-                    })
-                    .collect(),
-            })
-            .collect();
+                caption: caption(|| format!("joystick table {} {:?}", table.id, table.caption), &table.caption)?,
+                buttons,
+            });
+        }
         Ok(Self {
             project_id: project.project_id,
             servos,
@@ -142,11 +149,13 @@ impl BoardImage {
         })
     }
 
-    /// The project these records describe. The board does not store the
-    /// client-side limits: each servo gets ±180°, widened to cover its steps,
-    /// and home 0. A servo that steps name but the board has no parameters for
-    /// is added without a caption, so that the project validates.
-    pub fn to_project(&self) -> Project {
+    /// The project these records describe, keeping everything: each macro
+    /// command's stored total, and content Servo Studio would not author. The
+    /// board does not store the client-side limits: each servo gets ±180°,
+    /// widened to cover its steps, and home 0. A servo that steps name but the
+    /// board has no parameters for stays out of the servo list (adding it
+    /// would add a record on restore); validation points it out.
+    pub fn to_project(&self) -> ServoProject {
         let mut servos: Vec<Servo> = self
             .servos
             .iter()
@@ -156,17 +165,13 @@ impl BoardImage {
             })
             .collect();
         for step in self.actions.iter().flat_map(|action| &action.steps) {
-            if !servos.iter().any(|servo| servo.id == step.servo_id) {
-                servos.push(Servo::new(step.servo_id, ""));
-            }
-            if let Some(servo) = servos.iter_mut().find(|servo| servo.id == step.servo_id) {
+            for servo in servos.iter_mut().filter(|servo| servo.id == step.servo_id) {
                 servo.min_deg = servo.min_deg.min(step.degree);
                 servo.max_deg = servo.max_deg.max(step.degree);
             }
         }
         let none_if_zero = |id: i32| (id != 0).then_some(id);
-        Project {
-            board: BoardKind::ServoBoard,
+        ServoProject {
             project_id: self.project_id,
             servos,
             actions: self
@@ -203,6 +208,7 @@ impl BoardImage {
                             },
                             ratio_percent: command.ratio_percent,
                             loop_count: command.loop_count,
+                            stored_total_ms: Some(command.total_interval_ms),
                         })
                         .collect(),
                 })
@@ -355,5 +361,47 @@ fn diff_items<T: PartialEq>(
     let same_ids = expected.len() == actual.len() && expected.iter().zip(actual).all(|(a, b)| id(a) == id(b));
     if !same_ids && out.len() == before {
         out.push(Difference::Order { kind });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::project::Command;
+
+    #[test]
+    fn a_stored_total_is_written_back_and_an_edited_command_gets_the_derived_one() {
+        let action =
+            Action { id: 1, caption: "a".into(), steps: vec![Step { servo_id: 1, degree: 0, interval_10ms: 50 }] };
+        let kept = Command { stored_total_ms: Some(777), ..Command::once(Run::Action { action_id: 1 }) };
+        let derived = Command::once(Run::Action { action_id: 1 });
+        let dangling = Command::once(Run::Macro { macro_id: 999 });
+        let project = ServoProject {
+            actions: vec![action],
+            macros: vec![Macro { id: 2, caption: "m".into(), commands: vec![kept, derived, dangling] }],
+            ..ServoProject::default()
+        };
+        let image = ServoImage::from_project(&project).unwrap();
+        let totals: Vec<i32> = image.macros[0].commands.iter().map(|c| c.total_interval_ms).collect();
+        assert_eq!(totals, [777, 500, 0]);
+        // Back to a project: every total the board holds is kept.
+        let back = image.to_project();
+        let stored: Vec<Option<i32>> = back.macros[0].commands.iter().map(|c| c.stored_total_ms).collect();
+        assert_eq!(stored, [Some(777), Some(500), Some(0)]);
+        assert_eq!(ServoImage::from_project(&back).unwrap(), image);
+    }
+
+    #[test]
+    fn a_caption_over_32_bytes_cannot_be_written_at_all() {
+        let project = ServoProject {
+            actions: vec![Action { id: 4, caption: "揮手揮手揮手揮手揮手揮手".into(), steps: Vec::new() }],
+            ..ServoProject::default()
+        };
+        let error = ServoImage::from_project(&project).unwrap_err();
+        assert_eq!(
+            error,
+            ImageError::CaptionTooLong { item: "action 4 \"揮手揮手揮手揮手揮手揮手\"".into(), bytes: 36 }
+        );
+        assert!(error.to_string().contains("Shorten it"), "{error}");
     }
 }

@@ -1,0 +1,35 @@
+//! The servo family's driver: the session, the client that talks to it over
+//! the I/O thread, the non-blocking handle the editor uses, and the operations
+//! built on it (export, import, verify).
+
+mod client;
+mod handle;
+mod image;
+mod item;
+mod live;
+mod log;
+mod ops;
+mod session;
+
+/// Default line rate of the servo board.
+pub const DEFAULT_BAUD: u32 = 115_200;
+
+/// Battery ‰ as a person reads it: `81.5 %`.
+pub fn battery_text(permil: i16) -> String {
+    format!("{:.1} %", f64::from(permil) / 10.0)
+}
+
+/// Servo-board values the interface shows, re-exported so that the UI reaches
+/// the protocol only through this driver.
+pub use crate::protocol::servo::{ALL_SERVOS, ButtonEvent, ServoMove, ServoStatus};
+
+pub use client::{Reply, Requester, ServoBoard, ServoCommand, ServoDriver, ServoEvent};
+pub use handle::{ServoHandle, ServoNotice};
+pub use image::{Difference, ImageError, RecordKind, ServoImage};
+pub use item::Item;
+pub use log::{fields as message_fields, log_entry};
+pub use ops::{
+    Cancel, ImportOptions, ImportReport, OpError, Phase, Progress, ServoInfo, backup_path, board_info, export, import,
+    read_image,
+};
+pub use session::{RequestError, RequestId, Session, SessionConfig, SessionEvent, Traffic, is_idempotent};

@@ -1,0 +1,132 @@
+//! The PLEN2 section of a project: joint settings as the robot holds them,
+//! motions in slots 0..=89, and play lists for the interpreter queue.
+
+use serde::{Deserialize, Serialize};
+
+pub use crate::protocol::plen2::{JOINTS, Joint};
+
+/// Everything a PLEN2 project holds.
+#[derive(Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Plen2Project {
+    /// Joint settings as held by the robot (`<JS`); empty when the project does
+    /// not hold them (then an upload never touches them).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub joints: Vec<JointSetting>,
+    /// Motions, each in its slot.
+    #[serde(default)]
+    pub motions: Vec<Motion>,
+    /// Motions queued with a number of plays (`#PU` … `#PO`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub play_lists: Vec<PlayList>,
+}
+
+/// One joint's limits and home, in tenths of a degree (`>MI` / `>MA` / `>HO`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct JointSetting {
+    /// The joint.
+    pub joint: Joint,
+    /// Lowest angle the robot moves it to.
+    pub min_tenths_deg: i16,
+    /// Highest angle.
+    pub max_tenths_deg: i16,
+    /// Home: frames are relative to it.
+    pub home_tenths_deg: i16,
+}
+
+/// A stored motion (`>MH` + `>MF`).
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Motion {
+    /// Slot 0..=89.
+    pub slot: u8,
+    /// At most 20 ASCII characters.
+    #[serde(default)]
+    pub name: String,
+    /// 1..=20 frames.
+    #[serde(default)]
+    pub frames: Vec<Frame>,
+    /// Frames played again after the first pass, if any.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub loop_range: Option<LoopRange>,
+    /// The slot played after this motion ends, if any.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub jump_slot: Option<u8>,
+}
+
+/// A motion's loop: frames `begin_frame..=end_frame` (from 0), run `count + 1` times.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct LoopRange {
+    /// First looped frame, from 0.
+    pub begin_frame: u8,
+    /// Last looped frame, from 0.
+    pub end_frame: u8,
+    /// Extra passes; 255 = forever.
+    pub count: u8,
+}
+
+/// One frame: every joint's angle relative to its home, reached in `transition_ms`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Frame {
+    /// How long the move to this frame takes, 32..=8191 ms.
+    pub transition_ms: u16,
+    /// Each joint's angle relative to home, tenths of a degree.
+    pub values_tenths_deg: Pose,
+}
+
+/// One value per joint, in device-map order; written in files as an object
+/// keyed by joint name (a missing joint is 0).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Pose(pub [i16; JOINTS]);
+
+impl Pose {
+    /// The value of `joint`.
+    pub fn get(&self, joint: Joint) -> i16 {
+        self.0[joint.index()]
+    }
+
+    /// Sets the value of `joint`.
+    pub fn set(&mut self, joint: Joint, value: i16) {
+        self.0[joint.index()] = value;
+    }
+}
+
+impl Serialize for Pose {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let mut map = serializer.serialize_map(Some(JOINTS))?;
+        for joint in Joint::ALL {
+            map.serialize_entry(joint.name(), &self.get(joint))?;
+        }
+        map.end()
+    }
+}
+
+impl<'de> Deserialize<'de> for Pose {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let map = std::collections::BTreeMap::<Joint, i16>::deserialize(deserializer)?;
+        let mut pose = Self::default();
+        for (joint, value) in map {
+            pose.set(joint, value);
+        }
+        Ok(pose)
+    }
+}
+
+/// Motions played one after another by the interpreter.
+#[derive(Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct PlayList {
+    /// What the user calls it.
+    #[serde(default)]
+    pub name: String,
+    /// The queue, in order (at most 31).
+    #[serde(default)]
+    pub entries: Vec<PlayEntry>,
+}
+
+/// One queued motion (`#PU`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct PlayEntry {
+    /// The motion's slot.
+    pub slot: u8,
+    /// Total plays, 1..=255; 0 = forever.
+    pub plays: u8,
+}

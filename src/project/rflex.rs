@@ -1,0 +1,72 @@
+//! The rFLEX section of a project: which robot (its conversion constants) and
+//! how the user likes to drive it.
+
+use serde::{Deserialize, Serialize};
+
+use crate::protocol::rflex::{ATRV_JR, B21R, Conversion, MAGELLAN};
+
+/// Everything an rFLEX project holds.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct RflexProject {
+    /// The robot.
+    #[serde(default)]
+    pub robot: Robot,
+    /// Drive limits and start-up choices.
+    #[serde(default)]
+    pub drive: DriveSettings,
+}
+
+/// A robot preset, or custom conversion constants.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "preset", rename_all = "kebab-case")]
+pub enum Robot {
+    /// RWI / iRobot B21r.
+    #[default]
+    B21r,
+    /// ATRV-Jr.
+    AtrvJr,
+    /// Magellan.
+    Magellan,
+    /// Another base, with its own constants.
+    Custom {
+        /// Distance units per metre.
+        distance_units_per_m: f64,
+        /// Angle units per radian.
+        angle_units_per_rad: f64,
+        /// Volts added to raw / 100.
+        power_offset_volts: f64,
+    },
+}
+
+impl Robot {
+    /// The robot's conversion constants.
+    pub fn conversion(self) -> Conversion {
+        match self {
+            Self::B21r => B21R,
+            Self::AtrvJr => ATRV_JR,
+            Self::Magellan => MAGELLAN,
+            Self::Custom { distance_units_per_m, angle_units_per_rad, power_offset_volts } => {
+                Conversion { distance_units_per_m, angle_units_per_rad, power_offset_volts }
+            }
+        }
+    }
+}
+
+/// How the Drive panel and `rflex drive` limit the base.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct DriveSettings {
+    /// Fastest translation the pad or keys ask for, m/s.
+    pub max_speed_m_per_s: f64,
+    /// Fastest rotation, rad/s.
+    pub max_turn_rad_per_s: f64,
+    /// Translational acceleration sent with each command, m/s².
+    pub accel_m_per_s2: f64,
+    /// Turn the sonar ring on when connecting.
+    pub sonar_on_connect: bool,
+}
+
+impl Default for DriveSettings {
+    fn default() -> Self {
+        Self { max_speed_m_per_s: 0.5, max_turn_rad_per_s: 1.0, accel_m_per_s2: 0.5, sonar_on_connect: true }
+    }
+}

@@ -1,0 +1,340 @@
+//! Whole sentences in each language: link and request errors, validation
+//! problems, operation errors, status lines.
+
+use super::Language;
+
+impl Language {
+    /// A link error in this language, with what to try.
+    pub fn link_error(self, error: &crate::link::LinkError) -> String {
+        use crate::link::LinkError as E;
+        match (self, error) {
+            (Self::English, _) => error.to_string(),
+            (Self::TraditionalChinese, E::BadPortName { name, .. }) => {
+                format!("無法辨識連接埠名稱 {name:?}：請輸入序列埠（例如 /dev/ttyUSB0 或 COM3）或 tcp://主機:埠號")
+            }
+            (Self::TraditionalChinese, E::NotFound { port }) => {
+                format!("{port}：找不到此連接埠。控制板是否已插上？`servo-studio ports` 會列出電腦看到的連接埠")
+            }
+            (Self::TraditionalChinese, E::PermissionDenied { port }) => format!(
+                "{port}：沒有權限。在 Linux 上請把自己加入 `dialout` 群組（sudo usermod -aG dialout $USER）後重新登入"
+            ),
+            (Self::TraditionalChinese, E::Busy { port }) => {
+                format!("{port}：連接埠使用中。請關閉其他使用它的程式（另一個 Servo Studio、序列埠監看程式）後重試")
+            }
+            (Self::TraditionalChinese, E::TimedOut { port, timeout_ms }) => {
+                format!("{port}：{timeout_ms} ms 內沒有回應。位址是否正確？橋接器是否已開機並在同一個網路上？")
+            }
+            (Self::TraditionalChinese, E::Refused { port }) => {
+                format!("{port}：連線被拒。該位址上的橋接程式（或 `servo-studio sim --tcp`）是否正在執行？")
+            }
+            (Self::TraditionalChinese, E::Open { port, source }) => format!("{port}：無法開啟：{source}"),
+        }
+    }
+
+    /// A validation problem in this language.
+    pub fn problem(self, kind: &crate::project::ProblemKind) -> String {
+        use crate::project::{ButtonSlot, ItemKind, ProblemKind as P};
+        if self == Self::English {
+            return kind.to_string();
+        }
+        let item = |kind: &ItemKind| match kind {
+            ItemKind::Servo => "舵機",
+            ItemKind::Action => "動作",
+            ItemKind::Macro => "巨集",
+            ItemKind::Table => "遙控對應表",
+        };
+        match kind {
+            P::CaptionTooLong { bytes } => format!("標題有 {bytes} 個 UTF-8 位元組；控制板最多儲存 32 個"),
+            P::IdNotPositive { kind, id } => {
+                format!("{}編號必須大於或等於 1（0 在控制板上表示「無」），目前為 {id}", item(kind))
+            }
+            P::DuplicateId { kind, id } => format!("{}編號 {id} 重複", item(kind)),
+            P::ReservedServoId => "舵機編號 255 保留給「所有舵機」；請使用 0..=254".to_string(),
+            P::MinAboveMax { min_deg, max_deg } => format!("最小值 {min_deg}° 大於最大值 {max_deg}°"),
+            P::HomeOutsideLimits { home_deg, min_deg, max_deg } => {
+                format!("原點 {home_deg}° 超出範圍 {min_deg}°..{max_deg}°")
+            }
+            P::NoSteps => "沒有步驟：執行它不會有動作".to_string(),
+            P::ServoTwiceInAction { servo_id } => format!("舵機 {servo_id} 在此動作中已有步驟"),
+            P::NegativeInterval { interval_10ms } => format!("時間 {interval_10ms} × 10 ms 為負值"),
+            P::MissingServo { servo_id } => format!("舵機 {servo_id} 不存在"),
+            P::StepOutsideLimits { degree, servo_id, min_deg, max_deg } => {
+                format!("{degree}° 超出舵機 {servo_id} 的範圍 {min_deg}°..{max_deg}°")
+            }
+            P::NoCommands => "沒有指令：執行它不會有動作".to_string(),
+            P::TooManyCommands { count, max } => format!("有 {count} 個指令；一個封包最多容納 {max} 個"),
+            P::RatioOutOfRange { ratio_percent } => format!("速度比例 {ratio_percent} % 不在 1..=100 之間"),
+            P::LoopBelowOne { loop_count } => format!("重複次數 {loop_count} 必須至少為 1"),
+            P::MissingAction { action_id } => format!("動作 {action_id} 不存在"),
+            P::MissingMacro { macro_id } => format!("巨集 {macro_id} 不存在"),
+            P::NegativeDelay { delay_ms } => format!("延遲 {delay_ms} ms 為負值"),
+            P::TotalTooLong { total_ms } => format!("執行 {total_ms} ms，超過控制板能計算的長度（{} ms）", i32::MAX),
+            P::MacroCycle { path } => {
+                let names: Vec<String> = path.iter().map(ToString::to_string).collect();
+                format!("巨集循環 {}：巨集不可呼叫到自己", names.join(" → "))
+            }
+            P::TooManyButtons { count, max } => format!("有 {count} 個按鍵；一個封包最多容納 {max} 個"),
+            P::DuplicateButton { button_id } => format!("按鍵編號 0x{button_id:08x} 在此對應表中重複"),
+            P::MissingButtonMacro { slot, macro_id } => {
+                let event = match slot {
+                    ButtonSlot::Press => "按下",
+                    ButtonSlot::LongPress => "長按",
+                    ButtonSlot::Release => "放開",
+                };
+                format!("{event}巨集 {macro_id} 不存在")
+            }
+            P::ButtonRunsNothing => "不會執行任何巨集".to_string(),
+            P::MissingActiveTable { table_id } => format!("使用中的遙控對應表 {table_id} 不存在"),
+            P::StoredTotalDiffers { stored_ms, derived_ms } => format!(
+                "控制板儲存的總時間是 {stored_ms} ms，但依專案計算為 {derived_ms} ms；在指令被修改之前，會寫回儲存的總時間"
+            ),
+            P::OutOfRange { field, value, min, max } => format!("{field} {value} 不在 {min}..={max} 之間"),
+            P::DuplicateSlot { slot } => format!("位置 {slot} 已有另一個動作"),
+            P::DuplicateJoint => "重複列出".to_string(),
+            P::NameTooLong { bytes, max } => format!("名稱有 {bytes} 個位元組；機器人最多儲存 {max} 個"),
+            P::NameNotAscii => "名稱只能使用可列印的 ASCII 字元（機器人儲存的是位元組）".to_string(),
+            P::NoFrames => "沒有任何影格".to_string(),
+            P::BadLoopRange { begin_frame, end_frame, frames } => {
+                format!("從影格 {begin_frame} 到 {end_frame} 的循環不在它的 {frames} 個影格之內")
+            }
+            P::MissingMotion { slot } => format!("位置 {slot} 沒有動作"),
+            P::NotPositive { field } => format!("{field} 必須是正數"),
+        }
+    }
+
+    /// Where a problem is, in this language.
+    pub fn location(self, location: &crate::project::Location) -> String {
+        use crate::project::Location as L;
+        if self == Self::English {
+            return location.to_string();
+        }
+        match location {
+            L::Project => "專案".into(),
+            L::Servo { servo_id, caption } => format!("舵機 {servo_id} {caption:?}"),
+            L::Action { action_id, caption } => format!("動作 {action_id} {caption:?}"),
+            L::Step { action_id, caption, step } => format!("動作 {action_id} {caption:?}，步驟 {step}"),
+            L::Macro { macro_id, caption } => format!("巨集 {macro_id} {caption:?}"),
+            L::Command { macro_id, caption, command } => format!("巨集 {macro_id} {caption:?}，指令 {command}"),
+            L::Table { table_id, caption } => format!("遙控對應表 {table_id} {caption:?}"),
+            L::Button { table_id, table_caption, button_id, caption } => {
+                format!("遙控對應表 {table_id} {table_caption:?}，按鍵 0x{button_id:08x} {caption:?}")
+            }
+            L::Joint { joint } => format!("關節 {joint}"),
+            L::Motion { slot, name } => format!("動作 {slot} {name:?}"),
+            L::Frame { slot, name, frame } => format!("動作 {slot} {name:?}，影格 {frame}"),
+            L::PlayList { index, name } => format!("播放清單 {index} {name:?}"),
+            L::Robot => "機器人".into(),
+        }
+    }
+
+    /// What an operation step is about, in this language.
+    pub fn item(self, item: &crate::device::servo::Item) -> String {
+        use crate::device::servo::Item as I;
+        if self == Self::English {
+            return item.to_string();
+        }
+        match item {
+            I::ProjectId => "專案編號".into(),
+            I::ServoParameters => "舵機參數".into(),
+            I::ActionList => "動作清單".into(),
+            I::Action { id, caption } => format!("動作 {id} {caption:?}"),
+            I::MacroList => "巨集清單".into(),
+            I::Macro { id, caption } => format!("巨集 {id} {caption:?}"),
+            I::TableList => "遙控對應表清單".into(),
+            I::Table { id, caption } => format!("遙控對應表 {id} {caption:?}"),
+            I::ActiveTable => "使用中的遙控對應表".into(),
+            I::MemorySize => "記憶體容量".into(),
+            I::ClearAll => "清除所有資料".into(),
+            I::WriteProjectId(id) => format!("專案編號 {id}"),
+            I::AddServoParameters(count) => format!("{count} 個舵機參數"),
+            I::SetActiveTable(id) => format!("使用中的遙控對應表 {id}"),
+            I::MoveServos => "移動舵機".into(),
+            I::RunAction(id) => format!("執行動作 {id}"),
+            I::RunMacro(id) => format!("執行巨集 {id}"),
+            I::ServoSwitches(id) => format!("舵機 {id} 開關"),
+            I::AngleUnit(id) => format!("舵機 {id} 角度單位"),
+            I::ServoState(id) => format!("舵機 {id} 狀態"),
+            I::Battery => "電量".into(),
+            I::ButtonEvents => "按鍵事件".into(),
+        }
+    }
+
+    /// A difference between project and board, in this language.
+    pub fn difference(self, difference: &crate::device::servo::Difference) -> String {
+        use crate::device::servo::{Difference as D, RecordKind as K};
+        if self == Self::English {
+            return difference.to_string();
+        }
+        let kind = |kind: &K| match kind {
+            K::Servo => "舵機",
+            K::Action => "動作",
+            K::Macro => "巨集",
+            K::Table => "遙控對應表",
+        };
+        match difference {
+            D::ProjectId { expected, actual } => format!("專案編號：應為 {expected}，控制板為 {actual}"),
+            D::Missing { kind: k, id } => format!("{} {id}：控制板上沒有", kind(k)),
+            D::Differs { kind: k, id } => format!("{} {id}：控制板上的內容不同", kind(k)),
+            D::Extra { kind: k, id } => format!("{} {id}：控制板上有，專案中沒有", kind(k)),
+            D::Order { kind: k } => format!("{}：儲存順序不同", kind(k)),
+            D::ActiveTable { expected, actual } => format!("使用中的對應表：應為 {expected}，控制板為 {actual}"),
+        }
+    }
+
+    /// Why a request failed, in this language, with what to try.
+    pub fn request_error(self, error: &crate::device::servo::RequestError) -> String {
+        use crate::device::servo::RequestError as R;
+        match (self, error) {
+            (Self::English, _) => error.to_string(),
+            (_, R::Timeout { request, attempts }) => {
+                format!("{request}：嘗試 {attempts} 次都沒有回應。請確認控制板已開機、鮑率相符、線材已接好")
+            }
+            (_, R::Malformed { request, error }) => format!("{request}：回應格式錯誤：{error}"),
+            (_, R::Encode(error)) => format!("無法編碼：{error}"),
+            (_, R::Disconnected { .. }) => "與控制板的連線已中斷".to_string(),
+        }
+    }
+
+    /// Why a board operation failed, in this language, with what to try.
+    pub fn op_error(self, error: &crate::device::servo::OpError) -> String {
+        use crate::device::servo::OpError as O;
+        if self == Self::English {
+            return error.to_string();
+        }
+        match error {
+            O::Request { item, source } => format!("{}：{}", self.item(item), self.request_error(source)),
+            O::Refused { item } => {
+                format!("{}：控制板拒絕了（result 0）。記憶體是否已滿，或項目格式有誤？", self.item(item))
+            }
+            O::ReadFailed { item } => format!("{}：控制板回報讀取失敗", self.item(item)),
+            O::Invalid { problems } => {
+                let list: Vec<String> = problems
+                    .iter()
+                    .map(|p| format!("{}：{}", self.location(&p.location), self.problem(&p.kind)))
+                    .collect();
+                format!(
+                    "專案有 {} 個錯誤，沒有寫入任何資料：\n{}\n請修正，或用「仍要上傳」（命令列 `import --force`）照原樣還原",
+                    problems.len(),
+                    list.join("\n")
+                )
+            }
+            O::DoesNotFit { needed_bytes, total_bytes } => {
+                format!(
+                    "專案需要 {needed_bytes} 位元組，但控制板只有 {total_bytes}；沒有寫入任何資料。請移除一些動作或巨集"
+                )
+            }
+            O::Image(crate::device::servo::ImageError::CaptionTooLong { item, bytes }) => {
+                format!("{item}：標題有 {bytes} 個 UTF-8 位元組；控制板最多儲存 32 個。請縮短它")
+            }
+            O::Encode(error) => format!("無法編碼：{error}"),
+            O::Backup(error) => format!("備份失敗，因此沒有寫入任何資料：{error}"),
+            O::Verify { differences } => {
+                let list: Vec<String> = differences.iter().map(|d| self.difference(d)).collect();
+                format!("驗證失敗：控制板與專案不同：\n{}", list.join("\n"))
+            }
+            O::Cancelled => "已取消".into(),
+            O::Unexpected { item, response } => format!("{}：非預期的回應 {response}", self.item(item)),
+        }
+    }
+
+    /// A family's name.
+    pub fn family(self, family: crate::project::Family) -> &'static str {
+        use crate::project::Family as F;
+        match (self, family) {
+            (Self::English, F::Servo) => "Servo board",
+            (Self::TraditionalChinese, F::Servo) => "舵機控制板",
+            (_, F::Plen2) => "PLEN2",
+            (Self::English, F::Rflex) => "rFLEX base",
+            (Self::TraditionalChinese, F::Rflex) => "rFLEX 移動底盤",
+        }
+    }
+
+    /// "connecting to PORT…".
+    pub fn connecting_to(self, port: &str) -> String {
+        match self {
+            Self::English => format!("connecting to {port}…"),
+            Self::TraditionalChinese => format!("正在連線至 {port}…"),
+        }
+    }
+
+    /// The user stopped a connection attempt.
+    pub fn connect_cancelled(self, port: &str) -> String {
+        match self {
+            Self::English => format!("stopped connecting to {port}"),
+            Self::TraditionalChinese => format!("已取消連線至 {port}"),
+        }
+    }
+
+    /// Why a connection could not start.
+    pub fn start_error(self, error: &crate::ui::board_link::StartError) -> String {
+        use crate::ui::board_link::StartError as S;
+        match (self, error) {
+            (_, S::Unsupported(family)) => self.family_not_in_build(*family),
+            (Self::English, S::Thread(text)) => format!("cannot start the connection: {text}"),
+            (Self::TraditionalChinese, S::Thread(_)) => {
+                "無法啟動連線：系統無法再建立執行緒，請關閉一些程式後重試".into()
+            }
+        }
+    }
+
+    /// A family whose driver and panels this build does not have yet.
+    pub fn family_not_in_build(self, family: crate::project::Family) -> String {
+        match self {
+            Self::English => format!(
+                "The {} panels and driver are not in this build of Servo Studio yet; choose Servo board to connect.",
+                self.family(family)
+            ),
+            Self::TraditionalChinese => {
+                format!(
+                    "此版本的 Servo Studio 尚未包含 {} 的面板與驅動程式；請選擇「舵機控制板」再連線。",
+                    self.family(family)
+                )
+            }
+        }
+    }
+
+    /// Something could not be sent.
+    pub fn send_failed(self, detail: &str) -> String {
+        match self {
+            Self::English => format!("could not send: {detail}"),
+            Self::TraditionalChinese => "無法傳送：訊息無法編碼".into(),
+        }
+    }
+
+    /// Why a link ended, as a phrase.
+    pub fn disconnect_reason(self, reason: &crate::link::DisconnectReason) -> String {
+        use crate::link::DisconnectReason as D;
+        match (self, reason) {
+            (Self::English, _) => reason.to_string(),
+            (_, D::Closed) => "連線已關閉".into(),
+            (_, D::ClosedByDriver) => "驅動程式關閉了連線".into(),
+            (_, D::ClosedByPeer) => "另一端關閉了連接埠".into(),
+            (_, D::ReadFailed(_)) => "讀取連接埠失敗，線材是否被拔掉，或控制板斷電了".into(),
+            (_, D::WriteFailed(_)) => "寫入連接埠失敗，線材是否被拔掉，或控制板斷電了".into(),
+            (_, D::ThreadFailed(_)) => "連線的讀取執行緒停止了".into(),
+        }
+    }
+
+    /// The status line when the link ends: one sentence, the reason once.
+    pub fn link_ended(self, reason: &crate::link::DisconnectReason) -> String {
+        let why = self.disconnect_reason(reason);
+        match self {
+            Self::English => {
+                format!("The board link ended ({why}). Your project is unchanged; reconnect when ready.")
+            }
+            Self::TraditionalChinese => format!("與控制板的連線已中斷（{why}）。專案未變更，準備好後請重新連線。"),
+        }
+    }
+
+    /// The backup folder could not be made, so nothing was written.
+    pub fn backup_folder_failed(self, folder: &std::path::Path, error: &std::io::Error) -> String {
+        match self {
+            Self::English => {
+                format!("cannot create the backup folder {}: {error}; nothing was written", folder.display())
+            }
+            Self::TraditionalChinese => {
+                format!("無法建立備份資料夾 {}，因此沒有寫入任何資料。請確認磁碟空間與權限", folder.display())
+            }
+        }
+    }
+}

@@ -1,0 +1,80 @@
+//! The interface's words in English and Traditional Chinese, chosen from the
+//! OS locale and switchable at run time: captions in [`strings`], whole
+//! sentences for errors, problems and status in `messages`.
+
+mod messages;
+mod strings;
+
+pub use strings::Strings;
+use strings::{ENGLISH, TRADITIONAL_CHINESE};
+
+/// A language of the interface.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+pub enum Language {
+    /// English.
+    #[default]
+    English,
+    /// 繁體中文.
+    TraditionalChinese,
+}
+
+impl Language {
+    /// The language the OS locale asks for: Traditional Chinese for `zh_TW`,
+    /// `zh_HK`, `zh_MO` and `zh-Hant`, English otherwise.
+    pub fn from_locale(locale: &str) -> Self {
+        let locale = locale.to_ascii_lowercase().replace('-', "_");
+        let traditional = ["zh_tw", "zh_hk", "zh_mo", "zh_hant"];
+        if traditional.iter().any(|prefix| locale.starts_with(prefix)) {
+            Self::TraditionalChinese
+        } else {
+            Self::English
+        }
+    }
+
+    /// The language of this process's locale (`LC_ALL`, `LC_MESSAGES`, `LANG`).
+    pub fn detect() -> Self {
+        ["LC_ALL", "LC_MESSAGES", "LANG"]
+            .iter()
+            .filter_map(|name| std::env::var(name).ok())
+            .find(|value| !value.is_empty())
+            .map_or(Self::English, |locale| Self::from_locale(&locale))
+    }
+
+    /// The words of this language.
+    pub fn strings(self) -> &'static Strings {
+        match self {
+            Self::English => &ENGLISH,
+            Self::TraditionalChinese => &TRADITIONAL_CHINESE,
+        }
+    }
+
+    /// The language's own name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::English => "English",
+            Self::TraditionalChinese => "繁體中文",
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn link_errors_are_translated_with_what_to_try() {
+        let error = crate::link::LinkError::PermissionDenied { port: "/dev/ttyUSB0".into() };
+        assert!(Language::English.link_error(&error).contains("dialout"));
+        let chinese = Language::TraditionalChinese.link_error(&error);
+        assert!(chinese.starts_with("/dev/ttyUSB0：沒有權限") && chinese.contains("dialout"), "{chinese}");
+    }
+
+    #[test]
+    fn locales_choose_the_language() {
+        assert_eq!(Language::from_locale("zh_TW.UTF-8"), Language::TraditionalChinese);
+        assert_eq!(Language::from_locale("zh-Hant-TW"), Language::TraditionalChinese);
+        assert_eq!(Language::from_locale("zh_HK"), Language::TraditionalChinese);
+        assert_eq!(Language::from_locale("en_US.UTF-8"), Language::English);
+        assert_eq!(Language::from_locale("C"), Language::English);
+    }
+}
