@@ -30,6 +30,9 @@ fn the_log_shows_decoded_frames_and_filters_them() {
     assert!(harness.query_all_by_label_contains("→ QueryProjectIDRequest").next().is_some());
     assert!(harness.query_all_by_label_contains("← QueryProjectIDResponse").next().is_some());
     assert!(harness.query_all_by_label_contains("13 4c 05 1d").next().is_some(), "hex is shown");
+    // Fields read as words, not Rust Debug syntax.
+    assert!(harness.query_all_by_label_contains("QueryRemainPowerResponse battery 87.0 %").next().is_some());
+    assert!(harness.query_all_by_label_contains("permil:").next().is_none());
     harness.get_by_role_and_label(egui::accesskit::Role::TextInput, "Filter").focus();
     harness.run_steps(1);
     harness.get_by_role_and_label(egui::accesskit::Role::TextInput, "Filter").type_text("RemainPower");

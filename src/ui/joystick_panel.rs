@@ -2,8 +2,8 @@
 //! release macros, uninterruptible), the active table, live button events, and
 //! "press a button to pick it".
 
+use crate::device::servo::ButtonEvent;
 use crate::project::{Button, Edit, JoystickTable, ServoProject, next_free_id};
-use crate::protocol::servo::ButtonEvent;
 use crate::ui::action::Action;
 use crate::ui::i18n::Strings;
 

@@ -6,8 +6,8 @@ use std::collections::{BTreeMap, HashMap};
 
 use egui::{Key, Modifiers};
 
+use crate::device::servo::ServoStatus;
 use crate::project::{Edit, Servo, ServoProject};
-use crate::protocol::servo::ServoStatus;
 use crate::ui::action::Action;
 use crate::ui::i18n::Strings;
 

@@ -228,4 +228,30 @@ mod tests {
         let text = fields(&Message::ButtonEventResponse { button_id: 0x10, event: ButtonEvent::LongPress });
         assert_eq!(text, "button 0x00000010 long press");
     }
+
+    #[test]
+    fn decoded_frames_and_skips_become_log_entries_with_their_bytes() {
+        use crate::protocol::servo::{DecoderEvent, FrameDecoder};
+        let sent = Message::QueryActionListRequest;
+        let entry = log_entry(0.5, &Traffic::Sent { frame: sent.to_frame().unwrap(), message: sent });
+        assert_eq!(entry.line(), "    0.500 → QueryActionListRequest  [13 4c 05 1d 3a 75 00 00 30]");
+        let mut decoder = FrameDecoder::new();
+        decoder.push(&[0xaa, 0xbb]);
+        decoder.push(&Message::AddActionResponse { ok: true }.encode().unwrap());
+        let mut lines = Vec::new();
+        while let Some(event) = decoder.poll() {
+            let traffic = match event {
+                DecoderEvent::Frame(frame) => Traffic::Received { message: Message::from_frame(&frame), frame },
+                DecoderEvent::Skipped { bytes, reason } => Traffic::Skipped { bytes, reason },
+            };
+            lines.push(log_entry(0.6, &traffic).line());
+        }
+        assert_eq!(
+            lines,
+            [
+                "    0.600 ! skipped 2 byte(s) not a frame []",
+                "    0.600 ← AddActionResponse ok [13 4c 05 1d 4f 75 01 00 01 47]"
+            ]
+        );
+    }
 }

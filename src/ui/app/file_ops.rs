@@ -1,0 +1,193 @@
+//! Files and the window's chrome: open / save / unsaved-changes question,
+//! autosave, dropped files, the File menu, dialogs and shortcuts.
+
+use super::*;
+
+impl StudioApp {
+    pub(super) fn replace_document(&mut self, project: Project, path: Option<PathBuf>) {
+        self.pose = project.servo.servos.iter().map(|servo| (servo.id, servo.home_deg)).collect();
+        self.document = Document::new(project, path);
+        self.pending = None;
+        self.compared_board = None;
+    }
+
+    pub(super) fn open_now(&mut self, path: PathBuf) {
+        match crate::project::load(&path) {
+            Ok(project) => {
+                files::remember(&mut self.recent, &path);
+                self.report(format!("{} {}", self.words().msg_opened, path.display()), false);
+                self.replace_document(project, Some(path));
+            }
+            Err(error) => self.report(format!("{} {}: {error}", self.words().msg_cannot_open, path.display()), true),
+        }
+    }
+
+    pub(super) fn save_to(&mut self, path: PathBuf) -> bool {
+        match crate::project::save(&path, &self.document.project) {
+            Ok(()) => {
+                files::remember(&mut self.recent, &path);
+                files::clear_recovery(&self.data_dir);
+                self.report(format!("{} {}", self.words().msg_saved, path.display()), false);
+                self.document.path = Some(path);
+                self.document.dirty = false;
+                true
+            }
+            Err(error) => {
+                self.report(error.to_string(), true);
+                false
+            }
+        }
+    }
+
+    pub(super) fn after_unsaved(&mut self, next: AfterUnsaved) {
+        match next {
+            AfterUnsaved::New => {
+                self.replace_document(Project::empty(self.document.project.family), None);
+                self.report(self.words().msg_new_project, false);
+            }
+            AfterUnsaved::Open(path) => self.open_now(path),
+            AfterUnsaved::Quit => {
+                files::clear_recovery(&self.data_dir);
+                self.quit_allowed = true;
+            }
+        }
+    }
+
+    /// Asks about unsaved changes before `next`, or does it at once.
+    pub(super) fn guard_unsaved(&mut self, next: AfterUnsaved) {
+        if self.document.dirty {
+            self.unsaved_prompt = Some(next);
+        } else {
+            self.after_unsaved(next);
+        }
+    }
+
+    /// Writes the recovery file if there are unsaved changes and it is due.
+    pub fn autosave_if_due(&mut self, now: Instant) {
+        if self.document.dirty && now.saturating_duration_since(self.last_autosave) >= AUTOSAVE_EVERY {
+            self.apply(Action::Autosave);
+            self.last_autosave = now;
+        }
+    }
+
+    /// Dropped files, the window's close button, and the autosave tick.
+    pub(super) fn file_events(&mut self, ui: &egui::Ui, now: Instant, actions: &mut Vec<Action>) {
+        let dropped: Vec<PathBuf> = ui.ctx().input(|input| {
+            input
+                .raw
+                .dropped_files
+                .iter()
+                .map(|file| file.path().to_path_buf())
+                .filter(|path| !path.as_os_str().is_empty())
+                .collect()
+        });
+        if let Some(path) = dropped.into_iter().next() {
+            actions.push(Action::Open(path));
+        }
+        if ui.ctx().input(|input| input.viewport().close_requested()) && self.document.dirty && !self.quit_allowed {
+            ui.ctx().send_viewport_cmd(egui::ViewportCommand::CancelClose);
+            self.unsaved_prompt = Some(AfterUnsaved::Quit);
+        }
+        self.autosave_if_due(now);
+    }
+
+    pub(super) fn file_menu(&self, ui: &mut egui::Ui, actions: &mut Vec<Action>) {
+        let words = self.language.strings();
+        ui.menu_button(words.file, |ui| {
+            if ui.button(words.new_project).clicked() {
+                actions.push(Action::NewProject);
+            }
+            if ui.button(words.open).clicked()
+                && let Some(path) = rfd::FileDialog::new().add_filter("Servo Studio project", &["json"]).pick_file()
+            {
+                actions.push(Action::Open(path));
+            }
+            if ui.button(words.save).clicked() {
+                match &self.document.path {
+                    Some(_) => actions.push(Action::Save),
+                    None => {
+                        if let Some(path) = save_dialog() {
+                            actions.push(Action::SaveAs(path));
+                        }
+                    }
+                }
+            }
+            if ui.button(words.save_as).clicked()
+                && let Some(path) = save_dialog()
+            {
+                actions.push(Action::SaveAs(path));
+            }
+            if !self.recent.is_empty() {
+                ui.separator();
+                ui.label(words.recent);
+                for path in &self.recent {
+                    if ui.button(path.display().to_string()).clicked() {
+                        actions.push(Action::Open(path.clone()));
+                    }
+                }
+            }
+        });
+    }
+
+    /// The "unsaved changes" question and the recovery offer.
+    pub(super) fn dialogs(&self, ui: &egui::Ui, actions: &mut Vec<Action>) {
+        let words = self.language.strings();
+        if let Some(recovery) = &self.recovery_offer {
+            egui::Window::new(words.recover_title).collapsible(false).resizable(false).show(ui.ctx(), |ui| {
+                let file = recovery.path.as_ref().map_or_else(|| "—".to_string(), |p| p.display().to_string());
+                ui.label(format!("{} {} ({file})", words.recover_body, recovery.saved_at));
+                ui.horizontal(|ui| {
+                    if ui.button(words.recover).clicked() {
+                        actions.push(Action::Recover);
+                    }
+                    if ui.button(words.discard).clicked() {
+                        actions.push(Action::DeclineRecovery);
+                    }
+                });
+            });
+        }
+        if self.unsaved_prompt.is_some() {
+            egui::Window::new(words.unsaved_title).collapsible(false).resizable(false).show(ui.ctx(), |ui| {
+                ui.label(words.unsaved_question);
+                ui.horizontal(|ui| {
+                    if self.document.path.is_some() {
+                        if ui.button(words.save).clicked() {
+                            actions.push(Action::UnsavedSave);
+                        }
+                    } else if ui.button(words.save_as).clicked()
+                        && let Some(path) = save_dialog()
+                    {
+                        actions.push(Action::SaveAs(path));
+                        actions.push(Action::UnsavedSave);
+                    }
+                    if ui.button(words.discard).clicked() {
+                        actions.push(Action::UnsavedDiscard);
+                    }
+                    if ui.button(words.cancel).clicked() {
+                        actions.push(Action::UnsavedCancel);
+                    }
+                });
+            });
+        }
+    }
+
+    pub(super) fn shortcuts(ui: &egui::Ui, actions: &mut Vec<Action>) {
+        ui.input_mut(|input| {
+            if input.consume_key(egui::Modifiers::NONE, egui::Key::Escape) {
+                actions.push(Action::Stop);
+            }
+            if input.consume_key(egui::Modifiers::COMMAND | egui::Modifiers::SHIFT, egui::Key::Z)
+                || input.consume_key(egui::Modifiers::COMMAND, egui::Key::Y)
+            {
+                actions.push(Action::Redo);
+            }
+            if input.consume_key(egui::Modifiers::COMMAND, egui::Key::Z) {
+                actions.push(Action::Undo);
+            }
+        });
+    }
+}
+
+pub(super) fn save_dialog() -> Option<PathBuf> {
+    rfd::FileDialog::new().add_filter("Servo Studio project", &["json"]).set_file_name("project.json").save_file()
+}
