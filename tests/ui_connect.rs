@@ -212,3 +212,34 @@ fn a_lost_link_is_one_whole_sentence_in_traditional_chinese() {
         "與控制板的連線已中斷（另一端關閉了連接埠）。專案未變更，準備好後請重新連線。"
     );
 }
+
+#[test]
+fn gui_demo_without_a_file_opens_the_sample_robot_on_the_demo_board() {
+    let (waker, woken) = waker();
+    let start = servo_studio::ui::Start { demo: true, ..servo_studio::ui::Start::default() };
+    let mut app = start.into_app(waker, None);
+    assert_eq!(app.document.project, servo_studio::ui::sample_project());
+    assert_eq!(app.document.project.servo.servos.len(), 16);
+    assert!(!app.document.dirty);
+    // The demo board holds the sample: its project id comes back.
+    wait_for(&mut app, &woken, "the demo board's project id", |app| {
+        app.servo().is_some_and(|servo| servo.project_id == Some(1601))
+    });
+}
+
+#[test]
+fn the_family_used_last_is_remembered_but_a_projects_family_wins() {
+    let remembered = servo_studio::ui::Remembered { family: Family::Plen2, ..Default::default() };
+    let fresh = servo_studio::ui::Start::default().into_app(servo_studio::link::no_waker(), Some(remembered.clone()));
+    assert_eq!(fresh.document.project.family, Family::Plen2, "a new project takes the family used last");
+    assert_eq!(fresh.remembered().family, Family::Plen2);
+
+    let project = servo_studio::project::Project::empty(Family::Servo);
+    let start = servo_studio::ui::Start { project: Some(project), ..servo_studio::ui::Start::default() };
+    let opened = start.into_app(servo_studio::link::no_waker(), Some(remembered));
+    assert_eq!(opened.document.project.family, Family::Servo, "an opened project keeps its own family");
+
+    let start = servo_studio::ui::Start { family: Some(Family::Rflex), ..servo_studio::ui::Start::default() };
+    let chosen = start.into_app(servo_studio::link::no_waker(), None);
+    assert_eq!(chosen.document.project.family, Family::Rflex, "--protocol picks the family");
+}

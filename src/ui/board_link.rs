@@ -64,6 +64,11 @@ pub enum StartError {
 }
 
 impl BoardLink {
+    /// Whether this build has a driver for `family`.
+    pub fn supports(family: Family) -> bool {
+        family == Family::Servo
+    }
+
     /// Starts `family`'s driver over an opened connection.
     pub fn start(family: Family, connection: Connection, baud: u32, waker: Waker) -> Result<Self, StartError> {
         let label = connection.description.clone();

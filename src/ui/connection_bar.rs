@@ -25,6 +25,8 @@ pub struct LinkStatus {
     pub label: Option<String>,
     /// The port being opened, while connecting.
     pub connecting: Option<String>,
+    /// Whether this build can connect to the family.
+    pub can_connect: bool,
     /// The board's project id.
     pub project_id: Option<i32>,
     /// Battery, ‰.
@@ -146,10 +148,17 @@ impl ConnectionBar {
                     actions.push(Action::Disconnect);
                 }
             } else {
-                if ui.add_enabled(!self.port.trim().is_empty(), egui::Button::new(words.connect)).clicked() {
+                let unsupported = language.family_not_in_build(status.family);
+                let connect = ui
+                    .add_enabled(status.can_connect && !self.port.trim().is_empty(), egui::Button::new(words.connect))
+                    .on_disabled_hover_text(&unsupported);
+                if connect.clicked() {
                     actions.push(Action::Connect { port: self.port.trim().to_string(), baud: self.baud });
                 }
-                if ui.button(words.demo_board).clicked() {
+                let demo = ui
+                    .add_enabled(status.can_connect, egui::Button::new(words.demo_board))
+                    .on_disabled_hover_text(&unsupported);
+                if demo.clicked() {
                     actions.push(Action::ConnectDemo);
                 }
             }

@@ -56,6 +56,11 @@ impl StudioApp {
             }
         };
         let family = self.document.project.family;
+        if !BoardLink::supports(family) {
+            // Say so before touching the port.
+            self.report(self.language.family_not_in_build(family), true);
+            return;
+        }
         let settings = crate::link::LineSettings { baud, ..crate::device::line_settings(family) };
         self.report(self.language.connecting_to(&name.to_string()), false);
         let opening = Opening::start(name, settings, self.opener.clone(), self.waker.clone());
@@ -101,7 +106,9 @@ impl StudioApp {
         let family = self.document.project.family;
         let connecting = self.connecting.as_ref().map(|connecting| connecting.opening.port.to_string());
         match &self.link {
-            None => LinkStatus { family, connecting, ..LinkStatus::default() },
+            None => {
+                LinkStatus { family, connecting, can_connect: BoardLink::supports(family), ..LinkStatus::default() }
+            }
             Some(link) => {
                 let label = if link.is_demo() { self.words().demo_board.to_string() } else { link.label.clone() };
                 let servo = link.servo();
@@ -109,6 +116,7 @@ impl StudioApp {
                     family,
                     label: Some(label),
                     connecting,
+                    can_connect: true,
                     project_id: servo.and_then(|servo| servo.project_id),
                     battery_permil: servo.and_then(|servo| servo.battery_permil),
                     memory: servo.and_then(|servo| servo.memory),

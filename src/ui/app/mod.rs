@@ -96,6 +96,8 @@ pub struct StudioApp {
     /// An action being previewed on the sliders, and when it started.
     pub preview: Option<(i32, Instant)>,
     compare_intent: Option<BoardIntent>,
+    /// The project's size on the board (or why it cannot be stored), for a document revision.
+    footprint: Option<(u64, Result<usize, String>)>,
     compared_board: Option<ServoProject>,
     waker: Waker,
     opener: Opener,
@@ -139,6 +141,7 @@ impl StudioApp {
             last_autosave: Instant::now(),
             quit_allowed: false,
             compare_intent: None,
+            footprint: None,
             compared_board: None,
             waker,
             connection_bar: ConnectionBar::default(),
@@ -551,9 +554,15 @@ impl StudioApp {
                 }
             },
             Tab::Board => {
-                let project_bytes = ServoImage::from_project(&self.document.project.servo)
-                    .map_err(|error| error.to_string())
-                    .and_then(|image| image.footprint_bytes().map_err(|error| error.to_string()));
+                // Encoding every record takes a millisecond on a large project: once per revision.
+                let revision = self.document.revision();
+                if self.footprint.as_ref().is_none_or(|(at, _)| *at != revision) {
+                    let bytes = ServoImage::from_project(&self.document.project.servo)
+                        .map_err(|error| self.language.op_error(&crate::device::servo::OpError::Image(error)))
+                        .and_then(|image| image.footprint_bytes().map_err(|error| error.to_string()));
+                    self.footprint = Some((revision, bytes));
+                }
+                let project_bytes = self.footprint.as_ref().map_or(Ok(0), |(_, bytes)| bytes.clone());
                 let view = BoardView {
                     connected: self.link.is_some(),
                     project_bytes,
