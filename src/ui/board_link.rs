@@ -140,7 +140,7 @@ impl BoardLink {
 
     /// STOP, the family's way: for a servo board, drop queued moves and stop
     /// every servo where it is, holding torque, ahead of any queued request.
-    pub fn stop(&mut self) -> Result<(), String> {
+    pub fn stop(&mut self) -> Result<(), RequestError> {
         match &mut self.device {
             Device::Servo(handle) => handle.stop(),
         }

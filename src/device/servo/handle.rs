@@ -200,16 +200,16 @@ impl ServoHandle {
     }
 
     /// Sends a live move (coalesced by the session).
-    pub fn live_move(&self, moves: Vec<ServoMove>) -> Result<(), String> {
-        self.requester.live_move(moves).map_err(|error| error.to_string())
+    pub fn live_move(&self, moves: Vec<ServoMove>) -> Result<(), RequestError> {
+        self.requester.live_move(moves)
     }
 
     /// STOP: drops queued moves and stops every servo where it is, holding
     /// torque, ahead of any queued request.
-    pub fn stop(&mut self) -> Result<(), String> {
+    pub fn stop(&mut self) -> Result<(), RequestError> {
         self.stopped = true;
         let all = ServoSwitches { servo_id: ALL_SERVOS, is_start: false, is_hold: true };
-        self.requester.stop(Message::SetServoParameterRequest(all)).map_err(|error| error.to_string())
+        self.requester.stop(Message::SetServoParameterRequest(all))
     }
 
     /// Lets servos move again after a STOP.
@@ -220,8 +220,8 @@ impl ServoHandle {
     }
 
     /// Moves servos now, each over its own interval (an action played live).
-    pub fn move_now(&self, moves: Vec<ServoMove>) -> Result<(), String> {
-        self.requester.move_servos(moves).map_err(|error| error.to_string())
+    pub fn move_now(&self, moves: Vec<ServoMove>) -> Result<(), super::OpError> {
+        self.requester.move_servos(moves)
     }
 
     /// Runs a stored macro; a refusal comes back as an error notice.

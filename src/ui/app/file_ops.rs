@@ -18,7 +18,7 @@ impl StudioApp {
                 self.report(format!("{} {}", self.words().msg_opened, path.display()), false);
                 self.replace_document(project, Some(path));
             }
-            Err(error) => self.report(format!("{} {}: {error}", self.words().msg_cannot_open, path.display()), true),
+            Err(error) => self.report(self.language.load_error(&path, &error), true),
         }
     }
 
@@ -33,7 +33,7 @@ impl StudioApp {
                 true
             }
             Err(error) => {
-                self.report(error.to_string(), true);
+                self.report(self.language.save_error(&error), true);
                 false
             }
         }

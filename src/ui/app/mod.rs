@@ -212,7 +212,7 @@ impl StudioApp {
             Action::Stop => match &mut self.link {
                 Some(link) => match link.stop() {
                     Ok(()) => self.report(self.words().msg_stopped_all, false),
-                    Err(error) => self.report(error, true),
+                    Err(error) => self.report(self.language.request_error(&error), true),
                 },
                 None => self.report(self.words().msg_stop_no_board, false),
             },
@@ -293,7 +293,7 @@ impl StudioApp {
                     && let Err(error) =
                         files::write_recovery(&self.data_dir, self.document.path.as_deref(), &self.document.project)
                 {
-                    self.report(format!("{}: {error}", self.words().msg_autosave_failed), true);
+                    self.report(self.language.autosave_failed(&error), true);
                 }
             }
         }
@@ -313,7 +313,7 @@ impl StudioApp {
             }
             let servo_move = ServoMove { servo_id, degree, interval_10ms: LIVE_MOVE_INTERVAL_10MS };
             if let Err(error) = link.live_move(vec![servo_move]) {
-                self.report(error, true);
+                self.report(self.language.request_error(&error), true);
             }
         }
     }
@@ -372,7 +372,7 @@ impl StudioApp {
             return;
         }
         if let Err(error) = link.move_now(moves.clone()) {
-            self.report(error, true);
+            self.report(self.language.op_error(&error), true);
             return;
         }
         for servo_move in moves {

@@ -189,8 +189,10 @@ impl Language {
             (_, R::Timeout { request, attempts }) => {
                 format!("{request}：嘗試 {attempts} 次都沒有回應。請確認控制板已開機、鮑率相符、線材已接好")
             }
-            (_, R::Malformed { request, error }) => format!("{request}：回應格式錯誤：{error}"),
-            (_, R::Encode(error)) => format!("無法編碼：{error}"),
+            (_, R::Malformed { request, .. }) => {
+                format!("{request}：回應格式錯誤（封包紀錄中有詳細內容）。請確認鮑率與控制板型號")
+            }
+            (_, R::Encode(_)) => "無法編碼此訊息：內容超出協定欄位的範圍".to_string(),
             (_, R::Disconnected { .. }) => "與控制板的連線已中斷".to_string(),
         }
     }
@@ -336,5 +338,53 @@ impl Language {
                 format!("無法建立備份資料夾 {}，因此沒有寫入任何資料。請確認磁碟空間與權限", folder.display())
             }
         }
+    }
+
+    /// A project file that could not be opened, in one sentence.
+    pub fn load_error(self, path: &std::path::Path, error: &crate::project::LoadError) -> String {
+        use crate::project::LoadError as E;
+        let file = path.display();
+        match (self, error) {
+            (Self::English, _) => format!("cannot open {file}: {error}"),
+            (_, E::Io { source, .. }) => format!("無法開啟 {file}：{}", io_words(source.kind())),
+            (_, E::Syntax { line, column, .. }) => {
+                format!("無法開啟 {file}：第 {line} 行第 {column} 欄不是有效的專案內容")
+            }
+            (_, E::WrongFormat { .. }) => format!("無法開啟 {file}：這不是 Servo Studio 的專案檔"),
+            (_, E::NewerVersion { found, .. }) => {
+                format!("無法開啟 {file}：它是較新版本的 Servo Studio 所寫（格式版本 {found}）；請更新 Servo Studio")
+            }
+        }
+    }
+
+    /// A project file that could not be saved; the previous file is intact.
+    pub fn save_error(self, error: &crate::project::SaveError) -> String {
+        match self {
+            Self::English => error.to_string(),
+            Self::TraditionalChinese => {
+                format!("無法儲存 {}：{}；原本的檔案沒有改變", error.path.display(), io_words(error.source.kind()))
+            }
+        }
+    }
+
+    /// The recovery file could not be written.
+    pub fn autosave_failed(self, error: &std::io::Error) -> String {
+        match self {
+            Self::English => format!("autosave failed: {error}"),
+            Self::TraditionalChinese => format!("自動儲存失敗：{}", io_words(error.kind())),
+        }
+    }
+}
+
+/// What went wrong with a file, in Traditional Chinese.
+fn io_words(kind: std::io::ErrorKind) -> &'static str {
+    use std::io::ErrorKind as K;
+    match kind {
+        K::NotFound => "找不到檔案或資料夾",
+        K::PermissionDenied => "沒有權限",
+        K::StorageFull => "磁碟已滿",
+        K::ReadOnlyFilesystem => "磁碟是唯讀的",
+        K::InvalidData => "內容不是有效的 UTF-8 文字",
+        _ => "讀寫失敗",
     }
 }

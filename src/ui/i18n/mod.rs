@@ -70,6 +70,27 @@ mod tests {
     }
 
     #[test]
+    fn file_errors_and_lost_links_are_whole_chinese_sentences() {
+        let zh = Language::TraditionalChinese;
+        let error = crate::project::LoadError::Syntax { line: 3, column: 5, message: "expected value".into() };
+        assert_eq!(
+            zh.load_error(std::path::Path::new("/tmp/機器人.json"), &error),
+            "無法開啟 /tmp/機器人.json：第 3 行第 5 欄不是有效的專案內容"
+        );
+        let reason = crate::link::DisconnectReason::ReadFailed("Input/output error (os error 5)".into());
+        let text = zh.link_ended(&reason);
+        assert_eq!(
+            text,
+            "與控制板的連線已中斷（讀取連接埠失敗，線材是否被拔掉，或控制板斷電了）。專案未變更，準備好後請重新連線。"
+        );
+        assert!(!text.contains("os error"), "no English detail glued in");
+        let english = Language::English.link_ended(&reason);
+        assert_eq!(english.matches("cable").count(), 1, "the reason is said once: {english}");
+        let lost = crate::device::servo::RequestError::Disconnected { reason: "the link is closed".into() };
+        assert_eq!(zh.request_error(&lost), "與控制板的連線已中斷");
+    }
+
+    #[test]
     fn locales_choose_the_language() {
         assert_eq!(Language::from_locale("zh_TW.UTF-8"), Language::TraditionalChinese);
         assert_eq!(Language::from_locale("zh-Hant-TW"), Language::TraditionalChinese);

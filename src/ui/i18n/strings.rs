@@ -75,8 +75,6 @@ pub struct Strings {
     pub event_release: &'static str,
     /// "opened".
     pub msg_opened: &'static str,
-    /// "cannot open".
-    pub msg_cannot_open: &'static str,
     /// "saved".
     pub msg_saved: &'static str,
     /// "new project".
@@ -103,8 +101,6 @@ pub struct Strings {
     pub msg_connect_for_macro: &'static str,
     /// "connect a board to pick buttons from its remote".
     pub msg_connect_for_pick: &'static str,
-    /// "autosave failed".
-    pub msg_autosave_failed: &'static str,
     /// "stopped: press Resume before moving servos".
     pub msg_press_resume: &'static str,
     /// "nothing to capture: the project has no servos".
@@ -315,7 +311,6 @@ pub(super) const ENGLISH: Strings = Strings {
     event_long_press: "long press",
     event_release: "release",
     msg_opened: "opened",
-    msg_cannot_open: "cannot open",
     msg_saved: "saved",
     msg_new_project: "new project",
     msg_connect_first: "connect a board (or the demo board) first",
@@ -329,7 +324,6 @@ pub(super) const ENGLISH: Strings = Strings {
     msg_recovered: "recovered the autosaved project: save it to keep it",
     msg_connect_for_macro: "connect a board to run a macro",
     msg_connect_for_pick: "connect a board to pick buttons from its remote",
-    msg_autosave_failed: "autosave failed",
     msg_press_resume: "stopped: press Resume before moving servos",
     msg_nothing_to_capture: "nothing to capture: the project has no servos",
     msg_captured: "captured the pose as action",
@@ -454,7 +448,6 @@ pub(super) const TRADITIONAL_CHINESE: Strings = Strings {
     event_long_press: "長按",
     event_release: "放開",
     msg_opened: "已開啟",
-    msg_cannot_open: "無法開啟",
     msg_saved: "已儲存",
     msg_new_project: "新專案",
     msg_connect_first: "請先連接控制板（或示範控制板）",
@@ -468,7 +461,6 @@ pub(super) const TRADITIONAL_CHINESE: Strings = Strings {
     msg_recovered: "已復原自動儲存的專案：請儲存以保留",
     msg_connect_for_macro: "請連接控制板以執行巨集",
     msg_connect_for_pick: "請連接控制板以從遙控器選取按鍵",
-    msg_autosave_failed: "自動儲存失敗",
     msg_press_resume: "已停止：移動舵機前請按「繼續」",
     msg_nothing_to_capture: "無法擷取：專案沒有舵機",
     msg_captured: "已將姿勢擷取為動作",
