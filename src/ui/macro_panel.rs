@@ -6,8 +6,8 @@
 use egui_plot::{Legend, Line, Plot};
 
 use crate::project::{
-    Command, Edit, Location, Macro, Problem, Run, ServoProject, Timing, TimingError, macro_trajectories, next_free_id,
-    validate_servo,
+    Command, Edit, Location, Macro, Problem, Run, ServoProject, Severity, Timing, TimingError, macro_trajectories,
+    next_free_id, validate_servo,
 };
 use crate::ui::action::Action;
 use crate::ui::i18n::Strings;
@@ -139,7 +139,7 @@ impl MacroPanel {
             }
             match derived.macro_total_ms {
                 Ok(total) => ui.label(format!("{} {}", words.total, seconds(total))),
-                Err(error) => ui.colored_label(ui.visuals().warn_fg_color, error.to_string()),
+                Err(error) => ui.colored_label(ui.visuals().warn_fg_color, words.lang.timing_error(&error)),
             };
             if ui.add_enabled(connected, egui::Button::new(words.run_on_board)).clicked() {
                 actions.push(Action::RunMacro(item.id));
@@ -153,20 +153,31 @@ impl MacroPanel {
         {
             ui.colored_label(ui.visuals().warn_fg_color, words.lang.problem(&problem.kind));
         }
+        let mut notes = Vec::new();
         egui::Grid::new("commands").striped(true).show(ui, |ui| {
             for (position, command) in item.commands.iter().enumerate() {
                 let total = derived.command_totals_ms.get(position).copied().unwrap_or(Err(TimingError::ZeroRatio));
                 self.command_row(ui, project, total, item, index, position, command, words, actions);
                 let at = position + 1;
-                let mut notes = problems.iter().filter(
+                let mut mine = problems.iter().filter(
                     |p| matches!(&p.location, Location::Command { macro_id, command, .. } if *macro_id == item.id && *command == at),
                 );
-                if let Some(problem) = notes.next() {
-                    ui.colored_label(ui.visuals().error_fg_color, words.lang.problem(&problem.kind));
+                if let Some(problem) = mine.next() {
+                    // The row is marked; the note itself wraps below the table.
+                    let (mark, color) = match problem.severity {
+                        Severity::Error => ("!", ui.visuals().error_fg_color),
+                        Severity::Warning => ("!", ui.visuals().warn_fg_color),
+                    };
+                    let text = words.lang.problem(&problem.kind);
+                    ui.colored_label(color, mark).on_hover_text(&text);
+                    notes.push((at, color, text));
                 }
                 ui.end_row();
             }
         });
+        for (at, color, text) in notes {
+            ui.colored_label(color, format!("{at}: {text}"));
+        }
         ui.horizontal(|ui| {
             let add = |run: Run| {
                 let mut changed = item.clone();

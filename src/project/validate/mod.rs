@@ -424,7 +424,7 @@ impl fmt::Display for ProblemKind {
             Self::MissingActiveTable { table_id } => write!(f, "active joystick table {table_id} does not exist"),
             Self::StoredTotalDiffers { stored_ms, derived_ms } => write!(
                 f,
-                "the board stored a total of {stored_ms} ms but the project derives {derived_ms} ms; the stored total is written back until the command is edited"
+                "the board stored a total of {stored_ms} ms, the project derives {derived_ms} ms; the stored one is kept until you edit this command"
             ),
             Self::OutOfRange { field, value, min, max } => write!(f, "{field} {value} is outside {min}..={max}"),
             Self::DuplicateSlot { slot } => write!(f, "slot {slot} holds another motion already"),

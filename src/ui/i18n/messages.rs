@@ -85,9 +85,9 @@ impl Language {
             }
             P::ButtonRunsNothing => "不會執行任何巨集".to_string(),
             P::MissingActiveTable { table_id } => format!("使用中的遙控對應表 {table_id} 不存在"),
-            P::StoredTotalDiffers { stored_ms, derived_ms } => format!(
-                "控制板儲存的總時間是 {stored_ms} ms，但依專案計算為 {derived_ms} ms；在指令被修改之前，會寫回儲存的總時間"
-            ),
+            P::StoredTotalDiffers { stored_ms, derived_ms } => {
+                format!("控制板儲存的總時間是 {stored_ms} ms，依專案計算為 {derived_ms} ms；修改此指令之前保留儲存的值")
+            }
             P::OutOfRange { field, value, min, max } => format!("{field} {value} 不在 {min}..={max} 之間"),
             P::DuplicateSlot { slot } => format!("位置 {slot} 已有另一個動作"),
             P::DuplicateJoint => "重複列出".to_string(),
@@ -236,6 +236,18 @@ impl Language {
             }
             O::Cancelled => "已取消".into(),
             O::Unexpected { item, response } => format!("{}：非預期的回應 {response}", self.item(item)),
+        }
+    }
+
+    /// Why a run time cannot be computed.
+    pub fn timing_error(self, error: &crate::project::TimingError) -> String {
+        use crate::project::TimingError as T;
+        match (self, error) {
+            (Self::English, _) => error.to_string(),
+            (_, T::MissingAction(id)) => format!("動作 {id} 不存在"),
+            (_, T::MissingMacro(id)) => format!("巨集 {id} 不存在"),
+            (_, T::Cycle(id)) => format!("巨集 {id} 會呼叫到自己，永遠不會結束"),
+            (_, T::ZeroRatio) => "速度比例 0 % 永遠不會結束".to_string(),
         }
     }
 
