@@ -213,7 +213,8 @@ fn upload_anyway_restores_a_board_image_with_authoring_problems_exactly() {
     app.link = Some(BoardLink::demo_with(&Project::default(), SimConfig::default(), no_waker()).unwrap());
     app.apply(Action::ShowTab(servo_studio::ui::Tab::Board));
     let mut harness = harness(app);
-    frames(&mut harness);
+    // Wait for the board's status, so the bar's text no longer changes under the pointer.
+    run_until(&mut harness, "the board's status", |app| app.servo().is_some_and(|servo| servo.memory.is_some()));
     harness.get_by_label("Upload to board").click();
     frames(&mut harness);
     match harness.state().board_result.clone().unwrap() {

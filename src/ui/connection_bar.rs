@@ -162,9 +162,10 @@ impl ConnectionBar {
                     actions.push(Action::ConnectDemo);
                 }
             }
-            ui.separator();
-            ui.label(status_text(status, language));
         });
+        // Its own line, never wrapped: the controls above must not move when the status arrives.
+        let text = status_text(status, language);
+        ui.add(egui::Label::new(&text).truncate()).on_hover_text(text);
     }
 }
 
