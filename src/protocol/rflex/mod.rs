@@ -1,5 +1,16 @@
-//! rFLEX mobile bases (`rflex.md`): the facts the project format needs today —
-//! the robot presets' conversion constants. The frame codec joins them here.
+//! rFLEX mobile bases (`rflex.md`): big-endian frames with an XOR checksum and
+//! optional byte stuffing, the commands and reports as typed values, and SI ⇄
+//! base-unit conversion for the robot presets. Sans-IO: bytes in, values out.
+
+mod decoder;
+mod drive;
+mod frame;
+mod message;
+
+pub use decoder::{DecoderEvent, FrameDecoder, SkipReason};
+pub use drive::{ROTATION_ACCELERATION, ROTATION_TORQUE, TRANSLATION_TORQUE, avoid_escape_bytes};
+pub use frame::{ETX, Frame, MAX_DATA_LEN, OVERHEAD_LEN, STX, TooLong, checksum, port};
+pub use message::{Axis, Command, LayoutError, Report, SonarReading};
 
 /// Converts between SI units and a base's own units (`rflex.md` §5).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -21,3 +32,65 @@ pub const ATRV_JR: Conversion =
 /// Magellan: 31387 units/m, 4654.2 units/rad, +0 V.
 pub const MAGELLAN: Conversion =
     Conversion { distance_units_per_m: 31_387.0, angle_units_per_rad: 4_654.2, power_offset_volts: 0.0 };
+
+/// Sonar units per metre (B21r; rflex.md gives no other robot's, so every preset uses it).
+pub const SONAR_UNITS_PER_M: f64 = 1476.0;
+/// A sonar range above this is "no echo".
+pub const SONAR_NO_ECHO_ABOVE: u16 = 3000;
+/// The first bump-panel address of DIO_REPORT (B21r: 0x40..; the low 4 bits are the pressed corners).
+pub const BUMP_PANEL_ADDRESS: u8 = 0x40;
+
+/// A sonar range in metres, `None` for no echo.
+pub fn sonar_metres(range: u16) -> Option<f64> {
+    (range <= SONAR_NO_ECHO_ABOVE).then(|| f64::from(range) / SONAR_UNITS_PER_M)
+}
+
+/// The odometry pose integrated from MOT_SYSTEM_REPORTs (`rflex.md` §4): the
+/// first report of each axis sets the origin; then θ += Δbearing (normalised
+/// to [−π, π]) and (x, y) += Δdistance along θ.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Odometry {
+    /// Metres east of the start.
+    pub x_m: f64,
+    /// Metres north of the start.
+    pub y_m: f64,
+    /// Heading, radians in [−π, π].
+    pub theta_rad: f64,
+    last_distance: Option<i32>,
+    last_bearing: Option<i32>,
+}
+
+impl Odometry {
+    /// Takes one axis's position report.
+    pub fn update(&mut self, conversion: &Conversion, axis: Axis, position: i32) {
+        match axis {
+            Axis::Translation => {
+                if let Some(last) = self.last_distance {
+                    let d = conversion.metres(i64::from(position.wrapping_sub(last)));
+                    self.x_m += d * self.theta_rad.cos();
+                    self.y_m += d * self.theta_rad.sin();
+                }
+                self.last_distance = Some(position);
+            }
+            Axis::Rotation => {
+                if let Some(last) = self.last_bearing {
+                    let turned = conversion.radians(i64::from(position.wrapping_sub(last)));
+                    self.theta_rad = normalise(self.theta_rad + turned);
+                }
+                self.last_bearing = Some(position);
+            }
+        }
+    }
+
+    /// Whether both axes have reported at least once.
+    pub fn started(&self) -> bool {
+        self.last_distance.is_some() && self.last_bearing.is_some()
+    }
+}
+
+/// An angle in [−π, π].
+pub fn normalise(angle: f64) -> f64 {
+    let tau = std::f64::consts::TAU;
+    let wrapped = (angle + std::f64::consts::PI).rem_euclid(tau) - std::f64::consts::PI;
+    if wrapped < -std::f64::consts::PI { wrapped + tau } else { wrapped }
+}
