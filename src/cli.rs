@@ -1,6 +1,7 @@
 //! The command line: argument parsing and the commands. Errors are handled
 //! here, once: printed with what to try, and turned into the exit status.
 
+mod rflex;
 mod servo;
 
 use std::path::PathBuf;
@@ -9,6 +10,7 @@ use std::process::ExitCode;
 use clap::{Args, Parser, Subcommand};
 
 use servo_studio::device;
+use servo_studio::project::rflex::Robot;
 use servo_studio::project::{self, Family, Severity};
 
 /// Servo Studio: pose robot servos live, author actions and macros, and back up
@@ -19,6 +21,15 @@ pub struct Cli {
     /// What to do.
     #[command(subcommand)]
     pub command: Option<CliCommand>,
+}
+
+fn parse_robot(text: &str) -> Result<Robot, String> {
+    match text.to_ascii_lowercase().as_str() {
+        "b21r" => Ok(Robot::B21r),
+        "atrv-jr" | "atrvjr" => Ok(Robot::AtrvJr),
+        "magellan" => Ok(Robot::Magellan),
+        _ => Err(format!("{text:?} is not a robot: use b21r, atrv-jr or magellan")),
+    }
 }
 
 fn parse_family(text: &str) -> Result<Family, String> {
@@ -113,6 +124,12 @@ pub enum CliCommand {
         #[arg(long, value_parser = parse_family)]
         protocol: Option<Family>,
     },
+    /// Drive an rFLEX mobile base, or read its sensors.
+    Rflex {
+        /// What to do.
+        #[command(subcommand)]
+        command: rflex::RflexCommand,
+    },
     /// Board status.
     Board {
         /// What to show.
@@ -132,13 +149,15 @@ pub enum BoardCommand {
     },
 }
 
-/// Refuses a family whose driver this build does not have yet.
+/// Refuses a family for which `what` does not exist (yet).
 fn servo_only(family: Family, what: &str) -> anyhow::Result<()> {
     match family {
         Family::Servo => Ok(()),
-        other => anyhow::bail!(
-            "{what} for the {} family is not in this build of Servo Studio yet; only servo boards (--protocol servo) are supported",
-            other.name()
+        Family::Rflex => anyhow::bail!(
+            "{what} does not apply to rFLEX bases (they store no project); use `servo-studio rflex status` to read one and `servo-studio rflex drive` to drive it"
+        ),
+        Family::Plen2 => anyhow::bail!(
+            "{what} for the PLEN2 family is not in this build of Servo Studio yet; servo boards (--protocol servo) and rFLEX bases (`servo-studio rflex`) are supported"
         ),
     }
 }
@@ -148,7 +167,9 @@ pub fn run(command: CliCommand) -> ExitCode {
     let result = match command {
         CliCommand::Check { file } => return check(&file),
         CliCommand::Ports => servo::ports(),
+        CliCommand::Sim { args, protocol: Family::Rflex } => rflex::sim(&args),
         CliCommand::Sim { args, protocol } => servo_only(protocol, "the emulator").and_then(|()| servo::sim(&args)),
+        CliCommand::Rflex { command } => rflex::run(&command),
         CliCommand::Export { port, out } => {
             servo_only(port.protocol.unwrap_or_default(), "export").and_then(|()| servo::export(&port, &out))
         }

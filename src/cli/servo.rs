@@ -13,9 +13,10 @@ use super::PortArgs;
 use servo_studio::device::servo::{
     self as device, Cancel, ImportOptions, Phase, Progress, Requester, ServoBoard, ServoImage, SessionConfig,
 };
-use servo_studio::link::{self, LinkEvent, PortName, no_waker};
+use servo_studio::link::{self, Driver, LinkEvent, PortName, no_waker};
+use servo_studio::project::rflex::Robot;
 use servo_studio::project::{self, Family, Project};
-use servo_studio::sim::{self, Faults, ServoSim, SimConfig};
+use servo_studio::sim::{self, Faults, LineNoise, ServoSim, SimConfig};
 
 /// `servo-studio sim` options.
 #[derive(Debug, Args)]
@@ -38,9 +39,18 @@ pub struct SimArgs {
     /// The board's memory in bytes.
     #[arg(long, default_value_t = 256 * 1024)]
     pub memory: i32,
-    /// Faults to inject, e.g. garbage-every=3,drop-every=7,disconnect-after=40,refuse-add=42.
+    /// Faults to inject (servo board), e.g. garbage-every=3,drop-every=7,disconnect-after=40,refuse-add=42.
     #[arg(long, default_value = "")]
     pub faults: Faults,
+    /// Send every frame stuffed (rFLEX base).
+    #[arg(long)]
+    pub stuffed: bool,
+    /// Line noise on the output (rFLEX base), e.g. garbage-every=5,corrupt-every=7,cut-every=11.
+    #[arg(long, default_value = "")]
+    pub noise: LineNoise,
+    /// The robot (rFLEX base): b21r, atrv-jr or magellan.
+    #[arg(long, value_parser = super::parse_robot, default_value = "b21r")]
+    pub robot: Robot,
 }
 
 fn session_config(port: &PortArgs) -> SessionConfig {
@@ -109,10 +119,15 @@ pub fn sim(args: &SimArgs) -> anyhow::Result<()> {
         faults: args.faults.clone(),
         ..SimConfig::default()
     };
-    let board = ServoSim::new(config, image);
+    serve(args, ServoSim::new(config, image))
+}
+
+/// Serves an emulator of any family on a pseudo-terminal or TCP; prints the port on
+/// the first line of stdout, then runs until killed.
+pub fn serve<D: Driver>(args: &SimArgs, emulator: D) -> anyhow::Result<()> {
     let handle = match args.tcp {
-        Some(address) => sim::spawn_tcp(board, address, no_waker())?,
-        None => spawn_pty(board)?,
+        Some(address) => sim::spawn_tcp(emulator, address, no_waker())?,
+        None => spawn_pty(emulator)?,
     };
     let mut stdout = std::io::stdout();
     writeln!(stdout, "{}", handle.port_name)?;
@@ -130,12 +145,12 @@ pub fn sim(args: &SimArgs) -> anyhow::Result<()> {
 }
 
 #[cfg(unix)]
-fn spawn_pty(board: ServoSim) -> anyhow::Result<sim::SimHandle> {
-    Ok(sim::spawn_pty(board, no_waker())?)
+fn spawn_pty<D: Driver>(emulator: D) -> anyhow::Result<sim::SimHandle<D::Command, D::Event>> {
+    Ok(sim::spawn_pty(emulator, no_waker())?)
 }
 
 #[cfg(not(unix))]
-fn spawn_pty(_board: ServoSim) -> anyhow::Result<sim::SimHandle> {
+fn spawn_pty<D: Driver>(_emulator: D) -> anyhow::Result<sim::SimHandle<D::Command, D::Event>> {
     bail!("pseudo-terminals exist only on Linux and macOS; use --tcp 127.0.0.1:5000")
 }
 

@@ -1,10 +1,11 @@
 //! Drivers, one per board family, over a link: sessions, high-level operations
-//! and a non-blocking handle each, all speaking typed events. Today: [`servo`],
-//! the servo controller board; PLEN2 and rFLEX join as siblings.
+//! and a non-blocking handle each, all speaking typed events: [`servo`], the
+//! servo controller board, and [`rflex`], mobile bases; PLEN2 joins as a sibling.
 //!
 //! What is shared by every family lives here: the line settings each family
 //! needs, and the family-neutral packet-log entry.
 
+pub mod rflex;
 pub mod servo;
 
 use std::time::Duration;

@@ -78,6 +78,11 @@ impl Connection {
         }
     }
 
+    /// The least time between two writes.
+    pub fn min_write_gap(&self) -> std::time::Duration {
+        self.min_write_gap
+    }
+
     /// Spaces writes at least `gap` apart (the I/O thread holds bytes back until then).
     pub fn with_min_write_gap(mut self, gap: std::time::Duration) -> Self {
         self.min_write_gap = gap;

@@ -1,10 +1,12 @@
 //! Emulated boards, with fault injection, and the runners that serve any of
-//! them (in-process, pseudo-terminal, TCP). Today: the servo board.
+//! them (in-process, pseudo-terminal, TCP): the servo board and the rFLEX base.
 
 mod faults;
+mod rflex;
 mod runner;
 mod servo;
 
 pub use faults::{Faults, FaultsError};
+pub use rflex::{BaseState, LineNoise, LineNoiseError, RflexSim, RflexSimCommand, RflexSimConfig, RflexSimEvent};
 pub use runner::{InMemory, SimHandle, spawn_in_memory, spawn_pty, spawn_tcp};
 pub use servo::{ServoSim, SimCommand, SimConfig, SimEvent};

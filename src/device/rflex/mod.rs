@@ -1,0 +1,283 @@
+//! The rFLEX family's driver: the driver the I/O thread runs, and the
+//! non-blocking handle the editor and the command line use. The handle keeps
+//! the telemetry (battery with its trend, the odometry pose and the driven
+//! path, sonar ranges, bump panels, joystick), never leaves a base driving
+//! (a dropped handle stops the base and shuts it down), and counts reports
+//! that failed their checksum without ever using them.
+
+mod driver;
+mod words;
+
+use std::collections::BTreeMap;
+use std::time::{Duration, Instant};
+
+use crossbeam_channel::Receiver;
+
+pub use driver::{POLL_EVERY, REPORT_PERIOD_US, RESEND_EVERY, RflexCommand, RflexDriver, RflexEvent, SILENCE_LIMIT};
+
+use crate::device::LogEntry;
+use crate::link::{self, Connection, DisconnectReason, LinkEvent, LinkHandle, Waker};
+use crate::protocol::rflex::{Axis, BUMP_PANEL_ADDRESS, Conversion, Odometry, Report, SkipReason, sonar_metres};
+
+/// Points kept of the driven path and of the battery trend.
+pub const MAX_HISTORY: usize = 10_000;
+/// The least gap between two writes: the base ignores commands sent too rapidly.
+pub const WRITE_GAP: Duration = Duration::from_millis(1);
+/// How long a dropped handle waits for its shutdown to be written.
+pub const SHUTDOWN_WAIT: Duration = Duration::from_millis(500);
+
+/// Everything the base has told, in SI units.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Telemetry {
+    /// Battery, volts (from SYS_STATUS).
+    pub battery_volts: Option<f64>,
+    /// (seconds since the link opened, volts), oldest first.
+    pub battery_trend: Vec<(f64, f64)>,
+    /// The brake, as the base reports it.
+    pub brake: Option<bool>,
+    /// The pose integrated from odometry since the first report.
+    pub pose: Odometry,
+    /// (x, y) of the pose after each report, metres.
+    pub path: Vec<(f64, f64)>,
+    /// Measured translational velocity, m/s.
+    pub speed_m_per_s: f64,
+    /// Measured rotational velocity, rad/s.
+    pub turn_rad_per_s: f64,
+    /// Latest range per sonar id, metres (`None` = no echo).
+    pub sonar_m: BTreeMap<u8, Option<f64>>,
+    /// Bump panels by number (address − 0x40): the pressed corners, low 4 bits.
+    pub bumpers: BTreeMap<u8, u16>,
+    /// Other digital I/O addresses and their state.
+    pub digital_io: BTreeMap<u8, u16>,
+    /// Joystick (x, y, buttons).
+    pub joystick: Option<(i32, i32, u8)>,
+    /// Reports dropped because their checksum or length was wrong.
+    pub checksum_failures: u64,
+    /// Bytes of noise or cut frames dropped.
+    pub skipped_bytes: u64,
+    /// Odometry reports seen per axis (translation, rotation).
+    pub odometry_reports: (u64, u64),
+    /// Sonar banks seen since the sonar started reporting, in order (for a full sweep).
+    sonar_banks: Vec<u8>,
+}
+
+impl Telemetry {
+    /// Whether every sonar bank has reported since the sweep began (the first bank came round again).
+    pub fn full_sonar_sweep(&self) -> bool {
+        let Some(first) = self.sonar_banks.first() else { return false };
+        self.sonar_banks.iter().skip(1).any(|bank| bank == first)
+    }
+
+    /// Whether one full set has arrived: status, odometry on both axes, a full
+    /// sonar sweep and digital I/O.
+    pub fn complete(&self) -> bool {
+        self.battery_volts.is_some()
+            && self.odometry_reports.0 > 0
+            && self.odometry_reports.1 > 0
+            && self.full_sonar_sweep()
+            && !self.bumpers.is_empty()
+    }
+
+    fn absorb(&mut self, conversion: &Conversion, seconds: f64, report: Report) {
+        match report {
+            Report::Odometry { axis, position, velocity, .. } => match Axis::from_code(axis) {
+                Some(Axis::Translation) => {
+                    self.pose.update(conversion, Axis::Translation, position);
+                    self.speed_m_per_s = conversion.metres(i64::from(velocity));
+                    self.odometry_reports.0 += 1;
+                    if self.path.len() < MAX_HISTORY {
+                        self.path.push((self.pose.x_m, self.pose.y_m));
+                    }
+                }
+                Some(Axis::Rotation) => {
+                    self.pose.update(conversion, Axis::Rotation, position);
+                    self.turn_rad_per_s = conversion.radians(i64::from(velocity));
+                    self.odometry_reports.1 += 1;
+                }
+                None => {}
+            },
+            Report::Status { voltage_raw, brake, .. } => {
+                let volts = conversion.volts(voltage_raw);
+                self.battery_volts = Some(volts);
+                self.brake = Some(brake != 0);
+                if self.battery_trend.len() >= MAX_HISTORY {
+                    self.battery_trend.remove(0);
+                }
+                self.battery_trend.push((seconds, volts));
+            }
+            Report::Sonar { readings, .. } => {
+                if let Some(first) = readings.first() {
+                    self.sonar_banks.push(first.sonar_id / 16);
+                    if self.sonar_banks.len() > 64 {
+                        self.sonar_banks.drain(..32);
+                    }
+                }
+                for reading in readings {
+                    self.sonar_m.insert(reading.sonar_id, sonar_metres(reading.range));
+                }
+            }
+            Report::Dio { address, data, .. } => {
+                if (BUMP_PANEL_ADDRESS..BUMP_PANEL_ADDRESS + 16).contains(&address) {
+                    self.bumpers.insert(address - BUMP_PANEL_ADDRESS, data & 0x0f);
+                } else {
+                    self.digital_io.insert(address, data);
+                }
+            }
+            Report::Joystick { x, y, buttons, .. } => self.joystick = Some((x, y, buttons)),
+            Report::LcdDump { .. } | Report::Unknown(_) => {}
+        }
+    }
+}
+
+/// What the handle reports to its owner.
+#[derive(Clone, Debug, PartialEq)]
+pub enum RflexNotice {
+    /// A packet-log entry.
+    Log(LogEntry),
+    /// The base went silent while driving; it was sent a stop.
+    Silent,
+    /// The link ended; nothing more will come.
+    Disconnected(DisconnectReason),
+}
+
+/// A connected rFLEX base, driven without blocking. Dropping it stops the base,
+/// shuts it down (brake on) and closes the link.
+pub struct RflexBase {
+    link: Option<LinkHandle<RflexCommand, RflexEvent>>,
+    conversion: Conversion,
+    opened_at: Instant,
+    /// What the base has told.
+    pub telemetry: Telemetry,
+    /// The velocity last asked for (speed m/s, turn rad/s): what the base is told to do.
+    pub commanded: (f64, f64),
+    lost: bool,
+}
+
+impl std::fmt::Debug for RflexBase {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("RflexBase").field("commanded", &self.commanded).finish_non_exhaustive()
+    }
+}
+
+impl RflexBase {
+    /// Starts the I/O thread over an open connection (writes spaced by at least 1 ms).
+    pub fn over(connection: Connection, conversion: Conversion, waker: Waker) -> std::io::Result<Self> {
+        let gap = connection.min_write_gap().max(WRITE_GAP);
+        let link = link::spawn(connection.with_min_write_gap(gap), RflexDriver::new(conversion), waker)?;
+        Ok(Self {
+            link: Some(link),
+            conversion,
+            opened_at: Instant::now(),
+            telemetry: Telemetry::default(),
+            commanded: (0.0, 0.0),
+            lost: false,
+        })
+    }
+
+    fn command(&self, command: RflexCommand) {
+        if let Some(link) = &self.link {
+            // A closed link is reported by `pump` as a disconnect.
+            let _ = link.commands().send(command);
+        }
+    }
+
+    /// The robot's conversion constants.
+    pub fn conversion(&self) -> Conversion {
+        self.conversion
+    }
+
+    /// The start-up sequence (reports on, motion defaults; the sonar if asked).
+    pub fn start(&self, sonar: bool) {
+        self.command(RflexCommand::Start { sonar });
+    }
+
+    /// Holds a velocity, re-sent at 10 Hz; (0, 0) stops.
+    pub fn drive(&mut self, speed_m_per_s: f64, turn_rad_per_s: f64, accel_m_per_s2: f64) {
+        self.commanded = (speed_m_per_s, turn_rad_per_s);
+        self.command(RflexCommand::Drive { speed_m_per_s, turn_rad_per_s, accel_m_per_s2 });
+    }
+
+    /// Stops now.
+    pub fn stop(&mut self) {
+        self.commanded = (0.0, 0.0);
+        self.command(RflexCommand::Stop);
+    }
+
+    /// Sets or releases the brake (setting it stops first).
+    pub fn set_brake(&mut self, on: bool) {
+        if on {
+            self.commanded = (0.0, 0.0);
+        }
+        self.command(RflexCommand::Brake(on));
+    }
+
+    /// Turns the sonar ring on or off.
+    pub fn set_sonar(&self, on: bool) {
+        self.command(RflexCommand::Sonar(on));
+    }
+
+    /// Whether the link has ended.
+    pub fn is_lost(&self) -> bool {
+        self.lost
+    }
+
+    /// The event channel, for owners that block on it (the command line).
+    pub fn events(&self) -> Option<&Receiver<LinkEvent<RflexEvent>>> {
+        self.link.as_ref().map(LinkHandle::events)
+    }
+
+    /// Takes in what the base sent; returns what the owner should see.
+    pub fn pump(&mut self, now: Instant) -> Vec<RflexNotice> {
+        let Some(link) = &self.link else { return Vec::new() };
+        let events: Vec<LinkEvent<RflexEvent>> = link.events().try_iter().collect();
+        let seconds = now.saturating_duration_since(self.opened_at).as_secs_f64();
+        let mut notices = Vec::new();
+        for event in events {
+            match event {
+                LinkEvent::Driver(RflexEvent::Report(report)) => {
+                    self.telemetry.absorb(&self.conversion, seconds, report);
+                }
+                LinkEvent::Driver(RflexEvent::Skipped { bytes, reason }) => {
+                    if reason == SkipReason::BadFrame {
+                        self.telemetry.checksum_failures += 1;
+                    }
+                    self.telemetry.skipped_bytes += u64::try_from(bytes).unwrap_or(u64::MAX);
+                }
+                LinkEvent::Driver(RflexEvent::Log(entry)) => notices.push(RflexNotice::Log(entry)),
+                LinkEvent::Driver(RflexEvent::Silent) => {
+                    self.commanded = (0.0, 0.0);
+                    notices.push(RflexNotice::Silent);
+                }
+                LinkEvent::Disconnected { reason } => {
+                    self.lost = true;
+                    self.commanded = (0.0, 0.0);
+                    notices.push(RflexNotice::Disconnected(reason));
+                }
+            }
+        }
+        notices
+    }
+
+    /// Stops the base and runs the shutdown sequence (brake on), waiting at
+    /// most `wait` for it to be written; then closes the link.
+    pub fn shutdown(&mut self, wait: Duration) {
+        let Some(link) = self.link.take() else { return };
+        if !self.lost {
+            let (done, written) = crossbeam_channel::bounded(1);
+            if link.commands().send(RflexCommand::Shutdown { done: Some(done) }).is_ok() {
+                // A lost link drops the sender: the wait ends at once.
+                let _ = written.recv_timeout(wait);
+            }
+        }
+        self.commanded = (0.0, 0.0);
+        link.close();
+    }
+}
+
+impl Drop for RflexBase {
+    fn drop(&mut self) {
+        // The app never leaves a base driving: closing the window, a panic
+        // unwinding, or the command line ending all come through here.
+        self.shutdown(SHUTDOWN_WAIT);
+    }
+}

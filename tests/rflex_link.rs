@@ -1,0 +1,173 @@
+//! The rFLEX commands as a user runs them, against the emulated base behind a
+//! real pseudo-terminal: drive, status with stuffing and line noise, and a
+//! link cut mid-drive.
+
+#![cfg(unix)]
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use std::io::{Read, Write};
+use std::net::{Shutdown, TcpListener, TcpStream};
+use std::process::{Command, Output, Stdio};
+use std::time::{Duration, Instant};
+
+use servo_studio::link::{LinkEvent, no_waker};
+use servo_studio::sim::{
+    BaseState, LineNoise, RflexSim, RflexSimCommand, RflexSimConfig, RflexSimEvent, SimHandle, spawn_pty,
+};
+
+const EXE: &str = env!("CARGO_BIN_EXE_servo-studio");
+
+type Base = SimHandle<RflexSimCommand, RflexSimEvent>;
+
+fn base(config: RflexSimConfig) -> Base {
+    spawn_pty(RflexSim::new(config), no_waker()).unwrap()
+}
+
+fn inspect(base: &Base) -> BaseState {
+    let (reply, state) = crossbeam_channel::bounded(1);
+    base.command(RflexSimCommand::Inspect(reply));
+    state.recv_timeout(Duration::from_secs(5)).unwrap()
+}
+
+fn run(args: &[&str]) -> Output {
+    Command::new(EXE).args(args).stdin(Stdio::null()).output().unwrap()
+}
+
+fn stderr(output: &Output) -> String {
+    String::from_utf8_lossy(&output.stderr).into_owned()
+}
+
+#[test]
+fn drive_moves_the_base_by_what_its_acceleration_allows_then_stops_and_brakes_it() {
+    let base = base(RflexSimConfig::default());
+    let began = Instant::now();
+    let output =
+        run(&["rflex", "drive", "--port", &base.port_name, "--speed", "0.5", "--accel", "0.5", "--seconds", "2"]);
+    let took = began.elapsed();
+    assert!(output.status.success(), "{}", stderr(&output));
+    assert!(stderr(&output).contains("stopped, brake set"), "{}", stderr(&output));
+    assert!(stderr(&output).contains("m from the start"), "a progress line: {}", stderr(&output));
+    let state = inspect(&base);
+    assert!(state.braked, "{state:?}");
+    assert_eq!(state.speed_m_per_s, 0.0, "stopped");
+    // 1 s ramping to 0.5 m/s (0.25 m), then 0.5 m/s for the rest of the 2 s (0.5 m),
+    // plus what the stop's ramp-down covers before the brake is set.
+    let driving = took.as_secs_f64().min(2.5);
+    assert!(state.distance_m > 0.72 && state.distance_m < 0.75 + 0.5 * (driving - 2.0) + 0.1, "{state:?} in {took:?}");
+    assert!(state.motion_commands >= 20, "re-sent at 10 Hz: {}", state.motion_commands);
+}
+
+#[test]
+fn status_reports_the_emulators_battery_pose_and_sonar_with_noise_and_stuffing_on() {
+    let noise: LineNoise = "garbage-every=4,corrupt-every=6,cut-every=9".parse().unwrap();
+    let base = base(RflexSimConfig { stuffed: true, noise, ..RflexSimConfig::default() });
+    let output = run(&["rflex", "status", "--port", &base.port_name]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let stdout = String::from_utf8(output.stdout).unwrap();
+    assert_eq!(stdout.lines().count(), 1, "one JSON object: {stdout}");
+    let report: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    let state = inspect(&base);
+    let volts = report["battery_volts"].as_f64().unwrap();
+    assert!((volts - state.battery_volts).abs() < 0.05, "{volts} vs {}", state.battery_volts);
+    assert_eq!(report["brake"], serde_json::json!(true));
+    for key in ["x_m", "y_m", "theta_rad"] {
+        assert_eq!(report[key].as_f64(), Some(0.0), "{key}: a pose from the first report");
+    }
+    let sonar = report["sonar_m"].as_object().unwrap();
+    assert_eq!(sonar.len(), 24, "a full sweep: {sonar:?}");
+    for (id, range) in sonar {
+        let expected = state.sonar_m[id.parse::<usize>().unwrap()];
+        match (range.as_f64(), expected) {
+            (Some(got), Some(want)) => assert!((got - want).abs() < 1e-3, "sonar {id}: {got} vs {want}"),
+            (None, None) => {}
+            other => panic!("sonar {id}: {other:?}"),
+        }
+    }
+    assert!(sonar.values().any(serde_json::Value::is_null), "corners are out of range");
+    assert!(report["bumpers"].as_object().is_some_and(|b| !b.is_empty()));
+    assert!(report["checksum_failures"].as_u64().unwrap() > 0, "corrupted reports were counted, not used");
+}
+
+/// A cable between the command line (TCP) and the base (its pseudo-terminal)
+/// that the test can pull.
+fn cable(pty: &str) -> (String, crossbeam_channel::Sender<()>) {
+    let listener = TcpListener::bind("127.0.0.1:0").unwrap();
+    let address = format!("tcp://{}", listener.local_addr().unwrap());
+    let mut serial = serialport::new(pty, 115_200).timeout(Duration::from_millis(20)).open().unwrap();
+    let (pull, pulled) = crossbeam_channel::bounded::<()>(1);
+    std::thread::spawn(move || {
+        let (client, _) = listener.accept().unwrap();
+        client.set_read_timeout(Some(Duration::from_millis(20))).unwrap();
+        let mut client_reader: TcpStream = client.try_clone().unwrap();
+        let mut client_writer = client;
+        let mut buffer = [0u8; 512];
+        loop {
+            if pulled.try_recv().is_ok() {
+                let _ = client_writer.shutdown(Shutdown::Both);
+                return; // the serial port closes here too
+            }
+            match client_reader.read(&mut buffer) {
+                Ok(0) => return,
+                Ok(n) => serial.write_all(&buffer[..n]).unwrap(),
+                Err(_) => {}
+            }
+            if let Ok(n) = serial.read(&mut buffer)
+                && n > 0
+                && client_writer.write_all(&buffer[..n]).is_err()
+            {
+                return;
+            }
+        }
+    });
+    (address, pull)
+}
+
+#[test]
+fn a_link_cut_mid_drive_ends_the_command_at_once_and_the_base_stops_by_its_dead_man() {
+    let base = base(RflexSimConfig::default());
+    let (address, pull) = cable(&base.port_name);
+    let mut child = Command::new(EXE)
+        .args(["rflex", "drive", "--port", &address, "--speed", "0.4", "--seconds", "20"])
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Wait until the base is driving (its own events say so).
+    let deadline = Instant::now() + Duration::from_secs(10);
+    let mut motion = 0;
+    while motion < 5 {
+        match base.events().recv_deadline(deadline) {
+            Ok(LinkEvent::Driver(RflexSimEvent::Received(servo_studio::protocol::rflex::Command::AxisSetDir {
+                ..
+            }))) => motion += 1,
+            Ok(_) => {}
+            Err(_) => panic!("the base never got a motion command"),
+        }
+    }
+    let mut message = child.stderr.take().unwrap();
+    let (exited_tx, exited) = crossbeam_channel::bounded(1);
+    std::thread::spawn(move || {
+        let _ = exited_tx.send(child.wait().unwrap());
+    });
+    let pulled_at = Instant::now();
+    pull.send(()).unwrap();
+    let status = exited.recv_timeout(Duration::from_secs(1)).expect("the command line ends within a second");
+    assert!(!status.success());
+    let mut text = String::new();
+    message.read_to_string(&mut text).unwrap();
+    assert!(text.contains("the link to the base was lost"), "{text}");
+    assert!(pulled_at.elapsed() < Duration::from_secs(1));
+    // Nobody sends motion commands now: the dead-man stops the base.
+    let deadline = Instant::now() + Duration::from_secs(5);
+    loop {
+        match base.events().recv_deadline(deadline) {
+            Ok(LinkEvent::Driver(RflexSimEvent::DeadManStop)) => break,
+            Ok(_) => {}
+            Err(_) => panic!("the dead-man never stopped the base"),
+        }
+    }
+    let state = inspect(&base);
+    assert_eq!(state.target_speed_m_per_s, 0.0, "it ramps down to a stop: {state:?}");
+    assert!(!state.braked, "the brake was never set: the dead-man alone stopped it");
+}
