@@ -5,7 +5,7 @@ use super::document::{Family, Project};
 use super::servo::{Action, JoystickTable, Macro, Servo, ServoProject};
 
 /// One change to a project.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum Edit {
     /// Replace the servo at `index`.
     SetServo {
@@ -71,6 +71,10 @@ pub enum Edit {
     ReplaceAll(Box<ServoProject>),
     /// Switch the family the project is for (each section is kept).
     SetFamily(Family),
+    /// Choose the rFLEX robot (its conversion constants).
+    SetRflexRobot(super::rflex::Robot),
+    /// Change the rFLEX drive limits.
+    SetRflexDrive(super::rflex::DriveSettings),
 }
 
 fn set<T>(items: &mut [T], index: usize, value: T) -> bool {
@@ -96,13 +100,24 @@ impl Edit {
     /// Applies the edit to the project's servo section; false (and no change)
     /// when its index is out of range.
     pub fn apply(self, project: &mut Project) -> bool {
-        if let Self::SetFamily(family) = self {
-            project.family = family;
-            return true;
+        match self {
+            Self::SetFamily(family) => {
+                project.family = family;
+                return true;
+            }
+            Self::SetRflexRobot(robot) => {
+                project.rflex.robot = robot;
+                return true;
+            }
+            Self::SetRflexDrive(drive) => {
+                project.rflex.drive = drive;
+                return true;
+            }
+            _ => {}
         }
         let project = &mut project.servo;
         match self {
-            Self::SetFamily(_) => false,
+            Self::SetFamily(_) | Self::SetRflexRobot(_) | Self::SetRflexDrive(_) => false,
             Self::SetServo { index, servo } => set(&mut project.servos, index, servo),
             Self::AddServo(servo) => {
                 project.servos.push(servo);

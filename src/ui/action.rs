@@ -34,6 +34,10 @@ pub enum Tab {
     Board,
     /// Every frame sent and received.
     Log,
+    /// Driving a mobile base.
+    Drive,
+    /// A mobile base's sensors.
+    Telemetry,
 }
 
 impl Tab {
@@ -41,8 +45,9 @@ impl Tab {
     pub fn for_family(family: Family) -> &'static [Self] {
         match family {
             Family::Servo => &[Self::Servos, Self::Actions, Self::Macros, Self::Joystick, Self::Board, Self::Log],
-            // Their panels come with their drivers; until then the log is all that applies.
-            Family::Plen2 | Family::Rflex => &[Self::Log],
+            Family::Rflex => &[Self::Drive, Self::Telemetry, Self::Log],
+            // Its panels come with its driver; until then the log is all that applies.
+            Family::Plen2 => &[Self::Log],
         }
     }
 
@@ -55,12 +60,14 @@ impl Tab {
             Self::Joystick => words.joystick,
             Self::Board => words.board,
             Self::Log => words.packet_log,
+            Self::Drive => words.drive,
+            Self::Telemetry => words.telemetry,
         }
     }
 }
 
 /// One request from a panel to the app shell.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum Action {
     /// Change the project; edits sharing `coalesce` form one undo step.
     Edit {
@@ -104,8 +111,21 @@ pub enum Action {
         /// Hold (true) or release (false).
         hold: bool,
     },
-    /// Stop every servo where it is, holding torque.
+    /// Stop every servo where it is, holding torque; stop a base at once.
     Stop,
+    /// Drive a mobile base at this velocity (held until changed; 0, 0 stops).
+    Drive {
+        /// m/s, forward positive.
+        speed_m_per_s: f64,
+        /// rad/s, left positive.
+        turn_rad_per_s: f64,
+    },
+    /// Choose the rFLEX robot preset.
+    SetRobot(crate::project::rflex::Robot),
+    /// Set or release a base's brake.
+    SetBrake(bool),
+    /// Turn a base's sonar ring on or off.
+    SetSonar(bool),
     /// Let servos move again after a STOP.
     Resume,
     /// Turn the current pose into a new action.

@@ -2,13 +2,15 @@
 //! board when there is one, and the packet log. The family's handle in
 //! `device` does the talking; this only routes its notices to the shell.
 
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
-use crate::device::LogEntry;
+use crate::device::rflex::{RflexBase, RflexNotice};
 use crate::device::servo::{RequestError, ServoHandle, ServoImage, ServoNotice};
 use crate::link::{Connection, DisconnectReason, Waker};
 use crate::project::{Family, Project};
-use crate::sim::{ServoSim, SimConfig, SimHandle, spawn_in_memory};
+use crate::sim::{
+    RflexSim, RflexSimCommand, RflexSimConfig, RflexSimEvent, ServoSim, SimConfig, SimHandle, spawn_in_memory,
+};
 use crate::ui::packet_log::PacketLog;
 
 /// Something the app shell should show the user.
@@ -29,6 +31,8 @@ pub enum LinkNotice {
         /// What happened.
         event: crate::device::servo::ButtonEvent,
     },
+    /// A mobile base went silent while driving and was sent a stop.
+    BaseSilent,
 }
 
 /// The connected board's driver, by family.
@@ -36,12 +40,23 @@ pub enum LinkNotice {
 pub enum Device {
     /// A servo controller board.
     Servo(ServoHandle),
+    /// An rFLEX mobile base.
+    Rflex(RflexBase),
+}
+
+/// The emulated board behind the demo, by family.
+#[derive(Debug)]
+pub enum Demo {
+    /// The emulated servo board.
+    Servo(SimHandle),
+    /// The emulated rFLEX base.
+    Rflex(SimHandle<RflexSimCommand, RflexSimEvent>),
 }
 
 /// A connected board as the app shell sees it.
 pub struct BoardLink {
     device: Device,
-    demo: Option<SimHandle>,
+    demo: Option<Demo>,
     /// What it is connected to.
     pub label: String,
     /// Every frame sent and received.
@@ -63,20 +78,31 @@ pub enum StartError {
     Thread(String),
 }
 
+impl From<std::io::Error> for StartError {
+    fn from(error: std::io::Error) -> Self {
+        Self::Thread(error.to_string())
+    }
+}
+
+/// How often a mobile base's telemetry is redrawn while connected.
+const TELEMETRY_EVERY: Duration = Duration::from_millis(100);
+
 impl BoardLink {
     /// Whether this build has a driver for `family`.
     pub fn supports(family: Family) -> bool {
-        family == Family::Servo
+        matches!(family, Family::Servo | Family::Rflex)
     }
 
-    /// Starts `family`'s driver over an opened connection.
-    pub fn start(family: Family, connection: Connection, baud: u32, waker: Waker) -> Result<Self, StartError> {
+    /// Starts the driver of the project's family over an opened connection.
+    pub fn start(project: &Project, connection: Connection, baud: u32, waker: Waker) -> Result<Self, StartError> {
         let label = connection.description.clone();
-        let device = match family {
-            Family::Servo => Device::Servo(
-                ServoHandle::over(connection, Some(baud), waker)
-                    .map_err(|error| StartError::Thread(error.to_string()))?,
-            ),
+        let device = match project.family {
+            Family::Servo => Device::Servo(ServoHandle::over(connection, Some(baud), waker)?),
+            Family::Rflex => {
+                let base = RflexBase::over(connection, project.rflex.robot.conversion(), waker)?;
+                base.start(project.rflex.drive.sonar_on_connect);
+                Device::Rflex(base)
+            }
             other => return Err(StartError::Unsupported(other)),
         };
         Ok(Self { device, demo: None, label, log: PacketLog::default() })
@@ -88,22 +114,38 @@ impl BoardLink {
         Self::demo_with(project, SimConfig::default(), waker)
     }
 
-    /// Like [`BoardLink::demo`], with the emulated board configured (faults, memory…).
+    /// Like [`BoardLink::demo`], with the emulated servo board configured (faults, memory…).
     pub fn demo_with(project: &Project, sim_config: SimConfig, waker: Waker) -> Result<Self, StartError> {
-        if project.family != Family::Servo {
-            return Err(StartError::Unsupported(project.family));
+        match project.family {
+            Family::Servo => {
+                let image = ServoImage::from_project(&project.servo).unwrap_or_default();
+                let (sim, connection) = spawn_in_memory(ServoSim::new(sim_config, image), waker.clone())?;
+                let handle = ServoHandle::over(connection, None, waker)?;
+                Ok(Self {
+                    device: Device::Servo(handle),
+                    demo: Some(Demo::Servo(sim)),
+                    label: String::new(),
+                    log: PacketLog::default(),
+                })
+            }
+            Family::Rflex => {
+                let config =
+                    RflexSimConfig { conversion: project.rflex.robot.conversion(), ..RflexSimConfig::default() };
+                let (sim, connection) = spawn_in_memory(RflexSim::new(config), waker.clone())?;
+                let mut link = Self::start(project, connection, 115_200, waker)?;
+                link.demo = Some(Demo::Rflex(sim));
+                link.label = String::new();
+                Ok(link)
+            }
+            other => Err(StartError::Unsupported(other)),
         }
-        let image = ServoImage::from_project(&project.servo).unwrap_or_default();
-        let thread = |error: std::io::Error| StartError::Thread(error.to_string());
-        let (sim, connection) = spawn_in_memory(ServoSim::new(sim_config, image), waker.clone()).map_err(thread)?;
-        let handle = ServoHandle::over(connection, None, waker).map_err(thread)?;
-        Ok(Self { device: Device::Servo(handle), demo: Some(sim), label: String::new(), log: PacketLog::default() })
     }
 
     /// The family connected.
     pub fn family(&self) -> Family {
         match self.device {
             Device::Servo(_) => Family::Servo,
+            Device::Rflex(_) => Family::Rflex,
         }
     }
 
@@ -112,15 +154,27 @@ impl BoardLink {
         self.demo.is_some()
     }
 
-    /// The emulated board, when this is the demo.
+    /// The emulated servo board, when this is its demo.
     pub fn demo_board(&self) -> Option<&SimHandle> {
-        self.demo.as_ref()
+        match &self.demo {
+            Some(Demo::Servo(sim)) => Some(sim),
+            _ => None,
+        }
+    }
+
+    /// The emulated rFLEX base, when this is its demo.
+    pub fn demo_base(&self) -> Option<&SimHandle<RflexSimCommand, RflexSimEvent>> {
+        match &self.demo {
+            Some(Demo::Rflex(sim)) => Some(sim),
+            _ => None,
+        }
     }
 
     /// The servo board's handle, when a servo board is connected.
     pub fn servo(&self) -> Option<&ServoHandle> {
         match &self.device {
             Device::Servo(handle) => Some(handle),
+            Device::Rflex(_) => None,
         }
     }
 
@@ -128,51 +182,81 @@ impl BoardLink {
     pub fn servo_mut(&mut self) -> Option<&mut ServoHandle> {
         match &mut self.device {
             Device::Servo(handle) => Some(handle),
+            Device::Rflex(_) => None,
         }
     }
 
-    /// Servos (or joints, or wheels) were stopped with STOP and not resumed.
+    /// The mobile base, when one is connected.
+    pub fn rflex(&self) -> Option<&RflexBase> {
+        match &self.device {
+            Device::Rflex(base) => Some(base),
+            Device::Servo(_) => None,
+        }
+    }
+
+    /// The mobile base, mutably.
+    pub fn rflex_mut(&mut self) -> Option<&mut RflexBase> {
+        match &mut self.device {
+            Device::Rflex(base) => Some(base),
+            Device::Servo(_) => None,
+        }
+    }
+
+    /// Servos were stopped with STOP and not resumed (a base has no such state).
     pub fn stopped(&self) -> bool {
         match &self.device {
             Device::Servo(handle) => handle.stopped,
+            Device::Rflex(_) => false,
         }
     }
 
     /// STOP, the family's way: for a servo board, drop queued moves and stop
-    /// every servo where it is, holding torque, ahead of any queued request.
+    /// every servo where it is, holding torque, ahead of any queued request;
+    /// for a base, both axes to speed 0 at once.
     pub fn stop(&mut self) -> Result<(), RequestError> {
         match &mut self.device {
             Device::Servo(handle) => handle.stop(),
+            Device::Rflex(base) => {
+                base.stop();
+                Ok(())
+            }
         }
     }
 
     /// Picks up what the board sent; records the packet log.
     pub fn pump(&mut self, now: Instant, polling: bool) -> Vec<LinkNotice> {
-        let notices = match &mut self.device {
-            Device::Servo(handle) => handle.pump(now, polling),
-        };
         let mut out = Vec::new();
-        for notice in notices {
-            match notice {
-                ServoNotice::Log(entry) => self.record(entry),
-                ServoNotice::SendFailed(text) => out.push(LinkNotice::SendFailed(text)),
-                ServoNotice::RequestFailed(error) => out.push(LinkNotice::RequestFailed(error)),
-                ServoNotice::MacroRefused => out.push(LinkNotice::MacroRefused),
-                ServoNotice::Disconnected(reason) => out.push(LinkNotice::Disconnected(reason)),
-                ServoNotice::Button { button_id, event } => out.push(LinkNotice::Button { button_id, event }),
+        match &mut self.device {
+            Device::Servo(handle) => {
+                for notice in handle.pump(now, polling) {
+                    match notice {
+                        ServoNotice::Log(entry) => self.log.record(entry),
+                        ServoNotice::SendFailed(text) => out.push(LinkNotice::SendFailed(text)),
+                        ServoNotice::RequestFailed(error) => out.push(LinkNotice::RequestFailed(error)),
+                        ServoNotice::MacroRefused => out.push(LinkNotice::MacroRefused),
+                        ServoNotice::Disconnected(reason) => out.push(LinkNotice::Disconnected(reason)),
+                        ServoNotice::Button { button_id, event } => out.push(LinkNotice::Button { button_id, event }),
+                    }
+                }
+            }
+            Device::Rflex(base) => {
+                for notice in base.pump(now) {
+                    match notice {
+                        RflexNotice::Log(entry) => self.log.record(entry),
+                        RflexNotice::Silent => out.push(LinkNotice::BaseSilent),
+                        RflexNotice::Disconnected(reason) => out.push(LinkNotice::Disconnected(reason)),
+                    }
+                }
             }
         }
         out
     }
 
-    fn record(&mut self, entry: LogEntry) {
-        self.log.record(entry);
-    }
-
-    /// When the link next needs a frame to refresh its status.
+    /// When the link next needs a frame to refresh what it shows.
     pub fn next_refresh(&self, polling: bool) -> Instant {
         match &self.device {
             Device::Servo(handle) => handle.next_refresh(polling),
+            Device::Rflex(_) => Instant::now() + TELEMETRY_EVERY,
         }
     }
 }

@@ -7,6 +7,7 @@ use std::time::{Duration, Instant};
 use crate::device::line_settings;
 use crate::link::{PortInfo, list_ports};
 use crate::project::Family;
+use crate::project::rflex::Robot;
 use crate::ui::action::Action;
 use crate::ui::i18n::{Language, Strings};
 
@@ -17,10 +18,14 @@ const BAUDS: [u32; 11] =
 const RESCAN_EVERY: Duration = Duration::from_secs(2);
 
 /// What the bar shows of the current link.
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct LinkStatus {
     /// The family of the document and of the connection.
     pub family: Family,
+    /// The rFLEX robot preset, for that family.
+    pub robot: Option<Robot>,
+    /// A base's battery, volts.
+    pub volts: Option<f64>,
     /// What it is connected to, if connected.
     pub label: Option<String>,
     /// The port being opened, while connecting.
@@ -106,6 +111,21 @@ impl ConnectionBar {
                 if family != status.family {
                     actions.push(Action::SetFamily(family));
                 }
+                if let Some(current) = status.robot {
+                    let robot_label = ui.label(words.robot);
+                    let mut robot = current;
+                    let picked = egui::ComboBox::from_id_salt("robot-picker")
+                        .selected_text(robot_name(current))
+                        .show_ui(ui, |ui| {
+                            for option in [Robot::B21r, Robot::AtrvJr, Robot::Magellan] {
+                                ui.selectable_value(&mut robot, option, robot_name(option));
+                            }
+                        });
+                    picked.response.labelled_by(robot_label.id);
+                    if robot != current {
+                        actions.push(Action::SetRobot(robot));
+                    }
+                }
                 let port_label = ui.label(words.port);
                 ui.add(
                     egui::TextEdit::singleline(&mut self.port)
@@ -169,6 +189,16 @@ impl ConnectionBar {
     }
 }
 
+/// A robot preset's name.
+fn robot_name(robot: Robot) -> &'static str {
+    match robot {
+        Robot::B21r => "B21r",
+        Robot::AtrvJr => "ATRV-Jr",
+        Robot::Magellan => "Magellan",
+        Robot::Custom { .. } => "custom",
+    }
+}
+
 /// The bar's status words: one sentence in the interface's language.
 pub fn status_text(status: &LinkStatus, language: Language) -> String {
     let words = language.strings();
@@ -179,6 +209,9 @@ pub fn status_text(status: &LinkStatus, language: Language) -> String {
     let mut parts = vec![format!("{} {label}", words.connected_to)];
     if let Some(project_id) = status.project_id {
         parts.push(format!("{} {project_id}", words.project));
+    }
+    if let Some(volts) = status.volts {
+        parts.push(format!("{} {volts:.2} V", words.battery));
     }
     if let Some(permil) = status.battery_permil {
         parts.push(format!("{} {}", words.battery, crate::device::servo::battery_text(permil)));

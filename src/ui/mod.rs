@@ -8,6 +8,7 @@ mod board_link;
 mod board_panel;
 mod connection_bar;
 mod document;
+mod drive_panel;
 pub mod files;
 pub mod fonts;
 mod i18n;
@@ -16,6 +17,7 @@ mod joystick_panel;
 mod macro_panel;
 pub mod packet_log;
 mod servo_panel;
+mod telemetry_panel;
 
 pub use action::{Action, AfterUnsaved, BoardIntent, Tab};
 pub use action_panel::timeline_bars;
@@ -25,6 +27,7 @@ pub use app::{
 pub use board_link::{BoardLink, Device, LinkNotice, StartError};
 pub use board_panel::{BoardResult, PendingConfirm};
 pub use document::Document;
+pub use drive_panel::{DrivePanel, DriveView};
 pub use i18n::{Language, Strings};
 pub use job::{Job, JobKind, JobOutcome};
 

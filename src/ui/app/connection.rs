@@ -17,6 +17,10 @@ impl StudioApp {
                 LinkNotice::RequestFailed(error) => {
                     self.status = Some(StatusLine { text: self.language.request_error(&error), is_error: true });
                 }
+                LinkNotice::BaseSilent => {
+                    self.drive_panel = DrivePanel::default();
+                    self.status = Some(StatusLine { text: self.words().msg_base_silent.into(), is_error: true });
+                }
                 LinkNotice::MacroRefused => {
                     self.status =
                         Some(StatusLine { text: self.language.strings().msg_macro_refused.into(), is_error: true });
@@ -71,11 +75,12 @@ impl StudioApp {
     pub(super) fn poll_connecting(&mut self) {
         let Some(connecting) = &self.connecting else { return };
         let Some(result) = connecting.opening.poll() else { return };
-        let Some(Connecting { opening, family, baud }) = self.connecting.take() else { return };
+        let Some(Connecting { opening, baud, .. }) = self.connecting.take() else { return };
         match result {
-            Ok(connection) => match BoardLink::start(family, connection, baud, self.waker.clone()) {
+            Ok(connection) => match BoardLink::start(&self.document.project, connection, baud, self.waker.clone()) {
                 Ok(mut link) => {
                     link.label = opening.port.to_string();
+                    self.sonar_on = self.document.project.rflex.drive.sonar_on_connect;
                     self.report(format!("{} {}", self.words().msg_connected_to, link.label), false);
                     self.link = Some(link);
                 }
@@ -96,6 +101,11 @@ impl StudioApp {
         }
     }
 
+    /// What the Drive panel asks the base for now (m/s, rad/s).
+    pub fn drive_asked(&self) -> (f64, f64) {
+        self.drive_panel.asked()
+    }
+
     /// Opens ports with `opener` instead of the system's (tests use a double).
     pub fn with_opener(mut self, opener: Opener) -> Self {
         self.opener = opener;
@@ -105,6 +115,7 @@ impl StudioApp {
     pub(super) fn link_status(&self) -> LinkStatus {
         let family = self.document.project.family;
         let connecting = self.connecting.as_ref().map(|connecting| connecting.opening.port.to_string());
+        let robot = (family == Family::Rflex).then_some(self.document.project.rflex.robot);
         match &self.link {
             None => {
                 LinkStatus { family, connecting, can_connect: BoardLink::supports(family), ..LinkStatus::default() }
@@ -112,8 +123,11 @@ impl StudioApp {
             Some(link) => {
                 let label = if link.is_demo() { self.words().demo_board.to_string() } else { link.label.clone() };
                 let servo = link.servo();
+                let volts = link.rflex().and_then(|base| base.telemetry.battery_volts);
                 LinkStatus {
                     family,
+                    robot,
+                    volts,
                     label: Some(label),
                     connecting,
                     can_connect: true,

@@ -21,6 +21,7 @@ use crate::ui::board_link::{BoardLink, LinkNotice};
 use crate::ui::board_panel::{self, BoardResult, BoardView, PendingConfirm};
 use crate::ui::connection_bar::{ConnectionBar, LinkStatus};
 use crate::ui::document::Document;
+use crate::ui::drive_panel::{DrivePanel, DriveView};
 use crate::ui::files::{self, AUTOSAVE_EVERY, Recovery};
 use crate::ui::i18n::Language;
 use crate::ui::job::{Job, JobKind, JobOutcome};
@@ -106,6 +107,9 @@ pub struct StudioApp {
     servo_panel: ServoPanel,
     macro_panel: MacroPanel,
     joystick_panel: JoystickPanel,
+    drive_panel: DrivePanel,
+    /// Whether the base's sonar ring was turned on.
+    pub sonar_on: bool,
     action_panel: ActionPanel,
 }
 
@@ -151,6 +155,8 @@ impl StudioApp {
             action_panel: ActionPanel::default(),
             preview: None,
             joystick_panel: JoystickPanel::default(),
+            drive_panel: DrivePanel::default(),
+            sonar_on: false,
             picking: None,
             picked_button: None,
         };
@@ -193,6 +199,7 @@ impl StudioApp {
             }
             Action::ConnectDemo => match BoardLink::demo(&self.document.project, self.waker.clone()) {
                 Ok(link) => {
+                    self.sonar_on = self.document.project.rflex.drive.sonar_on_connect;
                     self.report(self.words().msg_connected_demo, false);
                     self.link = Some(link);
                 }
@@ -211,12 +218,40 @@ impl StudioApp {
                 }
             }
             Action::Stop => match &mut self.link {
+                Some(link) if link.rflex().is_some() => {
+                    self.drive_panel = DrivePanel::default();
+                    // A base: both axes to 0 at once (never fails; a lost link is reported by pump).
+                    let _ = link.stop();
+                    self.report(self.words().msg_base_stopped, false);
+                }
                 Some(link) => match link.stop() {
                     Ok(()) => self.report(self.words().msg_stopped_all, false),
                     Err(error) => self.report(self.language.request_error(&error), true),
                 },
                 None => self.report(self.words().msg_stop_no_board, false),
             },
+            Action::Drive { speed_m_per_s, turn_rad_per_s } => {
+                let accel = self.document.project.rflex.drive.accel_m_per_s2;
+                if let Some(base) = self.link.as_mut().and_then(BoardLink::rflex_mut) {
+                    base.drive(speed_m_per_s, turn_rad_per_s, accel);
+                }
+            }
+            Action::SetRobot(robot) => {
+                if self.link.is_none() {
+                    self.document.apply(Edit::SetRflexRobot(robot), None);
+                }
+            }
+            Action::SetBrake(on) => {
+                if let Some(base) = self.link.as_mut().and_then(BoardLink::rflex_mut) {
+                    base.set_brake(on);
+                }
+            }
+            Action::SetSonar(on) => {
+                if let Some(base) = self.link.as_ref().and_then(BoardLink::rflex) {
+                    base.set_sonar(on);
+                    self.sonar_on = on;
+                }
+            }
             Action::Resume => {
                 if let Some(servo) = self.servo_mut() {
                     servo.resume();
@@ -378,6 +413,10 @@ impl StudioApp {
         });
 
         let family = self.document.project.family;
+        if self.tab != Tab::Drive && self.drive_panel.asked() != (0.0, 0.0) {
+            // The pad and the keys live on the Drive tab: leaving it is letting go.
+            actions.push(Action::Stop);
+        }
         if !Tab::for_family(family).contains(&self.tab) {
             self.tab = Tab::for_family(family)[0];
         }
@@ -425,11 +464,30 @@ impl StudioApp {
                 };
                 self.joystick_panel.ui(ui, &view, words, &mut actions);
             }
+            Tab::Drive => {
+                let base = self.link.as_ref().and_then(BoardLink::rflex);
+                let view = DriveView {
+                    connected: base.is_some_and(|base| !base.is_lost()),
+                    settings: self.document.project.rflex.drive,
+                    commanded: base.map_or((0.0, 0.0), |base| base.commanded),
+                    measured: base
+                        .map_or((0.0, 0.0), |base| (base.telemetry.speed_m_per_s, base.telemetry.turn_rad_per_s)),
+                    brake: base.and_then(|base| base.telemetry.brake),
+                    sonar_on: self.sonar_on,
+                };
+                self.drive_panel.ui(ui, &view, words, &mut actions);
+            }
+            Tab::Telemetry => match self.link.as_ref().and_then(BoardLink::rflex) {
+                Some(base) => crate::ui::telemetry_panel::ui(ui, &base.telemetry, words),
+                None => {
+                    ui.label(words.not_connected);
+                }
+            },
             Tab::Log => match &mut self.link {
                 Some(link) => link.log.ui(ui, words),
                 None => {
                     ui.label(words.not_connected);
-                    if family != Family::Servo {
+                    if !BoardLink::supports(family) {
                         ui.label(self.language.family_not_in_build(family));
                     }
                 }
@@ -521,6 +579,11 @@ impl StudioApp {
 impl eframe::App for StudioApp {
     fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
         self.show(ui);
+    }
+
+    fn on_exit(&mut self, _gl: Option<&eframe::glow::Context>) {
+        // Dropping the link stops a base and shuts it down (brake on) before the window goes.
+        self.link = None;
     }
 
     fn save(&mut self, storage: &mut dyn eframe::Storage) {

@@ -9,6 +9,40 @@ pub struct Strings {
     pub lang: Language,
     /// "Hardware" (the family chooser).
     pub family: &'static str,
+    /// "Drive".
+    pub drive: &'static str,
+    /// "Telemetry".
+    pub telemetry: &'static str,
+    /// "Robot".
+    pub robot: &'static str,
+    /// "Brake".
+    pub brake: &'static str,
+    /// "Sonar".
+    pub sonar: &'static str,
+    /// "Drag in the pad, or hold the arrow keys; release to stop. Space or Esc: STOP.".
+    pub pad_hint: &'static str,
+    /// "Top speed (m/s)".
+    pub max_speed: &'static str,
+    /// "Top turn (rad/s)".
+    pub max_turn: &'static str,
+    /// "Acceleration (m/s²)".
+    pub acceleration: &'static str,
+    /// "Commanded".
+    pub commanded: &'static str,
+    /// "Measured".
+    pub measured: &'static str,
+    /// "Odometry".
+    pub odometry: &'static str,
+    /// "Bump panels".
+    pub bumpers: &'static str,
+    /// "Joystick".
+    pub joystick_state: &'static str,
+    /// "Reports dropped (bad checksum)".
+    pub checksum_failures: &'static str,
+    /// "STOP: the base was told to stop at once".
+    pub msg_base_stopped: &'static str,
+    /// "The base stopped answering while driving; it was sent a stop. Check the cable and its power.".
+    pub msg_base_silent: &'static str,
     /// "Port".
     pub port: &'static str,
     /// "Upload anyway".
@@ -278,6 +312,23 @@ pub struct Strings {
 pub(super) const ENGLISH: Strings = Strings {
     lang: Language::English,
     family: "Hardware",
+    drive: "Drive",
+    telemetry: "Telemetry",
+    robot: "Robot",
+    brake: "Brake",
+    sonar: "Sonar",
+    pad_hint: "Drag in the pad, or hold the arrow keys; release to stop. Space or Esc: STOP.",
+    max_speed: "Top speed (m/s)",
+    max_turn: "Top turn (rad/s)",
+    acceleration: "Acceleration (m/s²)",
+    commanded: "Commanded",
+    measured: "Measured",
+    odometry: "Odometry",
+    bumpers: "Bump panels",
+    joystick_state: "Joystick",
+    checksum_failures: "Reports dropped (bad checksum)",
+    msg_base_stopped: "STOP: the base was told to stop at once",
+    msg_base_silent: "The base stopped answering while driving; it was sent a stop. Check the cable and its power.",
     upload_anyway: "Upload anyway",
     upload_anyway_hint: "Restore it exactly as it is (e.g. a backup of a board another tool wrote). The board is still compared first, backed up, and verified after writing.",
     port: "Port",
@@ -415,6 +466,23 @@ pub(super) const ENGLISH: Strings = Strings {
 pub(super) const TRADITIONAL_CHINESE: Strings = Strings {
     lang: Language::TraditionalChinese,
     family: "硬體",
+    drive: "駕駛",
+    telemetry: "遙測",
+    robot: "機器人",
+    brake: "煞車",
+    sonar: "聲納",
+    pad_hint: "在方塊中拖曳，或按住方向鍵；放開即停止。空白鍵或 Esc：停止。",
+    max_speed: "最高速度（m/s）",
+    max_turn: "最高轉速（rad/s）",
+    acceleration: "加速度（m/s²）",
+    commanded: "指令",
+    measured: "實測",
+    odometry: "里程",
+    bumpers: "防撞板",
+    joystick_state: "搖桿",
+    checksum_failures: "丟棄的報告（校驗錯誤）",
+    msg_base_stopped: "停止：已命令底盤立即停止",
+    msg_base_silent: "行駛中底盤停止回應，已送出停止指令。請檢查線材與電源。",
     upload_anyway: "仍要上傳",
     upload_anyway_hint: "照原樣還原（例如其他工具寫入的控制板備份）。仍會先比較、備份控制板，寫入後再驗證。",
     port: "連接埠",

@@ -1,0 +1,163 @@
+//! The Drive panel for a mobile base: a drag pad and the arrow keys for
+//! translation and rotation within the project's limits, a big STOP (Space,
+//! Esc), brake and sonar toggles, and the commanded and measured velocities.
+//! It never leaves a base driving: releasing the pad or the keys, or the
+//! window losing focus, sends a stop in the same frame.
+
+// Screen coordinates are f32: drawing an f64 quantity loses nothing visible.
+#![allow(clippy::cast_possible_truncation)]
+
+use crate::project::Edit;
+use crate::project::rflex::DriveSettings;
+use crate::ui::action::Action;
+use crate::ui::i18n::Strings;
+
+/// Side of the drag pad, points.
+const PAD_SIZE: f32 = 220.0;
+
+/// What the panel shows.
+#[derive(Debug)]
+pub struct DriveView {
+    /// Whether a base is connected (else nothing is sent).
+    pub connected: bool,
+    /// The project's limits.
+    pub settings: DriveSettings,
+    /// What the base is told (m/s, rad/s).
+    pub commanded: (f64, f64),
+    /// What the base reports (m/s, rad/s).
+    pub measured: (f64, f64),
+    /// The brake as the base reports it.
+    pub brake: Option<bool>,
+    /// Whether the sonar ring was turned on.
+    pub sonar_on: bool,
+}
+
+/// The panel's own state: the velocity it last asked for.
+#[derive(Debug, Default)]
+pub struct DrivePanel {
+    asked: (f64, f64),
+}
+
+/// The velocity the held arrow keys ask for.
+fn from_keys(ui: &egui::Ui, settings: &DriveSettings) -> (f64, f64) {
+    ui.input(|input| {
+        let axis = |plus: egui::Key, minus: egui::Key| {
+            f64::from(i8::from(input.key_down(plus)) - i8::from(input.key_down(minus)))
+        };
+        (
+            axis(egui::Key::ArrowUp, egui::Key::ArrowDown) * settings.max_speed_m_per_s,
+            axis(egui::Key::ArrowLeft, egui::Key::ArrowRight) * settings.max_turn_rad_per_s,
+        )
+    })
+}
+
+impl DrivePanel {
+    /// What the panel asked for last (for tests and the status line).
+    pub fn asked(&self) -> (f64, f64) {
+        self.asked
+    }
+
+    fn ask(&mut self, wanted: (f64, f64), actions: &mut Vec<Action>) {
+        if wanted == self.asked {
+            return;
+        }
+        self.asked = wanted;
+        if wanted == (0.0, 0.0) {
+            actions.push(Action::Stop);
+        } else {
+            actions.push(Action::Drive { speed_m_per_s: wanted.0, turn_rad_per_s: wanted.1 });
+        }
+    }
+
+    /// Draws the panel.
+    pub fn ui(&mut self, ui: &mut egui::Ui, view: &DriveView, words: &Strings, actions: &mut Vec<Action>) {
+        if !view.connected {
+            // Nothing to drive: forget what was asked, so a new link starts at rest.
+            self.asked = (0.0, 0.0);
+        }
+        ui.horizontal(|ui| {
+            ui.heading(words.drive);
+            let stop = egui::Button::new(
+                egui::RichText::new(format!("■ {}", words.stop)).strong().size(22.0).color(egui::Color32::WHITE),
+            )
+            .fill(egui::Color32::from_rgb(200, 30, 30))
+            .min_size(egui::vec2(140.0, 40.0));
+            if ui.add(stop).on_hover_text("Space / Esc").clicked() {
+                self.asked = (0.0, 0.0);
+                actions.push(Action::Stop);
+            }
+            let braked = view.brake.unwrap_or(true);
+            let brake = ui.add_enabled(view.connected, egui::Button::new(words.brake).selected(braked));
+            if brake.clicked() {
+                self.asked = (0.0, 0.0);
+                actions.push(Action::SetBrake(!braked));
+            }
+            if ui.add_enabled(view.connected, egui::Button::new(words.sonar).selected(view.sonar_on)).clicked() {
+                actions.push(Action::SetSonar(!view.sonar_on));
+            }
+        });
+        ui.label(words.pad_hint);
+        ui.horizontal_top(|ui| {
+            let (rect, response) = ui.allocate_exact_size(egui::vec2(PAD_SIZE, PAD_SIZE), egui::Sense::drag());
+            let painter = ui.painter_at(rect);
+            let visuals = ui.visuals();
+            painter.rect_filled(rect, 8.0, visuals.extreme_bg_color);
+            painter.line_segment([rect.center_top(), rect.center_bottom()], visuals.widgets.noninteractive.bg_stroke);
+            painter.line_segment([rect.left_center(), rect.right_center()], visuals.widgets.noninteractive.bg_stroke);
+            let half = f64::from(PAD_SIZE / 2.0);
+            let settings = view.settings;
+            let from_pad = response.interact_pointer_pos().filter(|_| response.dragged()).map(|pointer| {
+                let offset = (pointer - rect.center())
+                    .clamp(egui::vec2(-PAD_SIZE, -PAD_SIZE) / 2.0, egui::vec2(PAD_SIZE, PAD_SIZE) / 2.0);
+                (
+                    -f64::from(offset.y) / half * settings.max_speed_m_per_s,
+                    -f64::from(offset.x) / half * settings.max_turn_rad_per_s,
+                )
+            });
+            // The marker shows what is asked for.
+            let marker = rect.center()
+                + egui::vec2(
+                    (-self.asked.1 / settings.max_turn_rad_per_s.max(1e-9) * half) as f32,
+                    (-self.asked.0 / settings.max_speed_m_per_s.max(1e-9) * half) as f32,
+                );
+            painter.circle_filled(marker, 10.0, visuals.selection.bg_fill);
+            ui.vertical(|ui| {
+                let row = |ui: &mut egui::Ui, label: &str, (speed, turn): (f64, f64)| {
+                    ui.monospace(format!("{label:<10} {speed:+.2} m/s  {turn:+.2} rad/s"));
+                };
+                row(ui, words.commanded, view.commanded);
+                row(ui, words.measured, view.measured);
+                ui.separator();
+                let mut changed = settings;
+                ui.add(egui::Slider::new(&mut changed.max_speed_m_per_s, 0.05..=1.5).text(words.max_speed));
+                ui.add(egui::Slider::new(&mut changed.max_turn_rad_per_s, 0.1..=2.0).text(words.max_turn));
+                ui.add(egui::Slider::new(&mut changed.accel_m_per_s2, 0.1..=2.0).text(words.acceleration));
+                if changed != settings {
+                    actions.push(Action::Edit {
+                        edit: Edit::SetRflexDrive(changed),
+                        coalesce: Some("rflex drive".into()),
+                    });
+                }
+            });
+            // Keys count only when no field has the keyboard, and only while the window has focus.
+            let keys_free = ui.memory(|memory| memory.focused().is_none());
+            let focused = ui.input(|input| input.focused);
+            if keys_free && ui.input_mut(|input| input.consume_key(egui::Modifiers::NONE, egui::Key::Space)) {
+                self.asked = (0.0, 0.0);
+                actions.push(Action::Stop);
+            }
+            let wanted = if !view.connected || !focused {
+                (0.0, 0.0)
+            } else if let Some(pad) = from_pad {
+                pad
+            } else if keys_free {
+                from_keys(ui, &settings)
+            } else {
+                (0.0, 0.0)
+            };
+            if view.connected {
+                self.ask(wanted, actions);
+            }
+        });
+    }
+}

@@ -1,0 +1,116 @@
+//! Driving the emulated rFLEX base from the editor: an arrow key held drives
+//! it, letting go stops it within one frame, STOP stops it, and a lost link is
+//! reported and leaves the pad silent.
+
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use std::time::{Duration, Instant};
+
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use servo_studio::link::{LinkEvent, no_waker};
+use servo_studio::project::{Family, Project};
+use servo_studio::protocol::rflex::Command;
+use servo_studio::sim::{BaseState, RflexSimCommand, RflexSimEvent};
+use servo_studio::ui::{Action, StudioApp, Tab};
+
+fn harness() -> Harness<'static, StudioApp> {
+    let data = tempfile::tempdir().unwrap().keep();
+    let mut app = StudioApp::new(Project::empty(Family::Rflex), None, no_waker()).with_data_dir(data);
+    app.apply(Action::ConnectDemo);
+    assert!(app.link.as_ref().is_some_and(|link| link.rflex().is_some()), "{:?}", app.status);
+    app.apply(Action::ShowTab(Tab::Drive));
+    let mut harness = Harness::builder()
+        .with_size(egui::vec2(1100.0, 700.0))
+        .with_context_setup(servo_studio::ui::fonts::install)
+        .build_ui_state(|ui, app: &mut StudioApp| app.show(ui), app);
+    harness.run_steps(2);
+    harness
+}
+
+fn inspect(harness: &Harness<'static, StudioApp>) -> BaseState {
+    let (reply, state) = crossbeam_channel::bounded(1);
+    harness.state().link.as_ref().unwrap().demo_base().unwrap().command(RflexSimCommand::Inspect(reply));
+    state.recv_timeout(Duration::from_secs(5)).unwrap()
+}
+
+/// Waits (on the base's own events) until it receives a motion command matching `wanted`.
+fn wait_for_motion(harness: &Harness<'static, StudioApp>, what: &str, wanted: impl Fn(u32, u8) -> bool) {
+    let events = harness.state().link.as_ref().unwrap().demo_base().unwrap().events().clone();
+    let deadline = Instant::now() + Duration::from_secs(5);
+    loop {
+        match events.recv_deadline(deadline) {
+            Ok(LinkEvent::Driver(RflexSimEvent::Received(Command::AxisSetDir {
+                axis: 0, speed, direction, ..
+            }))) if wanted(speed, direction) => {
+                return;
+            }
+            Ok(_) => {}
+            Err(_) => panic!("the base never got {what}"),
+        }
+    }
+}
+
+#[test]
+fn an_arrow_key_drives_the_base_and_letting_go_stops_it_within_one_frame() {
+    let mut harness = harness();
+    harness.get_by_label("Brake").click();
+    harness.run_steps(2);
+    let deadline = Instant::now() + Duration::from_secs(5);
+    while inspect(&harness).braked {
+        assert!(Instant::now() < deadline, "the brake was never released");
+        harness.step();
+    }
+
+    harness.key_down(egui::Key::ArrowUp);
+    harness.step();
+    assert_eq!(harness.state().drive_asked(), (0.5, 0.0), "the top speed from the project");
+    wait_for_motion(&harness, "a forward command", |speed, direction| speed == 51_500 && direction == 1);
+    // While the key is held the driver keeps re-sending at 10 Hz; the base gets going.
+    let base = harness.state().link.as_ref().unwrap().rflex().unwrap();
+    assert_eq!(base.commanded, (0.5, 0.0));
+    assert!(inspect(&harness).target_speed_m_per_s > 0.49);
+
+    // Let go: the stop is issued in that very frame.
+    harness.key_up(egui::Key::ArrowUp);
+    harness.step();
+    assert_eq!(harness.state().drive_asked(), (0.0, 0.0));
+    assert_eq!(harness.state().link.as_ref().unwrap().rflex().unwrap().commanded, (0.0, 0.0));
+    wait_for_motion(&harness, "the stop", |speed, _| speed == 0);
+    assert_eq!(inspect(&harness).target_speed_m_per_s, 0.0);
+
+    // STOP stops a base that is driving.
+    harness.key_down(egui::Key::ArrowDown);
+    harness.step();
+    wait_for_motion(&harness, "a backward command", |speed, direction| speed == 51_500 && direction == 0);
+    harness.get_all_by_label_contains("STOP").next().unwrap().click();
+    harness.step();
+    wait_for_motion(&harness, "the STOP", |speed, _| speed == 0);
+    assert_eq!(inspect(&harness).target_speed_m_per_s, 0.0);
+    assert_eq!(harness.state().status.as_ref().unwrap().text, "STOP: the base was told to stop at once");
+    harness.key_up(egui::Key::ArrowDown);
+    harness.step();
+}
+
+#[test]
+fn a_lost_link_is_reported_and_the_pad_stops_sending() {
+    let mut harness = harness();
+    harness.get_by_label("Brake").click();
+    harness.key_down(egui::Key::ArrowLeft);
+    harness.step();
+    wait_for_motion(&harness, "the first command", |_, _| true);
+    // The cable is pulled: the base closes the link.
+    harness.state().link.as_ref().unwrap().demo_base().unwrap().command(RflexSimCommand::Disconnect);
+    let deadline = Instant::now() + Duration::from_secs(5);
+    while harness.state().link.is_some() {
+        assert!(Instant::now() < deadline, "the lost link was never noticed");
+        harness.step();
+    }
+    let status = harness.state().status.clone().unwrap();
+    assert!(status.is_error && status.text.starts_with("The board link ended"), "{status:?}");
+    // Still holding the key: nothing is asked for any more.
+    harness.step();
+    assert_eq!(harness.state().drive_asked(), (0.0, 0.0));
+    assert!(harness.query_by_label("Not connected").is_some() || harness.state().link.is_none());
+    harness.key_up(egui::Key::ArrowLeft);
+}
