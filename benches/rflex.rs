@@ -1,0 +1,86 @@
+//! rFLEX driving figures, over a pseudo-terminal against the emulated base:
+//! the command cadence while a velocity is held (against the 100 ms of the
+//! reference drivers), and the time from a release / STOP to the stop frame
+//! arriving at the base.
+
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::print_stdout, clippy::cast_possible_truncation)]
+
+use std::time::{Duration, Instant};
+
+use servo_studio::device::rflex::RflexBase;
+use servo_studio::link::{LinkEvent, PortName, no_waker};
+use servo_studio::project::Family;
+use servo_studio::protocol::rflex::{B21R, Command};
+use servo_studio::sim::{RflexSim, RflexSimConfig, RflexSimEvent, spawn_pty};
+
+fn percentile(sorted: &[Duration], p: f64) -> Duration {
+    let index = ((sorted.len() - 1) as f64 * p).round() as usize;
+    sorted[index]
+}
+
+fn main() {
+    let sim = spawn_pty(RflexSim::new(RflexSimConfig::default()), no_waker()).unwrap();
+    let port = PortName::parse(&sim.port_name).unwrap();
+    let settings = servo_studio::device::line_settings(Family::Rflex);
+    let mut base = RflexBase::over(servo_studio::link::open(&port, &settings).unwrap(), B21R, no_waker()).unwrap();
+    base.start(false);
+    base.set_brake(false);
+    let events = sim.events().clone();
+    let translation = |event: &LinkEvent<RflexSimEvent>| match event {
+        LinkEvent::Driver(RflexSimEvent::Received(Command::AxisSetDir { axis: 0, speed, .. })) => Some(*speed),
+        _ => None,
+    };
+
+    // Cadence: 5 s of a held velocity; when each translation frame arrives.
+    base.drive(0.4, 0.1, 0.5);
+    let began = Instant::now();
+    let mut arrivals = Vec::new();
+    while began.elapsed() < Duration::from_secs(5) {
+        if let Ok(event) = events.recv_timeout(Duration::from_millis(500))
+            && translation(&event).is_some()
+        {
+            arrivals.push(Instant::now());
+        }
+        base.pump(Instant::now());
+    }
+    let mut gaps: Vec<Duration> = arrivals.windows(2).map(|pair| pair[1] - pair[0]).collect();
+    gaps.sort();
+    println!(
+        "cadence while driving over {}: {} commands in 5 s, interval median {:.1} ms, p90 {:.1} ms, worst {:.1} ms (target 100 ms)",
+        sim.port_name,
+        arrivals.len(),
+        percentile(&gaps, 0.5).as_secs_f64() * 1e3,
+        percentile(&gaps, 0.9).as_secs_f64() * 1e3,
+        gaps.last().unwrap().as_secs_f64() * 1e3
+    );
+
+    // Release / STOP to the stop frame at the base, 50 times.
+    let mut latencies = Vec::new();
+    for _ in 0..50 {
+        base.drive(0.3, 0.0, 0.5);
+        // Wait for the drive to arrive, so the stop is the next thing on the wire.
+        loop {
+            let event = events.recv_timeout(Duration::from_secs(2)).expect("the drive arrived");
+            if translation(&event).is_some_and(|speed| speed > 0) {
+                break;
+            }
+        }
+        let pressed = Instant::now();
+        base.stop();
+        loop {
+            let event = events.recv_timeout(Duration::from_secs(2)).expect("the stop arrived");
+            if translation(&event) == Some(0) {
+                latencies.push(pressed.elapsed());
+                break;
+            }
+        }
+        base.pump(Instant::now());
+    }
+    latencies.sort();
+    println!(
+        "release / STOP → stop frame at the base, 50 times: median {:.2} ms, p90 {:.2} ms, worst {:.2} ms",
+        percentile(&latencies, 0.5).as_secs_f64() * 1e3,
+        percentile(&latencies, 0.9).as_secs_f64() * 1e3,
+        latencies.last().unwrap().as_secs_f64() * 1e3
+    );
+}
