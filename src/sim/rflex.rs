@@ -24,6 +24,8 @@ use crate::protocol::rflex::{
 pub const SONARS: u8 = 24;
 /// Bump panels (DIO addresses 0x40..0x44).
 pub const BUMP_PANELS: u8 = 4;
+/// The base's radius: it touches a wall when its centre is this close.
+pub const ROBOT_RADIUS_M: f64 = 0.26;
 /// How often one bank of the sonar ring reports while the sonar runs.
 const SONAR_BANK_EVERY: Duration = Duration::from_millis(50);
 
@@ -216,6 +218,8 @@ pub struct RflexSim {
     output: VecDeque<Vec<u8>>,
     events: VecDeque<RflexSimEvent>,
     close: bool,
+    /// The bump panel pressed against a wall, if any.
+    wall_contact: Option<usize>,
 }
 
 impl RflexSim {
@@ -244,6 +248,7 @@ impl RflexSim {
             output: VecDeque::new(),
             events: VecDeque::new(),
             close: false,
+            wall_contact: None,
         }
     }
 
@@ -277,6 +282,7 @@ impl RflexSim {
             let (x, y, theta) = self.world;
             let heading = theta + turned / 2.0;
             self.world = (x + d * heading.cos(), y + d * heading.sin(), theta + turned);
+            self.walls(d);
         }
         let moving = self.translation.velocity.abs() / self.config.conversion.distance_units_per_m;
         self.battery_volts -= dt * self.config.drain_volts_per_s * (1.0 + 4.0 * moving);
@@ -288,6 +294,27 @@ impl RflexSim {
             self.translation.target = 0.0;
             self.rotation.target = 0.0;
             self.events.push_back(RflexSimEvent::DeadManStop);
+        }
+    }
+
+    /// A base that reaches a wall stops there with the panel that hit it pressed
+    /// (front when driving forward, back when reversing); moving away releases it.
+    fn walls(&mut self, moved_m: f64) {
+        let (width, height) = self.config.room_m;
+        let (x, y, theta) = self.world;
+        let (max_x, max_y) = (width / 2.0 - ROBOT_RADIUS_M, height / 2.0 - ROBOT_RADIUS_M);
+        let clamped = (x.clamp(-max_x, max_x), y.clamp(-max_y, max_y));
+        let (front, back) = (0usize, 2usize);
+        if clamped != (x, y) {
+            self.world = (clamped.0, clamped.1, theta);
+            self.translation.velocity = 0.0;
+            self.translation.target = 0.0;
+            let panel = if moved_m >= 0.0 { front } else { back };
+            self.bumpers[panel] = 0b0011;
+            self.wall_contact = Some(panel);
+        } else if let Some(panel) = self.wall_contact.take() {
+            // Off the wall again.
+            self.bumpers[panel] = 0;
         }
     }
 
@@ -580,6 +607,27 @@ mod tests {
         assert!(sim.events.contains(&RflexSimEvent::DeadManStop));
         sim.tick(t0 + Duration::from_secs(2));
         assert_eq!(sim.state().speed_m_per_s, 0.0);
+    }
+
+    #[test]
+    fn a_wall_stops_the_base_and_presses_its_front_panel() {
+        let (mut sim, t0) = sim();
+        sim.handle(t0, Command::BrakeRelease);
+        let mut t = t0;
+        for _ in 0..100 {
+            // Keep the dead-man fed: 1 m/s straight at the wall 1.8 m ahead.
+            sim.handle(t, B21R.drive(1.0, 0.0, 5.0)[0].clone());
+            t += Duration::from_millis(100);
+            sim.tick(t);
+        }
+        let state = sim.state();
+        assert!((state.x_m - (1.8 - ROBOT_RADIUS_M)).abs() < 1e-9, "{state:?}");
+        assert_eq!(state.speed_m_per_s, 0.0);
+        assert_eq!(sim.bumpers[0], 0b0011, "the front panel is pressed");
+        // Backing away releases it.
+        sim.handle(t, B21R.drive(-0.5, 0.0, 5.0)[0].clone());
+        sim.tick(t + Duration::from_millis(300));
+        assert_eq!(sim.bumpers[0], 0);
     }
 
     #[test]
