@@ -114,3 +114,18 @@ fn a_lost_link_is_reported_and_the_pad_stops_sending() {
     assert!(harness.query_by_label("Not connected").is_some() || harness.state().link.is_none());
     harness.key_up(egui::Key::ArrowLeft);
 }
+
+#[test]
+fn losing_window_focus_while_driving_stops_the_base() {
+    let mut harness = harness();
+    harness.get_by_label("Brake").click();
+    harness.key_down(egui::Key::ArrowUp);
+    harness.step();
+    wait_for_motion(&harness, "a forward command", |speed, _| speed > 0);
+    // Another window takes the focus while the key is still held.
+    harness.event(egui::Event::WindowFocused(false));
+    harness.step();
+    assert_eq!(harness.state().drive_asked(), (0.0, 0.0));
+    wait_for_motion(&harness, "the stop", |speed, _| speed == 0);
+    harness.key_up(egui::Key::ArrowUp);
+}
