@@ -1,5 +1,6 @@
-//! Fault injection for the emulated board: deterministic, counted faults, so a
-//! test that injects one knows exactly where it lands.
+//! Fault injection for the emulated boards (the servo board's faults, the rFLEX
+//! base's line noise): deterministic, counted faults, so a test that injects one
+//! knows exactly where it lands.
 
 use std::str::FromStr;
 
@@ -58,6 +59,45 @@ impl FromStr for Faults {
     }
 }
 
+/// Line noise on the base's output, counted over frames sent, from 1.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct LineNoise {
+    /// Send a burst of garbage before every n-th frame.
+    pub garbage_every: Option<u32>,
+    /// Corrupt a data byte (so the checksum fails) of every n-th frame.
+    pub corrupt_every: Option<u32>,
+    /// Cut every n-th frame short (only its first half is sent).
+    pub cut_every: Option<u32>,
+}
+
+/// A noise list could not be read.
+#[derive(Debug, PartialEq, Eq, thiserror::Error)]
+#[error("cannot read noise {item:?}: expected a comma-separated list of garbage-every=N, corrupt-every=N, cut-every=N")]
+pub struct LineNoiseError {
+    /// The item that could not be read.
+    pub item: String,
+}
+
+impl FromStr for LineNoise {
+    type Err = LineNoiseError;
+
+    fn from_str(text: &str) -> Result<Self, Self::Err> {
+        let mut noise = Self::default();
+        for item in text.split(',').map(str::trim).filter(|item| !item.is_empty()) {
+            let error = || LineNoiseError { item: item.to_string() };
+            let (key, value) = item.split_once('=').ok_or_else(error)?;
+            let every = Some(value.parse::<u32>().ok().filter(|n| *n > 0).ok_or_else(error)?);
+            match key {
+                "garbage-every" => noise.garbage_every = every,
+                "corrupt-every" => noise.corrupt_every = every,
+                "cut-every" => noise.cut_every = every,
+                _ => return Err(error()),
+            }
+        }
+        Ok(noise)
+    }
+}
+
 /// Whether the `count`-th event falls on an `every` fault.
 pub(crate) fn hits(every: Option<u32>, count: u64) -> bool {
     every.is_some_and(|every| count.is_multiple_of(u64::from(every)))
@@ -66,6 +106,14 @@ pub(crate) fn hits(every: Option<u32>, count: u64) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn noise_lists_parse() {
+        let noise: LineNoise = "garbage-every=3, cut-every=5".parse().unwrap();
+        assert_eq!(noise, LineNoise { garbage_every: Some(3), corrupt_every: None, cut_every: Some(5) });
+        assert!("nope=1".parse::<LineNoise>().is_err());
+        assert!("cut-every=0".parse::<LineNoise>().is_err());
+    }
 
     #[test]
     fn fault_lists_parse() {

@@ -6,7 +6,7 @@ mod rflex;
 mod runner;
 mod servo;
 
-pub use faults::{Faults, FaultsError};
-pub use rflex::{BaseState, LineNoise, LineNoiseError, RflexSim, RflexSimCommand, RflexSimConfig, RflexSimEvent};
+pub use faults::{Faults, FaultsError, LineNoise, LineNoiseError};
+pub use rflex::{BaseState, RflexSim, RflexSimCommand, RflexSimConfig, RflexSimEvent};
 pub use runner::{InMemory, SimHandle, spawn_in_memory, spawn_pty, spawn_tcp};
 pub use servo::{ServoSim, SimCommand, SimConfig, SimEvent};

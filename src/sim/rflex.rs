@@ -8,12 +8,11 @@
 //! cut frames), each counted, so a test knows where it lands.
 
 use std::collections::VecDeque;
-use std::str::FromStr;
 use std::time::{Duration, Instant};
 
 use crossbeam_channel::Sender;
 
-use super::faults::hits;
+use super::faults::{LineNoise, hits};
 use crate::link::Driver;
 use crate::protocol::rflex::{
     Axis, B21R, BUMP_PANEL_ADDRESS, Command, Conversion, DecoderEvent, FrameDecoder, Report, SONAR_UNITS_PER_M,
@@ -28,45 +27,6 @@ pub const BUMP_PANELS: u8 = 4;
 pub const ROBOT_RADIUS_M: f64 = 0.26;
 /// How often one bank of the sonar ring reports while the sonar runs.
 const SONAR_BANK_EVERY: Duration = Duration::from_millis(50);
-
-/// Line noise on the base's output, counted over frames sent, from 1.
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
-pub struct LineNoise {
-    /// Send a burst of garbage before every n-th frame.
-    pub garbage_every: Option<u32>,
-    /// Corrupt a data byte (so the checksum fails) of every n-th frame.
-    pub corrupt_every: Option<u32>,
-    /// Cut every n-th frame short (only its first half is sent).
-    pub cut_every: Option<u32>,
-}
-
-/// A noise list could not be read.
-#[derive(Debug, PartialEq, Eq, thiserror::Error)]
-#[error("cannot read noise {item:?}: expected a comma-separated list of garbage-every=N, corrupt-every=N, cut-every=N")]
-pub struct LineNoiseError {
-    /// The item that could not be read.
-    pub item: String,
-}
-
-impl FromStr for LineNoise {
-    type Err = LineNoiseError;
-
-    fn from_str(text: &str) -> Result<Self, Self::Err> {
-        let mut noise = Self::default();
-        for item in text.split(',').map(str::trim).filter(|item| !item.is_empty()) {
-            let error = || LineNoiseError { item: item.to_string() };
-            let (key, value) = item.split_once('=').ok_or_else(error)?;
-            let every = Some(value.parse::<u32>().ok().filter(|n| *n > 0).ok_or_else(error)?);
-            match key {
-                "garbage-every" => noise.garbage_every = every,
-                "corrupt-every" => noise.corrupt_every = every,
-                "cut-every" => noise.cut_every = every,
-                _ => return Err(error()),
-            }
-        }
-        Ok(noise)
-    }
-}
 
 /// How the emulated base behaves.
 #[derive(Clone, Debug, PartialEq)]
@@ -638,7 +598,5 @@ mod tests {
         assert_eq!(sim.sonar_range(6), 1771);
         // Toward a corner (45°): √(1.2² + 1.2²) = 1.70 m to the long wall first.
         assert_eq!(sim.sonar_range(3), 2505);
-        assert!("garbage-every=3,cut-every=5".parse::<LineNoise>().is_ok());
-        assert!("nope=1".parse::<LineNoise>().is_err());
     }
 }
