@@ -5,6 +5,7 @@
 //! What is shared by every family lives here: the line settings each family
 //! needs, and the family-neutral packet-log entry.
 
+pub mod plen2;
 pub mod rflex;
 pub mod servo;
 

@@ -1,12 +1,15 @@
 //! Emulated boards, with fault injection, and the runners that serve any of
-//! them (in-process, pseudo-terminal, TCP): the servo board and the rFLEX base.
+//! them (in-process, pseudo-terminal, TCP): the servo board, the PLEN2 humanoid
+//! and the rFLEX base.
 
 mod faults;
+mod plen2;
 mod rflex;
 mod runner;
 mod servo;
 
 pub use faults::{Faults, FaultsError, LineNoise, LineNoiseError};
+pub use plen2::{JointLimits, Plen2Sim, Plen2SimCommand, Plen2SimEvent, Plen2State, Plen2Timing};
 pub use rflex::{BaseState, RflexSim, RflexSimCommand, RflexSimConfig, RflexSimEvent};
 pub use runner::{InMemory, SimHandle, spawn_in_memory, spawn_pty, spawn_tcp};
 pub use servo::{ServoSim, SimCommand, SimConfig, SimEvent};

@@ -56,6 +56,11 @@ impl Cancel {
         Self { requested: crossbeam_channel::never() }
     }
 
+    /// Whether the owner asked to stop (any family's operation checks this between steps).
+    pub fn is_requested(&self) -> bool {
+        self.requested.try_recv().is_ok()
+    }
+
     fn check(&self) -> Result<(), OpError> {
         match self.requested.try_recv() {
             Ok(()) => Err(OpError::Cancelled),

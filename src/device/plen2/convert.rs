@@ -1,0 +1,70 @@
+//! A project's motion as the commands that store it, and a `<MO` reply as a motion.
+
+use crate::project::plen2::{Frame, LoopRange, Motion, Pose};
+use crate::protocol::plen2::{Command, DEVICE_IDS, Joint, MotionFrame, MotionHeader, MotionReply, NAME_LEN};
+
+/// A pose as the 24 device values of a `>MF` (unused ids 0).
+pub fn device_values(pose: &Pose) -> [i16; DEVICE_IDS] {
+    let mut values = [0; DEVICE_IDS];
+    for joint in Joint::ALL {
+        values[usize::from(joint.device_id())] = pose.get(joint);
+    }
+    values
+}
+
+/// The `>MH` and every `>MF` that store `motion` in its slot. The name is
+/// space-padded to 20 bytes (validation keeps it printable ASCII).
+pub fn motion_commands(motion: &Motion) -> Vec<Command> {
+    let mut name = [b' '; NAME_LEN];
+    for (slot, byte) in name.iter_mut().zip(motion.name.bytes()) {
+        *slot = byte;
+    }
+    let range = motion.loop_range;
+    let header = MotionHeader {
+        slot: motion.slot,
+        name,
+        loop_on: range.is_some(),
+        loop_begin: range.map_or(0, |r| r.begin_frame),
+        loop_end: range.map_or(0, |r| r.end_frame),
+        loop_count: range.map_or(0, |r| r.count),
+        jump_on: motion.jump_slot.is_some(),
+        jump_slot: motion.jump_slot.unwrap_or(0),
+        frame_count: u8::try_from(motion.frames.len()).unwrap_or(u8::MAX),
+    };
+    let mut commands = vec![Command::Header(header)];
+    for (index, frame) in (0u8..).zip(&motion.frames) {
+        commands.push(Command::Frame(Box::new(MotionFrame {
+            slot: motion.slot,
+            index,
+            transition_ms: frame.transition_ms,
+            values: device_values(&frame.values_tenths_deg),
+        })));
+    }
+    commands
+}
+
+/// The frames of a reply as project frames (the unused device ids dropped).
+pub fn frames_of(reply: &MotionReply) -> Vec<Frame> {
+    reply
+        .frames
+        .iter()
+        .map(|(transition_ms, values)| {
+            let mut pose = Pose::default();
+            for joint in Joint::ALL {
+                pose.set(joint, values[usize::from(joint.device_id())]);
+            }
+            Frame { transition_ms: *transition_ms, values_tenths_deg: pose }
+        })
+        .collect()
+}
+
+/// A `<MO` reply as a project motion.
+pub fn motion_from_reply(reply: &MotionReply) -> Motion {
+    Motion {
+        slot: reply.slot,
+        name: reply.name.clone(),
+        frames: frames_of(reply),
+        loop_range: reply.loop_range.map(|(begin_frame, end_frame, count)| LoopRange { begin_frame, end_frame, count }),
+        jump_slot: reply.jump_slot,
+    }
+}

@@ -1,0 +1,370 @@
+//! The PLEN2 driver the I/O thread runs. The robot acknowledges nothing and
+//! loses what overflows its 64-byte receive ring, so the driver paces every
+//! byte from the firmware's own timing (`plen2.md` §5): the firmware reads a
+//! byte per 20 µs pass and blocks while it writes EEPROM; a byte is sent only
+//! when the ring will hold it. Live joint moves are coalesced; STOP goes out
+//! at the next command boundary, ahead of everything queued. Sans-IO.
+
+use std::collections::{BTreeMap, VecDeque};
+use std::time::{Duration, Instant};
+
+use crossbeam_channel::Sender;
+
+use crate::device::{Direction, LogEntry, hex};
+use crate::link::Driver;
+use crate::protocol::plen2::{Command, ReplyEvent, ReplyKind, ReplyReader};
+
+/// The firmware timing the pacer assumes: plen2.md's figures with margins.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Pacing {
+    /// Time the firmware takes to read one byte.
+    pub byte_read: Duration,
+    /// EEPROM write after a `>MH`.
+    pub header_write: Duration,
+    /// EEPROM write after a `>MF`.
+    pub frame_write: Duration,
+    /// EEPROM write after a `>HO` / `>MA` / `>MI`.
+    pub joint_write: Duration,
+    /// `>JS`.
+    pub factory_reset: Duration,
+    /// Bytes allowed to wait in the robot's 64-byte ring.
+    pub ring_budget: u32,
+}
+
+impl Default for Pacing {
+    fn default() -> Self {
+        Self {
+            byte_read: Duration::from_micros(22),
+            header_write: Duration::from_micros(6_500),
+            frame_write: Duration::from_micros(12_500),
+            joint_write: Duration::from_micros(7_500),
+            factory_reset: Duration::from_millis(600),
+            ring_budget: 48,
+        }
+    }
+}
+
+/// A reply that did not come whole.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum ReplyError {
+    /// Nothing (or nothing more) came in time.
+    #[error("no reply in time: is the robot on, at 2,000,000 baud, with DTR asserted?")]
+    Timeout,
+    /// So much came that it can only be garbage (a never-written slot).
+    #[error("the reply was {bytes} bytes of garbage")]
+    Garbage {
+        /// Its size.
+        bytes: usize,
+    },
+    /// The link ended.
+    #[error("the link to the robot was lost")]
+    Disconnected,
+}
+
+/// Where a reply goes.
+pub type ReplySender = Sender<Result<Vec<u8>, ReplyError>>;
+
+/// What the owner asks of the driver.
+#[derive(Debug)]
+pub enum Plen2Command {
+    /// Send a command, paced; `done` is told when the robot should have finished it.
+    Send {
+        /// The command.
+        command: Command,
+        /// Told when the firmware is predicted idle again.
+        done: Option<Sender<()>>,
+    },
+    /// Send a getter and deliver its reply.
+    Get {
+        /// `<VI`, `<JS` or `<MO`.
+        command: Command,
+        /// Where the reply goes.
+        reply: ReplySender,
+    },
+    /// Joints to absolute angles (`$AN`), coalesced: the latest angle per device wins.
+    LiveAngles(Vec<(u8, i16)>),
+    /// STOP: `#RI` then `$HP`, ahead of everything queued; queued live moves are dropped.
+    Stop,
+}
+
+/// What the driver reports.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Plen2Event {
+    /// A packet-log entry.
+    Log(LogEntry),
+}
+
+struct Queued {
+    command: Command,
+    bytes: Vec<u8>,
+    done: Option<Sender<()>>,
+    reply: Option<ReplySender>,
+}
+
+/// The driver.
+pub struct Plen2Driver {
+    pacing: Pacing,
+    queue: VecDeque<Queued>,
+    /// The command being sent and how many of its bytes went.
+    current: Option<(Queued, usize)>,
+    /// When the firmware will read the next byte sent (EEPROM writes included).
+    next_read: Option<Instant>,
+    /// When each byte sent but not yet read will be read: what waits in the ring.
+    in_ring: VecDeque<Instant>,
+    live: BTreeMap<u8, i16>,
+    waiting: Vec<(Instant, Sender<()>)>,
+    reader: ReplyReader,
+    reply: Option<(ReplyKind, ReplySender, Instant)>,
+    opened_at: Option<Instant>,
+    output: VecDeque<Vec<u8>>,
+    events: VecDeque<Plen2Event>,
+}
+
+/// How long a reply may pause before it is given up.
+pub const REPLY_IDLE: Duration = Duration::from_millis(600);
+/// The most bytes written at once.
+const CHUNK: usize = 64;
+
+/// The time EEPROM writes keep the firmware busy after a command.
+fn busy_after(pacing: &Pacing, command: &Command) -> Duration {
+    match command {
+        Command::Header(_) => pacing.header_write,
+        Command::Frame(_) => pacing.frame_write,
+        Command::SetHome { .. } | Command::SetMax { .. } | Command::SetMin { .. } => pacing.joint_write,
+        Command::ResetJoints => pacing.factory_reset,
+        _ => Duration::ZERO,
+    }
+}
+
+fn reply_kind(command: &Command) -> Option<ReplyKind> {
+    match command {
+        Command::GetVersion => Some(ReplyKind::Version),
+        Command::GetJointSettings => Some(ReplyKind::JointSettings),
+        Command::GetMotion { .. } => Some(ReplyKind::Motion),
+        _ => None,
+    }
+}
+
+impl Plen2Driver {
+    /// A driver with this pacing.
+    pub fn new(pacing: Pacing) -> Self {
+        Self {
+            pacing,
+            queue: VecDeque::new(),
+            current: None,
+            next_read: None,
+            in_ring: VecDeque::new(),
+            live: BTreeMap::new(),
+            waiting: Vec::new(),
+            reader: ReplyReader::new(),
+            reply: None,
+            opened_at: None,
+            output: VecDeque::new(),
+            events: VecDeque::new(),
+        }
+    }
+
+    fn log(&mut self, now: Instant, direction: Direction, name: String, fields: String, bytes: &[u8]) {
+        let seconds = now.saturating_duration_since(*self.opened_at.get_or_insert(now)).as_secs_f64();
+        let hex =
+            if bytes.len() > 48 { format!("{} … ({} bytes)", hex(&bytes[..48]), bytes.len()) } else { hex(bytes) };
+        self.events.push_back(Plen2Event::Log(LogEntry { seconds, direction, name, fields, hex }));
+    }
+
+    fn enqueue(&mut self, command: Command, done: Option<Sender<()>>, reply: Option<ReplySender>) {
+        let bytes = command.to_ascii().into_bytes();
+        self.queue.push_back(Queued { command, bytes, done, reply });
+    }
+
+    /// When the firmware will have finished everything sent so far.
+    pub fn firmware_free(&self) -> Option<Instant> {
+        self.next_read
+    }
+
+    /// Hands bytes to the port as the ring allows.
+    fn pace(&mut self, now: Instant) {
+        while self.in_ring.front().is_some_and(|read| *read <= now) {
+            self.in_ring.pop_front();
+        }
+        let budget = self.pacing.ring_budget as usize;
+        let mut chunk = Vec::new();
+        loop {
+            if self.current.is_none() {
+                // A getter's reply must end before anything else is sent.
+                if self.reply.is_some() {
+                    break;
+                }
+                if self.queue.is_empty() && !self.live.is_empty() {
+                    let moves: Vec<(u8, i16)> = std::mem::take(&mut self.live).into_iter().collect();
+                    for (device, angle) in moves {
+                        self.enqueue(Command::SetAngle { device, angle }, None, None);
+                    }
+                }
+                let Some(next) = self.queue.pop_front() else { break };
+                self.current = Some((next, 0));
+            }
+            // Room in the ring when this byte arrives (now): it waits behind those not yet read.
+            if self.in_ring.len() >= budget || chunk.len() >= CHUNK {
+                break;
+            }
+            let Some((queued, sent)) = &mut self.current else { break };
+            let read = self.next_read.map_or(now, |next| next.max(now));
+            chunk.push(queued.bytes[*sent]);
+            *sent += 1;
+            self.in_ring.push_back(read);
+            let mut next_read = read + self.pacing.byte_read;
+            let finished = *sent == queued.bytes.len();
+            if finished {
+                // The command runs when its last byte is read; EEPROM writes then block the firmware.
+                next_read += busy_after(&self.pacing, &queued.command);
+            }
+            self.next_read = Some(next_read);
+            if !finished {
+                continue;
+            }
+            let Some((queued, _)) = self.current.take() else { break };
+            let fields = String::from_utf8_lossy(&queued.bytes).into_owned();
+            self.log(now, Direction::Sent, queued.command.code().to_string(), fields, &queued.bytes);
+            if let Some(done) = queued.done {
+                self.waiting.push((next_read, done));
+            }
+            if let (Some(kind), Some(reply)) = (reply_kind(&queued.command), queued.reply) {
+                self.reader.expect(kind);
+                self.reply = Some((kind, reply, next_read + REPLY_IDLE));
+            }
+        }
+        if !chunk.is_empty() {
+            self.output.push_back(chunk);
+        }
+    }
+
+    /// When the ring has room for the next byte.
+    fn next_send(&self) -> Option<Instant> {
+        let more = self.current.is_some() || (self.reply.is_none() && !(self.queue.is_empty() && self.live.is_empty()));
+        if !more {
+            return None;
+        }
+        // With room in the ring, `pace` has already sent all it could.
+        let budget = self.pacing.ring_budget as usize;
+        self.in_ring.len().checked_sub(budget).and_then(|index| self.in_ring.get(index).copied())
+    }
+}
+
+impl Driver for Plen2Driver {
+    type Command = Plen2Command;
+    type Event = Plen2Event;
+
+    fn handle_command(&mut self, now: Instant, command: Plen2Command) {
+        match command {
+            Plen2Command::Send { command, done } => self.enqueue(command, done, None),
+            Plen2Command::Get { command, reply } => self.enqueue(command, None, Some(reply)),
+            Plen2Command::LiveAngles(moves) => self.live.extend(moves),
+            Plen2Command::Stop => {
+                self.live.clear();
+                // Ahead of everything queued, after the command on the wire (cutting
+                // it would make its tail read as garbage arguments).
+                let reset = Command::ResetInterpreter;
+                let home = Command::HomePosition;
+                self.queue.push_front(Queued {
+                    bytes: home.to_ascii().into_bytes(),
+                    command: home,
+                    done: None,
+                    reply: None,
+                });
+                self.queue.push_front(Queued {
+                    bytes: reset.to_ascii().into_bytes(),
+                    command: reset,
+                    done: None,
+                    reply: None,
+                });
+            }
+        }
+        self.pace(now);
+    }
+
+    fn handle_input(&mut self, now: Instant, bytes: &[u8]) {
+        self.reader.push(bytes);
+        if let Some((_, _, deadline)) = &mut self.reply {
+            *deadline = now + REPLY_IDLE;
+        }
+        while let Some(event) = self.reader.poll() {
+            match event {
+                ReplyEvent::Complete { kind, bytes } => {
+                    let text = String::from_utf8_lossy(&bytes);
+                    let summary: String = text.split_whitespace().collect::<Vec<_>>().join(" ");
+                    let summary: String = summary.chars().take(120).collect();
+                    self.log(now, Direction::Received, format!("{kind:?} reply"), summary, &bytes);
+                    if let Some((_, reply, _)) = self.reply.take() {
+                        let _ = reply.send(Ok(bytes));
+                    }
+                    self.next_read = Some(now);
+                    self.in_ring.clear();
+                }
+                ReplyEvent::Oversized { kind, bytes } => {
+                    self.log(
+                        now,
+                        Direction::Received,
+                        format!("{kind:?} reply"),
+                        format!("{bytes} bytes of garbage"),
+                        &[],
+                    );
+                    if let Some((_, reply, _)) = self.reply.take() {
+                        let _ = reply.send(Err(ReplyError::Garbage { bytes }));
+                    }
+                    self.next_read = Some(now);
+                    self.in_ring.clear();
+                }
+                ReplyEvent::Ignored { bytes } => {
+                    self.log(now, Direction::Skipped, format!("{bytes} byte(s) outside a reply"), String::new(), &[]);
+                }
+            }
+        }
+        self.pace(now);
+    }
+
+    fn handle_timeout(&mut self, now: Instant) {
+        if let Some((_, _, deadline)) = &self.reply
+            && now >= *deadline
+        {
+            self.reader.abandon();
+            if let Some((_, reply, _)) = self.reply.take() {
+                let _ = reply.send(Err(ReplyError::Timeout));
+            }
+        }
+        let (due, later): (Vec<_>, Vec<_>) =
+            std::mem::take(&mut self.waiting).into_iter().partition(|(at, _)| *at <= now);
+        self.waiting = later;
+        for (_, done) in due {
+            let _ = done.send(());
+        }
+        self.pace(now);
+    }
+
+    fn handle_disconnect(&mut self, _reason: &str) {
+        if let Some((_, reply, _)) = self.reply.take() {
+            let _ = reply.send(Err(ReplyError::Disconnected));
+        }
+        for queued in self.queue.drain(..) {
+            if let Some(reply) = queued.reply {
+                let _ = reply.send(Err(ReplyError::Disconnected));
+            }
+        }
+        self.current = None;
+        self.in_ring.clear();
+        self.waiting.clear();
+    }
+
+    fn poll_transmit(&mut self, _now: Instant) -> Option<Vec<u8>> {
+        self.output.pop_front()
+    }
+
+    fn poll_event(&mut self) -> Option<Plen2Event> {
+        self.events.pop_front()
+    }
+
+    fn poll_timeout(&self) -> Option<Instant> {
+        let waiting = self.waiting.iter().map(|(at, _)| *at).min();
+        let reply = self.reply.as_ref().map(|(_, _, deadline)| *deadline);
+        [self.next_send(), waiting, reply].into_iter().flatten().min()
+    }
+}

@@ -1,0 +1,143 @@
+//! The PLEN2 family's driver: the paced driver the I/O thread runs, a blocking
+//! requester for worker threads (upload, export), the non-blocking handle the
+//! editor uses, and the operations (export, import with backup and
+//! verification, joint settings).
+
+mod convert;
+mod driver;
+mod ops;
+
+use std::time::Instant;
+
+use crossbeam_channel::Sender;
+
+pub use convert::{frames_of, motion_commands, motion_from_reply};
+pub use driver::{Pacing, Plen2Command, Plen2Driver, Plen2Event, REPLY_IDLE, ReplyError, ReplySender};
+pub use ops::{
+    Plen2Import, Plen2ImportOptions, Plen2ImportReport, Plen2Info, Plen2OpError, Plen2Phase, Plen2Progress, SlotResult,
+    export, import, info, read_joint_settings, read_slot, write_joint_settings,
+};
+
+use crate::device::LogEntry;
+use crate::link::{self, Connection, DisconnectReason, LinkEvent, LinkHandle, Waker};
+use crate::protocol::plen2::Command;
+
+/// Blocking calls to a PLEN2 from a worker thread.
+#[derive(Clone, Debug)]
+pub struct Plen2Requester {
+    commands: Sender<Plen2Command>,
+}
+
+impl Plen2Requester {
+    /// Sends a command, paced; returns once it is queued.
+    pub fn send(&self, command: Command) -> Result<(), ReplyError> {
+        self.commands.send(Plen2Command::Send { command, done: None }).map_err(|_| ReplyError::Disconnected)
+    }
+
+    /// Sends a command and waits until the robot should have finished it (EEPROM included).
+    pub fn send_and_wait(&self, command: Command) -> Result<(), ReplyError> {
+        let (done, finished) = crossbeam_channel::bounded(1);
+        self.commands.send(Plen2Command::Send { command, done: Some(done) }).map_err(|_| ReplyError::Disconnected)?;
+        finished.recv().map_err(|_| ReplyError::Disconnected)
+    }
+
+    /// Sends a getter and waits for its reply.
+    pub fn get(&self, command: Command) -> Result<Vec<u8>, ReplyError> {
+        let (reply, outcome) = crossbeam_channel::bounded(1);
+        self.commands.send(Plen2Command::Get { command, reply }).map_err(|_| ReplyError::Disconnected)?;
+        outcome.recv().unwrap_or(Err(ReplyError::Disconnected))
+    }
+}
+
+/// What the handle reports to its owner.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Plen2Notice {
+    /// A packet-log entry.
+    Log(LogEntry),
+    /// The link ended.
+    Disconnected(DisconnectReason),
+}
+
+/// A connected PLEN2, driven without blocking. Dropping it closes the link.
+pub struct Plen2Handle {
+    link: LinkHandle<Plen2Command, Plen2Event>,
+    /// STOP was pressed and nothing moved since.
+    pub stopped: bool,
+}
+
+impl std::fmt::Debug for Plen2Handle {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Plen2Handle").field("link", &self.link).finish_non_exhaustive()
+    }
+}
+
+impl Plen2Handle {
+    /// Starts the I/O thread over an open connection.
+    pub fn over(connection: Connection, pacing: Pacing, waker: Waker) -> std::io::Result<Self> {
+        Ok(Self { link: link::spawn(connection, Plen2Driver::new(pacing), waker)?, stopped: false })
+    }
+
+    /// A requester for worker threads.
+    pub fn requester(&self) -> Plen2Requester {
+        Plen2Requester { commands: self.link.commands() }
+    }
+
+    fn command(&self, command: Plen2Command) {
+        // A closed link is reported by `pump`.
+        let _ = self.link.commands().send(command);
+    }
+
+    fn send(&self, command: Command) {
+        self.command(Plen2Command::Send { command, done: None });
+    }
+
+    /// Joints to absolute angles, coalesced (the latest per joint wins), paced.
+    pub fn move_joints(&mut self, moves: Vec<(u8, i16)>) {
+        self.stopped = false;
+        self.command(Plen2Command::LiveAngles(moves));
+    }
+
+    /// Every joint to home (`$HP`).
+    pub fn home(&self) {
+        self.send(Command::HomePosition);
+    }
+
+    /// Plays a stored motion (`$PM`).
+    pub fn play(&mut self, slot: u8) {
+        self.stopped = false;
+        self.send(Command::PlayMotion { slot });
+    }
+
+    /// Stops after the current pass (`$SM`).
+    pub fn stop_motion(&self) {
+        self.send(Command::StopMotion);
+    }
+
+    /// Plays motions one after another: `#RI`, a `#PU` each, `#PO`.
+    pub fn play_list(&mut self, entries: &[(u8, u8)]) {
+        self.stopped = false;
+        self.send(Command::ResetInterpreter);
+        for &(slot, plays) in entries {
+            self.send(Command::Push { slot, plays });
+        }
+        self.send(Command::Pop);
+    }
+
+    /// STOP: `#RI` (clear the queue, stop at once) then `$HP`, ahead of everything queued.
+    pub fn stop(&mut self) {
+        self.stopped = true;
+        self.command(Plen2Command::Stop);
+    }
+
+    /// Takes in what the robot sent.
+    pub fn pump(&mut self, _now: Instant) -> Vec<Plen2Notice> {
+        self.link
+            .events()
+            .try_iter()
+            .map(|event| match event {
+                LinkEvent::Driver(Plen2Event::Log(entry)) => Plen2Notice::Log(entry),
+                LinkEvent::Disconnected { reason } => Plen2Notice::Disconnected(reason),
+            })
+            .collect()
+    }
+}

@@ -1,0 +1,312 @@
+//! Operations on a PLEN2 over its paced driver: read it (version, joint
+//! settings, motions in their slots), upload motions (backup of the slots
+//! about to be overwritten first, then written paced so the robot loses no
+//! byte, then verified by reading every written slot back), and joint settings.
+
+use std::path::PathBuf;
+
+use super::Plen2Requester;
+use super::convert::{motion_commands, motion_from_reply};
+use super::driver::ReplyError;
+use crate::device::servo::{Cancel, backup_path};
+use crate::project::plen2::{JointSetting, Motion, Plen2Project};
+use crate::project::{self, Problem, Project};
+use crate::protocol::plen2::{Command, Joint, SLOTS, decode_joint_settings, decode_motion, decode_version};
+
+/// Which part of an operation runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Plen2Phase {
+    /// Reading (export, backup).
+    Read,
+    /// Writing.
+    Write,
+    /// Reading back to compare.
+    Verify,
+}
+
+/// How far an operation has come.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Plen2Progress {
+    /// The part running.
+    pub phase: Plen2Phase,
+    /// Steps done.
+    pub done: usize,
+    /// Steps in all.
+    pub total: usize,
+    /// What runs now, e.g. `slot 70 "Walk Forward"`.
+    pub item: String,
+}
+
+/// An operation failed; each message says what failed and what to try.
+#[derive(Debug, thiserror::Error)]
+pub enum Plen2OpError {
+    /// The robot did not answer (or the link ended).
+    #[error("{item}: {source}")]
+    Reply {
+        /// What was being done.
+        item: String,
+        /// Why.
+        source: ReplyError,
+    },
+    /// The robot's answer could not be read.
+    #[error("{item}: the robot's reply could not be read. Is it a PLEN2 with firmware 1.4.x?")]
+    Unreadable {
+        /// What was being read.
+        item: String,
+    },
+    /// The project has errors; nothing was written.
+    #[error(
+        "the project has {} error(s); nothing was written:\n{}\nFix them, or write it as it is with --force",
+        .problems.len(),
+        .problems.iter().map(ToString::to_string).collect::<Vec<_>>().join("\n")
+    )]
+    Invalid {
+        /// The errors.
+        problems: Vec<Problem>,
+    },
+    /// The backup could not be saved; nothing was written.
+    #[error("backup failed, so nothing was written: {0}")]
+    Backup(project::SaveError),
+    /// The owner cancelled.
+    #[error("cancelled")]
+    Cancelled,
+}
+
+fn check(cancel: &Cancel) -> Result<(), Plen2OpError> {
+    // The servo family's cancel token serves every family.
+    if cancel.is_requested() { Err(Plen2OpError::Cancelled) } else { Ok(()) }
+}
+
+fn slot_item(slot: u8, name: &str) -> String {
+    if name.is_empty() { format!("slot {slot}") } else { format!("slot {slot} {name:?}") }
+}
+
+/// Reads one slot: `None` when it was never written (its garbage is drained).
+pub fn read_slot(requester: &Plen2Requester, slot: u8) -> Result<Option<Motion>, Plen2OpError> {
+    match requester.get(Command::GetMotion { slot }) {
+        Ok(bytes) => Ok(decode_motion(&bytes).map(|reply| motion_from_reply(&reply))),
+        Err(ReplyError::Garbage { .. }) => Ok(None),
+        Err(source) => Err(Plen2OpError::Reply { item: slot_item(slot, ""), source }),
+    }
+}
+
+/// Reads the joint settings of the 18 joints.
+pub fn read_joint_settings(requester: &Plen2Requester) -> Result<Vec<JointSetting>, Plen2OpError> {
+    let item = "joint settings".to_string();
+    let bytes = requester
+        .get(Command::GetJointSettings)
+        .map_err(|source| Plen2OpError::Reply { item: item.clone(), source })?;
+    let entries = decode_joint_settings(&bytes).ok_or(Plen2OpError::Unreadable { item })?;
+    Ok(Joint::ALL
+        .iter()
+        .filter_map(|joint| {
+            let entry = entries.iter().find(|e| e.device == joint.device_id())?;
+            Some(JointSetting {
+                joint: *joint,
+                min_tenths_deg: entry.min,
+                max_tenths_deg: entry.max,
+                home_tenths_deg: entry.home,
+            })
+        })
+        .collect())
+}
+
+/// The robot at a glance.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Plen2Info {
+    /// "PLEN2 Cytisus 1.4.2".
+    pub version: String,
+    /// The joint settings.
+    pub joints: Vec<JointSetting>,
+}
+
+/// Reads the version and the joint settings.
+pub fn info(requester: &Plen2Requester) -> Result<Plen2Info, Plen2OpError> {
+    let item = "version".to_string();
+    let bytes =
+        requester.get(Command::GetVersion).map_err(|source| Plen2OpError::Reply { item: item.clone(), source })?;
+    let version = decode_version(&bytes).ok_or(Plen2OpError::Unreadable { item })?;
+    Ok(Plen2Info {
+        version: format!("{} {} {}", version.device, version.codename, version.version),
+        joints: read_joint_settings(requester)?,
+    })
+}
+
+/// Reads the version, the joint settings and `slots` into a project (unwritten slots skipped).
+pub fn export(
+    requester: &Plen2Requester,
+    slots: &[u8],
+    progress: &mut dyn FnMut(&Plen2Progress),
+    cancel: &Cancel,
+) -> Result<Plen2Project, Plen2OpError> {
+    let total = slots.len() + 1;
+    let mut step = |done: usize, item: String| progress(&Plen2Progress { phase: Plen2Phase::Read, done, total, item });
+    step(0, "version and joint settings".into());
+    let joints = info(requester)?.joints;
+    let mut motions = Vec::new();
+    for (index, &slot) in slots.iter().enumerate() {
+        check(cancel)?;
+        step(index + 1, slot_item(slot, ""));
+        if let Some(motion) = read_slot(requester, slot)? {
+            motions.push(motion);
+        }
+    }
+    step(total, "done".into());
+    Ok(Plen2Project { joints, motions, play_lists: Vec::new() })
+}
+
+/// How to import.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Plen2ImportOptions {
+    /// Where to save the slots about to be overwritten; `None` = no backup.
+    pub backup_dir: Option<PathBuf>,
+    /// Read every written slot back and compare.
+    pub verify: bool,
+    /// Write despite validation errors (what cannot be encoded is still refused).
+    pub force: bool,
+}
+
+/// One slot's outcome.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum SlotResult {
+    /// Written and read back identical.
+    Verified,
+    /// Written (not verified).
+    Written,
+    /// Read back different: the robot holds something else.
+    Differs,
+}
+
+/// What an import did.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Plen2ImportReport {
+    /// Where the overwritten slots were saved.
+    pub backup: Option<PathBuf>,
+    /// Each motion's slot and outcome, in order.
+    pub slots: Vec<(u8, SlotResult)>,
+    /// Joint settings written (device, what).
+    pub joint_writes: usize,
+}
+
+impl Plen2ImportReport {
+    /// Whether every slot verified (or was written, without verification).
+    pub fn all_good(&self) -> bool {
+        self.slots.iter().all(|(_, result)| *result != SlotResult::Differs)
+    }
+}
+
+/// What to import: motions always; joint settings only when the project holds them.
+pub type Plen2Import = Plen2Project;
+
+/// Writes joint settings that differ from the robot's (max and min before home,
+/// so home never falls outside them); returns how many commands were sent.
+pub fn write_joint_settings(
+    requester: &Plen2Requester,
+    wanted: &[JointSetting],
+    current: &[JointSetting],
+) -> Result<usize, Plen2OpError> {
+    let mut writes = 0;
+    for setting in wanted {
+        let device = setting.joint.device_id();
+        let now = current.iter().find(|c| c.joint == setting.joint);
+        let differs = |pick: fn(&JointSetting) -> i16| now.is_none_or(|now| pick(now) != pick(setting));
+        let mut commands = Vec::new();
+        if differs(|s| s.max_tenths_deg) {
+            commands.push(Command::SetMax { device, angle: setting.max_tenths_deg });
+        }
+        if differs(|s| s.min_tenths_deg) {
+            commands.push(Command::SetMin { device, angle: setting.min_tenths_deg });
+        }
+        if differs(|s| s.home_tenths_deg) {
+            commands.push(Command::SetHome { device, angle: setting.home_tenths_deg });
+        }
+        for command in commands {
+            requester
+                .send(command)
+                .map_err(|source| Plen2OpError::Reply { item: format!("joint {}", setting.joint.name()), source })?;
+            writes += 1;
+        }
+    }
+    Ok(writes)
+}
+
+/// The file a PLEN2 backup gets: `plen2-backup-YYYYMMDD-HHMMSS.json` (local time), with a
+/// counter if that name is taken.
+pub fn plen2_backup_path(folder: &std::path::Path) -> PathBuf {
+    let servo_style = backup_path(folder, 0);
+    let name = servo_style
+        .file_name()
+        .map(|name| name.to_string_lossy().replace("board-backup", "plen2-backup").replace("-project0", ""))
+        .unwrap_or_else(|| "plen2-backup.json".into());
+    let mut path = folder.join(&name);
+    let mut counter = 1;
+    while path.exists() {
+        counter += 1;
+        path = folder.join(name.replace(".json", &format!("-{counter}.json")));
+    }
+    path
+}
+
+/// Uploads `project`'s motions (and its joint settings, if it holds them and they differ):
+/// validates, backs up the slots about to be overwritten, writes paced, verifies.
+pub fn import(
+    requester: &Plen2Requester,
+    project: &Plen2Project,
+    options: &Plen2ImportOptions,
+    progress: &mut dyn FnMut(&Plen2Progress),
+    cancel: &Cancel,
+) -> Result<Plen2ImportReport, Plen2OpError> {
+    let problems: Vec<Problem> =
+        project::validate(&Project { family: project::Family::Plen2, plen2: project.clone(), ..Project::default() })
+            .into_iter()
+            .filter(|p| p.severity == project::Severity::Error)
+            .collect();
+    if !problems.is_empty() && !options.force {
+        return Err(Plen2OpError::Invalid { problems });
+    }
+    let slots: Vec<u8> = project.motions.iter().map(|m| m.slot).filter(|slot| *slot < SLOTS).collect();
+    let backup = match &options.backup_dir {
+        Some(folder) => {
+            let mut saved = export(requester, &slots, progress, cancel)?;
+            saved.play_lists.clear();
+            let path = plen2_backup_path(folder);
+            let document = Project { family: project::Family::Plen2, plen2: saved, ..Project::default() };
+            project::save(&path, &document).map_err(Plen2OpError::Backup)?;
+            Some(path)
+        }
+        None => None,
+    };
+    let mut joint_writes = 0;
+    if !project.joints.is_empty() {
+        check(cancel)?;
+        let current = read_joint_settings(requester)?;
+        joint_writes = write_joint_settings(requester, &project.joints, &current)?;
+    }
+    let total = project.motions.len();
+    let mut results = Vec::new();
+    for (index, motion) in project.motions.iter().enumerate() {
+        check(cancel)?;
+        let item = slot_item(motion.slot, &motion.name);
+        progress(&Plen2Progress { phase: Plen2Phase::Write, done: index, total, item: item.clone() });
+        let commands = motion_commands(motion);
+        let last = commands.len().saturating_sub(1);
+        for (position, command) in commands.into_iter().enumerate() {
+            let sent = if position == last { requester.send_and_wait(command) } else { requester.send(command) };
+            sent.map_err(|source| Plen2OpError::Reply { item: item.clone(), source })?;
+        }
+        results.push((motion.slot, SlotResult::Written));
+        progress(&Plen2Progress { phase: Plen2Phase::Write, done: index + 1, total, item });
+    }
+    if options.verify {
+        for (index, motion) in project.motions.iter().enumerate() {
+            check(cancel)?;
+            let item = slot_item(motion.slot, &motion.name);
+            progress(&Plen2Progress { phase: Plen2Phase::Verify, done: index, total, item: item.clone() });
+            let back = read_slot(requester, motion.slot)?;
+            let same = back.as_ref().is_some_and(|back| back == motion);
+            results[index].1 = if same { SlotResult::Verified } else { SlotResult::Differs };
+            progress(&Plen2Progress { phase: Plen2Phase::Verify, done: index + 1, total, item });
+        }
+    }
+    Ok(Plen2ImportReport { backup, slots: results, joint_writes })
+}

@@ -1,0 +1,143 @@
+//! A PLEN2 over a pseudo-terminal against the emulated robot: paced uploads
+//! lose nothing (and careless ones do), export then import round-trips a
+//! multi-motion project exactly, and unwritten slots are skipped.
+
+#![cfg(unix)]
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use std::time::Duration;
+
+use servo_studio::device::plen2::{
+    Pacing, Plen2Handle, Plen2ImportOptions, Plen2Requester, SlotResult, export, import, motion_commands,
+};
+use servo_studio::device::servo::Cancel;
+use servo_studio::link::{PortName, no_waker};
+use servo_studio::project::Family;
+use servo_studio::project::plen2::{Frame, Joint, JointSetting, LoopRange, Motion, Plen2Project, Pose};
+use servo_studio::sim::{Plen2Sim, Plen2SimCommand, Plen2SimEvent, Plen2State, Plen2Timing, SimHandle, spawn_pty};
+
+type Robot = SimHandle<Plen2SimCommand, Plen2SimEvent>;
+
+fn robot() -> Robot {
+    spawn_pty(Plen2Sim::new(Plen2Timing::default()), no_waker()).unwrap()
+}
+
+fn inspect(robot: &Robot) -> Plen2State {
+    let (reply, state) = crossbeam_channel::bounded(1);
+    robot.command(Plen2SimCommand::Inspect(reply));
+    state.recv_timeout(Duration::from_secs(5)).unwrap()
+}
+
+fn connect(robot: &Robot) -> (Plen2Handle, Plen2Requester) {
+    let port = PortName::parse(&robot.port_name).unwrap();
+    let settings = servo_studio::device::line_settings(Family::Plen2);
+    let handle =
+        Plen2Handle::over(servo_studio::link::open(&port, &settings).unwrap(), Pacing::default(), no_waker()).unwrap();
+    let requester = handle.requester();
+    (handle, requester)
+}
+
+fn frame(transition_ms: u16, seed: i16) -> Frame {
+    let mut pose = Pose::default();
+    for (index, joint) in Joint::ALL.into_iter().enumerate() {
+        let index = i16::try_from(index).unwrap();
+        pose.set(joint, (seed * 37 + index * 11) % 700 - 350);
+    }
+    Frame { transition_ms, values_tenths_deg: pose }
+}
+
+/// Three motions using loops (a partial range, forever), a jump, 20 frames, and re-calibrated joints.
+fn project() -> Plen2Project {
+    Plen2Project {
+        joints: vec![
+            JointSetting {
+                joint: Joint::LeftKneePitch,
+                min_tenths_deg: -600,
+                max_tenths_deg: 800,
+                home_tenths_deg: 450,
+            },
+            JointSetting {
+                joint: Joint::RightFootRoll,
+                min_tenths_deg: -900,
+                max_tenths_deg: 700,
+                home_tenths_deg: -150,
+            },
+        ],
+        motions: vec![
+            Motion {
+                slot: 0,
+                name: "Walk Forward".into(),
+                frames: (0..20).map(|i| frame(32 + i * 100, i16::try_from(i).unwrap())).collect(),
+                loop_range: Some(LoopRange { begin_frame: 2, end_frame: 17, count: 255 }),
+                jump_slot: None,
+            },
+            Motion {
+                slot: 45,
+                name: "Wave x3".into(),
+                frames: (0..5).map(|i| frame(8191 - i * 1000, -i16::try_from(i).unwrap())).collect(),
+                loop_range: Some(LoopRange { begin_frame: 1, end_frame: 3, count: 2 }),
+                jump_slot: Some(0),
+            },
+            Motion { slot: 89, name: "Bow".into(), frames: vec![frame(500, 7)], loop_range: None, jump_slot: None },
+        ],
+        play_lists: Vec::new(),
+    }
+}
+
+#[test]
+fn export_then_import_round_trips_a_multi_motion_project_and_loses_no_byte() {
+    let robot = robot();
+    let (_handle, requester) = connect(&robot);
+    let wanted = project();
+    let backups = tempfile::tempdir().unwrap();
+    let options = Plen2ImportOptions { backup_dir: Some(backups.path().to_path_buf()), verify: true, force: false };
+    let report = import(&requester, &wanted, &options, &mut |_| {}, &Cancel::never()).unwrap();
+    assert!(report.slots.iter().all(|(_, result)| *result == SlotResult::Verified), "{report:?}");
+    // Only what differs: right_foot_roll keeps its factory min of −900.
+    assert_eq!(report.joint_writes, 5, "max, min and home of the two re-calibrated joints, less the unchanged min");
+    assert!(report.backup.is_some(), "the slots about to be overwritten were saved first");
+    let state = inspect(&robot);
+    assert_eq!(state.lost_bytes, 0, "the paced upload lost nothing");
+    assert_eq!(state.dropped, 0);
+    assert_eq!(state.written_slots, [0, 45, 89]);
+
+    // Three written slots and three never written (each answers ~300 KB of garbage).
+    let slots = [0, 1, 44, 45, 88, 89];
+    let exported = export(&requester, &slots, &mut |_| {}, &Cancel::never()).unwrap();
+    assert_eq!(exported.motions, wanted.motions, "every motion, loops and jumps included; unwritten slots skipped");
+    for setting in &wanted.joints {
+        assert!(exported.joints.contains(setting), "{setting:?}");
+    }
+    assert_eq!(exported.joints.len(), 18);
+}
+
+#[test]
+fn unpaced_sending_loses_bytes_so_the_pacing_is_what_saves_an_upload() {
+    let robot = robot();
+    let port = PortName::parse(&robot.port_name).unwrap();
+    let settings = servo_studio::device::line_settings(Family::Plen2);
+    let mut careless = servo_studio::link::open(&port, &settings).unwrap();
+    let bytes: String = project().motions[0].clone().then_commands();
+    careless.writer_mut().write_all(bytes.as_bytes()).unwrap();
+    careless.writer_mut().flush().unwrap();
+    // Wait (on the robot's own events) until it reports lost bytes.
+    let deadline = std::time::Instant::now() + Duration::from_secs(5);
+    loop {
+        match robot.events().recv_deadline(deadline) {
+            Ok(servo_studio::link::LinkEvent::Driver(Plen2SimEvent::Lost(_))) => break,
+            Ok(_) => {}
+            Err(_) => panic!("a 20-frame motion sent in one write lost nothing: {:?}", inspect(&robot)),
+        }
+    }
+    assert!(inspect(&robot).lost_bytes > 0);
+}
+
+trait Commands {
+    fn then_commands(self) -> String;
+}
+
+impl Commands for Motion {
+    fn then_commands(self) -> String {
+        motion_commands(&self).iter().map(servo_studio::protocol::plen2::Command::to_ascii).collect()
+    }
+}
