@@ -1,6 +1,7 @@
 //! The command line: argument parsing and the commands. Errors are handled
 //! here, once: printed with what to try, and turned into the exit status.
 
+mod plen2;
 mod rflex;
 mod servo;
 
@@ -89,6 +90,9 @@ pub enum CliCommand {
         /// The project file to write.
         #[arg(long)]
         out: PathBuf,
+        /// PLEN2: the slots to read, e.g. 0-19,70 (default: all 90).
+        #[arg(long, value_parser = plen2::parse_slots)]
+        slots: Option<plen2::Slots>,
     },
     /// Write a project file onto a board: validates, backs the board up,
     /// clears it, writes, and verifies. A file with validation errors (a
@@ -156,9 +160,7 @@ fn servo_only(family: Family, what: &str) -> anyhow::Result<()> {
         Family::Rflex => anyhow::bail!(
             "{what} does not apply to rFLEX bases (they store no project); use `servo-studio rflex status` to read one and `servo-studio rflex drive` to drive it"
         ),
-        Family::Plen2 => anyhow::bail!(
-            "{what} for the PLEN2 family is not in this build of Servo Studio yet; servo boards (--protocol servo) and rFLEX bases (`servo-studio rflex`) are supported"
-        ),
+        Family::Plen2 => anyhow::bail!("{what} for PLEN2 is not in this build of Servo Studio yet"),
     }
 }
 
@@ -168,17 +170,20 @@ pub fn run(command: CliCommand) -> ExitCode {
         CliCommand::Check { file } => return check(&file),
         CliCommand::Ports => servo::ports(),
         CliCommand::Sim { args, protocol: Family::Rflex } => rflex::sim(&args),
+        CliCommand::Sim { args, protocol: Family::Plen2 } => plen2::sim(&args),
         CliCommand::Sim { args, protocol } => servo_only(protocol, "the emulator").and_then(|()| servo::sim(&args)),
         CliCommand::Rflex { command } => rflex::run(&command),
-        CliCommand::Export { port, out } => {
-            servo_only(port.protocol.unwrap_or_default(), "export").and_then(|()| servo::export(&port, &out))
-        }
+        CliCommand::Export { port, out, slots } => match port.protocol.unwrap_or_default() {
+            Family::Plen2 => plen2::export(&port, &out, &slots.map_or_else(|| (0..90).collect(), |slots| slots.0)),
+            family => servo_only(family, "export").and_then(|()| servo::export(&port, &out)),
+        },
         CliCommand::Import { port, input, yes, force, no_backup, backup_dir } => {
             import(&port, &input, servo::ImportChoices { yes, force, backup_dir: (!no_backup).then_some(backup_dir) })
         }
-        CliCommand::Board { command: BoardCommand::Info { port } } => {
-            servo_only(port.protocol.unwrap_or_default(), "board info").and_then(|()| servo::info(&port))
-        }
+        CliCommand::Board { command: BoardCommand::Info { port } } => match port.protocol.unwrap_or_default() {
+            Family::Plen2 => plen2::info(&port),
+            family => servo_only(family, "board info").and_then(|()| servo::info(&port)),
+        },
         CliCommand::Gui { file, demo, protocol } => gui(file, demo, protocol),
     };
     match result {
@@ -191,7 +196,11 @@ pub fn run(command: CliCommand) -> ExitCode {
 }
 
 fn import(port: &PortArgs, input: &std::path::Path, choices: servo::ImportChoices) -> anyhow::Result<()> {
-    let loaded = project::load(input).map_err(|error| anyhow::anyhow!("cannot read {}: {error}", input.display()))?;
+    let loaded = if port.protocol == Some(Family::Plen2) {
+        plen2::load_input(input)?
+    } else {
+        project::load(input).map_err(|error| anyhow::anyhow!("cannot read {}: {error}", input.display()))?
+    };
     let family = port.protocol.unwrap_or(loaded.family);
     if family != loaded.family {
         anyhow::bail!(
@@ -199,6 +208,9 @@ fn import(port: &PortArgs, input: &std::path::Path, choices: servo::ImportChoice
             input.display(),
             loaded.family
         );
+    }
+    if family == Family::Plen2 {
+        return plen2::import(port, input, &loaded, choices);
     }
     servo_only(family, "import")?;
     servo::import(port, input, &loaded, choices)

@@ -93,6 +93,7 @@ fn export_then_import_round_trips_a_multi_motion_project_and_loses_no_byte() {
     let options = Plen2ImportOptions { backup_dir: Some(backups.path().to_path_buf()), verify: true, force: false };
     let report = import(&requester, &wanted, &options, &mut |_| {}, &Cancel::never()).unwrap();
     assert!(report.slots.iter().all(|(_, result)| *result == SlotResult::Verified), "{report:?}");
+    assert_eq!(report.rewritten, 0, "nothing had to be written twice");
     // Only what differs: right_foot_roll keeps its factory min of −900.
     assert_eq!(report.joint_writes, 5, "max, min and home of the two re-calibrated joints, less the unchanged min");
     assert!(report.backup.is_some(), "the slots about to be overwritten were saved first");

@@ -174,7 +174,7 @@ pub fn export(port: &PortArgs, out: &Path) -> anyhow::Result<()> {
     Ok(())
 }
 
-fn confirm(port: &str, input: &Path, backup: bool) -> anyhow::Result<()> {
+pub fn confirm(port: &str, input: &Path, backup: bool) -> anyhow::Result<()> {
     let stdin = std::io::stdin();
     if !stdin.is_terminal() {
         bail!(

@@ -6,6 +6,7 @@ mod document;
 mod edit;
 mod file;
 mod history;
+pub mod motion_json;
 pub mod plen2;
 pub mod rflex;
 mod servo;

@@ -27,7 +27,8 @@ pub struct Pacing {
     pub joint_write: Duration,
     /// `>JS`.
     pub factory_reset: Duration,
-    /// Bytes allowed to wait in the robot's 64-byte ring.
+    /// Bytes allowed to wait in the robot's 64-byte ring (the rest is slack for
+    /// delivery jitter: a late batch arrives together with the next).
     pub ring_budget: u32,
 }
 
@@ -39,7 +40,7 @@ impl Default for Pacing {
             frame_write: Duration::from_micros(12_500),
             joint_write: Duration::from_micros(7_500),
             factory_reset: Duration::from_millis(600),
-            ring_budget: 48,
+            ring_budget: 32,
         }
     }
 }
@@ -187,6 +188,12 @@ impl Plen2Driver {
             self.in_ring.pop_front();
         }
         let budget = self.pacing.ring_budget as usize;
+        // Refill in whole batches, once the ring is predicted empty: a batch
+        // delivered late together with the next still fits (the rest of the
+        // 64 bytes is that slack).
+        if !self.in_ring.is_empty() {
+            return;
+        }
         let mut chunk = Vec::new();
         loop {
             if self.current.is_none() {
@@ -244,9 +251,8 @@ impl Plen2Driver {
         if !more {
             return None;
         }
-        // With room in the ring, `pace` has already sent all it could.
-        let budget = self.pacing.ring_budget as usize;
-        self.in_ring.len().checked_sub(budget).and_then(|index| self.in_ring.get(index).copied())
+        // The next batch goes once the ring is predicted empty.
+        self.in_ring.back().copied()
     }
 }
 

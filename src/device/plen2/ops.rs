@@ -186,6 +186,8 @@ pub struct Plen2ImportReport {
     pub slots: Vec<(u8, SlotResult)>,
     /// Joint settings written (device, what).
     pub joint_writes: usize,
+    /// Slots written a second time because their first read-back differed.
+    pub rewritten: usize,
 }
 
 impl Plen2ImportReport {
@@ -286,27 +288,62 @@ pub fn import(
     let mut results = Vec::new();
     for (index, motion) in project.motions.iter().enumerate() {
         check(cancel)?;
-        let item = slot_item(motion.slot, &motion.name);
-        progress(&Plen2Progress { phase: Plen2Phase::Write, done: index, total, item: item.clone() });
-        let commands = motion_commands(motion);
-        let last = commands.len().saturating_sub(1);
-        for (position, command) in commands.into_iter().enumerate() {
-            let sent = if position == last { requester.send_and_wait(command) } else { requester.send(command) };
-            sent.map_err(|source| Plen2OpError::Reply { item: item.clone(), source })?;
-        }
+        write_motion(requester, motion, index, total, progress)?;
         results.push((motion.slot, SlotResult::Written));
-        progress(&Plen2Progress { phase: Plen2Phase::Write, done: index + 1, total, item });
     }
+    let mut rewritten = 0;
     if options.verify {
-        for (index, motion) in project.motions.iter().enumerate() {
+        verify(requester, &project.motions, &mut results, progress, cancel)?;
+        // A slot that reads back different is written once more (a byte lost on
+        // a busy USB line), then checked again; what still differs is reported.
+        let differing: Vec<usize> =
+            (0..results.len()).filter(|index| results[*index].1 == SlotResult::Differs).collect();
+        for &index in &differing {
             check(cancel)?;
-            let item = slot_item(motion.slot, &motion.name);
-            progress(&Plen2Progress { phase: Plen2Phase::Verify, done: index, total, item: item.clone() });
-            let back = read_slot(requester, motion.slot)?;
-            let same = back.as_ref().is_some_and(|back| back == motion);
-            results[index].1 = if same { SlotResult::Verified } else { SlotResult::Differs };
-            progress(&Plen2Progress { phase: Plen2Phase::Verify, done: index + 1, total, item });
+            write_motion(requester, &project.motions[index], index, total, progress)?;
+            rewritten += 1;
+            let back = read_slot(requester, project.motions[index].slot)?;
+            results[index].1 =
+                if back.as_ref() == Some(&project.motions[index]) { SlotResult::Verified } else { SlotResult::Differs };
         }
     }
-    Ok(Plen2ImportReport { backup, slots: results, joint_writes })
+    Ok(Plen2ImportReport { backup, slots: results, joint_writes, rewritten })
+}
+
+fn write_motion(
+    requester: &Plen2Requester,
+    motion: &Motion,
+    index: usize,
+    total: usize,
+    progress: &mut dyn FnMut(&Plen2Progress),
+) -> Result<(), Plen2OpError> {
+    let item = slot_item(motion.slot, &motion.name);
+    progress(&Plen2Progress { phase: Plen2Phase::Write, done: index, total, item: item.clone() });
+    let commands = motion_commands(motion);
+    let last = commands.len().saturating_sub(1);
+    for (position, command) in commands.into_iter().enumerate() {
+        let sent = if position == last { requester.send_and_wait(command) } else { requester.send(command) };
+        sent.map_err(|source| Plen2OpError::Reply { item: item.clone(), source })?;
+    }
+    progress(&Plen2Progress { phase: Plen2Phase::Write, done: index + 1, total, item });
+    Ok(())
+}
+
+fn verify(
+    requester: &Plen2Requester,
+    motions: &[Motion],
+    results: &mut [(u8, SlotResult)],
+    progress: &mut dyn FnMut(&Plen2Progress),
+    cancel: &Cancel,
+) -> Result<(), Plen2OpError> {
+    let total = motions.len();
+    for (index, motion) in motions.iter().enumerate() {
+        check(cancel)?;
+        let item = slot_item(motion.slot, &motion.name);
+        progress(&Plen2Progress { phase: Plen2Phase::Verify, done: index, total, item: item.clone() });
+        let back = read_slot(requester, motion.slot)?;
+        results[index].1 = if back.as_ref() == Some(motion) { SlotResult::Verified } else { SlotResult::Differs };
+        progress(&Plen2Progress { phase: Plen2Phase::Verify, done: index + 1, total, item });
+    }
+    Ok(())
 }

@@ -1,0 +1,157 @@
+//! The PLEN2's `board info`, `export`, `import` and `sim --protocol plen2`.
+
+use std::path::Path;
+use std::time::Instant;
+
+use anyhow::{Context, bail};
+
+use super::PortArgs;
+use super::servo::{ImportChoices, SimArgs};
+use servo_studio::device::plen2::{
+    self as plen2, Pacing, Plen2Handle, Plen2ImportOptions, Plen2Phase, Plen2Progress, SlotResult,
+};
+use servo_studio::device::{self, servo::Cancel};
+use servo_studio::link::{self, LineSettings, PortName, no_waker};
+use servo_studio::project::motion_json;
+use servo_studio::project::{self, Family, Project};
+use servo_studio::sim::{Plen2Sim, Plen2Timing};
+
+fn connect(port: &PortArgs) -> anyhow::Result<Plen2Handle> {
+    let name = PortName::parse(&port.port)?;
+    let settings = LineSettings { baud: port.baud(Family::Plen2), ..device::line_settings(Family::Plen2) };
+    let connection = link::open(&name, &settings)?;
+    Plen2Handle::over(connection, Pacing::default(), no_waker())
+        .with_context(|| format!("cannot start talking to {name}"))
+}
+
+/// Slots as given on the command line.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Slots(pub Vec<u8>);
+
+/// Parses `0-19,70` into slots.
+pub fn parse_slots(text: &str) -> Result<Slots, String> {
+    let mut slots = Vec::new();
+    for part in text.split(',').map(str::trim).filter(|p| !p.is_empty()) {
+        let bad = || format!("{part:?} is not a slot or a range of slots (0..89), e.g. 0-19,70");
+        let (first, last) = match part.split_once('-') {
+            Some((a, b)) => (a.trim().parse::<u8>().map_err(|_| bad())?, b.trim().parse::<u8>().map_err(|_| bad())?),
+            None => {
+                let slot = part.parse::<u8>().map_err(|_| bad())?;
+                (slot, slot)
+            }
+        };
+        if first > last || last >= servo_studio::protocol::plen2::SLOTS {
+            return Err(bad());
+        }
+        slots.extend(first..=last);
+    }
+    slots.sort_unstable();
+    slots.dedup();
+    Ok(Slots(slots))
+}
+
+fn progress_line() -> impl FnMut(&Plen2Progress) {
+    let began = Instant::now();
+    move |progress: &Plen2Progress| {
+        let phase = match progress.phase {
+            Plen2Phase::Read => "reading",
+            Plen2Phase::Write => "writing",
+            Plen2Phase::Verify => "verifying",
+        };
+        eprintln!(
+            "{phase:>9} {}/{} {} ({:.1} s)",
+            progress.done,
+            progress.total,
+            progress.item,
+            began.elapsed().as_secs_f64()
+        );
+    }
+}
+
+/// `board info --protocol plen2`.
+pub fn info(port: &PortArgs) -> anyhow::Result<()> {
+    let handle = connect(port)?;
+    let info = plen2::info(&handle.requester())?;
+    println!("firmware: {}", info.version);
+    for joint in &info.joints {
+        println!(
+            "  {:<22} min {:>5}  max {:>5}  home {:>5}  (tenths of a degree)",
+            joint.joint.name(),
+            joint.min_tenths_deg,
+            joint.max_tenths_deg,
+            joint.home_tenths_deg
+        );
+    }
+    Ok(())
+}
+
+/// `export --protocol plen2 [--slots …]`.
+pub fn export(port: &PortArgs, out: &Path, slots: &[u8]) -> anyhow::Result<()> {
+    let handle = connect(port)?;
+    let mut progress = progress_line();
+    let exported = plen2::export(&handle.requester(), slots, &mut progress, &Cancel::never())
+        .with_context(|| format!("export from {} failed; {} was not written", port.port, out.display()))?;
+    let count = exported.motions.len();
+    project::save(out, &Project { family: Family::Plen2, plen2: exported, ..Project::default() })?;
+    eprintln!("exported {count} motion(s) and the joint settings to {}", out.display());
+    Ok(())
+}
+
+/// Reads what `import` was given: a project file, one motion.json, or a folder of them.
+pub fn load_input(input: &Path) -> anyhow::Result<Project> {
+    if input.is_dir() {
+        let motions = motion_json::load_motions(input)?;
+        return Ok(Project {
+            family: Family::Plen2,
+            plen2: project::plen2::Plen2Project { motions, ..Default::default() },
+            ..Project::default()
+        });
+    }
+    let text = std::fs::read_to_string(input).with_context(|| format!("cannot read {}", input.display()))?;
+    if motion_json::looks_like_motion(&text) {
+        let motion = motion_json::motion_from_json(&text)
+            .map_err(|reason| anyhow::anyhow!("{}: not a PLEN2 motion.json: {reason}", input.display()))?;
+        let plen2 = project::plen2::Plen2Project { motions: vec![motion], ..Default::default() };
+        return Ok(Project { family: Family::Plen2, plen2, ..Project::default() });
+    }
+    project::from_json(&text).map_err(|error| anyhow::anyhow!("cannot read {}: {error}", input.display()))
+}
+
+/// `import --protocol plen2`.
+pub fn import(port: &PortArgs, input: &Path, loaded: &Project, choices: ImportChoices) -> anyhow::Result<()> {
+    let ImportChoices { yes, force, backup_dir } = choices;
+    let handle = connect(port)?;
+    if !yes {
+        super::servo::confirm(&port.port, input, backup_dir.is_some())?;
+    }
+    let options = Plen2ImportOptions { backup_dir, verify: true, force };
+    let mut progress = progress_line();
+    let report = plen2::import(&handle.requester(), &loaded.plen2, &options, &mut progress, &Cancel::never())
+        .with_context(|| format!("import of {} into {} failed", input.display(), port.port))?;
+    if let Some(backup) = &report.backup {
+        eprintln!("backup of the slots overwritten: {}", backup.display());
+    }
+    for (slot, result) in &report.slots {
+        let word = match result {
+            SlotResult::Verified => "written and verified",
+            SlotResult::Written => "written",
+            SlotResult::Differs => "DIFFERS after writing",
+        };
+        eprintln!("slot {slot:>2}: {word}");
+    }
+    if report.rewritten > 0 {
+        eprintln!("{} slot(s) read back different at first and were written again", report.rewritten);
+    }
+    if report.joint_writes > 0 {
+        eprintln!("{} joint setting(s) written", report.joint_writes);
+    }
+    if !report.all_good() {
+        bail!("some slots read back different from what was written; check the cable and run the import again");
+    }
+    Ok(())
+}
+
+/// `sim --protocol plen2`.
+pub fn sim(args: &SimArgs) -> anyhow::Result<()> {
+    super::servo::serve(args, Plen2Sim::new(Plen2Timing::default()))
+}

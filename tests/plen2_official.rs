@@ -1,0 +1,120 @@
+//! The PLEN community's 90 official motion files (read where shared/ keeps them):
+//! each opens, uploads to the emulated robot over a pseudo-terminal through the
+//! command line, exports back, and saves as motion.json with the same content.
+
+#![cfg(unix)]
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::print_stderr)]
+
+use std::io::{BufRead, BufReader};
+use std::path::PathBuf;
+use std::process::{Child, Command, Stdio};
+use std::time::Duration;
+
+use servo_studio::project::{self, motion_json};
+
+const EXE: &str = env!("CARGO_BIN_EXE_servo-studio");
+
+fn motions_folder() -> Option<PathBuf> {
+    let folder = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/plen2/motions");
+    if folder.is_dir() {
+        Some(folder)
+    } else {
+        eprintln!("skipped: {} is absent (a clone outside the workplace has no shared/ folder)", folder.display());
+        None
+    }
+}
+
+struct Sim(Child, String);
+
+impl Drop for Sim {
+    fn drop(&mut self) {
+        let _ = self.0.kill();
+        let _ = self.0.wait();
+    }
+}
+
+fn sim() -> Sim {
+    let mut child = Command::new(EXE)
+        .args(["sim", "--protocol", "plen2", "--pty"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let stdout = child.stdout.take().unwrap();
+    let (line_tx, line_rx) = crossbeam_channel::bounded(1);
+    std::thread::spawn(move || {
+        let mut line = String::new();
+        let _ = BufReader::new(stdout).read_line(&mut line);
+        let _ = line_tx.send(line);
+    });
+    let port = line_rx.recv_timeout(Duration::from_secs(30)).unwrap().trim().to_string();
+    Sim(child, port)
+}
+
+/// A motion.json's content: everything but the editor's `@metadata`, which no
+/// robot stores, with each frame's outputs in device order (some official
+/// files list them in another order; the values per device are the content).
+fn content(text: &str) -> serde_json::Value {
+    let mut value: serde_json::Value = serde_json::from_str(text).unwrap();
+    value.as_object_mut().unwrap().remove("@metadata");
+    for frame in value["frames"].as_array_mut().unwrap() {
+        let outputs = frame["outputs"].as_array_mut().unwrap();
+        outputs.sort_by(|a, b| a["device"].as_str().cmp(&b["device"].as_str()));
+    }
+    value
+}
+
+#[test]
+fn every_official_motion_opens_and_survives_upload_and_export_unchanged() {
+    let Some(folder) = motions_folder() else { return };
+    let originals = motion_json::load_motions(&folder).unwrap();
+    assert_eq!(originals.len(), 90);
+    // Each opens as a valid PLEN2 motion.
+    let document = project::Project {
+        family: project::Family::Plen2,
+        plen2: project::plen2::Plen2Project { motions: originals, ..Default::default() },
+        ..project::Project::default()
+    };
+    assert_eq!(project::validate(&document), [], "the official motions are valid");
+
+    let robot = sim();
+    let import = Command::new(EXE)
+        .args([
+            "import",
+            "--protocol",
+            "plen2",
+            "--port",
+            &robot.1,
+            "--in",
+            folder.to_str().unwrap(),
+            "--yes",
+            "--no-backup",
+        ])
+        .stdin(Stdio::null())
+        .output()
+        .unwrap();
+    let log = String::from_utf8_lossy(&import.stderr);
+    assert!(import.status.success(), "{log}");
+    assert_eq!(log.matches("written and verified").count(), 90, "{log}");
+
+    let out = tempfile::tempdir().unwrap();
+    let exported_path = out.path().join("robot.json");
+    let export = Command::new(EXE)
+        .args(["export", "--protocol", "plen2", "--port", &robot.1, "--out", exported_path.to_str().unwrap()])
+        .stdin(Stdio::null())
+        .output()
+        .unwrap();
+    assert!(export.status.success(), "{}", String::from_utf8_lossy(&export.stderr));
+    let exported = project::load(&exported_path).unwrap();
+    assert_eq!(exported.family, project::Family::Plen2);
+    assert_eq!(exported.plen2.motions.len(), 90);
+
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&folder).unwrap().map(|e| e.unwrap().path()).collect();
+    files.sort();
+    for file in files {
+        let original = std::fs::read_to_string(&file).unwrap();
+        let slot = content(&original)["slot"].as_u64().unwrap();
+        let motion = exported.plen2.motions.iter().find(|m| u64::from(m.slot) == slot).unwrap();
+        assert_eq!(content(&motion_json::motion_to_json(motion)), content(&original), "{}", file.display());
+    }
+}
