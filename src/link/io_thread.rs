@@ -148,7 +148,8 @@ pub struct Owner<C> {
 }
 
 enum Input {
-    Bytes(Vec<u8>),
+    /// Bytes and when the port handed them over (not when this thread got to them).
+    Bytes(Vec<u8>, Instant),
     Ended(DisconnectReason),
 }
 
@@ -302,7 +303,9 @@ fn drive<D: Driver>(
                 return DisconnectReason::Closed;
             }
             index if index == input_index => match operation.recv(input) {
-                Ok(Input::Bytes(bytes)) => driver.handle_input(now, &bytes),
+                // The time they arrived: a thread scheduled late must not make
+                // bytes that came apart look as if they came together.
+                Ok(Input::Bytes(bytes, arrived)) => driver.handle_input(arrived.min(now), &bytes),
                 Ok(Input::Ended(reason)) => return reason,
                 Err(_) => return DisconnectReason::ThreadFailed("the port reader stopped".into()),
             },
@@ -320,7 +323,7 @@ fn read_loop(mut reader: Box<dyn Read + Send>, input: &Sender<Input>, stop: &Rec
         let ended = match reader.read(&mut buffer) {
             Ok(0) => DisconnectReason::ClosedByPeer,
             Ok(len) => {
-                if input.send(Input::Bytes(buffer[..len].to_vec())).is_err() {
+                if input.send(Input::Bytes(buffer[..len].to_vec(), Instant::now())).is_err() {
                     return;
                 }
                 continue;

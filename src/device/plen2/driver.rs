@@ -14,7 +14,7 @@ use crate::device::{Direction, LogEntry, hex};
 use crate::link::Driver;
 use crate::protocol::plen2::{Command, ReplyEvent, ReplyKind, ReplyReader};
 
-/// The firmware timing the pacer assumes: plen2.md's figures with margins.
+/// The firmware timing the pacer assumes: plen2.md's figures at the slow end of their ranges.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Pacing {
     /// Time the firmware takes to read one byte.
@@ -35,10 +35,12 @@ pub struct Pacing {
 impl Default for Pacing {
     fn default() -> Self {
         Self {
-            byte_read: Duration::from_micros(22),
-            header_write: Duration::from_micros(6_500),
-            frame_write: Duration::from_micros(12_500),
-            joint_write: Duration::from_micros(7_500),
+            // plen2.md §5: "about 20 µs"; 5 % more.
+            byte_read: Duration::from_micros(21),
+            // The top of each range plen2.md gives: 5–6 ms, 10–12 ms, 3–7 ms, about 0.5 s.
+            header_write: Duration::from_millis(6),
+            frame_write: Duration::from_millis(12),
+            joint_write: Duration::from_millis(7),
             factory_reset: Duration::from_millis(600),
             ring_budget: 32,
         }
