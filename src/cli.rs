@@ -219,10 +219,20 @@ fn import(port: &PortArgs, input: &std::path::Path, choices: servo::ImportChoice
 /// Opens the editor, with `file` if given; with `demo` and no file, on the sample robot.
 pub fn gui(file: Option<PathBuf>, demo: bool, protocol: Option<Family>) -> anyhow::Result<()> {
     let project = match &file {
-        Some(path) => Some(project::load(path).map_err(|error| anyhow::anyhow!("{}: {error}", path.display()))?),
+        // A project file, or the PLEN community's motion.json (one file or a folder).
+        Some(path) => Some(plen2::load_input(path)?),
         None => None,
     };
-    let start = servo_studio::ui::Start { project, path: file, demo, family: protocol };
+    // A motion.json or a folder of them is not a project file: it is saved as a new project.
+    let is_project = file.as_ref().is_some_and(|path| {
+        path.is_file()
+            && project.as_ref().is_some_and(|p| {
+                p.family != Family::Plen2
+                    || std::fs::read_to_string(path).is_ok_and(|text| !project::motion_json::looks_like_motion(&text))
+            })
+    });
+    let path = if is_project { file } else { None };
+    let start = servo_studio::ui::Start { project, path, demo, family: protocol };
     servo_studio::ui::run(start).map_err(|error| {
         anyhow::anyhow!("cannot open the window: {error}. On Linux, a desktop session (X11 or Wayland) and OpenGL drivers are needed")
     })

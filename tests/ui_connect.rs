@@ -177,18 +177,25 @@ fn the_family_chooser_hides_the_panels_that_do_not_apply() {
     }
     harness.get_by_label("Hardware").click();
     harness.run_steps(2);
-    harness.get_by_label("PLEN2").click();
+    harness.get_by_label("rFLEX base").click();
     harness.run_steps(3);
-    assert_eq!(harness.state().document.project.family, Family::Plen2);
+    assert_eq!(harness.state().document.project.family, Family::Rflex);
     for tab in ["Servos", "Actions", "Macros", "Joystick", "Board"] {
-        assert!(harness.query_all_by_label(tab).next().is_none(), "{tab} is hidden for PLEN2");
+        assert!(harness.query_all_by_label(tab).next().is_none(), "{tab} is hidden for an rFLEX base");
     }
-    assert!(harness.query_all_by_label("Packet log").next().is_some());
-    assert_eq!(harness.state().tab, Tab::Log);
-    // Connecting says plainly that this build has no PLEN2 driver yet.
-    harness.state_mut().apply(Action::ConnectDemo);
-    let status = harness.state().status.clone().unwrap();
-    assert!(status.is_error && status.text.contains("PLEN2 panels and driver are not in this build"), "{status:?}");
+    for tab in ["Drive", "Telemetry", "Packet log"] {
+        assert!(harness.query_all_by_label(tab).next().is_some(), "{tab} is offered for an rFLEX base");
+    }
+    assert_eq!(harness.state().tab, Tab::Drive, "the first panel of the family");
+    assert!(harness.query_all_by_label("Robot").next().is_some(), "the robot preset sits beside the family");
+    // PLEN2: its own panels, the joystick tables still hidden.
+    harness.state_mut().apply(Action::SetFamily(Family::Plen2));
+    harness.run_steps(2);
+    for tab in ["Joints", "Motions", "Play lists", "Board", "Packet log"] {
+        assert!(harness.query_all_by_label(tab).next().is_some(), "{tab} is offered for PLEN2");
+    }
+    assert!(harness.query_all_by_label("Joystick").next().is_none());
+    harness.state_mut().apply(Action::Undo);
     // The switch is one undo step; the servo panels come back.
     harness.state_mut().apply(Action::Undo);
     harness.run_steps(2);

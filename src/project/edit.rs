@@ -75,6 +75,8 @@ pub enum Edit {
     SetRflexRobot(super::rflex::Robot),
     /// Change the rFLEX drive limits.
     SetRflexDrive(super::rflex::DriveSettings),
+    /// Replace the PLEN2 section (motions, play lists, joint settings).
+    SetPlen2(Box<super::plen2::Plen2Project>),
 }
 
 fn set<T>(items: &mut [T], index: usize, value: T) -> bool {
@@ -113,11 +115,15 @@ impl Edit {
                 project.rflex.drive = drive;
                 return true;
             }
+            Self::SetPlen2(plen2) => {
+                project.plen2 = *plen2;
+                return true;
+            }
             _ => {}
         }
         let project = &mut project.servo;
         match self {
-            Self::SetFamily(_) | Self::SetRflexRobot(_) | Self::SetRflexDrive(_) => false,
+            Self::SetFamily(_) | Self::SetRflexRobot(_) | Self::SetRflexDrive(_) | Self::SetPlen2(_) => false,
             Self::SetServo { index, servo } => set(&mut project.servos, index, servo),
             Self::AddServo(servo) => {
                 project.servos.push(servo);

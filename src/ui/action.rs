@@ -38,6 +38,12 @@ pub enum Tab {
     Drive,
     /// A mobile base's sensors.
     Telemetry,
+    /// PLEN2 joint sliders and settings.
+    Joints,
+    /// PLEN2 motions in their slots.
+    Motions,
+    /// PLEN2 play lists.
+    PlayLists,
 }
 
 impl Tab {
@@ -46,8 +52,7 @@ impl Tab {
         match family {
             Family::Servo => &[Self::Servos, Self::Actions, Self::Macros, Self::Joystick, Self::Board, Self::Log],
             Family::Rflex => &[Self::Drive, Self::Telemetry, Self::Log],
-            // Its panels come with its driver; until then the log is all that applies.
-            Family::Plen2 => &[Self::Log],
+            Family::Plen2 => &[Self::Joints, Self::Motions, Self::PlayLists, Self::Board, Self::Log],
         }
     }
 
@@ -62,6 +67,9 @@ impl Tab {
             Self::Log => words.packet_log,
             Self::Drive => words.drive,
             Self::Telemetry => words.telemetry,
+            Self::Joints => words.joints,
+            Self::Motions => words.motions,
+            Self::PlayLists => words.play_lists,
         }
     }
 }
@@ -122,6 +130,40 @@ pub enum Action {
     },
     /// Choose the rFLEX robot preset.
     SetRobot(crate::project::rflex::Robot),
+    /// A PLEN2 joint to an absolute angle (tenths of a degree), live.
+    SetJoint {
+        /// The joint.
+        joint: crate::project::plen2::Joint,
+        /// Tenths of a degree.
+        tenths: i16,
+    },
+    /// Every PLEN2 joint to home.
+    Plen2Home,
+    /// Play a motion stored on the robot (`$PM`).
+    PlayMotion(u8),
+    /// Play the project's motion from a frame by streaming its poses live.
+    PlayFrom {
+        /// The motion's slot.
+        slot: u8,
+        /// The first frame, from 0.
+        frame: usize,
+    },
+    /// Play a play list of the project on the robot.
+    PlayList(usize),
+    /// Append the current joint pose to a motion as a frame.
+    CaptureFrame {
+        /// The motion's slot.
+        slot: u8,
+    },
+    /// A PLEN2 robot operation.
+    Plen2Board(Plen2Intent),
+    /// Save a motion of the project as the official editor's motion.json.
+    SaveMotionJson {
+        /// The motion's slot.
+        slot: u8,
+        /// Where.
+        path: std::path::PathBuf,
+    },
     /// Set or release a base's brake.
     SetBrake(bool),
     /// Turn a base's sonar ring on or off.
@@ -178,6 +220,23 @@ pub enum Action {
         /// The table a pressed button is selected in (or added to); `None` stops picking.
         table_index: Option<usize>,
     },
+}
+
+/// A PLEN2 robot operation.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Plen2Intent {
+    /// Read every slot, the joint settings and the version.
+    Read,
+    /// Upload the project's motions (backup of the overwritten slots first, then verify).
+    Upload,
+    /// Replace the project's PLEN2 section with what was read.
+    ReadIntoProject,
+    /// Save what was read to a file.
+    ExportToFile(std::path::PathBuf),
+    /// Write the project's joint settings where they differ.
+    WriteJoints,
+    /// Factory joint settings (`>JS`).
+    FactoryReset,
 }
 
 /// What was asked for when the document had unsaved changes.

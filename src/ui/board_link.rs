@@ -4,12 +4,14 @@
 
 use std::time::{Duration, Instant};
 
+use crate::device::plen2::{Pacing, Plen2Handle, Plen2Notice};
 use crate::device::rflex::{RflexBase, RflexNotice};
 use crate::device::servo::{RequestError, ServoHandle, ServoImage, ServoNotice};
 use crate::link::{Connection, DisconnectReason, Waker};
 use crate::project::{Family, Project};
 use crate::sim::{
-    RflexSim, RflexSimCommand, RflexSimConfig, RflexSimEvent, ServoSim, SimConfig, SimHandle, spawn_in_memory,
+    Plen2Sim, Plen2SimCommand, Plen2SimEvent, Plen2Timing, RflexSim, RflexSimCommand, RflexSimConfig, RflexSimEvent,
+    ServoSim, SimConfig, SimHandle, spawn_in_memory,
 };
 use crate::ui::packet_log::PacketLog;
 
@@ -42,6 +44,8 @@ pub enum Device {
     Servo(ServoHandle),
     /// An rFLEX mobile base.
     Rflex(RflexBase),
+    /// A PLEN2 humanoid.
+    Plen2(Plen2Handle),
 }
 
 /// The emulated board behind the demo, by family.
@@ -51,6 +55,8 @@ pub enum Demo {
     Servo(SimHandle),
     /// The emulated rFLEX base.
     Rflex(SimHandle<RflexSimCommand, RflexSimEvent>),
+    /// The emulated PLEN2.
+    Plen2(SimHandle<Plen2SimCommand, Plen2SimEvent>),
 }
 
 /// A connected board as the app shell sees it.
@@ -90,7 +96,7 @@ const TELEMETRY_EVERY: Duration = Duration::from_millis(100);
 impl BoardLink {
     /// Whether this build has a driver for `family`.
     pub fn supports(family: Family) -> bool {
-        matches!(family, Family::Servo | Family::Rflex)
+        matches!(family, Family::Servo | Family::Rflex | Family::Plen2)
     }
 
     /// Starts the driver of the project's family over an opened connection.
@@ -103,7 +109,7 @@ impl BoardLink {
                 base.start(project.rflex.drive.sonar_on_connect);
                 Device::Rflex(base)
             }
-            other => return Err(StartError::Unsupported(other)),
+            Family::Plen2 => Device::Plen2(Plen2Handle::over(connection, Pacing::default(), waker)?),
         };
         Ok(Self { device, demo: None, label, log: PacketLog::default() })
     }
@@ -137,7 +143,13 @@ impl BoardLink {
                 link.label = String::new();
                 Ok(link)
             }
-            other => Err(StartError::Unsupported(other)),
+            Family::Plen2 => {
+                let (sim, connection) = spawn_in_memory(Plen2Sim::new(Plen2Timing::default()), waker.clone())?;
+                let mut link = Self::start(project, connection, 2_000_000, waker)?;
+                link.demo = Some(Demo::Plen2(sim));
+                link.label = String::new();
+                Ok(link)
+            }
         }
     }
 
@@ -146,6 +158,7 @@ impl BoardLink {
         match self.device {
             Device::Servo(_) => Family::Servo,
             Device::Rflex(_) => Family::Rflex,
+            Device::Plen2(_) => Family::Plen2,
         }
     }
 
@@ -174,7 +187,7 @@ impl BoardLink {
     pub fn servo(&self) -> Option<&ServoHandle> {
         match &self.device {
             Device::Servo(handle) => Some(handle),
-            Device::Rflex(_) => None,
+            _ => None,
         }
     }
 
@@ -182,7 +195,7 @@ impl BoardLink {
     pub fn servo_mut(&mut self) -> Option<&mut ServoHandle> {
         match &mut self.device {
             Device::Servo(handle) => Some(handle),
-            Device::Rflex(_) => None,
+            _ => None,
         }
     }
 
@@ -190,7 +203,7 @@ impl BoardLink {
     pub fn rflex(&self) -> Option<&RflexBase> {
         match &self.device {
             Device::Rflex(base) => Some(base),
-            Device::Servo(_) => None,
+            _ => None,
         }
     }
 
@@ -198,7 +211,31 @@ impl BoardLink {
     pub fn rflex_mut(&mut self) -> Option<&mut RflexBase> {
         match &mut self.device {
             Device::Rflex(base) => Some(base),
-            Device::Servo(_) => None,
+            _ => None,
+        }
+    }
+
+    /// The PLEN2, when one is connected.
+    pub fn plen2(&self) -> Option<&Plen2Handle> {
+        match &self.device {
+            Device::Plen2(handle) => Some(handle),
+            _ => None,
+        }
+    }
+
+    /// The PLEN2, mutably.
+    pub fn plen2_mut(&mut self) -> Option<&mut Plen2Handle> {
+        match &mut self.device {
+            Device::Plen2(handle) => Some(handle),
+            _ => None,
+        }
+    }
+
+    /// The emulated PLEN2, when this is its demo.
+    pub fn demo_plen2(&self) -> Option<&SimHandle<Plen2SimCommand, Plen2SimEvent>> {
+        match &self.demo {
+            Some(Demo::Plen2(sim)) => Some(sim),
+            _ => None,
         }
     }
 
@@ -206,7 +243,7 @@ impl BoardLink {
     pub fn stopped(&self) -> bool {
         match &self.device {
             Device::Servo(handle) => handle.stopped,
-            Device::Rflex(_) => false,
+            Device::Rflex(_) | Device::Plen2(_) => false,
         }
     }
 
@@ -218,6 +255,10 @@ impl BoardLink {
             Device::Servo(handle) => handle.stop(),
             Device::Rflex(base) => {
                 base.stop();
+                Ok(())
+            }
+            Device::Plen2(handle) => {
+                handle.stop();
                 Ok(())
             }
         }
@@ -248,6 +289,14 @@ impl BoardLink {
                     }
                 }
             }
+            Device::Plen2(handle) => {
+                for notice in handle.pump(now) {
+                    match notice {
+                        Plen2Notice::Log(entry) => self.log.record(entry),
+                        Plen2Notice::Disconnected(reason) => out.push(LinkNotice::Disconnected(reason)),
+                    }
+                }
+            }
         }
         out
     }
@@ -256,7 +305,7 @@ impl BoardLink {
     pub fn next_refresh(&self, polling: bool) -> Instant {
         match &self.device {
             Device::Servo(handle) => handle.next_refresh(polling),
-            Device::Rflex(_) => Instant::now() + TELEMETRY_EVERY,
+            Device::Rflex(_) | Device::Plen2(_) => Instant::now() + TELEMETRY_EVERY,
         }
     }
 }

@@ -16,10 +16,14 @@ mod job;
 mod joystick_panel;
 mod macro_panel;
 pub mod packet_log;
+mod plen2_board;
+mod plen2_job;
+mod plen2_joints;
+mod plen2_motions;
 mod servo_panel;
 mod telemetry_panel;
 
-pub use action::{Action, AfterUnsaved, BoardIntent, Tab};
+pub use action::{Action, AfterUnsaved, BoardIntent, Plen2Intent, Tab};
 pub use action_panel::timeline_bars;
 pub use app::{
     CAPTURED_STEP_INTERVAL_10MS, Connecting, LIVE_MOVE_INTERVAL_10MS, REMEMBERED_KEY, Remembered, StatusLine, StudioApp,

@@ -42,7 +42,7 @@ impl Default for Pacing {
             frame_write: Duration::from_millis(12),
             joint_write: Duration::from_millis(7),
             factory_reset: Duration::from_millis(600),
-            ring_budget: 32,
+            ring_budget: 24,
         }
     }
 }

@@ -7,6 +7,8 @@ impl StudioApp {
     /// Picks up what the board sent since the last frame.
     pub fn pump(&mut self, now: Instant) {
         self.poll_job();
+        self.poll_plen2_job();
+        self.advance_stream(now);
         self.poll_connecting();
         let Some(link) = &mut self.link else { return };
         for notice in link.pump(now, self.polling) {
@@ -117,9 +119,13 @@ impl StudioApp {
         let connecting = self.connecting.as_ref().map(|connecting| connecting.opening.port.to_string());
         let robot = (family == Family::Rflex).then_some(self.document.project.rflex.robot);
         match &self.link {
-            None => {
-                LinkStatus { family, connecting, can_connect: BoardLink::supports(family), ..LinkStatus::default() }
-            }
+            None => LinkStatus {
+                family,
+                robot,
+                connecting,
+                can_connect: BoardLink::supports(family),
+                ..LinkStatus::default()
+            },
             Some(link) => {
                 let label = if link.is_demo() { self.words().demo_board.to_string() } else { link.label.clone() };
                 let servo = link.servo();

@@ -12,6 +12,22 @@ impl StudioApp {
     }
 
     pub(super) fn open_now(&mut self, path: PathBuf) {
+        // The PLEN community's motion.json (one file, or a folder of them) opens
+        // as a new, unsaved PLEN2 project.
+        let is_motion = path.is_dir()
+            || std::fs::read_to_string(&path).is_ok_and(|text| crate::project::motion_json::looks_like_motion(&text));
+        if is_motion {
+            match crate::project::motion_json::load_motions(&path) {
+                Ok(motions) => {
+                    let plen2 = crate::project::plen2::Plen2Project { motions, ..Default::default() };
+                    self.report(format!("{} {}", self.words().msg_opened, path.display()), false);
+                    self.replace_document(Project { family: Family::Plen2, plen2, ..Project::default() }, None);
+                    self.document.dirty = true;
+                }
+                Err(error) => self.report(error.to_string(), true),
+            }
+            return;
+        }
         match crate::project::load(&path) {
             Ok(project) => {
                 files::remember(&mut self.recent, &path);

@@ -5,6 +5,7 @@ mod board;
 mod connection;
 mod file_ops;
 mod live;
+mod plen2;
 
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -108,6 +109,16 @@ pub struct StudioApp {
     macro_panel: MacroPanel,
     joystick_panel: JoystickPanel,
     drive_panel: DrivePanel,
+    motions_panel: crate::ui::plen2_motions::MotionsPanel,
+    /// Every PLEN2 joint's angle on the sliders, tenths of a degree, device-map order.
+    pub plen2_pose: [i16; 18],
+    plen2_stream: Option<plen2::Stream>,
+    /// The running PLEN2 operation.
+    pub plen2_job: Option<crate::ui::plen2_job::Plen2Job>,
+    /// What the robot held when last read.
+    pub plen2_robot: Option<crate::project::plen2::Plen2Project>,
+    /// The last PLEN2 operation's outcome, in words.
+    pub plen2_result: Option<String>,
     /// Whether the base's sonar ring was turned on.
     pub sonar_on: bool,
     action_panel: ActionPanel,
@@ -156,6 +167,12 @@ impl StudioApp {
             preview: None,
             joystick_panel: JoystickPanel::default(),
             drive_panel: DrivePanel::default(),
+            motions_panel: crate::ui::plen2_motions::MotionsPanel::default(),
+            plen2_pose: crate::protocol::plen2::Joint::ALL.map(crate::protocol::plen2::Joint::factory_home_tenths_deg),
+            plen2_stream: None,
+            plen2_job: None,
+            plen2_robot: None,
+            plen2_result: None,
             sonar_on: false,
             picking: None,
             picked_button: None,
@@ -218,6 +235,11 @@ impl StudioApp {
                 }
             }
             Action::Stop => match &mut self.link {
+                Some(link) if link.plen2().is_some() => {
+                    self.plen2_stream = None;
+                    let _ = link.stop();
+                    self.report(self.words().msg_plen2_stopped, false);
+                }
                 Some(link) if link.rflex().is_some() => {
                     self.drive_panel = DrivePanel::default();
                     // A base: both axes to 0 at once (never fails; a lost link is reported by pump).
@@ -234,6 +256,24 @@ impl StudioApp {
                 let accel = self.document.project.rflex.drive.accel_m_per_s2;
                 if let Some(base) = self.link.as_mut().and_then(BoardLink::rflex_mut) {
                     base.drive(speed_m_per_s, turn_rad_per_s, accel);
+                }
+            }
+            Action::SetJoint { joint, tenths } => self.set_joint(joint, tenths),
+            Action::Plen2Home => self.plen2_home(),
+            Action::PlayMotion(slot) => self.play_motion(slot),
+            Action::PlayFrom { slot, frame } => self.play_from(slot, frame),
+            Action::PlayList(index) => self.play_list(index),
+            Action::CaptureFrame { slot } => self.capture_frame(slot),
+            Action::Plen2Board(intent) => self.plen2_board(intent),
+            Action::SaveMotionJson { slot, path } => {
+                if let Some(motion) = self.document.project.plen2.motions.iter().find(|m| m.slot == slot) {
+                    let text = crate::project::motion_json::motion_to_json(motion);
+                    match crate::project::atomic_write(&path, |file| std::io::Write::write_all(file, text.as_bytes())) {
+                        Ok(()) => self.report(format!("{} {}", self.words().msg_saved, path.display()), false),
+                        Err(source) => {
+                            self.report(self.language.save_error(&crate::project::SaveError { path, source }), true);
+                        }
+                    }
                 }
             }
             Action::SetRobot(robot) => {
@@ -270,6 +310,9 @@ impl StudioApp {
             }
             Action::BoardCancel => {
                 if let Some(job) = &self.job {
+                    job.cancel();
+                }
+                if let Some(job) = &self.plen2_job {
                     job.cancel();
                 }
             }
@@ -346,6 +389,9 @@ impl StudioApp {
         self.file_events(ui, now, &mut actions);
         if self.preview.is_some() {
             self.advance_preview(now);
+            ui.ctx().request_repaint();
+        }
+        if self.streaming() {
             ui.ctx().request_repaint();
         }
         egui::Panel::top("toolbar").show(ui, |ui| {
@@ -476,6 +522,38 @@ impl StudioApp {
                     sonar_on: self.sonar_on,
                 };
                 self.drive_panel.ui(ui, &view, words, &mut actions);
+            }
+            Tab::Joints => {
+                let view = crate::ui::plen2_joints::JointsView {
+                    project: &self.document.project.plen2,
+                    pose: &self.plen2_pose,
+                    connected: self.link.as_ref().is_some_and(|link| link.plen2().is_some()),
+                    capture_slot: self.motions_panel.selected_slot(&self.document.project.plen2),
+                };
+                crate::ui::plen2_joints::ui(ui, &view, words, &mut actions);
+            }
+            Tab::Motions => {
+                let problems = crate::project::validate(&Project {
+                    family: Family::Plen2,
+                    plen2: self.document.project.plen2.clone(),
+                    ..Project::default()
+                });
+                let connected = self.link.as_ref().is_some_and(|link| link.plen2().is_some());
+                self.motions_panel.ui(ui, &self.document.project.plen2, &problems, connected, words, &mut actions);
+            }
+            Tab::PlayLists => {
+                let connected = self.link.as_ref().is_some_and(|link| link.plen2().is_some());
+                crate::ui::plen2_board::play_lists(ui, &self.document.project.plen2, connected, words, &mut actions);
+            }
+            Tab::Board if family == Family::Plen2 => {
+                let view = crate::ui::plen2_board::RobotView {
+                    project: &self.document.project.plen2,
+                    robot: self.plen2_robot.as_ref(),
+                    connected: self.link.as_ref().is_some_and(|link| link.plen2().is_some()),
+                    job: self.plen2_job.as_ref(),
+                    result: self.plen2_result.as_deref(),
+                };
+                crate::ui::plen2_board::robot_panel(ui, &view, words, &mut actions);
             }
             Tab::Telemetry => match self.link.as_ref().and_then(BoardLink::rflex) {
                 Some(base) => crate::ui::telemetry_panel::ui(ui, &base.telemetry, words),

@@ -9,6 +9,56 @@ pub struct Strings {
     pub lang: Language,
     /// "Hardware" (the family chooser).
     pub family: &'static str,
+    /// "Joints".
+    pub joints: &'static str,
+    /// "Motions".
+    pub motions: &'static str,
+    /// "Play lists".
+    pub play_lists: &'static str,
+    /// "Capture into frame".
+    pub capture_frame: &'static str,
+    /// "Add motion".
+    pub add_motion: &'static str,
+    /// "Slot".
+    pub slot: &'static str,
+    /// "Name".
+    pub name: &'static str,
+    /// "Loop frames".
+    pub loop_frames: &'static str,
+    /// "Then jump to slot".
+    pub jump_to: &'static str,
+    /// "Frames".
+    pub frames: &'static str,
+    /// "Transition (ms)".
+    pub transition_ms: &'static str,
+    /// "Paste after".
+    pub paste: &'static str,
+    /// "Mirror L/R".
+    pub mirror: &'static str,
+    /// "Play from here".
+    pub play_from_here: &'static str,
+    /// "Play on robot".
+    pub play_on_robot: &'static str,
+    /// "Add play list".
+    pub add_play_list: &'static str,
+    /// "Add motion".
+    pub add_entry: &'static str,
+    /// "Plays (0 = forever)".
+    pub plays: &'static str,
+    /// "Read robot".
+    pub read_robot: &'static str,
+    /// "Upload motions".
+    pub upload_motions: &'static str,
+    /// "Write joint settings".
+    pub write_joints: &'static str,
+    /// "Factory joint settings".
+    pub factory_reset: &'static str,
+    /// "Slot map: project / robot".
+    pub slot_map: &'static str,
+    /// "Joint settings (tenths of a degree; the robot stores them)".
+    pub joint_settings: &'static str,
+    /// "STOP: the motion stopped and every joint went home".
+    pub msg_plen2_stopped: &'static str,
     /// "Drive".
     pub drive: &'static str,
     /// "Telemetry".
@@ -309,9 +359,44 @@ pub struct Strings {
     pub uninterruptible: &'static str,
 }
 
+impl Strings {
+    /// "Copy" (a frame).
+    pub fn copy_frame(&self) -> &'static str {
+        match self.lang {
+            Language::English => "Copy",
+            Language::TraditionalChinese => "複製",
+        }
+    }
+}
+
 pub(super) const ENGLISH: Strings = Strings {
     lang: Language::English,
     family: "Hardware",
+    joints: "Joints",
+    motions: "Motions",
+    play_lists: "Play lists",
+    capture_frame: "Capture into frame",
+    add_motion: "Add motion",
+    slot: "Slot",
+    name: "Name",
+    loop_frames: "Loop frames",
+    jump_to: "Then jump to slot",
+    frames: "Frames",
+    transition_ms: "Transition (ms)",
+    paste: "Paste after",
+    mirror: "Mirror L/R",
+    play_from_here: "Play from here",
+    play_on_robot: "Play on robot",
+    add_play_list: "Add play list",
+    add_entry: "Add motion",
+    plays: "Plays (0 = forever)",
+    read_robot: "Read robot",
+    upload_motions: "Upload motions",
+    write_joints: "Write joint settings",
+    factory_reset: "Factory joint settings",
+    slot_map: "Slot map: project / robot",
+    joint_settings: "Joint settings (tenths of a degree; the robot stores them)",
+    msg_plen2_stopped: "STOP: the motion stopped and every joint went home",
     drive: "Drive",
     telemetry: "Telemetry",
     robot: "Robot",
@@ -466,6 +551,31 @@ pub(super) const ENGLISH: Strings = Strings {
 pub(super) const TRADITIONAL_CHINESE: Strings = Strings {
     lang: Language::TraditionalChinese,
     family: "硬體",
+    joints: "關節",
+    motions: "動作",
+    play_lists: "播放清單",
+    capture_frame: "擷取為影格",
+    add_motion: "新增動作",
+    slot: "位置",
+    name: "名稱",
+    loop_frames: "循環影格",
+    jump_to: "接著跳到位置",
+    frames: "影格",
+    transition_ms: "過渡時間（ms）",
+    paste: "貼在後面",
+    mirror: "左右鏡像",
+    play_from_here: "從這裡播放",
+    play_on_robot: "在機器人上播放",
+    add_play_list: "新增播放清單",
+    add_entry: "加入動作",
+    plays: "次數（0 = 無限）",
+    read_robot: "讀取機器人",
+    upload_motions: "上傳動作",
+    write_joints: "寫入關節設定",
+    factory_reset: "恢復出廠關節設定",
+    slot_map: "位置圖：專案 / 機器人",
+    joint_settings: "關節設定（0.1 度；存於機器人）",
+    msg_plen2_stopped: "停止：動作已停止，所有關節回到原點",
     drive: "駕駛",
     telemetry: "遙測",
     robot: "機器人",

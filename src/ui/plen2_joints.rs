@@ -1,0 +1,114 @@
+//! PLEN2 joint sliders: the 18 joints by name, each within the limits the robot
+//! holds (the project's joint settings, else the factory table), sent live
+//! with `$AN` (coalesced and paced); Home; capture the pose into a frame of the
+//! selected motion. Below, the joint settings editor (min / max / home).
+
+use crate::project::Edit;
+use crate::project::plen2::{Joint, JointSetting, Plen2Project};
+use crate::protocol::plen2::FACTORY_LIMIT_TENTHS_DEG;
+use crate::ui::action::{Action, Plen2Intent};
+use crate::ui::i18n::Strings;
+
+/// The limits and home a joint has: the project's settings, else the factory's.
+pub fn limits(project: &Plen2Project, joint: Joint) -> JointSetting {
+    project.joints.iter().find(|s| s.joint == joint).copied().unwrap_or(JointSetting {
+        joint,
+        min_tenths_deg: -FACTORY_LIMIT_TENTHS_DEG,
+        max_tenths_deg: FACTORY_LIMIT_TENTHS_DEG,
+        home_tenths_deg: joint.factory_home_tenths_deg(),
+    })
+}
+
+/// What the panel draws.
+#[derive(Debug)]
+pub struct JointsView<'a> {
+    /// The PLEN2 section.
+    pub project: &'a Plen2Project,
+    /// Every joint's angle, tenths of a degree, in device-map order.
+    pub pose: &'a [i16; 18],
+    /// Whether a robot is connected.
+    pub connected: bool,
+    /// The slot frames are captured into.
+    pub capture_slot: Option<u8>,
+}
+
+/// Draws the panel.
+pub fn ui(ui: &mut egui::Ui, view: &JointsView<'_>, words: &Strings, actions: &mut Vec<Action>) {
+    ui.horizontal(|ui| {
+        ui.heading(words.joints);
+        if ui.add_enabled(view.connected, egui::Button::new(words.home)).clicked() {
+            actions.push(Action::Plen2Home);
+        }
+        if let Some(slot) = view.capture_slot
+            && ui.button(format!("{} ({} {slot})", words.capture_frame, words.slot)).clicked()
+        {
+            actions.push(Action::CaptureFrame { slot });
+        }
+    });
+    egui::ScrollArea::vertical().id_salt("plen2-joints").max_height(ui.available_height() * 0.6).show(ui, |ui| {
+        egui::Grid::new("plen2-joint-sliders").striped(true).show(ui, |ui| {
+            for joint in Joint::ALL {
+                let setting = limits(view.project, joint);
+                let label = ui.label(format!("{} #{}", joint.name(), joint.device_id()));
+                let mut value = view.pose[joint.index()];
+                let low = setting.min_tenths_deg.min(setting.max_tenths_deg);
+                let high = setting.max_tenths_deg.max(setting.min_tenths_deg);
+                let slider = egui::Slider::new(&mut value, low..=high)
+                    .custom_formatter(|v, _| format!("{:.1}°", v / 10.0))
+                    .step_by(1.0);
+                if ui.add(slider).labelled_by(label.id).changed() {
+                    actions.push(Action::SetJoint { joint, tenths: value });
+                }
+                ui.weak(format!("home {:.1}°", f64::from(setting.home_tenths_deg) / 10.0));
+                ui.end_row();
+            }
+        });
+    });
+    ui.separator();
+    egui::CollapsingHeader::new(words.joint_settings).id_salt("plen2-joint-settings").show(ui, |ui| {
+        settings_editor(ui, view, words, actions);
+    });
+}
+
+fn settings_editor(ui: &mut egui::Ui, view: &JointsView<'_>, words: &Strings, actions: &mut Vec<Action>) {
+    let mut project = view.project.clone();
+    let mut changed = false;
+    egui::Grid::new("plen2-settings").striped(true).show(ui, |ui| {
+        ui.label("");
+        ui.label("min");
+        ui.label("max");
+        ui.label(words.home);
+        ui.end_row();
+        for joint in Joint::ALL {
+            let mut setting = limits(&project, joint);
+            ui.label(joint.name());
+            let range = -FACTORY_LIMIT_TENTHS_DEG..=FACTORY_LIMIT_TENTHS_DEG;
+            changed |= ui.add(egui::DragValue::new(&mut setting.min_tenths_deg).range(range.clone())).changed();
+            changed |= ui.add(egui::DragValue::new(&mut setting.max_tenths_deg).range(range.clone())).changed();
+            changed |= ui.add(egui::DragValue::new(&mut setting.home_tenths_deg).range(range)).changed();
+            ui.end_row();
+            match project.joints.iter_mut().find(|s| s.joint == joint) {
+                Some(slot) => *slot = setting,
+                None if setting != limits(view.project, joint) => project.joints.push(setting),
+                None => {}
+            }
+        }
+    });
+    if changed {
+        actions.push(Action::Edit {
+            edit: Edit::SetPlen2(Box::new(project)),
+            coalesce: Some("plen2 joint settings".into()),
+        });
+    }
+    ui.horizontal(|ui| {
+        if ui
+            .add_enabled(view.connected && !view.project.joints.is_empty(), egui::Button::new(words.write_joints))
+            .clicked()
+        {
+            actions.push(Action::Plen2Board(Plen2Intent::WriteJoints));
+        }
+        if ui.add_enabled(view.connected, egui::Button::new(words.factory_reset)).clicked() {
+            actions.push(Action::Plen2Board(Plen2Intent::FactoryReset));
+        }
+    });
+}

@@ -1,0 +1,340 @@
+//! PLEN2 motions: the list by slot, and the editor of the selected one — name,
+//! slot, loop and jump, the frames table (transition, copy / paste, mirror
+//! left↔right, move, remove, play from here), the selected frame's 18 values
+//! relative to home, a timeline and an angle plot.
+
+use egui_plot::{Legend, Line, Plot, PlotPoints};
+
+use crate::project::plen2::{Frame, Joint, LoopRange, Motion, Plen2Project, Pose};
+use crate::project::{Edit, Location, Problem};
+use crate::protocol::plen2::{MAX_TRANSITION_MS, MIN_TRANSITION_MS, SLOTS};
+use crate::ui::action::Action;
+use crate::ui::i18n::Strings;
+
+/// The frame mirrored left↔right: each left joint takes its right twin's value
+/// and the reverse, negated (the twins' axes are mirror images: the factory homes
+/// of ids 12..20 are those of 0..8 negated).
+pub fn mirror(pose: &Pose) -> Pose {
+    let mut out = Pose::default();
+    for left in 0..9 {
+        let (l, r) = (Joint::ALL[left], Joint::ALL[left + 9]);
+        out.set(l, pose.get(r).saturating_neg());
+        out.set(r, pose.get(l).saturating_neg());
+    }
+    out
+}
+
+/// The panel's own state: the selected motion and frame, the copied frame.
+#[derive(Debug, Default)]
+pub struct MotionsPanel {
+    selected: usize,
+    frame: usize,
+    clipboard: Option<Frame>,
+}
+
+fn edit(project: &Plen2Project, change: impl FnOnce(&mut Plen2Project), key: Option<String>) -> Action {
+    let mut changed = project.clone();
+    change(&mut changed);
+    Action::Edit { edit: Edit::SetPlen2(Box::new(changed)), coalesce: key }
+}
+
+impl MotionsPanel {
+    /// The selected motion's slot, if any.
+    pub fn selected_slot(&self, project: &Plen2Project) -> Option<u8> {
+        project.motions.get(self.selected).map(|m| m.slot)
+    }
+
+    /// Draws the panel.
+    pub fn ui(
+        &mut self,
+        ui: &mut egui::Ui,
+        project: &Plen2Project,
+        problems: &[Problem],
+        connected: bool,
+        words: &Strings,
+        actions: &mut Vec<Action>,
+    ) {
+        ui.horizontal(|ui| {
+            ui.heading(words.motions);
+            if ui.button(words.add_motion).clicked() {
+                let slot = (0..SLOTS).find(|slot| !project.motions.iter().any(|m| m.slot == *slot)).unwrap_or(0);
+                let motion = Motion {
+                    slot,
+                    name: format!("Motion {slot}"),
+                    frames: vec![Frame { transition_ms: 500, values_tenths_deg: Pose::default() }],
+                    loop_range: None,
+                    jump_slot: None,
+                };
+                actions.push(edit(project, |p| p.motions.push(motion), None));
+                self.selected = project.motions.len();
+                self.frame = 0;
+            }
+        });
+        if project.motions.is_empty() {
+            return;
+        }
+        self.selected = self.selected.min(project.motions.len() - 1);
+        ui.horizontal_top(|ui| {
+            ui.vertical(|ui| {
+                ui.set_width(190.0);
+                egui::ScrollArea::vertical().id_salt("plen2-motion-list").show(ui, |ui| {
+                    for (index, motion) in project.motions.iter().enumerate() {
+                        let flagged = problems.iter().any(|p| {
+                            matches!(&p.location, Location::Motion { slot, .. } | Location::Frame { slot, .. } if *slot == motion.slot)
+                        });
+                        let text = format!("{}{:>2} {}", if flagged { "! " } else { "" }, motion.slot, motion.name);
+                        if ui.selectable_label(index == self.selected, text).clicked() {
+                            self.selected = index;
+                            self.frame = 0;
+                        }
+                    }
+                });
+            });
+            ui.separator();
+            ui.vertical(|ui| self.editor(ui, project, problems, connected, words, actions));
+        });
+    }
+
+    fn editor(
+        &mut self,
+        ui: &mut egui::Ui,
+        project: &Plen2Project,
+        problems: &[Problem],
+        connected: bool,
+        words: &Strings,
+        actions: &mut Vec<Action>,
+    ) {
+        let index = self.selected;
+        let motion = &project.motions[index];
+        let key = |what: &str| Some(format!("plen2 motion {index} {what}"));
+        ui.horizontal(|ui| {
+            let label = ui.label(words.slot);
+            let mut slot = motion.slot;
+            if ui.add(egui::DragValue::new(&mut slot).range(0..=SLOTS - 1)).labelled_by(label.id).changed() {
+                actions.push(edit(project, |p| p.motions[index].slot = slot, key("slot")));
+            }
+            let label = ui.label(words.name);
+            let mut name = motion.name.clone();
+            if ui
+                .add(egui::TextEdit::singleline(&mut name).char_limit(20).desired_width(170.0))
+                .labelled_by(label.id)
+                .changed()
+            {
+                actions.push(edit(project, |p| p.motions[index].name = name, key("name")));
+            }
+            if ui.add_enabled(connected, egui::Button::new(words.play_on_robot)).on_hover_text("$PM").clicked() {
+                actions.push(Action::PlayMotion(motion.slot));
+            }
+            if ui.button("motion.json…").on_hover_text("Save for the official PLEN Motion Editor").clicked()
+                && let Some(path) = rfd::FileDialog::new()
+                    .add_filter("PLEN motion", &["json"])
+                    .set_file_name(format!("{:02X}_{}.json", motion.slot, motion.name.replace(' ', "_")))
+                    .save_file()
+            {
+                actions.push(Action::SaveMotionJson { slot: motion.slot, path });
+            }
+            if ui.button(words.remove).clicked() {
+                actions.push(edit(
+                    project,
+                    |p| {
+                        p.motions.remove(index);
+                    },
+                    None,
+                ));
+            }
+        });
+        ui.horizontal(|ui| {
+            let frames = u8::try_from(motion.frames.len().saturating_sub(1)).unwrap_or(0);
+            let mut looping = motion.loop_range.is_some();
+            if ui.checkbox(&mut looping, words.loop_frames).changed() {
+                let range = looping.then_some(LoopRange { begin_frame: 0, end_frame: frames, count: 255 });
+                actions.push(edit(project, |p| p.motions[index].loop_range = range, None));
+            }
+            if let Some(mut range) = motion.loop_range {
+                let before = range;
+                ui.add(egui::DragValue::new(&mut range.begin_frame).range(0..=frames));
+                ui.label("–");
+                ui.add(egui::DragValue::new(&mut range.end_frame).range(0..=frames));
+                ui.label("×");
+                ui.add(
+                    egui::DragValue::new(&mut range.count)
+                        .custom_formatter(|n, _| if n >= 255.0 { "∞".into() } else { format!("{}", n + 1.0) }),
+                );
+                if range != before {
+                    actions.push(edit(project, |p| p.motions[index].loop_range = Some(range), key("loop")));
+                }
+            }
+            ui.separator();
+            let mut jumping = motion.jump_slot.is_some();
+            if ui.checkbox(&mut jumping, words.jump_to).changed() {
+                actions.push(edit(project, |p| p.motions[index].jump_slot = jumping.then_some(0), None));
+            }
+            if let Some(mut jump) = motion.jump_slot
+                && ui.add(egui::DragValue::new(&mut jump).range(0..=SLOTS - 1)).changed()
+            {
+                actions.push(edit(project, |p| p.motions[index].jump_slot = Some(jump), key("jump")));
+            }
+        });
+        for problem in problems.iter().filter(|p| matches!(&p.location, Location::Motion { slot, .. } | Location::Frame { slot, .. } if *slot == motion.slot)) {
+            let color = match problem.severity {
+                crate::project::Severity::Error => ui.visuals().error_fg_color,
+                crate::project::Severity::Warning => ui.visuals().warn_fg_color,
+            };
+            ui.colored_label(color, format!("{}: {}", words.lang.location(&problem.location), words.lang.problem(&problem.kind)));
+        }
+        self.frames_table(ui, project, connected, words, actions);
+        self.frame_values(ui, project, words, actions);
+        timeline_and_plot(ui, motion, self.frame);
+    }
+
+    fn frames_table(
+        &mut self,
+        ui: &mut egui::Ui,
+        project: &Plen2Project,
+        connected: bool,
+        words: &Strings,
+        actions: &mut Vec<Action>,
+    ) {
+        let index = self.selected;
+        let motion = &project.motions[index];
+        self.frame = self.frame.min(motion.frames.len().saturating_sub(1));
+        ui.label(format!("{} ({})", words.frames, motion.frames.len()));
+        egui::ScrollArea::vertical().id_salt("plen2-frames").max_height(170.0).show(ui, |ui| {
+            egui::Grid::new("plen2-frame-rows").striped(true).show(ui, |ui| {
+                for (f, frame) in motion.frames.iter().enumerate() {
+                    if ui.selectable_label(f == self.frame, format!("#{f}")).clicked() {
+                        self.frame = f;
+                    }
+                    let mut transition = frame.transition_ms;
+                    let drag = egui::DragValue::new(&mut transition)
+                        .range(MIN_TRANSITION_MS..=MAX_TRANSITION_MS)
+                        .suffix(" ms");
+                    if ui.add(drag).changed() {
+                        actions.push(edit(
+                            project,
+                            |p| p.motions[index].frames[f].transition_ms = transition,
+                            Some(format!("plen2 {index} frame {f} transition")),
+                        ));
+                    }
+                    if ui.small_button(words.copy_frame()).clicked() {
+                        self.clipboard = Some(*frame);
+                    }
+                    if ui
+                        .add_enabled(
+                            self.clipboard.is_some() && motion.frames.len() < 20,
+                            egui::Button::new(words.paste).small(),
+                        )
+                        .clicked()
+                        && let Some(copied) = self.clipboard
+                    {
+                        actions.push(edit(project, |p| p.motions[index].frames.insert(f + 1, copied), None));
+                    }
+                    if ui.small_button(words.mirror).clicked() {
+                        let mirrored = mirror(&frame.values_tenths_deg);
+                        actions.push(edit(project, |p| p.motions[index].frames[f].values_tenths_deg = mirrored, None));
+                    }
+                    if ui.add_enabled(f > 0, egui::Button::new("↑").small()).clicked() {
+                        actions.push(edit(project, |p| p.motions[index].frames.swap(f, f - 1), None));
+                        self.frame = f - 1;
+                    }
+                    if ui.add_enabled(f + 1 < motion.frames.len(), egui::Button::new("↓").small()).clicked() {
+                        actions.push(edit(project, |p| p.motions[index].frames.swap(f, f + 1), None));
+                        self.frame = f + 1;
+                    }
+                    if ui.add_enabled(motion.frames.len() > 1, egui::Button::new("×").small()).clicked() {
+                        actions.push(edit(
+                            project,
+                            |p| {
+                                p.motions[index].frames.remove(f);
+                            },
+                            None,
+                        ));
+                    }
+                    if ui.add_enabled(connected, egui::Button::new(words.play_from_here).small()).clicked() {
+                        actions.push(Action::PlayFrom { slot: motion.slot, frame: f });
+                    }
+                    ui.end_row();
+                }
+            });
+        });
+    }
+
+    fn frame_values(&mut self, ui: &mut egui::Ui, project: &Plen2Project, words: &Strings, actions: &mut Vec<Action>) {
+        let index = self.selected;
+        let Some(frame) = project.motions[index].frames.get(self.frame) else { return };
+        let mut pose = frame.values_tenths_deg;
+        let mut changed = false;
+        ui.label(format!("#{} — {}", self.frame, words.joints));
+        egui::Grid::new("plen2-frame-values").show(ui, |ui| {
+            for (column, joint) in Joint::ALL.into_iter().enumerate() {
+                let mut value = pose.get(joint);
+                ui.label(joint.name());
+                if ui.add(egui::DragValue::new(&mut value).range(-1800..=1800)).changed() {
+                    pose.set(joint, value);
+                    changed = true;
+                }
+                if column % 3 == 2 {
+                    ui.end_row();
+                }
+            }
+        });
+        if changed {
+            let f = self.frame;
+            actions.push(edit(
+                project,
+                |p| p.motions[index].frames[f].values_tenths_deg = pose,
+                Some(format!("plen2 {index} frame {f} values")),
+            ));
+        }
+    }
+}
+
+/// A bar per frame, as long as its transition, and every joint's value over time.
+fn timeline_and_plot(ui: &mut egui::Ui, motion: &Motion, selected: usize) {
+    let total: f64 = motion.frames.iter().map(|f| f64::from(f.transition_ms)).sum();
+    let width = ui.available_width().max(100.0);
+    let (rect, _) = ui.allocate_exact_size(egui::vec2(width, 18.0), egui::Sense::hover());
+    let painter = ui.painter_at(rect);
+    let mut x = rect.left();
+    for (f, frame) in motion.frames.iter().enumerate() {
+        #[allow(clippy::cast_possible_truncation)]
+        let w = (f64::from(frame.transition_ms) / total.max(1.0) * f64::from(width)) as f32;
+        let bar = egui::Rect::from_min_size(egui::pos2(x, rect.top()), egui::vec2((w - 1.0).max(1.0), 16.0));
+        let fill = if f == selected { ui.visuals().selection.bg_fill } else { ui.visuals().widgets.inactive.bg_fill };
+        painter.rect_filled(bar, 2.0, fill);
+        x += w;
+    }
+    Plot::new("plen2-angles").height(170.0).legend(Legend::default()).x_axis_label("ms").allow_scroll(false).show(
+        ui,
+        |plot| {
+            for joint in Joint::ALL {
+                let mut t = 0.0;
+                let mut points = vec![[0.0, 0.0]];
+                for frame in &motion.frames {
+                    t += f64::from(frame.transition_ms);
+                    points.push([t, f64::from(frame.values_tenths_deg.get(joint)) / 10.0]);
+                }
+                if points.iter().any(|p| p[1] != 0.0) {
+                    plot.line(Line::new(joint.name(), PlotPoints::from(points)));
+                }
+            }
+        },
+    );
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mirroring_swaps_the_twins_negated_and_twice_is_the_identity() {
+        let mut pose = Pose::default();
+        pose.set(Joint::LeftShoulderRoll, 375);
+        pose.set(Joint::RightKneePitch, -500);
+        let mirrored = mirror(&pose);
+        assert_eq!(mirrored.get(Joint::RightShoulderRoll), -375);
+        assert_eq!(mirrored.get(Joint::LeftKneePitch), 500);
+        assert_eq!(mirrored.get(Joint::LeftShoulderRoll), 0);
+        assert_eq!(mirror(&mirrored), pose);
+    }
+}

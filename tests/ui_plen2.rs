@@ -1,0 +1,132 @@
+//! The PLEN2 panels against the in-process emulated robot: joint sliders move
+//! joints live, STOP sends `#RI` then `$HP`, a play list queues its motions,
+//! a captured pose becomes a frame, and the robot panel uploads and reads back.
+
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use std::time::{Duration, Instant};
+
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use servo_studio::link::{LinkEvent, no_waker};
+use servo_studio::project::plen2::{Frame, Joint, Motion, PlayEntry, PlayList, Plen2Project, Pose};
+use servo_studio::project::{Family, Project};
+use servo_studio::protocol::plen2::Command;
+use servo_studio::sim::{Plen2SimCommand, Plen2SimEvent, Plen2State};
+use servo_studio::ui::{Action, Plen2Intent, StudioApp, Tab};
+
+fn project() -> Project {
+    let mut pose = Pose::default();
+    pose.set(Joint::LeftShoulderPitch, 300);
+    let motion = Motion {
+        slot: 3,
+        name: "Wave".into(),
+        frames: vec![
+            Frame { transition_ms: 200, values_tenths_deg: pose },
+            Frame { transition_ms: 300, values_tenths_deg: Pose::default() },
+        ],
+        loop_range: None,
+        jump_slot: None,
+    };
+    let list = PlayList { name: "Show".into(), entries: vec![PlayEntry { slot: 3, plays: 2 }] };
+    Project {
+        family: Family::Plen2,
+        plen2: Plen2Project { motions: vec![motion], play_lists: vec![list], ..Default::default() },
+        ..Project::default()
+    }
+}
+
+fn harness(tab: Tab) -> Harness<'static, StudioApp> {
+    let data = tempfile::tempdir().unwrap().keep();
+    let mut app = StudioApp::new(project(), None, no_waker()).with_data_dir(data);
+    app.apply(Action::ConnectDemo);
+    assert!(app.link.as_ref().is_some_and(|link| link.plen2().is_some()), "{:?}", app.status);
+    app.apply(Action::ShowTab(tab));
+    let mut harness = Harness::builder()
+        .with_size(egui::vec2(1200.0, 800.0))
+        .with_context_setup(servo_studio::ui::fonts::install)
+        .build_ui_state(|ui, app: &mut StudioApp| app.show(ui), app);
+    harness.run_steps(2);
+    harness
+}
+
+fn inspect(harness: &Harness<'static, StudioApp>) -> Plen2State {
+    let (reply, state) = crossbeam_channel::bounded(1);
+    harness.state().link.as_ref().unwrap().demo_plen2().unwrap().command(Plen2SimCommand::Inspect(reply));
+    state.recv_timeout(Duration::from_secs(5)).unwrap()
+}
+
+/// Waits (on the robot's own events) until it executes a command matching `wanted`.
+fn executed(harness: &Harness<'static, StudioApp>, what: &str, wanted: impl Fn(&Command) -> bool) {
+    let events = harness.state().link.as_ref().unwrap().demo_plen2().unwrap().events().clone();
+    let deadline = Instant::now() + Duration::from_secs(10);
+    loop {
+        match events.recv_deadline(deadline) {
+            Ok(LinkEvent::Driver(Plen2SimEvent::Executed(command))) if wanted(&command) => return,
+            Ok(_) => {}
+            Err(_) => panic!("the robot never executed {what}"),
+        }
+    }
+}
+
+#[test]
+fn a_joint_moves_live_within_its_limits_and_stop_sends_ri_then_hp() {
+    let mut harness = harness(Tab::Joints);
+    assert!(harness.query_all_by_label_contains("left_knee_pitch #6").next().is_some());
+    harness.state_mut().apply(Action::SetJoint { joint: Joint::LeftKneePitch, tenths: 2000 });
+    harness.step();
+    // Clamped to the factory max of 90.0°.
+    assert_eq!(harness.state().plen2_pose[Joint::LeftKneePitch.index()], 900);
+    executed(&harness, "$AN for the knee", |c| *c == Command::SetAngle { device: 6, angle: 900 });
+    assert_eq!(inspect(&harness).angles[6], 900);
+
+    harness.get_all_by_label_contains("STOP").next().unwrap().click();
+    harness.step();
+    executed(&harness, "#RI", |c| *c == Command::ResetInterpreter);
+    executed(&harness, "$HP", |c| *c == Command::HomePosition);
+    assert_eq!(inspect(&harness).angles[6], 500, "home");
+    assert!(harness.state().status.as_ref().unwrap().text.starts_with("STOP"));
+}
+
+#[test]
+fn a_captured_pose_becomes_a_frame_relative_to_home() {
+    let mut harness = harness(Tab::Joints);
+    harness.state_mut().apply(Action::SetJoint { joint: Joint::RightKneePitch, tenths: -400 });
+    harness.get_by_label_contains("Capture into frame").click();
+    harness.step();
+    let motion = &harness.state().document.project.plen2.motions[0];
+    assert_eq!(motion.frames.len(), 3);
+    // Right knee home is −50.0°, so −40.0° is +100 relative to home.
+    assert_eq!(motion.frames[2].values_tenths_deg.get(Joint::RightKneePitch), 100);
+}
+
+#[test]
+fn the_robot_panel_uploads_verifies_and_a_play_list_queues_its_motions() {
+    let mut harness = harness(Tab::Board);
+    harness.get_by_label("Upload motions").click();
+    let deadline = Instant::now() + Duration::from_secs(20);
+    while harness.state().plen2_job.is_some() || harness.state().plen2_result.is_none() {
+        assert!(Instant::now() < deadline, "the upload never ended");
+        harness.step();
+    }
+    let result = harness.state().plen2_result.clone().unwrap();
+    assert!(result.contains("Uploaded and verified, items: 1/1"), "{result}");
+    assert!(result.contains("plen2-backup-"), "{result}");
+    assert_eq!(inspect(&harness).written_slots, [3]);
+
+    harness.state_mut().apply(Action::PlayList(0));
+    executed(&harness, "#PU slot 3, two plays", |c| *c == Command::Push { slot: 3, plays: 2 });
+    executed(&harness, "#PO", |c| *c == Command::Pop);
+    harness.state_mut().apply(Action::ShowTab(Tab::PlayLists));
+    harness.run_steps(2);
+    assert!(harness.query_by_label("Play on robot").is_some(), "the play list is shown");
+
+    harness.state_mut().apply(Action::Plen2Board(Plen2Intent::Read));
+    let deadline = Instant::now() + Duration::from_secs(60);
+    while harness.state().plen2_job.is_some() {
+        assert!(Instant::now() < deadline, "the read never ended");
+        harness.step();
+    }
+    let robot = harness.state().plen2_robot.clone().unwrap();
+    assert_eq!(robot.motions, harness.state().document.project.plen2.motions);
+}
