@@ -88,7 +88,15 @@ pub enum Plen2Command {
     LiveAngles(Vec<(u8, i16)>),
     /// STOP: `#RI` then `$HP`, ahead of everything queued; queued live moves are dropped.
     Stop,
+    /// Bytes that end whatever command the firmware's parser may be stuck in
+    /// (after lost bytes it can be waiting for arguments that never come):
+    /// inside a command they are bad arguments, so it is dropped; between
+    /// commands they are ignored.
+    Resync,
 }
+
+/// What [`Plen2Command::Resync`] sends: more than the longest command's arguments.
+pub const RESYNC: &[u8; 110] = &[b'x'; 110];
 
 /// What the driver reports.
 #[derive(Clone, Debug, PartialEq)]
@@ -98,7 +106,8 @@ pub enum Plen2Event {
 }
 
 struct Queued {
-    command: Command,
+    /// `None` for the resync bytes.
+    command: Option<Command>,
     bytes: Vec<u8>,
     done: Option<Sender<()>>,
     reply: Option<ReplySender>,
@@ -176,7 +185,7 @@ impl Plen2Driver {
 
     fn enqueue(&mut self, command: Command, done: Option<Sender<()>>, reply: Option<ReplySender>) {
         let bytes = command.to_ascii().into_bytes();
-        self.queue.push_back(Queued { command, bytes, done, reply });
+        self.queue.push_back(Queued { command: Some(command), bytes, done, reply });
     }
 
     /// When the firmware will have finished everything sent so far.
@@ -225,7 +234,9 @@ impl Plen2Driver {
             let finished = *sent == queued.bytes.len();
             if finished {
                 // The command runs when its last byte is read; EEPROM writes then block the firmware.
-                next_read += busy_after(&self.pacing, &queued.command);
+                if let Some(command) = &queued.command {
+                    next_read += busy_after(&self.pacing, command);
+                }
             }
             self.next_read = Some(next_read);
             if !finished {
@@ -233,11 +244,12 @@ impl Plen2Driver {
             }
             let Some((queued, _)) = self.current.take() else { break };
             let fields = String::from_utf8_lossy(&queued.bytes).into_owned();
-            self.log(now, Direction::Sent, queued.command.code().to_string(), fields, &queued.bytes);
+            let name = queued.command.as_ref().map_or("resync", Command::code).to_string();
+            self.log(now, Direction::Sent, name, fields, &queued.bytes);
             if let Some(done) = queued.done {
                 self.waiting.push((next_read, done));
             }
-            if let (Some(kind), Some(reply)) = (reply_kind(&queued.command), queued.reply) {
+            if let (Some(kind), Some(reply)) = (queued.command.as_ref().and_then(reply_kind), queued.reply) {
                 self.reader.expect(kind);
                 self.reply = Some((kind, reply, next_read + REPLY_IDLE));
             }
@@ -275,16 +287,19 @@ impl Driver for Plen2Driver {
                 let home = Command::HomePosition;
                 self.queue.push_front(Queued {
                     bytes: home.to_ascii().into_bytes(),
-                    command: home,
+                    command: Some(home),
                     done: None,
                     reply: None,
                 });
                 self.queue.push_front(Queued {
                     bytes: reset.to_ascii().into_bytes(),
-                    command: reset,
+                    command: Some(reset),
                     done: None,
                     reply: None,
                 });
+            }
+            Plen2Command::Resync => {
+                self.queue.push_back(Queued { command: None, bytes: RESYNC.to_vec(), done: None, reply: None });
             }
         }
         self.pace(now);
@@ -374,5 +389,47 @@ impl Driver for Plen2Driver {
         let waiting = self.waiting.iter().map(|(at, _)| *at).min();
         let reply = self.reply.as_ref().map(|(_, _, deadline)| *deadline);
         [self.next_send(), waiting, reply].into_iter().flatten().min()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::protocol::plen2::{MotionFrame, MotionHeader, parse_commands};
+
+    /// Whatever prefix of a command reached the firmware before bytes were
+    /// lost, the resync bytes end it and the next command is read cleanly.
+    #[test]
+    fn resync_ends_any_partial_command() {
+        let header = MotionHeader {
+            slot: 9,
+            name: *b"Walk                ",
+            loop_on: true,
+            loop_begin: 1,
+            loop_end: 2,
+            loop_count: 3,
+            jump_on: true,
+            jump_slot: 4,
+            frame_count: 5,
+        };
+        let frame = MotionFrame { slot: 9, index: 0, transition_ms: 100, values: [0x111; 24] };
+        let commands = [
+            Command::Header(header),
+            Command::Frame(Box::new(frame)),
+            Command::SetAngle { device: 14, angle: 1000 },
+            Command::SetDiff { device: 4, diff: -100 },
+            Command::PlayMotion { slot: 7 },
+        ];
+        for command in commands {
+            let ascii = command.to_ascii();
+            for cut in 1..ascii.len() {
+                let mut bytes = ascii.as_bytes()[..cut].to_vec();
+                bytes.extend_from_slice(RESYNC);
+                bytes.extend_from_slice(b"<VI");
+                let parsed = parse_commands(&bytes);
+                assert_eq!(parsed.last(), Some(&Ok(Command::GetVersion)), "{ascii} cut at {cut}: {parsed:?}");
+                assert!(parsed[..parsed.len() - 1].iter().all(Result::is_err), "{ascii} cut at {cut}: {parsed:?}");
+            }
+        }
     }
 }

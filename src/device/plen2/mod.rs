@@ -12,7 +12,7 @@ use std::time::Instant;
 use crossbeam_channel::Sender;
 
 pub use convert::{frames_of, motion_commands, motion_from_reply};
-pub use driver::{Pacing, Plen2Command, Plen2Driver, Plen2Event, REPLY_IDLE, ReplyError, ReplySender};
+pub use driver::{Pacing, Plen2Command, Plen2Driver, Plen2Event, REPLY_IDLE, RESYNC, ReplyError, ReplySender};
 pub use ops::{
     Plen2Import, Plen2ImportOptions, Plen2ImportReport, Plen2Info, Plen2OpError, Plen2Phase, Plen2Progress, SlotResult,
     export, import, info, read_joint_settings, read_slot, write_joint_settings,
@@ -41,8 +41,20 @@ impl Plen2Requester {
         finished.recv().map_err(|_| ReplyError::Disconnected)
     }
 
-    /// Sends a getter and waits for its reply.
+    /// Sends a getter and waits for its reply. If none comes, the firmware's
+    /// parser may be stuck inside a command whose bytes were lost: the resync
+    /// bytes end it, and the getter is sent once more.
     pub fn get(&self, command: Command) -> Result<Vec<u8>, ReplyError> {
+        match self.get_once(command.clone()) {
+            Err(ReplyError::Timeout) => {
+                self.commands.send(Plen2Command::Resync).map_err(|_| ReplyError::Disconnected)?;
+                self.get_once(command)
+            }
+            other => other,
+        }
+    }
+
+    fn get_once(&self, command: Command) -> Result<Vec<u8>, ReplyError> {
         let (reply, outcome) = crossbeam_channel::bounded(1);
         self.commands.send(Plen2Command::Get { command, reply }).map_err(|_| ReplyError::Disconnected)?;
         outcome.recv().unwrap_or(Err(ReplyError::Disconnected))
