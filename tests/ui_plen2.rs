@@ -6,6 +6,7 @@
 
 use std::time::{Duration, Instant};
 
+use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use servo_studio::link::{LinkEvent, no_waker};
@@ -129,4 +130,32 @@ fn the_robot_panel_uploads_verifies_and_a_play_list_queues_its_motions() {
     }
     let robot = harness.state().plen2_robot.clone().unwrap();
     assert_eq!(robot.motions, harness.state().document.project.plen2.motions);
+}
+
+#[test]
+fn keyboard_nudges_the_focused_joint_by_1_and_10_degrees_within_its_limits() {
+    let mut harness = harness(Tab::Joints);
+    let knee = Joint::LeftKneePitch;
+    let before = harness.state().plen2_pose;
+    let start = before[knee.index()];
+    harness.get_all_by_role(Role::Slider).nth(knee.index()).unwrap().focus();
+    harness.run_steps(2);
+    harness.key_press(egui::Key::ArrowRight);
+    harness.run_steps(2);
+    assert_eq!(harness.state().plen2_pose[knee.index()], start + 10, "1° is 10 tenths");
+    harness.key_press_modifiers(egui::Modifiers::SHIFT, egui::Key::ArrowLeft);
+    harness.run_steps(2);
+    assert_eq!(harness.state().plen2_pose[knee.index()], start - 90);
+    executed(&harness, "$AN for the nudged knee", |c| *c == Command::SetAngle { device: 6, angle: start - 90 });
+    for _ in 0..200 {
+        harness.key_press(egui::Key::PageUp);
+        harness.step();
+    }
+    harness.run_steps(2);
+    assert_eq!(harness.state().plen2_pose[knee.index()], 900, "the factory max holds");
+    let others = Joint::ALL.into_iter().filter(|&j| j != knee);
+    assert!(
+        others.into_iter().all(|j| harness.state().plen2_pose[j.index()] == before[j.index()]),
+        "no other joint moved"
+    );
 }

@@ -1,13 +1,16 @@
 //! PLEN2 joint sliders: the 18 joints by name, each within the limits the robot
 //! holds (the project's joint settings, else the factory table), sent live
 //! with `$AN` (coalesced and paced); Home; capture the pose into a frame of the
-//! selected motion. Below, the joint settings editor (min / max / home).
+//! selected motion. Keyboard: with a slider focused, ←/→ nudge by 1°,
+//! Shift+←/→ or PageDown/PageUp by 10°. Below, the joint settings editor
+//! (min / max / home).
 
 use crate::project::Edit;
 use crate::project::plen2::{Joint, JointSetting, Plen2Project};
 use crate::protocol::plen2::FACTORY_LIMIT_TENTHS_DEG;
 use crate::ui::action::{Action, Plen2Intent};
 use crate::ui::i18n::Strings;
+use crate::ui::servo_panel::keyboard_nudge;
 
 /// The limits and home a joint has: the project's settings, else the factory's.
 pub fn limits(project: &Plen2Project, joint: Joint) -> JointSetting {
@@ -45,6 +48,16 @@ pub fn ui(ui: &mut egui::Ui, view: &JointsView<'_>, words: &Strings, actions: &m
             actions.push(Action::CaptureFrame { slot });
         }
     });
+    // Which slider is whose joint, remembered from the last frame (egui gives
+    // widgets their ids as they are drawn).
+    let ids_key = ui.scope_id().with("plen2-joint-slider-ids");
+    let previous: Vec<(egui::Id, Joint)> = ui.data(|data| data.get_temp(ids_key)).unwrap_or_default();
+    let focused = ui
+        .memory(|memory| memory.focused())
+        .and_then(|id| previous.iter().find(|(i, _)| *i == id).map(|&(_, joint)| joint));
+    // Tenths of a degree: a step is 1°.
+    let nudge = if focused.is_some() { i16::try_from(keyboard_nudge(ui) * 10).unwrap_or(0) } else { 0 };
+    let mut ids = Vec::with_capacity(Joint::ALL.len());
     egui::ScrollArea::vertical().id_salt("plen2-joints").max_height(ui.available_height() * 0.6).show(ui, |ui| {
         egui::Grid::new("plen2-joint-sliders").striped(true).show(ui, |ui| {
             for joint in Joint::ALL {
@@ -56,7 +69,12 @@ pub fn ui(ui: &mut egui::Ui, view: &JointsView<'_>, words: &Strings, actions: &m
                 let slider = egui::Slider::new(&mut value, low..=high)
                     .custom_formatter(|v, _| format!("{:.1}°", v / 10.0))
                     .step_by(1.0);
-                if ui.add(slider).labelled_by(label.id).changed() {
+                let response = ui.add(slider).labelled_by(label.id);
+                ids.push((response.id, joint));
+                if focused == Some(joint) && nudge != 0 {
+                    value = value.saturating_add(nudge).clamp(low, high);
+                }
+                if response.changed() || (focused == Some(joint) && nudge != 0) {
                     actions.push(Action::SetJoint { joint, tenths: value });
                 }
                 ui.weak(format!("home {:.1}°", f64::from(setting.home_tenths_deg) / 10.0));
@@ -64,6 +82,7 @@ pub fn ui(ui: &mut egui::Ui, view: &JointsView<'_>, words: &Strings, actions: &m
             }
         });
     });
+    ui.data_mut(|data| data.insert_temp(ids_key, ids));
     ui.separator();
     egui::CollapsingHeader::new(words.joint_settings).id_salt("plen2-joint-settings").show(ui, |ui| {
         settings_editor(ui, view, words, actions);
