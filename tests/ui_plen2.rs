@@ -42,6 +42,7 @@ fn harness(tab: Tab) -> Harness<'static, StudioApp> {
     let mut app = StudioApp::new(project(), None, no_waker()).with_data_dir(data);
     app.apply(Action::ConnectDemo);
     assert!(app.link.as_ref().is_some_and(|link| link.plen2().is_some()), "{:?}", app.status);
+    assert!(app.status.as_ref().unwrap().text.contains("factory-fresh"), "{:?}", app.status);
     app.apply(Action::ShowTab(tab));
     let mut harness = Harness::builder()
         .with_size(egui::vec2(1200.0, 800.0))
@@ -130,6 +131,8 @@ fn the_robot_panel_uploads_verifies_and_a_play_list_queues_its_motions() {
     }
     let robot = harness.state().plen2_robot.clone().unwrap();
     assert_eq!(robot.motions, harness.state().document.project.plen2.motions);
+    let result = harness.state().plen2_result.clone().unwrap();
+    assert_eq!(result, "Read the robot; motions it holds: 1", "reading does not replace the project");
 }
 
 #[test]

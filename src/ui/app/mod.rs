@@ -217,7 +217,13 @@ impl StudioApp {
             Action::ConnectDemo => match BoardLink::demo(&self.document.project, self.waker.clone()) {
                 Ok(link) => {
                     self.sonar_on = self.document.project.rflex.drive.sonar_on_connect;
-                    self.report(self.words().msg_connected_demo, false);
+                    let words = self.words();
+                    let text = match self.document.project.family {
+                        Family::Servo => words.msg_connected_demo,
+                        Family::Plen2 => words.msg_connected_demo_plen2,
+                        Family::Rflex => words.msg_connected_demo_rflex,
+                    };
+                    self.report(text, false);
                     self.link = Some(link);
                 }
                 Err(error) => self.report(self.language.start_error(&error), true),

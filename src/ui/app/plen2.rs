@@ -188,7 +188,7 @@ impl StudioApp {
         self.plen2_job = None;
         self.plen2_result = Some(match outcome {
             Plen2Outcome::Read(robot) => {
-                let text = format!("{} {} {}", self.words().read_done, robot.motions.len(), self.words().motions);
+                let text = format!("{} {}", self.words().robot_read, robot.motions.len());
                 self.plen2_robot = Some(*robot);
                 text
             }

@@ -169,6 +169,10 @@ pub struct Strings {
     pub msg_connected_to: &'static str,
     /// "connected to the demo board (emulated, preloaded with this project)".
     pub msg_connected_demo: &'static str,
+    /// "connected to the demo PLEN2 (emulated, factory-fresh: its 90 slots are empty)".
+    pub msg_connected_demo_plen2: &'static str,
+    /// "connected to the demo base (emulated, braked, in a 3.6 × 2.4 m room)".
+    pub msg_connected_demo_rflex: &'static str,
     /// "disconnected".
     pub msg_disconnected: &'static str,
     /// "STOP: every servo stopped where it is, holding torque".
@@ -243,6 +247,8 @@ pub struct Strings {
     pub backup_at: &'static str,
     /// "The project now holds the board's contents (Undo brings the previous project back).".
     pub read_done: &'static str,
+    /// "Read the robot; motions it holds:".
+    pub robot_read: &'static str,
     /// "Saved the board to".
     pub saved_board_to: &'static str,
     /// "Cancelled.".
@@ -452,6 +458,8 @@ pub(super) const ENGLISH: Strings = Strings {
     msg_connect_first: "connect a board (or the demo board) first",
     msg_connected_to: "connected to",
     msg_connected_demo: "connected to the demo board (emulated, preloaded with this project)",
+    msg_connected_demo_plen2: "connected to the demo PLEN2 (emulated, factory-fresh: its 90 slots are empty)",
+    msg_connected_demo_rflex: "connected to the demo base (emulated, braked, in a 3.6 × 2.4 m room)",
     msg_disconnected: "disconnected",
     msg_stopped_all: "STOP: every servo stopped where it is, holding torque",
     msg_stop_no_board: "STOP: no board is connected",
@@ -489,6 +497,7 @@ pub(super) const ENGLISH: Strings = Strings {
     uploaded_items: "Uploaded and verified, items:",
     backup_at: "Backup of the previous contents:",
     read_done: "The project now holds the board's contents (Undo brings the previous project back).",
+    robot_read: "Read the robot; motions it holds:",
     saved_board_to: "Saved the board to",
     cancelled: "Cancelled.",
     recover_body: "Servo Studio did not close cleanly. Autosaved work can be recovered from",
@@ -631,6 +640,8 @@ pub(super) const TRADITIONAL_CHINESE: Strings = Strings {
     msg_connect_first: "請先連接控制板（或示範控制板）",
     msg_connected_to: "已連線至",
     msg_connected_demo: "已連線至示範控制板（模擬，已載入此專案）",
+    msg_connected_demo_plen2: "已連線至示範 PLEN2（模擬，出廠狀態：90 個槽位皆為空）",
+    msg_connected_demo_rflex: "已連線至示範底盤（模擬，已煞車，位於 3.6 × 2.4 公尺的房間）",
     msg_disconnected: "已中斷連線",
     msg_stopped_all: "停止：所有舵機停在原處並保持鎖定",
     msg_stop_no_board: "停止：尚未連接控制板",
@@ -668,6 +679,7 @@ pub(super) const TRADITIONAL_CHINESE: Strings = Strings {
     uploaded_items: "已上傳並驗證，項目數：",
     backup_at: "先前內容的備份：",
     read_done: "專案已換成控制板的內容（復原可取回先前的專案）。",
+    robot_read: "已讀取機器人；其中的動作數：",
     saved_board_to: "已將控制板存至",
     cancelled: "已取消。",
     recover_body: "Servo Studio 未正常關閉。可以復原自動儲存的工作，時間：",
