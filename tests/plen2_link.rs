@@ -111,8 +111,33 @@ fn export_then_import_round_trips_a_multi_motion_project_losing_no_byte_where_un
     }
     assert_eq!(exported.joints.len(), 18);
 
+    a_glitch_is_repaired_by_resync_and_rewrite(&robot, &requester);
     // The same bytes sent carelessly do lose bytes: the pacing is what saves an upload.
     unpaced_sending_loses_bytes();
+}
+
+/// The cable loses the last 3 bytes of a `>MF`: the firmware's parser waits for
+/// them and swallows the verifying `<MO` as their arguments, so no reply comes.
+/// The driver sends the resync bytes and asks again; the slot reads back
+/// without its frame, so it is written again and then verifies.
+fn a_glitch_is_repaired_by_resync_and_rewrite(robot: &Robot, requester: &Plen2Requester) {
+    let before = inspect(robot).lost_bytes;
+    let bow =
+        Motion { slot: 89, name: "Bow Twice".into(), frames: vec![frame(700, 3)], loop_range: None, jump_slot: None };
+    let commands = motion_commands(&bow);
+    let header = commands[0].to_ascii().len();
+    let frame_len = commands[1].to_ascii().len();
+    robot.command(Plen2SimCommand::LoseBytes { skip: header + frame_len - 3, lose: 3 });
+    let one = Plen2Project { motions: vec![bow.clone()], ..Plen2Project::default() };
+    let options = Plen2ImportOptions { backup_dir: None, verify: true, force: false };
+    let report = import(requester, &one, &options, &mut |_| {}, &Cancel::never()).unwrap();
+    assert_eq!(report.slots, [(89, SlotResult::Verified)], "{report:?}");
+    assert_eq!(report.rewritten, 1, "written a second time after the first read-back differed");
+    let state = inspect(robot);
+    assert_eq!(state.lost_bytes, before + 3);
+    assert!(state.dropped > 0, "the stuck command was dropped");
+    let exported = export(requester, &[89], &mut |_| {}, &Cancel::never()).unwrap();
+    assert_eq!(exported.motions, [bow]);
 }
 
 /// Run after the paced round trip, never beside it: flooding one emulator

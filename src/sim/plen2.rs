@@ -124,6 +124,14 @@ pub struct Plen2State {
 pub enum Plen2SimCommand {
     /// Report the state now.
     Inspect(Sender<Plen2State>),
+    /// A fault: skip the next `skip` bytes received, then lose the `lose`
+    /// after them (as a glitching cable would), counted as lost.
+    LoseBytes {
+        /// Bytes let through first.
+        skip: usize,
+        /// Bytes then lost.
+        lose: usize,
+    },
 }
 
 /// What the emulated robot reports.
@@ -143,6 +151,8 @@ pub struct Plen2Sim {
     timing: Plen2Timing,
     line: VecDeque<(Instant, u8)>,
     line_free_at: Option<Instant>,
+    /// The owner's fault: (bytes to let through, bytes then to lose).
+    glitch: Option<(usize, usize)>,
     ring: VecDeque<(Instant, u8)>,
     ready_at: Option<Instant>,
     parser: CommandParser,
@@ -169,6 +179,7 @@ impl Plen2Sim {
             timing,
             line: VecDeque::new(),
             line_free_at: None,
+            glitch: None,
             ring: VecDeque::new(),
             ready_at: None,
             parser: CommandParser::default(),
@@ -533,6 +544,7 @@ impl Driver for Plen2Sim {
             Plen2SimCommand::Inspect(reply) => {
                 let _ = reply.send(self.state());
             }
+            Plen2SimCommand::LoseBytes { skip, lose } => self.glitch = Some((skip, lose)),
         }
     }
 
@@ -540,6 +552,16 @@ impl Driver for Plen2Sim {
         // Bytes cross the line one after another at its rate.
         let mut at = self.line_free_at.map_or(now, |free| free.max(now));
         for &byte in bytes {
+            match &mut self.glitch {
+                Some((0, 0)) | None => self.glitch = None,
+                Some((0, lose)) => {
+                    *lose -= 1;
+                    self.lost += 1;
+                    self.events.push_back(Plen2SimEvent::Lost(self.lost));
+                    continue;
+                }
+                Some((skip, _)) => *skip -= 1,
+            }
             at += self.timing.line_byte;
             self.line.push_back((at, byte));
         }

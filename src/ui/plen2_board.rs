@@ -2,6 +2,7 @@
 //! project's motion and the robot's, differences marked), read the robot,
 //! upload with backup and verification, read into the project, export to a file.
 
+use crate::device::plen2::Plen2Phase;
 use crate::project::Edit;
 use crate::project::plen2::{Motion, PlayEntry, PlayList, Plen2Project};
 use crate::protocol::plen2::SLOTS;
@@ -130,6 +131,14 @@ fn cell(ui: &mut egui::Ui, slot: u8, ours: Option<&Motion>, theirs: Option<&Moti
     }
 }
 
+fn phase_word(phase: Plen2Phase, words: &Strings) -> &'static str {
+    match phase {
+        Plen2Phase::Read => words.phases[0],
+        Plen2Phase::Write => words.phases[1],
+        Plen2Phase::Verify => words.phases[2],
+    }
+}
+
 /// Draws the robot panel.
 pub fn robot_panel(ui: &mut egui::Ui, view: &RobotView<'_>, words: &Strings, actions: &mut Vec<Action>) {
     ui.horizontal(|ui| {
@@ -161,11 +170,13 @@ pub fn robot_panel(ui: &mut egui::Ui, view: &RobotView<'_>, words: &Strings, act
     if let Some(job) = view.job {
         if let Some(progress) = &job.progress {
             let fraction = if progress.total == 0 { 0.0 } else { progress.done as f32 / progress.total as f32 };
-            ui.add(
-                egui::ProgressBar::new(fraction)
-                    .show_percentage()
-                    .text(format!("{}/{} {}", progress.done, progress.total, progress.item)),
-            );
+            ui.add(egui::ProgressBar::new(fraction).show_percentage().text(format!(
+                "{} {}/{} {}",
+                phase_word(progress.phase, words),
+                progress.done,
+                progress.total,
+                progress.item
+            )));
         }
         if ui.button(words.cancel).clicked() {
             actions.push(Action::BoardCancel);

@@ -186,7 +186,7 @@ pub struct Plen2ImportReport {
     pub slots: Vec<(u8, SlotResult)>,
     /// Joint settings written (device, what).
     pub joint_writes: usize,
-    /// Slots written a second time because their first read-back differed.
+    /// Slot writes repeated because a read-back differed (each repeat counted).
     pub rewritten: usize,
 }
 
@@ -249,6 +249,9 @@ pub fn plen2_backup_path(folder: &std::path::Path) -> PathBuf {
     path
 }
 
+/// How many times a slot that read back different is written again.
+pub const REWRITE_ROUNDS: usize = 3;
+
 /// Uploads `project`'s motions (and its joint settings, if it holds them and they differ):
 /// validates, backs up the slots about to be overwritten, writes paced, verifies.
 pub fn import(
@@ -294,17 +297,23 @@ pub fn import(
     let mut rewritten = 0;
     if options.verify {
         verify(requester, &project.motions, &mut results, progress, cancel)?;
-        // A slot that reads back different is written once more (a byte lost on
-        // a busy USB line), then checked again; what still differs is reported.
-        let differing: Vec<usize> =
-            (0..results.len()).filter(|index| results[*index].1 == SlotResult::Differs).collect();
-        for &index in &differing {
-            check(cancel)?;
-            write_motion(requester, &project.motions[index], index, total, progress)?;
-            rewritten += 1;
-            let back = read_slot(requester, project.motions[index].slot)?;
-            results[index].1 =
-                if back.as_ref() == Some(&project.motions[index]) { SlotResult::Verified } else { SlotResult::Differs };
+        // A slot that reads back different is written again (a byte lost on a
+        // busy USB line, or a host too loaded to keep the pace), up to
+        // REWRITE_ROUNDS times, each checked again; what still differs is reported.
+        for _ in 0..REWRITE_ROUNDS {
+            let differing: Vec<usize> =
+                (0..results.len()).filter(|index| results[*index].1 == SlotResult::Differs).collect();
+            for index in differing {
+                check(cancel)?;
+                write_motion(requester, &project.motions[index], index, total, progress)?;
+                rewritten += 1;
+                let back = read_slot(requester, project.motions[index].slot)?;
+                results[index].1 = if back.as_ref() == Some(&project.motions[index]) {
+                    SlotResult::Verified
+                } else {
+                    SlotResult::Differs
+                };
+            }
         }
     }
     Ok(Plen2ImportReport { backup, slots: results, joint_writes, rewritten })

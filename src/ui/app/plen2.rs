@@ -196,6 +196,15 @@ impl StudioApp {
                 let verified =
                     report.slots.iter().filter(|(_, r)| *r == crate::device::plen2::SlotResult::Verified).count();
                 let mut text = format!("{} {verified}/{}", self.words().uploaded_items, report.slots.len());
+                let differing: Vec<String> = report
+                    .slots
+                    .iter()
+                    .filter(|(_, r)| *r == crate::device::plen2::SlotResult::Differs)
+                    .map(|(slot, _)| slot.to_string())
+                    .collect();
+                if !differing.is_empty() {
+                    text.push_str(&format!("\n{} {}", self.words().slots_differ, differing.join(", ")));
+                }
                 if let Some(backup) = &report.backup {
                     text.push_str(&format!("\n{} {}", self.words().backup_at, backup.display()));
                 }

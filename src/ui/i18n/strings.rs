@@ -249,6 +249,10 @@ pub struct Strings {
     pub read_done: &'static str,
     /// "Read the robot; motions it holds:".
     pub robot_read: &'static str,
+    /// "Reading", "Writing", "Verifying": what a transfer's progress bar is doing.
+    pub phases: [&'static str; 3],
+    /// "Still different after writing again (check the cable and upload again), slots:".
+    pub slots_differ: &'static str,
     /// "Saved the board to".
     pub saved_board_to: &'static str,
     /// "Cancelled.".
@@ -498,6 +502,8 @@ pub(super) const ENGLISH: Strings = Strings {
     backup_at: "Backup of the previous contents:",
     read_done: "The project now holds the board's contents (Undo brings the previous project back).",
     robot_read: "Read the robot; motions it holds:",
+    phases: ["Reading", "Writing", "Verifying"],
+    slots_differ: "Still different after writing again (check the cable and upload again), slots:",
     saved_board_to: "Saved the board to",
     cancelled: "Cancelled.",
     recover_body: "Servo Studio did not close cleanly. Autosaved work can be recovered from",
@@ -680,6 +686,8 @@ pub(super) const TRADITIONAL_CHINESE: Strings = Strings {
     backup_at: "先前內容的備份：",
     read_done: "專案已換成控制板的內容（復原可取回先前的專案）。",
     robot_read: "已讀取機器人；其中的動作數：",
+    phases: ["讀取中", "寫入中", "驗證中"],
+    slots_differ: "重寫後仍不一致（請檢查連接線後再上傳一次），槽位：",
     saved_board_to: "已將控制板存至",
     cancelled: "已取消。",
     recover_body: "Servo Studio 未正常關閉。可以復原自動儲存的工作，時間：",
