@@ -77,6 +77,12 @@ impl ReplyReader {
         self.expecting.is_some()
     }
 
+    /// How many bytes of the reply being read are held in memory (never more
+    /// than [`MAX_REPLY_BYTES`], however long the reply).
+    pub fn held(&self) -> usize {
+        self.kept.len()
+    }
+
     /// Whether a reply has begun (some of it arrived).
     pub fn started(&self) -> bool {
         self.started
