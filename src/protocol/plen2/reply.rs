@@ -39,7 +39,8 @@ pub enum ReplyEvent {
         /// How many bytes it had.
         bytes: usize,
     },
-    /// Bytes outside any reply (nothing was asked for, or before the reply began).
+    /// Bytes outside any reply (nothing was asked for, or before the reply
+    /// began), blanks and line ends not counted.
     Ignored {
         /// How many.
         bytes: usize,
@@ -116,18 +117,14 @@ impl ReplyReader {
     }
 
     fn byte(&mut self, byte: u8) {
-        let Some(kind) = self.expecting else {
-            self.ignored += 1;
+        let Some(kind) = self.expecting.filter(|_| self.started || byte == b'{' || byte == b'[') else {
+            // The CRLF after a reply and blanks around one are layout, not stray bytes.
+            if !byte.is_ascii_whitespace() {
+                self.ignored += 1;
+            }
             return;
         };
-        if !self.started {
-            if byte == b'{' || byte == b'[' {
-                self.started = true;
-            } else {
-                self.ignored += 1;
-                return;
-            }
-        }
+        self.started = true;
         self.length += 1;
         if self.kept.len() < MAX_REPLY_BYTES {
             self.kept.push(byte);
@@ -300,6 +297,12 @@ mod tests {
         });
         let version = decode_version(&complete.unwrap()).unwrap();
         assert_eq!(version.codename, "Cyt]isus");
+        // The line ends around the reply are its layout, not stray bytes.
+        assert!(!events.iter().any(|e| matches!(e, ReplyEvent::Ignored { .. })), "{events:?}");
+        // Bytes that are not layout are counted.
+        let mut reader = ReplyReader::new();
+        reader.push(b"\r\nok\r\n");
+        assert_eq!(reader.poll(), Some(ReplyEvent::Ignored { bytes: 2 }));
     }
 
     #[test]
