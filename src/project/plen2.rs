@@ -3,7 +3,9 @@
 
 use serde::{Deserialize, Serialize};
 
-pub use crate::protocol::plen2::{JOINTS, Joint};
+pub use crate::protocol::plen2::{
+    FACTORY_LIMIT_TENTHS_DEG, JOINTS, Joint, MAX_FRAMES, MAX_TRANSITION_MS, MIN_TRANSITION_MS, SLOTS,
+};
 
 /// Everything a PLEN2 project holds.
 #[derive(Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]

@@ -4,8 +4,7 @@
 
 use crate::device::plen2::Plen2Phase;
 use crate::project::Edit;
-use crate::project::plen2::{Motion, PlayEntry, PlayList, Plen2Project};
-use crate::protocol::plen2::SLOTS;
+use crate::project::plen2::{Motion, PlayEntry, PlayList, Plen2Project, SLOTS};
 use crate::ui::action::{Action, Plen2Intent};
 use crate::ui::i18n::Strings;
 use crate::ui::plen2_job::Plen2Job;

@@ -6,11 +6,12 @@ use std::path::PathBuf;
 
 use crossbeam_channel::{Receiver, Sender};
 
+use crate::device::plen2::Command;
 use crate::device::plen2::{self, Plen2ImportOptions, Plen2ImportReport, Plen2Progress, Plen2Requester};
 use crate::device::servo::Cancel;
 use crate::link::Waker;
 use crate::project::plen2::Plen2Project;
-use crate::protocol::plen2::{Command, SLOTS};
+use crate::project::plen2::SLOTS;
 
 /// What a PLEN2 job does.
 #[derive(Clone, Debug, PartialEq)]

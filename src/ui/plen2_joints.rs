@@ -6,8 +6,7 @@
 //! (min / max / home).
 
 use crate::project::Edit;
-use crate::project::plen2::{Joint, JointSetting, Plen2Project};
-use crate::protocol::plen2::FACTORY_LIMIT_TENTHS_DEG;
+use crate::project::plen2::{FACTORY_LIMIT_TENTHS_DEG, Joint, JointSetting, Plen2Project};
 use crate::ui::action::{Action, Plen2Intent};
 use crate::ui::i18n::Strings;
 use crate::ui::servo_panel::keyboard_nudge;

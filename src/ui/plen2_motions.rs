@@ -6,8 +6,8 @@
 use egui_plot::{Legend, Line, Plot, PlotPoints};
 
 use crate::project::plen2::{Frame, Joint, LoopRange, Motion, Plen2Project, Pose};
+use crate::project::plen2::{MAX_TRANSITION_MS, MIN_TRANSITION_MS, SLOTS};
 use crate::project::{Edit, Location, Problem};
-use crate::protocol::plen2::{MAX_TRANSITION_MS, MIN_TRANSITION_MS, SLOTS};
 use crate::ui::action::Action;
 use crate::ui::i18n::Strings;
 

@@ -20,7 +20,7 @@ pub use ops::{
 
 use crate::device::LogEntry;
 use crate::link::{self, Connection, DisconnectReason, LinkEvent, LinkHandle, Waker};
-use crate::protocol::plen2::Command;
+pub use crate::protocol::plen2::Command;
 
 /// Blocking calls to a PLEN2 from a worker thread.
 #[derive(Clone, Debug)]

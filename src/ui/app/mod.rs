@@ -168,7 +168,7 @@ impl StudioApp {
             joystick_panel: JoystickPanel::default(),
             drive_panel: DrivePanel::default(),
             motions_panel: crate::ui::plen2_motions::MotionsPanel::default(),
-            plen2_pose: crate::protocol::plen2::Joint::ALL.map(crate::protocol::plen2::Joint::factory_home_tenths_deg),
+            plen2_pose: crate::project::plen2::Joint::ALL.map(crate::project::plen2::Joint::factory_home_tenths_deg),
             plen2_stream: None,
             plen2_job: None,
             plen2_robot: None,

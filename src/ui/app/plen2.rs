@@ -59,7 +59,7 @@ impl StudioApp {
         }
         let mut plen2 = self.document.project.plen2.clone();
         let Some(motion) = plen2.motions.iter_mut().find(|m| m.slot == slot) else { return };
-        if motion.frames.len() >= crate::protocol::plen2::MAX_FRAMES {
+        if motion.frames.len() >= crate::project::plen2::MAX_FRAMES {
             self.report(
                 self.language.problem(&crate::project::ProblemKind::OutOfRange {
                     field: "frames",
