@@ -51,13 +51,14 @@ fn main() {
     };
 
     let mut times = Vec::new();
+    let mut rewrites = 0;
     for round in 0..10u8 {
         let project = Plen2Project { motions: vec![motion(round)], ..Plen2Project::default() };
         let began = Instant::now();
         let report = import(&requester, &project, &options, &mut |_| {}, &Cancel::never()).unwrap();
         times.push(began.elapsed());
         assert!(report.slots.iter().all(|(_, r)| *r == SlotResult::Verified), "{report:?}");
-        assert_eq!(report.rewritten, 0);
+        rewrites += report.rewritten;
     }
     let (reply, state) = crossbeam_channel::bounded(1);
     robot.command(Plen2SimCommand::Inspect(reply));
@@ -72,11 +73,13 @@ fn main() {
     let floor = wire + eeprom;
     println!("20-frame motion, {motion_bytes} bytes written + {reply_bytes} read back, over {}:", robot.port_name);
     println!(
-        "  upload + verify: median {:.1} ms (best {:.1}, worst {:.1} of 10); bytes lost by the robot: {}",
+        "  upload + verify: median {:.1} ms (best {:.1}, worst {:.1} of 10); bytes lost by the robot: {}; \
+         commands it dropped: {}; slots written again: {rewrites}",
         median.as_secs_f64() * 1e3,
         times[0].as_secs_f64() * 1e3,
         times[times.len() - 1].as_secs_f64() * 1e3,
-        state.lost_bytes
+        state.lost_bytes,
+        state.dropped
     );
     println!(
         "  official pacing (32 bytes, then 50 ms; no verification): {:.0} ms → {:.1}× faster",
