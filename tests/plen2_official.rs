@@ -34,8 +34,13 @@ impl Drop for Sim {
 }
 
 fn sim() -> Sim {
+    sim_with(&[])
+}
+
+fn sim_with(extra: &[&str]) -> Sim {
     let mut child = Command::new(EXE)
         .args(["sim", "--protocol", "plen2", "--pty"])
+        .args(extra)
         .stdout(Stdio::piped())
         .stderr(Stdio::null())
         .spawn()
@@ -117,4 +122,55 @@ fn every_official_motion_opens_and_survives_upload_and_export_unchanged() {
         let motion = exported.plen2.motions.iter().find(|m| u64::from(m.slot) == slot).unwrap();
         assert_eq!(content(&motion_json::motion_to_json(motion)), content(&original), "{}", file.display());
     }
+}
+
+/// `sim --protocol plen2 --state FILE` starts with the file's joint settings
+/// and motions in its slots, as `export` then finds them (needs no shared/).
+#[test]
+fn sim_state_preloads_the_robot() {
+    use project::plen2::{Frame, Joint, JointSetting, LoopRange, Motion, Plen2Project, Pose};
+    let mut pose = Pose::default();
+    pose.set(Joint::LeftKneePitch, 321);
+    pose.set(Joint::RightFootRoll, -123);
+    let frames = vec![
+        Frame { transition_ms: 300, values_tenths_deg: pose },
+        Frame { transition_ms: 500, values_tenths_deg: Pose::default() },
+    ];
+    let plen2 = Plen2Project {
+        joints: vec![JointSetting {
+            joint: Joint::LeftKneePitch,
+            min_tenths_deg: -500,
+            max_tenths_deg: 800,
+            home_tenths_deg: 450,
+        }],
+        motions: vec![
+            Motion { slot: 3, name: "Nod".into(), frames: frames.clone(), loop_range: None, jump_slot: Some(45) },
+            Motion {
+                slot: 45,
+                name: "Nod loop".into(),
+                frames,
+                loop_range: Some(LoopRange { begin_frame: 0, end_frame: 1, count: 4 }),
+                jump_slot: None,
+            },
+        ],
+        play_lists: Vec::new(),
+    };
+    let folder = tempfile::tempdir().unwrap();
+    let state = folder.path().join("state.json");
+    let document =
+        project::Project { family: project::Family::Plen2, plen2: plen2.clone(), ..project::Project::default() };
+    project::save(&state, &document).unwrap();
+
+    let robot = sim_with(&["--state", state.to_str().unwrap()]);
+    let exported_path = folder.path().join("robot.json");
+    let export = Command::new(EXE)
+        .args(["export", "--protocol", "plen2", "--port", &robot.1, "--out", exported_path.to_str().unwrap()])
+        .args(["--slots", "0-5,44-46"])
+        .stdin(Stdio::null())
+        .output()
+        .unwrap();
+    assert!(export.status.success(), "{}", String::from_utf8_lossy(&export.stderr));
+    let exported = project::load(&exported_path).unwrap();
+    assert_eq!(exported.plen2.motions, plen2.motions);
+    assert!(exported.plen2.joints.contains(&plen2.joints[0]), "{:?}", exported.plen2.joints);
 }

@@ -8,7 +8,7 @@ use anyhow::{Context, bail};
 use super::PortArgs;
 use super::servo::{ImportChoices, SimArgs};
 use servo_studio::device::plen2::{
-    self as plen2, Pacing, Plen2Handle, Plen2ImportOptions, Plen2Phase, Plen2Progress, SlotResult,
+    self as plen2, Command, Pacing, Plen2Handle, Plen2ImportOptions, Plen2Phase, Plen2Progress, SlotResult,
 };
 use servo_studio::device::{self, servo::Cancel};
 use servo_studio::link::{self, LineSettings, PortName, no_waker};
@@ -152,6 +152,29 @@ pub fn import(port: &PortArgs, input: &Path, loaded: &Project, choices: ImportCh
 }
 
 /// `sim --protocol plen2`.
+/// Runs the emulated PLEN2; `--state` preloads its joint settings and slots
+/// from a project file, a motion.json or a folder of them.
 pub fn sim(args: &SimArgs) -> anyhow::Result<()> {
-    super::servo::serve(args, Plen2Sim::new(Plen2Timing::default()))
+    let mut robot = Plen2Sim::new(Plen2Timing::default());
+    if let Some(path) = &args.state {
+        let plen2 = load_input(path)?.plen2;
+        let mut commands = Vec::new();
+        for setting in &plen2.joints {
+            let device = setting.joint.device_id();
+            commands.push(Command::SetMax { device, angle: setting.max_tenths_deg });
+            commands.push(Command::SetMin { device, angle: setting.min_tenths_deg });
+            commands.push(Command::SetHome { device, angle: setting.home_tenths_deg });
+        }
+        for motion in &plen2.motions {
+            commands.extend(plen2::motion_commands(motion));
+        }
+        robot.preload(&commands);
+        eprintln!(
+            "preloaded {} motion(s) and {} joint setting(s) from {}",
+            plen2.motions.len(),
+            plen2.joints.len(),
+            path.display()
+        );
+    }
+    super::servo::serve(args, robot)
 }

@@ -261,6 +261,16 @@ impl Plen2Sim {
     }
 
     /// Executes a command; returns how long the firmware then blocks.
+    /// Stores what `commands` write (joint settings, motions) as if written
+    /// long before power-on: no line, no ring, no EEPROM wait, not counted.
+    pub fn preload(&mut self, commands: &[Command]) {
+        let now = Instant::now();
+        for command in commands {
+            self.execute(now, command);
+        }
+        self.events.clear();
+    }
+
     fn execute(&mut self, at: Instant, command: &Command) -> Option<Duration> {
         let device_ok = |device: u8| usize::from(device) < DEVICE_IDS;
         match command {
