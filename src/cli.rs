@@ -65,10 +65,10 @@ impl PortArgs {
 /// The subcommands.
 #[derive(Debug, Subcommand)]
 pub enum CliCommand {
-    /// Check a project file and print every problem with its location.
+    /// Check a project file (or a PLEN2 motion.json, or a folder of them) and print every problem with its location.
     /// Exits 1 when there is an error (warnings alone exit 0).
     Check {
-        /// The project file (.json).
+        /// The project file (.json), motion.json or folder.
         file: PathBuf,
     },
     /// List the serial ports this computer sees.
@@ -240,10 +240,11 @@ pub fn gui(file: Option<PathBuf>, demo: bool, protocol: Option<Family>) -> anyho
 
 /// Runs `servo-studio check FILE`.
 pub fn check(file: &std::path::Path) -> ExitCode {
-    let loaded = match project::load(file) {
+    // A project file, a PLEN2 motion.json, or a folder of them.
+    let loaded = match plen2::load_input(file) {
         Ok(loaded) => loaded,
         Err(error) => {
-            eprintln!("error: {}: {error}", file.display());
+            eprintln!("error: {error:#}");
             return ExitCode::FAILURE;
         }
     };

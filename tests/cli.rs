@@ -59,3 +59,27 @@ fn check_of_a_malformed_file_gives_line_and_column() {
     let printed = String::from_utf8_lossy(&output.stderr);
     assert!(printed.contains("line 2, column"), "{printed}");
 }
+
+#[test]
+fn check_reads_a_plen2_motion_json_and_locates_its_problems() {
+    let frame = |ms: u32| {
+        format!(r#"{{"transition_time_ms": {ms}, "outputs": [{{"device": "left_knee_pitch", "value": 100}}]}}"#)
+    };
+    let text = format!(
+        r#"{{"slot": 70, "name": "Walk Forward", "codes": [], "frames": [{}, {}, {}]}}"#,
+        frame(100),
+        frame(100),
+        frame(20)
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("70_Walk_Forward.json");
+    std::fs::write(&path, text).unwrap();
+    let output = run(&["check", path.to_str().unwrap()]);
+    assert_eq!(output.status.code(), Some(1));
+    let printed = stdout(&output);
+    assert!(
+        printed.contains("error: motion 70 \"Walk Forward\", frame 3: transition_ms 20 is outside 32..=8191"),
+        "{printed}"
+    );
+    assert!(printed.contains("1 error(s)"), "{printed}");
+}
