@@ -3,45 +3,17 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::needless_pass_by_value)]
 
-use std::io::{BufRead, BufReader};
 use std::path::Path;
-use std::process::{Child, Command, Output, Stdio};
-use std::time::Duration;
+use std::process::{Command, Output, Stdio};
 
 mod common;
+
+use common::sim;
 
 const EXE: &str = env!("CARGO_BIN_EXE_servo-studio");
 
 fn fixture() -> String {
     format!("{}/tests/fixtures/project-v1.json", env!("CARGO_MANIFEST_DIR"))
-}
-
-/// A `servo-studio sim` process, killed when dropped.
-struct Sim {
-    child: Child,
-    port: String,
-}
-
-impl Drop for Sim {
-    fn drop(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
-    }
-}
-
-fn sim(args: &[&str]) -> Sim {
-    let mut child =
-        Command::new(EXE).arg("sim").args(args).stdout(Stdio::piped()).stderr(Stdio::null()).spawn().unwrap();
-    let stdout = child.stdout.take().unwrap();
-    let (line_tx, line_rx) = crossbeam_channel::bounded(1);
-    std::thread::spawn(move || {
-        let mut line = String::new();
-        let _ = BufReader::new(stdout).read_line(&mut line);
-        let _ = line_tx.send(line);
-    });
-    let port = line_rx.recv_timeout(Duration::from_secs(30)).expect("the sim printed its port").trim().to_string();
-    assert!(!port.is_empty(), "sim printed no port");
-    Sim { child, port }
 }
 
 fn run(args: &[&str]) -> Output {

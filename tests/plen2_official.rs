@@ -5,12 +5,13 @@
 #![cfg(unix)]
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::print_stderr)]
 
-use std::io::{BufRead, BufReader};
 use std::path::PathBuf;
-use std::process::{Child, Command, Stdio};
-use std::time::Duration;
+use std::process::{Command, Stdio};
 
+use common::Sim;
 use servo_studio::project::{self, motion_json};
+
+mod common;
 
 const EXE: &str = env!("CARGO_BIN_EXE_servo-studio");
 
@@ -24,36 +25,10 @@ fn motions_folder() -> Option<PathBuf> {
     }
 }
 
-struct Sim(Child, String);
-
-impl Drop for Sim {
-    fn drop(&mut self) {
-        let _ = self.0.kill();
-        let _ = self.0.wait();
-    }
-}
-
-fn sim() -> Sim {
-    sim_with(&[])
-}
-
 fn sim_with(extra: &[&str]) -> Sim {
-    let mut child = Command::new(EXE)
-        .args(["sim", "--protocol", "plen2", "--pty"])
-        .args(extra)
-        .stdout(Stdio::piped())
-        .stderr(Stdio::null())
-        .spawn()
-        .unwrap();
-    let stdout = child.stdout.take().unwrap();
-    let (line_tx, line_rx) = crossbeam_channel::bounded(1);
-    std::thread::spawn(move || {
-        let mut line = String::new();
-        let _ = BufReader::new(stdout).read_line(&mut line);
-        let _ = line_tx.send(line);
-    });
-    let port = line_rx.recv_timeout(Duration::from_secs(30)).unwrap().trim().to_string();
-    Sim(child, port)
+    let mut args = vec!["--protocol", "plen2", "--pty"];
+    args.extend_from_slice(extra);
+    common::sim(&args)
 }
 
 /// A motion.json's content: everything but the editor's `@metadata`, which no
@@ -82,14 +57,14 @@ fn every_official_motion_opens_and_survives_upload_and_export_unchanged() {
     };
     assert_eq!(project::validate(&document), [], "the official motions are valid");
 
-    let robot = sim();
+    let robot = sim_with(&[]);
     let import = Command::new(EXE)
         .args([
             "import",
             "--protocol",
             "plen2",
             "--port",
-            &robot.1,
+            &robot.port,
             "--in",
             folder.to_str().unwrap(),
             "--yes",
@@ -105,7 +80,7 @@ fn every_official_motion_opens_and_survives_upload_and_export_unchanged() {
     let out = tempfile::tempdir().unwrap();
     let exported_path = out.path().join("robot.json");
     let export = Command::new(EXE)
-        .args(["export", "--protocol", "plen2", "--port", &robot.1, "--out", exported_path.to_str().unwrap()])
+        .args(["export", "--protocol", "plen2", "--port", &robot.port, "--out", exported_path.to_str().unwrap()])
         .stdin(Stdio::null())
         .output()
         .unwrap();
@@ -164,7 +139,7 @@ fn sim_state_preloads_the_robot() {
     let robot = sim_with(&["--state", state.to_str().unwrap()]);
     let exported_path = folder.path().join("robot.json");
     let export = Command::new(EXE)
-        .args(["export", "--protocol", "plen2", "--port", &robot.1, "--out", exported_path.to_str().unwrap()])
+        .args(["export", "--protocol", "plen2", "--port", &robot.port, "--out", exported_path.to_str().unwrap()])
         .args(["--slots", "0-5,44-46"])
         .stdin(Stdio::null())
         .output()

@@ -1,7 +1,47 @@
 //! Shared test fixtures.
 #![allow(dead_code, clippy::unwrap_used)]
 
+use std::io::{BufRead, BufReader};
+use std::process::{Child, Stdio};
+use std::time::Duration;
+
 use servo_studio::project::{Action, Button, Command, JoystickTable, Macro, Run, Servo, ServoProject, Step};
+
+/// A `servo-studio sim` process, killed when dropped.
+pub struct Sim {
+    /// The process.
+    pub child: Child,
+    /// The port it printed on its first line.
+    pub port: String,
+}
+
+impl Drop for Sim {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+/// Starts `servo-studio sim ARGS` and waits for the port it prints.
+pub fn sim(args: &[&str]) -> Sim {
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_servo-studio"))
+        .arg("sim")
+        .args(args)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let stdout = child.stdout.take().unwrap();
+    let (line_tx, line_rx) = crossbeam_channel::bounded(1);
+    std::thread::spawn(move || {
+        let mut line = String::new();
+        let _ = BufReader::new(stdout).read_line(&mut line);
+        let _ = line_tx.send(line);
+    });
+    let port = line_rx.recv_timeout(Duration::from_secs(30)).expect("the sim printed its port").trim().to_string();
+    assert!(!port.is_empty(), "sim printed no port");
+    Sim { child, port }
+}
 
 /// A project that exercises the whole protocol: CJK captions, negative angles,
 /// button ids with the high bit set, an action with 60 steps, ids up to i32::MAX.
