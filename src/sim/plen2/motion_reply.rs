@@ -1,0 +1,72 @@
+//! `<MO` as the firmware prints it: tab indentation, CRLF, no end marker; a
+//! never-written slot prints the erased EEPROM's garbage.
+
+use std::fmt::Write as _;
+
+use super::Slot;
+use crate::protocol::plen2::{DEVICE_IDS, MotionHeader};
+
+/// A slot's header as a never-written EEPROM page reads.
+pub(super) fn garbage_header(slot: u8) -> MotionHeader {
+    MotionHeader {
+        slot,
+        name: [0xff; 20],
+        loop_on: true,
+        loop_begin: 0xff,
+        loop_end: 0xff,
+        loop_count: 0xff,
+        jump_on: true,
+        jump_slot: 0xff,
+        frame_count: 0xff,
+    }
+}
+
+/// `<MO` in the firmware's layout. A never-written slot prints its garbage:
+/// frame length 255, a name that is not UTF-8, 255 frames of 24 outputs.
+pub(super) fn motion_json(slot: u8, stored: Option<&Slot>) -> Vec<u8> {
+    let garbage = garbage_header(slot);
+    let header = stored.map_or(&garbage, |s| &s.header);
+    let mut out = Vec::new();
+    out.extend_from_slice(format!("{{\r\n\t\"slot\": {slot},\r\n\t\"name\": \"").as_bytes());
+    out.extend_from_slice(&header.name);
+    let frames = usize::from(header.frame_count);
+    let mut text = format!("\",\r\n\t\"@frame_length\": {frames},\r\n\t\"codes\": [");
+    let mut codes = Vec::new();
+    if header.loop_on {
+        codes.push(format!(
+            "\r\n\t\t{{\r\n\t\t\t\"method\": \"loop\",\r\n\t\t\t\"arguments\": [{}, {}, {}]\r\n\t\t}}",
+            header.loop_begin, header.loop_end, header.loop_count
+        ));
+    }
+    if header.jump_on {
+        codes.push(format!(
+            "\r\n\t\t{{\r\n\t\t\t\"method\": \"jump\",\r\n\t\t\t\"arguments\": [{}]\r\n\t\t}}",
+            header.jump_slot
+        ));
+    }
+    text.push_str(&codes.join(","));
+    text.push_str(if codes.is_empty() { "],\r\n\t\"frames\": [" } else { "\r\n\t],\r\n\t\"frames\": [" });
+    for index in 0..frames {
+        let frame = stored.and_then(|s| s.frames.get(index).cloned().flatten());
+        // An unwritten frame reads erased EEPROM: 0xffff everywhere.
+        let (transition, values) = frame.map_or((0xffff, [-1; DEVICE_IDS]), |f| (f.transition_ms, f.values));
+        let _ = write!(
+            text,
+            "\r\n\t\t{{\r\n\t\t\t\"@index\": {index},\r\n\t\t\t\"transition_time_ms\": {transition},\r\n\t\t\t\"outputs\": ["
+        );
+        for (device, value) in values.iter().enumerate() {
+            let comma = if device + 1 < DEVICE_IDS { "," } else { "" };
+            let _ = write!(
+                text,
+                "\r\n\t\t\t\t{{\r\n\t\t\t\t\t\"device\": {device},\r\n\t\t\t\t\t\"value\": {value}\r\n\t\t\t\t}}{comma}"
+            );
+        }
+        text.push_str("\r\n\t\t\t]\r\n\t\t}");
+        if index + 1 < frames {
+            text.push(',');
+        }
+    }
+    text.push_str(if frames == 0 { "]\r\n}\r\n" } else { "\r\n\t]\r\n}\r\n" });
+    out.extend_from_slice(text.as_bytes());
+    out
+}
