@@ -22,5 +22,6 @@ pub use servo::{Action, Button, Command, JoystickTable, Macro, Run, Servo, Servo
 pub use timing::{Timing, TimingError, action_duration_ms};
 pub use trajectory::{Trajectories, action_trajectories, angle_at, macro_trajectories};
 pub use validate::{
-    ButtonSlot, ItemKind, Location, Problem, ProblemKind, Severity, has_errors, validate, validate_servo,
+    ButtonSlot, ItemKind, Location, Problem, ProblemKind, Severity, has_errors, validate, validate_plen2,
+    validate_servo,
 };

@@ -6,6 +6,8 @@ use super::document::{Family, Project};
 use crate::protocol::servo::STR32_LEN;
 
 mod plen2;
+
+pub use plen2::validate_plen2;
 mod rflex;
 mod servo;
 
@@ -466,7 +468,7 @@ impl fmt::Display for Problem {
 pub fn validate(project: &Project) -> Vec<Problem> {
     match project.family {
         Family::Servo => validate_servo(&project.servo),
-        Family::Plen2 => plen2::validate_plen2(&project.plen2),
+        Family::Plen2 => validate_plen2(&project.plen2),
         Family::Rflex => rflex::validate_rflex(&project.rflex),
     }
 }

@@ -102,6 +102,8 @@ pub struct StudioApp {
     compare_intent: Option<BoardIntent>,
     /// The project's size on the board (or why it cannot be stored), for a document revision.
     footprint: Option<(u64, Result<usize, String>)>,
+    /// The PLEN2 section's problems, per document revision (the motion editor marks them every frame).
+    plen2_problems: Option<(u64, Vec<crate::project::Problem>)>,
     compared_board: Option<ServoProject>,
     waker: Waker,
     opener: Opener,
@@ -159,6 +161,7 @@ impl StudioApp {
             quit_allowed: false,
             compare_intent: None,
             footprint: None,
+            plen2_problems: None,
             compared_board: None,
             waker,
             connection_bar: ConnectionBar::default(),

@@ -3,7 +3,7 @@
 
 use super::StudioApp;
 use crate::device::servo::ServoImage;
-use crate::project::{Family, Project};
+use crate::project::{Family, validate_plen2};
 use crate::ui::action::{Action, Tab};
 use crate::ui::board_link::BoardLink;
 use crate::ui::board_panel::{self, BoardView};
@@ -69,13 +69,14 @@ impl StudioApp {
                 crate::ui::plen2_joints::ui(ui, &view, words, actions);
             }
             Tab::Motions => {
-                let problems = crate::project::validate(&Project {
-                    family: Family::Plen2,
-                    plen2: self.document.project.plen2.clone(),
-                    ..Project::default()
-                });
+                // Validated once per revision, not every frame.
+                let revision = self.document.revision();
+                if self.plen2_problems.as_ref().is_none_or(|(at, _)| *at != revision) {
+                    self.plen2_problems = Some((revision, validate_plen2(&self.document.project.plen2)));
+                }
+                let problems = self.plen2_problems.as_ref().map_or(&[][..], |(_, problems)| problems.as_slice());
                 let connected = self.link.as_ref().is_some_and(|link| link.plen2().is_some());
-                self.motions_panel.ui(ui, &self.document.project.plen2, &problems, connected, words, actions);
+                self.motions_panel.ui(ui, &self.document.project.plen2, problems, connected, words, actions);
             }
             Tab::PlayLists => {
                 let connected = self.link.as_ref().is_some_and(|link| link.plen2().is_some());
