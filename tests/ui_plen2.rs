@@ -162,3 +162,32 @@ fn keyboard_nudges_the_focused_joint_by_1_and_10_degrees_within_its_limits() {
         "no other joint moved"
     );
 }
+
+/// A file with values the editor would not author (a 20 ms transition, a joint
+/// setting beyond the factory range) is shown as it is: drawing the panels
+/// never edits the document.
+#[test]
+fn showing_out_of_range_values_does_not_change_them() {
+    let mut document = project();
+    document.plen2.motions[0].frames[1].transition_ms = 20;
+    document.plen2.joints.push(servo_studio::project::plen2::JointSetting {
+        joint: Joint::LeftKneePitch,
+        min_tenths_deg: -1200,
+        max_tenths_deg: 900,
+        home_tenths_deg: 0,
+    });
+    let data = tempfile::tempdir().unwrap().keep();
+    let app = StudioApp::new(document.clone(), None, no_waker()).with_data_dir(data);
+    let mut harness = Harness::builder()
+        .with_size(egui::vec2(1200.0, 800.0))
+        .with_context_setup(servo_studio::ui::fonts::install)
+        .build_ui_state(|ui, app: &mut StudioApp| app.show(ui), app);
+    for tab in [Tab::Motions, Tab::Joints] {
+        harness.state_mut().apply(Action::ShowTab(tab));
+        harness.run_steps(3);
+    }
+    harness.get_by_label_contains("Joint settings").click();
+    harness.run_steps(3);
+    assert!(!harness.state().document.can_undo(), "nothing was edited");
+    assert_eq!(harness.state().document.project.plen2, document.plen2);
+}

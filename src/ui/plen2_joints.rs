@@ -101,9 +101,23 @@ fn settings_editor(ui: &mut egui::Ui, view: &JointsView<'_>, words: &Strings, ac
             let mut setting = limits(&project, joint);
             ui.label(joint.name());
             let range = -FACTORY_LIMIT_TENTHS_DEG..=FACTORY_LIMIT_TENTHS_DEG;
-            changed |= ui.add(egui::DragValue::new(&mut setting.min_tenths_deg).range(range.clone())).changed();
-            changed |= ui.add(egui::DragValue::new(&mut setting.max_tenths_deg).range(range.clone())).changed();
-            changed |= ui.add(egui::DragValue::new(&mut setting.home_tenths_deg).range(range)).changed();
+            changed |= ui
+                .add(
+                    egui::DragValue::new(&mut setting.min_tenths_deg)
+                        .clamp_existing_to_range(false)
+                        .range(range.clone()),
+                )
+                .changed();
+            changed |= ui
+                .add(
+                    egui::DragValue::new(&mut setting.max_tenths_deg)
+                        .clamp_existing_to_range(false)
+                        .range(range.clone()),
+                )
+                .changed();
+            changed |= ui
+                .add(egui::DragValue::new(&mut setting.home_tenths_deg).clamp_existing_to_range(false).range(range))
+                .changed();
             ui.end_row();
             match project.joints.iter_mut().find(|s| s.joint == joint) {
                 Some(slot) => *slot = setting,

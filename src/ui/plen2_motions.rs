@@ -110,7 +110,11 @@ impl MotionsPanel {
         ui.horizontal(|ui| {
             let label = ui.label(words.slot);
             let mut slot = motion.slot;
-            if ui.add(egui::DragValue::new(&mut slot).range(0..=SLOTS - 1)).labelled_by(label.id).changed() {
+            if ui
+                .add(egui::DragValue::new(&mut slot).clamp_existing_to_range(false).range(0..=SLOTS - 1))
+                .labelled_by(label.id)
+                .changed()
+            {
                 actions.push(edit(project, |p| p.motions[index].slot = slot, key("slot")));
             }
             let label = ui.label(words.name);
@@ -152,9 +156,9 @@ impl MotionsPanel {
             }
             if let Some(mut range) = motion.loop_range {
                 let before = range;
-                ui.add(egui::DragValue::new(&mut range.begin_frame).range(0..=frames));
+                ui.add(egui::DragValue::new(&mut range.begin_frame).clamp_existing_to_range(false).range(0..=frames));
                 ui.label("–");
-                ui.add(egui::DragValue::new(&mut range.end_frame).range(0..=frames));
+                ui.add(egui::DragValue::new(&mut range.end_frame).clamp_existing_to_range(false).range(0..=frames));
                 ui.label("×");
                 ui.add(
                     egui::DragValue::new(&mut range.count)
@@ -170,7 +174,7 @@ impl MotionsPanel {
                 actions.push(edit(project, |p| p.motions[index].jump_slot = jumping.then_some(0), None));
             }
             if let Some(mut jump) = motion.jump_slot
-                && ui.add(egui::DragValue::new(&mut jump).range(0..=SLOTS - 1)).changed()
+                && ui.add(egui::DragValue::new(&mut jump).clamp_existing_to_range(false).range(0..=SLOTS - 1)).changed()
             {
                 actions.push(edit(project, |p| p.motions[index].jump_slot = Some(jump), key("jump")));
             }
@@ -207,6 +211,7 @@ impl MotionsPanel {
                     }
                     let mut transition = frame.transition_ms;
                     let drag = egui::DragValue::new(&mut transition)
+                        .clamp_existing_to_range(false)
                         .range(MIN_TRANSITION_MS..=MAX_TRANSITION_MS)
                         .suffix(" ms");
                     if ui.add(drag).changed() {
@@ -269,7 +274,8 @@ impl MotionsPanel {
             for (column, joint) in Joint::ALL.into_iter().enumerate() {
                 let mut value = pose.get(joint);
                 ui.label(joint.name());
-                if ui.add(egui::DragValue::new(&mut value).range(-1800..=1800)).changed() {
+                if ui.add(egui::DragValue::new(&mut value).clamp_existing_to_range(false).range(-1800..=1800)).changed()
+                {
                     pose.set(joint, value);
                     changed = true;
                 }
