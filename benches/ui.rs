@@ -1,20 +1,40 @@
 //! Editor benchmarks (prints figures; run with `cargo bench --bench ui`):
-//! 1. Median CPU time per frame of each panel on a large project (64 servos,
-//!    500 actions × 64 steps, 200 macros × 50 commands, 8 tables × 64
-//!    buttons) in a headless egui_kittest harness.
-//! 2. The time from the last slider change of a drag to the emulated board
+//! 1. Median CPU time per frame of every panel of every family, on a small
+//!    and a large project in the same run, laid out and tessellated as eframe does it (no GPU),
+//!    then one `ratio <family>/<panel>: large ÷ small` line per panel (the
+//!    figure that travels between machines: a panel whose cost does not grow
+//!    with the project stays smooth on a slow laptop too).
+//!    Small: the servo v1 fixture; a PLEN2 motion of 3 frames and a play list;
+//!    a minute of rFLEX telemetry. Large: 64 servos, 500 actions × 64 steps,
+//!    200 macros × 50 commands, 8 tables × 64 buttons; 90 PLEN2 slots × 20
+//!    frames with 10 play lists × 30 entries; an hour of rFLEX telemetry at the
+//!    report rate. The packet log holds 100 entries (small) or its bound (large).
+//! 2. Cold start to the first frame with each large project (a fresh process
+//!    that reads the project file, installs the fonts and lays out one frame),
+//!    and the resident memory once every panel has been drawn.
+//! 3. The time from the last slider change of a drag to the emulated board
 //!    holding that angle, over a link throttled to 115200 baud.
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::cast_possible_truncation, missing_docs)]
 
+use std::io::BufRead;
+use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-use egui_kittest::Harness;
+use servo_studio::device::rflex::Telemetry;
+use servo_studio::device::{Direction, LogEntry};
 use servo_studio::link::{LinkEvent, no_waker};
-use servo_studio::project::{Action, Button, Command, JoystickTable, Macro, Project, Run, Servo, ServoProject, Step};
+use servo_studio::project::plen2::{Frame, Joint, Motion, PlayEntry, PlayList, Plen2Project, Pose};
+use servo_studio::project::{
+    Action, Button, Command, Family, JoystickTable, Macro, Project, Run, Servo, ServoProject, Step,
+};
+use servo_studio::protocol::rflex::{B21R, Report, SonarReading};
 use servo_studio::protocol::servo::Message;
 use servo_studio::sim::{SimConfig, SimEvent};
+use servo_studio::ui::packet_log::MAX_ENTRIES;
 use servo_studio::ui::{Action as UiAction, BoardLink, StudioApp, Tab};
+
+const MEASURED_FRAMES: usize = 60;
 
 fn large_project() -> ServoProject {
     let servos: Vec<Servo> = (0..64u8).map(|id| Servo::new(id, format!("關節{id}"))).collect();
@@ -65,41 +85,291 @@ fn large_project() -> ServoProject {
     ServoProject { project_id: 1, servos, actions, macros, joystick_tables, active_table: Some(1) }
 }
 
-fn frame_times() {
-    let project = large_project();
-    println!(
-        "large project: {} servos, {} actions × 64 steps, {} macros × 50 commands, {} tables × 64 buttons",
-        project.servos.len(),
-        project.actions.len(),
-        project.macros.len(),
-        project.joystick_tables.len()
-    );
-    for tab in [Tab::Servos, Tab::Actions, Tab::Macros, Tab::Joystick, Tab::Board, Tab::Log] {
-        let data = std::env::temp_dir().join("servo-studio-bench");
-        let mut app = StudioApp::new(project.clone(), None, no_waker()).with_data_dir(data);
-        app.apply(UiAction::ConnectDemo);
-        app.apply(UiAction::ShowTab(tab));
-        let mut harness = Harness::builder()
-            .with_size(egui::vec2(1400.0, 900.0))
-            .with_context_setup(servo_studio::ui::fonts::install)
-            .with_accessibility_check(false)
-            .build_ui_state(|ui, app: &mut StudioApp| app.show(ui), app);
-        for _ in 0..10 {
-            harness.step();
-        }
-        let mut times: Vec<Duration> = (0..60)
-            .map(|_| {
-                let began = Instant::now();
-                harness.step();
-                began.elapsed()
+fn small_servo() -> Project {
+    let fixture = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/project-v1.json");
+    servo_studio::project::load(&fixture).unwrap()
+}
+
+fn motion(slot: u8, frames: usize) -> Motion {
+    Motion {
+        slot,
+        name: format!("Motion {slot}"),
+        frames: (0..frames)
+            .map(|f| {
+                let mut pose = Pose::default();
+                for (j, joint) in Joint::ALL.into_iter().enumerate() {
+                    pose.set(joint, ((f * 37 + j * 11 + usize::from(slot)) % 600) as i16 - 300);
+                }
+                Frame { transition_ms: 100 + (f as u16 % 5) * 50, values_tenths_deg: pose }
             })
+            .collect(),
+        loop_range: None,
+        jump_slot: None,
+    }
+}
+
+fn plen2(slots: u8, frames: usize, lists: usize, entries: usize) -> Project {
+    let motions = (0..slots).map(|slot| motion(slot, frames)).collect();
+    let play_lists = (0..lists)
+        .map(|l| PlayList {
+            name: format!("Show {l}"),
+            entries: (0..entries).map(|e| PlayEntry { slot: ((l + e) % usize::from(slots)) as u8, plays: 1 }).collect(),
+        })
+        .collect();
+    Project {
+        family: Family::Plen2,
+        plen2: Plen2Project { motions, play_lists, ..Default::default() },
+        ..Project::default()
+    }
+}
+
+/// `seconds` of a base driving circles, at the rates the driver asks for:
+/// odometry per axis every 100 ms, status every 500 ms, a sonar bank every 50 ms.
+fn telemetry(seconds: u32) -> Telemetry {
+    let mut telemetry = Telemetry::default();
+    let conversion = B21R;
+    for tick in 0..seconds * 20 {
+        let t = f64::from(tick) * 0.05;
+        let timestamp = tick * 50;
+        if tick.is_multiple_of(2) {
+            let distance = (t * 0.3 * conversion.distance_units_per_m) as i32;
+            let bearing = (t * 0.2 * conversion.angle_units_per_rad) as i32;
+            for (axis, position) in [(0u8, distance), (1, bearing)] {
+                let report = Report::Odometry {
+                    unknown: 0,
+                    timestamp,
+                    axis,
+                    position,
+                    velocity: 1000,
+                    acceleration: 0,
+                    torque: 0,
+                };
+                telemetry.record(&conversion, t, report);
+            }
+        }
+        if tick.is_multiple_of(10) {
+            let voltage_raw = 2520 - tick / 100;
+            telemetry.record(&conversion, t, Report::Status { timestamp, voltage_raw, brake: 0 });
+            telemetry.record(&conversion, t, Report::Dio { timestamp, address: 0x40 + (tick / 10 % 4) as u8, data: 0 });
+        }
+        let bank = (tick % 2) as u8;
+        let readings = (0..if bank == 0 { 16 } else { 8 })
+            .map(|i| SonarReading { sonar_id: bank * 16 + i, range: 1000 + u16::from(i) * 50 })
             .collect();
-        times.sort_unstable();
+        telemetry.record(&conversion, t, Report::Sonar { unknown: 0, timestamp, readings });
+    }
+    telemetry
+}
+
+/// One scenario: a project, a size, and what the link is given to show.
+struct Scenario {
+    family: Family,
+    size: &'static str,
+    project: Project,
+    telemetry_seconds: u32,
+    log_entries: usize,
+}
+
+fn scenarios(family: Family) -> [Scenario; 2] {
+    match family {
+        Family::Servo => [
+            Scenario { family, size: "small", project: small_servo(), telemetry_seconds: 0, log_entries: 100 },
+            Scenario {
+                family,
+                size: "large",
+                project: Project::servo(large_project()),
+                telemetry_seconds: 0,
+                log_entries: MAX_ENTRIES,
+            },
+        ],
+        Family::Plen2 => [
+            Scenario { family, size: "small", project: plen2(1, 3, 1, 2), telemetry_seconds: 0, log_entries: 100 },
+            Scenario {
+                family,
+                size: "large",
+                project: plen2(90, 20, 10, 30),
+                telemetry_seconds: 0,
+                log_entries: MAX_ENTRIES,
+            },
+        ],
+        Family::Rflex => {
+            let project = Project { family, ..Project::default() };
+            [
+                Scenario { family, size: "small", project: project.clone(), telemetry_seconds: 60, log_entries: 100 },
+                Scenario { family, size: "large", project, telemetry_seconds: 3600, log_entries: MAX_ENTRIES },
+            ]
+        }
+    }
+}
+
+fn log_entry(index: usize) -> LogEntry {
+    LogEntry {
+        seconds: index as f64 * 0.05,
+        direction: if index.is_multiple_of(2) { Direction::Sent } else { Direction::Received },
+        name: "MOT_SYSTEM_REPORT".into(),
+        fields: format!("axis {} position {index}", index % 2),
+        hex: "1b 02 02 21 00 00 00 00 00 1b 03".into(),
+    }
+}
+
+/// An app showing `scenario` on the emulated board of its family, on `tab`.
+fn app(scenario: &Scenario, tab: Tab) -> StudioApp {
+    let data = std::env::temp_dir().join("servo-studio-bench");
+    let mut app = StudioApp::new(scenario.project.clone(), None, no_waker()).with_data_dir(data);
+    app.apply(UiAction::ConnectDemo);
+    let link = app.link.as_mut().expect("the demo board connects");
+    for index in 0..scenario.log_entries.saturating_sub(link.log.len()) {
+        link.log.record(log_entry(index));
+    }
+    if let Some(base) = link.rflex_mut() {
+        base.telemetry = telemetry(scenario.telemetry_seconds);
+    }
+    app.apply(UiAction::ShowTab(tab));
+    app
+}
+
+/// The editor in an egui context of its own, run as eframe runs it: lay out
+/// the frame, then tessellate it (no GPU; AccessKit off, as it is until a
+/// screen reader asks).
+struct Window {
+    ctx: egui::Context,
+    app: StudioApp,
+}
+
+impl Window {
+    fn new(app: StudioApp) -> Self {
+        let ctx = egui::Context::default();
+        servo_studio::ui::fonts::install(&ctx);
+        Self { ctx, app }
+    }
+
+    fn step(&mut self) {
+        let input = egui::RawInput {
+            screen_rect: Some(egui::Rect::from_min_size(egui::Pos2::ZERO, egui::vec2(1400.0, 900.0))),
+            ..Default::default()
+        };
+        let output = self.ctx.run_ui(input, |ui| self.app.show(ui));
+        let primitives = self.ctx.tessellate(output.shapes, output.pixels_per_point);
+        std::hint::black_box(primitives);
+    }
+
+    fn run_steps(&mut self, steps: usize) {
+        for _ in 0..steps {
+            self.step();
+        }
+    }
+}
+
+/// Median frame time, ms.
+fn frame_time(scenario: &Scenario, tab: Tab) -> f64 {
+    let mut window = Window::new(app(scenario, tab));
+    window.run_steps(10);
+    let mut times: Vec<Duration> = (0..MEASURED_FRAMES)
+        .map(|_| {
+            let began = Instant::now();
+            window.step();
+            began.elapsed()
+        })
+        .collect();
+    times.sort_unstable();
+    let median = times[MEASURED_FRAMES / 2].as_secs_f64() * 1e3;
+    println!(
+        "frame time {:?}/{tab:?} {}: median {median:.2} ms, p90 {:.2} ms, max {:.2} ms",
+        scenario.family,
+        scenario.size,
+        times[MEASURED_FRAMES * 9 / 10].as_secs_f64() * 1e3,
+        times[MEASURED_FRAMES - 1].as_secs_f64() * 1e3
+    );
+    median
+}
+
+fn frame_times() {
+    let servo = large_project();
+    println!(
+        "large servo project: {} servos, {} actions × 64 steps, {} macros × 50 commands, {} tables × 64 buttons",
+        servo.servos.len(),
+        servo.actions.len(),
+        servo.macros.len(),
+        servo.joystick_tables.len()
+    );
+    let mut ratios = Vec::new();
+    for family in [Family::Servo, Family::Plen2, Family::Rflex] {
+        let [small, large] = scenarios(family);
+        for &tab in Tab::for_family(family) {
+            let small_ms = frame_time(&small, tab);
+            let large_ms = frame_time(&large, tab);
+            ratios.push((family, tab, large_ms / small_ms));
+        }
+    }
+    for (family, tab, ratio) in ratios {
+        println!("ratio {}/{tab:?}: large ÷ small = {ratio:.2}", family.tag());
+    }
+}
+
+/// Resident memory of this process, MB (Linux; `None` elsewhere).
+fn resident_mb() -> Option<(f64, f64)> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let field = |name: &str| {
+        status
+            .lines()
+            .find(|line| line.starts_with(name))?
+            .split_whitespace()
+            .nth(1)?
+            .parse::<f64>()
+            .ok()
+            .map(|kb| kb / 1024.0)
+    };
+    Some((field("VmRSS:")?, field("VmHWM:")?))
+}
+
+/// In a fresh process: read the project, lay out the first frame, say so; then
+/// draw every panel and report the resident memory.
+fn cold_start_child(family: Family, path: &Path) {
+    let project = servo_studio::project::load(path).unwrap();
+    let scenario = Scenario { family, size: "large", project, telemetry_seconds: 0, log_entries: 0 };
+    let data = std::env::temp_dir().join("servo-studio-bench");
+    let mut window = Window::new(StudioApp::new(scenario.project.clone(), None, no_waker()).with_data_dir(data));
+    window.step();
+    println!("first-frame");
+    let large = &scenarios(family)[1];
+    for &tab in Tab::for_family(family) {
+        Window::new(app(large, tab)).run_steps(3);
+    }
+    let (rss, peak) = resident_mb().unwrap_or((f64::NAN, f64::NAN));
+    println!("resident {rss:.1} {peak:.1}");
+}
+
+fn cold_starts() {
+    for family in [Family::Servo, Family::Plen2, Family::Rflex] {
+        let large = &scenarios(family)[1];
+        let path: PathBuf = std::env::temp_dir().join(format!("servo-studio-bench-{}.json", family.tag()));
+        servo_studio::project::save(&path, &large.project).unwrap();
+        let mut child = std::process::Command::new(std::env::current_exe().unwrap())
+            .args(["--cold-start", family.tag()])
+            .arg(&path)
+            .stdout(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        let began = Instant::now();
+        let mut lines = std::io::BufReader::new(child.stdout.take().unwrap()).lines();
+        let mut first_frame = None;
+        let mut resident = None;
+        for line in lines.by_ref() {
+            let line = line.unwrap();
+            if line == "first-frame" {
+                first_frame = Some(began.elapsed());
+            } else if let Some(figures) = line.strip_prefix("resident ") {
+                resident = Some(figures.to_string());
+            }
+        }
+        child.wait().unwrap();
+        let first_frame = first_frame.expect("the child drew a frame");
+        let (rss, peak) = resident.as_deref().and_then(|f| f.split_once(' ')).unwrap_or(("?", "?"));
         println!(
-            "frame time {tab:?}: median {:.2} ms, p90 {:.2} ms, max {:.2} ms",
-            times[30].as_secs_f64() * 1e3,
-            times[54].as_secs_f64() * 1e3,
-            times[59].as_secs_f64() * 1e3
+            "cold start {} large project ({} KB file): first frame {:.0} ms; resident memory with every panel drawn {rss} MB (peak {peak} MB)",
+            family.tag(),
+            std::fs::metadata(&path).map_or(0, |m| m.len() / 1024),
+            first_frame.as_secs_f64() * 1e3
         );
     }
 }
@@ -147,6 +417,13 @@ fn slider_latency() {
 }
 
 fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    if let Some(at) = args.iter().position(|arg| arg == "--cold-start") {
+        let family = Family::ALL.into_iter().find(|f| f.tag() == args[at + 1]).unwrap();
+        cold_start_child(family, Path::new(&args[at + 2]));
+        return;
+    }
     frame_times();
+    cold_starts();
     slider_latency();
 }

@@ -3,21 +3,25 @@
 //! together), and as a plot of each servo's angle over time; play it on the
 //! board, or preview it on the sliders without one.
 
-use egui_plot::{Legend, Line, Plot};
-
 use crate::project::{
     Action as ProjectAction, Edit, Location, Problem, ServoProject, Step, action_trajectories, next_free_id,
     validate_servo,
 };
 use crate::ui::action::Action;
 use crate::ui::i18n::Strings;
+use crate::ui::{plot, rows};
 
 /// Validation and the plot's series, computed once per document revision.
 #[derive(Debug)]
 struct Derived {
     revision: u64,
     selected: usize,
-    problems: Vec<Problem>,
+    /// The selected action's own problems.
+    action_problems: Vec<Problem>,
+    /// The selected action's first problem per step (1-based).
+    step_problems: std::collections::BTreeMap<usize, Problem>,
+    /// The selected action's longest step, ms (the timeline's scale).
+    longest_ms: f32,
     series: Vec<(String, Vec<[f64; 2]>)>,
 }
 
@@ -31,7 +35,22 @@ impl Derived {
                 (format!("{servo_id} {caption}"), points.into_iter().map(|(t, angle)| [t, angle]).collect())
             })
             .collect();
-        Self { revision, selected, problems: validate_servo(project), series }
+        let problems = validate_servo(project);
+        let action_id = project.actions[selected].id;
+        let mut step_problems = std::collections::BTreeMap::new();
+        let mut action_problems = Vec::new();
+        for problem in &problems {
+            match &problem.location {
+                Location::Step { action_id: at, step, .. } if *at == action_id => {
+                    step_problems.entry(*step).or_insert_with(|| problem.clone());
+                }
+                Location::Action { action_id: at, .. } if *at == action_id => action_problems.push(problem.clone()),
+                _ => {}
+            }
+        }
+        let bars = timeline_bars(&project.actions[selected]);
+        let longest_ms = bars.iter().map(|(_, _, end)| *end).fold(0.0, f32::max).max(10.0);
+        Self { revision, selected, action_problems, step_problems, longest_ms, series }
     }
 }
 
@@ -78,14 +97,15 @@ impl ActionPanel {
         ui.horizontal_top(|ui| {
             ui.vertical(|ui| {
                 ui.set_width(200.0);
-                egui::ScrollArea::vertical().id_salt("action-list").show(ui, |ui| {
-                    for (index, action) in project.actions.iter().enumerate() {
-                        if ui
-                            .selectable_label(index == self.selected, format!("{} {}", action.id, action.caption))
-                            .clicked()
-                        {
-                            self.selected = index;
-                        }
+                let row_height = ui.text_style_height(&egui::TextStyle::Body) + 2.0 * ui.spacing().button_padding.y;
+                let height = ui.available_height();
+                rows::list(ui, "action-list", row_height, project.actions.len(), height, |ui, index| {
+                    let action = &project.actions[index];
+                    if ui
+                        .selectable_label(index == self.selected, format!("{} {}", action.id, action.caption))
+                        .clicked()
+                    {
+                        self.selected = index;
                     }
                 });
             });
@@ -126,22 +146,25 @@ impl ActionPanel {
                 actions.push(Action::Edit { edit: Edit::RemoveAction { index }, coalesce: None });
             }
         });
-        let problems = &derived.problems;
-        for problem in problems
-            .iter()
-            .filter(|p| matches!(&p.location, Location::Action { action_id, .. } if *action_id == action.id))
-        {
+        for problem in &derived.action_problems {
             ui.colored_label(ui.visuals().warn_fg_color, words.lang.problem(&problem.kind));
         }
-        egui::Grid::new("steps").striped(true).show(ui, |ui| {
-            for (position, step) in action.steps.iter().enumerate() {
-                let with = |changed: Step, key: Option<String>| {
-                    let mut action = action.clone();
-                    action.steps[position] = changed;
-                    set(index, action, key)
-                };
-                let row = ui.label(format!("{}", position + 1));
-                let servo_text = project.servo(step.servo_id).map_or_else(|| format!("{} ?", step.servo_id), |s| format!("{} {}", s.id, s.caption));
+        let headings = words.headings();
+        let heading = [headings.step, words.servo_word, headings.angle, headings.interval, "", ""];
+        let height = (ui.available_height() * 0.4).max(120.0);
+        rows::table(ui, "steps", &heading, action.steps.len(), height, |row, position| {
+            let step = &action.steps[position];
+            let with = |changed: Step, key: Option<String>| {
+                let mut action = action.clone();
+                action.steps[position] = changed;
+                set(index, action, key)
+            };
+            let mut row_id = egui::Id::NULL;
+            row.col(|ui| row_id = ui.label(format!("{}", position + 1)).id);
+            row.col(|ui| {
+                let servo_text = project
+                    .servo(step.servo_id)
+                    .map_or_else(|| format!("{} ?", step.servo_id), |s| format!("{} {}", s.id, s.caption));
                 let mut servo_id = step.servo_id;
                 egui::ComboBox::from_id_salt(("step-servo", position))
                     .selected_text(servo_text)
@@ -151,48 +174,54 @@ impl ActionPanel {
                         }
                     })
                     .response
-                    .labelled_by(row.id);
+                    .labelled_by(row_id);
                 if servo_id != step.servo_id {
                     actions.push(with(Step { servo_id, ..*step }, None));
                 }
+            });
+            row.col(|ui| {
                 let (low, high) = project.servo(step.servo_id).map_or((i16::MIN, i16::MAX), |s| (s.min_deg, s.max_deg));
                 let mut degree = step.degree;
-                if ui.add(egui::DragValue::new(&mut degree).clamp_existing_to_range(false).range(low..=high).suffix("°")).labelled_by(row.id).changed() {
-                    actions.push(with(Step { degree, ..*step }, Some(format!("action {} step {position} degree", action.id))));
+                let drag =
+                    egui::DragValue::new(&mut degree).clamp_existing_to_range(false).range(low..=high).suffix("°");
+                if ui.add(drag).labelled_by(row_id).changed() {
+                    let key = format!("action {} step {position} degree", action.id);
+                    actions.push(with(Step { degree, ..*step }, Some(key)));
                 }
+            });
+            row.col(|ui| {
                 let mut interval = step.interval_10ms;
-                if ui.add(egui::DragValue::new(&mut interval).clamp_existing_to_range(false).range(0..=i16::MAX).suffix(" × 10 ms")).labelled_by(row.id).changed() {
-                    actions.push(with(
-                        Step { interval_10ms: interval, ..*step },
-                        Some(format!("action {} step {position} interval", action.id)),
-                    ));
+                let drag = egui::DragValue::new(&mut interval)
+                    .clamp_existing_to_range(false)
+                    .range(0..=i16::MAX)
+                    .suffix(" × 10 ms");
+                if ui.add(drag).labelled_by(row_id).changed() {
+                    let key = format!("action {} step {position} interval", action.id);
+                    actions.push(with(Step { interval_10ms: interval, ..*step }, Some(key)));
                 }
-                ui.horizontal(|ui| {
-                    if ui.add_enabled(position > 0, egui::Button::new("↑")).clicked() {
-                        let mut moved = action.clone();
-                        moved.steps.swap(position, position - 1);
-                        actions.push(set(index, moved, None));
-                    }
-                    if ui.add_enabled(position + 1 < action.steps.len(), egui::Button::new("↓")).clicked() {
-                        let mut moved = action.clone();
-                        moved.steps.swap(position, position + 1);
-                        actions.push(set(index, moved, None));
-                    }
-                    if ui.button("×").on_hover_text(words.remove).clicked() {
-                        let mut fewer = action.clone();
-                        fewer.steps.remove(position);
-                        actions.push(set(index, fewer, None));
-                    }
-                });
-                let at = position + 1;
-                if let Some(problem) = problems
-                    .iter()
-                    .find(|p| matches!(&p.location, Location::Step { action_id, step, .. } if *action_id == action.id && *step == at))
-                {
+            });
+            row.col(|ui| {
+                if ui.add_enabled(position > 0, egui::Button::new("↑")).clicked() {
+                    let mut moved = action.clone();
+                    moved.steps.swap(position, position - 1);
+                    actions.push(set(index, moved, None));
+                }
+                if ui.add_enabled(position + 1 < action.steps.len(), egui::Button::new("↓")).clicked() {
+                    let mut moved = action.clone();
+                    moved.steps.swap(position, position + 1);
+                    actions.push(set(index, moved, None));
+                }
+                if ui.button("×").on_hover_text(words.remove).clicked() {
+                    let mut fewer = action.clone();
+                    fewer.steps.remove(position);
+                    actions.push(set(index, fewer, None));
+                }
+            });
+            row.col(|ui| {
+                if let Some(problem) = derived.step_problems.get(&(position + 1)) {
                     ui.colored_label(ui.visuals().error_fg_color, words.lang.problem(&problem.kind));
                 }
-                ui.end_row();
-            }
+            });
         });
         let unused = project.servos.iter().find(|servo| action.steps.iter().all(|step| step.servo_id != servo.id));
         if ui.add_enabled(unused.is_some(), egui::Button::new(words.add_step)).clicked()
@@ -202,13 +231,9 @@ impl ActionPanel {
             more.steps.push(Step { servo_id: servo.id, degree: servo.home_deg, interval_10ms: 50 });
             actions.push(set(index, more, None));
         }
-        timeline(ui, project, action);
+        timeline(ui, project, action, derived.longest_ms);
         if !derived.series.is_empty() {
-            Plot::new("action-plot").height(180.0).legend(Legend::default()).x_axis_label("ms").show(ui, |plot| {
-                for (name, series) in &derived.series {
-                    plot.line(Line::new(name.clone(), series.clone()));
-                }
-            });
+            plot::series(ui, "action-plot", 180.0, ["ms", "°"], &derived.series);
         }
     }
 }
@@ -219,61 +244,76 @@ pub fn timeline_bars(action: &ProjectAction) -> Vec<(u8, f32, f32)> {
     action.steps.iter().map(|step| (step.servo_id, 0.0, f32::from(step.interval_10ms.max(0)) * 10.0)).collect()
 }
 
-/// A lane per servo, a bar per step from 0 to its interval.
-fn timeline(ui: &mut egui::Ui, project: &ServoProject, action: &ProjectAction) {
+/// A lane per servo, a bar per step from 0 to its interval; only the lanes in
+/// view are drawn.
+fn timeline(ui: &mut egui::Ui, project: &ServoProject, action: &ProjectAction, longest_ms: f32) {
     if action.steps.is_empty() {
         return;
     }
-    let bars = timeline_bars(action);
-    let longest_ms = bars.iter().map(|(_, _, end)| *end).fold(0.0, f32::max).max(10.0);
     let lane_height = 18.0;
     let label_width = 110.0;
-    let height = lane_height * action.steps.len() as f32 + 16.0;
-    let (rect, _) = ui.allocate_exact_size(egui::vec2(ui.available_width().min(900.0), height), egui::Sense::hover());
-    let painter = ui.painter_at(rect);
-    let visuals = ui.visuals();
-    // Room on the right for the longest bar's label.
-    let track = egui::Rect::from_min_max(
-        egui::pos2(rect.left() + label_width, rect.top()),
-        egui::pos2(rect.right() - 110.0, rect.bottom()),
-    );
-    let x_of = |ms: f32| track.left() + track.width() * ms / longest_ms;
-    for (lane, (step, (_, start_ms, end_ms))) in action.steps.iter().zip(bars).enumerate() {
-        let top = rect.top() + lane as f32 * lane_height;
-        let caption = project.servo(step.servo_id).map_or_else(String::new, |s| s.caption.clone());
-        painter.text(
-            egui::pos2(rect.left(), top + lane_height / 2.0),
-            egui::Align2::LEFT_CENTER,
-            format!("{} {caption}", step.servo_id),
-            egui::TextStyle::Small.resolve(ui.style()),
-            visuals.text_color(),
-        );
-        let bar = egui::Rect::from_min_max(
-            egui::pos2(x_of(start_ms), top + 3.0),
-            egui::pos2(x_of(end_ms).max(x_of(0.0) + 2.0), top + lane_height - 3.0),
-        );
-        painter.rect_filled(bar, 3.0, visuals.selection.bg_fill);
-        painter.text(
-            bar.right_center() + egui::vec2(4.0, 0.0),
-            egui::Align2::LEFT_CENTER,
-            format!("{}° · {} ms", step.degree, end_ms),
-            egui::TextStyle::Small.resolve(ui.style()),
-            visuals.weak_text_color(),
-        );
-    }
-    let axis_y = rect.bottom() - 8.0;
-    painter.text(
-        egui::pos2(x_of(0.0), axis_y),
-        egui::Align2::LEFT_CENTER,
-        "0",
-        egui::TextStyle::Small.resolve(ui.style()),
-        visuals.weak_text_color(),
-    );
-    painter.text(
-        egui::pos2(x_of(longest_ms), axis_y),
-        egui::Align2::RIGHT_CENTER,
-        format!("{longest_ms} ms"),
-        egui::TextStyle::Small.resolve(ui.style()),
-        visuals.weak_text_color(),
-    );
+    let width = ui.available_width().min(900.0);
+    egui::ScrollArea::vertical()
+        .id_salt("timeline")
+        .max_height(6.5 * lane_height)
+        .auto_shrink([false, true])
+        .show_viewport(ui, |ui, viewport| {
+            let height = lane_height * action.steps.len() as f32 + 16.0;
+            let (rect, _) = ui.allocate_exact_size(egui::vec2(width, height), egui::Sense::hover());
+            let painter = ui.painter_at(rect);
+            let visuals = ui.visuals();
+            let small = egui::TextStyle::Small.resolve(ui.style());
+            // Room on the right for the longest bar's label.
+            let track = egui::Rect::from_min_max(
+                egui::pos2(rect.left() + label_width, rect.top()),
+                egui::pos2(rect.right() - 110.0, rect.bottom()),
+            );
+            let x_of = |ms: f32| track.left() + track.width() * ms / longest_ms;
+            // Lane numbers from pixels: small, non-negative (the viewport starts at 0).
+            #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+            let (first, last) = (
+                (viewport.top() / lane_height).floor().max(0.0) as usize,
+                ((viewport.bottom() / lane_height).ceil().max(0.0) as usize + 1).min(action.steps.len()),
+            );
+            for lane in first..last {
+                let step = &action.steps[lane];
+                let end_ms = f32::from(step.interval_10ms.max(0)) * 10.0;
+                let top = rect.top() + lane as f32 * lane_height;
+                let caption = project.servo(step.servo_id).map_or("", |s| s.caption.as_str());
+                painter.text(
+                    egui::pos2(rect.left(), top + lane_height / 2.0),
+                    egui::Align2::LEFT_CENTER,
+                    format!("{} {caption}", step.servo_id),
+                    small.clone(),
+                    visuals.text_color(),
+                );
+                let bar = egui::Rect::from_min_max(
+                    egui::pos2(x_of(0.0), top + 3.0),
+                    egui::pos2(x_of(end_ms).max(x_of(0.0) + 2.0), top + lane_height - 3.0),
+                );
+                painter.rect_filled(bar, 3.0, visuals.selection.bg_fill);
+                painter.text(
+                    bar.right_center() + egui::vec2(4.0, 0.0),
+                    egui::Align2::LEFT_CENTER,
+                    format!("{}° · {} ms", step.degree, end_ms),
+                    small.clone(),
+                    visuals.weak_text_color(),
+                );
+            }
+            let axis_y = rect.bottom() - 8.0;
+            painter.text(
+                egui::pos2(x_of(0.0), axis_y),
+                egui::Align2::LEFT_CENTER,
+                "0",
+                small.clone(),
+                visuals.weak_text_color(),
+            );
+            painter.text(
+                egui::pos2(x_of(longest_ms), axis_y),
+                egui::Align2::RIGHT_CENTER,
+                format!("{longest_ms} ms"),
+                small,
+                visuals.weak_text_color(),
+            );
+        });
 }

@@ -39,6 +39,8 @@ pub enum LinkNotice {
 
 /// The connected board's driver, by family.
 #[derive(Debug)]
+// One per window: the size of the largest variant costs nothing worth a box.
+#[allow(clippy::large_enum_variant)]
 pub enum Device {
     /// A servo controller board.
     Servo(ServoHandle),

@@ -6,6 +6,7 @@ use std::path::PathBuf;
 
 use crate::ui::action::{Action, BoardIntent};
 use crate::ui::job::{Job, JobKind};
+use crate::ui::rows;
 
 /// A comparison waiting for the user's go-ahead.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -132,10 +133,9 @@ pub fn ui(ui: &mut egui::Ui, view: &BoardView<'_>, words: &crate::ui::i18n::Stri
             ui.label(words.already_identical);
         } else {
             ui.label(format!("{} {}", pending.differences.len(), words.differences));
-            egui::ScrollArea::vertical().max_height(180.0).id_salt("differences").show(ui, |ui| {
-                for difference in &pending.differences {
-                    ui.monospace(difference);
-                }
+            let row_height = ui.text_style_height(&egui::TextStyle::Monospace);
+            rows::list(ui, "differences", row_height, pending.differences.len(), 180.0, |ui, index| {
+                ui.monospace(&pending.differences[index]);
             });
         }
         ui.horizontal(|ui| {
@@ -189,11 +189,51 @@ pub fn ui(ui: &mut egui::Ui, view: &BoardView<'_>, words: &crate::ui::i18n::Stri
             }
         };
         if !items.is_empty() {
-            egui::ScrollArea::vertical().max_height(220.0).id_salt("items").show(ui, |ui| {
-                for item in items {
-                    ui.label(format!("√ {item}"));
-                }
+            let row_height = ui.text_style_height(&egui::TextStyle::Body);
+            rows::list(ui, "items", row_height, items.len(), 220.0, |ui, index| {
+                ui.label(format!("√ {}", items[index]));
             });
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use egui_kittest::Harness;
+    use egui_kittest::kittest::Queryable;
+
+    use super::*;
+    use crate::ui::i18n::Language;
+
+    /// With 500 differences waiting and 500 items uploaded, only the rows in
+    /// view of each list are laid out.
+    #[test]
+    fn the_difference_and_item_lists_lay_out_the_rows_in_view() {
+        let pending = PendingConfirm {
+            intent: BoardIntent::Upload,
+            differences: (0..500).map(|n| format!("difference {n}")).collect(),
+        };
+        let result =
+            BoardResult::Uploaded { items: (0..500).map(|n| format!("uploaded item {n}")).collect(), backup: None };
+        let mut harness =
+            Harness::builder().with_size(egui::vec2(1000.0, 800.0)).with_accessibility_check(false).build_ui(|panel| {
+                let view = BoardView {
+                    connected: true,
+                    project_bytes: Ok(1000),
+                    board_total_bytes: Some(60_000),
+                    job: None,
+                    pending: Some(&pending),
+                    result: Some(&result),
+                };
+                let mut actions = Vec::new();
+                ui(panel, &view, Language::English.strings(), &mut actions);
+            });
+        harness.run_steps(3);
+        for (needle, height) in [("difference ", 180), ("uploaded item ", 220)] {
+            let laid_out = harness.query_all_by_label_contains(needle).count();
+            // A list `height` pixels tall shows about height ÷ 16 rows (plus one partly shown).
+            let bound = height / 14 + 2;
+            assert!((3..=bound).contains(&laid_out), "{needle}: {laid_out} of 500 rows laid out (bound {bound})");
         }
     }
 }

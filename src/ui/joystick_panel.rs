@@ -6,6 +6,7 @@ use crate::device::servo::ButtonEvent;
 use crate::project::{Button, Edit, JoystickTable, ServoProject, next_free_id};
 use crate::ui::action::Action;
 use crate::ui::i18n::Strings;
+use crate::ui::rows;
 
 /// What the panel draws besides the project.
 #[derive(Debug)]
@@ -62,15 +63,16 @@ impl JoystickPanel {
         ui.horizontal_top(|ui| {
             ui.vertical(|ui| {
                 ui.set_width(200.0);
-                for (position, table) in project.joystick_tables.iter().enumerate() {
+                let row_height = ui.text_style_height(&egui::TextStyle::Body) + 2.0 * ui.spacing().button_padding.y;
+                let count = project.joystick_tables.len();
+                rows::list(ui, "joystick-tables", row_height, count, 240.0, |ui, position| {
+                    let table = &project.joystick_tables[position];
                     let active = if project.active_table == Some(table.id) { " ★" } else { "" };
-                    if ui
-                        .selectable_label(position == index, format!("{} {}{active}", table.id, table.caption))
-                        .clicked()
-                    {
+                    let text = format!("{} {}{active}", table.id, table.caption);
+                    if ui.selectable_label(position == index, text).clicked() {
                         self.selected = position;
                     }
-                }
+                });
                 ui.separator();
                 ui.label(words.live_events);
                 for (button_id, event) in view.events.iter().rev().take(12) {
@@ -137,41 +139,44 @@ impl JoystickPanel {
                 project.macro_by_id(id).map_or_else(|| format!("{id} ?"), |m| format!("{} {}", m.id, m.caption))
             }
         };
-        egui::Grid::new("buttons").striped(true).show(ui, |ui| {
-            for heading in [
-                words.button,
-                words.caption,
-                words.on_press,
-                words.on_long_press,
-                words.on_release,
-                words.uninterruptible,
-                "",
-            ] {
-                ui.strong(heading);
-            }
-            ui.end_row();
-            for (position, button) in table.buttons.iter().enumerate() {
-                let with = |changed: Button, key: Option<String>| {
-                    let mut table = table.clone();
-                    table.buttons[position] = changed;
-                    set(table, key)
-                };
+        let heading = [
+            words.button,
+            words.caption,
+            words.on_press,
+            words.on_long_press,
+            words.on_release,
+            words.uninterruptible,
+            "",
+        ];
+        let height = ui.available_height();
+        rows::table(ui, "buttons", &heading, table.buttons.len(), height, |row, position| {
+            let button = &table.buttons[position];
+            let with = |changed: Button, key: Option<String>| {
+                let mut table = table.clone();
+                table.buttons[position] = changed;
+                set(table, key)
+            };
+            let mut row_id = egui::Id::NULL;
+            row.col(|ui| {
                 let id_text = format!("0x{:08x}", button.id);
-                let row = if view.picked == Some(button.id) {
+                let label = if view.picked == Some(button.id) {
                     ui.label(egui::RichText::new(format!("→ {id_text}")).strong())
                 } else {
                     ui.monospace(id_text)
                 };
+                row_id = label.id;
+            });
+            row.col(|ui| {
                 let mut caption = button.caption.clone();
-                if ui.add(egui::TextEdit::singleline(&mut caption).desired_width(140.0)).labelled_by(row.id).changed() {
+                if ui.add(egui::TextEdit::singleline(&mut caption).desired_width(140.0)).labelled_by(row_id).changed() {
                     actions.push(with(
                         Button { caption, ..button.clone() },
                         Some(format!("table {} button {} caption", table.id, button.id)),
                     ));
                 }
-                for (slot, current) in
-                    [(0, button.press_macro), (1, button.long_press_macro), (2, button.release_macro)]
-                {
+            });
+            for (slot, current) in [(0, button.press_macro), (1, button.long_press_macro), (2, button.release_macro)] {
+                row.col(|ui| {
                     let mut chosen = current;
                     egui::ComboBox::from_id_salt(("macro", position, slot))
                         .selected_text(macro_text(current))
@@ -186,7 +191,7 @@ impl JoystickPanel {
                             }
                         })
                         .response
-                        .labelled_by(row.id);
+                        .labelled_by(row_id);
                     if chosen != current {
                         let mut changed = button.clone();
                         match slot {
@@ -196,18 +201,21 @@ impl JoystickPanel {
                         }
                         actions.push(with(changed, None));
                     }
-                }
+                });
+            }
+            row.col(|ui| {
                 let mut uninterruptible = button.uninterruptible;
-                if ui.checkbox(&mut uninterruptible, "").labelled_by(row.id).changed() {
+                if ui.checkbox(&mut uninterruptible, "").labelled_by(row_id).changed() {
                     actions.push(with(Button { uninterruptible, ..button.clone() }, None));
                 }
+            });
+            row.col(|ui| {
                 if ui.button("×").on_hover_text(words.remove).clicked() {
                     let mut fewer = table.clone();
                     fewer.buttons.remove(position);
                     actions.push(set(fewer, None));
                 }
-                ui.end_row();
-            }
+            });
         });
     }
 }

@@ -3,14 +3,13 @@
 //! duration, a plot of every servo's trajectory over the whole macro, and the
 //! validation problems of the macro shown inline.
 
-use egui_plot::{Legend, Line, Plot};
-
 use crate::project::{
     Command, Edit, Location, Macro, Problem, Run, ServoProject, Severity, Timing, TimingError, macro_trajectories,
     next_free_id, validate_servo,
 };
 use crate::ui::action::Action;
 use crate::ui::i18n::Strings;
+use crate::ui::{plot, rows};
 
 /// What the composer derives from the project, computed once per document
 /// revision (validation and timing of a large project take milliseconds).
@@ -18,7 +17,12 @@ use crate::ui::i18n::Strings;
 struct Derived {
     revision: u64,
     selected: usize,
-    problems: Vec<Problem>,
+    /// The selected macro's own problems.
+    macro_problems: Vec<Problem>,
+    /// Macros with a problem (marked in the list).
+    flagged: std::collections::BTreeSet<i32>,
+    /// The selected macro's first problem per command (1-based).
+    command_problems: std::collections::BTreeMap<usize, Problem>,
     command_totals_ms: Vec<Result<i64, TimingError>>,
     macro_total_ms: Result<i64, TimingError>,
     series: Vec<(String, Vec<[f64; 2]>)>,
@@ -36,10 +40,33 @@ impl Derived {
                 (format!("{servo_id} {caption}"), points.into_iter().map(|(t, angle)| [t, angle]).collect())
             })
             .collect();
+        let problems = validate_servo(project);
+        let mut flagged = std::collections::BTreeSet::new();
+        let mut command_problems = std::collections::BTreeMap::new();
+        let mut macro_problems = Vec::new();
+        for problem in &problems {
+            match &problem.location {
+                Location::Macro { macro_id, .. } => {
+                    flagged.insert(*macro_id);
+                    if *macro_id == item.id {
+                        macro_problems.push(problem.clone());
+                    }
+                }
+                Location::Command { macro_id, command, .. } => {
+                    flagged.insert(*macro_id);
+                    if *macro_id == item.id {
+                        command_problems.entry(*command).or_insert_with(|| problem.clone());
+                    }
+                }
+                _ => {}
+            }
+        }
         Self {
             revision,
             selected,
-            problems: validate_servo(project),
+            macro_problems,
+            flagged,
+            command_problems,
             command_totals_ms: item.commands.iter().map(|command| timing.command_total_ms(command)).collect(),
             macro_total_ms: timing.macro_total_ms(item.id),
             series,
@@ -97,20 +124,19 @@ impl MacroPanel {
             self.derived = Some(Derived::compute(project, revision, self.selected));
         }
         let Some(derived) = self.derived.take() else { return };
-        let problems = &derived.problems;
         ui.horizontal_top(|ui| {
             ui.vertical(|ui| {
                 ui.set_width(200.0);
-                for (index, item) in project.macros.iter().enumerate() {
-                    let flagged = problems.iter().any(|p| match &p.location {
-                        Location::Macro { macro_id, .. } | Location::Command { macro_id, .. } => *macro_id == item.id,
-                        _ => false,
-                    });
+                let row_height = ui.text_style_height(&egui::TextStyle::Body) + 2.0 * ui.spacing().button_padding.y;
+                let height = ui.available_height();
+                rows::list(ui, "macro-list", row_height, project.macros.len(), height, |ui, index| {
+                    let item = &project.macros[index];
+                    let flagged = derived.flagged.contains(&item.id);
                     let text = format!("{}{} {}", if flagged { "! " } else { "" }, item.id, item.caption);
                     if ui.selectable_label(index == self.selected, text).clicked() {
                         self.selected = index;
                     }
-                }
+                });
             });
             ui.separator();
             ui.vertical(|ui| self.editor(ui, project, &derived, connected, words, actions));
@@ -129,7 +155,6 @@ impl MacroPanel {
     ) {
         let index = self.selected;
         let item = &project.macros[index];
-        let problems = &derived.problems;
         ui.horizontal(|ui| {
             let label = ui.label(format!("{} {}", words.macro_word, item.id));
             let mut caption = item.caption.clone();
@@ -148,35 +173,33 @@ impl MacroPanel {
                 actions.push(Action::Edit { edit: Edit::RemoveMacro { index }, coalesce: None });
             }
         });
-        for problem in
-            problems.iter().filter(|p| matches!(&p.location, Location::Macro { macro_id, .. } if *macro_id == item.id))
-        {
+        for problem in &derived.macro_problems {
             ui.colored_label(ui.visuals().warn_fg_color, words.lang.problem(&problem.kind));
         }
-        let mut notes = Vec::new();
-        egui::Grid::new("commands").striped(true).show(ui, |ui| {
-            for (position, command) in item.commands.iter().enumerate() {
-                let total = derived.command_totals_ms.get(position).copied().unwrap_or(Err(TimingError::ZeroRatio));
-                self.command_row(ui, project, total, item, index, position, command, words, actions);
-                let at = position + 1;
-                let mut mine = problems.iter().filter(
-                    |p| matches!(&p.location, Location::Command { macro_id, command, .. } if *macro_id == item.id && *command == at),
-                );
-                if let Some(problem) = mine.next() {
-                    // The row is marked; the note itself wraps below the table.
-                    let (mark, color) = match problem.severity {
-                        Severity::Error => ("!", ui.visuals().error_fg_color),
-                        Severity::Warning => ("!", ui.visuals().warn_fg_color),
-                    };
-                    let text = words.lang.problem(&problem.kind);
-                    ui.colored_label(color, mark).on_hover_text(&text);
-                    notes.push((at, color, text));
-                }
-                ui.end_row();
+        let height = (ui.available_height() * 0.45).max(120.0);
+        rows::grid(ui, "commands", item.commands.len(), height, |ui, position| {
+            let command = &item.commands[position];
+            let total = derived.command_totals_ms.get(position).copied().unwrap_or(Err(TimingError::ZeroRatio));
+            self.command_row(ui, project, total, item, index, position, command, words, actions);
+            if let Some(problem) = derived.command_problems.get(&(position + 1)) {
+                let color = match problem.severity {
+                    Severity::Error => ui.visuals().error_fg_color,
+                    Severity::Warning => ui.visuals().warn_fg_color,
+                };
+                // The row is marked; the note itself is below the table.
+                ui.colored_label(color, "!").on_hover_text(words.lang.problem(&problem.kind));
             }
         });
-        for (at, color, text) in notes {
-            ui.colored_label(color, format!("{at}: {text}"));
+        let notes = derived.command_problems.len();
+        for (at, problem) in derived.command_problems.iter().take(3) {
+            let color = match problem.severity {
+                Severity::Error => ui.visuals().error_fg_color,
+                Severity::Warning => ui.visuals().warn_fg_color,
+            };
+            ui.colored_label(color, format!("{at}: {}", words.lang.problem(&problem.kind)));
+        }
+        if notes > 3 {
+            ui.colored_label(ui.visuals().warn_fg_color, format!("… +{}", notes - 3));
         }
         ui.horizontal(|ui| {
             let add = |run: Run| {
@@ -197,14 +220,7 @@ impl MacroPanel {
             }
         });
         if !derived.series.is_empty() {
-            Plot::new("macro-plot").height(220.0).legend(Legend::default()).x_axis_label("ms").y_axis_label("°").show(
-                ui,
-                |plot| {
-                    for (name, series) in &derived.series {
-                        plot.line(Line::new(name.clone(), series.clone()));
-                    }
-                },
-            );
+            plot::series(ui, "macro-plot", 220.0, ["ms", "°"], &derived.series);
         }
     }
 

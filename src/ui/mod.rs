@@ -20,6 +20,9 @@ mod plen2_board;
 mod plen2_job;
 mod plen2_joints;
 mod plen2_motions;
+mod plen2_play_lists;
+mod plot;
+mod rows;
 mod servo_panel;
 mod telemetry_panel;
 

@@ -10,14 +10,24 @@ use crate::device::LogEntry;
 pub const MAX_ENTRIES: usize = 20_000;
 
 fn matches(entry: &LogEntry, filter: &str) -> bool {
-    filter.is_empty() || entry.line().to_lowercase().contains(&filter.to_lowercase())
+    filter.is_empty() || entry.line().to_lowercase().contains(filter)
 }
 
-/// The log's entries and the panel's filter.
+/// The log's entries and the panel's filter. The entries that pass the filter
+/// are kept as a list, brought up to date with the entries that arrived since
+/// the last frame: a frame never re-reads the whole log.
 #[derive(Debug, Default)]
 pub struct PacketLog {
     entries: VecDeque<LogEntry>,
+    /// Sequence number of `entries[0]` (entries dropped so far).
+    first: usize,
     filter: String,
+    /// Sequence numbers of the entries that pass `matched_filter`, in order.
+    matched: VecDeque<usize>,
+    /// The filter `matched` was made for (lower case).
+    matched_filter: String,
+    /// Entries before this sequence number have been matched.
+    matched_up_to: usize,
 }
 
 impl PacketLog {
@@ -25,6 +35,7 @@ impl PacketLog {
     pub fn record(&mut self, entry: LogEntry) {
         if self.entries.len() == MAX_ENTRIES {
             self.entries.pop_front();
+            self.first += 1;
         }
         self.entries.push_back(entry);
     }
@@ -39,9 +50,35 @@ impl PacketLog {
         self.entries.is_empty()
     }
 
+    /// Brings the list of matching entries up to date: new entries are
+    /// matched, dropped ones forgotten; only a new filter reads them all.
+    fn refresh(&mut self) {
+        let filter = self.filter.to_lowercase();
+        if filter != self.matched_filter {
+            self.matched.clear();
+            self.matched_filter = filter;
+            self.matched_up_to = self.first;
+        }
+        while self.matched.front().is_some_and(|&sequence| sequence < self.first) {
+            self.matched.pop_front();
+        }
+        let end = self.first + self.entries.len();
+        for sequence in self.matched_up_to.max(self.first)..end {
+            if matches(&self.entries[sequence - self.first], &self.matched_filter) {
+                self.matched.push_back(sequence);
+            }
+        }
+        self.matched_up_to = end;
+    }
+
+    fn matched_entry(&self, row: usize) -> &LogEntry {
+        &self.entries[self.matched[row] - self.first]
+    }
+
     /// The entries that pass the filter.
-    pub fn visible(&self) -> Vec<&LogEntry> {
-        self.entries.iter().filter(|entry| matches(entry, &self.filter)).collect()
+    pub fn visible(&mut self) -> Vec<&LogEntry> {
+        self.refresh();
+        (0..self.matched.len()).map(|row| self.matched_entry(row)).collect()
     }
 
     /// Sets the filter (case-insensitive substring of the line).
@@ -51,30 +88,34 @@ impl PacketLog {
 
     /// Draws the log.
     pub fn ui(&mut self, ui: &mut egui::Ui, words: &crate::ui::i18n::Strings) {
+        self.refresh();
         ui.horizontal(|ui| {
             ui.heading(words.packet_log);
             let label = ui.label(words.filter);
             ui.add(egui::TextEdit::singleline(&mut self.filter).hint_text(words.filter_hint).desired_width(240.0))
                 .labelled_by(label.id);
             if ui.button(words.copy).on_hover_text(words.copy_hint).clicked() {
-                let text: Vec<String> = self.visible().iter().map(|entry| entry.line()).collect();
+                let text: Vec<String> = (0..self.matched.len()).map(|row| self.matched_entry(row).line()).collect();
                 ui.ctx().copy_text(text.join("\n"));
             }
             if ui.button(words.clear).clicked() {
+                self.first += self.entries.len();
                 self.entries.clear();
             }
-            ui.label(format!("{} / {}", self.visible().len(), self.entries.len()));
         });
-        let visible = self.visible();
+        // A filter typed this frame, or a clear, applies now.
+        self.refresh();
+        ui.label(format!("{} / {}", self.matched.len(), self.entries.len()));
         let row_height = ui.text_style_height(&egui::TextStyle::Monospace) + 2.0;
         egui::ScrollArea::both().auto_shrink([false, false]).stick_to_bottom(true).show_rows(
             ui,
             row_height,
-            visible.len(),
+            self.matched.len(),
             |ui, rows| {
-                for entry in &visible[rows] {
+                for row in rows {
                     // One line per row, never wrapped: rows are virtualised by height.
-                    ui.add(egui::Label::new(egui::RichText::new(entry.line()).monospace()).extend());
+                    let line = self.matched_entry(row).line();
+                    ui.add(egui::Label::new(egui::RichText::new(line).monospace()).extend());
                 }
             },
         );
@@ -108,5 +149,25 @@ mod tests {
             log.record(entry(index as f64, "QueryProjectIDRequest"));
         }
         assert_eq!(log.len(), MAX_ENTRIES);
+    }
+
+    #[test]
+    fn the_filtered_list_follows_new_and_dropped_entries() {
+        let mut log = PacketLog::default();
+        log.set_filter("Odd");
+        for index in 0..MAX_ENTRIES {
+            log.record(entry(index as f64, if index % 2 == 1 { "odd" } else { "even" }));
+        }
+        assert_eq!(log.visible().len(), MAX_ENTRIES / 2);
+        // 10 more entries push the 10 oldest (5 of them odd) out.
+        for index in MAX_ENTRIES..MAX_ENTRIES + 10 {
+            log.record(entry(index as f64, if index % 2 == 1 { "odd" } else { "even" }));
+        }
+        let visible = log.visible();
+        assert_eq!(visible.len(), MAX_ENTRIES / 2);
+        assert_eq!(visible.first().unwrap().seconds, 11.0);
+        assert_eq!(visible.last().unwrap().seconds, (MAX_ENTRIES + 9) as f64);
+        log.set_filter("");
+        assert_eq!(log.visible().len(), MAX_ENTRIES);
     }
 }

@@ -1,95 +1,21 @@
-//! PLEN2 play lists, and the robot panel: a map of the 90 slots (the
+//! The PLEN2 robot panel: a map of the 90 slots (the
 //! project's motion and the robot's, differences marked), read the robot,
 //! upload with backup and verification, read into the project, export to a file.
 
 use crate::device::plen2::Plen2Phase;
-use crate::project::Edit;
-use crate::project::plen2::{Motion, PlayEntry, PlayList, Plen2Project, SLOTS};
+use crate::project::plen2::{Motion, Plen2Project, SLOTS};
 use crate::ui::action::{Action, Plen2Intent};
 use crate::ui::i18n::Strings;
 use crate::ui::plen2_job::Plen2Job;
-
-/// Draws the play lists.
-pub fn play_lists(
-    ui: &mut egui::Ui,
-    project: &Plen2Project,
-    connected: bool,
-    words: &Strings,
-    actions: &mut Vec<Action>,
-) {
-    let edit = |change: &dyn Fn(&mut Plen2Project)| {
-        let mut changed = project.clone();
-        change(&mut changed);
-        Action::Edit { edit: Edit::SetPlen2(Box::new(changed)), coalesce: Some("plen2 play lists".into()) }
-    };
-    ui.horizontal(|ui| {
-        ui.heading(words.play_lists);
-        if ui.button(words.add_play_list).clicked() {
-            let name = format!("{} {}", words.play_lists, project.play_lists.len() + 1);
-            actions.push(edit(&|p| p.play_lists.push(PlayList { name: name.clone(), entries: Vec::new() })));
-        }
-    });
-    for (index, list) in project.play_lists.iter().enumerate() {
-        ui.separator();
-        ui.horizontal(|ui| {
-            let mut name = list.name.clone();
-            if ui.text_edit_singleline(&mut name).changed() {
-                actions.push(edit(&|p| p.play_lists[index].name = name.clone()));
-            }
-            if ui
-                .add_enabled(connected && !list.entries.is_empty(), egui::Button::new(words.play_on_robot))
-                .on_hover_text("#RI, #PU…, #PO")
-                .clicked()
-            {
-                actions.push(Action::PlayList(index));
-            }
-            if ui.button(words.add_entry).clicked() {
-                let slot = project.motions.first().map_or(0, |m| m.slot);
-                actions.push(edit(&|p| p.play_lists[index].entries.push(PlayEntry { slot, plays: 1 })));
-            }
-            if ui.button(words.remove).clicked() {
-                actions.push(edit(&|p| {
-                    p.play_lists.remove(index);
-                }));
-            }
-        });
-        for (position, entry) in list.entries.iter().enumerate() {
-            ui.horizontal(|ui| {
-                let mut changed = *entry;
-                let name = project.motions.iter().find(|m| m.slot == entry.slot).map_or("—", |m| m.name.as_str());
-                egui::ComboBox::from_id_salt(("plen2-entry", index, position))
-                    .selected_text(format!("{} {name}", entry.slot))
-                    .show_ui(ui, |ui| {
-                        for motion in &project.motions {
-                            ui.selectable_value(
-                                &mut changed.slot,
-                                motion.slot,
-                                format!("{} {}", motion.slot, motion.name),
-                            );
-                        }
-                    });
-                ui.label(words.plays);
-                ui.add(egui::DragValue::new(&mut changed.plays));
-                if changed != *entry {
-                    actions.push(edit(&|p| p.play_lists[index].entries[position] = changed));
-                }
-                if ui.small_button("×").clicked() {
-                    actions.push(edit(&|p| {
-                        p.play_lists[index].entries.remove(position);
-                    }));
-                }
-            });
-        }
-    }
-}
+use crate::ui::rows;
 
 /// What the robot panel draws.
 #[derive(Debug)]
 pub struct RobotView<'a> {
-    /// The project's PLEN2 section.
-    pub project: &'a Plen2Project,
-    /// What the robot held when last read.
-    pub robot: Option<&'a Plen2Project>,
+    /// The 90 slots, the project's motions compared with the robot's ([`slot_map`]).
+    pub slots: &'a [SlotCell],
+    /// Whether the robot has been read.
+    pub robot_read: bool,
     /// Whether a robot is connected.
     pub connected: bool,
     /// The running operation.
@@ -98,16 +24,70 @@ pub struct RobotView<'a> {
     pub result: Option<&'a str>,
 }
 
-fn cell(ui: &mut egui::Ui, slot: u8, ours: Option<&Motion>, theirs: Option<&Motion>, read: bool) {
-    let visuals = ui.visuals().clone();
-    let (fill, text) = match (ours, theirs) {
-        (Some(a), Some(b)) if a == b => (egui::Color32::from_rgb(40, 110, 60), a.name.clone()),
-        (Some(a), Some(_)) => (egui::Color32::from_rgb(150, 110, 20), a.name.clone()),
-        (Some(a), None) if read => (egui::Color32::from_rgb(40, 80, 140), a.name.clone()),
-        (Some(a), None) => (visuals.widgets.inactive.bg_fill, a.name.clone()),
-        (None, Some(b)) => (visuals.widgets.noninteractive.bg_fill, format!("({})", b.name)),
-        (None, None) => (visuals.extreme_bg_color, String::new()),
+/// How a slot of the map compares the project with the robot.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SlotState {
+    /// Neither holds a motion there.
+    Empty,
+    /// The project's motion; the robot not read.
+    Ours,
+    /// The project's motion; the robot, read, holds none.
+    OnlyOurs,
+    /// Only the robot holds one.
+    OnlyTheirs,
+    /// Both hold the same motion.
+    Same,
+    /// Both hold one, and they differ.
+    Differ,
+}
+
+/// One slot of the map: how it compares, and the name shown.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SlotCell {
+    /// How the project's slot compares with the robot's.
+    pub state: SlotState,
+    /// The motion's name (the robot's in brackets when only it holds one).
+    pub name: String,
+}
+
+/// The 90 slots compared (computed once per document revision and robot read).
+pub fn slot_map(project: &Plen2Project, robot: Option<&Plen2Project>) -> Vec<SlotCell> {
+    let mut ours: Vec<Option<&Motion>> = vec![None; usize::from(SLOTS)];
+    let mut theirs: Vec<Option<&Motion>> = vec![None; usize::from(SLOTS)];
+    for motion in &project.motions {
+        if let Some(cell) = ours.get_mut(usize::from(motion.slot)) {
+            cell.get_or_insert(motion);
+        }
+    }
+    for motion in robot.map_or(&[][..], |robot| robot.motions.as_slice()) {
+        if let Some(cell) = theirs.get_mut(usize::from(motion.slot)) {
+            cell.get_or_insert(motion);
+        }
+    }
+    ours.into_iter()
+        .zip(theirs)
+        .map(|(ours, theirs)| match (ours, theirs) {
+            (Some(a), Some(b)) if a == b => SlotCell { state: SlotState::Same, name: a.name.clone() },
+            (Some(a), Some(_)) => SlotCell { state: SlotState::Differ, name: a.name.clone() },
+            (Some(a), None) if robot.is_some() => SlotCell { state: SlotState::OnlyOurs, name: a.name.clone() },
+            (Some(a), None) => SlotCell { state: SlotState::Ours, name: a.name.clone() },
+            (None, Some(b)) => SlotCell { state: SlotState::OnlyTheirs, name: format!("({})", b.name) },
+            (None, None) => SlotCell { state: SlotState::Empty, name: String::new() },
+        })
+        .collect()
+}
+
+fn cell(ui: &mut egui::Ui, slot: usize, cell: &SlotCell) {
+    let visuals = ui.visuals();
+    let fill = match cell.state {
+        SlotState::Same => egui::Color32::from_rgb(40, 110, 60),
+        SlotState::Differ => egui::Color32::from_rgb(150, 110, 20),
+        SlotState::OnlyOurs => egui::Color32::from_rgb(40, 80, 140),
+        SlotState::Ours => visuals.widgets.inactive.bg_fill,
+        SlotState::OnlyTheirs => visuals.widgets.noninteractive.bg_fill,
+        SlotState::Empty => visuals.extreme_bg_color,
     };
+    let (weak, strong) = (visuals.weak_text_color(), visuals.text_color());
     let (rect, response) = ui.allocate_exact_size(egui::vec2(104.0, 30.0), egui::Sense::hover());
     let painter = ui.painter_at(rect);
     painter.rect_filled(rect.shrink(1.0), 3.0, fill);
@@ -116,17 +96,19 @@ fn cell(ui: &mut egui::Ui, slot: u8, ours: Option<&Motion>, theirs: Option<&Moti
         egui::Align2::LEFT_TOP,
         slot.to_string(),
         egui::FontId::monospace(9.0),
-        visuals.weak_text_color(),
+        weak,
     );
     painter.text(
         rect.left_bottom() + egui::vec2(4.0, -3.0),
         egui::Align2::LEFT_BOTTOM,
-        &text,
+        &cell.name,
         egui::FontId::proportional(11.0),
-        visuals.text_color(),
+        strong,
     );
-    if !text.is_empty() {
-        response.on_hover_text(text);
+    let label = format!("{slot} {}", cell.name);
+    response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Label, true, &label));
+    if !cell.name.is_empty() {
+        response.on_hover_text(&cell.name);
     }
 }
 
@@ -150,10 +132,10 @@ pub fn robot_panel(ui: &mut egui::Ui, view: &RobotView<'_>, words: &Strings, act
             if ui.button(words.upload_motions).on_hover_text(words.upload_hint).clicked() {
                 actions.push(Action::Plen2Board(Plen2Intent::Upload));
             }
-            if ui.add_enabled(view.robot.is_some(), egui::Button::new(words.confirm_read)).clicked() {
+            if ui.add_enabled(view.robot_read, egui::Button::new(words.confirm_read)).clicked() {
                 actions.push(Action::Plen2Board(Plen2Intent::ReadIntoProject));
             }
-            if ui.add_enabled(view.robot.is_some(), egui::Button::new(words.export_board)).clicked()
+            if ui.add_enabled(view.robot_read, egui::Button::new(words.export_board)).clicked()
                 && let Some(path) = rfd::FileDialog::new()
                     .add_filter("Servo Studio project", &["json"])
                     .set_file_name("plen2.json")
@@ -185,15 +167,15 @@ pub fn robot_panel(ui: &mut egui::Ui, view: &RobotView<'_>, words: &Strings, act
         ui.label(result);
     }
     ui.label(words.slot_map);
-    egui::ScrollArea::vertical().id_salt("plen2-slot-map").show(ui, |ui| {
-        egui::Grid::new("plen2-slots").spacing([2.0, 2.0]).show(ui, |ui| {
-            for slot in 0..SLOTS {
-                let ours = view.project.motions.iter().find(|m| m.slot == slot);
-                let theirs = view.robot.and_then(|robot| robot.motions.iter().find(|m| m.slot == slot));
-                cell(ui, slot, ours, theirs, view.robot.is_some());
-                if slot % 10 == 9 {
-                    ui.end_row();
-                }
+    // Ten slots a row; only the rows in view are laid out.
+    let per_row = 10;
+    let rows_count = view.slots.len().div_ceil(per_row);
+    ui.spacing_mut().item_spacing = egui::vec2(2.0, 2.0);
+    rows::list(ui, "plen2-slot-map", 30.0, rows_count, ui.available_height(), |ui, row| {
+        ui.horizontal(|ui| {
+            let first = row * per_row;
+            for (slot, slot_cell) in view.slots.iter().enumerate().skip(first).take(per_row) {
+                cell(ui, slot, slot_cell);
             }
         });
     });

@@ -10,6 +10,7 @@ use crate::project::plen2::{MAX_TRANSITION_MS, MIN_TRANSITION_MS, SLOTS};
 use crate::project::{Edit, Location, Problem};
 use crate::ui::action::Action;
 use crate::ui::i18n::Strings;
+use crate::ui::rows;
 
 /// The frame mirrored left↔right: each left joint takes its right twin's value
 /// and the reverse, negated (the twins' axes are mirror images: the factory homes
@@ -30,6 +31,9 @@ pub struct MotionsPanel {
     selected: usize,
     frame: usize,
     clipboard: Option<Frame>,
+    /// Each slot's problems, for the document revision in `flagged_at`.
+    flagged: std::collections::BTreeMap<u8, Vec<Problem>>,
+    flagged_at: Option<u64>,
 }
 
 fn edit(project: &Plen2Project, change: impl FnOnce(&mut Plen2Project), key: Option<String>) -> Action {
@@ -49,11 +53,20 @@ impl MotionsPanel {
         &mut self,
         ui: &mut egui::Ui,
         project: &Plen2Project,
-        problems: &[Problem],
+        (revision, problems): (u64, &[Problem]),
         connected: bool,
         words: &Strings,
         actions: &mut Vec<Action>,
     ) {
+        if self.flagged_at != Some(revision) {
+            self.flagged.clear();
+            for problem in problems {
+                if let Location::Motion { slot, .. } | Location::Frame { slot, .. } = &problem.location {
+                    self.flagged.entry(*slot).or_default().push(problem.clone());
+                }
+            }
+            self.flagged_at = Some(revision);
+        }
         ui.horizontal(|ui| {
             ui.heading(words.motions);
             if ui.button(words.add_motion).clicked() {
@@ -77,21 +90,25 @@ impl MotionsPanel {
         ui.horizontal_top(|ui| {
             ui.vertical(|ui| {
                 ui.set_width(190.0);
-                egui::ScrollArea::vertical().id_salt("plen2-motion-list").show(ui, |ui| {
-                    for (index, motion) in project.motions.iter().enumerate() {
-                        let flagged = problems.iter().any(|p| {
-                            matches!(&p.location, Location::Motion { slot, .. } | Location::Frame { slot, .. } if *slot == motion.slot)
-                        });
-                        let text = format!("{}{:>2} {}", if flagged { "! " } else { "" }, motion.slot, motion.name);
-                        if ui.selectable_label(index == self.selected, text).clicked() {
-                            self.selected = index;
-                            self.frame = 0;
-                        }
+                let row_height = ui.text_style_height(&egui::TextStyle::Body) + 2.0 * ui.spacing().button_padding.y;
+                let height = ui.available_height();
+                let flagged = &self.flagged;
+                let mut picked = None;
+                rows::list(ui, "plen2-motion-list", row_height, project.motions.len(), height, |ui, index| {
+                    let motion = &project.motions[index];
+                    let mark = if flagged.contains_key(&motion.slot) { "! " } else { "" };
+                    let text = format!("{mark}{:>2} {}", motion.slot, motion.name);
+                    if ui.selectable_label(index == self.selected, text).clicked() {
+                        picked = Some(index);
                     }
                 });
+                if let Some(index) = picked {
+                    self.selected = index;
+                    self.frame = 0;
+                }
             });
             ui.separator();
-            ui.vertical(|ui| self.editor(ui, project, problems, connected, words, actions));
+            ui.vertical(|ui| self.editor(ui, project, connected, words, actions));
         });
     }
 
@@ -99,7 +116,6 @@ impl MotionsPanel {
         &mut self,
         ui: &mut egui::Ui,
         project: &Plen2Project,
-        problems: &[Problem],
         connected: bool,
         words: &Strings,
         actions: &mut Vec<Action>,
@@ -179,12 +195,15 @@ impl MotionsPanel {
                 actions.push(edit(project, |p| p.motions[index].jump_slot = Some(jump), key("jump")));
             }
         });
-        for problem in problems.iter().filter(|p| matches!(&p.location, Location::Motion { slot, .. } | Location::Frame { slot, .. } if *slot == motion.slot)) {
+        for problem in self.flagged.get(&motion.slot).map_or(&[][..], Vec::as_slice) {
             let color = match problem.severity {
                 crate::project::Severity::Error => ui.visuals().error_fg_color,
                 crate::project::Severity::Warning => ui.visuals().warn_fg_color,
             };
-            ui.colored_label(color, format!("{}: {}", words.lang.location(&problem.location), words.lang.problem(&problem.kind)));
+            ui.colored_label(
+                color,
+                format!("{}: {}", words.lang.location(&problem.location), words.lang.problem(&problem.kind)),
+            );
         }
         self.frames_table(ui, project, connected, words, actions);
         self.frame_values(ui, project, words, actions);
@@ -203,65 +222,61 @@ impl MotionsPanel {
         let motion = &project.motions[index];
         self.frame = self.frame.min(motion.frames.len().saturating_sub(1));
         ui.label(format!("{} ({})", words.frames, motion.frames.len()));
-        egui::ScrollArea::vertical().id_salt("plen2-frames").max_height(170.0).show(ui, |ui| {
-            egui::Grid::new("plen2-frame-rows").striped(true).show(ui, |ui| {
-                for (f, frame) in motion.frames.iter().enumerate() {
-                    if ui.selectable_label(f == self.frame, format!("#{f}")).clicked() {
-                        self.frame = f;
-                    }
-                    let mut transition = frame.transition_ms;
-                    let drag = egui::DragValue::new(&mut transition)
-                        .clamp_existing_to_range(false)
-                        .range(MIN_TRANSITION_MS..=MAX_TRANSITION_MS)
-                        .suffix(" ms");
-                    if ui.add(drag).changed() {
-                        actions.push(edit(
-                            project,
-                            |p| p.motions[index].frames[f].transition_ms = transition,
-                            Some(format!("plen2 {index} frame {f} transition")),
-                        ));
-                    }
-                    if ui.small_button(words.copy_frame()).clicked() {
-                        self.clipboard = Some(*frame);
-                    }
-                    if ui
-                        .add_enabled(
-                            self.clipboard.is_some() && motion.frames.len() < 20,
-                            egui::Button::new(words.paste).small(),
-                        )
-                        .clicked()
-                        && let Some(copied) = self.clipboard
-                    {
-                        actions.push(edit(project, |p| p.motions[index].frames.insert(f + 1, copied), None));
-                    }
-                    if ui.small_button(words.mirror).clicked() {
-                        let mirrored = mirror(&frame.values_tenths_deg);
-                        actions.push(edit(project, |p| p.motions[index].frames[f].values_tenths_deg = mirrored, None));
-                    }
-                    if ui.add_enabled(f > 0, egui::Button::new("↑").small()).clicked() {
-                        actions.push(edit(project, |p| p.motions[index].frames.swap(f, f - 1), None));
-                        self.frame = f - 1;
-                    }
-                    if ui.add_enabled(f + 1 < motion.frames.len(), egui::Button::new("↓").small()).clicked() {
-                        actions.push(edit(project, |p| p.motions[index].frames.swap(f, f + 1), None));
-                        self.frame = f + 1;
-                    }
-                    if ui.add_enabled(motion.frames.len() > 1, egui::Button::new("×").small()).clicked() {
-                        actions.push(edit(
-                            project,
-                            |p| {
-                                p.motions[index].frames.remove(f);
-                            },
-                            None,
-                        ));
-                    }
-                    if ui.add_enabled(connected, egui::Button::new(words.play_from_here).small()).clicked() {
-                        actions.push(Action::PlayFrom { slot: motion.slot, frame: f });
-                    }
-                    ui.end_row();
-                }
-            });
+        let mut selected = self.frame;
+        let clipboard = &mut self.clipboard;
+        rows::grid(ui, "plen2-frames", motion.frames.len(), 170.0, |ui, f| {
+            let frame = &motion.frames[f];
+            if ui.selectable_label(f == selected, format!("#{f}")).clicked() {
+                selected = f;
+            }
+            let mut transition = frame.transition_ms;
+            let drag = egui::DragValue::new(&mut transition)
+                .clamp_existing_to_range(false)
+                .range(MIN_TRANSITION_MS..=MAX_TRANSITION_MS)
+                .suffix(" ms");
+            if ui.add(drag).changed() {
+                actions.push(edit(
+                    project,
+                    |p| p.motions[index].frames[f].transition_ms = transition,
+                    Some(format!("plen2 {index} frame {f} transition")),
+                ));
+            }
+            if ui.small_button(words.copy_frame()).clicked() {
+                *clipboard = Some(*frame);
+            }
+            if ui
+                .add_enabled(clipboard.is_some() && motion.frames.len() < 20, egui::Button::new(words.paste).small())
+                .clicked()
+                && let Some(copied) = *clipboard
+            {
+                actions.push(edit(project, |p| p.motions[index].frames.insert(f + 1, copied), None));
+            }
+            if ui.small_button(words.mirror).clicked() {
+                let mirrored = mirror(&frame.values_tenths_deg);
+                actions.push(edit(project, |p| p.motions[index].frames[f].values_tenths_deg = mirrored, None));
+            }
+            if ui.add_enabled(f > 0, egui::Button::new("↑").small()).clicked() {
+                actions.push(edit(project, |p| p.motions[index].frames.swap(f, f - 1), None));
+                selected = f - 1;
+            }
+            if ui.add_enabled(f + 1 < motion.frames.len(), egui::Button::new("↓").small()).clicked() {
+                actions.push(edit(project, |p| p.motions[index].frames.swap(f, f + 1), None));
+                selected = f + 1;
+            }
+            if ui.add_enabled(motion.frames.len() > 1, egui::Button::new("×").small()).clicked() {
+                actions.push(edit(
+                    project,
+                    |p| {
+                        p.motions[index].frames.remove(f);
+                    },
+                    None,
+                ));
+            }
+            if ui.add_enabled(connected, egui::Button::new(words.play_from_here).small()).clicked() {
+                actions.push(Action::PlayFrom { slot: motion.slot, frame: f });
+            }
         });
+        self.frame = selected;
     }
 
     fn frame_values(&mut self, ui: &mut egui::Ui, project: &Plen2Project, words: &Strings, actions: &mut Vec<Action>) {

@@ -10,6 +10,7 @@ use crate::device::servo::ServoStatus;
 use crate::project::{Edit, Servo, ServoProject};
 use crate::ui::action::Action;
 use crate::ui::i18n::Strings;
+use crate::ui::rows;
 
 /// The nudge asked for by keys pressed on a focused slider, in steps (←/→/↑/↓
 /// 1, with Shift or PageUp/PageDown 10), consumed so that the slider does not
@@ -45,6 +46,8 @@ pub struct ServoView<'a> {
 #[derive(Debug, Default)]
 pub struct ServoPanel {
     slider_ids: HashMap<egui::Id, u8>,
+    /// Whether the servos' settings are open below the sliders.
+    pub settings_open: bool,
 }
 
 impl ServoPanel {
@@ -72,77 +75,81 @@ impl ServoPanel {
         let nudge = if focused.is_some() { keyboard_nudge(ui) } else { 0 };
         self.slider_ids.clear();
         ui.spacing_mut().slider_width = 360.0;
-        egui::ScrollArea::vertical().auto_shrink([false, true]).show(ui, |ui| {
-            egui::Grid::new("servo-grid").striped(true).num_columns(5).show(ui, |ui| {
-                for servo in &view.project.servos {
-                    let current = view.pose.get(&servo.id).copied().unwrap_or(servo.home_deg);
-                    let label = ui.label(format!("{} #{}", servo.caption, servo.id));
-                    let mut value = i32::from(current);
-                    let slider = egui::Slider::new(&mut value, i32::from(servo.min_deg)..=i32::from(servo.max_deg))
-                        .step_by(1.0)
-                        .suffix("°");
-                    let response = ui.add(slider).labelled_by(label.id);
-                    self.slider_ids.insert(response.id, servo.id);
-                    if focused == Some(servo.id) && nudge != 0 {
-                        value += nudge;
-                    }
-                    if value != i32::from(current) {
-                        let degree = i16::try_from(value).unwrap_or(current);
-                        actions.push(Action::SetPose { servo_id: servo.id, degree: servo.clamp(degree) });
-                    }
-                    match view.readback.and_then(|servos| servos.get(&servo.id)) {
-                        Some(state) => {
-                            let mut hold = state.is_hold;
-                            if ui.checkbox(&mut hold, words.hold).changed() {
-                                actions.push(Action::SetHold { servo_id: servo.id, hold });
-                            }
-                            if view.polling {
-                                ui.monospace(format!("{:>5}°", state.angle));
-                            } else {
-                                ui.label("");
-                            }
-                        }
-                        None => {
-                            ui.label("");
-                            ui.label("");
-                        }
-                    }
-                    ui.end_row();
+        // Room below for the settings (half the height when they are open); the
+        // sliders in view are laid out, no more.
+        let height = if self.settings_open {
+            ui.available_height() * 0.5
+        } else {
+            (ui.available_height() - 2.0 * rows::widget_row_height(ui)).max(120.0)
+        };
+        rows::grid(ui, "servo-grid", view.project.servos.len(), height, |ui, index| {
+            let servo = &view.project.servos[index];
+            let current = view.pose.get(&servo.id).copied().unwrap_or(servo.home_deg);
+            let label = ui.label(format!("{} #{}", servo.caption, servo.id));
+            let mut value = i32::from(current);
+            let slider = egui::Slider::new(&mut value, i32::from(servo.min_deg)..=i32::from(servo.max_deg))
+                .step_by(1.0)
+                .suffix("°");
+            let response = ui.add(slider).labelled_by(label.id);
+            self.slider_ids.insert(response.id, servo.id);
+            if focused == Some(servo.id) && nudge != 0 {
+                value += nudge;
+            }
+            if value != i32::from(current) {
+                let degree = i16::try_from(value).unwrap_or(current);
+                actions.push(Action::SetPose { servo_id: servo.id, degree: servo.clamp(degree) });
+            }
+            if let Some(state) = view.readback.and_then(|servos| servos.get(&servo.id)) {
+                let mut hold = state.is_hold;
+                if ui.checkbox(&mut hold, words.hold).changed() {
+                    actions.push(Action::SetHold { servo_id: servo.id, hold });
                 }
-            });
+                if view.polling {
+                    ui.monospace(format!("{:>5}°", state.angle));
+                }
+            }
         });
     }
 }
 
 /// The servos' settings: caption, calibration offset, limits and home; add and
 /// remove servos. A drag of one value is one undo step.
-pub fn settings_ui(ui: &mut egui::Ui, project: &ServoProject, words: &Strings, actions: &mut Vec<Action>) {
-    egui::CollapsingHeader::new(words.servo_settings).id_salt("servo-settings").show(ui, |ui| {
-        egui::Grid::new("servo-settings-grid").striped(true).show(ui, |ui| {
-            for heading in [words.servo_id, words.caption, words.offset, words.min, words.max, words.home, ""] {
-                ui.strong(heading);
-            }
-            ui.end_row();
-            for (index, servo) in project.servos.iter().enumerate() {
-                let set = |changed: Servo, field: &str| Action::Edit {
-                    edit: Edit::SetServo { index, servo: changed },
-                    coalesce: Some(format!("servo {} {field}", servo.id)),
-                };
-                let row = ui.label(format!("{}", servo.id));
+pub fn settings_ui(
+    ui: &mut egui::Ui,
+    open: &mut bool,
+    project: &ServoProject,
+    words: &Strings,
+    actions: &mut Vec<Action>,
+) {
+    let header = egui::CollapsingHeader::new(words.servo_settings).id_salt("servo-settings").open(Some(*open));
+    let shown = header.show(ui, |ui| {
+        let heading = [words.servo_id, words.caption, words.offset, words.min, words.max, words.home, ""];
+        let height = ui.available_height().max(120.0);
+        rows::table(ui, "servo-settings", &heading, project.servos.len(), height, |row, index| {
+            let servo = &project.servos[index];
+            let set = |changed: Servo, field: &str| Action::Edit {
+                edit: Edit::SetServo { index, servo: changed },
+                coalesce: Some(format!("servo {} {field}", servo.id)),
+            };
+            let mut row_id = egui::Id::NULL;
+            row.col(|ui| row_id = ui.label(format!("{}", servo.id)).id);
+            row.col(|ui| {
                 let mut caption = servo.caption.clone();
-                if ui.add(egui::TextEdit::singleline(&mut caption).desired_width(140.0)).labelled_by(row.id).changed() {
+                if ui.add(egui::TextEdit::singleline(&mut caption).desired_width(140.0)).labelled_by(row_id).changed() {
                     actions.push(set(Servo { caption, ..servo.clone() }, "caption"));
                 }
-                let fields: [(&str, i16); 4] = [
-                    ("offset", servo.calibration_offset_deg),
-                    ("min", servo.min_deg),
-                    ("max", servo.max_deg),
-                    ("home", servo.home_deg),
-                ];
-                for (field, value) in fields {
+            });
+            let fields: [(&str, i16); 4] = [
+                ("offset", servo.calibration_offset_deg),
+                ("min", servo.min_deg),
+                ("max", servo.max_deg),
+                ("home", servo.home_deg),
+            ];
+            for (field, value) in fields {
+                row.col(|ui| {
                     let mut edited = value;
                     let drag = egui::DragValue::new(&mut edited).clamp_existing_to_range(false).suffix("°");
-                    if ui.add(drag).labelled_by(row.id).changed() {
+                    if ui.add(drag).labelled_by(row_id).changed() {
                         let mut changed = servo.clone();
                         match field {
                             "offset" => changed.calibration_offset_deg = edited,
@@ -152,12 +159,13 @@ pub fn settings_ui(ui: &mut egui::Ui, project: &ServoProject, words: &Strings, a
                         }
                         actions.push(set(changed, field));
                     }
-                }
+                });
+            }
+            row.col(|ui| {
                 if ui.button("×").on_hover_text(words.remove).clicked() {
                     actions.push(Action::Edit { edit: Edit::RemoveServo { index }, coalesce: None });
                 }
-                ui.end_row();
-            }
+            });
         });
         let free = (0..=254u8).find(|id| project.servo(*id).is_none());
         if ui.add_enabled(free.is_some(), egui::Button::new(words.add_servo)).clicked()
@@ -169,4 +177,7 @@ pub fn settings_ui(ui: &mut egui::Ui, project: &ServoProject, words: &Strings, a
             });
         }
     });
+    if shown.header_response.clicked() {
+        *open = !*open;
+    }
 }

@@ -9,6 +9,7 @@ use egui_plot::{Line, Plot, PlotPoints, Points};
 
 use crate::device::rflex::Telemetry;
 use crate::ui::i18n::Strings;
+use crate::ui::plot;
 
 /// Metres the polar view's edge stands for (the sonar's longest echo is 2.03 m).
 const POLAR_RANGE_M: f64 = 2.2;
@@ -33,8 +34,12 @@ pub fn ui(ui: &mut egui::Ui, telemetry: &Telemetry, words: &Strings) {
             Plot::new("battery-trend").height(120.0).x_axis_label("s").y_axis_label("V").allow_scroll(false).show(
                 ui,
                 |plot| {
-                    let points: PlotPoints<'_> = telemetry.battery_trend.iter().map(|&(t, v)| [t, v]).collect();
-                    plot.line(Line::new(words.battery, points));
+                    let trend: Vec<[f64; 2]> = telemetry.battery_trend.iter().collect();
+                    let bounds = plot.plot_bounds();
+                    #[allow(clippy::cast_sign_loss)]
+                    let columns = plot.transform().frame().width().max(1.0) as usize;
+                    let thinned = plot::decimate(&trend, bounds.min()[0], bounds.max()[0], columns);
+                    plot.line(Line::new(words.battery, PlotPoints::from(thinned)));
                 },
             );
             Plot::new("odometry-path")
@@ -44,8 +49,10 @@ pub fn ui(ui: &mut egui::Ui, telemetry: &Telemetry, words: &Strings) {
                 .y_axis_label("y (m)")
                 .allow_scroll(false)
                 .show(ui, |plot| {
-                    let path: PlotPoints<'_> = telemetry.path.iter().map(|&(x, y)| [x, y]).collect();
-                    plot.line(Line::new(words.odometry, path));
+                    // Points closer than a pixel add nothing but cost.
+                    let per_pixel = plot.transform().dvalue_dpos().map(f64::abs);
+                    let path = plot::thin_path(telemetry.path.iter(), per_pixel);
+                    plot.line(Line::new(words.odometry, PlotPoints::from(path)));
                     let here = [telemetry.pose.x_m, telemetry.pose.y_m];
                     plot.points(Points::new("", vec![here]).radius(5.0));
                 });

@@ -6,6 +6,7 @@
 //! that failed their checksum without ever using them.
 
 mod driver;
+mod trace;
 mod words;
 
 use std::collections::BTreeMap;
@@ -14,13 +15,12 @@ use std::time::{Duration, Instant};
 use crossbeam_channel::Receiver;
 
 pub use driver::{POLL_EVERY, REPORT_PERIOD_US, RESEND_EVERY, RflexCommand, RflexDriver, RflexEvent, SILENCE_LIMIT};
+pub use trace::Trace;
 
 use crate::device::LogEntry;
 use crate::link::{self, Connection, DisconnectReason, LinkEvent, LinkHandle, Waker};
 use crate::protocol::rflex::{Axis, BUMP_PANEL_ADDRESS, Conversion, Odometry, Report, SkipReason, sonar_metres};
 
-/// Points kept of the driven path and of the battery trend.
-pub const MAX_HISTORY: usize = 10_000;
 /// The least gap between two writes: the base ignores commands sent too rapidly.
 pub const WRITE_GAP: Duration = Duration::from_millis(1);
 /// How long a dropped handle waits for its shutdown to be written.
@@ -31,14 +31,14 @@ pub const SHUTDOWN_WAIT: Duration = Duration::from_millis(500);
 pub struct Telemetry {
     /// Battery, volts (from SYS_STATUS).
     pub battery_volts: Option<f64>,
-    /// (seconds since the link opened, volts), oldest first.
-    pub battery_trend: Vec<(f64, f64)>,
+    /// (seconds since the link opened, volts), oldest first, thinned when long.
+    pub battery_trend: Trace,
     /// The brake, as the base reports it.
     pub brake: Option<bool>,
     /// The pose integrated from odometry since the first report.
     pub pose: Odometry,
-    /// (x, y) of the pose after each report, metres.
-    pub path: Vec<(f64, f64)>,
+    /// (x, y) of the pose after each report, metres, oldest first, thinned when long.
+    pub path: Trace,
     /// Measured translational velocity, m/s.
     pub speed_m_per_s: f64,
     /// Measured rotational velocity, rad/s.
@@ -78,16 +78,15 @@ impl Telemetry {
             && !self.bumpers.is_empty()
     }
 
-    fn absorb(&mut self, conversion: &Conversion, seconds: f64, report: Report) {
+    /// Takes in one report that arrived `seconds` after the link opened.
+    pub fn record(&mut self, conversion: &Conversion, seconds: f64, report: Report) {
         match report {
             Report::Odometry { axis, position, velocity, .. } => match Axis::from_code(axis) {
                 Some(Axis::Translation) => {
                     self.pose.update(conversion, Axis::Translation, position);
                     self.speed_m_per_s = conversion.metres(i64::from(velocity));
                     self.odometry_reports.0 += 1;
-                    if self.path.len() < MAX_HISTORY {
-                        self.path.push((self.pose.x_m, self.pose.y_m));
-                    }
+                    self.path.push([self.pose.x_m, self.pose.y_m]);
                 }
                 Some(Axis::Rotation) => {
                     self.pose.update(conversion, Axis::Rotation, position);
@@ -100,10 +99,7 @@ impl Telemetry {
                 let volts = conversion.volts(voltage_raw);
                 self.battery_volts = Some(volts);
                 self.brake = Some(brake != 0);
-                if self.battery_trend.len() >= MAX_HISTORY {
-                    self.battery_trend.remove(0);
-                }
-                self.battery_trend.push((seconds, volts));
+                self.battery_trend.push([seconds, volts]);
             }
             Report::Sonar { readings, .. } => {
                 if let Some(first) = readings.first() {
@@ -235,7 +231,7 @@ impl RflexBase {
         for event in events {
             match event {
                 LinkEvent::Driver(RflexEvent::Report(report)) => {
-                    self.telemetry.absorb(&self.conversion, seconds, report);
+                    self.telemetry.record(&self.conversion, seconds, report);
                 }
                 LinkEvent::Driver(RflexEvent::Skipped { bytes, reason }) => {
                     if reason == SkipReason::BadFrame {

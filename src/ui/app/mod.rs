@@ -104,6 +104,10 @@ pub struct StudioApp {
     footprint: Option<(u64, Result<usize, String>)>,
     /// The PLEN2 section's problems, per document revision (the motion editor marks them every frame).
     plen2_problems: Option<(u64, Vec<crate::project::Problem>)>,
+    /// The robot panel's slot map, for (document revision, robot reads).
+    plen2_slots: Option<((u64, u64), Vec<crate::ui::plen2_board::SlotCell>)>,
+    /// Robots read so far (a new read invalidates the slot map).
+    plen2_robot_reads: u64,
     compared_board: Option<ServoProject>,
     waker: Waker,
     opener: Opener,
@@ -113,6 +117,7 @@ pub struct StudioApp {
     joystick_panel: JoystickPanel,
     drive_panel: DrivePanel,
     motions_panel: crate::ui::plen2_motions::MotionsPanel,
+    play_lists_panel: crate::ui::plen2_play_lists::PlayListsPanel,
     /// Every PLEN2 joint's angle on the sliders, tenths of a degree, device-map order.
     pub plen2_pose: [i16; 18],
     plen2_stream: Option<plen2::Stream>,
@@ -162,6 +167,8 @@ impl StudioApp {
             compare_intent: None,
             footprint: None,
             plen2_problems: None,
+            plen2_slots: None,
+            plen2_robot_reads: 0,
             compared_board: None,
             waker,
             connection_bar: ConnectionBar::default(),
@@ -172,6 +179,7 @@ impl StudioApp {
             joystick_panel: JoystickPanel::default(),
             drive_panel: DrivePanel::default(),
             motions_panel: crate::ui::plen2_motions::MotionsPanel::default(),
+            play_lists_panel: crate::ui::plen2_play_lists::PlayListsPanel::default(),
             plen2_pose: crate::project::plen2::Joint::ALL.map(crate::project::plen2::Joint::factory_home_tenths_deg),
             plen2_stream: None,
             plen2_job: None,

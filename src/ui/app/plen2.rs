@@ -190,6 +190,7 @@ impl StudioApp {
             Plen2Outcome::Read(robot) => {
                 let text = format!("{} {}", self.words().robot_read, robot.motions.len());
                 self.plen2_robot = Some(*robot);
+                self.plen2_robot_reads += 1;
                 text
             }
             Plen2Outcome::Uploaded(report) => {

@@ -10,6 +10,7 @@ use crate::ui::board_panel::{self, BoardView};
 use crate::ui::drive_panel::DriveView;
 use crate::ui::i18n::Strings;
 use crate::ui::joystick_panel::JoystickView;
+use crate::ui::plen2_board::slot_map;
 use crate::ui::servo_panel::ServoView;
 
 impl StudioApp {
@@ -26,7 +27,8 @@ impl StudioApp {
                 };
                 self.servo_panel.ui(ui, &view, words, actions);
                 ui.separator();
-                crate::ui::servo_panel::settings_ui(ui, &self.document.project.servo, words, actions);
+                let open = &mut self.servo_panel.settings_open;
+                crate::ui::servo_panel::settings_ui(ui, open, &self.document.project.servo, words, actions);
             }
             Tab::Actions => {
                 let revision = self.document.revision();
@@ -76,16 +78,29 @@ impl StudioApp {
                 }
                 let problems = self.plen2_problems.as_ref().map_or(&[][..], |(_, problems)| problems.as_slice());
                 let connected = self.link.as_ref().is_some_and(|link| link.plen2().is_some());
-                self.motions_panel.ui(ui, &self.document.project.plen2, problems, connected, words, actions);
+                self.motions_panel.ui(
+                    ui,
+                    &self.document.project.plen2,
+                    (revision, problems),
+                    connected,
+                    words,
+                    actions,
+                );
             }
             Tab::PlayLists => {
                 let connected = self.link.as_ref().is_some_and(|link| link.plen2().is_some());
-                crate::ui::plen2_board::play_lists(ui, &self.document.project.plen2, connected, words, actions);
+                self.play_lists_panel.ui(ui, &self.document.project.plen2, connected, words, actions);
             }
             Tab::Board if family == Family::Plen2 => {
+                // Compared once per document revision and robot read, not every frame.
+                let key = (self.document.revision(), self.plen2_robot_reads);
+                if self.plen2_slots.as_ref().is_none_or(|(at, _)| *at != key) {
+                    let slots = slot_map(&self.document.project.plen2, self.plen2_robot.as_ref());
+                    self.plen2_slots = Some((key, slots));
+                }
                 let view = crate::ui::plen2_board::RobotView {
-                    project: &self.document.project.plen2,
-                    robot: self.plen2_robot.as_ref(),
+                    slots: self.plen2_slots.as_ref().map_or(&[][..], |(_, slots)| slots.as_slice()),
+                    robot_read: self.plen2_robot.is_some(),
                     connected: self.link.as_ref().is_some_and(|link| link.plen2().is_some()),
                     job: self.plen2_job.as_ref(),
                     result: self.plen2_result.as_deref(),

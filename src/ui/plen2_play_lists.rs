@@ -1,0 +1,122 @@
+//! PLEN2 play lists: motions queued with a number of plays (`#PU` … `#PO`).
+//! The lists on the left, the selected list's entries on the right; only the
+//! rows in view are laid out.
+
+use crate::project::Edit;
+use crate::project::plen2::{PlayEntry, PlayList, Plen2Project};
+use crate::ui::action::Action;
+use crate::ui::i18n::Strings;
+use crate::ui::rows;
+
+/// The panel's own state: which list is open.
+#[derive(Debug, Default)]
+pub struct PlayListsPanel {
+    selected: usize,
+}
+
+fn edit(project: &Plen2Project, change: impl FnOnce(&mut Plen2Project)) -> Action {
+    let mut changed = project.clone();
+    change(&mut changed);
+    Action::Edit { edit: Edit::SetPlen2(Box::new(changed)), coalesce: Some("plen2 play lists".into()) }
+}
+
+impl PlayListsPanel {
+    /// Draws the panel.
+    pub fn ui(
+        &mut self,
+        ui: &mut egui::Ui,
+        project: &Plen2Project,
+        connected: bool,
+        words: &Strings,
+        actions: &mut Vec<Action>,
+    ) {
+        ui.horizontal(|ui| {
+            ui.heading(words.play_lists);
+            if ui.button(words.add_play_list).clicked() {
+                let name = format!("{} {}", words.play_lists, project.play_lists.len() + 1);
+                actions.push(edit(project, |p| p.play_lists.push(PlayList { name, entries: Vec::new() })));
+                self.selected = project.play_lists.len();
+            }
+        });
+        if project.play_lists.is_empty() {
+            return;
+        }
+        self.selected = self.selected.min(project.play_lists.len() - 1);
+        ui.horizontal_top(|ui| {
+            ui.vertical(|ui| {
+                ui.set_width(200.0);
+                let row_height = ui.text_style_height(&egui::TextStyle::Body) + 2.0 * ui.spacing().button_padding.y;
+                let height = ui.available_height();
+                rows::list(ui, "play-lists", row_height, project.play_lists.len(), height, |ui, index| {
+                    let list = &project.play_lists[index];
+                    let text = format!("{} ({})", list.name, list.entries.len());
+                    if ui.selectable_label(index == self.selected, text).clicked() {
+                        self.selected = index;
+                    }
+                });
+            });
+            ui.separator();
+            ui.vertical(|ui| self.editor(ui, project, connected, words, actions));
+        });
+    }
+
+    fn editor(
+        &self,
+        ui: &mut egui::Ui,
+        project: &Plen2Project,
+        connected: bool,
+        words: &Strings,
+        actions: &mut Vec<Action>,
+    ) {
+        let index = self.selected;
+        let list = &project.play_lists[index];
+        ui.horizontal(|ui| {
+            let mut name = list.name.clone();
+            if ui.text_edit_singleline(&mut name).changed() {
+                actions.push(edit(project, |p| p.play_lists[index].name = name));
+            }
+            if ui
+                .add_enabled(connected && !list.entries.is_empty(), egui::Button::new(words.play_on_robot))
+                .on_hover_text("#RI, #PU…, #PO")
+                .clicked()
+            {
+                actions.push(Action::PlayList(index));
+            }
+            if ui.button(words.add_entry).clicked() {
+                let slot = project.motions.first().map_or(0, |m| m.slot);
+                actions.push(edit(project, |p| p.play_lists[index].entries.push(PlayEntry { slot, plays: 1 })));
+            }
+            if ui.button(words.remove).clicked() {
+                actions.push(edit(project, |p| {
+                    p.play_lists.remove(index);
+                }));
+            }
+        });
+        let height = ui.available_height();
+        rows::grid(ui, "play-list-entries", list.entries.len(), height, |ui, position| {
+            let entry = &list.entries[position];
+            let mut changed = *entry;
+            ui.label(format!("{}", position + 1));
+            let name = project.motions.iter().find(|m| m.slot == entry.slot).map_or("—", |m| m.name.as_str());
+            egui::ComboBox::from_id_salt(("plen2-entry", index, position))
+                .selected_text(format!("{} {name}", entry.slot))
+                .show_ui(ui, |ui| {
+                    for motion in &project.motions {
+                        ui.selectable_value(&mut changed.slot, motion.slot, format!("{} {}", motion.slot, motion.name));
+                    }
+                });
+            ui.horizontal(|ui| {
+                ui.label(words.plays);
+                ui.add(egui::DragValue::new(&mut changed.plays));
+            });
+            if changed != *entry {
+                actions.push(edit(project, |p| p.play_lists[index].entries[position] = changed));
+            }
+            if ui.small_button("×").on_hover_text(words.remove).clicked() {
+                actions.push(edit(project, |p| {
+                    p.play_lists[index].entries.remove(position);
+                }));
+            }
+        });
+    }
+}

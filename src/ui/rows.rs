@@ -1,0 +1,93 @@
+//! Lists that lay out only the rows in view, so that a panel costs the same
+//! per frame with 5 items or 5,000 (every list and table of the editor goes
+//! through here).
+
+/// Height of one row of interactive widgets (buttons, drag values, combo boxes).
+pub fn widget_row_height(ui: &egui::Ui) -> f32 {
+    ui.spacing()
+        .interact_size
+        .y
+        .max(ui.text_style_height(&egui::TextStyle::Button) + 2.0 * ui.spacing().button_padding.y)
+}
+
+/// A vertical list of `count` rows, each `row_height` tall, at most
+/// `max_height` high; `add_row` is called for the rows in view only.
+pub fn list(
+    ui: &mut egui::Ui,
+    id_salt: &str,
+    row_height: f32,
+    count: usize,
+    max_height: f32,
+    mut add_row: impl FnMut(&mut egui::Ui, usize),
+) {
+    egui::ScrollArea::vertical().id_salt(id_salt).max_height(max_height).auto_shrink([false, true]).show_rows(
+        ui,
+        row_height,
+        count,
+        |ui, rows| {
+            for index in rows {
+                add_row(ui, index);
+            }
+        },
+    );
+}
+
+/// A striped grid of `count` rows with no heading, at most `max_height`
+/// high; `add_row` fills the cells of the rows in view only (the grid ends
+/// each row). Column widths are remembered from frame to frame.
+pub fn grid(
+    ui: &mut egui::Ui,
+    id_salt: &str,
+    count: usize,
+    max_height: f32,
+    mut add_row: impl FnMut(&mut egui::Ui, usize),
+) {
+    let row_height = widget_row_height(ui);
+    egui::ScrollArea::vertical().id_salt(id_salt).max_height(max_height).auto_shrink([false, true]).show_rows(
+        ui,
+        row_height,
+        count,
+        |ui, rows| {
+            egui::Grid::new(id_salt).striped(true).min_row_height(row_height).show(ui, |ui| {
+                for index in rows {
+                    add_row(ui, index);
+                    ui.end_row();
+                }
+            });
+        },
+    );
+}
+
+/// A striped table of `count` rows under a heading row that stays in place,
+/// at most `max_height` high (the heading included); `add_row` fills the cells
+/// of the rows in view only, one `row.col(…)` per column.
+pub fn table(
+    ui: &mut egui::Ui,
+    id_salt: &str,
+    heading: &[&str],
+    count: usize,
+    max_height: f32,
+    mut add_row: impl FnMut(&mut egui_extras::TableRow<'_, '_>, usize),
+) {
+    let row_height = widget_row_height(ui) + 2.0;
+    egui_extras::TableBuilder::new(ui)
+        .id_salt(id_salt)
+        .striped(true)
+        .columns(egui_extras::Column::auto(), heading.len())
+        .cell_layout(egui::Layout::left_to_right(egui::Align::Center))
+        .max_scroll_height(max_height - row_height)
+        .auto_shrink([false, true])
+        .header(row_height, |mut header| {
+            for text in heading {
+                header.col(|ui| {
+                    ui.strong(*text);
+                });
+            }
+        })
+        .body(|body| {
+            body.rows(row_height, count, |mut row| {
+                let index = row.index();
+                add_row(&mut row, index);
+            });
+        });
+}
