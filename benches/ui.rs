@@ -34,7 +34,10 @@ use servo_studio::sim::{SimConfig, SimEvent};
 use servo_studio::ui::packet_log::MAX_ENTRIES;
 use servo_studio::ui::{Action as UiAction, BoardLink, StudioApp, Tab};
 
-const MEASURED_FRAMES: usize = 60;
+/// Frames measured per panel (`UI_BENCH_FRAMES` for more, when profiling).
+fn measured_frames() -> usize {
+    std::env::var("UI_BENCH_FRAMES").ok().and_then(|n| n.parse().ok()).unwrap_or(200).max(10)
+}
 
 fn large_project() -> ServoProject {
     let servos: Vec<Servo> = (0..64u8).map(|id| Servo::new(id, format!("關節{id}"))).collect();
@@ -260,27 +263,37 @@ impl Window {
     }
 }
 
-/// Median frame time, ms.
-fn frame_time(scenario: &Scenario, tab: Tab) -> f64 {
-    let mut window = Window::new(app(scenario, tab));
-    window.run_steps(10);
-    let mut times: Vec<Duration> = (0..MEASURED_FRAMES)
-        .map(|_| {
+/// Median frame time of one panel on the small and the large project, ms.
+/// The two windows take turns frame by frame, so that a change of clock speed
+/// or a busy neighbour weighs on both alike.
+fn frame_times_of(small: &Scenario, large: &Scenario, tab: Tab) -> (f64, f64) {
+    let mut windows = [Window::new(app(small, tab)), Window::new(app(large, tab))];
+    for window in &mut windows {
+        window.run_steps(10);
+    }
+    let frames = measured_frames();
+    let mut times = [Vec::with_capacity(frames), Vec::with_capacity(frames)];
+    for _ in 0..frames {
+        for (window, times) in windows.iter_mut().zip(&mut times) {
             let began = Instant::now();
             window.step();
-            began.elapsed()
-        })
-        .collect();
-    times.sort_unstable();
-    let median = times[MEASURED_FRAMES / 2].as_secs_f64() * 1e3;
-    println!(
-        "frame time {:?}/{tab:?} {}: median {median:.2} ms, p90 {:.2} ms, max {:.2} ms",
-        scenario.family,
-        scenario.size,
-        times[MEASURED_FRAMES * 9 / 10].as_secs_f64() * 1e3,
-        times[MEASURED_FRAMES - 1].as_secs_f64() * 1e3
-    );
-    median
+            times.push(began.elapsed());
+        }
+    }
+    let mut medians = [0.0; 2];
+    for ((scenario, times), median) in [small, large].into_iter().zip(&mut times).zip(&mut medians) {
+        times.sort_unstable();
+        *median = times[frames / 2].as_secs_f64() * 1e3;
+        println!(
+            "frame time {:?}/{tab:?} {}: median {:.3} ms, p90 {:.3} ms, max {:.3} ms",
+            scenario.family,
+            scenario.size,
+            *median,
+            times[frames * 9 / 10].as_secs_f64() * 1e3,
+            times[frames - 1].as_secs_f64() * 1e3
+        );
+    }
+    (medians[0], medians[1])
 }
 
 fn frame_times() {
@@ -292,12 +305,16 @@ fn frame_times() {
         servo.macros.len(),
         servo.joystick_tables.len()
     );
+    // `UI_BENCH_ONLY=servo/Servos` measures one panel (for profiling).
+    let only = std::env::var("UI_BENCH_ONLY").ok();
     let mut ratios = Vec::new();
     for family in [Family::Servo, Family::Plen2, Family::Rflex] {
         let [small, large] = scenarios(family);
         for &tab in Tab::for_family(family) {
-            let small_ms = frame_time(&small, tab);
-            let large_ms = frame_time(&large, tab);
+            if only.as_ref().is_some_and(|only| *only != format!("{}/{tab:?}", family.tag())) {
+                continue;
+            }
+            let (small_ms, large_ms) = frame_times_of(&small, &large, tab);
             ratios.push((family, tab, large_ms / small_ms));
         }
     }
@@ -424,6 +441,8 @@ fn main() {
         return;
     }
     frame_times();
-    cold_starts();
-    slider_latency();
+    if std::env::var_os("UI_BENCH_ONLY").is_none() {
+        cold_starts();
+        slider_latency();
+    }
 }

@@ -97,8 +97,8 @@ impl ActionPanel {
         ui.horizontal_top(|ui| {
             ui.vertical(|ui| {
                 ui.set_width(200.0);
-                let row_height = ui.text_style_height(&egui::TextStyle::Body) + 2.0 * ui.spacing().button_padding.y;
-                let height = ui.available_height();
+                let row_height = rows::name_row_height(ui);
+                let height = rows::list_height(ui, rows::LIST_ROWS);
                 rows::list(ui, "action-list", row_height, project.actions.len(), height, |ui, index| {
                     let action = &project.actions[index];
                     if ui
@@ -151,7 +151,7 @@ impl ActionPanel {
         }
         let headings = words.headings();
         let heading = [headings.step, words.servo_word, headings.angle, headings.interval, "", ""];
-        let height = (ui.available_height() * 0.4).max(120.0);
+        let height = rows::table_height(ui, rows::TABLE_ROWS + 1);
         rows::table(ui, "steps", &heading, action.steps.len(), height, |row, position| {
             let step = &action.steps[position];
             let with = |changed: Step, key: Option<String>| {

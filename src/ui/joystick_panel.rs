@@ -63,9 +63,10 @@ impl JoystickPanel {
         ui.horizontal_top(|ui| {
             ui.vertical(|ui| {
                 ui.set_width(200.0);
-                let row_height = ui.text_style_height(&egui::TextStyle::Body) + 2.0 * ui.spacing().button_padding.y;
+                let row_height = rows::name_row_height(ui);
                 let count = project.joystick_tables.len();
-                rows::list(ui, "joystick-tables", row_height, count, 240.0, |ui, position| {
+                let height = rows::list_height(ui, rows::LIST_ROWS / 2);
+                rows::list(ui, "joystick-tables", row_height, count, height, |ui, position| {
                     let table = &project.joystick_tables[position];
                     let active = if project.active_table == Some(table.id) { " ★" } else { "" };
                     let text = format!("{} {}{active}", table.id, table.caption);
@@ -148,7 +149,7 @@ impl JoystickPanel {
             words.uninterruptible,
             "",
         ];
-        let height = ui.available_height();
+        let height = rows::table_height(ui, rows::TABLE_ROWS);
         rows::table(ui, "buttons", &heading, table.buttons.len(), height, |row, position| {
             let button = &table.buttons[position];
             let with = |changed: Button, key: Option<String>| {

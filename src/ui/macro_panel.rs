@@ -127,8 +127,8 @@ impl MacroPanel {
         ui.horizontal_top(|ui| {
             ui.vertical(|ui| {
                 ui.set_width(200.0);
-                let row_height = ui.text_style_height(&egui::TextStyle::Body) + 2.0 * ui.spacing().button_padding.y;
-                let height = ui.available_height();
+                let row_height = rows::name_row_height(ui);
+                let height = rows::list_height(ui, rows::LIST_ROWS);
                 rows::list(ui, "macro-list", row_height, project.macros.len(), height, |ui, index| {
                     let item = &project.macros[index];
                     let flagged = derived.flagged.contains(&item.id);
@@ -176,7 +176,8 @@ impl MacroPanel {
         for problem in &derived.macro_problems {
             ui.colored_label(ui.visuals().warn_fg_color, words.lang.problem(&problem.kind));
         }
-        let height = (ui.available_height() * 0.45).max(120.0);
+        // A command row holds nine widgets: one row fewer than the other tables.
+        let height = rows::table_height(ui, rows::TABLE_ROWS - 1);
         rows::grid(ui, "commands", item.commands.len(), height, |ui, position| {
             let command = &item.commands[position];
             let total = derived.command_totals_ms.get(position).copied().unwrap_or(Err(TimingError::ZeroRatio));

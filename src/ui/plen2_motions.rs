@@ -90,8 +90,8 @@ impl MotionsPanel {
         ui.horizontal_top(|ui| {
             ui.vertical(|ui| {
                 ui.set_width(190.0);
-                let row_height = ui.text_style_height(&egui::TextStyle::Body) + 2.0 * ui.spacing().button_padding.y;
-                let height = ui.available_height();
+                let row_height = rows::name_row_height(ui);
+                let height = rows::list_height(ui, rows::LIST_ROWS);
                 let flagged = &self.flagged;
                 let mut picked = None;
                 rows::list(ui, "plen2-motion-list", row_height, project.motions.len(), height, |ui, index| {
@@ -224,7 +224,8 @@ impl MotionsPanel {
         ui.label(format!("{} ({})", words.frames, motion.frames.len()));
         let mut selected = self.frame;
         let clipboard = &mut self.clipboard;
-        rows::grid(ui, "plen2-frames", motion.frames.len(), 170.0, |ui, f| {
+        let height = rows::table_height(ui, rows::TABLE_ROWS / 2 + 2);
+        rows::grid(ui, "plen2-frames", motion.frames.len(), height, |ui, f| {
             let frame = &motion.frames[f];
             if ui.selectable_label(f == selected, format!("#{f}")).clicked() {
                 selected = f;

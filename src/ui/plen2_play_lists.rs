@@ -45,8 +45,8 @@ impl PlayListsPanel {
         ui.horizontal_top(|ui| {
             ui.vertical(|ui| {
                 ui.set_width(200.0);
-                let row_height = ui.text_style_height(&egui::TextStyle::Body) + 2.0 * ui.spacing().button_padding.y;
-                let height = ui.available_height();
+                let row_height = rows::name_row_height(ui);
+                let height = rows::list_height(ui, rows::LIST_ROWS);
                 rows::list(ui, "play-lists", row_height, project.play_lists.len(), height, |ui, index| {
                     let list = &project.play_lists[index];
                     let text = format!("{} ({})", list.name, list.entries.len());
@@ -92,7 +92,7 @@ impl PlayListsPanel {
                 }));
             }
         });
-        let height = ui.available_height();
+        let height = rows::table_height(ui, rows::TABLE_ROWS);
         rows::grid(ui, "play-list-entries", list.entries.len(), height, |ui, position| {
             let entry = &list.entries[position];
             let mut changed = *entry;

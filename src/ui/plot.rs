@@ -4,9 +4,9 @@
 
 use egui_plot::{Legend, Line, Plot, PlotPoints};
 
-/// Most series given a legend: more would cover the plot (hovering a line
-/// still names it).
-pub const LEGEND_MAX: usize = 12;
+/// Most series drawn at once: more would be an unreadable tangle (and cost a
+/// frame in proportion); ← → page through the rest.
+pub const SERIES_PER_PAGE: usize = 8;
 
 /// An x-sorted series thinned for `columns` pixel columns across
 /// `x_min..=x_max`: per column its first, lowest, highest and last point, in
@@ -88,19 +88,38 @@ pub fn thin_path(points: impl IntoIterator<Item = [f64; 2]>, units_per_pixel: [f
     out
 }
 
-/// Named x-sorted series as lines, each thinned to the plot's width; a legend
-/// when there are few enough.
+/// Named x-sorted series as lines, each thinned to the plot's width, with a
+/// legend; at most [`SERIES_PER_PAGE`] at once, paged with ← →.
 pub fn series(ui: &mut egui::Ui, id: &str, height: f32, axis_labels: [&str; 2], series: &[(String, Vec<[f64; 2]>)]) {
-    let mut plot =
-        Plot::new(id).height(height).x_axis_label(axis_labels[0]).y_axis_label(axis_labels[1]).allow_scroll(false);
-    if series.len() <= LEGEND_MAX {
-        plot = plot.legend(Legend::default());
+    let page_id = ui.make_persistent_id((id, "page"));
+    let pages = series.len().div_ceil(SERIES_PER_PAGE).max(1);
+    let mut page = ui.data(|data| data.get_temp::<usize>(page_id)).unwrap_or(0).min(pages - 1);
+    if pages > 1 {
+        ui.horizontal(|ui| {
+            if ui.add_enabled(page > 0, egui::Button::new("←").small()).clicked() {
+                page -= 1;
+            }
+            let first = page * SERIES_PER_PAGE;
+            let last = (first + SERIES_PER_PAGE).min(series.len());
+            ui.label(format!("{}–{} / {}", first + 1, last, series.len()));
+            if ui.add_enabled(page + 1 < pages, egui::Button::new("→").small()).clicked() {
+                page += 1;
+            }
+        });
+        ui.data_mut(|data| data.insert_temp(page_id, page));
     }
+    let shown = series.iter().skip(page * SERIES_PER_PAGE).take(SERIES_PER_PAGE);
+    let plot = Plot::new(id)
+        .height(height)
+        .x_axis_label(axis_labels[0])
+        .y_axis_label(axis_labels[1])
+        .allow_scroll(false)
+        .legend(Legend::default());
     plot.show(ui, |plot| {
         let bounds = plot.plot_bounds();
         #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
         let columns = plot.transform().frame().width().max(1.0) as usize;
-        for (name, points) in series {
+        for (name, points) in shown {
             let thinned = decimate(points, bounds.min()[0], bounds.max()[0], columns);
             plot.line(Line::new(name.as_str(), PlotPoints::from(thinned)));
         }

@@ -1,6 +1,13 @@
 //! Lists that lay out only the rows in view, so that a panel costs the same
 //! per frame with 5 items or 5,000 (every list and table of the editor goes
-//! through here).
+//! through here). A list is also never taller than a set number of rows: what
+//! a frame costs is bounded by design, not by how much of the project happens
+//! to fit in the window (a longer list scrolls).
+
+/// Rows of a list of names (actions, macros, tables, motions, play lists).
+pub const LIST_ROWS: usize = 12;
+/// Rows of a table of editable cells (steps, commands, buttons, entries, settings).
+pub const TABLE_ROWS: usize = 7;
 
 /// Height of one row of interactive widgets (buttons, drag values, combo boxes).
 pub fn widget_row_height(ui: &egui::Ui) -> f32 {
@@ -8,6 +15,28 @@ pub fn widget_row_height(ui: &egui::Ui) -> f32 {
         .interact_size
         .y
         .max(ui.text_style_height(&egui::TextStyle::Button) + 2.0 * ui.spacing().button_padding.y)
+}
+
+/// Height of `rows` rows of `row_height` (with the spacing between them).
+pub fn rows_height(ui: &egui::Ui, row_height: f32, rows: usize) -> f32 {
+    #[allow(clippy::cast_precision_loss)]
+    let rows = rows as f32;
+    rows * (row_height + ui.spacing().item_spacing.y)
+}
+
+/// Height of a table of `rows` rows of widgets.
+pub fn table_height(ui: &egui::Ui, rows: usize) -> f32 {
+    rows_height(ui, widget_row_height(ui), rows)
+}
+
+/// Height of one line of a list of names.
+pub fn name_row_height(ui: &egui::Ui) -> f32 {
+    ui.text_style_height(&egui::TextStyle::Body) + 2.0 * ui.spacing().button_padding.y
+}
+
+/// Height of a list of names of `rows` rows.
+pub fn list_height(ui: &egui::Ui, rows: usize) -> f32 {
+    rows_height(ui, name_row_height(ui), rows)
 }
 
 /// A vertical list of `count` rows, each `row_height` tall, at most
@@ -75,6 +104,7 @@ pub fn table(
         .striped(true)
         .columns(egui_extras::Column::auto(), heading.len())
         .cell_layout(egui::Layout::left_to_right(egui::Align::Center))
+        .min_scrolled_height(0.0)
         .max_scroll_height(max_height - row_height)
         .auto_shrink([false, true])
         .header(row_height, |mut header| {

@@ -29,6 +29,9 @@ pub fn keyboard_nudge(ui: &egui::Ui) -> i32 {
     })
 }
 
+/// Sliders shown at once.
+pub const SLIDER_ROWS: usize = 12;
+
 /// What the panel draws.
 #[derive(Debug)]
 pub struct ServoView<'a> {
@@ -75,13 +78,11 @@ impl ServoPanel {
         let nudge = if focused.is_some() { keyboard_nudge(ui) } else { 0 };
         self.slider_ids.clear();
         ui.spacing_mut().slider_width = 360.0;
-        // Room below for the settings (half the height when they are open); the
-        // sliders in view are laid out, no more.
-        let height = if self.settings_open {
-            ui.available_height() * 0.5
-        } else {
-            (ui.available_height() - 2.0 * rows::widget_row_height(ui)).max(120.0)
-        };
+        // Up to 16 sliders at once (a 16-servo biped whole; more scroll), fewer
+        // when the settings are open below; the sliders in view are laid out, no more.
+        let shown = if self.settings_open { SLIDER_ROWS / 2 } else { SLIDER_ROWS };
+        let height =
+            rows::table_height(ui, shown).min((ui.available_height() - 2.0 * rows::widget_row_height(ui)).max(120.0));
         rows::grid(ui, "servo-grid", view.project.servos.len(), height, |ui, index| {
             let servo = &view.project.servos[index];
             let current = view.pose.get(&servo.id).copied().unwrap_or(servo.home_deg);
@@ -124,7 +125,7 @@ pub fn settings_ui(
     let header = egui::CollapsingHeader::new(words.servo_settings).id_salt("servo-settings").open(Some(*open));
     let shown = header.show(ui, |ui| {
         let heading = [words.servo_id, words.caption, words.offset, words.min, words.max, words.home, ""];
-        let height = ui.available_height().max(120.0);
+        let height = rows::table_height(ui, rows::TABLE_ROWS + 1);
         rows::table(ui, "servo-settings", &heading, project.servos.len(), height, |row, index| {
             let servo = &project.servos[index];
             let set = |changed: Servo, field: &str| Action::Edit {
