@@ -22,7 +22,7 @@ struct Derived {
     step_problems: std::collections::BTreeMap<usize, Problem>,
     /// The selected action's longest step, ms (the timeline's scale).
     longest_ms: f32,
-    series: Vec<(String, Vec<[f64; 2]>)>,
+    series: plot::Series,
 }
 
 impl Derived {

@@ -25,7 +25,7 @@ struct Derived {
     command_problems: std::collections::BTreeMap<usize, Problem>,
     command_totals_ms: Vec<Result<i64, TimingError>>,
     macro_total_ms: Result<i64, TimingError>,
-    series: Vec<(String, Vec<[f64; 2]>)>,
+    series: plot::Series,
 }
 
 impl Derived {

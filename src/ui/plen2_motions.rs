@@ -3,14 +3,12 @@
 //! left↔right, move, remove, play from here), the selected frame's 18 values
 //! relative to home, a timeline and an angle plot.
 
-use egui_plot::{Legend, Line, Plot, PlotPoints};
-
 use crate::project::plen2::{Frame, Joint, LoopRange, Motion, Plen2Project, Pose};
 use crate::project::plen2::{MAX_TRANSITION_MS, MIN_TRANSITION_MS, SLOTS};
 use crate::project::{Edit, Location, Problem};
 use crate::ui::action::Action;
 use crate::ui::i18n::Strings;
-use crate::ui::rows;
+use crate::ui::{plot, rows};
 
 /// The frame mirrored left↔right: each left joint takes its right twin's value
 /// and the reverse, negated (the twins' axes are mirror images: the factory homes
@@ -34,6 +32,8 @@ pub struct MotionsPanel {
     /// Each slot's problems, for the document revision in `flagged_at`.
     flagged: std::collections::BTreeMap<u8, Vec<Problem>>,
     flagged_at: Option<u64>,
+    /// The selected motion's joint angles over time, for (revision, motion index).
+    series: Option<((u64, usize), plot::Series)>,
 }
 
 fn edit(project: &Plen2Project, change: impl FnOnce(&mut Plen2Project), key: Option<String>) -> Action {
@@ -207,7 +207,13 @@ impl MotionsPanel {
         }
         self.frames_table(ui, project, connected, words, actions);
         self.frame_values(ui, project, words, actions);
-        timeline_and_plot(ui, motion, self.frame);
+        let key = (self.flagged_at.unwrap_or_default(), index);
+        if self.series.as_ref().is_none_or(|(at, _)| *at != key) {
+            self.series = Some((key, joint_series(motion)));
+        }
+        timeline(ui, motion, self.frame);
+        let series = self.series.as_ref().map_or(&[][..], |(_, series)| series.as_slice());
+        plot::series(ui, "plen2-angles", 170.0, ["ms", "°"], series);
     }
 
     fn frames_table(
@@ -311,8 +317,24 @@ impl MotionsPanel {
     }
 }
 
-/// A bar per frame, as long as its transition, and every joint's value over time.
-fn timeline_and_plot(ui: &mut egui::Ui, motion: &Motion, selected: usize) {
+/// Every joint's angle (degrees) at the end of each frame, from 0 at time 0.
+fn joint_series(motion: &Motion) -> plot::Series {
+    Joint::ALL
+        .into_iter()
+        .map(|joint| {
+            let mut t = 0.0;
+            let mut points = vec![[0.0, 0.0]];
+            for frame in &motion.frames {
+                t += f64::from(frame.transition_ms);
+                points.push([t, f64::from(frame.values_tenths_deg.get(joint)) / 10.0]);
+            }
+            (joint.name().to_string(), points)
+        })
+        .collect()
+}
+
+/// A bar per frame, as long as its transition.
+fn timeline(ui: &mut egui::Ui, motion: &Motion, selected: usize) {
     let total: f64 = motion.frames.iter().map(|f| f64::from(f.transition_ms)).sum();
     let width = ui.available_width().max(100.0);
     let (rect, _) = ui.allocate_exact_size(egui::vec2(width, 18.0), egui::Sense::hover());
@@ -326,22 +348,6 @@ fn timeline_and_plot(ui: &mut egui::Ui, motion: &Motion, selected: usize) {
         painter.rect_filled(bar, 2.0, fill);
         x += w;
     }
-    Plot::new("plen2-angles").height(170.0).legend(Legend::default()).x_axis_label("ms").allow_scroll(false).show(
-        ui,
-        |plot| {
-            for joint in Joint::ALL {
-                let mut t = 0.0;
-                let mut points = vec![[0.0, 0.0]];
-                for frame in &motion.frames {
-                    t += f64::from(frame.transition_ms);
-                    points.push([t, f64::from(frame.values_tenths_deg.get(joint)) / 10.0]);
-                }
-                if points.iter().any(|p| p[1] != 0.0) {
-                    plot.line(Line::new(joint.name(), PlotPoints::from(points)));
-                }
-            }
-        },
-    );
 }
 
 #[cfg(test)]

@@ -4,6 +4,9 @@
 
 use egui_plot::{Legend, Line, Plot, PlotPoints};
 
+/// Named series of (x, y) points, each sorted by x.
+pub type Series = Vec<(String, Vec<[f64; 2]>)>;
+
 /// Most series drawn at once: more would be an unreadable tangle (and cost a
 /// frame in proportion); ← → page through the rest.
 pub const SERIES_PER_PAGE: usize = 8;

@@ -49,16 +49,11 @@ pub fn list(
     max_height: f32,
     mut add_row: impl FnMut(&mut egui::Ui, usize),
 ) {
-    egui::ScrollArea::vertical().id_salt(id_salt).max_height(max_height).auto_shrink([false, true]).show_rows(
-        ui,
-        row_height,
-        count,
-        |ui, rows| {
-            for index in rows {
-                add_row(ui, index);
-            }
-        },
-    );
+    scrolled(ui, id_salt, row_height, count, max_height, |ui, rows| {
+        for index in rows {
+            add_row(ui, index);
+        }
+    });
 }
 
 /// A striped grid of `count` rows with no heading, at most `max_height`
@@ -72,19 +67,34 @@ pub fn grid(
     mut add_row: impl FnMut(&mut egui::Ui, usize),
 ) {
     let row_height = widget_row_height(ui);
-    egui::ScrollArea::vertical().id_salt(id_salt).max_height(max_height).auto_shrink([false, true]).show_rows(
-        ui,
-        row_height,
-        count,
-        |ui, rows| {
-            egui::Grid::new(id_salt).striped(true).min_row_height(row_height).show(ui, |ui| {
-                for index in rows {
-                    add_row(ui, index);
-                    ui.end_row();
-                }
-            });
-        },
-    );
+    scrolled(ui, id_salt, row_height, count, max_height, |ui, rows| {
+        egui::Grid::new(id_salt).striped(true).min_row_height(row_height).show(ui, |ui| {
+            for index in rows {
+                add_row(ui, index);
+                ui.end_row();
+            }
+        });
+    });
+}
+
+/// A vertical scroll area of `count` rows of `row_height`, at most
+/// `max_height` high, that hands `add_rows` the range of rows in view.
+fn scrolled(
+    ui: &mut egui::Ui,
+    id_salt: &str,
+    row_height: f32,
+    count: usize,
+    max_height: f32,
+    add_rows: impl FnOnce(&mut egui::Ui, std::ops::Range<usize>),
+) {
+    ui.scope(|ui| {
+        solid_scroll_bar(ui);
+        egui::ScrollArea::vertical()
+            .id_salt(id_salt)
+            .max_height(max_height)
+            .auto_shrink([false, true])
+            .show_rows(ui, row_height, count, add_rows);
+    });
 }
 
 /// A striped table of `count` rows under a heading row that stays in place,
@@ -99,25 +109,35 @@ pub fn table(
     mut add_row: impl FnMut(&mut egui_extras::TableRow<'_, '_>, usize),
 ) {
     let row_height = widget_row_height(ui) + 2.0;
-    egui_extras::TableBuilder::new(ui)
-        .id_salt(id_salt)
-        .striped(true)
-        .columns(egui_extras::Column::auto(), heading.len())
-        .cell_layout(egui::Layout::left_to_right(egui::Align::Center))
-        .min_scrolled_height(0.0)
-        .max_scroll_height(max_height - row_height)
-        .auto_shrink([false, true])
-        .header(row_height, |mut header| {
-            for text in heading {
-                header.col(|ui| {
-                    ui.strong(*text);
+    ui.scope(|ui| {
+        solid_scroll_bar(ui);
+        egui_extras::TableBuilder::new(ui)
+            .id_salt(id_salt)
+            .striped(true)
+            .columns(egui_extras::Column::auto(), heading.len())
+            .cell_layout(egui::Layout::left_to_right(egui::Align::Center))
+            .min_scrolled_height(0.0)
+            .max_scroll_height(max_height - row_height)
+            .auto_shrink([false, true])
+            .header(row_height, |mut header| {
+                for text in heading {
+                    header.col(|ui| {
+                        ui.strong(*text);
+                    });
+                }
+            })
+            .body(|body| {
+                body.rows(row_height, count, |mut row| {
+                    let index = row.index();
+                    add_row(&mut row, index);
                 });
-            }
-        })
-        .body(|body| {
-            body.rows(row_height, count, |mut row| {
-                let index = row.index();
-                add_row(&mut row, index);
             });
-        });
+    });
+}
+
+/// A scroll bar that is always drawn when a list is longer than its height
+/// (egui's default floats and shows only on hover): the user sees at once
+/// that there is more.
+fn solid_scroll_bar(ui: &mut egui::Ui) {
+    ui.spacing_mut().scroll = egui::style::ScrollStyle::solid();
 }

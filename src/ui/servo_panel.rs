@@ -92,6 +92,10 @@ impl ServoPanel {
                 .step_by(1.0)
                 .suffix("°");
             let response = ui.add(slider).labelled_by(label.id);
+            if response.gained_focus() {
+                // Tabbing onto a half-shown slider brings it into view.
+                response.scroll_to_me(None);
+            }
             self.slider_ids.insert(response.id, servo.id);
             if focused == Some(servo.id) && nudge != 0 {
                 value += nudge;
