@@ -26,7 +26,7 @@ use servo_studio::device::{Direction, LogEntry};
 use servo_studio::link::{LinkEvent, no_waker};
 use servo_studio::project::plen2::{Frame, Joint, Motion, PlayEntry, PlayList, Plen2Project, Pose};
 use servo_studio::project::{
-    Action, Button, Command, Family, JoystickTable, Macro, Project, Run, Servo, ServoProject, Step,
+    Action, Button, Command, Edit, Family, JoystickTable, Macro, Project, Run, Servo, ServoProject, Step,
 };
 use servo_studio::protocol::rflex::{B21R, Report, SonarReading};
 use servo_studio::protocol::servo::Message;
@@ -323,6 +323,55 @@ fn frame_times() {
     }
 }
 
+/// The edit a drag makes each frame, given the project and the dragged value.
+type EditEveryFrame = fn(&ServoProject, i16) -> UiAction;
+
+/// Median frame time while the user drags a value on the large project: every
+/// frame is a new document revision, so what is derived per revision is
+/// derived every frame.
+fn editing_frame_times() {
+    let large = &scenarios(Family::Servo)[1];
+    let edits: [(Tab, EditEveryFrame); 3] = [
+        (Tab::Actions, |project, degree| {
+            let mut action = project.actions[0].clone();
+            action.steps[0].degree = degree;
+            UiAction::Edit { edit: Edit::SetAction { index: 0, action }, coalesce: Some("bench".into()) }
+        }),
+        (Tab::Macros, |project, delay| {
+            let mut item = project.macros[0].clone();
+            item.commands[1].run = Run::Delay { delay_ms: 100 + i32::from(delay) };
+            UiAction::Edit { edit: Edit::SetMacro { index: 0, item }, coalesce: Some("bench".into()) }
+        }),
+        (Tab::Board, |project, degree| {
+            let mut servo = project.servos[0].clone();
+            servo.home_deg = degree;
+            UiAction::Edit { edit: Edit::SetServo { index: 0, servo }, coalesce: Some("bench".into()) }
+        }),
+    ];
+    for (tab, edit) in edits {
+        let mut window = Window::new(app(large, tab));
+        window.run_steps(10);
+        let frames = measured_frames() / 4;
+        let mut times: Vec<Duration> = (0..frames)
+            .map(|frame| {
+                let degree = i16::try_from(frame % 60).unwrap_or(0) - 30;
+                let began = Instant::now();
+                let action = edit(&window.app.document.project.servo, degree);
+                window.app.apply(action);
+                window.step();
+                began.elapsed()
+            })
+            .collect();
+        times.sort_unstable();
+        println!(
+            "frame time while editing servo/{tab:?} large (an edit every frame): median {:.2} ms, p90 {:.2} ms, max {:.2} ms",
+            times[frames / 2].as_secs_f64() * 1e3,
+            times[frames * 9 / 10].as_secs_f64() * 1e3,
+            times[frames - 1].as_secs_f64() * 1e3
+        );
+    }
+}
+
 /// Resident memory of this process, MB (Linux; `None` elsewhere).
 fn resident_mb() -> Option<(f64, f64)> {
     let status = std::fs::read_to_string("/proc/self/status").ok()?;
@@ -440,8 +489,13 @@ fn main() {
         cold_start_child(family, Path::new(&args[at + 2]));
         return;
     }
+    if std::env::var_os("UI_BENCH_EDITING").is_some() {
+        editing_frame_times();
+        return;
+    }
     frame_times();
     if std::env::var_os("UI_BENCH_ONLY").is_none() {
+        editing_frame_times();
         cold_starts();
         slider_latency();
     }

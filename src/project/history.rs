@@ -24,7 +24,7 @@ impl History {
     /// starting a new one; `None` always starts a new step.
     pub fn record(&mut self, before: &Project, key: Option<&str>) {
         self.redo.clear();
-        if key.is_some() && key == self.open_key.as_deref() {
+        if self.continues(key) {
             return;
         }
         self.undo.push(before.clone());
@@ -32,6 +32,11 @@ impl History {
             self.undo.remove(0);
         }
         self.open_key = key.map(str::to_string);
+    }
+
+    /// Whether an edit with coalesce `key` joins the open step (so needs no snapshot).
+    pub fn continues(&self, key: Option<&str>) -> bool {
+        key.is_some() && key == self.open_key.as_deref()
     }
 
     /// Ends the current coalesced step (e.g. the slider was let go).

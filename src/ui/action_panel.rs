@@ -8,14 +8,14 @@ use crate::project::{
     validate_servo,
 };
 use crate::ui::action::Action;
+use crate::ui::derive::Derived;
 use crate::ui::i18n::Strings;
 use crate::ui::{plot, rows};
 
-/// Validation and the plot's series, computed once per document revision.
-#[derive(Debug)]
-struct Derived {
-    revision: u64,
-    selected: usize,
+/// Validation and the plot's series, for a document revision and a selected
+/// action (computed off the frame path for a large project, `ui::derive`).
+#[derive(Debug, Default)]
+struct Facts {
     /// The selected action's own problems.
     action_problems: Vec<Problem>,
     /// The selected action's first problem per step (1-based).
@@ -25,9 +25,10 @@ struct Derived {
     series: plot::Series,
 }
 
-impl Derived {
-    fn compute(project: &ServoProject, revision: u64, selected: usize) -> Self {
-        let (trajectories, _) = action_trajectories(project, project.actions[selected].id);
+impl Facts {
+    fn compute(project: &ServoProject, selected: usize) -> Self {
+        let Some(selected_action) = project.actions.get(selected) else { return Self::default() };
+        let (trajectories, _) = action_trajectories(project, selected_action.id);
         let series = trajectories
             .into_iter()
             .map(|(servo_id, points)| {
@@ -36,7 +37,7 @@ impl Derived {
             })
             .collect();
         let problems = validate_servo(project);
-        let action_id = project.actions[selected].id;
+        let action_id = selected_action.id;
         let mut step_problems = std::collections::BTreeMap::new();
         let mut action_problems = Vec::new();
         for problem in &problems {
@@ -48,9 +49,9 @@ impl Derived {
                 _ => {}
             }
         }
-        let bars = timeline_bars(&project.actions[selected]);
+        let bars = timeline_bars(selected_action);
         let longest_ms = bars.iter().map(|(_, _, end)| *end).fold(0.0, f32::max).max(10.0);
-        Self { revision, selected, action_problems, step_problems, longest_ms, series }
+        Self { action_problems, step_problems, longest_ms, series }
     }
 }
 
@@ -58,7 +59,7 @@ impl Derived {
 #[derive(Debug, Default)]
 pub struct ActionPanel {
     selected: usize,
-    derived: Option<Derived>,
+    facts: Derived<(u64, usize), Facts>,
 }
 
 fn set(index: usize, action: ProjectAction, key: Option<String>) -> Action {
@@ -90,10 +91,18 @@ impl ActionPanel {
             return;
         }
         self.selected = self.selected.min(project.actions.len() - 1);
-        if self.derived.as_ref().is_none_or(|d| d.revision != revision || d.selected != self.selected) {
-            self.derived = Some(Derived::compute(project, revision, self.selected));
-        }
-        let Some(derived) = self.derived.take() else { return };
+        let index = self.selected;
+        let facts = self.facts.get(ui.ctx(), (revision, index), || {
+            let project = project.clone();
+            move || Facts::compute(&project, index)
+        });
+        // Until the facts of the action now selected are ready, none (not another action's).
+        let empty = Facts::default();
+        let facts = match facts {
+            Some(((_, of), facts)) if *of == index => facts,
+            _ => &empty,
+        };
+        let selected = &mut self.selected;
         ui.horizontal_top(|ui| {
             ui.vertical(|ui| {
                 ui.set_width(200.0);
@@ -101,30 +110,25 @@ impl ActionPanel {
                 let height = rows::list_height(ui, rows::LIST_ROWS);
                 rows::list(ui, "action-list", row_height, project.actions.len(), height, |ui, index| {
                     let action = &project.actions[index];
-                    if ui
-                        .selectable_label(index == self.selected, format!("{} {}", action.id, action.caption))
-                        .clicked()
-                    {
-                        self.selected = index;
+                    if ui.selectable_label(index == *selected, format!("{} {}", action.id, action.caption)).clicked() {
+                        *selected = index;
                     }
                 });
             });
             ui.separator();
-            ui.vertical(|ui| self.editor(ui, project, &derived, connected, words, actions));
+            ui.vertical(|ui| Self::editor(ui, project, index, facts, connected, words, actions));
         });
-        self.derived = Some(derived);
     }
 
     fn editor(
-        &self,
         ui: &mut egui::Ui,
         project: &ServoProject,
-        derived: &Derived,
+        index: usize,
+        derived: &Facts,
         connected: bool,
         words: &Strings,
         actions: &mut Vec<Action>,
     ) {
-        let index = self.selected;
         let action = &project.actions[index];
         ui.horizontal(|ui| {
             let label = ui.label(format!("{} {}", words.action_word, action.id));

@@ -41,6 +41,15 @@ impl Document {
     /// Applies an edit as one undo step, or as part of the open step with the
     /// same `coalesce` key (one slider drag is one step).
     pub fn apply(&mut self, edit: Edit, coalesce: Option<&str>) {
+        if self.history.continues(coalesce) {
+            // Part of the open step (a drag): its snapshot is taken, and a large
+            // project is not copied again every frame of the drag.
+            if edit.apply(&mut self.project) {
+                self.dirty = true;
+                self.revision = next_revision();
+            }
+            return;
+        }
         let before = self.project.clone();
         if edit.apply(&mut self.project) && self.project != before {
             self.history.record(&before, coalesce);

@@ -8,15 +8,15 @@ use crate::project::{
     next_free_id, validate_servo,
 };
 use crate::ui::action::Action;
+use crate::ui::derive::Derived;
 use crate::ui::i18n::Strings;
 use crate::ui::{plot, rows};
 
-/// What the composer derives from the project, computed once per document
-/// revision (validation and timing of a large project take milliseconds).
-#[derive(Debug)]
-struct Derived {
-    revision: u64,
-    selected: usize,
+/// What the composer derives from the project, for a document revision and a
+/// selected macro (validation and timing of a large project take milliseconds:
+/// computed off the frame path then, `ui::derive`).
+#[derive(Debug, Default)]
+struct Facts {
     /// The selected macro's own problems.
     macro_problems: Vec<Problem>,
     /// Macros with a problem (marked in the list).
@@ -24,13 +24,14 @@ struct Derived {
     /// The selected macro's first problem per command (1-based).
     command_problems: std::collections::BTreeMap<usize, Problem>,
     command_totals_ms: Vec<Result<i64, TimingError>>,
-    macro_total_ms: Result<i64, TimingError>,
+    /// The macro's total (`None` until computed).
+    macro_total_ms: Option<Result<i64, TimingError>>,
     series: plot::Series,
 }
 
-impl Derived {
-    fn compute(project: &ServoProject, revision: u64, selected: usize) -> Self {
-        let item = &project.macros[selected];
+impl Facts {
+    fn compute(project: &ServoProject, selected: usize) -> Self {
+        let Some(item) = project.macros.get(selected) else { return Self::default() };
         let timing = Timing::new(project);
         let (trajectories, _) = macro_trajectories(project, item.id);
         let series = trajectories
@@ -62,13 +63,11 @@ impl Derived {
             }
         }
         Self {
-            revision,
-            selected,
             macro_problems,
             flagged,
             command_problems,
             command_totals_ms: item.commands.iter().map(|command| timing.command_total_ms(command)).collect(),
-            macro_total_ms: timing.macro_total_ms(item.id),
+            macro_total_ms: Some(timing.macro_total_ms(item.id)),
             series,
         }
     }
@@ -78,7 +77,7 @@ impl Derived {
 #[derive(Debug, Default)]
 pub struct MacroPanel {
     selected: usize,
-    derived: Option<Derived>,
+    facts: Derived<(u64, usize), Facts>,
 }
 
 fn seconds(ms: i64) -> String {
@@ -120,10 +119,18 @@ impl MacroPanel {
             return;
         }
         self.selected = self.selected.min(project.macros.len() - 1);
-        if self.derived.as_ref().is_none_or(|d| d.revision != revision || d.selected != self.selected) {
-            self.derived = Some(Derived::compute(project, revision, self.selected));
-        }
-        let Some(derived) = self.derived.take() else { return };
+        let index = self.selected;
+        let facts = self.facts.get(ui.ctx(), (revision, index), || {
+            let project = project.clone();
+            move || Facts::compute(&project, index)
+        });
+        // Until the facts of the macro now selected are ready, none (not another macro's).
+        let empty = Facts::default();
+        let derived = match facts {
+            Some(((_, of), facts)) if *of == index => facts,
+            _ => &empty,
+        };
+        let selected = &mut self.selected;
         ui.horizontal_top(|ui| {
             ui.vertical(|ui| {
                 ui.set_width(200.0);
@@ -133,27 +140,26 @@ impl MacroPanel {
                     let item = &project.macros[index];
                     let flagged = derived.flagged.contains(&item.id);
                     let text = format!("{}{} {}", if flagged { "! " } else { "" }, item.id, item.caption);
-                    if ui.selectable_label(index == self.selected, text).clicked() {
-                        self.selected = index;
+                    if ui.selectable_label(index == *selected, text).clicked() {
+                        *selected = index;
                     }
                 });
             });
             ui.separator();
-            ui.vertical(|ui| self.editor(ui, project, &derived, connected, words, actions));
+            ui.vertical(|ui| Self::editor(ui, project, index, derived, connected, words, actions));
         });
-        self.derived = Some(derived);
     }
 
+    #[allow(clippy::too_many_arguments)]
     fn editor(
-        &self,
         ui: &mut egui::Ui,
         project: &ServoProject,
-        derived: &Derived,
+        index: usize,
+        derived: &Facts,
         connected: bool,
         words: &Strings,
         actions: &mut Vec<Action>,
     ) {
-        let index = self.selected;
         let item = &project.macros[index];
         ui.horizontal(|ui| {
             let label = ui.label(format!("{} {}", words.macro_word, item.id));
@@ -163,8 +169,9 @@ impl MacroPanel {
                 actions.push(edit(index, Macro { caption, ..item.clone() }, Some(key)));
             }
             match derived.macro_total_ms {
-                Ok(total) => ui.label(format!("{} {}", words.total, seconds(total))),
-                Err(error) => ui.colored_label(ui.visuals().warn_fg_color, words.lang.timing_error(&error)),
+                Some(Ok(total)) => ui.label(format!("{} {}", words.total, seconds(total))),
+                Some(Err(error)) => ui.colored_label(ui.visuals().warn_fg_color, words.lang.timing_error(&error)),
+                None => ui.label(format!("{} …", words.total)),
             };
             if ui.add_enabled(connected, egui::Button::new(words.run_on_board)).clicked() {
                 actions.push(Action::RunMacro(item.id));
@@ -181,7 +188,7 @@ impl MacroPanel {
         rows::grid(ui, "commands", item.commands.len(), height, |ui, position| {
             let command = &item.commands[position];
             let total = derived.command_totals_ms.get(position).copied().unwrap_or(Err(TimingError::ZeroRatio));
-            self.command_row(ui, project, total, item, index, position, command, words, actions);
+            Self::command_row(ui, project, total, item, index, position, command, words, actions);
             if let Some(problem) = derived.command_problems.get(&(position + 1)) {
                 let color = match problem.severity {
                     Severity::Error => ui.visuals().error_fg_color,
@@ -227,7 +234,6 @@ impl MacroPanel {
 
     #[allow(clippy::too_many_arguments)]
     fn command_row(
-        &self,
         ui: &mut egui::Ui,
         project: &ServoProject,
         total_ms: Result<i64, TimingError>,

@@ -7,6 +7,7 @@ mod app;
 mod board_link;
 mod board_panel;
 mod connection_bar;
+mod derive;
 mod document;
 mod drive_panel;
 pub mod files;

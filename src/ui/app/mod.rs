@@ -100,8 +100,8 @@ pub struct StudioApp {
     /// An action being previewed on the sliders, and when it started.
     pub preview: Option<(i32, Instant)>,
     compare_intent: Option<BoardIntent>,
-    /// The project's size on the board (or why it cannot be stored), for a document revision.
-    footprint: Option<(u64, Result<usize, String>)>,
+    /// The project's size on the board (or why it cannot be stored), for a document revision and language.
+    footprint: crate::ui::derive::Derived<(u64, Language), Result<usize, String>>,
     /// The PLEN2 section's problems, per document revision (the motion editor marks them every frame).
     plen2_problems: Option<(u64, Vec<crate::project::Problem>)>,
     /// The robot panel's slot map, for (document revision, robot reads).
@@ -165,7 +165,7 @@ impl StudioApp {
             last_autosave: Instant::now(),
             quit_allowed: false,
             compare_intent: None,
-            footprint: None,
+            footprint: crate::ui::derive::Derived::default(),
             plen2_problems: None,
             plen2_slots: None,
             plen2_robot_reads: 0,

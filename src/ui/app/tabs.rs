@@ -123,15 +123,18 @@ impl StudioApp {
                 }
             },
             Tab::Board => {
-                // Encoding every record takes a millisecond on a large project: once per revision.
-                let revision = self.document.revision();
-                if self.footprint.as_ref().is_none_or(|(at, _)| *at != revision) {
-                    let bytes = ServoImage::from_project(&self.document.project.servo)
-                        .map_err(|error| self.language.op_error(&crate::device::servo::OpError::Image(error)))
-                        .and_then(|image| image.footprint_bytes().map_err(|error| error.to_string()));
-                    self.footprint = Some((revision, bytes));
-                }
-                let project_bytes = self.footprint.as_ref().map_or(Ok(0), |(_, bytes)| bytes.clone());
+                // Encoding every record takes milliseconds on a large project: once per
+                // revision, off the frame path then.
+                let language = self.language;
+                let footprint = self.footprint.get(ui.ctx(), (self.document.revision(), language), || {
+                    let project = self.document.project.servo.clone();
+                    move || {
+                        ServoImage::from_project(&project)
+                            .map_err(|error| language.op_error(&crate::device::servo::OpError::Image(error)))
+                            .and_then(|image| image.footprint_bytes().map_err(|error| error.to_string()))
+                    }
+                });
+                let project_bytes = footprint.map_or(Ok(0), |(_, bytes)| bytes.clone());
                 let view = BoardView {
                     connected: self.link.is_some(),
                     project_bytes,
