@@ -201,3 +201,30 @@ fn the_plen2_slot_map_lays_out_the_rows_in_view() {
     assert!(cells < 90, "all 90 slots laid out in a window that shows {cells}");
     assert_eq!(cells % 10, 0, "whole rows of ten");
 }
+
+#[test]
+fn a_drop_down_of_500_actions_lays_out_the_choices_in_view() {
+    let actions: Vec<Action> = (1..=ITEMS)
+        .map(|id| Action { id: i32::try_from(id).unwrap(), caption: format!("動作{id}"), steps: Vec::new() })
+        .collect();
+    let macros = vec![Macro {
+        id: 1,
+        caption: "巨集".into(),
+        commands: vec![Command::once(Run::Action { action_id: 1 })],
+    }];
+    let project = ServoProject { actions, macros, ..ServoProject::default() };
+    let mut harness = harness(Project::servo(project), Tab::Macros, false);
+    // The command's target: the second combo box of its row (after its kind).
+    let combos: Vec<_> = harness.query_all(by().role(Role::ComboBox).label("≡ 1")).collect();
+    assert_eq!(combos.len(), 2, "kind and target");
+    combos[1].click();
+    harness.run_steps(3);
+    let choices = harness.query_all(by().label_contains("動作")).count();
+    assert!(choices >= 3, "the drop-down opened: {choices} choices");
+    assert!(choices <= VIEWPORT_ROWS, "{choices} of {ITEMS} choices laid out");
+    // Picking one sets the command's target.
+    harness.get_by_label("5 動作5").click();
+    harness.run_steps(2);
+    let run = harness.state().document.project.servo.macros[0].commands[0].run;
+    assert_eq!(run, Run::Action { action_id: 5 });
+}

@@ -92,16 +92,14 @@ impl ActionPanel {
         }
         self.selected = self.selected.min(project.actions.len() - 1);
         let index = self.selected;
-        let facts = self.facts.get(ui.ctx(), (revision, index), || {
-            let project = project.clone();
-            move || Facts::compute(&project, index)
-        });
-        // Until the facts of the action now selected are ready, none (not another action's).
         let empty = Facts::default();
-        let facts = match facts {
-            Some(((_, of), facts)) if *of == index => facts,
-            _ => &empty,
-        };
+        let facts = self
+            .facts
+            .for_selected(ui.ctx(), revision, index, || {
+                let project = project.clone();
+                move || Facts::compute(&project, index)
+            })
+            .unwrap_or(&empty);
         let selected = &mut self.selected;
         ui.horizontal_top(|ui| {
             ui.vertical(|ui| {
@@ -170,15 +168,11 @@ impl ActionPanel {
                     .servo(step.servo_id)
                     .map_or_else(|| format!("{} ?", step.servo_id), |s| format!("{} {}", s.id, s.caption));
                 let mut servo_id = step.servo_id;
-                egui::ComboBox::from_id_salt(("step-servo", position))
-                    .selected_text(servo_text)
-                    .show_ui(ui, |ui| {
-                        for servo in &project.servos {
-                            ui.selectable_value(&mut servo_id, servo.id, format!("{} {}", servo.id, servo.caption));
-                        }
-                    })
-                    .response
-                    .labelled_by(row_id);
+                let servos = &project.servos;
+                rows::combo(ui, ("step-servo", position), servo_text, &mut servo_id, servos.len(), |i| {
+                    (servos[i].id, format!("{} {}", servos[i].id, servos[i].caption))
+                })
+                .labelled_by(row_id);
                 if servo_id != step.servo_id {
                     actions.push(with(Step { servo_id, ..*step }, None));
                 }

@@ -98,6 +98,27 @@ impl<K: Clone + PartialEq, T: Send + 'static> Derived<K, T> {
     }
 }
 
+impl<T: Send + 'static> Derived<(u64, usize), T> {
+    /// The value for the selected item at `revision` ([`Self::get`] with the key
+    /// `(revision, selected)`), or the last one for the same item while the new
+    /// one is computed; never another item's.
+    pub fn for_selected<J>(
+        &mut self,
+        ctx: &egui::Context,
+        revision: u64,
+        selected: usize,
+        prepare: impl FnOnce() -> J,
+    ) -> Option<&T>
+    where
+        J: FnOnce() -> T + Send + 'static,
+    {
+        match self.get(ctx, (revision, selected), prepare) {
+            Some(((_, of), value)) if *of == selected => Some(value),
+            _ => None,
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

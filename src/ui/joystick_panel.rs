@@ -179,20 +179,15 @@ impl JoystickPanel {
             for (slot, current) in [(0, button.press_macro), (1, button.long_press_macro), (2, button.release_macro)] {
                 row.col(|ui| {
                     let mut chosen = current;
-                    egui::ComboBox::from_id_salt(("macro", position, slot))
-                        .selected_text(macro_text(current))
-                        .show_ui(ui, |ui| {
-                            ui.selectable_value(&mut chosen, None, "—");
-                            for item in &project.macros {
-                                ui.selectable_value(
-                                    &mut chosen,
-                                    Some(item.id),
-                                    format!("{} {}", item.id, item.caption),
-                                );
-                            }
-                        })
-                        .response
-                        .labelled_by(row_id);
+                    let all = &project.macros;
+                    // "—" (none) first, then every macro.
+                    rows::combo(ui, ("macro", position, slot), macro_text(current), &mut chosen, all.len() + 1, |i| {
+                        match i.checked_sub(1).and_then(|i| all.get(i)) {
+                            Some(item) => (Some(item.id), format!("{} {}", item.id, item.caption)),
+                            None => (None, "—".to_string()),
+                        }
+                    })
+                    .labelled_by(row_id);
                     if chosen != current {
                         let mut changed = button.clone();
                         match slot {

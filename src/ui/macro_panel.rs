@@ -120,16 +120,14 @@ impl MacroPanel {
         }
         self.selected = self.selected.min(project.macros.len() - 1);
         let index = self.selected;
-        let facts = self.facts.get(ui.ctx(), (revision, index), || {
-            let project = project.clone();
-            move || Facts::compute(&project, index)
-        });
-        // Until the facts of the macro now selected are ready, none (not another macro's).
         let empty = Facts::default();
-        let derived = match facts {
-            Some(((_, of), facts)) if *of == index => facts,
-            _ => &empty,
-        };
+        let derived = self
+            .facts
+            .for_selected(ui.ctx(), revision, index, || {
+                let project = project.clone();
+                move || Facts::compute(&project, index)
+            })
+            .unwrap_or(&empty);
         let selected = &mut self.selected;
         ui.horizontal_top(|ui| {
             ui.vertical(|ui| {
@@ -283,29 +281,21 @@ impl MacroPanel {
                 let shown = project
                     .action(*action_id)
                     .map_or_else(|| format!("{action_id} ?"), |a| format!("{} {}", a.id, a.caption));
-                egui::ComboBox::from_id_salt(("target", position))
-                    .selected_text(shown)
-                    .show_ui(ui, |ui| {
-                        for action in &project.actions {
-                            ui.selectable_value(action_id, action.id, format!("{} {}", action.id, action.caption));
-                        }
-                    })
-                    .response
-                    .labelled_by(row.id);
+                let all = &project.actions;
+                rows::combo(ui, ("target", position), shown, action_id, all.len(), |i| {
+                    (all[i].id, format!("{} {}", all[i].id, all[i].caption))
+                })
+                .labelled_by(row.id);
             }
             Run::Macro { macro_id } => {
                 let shown = project
                     .macro_by_id(*macro_id)
                     .map_or_else(|| format!("{macro_id} ?"), |m| format!("{} {}", m.id, m.caption));
-                egui::ComboBox::from_id_salt(("target", position))
-                    .selected_text(shown)
-                    .show_ui(ui, |ui| {
-                        for other in &project.macros {
-                            ui.selectable_value(macro_id, other.id, format!("{} {}", other.id, other.caption));
-                        }
-                    })
-                    .response
-                    .labelled_by(row.id);
+                let all = &project.macros;
+                rows::combo(ui, ("target", position), shown, macro_id, all.len(), |i| {
+                    (all[i].id, format!("{} {}", all[i].id, all[i].caption))
+                })
+                .labelled_by(row.id);
             }
             Run::Delay { delay_ms } => {
                 ui.add(egui::DragValue::new(delay_ms).clamp_existing_to_range(false).range(0..=i32::MAX).suffix(" ms"));

@@ -98,13 +98,11 @@ impl PlayListsPanel {
             let mut changed = *entry;
             ui.label(format!("{}", position + 1));
             let name = project.motions.iter().find(|m| m.slot == entry.slot).map_or("—", |m| m.name.as_str());
-            egui::ComboBox::from_id_salt(("plen2-entry", index, position))
-                .selected_text(format!("{} {name}", entry.slot))
-                .show_ui(ui, |ui| {
-                    for motion in &project.motions {
-                        ui.selectable_value(&mut changed.slot, motion.slot, format!("{} {}", motion.slot, motion.name));
-                    }
-                });
+            let motions = &project.motions;
+            let shown = format!("{} {name}", entry.slot);
+            rows::combo(ui, ("plen2-entry", index, position), shown, &mut changed.slot, motions.len(), |i| {
+                (motions[i].slot, format!("{} {}", motions[i].slot, motions[i].name))
+            });
             ui.horizontal(|ui| {
                 ui.label(words.plays);
                 ui.add(egui::DragValue::new(&mut changed.plays));

@@ -135,6 +135,31 @@ pub fn table(
     });
 }
 
+/// A combo box whose drop-down lays out only the choices in view (a project
+/// may offer 500 actions to pick from). `choice(i)` is the i-th value and its
+/// text; picking one sets `current`.
+pub fn combo<V: PartialEq>(
+    ui: &mut egui::Ui,
+    id_salt: impl egui::AsIdSalt,
+    selected_text: String,
+    current: &mut V,
+    count: usize,
+    choice: impl Fn(usize) -> (V, String),
+) -> egui::Response {
+    let row_height = name_row_height(ui);
+    let height = list_height(ui, LIST_ROWS);
+    egui::ComboBox::from_id_salt(id_salt)
+        .selected_text(selected_text)
+        .height(height + row_height)
+        .show_ui(ui, |ui| {
+            list(ui, "choices", row_height, count, height, |ui, index| {
+                let (value, text) = choice(index);
+                ui.selectable_value(current, value, text);
+            });
+        })
+        .response
+}
+
 /// A scroll bar that is always drawn when a list is longer than its height
 /// (egui's default floats and shows only on hover): the user sees at once
 /// that there is more.
