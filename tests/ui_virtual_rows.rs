@@ -207,11 +207,8 @@ fn a_drop_down_of_500_actions_lays_out_the_choices_in_view() {
     let actions: Vec<Action> = (1..=ITEMS)
         .map(|id| Action { id: i32::try_from(id).unwrap(), caption: format!("動作{id}"), steps: Vec::new() })
         .collect();
-    let macros = vec![Macro {
-        id: 1,
-        caption: "巨集".into(),
-        commands: vec![Command::once(Run::Action { action_id: 1 })],
-    }];
+    let macros =
+        vec![Macro { id: 1, caption: "巨集".into(), commands: vec![Command::once(Run::Action { action_id: 400 })] }];
     let project = ServoProject { actions, macros, ..ServoProject::default() };
     let mut harness = harness(Project::servo(project), Tab::Macros, false);
     // The command's target: the second combo box of its row (after its kind).
@@ -222,9 +219,12 @@ fn a_drop_down_of_500_actions_lays_out_the_choices_in_view() {
     let choices = harness.query_all(by().label_contains("動作")).count();
     assert!(choices >= 3, "the drop-down opened: {choices} choices");
     assert!(choices <= VIEWPORT_ROWS, "{choices} of {ITEMS} choices laid out");
+    // It opens at the current choice, 400 of 500, and the first ones are not laid out.
+    assert!(harness.query_by_label("400 動作400").is_some(), "the current choice is in view");
+    assert!(harness.query_by_label("1 動作1").is_none());
     // Picking one sets the command's target.
-    harness.get_by_label("5 動作5").click();
+    harness.get_by_label("401 動作401").click();
     harness.run_steps(2);
     let run = harness.state().document.project.servo.macros[0].commands[0].run;
-    assert_eq!(run, Run::Action { action_id: 5 });
+    assert_eq!(run, Run::Action { action_id: 401 });
 }

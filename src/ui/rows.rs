@@ -49,7 +49,7 @@ pub fn list(
     max_height: f32,
     mut add_row: impl FnMut(&mut egui::Ui, usize),
 ) {
-    scrolled(ui, id_salt, row_height, count, max_height, |ui, rows| {
+    scrolled(ui, id_salt, row_height, count, max_height, None, |ui, rows| {
         for index in rows {
             add_row(ui, index);
         }
@@ -67,7 +67,7 @@ pub fn grid(
     mut add_row: impl FnMut(&mut egui::Ui, usize),
 ) {
     let row_height = widget_row_height(ui);
-    scrolled(ui, id_salt, row_height, count, max_height, |ui, rows| {
+    scrolled(ui, id_salt, row_height, count, max_height, None, |ui, rows| {
         egui::Grid::new(id_salt).striped(true).min_row_height(row_height).show(ui, |ui| {
             for index in rows {
                 add_row(ui, index);
@@ -78,22 +78,26 @@ pub fn grid(
 }
 
 /// A vertical scroll area of `count` rows of `row_height`, at most
-/// `max_height` high, that hands `add_rows` the range of rows in view.
+/// `max_height` high (scrolled to `scroll_to_row` if given), that hands
+/// `add_rows` the range of rows in view.
 fn scrolled(
     ui: &mut egui::Ui,
     id_salt: &str,
     row_height: f32,
     count: usize,
     max_height: f32,
+    scroll_to_row: Option<usize>,
     add_rows: impl FnOnce(&mut egui::Ui, std::ops::Range<usize>),
 ) {
     ui.scope(|ui| {
         solid_scroll_bar(ui);
-        egui::ScrollArea::vertical()
-            .id_salt(id_salt)
-            .max_height(max_height)
-            .auto_shrink([false, true])
-            .show_rows(ui, row_height, count, add_rows);
+        let mut area = egui::ScrollArea::vertical().id_salt(id_salt).max_height(max_height).auto_shrink([false, true]);
+        if let Some(row) = scroll_to_row {
+            // The row a little below the top, with the ones before it in sight.
+            let above = row.saturating_sub(2);
+            area = area.vertical_scroll_offset(rows_height(ui, row_height, above));
+        }
+        area.show_rows(ui, row_height, count, add_rows);
     });
 }
 
@@ -152,9 +156,17 @@ pub fn combo<V: PartialEq>(
         .selected_text(selected_text)
         .height(height + row_height)
         .show_ui(ui, |ui| {
-            list(ui, "choices", row_height, count, height, |ui, index| {
-                let (value, text) = choice(index);
-                ui.selectable_value(current, value, text);
+            // Just opened (not drawn the frame before): show the current choice.
+            let shown_at = ui.scope_id().with("shown at");
+            let pass = ui.ctx().cumulative_pass_nr();
+            let opened = ui.data(|data| data.get_temp::<u64>(shown_at)).is_none_or(|last| last + 1 < pass);
+            ui.data_mut(|data| data.insert_temp(shown_at, pass));
+            let scroll_to = opened.then(|| (0..count).find(|&index| choice(index).0 == *current)).flatten();
+            scrolled(ui, "choices", row_height, count, height, scroll_to, |ui, rows| {
+                for index in rows {
+                    let (value, text) = choice(index);
+                    ui.selectable_value(current, value, text);
+                }
             });
         })
         .response
