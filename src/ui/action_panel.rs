@@ -104,9 +104,7 @@ impl ActionPanel {
         ui.horizontal_top(|ui| {
             ui.vertical(|ui| {
                 ui.set_width(200.0);
-                let row_height = rows::name_row_height(ui);
-                let height = rows::list_height(ui, rows::LIST_ROWS);
-                rows::list(ui, "action-list", row_height, project.actions.len(), height, |ui, index| {
+                rows::names(ui, "action-list", project.actions.len(), rows::LIST_ROWS, |ui, index| {
                     let action = &project.actions[index];
                     if ui.selectable_label(index == *selected, format!("{} {}", action.id, action.caption)).clicked() {
                         *selected = index;
@@ -199,20 +197,10 @@ impl ActionPanel {
                 }
             });
             row.col(|ui| {
-                if ui.add_enabled(position > 0, egui::Button::new("↑")).clicked() {
-                    let mut moved = action.clone();
-                    moved.steps.swap(position, position - 1);
-                    actions.push(set(index, moved, None));
-                }
-                if ui.add_enabled(position + 1 < action.steps.len(), egui::Button::new("↓")).clicked() {
-                    let mut moved = action.clone();
-                    moved.steps.swap(position, position + 1);
-                    actions.push(set(index, moved, None));
-                }
-                if ui.button("×").on_hover_text(words.remove).clicked() {
-                    let mut fewer = action.clone();
-                    fewer.steps.remove(position);
-                    actions.push(set(index, fewer, None));
+                if let Some(asked) = rows::reorder_buttons(ui, position, action.steps.len(), words.remove) {
+                    let mut changed = action.clone();
+                    asked.apply(&mut changed.steps, position);
+                    actions.push(set(index, changed, None));
                 }
             });
             row.col(|ui| {

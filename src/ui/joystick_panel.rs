@@ -63,10 +63,8 @@ impl JoystickPanel {
         ui.horizontal_top(|ui| {
             ui.vertical(|ui| {
                 ui.set_width(200.0);
-                let row_height = rows::name_row_height(ui);
                 let count = project.joystick_tables.len();
-                let height = rows::list_height(ui, rows::LIST_ROWS / 2);
-                rows::list(ui, "joystick-tables", row_height, count, height, |ui, position| {
+                rows::names(ui, "joystick-tables", count, rows::LIST_ROWS / 2, |ui, position| {
                     let table = &project.joystick_tables[position];
                     let active = if project.active_table == Some(table.id) { " ★" } else { "" };
                     let text = format!("{} {}{active}", table.id, table.caption);

@@ -132,9 +132,7 @@ impl MacroPanel {
         ui.horizontal_top(|ui| {
             ui.vertical(|ui| {
                 ui.set_width(200.0);
-                let row_height = rows::name_row_height(ui);
-                let height = rows::list_height(ui, rows::LIST_ROWS);
-                rows::list(ui, "macro-list", row_height, project.macros.len(), height, |ui, index| {
+                rows::names(ui, "macro-list", project.macros.len(), rows::LIST_ROWS, |ui, index| {
                     let item = &project.macros[index];
                     let flagged = derived.flagged.contains(&item.id);
                     let text = format!("{}{} {}", if flagged { "! " } else { "" }, item.id, item.caption);
@@ -328,20 +326,10 @@ impl MacroPanel {
             Err(_) => ui.monospace("—"),
         };
         ui.horizontal(|ui| {
-            if ui.add_enabled(position > 0, egui::Button::new("↑")).clicked() {
-                let mut moved = item.clone();
-                moved.commands.swap(position, position - 1);
-                actions.push(edit(index, moved, None));
-            }
-            if ui.add_enabled(position + 1 < item.commands.len(), egui::Button::new("↓")).clicked() {
-                let mut moved = item.clone();
-                moved.commands.swap(position, position + 1);
-                actions.push(edit(index, moved, None));
-            }
-            if ui.button("×").on_hover_text(words.remove).clicked() {
-                let mut fewer = item.clone();
-                fewer.commands.remove(position);
-                actions.push(edit(index, fewer, None));
+            if let Some(asked) = rows::reorder_buttons(ui, position, item.commands.len(), words.remove) {
+                let mut changed = item.clone();
+                asked.apply(&mut changed.commands, position);
+                actions.push(edit(index, changed, None));
             }
         });
     }

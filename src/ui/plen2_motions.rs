@@ -90,11 +90,9 @@ impl MotionsPanel {
         ui.horizontal_top(|ui| {
             ui.vertical(|ui| {
                 ui.set_width(190.0);
-                let row_height = rows::name_row_height(ui);
-                let height = rows::list_height(ui, rows::LIST_ROWS);
                 let flagged = &self.flagged;
                 let mut picked = None;
-                rows::list(ui, "plen2-motion-list", row_height, project.motions.len(), height, |ui, index| {
+                rows::names(ui, "plen2-motion-list", project.motions.len(), rows::LIST_ROWS, |ui, index| {
                     let motion = &project.motions[index];
                     let mark = if flagged.contains_key(&motion.slot) { "! " } else { "" };
                     let text = format!("{mark}{:>2} {}", motion.slot, motion.name);

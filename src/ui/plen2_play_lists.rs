@@ -45,9 +45,7 @@ impl PlayListsPanel {
         ui.horizontal_top(|ui| {
             ui.vertical(|ui| {
                 ui.set_width(200.0);
-                let row_height = rows::name_row_height(ui);
-                let height = rows::list_height(ui, rows::LIST_ROWS);
-                rows::list(ui, "play-lists", row_height, project.play_lists.len(), height, |ui, index| {
+                rows::names(ui, "play-lists", project.play_lists.len(), rows::LIST_ROWS, |ui, index| {
                     let list = &project.play_lists[index];
                     let text = format!("{} ({})", list.name, list.entries.len());
                     if ui.selectable_label(index == self.selected, text).clicked() {

@@ -56,6 +56,60 @@ pub fn list(
     });
 }
 
+/// A list of names (one selectable line each), at most `max_rows` lines high.
+pub fn names(
+    ui: &mut egui::Ui,
+    id_salt: &str,
+    count: usize,
+    max_rows: usize,
+    add_row: impl FnMut(&mut egui::Ui, usize),
+) {
+    let row_height = name_row_height(ui);
+    let height = list_height(ui, max_rows);
+    list(ui, id_salt, row_height, count, height, add_row);
+}
+
+/// What a row's ↑ ↓ × buttons asked for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Reorder {
+    /// Swap with the row above.
+    Up,
+    /// Swap with the row below.
+    Down,
+    /// Remove the row.
+    Remove,
+}
+
+impl Reorder {
+    /// Applies the change to the row at `position` of `items`.
+    pub fn apply<T>(self, items: &mut Vec<T>, position: usize) {
+        match self {
+            Self::Up if position > 0 => items.swap(position, position - 1),
+            Self::Down if position + 1 < items.len() => items.swap(position, position + 1),
+            Self::Remove if position < items.len() => {
+                items.remove(position);
+            }
+            _ => {}
+        }
+    }
+}
+
+/// The ↑ ↓ × buttons of the row at `position` of `count` (↑ off on the first
+/// row, ↓ on the last).
+pub fn reorder_buttons(ui: &mut egui::Ui, position: usize, count: usize, remove_hint: &str) -> Option<Reorder> {
+    let mut asked = None;
+    if ui.add_enabled(position > 0, egui::Button::new("↑")).clicked() {
+        asked = Some(Reorder::Up);
+    }
+    if ui.add_enabled(position + 1 < count, egui::Button::new("↓")).clicked() {
+        asked = Some(Reorder::Down);
+    }
+    if ui.button("×").on_hover_text(remove_hint).clicked() {
+        asked = Some(Reorder::Remove);
+    }
+    asked
+}
+
 /// A striped grid of `count` rows with no heading, at most `max_height`
 /// high; `add_row` fills the cells of the rows in view only (the grid ends
 /// each row). Column widths are remembered from frame to frame.
@@ -177,4 +231,26 @@ pub fn combo<V: PartialEq>(
 /// that there is more.
 fn solid_scroll_bar(ui: &mut egui::Ui) {
     ui.spacing_mut().scroll = egui::style::ScrollStyle::solid();
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reordering_moves_or_removes_the_row_and_ignores_what_cannot_be_done() {
+        let cases: [(Reorder, usize, [char; 3], &str); 6] = [
+            (Reorder::Up, 1, ['a', 'b', 'c'], "bac"),
+            (Reorder::Up, 0, ['a', 'b', 'c'], "abc"),
+            (Reorder::Down, 1, ['a', 'b', 'c'], "acb"),
+            (Reorder::Down, 2, ['a', 'b', 'c'], "abc"),
+            (Reorder::Remove, 2, ['a', 'b', 'c'], "ab"),
+            (Reorder::Remove, 3, ['a', 'b', 'c'], "abc"),
+        ];
+        for (asked, position, items, expected) in cases {
+            let mut items = items.to_vec();
+            asked.apply(&mut items, position);
+            assert_eq!(items.iter().collect::<String>(), expected, "{asked:?} at {position}");
+        }
+    }
 }
