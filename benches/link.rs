@@ -11,9 +11,10 @@ mod common;
 
 use std::time::{Duration, Instant};
 
+use servo_studio::device::Cancel;
 use servo_studio::device::servo::DEFAULT_BAUD;
 use servo_studio::device::servo::{
-    Cancel, ImportOptions, ServoBoard, ServoEvent, ServoImage, SessionConfig, Traffic, export, import,
+    ImportOptions, ServoBoard, ServoEvent, ServoImage, SessionConfig, Traffic, export, import,
 };
 use servo_studio::link::{LinkEvent, PortName, no_waker};
 use servo_studio::project::ServoProject;

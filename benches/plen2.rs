@@ -8,10 +8,10 @@
 
 use std::time::{Duration, Instant};
 
+use servo_studio::device::Cancel;
 use servo_studio::device::plen2::{
-    Pacing, Plen2Handle, Plen2ImportOptions, SlotResult, import, motion_commands, read_slot,
+    Plen2Handle, Plen2ImportOptions, Plen2Options, SlotResult, import, motion_commands, read_slot,
 };
-use servo_studio::device::servo::Cancel;
 use servo_studio::link::{PortName, no_waker};
 use servo_studio::project::Family;
 use servo_studio::project::plen2::{Frame, Joint, Motion, Plen2Project, Pose};
@@ -36,7 +36,8 @@ fn main() {
     let port = PortName::parse(&robot.port_name).unwrap();
     let settings = servo_studio::device::line_settings(Family::Plen2);
     let handle =
-        Plen2Handle::over(servo_studio::link::open(&port, &settings).unwrap(), Pacing::default(), no_waker()).unwrap();
+        Plen2Handle::over(servo_studio::link::open(&port, &settings).unwrap(), Plen2Options::default(), no_waker())
+            .unwrap();
     let requester = handle.requester();
     let options = Plen2ImportOptions { backup_dir: None, verify: true, force: false };
 

@@ -1,9 +1,11 @@
 //! The command line: argument parsing and the commands. Errors are handled
 //! here, once: printed with what to try, and turned into the exit status.
 
+mod out;
 mod plen2;
 mod rflex;
 mod servo;
+mod signals;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -47,9 +49,10 @@ pub struct PortArgs {
     /// Line rate of a serial port (default: the family's, 115200 for servo boards).
     #[arg(long)]
     pub baud: Option<u32>,
-    /// How long to wait for each response, in milliseconds.
-    #[arg(long, default_value_t = 1000)]
-    pub timeout_ms: u64,
+    /// How long the device may take to answer, in milliseconds, on top of
+    /// the time the bytes need on the line (default: 1000; 600 for PLEN2).
+    #[arg(long)]
+    pub timeout_ms: Option<u64>,
     /// The board's family: servo, plen2 or rflex (default: the project file's, else servo).
     #[arg(long, value_parser = parse_family)]
     pub protocol: Option<Family>,
@@ -59,6 +62,14 @@ impl PortArgs {
     /// The line rate asked for, or the family's default.
     pub fn baud(&self, family: Family) -> u32 {
         self.baud.unwrap_or_else(|| device::line_settings(family).baud)
+    }
+
+    /// The timeout asked for, or the family's default, ms.
+    pub fn timeout_ms(&self, family: Family) -> u64 {
+        self.timeout_ms.unwrap_or(match family {
+            Family::Plen2 => 600,
+            Family::Servo | Family::Rflex => 1000,
+        })
     }
 }
 
@@ -164,6 +175,21 @@ fn servo_only(family: Family, what: &str) -> anyhow::Result<()> {
     }
 }
 
+/// After a failed upload that had begun writing, how to put the device back
+/// as the backup holds it (or that there is no backup).
+pub fn restore_hint<I>(protocol: &str, port: &str, backup: Option<&std::path::Path>, left: &device::Left<I>) -> String {
+    if matches!(left, device::Left::Untouched) {
+        return String::new();
+    }
+    match backup {
+        Some(backup) => format!(
+            "\nto put it back as it was: servo-studio import{protocol} --port {port} --in {} --force --yes",
+            backup.display()
+        ),
+        None => "\nthere is no backup of what it held (--no-backup)".to_string(),
+    }
+}
+
 /// Runs a parsed command line.
 pub fn run(command: CliCommand) -> ExitCode {
     let result = match command {
@@ -186,12 +212,20 @@ pub fn run(command: CliCommand) -> ExitCode {
         },
         CliCommand::Gui { file, demo, protocol } => gui(file, demo, protocol),
     };
-    match result {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(error) => {
-            eprintln!("error: {error:#}");
-            ExitCode::FAILURE
-        }
+    finish(result)
+}
+
+/// The exit status of a command, with its error printed once.
+fn finish(result: anyhow::Result<()>) -> ExitCode {
+    let Err(error) = result else { return ExitCode::SUCCESS };
+    if error.chain().any(|cause| cause.is::<out::Closed>()) {
+        // The reader of stdout went away (`| head -1`): nothing is wrong.
+        return ExitCode::SUCCESS;
+    }
+    eprintln!("error: {error:#}");
+    match error.chain().find_map(|cause| cause.downcast_ref::<rflex::Exit>()) {
+        Some(rflex::Exit(code)) => ExitCode::from(*code),
+        None => ExitCode::FAILURE,
     }
 }
 

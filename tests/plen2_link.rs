@@ -7,10 +7,10 @@
 
 use std::time::Duration;
 
+use servo_studio::device::Cancel;
 use servo_studio::device::plen2::{
-    Pacing, Plen2Handle, Plen2ImportOptions, Plen2Requester, SlotResult, export, import, motion_commands,
+    Plen2Handle, Plen2ImportOptions, Plen2Options, Plen2Requester, SlotResult, export, import, motion_commands,
 };
-use servo_studio::device::servo::Cancel;
 use servo_studio::link::{PortName, no_waker};
 use servo_studio::project::Family;
 use servo_studio::project::plen2::{Frame, Joint, JointSetting, LoopRange, Motion, Plen2Project, Pose};
@@ -32,7 +32,8 @@ fn connect(robot: &Robot) -> (Plen2Handle, Plen2Requester) {
     let port = PortName::parse(&robot.port_name).unwrap();
     let settings = servo_studio::device::line_settings(Family::Plen2);
     let handle =
-        Plen2Handle::over(servo_studio::link::open(&port, &settings).unwrap(), Pacing::default(), no_waker()).unwrap();
+        Plen2Handle::over(servo_studio::link::open(&port, &settings).unwrap(), Plen2Options::default(), no_waker())
+            .unwrap();
     let requester = handle.requester();
     (handle, requester)
 }

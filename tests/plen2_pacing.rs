@@ -7,7 +7,7 @@
 
 use std::time::{Duration, Instant};
 
-use servo_studio::device::plen2::{Pacing, Plen2Command, Plen2Driver, motion_commands};
+use servo_studio::device::plen2::{Plen2Command, Plen2Driver, Plen2Options, motion_commands};
 use servo_studio::link::Driver;
 use servo_studio::project::plen2::{Frame, Joint, Motion, Pose};
 use servo_studio::sim::{Plen2Sim, Plen2Timing};
@@ -52,7 +52,7 @@ fn run(driver: &mut Plen2Driver, sim: &mut Plen2Sim, start: Instant, expected: u
 
 #[test]
 fn a_paced_upload_never_overflows_the_ring_in_virtual_time() {
-    let mut driver = Plen2Driver::new(Pacing::default());
+    let mut driver = Plen2Driver::new(Plen2Options::default());
     let mut sim = Plen2Sim::new(Plen2Timing::default());
     let start = Instant::now();
     let mut sent = 0;

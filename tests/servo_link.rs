@@ -10,9 +10,10 @@ use std::time::Duration;
 use common::{exported, rich_project};
 use servo_studio::device::servo::DEFAULT_BAUD;
 use servo_studio::device::servo::{
-    Cancel, ImportOptions, Item, OpError, Progress, RequestError, ServoBoard, ServoEvent, ServoImage, SessionConfig,
-    export, import,
+    ImportOptions, Item, OpError, Progress, RequestError, ServoBoard, ServoEvent, ServoImage, SessionConfig, export,
+    import,
 };
+use servo_studio::device::{Cancel, Left, Stage};
 use servo_studio::link::{LinkEvent, PortName, no_waker};
 use servo_studio::project::{self, ServoProject};
 use servo_studio::protocol::servo::Message;
@@ -133,10 +134,12 @@ fn a_refused_add_stops_the_import_naming_the_item() {
     let options = ImportOptions { backup_dir: None, verify: true, force: false };
     let error = import(&board.requester(), &rich_project(), &options, &mut quiet, &Cancel::never()).unwrap_err();
     assert!(
-        matches!(&error, OpError::Refused { item } if *item == Item::Action { id: 42, caption: "揮手".into() }),
+        matches!(&error.error, OpError::Refused { item } if *item == Item::Action { id: 42, caption: "揮手".into() }),
         "{error:?}"
     );
     assert!(error.to_string().contains("action 42 \"揮手\": the board refused it"), "{error}");
+    // Clear, project id, servo parameters and action 1 went before action 42.
+    assert!(matches!(&error.left, Left::Partly { reached, total: 11 } if reached.len() == 4), "{:?}", error.left);
 }
 
 #[test]
@@ -149,7 +152,9 @@ fn a_project_too_large_for_the_board_is_refused_before_anything_is_cleared() {
     let board = connect(&sim, Duration::from_secs(2));
     let options = ImportOptions { backup_dir: None, verify: true, force: false };
     let error = import(&board.requester(), &rich_project(), &options, &mut quiet, &Cancel::never()).unwrap_err();
-    assert!(matches!(error, OpError::DoesNotFit { total_bytes: 1000, .. }), "{error:?}");
+    assert!(matches!(error.error, OpError::DoesNotFit { total_bytes: 1000, .. }), "{error:?}");
+    assert_eq!((error.stage, &error.left), (Stage::Checking, &Left::Untouched));
+    assert!(error.to_string().contains("nothing was written"), "{error}");
     // Nothing was cleared.
     let still = export(&board.requester(), &mut quiet, &Cancel::never()).unwrap();
     assert_eq!(still.project_id, 9);
@@ -179,15 +184,21 @@ fn a_disconnect_mid_import_is_a_clear_error_and_the_backup_is_whole() {
     let mut fresh = rich_project();
     fresh.project_id = 1;
     let error = import(&board.requester(), &fresh, &options, &mut quiet, &Cancel::never()).unwrap_err();
-    match &error {
+    match &error.error {
         OpError::Request { item, source: RequestError::Disconnected { .. } } => {
             assert_eq!(item.to_string(), "action 1 \"六十步的大動作\"");
         }
         other => panic!("expected a disconnect while writing action 1, got {other:?}"),
     }
     assert!(error.to_string().contains("the link to the board was lost"), "{error}");
+    assert!(
+        matches!(&error.left, Left::Partly { reached, .. } if reached.iter().map(ToString::to_string).collect::<Vec<_>>() == ["clear all data", "project id 1", "60 servo parameter(s)"]),
+        "{:?}",
+        error.left
+    );
     let files: Vec<_> = std::fs::read_dir(backups.path()).unwrap().map(|entry| entry.unwrap().path()).collect();
     assert_eq!(files.len(), 1, "one backup, no temporary file: {files:?}");
+    assert_eq!(error.backup.as_ref(), Some(&files[0]), "the failure names the backup");
     assert_eq!(project::load(&files[0]).unwrap().servo, exported(rich_project()));
     // And the link reports its end.
     let ended = board

@@ -238,7 +238,7 @@ fn upload_anyway_restores_a_board_image_with_authoring_problems_exactly() {
     );
     let requester = harness.state().servo().unwrap().requester();
     let board =
-        servo_studio::device::servo::read_image(&requester, &mut |_| {}, &servo_studio::device::servo::Cancel::never())
+        servo_studio::device::servo::read_image(&requester, &mut |_| {}, &servo_studio::device::Cancel::never())
             .unwrap();
     assert_eq!(common::record_bytes(&board), common::record_bytes(&image), "the board holds the image byte for byte");
 }

@@ -8,9 +8,9 @@ use anyhow::{Context, bail};
 use super::PortArgs;
 use super::servo::{ImportChoices, SimArgs};
 use servo_studio::device::plen2::{
-    self as plen2, Command, Pacing, Plen2Handle, Plen2ImportOptions, Plen2Phase, Plen2Progress, SlotResult,
+    self as plen2, Command, Plen2Handle, Plen2ImportOptions, Plen2Options, Plen2Phase, Plen2Progress, SlotResult,
 };
-use servo_studio::device::{self, servo::Cancel};
+use servo_studio::device::{self, Cancel};
 use servo_studio::link::{self, LineSettings, PortName, no_waker};
 use servo_studio::project::motion_json;
 use servo_studio::project::{self, Family, Project};
@@ -20,8 +20,12 @@ fn connect(port: &PortArgs) -> anyhow::Result<Plen2Handle> {
     let name = PortName::parse(&port.port)?;
     let settings = LineSettings { baud: port.baud(Family::Plen2), ..device::line_settings(Family::Plen2) };
     let connection = link::open(&name, &settings)?;
-    Plen2Handle::over(connection, Pacing::default(), no_waker())
-        .with_context(|| format!("cannot start talking to {name}"))
+    let options = Plen2Options {
+        reply_timeout: std::time::Duration::from_millis(port.timeout_ms(Family::Plen2)),
+        line_baud: settings.baud,
+        ..Plen2Options::default()
+    };
+    Plen2Handle::over(connection, options, no_waker()).with_context(|| format!("cannot start talking to {name}"))
 }
 
 /// Slots as given on the command line.
@@ -72,21 +76,22 @@ fn progress_line() -> impl FnMut(&Plen2Progress) {
 pub fn info(port: &PortArgs) -> anyhow::Result<()> {
     let handle = connect(port)?;
     let info = plen2::info(&handle.requester())?;
-    println!("firmware: {}", info.version);
+    super::out::line(&format!("firmware: {}", info.version))?;
     for joint in &info.joints {
-        println!(
+        super::out::line(&format!(
             "  {:<22} min {:>5}  max {:>5}  home {:>5}  (tenths of a degree)",
             joint.joint.name(),
             joint.min_tenths_deg,
             joint.max_tenths_deg,
             joint.home_tenths_deg
-        );
+        ))?;
     }
     Ok(())
 }
 
 /// `export --protocol plen2 [--slots …]`.
 pub fn export(port: &PortArgs, out: &Path, slots: &[u8]) -> anyhow::Result<()> {
+    project::output_path(out)?;
     let handle = connect(port)?;
     let mut progress = progress_line();
     let exported = plen2::export(&handle.requester(), slots, &mut progress, &Cancel::never())
@@ -126,8 +131,17 @@ pub fn import(port: &PortArgs, input: &Path, loaded: &Project, choices: ImportCh
     }
     let options = Plen2ImportOptions { backup_dir, verify: true, force };
     let mut progress = progress_line();
-    let report = plen2::import(&handle.requester(), &loaded.plen2, &options, &mut progress, &Cancel::never())
-        .with_context(|| format!("import of {} into {} failed", input.display(), port.port))?;
+    let report = plen2::import(&handle.requester(), &loaded.plen2, &options, &mut progress, &Cancel::never()).map_err(
+        |failure| {
+            let restore =
+                super::restore_hint(" --protocol plen2", &port.port, failure.backup.as_deref(), &failure.left);
+            anyhow::anyhow!("{failure}{restore}").context(format!(
+                "import of {} into {} failed",
+                input.display(),
+                port.port
+            ))
+        },
+    )?;
     if let Some(backup) = &report.backup {
         eprintln!("backup of the slots overwritten: {}", backup.display());
     }

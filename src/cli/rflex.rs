@@ -10,6 +10,7 @@ use crossbeam_channel::Receiver;
 
 use super::PortArgs;
 use super::servo::SimArgs;
+use super::signals::{self, Interrupt};
 use servo_studio::device::{self, rflex::RflexBase};
 use servo_studio::link::{self, LineSettings, PortName, Waker};
 use servo_studio::project::Family;
@@ -90,38 +91,168 @@ fn lost(reason: &link::DisconnectReason) -> anyhow::Error {
     )
 }
 
-/// Pumps the base until `done` or the deadline; fails at once if the link is lost.
-fn pump_until(
-    base: &mut RflexBase,
-    woken: &Receiver<()>,
-    deadline: Instant,
-    mut each: impl FnMut(&RflexBase),
-    done: impl Fn(&RflexBase) -> bool,
-) -> anyhow::Result<bool> {
-    loop {
-        for notice in base.pump(Instant::now()) {
-            if let device::rflex::RflexNotice::Disconnected(reason) = notice {
-                return Err(lost(&reason));
+/// Why waiting on the base ended early.
+enum Break {
+    /// The link ended.
+    Lost(link::DisconnectReason),
+    /// The base sent nothing that decodes for a second while driving; the driver sent a stop.
+    Silent,
+    /// A signal asked the command to end.
+    Interrupted(Interrupt),
+}
+
+/// The base, and what wakes the command line: the base's events and signals.
+struct Session {
+    base: RflexBase,
+    woken: Receiver<()>,
+    interrupts: Receiver<Interrupt>,
+    port: String,
+    timeout: Duration,
+}
+
+impl Session {
+    fn open(args: &BaseArgs) -> anyhow::Result<Self> {
+        // Listen before connecting: from here on a signal never leaves the base driving.
+        let interrupts = signals::listen().context("cannot listen for Ctrl-C")?;
+        let (waker, woken) = waker();
+        let base = connect(args, waker)?;
+        let timeout = Duration::from_millis(args.port.timeout_ms(Family::Rflex));
+        Ok(Self { base, woken, interrupts, port: args.port.port.clone(), timeout })
+    }
+
+    /// Pumps the base until `done`, the deadline, or a reason to stop.
+    fn wait(
+        &mut self,
+        deadline: Instant,
+        mut each: impl FnMut(&RflexBase),
+        done: impl Fn(&RflexBase) -> bool,
+    ) -> Result<bool, Break> {
+        loop {
+            for notice in self.base.pump(Instant::now()) {
+                match notice {
+                    device::rflex::RflexNotice::Disconnected(reason) => return Err(Break::Lost(reason)),
+                    device::rflex::RflexNotice::Silent => return Err(Break::Silent),
+                    device::rflex::RflexNotice::Log(_) => {}
+                }
+            }
+            if let Ok(interrupt) = self.interrupts.try_recv() {
+                return Err(Break::Interrupted(interrupt));
+            }
+            each(&self.base);
+            if done(&self.base) {
+                return Ok(true);
+            }
+            if Instant::now() >= deadline {
+                return Ok(false);
+            }
+            // Woken by the base, a signal, or the deadline.
+            crossbeam_channel::select! {
+                recv(self.woken) -> _ => {}
+                recv(self.interrupts) -> interrupt => {
+                    if let Ok(interrupt) = interrupt {
+                        return Err(Break::Interrupted(interrupt));
+                    }
+                }
+                default(deadline.saturating_duration_since(Instant::now())) => {}
             }
         }
-        each(base);
-        if done(base) {
-            return Ok(true);
+    }
+
+    /// Starts the reports and waits for the base to answer: a status and an
+    /// odometry report, within the timeout. Nothing moves before that.
+    fn start(&mut self, sonar: bool) -> anyhow::Result<()> {
+        self.base.start(sonar);
+        let deadline = Instant::now() + self.timeout;
+        match self.wait(deadline, |_| {}, |base| base.telemetry.answered()) {
+            Ok(true) => Ok(()),
+            Ok(false) => {
+                let telemetry = self.base.telemetry.clone();
+                self.base.shutdown(device::rflex::SHUTDOWN_WAIT);
+                if telemetry.skipped_bytes > 0 && telemetry.reports() == 0 {
+                    bail!(
+                        "{}: the device answers, but not in the rFLEX protocol ({} bytes and no report): is it an rFLEX base? (try --protocol servo or --protocol plen2); nothing was driven",
+                        self.port,
+                        telemetry.skipped_bytes
+                    );
+                }
+                bail!(
+                    "{}: the base did not answer the start-up within {} ms (a status and an odometry report); nothing was driven. Is it an rFLEX base, switched on, at the right baud rate? A slow link needs a longer --timeout-ms",
+                    self.port,
+                    self.timeout.as_millis()
+                )
+            }
+            Err(stop) => Err(self.stopped_by(stop, "before driving: nothing moved")),
         }
-        if Instant::now() >= deadline {
-            return Ok(false);
+    }
+
+    /// Stops the base and sets its brake, then waits for its reports to
+    /// confirm both (a status saying braked, odometry saying still); shuts
+    /// the reports down either way. Returns whether the base confirmed.
+    fn stop_and_brake(&mut self) -> bool {
+        self.base.set_brake(true);
+        let (status_before, odometry_before) =
+            (self.base.telemetry.status_reports, self.base.telemetry.odometry_reports.0);
+        let deadline = Instant::now() + self.timeout.max(Duration::from_millis(500));
+        let confirmed = |base: &RflexBase| {
+            let t = &base.telemetry;
+            t.status_reports > status_before
+                && t.brake == Some(true)
+                && t.odometry_reports.0 > odometry_before
+                && t.speed_m_per_s.abs() < 0.005
+                && t.turn_rad_per_s.abs() < 0.005
+        };
+        // A second signal while stopping changes nothing: the stop is already on its way.
+        let mut result = self.wait(deadline, |_| {}, confirmed);
+        while let Err(Break::Interrupted(_)) = result {
+            result = self.wait(deadline, |_| {}, confirmed);
         }
-        // Woken by the base, or by the deadline.
-        let _ = woken.recv_deadline(deadline);
+        let confirmed = matches!(result, Ok(true));
+        self.base.shutdown(device::rflex::SHUTDOWN_WAIT);
+        confirmed
+    }
+
+    /// The error for a wait that ended early: after a stop, the brake and the
+    /// shutdown where the link still allows them.
+    fn stopped_by(&mut self, stop: Break, context: &str) -> anyhow::Error {
+        match stop {
+            Break::Lost(reason) => lost(&reason),
+            Break::Silent => {
+                let confirmed = self.stop_and_brake();
+                anyhow::anyhow!(
+                    "{}: the base stopped answering (no report for {} ms) {context}; a stop was sent and the brake set{}",
+                    self.port,
+                    device::rflex::SILENCE_LIMIT.as_millis(),
+                    if confirmed { "" } else { ", but the base did not confirm it: check it" }
+                )
+            }
+            Break::Interrupted(interrupt) => {
+                let confirmed = self.stop_and_brake();
+                let state = if confirmed {
+                    "the base stopped and its brake is set"
+                } else {
+                    "a stop and the brake were sent, but the base did not confirm them: check it"
+                };
+                anyhow::Error::new(Exit(interrupt.exit_code))
+                    .context(format!("interrupted by {interrupt} {context}: {state}"))
+            }
+        }
     }
 }
 
+/// An exit status other than 1, carried up to `main`.
+#[derive(Debug, thiserror::Error)]
+#[error("exit status {0}")]
+pub struct Exit(pub u8);
+
 fn status(args: &BaseArgs) -> anyhow::Result<()> {
-    let (waker, woken) = waker();
-    let mut base = connect(args, waker)?;
-    base.start(true);
-    let wait = Duration::from_millis(args.port.timeout_ms.max(3000));
-    let complete = pump_until(&mut base, &woken, Instant::now() + wait, |_| {}, |base| base.telemetry.complete())?;
+    let mut session = Session::open(args)?;
+    session.start(true)?;
+    let wait = session.timeout.max(Duration::from_millis(3000));
+    let complete = match session.wait(Instant::now() + wait, |_| {}, |base| base.telemetry.complete()) {
+        Ok(complete) => complete,
+        Err(stop) => return Err(session.stopped_by(stop, "while reading the base")),
+    };
+    session.base.shutdown(device::rflex::SHUTDOWN_WAIT);
     if !complete {
         bail!(
             "{}: no full set of reports within {} ms (status, odometry, sonar sweep, digital I/O). Is it an rFLEX base, switched on, at the right baud rate?",
@@ -129,7 +260,7 @@ fn status(args: &BaseArgs) -> anyhow::Result<()> {
             wait.as_millis()
         );
     }
-    let telemetry = &base.telemetry;
+    let telemetry = &session.base.telemetry;
     let sonar: serde_json::Map<String, serde_json::Value> =
         telemetry.sonar_m.iter().map(|(id, range)| (id.to_string(), serde_json::json!(range))).collect();
     let bumpers: serde_json::Map<String, serde_json::Value> =
@@ -144,20 +275,50 @@ fn status(args: &BaseArgs) -> anyhow::Result<()> {
         "bumpers": bumpers,
         "checksum_failures": telemetry.checksum_failures,
     });
-    println!("{report}");
-    base.shutdown(device::rflex::SHUTDOWN_WAIT);
+    super::out::line(&report.to_string())?;
+    Ok(())
+}
+
+/// Refuses what the robot must never be asked for; nothing is sent then.
+fn check_drive(robot: Robot, speed: f64, turn: f64, accel: f64, seconds: f64) -> anyhow::Result<()> {
+    if !(seconds.is_finite()
+        && seconds >= 0.0
+        && speed.is_finite()
+        && turn.is_finite()
+        && accel.is_finite()
+        && accel > 0.0)
+    {
+        bail!("--seconds must be 0 or more, --speed and --turn numbers, --accel above 0; nothing was sent");
+    }
+    let limits = robot.limits();
+    let name = robot.name();
+    if speed.abs() > limits.max_speed_m_per_s {
+        bail!(
+            "--speed {speed} m/s is faster than the {name}'s limit of {} m/s; nothing was sent",
+            limits.max_speed_m_per_s
+        );
+    }
+    if turn.abs() > limits.max_turn_rad_per_s {
+        bail!(
+            "--turn {turn} rad/s is faster than the {name}'s limit of {} rad/s; nothing was sent",
+            limits.max_turn_rad_per_s
+        );
+    }
+    if accel > limits.max_accel_m_per_s2 {
+        bail!(
+            "--accel {accel} m/s² is more than the {name}'s limit of {} m/s²; nothing was sent",
+            limits.max_accel_m_per_s2
+        );
+    }
     Ok(())
 }
 
 fn drive(args: &BaseArgs, speed: f64, turn: f64, accel: f64, seconds: f64) -> anyhow::Result<()> {
-    if !(seconds.is_finite() && seconds >= 0.0 && speed.is_finite() && turn.is_finite() && accel > 0.0) {
-        bail!("--seconds must be 0 or more, --speed and --turn numbers, --accel above 0");
-    }
-    let (waker, woken) = waker();
-    let mut base = connect(args, waker)?;
-    base.start(false);
-    base.set_brake(false);
-    base.drive(speed, turn, accel);
+    check_drive(args.robot, speed, turn, accel, seconds)?;
+    let mut session = Session::open(args)?;
+    session.start(false)?;
+    session.base.set_brake(false);
+    session.base.drive(speed, turn, accel);
     let began = Instant::now();
     let terminal = std::io::stderr().is_terminal();
     let mut next_line = began;
@@ -182,22 +343,33 @@ fn drive(args: &BaseArgs, speed: f64, turn: f64, accel: f64, seconds: f64) -> an
         }
     };
     let deadline = began + Duration::from_secs_f64(seconds);
-    // A lost link returns here at once, with the handle dropped (it cannot send a stop).
-    pump_until(&mut base, &woken, deadline, &mut line, |_| false)?;
-    base.stop();
-    // Let the stop take effect while reports still come, then shut down (brake on).
-    pump_until(&mut base, &woken, Instant::now() + Duration::from_millis(150), &mut line, |_| false)?;
-    let t = base.telemetry.clone();
-    base.shutdown(device::rflex::SHUTDOWN_WAIT);
+    let driven = session.wait(deadline, &mut line, |_| false);
     if terminal {
         eprintln!();
     }
-    eprintln!(
-        "drove {:.2} s: {:.2} m from the start, heading {:.2} rad; stopped, brake set",
-        seconds,
+    if let Err(stop) = driven {
+        return Err(session.stopped_by(stop, "while driving"));
+    }
+    let confirmed = session.stop_and_brake();
+    let t = session.base.telemetry.clone();
+    let summary = format!(
+        "drove {seconds:.2} s: {:.2} m from the start, heading {:.2} rad",
         t.pose.x_m.hypot(t.pose.y_m),
         t.pose.theta_rad
     );
+    if !confirmed {
+        let brake = match t.brake {
+            Some(true) => "set",
+            Some(false) => "released",
+            None => "unknown",
+        };
+        bail!(
+            "{summary}; a stop and the brake were sent, but the base did not confirm them within {} ms (its last report: {:.2} m/s, brake {brake}). Check the base",
+            session.timeout.max(Duration::from_millis(500)).as_millis(),
+            t.speed_m_per_s
+        );
+    }
+    eprintln!("{summary}; stopped, brake set");
     std::io::stderr().flush()?;
     Ok(())
 }

@@ -10,8 +10,9 @@ use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 
 use super::PortArgs;
+use servo_studio::device::Cancel;
 use servo_studio::device::servo::{
-    self as device, Cancel, ImportOptions, Phase, Progress, Requester, ServoBoard, ServoImage, SessionConfig,
+    self as device, ImportOptions, Phase, Progress, Requester, ServoBoard, ServoImage, SessionConfig,
 };
 use servo_studio::link::{self, Driver, LinkEvent, PortName, no_waker};
 use servo_studio::project::rflex::Robot;
@@ -54,7 +55,10 @@ pub struct SimArgs {
 }
 
 fn session_config(port: &PortArgs) -> SessionConfig {
-    SessionConfig { response_timeout: Duration::from_millis(port.timeout_ms), ..SessionConfig::default() }
+    SessionConfig {
+        response_timeout: Duration::from_millis(port.timeout_ms(Family::Servo)),
+        ..SessionConfig::default()
+    }
 }
 
 fn connect(port: &PortArgs) -> anyhow::Result<ServoBoard> {
@@ -87,10 +91,10 @@ fn progress_bar() -> (ProgressBar, impl FnMut(&Progress)) {
 pub fn ports() -> anyhow::Result<()> {
     let ports = link::list_ports()?;
     if ports.is_empty() {
-        println!("no serial ports found (a board on a network bridge is reached as tcp://HOST:PORT)");
+        super::out::line("no serial ports found (a board on a network bridge is reached as tcp://HOST:PORT)")?;
     }
     for port in ports {
-        println!("{}\t{}", port.name, port.description);
+        super::out::line(&format!("{}\t{}", port.name, port.description))?;
     }
     Ok(())
 }
@@ -155,6 +159,8 @@ fn spawn_pty<D: Driver>(_emulator: D) -> anyhow::Result<sim::SimHandle<D::Comman
 }
 
 pub fn export(port: &PortArgs, out: &Path) -> anyhow::Result<()> {
+    // Refused before the board is read: a FIFO, a device or a folder is never replaced.
+    project::output_path(out)?;
     let board = connect(port)?;
     let (bar, mut update) = progress_bar();
     let exported = device::export(&board.requester(), &mut update, &Cancel::never());
@@ -223,7 +229,14 @@ pub fn import(port: &PortArgs, input: &Path, loaded: &Project, choices: ImportCh
     let requester: Requester = board.requester();
     let report = device::import(&requester, &loaded.servo, &options, &mut update, &Cancel::never());
     bar.finish_and_clear();
-    let report = report.with_context(|| format!("import of {} into {} failed", input.display(), port.port))?;
+    let report = report.map_err(|failure| {
+        let restore = super::restore_hint("", &port.port, failure.backup.as_deref(), &failure.left);
+        anyhow::anyhow!("{failure}{restore}").context(format!(
+            "import of {} into {} failed",
+            input.display(),
+            port.port
+        ))
+    })?;
     if let Some(backup) = &report.backup {
         eprintln!("backup of the previous contents: {}", backup.display());
     }
@@ -234,15 +247,16 @@ pub fn import(port: &PortArgs, input: &Path, loaded: &Project, choices: ImportCh
 pub fn info(port: &PortArgs) -> anyhow::Result<()> {
     let board = connect(port)?;
     let info = device::board_info(&board.requester())?;
-    println!("project id: {}", info.project_id);
+    let print = |text: String| super::out::line(&text);
+    print(format!("project id: {}", info.project_id))?;
     match info.total_bytes {
-        Some(total) => println!("memory: {} of {total} bytes free", info.free_bytes),
-        None => println!("memory: {} bytes free", info.free_bytes),
+        Some(total) => print(format!("memory: {} of {total} bytes free", info.free_bytes))?,
+        None => print(format!("memory: {} bytes free", info.free_bytes))?,
     }
-    println!("battery: {}", device::battery_text(info.battery_permil));
-    println!("servos: {}", info.servos.len());
+    print(format!("battery: {}", device::battery_text(info.battery_permil)))?;
+    print(format!("servos: {}", info.servos.len()))?;
     for servo in &info.servos {
-        println!(
+        print(format!(
             "  servo {:>3}: angle {:>5}  current {:>5}  temperature {:>5}  type {}  {}  {}",
             servo.servo_id,
             servo.angle,
@@ -251,7 +265,7 @@ pub fn info(port: &PortArgs) -> anyhow::Result<()> {
             servo.servo_type,
             if servo.is_start { "running" } else { "stopped" },
             if servo.is_hold { "holding" } else { "released" },
-        );
+        ))?;
     }
     Ok(())
 }

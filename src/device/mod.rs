@@ -3,11 +3,15 @@
 //! servo controller board, and [`rflex`], mobile bases; PLEN2 joins as a sibling.
 //!
 //! What is shared by every family lives here: the line settings each family
-//! needs, and the family-neutral packet-log entry.
+//! needs, the family-neutral packet-log entry, and what long operations share
+//! (cancel, backups, what a failed upload left).
 
+mod operation;
 pub mod plen2;
 pub mod rflex;
 pub mod servo;
+
+pub use operation::{Cancel, Left, Stage, UploadFailure, backup_path};
 
 use std::time::Duration;
 

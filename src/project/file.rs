@@ -164,10 +164,65 @@ pub fn save(path: &Path, project: &Project) -> Result<(), SaveError> {
         .map_err(|source| SaveError { path: path.to_path_buf(), source })
 }
 
+/// Where writing to `path` really goes: through symbolic links to the file
+/// they name (a link is never replaced by a file). Refused, with a clear
+/// error, when what is there is not a regular file: a folder, a named pipe, a
+/// device or a socket is never replaced.
+pub fn output_path(path: &Path) -> io::Result<PathBuf> {
+    let mut target = path.to_path_buf();
+    // As many links as the system itself follows before it gives up.
+    for _ in 0..40 {
+        let metadata = match std::fs::symlink_metadata(&target) {
+            Ok(metadata) => metadata,
+            // Nothing there yet: a new file.
+            Err(error) if error.kind() == io::ErrorKind::NotFound => return Ok(target),
+            Err(error) => return Err(error),
+        };
+        let kind = metadata.file_type();
+        if kind.is_symlink() {
+            let link = std::fs::read_link(&target)?;
+            target = match target.parent() {
+                Some(folder) if link.is_relative() => folder.join(link),
+                _ => link,
+            };
+            continue;
+        }
+        if kind.is_file() {
+            return Ok(target);
+        }
+        let what = if kind.is_dir() { "a folder: give a file name inside it" } else { not_a_file(&kind) };
+        return Err(io::Error::new(io::ErrorKind::InvalidInput, format!("{} is {what}", target.display())));
+    }
+    Err(io::Error::new(io::ErrorKind::InvalidInput, format!("{}: too many symbolic links", path.display())))
+}
+
+#[cfg(unix)]
+fn not_a_file(kind: &std::fs::FileType) -> &'static str {
+    use std::os::unix::fs::FileTypeExt;
+    if kind.is_fifo() {
+        "a named pipe (FIFO), not a file: it is never replaced"
+    } else if kind.is_char_device() || kind.is_block_device() {
+        "a device, not a file: it is never replaced"
+    } else if kind.is_socket() {
+        "a socket, not a file: it is never replaced"
+    } else {
+        "not a regular file: it is never replaced"
+    }
+}
+
+#[cfg(not(unix))]
+fn not_a_file(_kind: &std::fs::FileType) -> &'static str {
+    "not a regular file: it is never replaced"
+}
+
 /// Writes `path` by writing a temporary file in the same folder with `write`,
 /// flushing it to disk, and renaming it over `path`. If anything fails, the
-/// temporary file is removed and `path` is untouched.
+/// temporary file is removed and `path` is untouched. A symbolic link is
+/// followed (the file it names is replaced, beside itself, keeping its
+/// permissions); anything but a regular file is refused ([`output_path`]).
 pub fn atomic_write(path: &Path, write: impl FnOnce(&mut File) -> io::Result<()>) -> io::Result<()> {
+    let path = &output_path(path)?;
+    let permissions = std::fs::metadata(path).ok().map(|metadata| metadata.permissions());
     let folder = match path.parent() {
         Some(parent) if !parent.as_os_str().is_empty() => parent.to_path_buf(),
         _ => PathBuf::from("."),
@@ -181,6 +236,9 @@ pub fn atomic_write(path: &Path, write: impl FnOnce(&mut File) -> io::Result<()>
     let result = (|| {
         let mut file = File::create(&temp_path)?;
         write(&mut file)?;
+        if let Some(permissions) = permissions {
+            file.set_permissions(permissions)?;
+        }
         file.sync_all()?;
         drop(file);
         std::fs::rename(&temp_path, path)

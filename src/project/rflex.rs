@@ -52,6 +52,41 @@ impl Robot {
     }
 }
 
+/// The fastest a robot is ever driven: what its preset allows (Servo Studio's
+/// choice, see `docs/rflex.md`), whatever a user asks for.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SpeedLimits {
+    /// Translation, m/s.
+    pub max_speed_m_per_s: f64,
+    /// Rotation, rad/s.
+    pub max_turn_rad_per_s: f64,
+    /// Translational acceleration, m/s².
+    pub max_accel_m_per_s2: f64,
+}
+
+impl Robot {
+    /// The robot's name as the command line spells it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::B21r => "b21r",
+            Self::AtrvJr => "atrv-jr",
+            Self::Magellan => "magellan",
+            Self::Custom { .. } => "custom",
+        }
+    }
+
+    /// The fastest this robot is driven.
+    pub fn limits(self) -> SpeedLimits {
+        let (speed, turn, accel) = match self {
+            Self::B21r => (1.0, 1.5, 1.0),
+            Self::AtrvJr => (1.5, 2.0, 1.5),
+            Self::Magellan => (1.0, 2.0, 1.0),
+            Self::Custom { .. } => (1.0, 1.5, 1.0),
+        };
+        SpeedLimits { max_speed_m_per_s: speed, max_turn_rad_per_s: turn, max_accel_m_per_s2: accel }
+    }
+}
+
 /// How the Drive panel and `rflex drive` limit the base.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct DriveSettings {

@@ -14,6 +14,9 @@ use crate::protocol::servo::{
     ServoStatus, ServoSwitches, TransmissionMode,
 };
 
+/// Bytes a throttled line hands over at once (a USB-serial adapter's packet).
+const TX_PIECE: usize = 64;
+
 /// How the emulated board behaves.
 #[derive(Clone, Debug)]
 pub struct SimConfig {
@@ -220,11 +223,21 @@ impl ServoSim {
         }
     }
 
+    /// Sends `bytes` as a UART does: each piece leaves once its wire time has
+    /// passed (a long response trickles in, it does not arrive all at once at
+    /// the end), in pieces of a USB-serial adapter's packet size.
     fn transmit(&mut self, ready: Instant, bytes: Vec<u8>) {
-        let start = self.tx_line_free.map_or(ready, |free| free.max(ready));
-        let done = start + self.wire_time(bytes.len());
-        self.tx_line_free = Some(done);
-        self.outbound.push_back((done, bytes));
+        let mut at = self.tx_line_free.map_or(ready, |free| free.max(ready));
+        if self.config.baud.is_none() {
+            self.outbound.push_back((at, bytes));
+            self.tx_line_free = Some(at);
+            return;
+        }
+        for piece in bytes.chunks(TX_PIECE) {
+            at += self.wire_time(piece.len());
+            self.outbound.push_back((at, piece.to_vec()));
+        }
+        self.tx_line_free = Some(at);
     }
 
     fn start_moves(&mut self, now: Instant, moves: &[ServoMove], speed_percent: u8) {
@@ -766,6 +779,29 @@ mod tests {
         assert_eq!(sim.poll_transmit(t0 + Duration::from_millis(23)), None);
         let bytes = sim.poll_transmit(t0 + Duration::from_millis(24)).unwrap();
         assert_eq!(bytes, Message::QueryProjectIdResponse { project_id: 0 }.encode().unwrap());
+    }
+
+    #[test]
+    fn a_long_response_trickles_out_at_the_line_rate_instead_of_arriving_at_its_end() {
+        let t0 = Instant::now();
+        let config = SimConfig { baud: Some(10_000), ..SimConfig::default() };
+        let actions = (1..=10)
+            .map(|action_id| ActionRecord { action_id, caption: format!("a{action_id}"), steps: Vec::new() })
+            .collect();
+        let mut sim = ServoSim::new(config, ServoImage { actions, ..ServoImage::default() });
+        sim.handle_input(t0, &Message::QueryActionListRequest.encode().unwrap());
+        let arrived = t0 + Duration::from_millis(9);
+        sim.handle_timeout(arrived);
+        // 2 + 10 × 36 content bytes + 9 of framing = 371 bytes, 1 ms each on the wire.
+        let first = arrived + Duration::from_millis(64);
+        assert_eq!(sim.poll_timeout(), Some(first), "the first 64 bytes, once they have crossed");
+        assert_eq!(sim.poll_transmit(first).map(|piece| piece.len()), Some(64));
+        let mut received = 64;
+        let end = arrived + Duration::from_millis(371);
+        while let Some(piece) = sim.poll_transmit(end) {
+            received += piece.len();
+        }
+        assert_eq!(received, 371);
     }
 
     #[test]

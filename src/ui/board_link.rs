@@ -4,7 +4,7 @@
 
 use std::time::{Duration, Instant};
 
-use crate::device::plen2::{Pacing, Plen2Handle, Plen2Notice};
+use crate::device::plen2::{Plen2Handle, Plen2Notice, Plen2Options};
 use crate::device::rflex::{RflexBase, RflexNotice};
 use crate::device::servo::{RequestError, ServoHandle, ServoImage, ServoNotice};
 use crate::link::{Connection, DisconnectReason, Waker};
@@ -111,7 +111,7 @@ impl BoardLink {
                 base.start(project.rflex.drive.sonar_on_connect);
                 Device::Rflex(base)
             }
-            Family::Plen2 => Device::Plen2(Plen2Handle::over(connection, Pacing::default(), waker)?),
+            Family::Plen2 => Device::Plen2(Plen2Handle::over(connection, Plen2Options::default(), waker)?),
         };
         Ok(Self { device, demo: None, label, log: PacketLog::default() })
     }

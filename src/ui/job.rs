@@ -6,8 +6,9 @@ use std::path::PathBuf;
 
 use crossbeam_channel::{Receiver, Sender};
 
+use crate::device::Cancel;
 use crate::device::servo::{
-    Cancel, ImportOptions, ImportReport, Phase, Progress, Requester, ServoImage, export, import, read_image,
+    ImportOptions, ImportReport, Phase, Progress, Requester, ServoImage, export, import, read_image,
 };
 use crate::link::Waker;
 use crate::project::ServoProject;
@@ -144,7 +145,10 @@ fn run(
             let options = ImportOptions { backup_dir: Some(backup_dir), verify: true, force: *force };
             match import(requester, project, &options, report, cancel) {
                 Ok(done) => JobOutcome::Uploaded(done),
-                Err(error) => failed(error),
+                Err(failure) if matches!(failure.error, crate::device::servo::OpError::Cancelled) => {
+                    JobOutcome::Cancelled
+                }
+                Err(failure) => JobOutcome::Failed(language.upload_failure(&failure)),
             }
         }
         JobKind::Read => match export(requester, report, cancel) {

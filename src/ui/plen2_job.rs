@@ -6,9 +6,9 @@ use std::path::PathBuf;
 
 use crossbeam_channel::{Receiver, Sender};
 
+use crate::device::Cancel;
 use crate::device::plen2::Command;
 use crate::device::plen2::{self, Plen2ImportOptions, Plen2ImportReport, Plen2Progress, Plen2Requester};
-use crate::device::servo::Cancel;
 use crate::link::Waker;
 use crate::project::plen2::Plen2Project;
 use crate::project::plen2::SLOTS;
@@ -80,7 +80,8 @@ fn run(
             let options = Plen2ImportOptions { backup_dir: Some(backups), verify: true, force: false };
             match plen2::import(requester, &project, &options, report, cancel) {
                 Ok(done) => Plen2Outcome::Uploaded(done),
-                Err(error) => failed(error),
+                Err(failure) if matches!(failure.error, plen2::Plen2OpError::Cancelled) => Plen2Outcome::Cancelled,
+                Err(failure) => Plen2Outcome::Failed(failure.to_string()),
             }
         }
         Plen2JobKind::WriteJoints(project) => {

@@ -47,12 +47,41 @@ impl Default for Pacing {
     }
 }
 
+/// How the driver talks to one robot: the firmware timing it paces for,
+/// how long a getter's reply may take, and the line rate replies come at.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Plen2Options {
+    /// The firmware timing the pacer assumes.
+    pub pacing: Pacing,
+    /// How long the robot may take to begin a reply, and the longest silence
+    /// inside one, on top of the reply's own time on the line.
+    pub reply_timeout: Duration,
+    /// The line rate (replies cannot arrive faster).
+    pub line_baud: u32,
+}
+
+impl Default for Plen2Options {
+    fn default() -> Self {
+        Self { pacing: Pacing::default(), reply_timeout: REPLY_IDLE, line_baud: 2_000_000 }
+    }
+}
+
 /// A reply that did not come whole.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum ReplyError {
     /// Nothing (or nothing more) came in time.
-    #[error("no reply in time: is the robot on, at 2,000,000 baud, with DTR asserted?")]
-    Timeout,
+    #[error("no reply within {timeout_ms} ms: is the robot on, at 2,000,000 baud, with DTR asserted?")]
+    Timeout {
+        /// How long the reply was waited for, ms.
+        timeout_ms: u64,
+    },
+    /// Bytes came, but no reply of the PLEN2's in them, before the reply's own
+    /// time on the line had passed.
+    #[error("the device answers, but not in the PLEN2's protocol ({bytes} bytes and no reply): is it a PLEN2?")]
+    NotThisProtocol {
+        /// How many bytes came while waiting.
+        bytes: usize,
+    },
     /// So much came that it can only be garbage (a never-written slot).
     #[error("the reply was {bytes} bytes of garbage")]
     Garbage {
@@ -105,6 +134,28 @@ pub enum Plen2Event {
     Log(LogEntry),
 }
 
+/// A getter's reply being awaited.
+struct Awaited {
+    kind: ReplyKind,
+    sender: ReplySender,
+    /// The silence limit, never past `overall`.
+    deadline: Instant,
+    /// Fixed by the first byte: the longest such a reply can take on the line,
+    /// plus the timeout. Later bytes cannot move it.
+    overall: Option<Instant>,
+    bytes: usize,
+}
+
+/// The most bytes a reply of `kind` can have on the line: a never-written
+/// slot's garbage (255 frames of 24 outputs) for `<MO`.
+fn longest_reply(kind: ReplyKind) -> usize {
+    match kind {
+        ReplyKind::Version => 512,
+        ReplyKind::JointSettings => 8 * 1024,
+        ReplyKind::Motion => 400 * 1024,
+    }
+}
+
 struct Queued {
     /// `None` for the resync bytes.
     command: Option<Command>,
@@ -116,6 +167,8 @@ struct Queued {
 /// The driver.
 pub struct Plen2Driver {
     pacing: Pacing,
+    reply_timeout: Duration,
+    line_baud: u32,
     queue: VecDeque<Queued>,
     /// The command being sent and how many of its bytes went.
     current: Option<(Queued, usize)>,
@@ -126,13 +179,13 @@ pub struct Plen2Driver {
     live: BTreeMap<u8, i16>,
     waiting: Vec<(Instant, Sender<()>)>,
     reader: ReplyReader,
-    reply: Option<(ReplyKind, ReplySender, Instant)>,
+    reply: Option<Awaited>,
     opened_at: Option<Instant>,
     output: VecDeque<Vec<u8>>,
     events: VecDeque<Plen2Event>,
 }
 
-/// How long a reply may pause before it is given up.
+/// How long a reply may take to begin, or pause, before it is given up (the default).
 pub const REPLY_IDLE: Duration = Duration::from_millis(600);
 /// The most bytes written at once.
 const CHUNK: usize = 64;
@@ -158,10 +211,12 @@ fn reply_kind(command: &Command) -> Option<ReplyKind> {
 }
 
 impl Plen2Driver {
-    /// A driver with this pacing.
-    pub fn new(pacing: Pacing) -> Self {
+    /// A driver with these options.
+    pub fn new(options: Plen2Options) -> Self {
         Self {
-            pacing,
+            pacing: options.pacing,
+            reply_timeout: options.reply_timeout,
+            line_baud: options.line_baud.max(1),
             queue: VecDeque::new(),
             current: None,
             next_read: None,
@@ -249,9 +304,10 @@ impl Plen2Driver {
             if let Some(done) = queued.done {
                 self.waiting.push((next_read, done));
             }
-            if let (Some(kind), Some(reply)) = (queued.command.as_ref().and_then(reply_kind), queued.reply) {
+            if let (Some(kind), Some(sender)) = (queued.command.as_ref().and_then(reply_kind), queued.reply) {
                 self.reader.expect(kind);
-                self.reply = Some((kind, reply, next_read + REPLY_IDLE));
+                let deadline = next_read + self.reply_timeout;
+                self.reply = Some(Awaited { kind, sender, deadline, overall: None, bytes: 0 });
             }
         }
         if !chunk.is_empty() {
@@ -307,8 +363,13 @@ impl Driver for Plen2Driver {
 
     fn handle_input(&mut self, now: Instant, bytes: &[u8]) {
         self.reader.push(bytes);
-        if let Some((_, _, deadline)) = &mut self.reply {
-            *deadline = now + REPLY_IDLE;
+        let (timeout, baud) = (self.reply_timeout, self.line_baud);
+        if let Some(awaited) = &mut self.reply {
+            awaited.bytes += bytes.len();
+            // 10 bits a byte on the line.
+            let longest = longest_reply(awaited.kind) as f64 * 10.0 / f64::from(baud);
+            let overall = *awaited.overall.get_or_insert(now + Duration::from_secs_f64(longest) + timeout);
+            awaited.deadline = (now + timeout).min(overall);
         }
         while let Some(event) = self.reader.poll() {
             match event {
@@ -317,8 +378,8 @@ impl Driver for Plen2Driver {
                     let summary: String = text.split_whitespace().collect::<Vec<_>>().join(" ");
                     let summary: String = summary.chars().take(120).collect();
                     self.log(now, Direction::Received, format!("{kind:?} reply"), summary, &bytes);
-                    if let Some((_, reply, _)) = self.reply.take() {
-                        let _ = reply.send(Ok(bytes));
+                    if let Some(awaited) = self.reply.take() {
+                        let _ = awaited.sender.send(Ok(bytes));
                     }
                     self.next_read = Some(now);
                     self.in_ring.clear();
@@ -331,8 +392,8 @@ impl Driver for Plen2Driver {
                         format!("{bytes} bytes of garbage"),
                         &[],
                     );
-                    if let Some((_, reply, _)) = self.reply.take() {
-                        let _ = reply.send(Err(ReplyError::Garbage { bytes }));
+                    if let Some(awaited) = self.reply.take() {
+                        let _ = awaited.sender.send(Err(ReplyError::Garbage { bytes }));
                     }
                     self.next_read = Some(now);
                     self.in_ring.clear();
@@ -346,13 +407,18 @@ impl Driver for Plen2Driver {
     }
 
     fn handle_timeout(&mut self, now: Instant) {
-        if let Some((_, _, deadline)) = &self.reply
-            && now >= *deadline
-        {
+        if let Some(awaited) = self.reply.take_if(|awaited| now >= awaited.deadline) {
+            // A reply that began and then stopped may have lost bytes (worth
+            // asking again); bytes that never began one, or that run past the
+            // longest reply's time, are another protocol.
+            let cut = self.reader.started() && awaited.overall.is_none_or(|overall| now < overall);
+            let error = if awaited.bytes == 0 || cut {
+                ReplyError::Timeout { timeout_ms: u64::try_from(self.reply_timeout.as_millis()).unwrap_or(u64::MAX) }
+            } else {
+                ReplyError::NotThisProtocol { bytes: awaited.bytes }
+            };
             self.reader.abandon();
-            if let Some((_, reply, _)) = self.reply.take() {
-                let _ = reply.send(Err(ReplyError::Timeout));
-            }
+            let _ = awaited.sender.send(Err(error));
         }
         let (due, later): (Vec<_>, Vec<_>) =
             std::mem::take(&mut self.waiting).into_iter().partition(|(at, _)| *at <= now);
@@ -364,8 +430,8 @@ impl Driver for Plen2Driver {
     }
 
     fn handle_disconnect(&mut self, _reason: &str) {
-        if let Some((_, reply, _)) = self.reply.take() {
-            let _ = reply.send(Err(ReplyError::Disconnected));
+        if let Some(awaited) = self.reply.take() {
+            let _ = awaited.sender.send(Err(ReplyError::Disconnected));
         }
         for queued in self.queue.drain(..) {
             if let Some(reply) = queued.reply {
@@ -387,7 +453,7 @@ impl Driver for Plen2Driver {
 
     fn poll_timeout(&self) -> Option<Instant> {
         let waiting = self.waiting.iter().map(|(at, _)| *at).min();
-        let reply = self.reply.as_ref().map(|(_, _, deadline)| *deadline);
+        let reply = self.reply.as_ref().map(|awaited| awaited.deadline);
         [self.next_send(), waiting, reply].into_iter().flatten().min()
     }
 }

@@ -12,10 +12,12 @@ use std::time::Instant;
 use crossbeam_channel::Sender;
 
 pub use convert::{frames_of, motion_commands, motion_from_reply};
-pub use driver::{Pacing, Plen2Command, Plen2Driver, Plen2Event, REPLY_IDLE, RESYNC, ReplyError, ReplySender};
+pub use driver::{
+    Pacing, Plen2Command, Plen2Driver, Plen2Event, Plen2Options, REPLY_IDLE, RESYNC, ReplyError, ReplySender,
+};
 pub use ops::{
-    Plen2Import, Plen2ImportOptions, Plen2ImportReport, Plen2Info, Plen2OpError, Plen2Phase, Plen2Progress, SlotResult,
-    export, import, info, read_joint_settings, read_slot, write_joint_settings,
+    Plen2Import, Plen2ImportFailure, Plen2ImportOptions, Plen2ImportReport, Plen2Info, Plen2OpError, Plen2Phase,
+    Plen2Progress, SlotResult, export, import, info, read_joint_settings, read_slot, write_joint_settings,
 };
 
 use crate::device::LogEntry;
@@ -46,7 +48,7 @@ impl Plen2Requester {
     /// bytes end it, and the getter is sent once more.
     pub fn get(&self, command: Command) -> Result<Vec<u8>, ReplyError> {
         match self.get_once(command.clone()) {
-            Err(ReplyError::Timeout) => {
+            Err(ReplyError::Timeout { .. }) => {
                 self.commands.send(Plen2Command::Resync).map_err(|_| ReplyError::Disconnected)?;
                 self.get_once(command)
             }
@@ -85,8 +87,8 @@ impl std::fmt::Debug for Plen2Handle {
 
 impl Plen2Handle {
     /// Starts the I/O thread over an open connection.
-    pub fn over(connection: Connection, pacing: Pacing, waker: Waker) -> std::io::Result<Self> {
-        Ok(Self { link: link::spawn(connection, Plen2Driver::new(pacing), waker)?, stopped: false })
+    pub fn over(connection: Connection, options: Plen2Options, waker: Waker) -> std::io::Result<Self> {
+        Ok(Self { link: link::spawn(connection, Plen2Driver::new(options), waker)?, stopped: false })
     }
 
     /// A requester for worker threads.

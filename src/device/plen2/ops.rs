@@ -8,7 +8,7 @@ use std::path::PathBuf;
 use super::Plen2Requester;
 use super::convert::{motion_commands, motion_from_reply};
 use super::driver::ReplyError;
-use crate::device::servo::{Cancel, backup_path};
+use crate::device::{Cancel, Left, Stage, UploadFailure};
 use crate::project::plen2::{JointSetting, Motion, Plen2Project};
 use crate::project::{self, Problem, Project};
 use crate::protocol::plen2::{Command, Joint, SLOTS, decode_joint_settings, decode_motion, decode_version};
@@ -49,7 +49,7 @@ pub enum Plen2OpError {
         source: ReplyError,
     },
     /// The robot's answer could not be read.
-    #[error("{item}: the robot's reply could not be read. Is it a PLEN2 with firmware 1.4.x?")]
+    #[error("{item}: the device answers, but its reply is not the PLEN2's: is it a PLEN2 with firmware 1.4.x?")]
     Unreadable {
         /// What was being read.
         item: String,
@@ -73,7 +73,6 @@ pub enum Plen2OpError {
 }
 
 fn check(cancel: &Cancel) -> Result<(), Plen2OpError> {
-    // The servo family's cancel token serves every family.
     if cancel.is_requested() { Err(Plen2OpError::Cancelled) } else { Ok(()) }
 }
 
@@ -235,88 +234,132 @@ pub fn write_joint_settings(
 /// The file a PLEN2 backup gets: `plen2-backup-YYYYMMDD-HHMMSS.json` (local time), with a
 /// counter if that name is taken.
 pub fn plen2_backup_path(folder: &std::path::Path) -> PathBuf {
-    let servo_style = backup_path(folder, 0);
-    let name = servo_style
-        .file_name()
-        .map(|name| name.to_string_lossy().replace("board-backup", "plen2-backup").replace("-project0", ""))
-        .unwrap_or_else(|| "plen2-backup.json".into());
-    let mut path = folder.join(&name);
-    let mut counter = 1;
-    while path.exists() {
-        counter += 1;
-        path = folder.join(name.replace(".json", &format!("-{counter}.json")));
-    }
-    path
+    crate::device::backup_path(folder, "plen2-backup", "")
 }
 
 /// How many times a slot that read back different is written again.
 pub const REWRITE_ROUNDS: usize = 3;
 
+/// A failed upload: the error, and what it left on the robot.
+pub type Plen2ImportFailure = UploadFailure<Plen2OpError, String>;
+
 /// Uploads `project`'s motions (and its joint settings, if it holds them and they differ):
 /// validates, backs up the slots about to be overwritten, writes paced, verifies.
+/// A failure says what it left: nothing written, what reached the robot, or everything.
 pub fn import(
     requester: &Plen2Requester,
     project: &Plen2Project,
     options: &Plen2ImportOptions,
     progress: &mut dyn FnMut(&Plen2Progress),
     cancel: &Cancel,
-) -> Result<Plen2ImportReport, Plen2OpError> {
+) -> Result<Plen2ImportReport, Box<Plen2ImportFailure>> {
+    upload(requester, project, options, progress, cancel).map_err(Box::new)
+}
+
+// Built once per failed upload and boxed by `import` at once: its size costs nothing.
+#[allow(clippy::result_large_err)]
+fn upload(
+    requester: &Plen2Requester,
+    project: &Plen2Project,
+    options: &Plen2ImportOptions,
+    progress: &mut dyn FnMut(&Plen2Progress),
+    cancel: &Cancel,
+) -> Result<Plen2ImportReport, Plen2ImportFailure> {
     let problems: Vec<Problem> =
         project::validate(&Project { family: project::Family::Plen2, plen2: project.clone(), ..Project::default() })
             .into_iter()
             .filter(|p| p.severity == project::Severity::Error)
             .collect();
     if !problems.is_empty() && !options.force {
-        return Err(Plen2OpError::Invalid { problems });
+        return Err(UploadFailure::untouched(Plen2OpError::Invalid { problems }, Stage::Checking, None));
     }
     let slots: Vec<u8> = project.motions.iter().map(|m| m.slot).filter(|slot| *slot < SLOTS).collect();
     let backup = match &options.backup_dir {
         Some(folder) => {
-            let mut saved = export(requester, &slots, progress, cancel)?;
+            let backing_up = |error| UploadFailure::untouched(error, Stage::BackingUp, None);
+            let mut saved = export(requester, &slots, progress, cancel).map_err(backing_up)?;
             saved.play_lists.clear();
             let path = plen2_backup_path(folder);
             let document = Project { family: project::Family::Plen2, plen2: saved, ..Project::default() };
-            project::save(&path, &document).map_err(Plen2OpError::Backup)?;
+            project::save(&path, &document).map_err(|error| backing_up(Plen2OpError::Backup(error)))?;
             Some(path)
         }
         None => None,
     };
+    let mut reached = Vec::new();
+    let mut results = Vec::new();
+    let total = project.motions.len() + usize::from(!project.joints.is_empty());
+    let written = write_all(requester, project, &mut reached, &mut results, progress, cancel);
+    let joint_writes = match written {
+        Ok(joint_writes) => joint_writes,
+        Err(error) => {
+            let left = Left::Partly { reached, total };
+            return Err(UploadFailure { error, stage: Stage::Writing, left, backup });
+        }
+    };
+    let mut rewritten = 0;
+    if options.verify {
+        let verified = verify(requester, &project.motions, &mut results, progress, cancel)
+            .and_then(|()| rewrite(requester, &project.motions, &mut results, &mut rewritten, progress, cancel));
+        if let Err(error) = verified {
+            return Err(UploadFailure { error, stage: Stage::Verifying, left: Left::Everything, backup });
+        }
+    }
+    Ok(Plen2ImportReport { backup, slots: results, joint_writes, rewritten })
+}
+
+/// Writes the joint settings (where they differ) and every motion; `reached`
+/// names each part the robot was sent whole. Returns the joint writes.
+fn write_all(
+    requester: &Plen2Requester,
+    project: &Plen2Project,
+    reached: &mut Vec<String>,
+    results: &mut Vec<(u8, SlotResult)>,
+    progress: &mut dyn FnMut(&Plen2Progress),
+    cancel: &Cancel,
+) -> Result<usize, Plen2OpError> {
     let mut joint_writes = 0;
     if !project.joints.is_empty() {
         check(cancel)?;
         let current = read_joint_settings(requester)?;
         joint_writes = write_joint_settings(requester, &project.joints, &current)?;
+        reached.push("joint settings".into());
     }
     let total = project.motions.len();
-    let mut results = Vec::new();
     for (index, motion) in project.motions.iter().enumerate() {
         check(cancel)?;
         write_motion(requester, motion, index, total, progress)?;
+        reached.push(slot_item(motion.slot, &motion.name));
         results.push((motion.slot, SlotResult::Written));
     }
-    let mut rewritten = 0;
-    if options.verify {
-        verify(requester, &project.motions, &mut results, progress, cancel)?;
-        // A slot that reads back different is written again (a byte lost on a
-        // busy USB line, or a host too loaded to keep the pace), up to
-        // REWRITE_ROUNDS times, each checked again; what still differs is reported.
-        for _ in 0..REWRITE_ROUNDS {
-            let differing: Vec<usize> =
-                (0..results.len()).filter(|index| results[*index].1 == SlotResult::Differs).collect();
-            for index in differing {
-                check(cancel)?;
-                write_motion(requester, &project.motions[index], index, total, progress)?;
-                rewritten += 1;
-                let back = read_slot(requester, project.motions[index].slot)?;
-                results[index].1 = if back.as_ref() == Some(&project.motions[index]) {
-                    SlotResult::Verified
-                } else {
-                    SlotResult::Differs
-                };
-            }
+    Ok(joint_writes)
+}
+
+/// A slot that reads back different is written again (a byte lost on a busy
+/// USB line, or a host too loaded to keep the pace), up to
+/// [`REWRITE_ROUNDS`] times, each checked again; what still differs is reported.
+fn rewrite(
+    requester: &Plen2Requester,
+    motions: &[Motion],
+    results: &mut [(u8, SlotResult)],
+    rewritten: &mut usize,
+    progress: &mut dyn FnMut(&Plen2Progress),
+    cancel: &Cancel,
+) -> Result<(), Plen2OpError> {
+    let total = motions.len();
+    for _ in 0..REWRITE_ROUNDS {
+        let differing: Vec<usize> =
+            (0..results.len()).filter(|index| results[*index].1 == SlotResult::Differs).collect();
+        for index in differing {
+            check(cancel)?;
+            write_motion(requester, &motions[index], index, total, progress)?;
+            *rewritten += 1;
+            let back = read_slot(requester, motions[index].slot)?;
+            results[index].1 =
+                if back.as_ref() == Some(&motions[index]) { SlotResult::Verified } else { SlotResult::Differs };
         }
     }
-    Ok(Plen2ImportReport { backup, slots: results, joint_writes, rewritten })
+    Ok(())
 }
 
 fn write_motion(

@@ -17,7 +17,8 @@ pub const RESEND_EVERY: Duration = Duration::from_millis(100);
 pub const POLL_EVERY: Duration = Duration::from_millis(500);
 /// Reports asked for this often (µs on the wire): 10 Hz.
 pub const REPORT_PERIOD_US: u32 = 100_000;
-/// While driving, a base silent for this long is treated as lost: the driver stops it.
+/// While driving, a base that sends no report that decodes for this long is
+/// treated as lost: the driver stops it.
 pub const SILENCE_LIMIT: Duration = Duration::from_millis(1000);
 
 /// What the owner asks of the driver.
@@ -174,6 +175,8 @@ impl Driver for RflexDriver {
                 if on {
                     self.stop(now);
                     self.send(now, &Command::BrakeSet);
+                    // Ask at once, so the owner can see the base confirm it.
+                    self.send(now, &Command::SystemStatus);
                 } else {
                     self.send(now, &Command::BrakeRelease);
                 }
@@ -194,7 +197,6 @@ impl Driver for RflexDriver {
     }
 
     fn handle_input(&mut self, now: Instant, bytes: &[u8]) {
-        self.last_heard = Some(now);
         self.decoder.push(bytes);
         let seconds = self.seconds(now);
         while let Some(event) = self.decoder.poll() {
@@ -204,6 +206,9 @@ impl Driver for RflexDriver {
                     let hex_text = wire.map(|bytes| hex(&bytes)).unwrap_or_default();
                     match Report::from_frame(&frame) {
                         Ok(report) => {
+                            // Only a report that decodes counts as the base answering:
+                            // noise or another protocol's bytes are no sign of life.
+                            self.last_heard = Some(now);
                             self.events.push_back(RflexEvent::Log(LogEntry {
                                 seconds,
                                 direction: Direction::Received,

@@ -57,6 +57,8 @@ pub struct Telemetry {
     pub skipped_bytes: u64,
     /// Odometry reports seen per axis (translation, rotation).
     pub odometry_reports: (u64, u64),
+    /// Status reports seen.
+    pub status_reports: u64,
     /// Sonar banks seen since the sonar started reporting, in order (for a full sweep).
     sonar_banks: Vec<u8>,
 }
@@ -76,6 +78,16 @@ impl Telemetry {
             && self.odometry_reports.1 > 0
             && self.full_sonar_sweep()
             && !self.bumpers.is_empty()
+    }
+
+    /// Whether the base has answered the start-up: a status and an odometry report.
+    pub fn answered(&self) -> bool {
+        self.status_reports > 0 && (self.odometry_reports.0 > 0 || self.odometry_reports.1 > 0)
+    }
+
+    /// Reports that decoded, of every kind counted here.
+    pub fn reports(&self) -> u64 {
+        self.status_reports + self.odometry_reports.0 + self.odometry_reports.1
     }
 
     /// Takes in one report that arrived `seconds` after the link opened.
@@ -99,6 +111,7 @@ impl Telemetry {
                 let volts = conversion.volts(voltage_raw);
                 self.battery_volts = Some(volts);
                 self.brake = Some(brake != 0);
+                self.status_reports += 1;
                 self.battery_trend.push([seconds, volts]);
             }
             Report::Sonar { readings, .. } => {

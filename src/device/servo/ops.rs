@@ -5,12 +5,11 @@
 
 use std::path::{Path, PathBuf};
 
-use crossbeam_channel::{Receiver, Sender};
-
 use super::client::Requester;
 use super::image::{ImageError, ServoImage};
 use super::item::Item;
 use super::session::RequestError;
+use crate::device::{Cancel, Left, Stage, UploadFailure};
 use crate::project::{self, Problem, Project, SaveError, ServoProject};
 use crate::protocol::servo::{ALL_SERVOS, EncodeError, Message, ServoStatus};
 
@@ -38,35 +37,8 @@ pub struct Progress {
     pub item: Item,
 }
 
-/// Lets the owner stop an operation between two steps.
-#[derive(Clone, Debug)]
-pub struct Cancel {
-    requested: Receiver<()>,
-}
-
-impl Cancel {
-    /// A cancel token and the sender that triggers it.
-    pub fn new() -> (Sender<()>, Self) {
-        let (sender, requested) = crossbeam_channel::bounded(1);
-        (sender, Self { requested })
-    }
-
-    /// A token that is never triggered.
-    pub fn never() -> Self {
-        Self { requested: crossbeam_channel::never() }
-    }
-
-    /// Whether the owner asked to stop (any family's operation checks this between steps).
-    pub fn is_requested(&self) -> bool {
-        self.requested.try_recv().is_ok()
-    }
-
-    fn check(&self) -> Result<(), OpError> {
-        match self.requested.try_recv() {
-            Ok(()) => Err(OpError::Cancelled),
-            Err(_) => Ok(()),
-        }
-    }
+fn check(cancel: &Cancel) -> Result<(), OpError> {
+    if cancel.is_requested() { Err(OpError::Cancelled) } else { Ok(()) }
 }
 
 /// An operation failed. Each message says what failed and what to try.
@@ -155,7 +127,7 @@ struct Run<'a> {
 
 impl Run<'_> {
     fn step(&mut self, item: Item, message: Message) -> Result<Message, OpError> {
-        self.cancel.check()?;
+        check(self.cancel)?;
         (self.progress)(&Progress { phase: self.phase, done: self.done, total: self.total, item: item.clone() });
         let response =
             self.requester.request(message).map_err(|source| OpError::Request { item: item.clone(), source })?;
@@ -304,111 +276,133 @@ pub struct ImportReport {
 /// The file name a backup gets: `board-backup-YYYYMMDD-HHMMSS-project<ID>.json`,
 /// local time, with a counter if that name is taken.
 pub fn backup_path(folder: &Path, project_id: i32) -> PathBuf {
-    let stamp = chrono::Local::now().format("%Y%m%d-%H%M%S");
-    let base = format!("board-backup-{stamp}-project{project_id}");
-    let mut path = folder.join(format!("{base}.json"));
-    let mut counter = 1;
-    while path.exists() {
-        counter += 1;
-        path = folder.join(format!("{base}-{counter}.json"));
-    }
-    path
+    crate::device::backup_path(folder, "board-backup", &format!("-project{project_id}"))
 }
+
+/// A failed import: the error, and what it left on the board.
+pub type ImportFailure = UploadFailure<OpError, Item>;
 
 /// Writes `project` onto the board. Before anything is cleared: validates it
 /// (errors stop the import unless `force`), checks that it fits the board's memory, and saves
 /// a backup of the board. Then clears and writes in the order of the import
-/// conversation, and verifies by reading everything back.
+/// conversation, and verifies by reading everything back. A failure says what
+/// it left: nothing written, the items that reached the board, or everything.
 pub fn import(
     requester: &Requester,
     project: &ServoProject,
     options: &ImportOptions,
     progress: &mut dyn FnMut(&Progress),
     cancel: &Cancel,
-) -> Result<ImportReport, OpError> {
+) -> Result<ImportReport, Box<ImportFailure>> {
+    upload(requester, project, options, progress, cancel).map_err(Box::new)
+}
+
+// Built once per failed upload and boxed by `import` at once: its size costs nothing.
+#[allow(clippy::result_large_err)]
+fn upload(
+    requester: &Requester,
+    project: &ServoProject,
+    options: &ImportOptions,
+    progress: &mut dyn FnMut(&Progress),
+    cancel: &Cancel,
+) -> Result<ImportReport, ImportFailure> {
     use Message as M;
+    let checking = |error: OpError| UploadFailure::untouched(error, Stage::Checking, None);
     let problems: Vec<Problem> =
         project::validate_servo(project).into_iter().filter(|p| p.severity == project::Severity::Error).collect();
     if !problems.is_empty() && !options.force {
-        return Err(OpError::Invalid { problems });
+        return Err(checking(OpError::Invalid { problems }));
     }
-    let image = ServoImage::from_project(project)?;
-    let needed_bytes = image.footprint_bytes()?;
+    let image = ServoImage::from_project(project).map_err(|error| checking(error.into()))?;
+    let needed_bytes = image.footprint_bytes().map_err(|error| checking(error.into()))?;
 
     // The fit check reads; the write phase proper starts after the backup.
     let mut run = Run { requester, progress, cancel, phase: Phase::Read, done: 0, total: 1 };
     let item = Item::MemorySize;
-    let total_bytes = match run.step(item.clone(), M::QueryMemorySizeRequest)? {
+    let total_bytes = match run.step(item.clone(), M::QueryMemorySizeRequest).map_err(checking)? {
         // Boards that report only the free size: after clearing, free is all there is.
         M::QueryMemorySizeResponse { free_bytes, total_bytes } => i64::from(total_bytes.unwrap_or(free_bytes)),
-        other => return Err(unexpected(&item, &other)),
+        other => return Err(checking(unexpected(&item, &other))),
     };
     if i64::try_from(needed_bytes).unwrap_or(i64::MAX) > total_bytes {
-        return Err(OpError::DoesNotFit { needed_bytes, total_bytes });
+        return Err(checking(OpError::DoesNotFit { needed_bytes, total_bytes }));
     }
 
     let backup = match &options.backup_dir {
         Some(folder) => {
-            let previous = read_image_as(requester, Phase::Read, progress, cancel)?.to_project();
+            let previous = read_image_as(requester, Phase::Read, progress, cancel)
+                .map_err(|error| UploadFailure::untouched(error, Stage::BackingUp, None))?
+                .to_project();
             let path = backup_path(folder, previous.project_id);
-            project::save(&path, &Project::servo(previous)).map_err(OpError::Backup)?;
+            project::save(&path, &Project::servo(previous))
+                .map_err(|error| UploadFailure::untouched(OpError::Backup(error), Stage::BackingUp, None))?;
             Some(path)
         }
         None => None,
     };
 
     let mut run = Run { requester, progress, cancel, phase: Phase::Write, done: 0, total: 0 };
-    run.total = 2
-        + usize::from(!image.servos.is_empty())
-        + image.actions.len()
-        + image.macros.len()
-        + image.tables.len()
-        + usize::from(image.active_table != 0);
-    run.write(Item::ClearAll, M::ClearAllDataRequest)?;
-    run.write(Item::WriteProjectId(image.project_id), M::WriteProjectIdRequest { project_id: image.project_id })?;
-    if !image.servos.is_empty() {
-        run.write(
-            Item::AddServoParameters(image.servos.len()),
-            M::AddServoParameterRequest { servos: image.servos.clone() },
-        )?;
-    }
-    for action in &image.actions {
-        run.write(
-            Item::Action { id: action.action_id, caption: action.caption.clone() },
-            M::AddActionRequest(action.clone()),
-        )?;
-    }
-    for record in &image.macros {
-        run.write(
-            Item::Macro { id: record.macro_id, caption: record.caption.clone() },
-            M::AddMacroRequest(record.clone()),
-        )?;
-    }
-    for table in &image.tables {
-        run.write(
-            Item::Table { id: table.table_id, caption: table.caption.clone() },
-            M::AddJoystickTableRequest(table.clone()),
-        )?;
-    }
-    if image.active_table != 0 {
-        run.write(
-            Item::SetActiveTable(image.active_table),
-            M::SetActiveJoystickTableRequest { table_id: image.active_table },
-        )?;
+    let mut reached = Vec::new();
+    if let Err(error) = write_image(&mut run, &image, &mut reached) {
+        // Even with nothing acknowledged, the clear may have run: the board may be half written.
+        let left = Left::Partly { reached, total: run.total };
+        return Err(UploadFailure { error, stage: Stage::Writing, left, backup });
     }
     let written = run.done;
 
     let verified = if options.verify {
-        let actual = read_image_as(requester, Phase::Verify, progress, cancel)?;
-        let differences = image.differences(&actual);
-        if !differences.is_empty() {
-            return Err(OpError::Verify { differences });
+        let verified = read_image_as(requester, Phase::Verify, progress, cancel).and_then(|actual| {
+            let differences = image.differences(&actual);
+            if differences.is_empty() { Ok(()) } else { Err(OpError::Verify { differences }) }
+        });
+        if let Err(error) = verified {
+            return Err(UploadFailure { error, stage: Stage::Verifying, left: Left::Everything, backup });
         }
         true
     } else {
         false
     };
     Ok(ImportReport { backup, written, verified })
+}
+
+/// Clears the board and writes `image` in the order of the import
+/// conversation; `reached` collects each item the board acknowledged.
+fn write_image(run: &mut Run<'_>, image: &ServoImage, reached: &mut Vec<Item>) -> Result<(), OpError> {
+    use Message as M;
+    run.total = 2
+        + usize::from(!image.servos.is_empty())
+        + image.actions.len()
+        + image.macros.len()
+        + image.tables.len()
+        + usize::from(image.active_table != 0);
+    let mut write = |run: &mut Run<'_>, item: Item, message: Message| {
+        run.write(item.clone(), message)?;
+        reached.push(item);
+        Ok::<(), OpError>(())
+    };
+    write(run, Item::ClearAll, M::ClearAllDataRequest)?;
+    write(run, Item::WriteProjectId(image.project_id), M::WriteProjectIdRequest { project_id: image.project_id })?;
+    if !image.servos.is_empty() {
+        let servos = image.servos.clone();
+        write(run, Item::AddServoParameters(servos.len()), M::AddServoParameterRequest { servos })?;
+    }
+    for action in &image.actions {
+        let item = Item::Action { id: action.action_id, caption: action.caption.clone() };
+        write(run, item, M::AddActionRequest(action.clone()))?;
+    }
+    for record in &image.macros {
+        let item = Item::Macro { id: record.macro_id, caption: record.caption.clone() };
+        write(run, item, M::AddMacroRequest(record.clone()))?;
+    }
+    for table in &image.tables {
+        let item = Item::Table { id: table.table_id, caption: table.caption.clone() };
+        write(run, item, M::AddJoystickTableRequest(table.clone()))?;
+    }
+    if image.active_table != 0 {
+        let table_id = image.active_table;
+        write(run, Item::SetActiveTable(table_id), M::SetActiveJoystickTableRequest { table_id })?;
+    }
+    Ok(())
 }
 
 /// A board's status at a glance.

@@ -15,8 +15,10 @@ use crate::protocol::servo::{
 /// Timing of a session.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct SessionConfig {
-    /// How long to wait for a response after the request's last byte was
-    /// queued; the wait restarts whenever bytes arrive.
+    /// How long the board may take to answer, on top of the time the request
+    /// and its response need on the line at `line_baud`. Incoming bytes never
+    /// extend it: only the response's own header, which says how many bytes
+    /// are still to come, extends the deadline by their wire time.
     pub response_timeout: Duration,
     /// How many times an idempotent query is sent again after a timeout.
     pub query_retries: u8,
@@ -51,13 +53,25 @@ pub struct RequestId(pub u64);
 pub enum RequestError {
     /// No response came in time, after every retry.
     #[error(
-        "{request}: no response after {attempts} attempt(s). Check that the board is powered, the baud rate matches, and the cable is in"
+        "{request}: no response within {timeout_ms} ms ({attempts} attempt(s)). Check that the board is powered, the baud rate matches, and the cable is in; a slow link may need a longer timeout"
     )]
     Timeout {
         /// The request's name.
         request: &'static str,
         /// How many times it was sent.
         attempts: u8,
+        /// The timeout each attempt had, on top of the line time, ms.
+        timeout_ms: u64,
+    },
+    /// Bytes came, but nothing in them was a frame of this protocol.
+    #[error(
+        "{request}: the device answers, but not in this protocol ({bytes} bytes and no servo-board frame): is it a servo board?"
+    )]
+    NotThisProtocol {
+        /// The request's name.
+        request: &'static str,
+        /// How many bytes came while waiting.
+        bytes: usize,
     },
     /// The response came but its content does not match its layout.
     #[error("{request}: malformed response: {error}")]
@@ -140,7 +154,16 @@ struct Pending {
 #[derive(Debug)]
 struct InFlight {
     request: Pending,
+    /// Fixed when the request is written; moved later only once, by the
+    /// response's own header (never by other bytes).
     deadline: Instant,
+    /// Whether the response's header has set the deadline.
+    sized: bool,
+    /// Bytes received since the request was written.
+    bytes: usize,
+    /// Frames of this protocol among them: whole ones, and ones that began
+    /// with the magic but came damaged (a bad checksum, cut short).
+    frames: usize,
 }
 
 /// The session state machine (see the module documentation).
@@ -282,18 +305,37 @@ impl Session {
         self.write(now, request.bytes.clone());
         let (frame, message) = (request.frame.clone(), request.message.clone());
         self.log(|| Traffic::Sent { frame, message });
-        self.in_flight = Some(InFlight { request, deadline: now + self.config.response_timeout });
+        // The request must first cross the line (behind whatever was written before it).
+        let on_the_line = self.line_free_at.map_or(now, |free| free.max(now));
+        let deadline = on_the_line + self.config.response_timeout;
+        self.in_flight = Some(InFlight { request, deadline, sized: false, bytes: 0, frames: 0 });
     }
 
     /// Bytes received from the board.
     pub fn handle_input(&mut self, now: Instant, bytes: &[u8]) {
         self.last_input = Some(now);
         if let Some(in_flight) = &mut self.in_flight {
-            // A long response is still arriving: keep waiting for it.
-            in_flight.deadline = in_flight.deadline.max(now + self.config.response_timeout);
+            in_flight.bytes += bytes.len();
         }
         self.decoder.push(bytes);
         self.drain_decoder(now);
+        self.size_response(now);
+    }
+
+    /// Once the header of the awaited response has arrived, the rest of it
+    /// is known: the deadline becomes its wire time from now plus the timeout.
+    fn size_response(&mut self, now: Instant) {
+        let Some((packet_id, frame_len)) = self.decoder.pending_header() else { return };
+        let pending = self.decoder.pending_len();
+        let wire = self.wire_time(frame_len.saturating_sub(pending));
+        let timeout = self.config.response_timeout;
+        if let Some(in_flight) = &mut self.in_flight
+            && !in_flight.sized
+            && in_flight.request.frame.packet_id.checked_add(1) == Some(packet_id)
+        {
+            in_flight.sized = true;
+            in_flight.deadline = in_flight.deadline.max(now + wire + timeout);
+        }
     }
 
     fn drain_decoder(&mut self, now: Instant) {
@@ -301,6 +343,12 @@ impl Session {
             match event {
                 DecoderEvent::Frame(frame) => self.handle_frame(now, &frame),
                 DecoderEvent::Skipped { bytes, reason } => {
+                    if reason != SkipReason::Garbage
+                        && let Some(in_flight) = &mut self.in_flight
+                    {
+                        // A frame of ours, damaged on the way: asking again may help.
+                        in_flight.frames += 1;
+                    }
                     self.log(|| Traffic::Skipped { bytes, reason });
                 }
             }
@@ -308,6 +356,9 @@ impl Session {
     }
 
     fn handle_frame(&mut self, now: Instant, frame: &Frame) {
+        if let Some(in_flight) = &mut self.in_flight {
+            in_flight.frames += 1;
+        }
         let decoded = Message::from_frame(frame);
         if self.config.traffic {
             self.events
@@ -354,11 +405,18 @@ impl Session {
             self.drain_decoder(now);
         }
         if self.in_flight.as_ref().is_some_and(|f| now >= f.deadline) {
-            let Some(InFlight { request, .. }) = self.in_flight.take() else {
+            let Some(InFlight { request, bytes, frames, .. }) = self.in_flight.take() else {
                 return;
             };
-            let attempts = request.attempts;
-            self.retry_or_fail(now, request, |request| RequestError::Timeout { request, attempts });
+            if bytes > 0 && frames == 0 {
+                // Something answers, in another protocol: asking again will not help.
+                let error = RequestError::NotThisProtocol { request: request.message.name(), bytes };
+                self.events.push_back(SessionEvent::Response { id: request.id, result: Err(error) });
+            } else {
+                let attempts = request.attempts;
+                let timeout_ms = u64::try_from(self.config.response_timeout.as_millis()).unwrap_or(u64::MAX);
+                self.retry_or_fail(now, request, |request| RequestError::Timeout { request, attempts, timeout_ms });
+            }
             self.start_next(now);
         }
     }
@@ -476,7 +534,7 @@ mod tests {
             events(&mut session),
             [SessionEvent::Response {
                 id,
-                result: Err(RequestError::Timeout { request: "QueryProjectIDRequest", attempts: 2 })
+                result: Err(RequestError::Timeout { request: "QueryProjectIDRequest", attempts: 2, timeout_ms: 100 })
             }]
         );
     }
@@ -570,17 +628,61 @@ mod tests {
     }
 
     #[test]
-    fn incoming_bytes_extend_the_wait_for_a_long_response() {
+    fn the_responses_own_header_extends_the_deadline_by_its_wire_time_and_nothing_else_does() {
+        let t0 = Instant::now();
+        let baud = 115_200;
+        let mut session = Session::new(SessionConfig { line_baud: Some(baud), ..config() });
+        session.submit(t0, Message::QueryActionListRequest).unwrap();
+        let request_len = bytes(&Message::QueryActionListRequest).len();
+        let on_line = session.wire_time(request_len);
+        assert_eq!(session.poll_timeout(), Some(t0 + on_line + Duration::from_millis(100)));
+        // A button event (a whole frame) does not move the deadline.
+        let button = bytes(&Message::ButtonEventResponse { button_id: 1, event: ButtonEvent::Press });
+        session.handle_input(t0 + Duration::from_millis(50), &button);
+        assert_eq!(session.poll_timeout(), Some(t0 + on_line + Duration::from_millis(100)));
+        // The response's header: 1000 actions follow (36,002 content bytes).
+        let content_len: u16 = 2 + 1000 * 36;
+        let at = t0 + Duration::from_millis(60);
+        let mut header = vec![0x13, 0x4c, 0x05, 0x1d];
+        header.extend_from_slice(&30011u16.to_le_bytes());
+        header.extend_from_slice(&content_len.to_le_bytes());
+        session.handle_input(at, &header);
+        let rest = usize::from(content_len) + 9 - header.len();
+        let expected = at + session.wire_time(rest) + Duration::from_millis(100);
+        // The idle gap comes first, but the request waits for the whole frame.
+        session.handle_input(at + Duration::from_millis(10), &[0; 16]);
+        session.handle_timeout(at + Duration::from_millis(10));
+        let request_deadline = session.in_flight.as_ref().map(|f| f.deadline);
+        assert_eq!(request_deadline, Some(expected), "3.1 s of wire time plus the timeout");
+        // More bytes do not extend it again.
+        session.handle_input(at + Duration::from_millis(20), &header);
+        assert_eq!(session.in_flight.as_ref().map(|f| f.deadline), Some(expected));
+    }
+
+    #[test]
+    fn a_device_that_chatters_in_another_protocol_ends_the_request_at_its_deadline() {
         let t0 = Instant::now();
         let mut session = Session::new(config());
-        session.submit(t0, Message::QueryJoystickTableRequest { table_id: 1 }).unwrap();
-        session.handle_input(t0 + Duration::from_millis(90), &[0x13, 0x4c]);
-        assert_eq!(session.poll_timeout(), Some(t0 + Duration::from_millis(110)), "idle gap first");
-        session.handle_input(t0 + Duration::from_millis(105), &[0x05]);
-        assert_eq!(session.poll_timeout(), Some(t0 + Duration::from_millis(125)));
-        session.handle_timeout(t0 + Duration::from_millis(125));
-        // The partial frame is dropped, but the request still waits until 205 ms.
-        assert_eq!(session.poll_timeout(), Some(t0 + Duration::from_millis(205)));
+        let id = session.submit(t0, Message::QueryProjectIdRequest).unwrap();
+        sent(&mut session);
+        // A byte every 5 ms, forever: none of it a frame.
+        let mut at = t0;
+        let deadline = t0 + Duration::from_millis(100);
+        while at < deadline {
+            session.handle_input(at, b"x");
+            at += Duration::from_millis(5);
+            if let Some(due) = session.poll_timeout().filter(|due| *due <= at) {
+                session.handle_timeout(due);
+            }
+        }
+        session.handle_timeout(deadline);
+        assert_eq!(sent(&mut session), [], "not asked again: it answers, in another protocol");
+        let events: Vec<SessionEvent> =
+            events(&mut session).into_iter().filter(|e| matches!(e, SessionEvent::Response { .. })).collect();
+        assert!(
+            matches!(events.as_slice(), [SessionEvent::Response { id: got, result: Err(RequestError::NotThisProtocol { bytes: 20, .. }) }] if *got == id),
+            "{events:?}"
+        );
     }
 
     #[test]

@@ -115,6 +115,19 @@ impl FrameDecoder {
         self.buffer.len() - self.start
     }
 
+    /// The packet id and whole length (header, content and checksum) of the
+    /// frame the held bytes begin, once its header has arrived: how many more
+    /// bytes the frame still needs is then known, not guessed.
+    pub fn pending_header(&self) -> Option<(u16, usize)> {
+        let available = &self.buffer[self.start..];
+        if available.len() < HEADER_LEN || find_magic(available) != Some(0) {
+            return None;
+        }
+        let packet_id = u16::from_le_bytes([available[4], available[5]]);
+        let length = usize::from(u16::from_le_bytes([available[6], available[7]]));
+        (length <= self.max_content_len).then_some((packet_id, length + OVERHEAD_LEN))
+    }
+
     /// Gives up on the frame the held bytes began: the next [`poll`](Self::poll)s
     /// report them as skipped and decode whatever complete frames they hide.
     pub fn abandon_partial(&mut self) {

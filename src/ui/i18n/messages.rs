@@ -186,8 +186,13 @@ impl Language {
         use crate::device::servo::RequestError as R;
         match (self, error) {
             (Self::English, _) => error.to_string(),
-            (_, R::Timeout { request, attempts }) => {
-                format!("{request}：嘗試 {attempts} 次都沒有回應。請確認控制板已開機、鮑率相符、線材已接好")
+            (_, R::Timeout { request, attempts, timeout_ms }) => {
+                format!(
+                    "{request}：嘗試 {attempts} 次，每次等候 {timeout_ms} 毫秒都沒有回應。請確認控制板已開機、鮑率相符、線材已接好"
+                )
+            }
+            (_, R::NotThisProtocol { request, bytes }) => {
+                format!("{request}：裝置有回應（{bytes} 位元組），但不是這個協定。它是伺服控制板嗎？請確認板子種類")
             }
             (_, R::Malformed { request, .. }) => {
                 format!("{request}：回應格式錯誤（封包紀錄中有詳細內容）。請確認鮑率與控制板型號")
@@ -195,6 +200,36 @@ impl Language {
             (_, R::Encode(_)) => "無法編碼此訊息：內容超出協定欄位的範圍".to_string(),
             (_, R::Disconnected { .. }) => "與控制板的連線已中斷".to_string(),
         }
+    }
+
+    /// A failed upload: why, and what it left on the board, in this language.
+    pub fn upload_failure(self, failure: &crate::device::servo::ImportFailure) -> String {
+        use crate::device::{Left, Stage};
+        if self == Self::English {
+            return failure.to_string();
+        }
+        let error = self.op_error(&failure.error);
+        let mut text = match failure.stage {
+            Stage::BackingUp => format!("備份控制板時：{error}"),
+            Stage::Verifying => format!("驗證時：{error}"),
+            Stage::Checking | Stage::Writing => error,
+        };
+        match &failure.left {
+            Left::Untouched => text.push_str("\n沒有寫入任何資料：控制板保持原狀"),
+            Left::Partly { reached, total } => {
+                let names: Vec<String> = reached.iter().take(6).map(|item| self.item(item)).collect();
+                text.push_str(&format!(
+                    "\n控制板可能只寫入了一部分：{total} 個項目中有 {} 個已寫入（{}）",
+                    reached.len(),
+                    names.join("、")
+                ));
+            }
+            Left::Everything => text.push_str("\n所有項目都已寫入"),
+        }
+        if let Some(backup) = &failure.backup {
+            text.push_str(&format!("\n控制板原本的內容已備份於 {}", backup.display()));
+        }
+        text
     }
 
     /// Why a board operation failed, in this language, with what to try.

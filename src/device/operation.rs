@@ -1,0 +1,154 @@
+//! What every family's long operation shares: a cancel token checked between
+//! steps, where a backup goes, and — when an upload fails — what it left on
+//! the device, said plainly (nothing written, some items, or everything).
+
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+use crossbeam_channel::{Receiver, Sender};
+
+/// Lets the owner stop an operation between two steps.
+#[derive(Clone, Debug)]
+pub struct Cancel {
+    requested: Receiver<()>,
+}
+
+impl Cancel {
+    /// A cancel token and the sender that triggers it.
+    pub fn new() -> (Sender<()>, Self) {
+        let (sender, requested) = crossbeam_channel::bounded(1);
+        (sender, Self { requested })
+    }
+
+    /// A token that is never triggered.
+    pub fn never() -> Self {
+        Self { requested: crossbeam_channel::never() }
+    }
+
+    /// Whether the owner asked to stop.
+    pub fn is_requested(&self) -> bool {
+        self.requested.try_recv().is_ok()
+    }
+}
+
+/// Where a backup goes: `<stem>-YYYYMMDD-HHMMSS<tag>.json` in `folder` (local
+/// time), with a counter if that name is taken.
+pub fn backup_path(folder: &Path, stem: &str, tag: &str) -> PathBuf {
+    let stamp = chrono::Local::now().format("%Y%m%d-%H%M%S");
+    let base = format!("{stem}-{stamp}{tag}");
+    let mut path = folder.join(format!("{base}.json"));
+    let mut counter = 1;
+    while path.exists() {
+        counter += 1;
+        path = folder.join(format!("{base}-{counter}.json"));
+    }
+    path
+}
+
+/// Which part of an upload was running when it failed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stage {
+    /// Checking the project and the device (nothing read or written yet).
+    Checking,
+    /// Reading the device for the backup.
+    BackingUp,
+    /// Writing.
+    Writing,
+    /// Reading back what was written.
+    Verifying,
+}
+
+/// What a failed upload left on the device.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Left<I> {
+    /// Nothing was written: the device holds what it held.
+    Untouched,
+    /// Writing had begun: these items reached the device (the first may have
+    /// erased it), of `total`.
+    Partly {
+        /// The items acknowledged, in order.
+        reached: Vec<I>,
+        /// Items the upload had to write.
+        total: usize,
+    },
+    /// Everything was written; what failed came after.
+    Everything,
+}
+
+/// An upload that failed, with where it stopped and what it left.
+#[derive(Debug)]
+pub struct UploadFailure<E, I> {
+    /// What went wrong.
+    pub error: E,
+    /// What was running.
+    pub stage: Stage,
+    /// What the device holds now.
+    pub left: Left<I>,
+    /// Where the device's previous contents were saved, if they were.
+    pub backup: Option<PathBuf>,
+}
+
+impl<E, I> UploadFailure<E, I> {
+    /// A failure before anything was written.
+    pub fn untouched(error: E, stage: Stage, backup: Option<PathBuf>) -> Self {
+        Self { error, stage, left: Left::Untouched, backup }
+    }
+}
+
+impl<E: fmt::Display, I: fmt::Display> fmt::Display for UploadFailure<E, I> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.stage {
+            Stage::BackingUp => write!(f, "while backing the device up: {}", self.error)?,
+            Stage::Verifying => write!(f, "while verifying: {}", self.error)?,
+            Stage::Checking | Stage::Writing => write!(f, "{}", self.error)?,
+        }
+        match &self.left {
+            Left::Untouched => write!(f, "\nnothing was written: the device holds what it held")?,
+            Left::Partly { reached, total } => {
+                let names: Vec<String> = reached.iter().take(6).map(ToString::to_string).collect();
+                let more = if reached.len() > names.len() { ", …" } else { "" };
+                write!(
+                    f,
+                    "\nthe device may now be half written: {} of {total} items reached it ({}{more})",
+                    reached.len(),
+                    if names.is_empty() { "none acknowledged".to_string() } else { names.join(", ") }
+                )?;
+            }
+            Left::Everything => write!(f, "\neverything was written")?,
+        }
+        if let Some(backup) = &self.backup {
+            write!(f, "\nthe device's previous contents are saved in {}", backup.display())?;
+        }
+        Ok(())
+    }
+}
+
+impl<E: std::error::Error + 'static, I: fmt::Debug + fmt::Display> std::error::Error for UploadFailure<E, I> {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        Some(&self.error)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_failure_says_what_it_left_and_where_the_backup_is() {
+        let untouched: UploadFailure<&str, &str> =
+            UploadFailure::untouched("action 17: the link was lost", Stage::BackingUp, None);
+        let text = untouched.to_string();
+        assert!(text.starts_with("while backing the device up: action 17"), "{text}");
+        assert!(text.contains("nothing was written"), "{text}");
+
+        let partly = UploadFailure {
+            error: "action 3: no response",
+            stage: Stage::Writing,
+            left: Left::Partly { reached: vec!["clear all", "project id 7"], total: 12 },
+            backup: Some(PathBuf::from("/tmp/board-backup.json")),
+        };
+        let text = partly.to_string();
+        assert!(text.contains("half written: 2 of 12 items reached it (clear all, project id 7)"), "{text}");
+        assert!(text.contains("saved in /tmp/board-backup.json"), "{text}");
+    }
+}
