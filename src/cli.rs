@@ -14,7 +14,7 @@ use clap::{Args, Parser, Subcommand};
 
 use servo_studio::device;
 use servo_studio::project::rflex::Robot;
-use servo_studio::project::{self, Family, Severity};
+use servo_studio::project::{self, Family, Project, Severity};
 
 /// Servo Studio: pose robot servos live, author actions and macros, and back up
 /// and upload servo controller boards.
@@ -175,6 +175,28 @@ fn servo_only(family: Family, what: &str) -> anyhow::Result<()> {
     }
 }
 
+/// An error with advice after it (how to restore the device), keeping the
+/// error's causes for whoever reads the chain.
+#[derive(Debug)]
+pub struct Advised<E> {
+    /// The error.
+    pub error: E,
+    /// What to do, appended to its text.
+    pub advice: String,
+}
+
+impl<E: std::fmt::Display> std::fmt::Display for Advised<E> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}{}", self.error, self.advice)
+    }
+}
+
+impl<E: std::error::Error> std::error::Error for Advised<E> {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        self.error.source()
+    }
+}
+
 /// After a failed upload that had begun writing, how to put the device back
 /// as the backup holds it (or that there is no backup).
 pub fn restore_hint<I>(protocol: &str, port: &str, backup: Option<&std::path::Path>, left: &device::Left<I>) -> String {
@@ -215,6 +237,24 @@ pub fn run(command: CliCommand) -> ExitCode {
     finish(result)
 }
 
+/// An error and its causes, each said once: a cause whose words its
+/// wrapper already carries (`action 3: no response` over `no response`) is
+/// not repeated.
+fn describe(error: &anyhow::Error) -> String {
+    let mut text = String::new();
+    for cause in error.chain() {
+        let message = cause.to_string();
+        if message.is_empty() || text.contains(&message) {
+            continue;
+        }
+        if !text.is_empty() {
+            text.push_str(": ");
+        }
+        text.push_str(&message);
+    }
+    text
+}
+
 /// The exit status of a command, with its error printed once.
 fn finish(result: anyhow::Result<()>) -> ExitCode {
     let Err(error) = result else { return ExitCode::SUCCESS };
@@ -222,7 +262,28 @@ fn finish(result: anyhow::Result<()>) -> ExitCode {
         // The reader of stdout went away (`| head -1`): nothing is wrong.
         return ExitCode::SUCCESS;
     }
-    eprintln!("error: {error:#}");
+    eprintln!("error: {}", describe(&error));
+    let timed_out = error.chain().any(|cause| {
+        matches!(cause.downcast_ref(), Some(device::servo::RequestError::Timeout { .. }))
+            || matches!(cause.downcast_ref(), Some(device::plen2::ReplyError::Timeout { .. }))
+    });
+    if timed_out {
+        eprintln!("hint: a slow link or a busy device may need more time: raise it with --timeout-ms");
+    }
+    let other_protocol = error.chain().find_map(|cause| {
+        if matches!(cause.downcast_ref(), Some(device::servo::RequestError::NotThisProtocol { .. })) {
+            Some("plen2 or --protocol rflex")
+        } else if matches!(cause.downcast_ref(), Some(device::plen2::ReplyError::NotThisProtocol { .. }))
+            || matches!(cause.downcast_ref(), Some(device::plen2::Plen2OpError::Unreadable { .. }))
+        {
+            Some("servo or --protocol rflex")
+        } else {
+            None
+        }
+    });
+    if let Some(others) = other_protocol {
+        eprintln!("hint: if it is another kind of device, say which: try --protocol {others}");
+    }
     match error.chain().find_map(|cause| cause.downcast_ref::<rflex::Exit>()) {
         Some(rflex::Exit(code)) => ExitCode::from(*code),
         None => ExitCode::FAILURE,
@@ -230,11 +291,8 @@ fn finish(result: anyhow::Result<()>) -> ExitCode {
 }
 
 fn import(port: &PortArgs, input: &std::path::Path, choices: servo::ImportChoices) -> anyhow::Result<()> {
-    let loaded = if port.protocol == Some(Family::Plen2) {
-        plen2::load_input(input)?
-    } else {
-        project::load(input).map_err(|error| anyhow::anyhow!("cannot read {}: {error}", input.display()))?
-    };
+    let project::Loaded { project: loaded, unknown_keys } = plen2::load_input(input)?;
+    warn_unknown(input, &unknown_keys);
     let family = port.protocol.unwrap_or(loaded.family);
     if family != loaded.family {
         anyhow::bail!(
@@ -250,11 +308,22 @@ fn import(port: &PortArgs, input: &std::path::Path, choices: servo::ImportChoice
     servo::import(port, input, &loaded, choices)
 }
 
+/// Keys a file held that Servo Studio does not know: ignored, said once on stderr.
+fn warn_unknown(file: &std::path::Path, keys: &[String]) {
+    for key in keys {
+        eprintln!("warning: {}: {key}: unknown key, ignored (is it misspelt?)", file.display());
+    }
+}
+
 /// Opens the editor, with `file` if given; with `demo` and no file, on the sample robot.
 pub fn gui(file: Option<PathBuf>, demo: bool, protocol: Option<Family>) -> anyhow::Result<()> {
     let project = match &file {
         // A project file, or the PLEN community's motion.json (one file or a folder).
-        Some(path) => Some(plen2::load_input(path)?),
+        Some(path) => {
+            let loaded = plen2::load_input(path)?;
+            warn_unknown(path, &loaded.unknown_keys);
+            Some(loaded.project)
+        }
         None => None,
     };
     // A motion.json or a folder of them is not a project file: it is saved as a new project.
@@ -272,22 +341,96 @@ pub fn gui(file: Option<PathBuf>, demo: bool, protocol: Option<Family>) -> anyho
     })
 }
 
-/// Runs `servo-studio check FILE`.
+/// Runs `servo-studio check FILE`: every problem with its location (and, for
+/// a folder of motion.json files, its file), going on past a file that
+/// cannot be read; exit 1 on any error.
 pub fn check(file: &std::path::Path) -> ExitCode {
-    // A project file, a PLEN2 motion.json, or a folder of them.
-    let loaded = match plen2::load_input(file) {
-        Ok(loaded) => loaded,
-        Err(error) => {
-            eprintln!("error: {error:#}");
-            return ExitCode::FAILURE;
+    let report = if file.is_dir() { check_folder(file) } else { check_file(file) };
+    match report {
+        Ok((errors, warnings)) => {
+            let summary = format!("{}: {errors} error(s), {warnings} warning(s)", file.display());
+            if out::line(&summary).is_err() {
+                return ExitCode::SUCCESS;
+            }
+            if errors > 0 { ExitCode::FAILURE } else { ExitCode::SUCCESS }
         }
-    };
-    let problems = project::validate(&loaded);
-    for problem in &problems {
-        println!("{problem}");
+        Err(error) => finish(Err(error)),
     }
-    let errors = problems.iter().filter(|p| p.severity == Severity::Error).count();
-    let warnings = problems.len() - errors;
-    println!("{}: {errors} error(s), {warnings} warning(s)", file.display());
-    if errors > 0 { ExitCode::FAILURE } else { ExitCode::SUCCESS }
+}
+
+/// Prints problems (each after `prefix`); returns (errors, warnings).
+fn print_problems<'a>(
+    problems: impl IntoIterator<Item = (String, &'a project::Problem)>,
+) -> Result<(usize, usize), out::Closed> {
+    let (mut errors, mut warnings) = (0, 0);
+    for (prefix, problem) in problems {
+        match problem.severity {
+            Severity::Error => errors += 1,
+            Severity::Warning => warnings += 1,
+        }
+        let text = problem.to_string();
+        let line = match text.split_once(": ") {
+            Some((severity, rest)) if !prefix.is_empty() => format!("{severity}: {prefix}: {rest}"),
+            _ => text,
+        };
+        out::line(&line)?;
+    }
+    Ok((errors, warnings))
+}
+
+fn unknown_key(path: String) -> project::Problem {
+    project::Problem {
+        severity: Severity::Warning,
+        location: project::Location::Key { path },
+        kind: project::ProblemKind::UnknownKey,
+    }
+}
+
+fn check_file(file: &std::path::Path) -> anyhow::Result<(usize, usize)> {
+    let project::Loaded { project, unknown_keys } = plen2::load_input(file)?;
+    let mut problems: Vec<project::Problem> = unknown_keys.into_iter().map(unknown_key).collect();
+    problems.extend(project::validate(&project));
+
+    Ok(print_problems(problems.iter().map(|problem| (String::new(), problem)))?)
+}
+
+fn check_folder(folder: &std::path::Path) -> anyhow::Result<(usize, usize)> {
+    let files = project::motion_json::motion_files(folder)?;
+    let name = |file: &std::path::Path| file.file_name().map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+    let (mut errors, mut warnings) = (0, 0);
+    let mut motions = Vec::new();
+    let mut slot_files: std::collections::BTreeMap<u8, Vec<String>> = std::collections::BTreeMap::new();
+    for file in &files {
+        match project::motion_json::read_motion_file(file) {
+            Ok((motion, unknown)) => {
+                let problems: Vec<project::Problem> = unknown.into_iter().map(unknown_key).collect();
+                let (e, w) = print_problems(problems.iter().map(|problem| (name(file), problem)))?;
+                (errors, warnings) = (errors + e, warnings + w);
+                slot_files.entry(motion.slot).or_default().push(name(file));
+                motions.push(motion);
+            }
+            Err(error) => {
+                // Said, and the others still checked.
+                out::line(&format!("error: {error}"))?;
+                errors += 1;
+            }
+        }
+    }
+    let project = Project {
+        family: Family::Plen2,
+        plen2: project::plen2::Plen2Project { motions, ..Default::default() },
+        ..Project::default()
+    };
+    let problems = project::validate(&project);
+    let located = problems.iter().map(|problem| {
+        let files = match &problem.location {
+            project::Location::Motion { slot, .. } | project::Location::Frame { slot, .. } => {
+                slot_files.get(slot).map(|files| files.join(", "))
+            }
+            _ => None,
+        };
+        (files.unwrap_or_default(), problem)
+    });
+    let (e, w) = print_problems(located)?;
+    Ok((errors + e, warnings + w))
 }

@@ -5,6 +5,9 @@
 #![cfg(unix)]
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
+mod common;
+
+use common::{Chatter, ended, peer};
 use std::io::{Read, Write};
 use std::net::{Shutdown, TcpListener, TcpStream};
 use std::process::{Command, Output, Stdio};
@@ -12,7 +15,8 @@ use std::time::{Duration, Instant};
 
 use servo_studio::link::{LinkEvent, no_waker};
 use servo_studio::sim::{
-    BaseState, LineNoise, RflexSim, RflexSimCommand, RflexSimConfig, RflexSimEvent, SimHandle, spawn_pty,
+    BaseState, LineNoise, Plen2Sim, Plen2Timing, RflexSim, RflexSimCommand, RflexSimConfig, RflexSimEvent, ServoSim,
+    SimConfig, SimHandle, spawn_pty,
 };
 
 const EXE: &str = env!("CARGO_BIN_EXE_servo-studio");
@@ -91,11 +95,20 @@ fn status_reports_the_emulators_battery_pose_and_sonar_with_noise_and_stuffing_o
 /// A cable between the command line (TCP) and the base (its pseudo-terminal)
 /// that the test can pull.
 fn cable(pty: &str) -> (String, crossbeam_channel::Sender<()>) {
+    let (address, pull, _mute) = muting_cable(pty);
+    (address, pull)
+}
+
+/// A cable that can also be muted: the base's words stop reaching the
+/// command line, while the command line's still reach the base.
+fn muting_cable(pty: &str) -> (String, crossbeam_channel::Sender<()>, crossbeam_channel::Sender<()>) {
     let listener = TcpListener::bind("127.0.0.1:0").unwrap();
     let address = format!("tcp://{}", listener.local_addr().unwrap());
     let mut serial = serialport::new(pty, 115_200).timeout(Duration::from_millis(20)).open().unwrap();
     let (pull, pulled) = crossbeam_channel::bounded::<()>(1);
+    let (mute, muted) = crossbeam_channel::bounded::<()>(1);
     std::thread::spawn(move || {
+        let mut silent = false;
         let (client, _) = listener.accept().unwrap();
         client.set_read_timeout(Some(Duration::from_millis(20))).unwrap();
         let mut client_reader: TcpStream = client.try_clone().unwrap();
@@ -111,15 +124,17 @@ fn cable(pty: &str) -> (String, crossbeam_channel::Sender<()>) {
                 Ok(n) => serial.write_all(&buffer[..n]).unwrap(),
                 Err(_) => {}
             }
+            silent |= muted.try_recv().is_ok();
             if let Ok(n) = serial.read(&mut buffer)
                 && n > 0
+                && !silent
                 && client_writer.write_all(&buffer[..n]).is_err()
             {
                 return;
             }
         }
     });
-    (address, pull)
+    (address, pull, mute)
 }
 
 #[test]
@@ -170,4 +185,115 @@ fn a_link_cut_mid_drive_ends_the_command_at_once_and_the_base_stops_by_its_dead_
     let state = inspect(&base);
     assert_eq!(state.target_speed_m_per_s, 0.0, "it ramps down to a stop: {state:?}");
     assert!(!state.braked, "the brake was never set: the dead-man alone stopped it");
+}
+
+/// Starts `rflex drive` for a long drive and waits until the base is moving.
+fn driving(base: &Base, port: &str) -> std::process::Child {
+    let child = Command::new(EXE)
+        .args(["rflex", "drive", "--port", port, "--speed", "0.4", "--seconds", "20"])
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let deadline = Instant::now() + Duration::from_secs(10);
+    let mut motion = 0;
+    while motion < 5 {
+        match base.events().recv_deadline(deadline) {
+            Ok(LinkEvent::Driver(RflexSimEvent::Received(servo_studio::protocol::rflex::Command::AxisSetDir {
+                ..
+            }))) => motion += 1,
+            Ok(_) => {}
+            Err(_) => panic!("the base never got a motion command"),
+        }
+    }
+    child
+}
+
+#[test]
+fn a_signal_during_a_drive_stops_the_base_and_sets_its_brake_before_the_command_exits() {
+    for (signal, code) in [("INT", 130), ("TERM", 143), ("HUP", 129)] {
+        let base = base(RflexSimConfig::default());
+        let child = driving(&base, &base.port_name);
+        let killed = Command::new("kill").args(["-s", signal, &child.id().to_string()]).status().unwrap();
+        assert!(killed.success());
+        let (status, text) = ended(child, Duration::from_secs(5));
+        assert_eq!(status, Some(code), "SIG{signal}: {text}");
+        assert!(text.contains(&format!("interrupted by SIG{signal}")), "{text}");
+        assert!(text.contains("the base stopped and its brake is set"), "{text}");
+        // The command waited for the base to confirm: by the time it exited, the base had braked.
+        let state = inspect(&base);
+        assert!(state.braked, "SIG{signal}: {state:?}");
+        assert_eq!(state.target_speed_m_per_s, 0.0, "SIG{signal}: {state:?}");
+        assert_eq!(state.speed_m_per_s, 0.0, "SIG{signal}: {state:?}");
+    }
+}
+
+#[test]
+fn drive_never_starts_against_a_device_that_does_not_answer_as_a_base() {
+    let silent = peer(Chatter::Silent);
+    let garbage = peer(Chatter::Garbage);
+    let servo_board = spawn_pty(ServoSim::new(SimConfig::default(), Default::default()), no_waker()).unwrap();
+    let plen2 = spawn_pty(Plen2Sim::new(Plen2Timing::default()), no_waker()).unwrap();
+    let cases = [
+        (&silent.port, "did not answer the start-up within 1000 ms"),
+        (&garbage.port, "not in the rFLEX protocol"),
+        (&servo_board.port_name, "did not answer the start-up within 1000 ms"),
+        (&plen2.port_name, "did not answer the start-up within 1000 ms"),
+    ];
+    for (port, expected) in cases {
+        let began = Instant::now();
+        let child = Command::new(EXE)
+            .args(["rflex", "drive", "--port", port, "--speed", "0.3", "--seconds", "10"])
+            .stdin(Stdio::null())
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        let (status, text) = ended(child, Duration::from_secs(5));
+        assert_eq!(status, Some(1), "{port}: {text}");
+        assert!(text.contains(expected), "{port}: {text}");
+        assert!(text.contains("nothing was driven"), "{port}: {text}");
+        assert!(!text.contains("stopped, brake set"), "no success claimed: {text}");
+        assert!(began.elapsed() < Duration::from_secs(3), "{port}: {:?}", began.elapsed());
+    }
+}
+
+#[test]
+fn a_base_that_stops_answering_mid_drive_ends_the_command_at_once_with_a_stop_sent() {
+    let base = base(RflexSimConfig::default());
+    let (address, _pull, mute) = muting_cable(&base.port_name);
+    let child = driving(&base, &address);
+    let muted_at = Instant::now();
+    mute.send(()).unwrap();
+    let (status, text) = ended(child, Duration::from_secs(5));
+    assert_eq!(status, Some(1), "{text}");
+    assert!(text.contains("the base stopped answering"), "{text}");
+    assert!(text.contains("a stop was sent"), "{text}");
+    assert!(text.contains("did not confirm"), "its reports never came back: {text}");
+    assert!(!text.contains("stopped, brake set"), "{text}");
+    // One second of silence, one more waiting for a confirmation that cannot come.
+    assert!(muted_at.elapsed() < Duration::from_secs(4), "{:?}", muted_at.elapsed());
+    let state = inspect(&base);
+    assert_eq!(state.target_speed_m_per_s, 0.0, "told to stop: {state:?}");
+    assert!(state.braked, "and to brake: {state:?}");
+}
+
+#[test]
+fn a_speed_beyond_the_robots_limit_is_refused_before_anything_is_sent() {
+    let base = base(RflexSimConfig::default());
+    for (flag, value, words) in [("--speed", "2.5", "faster than the b21r's limit of 1 m/s"), ("--turn", "-4", "rad/s")]
+    {
+        let mut args = vec!["rflex", "drive", "--port", &base.port_name, "--seconds", "1"];
+        if flag == "--turn" {
+            args.extend(["--speed", "0.1"]);
+        }
+        args.extend([flag, value]);
+        let output = run(&args);
+        assert_eq!(output.status.code(), Some(1));
+        assert!(stderr(&output).contains(words), "{}", stderr(&output));
+        assert!(stderr(&output).contains("nothing was sent"), "{}", stderr(&output));
+    }
+    assert_eq!(inspect(&base).motion_commands, 0);
+    assert!(base.events().try_iter().all(|event| !matches!(event, LinkEvent::Driver(RflexSimEvent::Received(_)))));
 }

@@ -102,24 +102,35 @@ pub fn export(port: &PortArgs, out: &Path, slots: &[u8]) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Reads what `import` was given: a project file, one motion.json, or a folder of them.
-pub fn load_input(input: &Path) -> anyhow::Result<Project> {
+/// Reads what `import`, `gui` and `check` are given: a project file, one
+/// motion.json, or a folder of them; with the keys it held that are unknown.
+pub fn load_input(input: &Path) -> anyhow::Result<project::Loaded> {
+    let motions = |motions: Vec<project::plen2::Motion>| Project {
+        family: Family::Plen2,
+        plen2: project::plen2::Plen2Project { motions, ..Default::default() },
+        ..Project::default()
+    };
     if input.is_dir() {
-        let motions = motion_json::load_motions(input)?;
-        return Ok(Project {
-            family: Family::Plen2,
-            plen2: project::plen2::Plen2Project { motions, ..Default::default() },
-            ..Project::default()
-        });
+        let mut all = Vec::new();
+        let mut unknown_keys = Vec::new();
+        for file in motion_json::motion_files(input)? {
+            let (motion, unknown) = motion_json::read_motion_file(&file)?;
+            let name = file.file_name().map_or_else(String::new, |name| name.to_string_lossy().into_owned());
+            unknown_keys.extend(unknown.into_iter().map(|key| format!("{name}: {key}")));
+            all.push(motion);
+        }
+        return Ok(project::Loaded { project: motions(all), unknown_keys });
     }
     let text = std::fs::read_to_string(input).with_context(|| format!("cannot read {}", input.display()))?;
     if motion_json::looks_like_motion(&text) {
-        let motion = motion_json::motion_from_json(&text)
+        let (motion, unknown_keys) = motion_json::read_motion(&text)
             .map_err(|reason| anyhow::anyhow!("{}: not a PLEN2 motion.json: {reason}", input.display()))?;
-        let plen2 = project::plen2::Plen2Project { motions: vec![motion], ..Default::default() };
-        return Ok(Project { family: Family::Plen2, plen2, ..Project::default() });
+        return Ok(project::Loaded { project: motions(vec![motion]), unknown_keys });
     }
-    project::from_json(&text).map_err(|error| anyhow::anyhow!("cannot read {}: {error}", input.display()))
+    // The text is dropped before the document is checked: a large file is not held twice.
+    let parsed = project::parse(&text);
+    drop(text);
+    parsed.with_context(|| format!("cannot read {}", input.display()))
 }
 
 /// `import --protocol plen2`.
@@ -133,9 +144,8 @@ pub fn import(port: &PortArgs, input: &Path, loaded: &Project, choices: ImportCh
     let mut progress = progress_line();
     let report = plen2::import(&handle.requester(), &loaded.plen2, &options, &mut progress, &Cancel::never()).map_err(
         |failure| {
-            let restore =
-                super::restore_hint(" --protocol plen2", &port.port, failure.backup.as_deref(), &failure.left);
-            anyhow::anyhow!("{failure}{restore}").context(format!(
+            let advice = super::restore_hint(" --protocol plen2", &port.port, failure.backup.as_deref(), &failure.left);
+            anyhow::Error::new(super::Advised { error: *failure, advice }).context(format!(
                 "import of {} into {} failed",
                 input.display(),
                 port.port
@@ -171,7 +181,7 @@ pub fn import(port: &PortArgs, input: &Path, loaded: &Project, choices: ImportCh
 pub fn sim(args: &SimArgs) -> anyhow::Result<()> {
     let mut robot = Plen2Sim::new(Plen2Timing::default());
     if let Some(path) = &args.state {
-        let plen2 = load_input(path)?.plen2;
+        let plen2 = load_input(path)?.project.plen2;
         let mut commands = Vec::new();
         for setting in &plen2.joints {
             let device = setting.joint.device_id();

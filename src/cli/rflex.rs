@@ -239,9 +239,9 @@ impl Session {
     }
 }
 
-/// An exit status other than 1, carried up to `main`.
+/// An exit status other than 1, carried up to `main` (it says nothing itself).
 #[derive(Debug, thiserror::Error)]
-#[error("exit status {0}")]
+#[error("")]
 pub struct Exit(pub u8);
 
 fn status(args: &BaseArgs) -> anyhow::Result<()> {

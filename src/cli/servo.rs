@@ -230,8 +230,8 @@ pub fn import(port: &PortArgs, input: &Path, loaded: &Project, choices: ImportCh
     let report = device::import(&requester, &loaded.servo, &options, &mut update, &Cancel::never());
     bar.finish_and_clear();
     let report = report.map_err(|failure| {
-        let restore = super::restore_hint("", &port.port, failure.backup.as_deref(), &failure.left);
-        anyhow::anyhow!("{failure}{restore}").context(format!(
+        let advice = super::restore_hint("", &port.port, failure.backup.as_deref(), &failure.left);
+        anyhow::Error::new(super::Advised { error: *failure, advice }).context(format!(
             "import of {} into {} failed",
             input.display(),
             port.port

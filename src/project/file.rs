@@ -108,8 +108,58 @@ fn syntax(error: &serde_json::Error) -> LoadError {
     LoadError::Syntax { line: error.line(), column: error.column(), message }
 }
 
+/// A project read from a file, and the keys it held that Servo Studio does
+/// not know (ignored, but worth a warning: a misspelt `min_degs` changes nothing).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Loaded {
+    /// The project.
+    pub project: Project,
+    /// Each unknown key's path, e.g. `servo.servos[3].min_degs`, in file order.
+    pub unknown_keys: Vec<String>,
+}
+
+/// A key's path as a person reads it: `servo.servos[3].min_degs`.
+fn key_path(path: &serde_ignored::Path<'_>) -> String {
+    use serde_ignored::Path;
+    match path {
+        Path::Root => String::new(),
+        Path::Seq { parent, index } => format!("{}[{index}]", key_path(parent)),
+        Path::Map { parent, key } => match key_path(parent) {
+            parent if parent.is_empty() => key.clone(),
+            parent => format!("{parent}.{key}"),
+        },
+        Path::Some { parent } | Path::NewtypeStruct { parent } | Path::NewtypeVariant { parent } => key_path(parent),
+    }
+}
+
+/// `T` from `text`, and every key it ignored but the envelope's own
+/// (`format`, `version`, and `envelope`).
+fn deserialize_noting<T: serde::de::DeserializeOwned>(
+    text: &str,
+    envelope: &[&str],
+) -> Result<(T, Vec<String>), LoadError> {
+    let mut unknown = Vec::new();
+    let mut deserializer = serde_json::Deserializer::from_str(text);
+    let value = serde_ignored::deserialize(&mut deserializer, |path| {
+        let path = key_path(&path);
+        if !matches!(path.as_str(), "format" | "version") && !envelope.contains(&path.as_str()) {
+            unknown.push(path);
+        }
+    })
+    .map_err(|error| syntax(&error))?;
+    deserializer.end().map_err(|error| syntax(&error))?;
+    Ok((value, unknown))
+}
+
 /// Parses a project from the text of a project file, of any supported version.
 pub fn from_json(text: &str) -> Result<Project, LoadError> {
+    parse(text).map(|loaded| loaded.project)
+}
+
+/// Parses a project file, of any supported version, noting the keys it does
+/// not know. A UTF-8 byte-order mark (as some Windows editors write) is skipped.
+pub fn parse(text: &str) -> Result<Loaded, LoadError> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let header: Header = serde_json::from_str(text).map_err(|error| syntax(&error))?;
     match header.format.as_deref() {
         Some(FORMAT_TAG) => {}
@@ -123,10 +173,20 @@ pub fn from_json(text: &str) -> Result<Project, LoadError> {
     match header.version {
         // Version 1 held a servo board's content at the top level: it becomes
         // the servo section. Every later version adds an arm here.
-        Some(1) | None => serde_json::from_str(text).map(Project::servo).map_err(|error| syntax(&error)),
+        Some(1) | None => {
+            // Version 1 named its board in the envelope.
+            let (servo, unknown_keys) = deserialize_noting(text, &["board"])?;
+            Ok(Loaded { project: Project::servo(servo), unknown_keys })
+        }
         Some(2) => {
-            let sections: Sections = serde_json::from_str(text).map_err(|error| syntax(&error))?;
-            Ok(Project { family: sections.family, servo: sections.servo, plen2: sections.plen2, rflex: sections.rflex })
+            let (sections, unknown_keys): (Sections, _) = deserialize_noting(text, &[])?;
+            let project = Project {
+                family: sections.family,
+                servo: sections.servo,
+                plen2: sections.plen2,
+                rflex: sections.rflex,
+            };
+            Ok(Loaded { project, unknown_keys })
         }
         Some(found) => Err(LoadError::NewerVersion { found, supported: CURRENT_VERSION }),
     }
@@ -153,8 +213,13 @@ pub fn to_json(project: &Project) -> String {
 
 /// Reads a project file.
 pub fn load(path: &Path) -> Result<Project, LoadError> {
+    read(path).map(|loaded| loaded.project)
+}
+
+/// Reads a project file, noting the keys it does not know.
+pub fn read(path: &Path) -> Result<Loaded, LoadError> {
     let text = std::fs::read_to_string(path).map_err(|source| LoadError::Io { path: path.to_path_buf(), source })?;
-    from_json(&text)
+    parse(&text)
 }
 
 /// Writes a project file atomically: a failure leaves the previous file intact.
@@ -281,6 +346,18 @@ mod tests {
         let err = from_json(r#"{"format": "servo-studio-project", "version": 99}"#).unwrap_err();
         assert!(matches!(err, LoadError::NewerVersion { found: 99, supported: CURRENT_VERSION }));
         assert!(err.to_string().contains("update Servo Studio"));
+    }
+
+    #[test]
+    fn a_byte_order_mark_is_skipped_and_unknown_keys_are_noted_with_their_place() {
+        let mut project = Project::default();
+        project.servo.servos.push(crate::project::Servo::new(3, "腕"));
+        let text = to_json(&project).replacen("\"min_deg\"", "\"min_degs\"", 1).replacen("{", "{\"colour\": 1,", 1);
+        let loaded = parse(&format!("\u{feff}{text}")).unwrap();
+        assert_eq!(loaded.unknown_keys, ["colour", "servo.servos[0].min_degs"]);
+        // The misspelt key is ignored: the servo keeps its default limit.
+        assert_eq!(loaded.project.servo.servos[0].min_deg, crate::project::Servo::new(3, "").min_deg);
+        assert!(parse(&to_json(&project)).unwrap().unknown_keys.is_empty(), "a file we wrote has none");
     }
 
     #[test]

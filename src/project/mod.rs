@@ -17,7 +17,8 @@ mod validate;
 pub use document::{Family, Project};
 pub use edit::{Edit, next_free_id};
 pub use file::{
-    CURRENT_VERSION, FORMAT_TAG, LoadError, SaveError, atomic_write, from_json, load, output_path, save, to_json,
+    CURRENT_VERSION, FORMAT_TAG, LoadError, Loaded, SaveError, atomic_write, from_json, load, output_path, parse, read,
+    save, to_json,
 };
 pub use history::{History, MAX_UNDO_STEPS};
 pub use servo::{Action, Button, Command, JoystickTable, Macro, Run, Servo, ServoProject, Step};

@@ -27,6 +27,12 @@ pub enum MotionJsonError {
         /// What is wrong.
         reason: String,
     },
+    /// A folder without any `*.json` file.
+    #[error("{path} holds no motion.json (*.json) files")]
+    Empty {
+        /// The folder.
+        path: PathBuf,
+    },
 }
 
 fn joint_by_name(name: &str) -> Option<Joint> {
@@ -43,14 +49,43 @@ fn narrow<T: TryFrom<i64>>(value: i64, what: &str) -> Result<T, String> {
 
 /// A motion from the text of a motion.json.
 pub fn motion_from_json(text: &str) -> Result<Motion, String> {
+    read_motion(text).map(|(motion, _)| motion)
+}
+
+/// The keys a motion.json may hold at each level (the official editor's, `@` ones included).
+const MOTION_KEYS: [&str; 7] = ["slot", "name", "codes", "frames", "@frame_length", "@index", "@metadata"];
+const CODE_KEYS: [&str; 2] = ["method", "arguments"];
+const FRAME_KEYS: [&str; 3] = ["transition_time_ms", "outputs", "@index"];
+const OUTPUT_KEYS: [&str; 2] = ["device", "value"];
+
+/// Notes the keys of `value` (an object) that are not in `known`, at `at`.
+fn note_unknown(value: &Value, known: &[&str], at: &str, unknown: &mut Vec<String>) {
+    if let Some(object) = value.as_object() {
+        for key in object.keys().filter(|key| !known.contains(&key.as_str())) {
+            unknown.push(if at.is_empty() { key.clone() } else { format!("{at}.{key}") });
+        }
+    }
+}
+
+/// A motion from the text of a motion.json, and the keys it held that the
+/// official format does not have (ignored; named so that a misspelling shows).
+/// Errors name the frame (from 1) and the joint they are about. A UTF-8
+/// byte-order mark is skipped.
+pub fn read_motion(text: &str) -> Result<(Motion, Vec<String>), String> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let value: Value = serde_json::from_str(text).map_err(|error| error.to_string())?;
+    let mut unknown = Vec::new();
+    note_unknown(&value, &MOTION_KEYS, "", &mut unknown);
     let slot = narrow(int(&value["slot"], "slot")?, "slot")?;
     let name = value["name"].as_str().ok_or("no name")?.to_string();
     let mut loop_range = None;
     let mut jump_slot = None;
-    for code in value["codes"].as_array().map_or(&[][..], Vec::as_slice) {
-        let args: Vec<i64> =
-            code["arguments"].as_array().map_or(Ok(Vec::new()), |a| a.iter().map(|v| int(v, "argument")).collect())?;
+    for (index, code) in value["codes"].as_array().map_or(&[][..], Vec::as_slice).iter().enumerate() {
+        let at = format!("codes[{index}]");
+        note_unknown(code, &CODE_KEYS, &at, &mut unknown);
+        let args: Vec<i64> = code["arguments"]
+            .as_array()
+            .map_or(Ok(Vec::new()), |a| a.iter().map(|v| int(v, &format!("{at}: an argument"))).collect())?;
         match (code["method"].as_str(), args.as_slice()) {
             (Some("loop"), [begin, end, count]) => {
                 loop_range = Some(LoopRange {
@@ -60,21 +95,39 @@ pub fn motion_from_json(text: &str) -> Result<Motion, String> {
                 });
             }
             (Some("jump"), [slot]) => jump_slot = Some(narrow(*slot, "jump slot")?),
-            (method, _) => return Err(format!("unknown code {method:?}")),
+            (Some(method @ ("loop" | "jump")), _) => {
+                return Err(format!("{at}: {method} takes {} argument(s)", if method == "loop" { 3 } else { 1 }));
+            }
+            (Some(method), _) => return Err(format!("{at}: unknown code {method:?} (known: loop, jump)")),
+            (None, _) => return Err(format!("{at}: a code without a method")),
         }
     }
     let mut frames = Vec::new();
-    for frame in value["frames"].as_array().ok_or("no frames")? {
+    for (index, frame) in value["frames"].as_array().ok_or("no frames")?.iter().enumerate() {
+        let at = format!("frame {}", index + 1);
+        note_unknown(frame, &FRAME_KEYS, &format!("frames[{index}]"), &mut unknown);
         let mut pose = Pose::default();
-        for output in frame["outputs"].as_array().ok_or("a frame without outputs")? {
-            let device = output["device"].as_str().ok_or("an output without a device name")?;
-            let joint = joint_by_name(device).ok_or_else(|| format!("unknown device {device:?}"))?;
-            pose.set(joint, narrow(int(&output["value"], "value")?, "value")?);
+        let mut seen = Vec::new();
+        for (output_index, output) in
+            frame["outputs"].as_array().ok_or_else(|| format!("{at}: no outputs"))?.iter().enumerate()
+        {
+            note_unknown(output, &OUTPUT_KEYS, &format!("frames[{index}].outputs[{output_index}]"), &mut unknown);
+            let device = output["device"].as_str().ok_or_else(|| format!("{at}: an output without a device name"))?;
+            let joint = joint_by_name(device).ok_or_else(|| format!("{at}: unknown device {device:?}"))?;
+            if seen.contains(&joint) {
+                return Err(format!("{at}: {device} is listed twice"));
+            }
+            seen.push(joint);
+            let value = int(&output["value"], &format!("{at}, {device}: value"))?;
+            pose.set(joint, narrow(value, &format!("{at}, {device}: value"))?);
         }
-        let transition_ms = narrow(int(&frame["transition_time_ms"], "transition_time_ms")?, "transition_time_ms")?;
+        let transition_ms = narrow(
+            int(&frame["transition_time_ms"], &format!("{at}: transition_time_ms"))?,
+            &format!("{at}: transition_time_ms"),
+        )?;
         frames.push(Frame { transition_ms, values_tenths_deg: pose });
     }
-    Ok(Motion { slot, name, frames, loop_range, jump_slot })
+    Ok((Motion { slot, name, frames, loop_range, jump_slot }, unknown))
 }
 
 /// The motion.json of a motion (keys sorted, as the official editor writes them).
@@ -110,33 +163,46 @@ pub fn motion_to_json(motion: &Motion) -> String {
     text
 }
 
-/// The motions of one motion.json, or of every `*.json` in a folder (by file name).
-pub fn load_motions(path: &Path) -> Result<Vec<Motion>, MotionJsonError> {
+/// The motion.json files `path` stands for: itself, or every `*.json` of a
+/// folder in file-name order. A folder without any is an error.
+pub fn motion_files(path: &Path) -> Result<Vec<PathBuf>, MotionJsonError> {
+    if !path.is_dir() {
+        return Ok(vec![path.to_path_buf()]);
+    }
     let io = |source| MotionJsonError::Io { path: path.to_path_buf(), source };
-    let files: Vec<PathBuf> = if path.is_dir() {
-        let mut files: Vec<PathBuf> = std::fs::read_dir(path)
-            .map_err(io)?
-            .filter_map(Result::ok)
-            .map(|entry| entry.path())
-            .filter(|file| file.extension().is_some_and(|ext| ext.eq_ignore_ascii_case("json")))
-            .collect();
-        files.sort();
-        files
-    } else {
-        vec![path.to_path_buf()]
-    };
-    files
-        .iter()
-        .map(|file| {
-            let text =
-                std::fs::read_to_string(file).map_err(|source| MotionJsonError::Io { path: file.clone(), source })?;
-            motion_from_json(&text).map_err(|reason| MotionJsonError::NotAMotion { path: file.clone(), reason })
-        })
-        .collect()
+    let mut files: Vec<PathBuf> = std::fs::read_dir(path)
+        .map_err(io)?
+        .filter_map(Result::ok)
+        .map(|entry| entry.path())
+        .filter(|file| file.is_file() && file.extension().is_some_and(|ext| ext.eq_ignore_ascii_case("json")))
+        .collect();
+    if files.is_empty() {
+        return Err(MotionJsonError::Empty { path: path.to_path_buf() });
+    }
+    files.sort();
+    Ok(files)
 }
 
-/// Whether the text is a motion.json rather than a project file.
+/// Reads one motion.json file: its motion and its unknown keys.
+pub fn read_motion_file(file: &Path) -> Result<(Motion, Vec<String>), MotionJsonError> {
+    let text =
+        std::fs::read_to_string(file).map_err(|source| MotionJsonError::Io { path: file.to_path_buf(), source })?;
+    read_motion(&text).map_err(|reason| MotionJsonError::NotAMotion { path: file.to_path_buf(), reason })
+}
+
+/// The motions of one motion.json, or of every `*.json` in a folder (by file name).
+pub fn load_motions(path: &Path) -> Result<Vec<Motion>, MotionJsonError> {
+    motion_files(path)?.iter().map(|file| read_motion_file(file).map(|(motion, _)| motion)).collect()
+}
+
+/// Whether the text is a motion.json rather than a project file (read
+/// without building the document: a 200 MB project costs no memory here).
 pub fn looks_like_motion(text: &str) -> bool {
-    serde_json::from_str::<Value>(text)
-        .is_ok_and(|value| value.get("frames").is_some() && value.get("format").is_none())
+    #[derive(serde::Deserialize)]
+    struct Keys {
+        format: Option<serde::de::IgnoredAny>,
+        frames: Option<serde::de::IgnoredAny>,
+    }
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    serde_json::from_str::<Keys>(text).is_ok_and(|keys| keys.frames.is_some() && keys.format.is_none())
 }

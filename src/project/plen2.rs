@@ -104,12 +104,28 @@ impl Serialize for Pose {
 
 impl<'de> Deserialize<'de> for Pose {
     fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
-        let map = std::collections::BTreeMap::<Joint, i16>::deserialize(deserializer)?;
-        let mut pose = Self::default();
-        for (joint, value) in map {
-            pose.set(joint, value);
+        struct PoseVisitor;
+        impl<'de> serde::de::Visitor<'de> for PoseVisitor {
+            type Value = Pose;
+
+            fn expecting(&self, formatter: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                formatter.write_str("an object of joint names and values, each joint once")
+            }
+
+            fn visit_map<A: serde::de::MapAccess<'de>>(self, mut map: A) -> Result<Pose, A::Error> {
+                let mut pose = Pose::default();
+                let mut seen = [false; JOINTS];
+                while let Some((joint, value)) = map.next_entry::<Joint, i16>()? {
+                    // Which of two values was meant cannot be guessed.
+                    if std::mem::replace(&mut seen[joint.index()], true) {
+                        return Err(serde::de::Error::custom(format_args!("{} is listed twice", joint.name())));
+                    }
+                    pose.set(joint, value);
+                }
+                Ok(pose)
+            }
         }
-        Ok(pose)
+        deserializer.deserialize_map(PoseVisitor)
     }
 }
 

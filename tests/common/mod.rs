@@ -1,7 +1,7 @@
 //! Shared test fixtures.
 #![allow(dead_code, clippy::unwrap_used)]
 
-use std::io::{BufRead, BufReader};
+use std::io::{BufRead, BufReader, Read, Write};
 use std::process::{Child, Stdio};
 use std::time::Duration;
 
@@ -230,4 +230,85 @@ pub fn record_bytes(image: &servo_studio::device::servo::ServoImage) -> Vec<Vec<
     out.extend(image.tables.iter().map(|t| Message::AddJoystickTableRequest(t.clone()).encode().unwrap()));
     out.push(Message::SetActiveJoystickTableRequest { table_id: image.active_table }.encode().unwrap());
     out
+}
+
+/// Waits for the child with a watchdog; returns its exit code and stderr.
+pub fn ended(mut child: Child, within: Duration) -> (Option<i32>, String) {
+    let mut stderr = child.stderr.take().unwrap();
+    let (exited_tx, exited) = crossbeam_channel::bounded(1);
+    let pid = child.id();
+    std::thread::spawn(move || {
+        let _ = exited_tx.send(child.wait().unwrap());
+    });
+    let Ok(status) = exited.recv_timeout(within) else {
+        let _ = std::process::Command::new("kill").args(["-9", &pid.to_string()]).status();
+        panic!("the command did not end within {within:?}");
+    };
+    let mut text = String::new();
+    stderr.read_to_string(&mut text).unwrap();
+    (status.code(), text)
+}
+
+/// What a misbehaving peer on a pseudo-terminal says.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Chatter {
+    /// Nothing at all.
+    Silent,
+    /// Random bytes, as fast as they are read.
+    Garbage,
+    /// One byte every 500 ms.
+    Drip,
+}
+
+/// A pseudo-terminal whose other end the test holds, saying `chatter` until dropped.
+#[cfg(unix)]
+pub struct Peer {
+    _master: serialport::TTYPort,
+    // The slave end stays open here too, so the pty lives between clients.
+    _slave: serialport::TTYPort,
+    /// The port a client opens.
+    pub port: String,
+    _stop: Option<crossbeam_channel::Sender<()>>,
+}
+
+/// A peer saying `chatter` on a fresh pseudo-terminal.
+#[cfg(unix)]
+pub fn peer(chatter: Chatter) -> Peer {
+    use serialport::SerialPort;
+    let (mut master, slave) = serialport::TTYPort::pair().unwrap();
+    let port = slave.name().unwrap();
+    let stop = (chatter != Chatter::Silent).then(|| {
+        let (stop, stopped) = crossbeam_channel::bounded::<()>(0);
+        let mut writer = master.try_clone_native().unwrap();
+        std::thread::spawn(move || {
+            let mut seed = 0x2545_f491_u32;
+            let (size, pause) = match chatter {
+                Chatter::Drip => (1, Duration::from_millis(500)),
+                _ => (32, Duration::from_millis(2)),
+            };
+            loop {
+                let bytes: Vec<u8> = (0..size)
+                    .map(|_| {
+                        seed ^= seed << 13;
+                        seed ^= seed >> 17;
+                        seed ^= seed << 5;
+                        seed.to_le_bytes()[0]
+                    })
+                    .collect();
+                match writer.write_all(&bytes) {
+                    // Nobody reads between clients: the line stays full a while.
+                    Err(error) if error.kind() == std::io::ErrorKind::TimedOut => {}
+                    Err(_) => return,
+                    Ok(()) => {}
+                }
+                // Until dropped: the wait is also the pace.
+                if !matches!(stopped.recv_timeout(pause), Err(crossbeam_channel::RecvTimeoutError::Timeout)) {
+                    return;
+                }
+            }
+        });
+        stop
+    });
+    master.set_timeout(Duration::from_millis(10)).unwrap();
+    Peer { _master: master, _slave: slave, port, _stop: stop }
 }

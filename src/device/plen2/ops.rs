@@ -49,7 +49,7 @@ pub enum Plen2OpError {
         source: ReplyError,
     },
     /// The robot's answer could not be read.
-    #[error("{item}: the device answers, but its reply is not the PLEN2's: is it a PLEN2 with firmware 1.4.x?")]
+    #[error("{item}: the device answers, but not in the PLEN2's protocol: is it a PLEN2 with firmware 1.4.x?")]
     Unreadable {
         /// What was being read.
         item: String,

@@ -114,6 +114,11 @@ pub enum Location {
     },
     /// The rFLEX robot settings.
     Robot,
+    /// A key of the file, by its path (`servo.servos[3].min_degs`).
+    Key {
+        /// Where it is, from the top of the file.
+        path: String,
+    },
 }
 
 impl fmt::Display for Location {
@@ -136,6 +141,7 @@ impl fmt::Display for Location {
             Self::Frame { slot, name, frame } => write!(f, "motion {slot} {name:?}, frame {frame}"),
             Self::PlayList { index, name } => write!(f, "play list {index} {name:?}"),
             Self::Robot => write!(f, "robot"),
+            Self::Key { path } => write!(f, "{path}"),
         }
     }
 }
@@ -370,6 +376,8 @@ pub enum ProblemKind {
         /// The field.
         field: &'static str,
     },
+    /// A key Servo Studio does not know: ignored (a misspelt name?).
+    UnknownKey,
 }
 
 impl fmt::Display for ProblemKind {
@@ -439,6 +447,7 @@ impl fmt::Display for ProblemKind {
             }
             Self::MissingMotion { slot } => write!(f, "no motion in slot {slot}"),
             Self::NotPositive { field } => write!(f, "{field} must be a positive number"),
+            Self::UnknownKey => write!(f, "unknown key, ignored (is it misspelt?)"),
         }
     }
 }

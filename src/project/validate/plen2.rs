@@ -113,8 +113,9 @@ fn motion_problems(problems: &mut Vec<Problem>, motion: &Motion, slots: &HashSet
             MIN_TRANSITION_MS.into(),
             MAX_TRANSITION_MS.into(),
         );
-        for value in frame.values_tenths_deg.0 {
-            range(problems, &at, "value", value.into(), -limit, limit);
+        for joint in crate::project::plen2::Joint::ALL {
+            // Named by its joint: `left_knee_pitch 2000 is outside -1800..=1800`.
+            range(problems, &at, joint.name(), frame.values_tenths_deg.get(joint).into(), -limit, limit);
         }
     }
 }

@@ -99,6 +99,7 @@ impl Language {
             }
             P::MissingMotion { slot } => format!("位置 {slot} 沒有動作"),
             P::NotPositive { field } => format!("{field} 必須是正數"),
+            P::UnknownKey => "不認得的欄位，已略過（是否拼錯？）".to_string(),
         }
     }
 
@@ -124,6 +125,7 @@ impl Language {
             L::Frame { slot, name, frame } => format!("動作 {slot} {name:?}，影格 {frame}"),
             L::PlayList { index, name } => format!("播放清單 {index} {name:?}"),
             L::Robot => "機器人".into(),
+            L::Key { path } => path.clone(),
         }
     }
 
