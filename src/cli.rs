@@ -335,7 +335,17 @@ pub fn gui(file: Option<PathBuf>, demo: bool, protocol: Option<Family>) -> anyho
             })
     });
     let path = if is_project { file } else { None };
-    let start = servo_studio::ui::Start { project, path, demo, family: protocol };
+    // Ctrl-C or kill in the terminal that started the editor: the base stops, the work is kept.
+    let interrupts = signals::listen().ok().map(|interrupts| {
+        let (forward, forwarded) = crossbeam_channel::unbounded();
+        std::thread::spawn(move || {
+            for _ in interrupts {
+                let _ = forward.send(());
+            }
+        });
+        forwarded
+    });
+    let start = servo_studio::ui::Start { project, path, demo, family: protocol, interrupts };
     servo_studio::ui::run(start).map_err(|error| {
         anyhow::anyhow!("cannot open the window: {error}. On Linux, a desktop session (X11 or Wayland) and OpenGL drivers are needed")
     })

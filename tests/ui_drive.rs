@@ -129,3 +129,26 @@ fn losing_window_focus_while_driving_stops_the_base() {
     wait_for_motion(&harness, "the stop", |speed, _| speed == 0);
     harness.key_up(egui::Key::ArrowUp);
 }
+
+#[test]
+fn a_signal_to_end_the_editor_drops_the_base_link_and_keeps_the_work() {
+    let mut harness = harness();
+    let (terminate, terminated) = crossbeam_channel::bounded(1);
+    harness.state_mut().terminate_on(terminated);
+    // Unsaved work: a changed drive setting.
+    let mut settings = harness.state().document.project.rflex.drive;
+    settings.max_speed_m_per_s = 0.3;
+    harness.state_mut().apply(Action::Edit { edit: servo_studio::project::Edit::SetRflexDrive(settings), coalesce: None });
+    harness.key_down(egui::Key::ArrowUp);
+    harness.step();
+    assert_eq!(harness.state().drive_asked(), (0.3, 0.0));
+    terminate.send(()).unwrap();
+    harness.step();
+    // Dropping the link is what stops and brakes a base (tested with the handle itself).
+    assert!(harness.state().link.is_none(), "the base's link is closed: it was told to stop and brake");
+    let recovery = harness.state().data_dir.join("recovery.json");
+    let kept = servo_studio::ui::files::read_recovery(&harness.state().data_dir).expect("the work is kept");
+    assert!(recovery.exists());
+    assert_eq!(kept.project.rflex.drive.max_speed_m_per_s, 0.3);
+    harness.key_up(egui::Key::ArrowUp);
+}

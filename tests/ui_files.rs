@@ -129,6 +129,24 @@ fn a_malformed_file_is_reported_not_opened() {
     assert_eq!(app.document.project.servo, before);
 }
 
+#[test]
+fn a_file_with_a_misspelt_key_opens_and_says_what_was_ignored() {
+    let data = tempfile::tempdir().unwrap();
+    let misspelt = data.path().join("misspelt.json");
+    let text = std::fs::read_to_string(fixture()).unwrap().replacen("\"min_deg\"", "\"min_degs\"", 1);
+    std::fs::write(&misspelt, format!("\u{feff}{text}")).unwrap();
+    let mut app = app(data.path());
+    app.apply(Action::Open(misspelt.clone()));
+    assert_eq!(app.document.path, Some(misspelt));
+    let status = app.status.clone().unwrap();
+    assert!(status.is_error, "shown as a warning: {}", status.text);
+    assert!(
+        status.text.contains("1 unknown key(s) ignored") && status.text.contains("servos[0].min_degs"),
+        "{}",
+        status.text
+    );
+}
+
 #[derive(Debug)]
 struct Dropped(PathBuf);
 

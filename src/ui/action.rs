@@ -209,6 +209,9 @@ pub enum Action {
     DeclineRecovery,
     /// Write the recovery file now if there are unsaved changes.
     Autosave,
+    /// The process is asked to end (a signal): stop the board, keep the work
+    /// in the recovery file, close.
+    Terminate,
     /// Run a stored macro on the board.
     RunMacro(i32),
     /// Move the servos through an action of the project now (live).

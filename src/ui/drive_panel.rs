@@ -8,7 +8,7 @@
 #![allow(clippy::cast_possible_truncation)]
 
 use crate::project::Edit;
-use crate::project::rflex::DriveSettings;
+use crate::project::rflex::{DriveSettings, SpeedLimits};
 use crate::ui::action::Action;
 use crate::ui::i18n::Strings;
 
@@ -22,6 +22,8 @@ pub struct DriveView {
     pub connected: bool,
     /// The project's limits.
     pub settings: DriveSettings,
+    /// The most the robot's preset allows (the settings never go past it).
+    pub limits: SpeedLimits,
     /// What the base is told (m/s, rad/s).
     pub commanded: (f64, f64),
     /// What the base reports (m/s, rad/s).
@@ -129,9 +131,13 @@ impl DrivePanel {
                 row(ui, words.measured, view.measured);
                 ui.separator();
                 let mut changed = settings;
-                ui.add(egui::Slider::new(&mut changed.max_speed_m_per_s, 0.05..=1.5).text(words.max_speed));
-                ui.add(egui::Slider::new(&mut changed.max_turn_rad_per_s, 0.1..=2.0).text(words.max_turn));
-                ui.add(egui::Slider::new(&mut changed.accel_m_per_s2, 0.1..=2.0).text(words.acceleration));
+                let limits = view.limits;
+                let speed = 0.05..=limits.max_speed_m_per_s;
+                ui.add(egui::Slider::new(&mut changed.max_speed_m_per_s, speed).text(words.max_speed));
+                let turn = 0.1..=limits.max_turn_rad_per_s;
+                ui.add(egui::Slider::new(&mut changed.max_turn_rad_per_s, turn).text(words.max_turn));
+                let accel = 0.1..=limits.max_accel_m_per_s2;
+                ui.add(egui::Slider::new(&mut changed.accel_m_per_s2, accel).text(words.acceleration));
                 if changed != settings {
                     actions.push(Action::Edit {
                         edit: Edit::SetRflexDrive(changed),

@@ -58,6 +58,9 @@ pub struct Start {
     pub demo: bool,
     /// The family to start with (else the project's, else the one used last).
     pub family: Option<crate::project::Family>,
+    /// Signals asking the process to end (Ctrl-C, kill, a closing session):
+    /// each stops the board and closes the window, keeping unsaved work.
+    pub interrupts: Option<crossbeam_channel::Receiver<()>>,
 }
 
 impl Start {
@@ -89,7 +92,7 @@ impl Start {
 }
 
 /// Opens the editor window and runs until it is closed.
-pub fn run(start: Start) -> eframe::Result {
+pub fn run(mut start: Start) -> eframe::Result {
     let options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default().with_title("Servo Studio").with_inner_size([1100.0, 720.0]),
         ..Default::default()
@@ -102,7 +105,21 @@ pub fn run(start: Start) -> eframe::Result {
             let ctx = creation.egui_ctx.clone();
             let waker: crate::link::Waker = std::sync::Arc::new(move || ctx.request_repaint());
             let remembered = creation.storage.and_then(|storage| eframe::get_value(storage, REMEMBERED_KEY));
-            Ok(Box::new(start.into_app(waker, remembered)))
+            let interrupts = start.interrupts.take();
+            let mut app = start.into_app(waker, remembered);
+            if let Some(interrupts) = interrupts {
+                // The signal arrives on its own thread; the window acts on it in its next frame.
+                let (terminate, terminated) = crossbeam_channel::bounded(1);
+                let ctx = creation.egui_ctx.clone();
+                std::thread::Builder::new().name("interrupts".into()).spawn(move || {
+                    for () in interrupts {
+                        let _ = terminate.try_send(());
+                        ctx.request_repaint();
+                    }
+                })?;
+                app.terminate_on(terminated);
+            }
+            Ok(Box::new(app))
         }),
     )
 }

@@ -28,10 +28,15 @@ impl StudioApp {
             }
             return;
         }
-        match crate::project::load(&path) {
-            Ok(project) => {
+        match crate::project::read(&path) {
+            Ok(crate::project::Loaded { project, unknown_keys }) => {
                 files::remember(&mut self.recent, &path);
-                self.report(format!("{} {}", self.words().msg_opened, path.display()), false);
+                if unknown_keys.is_empty() {
+                    self.report(format!("{} {}", self.words().msg_opened, path.display()), false);
+                } else {
+                    // A misspelt key changes nothing in the editor: say so.
+                    self.report(self.language.opened_with_unknown_keys(&path, &unknown_keys), true);
+                }
                 self.replace_document(project, Some(path));
             }
             Err(error) => self.report(self.language.load_error(&path, &error), true),

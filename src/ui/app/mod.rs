@@ -130,6 +130,8 @@ pub struct StudioApp {
     /// Whether the base's sonar ring was turned on.
     pub sonar_on: bool,
     action_panel: ActionPanel,
+    /// Told when the process is asked to end.
+    terminate: Option<crossbeam_channel::Receiver<()>>,
 }
 
 impl std::fmt::Debug for StudioApp {
@@ -188,9 +190,15 @@ impl StudioApp {
             sonar_on: false,
             picking: None,
             picked_button: None,
+            terminate: None,
         };
         app.recovery_offer = files::read_recovery(&app.data_dir);
         app
+    }
+
+    /// Ends the editor (board stopped, work kept) when `terminated` says so.
+    pub fn terminate_on(&mut self, terminated: crossbeam_channel::Receiver<()>) {
+        self.terminate = Some(terminated);
     }
 
     /// Keeps backups and the recovery file in `data_dir` instead of the
@@ -271,9 +279,13 @@ impl StudioApp {
                 None => self.report(self.words().msg_stop_no_board, false),
             },
             Action::Drive { speed_m_per_s, turn_rad_per_s } => {
-                let accel = self.document.project.rflex.drive.accel_m_per_s2;
+                // Never past what the robot's preset allows, whatever a file or a panel asked for.
+                let limits = self.document.project.rflex.robot.limits();
+                let speed = speed_m_per_s.clamp(-limits.max_speed_m_per_s, limits.max_speed_m_per_s);
+                let turn = turn_rad_per_s.clamp(-limits.max_turn_rad_per_s, limits.max_turn_rad_per_s);
+                let accel = self.document.project.rflex.drive.accel_m_per_s2.min(limits.max_accel_m_per_s2);
                 if let Some(base) = self.link.as_mut().and_then(BoardLink::rflex_mut) {
-                    base.drive(speed_m_per_s, turn_rad_per_s, accel);
+                    base.drive(speed, turn, accel);
                 }
             }
             Action::SetJoint { joint, tenths } => self.set_joint(joint, tenths),
@@ -393,11 +405,22 @@ impl StudioApp {
                     self.report(self.language.autosave_failed(&error), true);
                 }
             }
+            Action::Terminate => {
+                // Asked to end from outside (Ctrl-C, kill, a closing session): the board
+                // first — a base stops and brakes as its link is dropped — then the work,
+                // into the recovery file, then the window, without asking.
+                self.link = None;
+                self.apply(Action::Autosave);
+                self.quit_allowed = true;
+            }
         }
     }
 
     /// Draws the editor and applies what its panels asked for.
     pub fn show(&mut self, ui: &mut egui::Ui) {
+        if self.terminate.as_ref().is_some_and(|terminated| terminated.try_recv().is_ok()) {
+            self.apply(Action::Terminate);
+        }
         let now = Instant::now();
         self.pump(now);
         let mut actions = Vec::new();

@@ -53,6 +53,7 @@ impl StudioApp {
                 let view = DriveView {
                     connected: base.is_some_and(|base| !base.is_lost()),
                     settings: self.document.project.rflex.drive,
+                    limits: self.document.project.rflex.robot.limits(),
                     commanded: base.map_or((0.0, 0.0), |base| base.commanded),
                     measured: base
                         .map_or((0.0, 0.0), |base| (base.telemetry.speed_m_per_s, base.telemetry.turn_rad_per_s)),

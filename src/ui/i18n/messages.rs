@@ -389,6 +389,21 @@ impl Language {
         }
     }
 
+    /// A file opened, but with keys Servo Studio does not know (ignored).
+    pub fn opened_with_unknown_keys(self, path: &std::path::Path, keys: &[String]) -> String {
+        let file = path.display();
+        let shown: Vec<&str> = keys.iter().take(3).map(String::as_str).collect();
+        let more = if keys.len() > shown.len() { ", …" } else { "" };
+        match self {
+            Self::English => {
+                format!("opened {file}; {} unknown key(s) ignored (misspelt?): {}{more}", keys.len(), shown.join(", "))
+            }
+            Self::TraditionalChinese => {
+                format!("已開啟 {file}；略過 {} 個不認得的欄位（是否拼錯？）：{}{more}", keys.len(), shown.join("、"))
+            }
+        }
+    }
+
     /// A project file that could not be opened, in one sentence.
     pub fn load_error(self, path: &std::path::Path, error: &crate::project::LoadError) -> String {
         use crate::project::LoadError as E;
