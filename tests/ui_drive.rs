@@ -138,7 +138,9 @@ fn a_signal_to_end_the_editor_drops_the_base_link_and_keeps_the_work() {
     // Unsaved work: a changed drive setting.
     let mut settings = harness.state().document.project.rflex.drive;
     settings.max_speed_m_per_s = 0.3;
-    harness.state_mut().apply(Action::Edit { edit: servo_studio::project::Edit::SetRflexDrive(settings), coalesce: None });
+    harness
+        .state_mut()
+        .apply(Action::Edit { edit: servo_studio::project::Edit::SetRflexDrive(settings), coalesce: None });
     harness.key_down(egui::Key::ArrowUp);
     harness.step();
     assert_eq!(harness.state().drive_asked(), (0.3, 0.0));
