@@ -463,6 +463,44 @@ mod tests {
     use super::*;
     use crate::protocol::plen2::{MotionFrame, MotionHeader, parse_commands};
 
+    fn getter(driver: &mut Plen2Driver, now: Instant) -> crossbeam_channel::Receiver<Result<Vec<u8>, ReplyError>> {
+        let (reply, outcome) = crossbeam_channel::bounded(1);
+        driver.handle_command(now, Plen2Command::Get { command: Command::GetVersion, reply });
+        while driver.poll_transmit(now).is_some() {}
+        outcome
+    }
+
+    #[test]
+    fn silence_ends_a_getter_with_its_timeout_and_chatter_cannot_extend_it() {
+        let options = Plen2Options { reply_timeout: Duration::from_millis(300), ..Plen2Options::default() };
+        let t0 = Instant::now();
+        let mut driver = Plen2Driver::new(options);
+        let silent = getter(&mut driver, t0);
+        let deadline = driver.poll_timeout().unwrap();
+        assert!(deadline - t0 < Duration::from_millis(301), "read, then 300 ms: {:?}", deadline - t0);
+        driver.handle_timeout(deadline);
+        assert_eq!(silent.try_recv(), Ok(Err(ReplyError::Timeout { timeout_ms: 300 })));
+
+        // A byte every 100 ms, forever, none of them a reply: the first one fixed the end.
+        let t1 = deadline;
+        let chatter = getter(&mut driver, t1);
+        let mut at = t1;
+        let mut bytes = 0;
+        let ended = loop {
+            at += Duration::from_millis(100);
+            if let Some(due) = driver.poll_timeout().filter(|due| *due <= at) {
+                driver.handle_timeout(due);
+                break due;
+            }
+            driver.handle_input(at, b"\x07");
+            bytes += 1;
+            assert!(at - t1 < Duration::from_secs(2), "never ended");
+        };
+        // The first byte at 100 ms; <VI's longest reply is 512 bytes, 2.6 ms at 2 Mbaud; then 300 ms.
+        assert_eq!(ended - t1, Duration::from_millis(400) + Duration::from_micros(2_560));
+        assert_eq!(chatter.try_recv(), Ok(Err(ReplyError::NotThisProtocol { bytes })));
+    }
+
     /// Whatever prefix of a command reached the firmware before bytes were
     /// lost, the resync bytes end it and the next command is read cleanly.
     #[test]
