@@ -1,8 +1,11 @@
 //! PLEN2 upload figures, over a pseudo-terminal against the emulated robot at
-//! its modelled firmware speed: upload + verify of a 20-frame motion, beside
-//! the official tool's pacing (32 bytes, then 50 ms; no verification) for the
-//! same bytes, and beside the floor (the bytes' wire time plus the EEPROM
-//! writes plus the read-back's wire time).
+//! its modelled firmware speed, for each kind of line: clean USB, a Bluetooth
+//! LE bridge (15 and 30 ms connection intervals), writes held back up to
+//! 20 ms, a 115200-baud line. For each: upload + verify of a 20-frame motion
+//! with the default (adaptive) pacing, beside the official tool's pacing
+//! (32 bytes, then 50 ms; no verification) for the same bytes and beside the
+//! floor (what the robot and the line themselves need); bytes the robot lost
+//! and slots written again. A fresh session per line: the pacing learns each.
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::print_stdout, clippy::cast_precision_loss)]
 
@@ -10,12 +13,12 @@ use std::time::{Duration, Instant};
 
 use servo_studio::device::Cancel;
 use servo_studio::device::plen2::{
-    Plen2Handle, Plen2ImportOptions, Plen2Options, SlotResult, import, motion_commands, read_slot,
+    Plen2Handle, Plen2ImportOptions, Plen2Notice, Plen2Options, SlotResult, import, motion_commands,
 };
 use servo_studio::link::{PortName, no_waker};
 use servo_studio::project::Family;
 use servo_studio::project::plen2::{Frame, Joint, Motion, Plen2Project, Pose};
-use servo_studio::sim::{Plen2Sim, Plen2SimCommand, Plen2Timing, spawn_pty};
+use servo_studio::sim::{LinkKind, Plen2Sim, Plen2SimCommand, Plen2Timing, spawn_pty};
 
 fn motion(slot: u8) -> Motion {
     let frames = (0..20)
@@ -30,68 +33,113 @@ fn motion(slot: u8) -> Motion {
     Motion { slot, name: "Bench Walk".into(), frames, loop_range: None, jump_slot: None }
 }
 
-fn main() {
+/// What the line alone needs to carry `bytes` to the robot and `reply` back.
+fn line_floor(link: LinkKind, timing: &Plen2Timing, bytes: u32, reply: u32) -> Duration {
+    match link {
+        LinkKind::Clean | LinkKind::Late { .. } => timing.line_byte * bytes + timing.reply_byte * reply,
+        LinkKind::Slow { baud } => Duration::from_secs_f64(f64::from(bytes + reply) * 10.0 / f64::from(baud)),
+        LinkKind::Bursty { interval } => interval * (bytes.div_ceil(80) + reply.div_ceil(1464)),
+    }
+}
+
+struct Figures {
+    median: Duration,
+    best: Duration,
+    worst: Duration,
+    lost: u64,
+    dropped: u64,
+    rewritten: usize,
+    widened: Vec<String>,
+    /// The read-back's size, bytes.
+    reply_bytes: u32,
+}
+
+fn measure(link: LinkKind, rounds: u8) -> Figures {
     let timing = Plen2Timing::default();
-    let robot = spawn_pty(Plen2Sim::new(timing.clone()), no_waker()).unwrap();
+    let robot = spawn_pty(Plen2Sim::new(timing).with_link(link), no_waker()).unwrap();
     let port = PortName::parse(&robot.port_name).unwrap();
     let settings = servo_studio::device::line_settings(Family::Plen2);
-    let handle =
-        Plen2Handle::over(servo_studio::link::open(&port, &settings).unwrap(), Plen2Options::default(), no_waker())
-            .unwrap();
+    // The line rate is not told: on a slower line the pacing learns it.
+    let connection = servo_studio::link::open(&port, &settings).unwrap();
+    let mut handle = Plen2Handle::over(connection, Plen2Options::default(), no_waker()).unwrap();
     let requester = handle.requester();
     let options = Plen2ImportOptions { backup_dir: None, verify: true, force: false };
-
-    let motion_bytes: usize = motion_commands(&motion(0)).iter().map(|c| c.to_ascii().len()).sum();
-    let reply_bytes = {
-        // The read-back's size, measured once.
-        let project = Plen2Project { motions: vec![motion(89)], ..Plen2Project::default() };
-        import(&requester, &project, &options, &mut |_| {}, &Cancel::never()).unwrap();
-        let reply = requester.get(servo_studio::protocol::plen2::Command::GetMotion { slot: 89 }).unwrap();
-        assert!(read_slot(&requester, 89).unwrap().is_some());
-        reply.len()
-    };
-
     let mut times = Vec::new();
-    let mut rewrites = 0;
-    for round in 0..10u8 {
+    let mut rewritten = 0;
+    for round in 0..rounds {
         let project = Plen2Project { motions: vec![motion(round)], ..Plen2Project::default() };
         let began = Instant::now();
         let report = import(&requester, &project, &options, &mut |_| {}, &Cancel::never()).unwrap();
         times.push(began.elapsed());
         assert!(report.slots.iter().all(|(_, r)| *r == SlotResult::Verified), "{report:?}");
-        rewrites += report.rewritten;
+        rewritten += report.rewritten;
     }
+    let read_back = requester.get(servo_studio::device::plen2::Command::GetMotion { slot: 0 }).unwrap();
+    let widened = handle
+        .pump(Instant::now())
+        .into_iter()
+        .filter_map(|notice| match notice {
+            Plen2Notice::Widened(widened) => Some(widened.to_string()),
+            _ => None,
+        })
+        .collect();
     let (reply, state) = crossbeam_channel::bounded(1);
     robot.command(Plen2SimCommand::Inspect(reply));
     let state = state.recv_timeout(Duration::from_secs(5)).unwrap();
     times.sort();
-    let median = times[times.len() / 2];
+    Figures {
+        median: times[times.len() / 2],
+        best: times[0],
+        worst: times[times.len() - 1],
+        lost: state.lost_bytes,
+        dropped: state.dropped,
+        rewritten,
+        widened,
+        reply_bytes: u32::try_from(read_back.len()).unwrap(),
+    }
+}
 
-    let bytes = u32::try_from(motion_bytes).unwrap();
+fn main() {
+    let timing = Plen2Timing::default();
+    let bytes: u32 = motion_commands(&motion(0)).iter().map(|c| u32::try_from(c.to_ascii().len()).unwrap()).sum();
     let official = Duration::from_millis(50) * bytes.div_ceil(32);
-    let wire = timing.line_byte * bytes + timing.reply_byte * u32::try_from(reply_bytes).unwrap();
     let eeprom = timing.header_write + timing.frame_write * 20;
-    let floor = wire + eeprom;
-    println!("20-frame motion, {motion_bytes} bytes written + {reply_bytes} read back, over {}:", robot.port_name);
+    let ms = |d: Duration| d.as_secs_f64() * 1e3;
     println!(
-        "  upload + verify: median {:.1} ms (best {:.1}, worst {:.1} of 10); bytes lost by the robot: {}; \
-         commands it dropped: {}; slots written again: {rewrites}",
-        median.as_secs_f64() * 1e3,
-        times[0].as_secs_f64() * 1e3,
-        times[times.len() - 1].as_secs_f64() * 1e3,
-        state.lost_bytes,
-        state.dropped
+        "20-frame motion: {bytes} bytes written; official pacing (32 bytes, then 50 ms; no verification): {:.0} ms",
+        ms(official)
     );
-    println!(
-        "  official pacing (32 bytes, then 50 ms; no verification): {:.0} ms → {:.1}× faster",
-        official.as_secs_f64() * 1e3,
-        official.as_secs_f64() / median.as_secs_f64()
-    );
-    println!(
-        "  floor (wire {:.1} ms + EEPROM {:.1} ms): {:.1} ms → {:.2}× the floor",
-        wire.as_secs_f64() * 1e3,
-        eeprom.as_secs_f64() * 1e3,
-        floor.as_secs_f64() * 1e3,
-        median.as_secs_f64() / floor.as_secs_f64()
-    );
+    let links = [
+        (LinkKind::Clean, None, 10),
+        (LinkKind::Bursty { interval: Duration::from_millis(15) }, Some(2.5), 5),
+        (LinkKind::Bursty { interval: Duration::from_millis(30) }, Some(1.5), 5),
+        (LinkKind::Late { max_hold: Duration::from_millis(20) }, Some(3.0), 5),
+        (LinkKind::Slow { baud: 115_200 }, Some(1.2), 5),
+    ];
+    for (link, faster_target, rounds) in links {
+        let figures = measure(link, rounds);
+        // The robot reads every byte and writes every page; the line carries both ways.
+        let robot_floor = timing.byte_read * bytes + eeprom;
+        let reply = figures.reply_bytes;
+        let floor = robot_floor.max(line_floor(link, &timing, bytes, 0)) + line_floor(link, &timing, 0, reply);
+        let faster = official.as_secs_f64() / figures.median.as_secs_f64();
+        let target = match faster_target {
+            Some(target) => format!("target ≥ {target}×"),
+            None => format!("target ≤ 1.3× the floor: {:.2}×", figures.median.as_secs_f64() / floor.as_secs_f64()),
+        };
+        println!(
+            "  {link:<12} upload + verify median {:.1} ms (best {:.1}, worst {:.1} of {rounds}) — {faster:.1}× faster than official ({target}); floor {:.1} ms ({:.2}×); bytes lost {}, commands dropped {}, slots written again {}",
+            ms(figures.median),
+            ms(figures.best),
+            ms(figures.worst),
+            ms(floor),
+            figures.median.as_secs_f64() / floor.as_secs_f64(),
+            figures.lost,
+            figures.dropped,
+            figures.rewritten,
+        );
+        for widened in figures.widened {
+            println!("               {widened}");
+        }
+    }
 }

@@ -444,7 +444,8 @@ fn slider_latency() {
     let project = ServoProject { servos: vec![Servo::new(1, "左肩")], ..ServoProject::default() };
     let mut app = StudioApp::new(project.clone(), None, no_waker());
     let config = SimConfig { baud: Some(115_200), ..SimConfig::default() };
-    app.link = Some(BoardLink::demo_with(&Project::servo(project.clone()), config, no_waker()).unwrap());
+    app.link =
+        Some(BoardLink::demo_with(&Project::servo(project.clone()), config, Default::default(), no_waker()).unwrap());
     let mut latencies = Vec::new();
     for drag in 0..20 {
         // A drag: a new angle every frame (60 Hz), then the user lets go.

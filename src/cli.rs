@@ -56,6 +56,10 @@ pub struct PortArgs {
     /// The board's family: servo, plen2 or rflex (default: the project file's, else servo).
     #[arg(long, value_parser = parse_family)]
     pub protocol: Option<Family>,
+    /// PLEN2: how uploads are paced — fast, adaptive (widens when the link
+    /// shows it is late or bursty) or safe (the official 32 bytes, then 50 ms).
+    #[arg(long, default_value = "adaptive")]
+    pub pacing: device::plen2::PacingMode,
 }
 
 impl PortArgs {

@@ -149,3 +149,31 @@ fn sim_state_preloads_the_robot() {
     assert_eq!(exported.plen2.motions, plen2.motions);
     assert!(exported.plen2.joints.contains(&plen2.joints[0]), "{:?}", exported.plen2.joints);
 }
+
+/// The 90 motions through a Bluetooth LE serial bridge (bursts every 15 ms,
+/// 80 bytes an event): the adaptive pacing learns the link from the first
+/// reply, and no byte is lost — every slot verifies at once, none is written again.
+#[test]
+fn the_official_folder_uploads_over_a_bursty_link_losing_nothing() {
+    use servo_studio::link::no_waker;
+    use servo_studio::sim::{LinkKind, Plen2Sim, Plen2SimCommand, Plen2Timing, spawn_pty};
+    let Some(folder) = motions_folder() else { return };
+    let link = LinkKind::Bursty { interval: std::time::Duration::from_millis(15) };
+    let robot = spawn_pty(Plen2Sim::new(Plen2Timing::default()).with_link(link), no_waker()).unwrap();
+    let output = Command::new(EXE)
+        .args(["import", "--protocol", "plen2", "--port", &robot.port_name, "--yes", "--no-backup", "--in"])
+        .arg(&folder)
+        .stdin(Stdio::null())
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success(), "{stderr}");
+    assert_eq!(stderr.matches("written and verified").count(), 90, "{stderr}");
+    assert!(!stderr.contains("written again"), "no slot rewritten: {stderr}");
+    assert!(stderr.contains("pacing widened: the link delivers in bursts"), "said on the progress line: {stderr}");
+    let (reply, state) = crossbeam_channel::bounded(1);
+    robot.command(Plen2SimCommand::Inspect(reply));
+    let state = state.recv_timeout(std::time::Duration::from_secs(5)).unwrap();
+    assert_eq!((state.lost_bytes, state.dropped), (0, 0), "the robot's own count");
+    assert_eq!(state.written_slots.len(), 90);
+}

@@ -50,7 +50,8 @@ fn servos_only() -> ServoProject {
 /// that starts out holding `board`.
 fn composed(board: &ServoProject, config: SimConfig, data_dir: &std::path::Path) -> Harness<'static, StudioApp> {
     let mut app = StudioApp::new(servos_only(), None, no_waker()).with_data_dir(data_dir.to_path_buf());
-    app.link = Some(BoardLink::demo_with(&Project::servo(board.clone()), config, no_waker()).unwrap());
+    app.link =
+        Some(BoardLink::demo_with(&Project::servo(board.clone()), config, Default::default(), no_waker()).unwrap());
     let mut harness = harness(app);
     frames(&mut harness);
     // Compose through the UI: two poses.
@@ -210,7 +211,8 @@ fn upload_anyway_restores_a_board_image_with_authoring_problems_exactly() {
     let image = common::unauthorable_image();
     // A backup of a board another tool wrote, opened as the project.
     let mut app = StudioApp::new(image.to_project(), None, no_waker()).with_data_dir(data.path().to_path_buf());
-    app.link = Some(BoardLink::demo_with(&Project::default(), SimConfig::default(), no_waker()).unwrap());
+    app.link =
+        Some(BoardLink::demo_with(&Project::default(), SimConfig::default(), Default::default(), no_waker()).unwrap());
     app.apply(Action::ShowTab(servo_studio::ui::Tab::Board));
     let mut harness = harness(app);
     // Wait for the board's status, so the bar's text no longer changes under the pointer.

@@ -212,8 +212,13 @@ fn a_lost_link_is_one_whole_sentence_in_traditional_chinese() {
     let sim = ServoSim::new(SimConfig { faults, ..SimConfig::default() }, ServoImage::default());
     let (sim, connection) = spawn_in_memory(sim, waker.clone()).unwrap();
     app.link = Some(
-        servo_studio::ui::BoardLink::start(&servo_studio::project::Project::default(), connection, 115_200, waker)
-            .unwrap(),
+        servo_studio::ui::BoardLink::start(
+            &servo_studio::project::Project::default(),
+            connection,
+            (115_200, Default::default()),
+            waker,
+        )
+        .unwrap(),
     );
     wait_for(&mut app, &woken, "the disconnect", |app| app.link.is_none());
     drop(sim);

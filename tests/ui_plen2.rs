@@ -191,3 +191,27 @@ fn showing_out_of_range_values_does_not_change_them() {
     assert!(!harness.state().document.can_undo(), "nothing was edited");
     assert_eq!(harness.state().document.project.plen2, document.plen2);
 }
+
+#[test]
+fn the_pacing_is_chosen_in_the_connection_settings_and_used_at_the_next_connection() {
+    use servo_studio::device::plen2::PacingMode;
+    let data = tempfile::tempdir().unwrap();
+    let app = StudioApp::new(project(), None, no_waker()).with_data_dir(data.path().to_path_buf());
+    let mut harness = Harness::builder()
+        .with_size(egui::vec2(1200.0, 800.0))
+        .with_context_setup(servo_studio::ui::fonts::install)
+        .build_ui_state(|ui, app: &mut StudioApp| app.show(ui), app);
+    harness.run();
+    assert_eq!(harness.state().plen2_pacing, PacingMode::Adaptive, "adaptive by default");
+    harness.get_by_label("Pacing").click();
+    harness.run();
+    harness.get_by_label("Safe (official)").click();
+    harness.run();
+    assert_eq!(harness.state().plen2_pacing, PacingMode::Safe);
+    harness.get_by_label("Demo board").click();
+    harness.run();
+    let link = harness.state().link.as_ref().expect("connected");
+    assert_eq!(link.plen2().unwrap().pacing(), PacingMode::Safe);
+    // Remembered between runs.
+    assert_eq!(harness.state().remembered().plen2_pacing, PacingMode::Safe);
+}

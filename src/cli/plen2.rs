@@ -14,13 +14,14 @@ use servo_studio::device::{self, Cancel};
 use servo_studio::link::{self, LineSettings, PortName, no_waker};
 use servo_studio::project::motion_json;
 use servo_studio::project::{self, Family, Project};
-use servo_studio::sim::{Plen2Sim, Plen2Timing};
+use servo_studio::sim::{LinkKind, Plen2Sim, Plen2Timing};
 
 fn connect(port: &PortArgs) -> anyhow::Result<Plen2Handle> {
     let name = PortName::parse(&port.port)?;
     let settings = LineSettings { baud: port.baud(Family::Plen2), ..device::line_settings(Family::Plen2) };
     let connection = link::open(&name, &settings)?;
     let options = Plen2Options {
+        mode: port.pacing,
         reply_timeout: std::time::Duration::from_millis(port.timeout_ms(Family::Plen2)),
         line_baud: settings.baud,
         ..Plen2Options::default()
@@ -54,20 +55,28 @@ pub fn parse_slots(text: &str) -> Result<Slots, String> {
     Ok(Slots(slots))
 }
 
-fn progress_line() -> impl FnMut(&Plen2Progress) {
+/// A progress line per step on stderr, with what the pacing decided since the
+/// last one (the handle's notices are taken in as the steps go).
+fn progress_line(handle: &mut Plen2Handle, mode: plen2::PacingMode) -> impl FnMut(&Plen2Progress) + '_ {
     let began = Instant::now();
     move |progress: &Plen2Progress| {
+        for notice in handle.pump(Instant::now()) {
+            if let plen2::Plen2Notice::Widened(widened) = notice {
+                eprintln!("   {widened}");
+            }
+        }
         let phase = match progress.phase {
             Plen2Phase::Read => "reading",
             Plen2Phase::Write => "writing",
             Plen2Phase::Verify => "verifying",
         };
         eprintln!(
-            "{phase:>9} {}/{} {} ({:.1} s)",
+            "{phase:>9} {}/{} {} ({:.1} s, {} pacing)",
             progress.done,
             progress.total,
             progress.item,
-            began.elapsed().as_secs_f64()
+            began.elapsed().as_secs_f64(),
+            mode.word()
         );
     }
 }
@@ -92,9 +101,10 @@ pub fn info(port: &PortArgs) -> anyhow::Result<()> {
 /// `export --protocol plen2 [--slots …]`.
 pub fn export(port: &PortArgs, out: &Path, slots: &[u8]) -> anyhow::Result<()> {
     project::output_path(out)?;
-    let handle = connect(port)?;
-    let mut progress = progress_line();
-    let exported = plen2::export(&handle.requester(), slots, &mut progress, &Cancel::never())
+    let mut handle = connect(port)?;
+    let requester = handle.requester();
+    let mut progress = progress_line(&mut handle, port.pacing);
+    let exported = plen2::export(&requester, slots, &mut progress, &Cancel::never())
         .with_context(|| format!("export from {} failed; {} was not written", port.port, out.display()))?;
     let count = exported.motions.len();
     project::save(out, &Project { family: Family::Plen2, plen2: exported, ..Project::default() })?;
@@ -136,22 +146,22 @@ pub fn load_input(input: &Path) -> anyhow::Result<project::Loaded> {
 /// `import --protocol plen2`.
 pub fn import(port: &PortArgs, input: &Path, loaded: &Project, choices: ImportChoices) -> anyhow::Result<()> {
     let ImportChoices { yes, force, backup_dir } = choices;
-    let handle = connect(port)?;
+    let mut handle = connect(port)?;
     if !yes {
         super::servo::confirm(&port.port, input, backup_dir.is_some())?;
     }
     let options = Plen2ImportOptions { backup_dir, verify: true, force };
-    let mut progress = progress_line();
-    let report = plen2::import(&handle.requester(), &loaded.plen2, &options, &mut progress, &Cancel::never()).map_err(
-        |failure| {
+    let requester = handle.requester();
+    let mut progress = progress_line(&mut handle, port.pacing);
+    let report =
+        plen2::import(&requester, &loaded.plen2, &options, &mut progress, &Cancel::never()).map_err(|failure| {
             let advice = super::restore_hint(" --protocol plen2", &port.port, failure.backup.as_deref(), &failure.left);
             anyhow::Error::new(super::Advised { error: *failure, advice }).context(format!(
                 "import of {} into {} failed",
                 input.display(),
                 port.port
             ))
-        },
-    )?;
+        })?;
     if let Some(backup) = &report.backup {
         eprintln!("backup of the slots overwritten: {}", backup.display());
     }
@@ -179,7 +189,10 @@ pub fn import(port: &PortArgs, input: &Path, loaded: &Project, choices: ImportCh
 /// Runs the emulated PLEN2; `--state` preloads its joint settings and slots
 /// from a project file, a motion.json or a folder of them.
 pub fn sim(args: &SimArgs) -> anyhow::Result<()> {
-    let mut robot = Plen2Sim::new(Plen2Timing::default());
+    let mut robot = Plen2Sim::new(Plen2Timing::default()).with_link(args.link);
+    if args.link != LinkKind::Clean {
+        eprintln!("the line to the robot: {}", args.link);
+    }
     if let Some(path) = &args.state {
         let plen2 = load_input(path)?.project.plen2;
         let mut commands = Vec::new();

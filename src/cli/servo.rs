@@ -17,7 +17,7 @@ use servo_studio::device::servo::{
 use servo_studio::link::{self, Driver, LinkEvent, PortName, no_waker};
 use servo_studio::project::rflex::Robot;
 use servo_studio::project::{self, Family, Project};
-use servo_studio::sim::{self, Faults, LineNoise, ServoSim, SimConfig};
+use servo_studio::sim::{self, Faults, LineNoise, LinkKind, ServoSim, SimConfig};
 
 /// `servo-studio sim` options.
 #[derive(Debug, Args)]
@@ -52,6 +52,11 @@ pub struct SimArgs {
     /// The robot (rFLEX base): b21r, atrv-jr or magellan.
     #[arg(long, value_parser = super::parse_robot, default_value = "b21r")]
     pub robot: Robot,
+    /// The line to the robot (PLEN2): clean, bursty[=MS] (a Bluetooth LE
+    /// bridge, 7.5–30 ms connection interval, 15 by default), late=MS (writes
+    /// held back up to MS ms) or slow=BAUD.
+    #[arg(long, default_value = "clean")]
+    pub link: LinkKind,
 }
 
 fn session_config(port: &PortArgs) -> SessionConfig {

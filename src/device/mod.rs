@@ -39,15 +39,18 @@ pub enum Direction {
     Received,
     /// Bytes dropped while resynchronising.
     Skipped,
+    /// What the driver decided (e.g. the pacing widened), not a packet.
+    Note,
 }
 
 impl Direction {
-    /// `→`, `←` or `!`.
+    /// `→`, `←`, `!` or `·`.
     pub fn arrow(self) -> &'static str {
         match self {
             Self::Sent => "→",
             Self::Received => "←",
             Self::Skipped => "!",
+            Self::Note => "·",
         }
     }
 }

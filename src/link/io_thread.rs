@@ -34,6 +34,13 @@ pub trait Driver: Send + 'static {
     fn handle_disconnect(&mut self, reason: &str);
     /// Bytes to write to the port now, if any.
     fn poll_transmit(&mut self, now: Instant) -> Option<Vec<u8>>;
+    /// The bytes of the oldest write not yet reported have left: the port's
+    /// `write` returned at `now`. A driver that predicts when its bytes arrive
+    /// re-bases its predictions on this (a write can leave late: the thread
+    /// was descheduled, the port's buffer was full).
+    fn handle_written(&mut self, now: Instant, bytes: usize) {
+        let _ = (now, bytes);
+    }
     /// An event for the owner, if any.
     fn poll_event(&mut self) -> Option<Self::Event>;
     /// When the driver next needs [`Driver::handle_timeout`].
@@ -249,7 +256,9 @@ impl Output<'_> {
             }
             self.writer.write_all(&bytes)?;
             self.writer.flush()?;
-            self.last_write = Some(Instant::now());
+            let written = Instant::now();
+            self.last_write = Some(written);
+            driver.handle_written(written, bytes.len());
         }
     }
 }

@@ -9,7 +9,7 @@ mod runner;
 mod servo;
 
 pub use faults::{Faults, FaultsError, LineNoise, LineNoiseError};
-pub use plen2::{JointLimits, Plen2Sim, Plen2SimCommand, Plen2SimEvent, Plen2State, Plen2Timing};
+pub use plen2::{JointLimits, LinkKind, Plen2Sim, Plen2SimCommand, Plen2SimEvent, Plen2State, Plen2Timing};
 pub use rflex::{BaseState, RflexSim, RflexSimCommand, RflexSimConfig, RflexSimEvent};
 pub use runner::{InMemory, SimHandle, spawn_in_memory, spawn_pty, spawn_tcp};
 pub use servo::{ServoSim, SimCommand, SimConfig, SimEvent};

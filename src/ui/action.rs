@@ -179,6 +179,8 @@ pub enum Action {
     SetPolling(bool),
     /// Switch the interface language.
     SetLanguage(Language),
+    /// How a PLEN2 is paced from the next connection on.
+    SetPacing(crate::device::plen2::PacingMode),
     /// Show a tab.
     ShowTab(Tab),
     /// Read the board and show what differs, before doing `intent`.

@@ -4,7 +4,7 @@
 
 use std::time::{Duration, Instant};
 
-use crate::device::plen2::{Plen2Handle, Plen2Notice, Plen2Options};
+use crate::device::plen2::{PacingMode, Plen2Handle, Plen2Notice, Plen2Options};
 use crate::device::rflex::{RflexBase, RflexNotice};
 use crate::device::servo::{RequestError, ServoHandle, ServoImage, ServoNotice};
 use crate::link::{Connection, DisconnectReason, Waker};
@@ -16,7 +16,7 @@ use crate::sim::{
 use crate::ui::packet_log::PacketLog;
 
 /// Something the app shell should show the user.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum LinkNotice {
     /// Something could not be sent; the text says why.
     SendFailed(String),
@@ -35,6 +35,8 @@ pub enum LinkNotice {
     },
     /// A mobile base went silent while driving and was sent a stop.
     BaseSilent,
+    /// The PLEN2's adaptive pacing widened its margins.
+    PacingWidened(crate::device::plen2::Widened),
 }
 
 /// The connected board's driver, by family.
@@ -101,8 +103,14 @@ impl BoardLink {
         matches!(family, Family::Servo | Family::Rflex | Family::Plen2)
     }
 
-    /// Starts the driver of the project's family over an opened connection.
-    pub fn start(project: &Project, connection: Connection, baud: u32, waker: Waker) -> Result<Self, StartError> {
+    /// Starts the driver of the project's family over an opened connection
+    /// (a PLEN2 paced as `pacing` says).
+    pub fn start(
+        project: &Project,
+        connection: Connection,
+        (baud, pacing): (u32, PacingMode),
+        waker: Waker,
+    ) -> Result<Self, StartError> {
         let label = connection.description.clone();
         let device = match project.family {
             Family::Servo => Device::Servo(ServoHandle::over(connection, Some(baud), waker)?),
@@ -111,19 +119,27 @@ impl BoardLink {
                 base.start(project.rflex.drive.sonar_on_connect);
                 Device::Rflex(base)
             }
-            Family::Plen2 => Device::Plen2(Plen2Handle::over(connection, Plen2Options::default(), waker)?),
+            Family::Plen2 => {
+                let options = Plen2Options { mode: pacing, line_baud: baud, ..Plen2Options::default() };
+                Device::Plen2(Plen2Handle::over(connection, options, waker)?)
+            }
         };
         Ok(Self { device, demo: None, label, log: PacketLog::default() })
     }
 
     /// Starts the emulated board of the project's family in this process,
     /// preloaded with the project, and connects to it.
-    pub fn demo(project: &Project, waker: Waker) -> Result<Self, StartError> {
-        Self::demo_with(project, SimConfig::default(), waker)
+    pub fn demo(project: &Project, pacing: PacingMode, waker: Waker) -> Result<Self, StartError> {
+        Self::demo_with(project, SimConfig::default(), pacing, waker)
     }
 
     /// Like [`BoardLink::demo`], with the emulated servo board configured (faults, memory…).
-    pub fn demo_with(project: &Project, sim_config: SimConfig, waker: Waker) -> Result<Self, StartError> {
+    pub fn demo_with(
+        project: &Project,
+        sim_config: SimConfig,
+        pacing: PacingMode,
+        waker: Waker,
+    ) -> Result<Self, StartError> {
         match project.family {
             Family::Servo => {
                 let image = ServoImage::from_project(&project.servo).unwrap_or_default();
@@ -140,14 +156,14 @@ impl BoardLink {
                 let config =
                     RflexSimConfig { conversion: project.rflex.robot.conversion(), ..RflexSimConfig::default() };
                 let (sim, connection) = spawn_in_memory(RflexSim::new(config), waker.clone())?;
-                let mut link = Self::start(project, connection, 115_200, waker)?;
+                let mut link = Self::start(project, connection, (115_200, PacingMode::default()), waker)?;
                 link.demo = Some(Demo::Rflex(sim));
                 link.label = String::new();
                 Ok(link)
             }
             Family::Plen2 => {
                 let (sim, connection) = spawn_in_memory(Plen2Sim::new(Plen2Timing::default()), waker.clone())?;
-                let mut link = Self::start(project, connection, 2_000_000, waker)?;
+                let mut link = Self::start(project, connection, (2_000_000, pacing), waker)?;
                 link.demo = Some(Demo::Plen2(sim));
                 link.label = String::new();
                 Ok(link)
@@ -296,6 +312,7 @@ impl BoardLink {
                     match notice {
                         Plen2Notice::Log(entry) => self.log.record(entry),
                         Plen2Notice::Disconnected(reason) => out.push(LinkNotice::Disconnected(reason)),
+                        Plen2Notice::Widened(widened) => out.push(LinkNotice::PacingWidened(widened)),
                     }
                 }
             }

@@ -24,6 +24,8 @@ pub struct LinkStatus {
     pub family: Family,
     /// The rFLEX robot preset, for that family.
     pub robot: Option<Robot>,
+    /// The PLEN2 pacing, for that family.
+    pub pacing: Option<crate::device::plen2::PacingMode>,
     /// A base's battery, volts.
     pub volts: Option<f64>,
     /// What it is connected to, if connected.
@@ -124,6 +126,21 @@ impl ConnectionBar {
                     picked.response.labelled_by(robot_label.id);
                     if robot != current {
                         actions.push(Action::SetRobot(robot));
+                    }
+                }
+                if let Some(current) = status.pacing {
+                    let pacing_label = ui.label(words.pacing);
+                    let mut pacing = current;
+                    let picked = egui::ComboBox::from_id_salt("pacing-picker")
+                        .selected_text(language.pacing(current))
+                        .show_ui(ui, |ui| {
+                            for option in crate::device::plen2::PacingMode::ALL {
+                                ui.selectable_value(&mut pacing, option, language.pacing(option));
+                            }
+                        });
+                    picked.response.labelled_by(pacing_label.id).on_hover_text(words.pacing_hint);
+                    if pacing != current {
+                        actions.push(Action::SetPacing(pacing));
                     }
                 }
                 let port_label = ui.label(words.port);

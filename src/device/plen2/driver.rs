@@ -1,15 +1,16 @@
 //! The PLEN2 driver the I/O thread runs. The robot acknowledges nothing and
-//! loses what overflows its 64-byte receive ring, so the driver paces every
-//! byte from the firmware's own timing (`plen2.md` §5): the firmware reads a
-//! byte per 20 µs pass and blocks while it writes EEPROM; a byte is sent only
-//! when the ring will hold it. Live joint moves are coalesced; STOP goes out
-//! at the next command boundary, ahead of everything queued. Sans-IO.
+//! loses what overflows its 64-byte receive ring, so every byte is paced
+//! ([`super::pacer`]) from the firmware's own timing (`plen2.md` §5) and from
+//! when writes really left. Live joint moves are coalesced; STOP goes out at
+//! the next command boundary, ahead of everything queued, under every pacing.
+//! Sans-IO.
 
 use std::collections::{BTreeMap, VecDeque};
 use std::time::{Duration, Instant};
 
 use crossbeam_channel::Sender;
 
+use super::pacer::{Pacer, PacingMode, Widened};
 use crate::device::{Direction, LogEntry, hex};
 use crate::link::Driver;
 use crate::protocol::plen2::{Command, ReplyEvent, ReplyKind, ReplyReader};
@@ -47,10 +48,12 @@ impl Default for Pacing {
     }
 }
 
-/// How the driver talks to one robot: the firmware timing it paces for,
-/// how long a getter's reply may take, and the line rate replies come at.
+/// How the driver talks to one robot: the pacing mode and the firmware
+/// timing it paces for, how long a getter's reply may take, and the line rate.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Plen2Options {
+    /// Fast, adaptive (the default) or the official tool's.
+    pub mode: PacingMode,
     /// The firmware timing the pacer assumes.
     pub pacing: Pacing,
     /// How long the robot may take to begin a reply, and the longest silence
@@ -62,7 +65,7 @@ pub struct Plen2Options {
 
 impl Default for Plen2Options {
     fn default() -> Self {
-        Self { pacing: Pacing::default(), reply_timeout: REPLY_IDLE, line_baud: 2_000_000 }
+        Self { mode: PacingMode::Adaptive, pacing: Pacing::default(), reply_timeout: REPLY_IDLE, line_baud: 2_000_000 }
     }
 }
 
@@ -122,6 +125,16 @@ pub enum Plen2Command {
     /// inside a command they are bad arguments, so it is dropped; between
     /// commands they are ignored.
     Resync,
+    /// A slot read back different from what was written: the adaptive pacing
+    /// widens its margins for the rest of the session.
+    ReadBackDiffered,
+    /// Before an upload: if the adaptive pacing has not yet seen how the link
+    /// delivers, read the joint settings (a reply of about 1.7 KB) to see it;
+    /// `reply` is told when that is done (at once when nothing is needed).
+    Probe {
+        /// Told when the link is known.
+        reply: ReplySender,
+    },
 }
 
 /// What [`Plen2Command::Resync`] sends: more than the longest command's arguments.
@@ -132,6 +145,8 @@ pub const RESYNC: &[u8; 110] = &[b'x'; 110];
 pub enum Plen2Event {
     /// A packet-log entry.
     Log(LogEntry),
+    /// The adaptive pacing widened its margins.
+    Widened(Widened),
 }
 
 /// A getter's reply being awaited.
@@ -167,20 +182,21 @@ struct Queued {
 /// The driver.
 pub struct Plen2Driver {
     pacing: Pacing,
+    pacer: Pacer,
     reply_timeout: Duration,
     line_baud: u32,
     queue: VecDeque<Queued>,
-    /// The command being sent and how many of its bytes went.
-    current: Option<(Queued, usize)>,
-    /// When the firmware will read the next byte sent (EEPROM writes included).
-    next_read: Option<Instant>,
-    /// When each byte sent but not yet read will be read: what waits in the ring.
-    in_ring: VecDeque<Instant>,
+    /// The command being sent, how many of its bytes went, and whether it is urgent (STOP).
+    current: Option<(Queued, usize, bool)>,
+    /// STOP's commands waiting for the command on the wire to end.
+    urgent: VecDeque<Queued>,
     live: BTreeMap<u8, i16>,
     waiting: Vec<(Instant, Sender<()>)>,
     reader: ReplyReader,
     reply: Option<Awaited>,
     opened_at: Option<Instant>,
+    /// The latest time the driver was told (deadlines are never before it).
+    now: Instant,
     output: VecDeque<Vec<u8>>,
     events: VecDeque<Plen2Event>,
 }
@@ -215,17 +231,18 @@ impl Plen2Driver {
     pub fn new(options: Plen2Options) -> Self {
         Self {
             pacing: options.pacing,
+            pacer: Pacer::new(options.mode, options.pacing, options.line_baud),
             reply_timeout: options.reply_timeout,
             line_baud: options.line_baud.max(1),
             queue: VecDeque::new(),
             current: None,
-            next_read: None,
-            in_ring: VecDeque::new(),
+            urgent: VecDeque::new(),
             live: BTreeMap::new(),
             waiting: Vec::new(),
             reader: ReplyReader::new(),
             reply: None,
             opened_at: None,
+            now: Instant::now(),
             output: VecDeque::new(),
             events: VecDeque::new(),
         }
@@ -245,84 +262,101 @@ impl Plen2Driver {
 
     /// When the firmware will have finished everything sent so far.
     pub fn firmware_free(&self) -> Option<Instant> {
-        self.next_read
+        self.pacer.firmware_free()
     }
 
-    /// Hands bytes to the port as the ring allows.
+    /// The pacing mode.
+    pub fn mode(&self) -> PacingMode {
+        self.pacer.mode()
+    }
+
+    /// The delivery delay the adaptive pacing allows for, once it widened.
+    pub fn pacing_window(&self) -> Option<Duration> {
+        self.pacer.window()
+    }
+
+    /// The next command to send: STOP's first, then the queue, then live moves
+    /// (only when nothing else waits: they never delay an upload).
+    fn next_command(&mut self) -> Option<(Queued, bool)> {
+        if let Some(urgent) = self.urgent.pop_front() {
+            return Some((urgent, true));
+        }
+        // A getter's reply must end before anything else is sent.
+        if self.reply.is_some() {
+            return None;
+        }
+        if self.queue.is_empty() && !self.live.is_empty() {
+            let moves: Vec<(u8, i16)> = std::mem::take(&mut self.live).into_iter().collect();
+            for (device, angle) in moves {
+                self.enqueue(Command::SetAngle { device, angle }, None, None);
+            }
+        }
+        self.queue.pop_front().map(|queued| (queued, false))
+    }
+
+    /// Hands bytes to the port as the pacer allows.
     fn pace(&mut self, now: Instant) {
-        while self.in_ring.front().is_some_and(|read| *read <= now) {
-            self.in_ring.pop_front();
-        }
-        let budget = self.pacing.ring_budget as usize;
-        // Refill in whole batches, once the ring is predicted empty: a batch
-        // delivered late together with the next still fits (the rest of the
-        // 64 bytes is that slack).
-        if !self.in_ring.is_empty() {
-            return;
-        }
         let mut chunk = Vec::new();
+        // What the pacer allows now, asked once for this batch.
+        let mut allowed: Option<usize> = None;
         loop {
             if self.current.is_none() {
-                // A getter's reply must end before anything else is sent.
-                if self.reply.is_some() {
-                    break;
+                // STOP waits for nothing but the command on the wire; a reply
+                // still being read holds everything else back.
+                match self.next_command() {
+                    Some((queued, urgent)) => self.current = Some((queued, 0, urgent)),
+                    None => break,
                 }
-                if self.queue.is_empty() && !self.live.is_empty() {
-                    let moves: Vec<(u8, i16)> = std::mem::take(&mut self.live).into_iter().collect();
-                    for (device, angle) in moves {
-                        self.enqueue(Command::SetAngle { device, angle }, None, None);
-                    }
-                }
-                let Some(next) = self.queue.pop_front() else { break };
-                self.current = Some((next, 0));
             }
-            // Room in the ring when this byte arrives (now): it waits behind those not yet read.
-            if self.in_ring.len() >= budget || chunk.len() >= CHUNK {
+            let urgent = self.current.as_ref().is_some_and(|(_, _, urgent)| *urgent);
+            let allowed = *allowed.get_or_insert_with(|| self.pacer.room(now, urgent));
+            if chunk.len() >= CHUNK.min(allowed) {
                 break;
             }
-            let Some((queued, sent)) = &mut self.current else { break };
-            let read = self.next_read.map_or(now, |next| next.max(now));
+            let Some((queued, sent, _)) = &mut self.current else { break };
             chunk.push(queued.bytes[*sent]);
             *sent += 1;
-            self.in_ring.push_back(read);
-            let mut next_read = read + self.pacing.byte_read;
             let finished = *sent == queued.bytes.len();
-            if finished {
-                // The command runs when its last byte is read; EEPROM writes then block the firmware.
-                if let Some(command) = &queued.command {
-                    next_read += busy_after(&self.pacing, command);
-                }
-            }
-            self.next_read = Some(next_read);
+            // The command runs when its last byte is read; EEPROM writes then block the firmware.
+            let busy = match (&queued.command, finished) {
+                (Some(command), true) => busy_after(&self.pacing, command),
+                _ => Duration::ZERO,
+            };
+            let read = self.pacer.place(now, busy);
             if !finished {
                 continue;
             }
-            let Some((queued, _)) = self.current.take() else { break };
+            let Some((queued, _, _)) = self.current.take() else { break };
             let fields = String::from_utf8_lossy(&queued.bytes).into_owned();
             let name = queued.command.as_ref().map_or("resync", Command::code).to_string();
             self.log(now, Direction::Sent, name, fields, &queued.bytes);
+            let idle = read + self.pacing.byte_read + busy;
             if let Some(done) = queued.done {
-                self.waiting.push((next_read, done));
+                self.waiting.push((idle, done));
             }
             if let (Some(kind), Some(sender)) = (queued.command.as_ref().and_then(reply_kind), queued.reply) {
                 self.reader.expect(kind);
-                let deadline = next_read + self.reply_timeout;
+                self.pacer.watch_reply(idle);
+                let deadline = idle + self.reply_timeout;
                 self.reply = Some(Awaited { kind, sender, deadline, overall: None, bytes: 0 });
             }
         }
         if !chunk.is_empty() {
+            self.pacer.handed(now, chunk.len());
             self.output.push_back(chunk);
+        }
+        while let Some(widened) = self.pacer.poll_widened() {
+            self.log(now, Direction::Note, "pacing".into(), widened.to_string(), &[]);
+            self.events.push_back(Plen2Event::Widened(widened));
         }
     }
 
-    /// When the ring has room for the next byte.
-    fn next_send(&self) -> Option<Instant> {
-        let more = self.current.is_some() || (self.reply.is_none() && !(self.queue.is_empty() && self.live.is_empty()));
-        if !more {
-            return None;
-        }
-        // The next batch goes once the ring is predicted empty.
-        self.in_ring.back().copied()
+    /// When the pacer next allows a byte, if one waits to be sent.
+    fn next_send(&self, now: Instant) -> Option<Instant> {
+        let more = self.current.is_some()
+            || !self.urgent.is_empty()
+            || (self.reply.is_none() && !(self.queue.is_empty() && self.live.is_empty()));
+        more.then(|| self.pacer.next_room(now))
     }
 }
 
@@ -338,32 +372,36 @@ impl Driver for Plen2Driver {
             Plen2Command::Stop => {
                 self.live.clear();
                 // Ahead of everything queued, after the command on the wire (cutting
-                // it would make its tail read as garbage arguments).
-                let reset = Command::ResetInterpreter;
-                let home = Command::HomePosition;
-                self.queue.push_front(Queued {
-                    bytes: home.to_ascii().into_bytes(),
-                    command: Some(home),
-                    done: None,
-                    reply: None,
-                });
-                self.queue.push_front(Queued {
-                    bytes: reset.to_ascii().into_bytes(),
-                    command: Some(reset),
-                    done: None,
-                    reply: None,
-                });
+                // it would make its tail read as garbage arguments), under every pacing.
+                self.urgent.clear();
+                for command in [Command::ResetInterpreter, Command::HomePosition] {
+                    let bytes = command.to_ascii().into_bytes();
+                    self.urgent.push_back(Queued { bytes, command: Some(command), done: None, reply: None });
+                }
             }
             Plen2Command::Resync => {
                 self.queue.push_back(Queued { command: None, bytes: RESYNC.to_vec(), done: None, reply: None });
             }
+            Plen2Command::ReadBackDiffered => self.pacer.read_back_differed(),
+            Plen2Command::Probe { reply } => {
+                if self.pacer.wants_measurement() {
+                    self.enqueue(Command::GetJointSettings, None, Some(reply));
+                } else {
+                    let _ = reply.send(Ok(Vec::new()));
+                }
+            }
         }
+        self.now = now;
         self.pace(now);
     }
 
     fn handle_input(&mut self, now: Instant, bytes: &[u8]) {
+        self.now = self.now.max(now);
         self.reader.push(bytes);
         let (timeout, baud) = (self.reply_timeout, self.line_baud);
+        if self.reply.is_some() {
+            self.pacer.reply_bytes(now, bytes.len());
+        }
         if let Some(awaited) = &mut self.reply {
             awaited.bytes += bytes.len();
             // 10 bits a byte on the line.
@@ -381,8 +419,9 @@ impl Driver for Plen2Driver {
                     if let Some(awaited) = self.reply.take() {
                         let _ = awaited.sender.send(Ok(bytes));
                     }
-                    self.next_read = Some(now);
-                    self.in_ring.clear();
+                    // What its arrival says about the link; the firmware is idle again.
+                    self.pacer.reply_ended();
+                    self.pacer.idle_from(now);
                 }
                 ReplyEvent::Oversized { kind, bytes } => {
                     self.log(
@@ -395,8 +434,8 @@ impl Driver for Plen2Driver {
                     if let Some(awaited) = self.reply.take() {
                         let _ = awaited.sender.send(Err(ReplyError::Garbage { bytes }));
                     }
-                    self.next_read = Some(now);
-                    self.in_ring.clear();
+                    self.pacer.reply_ended();
+                    self.pacer.idle_from(now);
                 }
                 ReplyEvent::Ignored { bytes } => {
                     self.log(now, Direction::Skipped, format!("{bytes} byte(s) outside a reply"), String::new(), &[]);
@@ -407,6 +446,7 @@ impl Driver for Plen2Driver {
     }
 
     fn handle_timeout(&mut self, now: Instant) {
+        self.now = self.now.max(now);
         if let Some(awaited) = self.reply.take_if(|awaited| now >= awaited.deadline) {
             // A reply that began and then stopped may have lost bytes (worth
             // asking again); bytes that never began one, or that run past the
@@ -439,12 +479,33 @@ impl Driver for Plen2Driver {
             }
         }
         self.current = None;
-        self.in_ring.clear();
+        self.urgent.clear();
+        self.pacer.reset();
         self.waiting.clear();
     }
 
     fn poll_transmit(&mut self, _now: Instant) -> Option<Vec<u8>> {
         self.output.pop_front()
+    }
+
+    fn handle_written(&mut self, now: Instant, _bytes: usize) {
+        self.now = self.now.max(now);
+        // A write that left late moves every prediction made from it: the
+        // robot reads it later, so what follows must wait as much.
+        if let Some((planned, delay)) = self.pacer.written(now) {
+            for (at, _) in &mut self.waiting {
+                if *at >= planned {
+                    *at += delay;
+                }
+            }
+            if let Some(awaited) = &mut self.reply
+                && awaited.overall.is_none()
+                && awaited.deadline >= planned
+            {
+                awaited.deadline += delay;
+            }
+        }
+        self.pace(now);
     }
 
     fn poll_event(&mut self) -> Option<Plen2Event> {
@@ -454,7 +515,7 @@ impl Driver for Plen2Driver {
     fn poll_timeout(&self) -> Option<Instant> {
         let waiting = self.waiting.iter().map(|(at, _)| *at).min();
         let reply = self.reply.as_ref().map(|awaited| awaited.deadline);
-        [self.next_send(), waiting, reply].into_iter().flatten().min()
+        [self.next_send(self.now), waiting, reply].into_iter().flatten().min()
     }
 }
 

@@ -6,6 +6,7 @@
 mod convert;
 mod driver;
 mod ops;
+mod pacer;
 
 use std::time::Instant;
 
@@ -19,6 +20,7 @@ pub use ops::{
     Plen2Import, Plen2ImportFailure, Plen2ImportOptions, Plen2ImportReport, Plen2Info, Plen2OpError, Plen2Phase,
     Plen2Progress, SlotResult, export, import, info, read_joint_settings, read_slot, write_joint_settings,
 };
+pub use pacer::{PacingMode, RING_WINDOW_BYTES, SAFE_BURST, SAFE_PAUSE, WidenReason, Widened};
 
 use crate::device::LogEntry;
 use crate::link::{self, Connection, DisconnectReason, LinkEvent, LinkHandle, Waker};
@@ -56,6 +58,19 @@ impl Plen2Requester {
         }
     }
 
+    /// Before an upload: lets the adaptive pacing see how the link delivers
+    /// (a reply is read once per session, if none was yet).
+    pub fn probe(&self) -> Result<(), ReplyError> {
+        let (reply, outcome) = crossbeam_channel::bounded(1);
+        self.commands.send(Plen2Command::Probe { reply }).map_err(|_| ReplyError::Disconnected)?;
+        outcome.recv().unwrap_or(Err(ReplyError::Disconnected)).map(|_| ())
+    }
+
+    /// A slot read back different: the adaptive pacing widens its margins.
+    pub fn read_back_differed(&self) -> Result<(), ReplyError> {
+        self.commands.send(Plen2Command::ReadBackDiffered).map_err(|_| ReplyError::Disconnected)
+    }
+
     fn get_once(&self, command: Command) -> Result<Vec<u8>, ReplyError> {
         let (reply, outcome) = crossbeam_channel::bounded(1);
         self.commands.send(Plen2Command::Get { command, reply }).map_err(|_| ReplyError::Disconnected)?;
@@ -68,6 +83,8 @@ impl Plen2Requester {
 pub enum Plen2Notice {
     /// A packet-log entry.
     Log(LogEntry),
+    /// The adaptive pacing widened its margins (said in the log and on the progress line).
+    Widened(Widened),
     /// The link ended.
     Disconnected(DisconnectReason),
 }
@@ -75,6 +92,7 @@ pub enum Plen2Notice {
 /// A connected PLEN2, driven without blocking. Dropping it closes the link.
 pub struct Plen2Handle {
     link: LinkHandle<Plen2Command, Plen2Event>,
+    pacing: PacingMode,
     /// STOP was pressed and nothing moved since.
     pub stopped: bool,
 }
@@ -88,7 +106,13 @@ impl std::fmt::Debug for Plen2Handle {
 impl Plen2Handle {
     /// Starts the I/O thread over an open connection.
     pub fn over(connection: Connection, options: Plen2Options, waker: Waker) -> std::io::Result<Self> {
-        Ok(Self { link: link::spawn(connection, Plen2Driver::new(options), waker)?, stopped: false })
+        let link = link::spawn(connection, Plen2Driver::new(options), waker)?;
+        Ok(Self { link, pacing: options.mode, stopped: false })
+    }
+
+    /// How uploads on this link are paced.
+    pub fn pacing(&self) -> PacingMode {
+        self.pacing
     }
 
     /// A requester for worker threads.
@@ -150,6 +174,7 @@ impl Plen2Handle {
             .try_iter()
             .map(|event| match event {
                 LinkEvent::Driver(Plen2Event::Log(entry)) => Plen2Notice::Log(entry),
+                LinkEvent::Driver(Plen2Event::Widened(widened)) => Plen2Notice::Widened(widened),
                 LinkEvent::Disconnected { reason } => Plen2Notice::Disconnected(reason),
             })
             .collect()

@@ -274,22 +274,38 @@ fn upload(
         return Err(UploadFailure::untouched(Plen2OpError::Invalid { problems }, Stage::Checking, None));
     }
     let slots: Vec<u8> = project.motions.iter().map(|m| m.slot).filter(|slot| *slot < SLOTS).collect();
-    let backup = match &options.backup_dir {
+    // Something is read before anything is written: the backup, the joint
+    // settings (when the project holds some), or — once a session, when the
+    // adaptive pacing has not seen the link yet — a probe. A reply shows how
+    // the link delivers before the first byte of the upload.
+    let (backup, current_joints) = match &options.backup_dir {
         Some(folder) => {
             let backing_up = |error| UploadFailure::untouched(error, Stage::BackingUp, None);
             let mut saved = export(requester, &slots, progress, cancel).map_err(backing_up)?;
             saved.play_lists.clear();
+            let joints = saved.joints.clone();
             let path = plen2_backup_path(folder);
             let document = Project { family: project::Family::Plen2, plen2: saved, ..Project::default() };
             project::save(&path, &document).map_err(|error| backing_up(Plen2OpError::Backup(error)))?;
-            Some(path)
+            (Some(path), joints)
         }
-        None => None,
+        None if project.joints.is_empty() => {
+            let item = "the link".to_string();
+            requester.probe().map_err(|source| {
+                UploadFailure::untouched(Plen2OpError::Reply { item, source }, Stage::Checking, None)
+            })?;
+            (None, Vec::new())
+        }
+        None => {
+            let joints = read_joint_settings(requester)
+                .map_err(|error| UploadFailure::untouched(error, Stage::Checking, None))?;
+            (None, joints)
+        }
     };
     let mut reached = Vec::new();
     let mut results = Vec::new();
     let total = project.motions.len() + usize::from(!project.joints.is_empty());
-    let written = write_all(requester, project, &mut reached, &mut results, progress, cancel);
+    let written = write_all(requester, project, &current_joints, &mut reached, &mut results, progress, cancel);
     let joint_writes = match written {
         Ok(joint_writes) => joint_writes,
         Err(error) => {
@@ -313,6 +329,7 @@ fn upload(
 fn write_all(
     requester: &Plen2Requester,
     project: &Plen2Project,
+    current_joints: &[JointSetting],
     reached: &mut Vec<String>,
     results: &mut Vec<(u8, SlotResult)>,
     progress: &mut dyn FnMut(&Plen2Progress),
@@ -321,8 +338,7 @@ fn write_all(
     let mut joint_writes = 0;
     if !project.joints.is_empty() {
         check(cancel)?;
-        let current = read_joint_settings(requester)?;
-        joint_writes = write_joint_settings(requester, &project.joints, &current)?;
+        joint_writes = write_joint_settings(requester, &project.joints, current_joints)?;
         reached.push("joint settings".into());
     }
     let total = project.motions.len();
@@ -350,6 +366,10 @@ fn rewrite(
     for _ in 0..REWRITE_ROUNDS {
         let differing: Vec<usize> =
             (0..results.len()).filter(|index| results[*index].1 == SlotResult::Differs).collect();
+        if !differing.is_empty() {
+            // Bytes were lost on the way: write again with wider margins.
+            requester.read_back_differed().map_err(|source| Plen2OpError::Reply { item: "pacing".into(), source })?;
+        }
         for index in differing {
             check(cancel)?;
             write_motion(requester, &motions[index], index, total, progress)?;

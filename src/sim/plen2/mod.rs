@@ -8,7 +8,11 @@
 //! firmware's layout (tab indentation, CRLF); playback on the 32.768 ms tick
 //! and the interpreter queue. Time is emulated from the `now` it is given.
 
+mod link;
 mod motion_reply;
+
+use link::Link;
+pub use link::LinkKind;
 
 use std::collections::VecDeque;
 use std::fmt::Write as _;
@@ -153,8 +157,9 @@ pub enum Plen2SimEvent {
 #[derive(Debug)]
 pub struct Plen2Sim {
     timing: Plen2Timing,
+    /// The line from the host: each byte with when it reaches the ring.
     line: VecDeque<(Instant, u8)>,
-    line_free_at: Option<Instant>,
+    link: Link,
     /// The owner's fault: (bytes to let through, bytes then to lose).
     glitch: Option<(usize, usize)>,
     ring: VecDeque<(Instant, u8)>,
@@ -179,10 +184,11 @@ impl Plen2Sim {
     pub fn new(timing: Plen2Timing) -> Self {
         let joints = factory();
         let angles = joints.map(|joint| joint.home);
+        let link = Link::new(LinkKind::Clean, timing.line_byte, timing.reply_byte);
         Self {
             timing,
             line: VecDeque::new(),
-            line_free_at: None,
+            link,
             glitch: None,
             ring: VecDeque::new(),
             ready_at: None,
@@ -199,6 +205,12 @@ impl Plen2Sim {
             output: VecDeque::new(),
             events: VecDeque::new(),
         }
+    }
+
+    /// The same robot behind another kind of line.
+    pub fn with_link(mut self, kind: LinkKind) -> Self {
+        self.link = Link::new(kind, self.timing.line_byte, self.timing.reply_byte);
+        self
     }
 
     /// The state now.
@@ -370,15 +382,12 @@ impl Plen2Sim {
         None
     }
 
-    /// Queues a reply, each chunk due when it has crossed the line; the
-    /// firmware is busy while it prints.
+    /// Queues a reply, each piece due when the link delivers it; the
+    /// firmware is busy while it prints (as fast as the line takes it).
     fn reply(&mut self, at: Instant, bytes: &[u8]) -> Option<Duration> {
-        let mut sent = 0u32;
-        for chunk in bytes.chunks(1024) {
-            sent += u32::try_from(chunk.len()).unwrap_or(u32::MAX);
-            self.output.push_back((at + self.timing.reply_byte * sent, chunk.to_vec()));
-        }
-        Some(self.timing.reply_byte * sent)
+        let (pieces, printed) = self.link.carry_to_host(at, bytes);
+        self.output.extend(pieces);
+        Some(printed.saturating_duration_since(at))
     }
 
     fn start(&mut self, at: Instant, slot: u8, plays: Option<u8>) {
@@ -498,8 +507,7 @@ impl Driver for Plen2Sim {
     }
 
     fn handle_input(&mut self, now: Instant, bytes: &[u8]) {
-        // Bytes cross the line one after another at its rate.
-        let mut at = self.line_free_at.map_or(now, |free| free.max(now));
+        let mut kept = Vec::with_capacity(bytes.len());
         for &byte in bytes {
             match &mut self.glitch {
                 Some((0, 0)) | None => self.glitch = None,
@@ -511,10 +519,11 @@ impl Driver for Plen2Sim {
                 }
                 Some((skip, _)) => *skip -= 1,
             }
-            at += self.timing.line_byte;
-            self.line.push_back((at, byte));
+            kept.push(byte);
         }
-        self.line_free_at = Some(at);
+        // Each byte reaches the ring when the link delivers it.
+        let arrivals = self.link.carry_to_robot(now, kept.len());
+        self.line.extend(arrivals.into_iter().zip(kept));
         self.advance(now);
     }
 

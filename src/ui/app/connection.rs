@@ -19,6 +19,10 @@ impl StudioApp {
                 LinkNotice::RequestFailed(error) => {
                     self.status = Some(StatusLine { text: self.language.request_error(&error), is_error: true });
                 }
+                LinkNotice::PacingWidened(widened) => {
+                    // Not an error: the upload goes on, more carefully.
+                    self.status = Some(StatusLine { text: self.language.pacing_widened(&widened), is_error: false });
+                }
                 LinkNotice::BaseSilent => {
                     self.drive_panel = DrivePanel::default();
                     self.status = Some(StatusLine { text: self.words().msg_base_silent.into(), is_error: true });
@@ -79,7 +83,12 @@ impl StudioApp {
         let Some(result) = connecting.opening.poll() else { return };
         let Some(Connecting { opening, baud, .. }) = self.connecting.take() else { return };
         match result {
-            Ok(connection) => match BoardLink::start(&self.document.project, connection, baud, self.waker.clone()) {
+            Ok(connection) => match BoardLink::start(
+                &self.document.project,
+                connection,
+                (baud, self.plen2_pacing),
+                self.waker.clone(),
+            ) {
                 Ok(mut link) => {
                     link.label = opening.port.to_string();
                     self.sonar_on = self.document.project.rflex.drive.sonar_on_connect;
@@ -118,10 +127,12 @@ impl StudioApp {
         let family = self.document.project.family;
         let connecting = self.connecting.as_ref().map(|connecting| connecting.opening.port.to_string());
         let robot = (family == Family::Rflex).then_some(self.document.project.rflex.robot);
+        let pacing = (family == Family::Plen2).then_some(self.plen2_pacing);
         match &self.link {
             None => LinkStatus {
                 family,
                 robot,
+                pacing,
                 connecting,
                 can_connect: BoardLink::supports(family),
                 ..LinkStatus::default()
@@ -133,6 +144,7 @@ impl StudioApp {
                 LinkStatus {
                     family,
                     robot,
+                    pacing,
                     volts,
                     label: Some(label),
                     connecting,

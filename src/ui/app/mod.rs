@@ -129,6 +129,8 @@ pub struct StudioApp {
     pub plen2_result: Option<String>,
     /// Whether the base's sonar ring was turned on.
     pub sonar_on: bool,
+    /// How a PLEN2 is paced (connection settings; remembered).
+    pub plen2_pacing: crate::device::plen2::PacingMode,
     action_panel: ActionPanel,
     /// Told when the process is asked to end.
     terminate: Option<crossbeam_channel::Receiver<()>>,
@@ -188,6 +190,7 @@ impl StudioApp {
             plen2_robot: None,
             plen2_result: None,
             sonar_on: false,
+            plen2_pacing: crate::device::plen2::PacingMode::default(),
             picking: None,
             picked_button: None,
             terminate: None,
@@ -234,7 +237,8 @@ impl StudioApp {
                     self.report(self.language.connect_cancelled(&connecting.opening.port.to_string()), false);
                 }
             }
-            Action::ConnectDemo => match BoardLink::demo(&self.document.project, self.waker.clone()) {
+            Action::ConnectDemo => match BoardLink::demo(&self.document.project, self.plen2_pacing, self.waker.clone())
+            {
                 Ok(link) => {
                     self.sonar_on = self.document.project.rflex.drive.sonar_on_connect;
                     let words = self.words();
@@ -331,6 +335,12 @@ impl StudioApp {
             Action::CapturePose { from_board } => self.capture_pose(from_board),
             Action::SetPolling(polling) => self.polling = polling,
             Action::SetLanguage(language) => self.language = language,
+            Action::SetPacing(mode) => {
+                // Takes effect at the next connection (the driver is set up then).
+                if self.link.is_none() {
+                    self.plen2_pacing = mode;
+                }
+            }
             Action::ShowTab(tab) => self.tab = tab,
             Action::BoardCompare(intent) => self.board_compare(intent),
             Action::BoardConfirm => self.board_confirm(),
@@ -544,6 +554,9 @@ pub struct Remembered {
     /// The board family last used.
     #[serde(default)]
     pub family: Family,
+    /// How a PLEN2 is paced.
+    #[serde(default)]
+    pub plen2_pacing: crate::device::plen2::PacingMode,
 }
 
 /// The key under which [`Remembered`] is stored.
@@ -557,6 +570,7 @@ impl StudioApp {
             language: self.language,
             tab: self.tab,
             family: self.document.project.family,
+            plen2_pacing: self.plen2_pacing,
         }
     }
 
@@ -565,6 +579,7 @@ impl StudioApp {
         self.recent = remembered.recent;
         self.language = remembered.language;
         self.tab = remembered.tab;
+        self.plen2_pacing = remembered.plen2_pacing;
     }
 }
 

@@ -288,6 +288,19 @@ impl Language {
         }
     }
 
+    /// A PLEN2 pacing mode's name.
+    pub fn pacing(self, mode: crate::device::plen2::PacingMode) -> &'static str {
+        use crate::device::plen2::PacingMode as P;
+        match (self, mode) {
+            (Self::English, P::Fast) => "Fast",
+            (Self::English, P::Adaptive) => "Adaptive",
+            (Self::English, P::Safe) => "Safe (official)",
+            (Self::TraditionalChinese, P::Fast) => "快速",
+            (Self::TraditionalChinese, P::Adaptive) => "自動調整",
+            (Self::TraditionalChinese, P::Safe) => "安全（官方）",
+        }
+    }
+
     /// A family's name.
     pub fn family(self, family: crate::project::Family) -> &'static str {
         use crate::project::Family as F;
@@ -385,6 +398,28 @@ impl Language {
             }
             Self::TraditionalChinese => {
                 format!("無法建立備份資料夾 {}，因此沒有寫入任何資料。請確認磁碟空間與權限", folder.display())
+            }
+        }
+    }
+
+    /// The PLEN2's adaptive pacing widened its margins, in this language.
+    pub fn pacing_widened(self, widened: &crate::device::plen2::Widened) -> String {
+        use crate::device::plen2::{RING_WINDOW_BYTES, WidenReason};
+        if self == Self::English {
+            return widened.to_string();
+        }
+        let ms = |d: std::time::Duration| d.as_secs_f64() * 1000.0;
+        let window = ms(widened.window);
+        match widened.reason {
+            WidenReason::Bursts { gap } => format!(
+                "傳送節奏已放寬：連線以最長 {:.1} ms 的間隔成批送達；之後每 {window:.1} ms 最多傳送 {RING_WINDOW_BYTES} 位元組",
+                ms(gap)
+            ),
+            WidenReason::Slow { bytes_per_s } => {
+                format!("傳送節奏已放寬：連線每秒只傳送 {bytes_per_s} 位元組；之後依這個速率傳送")
+            }
+            WidenReason::ReadBackDiffered => {
+                format!("傳送節奏已放寬：讀回的位置內容不同；之後每 {window:.1} ms 最多傳送 {RING_WINDOW_BYTES} 位元組")
             }
         }
     }

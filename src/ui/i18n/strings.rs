@@ -65,6 +65,10 @@ pub struct Strings {
     pub telemetry: &'static str,
     /// "Robot".
     pub robot: &'static str,
+    /// "Pacing".
+    pub pacing: &'static str,
+    /// What the pacing modes do (hover text).
+    pub pacing_hint: &'static str,
     /// "Brake".
     pub brake: &'static str,
     /// "Sonar".
@@ -410,6 +414,8 @@ pub(super) const ENGLISH: Strings = Strings {
     drive: "Drive",
     telemetry: "Telemetry",
     robot: "Robot",
+    pacing: "Pacing",
+    pacing_hint: "How PLEN2 uploads are paced. Adaptive (default): fast, and more careful once the link shows it is late or bursty (a Bluetooth bridge) or a read-back differs. Fast: never widens. Safe: the official tool's 32 bytes, then 50 ms. Takes effect at the next connection.",
     brake: "Brake",
     sonar: "Sonar",
     pad_hint: "Drag in the pad, or hold the arrow keys; release to stop. Space or Esc: STOP.",
@@ -594,6 +600,8 @@ pub(super) const TRADITIONAL_CHINESE: Strings = Strings {
     drive: "駕駛",
     telemetry: "遙測",
     robot: "機器人",
+    pacing: "傳送節奏",
+    pacing_hint: "PLEN2 上傳的傳送節奏。自動調整（預設）：快速，當連線顯示延遲或成批送達（藍牙橋接）或讀回內容不同時放慢。快速：不放慢。安全：官方工具的每 32 位元組等待 50 ms。下次連線時生效。",
     brake: "煞車",
     sonar: "聲納",
     pad_hint: "在方塊中拖曳，或按住方向鍵；放開即停止。空白鍵或 Esc：停止。",

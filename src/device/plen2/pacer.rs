@@ -1,0 +1,498 @@
+//! When the PLEN2 driver may hand bytes to the port. The robot acknowledges
+//! nothing and loses what overflows its 64-byte ring, so the pacer predicts
+//! when the firmware reads each byte (its line, its read rate, its EEPROM
+//! waits), re-bases every prediction on when a write really left, and — in
+//! the adaptive mode — learns from replies how late or bursty the link is and
+//! widens its margins for the rest of the session. Sans-IO: time comes in.
+
+use std::collections::VecDeque;
+use std::time::{Duration, Instant};
+
+use super::driver::Pacing;
+
+/// How the driver paces an upload.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+pub enum PacingMode {
+    /// As fast as the firmware reads, from its own timing (the ring refilled
+    /// in whole batches once predicted empty); never widens.
+    Fast,
+    /// Starts fast; widens its margins when replies show the link is late or
+    /// bursty, or a read-back differs.
+    #[default]
+    Adaptive,
+    /// The official tool's pacing: 32 bytes, then 50 ms, whatever the link.
+    Safe,
+}
+
+impl PacingMode {
+    /// Every mode, in the order a picker offers them.
+    pub const ALL: [Self; 3] = [Self::Fast, Self::Adaptive, Self::Safe];
+
+    /// The command line's word for it.
+    pub fn word(self) -> &'static str {
+        match self {
+            Self::Fast => "fast",
+            Self::Adaptive => "adaptive",
+            Self::Safe => "safe",
+        }
+    }
+}
+
+impl std::str::FromStr for PacingMode {
+    type Err = String;
+
+    fn from_str(text: &str) -> Result<Self, String> {
+        Self::ALL
+            .into_iter()
+            .find(|mode| mode.word() == text.trim().to_ascii_lowercase())
+            .ok_or_else(|| format!("{text:?} is not a pacing: use fast, adaptive or safe"))
+    }
+}
+
+/// Why the adaptive pacer widened its margins.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum WidenReason {
+    /// A reply came in clumps (more bytes at once than a serial line carries)
+    /// after gaps this long: the link holds bytes back and delivers them
+    /// together (a Bluetooth bridge's connection events, a loaded USB stack).
+    Bursts {
+        /// The longest gap before a clump.
+        gap: Duration,
+    },
+    /// Replies come slower than the line rate the driver was given: it now
+    /// predicts with the measured rate.
+    Slow {
+        /// The measured rate, bytes a second.
+        bytes_per_s: u32,
+    },
+    /// A slot read back different from what was written.
+    ReadBackDiffered,
+}
+
+/// The pacer widened its margins: from now on every byte is assumed to arrive
+/// up to `window` late, and no more is in flight than the ring holds then.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Widened {
+    /// The longest delivery delay the pacer now allows for.
+    pub window: Duration,
+    /// What it saw.
+    pub reason: WidenReason,
+}
+
+impl std::fmt::Display for Widened {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let ms = |d: Duration| d.as_secs_f64() * 1000.0;
+        match self.reason {
+            WidenReason::Bursts { gap } => write!(
+                f,
+                "pacing widened: the link delivers in bursts up to {:.1} ms apart; from now on every byte may arrive {:.1} ms late and no more than {RING_WINDOW_BYTES} are in flight",
+                ms(gap),
+                ms(self.window)
+            ),
+            WidenReason::Slow { bytes_per_s } => {
+                write!(f, "pacing widened: the link carries {bytes_per_s} bytes/s; pacing for that rate from now on")
+            }
+            WidenReason::ReadBackDiffered => write!(
+                f,
+                "pacing widened: a slot read back different; from now on every byte may arrive {:.1} ms late and no more than {RING_WINDOW_BYTES} are in flight",
+                ms(self.window)
+            ),
+        }
+    }
+}
+
+/// Bytes the widened pacer lets be in flight, not yet read by the firmware
+/// even if each arrived as late as the window allows (the rest of the
+/// 64-byte ring is slack for a STOP).
+pub const RING_WINDOW_BYTES: usize = 56;
+/// The official tool's pacing: this many bytes…
+pub const SAFE_BURST: usize = 32;
+/// …then this long.
+pub const SAFE_PAUSE: Duration = Duration::from_millis(50);
+/// A gap inside a reply longer than this, before a clump, shows a link that
+/// holds bytes back (a clean USB line carries a reply in 64-byte packets well
+/// under a millisecond apart; a thread's hiccup seldom lasts this long).
+pub const CLUMP_GAP: Duration = Duration::from_millis(5);
+/// More bytes than this arriving at once is a clump: two USB packets.
+pub const CLUMP_BYTES: usize = 128;
+/// A reply this long tells the line's rate.
+const RATE_SAMPLE_BYTES: usize = 1024;
+/// The window a read-back difference widens to when nothing else was seen.
+pub const DIFFERENCE_WINDOW: Duration = Duration::from_millis(25);
+/// The widest window: beyond it the link is not a serial line any more.
+pub const MAX_WINDOW: Duration = Duration::from_millis(200);
+
+/// One reply being watched: how it arrived.
+#[derive(Debug)]
+struct Watched {
+    /// When the robot should have begun printing it (the getter read).
+    expected: Instant,
+    first: Option<Instant>,
+    last: Option<Instant>,
+    /// Bytes after the first arrival (for the rate).
+    later_bytes: usize,
+    /// The clump arriving now: its bytes and the gap before it.
+    clump: (usize, Duration),
+    /// The longest gap before a clump.
+    max_gap: Duration,
+}
+
+impl Watched {
+    fn close_clump(&mut self) {
+        let (bytes, gap) = self.clump;
+        if bytes > CLUMP_BYTES && gap > CLUMP_GAP {
+            self.max_gap = self.max_gap.max(gap);
+        }
+    }
+}
+
+/// The pacer's state (see the module documentation).
+#[derive(Debug)]
+pub struct Pacer {
+    mode: PacingMode,
+    timing: Pacing,
+    line_byte: Duration,
+    /// Predicted read time of each byte sent and not yet read.
+    in_ring: VecDeque<Instant>,
+    /// When the firmware reads the next byte sent (EEPROM waits included).
+    next_read: Option<Instant>,
+    /// When the line has carried everything sent.
+    line_free: Option<Instant>,
+    /// Writes handed out whose leaving is not yet reported: (planned, bytes).
+    unconfirmed: VecDeque<(Instant, usize)>,
+    /// Widened: how late any byte may arrive (predictions assume that late).
+    window: Option<Duration>,
+    /// Safe: when the next burst may go, and bytes left in this one.
+    safe_open_at: Option<Instant>,
+    safe_left: usize,
+    watched: Option<Watched>,
+    /// A reply long enough to show the link has been watched.
+    measured: bool,
+    widened: VecDeque<Widened>,
+}
+
+impl Pacer {
+    /// A pacer for a robot with `timing`, on a line of `line_baud`.
+    pub fn new(mode: PacingMode, timing: Pacing, line_baud: u32) -> Self {
+        Self {
+            mode,
+            timing,
+            line_byte: Duration::from_secs_f64(10.0 / f64::from(line_baud.max(1))),
+            in_ring: VecDeque::new(),
+            next_read: None,
+            line_free: None,
+            unconfirmed: VecDeque::new(),
+            window: None,
+            safe_open_at: None,
+            safe_left: SAFE_BURST,
+            watched: None,
+            measured: false,
+            widened: VecDeque::new(),
+        }
+    }
+
+    /// The mode.
+    pub fn mode(&self) -> PacingMode {
+        self.mode
+    }
+
+    /// Whether the pacer still has to see a reply before it knows the link
+    /// (only the adaptive pacing learns).
+    pub fn wants_measurement(&self) -> bool {
+        self.mode == PacingMode::Adaptive && !self.measured
+    }
+
+    /// The window the pacer allows for, once widened.
+    pub fn window(&self) -> Option<Duration> {
+        self.window
+    }
+
+    /// When the firmware is predicted to have read everything sent so far.
+    pub fn firmware_free(&self) -> Option<Instant> {
+        self.next_read
+    }
+
+    /// Forgets what the firmware has read by `now`.
+    fn settle(&mut self, now: Instant) {
+        while self.in_ring.front().is_some_and(|read| *read <= now) {
+            self.in_ring.pop_front();
+        }
+    }
+
+    /// How many bytes may be handed to the port now. `urgent` (STOP) skips
+    /// the official pause, never the ring.
+    pub fn room(&mut self, now: Instant, urgent: bool) -> usize {
+        self.settle(now);
+        if self.mode == PacingMode::Safe && !urgent {
+            return if self.safe_open_at.is_none_or(|open| now >= open) { self.safe_left } else { 0 };
+        }
+        if self.window.is_some() {
+            // Widened: every byte predicted as if it arrived as late as the
+            // window allows; what it then predicts unread must fit the ring.
+            return RING_WINDOW_BYTES.saturating_sub(self.in_ring.len());
+        }
+        // Refill in whole batches, once the ring is predicted empty: a batch
+        // delivered late together with the next still fits (the slack).
+        if self.in_ring.is_empty() { self.timing.ring_budget as usize } else { 0 }
+    }
+
+    /// When [`Pacer::room`] is next above zero, from `now`.
+    pub fn next_room(&self, now: Instant) -> Instant {
+        if self.mode == PacingMode::Safe {
+            return self.safe_open_at.map_or(now, |open| open.max(now));
+        }
+        let at = if self.window.is_some() {
+            // Room for one byte once all but RING_WINDOW_BYTES − 1 are read.
+            let must_read = (self.in_ring.len() + 1).saturating_sub(RING_WINDOW_BYTES);
+            must_read.checked_sub(1).and_then(|index| self.in_ring.get(index).copied())
+        } else {
+            self.in_ring.back().copied()
+        };
+        at.map_or(now, |at| at.max(now))
+    }
+
+    /// A byte handed out at `now`; `busy` is the EEPROM wait when it ends a
+    /// command. Returns when the firmware is predicted to have read it.
+    pub fn place(&mut self, now: Instant, busy: Duration) -> Instant {
+        let arrives = self.line_free.map_or(now, |free| free.max(now)) + self.line_byte;
+        self.line_free = Some(arrives);
+        // Widened: as if it arrived as late as the link may deliver it. A
+        // firmware that reads an earlier byte earlier is never behind this.
+        let arrives = arrives + self.window.unwrap_or(Duration::ZERO);
+        let read = self.next_read.map_or(arrives, |next| next.max(arrives));
+        self.in_ring.push_back(read);
+        self.next_read = Some(read + self.timing.byte_read + busy);
+        read
+    }
+
+    /// The firmware's next read moves to `at` (a reply just ended: it is idle).
+    pub fn idle_from(&mut self, at: Instant) {
+        self.next_read = Some(at);
+        self.in_ring.clear();
+    }
+
+    /// A write of `bytes` was handed to the port at `now`.
+    pub fn handed(&mut self, now: Instant, bytes: usize) {
+        self.unconfirmed.push_back((now, bytes));
+        if self.mode == PacingMode::Safe {
+            self.safe_left = self.safe_left.saturating_sub(bytes);
+            if self.safe_left == 0 {
+                self.safe_open_at = Some(now + SAFE_PAUSE);
+                self.safe_left = SAFE_BURST;
+            }
+        }
+    }
+
+    /// The oldest write handed out left at `at`. A write that left late moves
+    /// every prediction made from its planned time by as much; returns the
+    /// delay and the planned time, for the driver's own deadlines.
+    pub fn written(&mut self, at: Instant) -> Option<(Instant, Duration)> {
+        let (planned, _) = self.unconfirmed.pop_front()?;
+        let delay = at.saturating_duration_since(planned);
+        if delay.is_zero() {
+            return None;
+        }
+        let shift = |time: &mut Instant| {
+            if *time >= planned {
+                *time += delay;
+            }
+        };
+        self.in_ring.iter_mut().for_each(shift);
+        self.next_read.iter_mut().for_each(shift);
+        self.line_free.iter_mut().for_each(shift);
+        self.safe_open_at.iter_mut().for_each(shift);
+        for (time, _) in &mut self.unconfirmed {
+            shift(time);
+        }
+        if let Some(watched) = &mut self.watched {
+            shift(&mut watched.expected);
+        }
+        Some((planned, delay))
+    }
+
+    /// A getter's reply is awaited: the robot should begin printing it at `expected`.
+    pub fn watch_reply(&mut self, expected: Instant) {
+        self.watched = Some(Watched {
+            expected,
+            first: None,
+            last: None,
+            later_bytes: 0,
+            clump: (0, Duration::ZERO),
+            max_gap: Duration::ZERO,
+        });
+    }
+
+    /// `bytes` of the watched reply arrived at `now`.
+    pub fn reply_bytes(&mut self, now: Instant, bytes: usize) {
+        let Some(watched) = &mut self.watched else { return };
+        match watched.last {
+            // Together with the bytes before: one clump.
+            Some(last) if last == now => watched.clump.0 += bytes,
+            Some(last) => {
+                watched.close_clump();
+                watched.clump = (bytes, now.saturating_duration_since(last));
+            }
+            None => watched.clump = (bytes, Duration::ZERO),
+        }
+        if watched.first.is_some() {
+            watched.later_bytes += bytes;
+        }
+        watched.first.get_or_insert(now);
+        watched.last = Some(now);
+    }
+
+    /// The watched reply ended whole: what its arrival says about the link.
+    /// Only its variation matters: a constant delay shifts every byte alike
+    /// and bunches none.
+    pub fn reply_ended(&mut self) {
+        let Some(mut watched) = self.watched.take() else { return };
+        watched.close_clump();
+        let (Some(first), Some(last)) = (watched.first, watched.last) else { return };
+        self.measured |= watched.later_bytes >= RATE_SAMPLE_BYTES;
+        if !watched.max_gap.is_zero() {
+            self.widen(watched.max_gap, WidenReason::Bursts { gap: watched.max_gap });
+            return;
+        }
+        // A smooth reply slower than the line the driver was given: a slower line.
+        let took = last.saturating_duration_since(first);
+        if watched.later_bytes >= RATE_SAMPLE_BYTES && !took.is_zero() {
+            let measured = took / u32::try_from(watched.later_bytes).unwrap_or(u32::MAX);
+            if self.mode == PacingMode::Adaptive && measured > self.line_byte.mul_f64(1.25) {
+                self.line_byte = measured;
+                // A byte takes 10 bits: bytes a second from the time per byte.
+                #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+                let bytes_per_s = (1.0 / measured.as_secs_f64()).round() as u32;
+                let window = self.window.unwrap_or(Duration::ZERO);
+                self.widened.push_back(Widened { window, reason: WidenReason::Slow { bytes_per_s } });
+            }
+        }
+    }
+
+    /// A slot read back different: widen (twice as wide each time).
+    pub fn read_back_differed(&mut self) {
+        let window = self.window.map_or(DIFFERENCE_WINDOW, |window| window * 2);
+        self.widen(window, WidenReason::ReadBackDiffered);
+    }
+
+    /// Adaptive only: allow for a delivery delay of `seen`, for the rest of the session.
+    fn widen(&mut self, seen: Duration, reason: WidenReason) {
+        if self.mode != PacingMode::Adaptive {
+            return;
+        }
+        // Beyond the longest delay seen — a later one may be longer still, and
+        // the host's own scheduling adds to it: a quarter more (at least 2 ms), and 1 ms.
+        let wanted = (seen + (seen / 4).max(Duration::from_millis(2)) + Duration::from_millis(1)).min(MAX_WINDOW);
+        if self.window.is_some_and(|window| window >= wanted) {
+            return;
+        }
+        self.window = Some(wanted);
+        self.widened.push_back(Widened { window: wanted, reason });
+    }
+
+    /// What the pacer has to say since last asked.
+    pub fn poll_widened(&mut self) -> Option<Widened> {
+        self.widened.pop_front()
+    }
+
+    /// The link ended: nothing is in flight.
+    pub fn reset(&mut self) {
+        self.in_ring.clear();
+        self.unconfirmed.clear();
+        self.watched = None;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn pacer(mode: PacingMode) -> Pacer {
+        Pacer::new(mode, Pacing::default(), 2_000_000)
+    }
+
+    #[test]
+    fn a_write_that_leaves_late_moves_every_later_prediction() {
+        let t0 = Instant::now();
+        let mut pacer = pacer(PacingMode::Fast);
+        assert_eq!(pacer.room(t0, false), 24);
+        let reads: Vec<Instant> = (0..24).map(|_| pacer.place(t0, Duration::ZERO)).collect();
+        pacer.handed(t0, 24);
+        let on_time = pacer.next_room(t0);
+        assert_eq!(on_time, reads[23]);
+        // The write really left 8 ms later than planned.
+        let late = Duration::from_millis(8);
+        assert_eq!(pacer.written(t0 + late), Some((t0, late)));
+        assert_eq!(pacer.next_room(t0), on_time + late, "the next batch waits for the robot to read this one");
+        assert_eq!(pacer.room(on_time, false), 0, "on the old schedule the ring is still full");
+        assert_eq!(pacer.room(on_time + late, false), 24);
+        // A write on time changes nothing.
+        pacer.place(on_time + late, Duration::ZERO);
+        pacer.handed(on_time + late, 1);
+        assert_eq!(pacer.written(on_time + late), None);
+    }
+
+    #[test]
+    fn the_official_pacing_is_32_bytes_then_50_ms() {
+        let t0 = Instant::now();
+        let mut pacer = pacer(PacingMode::Safe);
+        assert_eq!(pacer.room(t0, false), 32);
+        for _ in 0..32 {
+            pacer.place(t0, Duration::ZERO);
+        }
+        pacer.handed(t0, 32);
+        assert_eq!(pacer.room(t0 + Duration::from_millis(49), false), 0);
+        assert!(pacer.room(t0 + Duration::from_millis(49), true) > 0, "a STOP does not wait for the pause");
+        assert_eq!(pacer.room(t0 + SAFE_PAUSE, false), 32);
+    }
+
+    #[test]
+    fn a_slow_smooth_reply_is_a_slower_line_and_a_hiccup_is_not_a_burst() {
+        let t0 = Instant::now();
+        let mut pacer = pacer(PacingMode::Adaptive);
+        // 64-byte pieces every 5.6 ms: a 115200-baud line, smooth.
+        pacer.watch_reply(t0);
+        for piece in 0..30u32 {
+            pacer.reply_bytes(t0 + Duration::from_micros(5_556) * piece, 64);
+        }
+        pacer.reply_ended();
+        let widened = pacer.poll_widened().unwrap();
+        assert!(matches!(widened.reason, WidenReason::Slow { bytes_per_s } if (11_400..11_600).contains(&bytes_per_s)));
+        assert_eq!(pacer.window(), None, "no bursts: no window");
+        // A clean reply with one 6 ms hiccup before a single packet: not a clump.
+        pacer.watch_reply(t0);
+        pacer.reply_bytes(t0, 64);
+        pacer.reply_bytes(t0 + Duration::from_millis(6), 64);
+        pacer.reply_ended();
+        assert_eq!(pacer.poll_widened(), None);
+    }
+
+    #[test]
+    fn a_clumpy_reply_widens_the_adaptive_pacer_and_not_the_fast_one() {
+        for mode in [PacingMode::Adaptive, PacingMode::Fast] {
+            let t0 = Instant::now();
+            let mut pacer = pacer(mode);
+            pacer.watch_reply(t0);
+            for event in 0..3u32 {
+                // A Bluetooth bridge's events: 1,464 bytes each, 15 ms apart.
+                pacer.reply_bytes(t0 + Duration::from_millis(15) * event, 1464);
+            }
+            pacer.reply_ended();
+            if mode == PacingMode::Adaptive {
+                let widened = pacer.poll_widened().unwrap();
+                assert_eq!(widened.reason, WidenReason::Bursts { gap: Duration::from_millis(15) });
+                assert_eq!(widened.window, Duration::from_micros(19_750));
+                assert!(widened.to_string().contains("bursts up to 15.0 ms apart"), "{widened}");
+                // Now every byte is predicted 19.75 ms late, and at most 56 are in flight.
+                assert_eq!(pacer.room(t0, false), 56);
+                let reads: Vec<Instant> = (0..56).map(|_| pacer.place(t0, Duration::ZERO)).collect();
+                assert!(reads[0] >= t0 + Duration::from_micros(19_750));
+                assert_eq!(pacer.room(t0, false), 0);
+                assert_eq!(pacer.next_room(t0), reads[0], "one byte read makes room for one");
+                assert_eq!(pacer.room(reads[9], false), 10);
+            } else {
+                assert_eq!(pacer.poll_widened(), None);
+                assert_eq!(pacer.window(), None);
+            }
+        }
+    }
+}
