@@ -9,7 +9,7 @@
 
 mod common;
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
@@ -34,6 +34,16 @@ fn run(args: &[&str], within: Duration) -> (Option<i32>, String, String, Duratio
     let reader = std::thread::spawn(move || std::io::read_to_string(stdout).unwrap_or_default());
     let (code, stderr) = ended(child, within);
     (code, reader.join().unwrap(), stderr, began.elapsed())
+}
+
+/// `import --yes` of `file` with the backup in `dir/backups`; (exit code, stderr, the backup folder).
+fn import_with_backup(port: &str, file: &Path, dir: &Path, within: Duration) -> (Option<i32>, String, PathBuf) {
+    let backups = dir.join("backups");
+    std::fs::create_dir(&backups).unwrap();
+    let args =
+        ["import", "--port", port, "--in", file.to_str().unwrap(), "--yes", "--backup-dir", backups.to_str().unwrap()];
+    let (code, _, stderr, _) = run(&args, within);
+    (code, stderr, backups)
 }
 
 fn motion_json(dir: &Path) -> String {
@@ -147,21 +157,7 @@ fn a_thousand_actions_export_and_import_at_115200_baud_with_default_options() {
     assert_eq!(code, Some(0), "{stderr}");
     assert_eq!(project::load(&out).unwrap().servo.actions, thousand_actions().actions);
 
-    let backups = dir.path().join("backups");
-    std::fs::create_dir(&backups).unwrap();
-    let (code, _, stderr, _) = run(
-        &[
-            "import",
-            "--port",
-            &board.port,
-            "--in",
-            out.to_str().unwrap(),
-            "--yes",
-            "--backup-dir",
-            backups.to_str().unwrap(),
-        ],
-        Duration::from_secs(90),
-    );
+    let (code, stderr, _) = import_with_backup(&board.port, &out, dir.path(), Duration::from_secs(90));
     assert_eq!(code, Some(0), "{stderr}");
     assert!(stderr.contains("wrote 1003 item(s)") && stderr.contains("verified"), "{stderr}");
 }
@@ -238,21 +234,7 @@ fn a_failed_upload_says_what_it_left_and_how_to_restore_the_backup() {
     next.project_id = 77;
     let next_path = dir.path().join("next.json");
     project::save(&next_path, &Project::servo(next)).unwrap();
-    let backups = dir.path().join("backups");
-    std::fs::create_dir(&backups).unwrap();
-    let (code, _, stderr, _) = run(
-        &[
-            "import",
-            "--port",
-            &board.port,
-            "--in",
-            next_path.to_str().unwrap(),
-            "--yes",
-            "--backup-dir",
-            backups.to_str().unwrap(),
-        ],
-        Duration::from_secs(30),
-    );
+    let (code, stderr, backups) = import_with_backup(&board.port, &next_path, dir.path(), Duration::from_secs(30));
     assert_eq!(code, Some(1), "{stderr}");
     assert!(stderr.contains("action 42 \"揮手\": the board refused it"), "{stderr}");
     assert!(stderr.contains("the device may now be half written: 4 of 11 items reached it"), "{stderr}");

@@ -141,25 +141,7 @@ fn muting_cable(pty: &str) -> (String, crossbeam_channel::Sender<()>, crossbeam_
 fn a_link_cut_mid_drive_ends_the_command_at_once_and_the_base_stops_by_its_dead_man() {
     let base = base(RflexSimConfig::default());
     let (address, pull) = cable(&base.port_name);
-    let mut child = Command::new(EXE)
-        .args(["rflex", "drive", "--port", &address, "--speed", "0.4", "--seconds", "20"])
-        .stdin(Stdio::null())
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    // Wait until the base is driving (its own events say so).
-    let deadline = Instant::now() + Duration::from_secs(10);
-    let mut motion = 0;
-    while motion < 5 {
-        match base.events().recv_deadline(deadline) {
-            Ok(LinkEvent::Driver(RflexSimEvent::Received(servo_studio::protocol::rflex::Command::AxisSetDir {
-                ..
-            }))) => motion += 1,
-            Ok(_) => {}
-            Err(_) => panic!("the base never got a motion command"),
-        }
-    }
+    let mut child = driving(&base, &address);
     let mut message = child.stderr.take().unwrap();
     let (exited_tx, exited) = crossbeam_channel::bounded(1);
     std::thread::spawn(move || {
