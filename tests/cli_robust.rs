@@ -22,8 +22,14 @@ const EXE: &str = env!("CARGO_BIN_EXE_servo-studio");
 
 /// Runs `servo-studio ARGS` with a watchdog; (exit code, stdout, stderr, how long).
 fn run(args: &[&str], within: Duration) -> (Option<i32>, String, String, Duration) {
+    run_in(Path::new(env!("CARGO_TARGET_TMPDIR")), args, within)
+}
+
+/// [`run`] in the folder `cwd` (where a backup goes by default).
+fn run_in(cwd: &Path, args: &[&str], within: Duration) -> (Option<i32>, String, String, Duration) {
     let began = Instant::now();
     let mut child = Command::new(EXE)
+        .current_dir(cwd)
         .args(args)
         .stdin(Stdio::null())
         .stdout(Stdio::piped())
@@ -245,8 +251,8 @@ fn a_failed_upload_says_what_it_left_and_how_to_restore_the_backup() {
     let restore: Vec<&str> = restore_line.split_once(": servo-studio ").unwrap().1.split(' ').collect();
     assert_eq!(restore, ["import", "--port", &board.port, "--in", backup.to_str().unwrap(), "--force", "--yes"]);
 
-    // The advice works: the board holds what it held.
-    let (code, _, stderr, _) = run(&restore, Duration::from_secs(30));
+    // The advice works: the board holds what it held (its own backup goes where it runs).
+    let (code, _, stderr, _) = run_in(dir.path(), &restore, Duration::from_secs(30));
     assert_eq!(code, Some(0), "{stderr}");
     let after = dir.path().join("after.json");
     let (code, _, stderr, _) =

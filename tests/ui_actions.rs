@@ -45,14 +45,14 @@ fn preview_moves_the_sliders_along_the_action_without_a_board() {
     let mut harness = harness(fixture());
     harness.get_by_label("Preview").click();
     harness.run_steps(1);
-    let (_, started) = harness.state().preview.unwrap();
+    let (_, started) = harness.state().servo.preview.unwrap();
     // Half-way through servo 1's 500 ms move from home 0° to -90°.
-    harness.state_mut().advance_preview(started + Duration::from_millis(250));
-    assert_eq!(harness.state().pose.get(&1), Some(&-45));
-    harness.state_mut().advance_preview(started + Duration::from_millis(1000));
-    assert_eq!(harness.state().pose.get(&1), Some(&-90));
-    assert_eq!(harness.state().pose.get(&2), Some(&45));
-    assert!(harness.state().preview.is_none(), "the preview ends after the last step");
+    harness.state_mut().advance(started + Duration::from_millis(250));
+    assert_eq!(harness.state().servo.pose.get(&1), Some(&-45));
+    harness.state_mut().advance(started + Duration::from_millis(1000));
+    assert_eq!(harness.state().servo.pose.get(&1), Some(&-90));
+    assert_eq!(harness.state().servo.pose.get(&2), Some(&45));
+    assert!(harness.state().servo.preview.is_none(), "the preview ends after the last step");
 }
 
 #[test]
@@ -62,7 +62,7 @@ fn play_on_board_moves_the_emulated_servos() {
     harness.run_steps(2);
     harness.get_by_label("Play on board").click();
     harness.run_steps(2);
-    let requester = harness.state().servo().unwrap().requester();
+    let requester = harness.state().servo_board().unwrap().requester();
     let deadline = Instant::now() + Duration::from_secs(5);
     loop {
         let servos = requester.query_servos(255).unwrap();

@@ -14,7 +14,7 @@ use servo_studio::device::servo::ServoImage;
 use servo_studio::link::no_waker;
 use servo_studio::project::{Project, Servo, ServoProject};
 use servo_studio::sim::{Faults, SimConfig};
-use servo_studio::ui::{Action, BoardLink, BoardResult, StudioApp};
+use servo_studio::ui::{Action, BoardLink, BoardResult, ServoAction, StudioApp};
 
 fn harness(app: StudioApp) -> Harness<'static, StudioApp> {
     Harness::builder()
@@ -38,6 +38,19 @@ fn frames(harness: &mut Harness<'static, StudioApp>) {
     harness.run_steps(3);
 }
 
+/// The last result's failure or problems, as the panel words them.
+fn shown_error(app: &StudioApp) -> String {
+    let result = app.servo.board_result.as_ref().expect("a result");
+    result.error_text(app.language).unwrap_or_else(|| panic!("expected a failure, got {result:?}"))
+}
+
+/// The pending comparison's differences, as the panel words them.
+fn shown_differences(app: &StudioApp) -> Vec<String> {
+    let pending = app.servo.pending.as_ref().expect("a comparison");
+    let differences = pending.differences.as_ref().expect("the project fits in board records");
+    differences.iter().map(|difference| app.language.difference(difference)).collect()
+}
+
 fn servos_only() -> ServoProject {
     let mut left = Servo::new(1, "左肩");
     left.min_deg = -90;
@@ -55,10 +68,10 @@ fn composed(board: &ServoProject, config: SimConfig, data_dir: &std::path::Path)
     let mut harness = harness(app);
     frames(&mut harness);
     // Compose through the UI: two poses.
-    harness.state_mut().apply(Action::SetPose { servo_id: 1, degree: -40 });
+    harness.state_mut().apply(Action::Servo(ServoAction::SetPose { servo_id: 1, degree: -40 }));
     harness.get_by_label("Capture pose").click();
     frames(&mut harness);
-    harness.state_mut().apply(Action::SetPose { servo_id: 2, degree: 25 });
+    harness.state_mut().apply(Action::Servo(ServoAction::SetPose { servo_id: 2, degree: 25 }));
     harness.get_by_label("Capture pose").click();
     frames(&mut harness);
     assert_eq!(harness.state().document.project.servo.actions.len(), 2);
@@ -76,17 +89,17 @@ fn upload_then_read_back_round_trips_and_keeps_a_backup() {
 
     harness.get_by_label("Upload to board").click();
     frames(&mut harness);
-    run_until(&mut harness, "the comparison", |app| app.pending.is_some());
-    let differences = harness.state().pending.as_ref().unwrap().differences.clone();
+    run_until(&mut harness, "the comparison", |app| app.servo.pending.is_some());
+    let differences = shown_differences(harness.state());
     assert!(differences.iter().any(|d| d.contains("project id")), "{differences:?}");
     harness.get_by_label("Back up the board, then overwrite it").click();
     frames(&mut harness);
-    run_until(&mut harness, "the upload", |app| app.board_result.is_some());
-    match harness.state().board_result.clone().unwrap() {
+    run_until(&mut harness, "the upload", |app| app.servo.board_result.is_some());
+    match harness.state().servo.board_result.clone().unwrap() {
         BoardResult::Uploaded { items, backup } => {
             // clear, project id, servo parameters, 2 actions
             assert_eq!(items.len(), 5, "{items:?}");
-            assert!(items.iter().any(|item| item.starts_with("action 2")), "{items:?}");
+            assert!(items.iter().any(|item| item.to_string().starts_with("action 2")), "{items:?}");
             let backup = backup.unwrap();
             assert!(backup.starts_with(data.path().join("backups")));
             assert_eq!(servo_studio::project::load(&backup).unwrap().servo, previous);
@@ -98,8 +111,8 @@ fn upload_then_read_back_round_trips_and_keeps_a_backup() {
     // Read it back: identical, and the project is replaced by what the board holds.
     harness.get_by_label("Read board into project").click();
     frames(&mut harness);
-    run_until(&mut harness, "the comparison", |app| app.pending.is_some());
-    assert_eq!(harness.state().pending.as_ref().unwrap().differences, Vec::<String>::new());
+    run_until(&mut harness, "the comparison", |app| app.servo.pending.is_some());
+    assert_eq!(shown_differences(harness.state()), Vec::<String>::new());
     assert!(harness.query_by_label("The board already holds exactly this project.").is_some());
     harness.get_by_label("Replace the project with the board").click();
     frames(&mut harness);
@@ -117,14 +130,18 @@ fn an_upload_with_a_refused_item_shows_that_items_error() {
     let mut harness = composed(&ServoProject::default(), config, data.path());
     harness.get_by_label("Upload to board").click();
     frames(&mut harness);
-    run_until(&mut harness, "the comparison", |app| app.pending.is_some());
+    run_until(&mut harness, "the comparison", |app| app.servo.pending.is_some());
     harness.get_by_label("Back up the board, then overwrite it").click();
     frames(&mut harness);
-    run_until(&mut harness, "the upload", |app| app.board_result.is_some());
-    match harness.state().board_result.clone().unwrap() {
-        BoardResult::Failed { items, error } => {
-            assert!(error.contains("action 2 \"Pose 2\": the board refused it"), "{error}");
-            assert!(items.iter().any(|item| item.starts_with("action 1")), "action 1 was written: {items:?}");
+    run_until(&mut harness, "the upload", |app| app.servo.board_result.is_some());
+    let error = shown_error(harness.state());
+    assert!(error.contains("action 2 \"Pose 2\": the board refused it"), "{error}");
+    match harness.state().servo.board_result.clone().unwrap() {
+        BoardResult::Failed { items, .. } => {
+            assert!(
+                items.iter().any(|item| item.to_string().starts_with("action 1")),
+                "action 1 was written: {items:?}"
+            );
         }
         other => panic!("expected a failure, got {other:?}"),
     }
@@ -142,11 +159,11 @@ fn an_invalid_project_is_not_uploaded() {
         .apply(Action::Edit { edit: servo_studio::project::Edit::ReplaceAll(Box::new(broken)), coalesce: None });
     harness.get_by_label("Upload to board").click();
     frames(&mut harness);
-    assert!(harness.state().job.is_none(), "no board operation starts");
-    match harness.state().board_result.clone().unwrap() {
-        BoardResult::Invalid { error } => assert!(error.contains("servo 77 does not exist"), "{error}"),
-        other => panic!("expected the problems, got {other:?}"),
-    }
+    assert!(harness.state().operation.is_none(), "no board operation starts");
+    assert!(matches!(harness.state().servo.board_result, Some(BoardResult::Invalid { .. })));
+    let error = shown_error(harness.state());
+    assert!(error.contains("servo 77 does not exist"), "{error}");
+    assert!(harness.query_by_label_contains("servo 77 does not exist").is_some(), "the panel shows it");
     assert!(harness.query_by_label("Upload anyway").is_some(), "the user may restore it as it is");
 }
 
@@ -170,16 +187,19 @@ fn a_refused_item_is_named_in_traditional_chinese() {
     frames(&mut harness);
     harness.get_by_label("上傳至控制板").click();
     frames(&mut harness);
-    run_until(&mut harness, "the comparison", |app| app.pending.is_some());
-    let differences = &harness.state().pending.as_ref().unwrap().differences;
+    run_until(&mut harness, "the comparison", |app| app.servo.pending.is_some());
+    let differences = shown_differences(harness.state());
     assert!(differences.iter().any(|d| d == "動作 1：控制板上沒有"), "{differences:?}");
     harness.get_by_label("備份控制板後覆寫").click();
     frames(&mut harness);
-    run_until(&mut harness, "the upload", |app| app.board_result.is_some());
-    match harness.state().board_result.clone().unwrap() {
-        BoardResult::Failed { items, error } => {
-            assert!(error.starts_with("動作 2 \"Pose 2\"：控制板拒絕了"), "{error}");
-            assert!(items.iter().any(|item| item.starts_with("動作 1")), "{items:?}");
+    run_until(&mut harness, "the upload", |app| app.servo.board_result.is_some());
+    let error = shown_error(harness.state());
+    assert!(error.starts_with("動作 2 \"Pose 2\"：控制板拒絕了"), "{error}");
+    assert!(harness.query_by_label_contains("控制板拒絕了").is_some(), "the panel shows it");
+    match harness.state().servo.board_result.clone().unwrap() {
+        BoardResult::Failed { items, .. } => {
+            let language = servo_studio::ui::Language::TraditionalChinese;
+            assert!(items.iter().any(|item| language.item(item).starts_with("動作 1")), "{items:?}");
         }
         other => panic!("expected a failure, got {other:?}"),
     }
@@ -195,14 +215,11 @@ fn an_invalid_project_is_explained_in_traditional_chinese() {
         .state_mut()
         .apply(Action::Edit { edit: servo_studio::project::Edit::ReplaceAll(Box::new(broken)), coalesce: None });
     harness.state_mut().apply(Action::SetLanguage(servo_studio::ui::Language::TraditionalChinese));
-    harness.state_mut().apply(Action::BoardCompare(servo_studio::ui::BoardIntent::Upload));
-    match harness.state().board_result.clone().unwrap() {
-        BoardResult::Invalid { error } => {
-            assert!(error.contains("動作 1 \"Pose 1\"，步驟 1：舵機 77 不存在"), "{error}");
-            assert!(error.starts_with("專案有 1 個錯誤"), "{error}");
-        }
-        other => panic!("expected the problems, got {other:?}"),
-    }
+    harness.state_mut().apply(Action::Servo(ServoAction::BoardCompare(servo_studio::ui::BoardIntent::Upload)));
+    assert!(matches!(harness.state().servo.board_result, Some(BoardResult::Invalid { .. })));
+    let error = shown_error(harness.state());
+    assert!(error.contains("動作 1 \"Pose 1\"，步驟 1：舵機 77 不存在"), "{error}");
+    assert!(error.starts_with("專案有 1 個錯誤"), "{error}");
 }
 
 #[test]
@@ -216,29 +233,26 @@ fn upload_anyway_restores_a_board_image_with_authoring_problems_exactly() {
     app.apply(Action::ShowTab(servo_studio::ui::Tab::Board));
     let mut harness = harness(app);
     // Wait for the board's status, so the bar's text no longer changes under the pointer.
-    run_until(&mut harness, "the board's status", |app| app.servo().is_some_and(|servo| servo.memory.is_some()));
+    run_until(&mut harness, "the board's status", |app| app.servo_board().is_some_and(|servo| servo.memory.is_some()));
     harness.get_by_label("Upload to board").click();
     frames(&mut harness);
-    match harness.state().board_result.clone().unwrap() {
-        BoardResult::Invalid { error } => {
-            assert!(error.contains("servo 1 already has a step in this action"), "{error}");
-            assert!(error.contains("macro 999 does not exist"), "{error}");
-        }
-        other => panic!("expected the problems, got {other:?}"),
-    }
-    assert!(harness.state().job.is_none(), "nothing starts until the user says so");
+    assert!(matches!(harness.state().servo.board_result, Some(BoardResult::Invalid { .. })));
+    let error = shown_error(harness.state());
+    assert!(error.contains("servo 1 already has a step in this action"), "{error}");
+    assert!(error.contains("macro 999 does not exist"), "{error}");
+    assert!(harness.state().operation.is_none(), "nothing starts until the user says so");
     harness.get_by_label("Upload anyway").click();
     frames(&mut harness);
-    run_until(&mut harness, "the comparison", |app| app.pending.is_some());
+    run_until(&mut harness, "the comparison", |app| app.servo.pending.is_some());
     harness.get_by_label("Back up the board, then overwrite it").click();
     frames(&mut harness);
-    run_until(&mut harness, "the upload", |app| app.board_result.is_some() && app.job.is_none());
+    run_until(&mut harness, "the upload", |app| app.servo.board_result.is_some() && app.operation.is_none());
     assert!(
-        matches!(harness.state().board_result, Some(BoardResult::Uploaded { .. })),
+        matches!(harness.state().servo.board_result, Some(BoardResult::Uploaded { .. })),
         "{:?}",
-        harness.state().board_result
+        harness.state().servo.board_result
     );
-    let requester = harness.state().servo().unwrap().requester();
+    let requester = harness.state().servo_board().unwrap().requester();
     let board =
         servo_studio::device::servo::read_image(&requester, &mut |_| {}, &servo_studio::device::Cancel::never())
             .unwrap();

@@ -33,7 +33,7 @@ fn harness(app: StudioApp) -> Harness<'static, StudioApp> {
 fn autosave_then_recovery_after_a_crash() {
     let data = tempfile::tempdir().unwrap();
     let mut first = app(data.path());
-    first.apply(Action::CapturePose { from_board: false });
+    first.apply(Action::Servo(servo_studio::ui::ServoAction::CapturePose { from_board: false }));
     assert!(first.document.dirty);
     first.autosave_if_due(Instant::now() + Duration::from_secs(1));
     assert!(!data.path().join("recovery.json").exists(), "not due yet");
@@ -62,7 +62,7 @@ fn autosave_then_recovery_after_a_crash() {
 fn declining_recovery_removes_it() {
     let data = tempfile::tempdir().unwrap();
     let mut first = app(data.path());
-    first.apply(Action::CapturePose { from_board: false });
+    first.apply(Action::Servo(servo_studio::ui::ServoAction::CapturePose { from_board: false }));
     first.apply(Action::Autosave);
     let mut harness = harness(app(data.path()));
     harness.run();
@@ -77,7 +77,7 @@ fn declining_recovery_removes_it() {
 fn opening_with_unsaved_changes_asks_first() {
     let data = tempfile::tempdir().unwrap();
     let mut start = app(data.path());
-    start.apply(Action::CapturePose { from_board: false });
+    start.apply(Action::Servo(servo_studio::ui::ServoAction::CapturePose { from_board: false }));
     let mut harness = harness(start);
     harness.run();
     harness.state_mut().apply(Action::Open(fixture()));
@@ -104,7 +104,7 @@ fn save_in_the_question_saves_then_goes_on() {
     let path = data.path().join("mine.json");
     let mut start = app(data.path());
     start.apply(Action::SaveAs(path.clone()));
-    start.apply(Action::CapturePose { from_board: false });
+    start.apply(Action::Servo(servo_studio::ui::ServoAction::CapturePose { from_board: false }));
     let edited = start.document.project.servo.clone();
     let mut harness = harness(start);
     harness.run();

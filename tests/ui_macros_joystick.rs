@@ -99,17 +99,21 @@ fn a_button_pressed_on_the_remote_is_picked_or_added() {
     harness.run_steps(2);
     harness.get_by_label("Press a button to pick it").click();
     harness.run_steps(2);
-    assert!(harness.state().picking.is_some());
+    assert!(harness.state().servo.picking.is_some());
     // The subscription must reach the board before the press; wait for the board to have handled it.
     let press = |harness: &Harness<'static, StudioApp>, button_id| {
         let link = harness.state().link.as_ref().unwrap();
         link.demo_board().unwrap().command(SimCommand::Button { button_id, event: ButtonEvent::Press });
     };
     run_until(&mut harness, "the subscription", |app| {
-        app.servo().unwrap().requester().request(servo_studio::protocol::servo::Message::QueryProjectIdRequest).is_ok()
+        app.servo_board()
+            .unwrap()
+            .requester()
+            .request(servo_studio::protocol::servo::Message::QueryProjectIdRequest)
+            .is_ok()
     });
     press(&harness, 0x8000_0001);
-    run_until(&mut harness, "the picked button", |app| app.picked_button == Some(0x8000_0001));
+    run_until(&mut harness, "the picked button", |app| app.servo.picked_button == Some(0x8000_0001));
     harness.run_steps(2);
     assert_eq!(
         harness.state().document.project.servo.joystick_tables[0].buttons.len(),
@@ -123,7 +127,7 @@ fn a_button_pressed_on_the_remote_is_picked_or_added() {
     harness.get_by_label("Press a button to pick it").click();
     harness.run_steps(2);
     press(&harness, 0x0000_0042);
-    run_until(&mut harness, "the new button", |app| app.picked_button == Some(0x42));
+    run_until(&mut harness, "the new button", |app| app.servo.picked_button == Some(0x42));
     let buttons = &harness.state().document.project.servo.joystick_tables[0].buttons;
     assert_eq!(buttons.len(), 3);
     assert_eq!(buttons[2].id, 0x42);

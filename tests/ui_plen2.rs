@@ -75,10 +75,12 @@ fn executed(harness: &Harness<'static, StudioApp>, what: &str, wanted: impl Fn(&
 fn a_joint_moves_live_within_its_limits_and_stop_sends_ri_then_hp() {
     let mut harness = harness(Tab::Joints);
     assert!(harness.query_all_by_label_contains("left_knee_pitch #6").next().is_some());
-    harness.state_mut().apply(Action::SetJoint { joint: Joint::LeftKneePitch, tenths: 2000 });
+    harness
+        .state_mut()
+        .apply(Action::Plen2(servo_studio::ui::Plen2Action::SetJoint { joint: Joint::LeftKneePitch, tenths: 2000 }));
     harness.step();
     // Clamped to the factory max of 90.0°.
-    assert_eq!(harness.state().plen2_pose[Joint::LeftKneePitch.index()], 900);
+    assert_eq!(harness.state().plen2.pose[Joint::LeftKneePitch.index()], 900);
     executed(&harness, "$AN for the knee", |c| *c == Command::SetAngle { device: 6, angle: 900 });
     assert_eq!(inspect(&harness).angles[6], 900);
 
@@ -93,7 +95,9 @@ fn a_joint_moves_live_within_its_limits_and_stop_sends_ri_then_hp() {
 #[test]
 fn a_captured_pose_becomes_a_frame_relative_to_home() {
     let mut harness = harness(Tab::Joints);
-    harness.state_mut().apply(Action::SetJoint { joint: Joint::RightKneePitch, tenths: -400 });
+    harness
+        .state_mut()
+        .apply(Action::Plen2(servo_studio::ui::Plen2Action::SetJoint { joint: Joint::RightKneePitch, tenths: -400 }));
     harness.get_by_label_contains("Capture into frame").click();
     harness.step();
     let motion = &harness.state().document.project.plen2.motions[0];
@@ -102,36 +106,42 @@ fn a_captured_pose_becomes_a_frame_relative_to_home() {
     assert_eq!(motion.frames[2].values_tenths_deg.get(Joint::RightKneePitch), 100);
 }
 
+/// The robot panel's last result, as it words it.
+fn shown_result(app: &StudioApp) -> String {
+    app.language.plen2_result(app.plen2.result.as_ref().expect("a result")).0
+}
+
 #[test]
 fn the_robot_panel_uploads_verifies_and_a_play_list_queues_its_motions() {
     let mut harness = harness(Tab::Board);
     harness.get_by_label("Upload motions").click();
     let deadline = Instant::now() + Duration::from_secs(20);
-    while harness.state().plen2_job.is_some() || harness.state().plen2_result.is_none() {
+    while harness.state().operation.is_some() || harness.state().plen2.result.is_none() {
         assert!(Instant::now() < deadline, "the upload never ended");
         harness.step();
     }
-    let result = harness.state().plen2_result.clone().unwrap();
+    let result = shown_result(harness.state());
     assert!(result.contains("Uploaded and verified, items: 1/1"), "{result}");
+    assert!(harness.query_by_label_contains("Uploaded and verified, items: 1/1").is_some(), "the panel shows it");
     assert!(result.contains("plen2-backup-"), "{result}");
     assert_eq!(inspect(&harness).written_slots, [3]);
 
-    harness.state_mut().apply(Action::PlayList(0));
+    harness.state_mut().apply(Action::Plen2(servo_studio::ui::Plen2Action::PlayList(0)));
     executed(&harness, "#PU slot 3, two plays", |c| *c == Command::Push { slot: 3, plays: 2 });
     executed(&harness, "#PO", |c| *c == Command::Pop);
     harness.state_mut().apply(Action::ShowTab(Tab::PlayLists));
     harness.run_steps(2);
     assert!(harness.query_by_label("Play on robot").is_some(), "the play list is shown");
 
-    harness.state_mut().apply(Action::Plen2Board(Plen2Intent::Read));
+    harness.state_mut().apply(Action::Plen2(servo_studio::ui::Plen2Action::Robot(Plen2Intent::Read)));
     let deadline = Instant::now() + Duration::from_secs(60);
-    while harness.state().plen2_job.is_some() {
+    while harness.state().operation.is_some() {
         assert!(Instant::now() < deadline, "the read never ended");
         harness.step();
     }
-    let robot = harness.state().plen2_robot.clone().unwrap();
+    let robot = harness.state().plen2.robot.clone().unwrap();
     assert_eq!(robot.motions, harness.state().document.project.plen2.motions);
-    let result = harness.state().plen2_result.clone().unwrap();
+    let result = shown_result(harness.state());
     assert_eq!(result, "Read the robot; motions it holds: 1", "reading does not replace the project");
 }
 
@@ -139,26 +149,26 @@ fn the_robot_panel_uploads_verifies_and_a_play_list_queues_its_motions() {
 fn keyboard_nudges_the_focused_joint_by_1_and_10_degrees_within_its_limits() {
     let mut harness = harness(Tab::Joints);
     let knee = Joint::LeftKneePitch;
-    let before = harness.state().plen2_pose;
+    let before = harness.state().plen2.pose;
     let start = before[knee.index()];
     harness.get_all_by_role(Role::Slider).nth(knee.index()).unwrap().focus();
     harness.run_steps(2);
     harness.key_press(egui::Key::ArrowRight);
     harness.run_steps(2);
-    assert_eq!(harness.state().plen2_pose[knee.index()], start + 10, "1° is 10 tenths");
+    assert_eq!(harness.state().plen2.pose[knee.index()], start + 10, "1° is 10 tenths");
     harness.key_press_modifiers(egui::Modifiers::SHIFT, egui::Key::ArrowLeft);
     harness.run_steps(2);
-    assert_eq!(harness.state().plen2_pose[knee.index()], start - 90);
+    assert_eq!(harness.state().plen2.pose[knee.index()], start - 90);
     executed(&harness, "$AN for the nudged knee", |c| *c == Command::SetAngle { device: 6, angle: start - 90 });
     for _ in 0..200 {
         harness.key_press(egui::Key::PageUp);
         harness.step();
     }
     harness.run_steps(2);
-    assert_eq!(harness.state().plen2_pose[knee.index()], 900, "the factory max holds");
+    assert_eq!(harness.state().plen2.pose[knee.index()], 900, "the factory max holds");
     let others = Joint::ALL.into_iter().filter(|&j| j != knee);
     assert!(
-        others.into_iter().all(|j| harness.state().plen2_pose[j.index()] == before[j.index()]),
+        others.into_iter().all(|j| harness.state().plen2.pose[j.index()] == before[j.index()]),
         "no other joint moved"
     );
 }

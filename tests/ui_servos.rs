@@ -76,7 +76,7 @@ fn a_drag_sends_coalesced_live_moves_and_the_last_value_arrives() {
     }
     harness.drop_at(egui::pos2(slider.right() + 50.0, y));
     harness.run();
-    let last = *harness.state().pose.get(&1).unwrap();
+    let last = *harness.state().servo.pose.get(&1).unwrap();
     assert_eq!(last, 90, "dragged past the end: clamped to the servo's max");
     let moves = moves_until(&mut harness, 1, last);
     assert!(!moves.is_empty());
@@ -85,7 +85,7 @@ fn a_drag_sends_coalesced_live_moves_and_the_last_value_arrives() {
     assert!(degrees.windows(2).all(|pair| pair[0] < pair[1]), "moves follow the drag, never back: {degrees:?}");
     assert!(degrees.len() <= 22, "at most one move per frame: {degrees:?}");
     // Nothing stale after the release: the board ends at the last value.
-    let requester = harness.state().servo().unwrap().requester();
+    let requester = harness.state().servo_board().unwrap().requester();
     let deadline = Instant::now() + Duration::from_secs(5);
     while requester.query_servos(1).unwrap()[0].angle != 90 {
         assert!(Instant::now() < deadline, "the servo never reached 90°");
@@ -100,26 +100,26 @@ fn keyboard_nudges_the_focused_servo_by_1_and_10() {
     harness.run();
     harness.key_press(egui::Key::ArrowRight);
     harness.run();
-    assert_eq!(harness.state().pose.get(&3), Some(&1));
+    assert_eq!(harness.state().servo.pose.get(&3), Some(&1));
     harness.key_press_modifiers(egui::Modifiers::SHIFT, egui::Key::ArrowRight);
     harness.run();
-    assert_eq!(harness.state().pose.get(&3), Some(&11));
+    assert_eq!(harness.state().servo.pose.get(&3), Some(&11));
     harness.key_press(egui::Key::PageDown);
     harness.run();
-    assert_eq!(harness.state().pose.get(&3), Some(&1));
+    assert_eq!(harness.state().servo.pose.get(&3), Some(&1));
     for _ in 0..10 {
         harness.key_press(egui::Key::PageUp);
         harness.run();
     }
-    assert_eq!(harness.state().pose.get(&3), Some(&45), "the limit holds");
-    assert_eq!(harness.state().pose.get(&1), Some(&0), "the other servo did not move");
+    assert_eq!(harness.state().servo.pose.get(&3), Some(&45), "the limit holds");
+    assert_eq!(harness.state().servo.pose.get(&1), Some(&0), "the other servo did not move");
 }
 
 #[test]
 fn capture_pose_creates_an_action_and_undo_redo_restore_exact_states() {
     let mut app = new_app(project());
-    app.apply(Action::SetPose { servo_id: 1, degree: -30 });
-    app.apply(Action::SetPose { servo_id: 3, degree: 200 });
+    app.apply(Action::Servo(servo_studio::ui::ServoAction::SetPose { servo_id: 1, degree: -30 }));
+    app.apply(Action::Servo(servo_studio::ui::ServoAction::SetPose { servo_id: 3, degree: 200 }));
     let mut harness = harness(app);
     harness.run();
     let before = harness.state().document.project.servo.clone();
@@ -149,11 +149,11 @@ fn escape_stops_every_servo_holding_torque_and_blocks_moves_until_resume() {
     let mut harness = demo_harness();
     harness.key_press(egui::Key::Escape);
     harness.run();
-    let requester = harness.state().servo().unwrap().requester();
+    let requester = harness.state().servo_board().unwrap().requester();
     // The STOP frame is written ahead of this query, so the query sees it applied.
     let servos = requester.query_servos(1).unwrap();
     assert!(!servos[0].is_start && servos[0].is_hold, "{servos:?}");
-    harness.state_mut().apply(Action::SetPose { servo_id: 1, degree: 40 });
+    harness.state_mut().apply(Action::Servo(servo_studio::ui::ServoAction::SetPose { servo_id: 1, degree: 40 }));
     assert!(harness.state().status.as_ref().unwrap().is_error, "moving while stopped is refused");
     harness.get_by_label("Resume").click();
     harness.run();

@@ -7,6 +7,30 @@ use std::path::{Path, PathBuf};
 
 use crossbeam_channel::{Receiver, Sender};
 
+/// Which part of an operation is running.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Phase {
+    /// Reading the device (an export, or the backup before an upload).
+    Read,
+    /// Writing onto the device.
+    Write,
+    /// Reading the device back to compare.
+    Verify,
+}
+
+/// How far an operation has come; `I` names what it works on (the family's item).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Progress<I> {
+    /// The part running.
+    pub phase: Phase,
+    /// Steps done in this part.
+    pub done: usize,
+    /// Steps this part has (it can grow as lists are read).
+    pub total: usize,
+    /// What is being done now, e.g. `action 3 "揮手"`.
+    pub item: I,
+}
+
 /// Lets the owner stop an operation between two steps.
 #[derive(Clone, Debug)]
 pub struct Cancel {

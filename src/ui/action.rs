@@ -1,22 +1,11 @@
 //! What panels ask for. Panels never change state themselves: they push
-//! actions, and the app shell applies them in one place.
+//! actions, and the app shell applies them in one place — the shell's own,
+//! and each family's, which it hands to the family that owns them.
+
+use std::path::PathBuf;
 
 use crate::project::{Edit, Family};
 use crate::ui::i18n::{Language, Strings};
-
-/// What happens after a board comparison is confirmed.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub enum BoardIntent {
-    /// Write the project onto the board.
-    Upload,
-    /// Write the project onto the board although validation found errors
-    /// (restoring a backup of content Servo Studio would not author).
-    UploadAnyway,
-    /// Replace the project with the board's contents.
-    ReadIntoProject,
-    /// Save the board's contents to a file.
-    ExportToFile(std::path::PathBuf),
-}
 
 /// The editor's tabs.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
@@ -74,6 +63,28 @@ impl Tab {
     }
 }
 
+/// A file the user is asked for (the shell opens the dialog, off the frame).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum FileRequest {
+    /// A project (or motion.json, or folder of them) to open.
+    Open,
+    /// Where to save the project.
+    SaveAs,
+    /// Where to save the project before going on with what waits on the unsaved question.
+    SaveAsThenContinue,
+    /// Where to export the servo board's contents.
+    ExportBoard,
+    /// Where to export what was read from the PLEN2.
+    ExportRobot,
+    /// Where to save one motion as the official editor's motion.json.
+    MotionJson {
+        /// The motion's slot.
+        slot: u8,
+        /// The file name offered.
+        name: String,
+    },
+}
+
 /// One request from a panel to the app shell.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Action {
@@ -99,106 +110,35 @@ pub enum Action {
     },
     /// Stop opening the port.
     CancelConnect,
+    /// Read the list of serial ports again (the connection bar asks every few seconds).
+    ScanPorts,
     /// Switch the document's board family (servo, PLEN2, rFLEX).
     SetFamily(Family),
     /// Start the in-process emulated board and connect to it.
     ConnectDemo,
     /// Close the link.
     Disconnect,
-    /// A slider moved: set the pose of one servo (sent live when connected).
-    SetPose {
-        /// The servo.
-        servo_id: u8,
-        /// The angle asked for (clamped to the servo's limits).
-        degree: i16,
-    },
-    /// Hold or release one servo's torque.
-    SetHold {
-        /// The servo.
-        servo_id: u8,
-        /// Hold (true) or release (false).
-        hold: bool,
-    },
-    /// Stop every servo where it is, holding torque; stop a base at once.
+    /// STOP, the family's way: every servo held where it is; a PLEN2's motion
+    /// stopped and every joint home; a base stopped at once.
     Stop,
-    /// Drive a mobile base at this velocity (held until changed; 0, 0 stops).
-    Drive {
-        /// m/s, forward positive.
-        speed_m_per_s: f64,
-        /// rad/s, left positive.
-        turn_rad_per_s: f64,
-    },
-    /// Choose the rFLEX robot preset.
-    SetRobot(crate::project::rflex::Robot),
-    /// A PLEN2 joint to an absolute angle (tenths of a degree), live.
-    SetJoint {
-        /// The joint.
-        joint: crate::project::plen2::Joint,
-        /// Tenths of a degree.
-        tenths: i16,
-    },
-    /// Every PLEN2 joint to home.
-    Plen2Home,
-    /// Play a motion stored on the robot (`$PM`).
-    PlayMotion(u8),
-    /// Play the project's motion from a frame by streaming its poses live.
-    PlayFrom {
-        /// The motion's slot.
-        slot: u8,
-        /// The first frame, from 0.
-        frame: usize,
-    },
-    /// Play a play list of the project on the robot.
-    PlayList(usize),
-    /// Append the current joint pose to a motion as a frame.
-    CaptureFrame {
-        /// The motion's slot.
-        slot: u8,
-    },
-    /// A PLEN2 robot operation.
-    Plen2Board(Plen2Intent),
-    /// Save a motion of the project as the official editor's motion.json.
-    SaveMotionJson {
-        /// The motion's slot.
-        slot: u8,
-        /// Where.
-        path: std::path::PathBuf,
-    },
-    /// Set or release a base's brake.
-    SetBrake(bool),
-    /// Turn a base's sonar ring on or off.
-    SetSonar(bool),
-    /// Let servos move again after a STOP.
-    Resume,
-    /// Turn the current pose into a new action.
-    CapturePose {
-        /// Use the angles read back from the board instead of the sliders.
-        from_board: bool,
-    },
-    /// Read servo angles from the board continuously.
-    SetPolling(bool),
-    /// Switch the interface language.
-    SetLanguage(Language),
     /// How a PLEN2 is paced from the next connection on.
     SetPacing(crate::device::plen2::PacingMode),
+    /// Switch the interface language.
+    SetLanguage(Language),
     /// Show a tab.
     ShowTab(Tab),
-    /// Read the board and show what differs, before doing `intent`.
-    BoardCompare(BoardIntent),
-    /// Go ahead with the compared intent.
-    BoardConfirm,
-    /// Drop the compared intent.
-    BoardDismiss,
+    /// Ask the user for a file (the answer comes back as the matching action).
+    AskFile(FileRequest),
     /// Stop the running board operation after its current step.
-    BoardCancel,
+    CancelOperation,
     /// Start an empty project (asks first if there are unsaved changes).
     NewProject,
     /// Open a project file (asks first if there are unsaved changes).
-    Open(std::path::PathBuf),
+    Open(PathBuf),
     /// Save to the document's file (or ask where, if it has none).
     Save,
     /// Save to this file.
-    SaveAs(std::path::PathBuf),
+    SaveAs(PathBuf),
     /// Answer to "unsaved changes": save first, then go on.
     UnsavedSave,
     /// Answer to "unsaved changes": drop them and go on.
@@ -214,6 +154,60 @@ pub enum Action {
     /// The process is asked to end (a signal): stop the board, keep the work
     /// in the recovery file, close.
     Terminate,
+    /// What the servo board's panels ask for.
+    Servo(ServoAction),
+    /// What the PLEN2's panels ask for.
+    Plen2(Plen2Action),
+    /// What the rFLEX base's panels ask for.
+    Rflex(RflexAction),
+}
+
+/// What happens after a board comparison is confirmed.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum BoardIntent {
+    /// Write the project onto the board.
+    Upload,
+    /// Write the project onto the board although validation found errors
+    /// (restoring a backup of content Servo Studio would not author).
+    UploadAnyway,
+    /// Replace the project with the board's contents.
+    ReadIntoProject,
+    /// Save the board's contents to a file.
+    ExportToFile(PathBuf),
+}
+
+/// A servo board panel's request.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ServoAction {
+    /// A slider moved: set the pose of one servo (sent live when connected).
+    SetPose {
+        /// The servo.
+        servo_id: u8,
+        /// The angle asked for (clamped to the servo's limits).
+        degree: i16,
+    },
+    /// Hold or release one servo's torque.
+    SetHold {
+        /// The servo.
+        servo_id: u8,
+        /// Hold (true) or release (false).
+        hold: bool,
+    },
+    /// Let servos move again after a STOP.
+    Resume,
+    /// Turn the current pose into a new action.
+    CapturePose {
+        /// Use the angles read back from the board instead of the sliders.
+        from_board: bool,
+    },
+    /// Read servo angles from the board continuously.
+    SetPolling(bool),
+    /// Read the board and show what differs, before doing `intent`.
+    BoardCompare(BoardIntent),
+    /// Go ahead with the compared intent.
+    BoardConfirm,
+    /// Drop the compared intent.
+    BoardDismiss,
     /// Run a stored macro on the board.
     RunMacro(i32),
     /// Move the servos through an action of the project now (live).
@@ -237,11 +231,68 @@ pub enum Plen2Intent {
     /// Replace the project's PLEN2 section with what was read.
     ReadIntoProject,
     /// Save what was read to a file.
-    ExportToFile(std::path::PathBuf),
+    ExportToFile(PathBuf),
     /// Write the project's joint settings where they differ.
     WriteJoints,
     /// Factory joint settings (`>JS`).
     FactoryReset,
+}
+
+/// A PLEN2 panel's request.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Plen2Action {
+    /// A joint to an absolute angle (tenths of a degree), live.
+    SetJoint {
+        /// The joint.
+        joint: crate::project::plen2::Joint,
+        /// Tenths of a degree.
+        tenths: i16,
+    },
+    /// Every joint to home.
+    Home,
+    /// Play a motion stored on the robot (`$PM`).
+    PlayMotion(u8),
+    /// Play the project's motion from a frame by streaming its poses live.
+    PlayFrom {
+        /// The motion's slot.
+        slot: u8,
+        /// The first frame, from 0.
+        frame: usize,
+    },
+    /// Play a play list of the project on the robot.
+    PlayList(usize),
+    /// Append the current joint pose to a motion as a frame.
+    CaptureFrame {
+        /// The motion's slot.
+        slot: u8,
+    },
+    /// A robot operation.
+    Robot(Plen2Intent),
+    /// Save a motion of the project as the official editor's motion.json.
+    SaveMotionJson {
+        /// The motion's slot.
+        slot: u8,
+        /// Where.
+        path: PathBuf,
+    },
+}
+
+/// An rFLEX panel's request.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum RflexAction {
+    /// Drive the base at this velocity (held until changed; 0, 0 stops).
+    Drive {
+        /// m/s, forward positive.
+        speed_m_per_s: f64,
+        /// rad/s, left positive.
+        turn_rad_per_s: f64,
+    },
+    /// Choose the robot preset.
+    SetRobot(crate::project::rflex::Robot),
+    /// Set or release the brake.
+    SetBrake(bool),
+    /// Turn the sonar ring on or off.
+    SetSonar(bool),
 }
 
 /// What was asked for when the document had unsaved changes.
@@ -250,7 +301,7 @@ pub enum AfterUnsaved {
     /// Start an empty project.
     New,
     /// Open this file.
-    Open(std::path::PathBuf),
+    Open(PathBuf),
     /// Close the window.
     Quit,
 }

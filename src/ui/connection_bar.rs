@@ -2,20 +2,16 @@
 //! devices come and go, or typed), baud, connect / cancel / disconnect, the
 //! demo board, and the board's status.
 
-use std::time::{Duration, Instant};
-
 use crate::device::line_settings;
-use crate::link::{PortInfo, list_ports};
+use crate::link::PortInfo;
 use crate::project::Family;
 use crate::project::rflex::Robot;
-use crate::ui::action::Action;
-use crate::ui::i18n::{Language, Strings};
+use crate::ui::action::{Action, RflexAction};
+use crate::ui::i18n::Language;
 
 /// Standard line rates offered in the picker, up to the PLEN2's 2,000,000.
 const BAUDS: [u32; 11] =
     [9_600, 19_200, 38_400, 57_600, 115_200, 230_400, 460_800, 500_000, 921_600, 1_000_000, 2_000_000];
-/// How often the port list is read again.
-const RESCAN_EVERY: Duration = Duration::from_secs(2);
 
 /// What the bar shows of the current link.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -49,49 +45,30 @@ pub struct ConnectionBar {
     baud: u32,
     /// The family whose default baud `baud` was set from.
     baud_family: Option<Family>,
-    ports: Vec<PortInfo>,
-    next_scan: Option<Instant>,
 }
 
 impl Default for ConnectionBar {
     fn default() -> Self {
-        Self {
-            port: String::new(),
-            baud: line_settings(Family::Servo).baud,
-            baud_family: None,
-            ports: Vec::new(),
-            next_scan: None,
-        }
+        Self { port: String::new(), baud: line_settings(Family::Servo).baud, baud_family: None }
     }
 }
 
 impl ConnectionBar {
-    fn rescan(&mut self, now: Instant) {
-        if self.next_scan.is_some_and(|at| now < at) {
-            return;
-        }
-        self.next_scan = Some(now + RESCAN_EVERY);
-        // A failed scan leaves the last list; the port can still be typed.
-        if let Ok(ports) = list_ports() {
-            self.ports = ports;
-        }
-        if self.port.is_empty()
-            && let Some(first) = self.ports.first()
-        {
-            self.port = first.name.clone();
-        }
-    }
-
     /// Draws the bar.
     pub fn ui(
         &mut self,
         ui: &mut egui::Ui,
         status: &LinkStatus,
+        ports: &[PortInfo],
         language: Language,
-        words: &Strings,
         actions: &mut Vec<Action>,
     ) {
-        self.rescan(Instant::now());
+        let words = language.strings();
+        if self.port.is_empty()
+            && let Some(first) = ports.first()
+        {
+            self.port = first.name.clone();
+        }
         if self.baud_family != Some(status.family) {
             // Each family has its own line rate; switching family picks it.
             self.baud_family = Some(status.family);
@@ -125,7 +102,7 @@ impl ConnectionBar {
                         });
                     picked.response.labelled_by(robot_label.id);
                     if robot != current {
-                        actions.push(Action::SetRobot(robot));
+                        actions.push(Action::Rflex(RflexAction::SetRobot(robot)));
                     }
                 }
                 if let Some(current) = status.pacing {
@@ -144,22 +121,26 @@ impl ConnectionBar {
                     }
                 }
                 let port_label = ui.label(words.port);
+                // While connected the field shows what the link is to (the demo board
+                // has no port), not what was last typed.
+                let mut shown = status.label.clone().or_else(|| status.connecting.clone());
+                let field = shown.as_mut().unwrap_or(&mut self.port);
                 ui.add(
-                    egui::TextEdit::singleline(&mut self.port)
+                    egui::TextEdit::singleline(field)
                         .hint_text("/dev/ttyUSB0, COM3, tcp://host:port")
                         .desired_width(180.0),
                 )
                 .labelled_by(port_label.id);
                 let picked =
                     egui::ComboBox::from_id_salt("port-picker").selected_text("").width(24.0).show_ui(ui, |ui| {
-                        for port in &self.ports {
+                        for port in ports {
                             ui.selectable_value(
                                 &mut self.port,
                                 port.name.clone(),
                                 format!("{} — {}", port.name, port.description),
                             );
                         }
-                        if self.ports.is_empty() {
+                        if ports.is_empty() {
                             ui.label("—");
                         }
                     });

@@ -2,42 +2,38 @@
 //! [`Action`]s; only the app shell ([`StudioApp::apply`]) applies them.
 
 mod action;
-mod action_panel;
 mod app;
 mod board_link;
-mod board_panel;
 mod connection_bar;
 mod derive;
 mod document;
-mod drive_panel;
 pub mod files;
 pub mod fonts;
 mod i18n;
-mod job;
-mod joystick_panel;
-mod macro_panel;
+mod layout;
+mod operation;
 pub mod packet_log;
-mod plen2_board;
-mod plen2_job;
-mod plen2_joints;
-mod plen2_motions;
-mod plen2_play_lists;
+mod plen2;
 mod plot;
+mod rflex;
 mod rows;
-mod servo_panel;
-mod telemetry_panel;
+mod servo;
 
-pub use action::{Action, AfterUnsaved, BoardIntent, Plen2Intent, Tab};
-pub use action_panel::timeline_bars;
-pub use app::{
-    CAPTURED_STEP_INTERVAL_10MS, Connecting, LIVE_MOVE_INTERVAL_10MS, REMEMBERED_KEY, Remembered, StatusLine, StudioApp,
+pub use action::{
+    Action, AfterUnsaved, BoardIntent, FileRequest, Plen2Action, Plen2Intent, RflexAction, ServoAction, Tab,
 };
+pub use app::{Connecting, Picker, REMEMBERED_KEY, Remembered, RunningOperation, StatusLine, StudioApp};
 pub use board_link::{BoardLink, Device, LinkNotice, StartError};
-pub use board_panel::{BoardResult, PendingConfirm};
 pub use document::Document;
-pub use drive_panel::{DrivePanel, DriveView};
 pub use i18n::{Language, Strings};
-pub use job::{Job, JobKind, JobOutcome};
+pub use layout::Layout;
+pub use operation::{Operation, Step, Subject};
+pub use plen2::{Plen2Failure, Plen2Kind, Plen2Outcome, Plen2Result};
+pub use rflex::{DrivePanel, DriveView};
+pub use servo::{
+    BoardResult, CAPTURED_STEP_INTERVAL_10MS, LIVE_MOVE_INTERVAL_10MS, PendingConfirm, ServoFailure, ServoKind,
+    ServoOutcome, timeline_bars,
+};
 
 /// The sample robot `gui --demo` opens when no file is given: a 16-servo
 /// biped with captions in English and Traditional Chinese, a few actions, a

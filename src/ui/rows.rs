@@ -1,13 +1,10 @@
 //! Lists that lay out only the rows in view, so that a panel costs the same
-//! per frame with 5 items or 5,000 (every list and table of the editor goes
-//! through here). A list is also never taller than a set number of rows: what
-//! a frame costs is bounded by design, not by how much of the project happens
-//! to fit in the window (a longer list scrolls).
+//! per frame with 5 items or 5,000: every list and table of the editor goes
+//! through here, and each fills the height it is given — a bigger window
+//! shows more rows, a bigger project costs nothing more.
 
-/// Rows of a list of names (actions, macros, tables, motions, play lists).
-pub const LIST_ROWS: usize = 12;
-/// Rows of a table of editable cells (steps, commands, buttons, entries, settings).
-pub const TABLE_ROWS: usize = 7;
+/// Rows a drop-down shows at once (it floats over the panel).
+pub const CHOICE_ROWS: usize = 12;
 
 /// Height of one row of interactive widgets (buttons, drag values, combo boxes).
 pub fn widget_row_height(ui: &egui::Ui) -> f32 {
@@ -56,16 +53,10 @@ pub fn list(
     });
 }
 
-/// A list of names (one selectable line each), at most `max_rows` lines high.
-pub fn names(
-    ui: &mut egui::Ui,
-    id_salt: &str,
-    count: usize,
-    max_rows: usize,
-    add_row: impl FnMut(&mut egui::Ui, usize),
-) {
+/// A list of names (one selectable line each) filling the height left.
+pub fn names(ui: &mut egui::Ui, id_salt: &str, count: usize, add_row: impl FnMut(&mut egui::Ui, usize)) {
     let row_height = name_row_height(ui);
-    let height = list_height(ui, max_rows);
+    let height = ui.available_height();
     list(ui, id_salt, row_height, count, height, add_row);
 }
 
@@ -205,7 +196,7 @@ pub fn combo<V: PartialEq>(
     choice: impl Fn(usize) -> (V, String),
 ) -> egui::Response {
     let row_height = name_row_height(ui);
-    let height = list_height(ui, LIST_ROWS);
+    let height = list_height(ui, CHOICE_ROWS);
     egui::ComboBox::from_id_salt(id_salt)
         .selected_text(selected_text)
         .height(height + row_height)

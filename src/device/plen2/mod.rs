@@ -17,8 +17,8 @@ pub use driver::{
     Pacing, Plen2Command, Plen2Driver, Plen2Event, Plen2Options, REPLY_IDLE, RESYNC, ReplyError, ReplySender,
 };
 pub use ops::{
-    Plen2Import, Plen2ImportFailure, Plen2ImportOptions, Plen2ImportReport, Plen2Info, Plen2OpError, Plen2Phase,
-    Plen2Progress, SlotResult, export, import, info, read_joint_settings, read_slot, write_joint_settings,
+    Plen2Import, Plen2ImportFailure, Plen2ImportOptions, Plen2ImportReport, Plen2Info, Plen2Item, Plen2OpError,
+    Plen2Phase, Plen2Progress, SlotResult, export, import, info, read_joint_settings, read_slot, write_joint_settings,
 };
 pub use pacer::{PacingMode, RING_WINDOW_BYTES, SAFE_BURST, SAFE_PAUSE, WidenReason, Widened};
 

@@ -13,29 +13,53 @@ use crate::project::plen2::{JointSetting, Motion, Plen2Project};
 use crate::project::{self, Problem, Project};
 use crate::protocol::plen2::{Command, Joint, SLOTS, decode_joint_settings, decode_motion, decode_version};
 
-/// Which part of an operation runs.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Plen2Phase {
-    /// Reading (export, backup).
-    Read,
-    /// Writing.
-    Write,
-    /// Reading back to compare.
-    Verify,
+pub use crate::device::Phase as Plen2Phase;
+
+/// What a PLEN2 operation works on, as data (the interface words it in its
+/// own language); `Display` gives English.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub enum Plen2Item {
+    /// The firmware's version (`<VI`).
+    Version,
+    /// The joint settings (`<JS`, `>HO`/`>MA`/`>MI`).
+    JointSettings,
+    /// One joint's settings.
+    Joint(Joint),
+    /// A slot, with its motion's name when known.
+    Slot {
+        /// The slot.
+        slot: u8,
+        /// The motion's name ("" when not known).
+        name: String,
+    },
+    /// Reading a reply to see how the link delivers.
+    Link,
+    /// Telling the pacing a read-back differed.
+    Pacing,
+    /// The factory reset of the joint settings (`>JS`).
+    FactoryReset,
+    /// The end of the operation.
+    Done,
 }
 
-/// How far an operation has come.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Plen2Progress {
-    /// The part running.
-    pub phase: Plen2Phase,
-    /// Steps done.
-    pub done: usize,
-    /// Steps in all.
-    pub total: usize,
-    /// What runs now, e.g. `slot 70 "Walk Forward"`.
-    pub item: String,
+impl std::fmt::Display for Plen2Item {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Version => write!(f, "version"),
+            Self::JointSettings => write!(f, "joint settings"),
+            Self::Joint(joint) => write!(f, "joint {}", joint.name()),
+            Self::Slot { slot, name } if name.is_empty() => write!(f, "slot {slot}"),
+            Self::Slot { slot, name } => write!(f, "slot {slot} {name:?}"),
+            Self::Link => write!(f, "the link"),
+            Self::Pacing => write!(f, "pacing"),
+            Self::FactoryReset => write!(f, "factory joint settings"),
+            Self::Done => write!(f, "done"),
+        }
+    }
 }
+
+/// How far a PLEN2 operation has come.
+pub type Plen2Progress = crate::device::Progress<Plen2Item>;
 
 /// An operation failed; each message says what failed and what to try.
 #[derive(Debug, thiserror::Error)]
@@ -44,7 +68,7 @@ pub enum Plen2OpError {
     #[error("{item}: {source}")]
     Reply {
         /// What was being done.
-        item: String,
+        item: Plen2Item,
         /// Why.
         source: ReplyError,
     },
@@ -52,7 +76,7 @@ pub enum Plen2OpError {
     #[error("{item}: the device answers, but not in the PLEN2's protocol: is it a PLEN2 with firmware 1.4.x?")]
     Unreadable {
         /// What was being read.
-        item: String,
+        item: Plen2Item,
     },
     /// The project has errors; nothing was written.
     #[error(
@@ -76,8 +100,8 @@ fn check(cancel: &Cancel) -> Result<(), Plen2OpError> {
     if cancel.is_requested() { Err(Plen2OpError::Cancelled) } else { Ok(()) }
 }
 
-fn slot_item(slot: u8, name: &str) -> String {
-    if name.is_empty() { format!("slot {slot}") } else { format!("slot {slot} {name:?}") }
+fn slot_item(slot: u8, name: &str) -> Plen2Item {
+    Plen2Item::Slot { slot, name: name.to_string() }
 }
 
 /// Reads one slot: `None` when it was never written (its garbage is drained).
@@ -91,7 +115,7 @@ pub fn read_slot(requester: &Plen2Requester, slot: u8) -> Result<Option<Motion>,
 
 /// Reads the joint settings of the 18 joints.
 pub fn read_joint_settings(requester: &Plen2Requester) -> Result<Vec<JointSetting>, Plen2OpError> {
-    let item = "joint settings".to_string();
+    let item = Plen2Item::JointSettings;
     let bytes = requester
         .get(Command::GetJointSettings)
         .map_err(|source| Plen2OpError::Reply { item: item.clone(), source })?;
@@ -121,7 +145,7 @@ pub struct Plen2Info {
 
 /// Reads the version and the joint settings.
 pub fn info(requester: &Plen2Requester) -> Result<Plen2Info, Plen2OpError> {
-    let item = "version".to_string();
+    let item = Plen2Item::Version;
     let bytes =
         requester.get(Command::GetVersion).map_err(|source| Plen2OpError::Reply { item: item.clone(), source })?;
     let version = decode_version(&bytes).ok_or(Plen2OpError::Unreadable { item })?;
@@ -139,8 +163,9 @@ pub fn export(
     cancel: &Cancel,
 ) -> Result<Plen2Project, Plen2OpError> {
     let total = slots.len() + 1;
-    let mut step = |done: usize, item: String| progress(&Plen2Progress { phase: Plen2Phase::Read, done, total, item });
-    step(0, "version and joint settings".into());
+    let mut step =
+        |done: usize, item: Plen2Item| progress(&Plen2Progress { phase: Plen2Phase::Read, done, total, item });
+    step(0, Plen2Item::JointSettings);
     let joints = info(requester)?.joints;
     let mut motions = Vec::new();
     for (index, &slot) in slots.iter().enumerate() {
@@ -150,7 +175,7 @@ pub fn export(
             motions.push(motion);
         }
     }
-    step(total, "done".into());
+    step(total, Plen2Item::Done);
     Ok(Plen2Project { joints, motions, play_lists: Vec::new() })
 }
 
@@ -224,7 +249,7 @@ pub fn write_joint_settings(
         for command in commands {
             requester
                 .send(command)
-                .map_err(|source| Plen2OpError::Reply { item: format!("joint {}", setting.joint.name()), source })?;
+                .map_err(|source| Plen2OpError::Reply { item: Plen2Item::Joint(setting.joint), source })?;
             writes += 1;
         }
     }
@@ -241,7 +266,7 @@ pub fn plen2_backup_path(folder: &std::path::Path) -> PathBuf {
 pub const REWRITE_ROUNDS: usize = 3;
 
 /// A failed upload: the error, and what it left on the robot.
-pub type Plen2ImportFailure = UploadFailure<Plen2OpError, String>;
+pub type Plen2ImportFailure = UploadFailure<Plen2OpError, Plen2Item>;
 
 /// Uploads `project`'s motions (and its joint settings, if it holds them and they differ):
 /// validates, backs up the slots about to be overwritten, writes paced, verifies.
@@ -290,7 +315,7 @@ fn upload(
             (Some(path), joints)
         }
         None if project.joints.is_empty() => {
-            let item = "the link".to_string();
+            let item = Plen2Item::Link;
             requester.probe().map_err(|source| {
                 UploadFailure::untouched(Plen2OpError::Reply { item, source }, Stage::Checking, None)
             })?;
@@ -330,7 +355,7 @@ fn write_all(
     requester: &Plen2Requester,
     project: &Plen2Project,
     current_joints: &[JointSetting],
-    reached: &mut Vec<String>,
+    reached: &mut Vec<Plen2Item>,
     results: &mut Vec<(u8, SlotResult)>,
     progress: &mut dyn FnMut(&Plen2Progress),
     cancel: &Cancel,
@@ -339,7 +364,7 @@ fn write_all(
     if !project.joints.is_empty() {
         check(cancel)?;
         joint_writes = write_joint_settings(requester, &project.joints, current_joints)?;
-        reached.push("joint settings".into());
+        reached.push(Plen2Item::JointSettings);
     }
     let total = project.motions.len();
     for (index, motion) in project.motions.iter().enumerate() {
@@ -368,7 +393,7 @@ fn rewrite(
             (0..results.len()).filter(|index| results[*index].1 == SlotResult::Differs).collect();
         if !differing.is_empty() {
             // Bytes were lost on the way: write again with wider margins.
-            requester.read_back_differed().map_err(|source| Plen2OpError::Reply { item: "pacing".into(), source })?;
+            requester.read_back_differed().map_err(|source| Plen2OpError::Reply { item: Plen2Item::Pacing, source })?;
         }
         for index in differing {
             check(cancel)?;

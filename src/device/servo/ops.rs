@@ -13,29 +13,10 @@ use crate::device::{Cancel, Left, Stage, UploadFailure};
 use crate::project::{self, Problem, Project, SaveError, ServoProject};
 use crate::protocol::servo::{ALL_SERVOS, EncodeError, Message, ServoStatus};
 
-/// Which part of an operation is running.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Phase {
-    /// Reading the board (export, or the backup before an import).
-    Read,
-    /// Writing the project onto the board.
-    Write,
-    /// Reading the board back to compare.
-    Verify,
-}
+pub use crate::device::Phase;
 
-/// How far an operation has come.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Progress {
-    /// The part running.
-    pub phase: Phase,
-    /// Steps done in this part.
-    pub done: usize,
-    /// Steps this part has (it can grow as lists are read).
-    pub total: usize,
-    /// What is being done now, e.g. `action 3 "揮手"`.
-    pub item: Item,
-}
+/// How far a servo-board operation has come.
+pub type Progress = crate::device::Progress<Item>;
 
 fn check(cancel: &Cancel) -> Result<(), OpError> {
     if cancel.is_requested() { Err(OpError::Cancelled) } else { Ok(()) }

@@ -1,59 +1,86 @@
 //! The app shell's connection: opening a port off the UI thread, starting the
-//! family's driver, and turning what the board reports into status lines.
+//! family's driver, the port list, the running operation, and turning what
+//! the board reports into status lines and family events.
+
+use std::time::Duration;
 
 use super::*;
+use crate::link::{PortName, list_ports};
+use crate::project::Edit;
+use crate::ui::board_link::LinkNotice;
+use crate::ui::connection_bar::LinkStatus;
+
+/// How often the port list is read again.
+const RESCAN_EVERY: Duration = Duration::from_secs(2);
 
 impl StudioApp {
-    /// Picks up what the board sent since the last frame.
+    /// Picks up what the board and the running operation sent since the last frame.
     pub fn pump(&mut self, now: Instant) {
-        self.poll_job();
-        self.poll_plen2_job();
-        self.advance_stream(now);
+        self.poll_operation();
         self.poll_connecting();
+        let polling = self.servo.polling;
         let Some(link) = &mut self.link else { return };
-        for notice in link.pump(now, self.polling) {
+        for notice in link.pump(now, polling) {
             match notice {
-                LinkNotice::SendFailed(error) => {
-                    self.status = Some(StatusLine { text: self.language.send_failed(&error), is_error: true });
-                }
-                LinkNotice::RequestFailed(error) => {
-                    self.status = Some(StatusLine { text: self.language.request_error(&error), is_error: true });
-                }
+                LinkNotice::SendFailed(error) => self.report(self.language.send_failed(&error), true),
+                LinkNotice::RequestFailed(error) => self.report(self.language.request_error(&error), true),
                 LinkNotice::PacingWidened(widened) => {
                     // Not an error: the upload goes on, more carefully.
-                    self.status = Some(StatusLine { text: self.language.pacing_widened(&widened), is_error: false });
+                    self.report(self.language.pacing_widened(&widened), false);
                 }
                 LinkNotice::BaseSilent => {
-                    self.drive_panel = DrivePanel::default();
-                    self.status = Some(StatusLine { text: self.words().msg_base_silent.into(), is_error: true });
+                    self.rflex.stopped();
+                    self.report(self.words().msg_base_silent, true);
                 }
-                LinkNotice::MacroRefused => {
-                    self.status =
-                        Some(StatusLine { text: self.language.strings().msg_macro_refused.into(), is_error: true });
-                }
+                LinkNotice::MacroRefused => self.report(self.words().msg_macro_refused, true),
                 LinkNotice::Disconnected(reason) => {
-                    self.status = Some(StatusLine { text: self.language.link_ended(&reason), is_error: true });
+                    self.report(self.language.link_ended(&reason), true);
                     self.link = None;
-                    self.polling = false;
+                    self.servo.polling = false;
+                    self.rflex.stopped();
                     return;
                 }
                 LinkNotice::Button { button_id, event } => {
-                    self.button_events.push((button_id, event));
-                    if let Some(table_index) = self.picking.take() {
-                        self.pick_button(table_index, button_id);
-                    }
+                    let (mut shell, servo, _, _) = self.shell();
+                    servo.button(&mut shell, button_id, event);
                 }
             }
         }
     }
 
-    /// The connected servo board, if any.
-    pub fn servo(&self) -> Option<&ServoHandle> {
-        self.link.as_ref().and_then(BoardLink::servo)
+    /// Hands the running operation's outcome to the family that started it.
+    fn poll_operation(&mut self) {
+        let outcome = match &mut self.operation {
+            Some(RunningOperation::Servo(operation)) => operation.poll().map(Finished::Servo),
+            Some(RunningOperation::Plen2(operation)) => operation.poll().map(Finished::Plen2),
+            None => None,
+        };
+        let Some(outcome) = outcome else { return };
+        let Some(operation) = self.operation.take() else { return };
+        match (outcome, operation) {
+            (Finished::Servo(outcome), RunningOperation::Servo(operation)) => {
+                self.servo.finish(&operation, outcome);
+            }
+            (Finished::Plen2(outcome), _) => self.plen2.finish(outcome),
+            (Finished::Servo(_), RunningOperation::Plen2(_)) => {}
+        }
     }
 
-    pub(super) fn servo_mut(&mut self) -> Option<&mut ServoHandle> {
-        self.link.as_mut().and_then(BoardLink::servo_mut)
+    /// Reads the list of serial ports, at most every two seconds.
+    pub(super) fn scan_ports(&mut self, now: Instant) {
+        if self.next_scan.is_some_and(|at| now < at) {
+            return;
+        }
+        self.next_scan = Some(now + RESCAN_EVERY);
+        // A failed scan leaves the last list; the port can still be typed.
+        if let Ok(ports) = list_ports() {
+            self.ports = ports;
+        }
+    }
+
+    /// The connected servo board, if any.
+    pub fn servo_board(&self) -> Option<&crate::device::servo::ServoHandle> {
+        self.link.as_ref().and_then(BoardLink::servo)
     }
 
     /// Opens `port` off the UI thread with the document's family's line settings.
@@ -77,6 +104,33 @@ impl StudioApp {
         self.connecting = Some(Connecting { opening, family, baud });
     }
 
+    /// Starts the built-in emulated board of the document's family.
+    pub(super) fn connect_demo(&mut self) {
+        if self.link.is_some() {
+            return;
+        }
+        match BoardLink::demo(&self.document.project, self.plen2_pacing, self.waker.clone()) {
+            Ok(link) => {
+                self.link = Some(link);
+                self.connected();
+                let words = self.words();
+                let text = match self.document.project.family {
+                    Family::Servo => words.msg_connected_demo,
+                    Family::Plen2 => words.msg_connected_demo_plen2,
+                    Family::Rflex => words.msg_connected_demo_rflex,
+                };
+                self.report(text, false);
+            }
+            Err(error) => self.report(self.language.start_error(&error), true),
+        }
+    }
+
+    /// A link was made: the families start from rest.
+    fn connected(&mut self) {
+        self.rflex.connected(self.document.project.rflex.drive.sonar_on_connect);
+        self.servo.polling = false;
+    }
+
     /// Starts the driver once the port is open, or reports why it did not open.
     pub(super) fn poll_connecting(&mut self) {
         let Some(connecting) = &self.connecting else { return };
@@ -91,9 +145,9 @@ impl StudioApp {
             ) {
                 Ok(mut link) => {
                     link.label = opening.port.to_string();
-                    self.sonar_on = self.document.project.rflex.drive.sonar_on_connect;
                     self.report(format!("{} {}", self.words().msg_connected_to, link.label), false);
                     self.link = Some(link);
+                    self.connected();
                 }
                 Err(error) => self.report(self.language.start_error(&error), true),
             },
@@ -110,11 +164,6 @@ impl StudioApp {
         if !Tab::for_family(family).contains(&self.tab) {
             self.tab = Tab::for_family(family)[0];
         }
-    }
-
-    /// What the Drive panel asks the base for now (m/s, rad/s).
-    pub fn drive_asked(&self) -> (f64, f64) {
-        self.drive_panel.asked()
     }
 
     /// Opens ports with `opener` instead of the system's (tests use a double).
@@ -156,4 +205,10 @@ impl StudioApp {
             }
         }
     }
+}
+
+/// An operation's outcome, by family.
+enum Finished {
+    Servo(crate::ui::servo::ServoOutcome),
+    Plen2(crate::ui::plen2::Plen2Outcome),
 }

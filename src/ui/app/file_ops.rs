@@ -5,10 +5,9 @@ use super::*;
 
 impl StudioApp {
     pub(super) fn replace_document(&mut self, project: Project, path: Option<PathBuf>) {
-        self.pose = project.servo.servos.iter().map(|servo| (servo.id, servo.home_deg)).collect();
+        self.servo.document_replaced(&project.servo);
+        self.plen2.document_replaced(&project.plen2);
         self.document = Document::new(project, path);
-        self.pending = None;
-        self.compared_board = None;
     }
 
     pub(super) fn open_now(&mut self, path: PathBuf) {
@@ -118,25 +117,17 @@ impl StudioApp {
             if ui.button(words.new_project).clicked() {
                 actions.push(Action::NewProject);
             }
-            if ui.button(words.open).clicked()
-                && let Some(path) = rfd::FileDialog::new().add_filter("Servo Studio project", &["json"]).pick_file()
-            {
-                actions.push(Action::Open(path));
+            // Dialogs open off the frame: the window keeps drawing (and a base keeps
+            // being watched) while the user looks for a file.
+            let asking = self.dialog.is_some();
+            if ui.add_enabled(!asking, egui::Button::new(words.open)).clicked() {
+                actions.push(Action::AskFile(FileRequest::Open));
             }
             if ui.button(words.save).clicked() {
-                match &self.document.path {
-                    Some(_) => actions.push(Action::Save),
-                    None => {
-                        if let Some(path) = save_dialog() {
-                            actions.push(Action::SaveAs(path));
-                        }
-                    }
-                }
+                actions.push(Action::Save);
             }
-            if ui.button(words.save_as).clicked()
-                && let Some(path) = save_dialog()
-            {
-                actions.push(Action::SaveAs(path));
+            if ui.add_enabled(!asking, egui::Button::new(words.save_as)).clicked() {
+                actions.push(Action::AskFile(FileRequest::SaveAs));
             }
             if !self.recent.is_empty() {
                 ui.separator();
@@ -175,11 +166,8 @@ impl StudioApp {
                         if ui.button(words.save).clicked() {
                             actions.push(Action::UnsavedSave);
                         }
-                    } else if ui.button(words.save_as).clicked()
-                        && let Some(path) = save_dialog()
-                    {
-                        actions.push(Action::SaveAs(path));
-                        actions.push(Action::UnsavedSave);
+                    } else if ui.add_enabled(self.dialog.is_none(), egui::Button::new(words.save_as)).clicked() {
+                        actions.push(Action::AskFile(FileRequest::SaveAsThenContinue));
                     }
                     if ui.button(words.discard).clicked() {
                         actions.push(Action::UnsavedDiscard);
@@ -207,8 +195,24 @@ impl StudioApp {
             }
         });
     }
-}
 
-pub(super) fn save_dialog() -> Option<PathBuf> {
-    rfd::FileDialog::new().add_filter("Servo Studio project", &["json"]).set_file_name("project.json").save_file()
+    /// Takes the answer of an open file dialog: the actions that waited for it.
+    pub(super) fn poll_dialog(&mut self, actions: &mut Vec<Action>) {
+        let Some((_, answer)) = &self.dialog else { return };
+        let chosen = match answer.try_recv() {
+            Ok(chosen) => chosen,
+            Err(crossbeam_channel::TryRecvError::Empty) => return,
+            // The dialog's thread ended without an answer: nothing was chosen.
+            Err(crossbeam_channel::TryRecvError::Disconnected) => None,
+        };
+        let Some((request, _)) = self.dialog.take() else { return };
+        if let Some(path) = chosen {
+            actions.extend(dialogs::answered(&request, path));
+        }
+    }
+
+    /// Whether a file dialog is open.
+    pub fn asking_for_file(&self) -> bool {
+        self.dialog.is_some()
+    }
 }

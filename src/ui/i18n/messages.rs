@@ -204,36 +204,6 @@ impl Language {
         }
     }
 
-    /// A failed upload: why, and what it left on the board, in this language.
-    pub fn upload_failure(self, failure: &crate::device::servo::ImportFailure) -> String {
-        use crate::device::{Left, Stage};
-        if self == Self::English {
-            return failure.to_string();
-        }
-        let error = self.op_error(&failure.error);
-        let mut text = match failure.stage {
-            Stage::BackingUp => format!("備份控制板時：{error}"),
-            Stage::Verifying => format!("驗證時：{error}"),
-            Stage::Checking | Stage::Writing => error,
-        };
-        match &failure.left {
-            Left::Untouched => text.push_str("\n沒有寫入任何資料：控制板保持原狀"),
-            Left::Partly { reached, total } => {
-                let names: Vec<String> = reached.iter().take(6).map(|item| self.item(item)).collect();
-                text.push_str(&format!(
-                    "\n控制板可能只寫入了一部分：{total} 個項目中有 {} 個已寫入（{}）",
-                    reached.len(),
-                    names.join("、")
-                ));
-            }
-            Left::Everything => text.push_str("\n所有項目都已寫入"),
-        }
-        if let Some(backup) = &failure.backup {
-            text.push_str(&format!("\n控制板原本的內容已備份於 {}", backup.display()));
-        }
-        text
-    }
-
     /// Why a board operation failed, in this language, with what to try.
     pub fn op_error(self, error: &crate::device::servo::OpError) -> String {
         use crate::device::servo::OpError as O;

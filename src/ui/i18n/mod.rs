@@ -4,6 +4,7 @@
 
 mod headings;
 mod messages;
+mod operations;
 mod strings;
 
 pub use strings::Strings;

@@ -7,9 +7,11 @@ use crate::project::{
     Action as ProjectAction, Edit, Location, Problem, ServoProject, Step, action_trajectories, next_free_id,
     validate_servo,
 };
-use crate::ui::action::Action;
+use crate::ui::action::{Action, ServoAction};
+use crate::ui::app::ShellView;
 use crate::ui::derive::Derived;
 use crate::ui::i18n::Strings;
+use crate::ui::layout::{self, Layout, Part};
 use crate::ui::{plot, rows};
 
 /// Validation and the plot's series, for a document revision and a selected
@@ -67,16 +69,11 @@ fn set(index: usize, action: ProjectAction, key: Option<String>) -> Action {
 }
 
 impl ActionPanel {
-    /// Draws the editor.
-    pub fn ui(
-        &mut self,
-        ui: &mut egui::Ui,
-        project: &ServoProject,
-        revision: u64,
-        connected: bool,
-        words: &Strings,
-        actions: &mut Vec<Action>,
-    ) {
+    /// Draws the editor: the list of actions beside the selected one's steps,
+    /// its timeline and plot under them (every divider can be dragged).
+    pub fn ui(&mut self, ui: &mut egui::Ui, view: &ShellView<'_>, layout: &mut Layout, actions: &mut Vec<Action>) {
+        let (project, revision, connected) = (&view.project.servo, view.revision, view.link.is_some());
+        let words = view.language.strings();
         ui.horizontal(|ui| {
             ui.heading(words.actions);
             if ui.button(words.add_action).clicked() {
@@ -101,19 +98,26 @@ impl ActionPanel {
             })
             .unwrap_or(&empty);
         let selected = &mut self.selected;
-        ui.horizontal_top(|ui| {
-            ui.vertical(|ui| {
-                ui.set_width(200.0);
-                rows::names(ui, "action-list", project.actions.len(), rows::LIST_ROWS, |ui, index| {
-                    let action = &project.actions[index];
-                    if ui.selectable_label(index == *selected, format!("{} {}", action.id, action.caption)).clicked() {
-                        *selected = index;
-                    }
-                });
-            });
-            ui.separator();
-            ui.vertical(|ui| Self::editor(ui, project, index, facts, connected, words, actions));
+        layout::list_and_editor(ui, "actions", layout, words.timeline_and_plot, |ui, part| match part {
+            Part::List => rows::names(ui, "action-list", project.actions.len(), |ui, index| {
+                let action = &project.actions[index];
+                if ui.selectable_label(index == *selected, format!("{} {}", action.id, action.caption)).clicked() {
+                    *selected = index;
+                }
+            }),
+            Part::Editor => Self::editor(ui, project, index, facts, connected, words, actions),
+            Part::Lower => Self::lower(ui, project, index, facts),
         });
+    }
+
+    /// The selected action's timeline and angle plot.
+    fn lower(ui: &mut egui::Ui, project: &ServoProject, index: usize, derived: &Facts) {
+        let action = &project.actions[index];
+        timeline(ui, project, action, derived.longest_ms);
+        if !derived.series.is_empty() {
+            let height = ui.available_height();
+            plot::series(ui, "action-plot", height, ["ms", "°"], &derived.series);
+        }
     }
 
     fn editor(
@@ -137,10 +141,10 @@ impl ActionPanel {
                 ));
             }
             if ui.add_enabled(connected, egui::Button::new(words.play_on_board)).clicked() {
-                actions.push(Action::PlayAction(action.id));
+                actions.push(Action::Servo(ServoAction::PlayAction(action.id)));
             }
             if ui.button(words.preview).clicked() {
-                actions.push(Action::PreviewAction(action.id));
+                actions.push(Action::Servo(ServoAction::PreviewAction(action.id)));
             }
             if ui.button(words.remove).clicked() {
                 actions.push(Action::Edit { edit: Edit::RemoveAction { index }, coalesce: None });
@@ -151,7 +155,8 @@ impl ActionPanel {
         }
         let headings = words.headings();
         let heading = [headings.step, words.servo_word, headings.angle, headings.interval, "", ""];
-        let height = rows::table_height(ui, rows::TABLE_ROWS + 1);
+        // The steps fill the pane but for the "Add step" row under them.
+        let height = ui.available_height() - rows::widget_row_height(ui) - 2.0 * ui.spacing().item_spacing.y;
         rows::table(ui, "steps", &heading, action.steps.len(), height, |row, position| {
             let step = &action.steps[position];
             let with = |changed: Step, key: Option<String>| {
@@ -217,10 +222,6 @@ impl ActionPanel {
             more.steps.push(Step { servo_id: servo.id, degree: servo.home_deg, interval_10ms: 50 });
             actions.push(set(index, more, None));
         }
-        timeline(ui, project, action, derived.longest_ms);
-        if !derived.series.is_empty() {
-            plot::series(ui, "action-plot", 180.0, ["ms", "°"], &derived.series);
-        }
     }
 }
 
@@ -238,10 +239,10 @@ fn timeline(ui: &mut egui::Ui, project: &ServoProject, action: &ProjectAction, l
     }
     let lane_height = 18.0;
     let label_width = 110.0;
-    let width = ui.available_width().min(900.0);
+    let width = ui.available_width();
     egui::ScrollArea::vertical()
         .id_salt("timeline")
-        .max_height(6.5 * lane_height)
+        .max_height((ui.available_height() * 0.4).max(3.0 * lane_height))
         .auto_shrink([false, true])
         .show_viewport(ui, |ui, viewport| {
             let height = lane_height * action.steps.len() as f32 + 16.0;

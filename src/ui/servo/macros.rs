@@ -7,9 +7,11 @@ use crate::project::{
     Command, Edit, Location, Macro, Problem, Run, ServoProject, Severity, Timing, TimingError, macro_trajectories,
     next_free_id, validate_servo,
 };
-use crate::ui::action::Action;
+use crate::ui::action::{Action, ServoAction};
+use crate::ui::app::ShellView;
 use crate::ui::derive::Derived;
 use crate::ui::i18n::Strings;
+use crate::ui::layout::{self, Layout, Part};
 use crate::ui::{plot, rows};
 
 /// What the composer derives from the project, for a document revision and a
@@ -90,15 +92,9 @@ fn edit(index: usize, item: Macro, key: Option<String>) -> Action {
 
 impl MacroPanel {
     /// Draws the composer.
-    pub fn ui(
-        &mut self,
-        ui: &mut egui::Ui,
-        project: &ServoProject,
-        revision: u64,
-        connected: bool,
-        words: &Strings,
-        actions: &mut Vec<Action>,
-    ) {
+    pub fn ui(&mut self, ui: &mut egui::Ui, view: &ShellView<'_>, layout: &mut Layout, actions: &mut Vec<Action>) {
+        let (project, revision, connected) = (&view.project.servo, view.revision, view.link.is_some());
+        let words = view.language.strings();
         ui.horizontal(|ui| {
             ui.heading(words.macros);
             if ui.button(words.add_macro).clicked() {
@@ -129,20 +125,22 @@ impl MacroPanel {
             })
             .unwrap_or(&empty);
         let selected = &mut self.selected;
-        ui.horizontal_top(|ui| {
-            ui.vertical(|ui| {
-                ui.set_width(200.0);
-                rows::names(ui, "macro-list", project.macros.len(), rows::LIST_ROWS, |ui, index| {
-                    let item = &project.macros[index];
-                    let flagged = derived.flagged.contains(&item.id);
-                    let text = format!("{}{} {}", if flagged { "! " } else { "" }, item.id, item.caption);
-                    if ui.selectable_label(index == *selected, text).clicked() {
-                        *selected = index;
-                    }
-                });
-            });
-            ui.separator();
-            ui.vertical(|ui| Self::editor(ui, project, index, derived, connected, words, actions));
+        layout::list_and_editor(ui, "macros", layout, words.plot, |ui, part| match part {
+            Part::List => rows::names(ui, "macro-list", project.macros.len(), |ui, index| {
+                let item = &project.macros[index];
+                let flagged = derived.flagged.contains(&item.id);
+                let text = format!("{}{} {}", if flagged { "! " } else { "" }, item.id, item.caption);
+                if ui.selectable_label(index == *selected, text).clicked() {
+                    *selected = index;
+                }
+            }),
+            Part::Editor => Self::editor(ui, project, index, derived, connected, words, actions),
+            Part::Lower => {
+                if !derived.series.is_empty() {
+                    let height = ui.available_height();
+                    plot::series(ui, "macro-plot", height, ["ms", "°"], &derived.series);
+                }
+            }
         });
     }
 
@@ -170,7 +168,7 @@ impl MacroPanel {
                 None => ui.label(format!("{} …", words.total)),
             };
             if ui.add_enabled(connected, egui::Button::new(words.run_on_board)).clicked() {
-                actions.push(Action::RunMacro(item.id));
+                actions.push(Action::Servo(ServoAction::RunMacro(item.id)));
             }
             if ui.button(words.remove).clicked() {
                 actions.push(Action::Edit { edit: Edit::RemoveMacro { index }, coalesce: None });
@@ -179,8 +177,10 @@ impl MacroPanel {
         for problem in &derived.macro_problems {
             ui.colored_label(ui.visuals().warn_fg_color, words.lang.problem(&problem.kind));
         }
-        // A command row holds nine widgets: one row fewer than the other tables.
-        let height = rows::table_height(ui, rows::TABLE_ROWS - 1);
+        // The commands fill the pane but for their notes and the row of "Add" buttons.
+        let notes = derived.command_problems.len();
+        let below = notes.min(3) + usize::from(notes > 3) + 1;
+        let height = ui.available_height() - rows::table_height(ui, below) - ui.spacing().item_spacing.y;
         rows::grid(ui, "commands", item.commands.len(), height, |ui, position| {
             let command = &item.commands[position];
             let total = derived.command_totals_ms.get(position).copied().unwrap_or(Err(TimingError::ZeroRatio));
@@ -194,7 +194,6 @@ impl MacroPanel {
                 ui.colored_label(color, "!").on_hover_text(words.lang.problem(&problem.kind));
             }
         });
-        let notes = derived.command_problems.len();
         for (at, problem) in derived.command_problems.iter().take(3) {
             let color = match problem.severity {
                 Severity::Error => ui.visuals().error_fg_color,
@@ -223,9 +222,6 @@ impl MacroPanel {
                 actions.push(add(Run::Macro { macro_id }));
             }
         });
-        if !derived.series.is_empty() {
-            plot::series(ui, "macro-plot", 220.0, ["ms", "°"], &derived.series);
-        }
     }
 
     #[allow(clippy::too_many_arguments)]

@@ -2,11 +2,12 @@
 //! project's motion and the robot's, differences marked), read the robot,
 //! upload with backup and verification, read into the project, export to a file.
 
-use crate::device::plen2::Plen2Phase;
+use super::{Plen2Kind, Plen2Outcome, Plen2Result};
+use crate::device::Phase;
 use crate::project::plen2::{Motion, Plen2Project, SLOTS};
-use crate::ui::action::{Action, Plen2Intent};
-use crate::ui::i18n::Strings;
-use crate::ui::plen2_job::Plen2Job;
+use crate::ui::action::{Action, FileRequest, Plen2Action, Plen2Intent};
+use crate::ui::i18n::{Language, Strings};
+use crate::ui::operation::{Operation, Subject};
 use crate::ui::rows;
 
 /// What the robot panel draws.
@@ -19,9 +20,9 @@ pub struct RobotView<'a> {
     /// Whether a robot is connected.
     pub connected: bool,
     /// The running operation.
-    pub job: Option<&'a Plen2Job>,
-    /// The last outcome, in words.
-    pub result: Option<&'a str>,
+    pub operation: Option<&'a Operation<Plen2Kind, Plen2Outcome>>,
+    /// The last outcome.
+    pub result: Option<&'a Plen2Result>,
 }
 
 /// How a slot of the map compares the project with the robot.
@@ -112,59 +113,63 @@ fn cell(ui: &mut egui::Ui, slot: usize, cell: &SlotCell) {
     }
 }
 
-fn phase_word(phase: Plen2Phase, words: &Strings) -> &'static str {
+fn phase_word(phase: Phase, words: &Strings) -> &'static str {
     match phase {
-        Plen2Phase::Read => words.phases[0],
-        Plen2Phase::Write => words.phases[1],
-        Plen2Phase::Verify => words.phases[2],
+        Phase::Read => words.phases[0],
+        Phase::Write => words.phases[1],
+        Phase::Verify => words.phases[2],
     }
 }
 
 /// Draws the robot panel.
-pub fn robot_panel(ui: &mut egui::Ui, view: &RobotView<'_>, words: &Strings, actions: &mut Vec<Action>) {
+pub fn robot_panel(ui: &mut egui::Ui, view: &RobotView<'_>, language: Language, actions: &mut Vec<Action>) {
+    let words = language.strings();
     ui.horizontal(|ui| {
         ui.heading(words.board);
-        let idle = view.job.is_none();
+        let idle = view.operation.is_none();
         ui.add_enabled_ui(view.connected && idle, |ui| {
             if ui.button(words.read_robot).clicked() {
-                actions.push(Action::Plen2Board(Plen2Intent::Read));
+                actions.push(Action::Plen2(Plen2Action::Robot(Plen2Intent::Read)));
             }
             if ui.button(words.upload_motions).on_hover_text(words.upload_hint).clicked() {
-                actions.push(Action::Plen2Board(Plen2Intent::Upload));
+                actions.push(Action::Plen2(Plen2Action::Robot(Plen2Intent::Upload)));
             }
             if ui.add_enabled(view.robot_read, egui::Button::new(words.confirm_read)).clicked() {
-                actions.push(Action::Plen2Board(Plen2Intent::ReadIntoProject));
+                actions.push(Action::Plen2(Plen2Action::Robot(Plen2Intent::ReadIntoProject)));
             }
-            if ui.add_enabled(view.robot_read, egui::Button::new(words.export_board)).clicked()
-                && let Some(path) = rfd::FileDialog::new()
-                    .add_filter("Servo Studio project", &["json"])
-                    .set_file_name("plen2.json")
-                    .save_file()
-            {
-                actions.push(Action::Plen2Board(Plen2Intent::ExportToFile(path)));
+            // The shell asks where, off the frame.
+            if ui.add_enabled(view.robot_read, egui::Button::new(words.export_board)).clicked() {
+                actions.push(Action::AskFile(FileRequest::ExportRobot));
             }
         });
     });
     if !view.connected {
         ui.label(words.connect_to_transfer);
     }
-    if let Some(job) = view.job {
-        if let Some(progress) = &job.progress {
-            let fraction = if progress.total == 0 { 0.0 } else { progress.done as f32 / progress.total as f32 };
-            ui.add(egui::ProgressBar::new(fraction).show_percentage().text(format!(
-                "{} {}/{} {}",
+    if let Some(operation) = view.operation {
+        if let Some(progress) = &operation.progress {
+            let item = match &progress.item {
+                Subject::Plen2(item) => language.plen2_item(item),
+                Subject::Servo(item) => language.item(item),
+            };
+            ui.add(egui::ProgressBar::new(operation.fraction()).show_percentage().text(format!(
+                "{} {}/{} {item}",
                 phase_word(progress.phase, words),
                 progress.done,
                 progress.total,
-                progress.item
             )));
         }
         if ui.button(words.cancel).clicked() {
-            actions.push(Action::BoardCancel);
+            actions.push(Action::CancelOperation);
         }
     }
     if let Some(result) = view.result {
-        ui.label(result);
+        let (text, is_error) = language.plen2_result(result);
+        if is_error {
+            ui.colored_label(ui.visuals().error_fg_color, text);
+        } else {
+            ui.label(text);
+        }
     }
     ui.label(words.slot_map);
     // Ten slots a row; only the rows in view are laid out.

@@ -4,8 +4,9 @@
 
 use crate::project::Edit;
 use crate::project::plen2::{PlayEntry, PlayList, Plen2Project};
-use crate::ui::action::Action;
+use crate::ui::action::{Action, Plen2Action};
 use crate::ui::i18n::Strings;
+use crate::ui::layout::{self, Layout, Pane};
 use crate::ui::rows;
 
 /// The panel's own state: which list is open.
@@ -27,6 +28,7 @@ impl PlayListsPanel {
         ui: &mut egui::Ui,
         project: &Plen2Project,
         connected: bool,
+        layout: &mut Layout,
         words: &Strings,
         actions: &mut Vec<Action>,
     ) {
@@ -42,20 +44,23 @@ impl PlayListsPanel {
             return;
         }
         self.selected = self.selected.min(project.play_lists.len() - 1);
-        ui.horizontal_top(|ui| {
-            ui.vertical(|ui| {
-                ui.set_width(200.0);
-                rows::names(ui, "play-lists", project.play_lists.len(), rows::LIST_ROWS, |ui, index| {
+        let selected = self.selected;
+        let mut picked = None;
+        layout::columns(ui, "play-lists", &mut layout.list_width, 140.0, |ui, pane| match pane {
+            Pane::First => {
+                rows::names(ui, "play-lists", project.play_lists.len(), |ui, index| {
                     let list = &project.play_lists[index];
                     let text = format!("{} ({})", list.name, list.entries.len());
-                    if ui.selectable_label(index == self.selected, text).clicked() {
-                        self.selected = index;
+                    if ui.selectable_label(index == selected, text).clicked() {
+                        picked = Some(index);
                     }
                 });
-            });
-            ui.separator();
-            ui.vertical(|ui| self.editor(ui, project, connected, words, actions));
+            }
+            Pane::Second => self.editor(ui, project, connected, words, actions),
         });
+        if let Some(index) = picked {
+            self.selected = index;
+        }
     }
 
     fn editor(
@@ -78,7 +83,7 @@ impl PlayListsPanel {
                 .on_hover_text("#RI, #PU…, #PO")
                 .clicked()
             {
-                actions.push(Action::PlayList(index));
+                actions.push(Action::Plen2(Plen2Action::PlayList(index)));
             }
             if ui.button(words.add_entry).clicked() {
                 let slot = project.motions.first().map_or(0, |m| m.slot);
@@ -90,7 +95,7 @@ impl PlayListsPanel {
                 }));
             }
         });
-        let height = rows::table_height(ui, rows::TABLE_ROWS);
+        let height = ui.available_height();
         rows::grid(ui, "play-list-entries", list.entries.len(), height, |ui, position| {
             let entry = &list.entries[position];
             let mut changed = *entry;

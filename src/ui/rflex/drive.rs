@@ -9,7 +9,7 @@
 
 use crate::project::Edit;
 use crate::project::rflex::{DriveSettings, SpeedLimits};
-use crate::ui::action::Action;
+use crate::ui::action::{Action, RflexAction};
 use crate::ui::i18n::Strings;
 
 /// Side of the drag pad, points.
@@ -67,7 +67,7 @@ impl DrivePanel {
         if wanted == (0.0, 0.0) {
             actions.push(Action::Stop);
         } else {
-            actions.push(Action::Drive { speed_m_per_s: wanted.0, turn_rad_per_s: wanted.1 });
+            actions.push(Action::Rflex(RflexAction::Drive { speed_m_per_s: wanted.0, turn_rad_per_s: wanted.1 }));
         }
     }
 
@@ -92,10 +92,10 @@ impl DrivePanel {
             let brake = ui.add_enabled(view.connected, egui::Button::new(words.brake).selected(braked));
             if brake.clicked() {
                 self.asked = (0.0, 0.0);
-                actions.push(Action::SetBrake(!braked));
+                actions.push(Action::Rflex(RflexAction::SetBrake(!braked)));
             }
             if ui.add_enabled(view.connected, egui::Button::new(words.sonar).selected(view.sonar_on)).clicked() {
-                actions.push(Action::SetSonar(!view.sonar_on));
+                actions.push(Action::Rflex(RflexAction::SetSonar(!view.sonar_on)));
             }
         });
         ui.label(words.pad_hint);
@@ -151,6 +151,10 @@ impl DrivePanel {
             if keys_free && ui.input_mut(|input| input.consume_key(egui::Modifiers::NONE, egui::Key::Space)) {
                 self.asked = (0.0, 0.0);
                 actions.push(Action::Stop);
+            }
+            if view.connected && !focused {
+                // Keys and the pad do nothing without the window's focus: say why.
+                ui.colored_label(ui.visuals().warn_fg_color, words.drive_needs_focus);
             }
             let wanted = if !view.connected || !focused {
                 (0.0, 0.0)

@@ -1,34 +1,39 @@
-//! Live moves from the editor: sliders, captured poses, played and previewed
-//! actions, and buttons picked on the remote.
+//! Live moves from the servo panels: sliders, captured poses, played and
+//! previewed actions, and buttons picked on the remote.
 
-use super::*;
+use std::time::Instant;
 
-impl StudioApp {
-    pub(super) fn set_pose(&mut self, servo_id: u8, degree: i16) {
-        let Some(servo) = self.document.project.servo.servo(servo_id) else {
+use super::{CAPTURED_STEP_INTERVAL_10MS, LIVE_MOVE_INTERVAL_10MS, ServoUi};
+use crate::device::servo::ServoMove;
+use crate::project::{Action as ProjectAction, Edit, ServoProject, Step, next_free_id};
+use crate::ui::app::Shell;
+
+impl ServoUi {
+    pub(super) fn set_pose(&mut self, shell: &mut Shell<'_>, servo_id: u8, degree: i16) {
+        let Some(servo) = shell.document.project.servo.servo(servo_id) else {
             return;
         };
         // The limits clamp every move the app sends, whatever asked for it.
         let degree = servo.clamp(degree);
         self.pose.insert(servo_id, degree);
-        if let Some(link) = self.servo() {
+        if let Some(link) = shell.servo() {
             if link.stopped {
-                self.report(self.words().msg_press_resume, true);
+                shell.report(shell.words().msg_press_resume, true);
                 return;
             }
             let servo_move = ServoMove { servo_id, degree, interval_10ms: LIVE_MOVE_INTERVAL_10MS };
             if let Err(error) = link.live_move(vec![servo_move]) {
-                self.report(self.language.request_error(&error), true);
+                shell.report(shell.language.request_error(&error), true);
             }
         }
     }
 
-    pub(super) fn capture_pose(&mut self, from_board: bool) {
-        let project = &self.document.project.servo;
+    pub(super) fn capture_pose(&mut self, shell: &mut Shell<'_>, from_board: bool) {
+        let project = &shell.document.project.servo;
+        let read = shell.servo().map(|link| &link.servos);
         let angle = |servo_id: u8, home: i16| -> i16 {
             if from_board {
-                let read = self.servo().and_then(|link| link.servos.get(&servo_id)).map(|state| state.angle);
-                read.unwrap_or(home)
+                read.and_then(|servos| servos.get(&servo_id)).map_or(home, |state| state.angle)
             } else {
                 self.pose.get(&servo_id).copied().unwrap_or(home)
             }
@@ -43,24 +48,25 @@ impl StudioApp {
             })
             .collect();
         if steps.is_empty() {
-            self.report(self.words().msg_nothing_to_capture, true);
+            shell.report(shell.words().msg_nothing_to_capture, true);
             return;
         }
         let id = next_free_id(project.actions.iter().map(|action| action.id));
-        let caption = format!("{} {id}", self.language.strings().pose);
-        self.document.apply(Edit::AddAction(ProjectAction { id, caption: caption.clone(), steps }), None);
-        self.report(format!("{} {id} \"{caption}\"", self.words().msg_captured), false);
+        let caption = format!("{} {id}", shell.words().pose);
+        shell.document.apply(Edit::AddAction(ProjectAction { id, caption: caption.clone(), steps }), None);
+        shell.report(format!("{} {id} \"{caption}\"", shell.words().msg_captured), false);
     }
 
     /// Sends an action's steps as one live move (clamped to each servo's limits)
     /// and shows the targets on the sliders.
-    pub(super) fn play_action(&mut self, action_id: i32) {
-        let Some(action) = self.document.project.servo.action(action_id) else { return };
+    pub(super) fn play_action(&mut self, shell: &mut Shell<'_>, action_id: i32) {
+        let project = &shell.document.project.servo;
+        let Some(action) = project.action(action_id) else { return };
         let moves: Vec<ServoMove> = action
             .steps
             .iter()
             .filter_map(|step| {
-                let servo = self.document.project.servo.servo(step.servo_id)?;
+                let servo = project.servo(step.servo_id)?;
                 Some(ServoMove {
                     servo_id: step.servo_id,
                     degree: servo.clamp(step.degree),
@@ -68,16 +74,16 @@ impl StudioApp {
                 })
             })
             .collect();
-        let Some(link) = self.servo() else {
-            self.report(self.words().msg_connect_for_play, true);
+        let Some(link) = shell.servo() else {
+            shell.report(shell.words().msg_connect_for_play, true);
             return;
         };
         if link.stopped {
-            self.report(self.words().msg_press_resume, true);
+            shell.report(shell.words().msg_press_resume, true);
             return;
         }
         if let Err(error) = link.move_now(moves.clone()) {
-            self.report(self.language.op_error(&error), true);
+            shell.report(shell.language.op_error(&error), true);
             return;
         }
         for servo_move in moves {
@@ -86,9 +92,9 @@ impl StudioApp {
     }
 
     /// Moves the sliders along the previewed action at `now`; ends the preview after its last step.
-    pub fn advance_preview(&mut self, now: Instant) {
+    pub fn advance_preview(&mut self, project: &ServoProject, now: Instant) {
         let Some((action_id, started)) = self.preview else { return };
-        let (trajectories, end_ms) = crate::project::action_trajectories(&self.document.project.servo, action_id);
+        let (trajectories, end_ms) = crate::project::action_trajectories(project, action_id);
         let elapsed_ms = now.saturating_duration_since(started).as_secs_f64() * 1000.0;
         for (servo_id, points) in &trajectories {
             if let Some(angle) = crate::project::angle_at(points, elapsed_ms) {
@@ -104,11 +110,11 @@ impl StudioApp {
     }
 
     /// Selects the pressed button in the table, adding it if the table lacks it.
-    pub(super) fn pick_button(&mut self, table_index: usize, button_id: u32) {
+    pub(super) fn pick_button(&mut self, shell: &mut Shell<'_>, table_index: usize, button_id: u32) {
         self.picked_button = Some(button_id);
-        let Some(table) = self.document.project.servo.joystick_tables.get(table_index) else { return };
+        let Some(table) = shell.document.project.servo.joystick_tables.get(table_index) else { return };
         if table.buttons.iter().any(|button| button.id == button_id) {
-            self.report(format!("{} 0x{button_id:08x}", self.words().msg_picked), false);
+            shell.report(format!("{} 0x{button_id:08x}", shell.words().msg_picked), false);
             return;
         }
         let mut table = table.clone();
@@ -120,7 +126,7 @@ impl StudioApp {
             release_macro: None,
             uninterruptible: false,
         });
-        self.document.apply(Edit::SetTable { index: table_index, table }, None);
-        self.report(format!("{} 0x{button_id:08x}", self.words().msg_added_button), false);
+        shell.document.apply(Edit::SetTable { index: table_index, table }, None);
+        shell.report(format!("{} 0x{button_id:08x}", shell.words().msg_added_button), false);
     }
 }

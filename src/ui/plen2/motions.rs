@@ -6,8 +6,10 @@
 use crate::project::plen2::{Frame, Joint, LoopRange, Motion, Plen2Project, Pose};
 use crate::project::plen2::{MAX_TRANSITION_MS, MIN_TRANSITION_MS, SLOTS};
 use crate::project::{Edit, Location, Problem};
-use crate::ui::action::Action;
+use crate::ui::action::{Action, FileRequest, Plen2Action};
+use crate::ui::app::ShellView;
 use crate::ui::i18n::Strings;
+use crate::ui::layout::{self, Layout, Pane, Part};
 use crate::ui::{plot, rows};
 
 /// The frame mirrored left↔right: each left joint takes its right twin's value
@@ -48,16 +50,18 @@ impl MotionsPanel {
         project.motions.get(self.selected).map(|m| m.slot)
     }
 
-    /// Draws the panel.
+    /// Draws the panel: the motions beside the selected one's editor, its
+    /// frames filling the height, the frame's values and plot under them.
     pub fn ui(
         &mut self,
         ui: &mut egui::Ui,
-        project: &Plen2Project,
-        (revision, problems): (u64, &[Problem]),
-        connected: bool,
-        words: &Strings,
+        view: &ShellView<'_>,
+        problems: &[Problem],
+        layout: &mut Layout,
         actions: &mut Vec<Action>,
     ) {
+        let (project, revision, words) = (&view.project.plen2, view.revision, view.language.strings());
+        let connected = view.link.is_some_and(|link| link.plen2().is_some());
         if self.flagged_at != Some(revision) {
             self.flagged.clear();
             for problem in problems {
@@ -87,27 +91,52 @@ impl MotionsPanel {
             return;
         }
         self.selected = self.selected.min(project.motions.len() - 1);
-        ui.horizontal_top(|ui| {
-            ui.vertical(|ui| {
-                ui.set_width(190.0);
-                let flagged = &self.flagged;
-                let mut picked = None;
-                rows::names(ui, "plen2-motion-list", project.motions.len(), rows::LIST_ROWS, |ui, index| {
-                    let motion = &project.motions[index];
-                    let mark = if flagged.contains_key(&motion.slot) { "! " } else { "" };
-                    let text = format!("{mark}{:>2} {}", motion.slot, motion.name);
-                    if ui.selectable_label(index == self.selected, text).clicked() {
-                        picked = Some(index);
-                    }
-                });
-                if let Some(index) = picked {
-                    self.selected = index;
-                    self.frame = 0;
+        // What the list needs, apart from the editor's state (at most 90 slots).
+        let flagged: std::collections::BTreeSet<u8> = self.flagged.keys().copied().collect();
+        let selected = self.selected;
+        let mut picked = None;
+        layout::list_and_editor(ui, "plen2-motions", layout, words.frame_and_plot, |ui, part| match part {
+            Part::List => rows::names(ui, "plen2-motion-list", project.motions.len(), |ui, index| {
+                let motion = &project.motions[index];
+                let mark = if flagged.contains(&motion.slot) { "! " } else { "" };
+                let text = format!("{mark}{:>2} {}", motion.slot, motion.name);
+                if ui.selectable_label(index == selected, text).clicked() {
+                    picked = Some(index);
                 }
-            });
-            ui.separator();
-            ui.vertical(|ui| self.editor(ui, project, connected, words, actions));
+            }),
+            Part::Editor => self.editor(ui, project, connected, words, actions),
+            Part::Lower => self.lower(ui, project, words, actions),
         });
+        if let Some(index) = picked {
+            self.selected = index;
+            self.frame = 0;
+        }
+    }
+
+    /// The selected frame's values, the timeline and the angle plot.
+    fn lower(&mut self, ui: &mut egui::Ui, project: &Plen2Project, words: &Strings, actions: &mut Vec<Action>) {
+        let index = self.selected;
+        let motion = &project.motions[index];
+        timeline(ui, motion, self.frame);
+        let key = (self.flagged_at.unwrap_or_default(), index);
+        if self.series.as_ref().is_none_or(|(at, _)| *at != key) {
+            self.series = Some((key, joint_series(motion)));
+        }
+        let mut width = 560.0;
+        let series = self.series.take();
+        layout::columns(ui, "plen2-frame-values", &mut width, 200.0, |ui, pane| match pane {
+            Pane::First => {
+                egui::ScrollArea::vertical().id_salt("plen2-frame-values-scroll").show(ui, |ui| {
+                    self.frame_values(ui, project, words, actions);
+                });
+            }
+            Pane::Second => {
+                let series = series.as_ref().map_or(&[][..], |(_, series)| series.as_slice());
+                let height = ui.available_height();
+                plot::series(ui, "plen2-angles", height, ["ms", "°"], series);
+            }
+        });
+        self.series = series;
     }
 
     fn editor(
@@ -141,15 +170,12 @@ impl MotionsPanel {
                 actions.push(edit(project, |p| p.motions[index].name = name, key("name")));
             }
             if ui.add_enabled(connected, egui::Button::new(words.play_on_robot)).on_hover_text("$PM").clicked() {
-                actions.push(Action::PlayMotion(motion.slot));
+                actions.push(Action::Plen2(Plen2Action::PlayMotion(motion.slot)));
             }
-            if ui.button("motion.json…").on_hover_text("Save for the official PLEN Motion Editor").clicked()
-                && let Some(path) = rfd::FileDialog::new()
-                    .add_filter("PLEN motion", &["json"])
-                    .set_file_name(format!("{:02X}_{}.json", motion.slot, motion.name.replace(' ', "_")))
-                    .save_file()
-            {
-                actions.push(Action::SaveMotionJson { slot: motion.slot, path });
+            // The shell asks where, off the frame; the answer comes back as a save.
+            if ui.button("motion.json…").on_hover_text(words.motion_json_hint).clicked() {
+                let name = format!("{:02X}_{}.json", motion.slot, motion.name.replace(' ', "_"));
+                actions.push(Action::AskFile(FileRequest::MotionJson { slot: motion.slot, name }));
             }
             if ui.button(words.remove).clicked() {
                 actions.push(edit(
@@ -204,14 +230,6 @@ impl MotionsPanel {
             );
         }
         self.frames_table(ui, project, connected, words, actions);
-        self.frame_values(ui, project, words, actions);
-        let key = (self.flagged_at.unwrap_or_default(), index);
-        if self.series.as_ref().is_none_or(|(at, _)| *at != key) {
-            self.series = Some((key, joint_series(motion)));
-        }
-        timeline(ui, motion, self.frame);
-        let series = self.series.as_ref().map_or(&[][..], |(_, series)| series.as_slice());
-        plot::series(ui, "plen2-angles", 170.0, ["ms", "°"], series);
     }
 
     fn frames_table(
@@ -228,7 +246,7 @@ impl MotionsPanel {
         ui.label(format!("{} ({})", words.frames, motion.frames.len()));
         let mut selected = self.frame;
         let clipboard = &mut self.clipboard;
-        let height = rows::table_height(ui, rows::TABLE_ROWS / 2 + 2);
+        let height = ui.available_height();
         rows::grid(ui, "plen2-frames", motion.frames.len(), height, |ui, f| {
             let frame = &motion.frames[f];
             if ui.selectable_label(f == selected, format!("#{f}")).clicked() {
@@ -278,7 +296,7 @@ impl MotionsPanel {
                 ));
             }
             if ui.add_enabled(connected, egui::Button::new(words.play_from_here).small()).clicked() {
-                actions.push(Action::PlayFrom { slot: motion.slot, frame: f });
+                actions.push(Action::Plen2(Plen2Action::PlayFrom { slot: motion.slot, frame: f }));
             }
         });
         self.frame = selected;

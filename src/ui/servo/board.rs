@@ -3,9 +3,14 @@
 //! differs, and overwrites nothing until the user confirms.
 
 use std::path::PathBuf;
+use std::sync::Arc;
 
-use crate::ui::action::{Action, BoardIntent};
-use crate::ui::job::{Job, JobKind};
+use super::operations::{ServoFailure, ServoKind, ServoOutcome};
+use crate::device::servo::{Difference, ImageError, Item};
+use crate::project::Problem;
+use crate::ui::action::{Action, BoardIntent, FileRequest, ServoAction};
+use crate::ui::i18n::Language;
+use crate::ui::operation::{Operation, Subject};
 use crate::ui::rows;
 
 /// A comparison waiting for the user's go-ahead.
@@ -13,38 +18,63 @@ use crate::ui::rows;
 pub struct PendingConfirm {
     /// What happens on confirm.
     pub intent: BoardIntent,
-    /// What differs between project and board (empty = identical).
-    pub differences: Vec<String>,
+    /// What differs between project and board (empty = identical), or why
+    /// the project cannot be put in board records.
+    pub differences: Result<Vec<Difference>, ImageError>,
 }
 
 /// The outcome shown after an operation.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug)]
 pub enum BoardResult {
     /// Written and verified.
     Uploaded {
         /// Each item written, in order.
-        items: Vec<String>,
+        items: Vec<Item>,
         /// Where the board's previous contents were saved.
         backup: Option<PathBuf>,
     },
     /// The project has authoring errors; nothing was written. The user may upload anyway.
     Invalid {
-        /// The problems, with their locations.
-        error: String,
+        /// The errors, with their locations.
+        problems: Vec<Problem>,
     },
     /// Stopped with an error.
     Failed {
         /// Items finished before the failure.
-        items: Vec<String>,
-        /// What failed and what to try.
-        error: String,
+        items: Vec<Item>,
+        /// What failed (and what it left).
+        failure: Arc<ServoFailure>,
     },
     /// The board replaced the project (undoable).
     ReadIntoProject,
     /// The board was saved to a file.
     Exported(PathBuf),
+    /// The board could not be saved to the file; the text says why.
+    ExportFailed(String),
     /// The user cancelled.
     Cancelled,
+}
+
+impl BoardResult {
+    /// The failure or problems in `language`, if this is one.
+    pub fn error_text(&self, language: Language) -> Option<String> {
+        match self {
+            Self::Invalid { problems } => {
+                Some(language.op_error(&crate::device::servo::OpError::Invalid { problems: problems.clone() }))
+            }
+            Self::Failed { failure, .. } => Some(language.servo_failure(failure)),
+            Self::ExportFailed(text) => Some(text.clone()),
+            _ => None,
+        }
+    }
+}
+
+/// The differences of a comparison in `language`.
+pub fn difference_lines(pending: &PendingConfirm, language: Language) -> Vec<String> {
+    match &pending.differences {
+        Ok(differences) => differences.iter().map(|d| language.difference(d)).collect(),
+        Err(error) => vec![language.op_error(&crate::device::servo::OpError::Image(error.clone()))],
+    }
 }
 
 /// What the panel draws.
@@ -56,8 +86,8 @@ pub struct BoardView<'a> {
     pub project_bytes: Result<usize, String>,
     /// The board's total memory, if known.
     pub board_total_bytes: Option<i64>,
-    /// The running job.
-    pub job: Option<&'a Job>,
+    /// The running operation.
+    pub operation: Option<&'a Operation<ServoKind, ServoOutcome>>,
     /// A comparison waiting for confirmation.
     pub pending: Option<&'a PendingConfirm>,
     /// The last outcome.
@@ -65,7 +95,8 @@ pub struct BoardView<'a> {
 }
 
 /// Draws the board panel.
-pub fn ui(ui: &mut egui::Ui, view: &BoardView<'_>, words: &crate::ui::i18n::Strings, actions: &mut Vec<Action>) {
+pub fn ui(ui: &mut egui::Ui, view: &BoardView<'_>, language: Language, actions: &mut Vec<Action>) {
+    let words = language.strings();
     ui.heading(words.board);
     match (&view.project_bytes, view.board_total_bytes) {
         (Ok(bytes), Some(total)) if total > 0 => {
@@ -82,22 +113,18 @@ pub fn ui(ui: &mut egui::Ui, view: &BoardView<'_>, words: &crate::ui::i18n::Stri
         }
     }
     ui.add_space(6.0);
-    let idle = view.job.is_none() && view.pending.is_none();
+    let idle = view.operation.is_none() && view.pending.is_none();
     ui.horizontal(|ui| {
         ui.add_enabled_ui(view.connected && idle, |ui| {
             if ui.button(words.upload_to_board).on_hover_text(words.upload_hint).clicked() {
-                actions.push(Action::BoardCompare(BoardIntent::Upload));
+                actions.push(Action::Servo(ServoAction::BoardCompare(BoardIntent::Upload)));
             }
             if ui.button(words.read_board).on_hover_text(words.read_hint).clicked() {
-                actions.push(Action::BoardCompare(BoardIntent::ReadIntoProject));
+                actions.push(Action::Servo(ServoAction::BoardCompare(BoardIntent::ReadIntoProject)));
             }
-            if ui.button(words.export_board).clicked()
-                && let Some(path) = rfd::FileDialog::new()
-                    .add_filter("Servo Studio project", &["json"])
-                    .set_file_name("board.json")
-                    .save_file()
-            {
-                actions.push(Action::BoardCompare(BoardIntent::ExportToFile(path)));
+            // The shell asks where, off the frame; the answer comes back as a comparison.
+            if ui.button(words.export_board).clicked() {
+                actions.push(Action::AskFile(FileRequest::ExportBoard));
             }
         });
     });
@@ -105,37 +132,40 @@ pub fn ui(ui: &mut egui::Ui, view: &BoardView<'_>, words: &crate::ui::i18n::Stri
         ui.label(words.connect_to_transfer);
     }
 
-    if let Some(job) = view.job {
+    if let Some(operation) = view.operation {
         ui.separator();
-        let what = match job.kind {
-            JobKind::Compare => words.reading_to_compare,
-            JobKind::Upload { .. } => words.uploading,
-            JobKind::Read => words.reading_board,
+        let what = match operation.kind {
+            ServoKind::Compare => words.reading_to_compare,
+            ServoKind::Upload { .. } => words.uploading,
         };
         ui.label(what);
-        if let Some(progress) = &job.progress {
-            let fraction = if progress.total == 0 { 0.0 } else { progress.done as f32 / progress.total as f32 };
-            ui.add(egui::ProgressBar::new(fraction).show_percentage().text(format!(
-                "{}/{} {}",
-                progress.done,
-                progress.total,
-                words.lang.item(&progress.item)
-            )));
+        if let Some(progress) = &operation.progress {
+            let item = match &progress.item {
+                Subject::Servo(item) => language.item(item),
+                Subject::Plen2(item) => item.to_string(),
+            };
+            ui.add(
+                egui::ProgressBar::new(operation.fraction())
+                    .show_percentage()
+                    .text(format!("{}/{} {item}", progress.done, progress.total)),
+            );
         }
         if ui.button(words.cancel).clicked() {
-            actions.push(Action::BoardCancel);
+            actions.push(Action::CancelOperation);
         }
     }
 
     if let Some(pending) = view.pending {
         ui.separator();
-        if pending.differences.is_empty() {
+        let differences = difference_lines(pending, language);
+        if differences.is_empty() {
             ui.label(words.already_identical);
         } else {
-            ui.label(format!("{} {}", pending.differences.len(), words.differences));
+            ui.label(format!("{} {}", differences.len(), words.differences));
             let row_height = ui.text_style_height(&egui::TextStyle::Monospace);
-            rows::list(ui, "differences", row_height, pending.differences.len(), 180.0, |ui, index| {
-                ui.monospace(&pending.differences[index]);
+            let height = (ui.available_height() * 0.5).max(row_height * 4.0);
+            rows::list(ui, "differences", row_height, differences.len(), height, |ui, index| {
+                ui.monospace(&differences[index]);
             });
         }
         ui.horizontal(|ui| {
@@ -145,17 +175,20 @@ pub fn ui(ui: &mut egui::Ui, view: &BoardView<'_>, words: &crate::ui::i18n::Stri
                 BoardIntent::ExportToFile(_) => words.confirm_export,
             };
             if ui.button(confirm).clicked() {
-                actions.push(Action::BoardConfirm);
+                actions.push(Action::Servo(ServoAction::BoardConfirm));
             }
             if ui.button(words.cancel).clicked() {
-                actions.push(Action::BoardDismiss);
+                actions.push(Action::Servo(ServoAction::BoardDismiss));
             }
         });
     }
 
     if let Some(result) = view.result {
         ui.separator();
-        let items = match result {
+        if let Some(error) = result.error_text(language) {
+            ui.colored_label(ui.visuals().error_fg_color, error);
+        }
+        let items: &[Item] = match result {
             BoardResult::Uploaded { items, backup } => {
                 ui.label(format!("{} {}", words.uploaded_items, items.len()));
                 if let Some(backup) = backup {
@@ -163,18 +196,14 @@ pub fn ui(ui: &mut egui::Ui, view: &BoardView<'_>, words: &crate::ui::i18n::Stri
                 }
                 items.as_slice()
             }
-            BoardResult::Invalid { error } => {
-                ui.colored_label(ui.visuals().error_fg_color, error);
+            BoardResult::Invalid { .. } => {
                 let anyway = ui.add_enabled(view.connected && idle, egui::Button::new(words.upload_anyway));
                 if anyway.on_hover_text(words.upload_anyway_hint).clicked() {
-                    actions.push(Action::BoardCompare(BoardIntent::UploadAnyway));
+                    actions.push(Action::Servo(ServoAction::BoardCompare(BoardIntent::UploadAnyway)));
                 }
                 &[]
             }
-            BoardResult::Failed { items, error } => {
-                ui.colored_label(ui.visuals().error_fg_color, error);
-                items.as_slice()
-            }
+            BoardResult::Failed { items, .. } => items.as_slice(),
             BoardResult::ReadIntoProject => {
                 ui.label(words.read_done);
                 &[]
@@ -183,15 +212,17 @@ pub fn ui(ui: &mut egui::Ui, view: &BoardView<'_>, words: &crate::ui::i18n::Stri
                 ui.label(format!("{} {}", words.saved_board_to, path.display()));
                 &[]
             }
+            BoardResult::ExportFailed(_) => &[],
             BoardResult::Cancelled => {
                 ui.label(words.cancelled);
                 &[]
             }
         };
         if !items.is_empty() {
+            // The rest of the panel's height: the list fills it.
             let row_height = ui.text_style_height(&egui::TextStyle::Body);
-            rows::list(ui, "items", row_height, items.len(), 220.0, |ui, index| {
-                ui.label(format!("√ {}", items[index]));
+            rows::list(ui, "items", row_height, items.len(), ui.available_height(), |ui, index| {
+                ui.label(format!("√ {}", language.item(&items[index])));
             });
         }
     }
@@ -209,31 +240,33 @@ mod tests {
     /// view of each list are laid out.
     #[test]
     fn the_difference_and_item_lists_lay_out_the_rows_in_view() {
+        use crate::device::servo::RecordKind;
         let pending = PendingConfirm {
             intent: BoardIntent::Upload,
-            differences: (0..500).map(|n| format!("difference {n}")).collect(),
+            differences: Ok((0..500).map(|id| Difference::Missing { kind: RecordKind::Action, id }).collect()),
         };
-        let result =
-            BoardResult::Uploaded { items: (0..500).map(|n| format!("uploaded item {n}")).collect(), backup: None };
+        let result = BoardResult::Uploaded {
+            items: (0..500).map(|id| Item::Action { id, caption: format!("uploaded {id}") }).collect(),
+            backup: None,
+        };
         let mut harness =
             Harness::builder().with_size(egui::vec2(1000.0, 800.0)).with_accessibility_check(false).build_ui(|panel| {
                 let view = BoardView {
                     connected: true,
                     project_bytes: Ok(1000),
                     board_total_bytes: Some(60_000),
-                    job: None,
+                    operation: None,
                     pending: Some(&pending),
                     result: Some(&result),
                 };
                 let mut actions = Vec::new();
-                ui(panel, &view, Language::English.strings(), &mut actions);
+                ui(panel, &view, Language::English, &mut actions);
             });
         harness.run_steps(3);
-        for (needle, height) in [("difference ", 180), ("uploaded item ", 220)] {
+        for needle in ["missing on the board", "uploaded "] {
             let laid_out = harness.query_all_by_label_contains(needle).count();
-            // A list `height` pixels tall shows about height ÷ 16 rows (plus one partly shown).
-            let bound = height / 14 + 2;
-            assert!((3..=bound).contains(&laid_out), "{needle}: {laid_out} of 500 rows laid out (bound {bound})");
+            // Neither list can show more than the 800-pixel window holds.
+            assert!((3..=60).contains(&laid_out), "{needle}: {laid_out} of 500 rows laid out");
         }
     }
 }

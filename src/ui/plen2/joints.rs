@@ -7,9 +7,11 @@
 
 use crate::project::Edit;
 use crate::project::plen2::{FACTORY_LIMIT_TENTHS_DEG, Joint, JointSetting, Plen2Project};
-use crate::ui::action::{Action, Plen2Intent};
+use crate::ui::action::{Action, Plen2Action, Plen2Intent};
 use crate::ui::i18n::Strings;
-use crate::ui::servo_panel::keyboard_nudge;
+use crate::ui::layout::{self, Layout, Pane};
+use crate::ui::rows;
+use crate::ui::servo::keyboard_nudge;
 
 /// The limits and home a joint has: the project's settings, else the factory's.
 pub fn limits(project: &Plen2Project, joint: Joint) -> JointSetting {
@@ -34,19 +36,33 @@ pub struct JointsView<'a> {
     pub capture_slot: Option<u8>,
 }
 
-/// Draws the panel.
-pub fn ui(ui: &mut egui::Ui, view: &JointsView<'_>, words: &Strings, actions: &mut Vec<Action>) {
+/// Draws the panel: the 18 joints fill the height, the joint settings below
+/// them when open.
+pub fn ui(ui: &mut egui::Ui, view: &JointsView<'_>, layout: &mut Layout, words: &Strings, actions: &mut Vec<Action>) {
     ui.horizontal(|ui| {
         ui.heading(words.joints);
         if ui.add_enabled(view.connected, egui::Button::new(words.home)).clicked() {
-            actions.push(Action::Plen2Home);
+            actions.push(Action::Plen2(Plen2Action::Home));
         }
         if let Some(slot) = view.capture_slot
             && ui.button(format!("{} ({} {slot})", words.capture_frame, words.slot)).clicked()
         {
-            actions.push(Action::CaptureFrame { slot });
+            actions.push(Action::Plen2(Plen2Action::CaptureFrame { slot }));
         }
     });
+    let settings = (&mut layout.settings_height, &mut layout.settings_open);
+    layout::over(ui, "plen2-joint-settings", settings, words.joint_settings, |ui, pane| match pane {
+        Pane::First => sliders(ui, view, actions),
+        Pane::Second => {
+            egui::ScrollArea::vertical().id_salt("plen2-settings-scroll").show(ui, |ui| {
+                settings_editor(ui, view, words, actions);
+            });
+        }
+    });
+}
+
+/// The 18 joints' sliders, in the height left (only the rows in view laid out).
+fn sliders(ui: &mut egui::Ui, view: &JointsView<'_>, actions: &mut Vec<Action>) {
     // Which slider is whose joint, remembered from the last frame (egui gives
     // widgets their ids as they are drawn).
     let ids_key = ui.scope_id().with("plen2-joint-slider-ids");
@@ -57,35 +73,28 @@ pub fn ui(ui: &mut egui::Ui, view: &JointsView<'_>, words: &Strings, actions: &m
     // Tenths of a degree: a step is 1°.
     let nudge = if focused.is_some() { i16::try_from(keyboard_nudge(ui) * 10).unwrap_or(0) } else { 0 };
     let mut ids = Vec::with_capacity(Joint::ALL.len());
-    egui::ScrollArea::vertical().id_salt("plen2-joints").max_height(ui.available_height() * 0.6).show(ui, |ui| {
-        egui::Grid::new("plen2-joint-sliders").striped(true).show(ui, |ui| {
-            for joint in Joint::ALL {
-                let setting = limits(view.project, joint);
-                let label = ui.label(format!("{} #{}", joint.name(), joint.device_id()));
-                let mut value = view.pose[joint.index()];
-                let low = setting.min_tenths_deg.min(setting.max_tenths_deg);
-                let high = setting.max_tenths_deg.max(setting.min_tenths_deg);
-                let slider = egui::Slider::new(&mut value, low..=high)
-                    .custom_formatter(|v, _| format!("{:.1}°", v / 10.0))
-                    .step_by(1.0);
-                let response = ui.add(slider).labelled_by(label.id);
-                ids.push((response.id, joint));
-                if focused == Some(joint) && nudge != 0 {
-                    value = value.saturating_add(nudge).clamp(low, high);
-                }
-                if response.changed() || (focused == Some(joint) && nudge != 0) {
-                    actions.push(Action::SetJoint { joint, tenths: value });
-                }
-                ui.weak(format!("home {:.1}°", f64::from(setting.home_tenths_deg) / 10.0));
-                ui.end_row();
-            }
-        });
+    ui.spacing_mut().slider_width = (ui.available_width() - 340.0).clamp(160.0, 420.0);
+    let height = ui.available_height();
+    rows::grid(ui, "plen2-joint-sliders", Joint::ALL.len(), height, |ui, index| {
+        let joint = Joint::ALL[index];
+        let setting = limits(view.project, joint);
+        let label = ui.label(format!("{} #{}", joint.name(), joint.device_id()));
+        let mut value = view.pose[joint.index()];
+        let low = setting.min_tenths_deg.min(setting.max_tenths_deg);
+        let high = setting.max_tenths_deg.max(setting.min_tenths_deg);
+        let slider =
+            egui::Slider::new(&mut value, low..=high).custom_formatter(|v, _| format!("{:.1}°", v / 10.0)).step_by(1.0);
+        let response = ui.add(slider).labelled_by(label.id);
+        ids.push((response.id, joint));
+        if focused == Some(joint) && nudge != 0 {
+            value = value.saturating_add(nudge).clamp(low, high);
+        }
+        if response.changed() || (focused == Some(joint) && nudge != 0) {
+            actions.push(Action::Plen2(Plen2Action::SetJoint { joint, tenths: value }));
+        }
+        ui.weak(format!("home {:.1}°", f64::from(setting.home_tenths_deg) / 10.0));
     });
     ui.data_mut(|data| data.insert_temp(ids_key, ids));
-    ui.separator();
-    egui::CollapsingHeader::new(words.joint_settings).id_salt("plen2-joint-settings").show(ui, |ui| {
-        settings_editor(ui, view, words, actions);
-    });
 }
 
 fn settings_editor(ui: &mut egui::Ui, view: &JointsView<'_>, words: &Strings, actions: &mut Vec<Action>) {
@@ -137,10 +146,10 @@ fn settings_editor(ui: &mut egui::Ui, view: &JointsView<'_>, words: &Strings, ac
             .add_enabled(view.connected && !view.project.joints.is_empty(), egui::Button::new(words.write_joints))
             .clicked()
         {
-            actions.push(Action::Plen2Board(Plen2Intent::WriteJoints));
+            actions.push(Action::Plen2(Plen2Action::Robot(Plen2Intent::WriteJoints)));
         }
         if ui.add_enabled(view.connected, egui::Button::new(words.factory_reset)).clicked() {
-            actions.push(Action::Plen2Board(Plen2Intent::FactoryReset));
+            actions.push(Action::Plen2(Plen2Action::Robot(Plen2Intent::FactoryReset)));
         }
     });
 }

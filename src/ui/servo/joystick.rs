@@ -4,8 +4,9 @@
 
 use crate::device::servo::ButtonEvent;
 use crate::project::{Button, Edit, JoystickTable, ServoProject, next_free_id};
-use crate::ui::action::Action;
+use crate::ui::action::{Action, ServoAction};
 use crate::ui::i18n::Strings;
+use crate::ui::layout::{self, Layout, Pane};
 use crate::ui::rows;
 
 /// What the panel draws besides the project.
@@ -43,8 +44,16 @@ impl JoystickPanel {
         (!project.joystick_tables.is_empty()).then(|| self.selected.min(project.joystick_tables.len() - 1))
     }
 
-    /// Draws the panel.
-    pub fn ui(&mut self, ui: &mut egui::Ui, view: &JoystickView<'_>, words: &Strings, actions: &mut Vec<Action>) {
+    /// Draws the panel: the tables (and the live button events under them)
+    /// beside the selected table's buttons, which fill the height.
+    pub fn ui(
+        &mut self,
+        ui: &mut egui::Ui,
+        view: &JoystickView<'_>,
+        layout: &mut Layout,
+        words: &Strings,
+        actions: &mut Vec<Action>,
+    ) {
         let project = view.project;
         ui.horizontal(|ui| {
             ui.heading(words.joystick);
@@ -60,31 +69,33 @@ impl JoystickPanel {
             return;
         };
         self.selected = index;
-        ui.horizontal_top(|ui| {
-            ui.vertical(|ui| {
-                ui.set_width(200.0);
+        let selected = &mut self.selected;
+        layout::columns(ui, "joystick", &mut layout.list_width, 140.0, |ui, pane| match pane {
+            Pane::First => {
                 let count = project.joystick_tables.len();
-                rows::names(ui, "joystick-tables", count, rows::LIST_ROWS / 2, |ui, position| {
-                    let table = &project.joystick_tables[position];
-                    let active = if project.active_table == Some(table.id) { " ★" } else { "" };
-                    let text = format!("{} {}{active}", table.id, table.caption);
-                    if ui.selectable_label(position == index, text).clicked() {
-                        self.selected = position;
-                    }
+                // The tables take what the live events (a dozen lines) leave.
+                let events = ui.text_style_height(&egui::TextStyle::Monospace) * 13.0 + 24.0;
+                ui.allocate_ui(egui::vec2(ui.available_width(), (ui.available_height() - events).max(80.0)), |ui| {
+                    rows::names(ui, "joystick-tables", count, |ui, position| {
+                        let table = &project.joystick_tables[position];
+                        let active = if project.active_table == Some(table.id) { " ★" } else { "" };
+                        let text = format!("{} {}{active}", table.id, table.caption);
+                        if ui.selectable_label(position == index, text).clicked() {
+                            *selected = position;
+                        }
+                    });
                 });
                 ui.separator();
                 ui.label(words.live_events);
                 for (button_id, event) in view.events.iter().rev().take(12) {
                     ui.monospace(format!("0x{button_id:08x} {}", event_name(*event, words)));
                 }
-            });
-            ui.separator();
-            ui.vertical(|ui| self.table_editor(ui, view, index, words, actions));
+            }
+            Pane::Second => Self::table_editor(ui, view, index, words, actions),
         });
     }
 
     fn table_editor(
-        &self,
         ui: &mut egui::Ui,
         view: &JoystickView<'_>,
         index: usize,
@@ -115,7 +126,7 @@ impl JoystickPanel {
         ui.horizontal(|ui| {
             let pick_text = if view.picking { words.waiting_for_button } else { words.pick_button };
             if ui.add_enabled(view.connected, egui::Button::new(pick_text).selected(view.picking)).clicked() {
-                actions.push(Action::PickButton { table_index: (!view.picking).then_some(index) });
+                actions.push(Action::Servo(ServoAction::PickButton { table_index: (!view.picking).then_some(index) }));
             }
             if ui.button(words.add_button).clicked() {
                 let used: Vec<i32> = table.buttons.iter().filter_map(|b| i32::try_from(b.id).ok()).collect();
@@ -147,7 +158,7 @@ impl JoystickPanel {
             words.uninterruptible,
             "",
         ];
-        let height = rows::table_height(ui, rows::TABLE_ROWS);
+        let height = ui.available_height();
         rows::table(ui, "buttons", &heading, table.buttons.len(), height, |row, position| {
             let button = &table.buttons[position];
             let with = |changed: Button, key: Option<String>| {

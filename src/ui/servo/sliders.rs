@@ -8,8 +8,9 @@ use egui::{Key, Modifiers};
 
 use crate::device::servo::ServoStatus;
 use crate::project::{Edit, Servo, ServoProject};
-use crate::ui::action::Action;
+use crate::ui::action::{Action, ServoAction};
 use crate::ui::i18n::Strings;
+use crate::ui::layout::{self, Layout, Pane};
 use crate::ui::rows;
 
 /// The nudge asked for by keys pressed on a focused slider, in steps (←/→/↑/↓
@@ -29,9 +30,6 @@ pub fn keyboard_nudge(ui: &egui::Ui) -> i32 {
     })
 }
 
-/// Sliders shown at once.
-pub const SLIDER_ROWS: usize = 12;
-
 /// What the panel draws.
 #[derive(Debug)]
 pub struct ServoView<'a> {
@@ -49,40 +47,51 @@ pub struct ServoView<'a> {
 #[derive(Debug, Default)]
 pub struct ServoPanel {
     slider_ids: HashMap<egui::Id, u8>,
-    /// Whether the servos' settings are open below the sliders.
-    pub settings_open: bool,
 }
 
 impl ServoPanel {
-    /// Draws the panel.
-    pub fn ui(&mut self, ui: &mut egui::Ui, view: &ServoView<'_>, words: &Strings, actions: &mut Vec<Action>) {
+    /// Draws the panel: the sliders fill the height, the settings below them
+    /// when open (the divider between them can be dragged).
+    pub fn ui(
+        &mut self,
+        ui: &mut egui::Ui,
+        view: &ServoView<'_>,
+        layout: &mut Layout,
+        words: &Strings,
+        actions: &mut Vec<Action>,
+    ) {
         ui.horizontal(|ui| {
             ui.heading(words.servos);
             if ui.button(words.capture_pose).clicked() {
-                actions.push(Action::CapturePose { from_board: false });
+                actions.push(Action::Servo(ServoAction::CapturePose { from_board: false }));
             }
             if view.readback.is_some() {
                 if ui.button(words.capture_from_board).clicked() {
-                    actions.push(Action::CapturePose { from_board: true });
+                    actions.push(Action::Servo(ServoAction::CapturePose { from_board: true }));
                 }
                 let mut polling = view.polling;
                 if ui.checkbox(&mut polling, words.read_angles).changed() {
-                    actions.push(Action::SetPolling(polling));
+                    actions.push(Action::Servo(ServoAction::SetPolling(polling)));
                 }
             }
         });
         if view.project.servos.is_empty() {
             ui.label(words.no_servos);
         }
+        let settings = (&mut layout.settings_height, &mut layout.settings_open);
+        layout::over(ui, "servo-settings", settings, words.servo_settings, |ui, pane| match pane {
+            Pane::First => self.sliders(ui, view, words, actions),
+            Pane::Second => settings_ui(ui, view.project, words, actions),
+        });
+    }
+
+    fn sliders(&mut self, ui: &mut egui::Ui, view: &ServoView<'_>, words: &Strings, actions: &mut Vec<Action>) {
         let focused = ui.memory(|memory| memory.focused()).and_then(|id| self.slider_ids.get(&id).copied());
         let nudge = if focused.is_some() { keyboard_nudge(ui) } else { 0 };
         self.slider_ids.clear();
-        ui.spacing_mut().slider_width = 360.0;
-        // Up to 16 sliders at once (a 16-servo biped whole; more scroll), fewer
-        // when the settings are open below; the sliders in view are laid out, no more.
-        let shown = if self.settings_open { SLIDER_ROWS / 2 } else { SLIDER_ROWS };
-        let height =
-            rows::table_height(ui, shown).min((ui.available_height() - 2.0 * rows::widget_row_height(ui)).max(120.0));
+        ui.spacing_mut().slider_width = (ui.available_width() - 320.0).clamp(160.0, 420.0);
+        // Every slider the height holds; only those in view are laid out.
+        let height = ui.available_height();
         rows::grid(ui, "servo-grid", view.project.servos.len(), height, |ui, index| {
             let servo = &view.project.servos[index];
             let current = view.pose.get(&servo.id).copied().unwrap_or(servo.home_deg);
@@ -102,12 +111,12 @@ impl ServoPanel {
             }
             if value != i32::from(current) {
                 let degree = i16::try_from(value).unwrap_or(current);
-                actions.push(Action::SetPose { servo_id: servo.id, degree: servo.clamp(degree) });
+                actions.push(Action::Servo(ServoAction::SetPose { servo_id: servo.id, degree: servo.clamp(degree) }));
             }
             if let Some(state) = view.readback.and_then(|servos| servos.get(&servo.id)) {
                 let mut hold = state.is_hold;
                 if ui.checkbox(&mut hold, words.hold).changed() {
-                    actions.push(Action::SetHold { servo_id: servo.id, hold });
+                    actions.push(Action::Servo(ServoAction::SetHold { servo_id: servo.id, hold }));
                 }
                 if view.polling {
                     ui.monospace(format!("{:>5}°", state.angle));
@@ -119,17 +128,11 @@ impl ServoPanel {
 
 /// The servos' settings: caption, calibration offset, limits and home; add and
 /// remove servos. A drag of one value is one undo step.
-pub fn settings_ui(
-    ui: &mut egui::Ui,
-    open: &mut bool,
-    project: &ServoProject,
-    words: &Strings,
-    actions: &mut Vec<Action>,
-) {
-    let header = egui::CollapsingHeader::new(words.servo_settings).id_salt("servo-settings").open(Some(*open));
-    let shown = header.show(ui, |ui| {
+pub fn settings_ui(ui: &mut egui::Ui, project: &ServoProject, words: &Strings, actions: &mut Vec<Action>) {
+    {
         let heading = [words.servo_id, words.caption, words.offset, words.min, words.max, words.home, ""];
-        let height = rows::table_height(ui, rows::TABLE_ROWS + 1);
+        // The table takes the pane but for the "Add servo" row under it.
+        let height = ui.available_height() - rows::widget_row_height(ui) - ui.spacing().item_spacing.y;
         rows::table(ui, "servo-settings", &heading, project.servos.len(), height, |row, index| {
             let servo = &project.servos[index];
             let set = |changed: Servo, field: &str| Action::Edit {
@@ -181,8 +184,5 @@ pub fn settings_ui(
                 coalesce: None,
             });
         }
-    });
-    if shown.header_response.clicked() {
-        *open = !*open;
     }
 }

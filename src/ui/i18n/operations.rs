@@ -1,0 +1,169 @@
+//! Board operations in words: what a step works on, why an operation failed
+//! and what it left, how it ended — for every family, in the interface's
+//! language. Operations report typed outcomes; they become words only here.
+
+use crate::device::plen2::{Plen2Item, Plen2OpError, ReplyError, SlotResult};
+use crate::device::{Left, Stage, UploadFailure};
+use crate::ui::plen2::{Plen2Failure, Plen2Result};
+use crate::ui::servo::ServoFailure;
+
+use super::Language;
+
+impl Language {
+    /// A failed upload of any family: why (`error` words it), and what it
+    /// left on the device (`item` words each item), in this language.
+    pub fn upload_failure<E: std::fmt::Display, I: std::fmt::Display>(
+        self,
+        failure: &UploadFailure<E, I>,
+        error: impl Fn(&E) -> String,
+        item: impl Fn(&I) -> String,
+    ) -> String {
+        if self == Self::English {
+            return failure.to_string();
+        }
+        let reason = error(&failure.error);
+        let mut text = match failure.stage {
+            Stage::BackingUp => format!("備份裝置時：{reason}"),
+            Stage::Verifying => format!("驗證時：{reason}"),
+            Stage::Checking | Stage::Writing => reason,
+        };
+        match &failure.left {
+            Left::Untouched => text.push_str("\n沒有寫入任何資料：裝置保持原狀"),
+            Left::Partly { reached, total } => {
+                let names: Vec<String> = reached.iter().take(6).map(&item).collect();
+                text.push_str(&format!(
+                    "\n裝置可能只寫入了一部分：{total} 個項目中有 {} 個已寫入（{}）",
+                    reached.len(),
+                    names.join("、")
+                ));
+            }
+            Left::Everything => text.push_str("\n所有項目都已寫入"),
+        }
+        if let Some(backup) = &failure.backup {
+            text.push_str(&format!("\n裝置原本的內容已備份於 {}", backup.display()));
+        }
+        text
+    }
+
+    /// Why a servo board operation failed, in this language.
+    pub fn servo_failure(self, failure: &ServoFailure) -> String {
+        match failure {
+            ServoFailure::Op(error) => self.op_error(error),
+            ServoFailure::Upload(failure) => {
+                self.upload_failure(failure, |error| self.op_error(error), |item| self.item(item))
+            }
+            ServoFailure::BackupFolder { folder, error } => self.backup_folder_failed(folder, error),
+            ServoFailure::Thread(error) => self.no_worker(error),
+        }
+    }
+
+    /// No thread could be started for an operation.
+    fn no_worker(self, error: &std::io::Error) -> String {
+        match self {
+            Self::English => format!("cannot start the operation: {error}"),
+            Self::TraditionalChinese => format!("無法開始此操作（{error}）。請關閉其他程式後再試"),
+        }
+    }
+
+    /// What a PLEN2 operation step works on, in this language.
+    pub fn plen2_item(self, item: &Plen2Item) -> String {
+        if self == Self::English {
+            return item.to_string();
+        }
+        match item {
+            Plen2Item::Version => "韌體版本".into(),
+            Plen2Item::JointSettings => "關節設定".into(),
+            Plen2Item::Joint(joint) => format!("關節 {}", joint.name()),
+            Plen2Item::Slot { slot, name } if name.is_empty() => format!("槽位 {slot}"),
+            Plen2Item::Slot { slot, name } => format!("槽位 {slot} {name:?}"),
+            Plen2Item::Link => "連線".into(),
+            Plen2Item::Pacing => "傳送節奏".into(),
+            Plen2Item::FactoryReset => "出廠關節設定".into(),
+            Plen2Item::Done => "完成".into(),
+        }
+    }
+
+    /// Why a PLEN2 did not answer, in this language, with what to try.
+    pub fn reply_error(self, error: &ReplyError) -> String {
+        match (self, error) {
+            (Self::English, _) => error.to_string(),
+            (_, ReplyError::Timeout { timeout_ms }) => {
+                format!("{timeout_ms} 毫秒內沒有回應。機器人是否已開機、鮑率 2,000,000、DTR 已啟用？")
+            }
+            (_, ReplyError::NotThisProtocol { bytes }) => {
+                format!("裝置有回應（{bytes} 位元組），但不是 PLEN2 的協定。它是 PLEN2 嗎？")
+            }
+            (_, ReplyError::Garbage { bytes }) => format!("回應是 {bytes} 位元組的無效資料"),
+            (_, ReplyError::Disconnected) => "與機器人的連線已中斷".into(),
+        }
+    }
+
+    /// Why a PLEN2 operation step failed, in this language.
+    pub fn plen2_op_error(self, error: &Plen2OpError) -> String {
+        if self == Self::English {
+            return error.to_string();
+        }
+        match error {
+            Plen2OpError::Reply { item, source } => format!("{}：{}", self.plen2_item(item), self.reply_error(source)),
+            Plen2OpError::Unreadable { item } => {
+                format!("{}：裝置有回應，但不是 PLEN2 的協定。它是韌體 1.4.x 的 PLEN2 嗎？", self.plen2_item(item))
+            }
+            Plen2OpError::Invalid { problems } => {
+                let list: Vec<String> = problems
+                    .iter()
+                    .map(|p| format!("{}：{}", self.location(&p.location), self.problem(&p.kind)))
+                    .collect();
+                format!("專案有 {} 個錯誤，沒有寫入任何資料：\n{}", problems.len(), list.join("\n"))
+            }
+            Plen2OpError::Backup(error) => format!("備份失敗，因此沒有寫入任何資料：{}", self.save_error(error)),
+            Plen2OpError::Cancelled => "已取消".into(),
+        }
+    }
+
+    /// Why a PLEN2 operation failed, in this language.
+    pub fn plen2_failure(self, failure: &Plen2Failure) -> String {
+        match failure {
+            Plen2Failure::Op(error) => self.plen2_op_error(error),
+            Plen2Failure::Upload(failure) => {
+                self.upload_failure(failure, |error| self.plen2_op_error(error), |item| self.plen2_item(item))
+            }
+            Plen2Failure::Reply(error) => self.reply_error(error),
+            Plen2Failure::BackupFolder { folder, error } => self.backup_folder_failed(folder, error),
+            Plen2Failure::Thread(error) => self.no_worker(error),
+        }
+    }
+
+    /// What the robot panel says after an operation, and whether it is an error.
+    pub fn plen2_result(self, result: &Plen2Result) -> (String, bool) {
+        let words = self.strings();
+        match result {
+            Plen2Result::Read(count) => (format!("{} {count}", words.robot_read), false),
+            Plen2Result::Uploaded(report) => {
+                let verified = report.slots.iter().filter(|(_, r)| *r == SlotResult::Verified).count();
+                let mut text = format!("{} {verified}/{}", words.uploaded_items, report.slots.len());
+                let differing: Vec<String> = report
+                    .slots
+                    .iter()
+                    .filter(|(_, r)| *r == SlotResult::Differs)
+                    .map(|(slot, _)| slot.to_string())
+                    .collect();
+                if !differing.is_empty() {
+                    text.push_str(&format!("\n{} {}", words.slots_differ, differing.join(", ")));
+                }
+                if let Some(backup) = &report.backup {
+                    text.push_str(&format!("\n{} {}", words.backup_at, backup.display()));
+                }
+                (text, !differing.is_empty())
+            }
+            Plen2Result::JointsWritten(count) => (format!("{}: {count}", words.write_joints), false),
+            Plen2Result::Invalid(problems) => {
+                (self.plen2_op_error(&Plen2OpError::Invalid { problems: problems.clone() }), true)
+            }
+            Plen2Result::ReadIntoProject => (words.read_done.to_string(), false),
+            Plen2Result::Exported(path) => (format!("{} {}", words.saved_board_to, path.display()), false),
+            Plen2Result::ExportFailed(text) => (text.clone(), true),
+            Plen2Result::Failed(failure) => (self.plen2_failure(failure), true),
+            Plen2Result::Cancelled => (words.cancelled.to_string(), false),
+        }
+    }
+}

@@ -1,0 +1,219 @@
+//! How a family's panels share the window: a list beside its editor, an
+//! editor over its plot and preview, sliders or a pad beside a preview. Every
+//! divider can be dragged, the lower pane can be made taller or collapsed,
+//! and the sizes are remembered per family.
+
+use egui::{Rect, Sense, UiBuilder, pos2, vec2};
+
+/// The sizes a family's panels were left at (remembered between runs).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(default)]
+pub struct Layout {
+    /// Width of a list of names beside its editor, points.
+    pub list_width: f32,
+    /// Height of the pane under an editor (its plot and preview), points.
+    pub lower_height: f32,
+    /// Whether that pane is open.
+    pub lower_open: bool,
+    /// Width of the preview beside sliders or a pad, points.
+    pub side_width: f32,
+    /// Height of the settings under sliders, points.
+    pub settings_height: f32,
+    /// Whether the settings are open.
+    pub settings_open: bool,
+}
+
+impl Default for Layout {
+    fn default() -> Self {
+        Self {
+            list_width: 220.0,
+            lower_height: 280.0,
+            lower_open: true,
+            side_width: 440.0,
+            settings_height: 300.0,
+            settings_open: false,
+        }
+    }
+}
+
+/// Thickness of a divider, points.
+pub const DIVIDER: f32 = 8.0;
+
+fn divider(ui: &mut egui::Ui, rect: Rect, id: egui::Id, horizontal: bool, label: &'static str) -> egui::Response {
+    let response = ui.interact(rect, id, Sense::drag());
+    response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Splitter, true, label));
+    let response = response.on_hover_cursor(if horizontal {
+        egui::CursorIcon::ResizeHorizontal
+    } else {
+        egui::CursorIcon::ResizeVertical
+    });
+    let visuals = ui.visuals();
+    let stroke = if response.hovered() || response.dragged() {
+        visuals.widgets.hovered.fg_stroke
+    } else {
+        visuals.widgets.noninteractive.bg_stroke
+    };
+    let painter = ui.painter();
+    if horizontal {
+        painter.vline(rect.center().x, rect.y_range(), stroke);
+    } else {
+        painter.hline(rect.x_range(), rect.center().y, stroke);
+    }
+    response
+}
+
+/// Runs `add` in its own child `Ui` over exactly `rect`, clipped to it.
+pub fn inside<R>(ui: &mut egui::Ui, rect: Rect, add: impl FnOnce(&mut egui::Ui) -> R) -> R {
+    ui.scope_builder(UiBuilder::new().max_rect(rect).layout(egui::Layout::top_down(egui::Align::Min)), |ui| {
+        ui.set_clip_rect(rect.intersect(ui.clip_rect()));
+        add(ui)
+    })
+    .inner
+}
+
+/// Which of two panes `add` is asked to fill.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Pane {
+    /// The left (or upper) one.
+    First,
+    /// The right (or lower) one.
+    Second,
+}
+
+/// Two panes side by side filling the space left, the first `width` points
+/// wide (dragging the divider between them changes it, within `min` of either
+/// side). `add` fills each in turn.
+pub fn columns(ui: &mut egui::Ui, id_salt: &str, width: &mut f32, min: f32, mut add: impl FnMut(&mut egui::Ui, Pane)) {
+    let area = ui.available_rect_before_wrap();
+    let most = (area.width() - min - DIVIDER).max(min);
+    let w = width.clamp(min, most);
+    let left_rect = Rect::from_min_size(area.min, vec2(w, area.height()));
+    let bar = Rect::from_min_size(pos2(left_rect.right(), area.top()), vec2(DIVIDER, area.height()));
+    let right_rect = Rect::from_min_max(pos2(bar.right(), area.top()), area.max);
+    let response = divider(ui, bar, ui.scope_id().with((id_salt, "divider")), true, "Resize the panes");
+    if response.dragged() {
+        *width = (w + response.drag_delta().x).clamp(min, most);
+    }
+    inside(ui, left_rect, |ui| add(ui, Pane::First));
+    inside(ui, right_rect, |ui| add(ui, Pane::Second));
+    ui.allocate_rect(area, Sense::hover());
+}
+
+/// An upper pane over a lower one filling the space left. The lower pane is
+/// `height` points tall (drag the divider to change it) under a header with
+/// its `title` and a toggle that collapses it; collapsed, the upper pane
+/// takes everything. `add` fills each in turn.
+pub fn over(
+    ui: &mut egui::Ui,
+    id_salt: &str,
+    (height, open): (&mut f32, &mut bool),
+    title: &str,
+    mut add: impl FnMut(&mut egui::Ui, Pane),
+) {
+    let area = ui.available_rect_before_wrap();
+    let header = ui.spacing().interact_size.y + 4.0;
+    let min = 120.0;
+    let most = (area.height() - header - DIVIDER - min).max(min);
+    let h = if *open { height.clamp(min, most) } else { 0.0 };
+    let header_top = area.bottom() - h - header;
+    let bar = Rect::from_min_size(pos2(area.left(), header_top - DIVIDER), vec2(area.width(), DIVIDER));
+    let upper_rect = Rect::from_min_max(area.min, pos2(area.right(), bar.top()));
+    let header_rect = Rect::from_min_size(pos2(area.left(), header_top), vec2(area.width(), header));
+    let lower_rect = Rect::from_min_max(pos2(area.left(), header_rect.bottom()), area.max);
+    if *open {
+        let response = divider(ui, bar, ui.scope_id().with((id_salt, "divider")), false, "Resize the lower pane");
+        if response.dragged() {
+            *height = (h - response.drag_delta().y).clamp(min, most);
+        }
+    }
+    inside(ui, upper_rect, |ui| add(ui, Pane::First));
+    inside(ui, header_rect, |ui| {
+        ui.horizontal(|ui| {
+            // The collapsing header's own arrow (drawn, so no font needs the glyph).
+            let size = ui.spacing().icon_width;
+            let (_, icon) = ui.allocate_exact_size(vec2(size, size), Sense::click());
+            egui::collapsing_header::paint_default_icon(ui, if *open { 1.0 } else { 0.0 }, &icon);
+            if icon.clicked() | ui.selectable_label(false, title).clicked() {
+                *open = !*open;
+            }
+        });
+    });
+    if *open {
+        inside(ui, lower_rect, |ui| add(ui, Pane::Second));
+    }
+    ui.allocate_rect(area, Sense::hover());
+}
+
+/// Which part of a list-and-editor panel `add` is asked to fill.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Part {
+    /// The list of names, on the left.
+    List,
+    /// The selected item's editor, on the right.
+    Editor,
+    /// What is under the editor (timeline, plot, values), collapsible.
+    Lower,
+}
+
+/// A list beside its editor, the editor over a collapsible lower pane
+/// titled `lower_title`; the panel's sizes live in `layout`.
+pub fn list_and_editor(
+    ui: &mut egui::Ui,
+    id_salt: &str,
+    layout: &mut Layout,
+    lower_title: &str,
+    mut add: impl FnMut(&mut egui::Ui, Part),
+) {
+    let Layout { list_width, lower_height, lower_open, .. } = layout;
+    columns(ui, id_salt, list_width, 140.0, |ui, pane| match pane {
+        Pane::First => add(ui, Part::List),
+        Pane::Second => over(ui, id_salt, (&mut *lower_height, &mut *lower_open), lower_title, |ui, pane| {
+            add(ui, if pane == Pane::First { Part::Editor } else { Part::Lower });
+        }),
+    });
+}
+
+#[cfg(test)]
+mod tests {
+    use egui_kittest::Harness;
+    use egui_kittest::kittest::Queryable;
+
+    use super::*;
+
+    #[test]
+    fn dragging_a_divider_resizes_the_panes_and_the_lower_pane_collapses() {
+        let mut layout = Layout::default();
+        let mut harness = Harness::builder().with_size(vec2(1000.0, 700.0)).build_ui_state(
+            |ui, layout: &mut Layout| {
+                let Layout { list_width, lower_height, lower_open, .. } = layout;
+                columns(ui, "test", list_width, 100.0, |ui, pane| match pane {
+                    Pane::First => {
+                        ui.label("left pane");
+                    }
+                    Pane::Second => over(ui, "test", (lower_height, lower_open), "Plot", |ui, pane| {
+                        ui.label(if pane == Pane::First { "upper pane" } else { "lower pane" });
+                    }),
+                });
+            },
+            layout,
+        );
+        harness.run();
+        let bars: Vec<Rect> = harness.query_all_by_label_contains("Resize").map(|node| node.rect()).collect();
+        assert_eq!(bars.len(), 2);
+        let vertical = bars.iter().find(|bar| bar.height() > bar.width()).copied().unwrap();
+        harness.drag_at(vertical.center());
+        harness.run();
+        harness.hover_at(vertical.center() + vec2(80.0, 0.0));
+        harness.run();
+        harness.drop_at(vertical.center() + vec2(80.0, 0.0));
+        harness.run();
+        assert!((harness.state().list_width - 300.0).abs() < 2.0, "{}", harness.state().list_width);
+        layout = *harness.state();
+        assert!(layout.lower_open);
+        harness.get_by_label_contains("Plot").click();
+        harness.run();
+        assert!(!harness.state().lower_open, "collapsed");
+        assert!(harness.query_by_label("lower pane").is_none());
+        assert!(harness.query_by_label("upper pane").is_some());
+    }
+}

@@ -1,0 +1,122 @@
+//! The PLEN2's live side: joints moved live, playing on the robot (stored
+//! motions, play lists, or a motion streamed from any frame), and frames
+//! captured from the pose.
+
+use std::time::Instant;
+
+use super::Plen2Ui;
+use super::joints::limits;
+use crate::project::Edit;
+use crate::project::plen2::{Frame, Joint, Motion, Plen2Project, Pose};
+use crate::ui::app::Shell;
+
+/// A motion played from one of its frames by streaming its poses live.
+#[derive(Debug)]
+pub struct Stream {
+    motion: Motion,
+    frame: usize,
+    started: Instant,
+    from: [i16; 18],
+}
+
+/// Every joint's home, as the project's joint settings (else the factory's) say.
+pub fn homes(project: &Plen2Project) -> [i16; 18] {
+    Joint::ALL.map(|joint| limits(project, joint).home_tenths_deg)
+}
+
+impl Plen2Ui {
+    /// Sends every joint's angle (coalesced and paced by the driver).
+    fn send_pose(&self, shell: &mut Shell<'_>) {
+        let moves: Vec<(u8, i16)> = Joint::ALL.iter().map(|j| (j.device_id(), self.pose[j.index()])).collect();
+        if let Some(robot) = shell.plen2_mut() {
+            robot.move_joints(moves);
+        }
+    }
+
+    pub(super) fn set_joint(&mut self, shell: &mut Shell<'_>, joint: Joint, tenths: i16) {
+        let setting = limits(&shell.document.project.plen2, joint);
+        let low = setting.min_tenths_deg.min(setting.max_tenths_deg);
+        let high = setting.max_tenths_deg.max(setting.min_tenths_deg);
+        // The limits clamp every move the app sends.
+        let tenths = tenths.clamp(low, high);
+        self.pose[joint.index()] = tenths;
+        self.stream = None;
+        if let Some(robot) = shell.plen2_mut() {
+            robot.move_joints(vec![(joint.device_id(), tenths)]);
+        }
+    }
+
+    pub(super) fn home(&mut self, shell: &mut Shell<'_>) {
+        self.pose = homes(&shell.document.project.plen2);
+        self.stream = None;
+        if let Some(robot) = shell.plen2_mut() {
+            robot.home();
+        }
+    }
+
+    pub(super) fn capture_frame(&mut self, shell: &mut Shell<'_>, slot: u8) {
+        let homes = homes(&shell.document.project.plen2);
+        let mut pose = Pose::default();
+        for joint in Joint::ALL {
+            pose.set(joint, self.pose[joint.index()].saturating_sub(homes[joint.index()]));
+        }
+        let mut plen2 = shell.document.project.plen2.clone();
+        let Some(motion) = plen2.motions.iter_mut().find(|m| m.slot == slot) else { return };
+        if motion.frames.len() >= crate::project::plen2::MAX_FRAMES {
+            let full = crate::project::ProblemKind::OutOfRange { field: "frames", value: 21, min: 1, max: 20 };
+            shell.report(shell.language.problem(&full), true);
+            return;
+        }
+        motion.frames.push(Frame { transition_ms: 500, values_tenths_deg: pose });
+        shell.document.apply(Edit::SetPlen2(Box::new(plen2)), None);
+    }
+
+    pub(super) fn play_from(&mut self, shell: &Shell<'_>, slot: u8, frame: usize) {
+        let Some(motion) = shell.document.project.plen2.motions.iter().find(|m| m.slot == slot).cloned() else {
+            return;
+        };
+        self.stream = Some(Stream { motion, frame, started: Instant::now(), from: self.pose });
+    }
+
+    pub(super) fn play_list(shell: &mut Shell<'_>, index: usize) {
+        let Some(list) = shell.document.project.plen2.play_lists.get(index) else { return };
+        let entries: Vec<(u8, u8)> = list.entries.iter().map(|e| (e.slot, e.plays)).collect();
+        if let Some(robot) = shell.plen2_mut() {
+            robot.play_list(&entries);
+        }
+    }
+
+    /// Moves the streamed motion on to `now`; whether it still plays.
+    pub fn advance_stream(&mut self, shell: &mut Shell<'_>, now: Instant) -> bool {
+        let Some(stream) = &self.stream else { return false };
+        let homes = homes(&shell.document.project.plen2);
+        let elapsed = now.saturating_duration_since(stream.started).as_secs_f64() * 1000.0;
+        let mut from = stream.from;
+        let mut t = 0.0;
+        let mut pose = None;
+        for frame in stream.motion.frames.iter().skip(stream.frame) {
+            let target: [i16; 18] = Joint::ALL.map(|j| homes[j.index()].saturating_add(frame.values_tenths_deg.get(j)));
+            let span = f64::from(frame.transition_ms);
+            if elapsed < t + span {
+                let share = (elapsed - t) / span.max(1.0);
+                #[allow(clippy::cast_possible_truncation)]
+                let at = std::array::from_fn(|i| {
+                    (f64::from(from[i]) + (f64::from(target[i]) - f64::from(from[i])) * share).round() as i16
+                });
+                pose = Some(at);
+                break;
+            }
+            t += span;
+            from = target;
+        }
+        match pose {
+            Some(pose) => self.pose = pose,
+            None => {
+                self.pose = from;
+                self.stream = None;
+            }
+        }
+        self.send_pose(shell);
+        self.stream.is_some()
+    }
+}

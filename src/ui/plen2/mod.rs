@@ -1,0 +1,357 @@
+//! The PLEN2's side of the editor: its state (the joints' pose, a motion
+//! streamed live, what the robot held when read, the last operation's
+//! outcome), its panels (joints, motions, play lists, robot), and what it
+//! does with the actions its panels push.
+
+mod board;
+mod joints;
+mod live;
+mod motions;
+mod play_lists;
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+pub use board::{SlotCell, slot_map};
+pub use live::homes;
+
+use crate::device::plen2::{self, Command, Plen2ImportFailure, Plen2ImportOptions, Plen2ImportReport, Plen2OpError};
+use crate::device::plen2::{Plen2Item, ReplyError};
+use crate::project::plen2::{Plen2Project, SLOTS};
+use crate::project::{Edit, Family, Problem, Project, Severity};
+use crate::ui::action::{Action, Plen2Action, Plen2Intent, Tab};
+use crate::ui::app::{RunningOperation, Shell, ShellView};
+use crate::ui::layout::Layout;
+use crate::ui::operation::{Operation, Step, Subject};
+
+/// What a PLEN2 operation does.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Plen2Kind {
+    /// Read the version, the joint settings and all 90 slots.
+    Read,
+    /// Upload motions (and joint settings the project holds), backing up first and verifying.
+    Upload,
+    /// Write the project's joint settings where they differ.
+    WriteJoints,
+    /// Factory joint settings.
+    FactoryReset,
+}
+
+/// Why a PLEN2 operation failed.
+#[derive(Debug)]
+pub enum Plen2Failure {
+    /// A step failed.
+    Op(Plen2OpError),
+    /// An upload failed, leaving what it says.
+    Upload(Box<Plen2ImportFailure>),
+    /// A command could not be sent.
+    Reply(ReplyError),
+    /// The backup folder could not be made; nothing was written.
+    BackupFolder {
+        /// The folder.
+        folder: PathBuf,
+        /// Why.
+        error: std::io::Error,
+    },
+    /// No worker thread could start.
+    Thread(std::io::Error),
+}
+
+/// How a PLEN2 operation ended.
+#[derive(Debug)]
+pub enum Plen2Outcome {
+    /// The robot was read.
+    Read(Box<Plen2Project>),
+    /// The upload's per-slot report.
+    Uploaded(Plen2ImportReport),
+    /// Joint settings written (how many commands).
+    JointsWritten(usize),
+    /// Failed.
+    Failed(Plen2Failure),
+    /// The user cancelled.
+    Cancelled,
+}
+
+/// What the robot panel says after an operation (worded when shown).
+#[derive(Debug)]
+pub enum Plen2Result {
+    /// The robot was read: how many motions it holds.
+    Read(usize),
+    /// The upload's report.
+    Uploaded(Plen2ImportReport),
+    /// Joint settings written.
+    JointsWritten(usize),
+    /// The project has errors; nothing was written.
+    Invalid(Vec<Problem>),
+    /// What the robot held replaced the project's PLEN2 section.
+    ReadIntoProject,
+    /// What the robot held was saved to this file.
+    Exported(PathBuf),
+    /// The file could not be written; why.
+    ExportFailed(String),
+    /// It failed.
+    Failed(Plen2Failure),
+    /// The user cancelled.
+    Cancelled,
+}
+
+/// The PLEN2's state in the editor.
+#[derive(Debug)]
+pub struct Plen2Ui {
+    /// Every joint's angle on the sliders, tenths of a degree, device-map order.
+    pub pose: [i16; 18],
+    stream: Option<live::Stream>,
+    /// What the robot held when last read.
+    pub robot: Option<Plen2Project>,
+    /// Robots read so far (a new read invalidates the slot map).
+    robot_reads: u64,
+    /// The last operation's outcome.
+    pub result: Option<Plen2Result>,
+    /// The PLEN2 section's problems, per document revision (the motion editor marks them every frame).
+    problems: Option<(u64, Vec<Problem>)>,
+    /// The robot panel's slot map, for (document revision, robot reads).
+    slots: Option<((u64, u64), Vec<SlotCell>)>,
+    motions: motions::MotionsPanel,
+    play_lists: play_lists::PlayListsPanel,
+    /// How the family's panels are laid out (remembered).
+    pub layout: Layout,
+}
+
+impl Default for Plen2Ui {
+    fn default() -> Self {
+        Self {
+            pose: homes(&Plen2Project::default()),
+            stream: None,
+            robot: None,
+            robot_reads: 0,
+            result: None,
+            problems: None,
+            slots: None,
+            motions: motions::MotionsPanel::default(),
+            play_lists: play_lists::PlayListsPanel::default(),
+            layout: Layout::default(),
+        }
+    }
+}
+
+fn run(
+    kind: &Plen2Kind,
+    requester: &plen2::Plen2Requester,
+    project: &Plen2Project,
+    backups: PathBuf,
+    report: &mut dyn FnMut(Step),
+    cancel: &crate::device::Cancel,
+) -> Plen2Outcome {
+    let mut progress = |step: &plen2::Plen2Progress| {
+        report(Step { phase: step.phase, done: step.done, total: step.total, item: Subject::Plen2(step.item.clone()) });
+    };
+    let failed = |error: Plen2OpError| match error {
+        Plen2OpError::Cancelled => Plen2Outcome::Cancelled,
+        other => Plen2Outcome::Failed(Plen2Failure::Op(other)),
+    };
+    match kind {
+        Plen2Kind::Read => {
+            let slots: Vec<u8> = (0..SLOTS).collect();
+            match plen2::export(requester, &slots, &mut progress, cancel) {
+                Ok(project) => Plen2Outcome::Read(Box::new(project)),
+                Err(error) => failed(error),
+            }
+        }
+        Plen2Kind::Upload => {
+            if let Err(error) = std::fs::create_dir_all(&backups) {
+                return Plen2Outcome::Failed(Plen2Failure::BackupFolder { folder: backups, error });
+            }
+            let options = Plen2ImportOptions { backup_dir: Some(backups), verify: true, force: false };
+            match plen2::import(requester, project, &options, &mut progress, cancel) {
+                Ok(done) => Plen2Outcome::Uploaded(done),
+                Err(failure) if matches!(failure.error, Plen2OpError::Cancelled) => Plen2Outcome::Cancelled,
+                Err(failure) => Plen2Outcome::Failed(Plen2Failure::Upload(failure)),
+            }
+        }
+        Plen2Kind::WriteJoints => {
+            let written = plen2::read_joint_settings(requester)
+                .and_then(|current| plen2::write_joint_settings(requester, &project.joints, &current));
+            match written {
+                Ok(count) => Plen2Outcome::JointsWritten(count),
+                Err(error) => failed(error),
+            }
+        }
+        Plen2Kind::FactoryReset => match requester.send_and_wait(Command::ResetJoints) {
+            Ok(()) => Plen2Outcome::JointsWritten(1),
+            Err(error) => Plen2Outcome::Failed(Plen2Failure::Reply(error)),
+        },
+    }
+}
+
+impl Plen2Ui {
+    /// A new document: the joints go home.
+    pub fn document_replaced(&mut self, project: &Plen2Project) {
+        self.pose = homes(project);
+        self.stream = None;
+    }
+
+    /// Applies one of the family's actions.
+    pub fn apply(&mut self, shell: &mut Shell<'_>, action: Plen2Action) {
+        match action {
+            Plen2Action::SetJoint { joint, tenths } => self.set_joint(shell, joint, tenths),
+            Plen2Action::Home => self.home(shell),
+            Plen2Action::PlayMotion(slot) => {
+                if let Some(robot) = shell.plen2_mut() {
+                    robot.play(slot);
+                }
+            }
+            Plen2Action::PlayFrom { slot, frame } => self.play_from(shell, slot, frame),
+            Plen2Action::PlayList(index) => Self::play_list(shell, index),
+            Plen2Action::CaptureFrame { slot } => self.capture_frame(shell, slot),
+            Plen2Action::Robot(intent) => self.robot_operation(shell, intent),
+            Plen2Action::SaveMotionJson { slot, path } => {
+                if let Some(motion) = shell.document.project.plen2.motions.iter().find(|m| m.slot == slot) {
+                    let text = crate::project::motion_json::motion_to_json(motion);
+                    match crate::project::atomic_write(&path, |file| std::io::Write::write_all(file, text.as_bytes())) {
+                        Ok(()) => shell.report(format!("{} {}", shell.words().msg_saved, path.display()), false),
+                        Err(source) => {
+                            let error = crate::project::SaveError { path, source };
+                            shell.report(shell.language.save_error(&error), true);
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// Whether a motion is being streamed live.
+    pub fn streaming(&self) -> bool {
+        self.stream.is_some()
+    }
+
+    /// STOP: no motion is streamed any more.
+    pub fn stopped(&mut self) {
+        self.stream = None;
+    }
+
+    /// Moves a streamed motion on; whether something still plays.
+    pub fn tick(&mut self, shell: &mut Shell<'_>, now: Instant) -> bool {
+        self.advance_stream(shell, now)
+    }
+
+    fn start(&mut self, shell: &mut Shell<'_>, kind: Plen2Kind, project: Plen2Project) {
+        let Some(robot) = shell.plen2() else {
+            shell.report(shell.words().msg_connect_first, true);
+            return;
+        };
+        let requester = robot.requester();
+        self.result = None;
+        let backups = shell.data_dir.join("backups");
+        let job_kind = kind.clone();
+        let operation = Operation::start(
+            kind,
+            shell.waker.clone(),
+            move |report, cancel| run(&job_kind, &requester, &project, backups, report, cancel),
+            |error| Plen2Outcome::Failed(Plen2Failure::Thread(error)),
+        );
+        *shell.operation = Some(RunningOperation::Plen2(operation));
+    }
+
+    fn robot_operation(&mut self, shell: &mut Shell<'_>, intent: Plen2Intent) {
+        if shell.operation.is_some() {
+            return;
+        }
+        let plen2 = shell.document.project.plen2.clone();
+        match intent {
+            Plen2Intent::Read => self.start(shell, Plen2Kind::Read, plen2),
+            Plen2Intent::Upload => {
+                let document = Project { family: Family::Plen2, plen2: plen2.clone(), ..Project::default() };
+                let errors: Vec<Problem> =
+                    crate::project::validate(&document).into_iter().filter(|p| p.severity == Severity::Error).collect();
+                if errors.is_empty() {
+                    self.start(shell, Plen2Kind::Upload, plen2);
+                } else {
+                    self.result = Some(Plen2Result::Invalid(errors));
+                }
+            }
+            Plen2Intent::WriteJoints => self.start(shell, Plen2Kind::WriteJoints, plen2),
+            Plen2Intent::FactoryReset => self.start(shell, Plen2Kind::FactoryReset, plen2),
+            Plen2Intent::ReadIntoProject => {
+                if let Some(robot) = self.robot.clone() {
+                    let mut plen2 = robot;
+                    plen2.play_lists = shell.document.project.plen2.play_lists.clone();
+                    shell.document.apply(Edit::SetPlen2(Box::new(plen2)), None);
+                    self.result = Some(Plen2Result::ReadIntoProject);
+                }
+            }
+            Plen2Intent::ExportToFile(path) => {
+                if let Some(robot) = self.robot.clone() {
+                    let document = Project { family: Family::Plen2, plen2: robot, ..Project::default() };
+                    self.result = Some(match crate::project::save(&path, &document) {
+                        Ok(()) => Plen2Result::Exported(path),
+                        Err(error) => Plen2Result::ExportFailed(shell.language.save_error(&error)),
+                    });
+                }
+            }
+        }
+    }
+
+    /// The family's operation ended.
+    pub fn finish(&mut self, outcome: Plen2Outcome) {
+        self.result = Some(match outcome {
+            Plen2Outcome::Read(robot) => {
+                let count = robot.motions.len();
+                self.robot = Some(*robot);
+                self.robot_reads += 1;
+                Plen2Result::Read(count)
+            }
+            Plen2Outcome::Uploaded(report) => Plen2Result::Uploaded(report),
+            Plen2Outcome::JointsWritten(count) => Plen2Result::JointsWritten(count),
+            Plen2Outcome::Failed(failure) => Plen2Result::Failed(failure),
+            Plen2Outcome::Cancelled => Plen2Result::Cancelled,
+        });
+    }
+
+    /// Draws the tab.
+    pub fn ui(&mut self, ui: &mut egui::Ui, tab: Tab, view: &ShellView<'_>, actions: &mut Vec<Action>) {
+        let project = &view.project.plen2;
+        let words = view.language.strings();
+        let connected = view.link.is_some_and(|link| link.plen2().is_some());
+        match tab {
+            Tab::Motions => {
+                // Validated once per revision, not every frame.
+                let revision = view.revision;
+                if self.problems.as_ref().is_none_or(|(at, _)| *at != revision) {
+                    self.problems = Some((revision, crate::project::validate_plen2(project)));
+                }
+                let problems = self.problems.as_ref().map_or(&[][..], |(_, problems)| problems.as_slice());
+                self.motions.ui(ui, view, problems, &mut self.layout, actions);
+            }
+            Tab::PlayLists => self.play_lists.ui(ui, project, connected, &mut self.layout, words, actions),
+            Tab::Board => {
+                // Compared once per document revision and robot read, not every frame.
+                let key = (view.revision, self.robot_reads);
+                if self.slots.as_ref().is_none_or(|(at, _)| *at != key) {
+                    self.slots = Some((key, slot_map(project, self.robot.as_ref())));
+                }
+                let robot = board::RobotView {
+                    slots: self.slots.as_ref().map_or(&[][..], |(_, slots)| slots.as_slice()),
+                    robot_read: self.robot.is_some(),
+                    connected,
+                    operation: view.plen2_operation(),
+                    result: self.result.as_ref(),
+                };
+                board::robot_panel(ui, &robot, view.language, actions);
+            }
+            _ => {
+                let joints = joints::JointsView {
+                    project,
+                    pose: &self.pose,
+                    connected,
+                    capture_slot: self.motions.selected_slot(project),
+                };
+                joints::ui(ui, &joints, &mut self.layout, words, actions);
+            }
+        }
+    }
+
+    /// The item a step works on, in words.
+    pub fn item_words(language: crate::ui::i18n::Language, item: &Plen2Item) -> String {
+        language.plen2_item(item)
+    }
+}

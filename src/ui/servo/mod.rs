@@ -1,0 +1,196 @@
+//! The servo board's side of the editor: its state (the sliders' pose, the
+//! board operation's comparison and result, button picking, the preview),
+//! its panels (sliders, actions, macros, joystick, board), and what it does
+//! with the actions its panels push.
+
+mod actions;
+mod board;
+mod joystick;
+mod live;
+mod macros;
+mod operations;
+mod sliders;
+
+use std::collections::BTreeMap;
+use std::time::Instant;
+
+pub use actions::timeline_bars;
+pub use board::{BoardResult, PendingConfirm};
+pub use operations::{ServoFailure, ServoKind, ServoOutcome};
+pub use sliders::keyboard_nudge;
+
+use crate::device::servo::{ButtonEvent, ServoImage};
+use crate::project::Project;
+use crate::project::ServoProject;
+use crate::ui::action::{Action, ServoAction, Tab};
+use crate::ui::app::{Shell, ShellView};
+use crate::ui::derive::Derived;
+use crate::ui::i18n::Language;
+use crate::ui::layout::Layout;
+
+/// Interval of a live move, in 10 ms: two frames' worth, so that a dragged
+/// servo follows smoothly instead of jumping at full speed.
+pub const LIVE_MOVE_INTERVAL_10MS: i16 = 2;
+/// Interval given to each step of a captured pose, in 10 ms.
+pub const CAPTURED_STEP_INTERVAL_10MS: i16 = 50;
+
+/// The servo board's state in the editor.
+#[derive(Debug, Default)]
+pub struct ServoUi {
+    /// Slider values per servo id.
+    pub pose: BTreeMap<u8, i16>,
+    /// Reading angles back continuously.
+    pub polling: bool,
+    /// Remote button events seen, newest last.
+    pub button_events: Vec<(u32, ButtonEvent)>,
+    /// Picking a button on the remote into this table (index).
+    pub picking: Option<usize>,
+    /// The button last picked on the remote.
+    pub picked_button: Option<u32>,
+    /// An action being previewed on the sliders, and when it started.
+    pub preview: Option<(i32, Instant)>,
+    /// A board comparison waiting for the user's go-ahead.
+    pub pending: Option<PendingConfirm>,
+    /// The outcome of the last board operation.
+    pub board_result: Option<BoardResult>,
+    compare_intent: Option<crate::ui::action::BoardIntent>,
+    compared_board: Option<ServoProject>,
+    /// The project's size on the board (or why it cannot be stored), for a document revision and language.
+    footprint: Derived<(u64, Language), Result<usize, String>>,
+    sliders: sliders::ServoPanel,
+    actions: actions::ActionPanel,
+    macros: macros::MacroPanel,
+    joystick: joystick::JoystickPanel,
+    /// How the family's panels are laid out (remembered).
+    pub layout: Layout,
+}
+
+impl ServoUi {
+    /// The state for a project: every slider at its servo's home.
+    pub fn new(project: &ServoProject) -> Self {
+        Self { pose: homes(project), ..Self::default() }
+    }
+
+    /// A new document: the sliders go home, comparisons are dropped.
+    pub fn document_replaced(&mut self, project: &ServoProject) {
+        self.pose = homes(project);
+        self.pending = None;
+        self.compared_board = None;
+        self.preview = None;
+    }
+
+    /// Applies one of the family's actions.
+    pub fn apply(&mut self, shell: &mut Shell<'_>, action: ServoAction) {
+        match action {
+            ServoAction::SetPose { servo_id, degree } => self.set_pose(shell, servo_id, degree),
+            ServoAction::SetHold { servo_id, hold } => {
+                if let Some(servo) = shell.servo_mut() {
+                    servo.set_hold(servo_id, hold);
+                }
+            }
+            ServoAction::Resume => {
+                if let Some(servo) = shell.servo_mut() {
+                    servo.resume();
+                    shell.report(shell.words().msg_resumed, false);
+                }
+            }
+            ServoAction::CapturePose { from_board } => self.capture_pose(shell, from_board),
+            ServoAction::SetPolling(polling) => self.polling = polling,
+            ServoAction::BoardCompare(intent) => self.board_compare(shell, intent),
+            ServoAction::BoardConfirm => self.board_confirm(shell),
+            ServoAction::BoardDismiss => {
+                self.pending = None;
+                self.compared_board = None;
+            }
+            ServoAction::PlayAction(action_id) => self.play_action(shell, action_id),
+            ServoAction::PreviewAction(action_id) => self.preview = Some((action_id, Instant::now())),
+            ServoAction::RunMacro(macro_id) => match shell.servo_mut() {
+                Some(servo) => servo.run_macro(macro_id),
+                None => shell.report(shell.words().msg_connect_for_macro, true),
+            },
+            ServoAction::PickButton { table_index } => match shell.servo_mut() {
+                Some(servo) => {
+                    servo.subscribe_buttons(true);
+                    self.picking = table_index;
+                }
+                None => shell.report(shell.words().msg_connect_for_pick, true),
+            },
+        }
+    }
+
+    /// A remote button event arrived.
+    pub fn button(&mut self, shell: &mut Shell<'_>, button_id: u32, event: ButtonEvent) {
+        self.button_events.push((button_id, event));
+        if let Some(table_index) = self.picking.take() {
+            self.pick_button(shell, table_index, button_id);
+        }
+    }
+
+    /// Draws the tab.
+    pub fn ui(&mut self, ui: &mut egui::Ui, tab: Tab, view: &ShellView<'_>, actions: &mut Vec<Action>) {
+        let project = &view.project.servo;
+        let words = view.language.strings();
+        let connected = view.link.is_some();
+        match tab {
+            Tab::Actions => self.actions.ui(ui, view, &mut self.layout, actions),
+            Tab::Macros => self.macros.ui(ui, view, &mut self.layout, actions),
+            Tab::Joystick => {
+                let joystick = joystick::JoystickView {
+                    project,
+                    events: &self.button_events,
+                    picked: self.picked_button,
+                    picking: self.picking.is_some(),
+                    connected,
+                };
+                self.joystick.ui(ui, &joystick, &mut self.layout, words, actions);
+            }
+            Tab::Board => self.board_tab(ui, view, actions),
+            _ => {
+                let sliders = sliders::ServoView {
+                    project,
+                    pose: &self.pose,
+                    readback: view.link.and_then(|link| link.servo()).map(|servo| &servo.servos),
+                    polling: self.polling,
+                };
+                self.sliders.ui(ui, &sliders, &mut self.layout, words, actions);
+            }
+        }
+    }
+
+    fn board_tab(&mut self, ui: &mut egui::Ui, view: &ShellView<'_>, actions: &mut Vec<Action>) {
+        // Encoding every record takes milliseconds on a large project: once per
+        // revision, off the frame path then.
+        let language = view.language;
+        let footprint = self.footprint.get(ui.ctx(), (view.revision, language), || {
+            let project = view.project.servo.clone();
+            move || {
+                ServoImage::from_project(&project)
+                    .map_err(|error| language.op_error(&crate::device::servo::OpError::Image(error)))
+                    .and_then(|image| image.footprint_bytes().map_err(|error| error.to_string()))
+            }
+        });
+        let project_bytes = footprint.map_or(Ok(0), |(_, bytes)| bytes.clone());
+        let servo = view.link.and_then(|link| link.servo());
+        let board = board::BoardView {
+            connected: view.link.is_some(),
+            project_bytes,
+            board_total_bytes: servo
+                .and_then(|servo| servo.memory)
+                .map(|(free, total)| i64::from(total.unwrap_or(free))),
+            operation: view.servo_operation(),
+            pending: self.pending.as_ref(),
+            result: self.board_result.as_ref(),
+        };
+        board::ui(ui, &board, language, actions);
+    }
+
+    /// Moves the previewed action on (the sliders follow it); whether it still plays.
+    pub fn tick(&mut self, project: &Project, now: Instant) -> bool {
+        self.advance_preview(&project.servo, now);
+        self.preview.is_some()
+    }
+}
+
+fn homes(project: &ServoProject) -> BTreeMap<u8, i16> {
+    project.servos.iter().map(|servo| (servo.id, servo.home_deg)).collect()
+}
