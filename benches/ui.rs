@@ -1,14 +1,20 @@
 //! Editor benchmarks (prints figures; run with `cargo bench --bench ui`):
-//! 1. Median CPU time per frame of every panel of every family, on a small
-//!    and a large project in the same run, laid out and tessellated as eframe does it (no GPU),
-//!    then one `ratio <family>/<panel>: large ÷ small` line per panel (the
-//!    figure that travels between machines: a panel whose cost does not grow
-//!    with the project stays smooth on a slow laptop too).
-//!    Small: the servo v1 fixture; a PLEN2 motion of 3 frames and a play list;
-//!    a minute of rFLEX telemetry. Large: 64 servos, 500 actions × 64 steps,
-//!    200 macros × 50 commands, 8 tables × 64 buttons; 90 PLEN2 slots × 20
-//!    frames with 10 play lists × 30 entries; an hour of rFLEX telemetry at the
-//!    report rate. The packet log holds 100 entries (small) or its bound (large).
+//! 1. Median CPU time per frame of every panel of every family, in a
+//!    1600 × 1000 and an 1100 × 720 window, on a small and a large project in
+//!    the same run taking turns frame by frame, laid out and tessellated as
+//!    eframe does it (no GPU); then one `ratio <family>/<panel> @WxH: large ÷
+//!    small` line per panel and window size, with the large project's median
+//!    beside it (the ratio is the figure that travels between machines: a
+//!    panel whose cost does not grow with the project stays smooth on a slow
+//!    laptop too). The small project fills the window — every list has more
+//!    rows than fit, so both draw full lists and the ratio shows what the
+//!    project's size adds: 48 servos, 40 actions × 40 steps, 40 macros × 40
+//!    commands, 40 tables × 40 buttons; 40 PLEN2 slots × 40 frames with 40 play
+//!    lists × 40 entries; ten minutes of rFLEX telemetry (its bounded history
+//!    full). Large: 64 servos, 500 actions × 64 steps, 200 macros × 50
+//!    commands, 8 tables × 64 buttons; 90 PLEN2 slots × 20 frames with 10 play
+//!    lists × 30 entries; an hour of rFLEX telemetry at the report rate. The
+//!    packet log holds 100 entries (small) or its bound (large).
 //! 2. Cold start to the first frame with each large project (a fresh process
 //!    that reads the project file, installs the fonts and lays out one frame),
 //!    and the resident memory once every panel has been drawn.
@@ -39,28 +45,35 @@ fn measured_frames() -> usize {
     std::env::var("UI_BENCH_FRAMES").ok().and_then(|n| n.parse().ok()).unwrap_or(200).max(10)
 }
 
-fn large_project() -> ServoProject {
-    let servos: Vec<Servo> = (0..64u8).map(|id| Servo::new(id, format!("關節{id}"))).collect();
-    let actions = (1..=500)
+/// A servo project of `servos` servos, `actions` actions of `steps` steps,
+/// `macros` macros of `commands` commands and `tables` tables of `buttons` buttons.
+fn servo_project(
+    servos: u8,
+    (actions, steps): (i32, u8),
+    (macros, commands): (i32, i32),
+    (tables, buttons): (i32, u32),
+) -> ServoProject {
+    let servo_list: Vec<Servo> = (0..servos).map(|id| Servo::new(id, format!("關節{id}"))).collect();
+    let action_list = (1..=actions)
         .map(|id| Action {
             id,
             caption: format!("動作{id}"),
-            steps: (0..64u8)
+            steps: (0..steps)
                 .map(|servo_id| Step {
-                    servo_id,
+                    servo_id: servo_id % servos,
                     degree: ((id * 7 + i32::from(servo_id)) % 180 - 90) as i16,
                     interval_10ms: 50,
                 })
                 .collect(),
         })
         .collect();
-    let macros = (1..=200)
+    let macro_list = (1..=macros)
         .map(|id| Macro {
             id,
             caption: format!("巨集{id}"),
-            commands: (0..50)
+            commands: (0..commands)
                 .map(|n| match n % 3 {
-                    0 => Command::once(Run::Action { action_id: 1 + (id * 50 + n) % 500 }),
+                    0 => Command::once(Run::Action { action_id: 1 + (id * 50 + n) % actions }),
                     1 => Command::once(Run::Delay { delay_ms: 100 }),
                     // Only earlier macros: no cycles.
                     _ if id > 1 => Command::once(Run::Macro { macro_id: id - 1 }),
@@ -69,15 +82,15 @@ fn large_project() -> ServoProject {
                 .collect(),
         })
         .collect();
-    let joystick_tables = (1..=8)
+    let joystick_tables = (1..=tables)
         .map(|id| JoystickTable {
             id,
             caption: format!("表{id}"),
-            buttons: (0..64u32)
+            buttons: (0..buttons)
                 .map(|button| Button {
                     id: 0x8000_0000 | button,
                     caption: format!("鍵{button}"),
-                    press_macro: Some(1 + (button as i32 % 200)),
+                    press_macro: Some(1 + (button as i32 % macros)),
                     long_press_macro: None,
                     release_macro: None,
                     uninterruptible: false,
@@ -85,12 +98,23 @@ fn large_project() -> ServoProject {
                 .collect(),
         })
         .collect();
-    ServoProject { project_id: 1, servos, actions, macros, joystick_tables, active_table: Some(1) }
+    ServoProject {
+        project_id: 1,
+        servos: servo_list,
+        actions: action_list,
+        macros: macro_list,
+        joystick_tables,
+        active_table: Some(1),
+    }
 }
 
+fn large_project() -> ServoProject {
+    servo_project(64, (500, 64), (200, 50), (8, 64))
+}
+
+/// A servo project whose every list has more rows than a 1600 × 1000 window shows.
 fn small_servo() -> Project {
-    let fixture = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/project-v1.json");
-    servo_studio::project::load(&fixture).unwrap()
+    Project::servo(servo_project(48, (40, 40), (40, 40), (40, 40)))
 }
 
 fn motion(slot: u8, frames: usize) -> Motion {
@@ -186,7 +210,7 @@ fn scenarios(family: Family) -> [Scenario; 2] {
             },
         ],
         Family::Plen2 => [
-            Scenario { family, size: "small", project: plen2(1, 3, 1, 2), telemetry_seconds: 0, log_entries: 100 },
+            Scenario { family, size: "small", project: plen2(40, 40, 40, 40), telemetry_seconds: 0, log_entries: 100 },
             Scenario {
                 family,
                 size: "large",
@@ -198,7 +222,9 @@ fn scenarios(family: Family) -> [Scenario; 2] {
         Family::Rflex => {
             let project = Project { family, ..Project::default() };
             [
-                Scenario { family, size: "small", project: project.clone(), telemetry_seconds: 60, log_entries: 100 },
+                // Ten minutes fill the telemetry's bounded history (its recent points
+                // and its thinned past), as the small lists fill the window.
+                Scenario { family, size: "small", project: project.clone(), telemetry_seconds: 600, log_entries: 100 },
                 Scenario { family, size: "large", project, telemetry_seconds: 3600, log_entries: MAX_ENTRIES },
             ]
         }
@@ -237,18 +263,22 @@ fn app(scenario: &Scenario, tab: Tab) -> StudioApp {
 struct Window {
     ctx: egui::Context,
     app: StudioApp,
+    size: egui::Vec2,
 }
 
+/// The window sizes measured: a large desktop window, and the editor's default.
+const SIZES: [(f32, f32); 2] = [(1600.0, 1000.0), (1100.0, 720.0)];
+
 impl Window {
-    fn new(app: StudioApp) -> Self {
+    fn new(app: StudioApp, (width, height): (f32, f32)) -> Self {
         let ctx = egui::Context::default();
         servo_studio::ui::fonts::install(&ctx);
-        Self { ctx, app }
+        Self { ctx, app, size: egui::vec2(width, height) }
     }
 
     fn step(&mut self) {
         let input = egui::RawInput {
-            screen_rect: Some(egui::Rect::from_min_size(egui::Pos2::ZERO, egui::vec2(1400.0, 900.0))),
+            screen_rect: Some(egui::Rect::from_min_size(egui::Pos2::ZERO, self.size)),
             ..Default::default()
         };
         let output = self.ctx.run_ui(input, |ui| self.app.show(ui));
@@ -263,11 +293,11 @@ impl Window {
     }
 }
 
-/// Median frame time of one panel on the small and the large project, ms.
-/// The two windows take turns frame by frame, so that a change of clock speed
-/// or a busy neighbour weighs on both alike.
-fn frame_times_of(small: &Scenario, large: &Scenario, tab: Tab) -> (f64, f64) {
-    let mut windows = [Window::new(app(small, tab)), Window::new(app(large, tab))];
+/// Median frame time of one panel on the small and the large project, ms,
+/// in a window of `size`. The two windows take turns frame by frame, so that
+/// a change of clock speed or a busy neighbour weighs on both alike.
+fn frame_times_of(small: &Scenario, large: &Scenario, tab: Tab, size: (f32, f32)) -> (f64, f64) {
+    let mut windows = [Window::new(app(small, tab), size), Window::new(app(large, tab), size)];
     for window in &mut windows {
         window.run_steps(10);
     }
@@ -285,8 +315,10 @@ fn frame_times_of(small: &Scenario, large: &Scenario, tab: Tab) -> (f64, f64) {
         times.sort_unstable();
         *median = times[frames / 2].as_secs_f64() * 1e3;
         println!(
-            "frame time {:?}/{tab:?} {}: median {:.3} ms, p90 {:.3} ms, max {:.3} ms",
-            scenario.family,
+            "frame time {}/{tab:?} @{}x{} {}: median {:.3} ms, p90 {:.3} ms, max {:.3} ms",
+            scenario.family.tag(),
+            size.0,
+            size.1,
             scenario.size,
             *median,
             times[frames * 9 / 10].as_secs_f64() * 1e3,
@@ -308,18 +340,25 @@ fn frame_times() {
     // `UI_BENCH_ONLY=servo/Servos` measures one panel (for profiling).
     let only = std::env::var("UI_BENCH_ONLY").ok();
     let mut ratios = Vec::new();
-    for family in [Family::Servo, Family::Plen2, Family::Rflex] {
-        let [small, large] = scenarios(family);
-        for &tab in Tab::for_family(family) {
-            if only.as_ref().is_some_and(|only| *only != format!("{}/{tab:?}", family.tag())) {
-                continue;
+    for size in SIZES {
+        for family in [Family::Servo, Family::Plen2, Family::Rflex] {
+            let [small, large] = scenarios(family);
+            for &tab in Tab::for_family(family) {
+                if only.as_ref().is_some_and(|only| *only != format!("{}/{tab:?}", family.tag())) {
+                    continue;
+                }
+                let (small_ms, large_ms) = frame_times_of(&small, &large, tab, size);
+                ratios.push((size, family, tab, large_ms / small_ms, large_ms));
             }
-            let (small_ms, large_ms) = frame_times_of(&small, &large, tab);
-            ratios.push((family, tab, large_ms / small_ms));
         }
     }
-    for (family, tab, ratio) in ratios {
-        println!("ratio {}/{tab:?}: large ÷ small = {ratio:.2}", family.tag());
+    for (size, family, tab, ratio, large_ms) in ratios {
+        println!(
+            "ratio {}/{tab:?} @{}x{}: large ÷ small = {ratio:.2} (large: median {large_ms:.2} ms a frame)",
+            family.tag(),
+            size.0,
+            size.1
+        );
     }
 }
 
@@ -349,7 +388,7 @@ fn editing_frame_times() {
         }),
     ];
     for (tab, edit) in edits {
-        let mut window = Window::new(app(large, tab));
+        let mut window = Window::new(app(large, tab), SIZES[0]);
         window.run_steps(10);
         let frames = measured_frames() / 4;
         let mut times: Vec<Duration> = (0..frames)
@@ -394,12 +433,13 @@ fn cold_start_child(family: Family, path: &Path) {
     let project = servo_studio::project::load(path).unwrap();
     let scenario = Scenario { family, size: "large", project, telemetry_seconds: 0, log_entries: 0 };
     let data = std::env::temp_dir().join("servo-studio-bench");
-    let mut window = Window::new(StudioApp::new(scenario.project.clone(), None, no_waker()).with_data_dir(data));
+    let mut window =
+        Window::new(StudioApp::new(scenario.project.clone(), None, no_waker()).with_data_dir(data), SIZES[0]);
     window.step();
     println!("first-frame");
     let large = &scenarios(family)[1];
     for &tab in Tab::for_family(family) {
-        Window::new(app(large, tab)).run_steps(3);
+        Window::new(app(large, tab), SIZES[0]).run_steps(3);
     }
     let (rss, peak) = resident_mb().unwrap_or((f64::NAN, f64::NAN));
     println!("resident {rss:.1} {peak:.1}");

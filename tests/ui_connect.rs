@@ -9,7 +9,7 @@ use std::time::{Duration, Instant};
 
 use crossbeam_channel::Receiver;
 use egui_kittest::Harness;
-use egui_kittest::kittest::Queryable;
+use egui_kittest::kittest::{Queryable, by};
 use servo_studio::device::servo::ServoImage;
 use servo_studio::link::{Connection, LineSettings, Opener, Waker, open};
 use servo_studio::project::{Family, ServoProject};
@@ -259,4 +259,24 @@ fn the_family_used_last_is_remembered_but_a_projects_family_wins() {
     let start = servo_studio::ui::Start { family: Some(Family::Rflex), ..servo_studio::ui::Start::default() };
     let chosen = start.into_app(servo_studio::link::no_waker(), None);
     assert_eq!(chosen.document.project.family, Family::Rflex, "--protocol picks the family");
+}
+
+#[test]
+fn the_port_field_shows_what_the_link_is_to_while_connected() {
+    let (waker, _woken) = waker();
+    let mut harness = harness(app(servo_studio::link::system_opener(), waker));
+    harness.run_steps(2);
+    let port = || by().role(egui::accesskit::Role::TextInput).label("Port");
+    harness.get(port()).focus();
+    harness.get(port()).type_text("/dev/ttyS7");
+    harness.run_steps(2);
+    assert!(harness.get(port()).value().is_some_and(|value| value.ends_with("/dev/ttyS7")));
+    harness.get_by_label("Demo board").click();
+    harness.run_steps(3);
+    assert!(harness.state().link.is_some());
+    // Not the port typed before: the demo board has none.
+    assert_eq!(harness.get(port()).value().as_deref(), Some("Demo board"));
+    harness.get_by_label("Disconnect").click();
+    harness.run_steps(2);
+    assert!(harness.get(port()).value().is_some_and(|value| value.ends_with("/dev/ttyS7")), "the typed port is kept");
 }

@@ -28,6 +28,10 @@ fn harness() -> Harness<'static, StudioApp> {
     harness
 }
 
+fn status(harness: &Harness<'static, StudioApp>) -> String {
+    harness.state().status.as_ref().map(|line| line.text.clone()).unwrap_or_default()
+}
+
 fn inspect(harness: &Harness<'static, StudioApp>) -> BaseState {
     let (reply, state) = crossbeam_channel::bounded(1);
     harness.state().link.as_ref().unwrap().demo_base().unwrap().command(RflexSimCommand::Inspect(reply));
@@ -54,6 +58,7 @@ fn wait_for_motion(harness: &Harness<'static, StudioApp>, what: &str, wanted: im
 #[test]
 fn an_arrow_key_drives_the_base_and_letting_go_stops_it_within_one_frame() {
     let mut harness = harness();
+    assert!(status(&harness).contains("braked"), "{}", status(&harness));
     harness.get_by_label("Brake").click();
     harness.run_steps(2);
     let deadline = Instant::now() + Duration::from_secs(5);
@@ -61,6 +66,8 @@ fn an_arrow_key_drives_the_base_and_letting_go_stops_it_within_one_frame() {
         assert!(Instant::now() < deadline, "the brake was never released");
         harness.step();
     }
+    // The status line no longer says what the connection said.
+    assert_eq!(status(&harness), "Brake released: the base can drive");
 
     harness.key_down(egui::Key::ArrowUp);
     harness.step();
@@ -124,10 +131,20 @@ fn losing_window_focus_while_driving_stops_the_base() {
     wait_for_motion(&harness, "a forward command", |speed, _| speed > 0);
     // Another window takes the focus while the key is still held.
     harness.event(egui::Event::WindowFocused(false));
+    // eframe goes on saying so in every frame's input until the focus is back.
+    harness.input_mut().focused = false;
     harness.step();
     assert_eq!(harness.state().rflex.drive_asked(), (0.0, 0.0));
     wait_for_motion(&harness, "the stop", |speed, _| speed == 0);
+    // The pad says why the keys do nothing now.
+    harness.step();
+    let why = "The keys do nothing: the window does not have the keyboard focus. Click in the window first.";
+    assert!(harness.query_by_label(why).is_some());
     harness.key_up(egui::Key::ArrowUp);
+    harness.event(egui::Event::WindowFocused(true));
+    harness.input_mut().focused = true;
+    harness.run_steps(2);
+    assert!(harness.query_by_label(why).is_none(), "gone with the focus back");
 }
 
 #[test]

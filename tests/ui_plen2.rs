@@ -122,7 +122,13 @@ fn the_robot_panel_uploads_verifies_and_a_play_list_queues_its_motions() {
     }
     let result = shown_result(harness.state());
     assert!(result.contains("Uploaded and verified, items: 1/1"), "{result}");
-    assert!(harness.query_by_label_contains("Uploaded and verified, items: 1/1").is_some(), "the panel shows it");
+    // The status line follows: the robot is no longer the factory-fresh one it connected to.
+    let status = harness.state().status.clone().unwrap();
+    assert!(status.text.starts_with("Uploaded and verified, items: 1/1") && !status.is_error, "{status:?}");
+    assert!(
+        harness.query_all_by_label_contains("Uploaded and verified, items: 1/1").count() >= 2,
+        "the panel and the status line"
+    );
     assert!(result.contains("plen2-backup-"), "{result}");
     assert_eq!(inspect(&harness).written_slots, [3]);
 

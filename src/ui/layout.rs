@@ -11,14 +11,16 @@ use egui::{Rect, Sense, UiBuilder, pos2, vec2};
 pub struct Layout {
     /// Width of a list of names beside its editor, points.
     pub list_width: f32,
-    /// Height of the pane under an editor (its plot and preview), points.
-    pub lower_height: f32,
+    /// Share of the height the pane under an editor (its plot and preview) takes, 0–1.
+    pub lower_share: f32,
     /// Whether that pane is open.
     pub lower_open: bool,
     /// Width of the preview beside sliders or a pad, points.
     pub side_width: f32,
-    /// Height of the settings under sliders, points.
-    pub settings_height: f32,
+    /// Width of the values beside a plot (a PLEN2 frame's joints), points.
+    pub values_width: f32,
+    /// Share of the height the settings under sliders take, 0–1.
+    pub settings_share: f32,
     /// Whether the settings are open.
     pub settings_open: bool,
 }
@@ -27,10 +29,11 @@ impl Default for Layout {
     fn default() -> Self {
         Self {
             list_width: 220.0,
-            lower_height: 280.0,
+            lower_share: 0.4,
             lower_open: true,
             side_width: 440.0,
-            settings_height: 300.0,
+            values_width: 500.0,
+            settings_share: 0.45,
             settings_open: false,
         }
     }
@@ -99,22 +102,24 @@ pub fn columns(ui: &mut egui::Ui, id_salt: &str, width: &mut f32, min: f32, mut 
     ui.allocate_rect(area, Sense::hover());
 }
 
-/// An upper pane over a lower one filling the space left. The lower pane is
-/// `height` points tall (drag the divider to change it) under a header with
-/// its `title` and a toggle that collapses it; collapsed, the upper pane
-/// takes everything. `add` fills each in turn.
+/// An upper pane over a lower one filling the space left. The lower pane
+/// takes `share` of the height (drag the divider to change it; it keeps its
+/// share as the window is resized) under a header with its `title` and a
+/// toggle that collapses it; collapsed, the upper pane takes everything.
+/// `add` fills each in turn.
 pub fn over(
     ui: &mut egui::Ui,
     id_salt: &str,
-    (height, open): (&mut f32, &mut bool),
+    (share, open): (&mut f32, &mut bool),
     title: &str,
     mut add: impl FnMut(&mut egui::Ui, Pane),
 ) {
     let area = ui.available_rect_before_wrap();
     let header = ui.spacing().interact_size.y + 4.0;
     let min = 120.0;
-    let most = (area.height() - header - DIVIDER - min).max(min);
-    let h = if *open { height.clamp(min, most) } else { 0.0 };
+    let room = (area.height() - header - DIVIDER).max(1.0);
+    let most = (room - min).max(min);
+    let h = if *open { (*share * room).clamp(min, most) } else { 0.0 };
     let header_top = area.bottom() - h - header;
     let bar = Rect::from_min_size(pos2(area.left(), header_top - DIVIDER), vec2(area.width(), DIVIDER));
     let upper_rect = Rect::from_min_max(area.min, pos2(area.right(), bar.top()));
@@ -123,7 +128,7 @@ pub fn over(
     if *open {
         let response = divider(ui, bar, ui.scope_id().with((id_salt, "divider")), false, "Resize the lower pane");
         if response.dragged() {
-            *height = (h - response.drag_delta().y).clamp(min, most);
+            *share = (h - response.drag_delta().y).clamp(min, most) / room;
         }
     }
     inside(ui, upper_rect, |ui| add(ui, Pane::First));
@@ -164,10 +169,10 @@ pub fn list_and_editor(
     lower_title: &str,
     mut add: impl FnMut(&mut egui::Ui, Part),
 ) {
-    let Layout { list_width, lower_height, lower_open, .. } = layout;
+    let Layout { list_width, lower_share, lower_open, .. } = layout;
     columns(ui, id_salt, list_width, 140.0, |ui, pane| match pane {
         Pane::First => add(ui, Part::List),
-        Pane::Second => over(ui, id_salt, (&mut *lower_height, &mut *lower_open), lower_title, |ui, pane| {
+        Pane::Second => over(ui, id_salt, (&mut *lower_share, &mut *lower_open), lower_title, |ui, pane| {
             add(ui, if pane == Pane::First { Part::Editor } else { Part::Lower });
         }),
     });
@@ -185,12 +190,12 @@ mod tests {
         let mut layout = Layout::default();
         let mut harness = Harness::builder().with_size(vec2(1000.0, 700.0)).build_ui_state(
             |ui, layout: &mut Layout| {
-                let Layout { list_width, lower_height, lower_open, .. } = layout;
+                let Layout { list_width, lower_share, lower_open, .. } = layout;
                 columns(ui, "test", list_width, 100.0, |ui, pane| match pane {
                     Pane::First => {
                         ui.label("left pane");
                     }
-                    Pane::Second => over(ui, "test", (lower_height, lower_open), "Plot", |ui, pane| {
+                    Pane::Second => over(ui, "test", (lower_share, lower_open), "Plot", |ui, pane| {
                         ui.label(if pane == Pane::First { "upper pane" } else { "lower pane" });
                     }),
                 });

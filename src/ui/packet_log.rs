@@ -106,7 +106,7 @@ impl PacketLog {
         // A filter typed this frame, or a clear, applies now.
         self.refresh();
         ui.label(format!("{} / {}", self.matched.len(), self.entries.len()));
-        let row_height = ui.text_style_height(&egui::TextStyle::Monospace) + 2.0;
+        let row_height = crate::ui::rows::text_height(ui, &egui::TextStyle::Monospace);
         egui::ScrollArea::both().auto_shrink([false, false]).stick_to_bottom(true).show_rows(
             ui,
             row_height,
@@ -115,7 +115,11 @@ impl PacketLog {
                 for row in rows {
                     // One line per row, never wrapped: rows are virtualised by height.
                     let line = self.matched_entry(row).line();
-                    ui.add(egui::Label::new(egui::RichText::new(line).monospace()).extend());
+                    let size = egui::vec2(ui.available_width(), row_height);
+                    ui.allocate_ui_with_layout(size, egui::Layout::left_to_right(egui::Align::Center), |ui| {
+                        ui.set_min_height(row_height);
+                        ui.add(egui::Label::new(egui::RichText::new(line).monospace()).extend());
+                    });
                 }
             },
         );

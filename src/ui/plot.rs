@@ -1,15 +1,27 @@
 //! Plots that draw no more points than they have pixels: time series are
 //! thinned to the first, lowest, highest and last point of each pixel column
-//! (peaks survive), paths to points at least a pixel apart.
+//! (peaks survive), paths to points at least a pixel apart. A legend sits
+//! beside its plot, never over the curves.
 
-use egui_plot::{Legend, Line, Plot, PlotPoints};
+use egui_plot::{Line, Plot, PlotPoints};
+
+use crate::ui::i18n::Strings;
 
 /// Named series of (x, y) points, each sorted by x.
 pub type Series = Vec<(String, Vec<[f64; 2]>)>;
 
-/// Most series drawn at once: more would be an unreadable tangle (and cost a
-/// frame in proportion); ← → page through the rest.
-pub const SERIES_PER_PAGE: usize = 8;
+/// Series shown at first: more would be an unreadable tangle (and cost a
+/// frame in proportion); the legend beside the plot shows the rest on a click.
+pub const SERIES_SHOWN_FIRST: usize = 8;
+
+/// The colour of the `index`th series (golden-ratio hues, as egui_plot's own).
+pub fn series_color(index: usize) -> egui::Color32 {
+    let golden_ratio = (5.0_f32.sqrt() - 1.0) / 2.0;
+    // Series counts are small: exact in f32.
+    #[allow(clippy::cast_precision_loss)]
+    let hue = (index as f32 * golden_ratio).fract();
+    egui::ecolor::Hsva::new(hue, 0.85, 0.6, 1.0).into()
+}
 
 /// An x-sorted series thinned for `columns` pixel columns across
 /// `x_min..=x_max`: per column its first, lowest, highest and last point, in
@@ -91,42 +103,61 @@ pub fn thin_path(points: impl IntoIterator<Item = [f64; 2]>, units_per_pixel: [f
     out
 }
 
-/// Named x-sorted series as lines, each thinned to the plot's width, with a
-/// legend; at most [`SERIES_PER_PAGE`] at once, paged with ← →.
-pub fn series(ui: &mut egui::Ui, id: &str, height: f32, axis_labels: [&str; 2], series: &[(String, Vec<[f64; 2]>)]) {
-    let page_id = ui.make_persistent_id((id, "page"));
-    let pages = series.len().div_ceil(SERIES_PER_PAGE).max(1);
-    let mut page = ui.data(|data| data.get_temp::<usize>(page_id)).unwrap_or(0).min(pages - 1);
-    if pages > 1 {
-        ui.horizontal(|ui| {
-            if ui.add_enabled(page > 0, egui::Button::new("←").small()).clicked() {
-                page -= 1;
-            }
-            let first = page * SERIES_PER_PAGE;
-            let last = (first + SERIES_PER_PAGE).min(series.len());
-            ui.label(format!("{}–{} / {}", first + 1, last, series.len()));
-            if ui.add_enabled(page + 1 < pages, egui::Button::new("→").small()).clicked() {
-                page += 1;
+/// Named x-sorted series as lines filling the space left, each thinned to
+/// the plot's width, with their legend beside the plot (never over the
+/// curves): a click on an entry shows or hides its series. The first
+/// [`SERIES_SHOWN_FIRST`] are shown at first.
+pub fn series(ui: &mut egui::Ui, id: &str, words: &Strings, series: &[(String, Vec<[f64; 2]>)]) {
+    let shown_id = ui.make_persistent_id((id, "shown"));
+    let mut shown: Vec<bool> = ui.data(|data| data.get_temp::<Vec<bool>>(shown_id)).unwrap_or_default();
+    if shown.len() != series.len() {
+        shown = (0..series.len()).map(|index| index < SERIES_SHOWN_FIRST).collect();
+    }
+    let area = ui.available_rect_before_wrap();
+    let legend_width = (area.width() * 0.3).clamp(120.0, 260.0);
+    let plot_rect = egui::Rect::from_min_max(area.min, egui::pos2(area.right() - legend_width, area.bottom()));
+    let legend_rect = egui::Rect::from_min_max(egui::pos2(plot_rect.right() + 4.0, area.top()), area.max);
+    crate::ui::layout::inside(ui, plot_rect, |ui| {
+        let plot = Plot::new(id)
+            .width(plot_rect.width())
+            .height(plot_rect.height())
+            .x_axis_label("ms")
+            .y_axis_label(format!("{} (°)", words.headings().angle))
+            .y_axis_min_width(36.0)
+            .allow_scroll(false);
+        plot.show(ui, |plot| {
+            let bounds = plot.plot_bounds();
+            #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+            let columns = plot.transform().frame().width().max(1.0) as usize;
+            for (index, (name, points)) in series.iter().enumerate().filter(|(index, _)| shown[*index]) {
+                let thinned = decimate(points, bounds.min()[0], bounds.max()[0], columns);
+                plot.line(Line::new(name.as_str(), PlotPoints::from(thinned)).color(series_color(index)));
             }
         });
-        ui.data_mut(|data| data.insert_temp(page_id, page));
-    }
-    let shown = series.iter().skip(page * SERIES_PER_PAGE).take(SERIES_PER_PAGE);
-    let plot = Plot::new(id)
-        .height(height)
-        .x_axis_label(axis_labels[0])
-        .y_axis_label(axis_labels[1])
-        .allow_scroll(false)
-        .legend(Legend::default());
-    plot.show(ui, |plot| {
-        let bounds = plot.plot_bounds();
-        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-        let columns = plot.transform().frame().width().max(1.0) as usize;
-        for (name, points) in shown {
-            let thinned = decimate(points, bounds.min()[0], bounds.max()[0], columns);
-            plot.line(Line::new(name.as_str(), PlotPoints::from(thinned)));
-        }
     });
+    crate::ui::layout::inside(ui, legend_rect, |ui| {
+        // One line per entry: a long name is cut (its whole text is in the hover).
+        ui.style_mut().wrap_mode = Some(egui::TextWrapMode::Truncate);
+        let row_height = crate::ui::rows::name_row_height(ui);
+        let height = ui.available_height();
+        crate::ui::rows::list(ui, &format!("{id}-legend"), row_height, series.len(), height, |ui, index| {
+            let on = shown[index];
+            let (swatch, text) = if on {
+                (series_color(index), ui.visuals().text_color())
+            } else {
+                (ui.visuals().weak_text_color(), ui.visuals().weak_text_color())
+            };
+            let font = egui::TextStyle::Body.resolve(ui.style());
+            let mut entry = egui::text::LayoutJob::default();
+            entry.append(if on { "● " } else { "○ " }, 0.0, egui::TextFormat::simple(font.clone(), swatch));
+            entry.append(&series[index].0, 0.0, egui::TextFormat::simple(font, text));
+            if ui.add(egui::Button::new(entry).frame(false)).on_hover_text(words.plot_toggle_hint).clicked() {
+                shown[index] = !on;
+            }
+        });
+    });
+    ui.data_mut(|data| data.insert_temp(shown_id, shown));
+    ui.allocate_rect(area, egui::Sense::hover());
 }
 
 #[cfg(test)]

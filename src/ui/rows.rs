@@ -6,12 +6,18 @@
 /// Rows a drop-down shows at once (it floats over the panel).
 pub const CHOICE_ROWS: usize = 12;
 
+/// Height of one line of text in `style` as laid out: with the CJK fallback
+/// font, whose line is taller than the Latin font's (a caption in Chinese
+/// makes its row that tall).
+pub fn text_height(ui: &egui::Ui, style: &egui::TextStyle) -> f32 {
+    let font = style.resolve(ui.style());
+    let galley = ui.painter().layout_no_wrap("Ag國".to_owned(), font, egui::Color32::WHITE);
+    galley.size().y.max(ui.text_style_height(style))
+}
+
 /// Height of one row of interactive widgets (buttons, drag values, combo boxes).
 pub fn widget_row_height(ui: &egui::Ui) -> f32 {
-    ui.spacing()
-        .interact_size
-        .y
-        .max(ui.text_style_height(&egui::TextStyle::Button) + 2.0 * ui.spacing().button_padding.y)
+    ui.spacing().interact_size.y.max(text_height(ui, &egui::TextStyle::Button) + 2.0 * ui.spacing().button_padding.y)
 }
 
 /// Height of `rows` rows of `row_height` (with the spacing between them).
@@ -28,7 +34,7 @@ pub fn table_height(ui: &egui::Ui, rows: usize) -> f32 {
 
 /// Height of one line of a list of names.
 pub fn name_row_height(ui: &egui::Ui) -> f32 {
-    ui.text_style_height(&egui::TextStyle::Body) + 2.0 * ui.spacing().button_padding.y
+    text_height(ui, &egui::TextStyle::Body) + 2.0 * ui.spacing().button_padding.y
 }
 
 /// Height of a list of names of `rows` rows.
@@ -48,7 +54,13 @@ pub fn list(
 ) {
     scrolled(ui, id_salt, row_height, count, max_height, None, |ui, rows| {
         for index in rows {
-            add_row(ui, index);
+            // Every row exactly as tall as declared (a Latin caption's line is
+            // shorter than a Chinese one's), so the rows in view are the rows laid out.
+            let size = egui::vec2(ui.available_width(), row_height);
+            ui.allocate_ui_with_layout(size, egui::Layout::left_to_right(egui::Align::Center), |ui| {
+                ui.set_min_height(row_height);
+                add_row(ui, index);
+            });
         }
     });
 }

@@ -57,12 +57,21 @@ impl StudioApp {
         };
         let Some(outcome) = outcome else { return };
         let Some(operation) = self.operation.take() else { return };
-        match (outcome, operation) {
+        let summary = match (outcome, operation) {
             (Finished::Servo(outcome), RunningOperation::Servo(operation)) => {
                 self.servo.finish(&operation, outcome);
+                self.servo.summary(self.language)
             }
-            (Finished::Plen2(outcome), _) => self.plen2.finish(outcome),
-            (Finished::Servo(_), RunningOperation::Plen2(_)) => {}
+            (Finished::Plen2(outcome), _) => {
+                self.plen2.finish(outcome);
+                self.plen2.summary(self.language)
+            }
+            (Finished::Servo(_), RunningOperation::Plen2(_)) => None,
+        };
+        // The status line follows: what the connection said of the board
+        // ("factory-fresh") may no longer hold.
+        if let Some((text, is_error)) = summary {
+            self.report(text, is_error);
         }
     }
 

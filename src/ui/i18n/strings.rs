@@ -379,6 +379,14 @@ pub struct Strings {
     pub frame_and_plot: &'static str,
     /// What the motion.json button does.
     pub motion_json_hint: &'static str,
+    /// The status after the brake was set.
+    pub msg_brake_on: &'static str,
+    /// The status after the brake was released.
+    pub msg_brake_released: &'static str,
+    /// The status after a board was read for comparison.
+    pub msg_board_compared: &'static str,
+    /// What a click on a plot's legend entry does.
+    pub plot_toggle_hint: &'static str,
     /// The drive pad says the window lacks keyboard focus.
     pub drive_needs_focus: &'static str,
 }

@@ -176,12 +176,11 @@ pub fn robot_panel(ui: &mut egui::Ui, view: &RobotView<'_>, language: Language, 
     let per_row = 10;
     let rows_count = view.slots.len().div_ceil(per_row);
     ui.spacing_mut().item_spacing = egui::vec2(2.0, 2.0);
+    // Each row is laid out left to right already.
     rows::list(ui, "plen2-slot-map", 30.0, rows_count, ui.available_height(), |ui, row| {
-        ui.horizontal(|ui| {
-            let first = row * per_row;
-            for (slot, slot_cell) in view.slots.iter().enumerate().skip(first).take(per_row) {
-                cell(ui, slot, slot_cell);
-            }
-        });
+        let first = row * per_row;
+        for (slot, slot_cell) in view.slots.iter().enumerate().skip(first).take(per_row) {
+            cell(ui, slot, slot_cell);
+        }
     });
 }

@@ -50,7 +50,7 @@ pub fn ui(ui: &mut egui::Ui, view: &JointsView<'_>, layout: &mut Layout, words: 
             actions.push(Action::Plen2(Plen2Action::CaptureFrame { slot }));
         }
     });
-    let settings = (&mut layout.settings_height, &mut layout.settings_open);
+    let settings = (&mut layout.settings_share, &mut layout.settings_open);
     layout::over(ui, "plen2-joint-settings", settings, words.joint_settings, |ui, pane| match pane {
         Pane::First => sliders(ui, view, actions),
         Pane::Second => {

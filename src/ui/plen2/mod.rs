@@ -350,6 +350,12 @@ impl Plen2Ui {
         }
     }
 
+    /// The last operation's outcome in one status line, and whether it is an error.
+    pub fn summary(&self, language: crate::ui::i18n::Language) -> Option<(String, bool)> {
+        let (text, is_error) = language.plen2_result(self.result.as_ref()?);
+        Some((text.lines().next().unwrap_or_default().to_string(), is_error))
+    }
+
     /// The item a step works on, in words.
     pub fn item_words(language: crate::ui::i18n::Language, item: &Plen2Item) -> String {
         language.plen2_item(item)

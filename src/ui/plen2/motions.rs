@@ -95,6 +95,8 @@ impl MotionsPanel {
         let flagged: std::collections::BTreeSet<u8> = self.flagged.keys().copied().collect();
         let selected = self.selected;
         let mut picked = None;
+        // The frame values' width beside the plot, remembered with the rest.
+        let mut values_width = layout.values_width;
         layout::list_and_editor(ui, "plen2-motions", layout, words.frame_and_plot, |ui, part| match part {
             Part::List => rows::names(ui, "plen2-motion-list", project.motions.len(), |ui, index| {
                 let motion = &project.motions[index];
@@ -105,8 +107,9 @@ impl MotionsPanel {
                 }
             }),
             Part::Editor => self.editor(ui, project, connected, words, actions),
-            Part::Lower => self.lower(ui, project, words, actions),
+            Part::Lower => self.lower(ui, project, &mut values_width, words, actions),
         });
+        layout.values_width = values_width;
         if let Some(index) = picked {
             self.selected = index;
             self.frame = 0;
@@ -114,7 +117,14 @@ impl MotionsPanel {
     }
 
     /// The selected frame's values, the timeline and the angle plot.
-    fn lower(&mut self, ui: &mut egui::Ui, project: &Plen2Project, words: &Strings, actions: &mut Vec<Action>) {
+    fn lower(
+        &mut self,
+        ui: &mut egui::Ui,
+        project: &Plen2Project,
+        values_width: &mut f32,
+        words: &Strings,
+        actions: &mut Vec<Action>,
+    ) {
         let index = self.selected;
         let motion = &project.motions[index];
         timeline(ui, motion, self.frame);
@@ -122,9 +132,8 @@ impl MotionsPanel {
         if self.series.as_ref().is_none_or(|(at, _)| *at != key) {
             self.series = Some((key, joint_series(motion)));
         }
-        let mut width = 560.0;
         let series = self.series.take();
-        layout::columns(ui, "plen2-frame-values", &mut width, 200.0, |ui, pane| match pane {
+        layout::columns(ui, "plen2-frame-values", values_width, 200.0, |ui, pane| match pane {
             Pane::First => {
                 egui::ScrollArea::vertical().id_salt("plen2-frame-values-scroll").show(ui, |ui| {
                     self.frame_values(ui, project, words, actions);
@@ -132,8 +141,7 @@ impl MotionsPanel {
             }
             Pane::Second => {
                 let series = series.as_ref().map_or(&[][..], |(_, series)| series.as_slice());
-                let height = ui.available_height();
-                plot::series(ui, "plen2-angles", height, ["ms", "°"], series);
+                plot::series(ui, "plen2-angles", words, series);
             }
         });
         self.series = series;

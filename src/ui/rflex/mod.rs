@@ -45,6 +45,9 @@ impl RflexUi {
             RflexAction::SetBrake(on) => {
                 if let Some(base) = shell.rflex_mut() {
                     base.set_brake(on);
+                    // The connection message said "braked": the status follows the brake.
+                    let words = shell.words();
+                    shell.report(if on { words.msg_brake_on } else { words.msg_brake_released }, false);
                 }
             }
             RflexAction::SetSonar(on) => {

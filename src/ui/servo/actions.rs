@@ -106,17 +106,16 @@ impl ActionPanel {
                 }
             }),
             Part::Editor => Self::editor(ui, project, index, facts, connected, words, actions),
-            Part::Lower => Self::lower(ui, project, index, facts),
+            Part::Lower => Self::lower(ui, project, index, facts, words),
         });
     }
 
     /// The selected action's timeline and angle plot.
-    fn lower(ui: &mut egui::Ui, project: &ServoProject, index: usize, derived: &Facts) {
+    fn lower(ui: &mut egui::Ui, project: &ServoProject, index: usize, derived: &Facts, words: &Strings) {
         let action = &project.actions[index];
         timeline(ui, project, action, derived.longest_ms);
         if !derived.series.is_empty() {
-            let height = ui.available_height();
-            plot::series(ui, "action-plot", height, ["ms", "°"], &derived.series);
+            plot::series(ui, "action-plot", words, &derived.series);
         }
     }
 

@@ -137,8 +137,7 @@ impl MacroPanel {
             Part::Editor => Self::editor(ui, project, index, derived, connected, words, actions),
             Part::Lower => {
                 if !derived.series.is_empty() {
-                    let height = ui.available_height();
-                    plot::series(ui, "macro-plot", height, ["ms", "°"], &derived.series);
+                    plot::series(ui, "macro-plot", words, &derived.series);
                 }
             }
         });

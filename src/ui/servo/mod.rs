@@ -184,6 +184,25 @@ impl ServoUi {
         board::ui(ui, &board, language, actions);
     }
 
+    /// The last operation's outcome in one status line, and whether it is an error.
+    pub fn summary(&self, language: Language) -> Option<(String, bool)> {
+        let words = language.strings();
+        if self.pending.is_some() {
+            return Some((words.msg_board_compared.to_string(), false));
+        }
+        let result = self.board_result.as_ref()?;
+        if let Some(error) = result.error_text(language) {
+            return Some((error.lines().next().unwrap_or_default().to_string(), true));
+        }
+        let text = match result {
+            BoardResult::Uploaded { items, .. } => format!("{} {}", words.uploaded_items, items.len()),
+            BoardResult::ReadIntoProject => words.read_done.to_string(),
+            BoardResult::Exported(path) => format!("{} {}", words.saved_board_to, path.display()),
+            _ => words.cancelled.to_string(),
+        };
+        Some((text, false))
+    }
+
     /// Moves the previewed action on (the sliders follow it); whether it still plays.
     pub fn tick(&mut self, project: &Project, now: Instant) -> bool {
         self.advance_preview(&project.servo, now);

@@ -78,7 +78,7 @@ impl ServoPanel {
         if view.project.servos.is_empty() {
             ui.label(words.no_servos);
         }
-        let settings = (&mut layout.settings_height, &mut layout.settings_open);
+        let settings = (&mut layout.settings_share, &mut layout.settings_open);
         layout::over(ui, "servo-settings", settings, words.servo_settings, |ui, pane| match pane {
             Pane::First => self.sliders(ui, view, words, actions),
             Pane::Second => settings_ui(ui, view.project, words, actions),

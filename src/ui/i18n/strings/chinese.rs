@@ -191,4 +191,8 @@ pub(in crate::ui::i18n) const TRADITIONAL_CHINESE: Strings = Strings {
     frame_and_plot: "影格數值與曲線圖",
     motion_json_hint: "將此動作存成官方 PLEN Motion Editor 的 motion.json",
     drive_needs_focus: "按鍵沒有作用：視窗沒有鍵盤焦點。請先點一下視窗。",
+    plot_toggle_hint: "按一下以顯示或隱藏這條曲線",
+    msg_brake_on: "煞車已啟用：底盤保持不動",
+    msg_brake_released: "煞車已放開：底盤可以行駛",
+    msg_board_compared: "已讀取控制板：請在「控制板」分頁檢查差異後再確認",
 };

@@ -191,4 +191,8 @@ pub(in crate::ui::i18n) const ENGLISH: Strings = Strings {
     frame_and_plot: "Frame values and plot",
     motion_json_hint: "Save this motion as the official PLEN Motion Editor's motion.json",
     drive_needs_focus: "The keys do nothing: the window does not have the keyboard focus. Click in the window first.",
+    plot_toggle_hint: "Click to show or hide this curve",
+    msg_brake_on: "Brake on: the base holds still",
+    msg_brake_released: "Brake released: the base can drive",
+    msg_board_compared: "Board read: check what differs on the Board tab, then confirm",
 };
