@@ -7,6 +7,7 @@ mod convert;
 mod driver;
 mod ops;
 mod pacer;
+pub mod playback;
 
 use std::time::Instant;
 

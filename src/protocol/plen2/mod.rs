@@ -4,6 +4,7 @@
 
 mod command;
 mod joint;
+pub mod playback;
 mod reply;
 
 pub use command::{Command, CommandParser, MotionFrame, MotionHeader, ParseError, parse_commands};

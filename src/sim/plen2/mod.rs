@@ -23,6 +23,7 @@ use crossbeam_channel::Sender;
 use crate::link::Driver;
 use motion_reply::{garbage_header, motion_json};
 
+use crate::protocol::plen2::playback::{MotionStore, Player, Start, joint_output};
 use crate::protocol::plen2::{
     Command, CommandParser, DEVICE_IDS, FACTORY_LIMIT_TENTHS_DEG, Joint, MAX_FRAMES, MotionFrame, MotionHeader,
     ParseError, QUEUE_LEN, SLOTS,
@@ -93,17 +94,19 @@ struct Slot {
     frames: [Option<MotionFrame>; MAX_FRAMES],
 }
 
-#[derive(Clone, Debug)]
-struct Playback {
-    slot: u8,
-    frame: usize,
-    ticks_left: u32,
-    ticks_total: u32,
-    from: [i16; DEVICE_IDS],
-    loops_left: Option<u32>,
-    jump: bool,
-    plays_left: Option<u32>,
-    stop_after_pass: bool,
+/// The slots as the motion controller reads them.
+struct Eeprom<'a>(&'a [Option<Slot>]);
+
+impl MotionStore for Eeprom<'_> {
+    fn header(&self, slot: u8) -> Option<MotionHeader> {
+        let header = &self.0.get(usize::from(slot))?.as_ref()?.header;
+        // The firmware drops a header whose frame count is not 1..=20.
+        (1..=MAX_FRAMES).contains(&usize::from(header.frame_count)).then(|| header.clone())
+    }
+
+    fn frame(&self, slot: u8, index: u8) -> Option<MotionFrame> {
+        self.0.get(usize::from(slot))?.as_ref()?.frames.get(usize::from(index))?.clone()
+    }
 }
 
 /// The robot as a test inspects it.
@@ -151,6 +154,8 @@ pub enum Plen2SimEvent {
     Dropped(ParseError),
     /// Bytes were lost: the ring was full.
     Lost(u64),
+    /// A playback cycle set every joint (device ids 0..=23), tenths of a degree.
+    Cycle([i16; DEVICE_IDS]),
 }
 
 /// The emulated robot.
@@ -168,7 +173,7 @@ pub struct Plen2Sim {
     joints: [JointLimits; DEVICE_IDS],
     angles: [i16; DEVICE_IDS],
     slots: Vec<Option<Slot>>,
-    playback: Option<Playback>,
+    player: Player,
     queue: VecDeque<(u8, u8)>,
     next_tick: Option<Instant>,
     lost: u64,
@@ -196,7 +201,7 @@ impl Plen2Sim {
             joints,
             angles,
             slots: vec![None; usize::from(SLOTS)],
-            playback: None,
+            player: Player::new(),
             queue: VecDeque::new(),
             next_tick: None,
             lost: 0,
@@ -218,7 +223,7 @@ impl Plen2Sim {
         Plen2State {
             angles: self.angles,
             joints: self.joints,
-            playing: self.playback.as_ref().map(|p| p.slot),
+            playing: self.player.playing(),
             lost_bytes: self.lost,
             executed: self.executed,
             dropped: self.dropped,
@@ -303,25 +308,19 @@ impl Plen2Sim {
                     self.angles[d] = self.joints[d].home;
                 }
             }
-            Command::PlayMotion { slot } if self.playback.is_none() => self.start(at, *slot, None),
-            Command::StopMotion => {
-                if let Some(playback) = &mut self.playback {
-                    playback.stop_after_pass = true;
-                    playback.loops_left = Some(0);
-                    playback.jump = false;
-                }
-            }
+            Command::PlayMotion { slot } if self.player.playing().is_none() => self.start(at, *slot, Start::Play),
+            Command::StopMotion => self.player.stop_after_last(),
             Command::Push { slot, plays } if self.queue.len() < QUEUE_LEN => self.queue.push_back((*slot, *plays)),
             Command::Pop => {
-                if self.playback.is_none()
+                if self.player.playing().is_none()
                     && let Some((slot, plays)) = self.queue.pop_front()
                 {
-                    self.start(at, slot, Some(plays));
+                    self.start(at, slot, Start::Queued { plays });
                 }
             }
             Command::ResetInterpreter => {
                 self.queue.clear();
-                self.playback = None;
+                self.player.halt();
                 self.next_tick = None;
             }
             Command::SetHome { device, angle } if device_ok(*device) => {
@@ -390,102 +389,33 @@ impl Plen2Sim {
         Some(printed.saturating_duration_since(at))
     }
 
-    fn start(&mut self, at: Instant, slot: u8, plays: Option<u8>) {
-        let Some(stored) = self.slots.get(usize::from(slot)).and_then(Option::as_ref) else { return };
-        let header = &stored.header;
-        let loops_left = match plays {
-            // Queued: plays ≥ 2 loops the motion (or its loop range); 1 disables its loop.
-            Some(1) => Some(0),
-            Some(0) => None,
-            Some(n) => Some(u32::from(n) - 1),
-            None if header.loop_on && header.loop_count == 0xff => None,
-            None if header.loop_on => Some(u32::from(header.loop_count)),
-            None => Some(0),
-        };
-        self.playback = Some(Playback {
-            slot,
-            frame: 0,
-            ticks_left: 0,
-            ticks_total: 0,
-            from: self.angles,
-            loops_left,
-            jump: plays.is_none() && header.jump_on,
-            plays_left: plays.map(u32::from),
-            stop_after_pass: false,
-        });
-        self.begin_frame(0);
-        self.next_tick = Some(at + TICK);
+    /// Starts a motion: its cycles run from the next tick (plen2.md §6).
+    fn start(&mut self, at: Instant, slot: u8, start: Start) {
+        if self.player.start(&Eeprom(&self.slots), slot, start) && self.next_tick.is_none() {
+            self.next_tick = Some(at + TICK);
+        }
     }
 
-    fn begin_frame(&mut self, index: usize) {
-        let angles = self.angles;
-        let Some(playback) = &mut self.playback else { return };
-        let transition = self.slots[usize::from(playback.slot)]
-            .as_ref()
-            .and_then(|slot| slot.frames.get(index).cloned().flatten())
-            .map_or(0, |frame| frame.transition_ms);
-        // The firmware counts transitions in 32.768 ms ticks (8 bits).
-        let ticks = u32::try_from(u64::from(transition) * 1000 / 32_768).unwrap_or(1).clamp(1, 255);
-        playback.frame = index;
-        playback.ticks_left = ticks;
-        playback.ticks_total = ticks;
-        playback.from = angles;
-    }
-
+    /// Runs the playback cycles due by `now`: each sets every joint to home +
+    /// the cycle's value, clamped; a motion that ends gives way to the next queued one.
     fn play(&mut self, now: Instant) {
         while let Some(tick_at) = self.next_tick.filter(|t| *t <= now) {
             self.next_tick = Some(tick_at + TICK);
-            let Some(playback) = &mut self.playback else {
+            let Some(values) = self.player.cycle(&Eeprom(&self.slots)) else {
                 self.next_tick = None;
                 return;
             };
-            let Some(slot) = self.slots[usize::from(playback.slot)].clone() else {
-                self.playback = None;
-                return;
-            };
-            let target = slot.frames[playback.frame].as_ref().map_or([0; DEVICE_IDS], |frame| frame.values);
-            playback.ticks_left = playback.ticks_left.saturating_sub(1);
-            let done = playback.ticks_total - playback.ticks_left;
-            let from = playback.from;
-            let total = playback.ticks_total.max(1);
-            for device in 0..DEVICE_IDS {
-                let goal = i32::from(self.joints[device].home) + i32::from(target[device]);
-                let value = i32::from(from[device])
-                    + (goal - i32::from(from[device])) * i32::try_from(done).unwrap_or(0)
-                        / i32::try_from(total).unwrap_or(1);
-                let value = i16::try_from(value).unwrap_or(0);
-                self.angles[device] = self.clamp(device, value);
+            for (device, value) in values.iter().enumerate() {
+                let JointLimits { min, max, home } = self.joints[device];
+                self.angles[device] = joint_output(home, min, max, *value);
             }
-            let Some(playback) = &mut self.playback else { return };
-            if playback.ticks_left > 0 {
-                continue;
-            }
-            let header = &slot.header;
-            let frames = usize::from(header.frame_count).min(MAX_FRAMES);
-            let looping = header.loop_on || playback.plays_left.is_some();
-            let (begin, end) = if header.loop_on {
-                (usize::from(header.loop_begin), usize::from(header.loop_end))
-            } else {
-                (0, frames.saturating_sub(1))
-            };
-            let next = playback.frame + 1;
-            if looping && playback.frame == end && playback.loops_left != Some(0) {
-                if let Some(left) = &mut playback.loops_left {
-                    *left -= 1;
-                }
-                self.begin_frame(begin);
-            } else if next < frames {
-                self.begin_frame(next);
-            } else if playback.jump && !playback.stop_after_pass {
-                let jump = header.jump_slot;
-                self.playback = None;
-                self.start(tick_at, jump, None);
-            } else {
-                self.playback = None;
-                if let Some((slot, plays)) = self.queue.pop_front() {
-                    self.start(tick_at, slot, Some(plays));
-                } else {
-                    self.next_tick = None;
+            self.events.push_back(Plen2SimEvent::Cycle(self.angles));
+            if self.player.playing().is_none() {
+                match self.queue.pop_front() {
+                    Some((slot, plays)) => {
+                        self.player.start(&Eeprom(&self.slots), slot, Start::Queued { plays });
+                    }
+                    None => self.next_tick = None,
                 }
             }
         }
