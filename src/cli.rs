@@ -6,6 +6,7 @@ mod plen2;
 mod rflex;
 mod servo;
 mod signals;
+mod trajectory;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -155,6 +156,33 @@ pub enum CliCommand {
         #[command(subcommand)]
         command: BoardCommand,
     },
+    /// Write what the robot outputs over time to a CSV file, one row per board
+    /// update: PLEN2, one per 32.768 ms cycle from `$PM` (the frame value in
+    /// tenths of a degree relative to home, before clamping); servo board, one
+    /// per 10 ms (the angle in degrees). `t_ms`, then one column per joint or servo.
+    #[command(group = clap::ArgGroup::new("subject").required(true).args(["slot", "action", "macro_id"]))]
+    Trajectory {
+        /// The project file (or a PLEN2 motion.json, or a folder of them).
+        file: PathBuf,
+        /// PLEN2: the motion's slot.
+        #[arg(long)]
+        slot: Option<u8>,
+        /// Servo board: the action's id.
+        #[arg(long)]
+        action: Option<i32>,
+        /// Servo board: the macro's id.
+        #[arg(long = "macro")]
+        macro_id: Option<i32>,
+        /// PLEN2: the motion played before (its last frame is where this one starts; default: power-up, all zeros).
+        #[arg(long, requires = "slot")]
+        from_slot: Option<u8>,
+        /// At most this long (a loop that runs forever stops here).
+        #[arg(long, default_value_t = 30.0)]
+        seconds: f64,
+        /// The CSV file to write.
+        #[arg(long)]
+        out: PathBuf,
+    },
 }
 
 /// `servo-studio board …`
@@ -237,6 +265,18 @@ pub fn run(command: CliCommand) -> ExitCode {
             family => servo_only(family, "board info").and_then(|()| servo::info(&port)),
         },
         CliCommand::Gui { file, demo, protocol } => gui(file, demo, protocol),
+        CliCommand::Trajectory { file, slot, action, macro_id, from_slot, seconds, out } => {
+            let subject = match (slot, action, macro_id) {
+                (Some(slot), _, _) => trajectory::Subject::Slot { slot, from_slot },
+                (_, Some(action), _) => trajectory::Subject::Action(action),
+                (_, _, Some(id)) => trajectory::Subject::Macro(id),
+                // clap requires one of them.
+                (None, None, None) => trajectory::Subject::Action(0),
+            };
+            trajectory::run(&file, subject, seconds, &out).and_then(|(rows, covered)| {
+                Ok(out::line(&format!("wrote {rows} rows ({covered:.3} s) to {}", out.display()))?)
+            })
+        }
     };
     finish(result)
 }
@@ -313,7 +353,7 @@ fn import(port: &PortArgs, input: &std::path::Path, choices: servo::ImportChoice
 }
 
 /// Keys a file held that Servo Studio does not know: ignored, said once on stderr.
-fn warn_unknown(file: &std::path::Path, keys: &[String]) {
+pub(crate) fn warn_unknown(file: &std::path::Path, keys: &[String]) {
     for key in keys {
         eprintln!("warning: {}: {key}: unknown key, ignored (is it misspelt?)", file.display());
     }
