@@ -2,9 +2,11 @@
 //! remote-control buttons, and back up and upload servo controller boards.
 //!
 //! Layers, top to bottom (see `docs/ARCHITECTURE.md`): `cli` → `device` →
-//! `link` / [`protocol`]; [`project`] stands alone.
+//! `link` / [`protocol`]; [`project`] stands alone; [`figure`] (the robot as
+//! a posed 3D figure) uses the project and the PLEN2's device map.
 
 pub mod device;
+pub mod figure;
 pub mod link;
 pub mod project;
 pub mod protocol;

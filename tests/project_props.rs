@@ -8,7 +8,8 @@ use servo_studio::project::plen2::{
 };
 use servo_studio::project::rflex::{DriveSettings, RflexProject, Robot};
 use servo_studio::project::{
-    self, Action, Button, Command, Family, JoystickTable, Macro, Project, Run, Servo, ServoProject, Step,
+    self, Action, Button, Command, Family, JoystickTable, Macro, Project, RigAxis, RigJoint, Run, Servo, ServoProject,
+    Step,
 };
 
 fn text() -> impl Strategy<Value = String> {
@@ -16,15 +17,30 @@ fn text() -> impl Strategy<Value = String> {
     proptest::string::string_regex("[a-zA-Z0-9 \"\\\\/\\n\\t揮手動作遙控器左右]{0,12}").unwrap()
 }
 
+fn rig() -> impl Strategy<Value = Option<RigJoint>> {
+    proptest::option::of(
+        (proptest::option::of(any::<u8>()), any::<[i16; 3]>(), 0..3usize, any::<bool>(), any::<i16>()).prop_map(
+            |(parent, offset_mm, axis, reversed, straight_deg)| RigJoint {
+                parent,
+                offset_mm,
+                axis: RigAxis::ALL[axis],
+                reversed,
+                straight_deg,
+            },
+        ),
+    )
+}
+
 fn servo() -> impl Strategy<Value = Servo> {
-    (any::<u8>(), text(), any::<i16>(), any::<i16>(), any::<i16>(), any::<i16>()).prop_map(
-        |(id, caption, calibration_offset_deg, min_deg, max_deg, home_deg)| Servo {
+    (any::<u8>(), text(), any::<i16>(), any::<i16>(), any::<i16>(), any::<i16>(), rig()).prop_map(
+        |(id, caption, calibration_offset_deg, min_deg, max_deg, home_deg, rig)| Servo {
             id,
             caption,
             calibration_offset_deg,
             min_deg,
             max_deg,
             home_deg,
+            rig,
         },
     )
 }

@@ -4,8 +4,8 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::needless_pass_by_value)]
 
 use servo_studio::project::{
-    Action, Button, Command, JoystickTable, Macro, Problem, Run, Servo, ServoProject, Severity, Step, has_errors,
-    validate_servo,
+    Action, Button, Command, JoystickTable, Macro, Problem, RigAxis, RigJoint, Run, Servo, ServoProject, Severity,
+    Step, has_errors, validate_servo,
 };
 
 fn step(servo_id: u8, degree: i16) -> Step {
@@ -151,6 +151,44 @@ fn macro_cycles_direct_and_indirect() {
     assert_eq!(
         only_error_text(&project),
         "error: macro 100 \"巨集1\", command 4: macro cycle 100 → 100: a macro must not reach itself"
+    );
+}
+
+fn rig(parent: Option<u8>) -> Option<RigJoint> {
+    Some(RigJoint { parent, offset_mm: [0, 30, 0], axis: RigAxis::Y, reversed: false, straight_deg: 0 })
+}
+
+#[test]
+fn a_rig_with_an_unknown_parent_or_a_cycle_is_refused_with_its_location() {
+    // A valid rig: 2 on 1, 1 on the body.
+    let mut project = valid();
+    project.servos[0].rig = rig(None);
+    project.servos[1].rig = rig(Some(1));
+    assert!(validate_servo(&project).is_empty(), "{:?}", validate_servo(&project));
+
+    let mut unknown = project.clone();
+    unknown.servos[1].rig = rig(Some(9));
+    assert_eq!(
+        only_error_text(&unknown),
+        "error: servo 2 \"右肩\": its rig is mounted on servo 9, which is not in the rig: rig that servo or pick another parent"
+    );
+    // A parent that exists but has no rig is not in the rig either.
+    let mut unrigged = project.clone();
+    unrigged.servos[0].rig = None;
+    assert!(only_error_text(&unrigged).contains("mounted on servo 1, which is not in the rig"));
+
+    let mut ring = project.clone();
+    ring.servos[0].rig = rig(Some(2));
+    // Said once, at the first servo of the ring.
+    assert_eq!(
+        only_error_text(&ring),
+        "error: servo 1 \"左肩\": rig cycle 1 → 2 → 1: a servo cannot be mounted on itself"
+    );
+    let mut itself = project;
+    itself.servos[0].rig = rig(Some(1));
+    assert_eq!(
+        only_error_text(&itself),
+        "error: servo 1 \"左肩\": rig cycle 1 → 1: a servo cannot be mounted on itself"
     );
 }
 

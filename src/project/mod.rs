@@ -21,7 +21,7 @@ pub use file::{
     save, to_json,
 };
 pub use history::{History, MAX_UNDO_STEPS};
-pub use servo::{Action, Button, Command, JoystickTable, Macro, Run, Servo, ServoProject, Step};
+pub use servo::{Action, Button, Command, JoystickTable, Macro, RigAxis, RigJoint, Run, Servo, ServoProject, Step};
 pub use timing::{Timing, TimingError, action_duration_ms};
 pub use trajectory::{SAMPLE_MS, Trajectories, action_trajectories, angle_at, macro_trajectories, sample};
 pub use validate::{

@@ -80,6 +80,20 @@ pub struct Frame {
 pub struct Pose(pub [i16; JOINTS]);
 
 impl Pose {
+    /// The pose mirrored left↔right (the official editor's Mirror L/R): each
+    /// left joint takes its right twin's value and the reverse, negated (the
+    /// twins' axes are mirror images: the factory homes of ids 12..20 are those
+    /// of 0..8 negated).
+    pub fn mirrored(&self) -> Self {
+        let mut out = Self::default();
+        for left in 0..9 {
+            let (l, r) = (Joint::ALL[left], Joint::ALL[left + 9]);
+            out.set(l, self.get(r).saturating_neg());
+            out.set(r, self.get(l).saturating_neg());
+        }
+        out
+    }
+
     /// The value of `joint`.
     pub fn get(&self, joint: Joint) -> i16 {
         self.0[joint.index()]

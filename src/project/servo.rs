@@ -47,6 +47,50 @@ pub struct Servo {
     /// The rest angle, between `min_deg` and `max_deg` (client-side only).
     #[serde(default)]
     pub home_deg: i16,
+    /// Where it sits in the robot's skeleton, for the 3D preview (client-side
+    /// only; a servo without one is shown as a bar beside the figure).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rig: Option<RigJoint>,
+}
+
+/// A servo's place in the robot's skeleton: the link it turns, mounted on its
+/// parent's link. Frames: x forward, y left, z up (mm), each link's own frame
+/// the parent's turned by the parent's joint.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct RigJoint {
+    /// The servo whose link it is mounted on; none: the robot's body.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub parent: Option<u8>,
+    /// Where its joint sits in the parent's frame, mm.
+    #[serde(default)]
+    pub offset_mm: [i16; 3],
+    /// The axis it turns about.
+    pub axis: RigAxis,
+    /// A larger angle turns the other way round the axis.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub reversed: bool,
+    /// The servo angle at which its link is straight (as the offsets of the
+    /// servos mounted on it are given), °.
+    #[serde(default)]
+    pub straight_deg: i16,
+}
+
+/// An axis of a link's frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum RigAxis {
+    /// Forward: a roll.
+    X,
+    /// Left: a pitch.
+    #[default]
+    Y,
+    /// Up: a yaw.
+    Z,
+}
+
+impl RigAxis {
+    /// Every axis, in order.
+    pub const ALL: [Self; 3] = [Self::X, Self::Y, Self::Z];
 }
 
 impl Servo {
@@ -67,6 +111,7 @@ impl Servo {
             min_deg: Self::default_min_deg(),
             max_deg: Self::default_max_deg(),
             home_deg: 0,
+            rig: None,
         }
     }
 

@@ -290,6 +290,16 @@ pub enum ProblemKind {
         /// The run time, ms.
         total_ms: i64,
     },
+    /// A rigged servo mounted on a servo the project lacks (or one without a rig).
+    RigUnknownParent {
+        /// The parent named.
+        parent: u8,
+    },
+    /// Rigged servos mounted on each other in a ring.
+    RigCycle {
+        /// The servo ids along the ring, first repeated at the end.
+        path: Vec<u8>,
+    },
     /// A macro that reaches itself.
     MacroCycle {
         /// The macro ids along the cycle, first repeated at the end.
@@ -417,6 +427,16 @@ impl fmt::Display for ProblemKind {
             Self::MacroCycle { path } => {
                 let names: Vec<String> = path.iter().map(ToString::to_string).collect();
                 write!(f, "macro cycle {}: a macro must not reach itself", names.join(" → "))
+            }
+            Self::RigUnknownParent { parent } => {
+                write!(
+                    f,
+                    "its rig is mounted on servo {parent}, which is not in the rig: rig that servo or pick another parent"
+                )
+            }
+            Self::RigCycle { path } => {
+                let names: Vec<String> = path.iter().map(ToString::to_string).collect();
+                write!(f, "rig cycle {}: a servo cannot be mounted on itself", names.join(" → "))
             }
             Self::TooManyButtons { count, max } => {
                 write!(f, "has {count} buttons; one board frame holds at most {max}")

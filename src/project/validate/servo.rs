@@ -12,6 +12,7 @@ use crate::protocol::servo::{ALL_SERVOS, ButtonRecord, MAX_CONTENT_LEN, MacroCom
 pub fn validate_servo(project: &ServoProject) -> Vec<Problem> {
     let mut check = Checker { problems: Vec::new() };
     check.servos(project);
+    check.rig(project);
     check.actions(project);
     check.macros(project);
     check.tables(project);
@@ -83,6 +84,44 @@ impl Checker {
                         max_deg: servo.max_deg,
                     },
                 );
+            }
+        }
+    }
+
+    /// Every rigged servo's parent is a rigged servo, and no ring of parents.
+    fn rig(&mut self, project: &ServoProject) {
+        let parents: HashMap<u8, Option<u8>> =
+            project.servos.iter().filter_map(|servo| servo.rig.map(|rig| (servo.id, rig.parent))).collect();
+        let mut reported = HashSet::new();
+        for servo in &project.servos {
+            let Some(rig) = servo.rig else { continue };
+            let at = Location::Servo { servo_id: servo.id, caption: servo.caption.clone() };
+            if let Some(parent) = rig.parent
+                && !parents.contains_key(&parent)
+            {
+                self.error(&at, ProblemKind::RigUnknownParent { parent });
+                continue;
+            }
+            // Up the parents: back at this servo is a ring (each ring said once).
+            let mut path = vec![servo.id];
+            let mut next = rig.parent;
+            while let Some(parent) = next {
+                if parent == servo.id {
+                    path.push(parent);
+                    let mut members: Vec<u8> = path.clone();
+                    members.sort_unstable();
+                    members.dedup();
+                    if reported.insert(members) {
+                        self.error(&at, ProblemKind::RigCycle { path });
+                    }
+                    break;
+                }
+                if path.contains(&parent) || path.len() > parents.len() {
+                    // A ring further up, reported from one of its own servos.
+                    break;
+                }
+                path.push(parent);
+                next = parents.get(&parent).copied().flatten();
             }
         }
     }

@@ -73,6 +73,13 @@ impl Language {
                 let names: Vec<String> = path.iter().map(ToString::to_string).collect();
                 format!("巨集循環 {}：巨集不可呼叫到自己", names.join(" → "))
             }
+            P::RigUnknownParent { parent } => {
+                format!("骨架中它裝在舵機 {parent} 上，但該舵機不在骨架中：請為該舵機設定骨架，或改選其他上層")
+            }
+            P::RigCycle { path } => {
+                let names: Vec<String> = path.iter().map(ToString::to_string).collect();
+                format!("骨架循環 {}：舵機不可裝在自己身上", names.join(" → "))
+            }
             P::TooManyButtons { count, max } => format!("有 {count} 個按鍵；一個封包最多容納 {max} 個"),
             P::DuplicateButton { button_id } => format!("按鍵編號 0x{button_id:08x} 在此對應表中重複"),
             P::MissingButtonMacro { slot, macro_id } => {

@@ -12,19 +12,6 @@ use crate::ui::i18n::Strings;
 use crate::ui::layout::{self, Layout, Pane, Part};
 use crate::ui::{plot, rows};
 
-/// The frame mirrored left↔right: each left joint takes its right twin's value
-/// and the reverse, negated (the twins' axes are mirror images: the factory homes
-/// of ids 12..20 are those of 0..8 negated).
-pub fn mirror(pose: &Pose) -> Pose {
-    let mut out = Pose::default();
-    for left in 0..9 {
-        let (l, r) = (Joint::ALL[left], Joint::ALL[left + 9]);
-        out.set(l, pose.get(r).saturating_neg());
-        out.set(r, pose.get(l).saturating_neg());
-    }
-    out
-}
-
 /// The panel's own state: the selected motion and frame, the copied frame.
 #[derive(Debug, Default)]
 pub struct MotionsPanel {
@@ -283,7 +270,7 @@ impl MotionsPanel {
                 actions.push(edit(project, |p| p.motions[index].frames.insert(f + 1, copied), None));
             }
             if ui.small_button(words.mirror).clicked() {
-                let mirrored = mirror(&frame.values_tenths_deg);
+                let mirrored = frame.values_tenths_deg.mirrored();
                 actions.push(edit(project, |p| p.motions[index].frames[f].values_tenths_deg = mirrored, None));
             }
             if ui.add_enabled(f > 0, egui::Button::new("↑").small()).clicked() {
@@ -383,10 +370,10 @@ mod tests {
         let mut pose = Pose::default();
         pose.set(Joint::LeftShoulderRoll, 375);
         pose.set(Joint::RightKneePitch, -500);
-        let mirrored = mirror(&pose);
+        let mirrored = pose.mirrored();
         assert_eq!(mirrored.get(Joint::RightShoulderRoll), -375);
         assert_eq!(mirrored.get(Joint::LeftKneePitch), 500);
         assert_eq!(mirrored.get(Joint::LeftShoulderRoll), 0);
-        assert_eq!(mirror(&mirrored), pose);
+        assert_eq!(mirrored.mirrored(), pose);
     }
 }

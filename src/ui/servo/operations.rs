@@ -141,14 +141,15 @@ impl ServoUi {
             BoardIntent::Upload => self.start(shell, ServoKind::Upload { force: false }),
             BoardIntent::UploadAnyway => self.start(shell, ServoKind::Upload { force: true }),
             BoardIntent::ReadIntoProject => {
-                // The board does not store the client-side safety limits: keep the
-                // project's for servos it already knows.
+                // The board does not store the client-side safety limits and the
+                // rig: keep the project's for servos it already knows.
                 let mut board = board;
                 for servo in &mut board.servos {
                     if let Some(known) = shell.document.project.servo.servo(servo.id) {
                         servo.min_deg = known.min_deg;
                         servo.max_deg = known.max_deg;
                         servo.home_deg = known.home_deg;
+                        servo.rig = known.rig;
                     }
                 }
                 self.pose = super::homes(&board);
