@@ -18,7 +18,11 @@
 //! 2. Cold start to the first frame with each large project (a fresh process
 //!    that reads the project file, installs the fonts and lays out one frame),
 //!    and the resident memory once every panel has been drawn.
-//! 3. The time from the last slider change of a drag to the emulated board
+//! 3. The robot's preview alone in a 600 × 600 view, per family: the PLEN2
+//!    and the demo biped posed with a ghost (as the motion and action editors
+//!    draw them), the base's world view after ten minutes of driving (path and
+//!    echo map full) — posing, drawing and tessellating, per frame.
+//! 4. The time from the last slider change of a drag to the emulated board
 //!    holding that angle, over a link throttled to 115200 baud.
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::cast_possible_truncation, missing_docs)]
@@ -523,6 +527,85 @@ fn slider_latency() {
     );
 }
 
+/// Median ms of `frames` frames of a 600 × 600 window drawing only `draw`.
+fn view_median(mut draw: impl FnMut(&mut egui::Ui, egui::Rect)) -> f64 {
+    let ctx = egui::Context::default();
+    servo_studio::ui::fonts::install(&ctx);
+    let size = egui::vec2(600.0, 600.0);
+    let mut step = || {
+        let input = egui::RawInput {
+            screen_rect: Some(egui::Rect::from_min_size(egui::Pos2::ZERO, size)),
+            ..Default::default()
+        };
+        let output = ctx.run_ui(input, |ui| draw(ui, egui::Rect::from_min_size(egui::Pos2::ZERO, size)));
+        std::hint::black_box(ctx.tessellate(output.shapes, output.pixels_per_point));
+    };
+    for _ in 0..10 {
+        step();
+    }
+    let frames = measured_frames();
+    let mut times: Vec<Duration> = (0..frames)
+        .map(|_| {
+            let began = Instant::now();
+            step();
+            began.elapsed()
+        })
+        .collect();
+    times.sort_unstable();
+    times[frames / 2].as_secs_f64() * 1e3
+}
+
+/// What drawing the robot's preview costs a frame, per family, at 600 × 600.
+fn view_costs() {
+    use servo_studio::figure;
+    use servo_studio::ui::view3d::{Scene, View};
+    let empty = view_median(|ui, rect| {
+        ui.allocate_rect(rect, egui::Sense::hover());
+    });
+    println!("view (an empty 600x600 frame, for reference): median {empty:.3} ms");
+
+    // The PLEN2 mid-"bow", with the next frame as a ghost.
+    let chain = figure::plen2::chain();
+    let mut pose = [0i16; 24];
+    let mut ghost = [0i16; 24];
+    for joint in [Joint::LeftThighPitch, Joint::RightThighPitch] {
+        pose[usize::from(joint.device_id())] = -300;
+        ghost[usize::from(joint.device_id())] = -600;
+    }
+    let mut view = View::default();
+    let plen2 = view_median(|ui, rect| {
+        let mut solids = chain.dress(&chain.pose(&figure::plen2::angles(&chain, &ghost)), true);
+        solids.extend(chain.dress(&chain.pose(&figure::plen2::angles(&chain, &pose)), false));
+        view.show(ui, rect, &Scene { solids, ground_z: 0.0 }, "PLEN2");
+    });
+
+    // The demo biped mid-"Wave up", with where it goes as a ghost.
+    let project = servo_studio::ui::sample_project().servo;
+    let (chain, links) = figure::rig::chain(&project);
+    let degrees = |scale: f64| -> std::collections::BTreeMap<u8, f64> {
+        [(4u8, -80.0), (5, 60.0), (6, -45.0)].into_iter().map(|(id, d)| (id, d * scale)).collect()
+    };
+    let (now, next) = (degrees(0.5), degrees(1.0));
+    let mut view = View::default();
+    let servo = view_median(|ui, rect| {
+        let links_len = chain.links.len();
+        let mut solids = chain.dress(&chain.pose(&figure::rig::angles(&project, &links, &next, links_len)), true);
+        solids.extend(chain.dress(&chain.pose(&figure::rig::angles(&project, &links, &now, links_len)), false));
+        view.show(ui, rect, &Scene { solids, ground_z: -400.0 }, "biped");
+    });
+
+    // The base after ten minutes of driving circles: path and echo map full.
+    let telemetry = telemetry(600);
+    let mut world = servo_studio::ui::WorldView::default();
+    let rflex = view_median(|ui, rect| {
+        world.show(ui, rect, &telemetry, "world");
+    });
+    println!("  (world view: {} echo cells, {} path points)", telemetry.echoes.len(), telemetry.path.iter().count());
+    for (family, ms) in [("servo", servo), ("plen2", plen2), ("rflex", rflex)] {
+        println!("view {family} @600x600: median {ms:.3} ms a frame (over the empty frame: {:.3} ms)", ms - empty);
+    }
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     if let Some(at) = args.iter().position(|arg| arg == "--cold-start") {
@@ -534,8 +617,13 @@ fn main() {
         editing_frame_times();
         return;
     }
+    if std::env::var_os("UI_BENCH_VIEWS").is_some() {
+        view_costs();
+        return;
+    }
     frame_times();
     if std::env::var_os("UI_BENCH_ONLY").is_none() {
+        view_costs();
         editing_frame_times();
         cold_starts();
         slider_latency();

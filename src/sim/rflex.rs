@@ -19,12 +19,12 @@ use crate::protocol::rflex::{
     SonarReading,
 };
 
-/// Sonars in the ring (ids 0..24: bank 0 is 0..16, bank 1 is 16..24).
-pub const SONARS: u8 = 24;
+pub use crate::protocol::rflex::SONARS;
 /// Bump panels (DIO addresses 0x40..0x44).
 pub const BUMP_PANELS: u8 = 4;
-/// The base's radius: it touches a wall when its centre is this close.
-pub const ROBOT_RADIUS_M: f64 = 0.26;
+/// The base's radius: it touches a wall when its centre is this close, and
+/// its sonars measure from there.
+pub const ROBOT_RADIUS_M: f64 = crate::protocol::rflex::B21R_RADIUS_M;
 /// How often one bank of the sonar ring reports while the sonar runs.
 const SONAR_BANK_EVERY: Duration = Duration::from_millis(50);
 
@@ -56,7 +56,7 @@ impl Default for RflexSimConfig {
             dead_man: Duration::from_millis(500),
             battery_volts: 26.4,
             drain_volts_per_s: 0.002,
-            room_m: (3.6, 2.4),
+            room_m: (4.2, 2.8),
         }
     }
 }
@@ -322,11 +322,12 @@ impl RflexSim {
         }
     }
 
-    /// The range the sonar `id` measures to the room's walls, in sonar units.
+    /// The range the sonar `id` measures to the room's walls, in sonar units,
+    /// from the ring on the body's edge where the transducers sit.
     fn sonar_range(&self, id: u8) -> u16 {
         let (x, y, theta) = self.world;
         let (width, height) = self.config.room_m;
-        let angle = theta + f64::from(id) * std::f64::consts::TAU / f64::from(SONARS);
+        let angle = theta + crate::protocol::rflex::sonar_bearing_rad(id);
         let (dx, dy) = (angle.cos(), angle.sin());
         let mut distance = f64::INFINITY;
         for (d, position, half) in [(dx, x, width / 2.0), (dy, y, height / 2.0)] {
@@ -336,7 +337,7 @@ impl RflexSim {
                 distance = distance.min((-half - position) / d);
             }
         }
-        let units = (distance.max(0.0) * SONAR_UNITS_PER_M).round();
+        let units = ((distance - ROBOT_RADIUS_M).max(0.0) * SONAR_UNITS_PER_M).round();
         // Saturates at the field's maximum: beyond 3000 means no echo anyway.
         #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
         let range = units.min(f64::from(u16::MAX)) as u16;
@@ -575,13 +576,13 @@ mod tests {
         sim.handle(t0, Command::BrakeRelease);
         let mut t = t0;
         for _ in 0..100 {
-            // Keep the dead-man fed: 1 m/s straight at the wall 1.8 m ahead.
+            // Keep the dead-man fed: 1 m/s straight at the wall 2.1 m ahead.
             sim.handle(t, B21R.drive(1.0, 0.0, 5.0)[0].clone());
             t += Duration::from_millis(100);
             sim.tick(t);
         }
         let state = sim.state();
-        assert!((state.x_m - (1.8 - ROBOT_RADIUS_M)).abs() < 1e-9, "{state:?}");
+        assert!((state.x_m - (2.1 - ROBOT_RADIUS_M)).abs() < 1e-9, "{state:?}");
         assert_eq!(state.speed_m_per_s, 0.0);
         assert_eq!(sim.bumpers[0], 0b0011, "the front panel is pressed");
         // Backing away releases it.
@@ -591,12 +592,15 @@ mod tests {
     }
 
     #[test]
-    fn sonars_measure_the_room_from_its_middle() {
+    fn sonars_measure_the_room_from_the_ring() {
         let (sim, _) = sim();
-        // Facing +x in a 3.6 × 2.4 m room: 1.8 m ahead, 1.2 m to the left.
-        assert_eq!(sim.sonar_range(0), 2657);
-        assert_eq!(sim.sonar_range(6), 1771);
-        // Toward a corner (45°): √(1.2² + 1.2²) = 1.70 m to the long wall first.
-        assert_eq!(sim.sonar_range(3), 2505);
+        // Facing +x in a 4.2 × 2.8 m room, transducers 0.26 m out from the middle:
+        // 2.1 − 0.26 = 1.84 m ahead (2715.8 units), 1.4 − 0.26 = 1.14 m to the left (1682.6).
+        assert_eq!(sim.sonar_range(0), 2716);
+        assert_eq!(sim.sonar_range(6), 1683);
+        // Toward a corner (45°): 1.4 / sin 45° = 1.980 m to the long wall, less 0.26 m.
+        assert_eq!(sim.sonar_range(3), 2539);
+        // Toward the corner itself (30°): 2.1 / cos 30° − 0.26 = 2.165 m, past the 2.03 m limit.
+        assert!(sim.sonar_range(2) > crate::protocol::rflex::SONAR_NO_ECHO_ABOVE);
     }
 }

@@ -45,6 +45,11 @@ impl Tab {
         }
     }
 
+    /// Whether the tab has the robot's preview (or a base's world view) beside it.
+    pub fn has_view(self) -> bool {
+        !matches!(self, Self::Joystick | Self::Board | Self::Log | Self::PlayLists)
+    }
+
     /// The tab's title.
     pub fn title(self, words: &Strings) -> &'static str {
         match self {
@@ -127,6 +132,8 @@ pub enum Action {
     SetLanguage(Language),
     /// Show a tab.
     ShowTab(Tab),
+    /// Show or hide the robot's preview (the world view for a base) beside the panels.
+    ShowView(bool),
     /// Ask the user for a file (the answer comes back as the matching action).
     AskFile(FileRequest),
     /// Stop the running board operation after its current step.
@@ -293,6 +300,8 @@ pub enum RflexAction {
     SetBrake(bool),
     /// Turn the sonar ring on or off.
     SetSonar(bool),
+    /// Forget the echoes heard so far.
+    ClearMap,
 }
 
 /// What was asked for when the document had unsaved changes.

@@ -19,6 +19,8 @@ pub struct Layout {
     pub side_width: f32,
     /// Width of the values beside a plot (a PLEN2 frame's joints), points.
     pub values_width: f32,
+    /// Whether the robot's preview is shown beside the panels.
+    pub view_open: bool,
     /// Share of the height the settings under sliders take, 0–1.
     pub settings_share: f32,
     /// Whether the settings are open.
@@ -31,8 +33,9 @@ impl Default for Layout {
             list_width: 220.0,
             lower_share: 0.4,
             lower_open: true,
-            side_width: 440.0,
+            side_width: 380.0,
             values_width: 500.0,
+            view_open: true,
             settings_share: 0.45,
             settings_open: false,
         }
@@ -149,6 +152,26 @@ pub fn over(
     ui.allocate_rect(area, Sense::hover());
 }
 
+/// A panel with the preview on its right, `width` points wide (drag the
+/// divider), while `open`; closed, the panel takes everything.
+pub fn beside(
+    ui: &mut egui::Ui,
+    id_salt: &str,
+    (width, open): (&mut f32, bool),
+    mut add: impl FnMut(&mut egui::Ui, Pane),
+) {
+    if !open {
+        add(ui, Pane::First);
+        return;
+    }
+    let area = ui.available_rect_before_wrap();
+    let min = 160.0;
+    // The divider's place from the left, as `columns` keeps it.
+    let mut left = (area.width() - *width - DIVIDER).max(min);
+    columns(ui, id_salt, &mut left, min, |ui, pane| add(ui, pane));
+    *width = (area.width() - left - DIVIDER).max(min);
+}
+
 /// Which part of a list-and-editor panel `add` is asked to fill.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Part {
@@ -158,10 +181,13 @@ pub enum Part {
     Editor,
     /// What is under the editor (timeline, plot, values), collapsible.
     Lower,
+    /// The robot's preview, on the right (while the layout has it open).
+    View,
 }
 
 /// A list beside its editor, the editor over a collapsible lower pane
-/// titled `lower_title`; the panel's sizes live in `layout`.
+/// titled `lower_title`, and the preview on the right while the layout has it
+/// open; the panel's sizes live in `layout`.
 pub fn list_and_editor(
     ui: &mut egui::Ui,
     id_salt: &str,
@@ -169,11 +195,14 @@ pub fn list_and_editor(
     lower_title: &str,
     mut add: impl FnMut(&mut egui::Ui, Part),
 ) {
-    let Layout { list_width, lower_share, lower_open, .. } = layout;
+    let Layout { list_width, lower_share, lower_open, side_width, view_open, .. } = layout;
     columns(ui, id_salt, list_width, 140.0, |ui, pane| match pane {
         Pane::First => add(ui, Part::List),
-        Pane::Second => over(ui, id_salt, (&mut *lower_share, &mut *lower_open), lower_title, |ui, pane| {
-            add(ui, if pane == Pane::First { Part::Editor } else { Part::Lower });
+        Pane::Second => beside(ui, &format!("{id_salt}-view"), (&mut *side_width, *view_open), |ui, pane| match pane {
+            Pane::First => over(ui, id_salt, (&mut *lower_share, &mut *lower_open), lower_title, |ui, pane| {
+                add(ui, if pane == Pane::First { Part::Editor } else { Part::Lower });
+            }),
+            Pane::Second => add(ui, Part::View),
         }),
     });
 }

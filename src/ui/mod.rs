@@ -18,6 +18,8 @@ mod plot;
 mod rflex;
 mod rows;
 mod servo;
+mod transport;
+pub mod view3d;
 
 pub use action::{
     Action, AfterUnsaved, BoardIntent, FileRequest, Plen2Action, Plen2Intent, RflexAction, ServoAction, Tab,
@@ -29,7 +31,7 @@ pub use i18n::{Language, Strings};
 pub use layout::Layout;
 pub use operation::{Operation, Step, Subject};
 pub use plen2::{Plen2Failure, Plen2Kind, Plen2Outcome, Plen2Result};
-pub use rflex::{DrivePanel, DriveView};
+pub use rflex::{DrivePanel, DriveView, WorldView};
 pub use servo::{
     BoardResult, CAPTURED_STEP_INTERVAL_10MS, LIVE_MOVE_INTERVAL_10MS, PendingConfirm, ServoFailure, ServoKind,
     ServoOutcome, timeline_bars,

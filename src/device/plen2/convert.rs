@@ -32,7 +32,8 @@ pub fn motion_commands(motion: &Motion) -> Vec<Command> {
         frame_count: u8::try_from(motion.frames.len()).unwrap_or(u8::MAX),
     };
     let mut commands = vec![Command::Header(header)];
-    for (index, frame) in (0u8..).zip(&motion.frames) {
+    // Frame indices are a byte: past 255 frames (never valid, but a file may hold them) nothing more is sent.
+    for (index, frame) in (0..=u8::MAX).zip(&motion.frames) {
         commands.push(Command::Frame(Box::new(MotionFrame {
             slot: motion.slot,
             index,

@@ -6,10 +6,11 @@
 use std::collections::BTreeMap;
 
 use crate::project::plen2::Plen2Project;
+pub use crate::protocol::plen2::DEVICE_IDS;
 pub use crate::protocol::plen2::playback::{
     CYCLE_US, LOOP_FOREVER, MotionStore, Player, Start, cycles_for, joint_output, play_out,
 };
-use crate::protocol::plen2::{Command, DEVICE_IDS, FACTORY_LIMIT_TENTHS_DEG, Joint, MotionFrame, MotionHeader};
+use crate::protocol::plen2::{Command, FACTORY_LIMIT_TENTHS_DEG, Joint, MotionFrame, MotionHeader};
 
 use super::convert::motion_commands;
 

@@ -6,6 +6,7 @@
 //! that failed their checksum without ever using them.
 
 mod driver;
+mod echoes;
 mod trace;
 mod words;
 
@@ -14,12 +15,18 @@ use std::time::{Duration, Instant};
 
 use crossbeam_channel::Receiver;
 
+pub use crate::protocol::rflex::{B21R_RADIUS_M, Odometry, sonar_bearing_rad};
 pub use driver::{POLL_EVERY, REPORT_PERIOD_US, RESEND_EVERY, RflexCommand, RflexDriver, RflexEvent, SILENCE_LIMIT};
+pub use echoes::{CELL_M as ECHO_CELL_M, EchoMap, FORGET_AFTER_S, echo_point};
+
+/// The farthest a sonar hears, metres (a range above 3000 units is no echo).
+pub const SONAR_REACH_M: f64 =
+    crate::protocol::rflex::SONAR_NO_ECHO_ABOVE as f64 / crate::protocol::rflex::SONAR_UNITS_PER_M;
 pub use trace::Trace;
 
 use crate::device::LogEntry;
 use crate::link::{self, Connection, DisconnectReason, LinkEvent, LinkHandle, Waker};
-use crate::protocol::rflex::{Axis, BUMP_PANEL_ADDRESS, Conversion, Odometry, Report, SkipReason, sonar_metres};
+use crate::protocol::rflex::{Axis, BUMP_PANEL_ADDRESS, Conversion, Report, SkipReason, sonar_metres};
 
 /// The least gap between two writes: the base ignores commands sent too rapidly.
 pub const WRITE_GAP: Duration = Duration::from_millis(1);
@@ -45,6 +52,8 @@ pub struct Telemetry {
     pub turn_rad_per_s: f64,
     /// Latest range per sonar id, metres (`None` = no echo).
     pub sonar_m: BTreeMap<u8, Option<f64>>,
+    /// Every echo placed in the world at the pose it was heard from, fading.
+    pub echoes: EchoMap,
     /// Bump panels by number (address − 0x40): the pressed corners, low 4 bits.
     pub bumpers: BTreeMap<u8, u16>,
     /// Other digital I/O addresses and their state.
@@ -122,7 +131,11 @@ impl Telemetry {
                     }
                 }
                 for reading in readings {
-                    self.sonar_m.insert(reading.sonar_id, sonar_metres(reading.range));
+                    let range = sonar_metres(reading.range);
+                    if let Some(metres) = range {
+                        self.echoes.record(&self.pose, seconds, reading.sonar_id, metres);
+                    }
+                    self.sonar_m.insert(reading.sonar_id, range);
                 }
             }
             Report::Dio { address, data, .. } => {

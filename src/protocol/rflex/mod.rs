@@ -40,6 +40,17 @@ pub const SONAR_NO_ECHO_ABOVE: u16 = 3000;
 /// The first bump-panel address of DIO_REPORT (B21r: 0x40..; the low 4 bits are the pressed corners).
 pub const BUMP_PANEL_ADDRESS: u8 = 0x40;
 
+/// Sonars in a B21r's ring (ids 0..24: bank 0 is 0..16, bank 1 is 16..24).
+pub const SONARS: u8 = 24;
+/// Radius of the B21r's body, where its sonar ring and bump panels sit, metres.
+pub const B21R_RADIUS_M: f64 = 0.26;
+
+/// Where sonar `id` looks, radians counter-clockwise from the base's heading:
+/// sonar 0 ahead, the ring evenly spaced (the B21r's; every preset uses it).
+pub fn sonar_bearing_rad(id: u8) -> f64 {
+    f64::from(id) * std::f64::consts::TAU / f64::from(SONARS)
+}
+
 /// A sonar range in metres, `None` for no echo.
 pub fn sonar_metres(range: u16) -> Option<f64> {
     (range <= SONAR_NO_ECHO_ABOVE).then(|| f64::from(range) / SONAR_UNITS_PER_M)

@@ -227,6 +227,11 @@ impl StudioApp {
             }
             Action::SetLanguage(language) => self.language = language,
             Action::ShowTab(tab) => self.tab = tab,
+            Action::ShowView(open) => match self.document.project.family {
+                Family::Servo => self.servo.layout.view_open = open,
+                Family::Plen2 => self.plen2.layout.view_open = open,
+                Family::Rflex => self.rflex.layout.view_open = open,
+            },
             Action::AskFile(request) => {
                 let answer = (self.picker)(&request, self.waker.clone());
                 self.dialog = Some((request, answer));
@@ -409,6 +414,16 @@ impl StudioApp {
                 }
                 if tab != self.tab {
                     actions.push(Action::ShowTab(tab));
+                }
+                let family = self.document.project.family;
+                if self.tab.has_view() {
+                    ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
+                        let mut open = self.layout(family).view_open;
+                        let label = if family == Family::Rflex { words.world_view } else { words.show_preview };
+                        if ui.checkbox(&mut open, label).changed() {
+                            actions.push(Action::ShowView(open));
+                        }
+                    });
                 }
             });
         });

@@ -175,7 +175,7 @@ pub struct Strings {
     pub msg_connected_demo: &'static str,
     /// "connected to the demo PLEN2 (emulated, factory-fresh: its 90 slots are empty)".
     pub msg_connected_demo_plen2: &'static str,
-    /// "connected to the demo base (emulated, braked, in a 3.6 × 2.4 m room)".
+    /// "connected to the demo base (emulated, braked, in a 4.2 × 2.8 m room)".
     pub msg_connected_demo_rflex: &'static str,
     /// "disconnected".
     pub msg_disconnected: &'static str,
@@ -385,6 +385,60 @@ pub struct Strings {
     pub msg_brake_released: &'static str,
     /// The status after a board was read for comparison.
     pub msg_board_compared: &'static str,
+    /// The robot's 3D preview's name.
+    pub robot_preview: &'static str,
+    /// How the 3D preview is moved.
+    pub preview_hint: &'static str,
+    /// The toggle that shows the 3D preview.
+    pub show_preview: &'static str,
+    /// Play (the preview).
+    pub play: &'static str,
+    /// Pause (the preview).
+    pub pause: &'static str,
+    /// What Space does in a preview.
+    pub space_plays: &'static str,
+    /// "Preview speed" (the ×1 / ×0.5 / ×0.25 choice).
+    pub preview_speed: &'static str,
+    /// The preview's time cursor.
+    pub time_cursor: &'static str,
+    /// Which motion a PLEN2 motion is previewed after.
+    pub played_after: &'static str,
+    /// The robot just switched on (its frame buffer all zeros).
+    pub power_up: &'static str,
+    /// Where a PLEN2 motion starts from.
+    pub snap_note: &'static str,
+    /// The sliders' pose differs from where the motion starts.
+    pub snap_warning: &'static str,
+    /// Servos shown as bars (no rig).
+    pub not_rigged: &'static str,
+    /// How to get a figure.
+    pub rig_hint: &'static str,
+    /// The rig's columns.
+    pub rig: &'static str,
+    /// The limits' columns.
+    pub limits: &'static str,
+    /// A rig joint's parent.
+    pub mounted_on: &'static str,
+    /// The robot's body (a rig root).
+    pub body: &'static str,
+    /// A rig joint's axis.
+    pub axis: &'static str,
+    /// A rig joint's sign.
+    pub reversed: &'static str,
+    /// A rig joint's straight angle.
+    pub straight_at: &'static str,
+    /// A rig joint's offset.
+    pub offset_mm: &'static str,
+    /// Whether a servo is in the rig.
+    pub in_rig: &'static str,
+    /// The rFLEX world view.
+    pub world_view: &'static str,
+    /// Follow the base in the world view.
+    pub follow: &'static str,
+    /// Forget the echoes seen.
+    pub clear_map: &'static str,
+    /// How the world view is moved.
+    pub world_hint: &'static str,
     /// What a click on a plot's legend entry does.
     pub plot_toggle_hint: &'static str,
     /// The drive pad says the window lacks keyboard focus.

@@ -8,6 +8,7 @@ mod joints;
 mod live;
 mod motions;
 mod play_lists;
+mod preview;
 
 use std::path::PathBuf;
 use std::time::Instant;
@@ -21,7 +22,7 @@ use crate::project::plen2::{Plen2Project, SLOTS};
 use crate::project::{Edit, Family, Problem, Project, Severity};
 use crate::ui::action::{Action, Plen2Action, Plen2Intent, Tab};
 use crate::ui::app::{RunningOperation, Shell, ShellView};
-use crate::ui::layout::Layout;
+use crate::ui::layout::{Layout, Pane};
 use crate::ui::operation::{Operation, Step, Subject};
 
 /// What a PLEN2 operation does.
@@ -113,6 +114,8 @@ pub struct Plen2Ui {
     slots: Option<((u64, u64), Vec<SlotCell>)>,
     motions: motions::MotionsPanel,
     play_lists: play_lists::PlayListsPanel,
+    /// The 3D preview.
+    pub preview: preview::Preview,
     /// How the family's panels are laid out (remembered).
     pub layout: Layout,
 }
@@ -129,6 +132,7 @@ impl Default for Plen2Ui {
             slots: None,
             motions: motions::MotionsPanel::default(),
             play_lists: play_lists::PlayListsPanel::default(),
+            preview: preview::Preview::default(),
             layout: Layout::default(),
         }
     }
@@ -320,7 +324,8 @@ impl Plen2Ui {
                     self.problems = Some((revision, crate::project::validate_plen2(project)));
                 }
                 let problems = self.problems.as_ref().map_or(&[][..], |(_, problems)| problems.as_slice());
-                self.motions.ui(ui, view, problems, &mut self.layout, actions);
+                let panes = (&mut self.layout, &mut self.preview, &self.pose);
+                self.motions.ui(ui, (view, problems), panes, actions);
             }
             Tab::PlayLists => self.play_lists.ui(ui, project, connected, &mut self.layout, words, actions),
             Tab::Board => {
@@ -345,7 +350,13 @@ impl Plen2Ui {
                     connected,
                     capture_slot: self.motions.selected_slot(project),
                 };
-                joints::ui(ui, &joints, &mut self.layout, words, actions);
+                let (mut side, open) = (self.layout.side_width, self.layout.view_open);
+                let (layout, preview) = (&mut self.layout, &mut self.preview);
+                crate::ui::layout::beside(ui, "plen2-joints", (&mut side, open), |ui, pane| match pane {
+                    Pane::First => joints::ui(ui, &joints, layout, words, actions),
+                    Pane::Second => preview.joints(ui, project, &self.pose, words),
+                });
+                self.layout.side_width = side;
             }
         }
     }

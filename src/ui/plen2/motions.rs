@@ -3,6 +3,7 @@
 //! left↔right, move, remove, play from here), the selected frame's 18 values
 //! relative to home, a timeline and an angle plot.
 
+use super::preview::Preview;
 use crate::project::plen2::{Frame, Joint, LoopRange, Motion, Plen2Project, Pose};
 use crate::project::plen2::{MAX_TRANSITION_MS, MIN_TRANSITION_MS, SLOTS};
 use crate::project::{Edit, Location, Problem};
@@ -42,9 +43,8 @@ impl MotionsPanel {
     pub fn ui(
         &mut self,
         ui: &mut egui::Ui,
-        view: &ShellView<'_>,
-        problems: &[Problem],
-        layout: &mut Layout,
+        (view, problems): (&ShellView<'_>, &[Problem]),
+        (layout, preview, pose): (&mut Layout, &mut Preview, &[i16; 18]),
         actions: &mut Vec<Action>,
     ) {
         let (project, revision, words) = (&view.project.plen2, view.revision, view.language.strings());
@@ -95,6 +95,10 @@ impl MotionsPanel {
             }),
             Part::Editor => self.editor(ui, project, connected, words, actions),
             Part::Lower => self.lower(ui, project, &mut values_width, words, actions),
+            Part::View => {
+                let motion = &project.motions[self.selected];
+                preview.motion(ui, (project, revision), (motion.slot, self.frame), pose, words);
+            }
         });
         layout.values_width = values_width;
         if let Some(index) = picked {
@@ -306,9 +310,9 @@ impl MotionsPanel {
         egui::Grid::new("plen2-frame-values").show(ui, |ui| {
             for (column, joint) in Joint::ALL.into_iter().enumerate() {
                 let mut value = pose.get(joint);
-                ui.label(joint.name());
-                if ui.add(egui::DragValue::new(&mut value).clamp_existing_to_range(false).range(-1800..=1800)).changed()
-                {
+                let name = ui.label(joint.name());
+                let drag = egui::DragValue::new(&mut value).clamp_existing_to_range(false).range(-1800..=1800);
+                if ui.add(drag).labelled_by(name.id).changed() {
                     pose.set(joint, value);
                     changed = true;
                 }

@@ -5,21 +5,37 @@
 
 mod drive;
 mod telemetry;
+mod world;
 
 pub use drive::{DrivePanel, DriveView};
+pub use world::WorldView;
 
 use crate::ui::action::{Action, RflexAction, Tab};
 use crate::ui::app::{Shell, ShellView};
-use crate::ui::layout::Layout;
+use crate::ui::layout::{self, Layout, Pane};
 
 /// The rFLEX base's state in the editor.
-#[derive(Debug, Default)]
+#[derive(Debug)]
 pub struct RflexUi {
     /// Whether the base's sonar ring was turned on.
     pub sonar_on: bool,
     drive: DrivePanel,
+    /// The world view's camera (the Drive and Telemetry tabs share it).
+    pub world: WorldView,
     /// How the family's panels are laid out (remembered).
     pub layout: Layout,
+}
+
+impl Default for RflexUi {
+    fn default() -> Self {
+        Self {
+            sonar_on: false,
+            drive: DrivePanel::default(),
+            world: WorldView::default(),
+            // The world view is the larger part of the base's panels.
+            layout: Layout { side_width: 520.0, ..Layout::default() },
+        }
+    }
 }
 
 impl RflexUi {
@@ -56,6 +72,11 @@ impl RflexUi {
                     self.sonar_on = on;
                 }
             }
+            RflexAction::ClearMap => {
+                if let Some(base) = shell.rflex_mut() {
+                    base.telemetry.echoes.clear();
+                }
+            }
         }
     }
 
@@ -75,20 +96,24 @@ impl RflexUi {
         self.drive.asked()
     }
 
-    /// Draws the tab.
+    /// Draws the tab: the drive pad or the telemetry, with the world view beside it.
     pub fn ui(&mut self, ui: &mut egui::Ui, tab: Tab, view: &ShellView<'_>, actions: &mut Vec<Action>) {
         let words = view.language.strings();
         let base = view.link.and_then(|link| link.rflex());
-        match tab {
-            Tab::Telemetry => match base {
-                Some(base) => telemetry::ui(ui, &base.telemetry, words),
+        let telemetry = base.map(|base| &base.telemetry);
+        let Self { drive, world, layout, sonar_on } = self;
+        let open = layout.view_open;
+        layout::beside(ui, "rflex-world", (&mut layout.side_width, open), |ui, pane| match (pane, tab) {
+            (Pane::Second, _) => world::panel(ui, world, telemetry, words, actions),
+            (Pane::First, Tab::Telemetry) => match telemetry {
+                Some(telemetry) => telemetry::ui(ui, telemetry, words),
                 None => {
                     ui.label(words.not_connected);
                 }
             },
-            _ => {
+            (Pane::First, _) => {
                 let rflex = &view.project.rflex;
-                let drive = DriveView {
+                let shown = DriveView {
                     connected: base.is_some_and(|base| !base.is_lost()),
                     settings: rflex.drive,
                     limits: rflex.robot.limits(),
@@ -96,10 +121,10 @@ impl RflexUi {
                     measured: base
                         .map_or((0.0, 0.0), |base| (base.telemetry.speed_m_per_s, base.telemetry.turn_rad_per_s)),
                     brake: base.and_then(|base| base.telemetry.brake),
-                    sonar_on: self.sonar_on,
+                    sonar_on: *sonar_on,
                 };
-                self.drive.ui(ui, &drive, words, actions);
+                drive.ui(ui, &shown, words, actions);
             }
-        }
+        });
     }
 }

@@ -3,6 +3,7 @@
 //! together), and as a plot of each servo's angle over time; play it on the
 //! board, or preview it on the sliders without one.
 
+use super::preview::{Played, Preview};
 use crate::project::{
     Action as ProjectAction, Edit, Location, Problem, ServoProject, Step, action_trajectories, next_free_id,
     validate_servo,
@@ -71,7 +72,13 @@ fn set(index: usize, action: ProjectAction, key: Option<String>) -> Action {
 impl ActionPanel {
     /// Draws the editor: the list of actions beside the selected one's steps,
     /// its timeline and plot under them (every divider can be dragged).
-    pub fn ui(&mut self, ui: &mut egui::Ui, view: &ShellView<'_>, layout: &mut Layout, actions: &mut Vec<Action>) {
+    pub fn ui(
+        &mut self,
+        ui: &mut egui::Ui,
+        view: &ShellView<'_>,
+        (layout, preview): (&mut Layout, &mut Preview),
+        actions: &mut Vec<Action>,
+    ) {
         let (project, revision, connected) = (&view.project.servo, view.revision, view.link.is_some());
         let words = view.language.strings();
         ui.horizontal(|ui| {
@@ -107,6 +114,7 @@ impl ActionPanel {
             }),
             Part::Editor => Self::editor(ui, project, index, facts, connected, words, actions),
             Part::Lower => Self::lower(ui, project, index, facts, words),
+            Part::View => preview.timed(ui, project, revision, Played::Action(project.actions[index].id), words),
         });
     }
 

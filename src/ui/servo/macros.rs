@@ -3,6 +3,7 @@
 //! duration, a plot of every servo's trajectory over the whole macro, and the
 //! validation problems of the macro shown inline.
 
+use super::preview::{Played, Preview};
 use crate::project::{
     Command, Edit, Location, Macro, Problem, Run, ServoProject, Severity, Timing, TimingError, macro_trajectories,
     next_free_id, validate_servo,
@@ -92,7 +93,13 @@ fn edit(index: usize, item: Macro, key: Option<String>) -> Action {
 
 impl MacroPanel {
     /// Draws the composer.
-    pub fn ui(&mut self, ui: &mut egui::Ui, view: &ShellView<'_>, layout: &mut Layout, actions: &mut Vec<Action>) {
+    pub fn ui(
+        &mut self,
+        ui: &mut egui::Ui,
+        view: &ShellView<'_>,
+        (layout, preview): (&mut Layout, &mut Preview),
+        actions: &mut Vec<Action>,
+    ) {
         let (project, revision, connected) = (&view.project.servo, view.revision, view.link.is_some());
         let words = view.language.strings();
         ui.horizontal(|ui| {
@@ -140,6 +147,7 @@ impl MacroPanel {
                     plot::series(ui, "macro-plot", words, &derived.series);
                 }
             }
+            Part::View => preview.timed(ui, project, revision, Played::Macro(project.macros[index].id), words),
         });
     }
 

@@ -9,6 +9,8 @@ mod joystick;
 mod live;
 mod macros;
 mod operations;
+mod preview;
+mod rig;
 mod sliders;
 
 use std::collections::BTreeMap;
@@ -61,6 +63,8 @@ pub struct ServoUi {
     actions: actions::ActionPanel,
     macros: macros::MacroPanel,
     joystick: joystick::JoystickPanel,
+    /// The 3D preview of the robot.
+    pub figure: preview::Preview,
     /// How the family's panels are laid out (remembered).
     pub layout: Layout,
 }
@@ -132,8 +136,8 @@ impl ServoUi {
         let words = view.language.strings();
         let connected = view.link.is_some();
         match tab {
-            Tab::Actions => self.actions.ui(ui, view, &mut self.layout, actions),
-            Tab::Macros => self.macros.ui(ui, view, &mut self.layout, actions),
+            Tab::Actions => self.actions.ui(ui, view, (&mut self.layout, &mut self.figure), actions),
+            Tab::Macros => self.macros.ui(ui, view, (&mut self.layout, &mut self.figure), actions),
             Tab::Joystick => {
                 let joystick = joystick::JoystickView {
                     project,
@@ -152,7 +156,13 @@ impl ServoUi {
                     readback: view.link.and_then(|link| link.servo()).map(|servo| &servo.servos),
                     polling: self.polling,
                 };
-                self.sliders.ui(ui, &sliders, &mut self.layout, words, actions);
+                let (mut side, open) = (self.layout.side_width, self.layout.view_open);
+                let (panel, layout, figure) = (&mut self.sliders, &mut self.layout, &mut self.figure);
+                crate::ui::layout::beside(ui, "servo-sliders", (&mut side, open), |ui, pane| match pane {
+                    crate::ui::layout::Pane::First => panel.ui(ui, &sliders, layout, words, actions),
+                    crate::ui::layout::Pane::Second => figure.live(ui, project, view.revision, &self.pose, words),
+                });
+                self.layout.side_width = side;
             }
         }
     }

@@ -47,6 +47,8 @@ pub struct ServoView<'a> {
 #[derive(Debug, Default)]
 pub struct ServoPanel {
     slider_ids: HashMap<egui::Id, u8>,
+    /// The settings show the rig (else the limits).
+    rig_shown: bool,
 }
 
 impl ServoPanel {
@@ -81,7 +83,18 @@ impl ServoPanel {
         let settings = (&mut layout.settings_share, &mut layout.settings_open);
         layout::over(ui, "servo-settings", settings, words.servo_settings, |ui, pane| match pane {
             Pane::First => self.sliders(ui, view, words, actions),
-            Pane::Second => settings_ui(ui, view.project, words, actions),
+            Pane::Second => {
+                ui.horizontal(|ui| {
+                    ui.selectable_value(&mut self.rig_shown, false, words.limits);
+                    ui.selectable_value(&mut self.rig_shown, true, words.rig);
+                });
+                if self.rig_shown {
+                    let height = ui.available_height();
+                    super::rig::table(ui, view.project, height, words, actions);
+                } else {
+                    settings_ui(ui, view.project, words, actions);
+                }
+            }
         });
     }
 

@@ -1,0 +1,184 @@
+//! The PLEN2's 3D preview: beside the joints, the live pose; beside the
+//! motion editor, the motion as the firmware plays it (plen2.md §6) at the
+//! time cursor, with a faint ghost of the frame it is moving to. What a
+//! joint shows is home + value clamped to the joint settings, minus home: what
+//! the servo really does.
+
+use crate::device::plen2::playback::{self, DEVICE_IDS, Playback, Settings, StoredMotions};
+use crate::figure::{self, Chain};
+use crate::project::plen2::{Joint, Plen2Project};
+use crate::ui::i18n::Strings;
+use crate::ui::transport::Transport;
+use crate::ui::view3d::{Scene, View};
+
+/// At most this long is played out for the preview (a loop forever stops here).
+const MAX_CYCLES: usize = 916;
+
+/// What a playback was computed for: document revision, slot, slot played before.
+type PlaybackKey = (u64, u8, Option<u8>);
+
+/// The preview's state.
+#[derive(Debug)]
+pub struct Preview {
+    chain: Chain,
+    joints_view: View,
+    motion_view: View,
+    /// The motion editor's time cursor.
+    pub transport: Transport,
+    /// The motion played before the previewed one (none: power-up).
+    pub after: Option<u8>,
+    /// The playback, for (document revision, slot, played after).
+    playback: Option<(PlaybackKey, Playback, Settings)>,
+    /// The frame selected in the editor when last drawn (slot, index).
+    selected: Option<(u8, usize)>,
+    /// What the view showed last: each device's value relative to home, clamped.
+    pub shown: Option<[i16; DEVICE_IDS]>,
+}
+
+impl Default for Preview {
+    fn default() -> Self {
+        Self {
+            chain: figure::plen2::chain(),
+            joints_view: View::default(),
+            motion_view: View::default(),
+            transport: Transport::default(),
+            after: None,
+            playback: None,
+            selected: None,
+            shown: None,
+        }
+    }
+}
+
+impl Preview {
+    /// The figure for `values` (and a ghost for `ghost`), both relative to home and clamped.
+    fn scene(&self, values: &[i16; DEVICE_IDS], ghost: Option<&[i16; DEVICE_IDS]>) -> Scene {
+        let mut solids = Vec::new();
+        if let Some(ghost) = ghost {
+            let placed = self.chain.pose(&figure::plen2::angles(&self.chain, ghost));
+            solids.extend(self.chain.dress(&placed, true));
+        }
+        let placed = self.chain.pose(&figure::plen2::angles(&self.chain, values));
+        solids.extend(self.chain.dress(&placed, false));
+        Scene { solids, ground_z: 0.0 }
+    }
+
+    /// The live pose beside the joint sliders (`pose`: absolute angles, device-map order).
+    pub fn joints(&mut self, ui: &mut egui::Ui, project: &Plen2Project, pose: &[i16; 18], words: &Strings) {
+        let settings = playback::joint_settings(project);
+        let mut values = [0; DEVICE_IDS];
+        for joint in Joint::ALL {
+            let device = usize::from(joint.device_id());
+            values[device] = pose[joint.index()] - settings[device].0;
+        }
+        let values = playback::clamped(&values, &settings);
+        self.shown = Some(values);
+        let scene = self.scene(&values, None);
+        let rect = ui.available_rect_before_wrap();
+        self.joints_view.show(ui, rect, &scene, words.robot_preview).on_hover_text(words.preview_hint);
+    }
+
+    /// Plays `slot` out again when the revision, the slot or what it is played after changed.
+    fn refresh(&mut self, project: &Plen2Project, revision: u64, slot: u8) {
+        let key = (revision, slot, self.after);
+        if self.playback.as_ref().is_none_or(|(at, _, _)| *at != key) {
+            let stored = StoredMotions::new(project);
+            let from = self.after.map_or([0; DEVICE_IDS], |previous| playback::after(&stored, previous, MAX_CYCLES));
+            let played = playback::play(&stored, slot, from, MAX_CYCLES);
+            self.playback = Some((key, played, playback::joint_settings(project)));
+        }
+    }
+
+    /// The motion in `slot` as the robot plays it: the time cursor, the view,
+    /// and where it starts from. `frame` is the frame selected in the editor
+    /// (the cursor goes to where it is reached when it changes); `pose` is the
+    /// joint sliders' (absolute).
+    pub fn motion(
+        &mut self,
+        ui: &mut egui::Ui,
+        (project, revision): (&Plen2Project, u64),
+        (slot, frame): (u8, usize),
+        pose: &[i16; 18],
+        words: &Strings,
+    ) {
+        let now = ui.input(|input| input.time);
+        ui.horizontal(|ui| {
+            let label = ui.label(words.played_after);
+            let mut after = self.after;
+            let name = |slot: Option<u8>| match slot {
+                None => words.power_up.to_string(),
+                Some(slot) => {
+                    let motion = project.motions.iter().find(|m| m.slot == slot);
+                    format!("{slot} {}", motion.map_or("", |m| m.name.as_str()))
+                }
+            };
+            egui::ComboBox::from_id_salt("plen2-played-after")
+                .selected_text(name(after))
+                .show_ui(ui, |ui| {
+                    ui.selectable_value(&mut after, None, name(None));
+                    for motion in &project.motions {
+                        ui.selectable_value(&mut after, Some(motion.slot), name(Some(motion.slot)));
+                    }
+                })
+                .response
+                .labelled_by(label.id)
+                .on_hover_text(words.snap_note);
+            self.after = after;
+        });
+        self.refresh(project, revision, slot);
+        let Some((_, played, settings)) = &self.playback else { return };
+        if self.selected != Some((slot, frame)) {
+            self.selected = Some((slot, frame));
+            // The cursor to where the selected frame is reached (its last cycle).
+            let index = u8::try_from(frame).unwrap_or(0);
+            if let Some(first) = played.first_cycle_of(slot, index) {
+                let last = played.frames[first..].iter().take_while(|f| **f == (slot, index)).count() + first - 1;
+                // Cycle counts are small.
+                #[allow(clippy::cast_precision_loss)]
+                let t = (last as f64 + 0.5) * Playback::CYCLE_MS;
+                self.transport.seek(t, now);
+            }
+        }
+        let marks: Vec<f64> = (0..played.frames.len())
+            .filter(|&cycle| cycle == 0 || played.frames[cycle] != played.frames[cycle - 1])
+            // Cycle counts are small.
+            .map(|cycle| {
+                #[allow(clippy::cast_precision_loss)]
+                let t = cycle as f64 * Playback::CYCLE_MS;
+                t
+            })
+            .collect();
+        self.transport.ui(ui, played.duration_ms(), &marks, words);
+        // Where the robot stands now (the sliders) against where the motion starts.
+        let mut standing = [0; DEVICE_IDS];
+        for joint in Joint::ALL {
+            let device = usize::from(joint.device_id());
+            standing[device] = pose[joint.index()] - settings[device].0;
+        }
+        if playback::clamped(&standing, settings) != playback::clamped(&played.from, settings) {
+            ui.colored_label(ui.visuals().warn_fg_color, words.snap_warning).on_hover_text(words.snap_note);
+        }
+        let Some(cycle) = played.cycle_at(self.transport.t_ms) else {
+            self.shown = None;
+            return;
+        };
+        let values = playback::clamped(&played.cycles[cycle], settings);
+        let (target_slot, target_index) = played.frames[cycle];
+        let ghost = project
+            .motions
+            .iter()
+            .find(|m| m.slot == target_slot)
+            .and_then(|m| m.frames.get(usize::from(target_index)))
+            .map(|target| {
+                let mut out = [0; DEVICE_IDS];
+                for joint in Joint::ALL {
+                    out[usize::from(joint.device_id())] = target.values_tenths_deg.get(joint);
+                }
+                playback::clamped(&out, settings)
+            });
+        self.shown = Some(values);
+        let scene = self.scene(&values, ghost.as_ref());
+        let rect = ui.available_rect_before_wrap();
+        self.motion_view.show(ui, rect, &scene, words.robot_preview).on_hover_text(words.preview_hint);
+    }
+}

@@ -1,0 +1,179 @@
+//! The servo board robot's 3D preview, from the rig its project gives: beside
+//! the sliders, the live pose; beside the action editor and the macro
+//! composer, the trajectory the board plays (the one the plots draw) at the
+//! time cursor, with a faint ghost of where it is going next. Servos outside
+//! the rig are bars beside the figure.
+
+use std::collections::BTreeMap;
+
+use crate::figure::{self, Chain, Shape};
+use crate::project::{self, ServoProject};
+use crate::ui::i18n::Strings;
+use crate::ui::layout;
+use crate::ui::rows;
+use crate::ui::transport::Transport;
+use crate::ui::view3d::{Scene, View};
+
+/// What a timed preview plays.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Played {
+    /// An action.
+    Action(i32),
+    /// A macro.
+    Macro(i32),
+}
+
+/// A trajectory sampled every 10 ms, with the times where a move starts or ends.
+#[derive(Debug)]
+struct Samples {
+    rows: Vec<Vec<f64>>,
+    marks: Vec<f64>,
+    end_ms: f64,
+}
+
+/// The preview's state.
+#[derive(Debug, Default)]
+pub struct Preview {
+    /// The rig's chain and each servo's link, for a document revision; the ground's height.
+    rig: Option<(u64, Chain, BTreeMap<u8, usize>, f32)>,
+    live_view: View,
+    timed_view: View,
+    /// The action editor's and the macro composer's time cursor.
+    pub transport: Transport,
+    samples: Option<((u64, Played), Samples)>,
+    /// What the view showed last: each servo's angle, °.
+    pub shown: Option<BTreeMap<u8, f64>>,
+}
+
+/// The lowest point of a scene's solids.
+fn lowest(solids: &[figure::WorldSolid]) -> f32 {
+    solids
+        .iter()
+        .map(|solid| match solid.shape {
+            Shape::Box { half } => solid.at.z - half.length(),
+            Shape::Ball { radius } => solid.at.z - radius,
+            Shape::Capsule { to, radius } => solid.at.z.min(to.z) - radius,
+        })
+        .fold(0.0, f32::min)
+}
+
+impl Preview {
+    fn rig(&mut self, project: &ServoProject, revision: u64) {
+        if self.rig.as_ref().is_none_or(|(at, ..)| *at != revision) {
+            let (chain, links) = figure::rig::chain(project);
+            let homes = project.servos.iter().map(|s| (s.id, f64::from(s.home_deg))).collect();
+            let placed = chain.pose(&figure::rig::angles(project, &links, &homes, chain.links.len()));
+            let ground = lowest(&chain.dress(&placed, false));
+            self.rig = Some((revision, chain, links, ground));
+        }
+    }
+
+    /// The figure for `degrees` (and a ghost).
+    fn scene(&self, project: &ServoProject, degrees: &BTreeMap<u8, f64>, ghost: Option<&BTreeMap<u8, f64>>) -> Scene {
+        let Some((_, chain, links, ground)) = &self.rig else { return Scene::default() };
+        let mut solids = Vec::new();
+        if let Some(ghost) = ghost {
+            let placed = chain.pose(&figure::rig::angles(project, links, ghost, chain.links.len()));
+            solids.extend(chain.dress(&placed, true));
+        }
+        let placed = chain.pose(&figure::rig::angles(project, links, degrees, chain.links.len()));
+        solids.extend(chain.dress(&placed, false));
+        Scene { solids, ground_z: *ground }
+    }
+
+    /// The view and, beside it, a bar per servo outside the rig.
+    fn draw(&mut self, ui: &mut egui::Ui, project: &ServoProject, scene: &Scene, live: bool, words: &Strings) {
+        let degrees = self.shown.clone().unwrap_or_default();
+        let outside: Vec<&project::Servo> = project.servos.iter().filter(|servo| servo.rig.is_none()).collect();
+        let view = if live { &mut self.live_view } else { &mut self.timed_view };
+        let rigged = self.rig.as_ref().is_some_and(|(_, chain, ..)| chain.links.len() > 1);
+        let bars = |ui: &mut egui::Ui| {
+            ui.label(words.not_rigged).on_hover_text(words.rig_hint);
+            let height = ui.available_height();
+            rows::list(ui, "unrigged-servos", rows::name_row_height(ui), outside.len(), height, |ui, index| {
+                let servo = outside[index];
+                let angle = degrees.get(&servo.id).copied().unwrap_or(f64::from(servo.home_deg));
+                let span = f64::from(servo.max_deg - servo.min_deg).max(1.0);
+                // A fraction for a bar.
+                #[allow(clippy::cast_possible_truncation)]
+                let fraction = ((angle - f64::from(servo.min_deg)) / span).clamp(0.0, 1.0) as f32;
+                let text = format!("{} {:.0}°", servo.id, angle);
+                ui.add(egui::ProgressBar::new(fraction).text(text).desired_height(rows::name_row_height(ui) - 2.0))
+                    .on_hover_text(&servo.caption);
+            });
+        };
+        if !rigged {
+            ui.label(words.rig_hint);
+            bars(ui);
+            return;
+        }
+        if outside.is_empty() {
+            let rect = ui.available_rect_before_wrap();
+            view.show(ui, rect, scene, words.robot_preview).on_hover_text(words.preview_hint);
+            return;
+        }
+        let mut width = 150.0;
+        layout::columns(ui, "preview-bars", &mut width, 100.0, |ui, pane| match pane {
+            layout::Pane::First => bars(ui),
+            layout::Pane::Second => {
+                let rect = ui.available_rect_before_wrap();
+                view.show(ui, rect, scene, words.robot_preview).on_hover_text(words.preview_hint);
+            }
+        });
+    }
+
+    /// The live pose beside the sliders.
+    pub fn live(
+        &mut self,
+        ui: &mut egui::Ui,
+        project: &ServoProject,
+        revision: u64,
+        pose: &BTreeMap<u8, i16>,
+        words: &Strings,
+    ) {
+        self.rig(project, revision);
+        let degrees: BTreeMap<u8, f64> = pose.iter().map(|(id, degree)| (*id, f64::from(*degree))).collect();
+        let scene = self.scene(project, &degrees, None);
+        self.shown = Some(degrees);
+        self.draw(ui, project, &scene, true, words);
+    }
+
+    fn sample(&mut self, project: &ServoProject, revision: u64, played: Played) {
+        if self.samples.as_ref().is_some_and(|(at, _)| *at == (revision, played)) {
+            return;
+        }
+        let (trajectories, end_ms) = match played {
+            Played::Action(id) => project::action_trajectories(project, id),
+            Played::Macro(id) => project::macro_trajectories(project, id),
+        };
+        // The board updates its servos in 10 ms steps; a minute is the longest previewed.
+        let end_ms = end_ms.min(60_000.0);
+        let rows = project::sample(project, &trajectories, end_ms);
+        let mut marks: Vec<f64> = trajectories.values().flatten().map(|(t, _)| *t).filter(|t| *t <= end_ms).collect();
+        marks.sort_by(f64::total_cmp);
+        marks.dedup();
+        self.samples = Some(((revision, played), Samples { rows, marks, end_ms }));
+    }
+
+    /// An action's or a macro's trajectory at the time cursor, with the pose
+    /// at its next mark as a ghost.
+    pub fn timed(&mut self, ui: &mut egui::Ui, project: &ServoProject, revision: u64, played: Played, words: &Strings) {
+        self.rig(project, revision);
+        self.sample(project, revision, played);
+        let Some((_, samples)) = &self.samples else { return };
+        self.transport.ui(ui, samples.end_ms, &samples.marks, words);
+        let at = |t: f64| -> BTreeMap<u8, f64> {
+            // Rows every 10 ms: the nearest one.
+            #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+            let row = ((t / project::SAMPLE_MS).round().max(0.0) as usize).min(samples.rows.len().saturating_sub(1));
+            project.servos.iter().zip(samples.rows.get(row).into_iter().flatten()).map(|(s, a)| (s.id, *a)).collect()
+        };
+        let t = self.transport.t_ms;
+        let degrees = at(t);
+        let next = samples.marks.iter().find(|mark| **mark > t + 1.0).copied();
+        let ghost = next.map(at);
+        let scene = self.scene(project, &degrees, ghost.as_ref());
+        self.shown = Some(degrees);
+        self.draw(ui, project, &scene, false, words);
+    }
+}

@@ -1,0 +1,377 @@
+//! A 3D view of a posed figure, drawn with egui's painter so it runs wherever
+//! eframe runs and in headless tests: an orbit camera of our own (drag to
+//! orbit, wheel to zoom, double-click to reset), flat-shaded boxes, balls and
+//! capsules sorted back to front, a ground grid and the figure's shadow. A
+//! ghost (another pose, drawn faint) can share the scene.
+
+use egui::{Color32, Pos2, Rect, Sense, Shape as Paint, Stroke, pos2};
+
+use crate::figure::{Shape, Vec3, WorldSolid};
+
+/// What the view draws: solids over a ground at `ground_z`.
+#[derive(Clone, Debug, Default)]
+pub struct Scene {
+    /// The solids, already placed.
+    pub solids: Vec<WorldSolid>,
+    /// The ground's height.
+    pub ground_z: f32,
+}
+
+impl Scene {
+    /// The centre and radius of what the scene holds (for the camera).
+    fn bounds(&self) -> (Vec3, f32) {
+        let mut low = Vec3::splat(f32::MAX);
+        let mut high = Vec3::splat(f32::MIN);
+        for solid in &self.solids {
+            let reach = match solid.shape {
+                Shape::Box { half } => half.length(),
+                Shape::Ball { radius } => radius,
+                Shape::Capsule { to, radius } => {
+                    low = low.min(to - Vec3::splat(radius));
+                    high = high.max(to + Vec3::splat(radius));
+                    radius
+                }
+            };
+            low = low.min(solid.at - Vec3::splat(reach));
+            high = high.max(solid.at + Vec3::splat(reach));
+        }
+        if low.x > high.x {
+            return (Vec3::ZERO, 100.0);
+        }
+        let low = low.min(Vec3::new(low.x, low.y, self.ground_z));
+        ((low + high) / 2.0, ((high - low).length() / 2.0).max(10.0))
+    }
+}
+
+/// An orbit camera: it looks at `target` from `distance` away, turned `yaw`
+/// about the vertical and raised `pitch` (radians).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera {
+    /// Turn about the vertical: 0 looks at the figure's front from ahead.
+    pub yaw: f32,
+    /// Height angle: positive looks down.
+    pub pitch: f32,
+    /// From the target.
+    pub distance: f32,
+    /// What it looks at.
+    pub target: Vec3,
+}
+
+/// The vertical field of view.
+const FOV: f32 = 0.6;
+/// Where the light comes from (up, front, left).
+const LIGHT: Vec3 = Vec3::new(0.45, 0.35, 0.82);
+
+impl Camera {
+    /// The camera that shows a scene whole, from the front-left, a little above.
+    fn fit(center: Vec3, radius: f32) -> Self {
+        Self { yaw: 0.6, pitch: 0.25, distance: radius / (FOV / 2.0).tan() * 1.15, target: center }
+    }
+
+    fn eye(&self) -> Vec3 {
+        let (sy, cy) = self.yaw.sin_cos();
+        let (sp, cp) = self.pitch.sin_cos();
+        self.target + Vec3::new(cp * cy, cp * sy, sp) * self.distance
+    }
+
+    /// The camera's frame: eye, right, up, forward.
+    fn frame(&self) -> (Vec3, Vec3, Vec3, Vec3) {
+        let eye = self.eye();
+        let forward = (self.target - eye).normalize_or(Vec3::X);
+        let right = forward.cross(Vec3::Z).normalize_or(Vec3::Y);
+        let up = right.cross(forward);
+        (eye, right, up, forward)
+    }
+}
+
+/// Points of the world on the screen, for one frame.
+struct Projector {
+    eye: Vec3,
+    right: Vec3,
+    up: Vec3,
+    forward: Vec3,
+    focal: f32,
+    center: Pos2,
+}
+
+impl Projector {
+    fn new(camera: &Camera, rect: Rect) -> Self {
+        let (eye, right, up, forward) = camera.frame();
+        Self { eye, right, up, forward, focal: rect.height() / 2.0 / (FOV / 2.0).tan(), center: rect.center() }
+    }
+
+    /// A point on the screen and its depth; none behind the camera.
+    fn point(&self, p: Vec3) -> Option<(Pos2, f32)> {
+        let d = p - self.eye;
+        let depth = d.dot(self.forward);
+        if depth < 1.0 {
+            return None;
+        }
+        let scale = self.focal / depth;
+        Some((pos2(self.center.x + d.dot(self.right) * scale, self.center.y - d.dot(self.up) * scale), depth))
+    }
+
+    /// A length at a depth, on the screen.
+    fn size(&self, length: f32, depth: f32) -> f32 {
+        length * self.focal / depth
+    }
+}
+
+fn shade(color: [u8; 3], normal: Vec3, faint: bool) -> Color32 {
+    let light = 0.35 + 0.65 * normal.dot(LIGHT.normalize()).max(0.0);
+    // Channels stay within 0..=255.
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    let channel = |c: u8| (f32::from(c) * light).round().clamp(0.0, 255.0) as u8;
+    let [r, g, b] = color.map(channel);
+    if faint { Color32::from_rgba_unmultiplied(r, g, b, 70) } else { Color32::from_rgb(r, g, b) }
+}
+
+/// A shape to paint, and how far it is.
+struct Piece {
+    depth: f32,
+    paint: Paint,
+}
+
+/// The corners of a box solid.
+fn corners(solid: &WorldSolid, half: Vec3) -> [Vec3; 8] {
+    std::array::from_fn(|corner| {
+        let sign = |bit: usize| if corner & (1 << bit) == 0 { -1.0 } else { 1.0 };
+        solid.at + solid.rotation * Vec3::new(sign(0) * half.x, sign(1) * half.y, sign(2) * half.z)
+    })
+}
+
+/// The box's faces: corner indices (counter-clockwise seen from outside) and the local normal.
+const FACES: [([usize; 4], Vec3); 6] = [
+    ([0, 2, 6, 4], Vec3::NEG_X),
+    ([1, 5, 7, 3], Vec3::X),
+    ([0, 4, 5, 1], Vec3::NEG_Y),
+    ([2, 3, 7, 6], Vec3::Y),
+    ([0, 1, 3, 2], Vec3::NEG_Z),
+    ([4, 6, 7, 5], Vec3::Z),
+];
+
+/// The convex hull of screen points (Andrew's monotone chain), counter-clockwise.
+fn hull(mut points: Vec<Pos2>) -> Vec<Pos2> {
+    points.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+    let cross = |o: Pos2, a: Pos2, b: Pos2| (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
+    let mut lower: Vec<Pos2> = Vec::new();
+    for &p in &points {
+        while lower.len() >= 2 && cross(lower[lower.len() - 2], lower[lower.len() - 1], p) <= 0.0 {
+            lower.pop();
+        }
+        lower.push(p);
+    }
+    let mut upper: Vec<Pos2> = Vec::new();
+    for &p in points.iter().rev() {
+        while upper.len() >= 2 && cross(upper[upper.len() - 2], upper[upper.len() - 1], p) <= 0.0 {
+            upper.pop();
+        }
+        upper.push(p);
+    }
+    lower.pop();
+    upper.pop();
+    lower.extend(upper);
+    lower
+}
+
+fn solid_pieces(solid: &WorldSolid, projector: &Projector, pieces: &mut Vec<Piece>) {
+    match solid.shape {
+        Shape::Box { half } => {
+            let corners = corners(solid, half);
+            for (indices, local_normal) in FACES {
+                let normal = solid.rotation * local_normal;
+                let center = indices.iter().map(|&i| corners[i]).fold(Vec3::ZERO, |s, p| s + p) / 4.0;
+                if normal.dot(projector.eye - center) <= 0.0 {
+                    continue;
+                }
+                let points: Option<Vec<Pos2>> =
+                    indices.iter().map(|&i| projector.point(corners[i]).map(|(p, _)| p)).collect();
+                let (Some(points), Some((_, depth))) = (points, projector.point(center)) else { continue };
+                let fill = shade(solid.color, normal, solid.faint);
+                pieces.push(Piece { depth, paint: Paint::convex_polygon(points, fill, Stroke::NONE) });
+            }
+        }
+        Shape::Ball { radius } => {
+            if let Some((center, depth)) = projector.point(solid.at) {
+                let r = projector.size(radius, depth);
+                let fill = shade(solid.color, (projector.eye - solid.at).normalize_or(Vec3::Z), solid.faint);
+                pieces.push(Piece { depth, paint: Paint::circle_filled(center, r, fill) });
+            }
+        }
+        Shape::Capsule { to, radius } => {
+            let (Some((a, da)), Some((b, db))) = (projector.point(solid.at), projector.point(to)) else { return };
+            let depth = (da + db) / 2.0;
+            let width = projector.size(radius, depth) * 2.0;
+            // Lit by how much its side faces the light.
+            let along = (to - solid.at).normalize_or(Vec3::Z);
+            let side = (LIGHT - along * along.dot(LIGHT)).normalize_or(Vec3::Z);
+            let fill = shade(solid.color, side, solid.faint);
+            pieces.push(Piece {
+                depth,
+                paint: Paint::Vec(vec![
+                    Paint::line_segment([a, b], Stroke::new(width, fill)),
+                    Paint::circle_filled(a, width / 2.0, fill),
+                    Paint::circle_filled(b, width / 2.0, fill),
+                ]),
+            });
+        }
+    }
+}
+
+/// The solid's shadow on the ground (light from straight above), on the screen.
+fn shadow(solid: &WorldSolid, ground: f32, projector: &Projector) -> Option<Paint> {
+    let color = Color32::from_black_alpha(70);
+    let flat = |p: Vec3| projector.point(Vec3::new(p.x, p.y, ground)).map(|(p, _)| p);
+    match solid.shape {
+        Shape::Box { half } => {
+            let points: Option<Vec<Pos2>> = corners(solid, half).iter().map(|&p| flat(p)).collect();
+            Some(Paint::convex_polygon(hull(points?), color, Stroke::NONE))
+        }
+        Shape::Ball { radius } => {
+            let (center, depth) = projector.point(Vec3::new(solid.at.x, solid.at.y, ground))?;
+            Some(Paint::circle_filled(center, projector.size(radius, depth), color))
+        }
+        Shape::Capsule { to, radius } => {
+            let (a, da) = projector.point(Vec3::new(solid.at.x, solid.at.y, ground))?;
+            let b = flat(to)?;
+            Some(Paint::line_segment([a, b], Stroke::new(projector.size(radius, da) * 2.0, color)))
+        }
+    }
+}
+
+/// Ground grid lines around `center`, `radius` out, a line every `step`.
+fn grid(center: Vec3, radius: f32, ground: f32, projector: &Projector, color: Color32) -> Vec<Paint> {
+    let step = nice_step(radius / 4.0);
+    let reach = (radius * 1.5 / step).ceil() * step;
+    let (cx, cy) = ((center.x / step).round() * step, (center.y / step).round() * step);
+    let mut lines = Vec::new();
+    let mut offset = -reach;
+    while offset <= reach + step / 2.0 {
+        for (a, b) in [
+            (Vec3::new(cx + offset, cy - reach, ground), Vec3::new(cx + offset, cy + reach, ground)),
+            (Vec3::new(cx - reach, cy + offset, ground), Vec3::new(cx + reach, cy + offset, ground)),
+        ] {
+            if let (Some((a, _)), Some((b, _))) = (projector.point(a), projector.point(b)) {
+                lines.push(Paint::line_segment([a, b], Stroke::new(1.0, color)));
+            }
+        }
+        offset += step;
+    }
+    lines
+}
+
+/// 1, 2 or 5 times a power of ten, near `raw`.
+fn nice_step(raw: f32) -> f32 {
+    let power = 10f32.powf(raw.max(1e-3).log10().floor());
+    let fraction = raw / power;
+    let nice = if fraction < 1.5 {
+        1.0
+    } else if fraction < 3.5 {
+        2.0
+    } else if fraction < 7.5 {
+        5.0
+    } else {
+        10.0
+    };
+    nice * power
+}
+
+/// The view's own state: its camera (none until it has seen a scene).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct View {
+    camera: Option<Camera>,
+}
+
+impl View {
+    /// Draws `scene` filling `rect`; dragging orbits, the wheel zooms, a
+    /// double-click puts the camera back.
+    pub fn show(&mut self, ui: &mut egui::Ui, rect: Rect, scene: &Scene, label: &str) -> egui::Response {
+        let response = ui.allocate_rect(rect, Sense::click_and_drag());
+        response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Image, true, label));
+        let (center, radius) = scene.bounds();
+        let mut camera = self.camera.unwrap_or_else(|| Camera::fit(center, radius));
+        if response.double_clicked() {
+            camera = Camera::fit(center, radius);
+        }
+        if response.dragged() {
+            let delta = response.drag_delta();
+            camera.yaw -= delta.x * 0.01;
+            camera.pitch = (camera.pitch + delta.y * 0.01).clamp(-1.2, 1.45);
+        }
+        if response.hovered() {
+            let scroll = ui.input(|input| input.smooth_scroll_delta.y);
+            if scroll != 0.0 {
+                camera.distance = (camera.distance * (-scroll * 0.002).exp()).clamp(radius * 0.3, radius * 40.0);
+            }
+        }
+        self.camera = Some(camera);
+        let painter = ui.painter_at(rect);
+        let visuals = ui.visuals();
+        painter.rect_filled(rect, 4.0, visuals.extreme_bg_color);
+        let projector = Projector::new(&camera, rect);
+        painter.extend(grid(
+            center,
+            radius,
+            scene.ground_z,
+            &projector,
+            visuals.widgets.noninteractive.bg_stroke.color,
+        ));
+        painter.extend(
+            scene.solids.iter().filter(|solid| !solid.faint).filter_map(|s| shadow(s, scene.ground_z, &projector)),
+        );
+        let mut pieces = Vec::with_capacity(scene.solids.len() * 3);
+        for solid in &scene.solids {
+            solid_pieces(solid, &projector, &mut pieces);
+        }
+        // Far first: the near ones cover them (the painter's algorithm).
+        pieces.sort_by(|a, b| b.depth.total_cmp(&a.depth));
+        painter.extend(pieces.into_iter().map(|piece| piece.paint));
+        response
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::figure::Mat3;
+
+    #[test]
+    fn the_camera_sees_the_target_in_the_middle_and_nearer_is_bigger() {
+        let camera = Camera { yaw: 0.0, pitch: 0.0, distance: 1000.0, target: Vec3::ZERO };
+        let rect = Rect::from_min_size(Pos2::ZERO, egui::vec2(600.0, 600.0));
+        let projector = Projector::new(&camera, rect);
+        let (center, depth) = projector.point(Vec3::ZERO).unwrap();
+        assert!((center - rect.center()).length() < 1e-3);
+        assert!((depth - 1000.0).abs() < 1e-3);
+        // Looking from +x: +y (left of the figure) is to the right on the screen, +z up.
+        let (left, _) = projector.point(Vec3::new(0.0, 100.0, 0.0)).unwrap();
+        let (up, _) = projector.point(Vec3::new(0.0, 0.0, 100.0)).unwrap();
+        assert!(left.x > center.x && up.y < center.y);
+        let near = projector.size(10.0, 500.0);
+        assert!(near > projector.size(10.0, 1000.0));
+        assert!(projector.point(Vec3::new(2000.0, 0.0, 0.0)).is_none(), "behind the camera");
+    }
+
+    #[test]
+    fn a_box_shows_at_most_three_faces_and_the_hull_of_its_shadow_is_convex() {
+        let camera = Camera { yaw: 0.6, pitch: 0.4, distance: 500.0, target: Vec3::ZERO };
+        let rect = Rect::from_min_size(Pos2::ZERO, egui::vec2(400.0, 400.0));
+        let projector = Projector::new(&camera, rect);
+        let solid = WorldSolid {
+            at: Vec3::ZERO,
+            rotation: Mat3::IDENTITY,
+            shape: Shape::Box { half: Vec3::splat(20.0) },
+            color: [200, 200, 200],
+            faint: false,
+        };
+        let mut pieces = Vec::new();
+        solid_pieces(&solid, &projector, &mut pieces);
+        assert_eq!(pieces.len(), 3);
+        let points: Vec<Pos2> =
+            corners(&solid, Vec3::splat(20.0)).iter().map(|&p| projector.point(p).unwrap().0).collect();
+        let outline = hull(points);
+        assert!((4..=6).contains(&outline.len()), "{}", outline.len());
+        assert_eq!(nice_step(37.0), 50.0);
+        assert_eq!(nice_step(0.18), 0.2);
+    }
+}
