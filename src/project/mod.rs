@@ -23,7 +23,7 @@ pub use file::{
 pub use history::{History, MAX_UNDO_STEPS};
 pub use servo::{Action, Button, Command, JoystickTable, Macro, RigAxis, RigJoint, Run, Servo, ServoProject, Step};
 pub use timing::{Timing, TimingError, action_duration_ms};
-pub use trajectory::{SAMPLE_MS, Trajectories, action_trajectories, angle_at, macro_trajectories, sample};
+pub use trajectory::{SAMPLE_MS, Trajectories, action_trajectories, angle_at, macro_trajectories, pose_at, sample};
 pub use validate::{
     ButtonSlot, ItemKind, Location, Problem, ProblemKind, Severity, has_errors, validate, validate_plen2,
     validate_servo,

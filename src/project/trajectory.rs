@@ -79,29 +79,29 @@ pub fn macro_trajectories(project: &ServoProject, macro_id: i32) -> (Trajectorie
 /// file, ms (intervals are counted in 10 ms).
 pub const SAMPLE_MS: f64 = 10.0;
 
+/// Every servo's angle at `time_ms` (a servo not moved yet holds its home), the project's servos in order.
+pub fn pose_at(project: &ServoProject, trajectories: &Trajectories, time_ms: f64) -> Vec<f64> {
+    project
+        .servos
+        .iter()
+        .map(|servo| {
+            trajectories
+                .get(&servo.id)
+                .and_then(|points| angle_at(points, time_ms))
+                .unwrap_or(f64::from(servo.home_deg))
+        })
+        .collect()
+}
+
 /// Every servo's angle every [`SAMPLE_MS`] from 0 to `end_ms` (inclusive): a
 /// servo not moved yet holds its home. Rows of the project's servos, in order.
 pub fn sample(project: &ServoProject, trajectories: &Trajectories, end_ms: f64) -> Vec<Vec<f64>> {
     // Sample counts are small and non-negative.
     #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
     let samples = (end_ms.max(0.0) / SAMPLE_MS).ceil() as usize + 1;
-    (0..samples)
-        .map(|index| {
-            // Exact for the sample counts in use.
-            #[allow(clippy::cast_precision_loss)]
-            let time_ms = index as f64 * SAMPLE_MS;
-            project
-                .servos
-                .iter()
-                .map(|servo| {
-                    trajectories
-                        .get(&servo.id)
-                        .and_then(|points| angle_at(points, time_ms))
-                        .unwrap_or(f64::from(servo.home_deg))
-                })
-                .collect()
-        })
-        .collect()
+    // Exact for the sample counts in use.
+    #[allow(clippy::cast_precision_loss)]
+    (0..samples).map(|index| pose_at(project, trajectories, index as f64 * SAMPLE_MS)).collect()
 }
 
 /// The angle at `time_ms` on a trajectory: linear between points, held after

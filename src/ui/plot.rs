@@ -106,8 +106,9 @@ pub fn thin_path(points: impl IntoIterator<Item = [f64; 2]>, units_per_pixel: [f
 /// Named x-sorted series as lines filling the space left, each thinned to
 /// the plot's width, with their legend beside the plot (never over the
 /// curves): a click on an entry shows or hides its series. The first
-/// [`SERIES_SHOWN_FIRST`] are shown at first.
-pub fn series(ui: &mut egui::Ui, id: &str, words: &Strings, series: &[(String, Vec<[f64; 2]>)]) {
+/// [`SERIES_SHOWN_FIRST`] are shown at first. `cursor` (ms) draws the
+/// preview's time cursor across the plot.
+pub fn series(ui: &mut egui::Ui, id: &str, words: &Strings, series: &[(String, Vec<[f64; 2]>)], cursor: Option<f64>) {
     let shown_id = ui.make_persistent_id((id, "shown"));
     let mut shown: Vec<bool> = ui.data(|data| data.get_temp::<Vec<bool>>(shown_id)).unwrap_or_default();
     if shown.len() != series.len() {
@@ -117,6 +118,7 @@ pub fn series(ui: &mut egui::Ui, id: &str, words: &Strings, series: &[(String, V
     let legend_width = (area.width() * 0.3).clamp(120.0, 260.0);
     let plot_rect = egui::Rect::from_min_max(area.min, egui::pos2(area.right() - legend_width, area.bottom()));
     let legend_rect = egui::Rect::from_min_max(egui::pos2(plot_rect.right() + 4.0, area.top()), area.max);
+    let cursor_color = ui.visuals().strong_text_color();
     crate::ui::layout::inside(ui, plot_rect, |ui| {
         let plot = Plot::new(id)
             .width(plot_rect.width())
@@ -132,6 +134,10 @@ pub fn series(ui: &mut egui::Ui, id: &str, words: &Strings, series: &[(String, V
             for (index, (name, points)) in series.iter().enumerate().filter(|(index, _)| shown[*index]) {
                 let thinned = decimate(points, bounds.min()[0], bounds.max()[0], columns);
                 plot.line(Line::new(name.as_str(), PlotPoints::from(thinned)).color(series_color(index)));
+            }
+            if let Some(t) = cursor {
+                // The preview's time cursor, on the curves it plays.
+                plot.vline(egui_plot::VLine::new("", t).color(cursor_color).width(1.5));
             }
         });
     });

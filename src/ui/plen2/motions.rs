@@ -132,7 +132,7 @@ impl MotionsPanel {
             }
             Pane::Second => {
                 let series = series.as_ref().map_or(&[][..], |(_, series)| series.as_slice());
-                plot::series(ui, "plen2-angles", words, series);
+                plot::series(ui, "plen2-angles", words, series, None);
             }
         });
         self.series = series;

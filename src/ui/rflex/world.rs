@@ -168,18 +168,22 @@ fn grid(painter: &egui::Painter, frame: &Frame, color: Color32) {
     }
 }
 
-/// The map: a square per cell, fading with age.
+/// The map: a square per cell, fading with age — one mesh for them all (a
+/// shape per cell would cost its own tessellation, thousands a frame).
 fn echoes(painter: &egui::Painter, frame: &Frame, map: &EchoMap) {
     let side = frame.points(ECHO_CELL_M).max(2.0);
-    let forget = FORGET_AFTER_S;
+    let half = vec2(side, side) / 2.0;
+    let area = frame.rect.expand(side);
+    let mut mesh = egui::Mesh::default();
     for (point, age) in map.points() {
         let centre = frame.screen(point);
-        if !frame.rect.expand(side).contains(centre) {
+        if !area.contains(centre) {
             continue;
         }
-        let alpha = (1.0 - age / forget).clamp(0.15, 1.0) as f32;
-        painter.rect_filled(Rect::from_center_size(centre, vec2(side, side)), 0.0, ECHO.gamma_multiply(alpha * 0.8));
+        let alpha = (1.0 - age / FORGET_AFTER_S).clamp(0.15, 1.0) as f32;
+        mesh.add_colored_rect(Rect::from_min_max(centre - half, centre + half), ECHO.gamma_multiply(alpha * 0.8));
     }
+    painter.add(Shape::mesh(mesh));
 }
 
 /// Each sonar's cone from the ring to its echo (faint to its reach when it hears nothing).

@@ -3,7 +3,7 @@
 //! together), and as a plot of each servo's angle over time; play it on the
 //! board, or preview it on the sliders without one.
 
-use super::preview::{Played, Preview};
+use super::preview::{Preview, Timed};
 use crate::project::{
     Action as ProjectAction, Edit, Location, Problem, ServoProject, Step, action_trajectories, next_free_id,
     validate_servo,
@@ -26,12 +26,15 @@ struct Facts {
     /// The selected action's longest step, ms (the timeline's scale).
     longest_ms: f32,
     series: plot::Series,
+    /// What the preview plays.
+    timed: Timed,
 }
 
 impl Facts {
     fn compute(project: &ServoProject, selected: usize) -> Self {
         let Some(selected_action) = project.actions.get(selected) else { return Self::default() };
-        let (trajectories, _) = action_trajectories(project, selected_action.id);
+        let (trajectories, end_ms) = action_trajectories(project, selected_action.id);
+        let timed = Timed::new(trajectories.clone(), end_ms);
         let series = trajectories
             .into_iter()
             .map(|(servo_id, points)| {
@@ -54,7 +57,7 @@ impl Facts {
         }
         let bars = timeline_bars(selected_action);
         let longest_ms = bars.iter().map(|(_, _, end)| *end).fold(0.0, f32::max).max(10.0);
-        Self { action_problems, step_problems, longest_ms, series }
+        Self { action_problems, step_problems, longest_ms, series, timed }
     }
 }
 
@@ -105,6 +108,8 @@ impl ActionPanel {
             })
             .unwrap_or(&empty);
         let selected = &mut self.selected;
+        // The preview's time cursor, drawn on the plot too (while the preview is open).
+        let cursor = layout.view_open.then_some(preview.transport.t_ms);
         layout::list_and_editor(ui, "actions", layout, words.timeline_and_plot, |ui, part| match part {
             Part::List => rows::names(ui, "action-list", project.actions.len(), |ui, index| {
                 let action = &project.actions[index];
@@ -113,17 +118,23 @@ impl ActionPanel {
                 }
             }),
             Part::Editor => Self::editor(ui, project, index, facts, connected, words, actions),
-            Part::Lower => Self::lower(ui, project, index, facts, words),
-            Part::View => preview.timed(ui, project, revision, Played::Action(project.actions[index].id), words),
+            Part::Lower => Self::lower(ui, project, index, (facts, cursor), words),
+            Part::View => preview.timed(ui, project, &facts.timed, words),
         });
     }
 
     /// The selected action's timeline and angle plot.
-    fn lower(ui: &mut egui::Ui, project: &ServoProject, index: usize, derived: &Facts, words: &Strings) {
+    fn lower(
+        ui: &mut egui::Ui,
+        project: &ServoProject,
+        index: usize,
+        (derived, cursor): (&Facts, Option<f64>),
+        words: &Strings,
+    ) {
         let action = &project.actions[index];
         timeline(ui, project, action, derived.longest_ms);
         if !derived.series.is_empty() {
-            plot::series(ui, "action-plot", words, &derived.series);
+            plot::series(ui, "action-plot", words, &derived.series, cursor);
         }
     }
 

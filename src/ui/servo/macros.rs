@@ -3,7 +3,7 @@
 //! duration, a plot of every servo's trajectory over the whole macro, and the
 //! validation problems of the macro shown inline.
 
-use super::preview::{Played, Preview};
+use super::preview::{Preview, Timed};
 use crate::project::{
     Command, Edit, Location, Macro, Problem, Run, ServoProject, Severity, Timing, TimingError, macro_trajectories,
     next_free_id, validate_servo,
@@ -30,13 +30,16 @@ struct Facts {
     /// The macro's total (`None` until computed).
     macro_total_ms: Option<Result<i64, TimingError>>,
     series: plot::Series,
+    /// What the preview plays.
+    timed: Timed,
 }
 
 impl Facts {
     fn compute(project: &ServoProject, selected: usize) -> Self {
         let Some(item) = project.macros.get(selected) else { return Self::default() };
         let timing = Timing::new(project);
-        let (trajectories, _) = macro_trajectories(project, item.id);
+        let (trajectories, end_ms) = macro_trajectories(project, item.id);
+        let timed = Timed::new(trajectories.clone(), end_ms);
         let series = trajectories
             .into_iter()
             .map(|(servo_id, points)| {
@@ -72,6 +75,7 @@ impl Facts {
             command_totals_ms: item.commands.iter().map(|command| timing.command_total_ms(command)).collect(),
             macro_total_ms: Some(timing.macro_total_ms(item.id)),
             series,
+            timed,
         }
     }
 }
@@ -132,6 +136,8 @@ impl MacroPanel {
             })
             .unwrap_or(&empty);
         let selected = &mut self.selected;
+        // The preview's time cursor, drawn on the plot too (while the preview is open).
+        let cursor = layout.view_open.then_some(preview.transport.t_ms);
         layout::list_and_editor(ui, "macros", layout, words.plot, |ui, part| match part {
             Part::List => rows::names(ui, "macro-list", project.macros.len(), |ui, index| {
                 let item = &project.macros[index];
@@ -144,10 +150,10 @@ impl MacroPanel {
             Part::Editor => Self::editor(ui, project, index, derived, connected, words, actions),
             Part::Lower => {
                 if !derived.series.is_empty() {
-                    plot::series(ui, "macro-plot", words, &derived.series);
+                    plot::series(ui, "macro-plot", words, &derived.series, cursor);
                 }
             }
-            Part::View => preview.timed(ui, project, revision, Played::Macro(project.macros[index].id), words),
+            Part::View => preview.timed(ui, project, &derived.timed, words),
         });
     }
 

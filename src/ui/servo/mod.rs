@@ -160,7 +160,7 @@ impl ServoUi {
                 let (panel, layout, figure) = (&mut self.sliders, &mut self.layout, &mut self.figure);
                 crate::ui::layout::beside(ui, "servo-sliders", (&mut side, open), |ui, pane| match pane {
                     crate::ui::layout::Pane::First => panel.ui(ui, &sliders, layout, words, actions),
-                    crate::ui::layout::Pane::Second => figure.live(ui, project, view.revision, &self.pose, words),
+                    crate::ui::layout::Pane::Second => figure.live(ui, project, &self.pose, words),
                 });
                 self.layout.side_width = side;
             }

@@ -14,33 +14,42 @@ use crate::ui::rows;
 use crate::ui::transport::Transport;
 use crate::ui::view3d::{Scene, View};
 
-/// What a timed preview plays.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Played {
-    /// An action.
-    Action(i32),
-    /// A macro.
-    Macro(i32),
+/// What a timed preview plays: an action's or a macro's trajectories (the
+/// ones its plot draws), when it ends, and the times where a move starts or
+/// ends. Derived with the plot's series, once per revision, off the frame
+/// path for a large project.
+#[derive(Debug, Default)]
+pub struct Timed {
+    trajectories: project::Trajectories,
+    end_ms: f64,
+    marks: Vec<f64>,
 }
 
-/// A trajectory sampled every 10 ms, with the times where a move starts or ends.
-#[derive(Debug)]
-struct Samples {
-    rows: Vec<Vec<f64>>,
-    marks: Vec<f64>,
-    end_ms: f64,
+impl Timed {
+    /// The preview of `trajectories` ending at `end_ms` (a minute at most is previewed).
+    pub fn new(trajectories: project::Trajectories, end_ms: f64) -> Self {
+        let end_ms = end_ms.min(60_000.0);
+        let mut marks: Vec<f64> = trajectories.values().flatten().map(|(t, _)| *t).filter(|t| *t <= end_ms).collect();
+        marks.sort_by(f64::total_cmp);
+        marks.dedup();
+        Self { trajectories, end_ms, marks }
+    }
 }
+
+/// The rig as a chain: the servos it was built from, the chain, each servo's
+/// link, the ground's height.
+type Rig = (Vec<project::Servo>, Chain, BTreeMap<u8, usize>, f32);
 
 /// The preview's state.
 #[derive(Debug, Default)]
 pub struct Preview {
-    /// The rig's chain and each servo's link, for a document revision; the ground's height.
-    rig: Option<(u64, Chain, BTreeMap<u8, usize>, f32)>,
+    /// The rig's chain and each servo's link, for the servos it was built from; the ground's height.
+    /// (Kept while the servos are unchanged: editing an action or a macro leaves it be.)
+    rig: Option<Rig>,
     live_view: View,
     timed_view: View,
     /// The action editor's and the macro composer's time cursor.
     pub transport: Transport,
-    samples: Option<((u64, Played), Samples)>,
     /// What the view showed last: each servo's angle, °.
     pub shown: Option<BTreeMap<u8, f64>>,
 }
@@ -58,13 +67,13 @@ fn lowest(solids: &[figure::WorldSolid]) -> f32 {
 }
 
 impl Preview {
-    fn rig(&mut self, project: &ServoProject, revision: u64) {
-        if self.rig.as_ref().is_none_or(|(at, ..)| *at != revision) {
+    fn rig(&mut self, project: &ServoProject) {
+        if self.rig.as_ref().is_none_or(|(servos, ..)| *servos != project.servos) {
             let (chain, links) = figure::rig::chain(project);
             let homes = project.servos.iter().map(|s| (s.id, f64::from(s.home_deg))).collect();
             let placed = chain.pose(&figure::rig::angles(project, &links, &homes, chain.links.len()));
             let ground = lowest(&chain.dress(&placed, false));
-            self.rig = Some((revision, chain, links, ground));
+            self.rig = Some((project.servos.clone(), chain, links, ground));
         }
     }
 
@@ -123,54 +132,28 @@ impl Preview {
     }
 
     /// The live pose beside the sliders.
-    pub fn live(
-        &mut self,
-        ui: &mut egui::Ui,
-        project: &ServoProject,
-        revision: u64,
-        pose: &BTreeMap<u8, i16>,
-        words: &Strings,
-    ) {
-        self.rig(project, revision);
+    pub fn live(&mut self, ui: &mut egui::Ui, project: &ServoProject, pose: &BTreeMap<u8, i16>, words: &Strings) {
+        self.rig(project);
         let degrees: BTreeMap<u8, f64> = pose.iter().map(|(id, degree)| (*id, f64::from(*degree))).collect();
         let scene = self.scene(project, &degrees, None);
         self.shown = Some(degrees);
         self.draw(ui, project, &scene, true, words);
     }
 
-    fn sample(&mut self, project: &ServoProject, revision: u64, played: Played) {
-        if self.samples.as_ref().is_some_and(|(at, _)| *at == (revision, played)) {
-            return;
-        }
-        let (trajectories, end_ms) = match played {
-            Played::Action(id) => project::action_trajectories(project, id),
-            Played::Macro(id) => project::macro_trajectories(project, id),
-        };
-        // The board updates its servos in 10 ms steps; a minute is the longest previewed.
-        let end_ms = end_ms.min(60_000.0);
-        let rows = project::sample(project, &trajectories, end_ms);
-        let mut marks: Vec<f64> = trajectories.values().flatten().map(|(t, _)| *t).filter(|t| *t <= end_ms).collect();
-        marks.sort_by(f64::total_cmp);
-        marks.dedup();
-        self.samples = Some(((revision, played), Samples { rows, marks, end_ms }));
-    }
-
     /// An action's or a macro's trajectory at the time cursor, with the pose
     /// at its next mark as a ghost.
-    pub fn timed(&mut self, ui: &mut egui::Ui, project: &ServoProject, revision: u64, played: Played, words: &Strings) {
-        self.rig(project, revision);
-        self.sample(project, revision, played);
-        let Some((_, samples)) = &self.samples else { return };
-        self.transport.ui(ui, samples.end_ms, &samples.marks, words);
+    pub fn timed(&mut self, ui: &mut egui::Ui, project: &ServoProject, timed: &Timed, words: &Strings) {
+        self.rig(project);
+        self.transport.ui(ui, timed.end_ms, &timed.marks, words);
         let at = |t: f64| -> BTreeMap<u8, f64> {
-            // Rows every 10 ms: the nearest one.
-            #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-            let row = ((t / project::SAMPLE_MS).round().max(0.0) as usize).min(samples.rows.len().saturating_sub(1));
-            project.servos.iter().zip(samples.rows.get(row).into_iter().flatten()).map(|(s, a)| (s.id, *a)).collect()
+            // The board updates its servos every 10 ms: the nearest update.
+            let step = (t / project::SAMPLE_MS).round().clamp(0.0, (timed.end_ms / project::SAMPLE_MS).ceil());
+            let angles = project::pose_at(project, &timed.trajectories, step * project::SAMPLE_MS);
+            project.servos.iter().map(|servo| servo.id).zip(angles).collect()
         };
         let t = self.transport.t_ms;
         let degrees = at(t);
-        let next = samples.marks.iter().find(|mark| **mark > t + 1.0).copied();
+        let next = timed.marks.iter().find(|mark| **mark > t + 1.0).copied();
         let ghost = next.map(at);
         let scene = self.scene(project, &degrees, ghost.as_ref());
         self.shown = Some(degrees);
