@@ -259,3 +259,96 @@ fn the_world_view_maps_the_rooms_walls_as_the_base_drives() {
     let left = harness.state().link.as_ref().unwrap().rflex().unwrap().telemetry.echoes.len();
     assert!(left <= 24, "at most one sweep heard since the map was cleared: {left}");
 }
+
+#[test]
+fn the_rig_is_edited_in_servo_settings_and_the_preview_follows() {
+    let mut harness = harness(servo_studio::ui::sample_project(), Tab::Servos);
+    harness.state_mut().servo.layout.settings_open = true;
+    harness.run_steps(2);
+    harness.get_by_label("Rig").click();
+    harness.run_steps(2);
+    assert!(harness.query_by_label("Not in the rig").is_none(), "the demo biped is rigged throughout");
+    // Servo 3 (the left elbow) taken out of the rig: a bar beside the figure.
+    // Its row's first box is "In rig" (the second, "Reversed").
+    harness.query_all_by_role_and_label(Role::CheckBox, "3 L elbow 左手肘").next().unwrap().click();
+    harness.run_steps(2);
+    let servo = harness.state().document.project.servo.servo(3).unwrap().clone();
+    assert_eq!(servo.rig, None);
+    assert!(harness.query_by_label("Not in the rig").is_some(), "the servo outside the rig shows as a bar");
+    // Undo puts it back where it was.
+    harness.state_mut().apply(Action::Undo);
+    harness.run_steps(2);
+    let rig = harness.state().document.project.servo.servo(3).unwrap().rig.expect("back in the rig");
+    assert_eq!(rig.parent, Some(2));
+}
+
+#[test]
+fn a_motion_played_after_another_starts_from_its_last_frame_and_the_snap_is_said() {
+    let mut project = plen2_project();
+    let mut held = Pose::default();
+    held.set(Joint::LeftShoulderPitch, 500);
+    project.plen2.motions.push(Motion {
+        slot: 4,
+        name: "Hold 舉高".into(),
+        frames: vec![Frame { transition_ms: 100, values_tenths_deg: held }],
+        loop_range: None,
+        jump_slot: None,
+    });
+    let mut harness = harness(project, Tab::Motions);
+    let snap = "The joint sliders' pose is not where this motion starts: the robot will snap there at the first cycle.";
+    // From power-up the motion starts at home, where the sliders are: nothing to say.
+    assert!(harness.query_by_label(snap).is_none());
+    harness.get_by_label("Played after").click();
+    harness.run_steps(2);
+    harness.get_by_label("4 Hold 舉高").click();
+    harness.run_steps(2);
+    assert_eq!(harness.state().plen2.preview.after, Some(4));
+    assert!(harness.query_by_label(snap).is_some(), "the sliders stand at home, the motion starts at 50°");
+    scrub(&mut harness, 0.0);
+    // By hand: cycle 0 steps from 500 towards 300 over 6 cycles: (−200 << 16) / 6 truncated,
+    // added to 500 << 16, floored: 466.
+    assert_eq!(shoulder(&harness), 466);
+}
+
+#[test]
+fn the_world_view_pans_zooms_and_goes_back_to_following_the_base() {
+    let mut harness = harness(Project::empty(Family::Rflex), Tab::Drive);
+    harness.state_mut().apply(Action::ConnectDemo);
+    harness.run_steps(2);
+    assert!(harness.state().rflex.world.follow);
+    let rect = harness.get_by_role_and_label(Role::Image, "World view").rect();
+    harness.drag_at(rect.center());
+    harness.step();
+    harness.hover_at(rect.center() + egui::vec2(100.0, 50.0));
+    harness.step();
+    harness.drop_at(rect.center() + egui::vec2(100.0, 50.0));
+    harness.run_steps(2);
+    let world = harness.state().rflex.world;
+    assert!(!world.follow, "panning lets go of the base");
+    // Dragged right and down: the view's centre moved left and up (north) in the world.
+    assert!(world.center[0] < -0.5 && world.center[1] > 0.2, "{:?}", world.center);
+    harness.hover_at(rect.center());
+    harness.step();
+    harness.event(egui::Event::MouseWheel {
+        unit: egui::MouseWheelUnit::Point,
+        delta: egui::vec2(0.0, -100.0),
+        phase: egui::TouchPhase::Move,
+        source: egui::MouseWheelSource::Wheel,
+        modifiers: egui::Modifiers::NONE,
+    });
+    harness.run_steps(4);
+    assert!(harness.state().rflex.world.metres_per_point > world.metres_per_point, "the wheel zooms out");
+    // A double-click: two presses and releases within one frame.
+    let at = rect.center();
+    for pressed in [true, false, true, false] {
+        let button = egui::Event::PointerButton {
+            pos: at,
+            button: egui::PointerButton::Primary,
+            pressed,
+            modifiers: egui::Modifiers::NONE,
+        };
+        harness.input_mut().events.push(button);
+    }
+    harness.run_steps(2);
+    assert!(harness.state().rflex.world.follow, "a double-click centres on the base again");
+}
