@@ -169,6 +169,11 @@ fn scrubbing_a_servo_action_shows_the_boards_linear_step_at_that_time() {
     }
     // Every rigged servo is in the figure; the view renders headless.
     assert!(harness.query_by_role_and_label(Role::Image, "Robot preview").is_some());
+    // A step's number puts the cursor where its servo arrives: step 4, 40 × 10 ms.
+    harness.get_by_role_and_label(Role::Button, "4").click();
+    harness.run_steps(2);
+    assert_eq!(harness.state().servo.figure.transport.t_ms, 400.0);
+    assert_eq!(harness.state().servo.figure.shown.as_ref().unwrap()[&4], -80.0);
 }
 
 #[test]

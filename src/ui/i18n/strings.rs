@@ -399,6 +399,8 @@ pub struct Strings {
     pub space_plays: &'static str,
     /// "Preview speed" (the ×1 / ×0.5 / ×0.25 choice).
     pub preview_speed: &'static str,
+    /// Hover text of a step's number (a click moves the preview's cursor to its end).
+    pub step_seek_hint: &'static str,
     /// The preview's time cursor.
     pub time_cursor: &'static str,
     /// Which motion a PLEN2 motion is previewed after.

@@ -110,6 +110,7 @@ impl ActionPanel {
         let selected = &mut self.selected;
         // The preview's time cursor, drawn on the plot too (while the preview is open).
         let cursor = layout.view_open.then_some(preview.transport.t_ms);
+        let mut seek = None;
         layout::list_and_editor(ui, "actions", layout, words.timeline_and_plot, |ui, part| match part {
             Part::List => rows::names(ui, "action-list", project.actions.len(), |ui, index| {
                 let action = &project.actions[index];
@@ -117,10 +118,13 @@ impl ActionPanel {
                     *selected = index;
                 }
             }),
-            Part::Editor => Self::editor(ui, project, index, facts, connected, words, actions),
+            Part::Editor => seek = Self::editor(ui, project, index, facts, connected, words, actions),
             Part::Lower => Self::lower(ui, project, index, (facts, cursor), words),
             Part::View => preview.timed(ui, project, &facts.timed, words),
         });
+        if let Some(t_ms) = seek {
+            preview.transport.seek(t_ms, ui.input(|input| input.time));
+        }
     }
 
     /// The selected action's timeline and angle plot.
@@ -146,7 +150,8 @@ impl ActionPanel {
         connected: bool,
         words: &Strings,
         actions: &mut Vec<Action>,
-    ) {
+    ) -> Option<f64> {
+        let mut seek = None;
         let action = &project.actions[index];
         ui.horizontal(|ui| {
             let label = ui.label(format!("{} {}", words.action_word, action.id));
@@ -183,7 +188,14 @@ impl ActionPanel {
                 set(index, action, key)
             };
             let mut row_id = egui::Id::NULL;
-            row.col(|ui| row_id = ui.label(format!("{}", position + 1)).id);
+            row.col(|ui| {
+                // The step's number: a click shows in the preview where its servo arrives.
+                let number = ui.add(egui::Button::new(format!("{}", position + 1)).frame(false));
+                row_id = number.id;
+                if number.on_hover_text(words.step_seek_hint).clicked() {
+                    seek = Some(f64::from(step.interval_10ms.max(0)) * 10.0);
+                }
+            });
             row.col(|ui| {
                 let servo_text = project
                     .servo(step.servo_id)
@@ -240,6 +252,7 @@ impl ActionPanel {
             more.steps.push(Step { servo_id: servo.id, degree: servo.home_deg, interval_10ms: 50 });
             actions.push(set(index, more, None));
         }
+        seek
     }
 }
 

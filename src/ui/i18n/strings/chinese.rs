@@ -202,6 +202,7 @@ pub(in crate::ui::i18n) const TRADITIONAL_CHINESE: Strings = Strings {
     pause: "暫停",
     space_plays: "空白鍵播放或暫停（循環播放，不需要機器人）",
     preview_speed: "預覽速度",
+    step_seek_hint: "在預覽中顯示此步驟的伺服機到達的位置",
     time_cursor: "時間游標",
     played_after: "接在此動作之後",
     power_up: "開機（原位）",

@@ -202,6 +202,7 @@ pub(in crate::ui::i18n) const ENGLISH: Strings = Strings {
     pause: "Pause",
     space_plays: "Space plays and pauses (looping, no robot needed)",
     preview_speed: "Preview speed",
+    step_seek_hint: "Show in the preview where this step's servo arrives",
     time_cursor: "Time cursor",
     played_after: "Played after",
     power_up: "power-up (home)",
