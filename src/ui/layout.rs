@@ -30,7 +30,7 @@ pub struct Layout {
 impl Default for Layout {
     fn default() -> Self {
         Self {
-            list_width: 220.0,
+            list_width: 180.0,
             lower_share: 0.4,
             lower_open: true,
             side_width: 380.0,

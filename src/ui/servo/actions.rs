@@ -136,7 +136,7 @@ impl ActionPanel {
         words: &Strings,
     ) {
         let action = &project.actions[index];
-        timeline(ui, project, action, derived.longest_ms);
+        timeline(ui, project, action, (derived.longest_ms, cursor));
         if !derived.series.is_empty() {
             plot::series(ui, "action-plot", words, &derived.series, cursor);
         }
@@ -153,7 +153,8 @@ impl ActionPanel {
     ) -> Option<f64> {
         let mut seek = None;
         let action = &project.actions[index];
-        ui.horizontal(|ui| {
+        // Buttons wrap under the caption when the pane is narrow, never clipped.
+        ui.horizontal_wrapped(|ui| {
             let label = ui.label(format!("{} {}", words.action_word, action.id));
             let mut caption = action.caption.clone();
             if ui.text_edit_singleline(&mut caption).labelled_by(label.id).changed() {
@@ -202,6 +203,9 @@ impl ActionPanel {
                     .map_or_else(|| format!("{} ?", step.servo_id), |s| format!("{} {}", s.id, s.caption));
                 let mut servo_id = step.servo_id;
                 let servos = &project.servos;
+                // A long caption is cut (its whole text is in the list) so the row fits a narrow pane.
+                ui.set_max_width(150.0);
+                ui.style_mut().wrap_mode = Some(egui::TextWrapMode::Truncate);
                 rows::combo(ui, ("step-servo", position), servo_text, &mut servo_id, servos.len(), |i| {
                     (servos[i].id, format!("{} {}", servos[i].id, servos[i].caption))
                 })
@@ -264,7 +268,13 @@ pub fn timeline_bars(action: &ProjectAction) -> Vec<(u8, f32, f32)> {
 
 /// A lane per servo, a bar per step from 0 to its interval; only the lanes in
 /// view are drawn.
-fn timeline(ui: &mut egui::Ui, project: &ServoProject, action: &ProjectAction, longest_ms: f32) {
+/// The preview's time cursor (ms), if shown, is a line across the lanes.
+fn timeline(
+    ui: &mut egui::Ui,
+    project: &ServoProject,
+    action: &ProjectAction,
+    (longest_ms, cursor): (f32, Option<f64>),
+) {
     if action.steps.is_empty() {
         return;
     }
@@ -317,6 +327,12 @@ fn timeline(ui: &mut egui::Ui, project: &ServoProject, action: &ProjectAction, l
                     small.clone(),
                     visuals.weak_text_color(),
                 );
+            }
+            if let Some(t_ms) = cursor {
+                // A cursor past the longest step stays at its end (the pose holds there).
+                #[allow(clippy::cast_possible_truncation)]
+                let x = x_of((t_ms as f32).min(longest_ms));
+                painter.vline(x, rect.y_range(), egui::Stroke::new(1.5, visuals.strong_text_color()));
             }
             let axis_y = rect.bottom() - 8.0;
             painter.text(

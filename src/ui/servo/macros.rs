@@ -168,7 +168,8 @@ impl MacroPanel {
         actions: &mut Vec<Action>,
     ) {
         let item = &project.macros[index];
-        ui.horizontal(|ui| {
+        // Buttons wrap under the caption when the pane is narrow, never clipped.
+        ui.horizontal_wrapped(|ui| {
             let label = ui.label(format!("{} {}", words.macro_word, item.id));
             let mut caption = item.caption.clone();
             if ui.text_edit_singleline(&mut caption).labelled_by(label.id).changed() {
