@@ -241,7 +241,8 @@ mod tests {
         harness.run();
         harness.drop_at(vertical.center() + vec2(80.0, 0.0));
         harness.run();
-        assert!((harness.state().list_width - 300.0).abs() < 2.0, "{}", harness.state().list_width);
+        let dragged = Layout::default().list_width + 80.0;
+        assert!((harness.state().list_width - dragged).abs() < 2.0, "{}", harness.state().list_width);
         layout = *harness.state();
         assert!(layout.lower_open);
         harness.get_by_label_contains("Plot").click();
