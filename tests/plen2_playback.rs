@@ -18,17 +18,7 @@ use servo_studio::sim::{Plen2Sim, Plen2SimEvent, Plen2Timing};
 /// The emulator's joint outputs for `cycles` cycles after `$PM slot`.
 fn emulated(project: &Plen2Project, slot: u8, cycles: usize) -> Vec<[i16; DEVICE_IDS]> {
     let mut sim = Plen2Sim::new(Plen2Timing::default());
-    let mut setup = Vec::new();
-    for setting in &project.joints {
-        let device = setting.joint.device_id();
-        setup.push(Command::SetMin { device, angle: setting.min_tenths_deg });
-        setup.push(Command::SetMax { device, angle: setting.max_tenths_deg });
-        setup.push(Command::SetHome { device, angle: setting.home_tenths_deg });
-    }
-    for motion in &project.motions {
-        setup.extend(servo_studio::device::plen2::motion_commands(motion));
-    }
-    sim.preload(&setup);
+    sim.preload(&servo_studio::device::plen2::store_commands(project));
     let mut now = Instant::now();
     sim.handle_input(now, Command::PlayMotion { slot }.to_ascii().as_bytes());
     let mut outputs = Vec::new();

@@ -8,7 +8,7 @@ use anyhow::{Context, bail};
 use super::PortArgs;
 use super::servo::{ImportChoices, SimArgs};
 use servo_studio::device::plen2::{
-    self as plen2, Command, Plen2Handle, Plen2ImportOptions, Plen2Options, Plen2Phase, Plen2Progress, SlotResult,
+    self as plen2, Plen2Handle, Plen2ImportOptions, Plen2Options, Plen2Phase, Plen2Progress, SlotResult,
 };
 use servo_studio::device::{self, Cancel};
 use servo_studio::link::{self, LineSettings, PortName, no_waker};
@@ -195,17 +195,7 @@ pub fn sim(args: &SimArgs) -> anyhow::Result<()> {
     }
     if let Some(path) = &args.state {
         let plen2 = load_input(path)?.project.plen2;
-        let mut commands = Vec::new();
-        for setting in &plen2.joints {
-            let device = setting.joint.device_id();
-            commands.push(Command::SetMax { device, angle: setting.max_tenths_deg });
-            commands.push(Command::SetMin { device, angle: setting.min_tenths_deg });
-            commands.push(Command::SetHome { device, angle: setting.home_tenths_deg });
-        }
-        for motion in &plen2.motions {
-            commands.extend(plen2::motion_commands(motion));
-        }
-        robot.preload(&commands);
+        robot.preload(&plen2::store_commands(&plen2));
         eprintln!(
             "preloaded {} motion(s) and {} joint setting(s) from {}",
             plen2.motions.len(),

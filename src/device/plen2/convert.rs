@@ -1,6 +1,6 @@
 //! A project's motion as the commands that store it, and a `<MO` reply as a motion.
 
-use crate::project::plen2::{Frame, LoopRange, Motion, Pose};
+use crate::project::plen2::{Frame, LoopRange, Motion, Plen2Project, Pose};
 use crate::protocol::plen2::{Command, DEVICE_IDS, Joint, MotionFrame, MotionHeader, MotionReply, NAME_LEN};
 
 /// A pose as the 24 device values of a `>MF` (unused ids 0).
@@ -40,6 +40,23 @@ pub fn motion_commands(motion: &Motion) -> Vec<Command> {
             transition_ms: frame.transition_ms,
             values: device_values(&frame.values_tenths_deg),
         })));
+    }
+    commands
+}
+
+/// Everything that stores `project` on a robot: each joint's `>MA`, `>MI`,
+/// `>HO` (max first, so a new min never exceeds an old max), then every
+/// motion's `>MH` and `>MF`s. Preloads an emulated robot.
+pub fn store_commands(project: &Plen2Project) -> Vec<Command> {
+    let mut commands = Vec::new();
+    for setting in &project.joints {
+        let device = setting.joint.device_id();
+        commands.push(Command::SetMax { device, angle: setting.max_tenths_deg });
+        commands.push(Command::SetMin { device, angle: setting.min_tenths_deg });
+        commands.push(Command::SetHome { device, angle: setting.home_tenths_deg });
+    }
+    for motion in &project.motions {
+        commands.extend(motion_commands(motion));
     }
     commands
 }
