@@ -1,11 +1,18 @@
 //! The command line: argument parsing and the commands. Errors are handled
 //! here, once: printed with what to try, and turned into the exit status.
+//! Every number is bounded as it is parsed (`bounds`), an option is refused
+//! where it does not apply, and output that cannot be written is never a
+//! silent success (`out`).
 
+mod bounds;
+mod check;
+mod gui;
 mod out;
 mod plen2;
 mod rflex;
 mod servo;
 mod signals;
+mod sim;
 mod trajectory;
 
 use std::path::PathBuf;
@@ -13,9 +20,10 @@ use std::process::ExitCode;
 
 use clap::{Args, Parser, Subcommand};
 
+use out::say;
 use servo_studio::device;
 use servo_studio::project::rflex::Robot;
-use servo_studio::project::{self, Family, Project, Severity};
+use servo_studio::project::{self, Family};
 
 /// Servo Studio: pose robot servos live, author actions and macros, and back up
 /// and upload servo controller boards.
@@ -47,20 +55,20 @@ pub struct PortArgs {
     /// Serial port (/dev/ttyUSB0, COM3) or tcp://HOST:PORT.
     #[arg(long)]
     pub port: String,
-    /// Line rate of a serial port (default: the family's, 115200 for servo boards).
-    #[arg(long)]
+    /// Line rate of a serial port, 300..=4000000 (default: the family's, 115200 for servo boards).
+    #[arg(long, allow_hyphen_values = true, value_parser = bounds::baud)]
     pub baud: Option<u32>,
-    /// How long the device may take to answer, in milliseconds, on top of
-    /// the time the bytes need on the line (default: 1000; 600 for PLEN2).
-    #[arg(long)]
+    /// How long the device may take to answer, in milliseconds (1..=600000), on
+    /// top of the time the bytes need on the line (default: 1000; 600 for PLEN2).
+    #[arg(long, allow_hyphen_values = true, value_parser = bounds::timeout_ms)]
     pub timeout_ms: Option<u64>,
     /// The board's family: servo, plen2 or rflex (default: the project file's, else servo).
     #[arg(long, value_parser = parse_family)]
     pub protocol: Option<Family>,
-    /// PLEN2: how uploads are paced — fast, adaptive (widens when the link
-    /// shows it is late or bursty) or safe (the official 32 bytes, then 50 ms).
-    #[arg(long, default_value = "adaptive")]
-    pub pacing: device::plen2::PacingMode,
+    /// PLEN2: how uploads are paced — fast, adaptive (the default: widens when
+    /// the link shows it is late or bursty) or safe (the official 32 bytes, then 50 ms).
+    #[arg(long)]
+    pub pacing: Option<device::plen2::PacingMode>,
 }
 
 impl PortArgs {
@@ -75,6 +83,19 @@ impl PortArgs {
             Family::Plen2 => 600,
             Family::Servo | Family::Rflex => 1000,
         })
+    }
+
+    /// The PLEN2 pacing asked for, or adaptive.
+    pub fn pacing(&self) -> device::plen2::PacingMode {
+        self.pacing.unwrap_or_default()
+    }
+
+    /// Refuses what was given that does not apply to `family`.
+    pub fn applies_to(&self, family: Family) -> anyhow::Result<()> {
+        if self.pacing.is_some() && family != Family::Plen2 {
+            anyhow::bail!("--pacing is for PLEN2 uploads; it does not apply to a {family} board. Nothing was done");
+        }
+        Ok(())
     }
 }
 
@@ -93,7 +114,7 @@ pub enum CliCommand {
     Sim {
         /// The emulator's options.
         #[command(flatten)]
-        args: servo::SimArgs,
+        args: sim::SimArgs,
         /// Which family to emulate: servo, plen2 or rflex.
         #[arg(long, value_parser = parse_family, default_value = "servo")]
         protocol: Family,
@@ -109,6 +130,9 @@ pub enum CliCommand {
         /// PLEN2: the slots to read, e.g. 0-19,70 (default: all 90).
         #[arg(long, value_parser = plen2::parse_slots)]
         slots: Option<plen2::Slots>,
+        /// Replace the output file even when it is read-only.
+        #[arg(long)]
+        force: bool,
     },
     /// Write a project file onto a board: validates, backs the board up,
     /// clears it, writes, and verifies. A file with validation errors (a
@@ -164,24 +188,27 @@ pub enum CliCommand {
     Trajectory {
         /// The project file (or a PLEN2 motion.json, or a folder of them).
         file: PathBuf,
-        /// PLEN2: the motion's slot.
-        #[arg(long)]
+        /// PLEN2: the motion's slot (0..=89).
+        #[arg(long, allow_hyphen_values = true, value_parser = bounds::slot)]
         slot: Option<u8>,
         /// Servo board: the action's id.
-        #[arg(long)]
+        #[arg(long, allow_hyphen_values = true)]
         action: Option<i32>,
         /// Servo board: the macro's id.
-        #[arg(long = "macro")]
+        #[arg(long = "macro", allow_hyphen_values = true)]
         macro_id: Option<i32>,
         /// PLEN2: the motion played before (its last frame is where this one starts; default: power-up, all zeros).
-        #[arg(long, requires = "slot")]
+        #[arg(long, requires = "slot", allow_hyphen_values = true, value_parser = bounds::slot)]
         from_slot: Option<u8>,
-        /// At most this long (a loop that runs forever stops here).
-        #[arg(long, default_value_t = 30.0)]
+        /// At most this long, above 0 and up to 3600 s (a motion that never ends stops here).
+        #[arg(long, default_value_t = 30.0, allow_hyphen_values = true, value_parser = bounds::trajectory_seconds)]
         seconds: f64,
         /// The CSV file to write.
         #[arg(long)]
         out: PathBuf,
+        /// Replace the output file even when it is read-only.
+        #[arg(long)]
+        force: bool,
     },
 }
 
@@ -196,7 +223,7 @@ pub enum BoardCommand {
     },
 }
 
-/// Refuses a family for which `what` does not exist (yet).
+/// Refuses a family for which `what` does not exist.
 fn servo_only(family: Family, what: &str) -> anyhow::Result<()> {
     match family {
         Family::Servo => Ok(()),
@@ -244,28 +271,55 @@ pub fn restore_hint<I>(protocol: &str, port: &str, backup: Option<&std::path::Pa
     }
 }
 
+/// An exit status other than 1, carried up to `main` (it says nothing itself).
+#[derive(Debug, thiserror::Error)]
+#[error("")]
+pub struct Exit(pub u8);
+
+/// The error for an operation a signal stopped before it finished: `what`
+/// it left, and the status a shell gives a command ended by that signal.
+pub fn interrupted(interrupt: signals::Interrupt, what: &str) -> anyhow::Error {
+    anyhow::Error::new(Exit(interrupt.exit_code)).context(format!("interrupted by {interrupt}: {what}"))
+}
+
+/// The error of an import that failed, or that `interrupt` stopped at its
+/// safe point (then the status is the signal's), with `advice` after it.
+pub fn import_failed<E: std::error::Error + Send + Sync + 'static>(
+    failure: E,
+    advice: String,
+    interrupt: Option<signals::Interrupt>,
+    input: &std::path::Path,
+    port: &str,
+) -> anyhow::Error {
+    let failed = anyhow::Error::new(Advised { error: failure, advice });
+    match interrupt {
+        Some(interrupt) => failed
+            .context(format!("import of {} into {port} was interrupted by {interrupt}", input.display()))
+            .context(Exit(interrupt.exit_code)),
+        None => failed.context(format!("import of {} into {port} failed", input.display())),
+    }
+}
+
 /// Runs a parsed command line.
 pub fn run(command: CliCommand) -> ExitCode {
     let result = match command {
-        CliCommand::Check { file } => return check(&file),
+        CliCommand::Check { file } => return check::run(&file),
         CliCommand::Ports => servo::ports(),
-        CliCommand::Sim { args, protocol: Family::Rflex } => rflex::sim(&args),
-        CliCommand::Sim { args, protocol: Family::Plen2 } => plen2::sim(&args),
-        CliCommand::Sim { args, protocol } => servo_only(protocol, "the emulator").and_then(|()| servo::sim(&args)),
+        CliCommand::Sim { args, protocol } => sim::run(&args, protocol),
         CliCommand::Rflex { command } => rflex::run(&command),
-        CliCommand::Export { port, out, slots } => match port.protocol.unwrap_or_default() {
-            Family::Plen2 => plen2::export(&port, &out, &slots.map_or_else(|| (0..90).collect(), |slots| slots.0)),
-            family => servo_only(family, "export").and_then(|()| servo::export(&port, &out)),
-        },
+        CliCommand::Export { port, out, slots, force } => export(&port, &out, slots, force),
         CliCommand::Import { port, input, yes, force, no_backup, backup_dir } => {
             import(&port, &input, servo::ImportChoices { yes, force, backup_dir: (!no_backup).then_some(backup_dir) })
         }
-        CliCommand::Board { command: BoardCommand::Info { port } } => match port.protocol.unwrap_or_default() {
-            Family::Plen2 => plen2::info(&port),
-            family => servo_only(family, "board info").and_then(|()| servo::info(&port)),
-        },
-        CliCommand::Gui { file, demo, protocol } => gui(file, demo, protocol),
-        CliCommand::Trajectory { file, slot, action, macro_id, from_slot, seconds, out } => {
+        CliCommand::Board { command: BoardCommand::Info { port } } => {
+            let family = port.protocol.unwrap_or_default();
+            port.applies_to(family).and_then(|()| match family {
+                Family::Plen2 => plen2::info(&port),
+                family => servo_only(family, "board info").and_then(|()| servo::info(&port)),
+            })
+        }
+        CliCommand::Gui { file, demo, protocol } => gui::run(file.as_deref(), demo, protocol),
+        CliCommand::Trajectory { file, slot, action, macro_id, from_slot, seconds, out, force } => {
             let subject = match (slot, action, macro_id) {
                 (Some(slot), _, _) => trajectory::Subject::Slot { slot, from_slot },
                 (_, Some(action), _) => trajectory::Subject::Action(action),
@@ -273,12 +327,49 @@ pub fn run(command: CliCommand) -> ExitCode {
                 // clap requires one of them.
                 (None, None, None) => trajectory::Subject::Action(0),
             };
-            trajectory::run(&file, subject, seconds, &out).and_then(|(rows, covered)| {
-                Ok(out::line(&format!("wrote {rows} rows ({covered:.3} s) to {}", out.display()))?)
+            trajectory::run(&file, subject, seconds, &out, force).and_then(|(rows, covered)| {
+                match out::line(&format!("wrote {rows} rows ({covered:.3} s) to {}", out.display())) {
+                    // The file is written: a reader gone from stdout changes nothing.
+                    Ok(()) | Err(out::Unwritten::Closed) => Ok(()),
+                    Err(error) => Err(error.into()),
+                }
             })
         }
     };
     finish(result)
+}
+
+fn export(port: &PortArgs, out: &std::path::Path, slots: Option<plen2::Slots>, force: bool) -> anyhow::Result<()> {
+    let family = port.protocol.unwrap_or_default();
+    port.applies_to(family)?;
+    // Refused before the board is read: a FIFO, a device, a folder or (without
+    // --force) a read-only file is never replaced.
+    writable_output(out, force)?;
+    match family {
+        Family::Plen2 => plen2::export(port, out, &slots.map_or_else(|| (0..90).collect(), |slots| slots.0)),
+        family => {
+            if slots.is_some() {
+                anyhow::bail!("--slots is for PLEN2 motions; a {family} board has no slots. Nothing was read");
+            }
+            servo_only(family, "export").and_then(|()| servo::export(port, out))
+        }
+    }
+}
+
+/// Refuses an output path that must not be replaced: anything but a regular
+/// file (a symbolic link is followed), and a read-only file unless `force`.
+pub fn writable_output(out: &std::path::Path, force: bool) -> anyhow::Result<()> {
+    let target = project::output_path(out)?;
+    if !force
+        && let Ok(metadata) = std::fs::metadata(&target)
+        && metadata.permissions().readonly()
+    {
+        anyhow::bail!(
+            "{} is read-only: it is not replaced unless you say so with --force. Nothing was done",
+            target.display()
+        );
+    }
+    Ok(())
 }
 
 /// An error and its causes, each said once: a cause whose words its
@@ -302,17 +393,17 @@ fn describe(error: &anyhow::Error) -> String {
 /// The exit status of a command, with its error printed once.
 fn finish(result: anyhow::Result<()>) -> ExitCode {
     let Err(error) = result else { return ExitCode::SUCCESS };
-    if error.chain().any(|cause| cause.is::<out::Closed>()) {
-        // The reader of stdout went away (`| head -1`): nothing is wrong.
-        return ExitCode::SUCCESS;
+    if let Some(out::Unwritten::Closed) = error.chain().find_map(|cause| cause.downcast_ref::<out::Unwritten>()) {
+        // The reader of stdout went away (`| head -1`) before the output was whole: said by the status alone.
+        return ExitCode::from(out::Unwritten::Closed.exit_code());
     }
-    eprintln!("error: {}", describe(&error));
+    say!("error: {}", describe(&error));
     let timed_out = error.chain().any(|cause| {
         matches!(cause.downcast_ref(), Some(device::servo::RequestError::Timeout { .. }))
             || matches!(cause.downcast_ref(), Some(device::plen2::ReplyError::Timeout { .. }))
     });
     if timed_out {
-        eprintln!("hint: a slow link or a busy device may need more time: raise it with --timeout-ms");
+        say!("hint: a slow link or a busy device may need more time: raise it with --timeout-ms");
     }
     let other_protocol = error.chain().find_map(|cause| {
         if matches!(cause.downcast_ref(), Some(device::servo::RequestError::NotThisProtocol { .. })) {
@@ -326,18 +417,22 @@ fn finish(result: anyhow::Result<()>) -> ExitCode {
         }
     });
     if let Some(others) = other_protocol {
-        eprintln!("hint: if it is another kind of device, say which: try --protocol {others}");
+        say!("hint: if it is another kind of device, say which: try --protocol {others}");
     }
-    match error.chain().find_map(|cause| cause.downcast_ref::<rflex::Exit>()) {
-        Some(rflex::Exit(code)) => ExitCode::from(*code),
+    // An `Exit` given as the error itself, as one of its causes, or as a context on top.
+    let exit = error.downcast_ref::<Exit>().or_else(|| error.chain().find_map(|cause| cause.downcast_ref::<Exit>()));
+    match exit {
+        Some(Exit(code)) => ExitCode::from(*code),
         None => ExitCode::FAILURE,
     }
 }
 
 fn import(port: &PortArgs, input: &std::path::Path, choices: servo::ImportChoices) -> anyhow::Result<()> {
-    let project::Loaded { project: loaded, unknown_keys } = plen2::load_input(input)?;
-    warn_unknown(input, &unknown_keys);
+    let loaded = open_input(input)?.loaded;
+    warn_unknown(input, &loaded);
+    let loaded = loaded.project;
     let family = port.protocol.unwrap_or(loaded.family);
+    port.applies_to(family)?;
     if family != loaded.family {
         anyhow::bail!(
             "{} is a {} project but --protocol {family} was given; nothing was written",
@@ -352,139 +447,24 @@ fn import(port: &PortArgs, input: &std::path::Path, choices: servo::ImportChoice
     servo::import(port, input, &loaded, choices)
 }
 
-/// Keys a file held that Servo Studio does not know: ignored, said once on stderr.
-pub(crate) fn warn_unknown(file: &std::path::Path, keys: &[String]) {
-    for key in keys {
-        eprintln!("warning: {}: {key}: unknown key, ignored (is it misspelt?)", file.display());
+/// Opens what a command is given: a project file, a motion.json or a folder
+/// of them (only regular files, within the size cap).
+pub fn open_input(path: &std::path::Path) -> anyhow::Result<project::input::Opened> {
+    Ok(project::input::open(path)?)
+}
+
+/// Keys a file held that Servo Studio does not know: ignored, said once on
+/// stderr (the first hundred by name, then how many more).
+pub(crate) fn warn_unknown(file: &std::path::Path, loaded: &project::Loaded) {
+    const NAMED: usize = 100;
+    for key in loaded.unknown_keys.iter().take(NAMED) {
+        say!("warning: {}: {key}: unknown key, ignored (is it misspelt?)", file.display());
+    }
+    let more = loaded.unknown_key_count().saturating_sub(NAMED);
+    if more > 0 {
+        say!("warning: {}: {more} more unknown keys, ignored", file.display());
     }
 }
 
-/// Opens the editor, with `file` if given; with `demo` and no file, on the sample robot.
-pub fn gui(file: Option<PathBuf>, demo: bool, protocol: Option<Family>) -> anyhow::Result<()> {
-    let project = match &file {
-        // A project file, or the PLEN community's motion.json (one file or a folder).
-        Some(path) => {
-            let loaded = plen2::load_input(path)?;
-            warn_unknown(path, &loaded.unknown_keys);
-            Some(loaded.project)
-        }
-        None => None,
-    };
-    // A motion.json or a folder of them is not a project file: it is saved as a new project.
-    let is_project = file.as_ref().is_some_and(|path| {
-        path.is_file()
-            && project.as_ref().is_some_and(|p| {
-                p.family != Family::Plen2
-                    || std::fs::read_to_string(path).is_ok_and(|text| !project::motion_json::looks_like_motion(&text))
-            })
-    });
-    let path = if is_project { file } else { None };
-    // Ctrl-C or kill in the terminal that started the editor: the base stops, the work is kept.
-    let interrupts = signals::listen().ok().map(|interrupts| {
-        let (forward, forwarded) = crossbeam_channel::unbounded();
-        std::thread::spawn(move || {
-            for _ in interrupts {
-                let _ = forward.send(());
-            }
-        });
-        forwarded
-    });
-    let start = servo_studio::ui::Start { project, path, demo, family: protocol, interrupts };
-    servo_studio::ui::run(start).map_err(|error| {
-        anyhow::anyhow!("cannot open the window: {error}. On Linux, a desktop session (X11 or Wayland) and OpenGL drivers are needed")
-    })
-}
-
-/// Runs `servo-studio check FILE`: every problem with its location (and, for
-/// a folder of motion.json files, its file), going on past a file that
-/// cannot be read; exit 1 on any error.
-pub fn check(file: &std::path::Path) -> ExitCode {
-    let report = if file.is_dir() { check_folder(file) } else { check_file(file) };
-    match report {
-        Ok((errors, warnings)) => {
-            let summary = format!("{}: {errors} error(s), {warnings} warning(s)", file.display());
-            if out::line(&summary).is_err() {
-                return ExitCode::SUCCESS;
-            }
-            if errors > 0 { ExitCode::FAILURE } else { ExitCode::SUCCESS }
-        }
-        Err(error) => finish(Err(error)),
-    }
-}
-
-/// Prints problems (each after `prefix`); returns (errors, warnings).
-fn print_problems<'a>(
-    problems: impl IntoIterator<Item = (String, &'a project::Problem)>,
-) -> Result<(usize, usize), out::Closed> {
-    let (mut errors, mut warnings) = (0, 0);
-    for (prefix, problem) in problems {
-        match problem.severity {
-            Severity::Error => errors += 1,
-            Severity::Warning => warnings += 1,
-        }
-        let text = problem.to_string();
-        let line = match text.split_once(": ") {
-            Some((severity, rest)) if !prefix.is_empty() => format!("{severity}: {prefix}: {rest}"),
-            _ => text,
-        };
-        out::line(&line)?;
-    }
-    Ok((errors, warnings))
-}
-
-fn unknown_key(path: String) -> project::Problem {
-    project::Problem {
-        severity: Severity::Warning,
-        location: project::Location::Key { path },
-        kind: project::ProblemKind::UnknownKey,
-    }
-}
-
-fn check_file(file: &std::path::Path) -> anyhow::Result<(usize, usize)> {
-    let project::Loaded { project, unknown_keys } = plen2::load_input(file)?;
-    let mut problems: Vec<project::Problem> = unknown_keys.into_iter().map(unknown_key).collect();
-    problems.extend(project::validate(&project));
-
-    Ok(print_problems(problems.iter().map(|problem| (String::new(), problem)))?)
-}
-
-fn check_folder(folder: &std::path::Path) -> anyhow::Result<(usize, usize)> {
-    let files = project::motion_json::motion_files(folder)?;
-    let name = |file: &std::path::Path| file.file_name().map_or_else(String::new, |n| n.to_string_lossy().into_owned());
-    let (mut errors, mut warnings) = (0, 0);
-    let mut motions = Vec::new();
-    let mut slot_files: std::collections::BTreeMap<u8, Vec<String>> = std::collections::BTreeMap::new();
-    for file in &files {
-        match project::motion_json::read_motion_file(file) {
-            Ok((motion, unknown)) => {
-                let problems: Vec<project::Problem> = unknown.into_iter().map(unknown_key).collect();
-                let (e, w) = print_problems(problems.iter().map(|problem| (name(file), problem)))?;
-                (errors, warnings) = (errors + e, warnings + w);
-                slot_files.entry(motion.slot).or_default().push(name(file));
-                motions.push(motion);
-            }
-            Err(error) => {
-                // Said, and the others still checked.
-                out::line(&format!("error: {error}"))?;
-                errors += 1;
-            }
-        }
-    }
-    let project = Project {
-        family: Family::Plen2,
-        plen2: project::plen2::Plen2Project { motions, ..Default::default() },
-        ..Project::default()
-    };
-    let problems = project::validate(&project);
-    let located = problems.iter().map(|problem| {
-        let files = match &problem.location {
-            project::Location::Motion { slot, .. } | project::Location::Frame { slot, .. } => {
-                slot_files.get(slot).map(|files| files.join(", "))
-            }
-            _ => None,
-        };
-        (files.unwrap_or_default(), problem)
-    });
-    let (e, w) = print_problems(located)?;
-    Ok((errors + e, warnings + w))
-}
+#[cfg(test)]
+mod props;

@@ -1,5 +1,8 @@
 //! The `servo-studio` binary.
 
+// Output goes through `cli::out`, which never panics when stdout or stderr fail (clippy.toml names the macros).
+#![warn(clippy::disallowed_macros)]
+
 use std::process::ExitCode;
 
 use clap::Parser;

@@ -11,9 +11,9 @@ mod common;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
-use common::{Chatter, ended, peer, sim};
+use common::{Chatter, ended, peer, run_in, sim};
 use servo_studio::link::no_waker;
 use servo_studio::project::{self, Action, Project, Servo, ServoProject, Step};
 use servo_studio::sim::{Plen2Sim, Plen2Timing, RflexSim, RflexSimConfig, spawn_pty};
@@ -23,23 +23,6 @@ const EXE: &str = env!("CARGO_BIN_EXE_servo-studio");
 /// Runs `servo-studio ARGS` with a watchdog; (exit code, stdout, stderr, how long).
 fn run(args: &[&str], within: Duration) -> (Option<i32>, String, String, Duration) {
     run_in(Path::new(env!("CARGO_TARGET_TMPDIR")), args, within)
-}
-
-/// [`run`] in the folder `cwd` (where a backup goes by default).
-fn run_in(cwd: &Path, args: &[&str], within: Duration) -> (Option<i32>, String, String, Duration) {
-    let began = Instant::now();
-    let mut child = Command::new(EXE)
-        .current_dir(cwd)
-        .args(args)
-        .stdin(Stdio::null())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let stdout = child.stdout.take().unwrap();
-    let reader = std::thread::spawn(move || std::io::read_to_string(stdout).unwrap_or_default());
-    let (code, stderr) = ended(child, within);
-    (code, reader.join().unwrap(), stderr, began.elapsed())
 }
 
 /// `import --yes` of `file` with the backup in `dir/backups`; (exit code, stderr, the backup folder).

@@ -127,7 +127,7 @@ fn the_fixtures_macro_totals_follow_the_documented_semantics() {
 #[test]
 fn a_missing_file_names_the_path() {
     let err = project::load(std::path::Path::new("/nonexistent/robot.json")).unwrap_err();
-    assert!(matches!(err, LoadError::Io { .. }));
+    assert!(matches!(err, LoadError::Read(project::input::ReadError::Io { .. })));
     assert!(err.to_string().contains("/nonexistent/robot.json"), "{err}");
 }
 

@@ -264,3 +264,32 @@ fn upload_anyway_restores_a_board_image_with_authoring_problems_exactly() {
             .unwrap();
     assert_eq!(common::record_bytes(&board), common::record_bytes(&image), "the board holds the image byte for byte");
 }
+
+/// The editor asked to end (Ctrl-C in its terminal) in the middle of an
+/// upload: the upload stops between two requests, and what it left — the
+/// items that reached the board, the backup — is said, not lost with the window.
+#[test]
+fn ending_the_editor_mid_upload_stops_it_at_a_safe_point_and_says_what_it_left() {
+    let data = tempfile::tempdir().unwrap();
+    // A slow line: the upload is still writing when the signal comes.
+    let config = SimConfig { baud: Some(9_600), ..SimConfig::default() };
+    let mut harness = composed(&ServoProject { project_id: 9, ..ServoProject::default() }, config, data.path());
+    let (terminate, terminated) = crossbeam_channel::bounded(1);
+    harness.state_mut().terminate_on(terminated);
+    harness.get_by_label("Upload to board").click();
+    frames(&mut harness);
+    run_until(&mut harness, "the comparison", |app| app.servo.pending.is_some());
+    harness.get_by_label("Back up the board, then overwrite it").click();
+    run_until(&mut harness, "the first write", |app| {
+        matches!(&app.operation, Some(servo_studio::ui::RunningOperation::Servo(operation))
+            if operation.progress.as_ref().is_some_and(|step| step.phase == servo_studio::device::Phase::Write))
+    });
+    terminate.send(()).unwrap();
+    harness.step();
+    let app = harness.state();
+    assert!(app.operation.is_none(), "the upload ended before the window");
+    assert!(app.link.is_none(), "the link is closed");
+    let text = app.servo.board_result.as_ref().and_then(|result| result.error_text(app.language)).expect("a failure");
+    assert!(text.contains("cancelled") && text.contains("reached"), "what reached the board is said: {text}");
+    assert!(text.contains(&data.path().join("backups").display().to_string()), "the backup is named: {text}");
+}

@@ -6,22 +6,21 @@ use std::time::Instant;
 use anyhow::{Context, bail};
 
 use super::PortArgs;
-use super::servo::{ImportChoices, SimArgs};
+use super::out::say;
+use super::servo::ImportChoices;
+use servo_studio::device;
 use servo_studio::device::plen2::{
     self as plen2, Plen2Handle, Plen2ImportOptions, Plen2Options, Plen2Phase, Plen2Progress, SlotResult,
 };
-use servo_studio::device::{self, Cancel};
 use servo_studio::link::{self, LineSettings, PortName, no_waker};
-use servo_studio::project::motion_json;
 use servo_studio::project::{self, Family, Project};
-use servo_studio::sim::{LinkKind, Plen2Sim, Plen2Timing};
 
 fn connect(port: &PortArgs) -> anyhow::Result<Plen2Handle> {
     let name = PortName::parse(&port.port)?;
     let settings = LineSettings { baud: port.baud(Family::Plen2), ..device::line_settings(Family::Plen2) };
     let connection = link::open(&name, &settings)?;
     let options = Plen2Options {
-        mode: port.pacing,
+        mode: port.pacing(),
         reply_timeout: std::time::Duration::from_millis(port.timeout_ms(Family::Plen2)),
         line_baud: settings.baud,
         ..Plen2Options::default()
@@ -62,7 +61,7 @@ fn progress_line(handle: &mut Plen2Handle, mode: plen2::PacingMode) -> impl FnMu
     move |progress: &Plen2Progress| {
         for notice in handle.pump(Instant::now()) {
             if let plen2::Plen2Notice::Widened(widened) = notice {
-                eprintln!("   {widened}");
+                say!("   {widened}");
             }
         }
         let phase = match progress.phase {
@@ -70,7 +69,7 @@ fn progress_line(handle: &mut Plen2Handle, mode: plen2::PacingMode) -> impl FnMu
             Plen2Phase::Write => "writing",
             Plen2Phase::Verify => "verifying",
         };
-        eprintln!(
+        say!(
             "{phase:>9} {}/{} {} ({:.1} s, {} pacing)",
             progress.done,
             progress.total,
@@ -100,70 +99,47 @@ pub fn info(port: &PortArgs) -> anyhow::Result<()> {
 
 /// `export --protocol plen2 [--slots …]`.
 pub fn export(port: &PortArgs, out: &Path, slots: &[u8]) -> anyhow::Result<()> {
-    project::output_path(out)?;
     let mut handle = connect(port)?;
+    let (cancel, caught) = super::signals::cancel_on_signal("the export")?;
     let requester = handle.requester();
-    let mut progress = progress_line(&mut handle, port.pacing);
-    let exported = plen2::export(&requester, slots, &mut progress, &Cancel::never())
-        .with_context(|| format!("export from {} failed; {} was not written", port.port, out.display()))?;
+    let mut progress = progress_line(&mut handle, port.pacing());
+    let exported = plen2::export(&requester, slots, &mut progress, &cancel);
+    if let (Err(plen2::Plen2OpError::Cancelled), Some(interrupt)) = (&exported, caught.get()) {
+        return Err(super::interrupted(
+            interrupt,
+            &format!("export from {}: {} was not written", port.port, out.display()),
+        ));
+    }
+    let exported =
+        exported.with_context(|| format!("export from {} failed; {} was not written", port.port, out.display()))?;
     let count = exported.motions.len();
     project::save(out, &Project { family: Family::Plen2, plen2: exported, ..Project::default() })?;
-    eprintln!("exported {count} motion(s) and the joint settings to {}", out.display());
+    say!("exported {count} motion(s) and the joint settings to {}", out.display());
     Ok(())
-}
-
-/// Reads what `import`, `gui` and `check` are given: a project file, one
-/// motion.json, or a folder of them; with the keys it held that are unknown.
-pub fn load_input(input: &Path) -> anyhow::Result<project::Loaded> {
-    let motions = |motions: Vec<project::plen2::Motion>| Project {
-        family: Family::Plen2,
-        plen2: project::plen2::Plen2Project { motions, ..Default::default() },
-        ..Project::default()
-    };
-    if input.is_dir() {
-        let mut all = Vec::new();
-        let mut unknown_keys = Vec::new();
-        for file in motion_json::motion_files(input)? {
-            let (motion, unknown) = motion_json::read_motion_file(&file)?;
-            let name = file.file_name().map_or_else(String::new, |name| name.to_string_lossy().into_owned());
-            unknown_keys.extend(unknown.into_iter().map(|key| format!("{name}: {key}")));
-            all.push(motion);
-        }
-        return Ok(project::Loaded { project: motions(all), unknown_keys });
-    }
-    let text = std::fs::read_to_string(input).with_context(|| format!("cannot read {}", input.display()))?;
-    if motion_json::looks_like_motion(&text) {
-        let (motion, unknown_keys) = motion_json::read_motion(&text)
-            .map_err(|reason| anyhow::anyhow!("{}: not a PLEN2 motion.json: {reason}", input.display()))?;
-        return Ok(project::Loaded { project: motions(vec![motion]), unknown_keys });
-    }
-    // The text is dropped before the document is checked: a large file is not held twice.
-    let parsed = project::parse(&text);
-    drop(text);
-    parsed.with_context(|| format!("cannot read {}", input.display()))
 }
 
 /// `import --protocol plen2`.
 pub fn import(port: &PortArgs, input: &Path, loaded: &Project, choices: ImportChoices) -> anyhow::Result<()> {
     let ImportChoices { yes, force, backup_dir } = choices;
+    // What the robot cannot store is refused before a port is opened, --force or not.
+    plen2::storable(&loaded.plen2)
+        .with_context(|| format!("{} cannot be written to a PLEN2; nothing was written", input.display()))?;
     let mut handle = connect(port)?;
     if !yes {
         super::servo::confirm(&port.port, input, backup_dir.is_some())?;
     }
+    // From here a signal stops the upload between two motions, never mid-command.
+    let (cancel, caught) = super::signals::cancel_on_signal("the upload")?;
     let options = Plen2ImportOptions { backup_dir, verify: true, force };
     let requester = handle.requester();
-    let mut progress = progress_line(&mut handle, port.pacing);
-    let report =
-        plen2::import(&requester, &loaded.plen2, &options, &mut progress, &Cancel::never()).map_err(|failure| {
-            let advice = super::restore_hint(" --protocol plen2", &port.port, failure.backup.as_deref(), &failure.left);
-            anyhow::Error::new(super::Advised { error: *failure, advice }).context(format!(
-                "import of {} into {} failed",
-                input.display(),
-                port.port
-            ))
-        })?;
+    let mut progress = progress_line(&mut handle, port.pacing());
+    let report = plen2::import(&requester, &loaded.plen2, &options, &mut progress, &cancel).map_err(|failure| {
+        let advice = super::restore_hint(" --protocol plen2", &port.port, failure.backup.as_deref(), &failure.left);
+        let interrupt = caught.get().filter(|_| matches!(failure.error, plen2::Plen2OpError::Cancelled));
+        super::import_failed(*failure, advice, interrupt, input, &port.port)
+    })?;
     if let Some(backup) = &report.backup {
-        eprintln!("backup of the slots overwritten: {}", backup.display());
+        say!("backup of the slots overwritten: {}", backup.display());
     }
     for (slot, result) in &report.slots {
         let word = match result {
@@ -171,37 +147,16 @@ pub fn import(port: &PortArgs, input: &Path, loaded: &Project, choices: ImportCh
             SlotResult::Written => "written",
             SlotResult::Differs => "DIFFERS after writing",
         };
-        eprintln!("slot {slot:>2}: {word}");
+        say!("slot {slot:>2}: {word}");
     }
     if report.rewritten > 0 {
-        eprintln!("{} slot(s) read back different at first and were written again", report.rewritten);
+        say!("{} slot(s) read back different at first and were written again", report.rewritten);
     }
     if report.joint_writes > 0 {
-        eprintln!("{} joint setting(s) written", report.joint_writes);
+        say!("{} joint setting(s) written", report.joint_writes);
     }
     if !report.all_good() {
         bail!("some slots read back different from what was written; check the cable and run the import again");
     }
     Ok(())
-}
-
-/// `sim --protocol plen2`.
-/// Runs the emulated PLEN2; `--state` preloads its joint settings and slots
-/// from a project file, a motion.json or a folder of them.
-pub fn sim(args: &SimArgs) -> anyhow::Result<()> {
-    let mut robot = Plen2Sim::new(Plen2Timing::default()).with_link(args.link);
-    if args.link != LinkKind::Clean {
-        eprintln!("the line to the robot: {}", args.link);
-    }
-    if let Some(path) = &args.state {
-        let plen2 = load_input(path)?.project.plen2;
-        robot.preload(&plen2::store_commands(&plen2));
-        eprintln!(
-            "preloaded {} motion(s) and {} joint setting(s) from {}",
-            plen2.motions.len(),
-            plen2.joints.len(),
-            path.display()
-        );
-    }
-    super::servo::serve(args, robot)
 }

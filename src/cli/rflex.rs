@@ -1,6 +1,6 @@
 //! `servo-studio rflex status | drive`, and the emulated base for `sim --protocol rflex`.
 
-use std::io::{IsTerminal, Write};
+use std::io::IsTerminal;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
@@ -9,13 +9,13 @@ use clap::{Args, Subcommand};
 use crossbeam_channel::Receiver;
 
 use super::PortArgs;
-use super::servo::SimArgs;
+use super::bounds;
+use super::out::say;
 use super::signals::{self, Interrupt};
 use servo_studio::device::{self, rflex::RflexBase};
 use servo_studio::link::{self, LineSettings, PortName, Waker};
 use servo_studio::project::Family;
 use servo_studio::project::rflex::Robot;
-use servo_studio::sim::{RflexSim, RflexSimConfig};
 
 /// `servo-studio rflex …`
 #[derive(Debug, Subcommand)]
@@ -33,16 +33,16 @@ pub enum RflexCommand {
         #[command(flatten)]
         base: BaseArgs,
         /// Translational speed, m/s (negative: backwards).
-        #[arg(long, allow_hyphen_values = true)]
+        #[arg(long, allow_hyphen_values = true, value_parser = bounds::speed)]
         speed: f64,
         /// Rotational speed, rad/s (positive: left).
-        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+        #[arg(long, default_value_t = 0.0, allow_hyphen_values = true, value_parser = bounds::turn)]
         turn: f64,
         /// Translational acceleration, m/s².
-        #[arg(long, default_value_t = 0.5)]
+        #[arg(long, default_value_t = 0.5, allow_hyphen_values = true, value_parser = bounds::accel)]
         accel: f64,
         /// How long to drive, seconds.
-        #[arg(long)]
+        #[arg(long, allow_hyphen_values = true, value_parser = bounds::drive_seconds)]
         seconds: f64,
     },
 }
@@ -60,6 +60,13 @@ pub struct BaseArgs {
 
 /// Runs `servo-studio rflex …`.
 pub fn run(command: &RflexCommand) -> anyhow::Result<()> {
+    let (RflexCommand::Status { base } | RflexCommand::Drive { base, .. }) = command;
+    if let Some(family) = base.port.protocol
+        && family != Family::Rflex
+    {
+        bail!("`servo-studio rflex` talks to rFLEX bases; --protocol {family} does not apply. Nothing was sent");
+    }
+    base.port.applies_to(Family::Rflex)?;
     match command {
         RflexCommand::Status { base } => status(base),
         RflexCommand::Drive { base, speed, turn, accel, seconds } => drive(base, *speed, *turn, *accel, *seconds),
@@ -170,9 +177,9 @@ impl Session {
                 self.base.shutdown(device::rflex::SHUTDOWN_WAIT);
                 if telemetry.skipped_bytes > 0 && telemetry.reports() == 0 {
                     bail!(
-                        "{}: the device answers, but not in the rFLEX protocol ({} bytes and no report): is it an rFLEX base? (try --protocol servo or --protocol plen2); nothing was driven",
+                        "{}: the device answers, but not in the rFLEX protocol ({} and no report): is it an rFLEX base? (try --protocol servo or --protocol plen2); nothing was driven",
                         self.port,
-                        telemetry.skipped_bytes
+                        device::bytes(usize::try_from(telemetry.skipped_bytes).unwrap_or(usize::MAX))
                     );
                 }
                 bail!(
@@ -232,17 +239,12 @@ impl Session {
                 } else {
                     "a stop and the brake were sent, but the base did not confirm them: check it"
                 };
-                anyhow::Error::new(Exit(interrupt.exit_code))
+                anyhow::Error::new(super::Exit(interrupt.exit_code))
                     .context(format!("interrupted by {interrupt} {context}: {state}"))
             }
         }
     }
 }
-
-/// An exit status other than 1, carried up to `main` (it says nothing itself).
-#[derive(Debug, thiserror::Error)]
-#[error("")]
-pub struct Exit(pub u8);
 
 fn status(args: &BaseArgs) -> anyhow::Result<()> {
     let mut session = Session::open(args)?;
@@ -337,15 +339,15 @@ fn drive(args: &BaseArgs, speed: f64, turn: f64, accel: f64, seconds: f64) -> an
             t.speed_m_per_s
         );
         if terminal {
-            eprint!("\r{text}   ");
+            super::out::say_partial(format_args!("\r{text}   "));
         } else {
-            eprintln!("{text}");
+            say!("{text}");
         }
     };
-    let deadline = began + Duration::from_secs_f64(seconds);
+    let deadline = began + bounds::duration(seconds);
     let driven = session.wait(deadline, &mut line, |_| false);
     if terminal {
-        eprintln!();
+        say!("");
     }
     if let Err(stop) = driven {
         return Err(session.stopped_by(stop, "while driving"));
@@ -369,18 +371,6 @@ fn drive(args: &BaseArgs, speed: f64, turn: f64, accel: f64, seconds: f64) -> an
             t.speed_m_per_s
         );
     }
-    eprintln!("{summary}; stopped, brake set");
-    std::io::stderr().flush()?;
+    say!("{summary}; stopped, brake set");
     Ok(())
-}
-
-/// `servo-studio sim --protocol rflex`.
-pub fn sim(args: &SimArgs) -> anyhow::Result<()> {
-    let config = RflexSimConfig {
-        conversion: args.robot.conversion(),
-        stuffed: args.stuffed,
-        noise: args.noise.clone(),
-        ..RflexSimConfig::default()
-    };
-    super::servo::serve(args, RflexSim::new(config))
 }

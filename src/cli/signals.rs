@@ -64,3 +64,40 @@ pub fn listen() -> std::io::Result<Receiver<Interrupt>> {
     })?;
     Ok(interrupts)
 }
+
+/// The first signal that asked the command to end, once one has.
+#[derive(Clone, Debug, Default)]
+pub struct Caught(std::sync::Arc<std::sync::OnceLock<Interrupt>>);
+
+impl Caught {
+    /// Remembers `interrupt` if it is the first.
+    pub fn set(&self, interrupt: Interrupt) {
+        let _ = self.0.set(interrupt);
+    }
+
+    /// The first signal caught, if any.
+    pub fn get(&self) -> Option<Interrupt> {
+        self.0.get().copied()
+    }
+}
+
+/// From now on SIGINT, SIGTERM and SIGHUP cancel the returned token instead
+/// of ending the process: an operation stops at its next safe point (never
+/// mid-packet) and the command says what it left. Which signal it was is in
+/// the returned [`Caught`].
+pub fn cancel_on_signal(what: &'static str) -> std::io::Result<(servo_studio::device::Cancel, Caught)> {
+    let interrupts = listen()?;
+    let (trigger, cancel) = servo_studio::device::Cancel::new();
+    let caught = Caught::default();
+    let seen = caught.clone();
+    std::thread::Builder::new().name("cancel on signal".into()).spawn(move || {
+        for interrupt in interrupts {
+            if seen.get().is_none() {
+                super::out::say!("\n{interrupt}: stopping {what} at the next safe point…");
+            }
+            seen.set(interrupt);
+            let _ = trigger.try_send(());
+        }
+    })?;
+    Ok((cancel, caught))
+}

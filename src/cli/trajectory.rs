@@ -35,21 +35,57 @@ fn field(text: &str) -> String {
     if text.contains([',', '"', '\n', '\r']) { format!("\"{}\"", text.replace('"', "\"\"")) } else { text.to_string() }
 }
 
-/// The rows of a PLEN2 motion's playback: header, then one per cycle.
+/// The most values a trajectory file holds (rows × columns, about 350 MB of
+/// CSV): more is refused before anything is written, with what would fit.
+pub const MAX_VALUES: usize = 50_000_000;
+
+/// Writes rows as they are made; counts them.
+struct Rows<'a> {
+    writer: std::io::BufWriter<&'a mut std::fs::File>,
+    count: usize,
+}
+
+impl Rows<'_> {
+    fn push(&mut self, row: &str) -> std::io::Result<()> {
+        self.writer.write_all(row.as_bytes())?;
+        self.writer.write_all(b"\n")?;
+        self.count += 1;
+        Ok(())
+    }
+}
+
+/// Refuses output larger than [`MAX_VALUES`].
+fn within_cap(rows: usize, columns: usize, step_ms: f64) -> anyhow::Result<()> {
+    let values = rows.saturating_mul(columns.max(1));
+    if values > MAX_VALUES {
+        // Small counts: exact in f64.
+        #[allow(clippy::cast_precision_loss)]
+        let fits_s = (MAX_VALUES / columns.max(1)) as f64 * step_ms / 1000.0;
+        anyhow::bail!(
+            "the trajectory would be {rows} rows × {columns} columns, more than the {MAX_VALUES} values a trajectory file may hold; ask for at most --seconds {:.1}. Nothing was written",
+            fits_s.floor().max(0.1)
+        );
+    }
+    Ok(())
+}
+
+/// A PLEN2 motion's playback, checked it can be played: the header, then one row per cycle.
 fn plen2_rows(project: &Project, slot: u8, from_slot: Option<u8>, max_cycles: usize) -> anyhow::Result<Vec<String>> {
     let plen2 = &project.plen2;
     let known = |slot: u8| plen2.motions.iter().any(|motion| motion.slot == slot);
     if !known(slot) {
         anyhow::bail!("there is no motion in slot {slot} (slots: {})", slots(project));
     }
+    if let Some(previous) = from_slot
+        && !known(previous)
+    {
+        anyhow::bail!("--from-slot {previous}: there is no motion in that slot (slots: {})", slots(project));
+    }
+    // A motion the robot cannot store (over 20 frames, say) cannot be played either.
+    servo_studio::device::plen2::storable(plen2).map_err(|error| anyhow::anyhow!("{error}; it cannot be played"))?;
+    within_cap(max_cycles, Joint::ALL.len() + 1, Playback::CYCLE_MS)?;
     let stored = StoredMotions::new(plen2);
-    let from = match from_slot {
-        Some(previous) if !known(previous) => {
-            anyhow::bail!("--from-slot {previous}: there is no motion in that slot (slots: {})", slots(project))
-        }
-        Some(previous) => playback::after(&stored, previous, max_cycles),
-        None => [0; DEVICE_IDS],
-    };
+    let from = from_slot.map_or([0; DEVICE_IDS], |previous| playback::after(&stored, previous, max_cycles));
     let Playback { cycles, .. } = playback::play(&stored, slot, from, max_cycles);
     let mut rows = vec![
         std::iter::once("t_ms".to_string())
@@ -76,78 +112,96 @@ fn slots(project: &Project) -> String {
     if slots.is_empty() { "none".into() } else { slots.join(", ") }
 }
 
-/// The rows of a servo action's or macro's trajectory: header, then one per 10 ms.
-fn servo_rows(project: &Project, subject: Subject, max_ms: f64) -> anyhow::Result<Vec<String>> {
+/// What a servo action or macro does, traced up to `max_ms`: the trajectories and how long they run.
+fn servo_trace(project: &Project, subject: Subject, max_ms: f64) -> anyhow::Result<(project::Trajectories, f64)> {
     let servo = &project.servo;
-    let (trajectories, end_ms) = match subject {
-        Subject::Action(id) => {
-            if servo.action(id).is_none() {
-                anyhow::bail!("there is no action {id}");
-            }
-            project::action_trajectories(servo, id)
-        }
-        Subject::Macro(id) => {
-            if servo.macro_by_id(id).is_none() {
-                anyhow::bail!("there is no macro {id}");
-            }
-            project::macro_trajectories(servo, id)
-        }
+    let run = match subject {
+        Subject::Action(id) if servo.action(id).is_none() => anyhow::bail!("there is no action {id}"),
+        Subject::Macro(id) if servo.macro_by_id(id).is_none() => anyhow::bail!("there is no macro {id}"),
+        Subject::Action(action_id) => project::Run::Action { action_id },
+        Subject::Macro(macro_id) => project::Run::Macro { macro_id },
         Subject::Slot { .. } => anyhow::bail!("--slot is for PLEN2 motions: give --action or --macro"),
     };
+    let (trajectories, end_ms) = project::trace(servo, run, max_ms).map_err(|error| match subject {
+        Subject::Macro(id) => anyhow::anyhow!("macro {id}: {error}; nothing was written"),
+        _ => anyhow::anyhow!("{error}; nothing was written"),
+    })?;
+    let end_ms = end_ms.min(max_ms);
+    within_cap(project::sample_count(end_ms).saturating_add(1), servo.servos.len() + 1, project::SAMPLE_MS)?;
+    Ok((trajectories, end_ms))
+}
+
+/// Writes a servo trajectory row by row as it is sampled.
+fn write_servo(
+    rows: &mut Rows<'_>,
+    project: &Project,
+    trajectories: &project::Trajectories,
+    end_ms: f64,
+) -> std::io::Result<()> {
+    let servo = &project.servo;
     let names = servo.servos.iter().map(|s| {
         field(&if s.caption.is_empty() { format!("servo {}", s.id) } else { format!("{} {}", s.id, s.caption) })
     });
-    let mut rows = vec![std::iter::once("t_ms".to_string()).chain(names).collect::<Vec<_>>().join(",")];
-    for (index, angles) in project::sample(servo, &trajectories, end_ms.min(max_ms)).iter().enumerate() {
+    rows.push(&std::iter::once("t_ms".to_string()).chain(names).collect::<Vec<_>>().join(","))?;
+    let mut samples = project::Samples::new(servo, trajectories);
+    let mut row = String::new();
+    for index in 0..project::sample_count(end_ms) {
         // Exact for any sample count written.
         #[allow(clippy::cast_precision_loss)]
         let t_ms = index as f64 * project::SAMPLE_MS;
-        let mut row = format!("{t_ms:.0}");
-        for angle in angles {
+        row.clear();
+        row.push_str(&format!("{t_ms:.0}"));
+        for angle in samples.at(t_ms) {
             row.push(',');
             row.push_str(&format!("{angle:.2}"));
         }
-        rows.push(row);
+        rows.push(&row)?;
     }
-    Ok(rows)
+    Ok(())
 }
 
 /// Writes the trajectory of `subject` in `input` to `out`; `seconds` caps a
 /// motion that never ends. Returns the rows written and the time they cover.
-pub fn run(input: &Path, subject: Subject, seconds: f64, out: &Path) -> anyhow::Result<(usize, f64)> {
-    if !(seconds.is_finite() && seconds > 0.0) {
-        anyhow::bail!("--seconds must be a positive number of seconds, not {seconds}");
-    }
-    let loaded = super::plen2::load_input(input)?;
-    super::warn_unknown(input, &loaded.unknown_keys);
+/// Everything is checked before the file is touched.
+pub fn run(input: &Path, subject: Subject, seconds: f64, out: &Path, force: bool) -> anyhow::Result<(usize, f64)> {
+    let loaded = super::open_input(input)?.loaded;
+    super::warn_unknown(input, &loaded);
     let project = loaded.project;
-    let rows = match (project.family, subject) {
+    super::writable_output(out, force)?;
+    let max_ms = super::bounds::duration(seconds).as_secs_f64() * 1000.0;
+    let (plen2, servo) = match (project.family, subject) {
         (Family::Plen2, Subject::Slot { slot, from_slot }) => {
-            // Cycle counts from seconds: small and non-negative.
+            // Cycle counts from bounded seconds: small and non-negative.
             #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-            let max_cycles = (seconds * 1000.0 / Playback::CYCLE_MS).floor() as usize + 1;
-            plen2_rows(&project, slot, from_slot, max_cycles)?
+            let max_cycles = (max_ms / Playback::CYCLE_MS).floor() as usize + 1;
+            (Some(plen2_rows(&project, slot, from_slot, max_cycles)?), None)
         }
         (Family::Plen2, _) => anyhow::bail!("{} holds PLEN2 motions: give --slot N", input.display()),
         (Family::Servo, Subject::Slot { .. }) => {
             anyhow::bail!("{} is a servo board project: give --action N or --macro N", input.display())
         }
-        (Family::Servo, subject) => servo_rows(&project, subject, seconds * 1000.0)?,
+        (Family::Servo, subject) => (None, Some(servo_trace(&project, subject, max_ms)?)),
         (Family::Rflex, _) => {
             anyhow::bail!("{} is an rFLEX project: a base has no stored motions to play", input.display())
         }
     };
-    let step_ms = if project.family == Family::Plen2 { Playback::CYCLE_MS } else { project::SAMPLE_MS };
+    let mut count = 0;
     project::atomic_write(out, |file| {
-        let mut writer = std::io::BufWriter::new(file);
-        for row in &rows {
-            writer.write_all(row.as_bytes())?;
-            writer.write_all(b"\n")?;
+        let mut rows = Rows { writer: std::io::BufWriter::new(file), count: 0 };
+        if let Some(lines) = &plen2 {
+            for line in lines {
+                rows.push(line)?;
+            }
         }
-        writer.flush()
+        if let Some((trajectories, end_ms)) = &servo {
+            write_servo(&mut rows, &project, trajectories, *end_ms)?;
+        }
+        rows.writer.flush()?;
+        count = rows.count.saturating_sub(1);
+        Ok(())
     })
     .with_context(|| format!("cannot write {}", out.display()))?;
-    let count = rows.len() - 1;
+    let step_ms = if project.family == Family::Plen2 { Playback::CYCLE_MS } else { project::SAMPLE_MS };
     // Row counts are far below 2^52.
     #[allow(clippy::cast_precision_loss)]
     let covered = count.saturating_sub(1) as f64 * step_ms / 1000.0;

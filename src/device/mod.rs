@@ -82,3 +82,8 @@ impl LogEntry {
 pub fn hex(bytes: &[u8]) -> String {
     bytes.iter().map(|byte| format!("{byte:02x}")).collect::<Vec<_>>().join(" ")
 }
+
+/// "1 byte", "2 bytes": a count of bytes as a message says it.
+pub fn bytes(count: usize) -> String {
+    if count == 1 { "1 byte".to_string() } else { format!("{count} bytes") }
+}

@@ -31,27 +31,33 @@ pub struct Progress<I> {
     pub item: I,
 }
 
-/// Lets the owner stop an operation between two steps.
+/// Lets the owner stop an operation between two steps. Once asked, it stays
+/// asked: every later check (and every clone) says so.
 #[derive(Clone, Debug)]
 pub struct Cancel {
     requested: Receiver<()>,
+    asked: std::sync::Arc<std::sync::atomic::AtomicBool>,
 }
 
 impl Cancel {
     /// A cancel token and the sender that triggers it.
     pub fn new() -> (Sender<()>, Self) {
         let (sender, requested) = crossbeam_channel::bounded(1);
-        (sender, Self { requested })
+        (sender, Self { requested, asked: std::sync::Arc::default() })
     }
 
     /// A token that is never triggered.
     pub fn never() -> Self {
-        Self { requested: crossbeam_channel::never() }
+        Self { requested: crossbeam_channel::never(), asked: std::sync::Arc::default() }
     }
 
     /// Whether the owner asked to stop.
     pub fn is_requested(&self) -> bool {
-        self.requested.try_recv().is_ok()
+        use std::sync::atomic::Ordering;
+        if self.requested.try_recv().is_ok() {
+            self.asked.store(true, Ordering::SeqCst);
+        }
+        self.asked.load(Ordering::SeqCst)
     }
 }
 
@@ -156,6 +162,18 @@ impl<E: std::error::Error + 'static, I: fmt::Debug + fmt::Display> std::error::E
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_cancel_once_asked_stays_asked_in_every_clone() {
+        let (trigger, cancel) = Cancel::new();
+        let other = cancel.clone();
+        assert!(!cancel.is_requested());
+        trigger.send(()).unwrap();
+        assert!(cancel.is_requested());
+        assert!(cancel.is_requested(), "asked twice");
+        assert!(other.is_requested(), "the clone shares it");
+        assert!(!Cancel::never().is_requested());
+    }
 
     #[test]
     fn a_failure_says_what_it_left_and_where_the_backup_is() {

@@ -217,6 +217,52 @@ pub fn run<D: Driver>(
     driver
 }
 
+/// Drives `driver` with no link at all — its clock, its commands, its
+/// events; whatever it would write goes nowhere, as a real board's output
+/// does with no cable in — until `next` yields (e.g. the next client of a
+/// server) or the owner closes. Returns what `next` yielded, or `None`.
+pub fn idle<D: Driver, T>(
+    driver: &mut D,
+    owner: &Owner<D::Command>,
+    next: &Receiver<T>,
+    events: &Sender<LinkEvent<D::Event>>,
+    waker: &Waker,
+) -> Option<T> {
+    loop {
+        let now = Instant::now();
+        if driver.poll_timeout().is_some_and(|deadline| deadline <= now) {
+            driver.handle_timeout(now);
+        }
+        while driver.poll_transmit(now).is_some() {}
+        if forward_events(driver, events) {
+            waker();
+        }
+        let mut select = Select::new();
+        let command_index = select.recv(&owner.commands);
+        let close_index = select.recv(&owner.close);
+        let next_index = select.recv(next);
+        let operation = match driver.poll_timeout() {
+            Some(deadline) => match select.select_deadline(deadline) {
+                Ok(operation) => operation,
+                Err(_) => continue,
+            },
+            None => select.select(),
+        };
+        match operation.index() {
+            index if index == command_index => match operation.recv(&owner.commands) {
+                Ok(command) => driver.handle_command(Instant::now(), command),
+                Err(_) => return None,
+            },
+            index if index == close_index => {
+                let _ = operation.recv(&owner.close);
+                return None;
+            }
+            index if index == next_index => return operation.recv(next).ok(),
+            _ => {}
+        }
+    }
+}
+
 fn forward_events<D: Driver>(driver: &mut D, events: &Sender<LinkEvent<D::Event>>) -> bool {
     let mut any = false;
     while let Some(event) = driver.poll_event() {

@@ -7,7 +7,7 @@ mod opening;
 mod port;
 
 pub use connection::Connection;
-pub use io_thread::{DisconnectReason, Driver, LinkEvent, LinkHandle, Owner, Waker, no_waker, run, spawn};
+pub use io_thread::{DisconnectReason, Driver, LinkEvent, LinkHandle, Owner, Waker, idle, no_waker, run, spawn};
 pub use opening::{Opener, Opening, system_opener};
 pub(crate) use port::READ_WAKE;
 pub use port::{LineSettings, LinkError, PortInfo, PortName, list_ports, open};

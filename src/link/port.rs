@@ -127,6 +127,16 @@ pub enum LinkError {
         /// The port.
         port: String,
     },
+    /// The name is not of a serial port (a regular file, a folder, /dev/null).
+    #[error(
+        "{port} is {what}, not a serial port: give the port the board is on (`servo-studio ports` lists them, or tcp://HOST:PORT)"
+    )]
+    NotAPort {
+        /// The port.
+        port: String,
+        /// What it is instead.
+        what: &'static str,
+    },
     /// Any other failure to open.
     #[error("{port}: cannot open: {source}")]
     Open {
@@ -154,6 +164,10 @@ impl LinkError {
     }
 
     fn from_serial(port: &PortName, error: serialport::Error) -> Self {
+        // ENOTTY: a device, but one that takes no line settings (/dev/null, a disk).
+        if ["Not a typewriter", "Inappropriate ioctl"].iter().any(|text| error.description.contains(text)) {
+            return Self::NotAPort { port: port.to_string(), what: "a device that is not a terminal" };
+        }
         match error.kind() {
             serialport::ErrorKind::NoDevice => {
                 // serialport reports a busy (exclusively held) device as NoDevice too.
@@ -179,6 +193,7 @@ pub(crate) const READ_WAKE: Duration = Duration::from_millis(50);
 pub fn open(port: &PortName, settings: &LineSettings) -> Result<Connection, LinkError> {
     let mut connection = match port {
         PortName::Serial(path) => {
+            not_a_port(port, path)?;
             let mut serial = serialport::new(path, settings.baud)
                 .timeout(READ_WAKE)
                 .open()
@@ -199,6 +214,37 @@ pub fn open(port: &PortName, settings: &LineSettings) -> Result<Connection, Link
     };
     connection.min_write_gap = settings.min_write_gap;
     Ok(connection)
+}
+
+/// Refuses, before opening it, a path that names something other than a
+/// device (a project file given as `--port`, a folder): opening it would
+/// fail with a word for an ioctl, or worse, succeed.
+fn not_a_port(port: &PortName, path: &str) -> Result<(), LinkError> {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        let Ok(metadata) = std::fs::metadata(path) else { return Ok(()) };
+        let kind = metadata.file_type();
+        let what = if kind.is_char_device() {
+            return Ok(());
+        } else if kind.is_file() {
+            "a regular file"
+        } else if kind.is_dir() {
+            "a folder"
+        } else if kind.is_fifo() {
+            "a named pipe (FIFO)"
+        } else if kind.is_socket() {
+            "a socket"
+        } else {
+            "a block device"
+        };
+        Err(LinkError::NotAPort { port: port.to_string(), what })
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = (port, path);
+        Ok(())
+    }
 }
 
 /// Tries each address `address` resolves to, each for at most `timeout`.
@@ -285,6 +331,26 @@ mod tests {
         let refused = open(&PortName::Tcp(address.to_string()), &LineSettings::new(115_200)).unwrap_err();
         assert!(matches!(refused, LinkError::Refused { .. }), "{refused:?}");
         assert!(refused.to_string().contains("sim --tcp"));
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_file_or_a_device_that_is_no_terminal_is_not_a_port() {
+        let folder = std::env::temp_dir().join(format!("not-a-port-{}", std::process::id()));
+        std::fs::create_dir_all(&folder).unwrap();
+        let file = folder.join("robot.json");
+        std::fs::write(&file, "{}").unwrap();
+        for (path, what) in [
+            (file.display().to_string(), "a regular file"),
+            (folder.display().to_string(), "a folder"),
+            ("/dev/null".to_string(), "a device that is not a terminal"),
+        ] {
+            let error = open(&PortName::Serial(path.clone()), &LineSettings::new(115_200)).unwrap_err();
+            assert!(matches!(&error, LinkError::NotAPort { what: got, .. } if *got == what), "{path}: {error:?}");
+            let text = error.to_string();
+            assert!(text.contains("not a serial port") && !text.contains("typewriter"), "{text}");
+        }
+        std::fs::remove_dir_all(&folder).unwrap();
     }
 
     #[cfg(unix)]

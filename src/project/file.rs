@@ -20,14 +20,9 @@ pub const CURRENT_VERSION: u32 = 2;
 /// A project file could not be read.
 #[derive(Debug, thiserror::Error)]
 pub enum LoadError {
-    /// The file could not be opened or read.
-    #[error("cannot read {path}: {source}")]
-    Io {
-        /// The file.
-        path: PathBuf,
-        /// The cause.
-        source: io::Error,
-    },
+    /// The file could not be read (or is not a regular file, or is too large).
+    #[error(transparent)]
+    Read(#[from] super::read::ReadError),
     /// The text is not valid JSON for a project.
     #[error("line {line}, column {column}: {message}")]
     Syntax {
@@ -58,12 +53,21 @@ pub enum LoadError {
 
 /// A project file could not be written. The previous file, if any, is intact.
 #[derive(Debug, thiserror::Error)]
-#[error("cannot save {path}: {source}; the previous file is unchanged")]
+#[error("cannot save {path}: {source}; {}", if *.existed { "the previous file is unchanged" } else { "nothing was written" })]
 pub struct SaveError {
     /// The file.
     pub path: PathBuf,
     /// The cause.
     pub source: io::Error,
+    /// Whether a file was there before (and so is kept as it was).
+    pub existed: bool,
+}
+
+impl SaveError {
+    /// Writing `path` failed with `source`: whatever was there stays.
+    pub fn new(path: &Path, source: io::Error) -> Self {
+        Self { existed: std::fs::symlink_metadata(path).is_ok(), path: path.to_path_buf(), source }
+    }
 }
 
 #[derive(Deserialize)]
@@ -114,9 +118,22 @@ fn syntax(error: &serde_json::Error) -> LoadError {
 pub struct Loaded {
     /// The project.
     pub project: Project,
-    /// Each unknown key's path, e.g. `servo.servos[3].min_degs`, in file order.
+    /// Each unknown key's path, e.g. `servo.servos[3].min_degs`, in file order:
+    /// the first [`MAX_UNKNOWN_KEYS_KEPT`].
     pub unknown_keys: Vec<String>,
+    /// Unknown keys past those, counted but not kept (a hostile file can hold millions).
+    pub unknown_keys_not_kept: usize,
 }
+
+impl Loaded {
+    /// Every unknown key, kept or only counted.
+    pub fn unknown_key_count(&self) -> usize {
+        self.unknown_keys.len() + self.unknown_keys_not_kept
+    }
+}
+
+/// How many unknown keys a load keeps by name; the rest are counted.
+pub const MAX_UNKNOWN_KEYS_KEPT: usize = 1000;
 
 /// A key's path as a person reads it: `servo.servos[3].min_degs`.
 fn key_path(path: &serde_ignored::Path<'_>) -> String {
@@ -133,14 +150,20 @@ fn key_path(path: &serde_ignored::Path<'_>) -> String {
 }
 
 /// `T` from `text`, and every key it ignored but the envelope's own
-/// (`format`, `version`, and `envelope`).
+/// (`format`, `version`, and `envelope`): the first [`MAX_UNKNOWN_KEYS_KEPT`]
+/// by path, then only how many more.
 fn deserialize_noting<T: serde::de::DeserializeOwned>(
     text: &str,
     envelope: &[&str],
-) -> Result<(T, Vec<String>), LoadError> {
+) -> Result<(T, Vec<String>, usize), LoadError> {
     let mut unknown = Vec::new();
+    let mut not_kept = 0;
     let mut deserializer = serde_json::Deserializer::from_str(text);
     let value = serde_ignored::deserialize(&mut deserializer, |path| {
+        if unknown.len() >= MAX_UNKNOWN_KEYS_KEPT {
+            not_kept += 1;
+            return;
+        }
         let path = key_path(&path);
         if !matches!(path.as_str(), "format" | "version") && !envelope.contains(&path.as_str()) {
             unknown.push(path);
@@ -148,7 +171,19 @@ fn deserialize_noting<T: serde::de::DeserializeOwned>(
     })
     .map_err(|error| syntax(&error))?;
     deserializer.end().map_err(|error| syntax(&error))?;
-    Ok((value, unknown))
+    Ok((value, unknown, not_kept))
+}
+
+/// What a JSON text holds at its top level when it is not an object.
+fn top_level(text: &str) -> Option<&'static str> {
+    match text.trim_start().as_bytes().first()? {
+        b'{' => None,
+        b'[' => Some("a JSON array"),
+        b'"' => Some("a JSON string"),
+        b't' | b'f' => Some("a JSON true or false"),
+        b'n' => Some("a JSON null"),
+        _ => Some("a JSON number, or text that is not JSON"),
+    }
 }
 
 /// Parses a project from the text of a project file, of any supported version.
@@ -160,6 +195,12 @@ pub fn from_json(text: &str) -> Result<Project, LoadError> {
 /// not know. A UTF-8 byte-order mark (as some Windows editors write) is skipped.
 pub fn parse(text: &str) -> Result<Loaded, LoadError> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    if let Some(found) = top_level(text)
+        && serde_json::from_str::<serde::de::IgnoredAny>(text).is_ok()
+    {
+        // Valid JSON, but not an object: say what it is rather than what the first field lacks.
+        return Err(LoadError::WrongFormat { found: found.to_string() });
+    }
     let header: Header = serde_json::from_str(text).map_err(|error| syntax(&error))?;
     match header.format.as_deref() {
         Some(FORMAT_TAG) => {}
@@ -175,18 +216,18 @@ pub fn parse(text: &str) -> Result<Loaded, LoadError> {
         // the servo section. Every later version adds an arm here.
         Some(1) | None => {
             // Version 1 named its board in the envelope.
-            let (servo, unknown_keys) = deserialize_noting(text, &["board"])?;
-            Ok(Loaded { project: Project::servo(servo), unknown_keys })
+            let (servo, unknown_keys, unknown_keys_not_kept) = deserialize_noting(text, &["board"])?;
+            Ok(Loaded { project: Project::servo(servo), unknown_keys, unknown_keys_not_kept })
         }
         Some(2) => {
-            let (sections, unknown_keys): (Sections, _) = deserialize_noting(text, &[])?;
+            let (sections, unknown_keys, unknown_keys_not_kept): (Sections, _, _) = deserialize_noting(text, &[])?;
             let project = Project {
                 family: sections.family,
                 servo: sections.servo,
                 plen2: sections.plen2,
                 rflex: sections.rflex,
             };
-            Ok(Loaded { project, unknown_keys })
+            Ok(Loaded { project, unknown_keys, unknown_keys_not_kept })
         }
         Some(found) => Err(LoadError::NewerVersion { found, supported: CURRENT_VERSION }),
     }
@@ -216,17 +257,20 @@ pub fn load(path: &Path) -> Result<Project, LoadError> {
     read(path).map(|loaded| loaded.project)
 }
 
-/// Reads a project file, noting the keys it does not know.
+/// Reads a project file, noting the keys it does not know. Only a regular
+/// file is read, up to [`super::read::MAX_PROJECT_BYTES`].
 pub fn read(path: &Path) -> Result<Loaded, LoadError> {
-    let text = std::fs::read_to_string(path).map_err(|source| LoadError::Io { path: path.to_path_buf(), source })?;
-    parse(&text)
+    let text = super::read::read_text(path, super::read::MAX_PROJECT_BYTES)?;
+    let parsed = parse(&text);
+    // The text goes before the caller builds on the document: a large file is not held twice.
+    drop(text);
+    parsed
 }
 
 /// Writes a project file atomically: a failure leaves the previous file intact.
 pub fn save(path: &Path, project: &Project) -> Result<(), SaveError> {
     let text = to_json(project);
-    atomic_write(path, |file| file.write_all(text.as_bytes()))
-        .map_err(|source| SaveError { path: path.to_path_buf(), source })
+    atomic_write(path, |file| file.write_all(text.as_bytes())).map_err(|source| SaveError::new(path, source))
 }
 
 /// Where writing to `path` really goes: through symbolic links to the file
@@ -343,6 +387,11 @@ mod tests {
     fn wrong_format_and_newer_versions_are_refused_clearly() {
         assert!(matches!(from_json(r#"{"format": "other"}"#), Err(LoadError::WrongFormat { .. })));
         assert!(matches!(from_json(r#"{"servos": []}"#), Err(LoadError::WrongFormat { .. })));
+        let array = from_json("[1, 2]").unwrap_err();
+        assert_eq!(
+            array.to_string(),
+            "not a Servo Studio project: expected \"format\": \"servo-studio-project\", found a JSON array"
+        );
         let err = from_json(r#"{"format": "servo-studio-project", "version": 99}"#).unwrap_err();
         assert!(matches!(err, LoadError::NewerVersion { found: 99, supported: CURRENT_VERSION }));
         assert!(err.to_string().contains("update Servo Studio"));
@@ -381,7 +430,7 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("missing").join("robot.json");
         let err = save(&path, &Project::default()).unwrap_err();
-        assert!(err.to_string().contains("previous file is unchanged"), "{err}");
+        assert!(err.to_string().ends_with("; nothing was written"), "there was no previous file: {err}");
         assert!(!dir.path().join("missing").exists());
     }
 }

@@ -2,29 +2,36 @@
 //! the versioned file format, derived timing, and validation. Stands alone:
 //! it uses protocol field limits, nothing of link, device, sim or ui.
 
+mod bounded;
 mod document;
 mod edit;
 mod file;
 mod history;
+pub mod input;
 pub mod motion_json;
 pub mod plen2;
+mod read;
 pub mod rflex;
 mod servo;
 mod timing;
 mod trajectory;
 mod validate;
 
+pub use bounded::MAX_LIST_LEN;
 pub use document::{Family, Project};
 pub use edit::{Edit, next_free_id};
 pub use file::{
-    CURRENT_VERSION, FORMAT_TAG, LoadError, Loaded, SaveError, atomic_write, from_json, load, output_path, parse, read,
-    save, to_json,
+    CURRENT_VERSION, FORMAT_TAG, LoadError, Loaded, MAX_UNKNOWN_KEYS_KEPT, SaveError, atomic_write, from_json, load,
+    output_path, parse, read, save, to_json,
 };
 pub use history::{History, MAX_UNDO_STEPS};
 pub use servo::{Action, Button, Command, JoystickTable, Macro, RigAxis, RigJoint, Run, Servo, ServoProject, Step};
 pub use timing::{Timing, TimingError, action_duration_ms};
-pub use trajectory::{SAMPLE_MS, Trajectories, action_trajectories, angle_at, macro_trajectories, pose_at, sample};
+pub use trajectory::{
+    MAX_TRACE_WORK, SAMPLE_MS, Samples, TraceError, Trajectories, action_trajectories, angle_at, macro_cycle,
+    macro_trajectories, pose_at, sample, sample_count, trace,
+};
 pub use validate::{
-    ButtonSlot, ItemKind, Location, Problem, ProblemKind, Severity, has_errors, validate, validate_plen2,
+    ButtonSlot, ItemKind, Location, Problem, ProblemKind, Problems, Severity, has_errors, validate, validate_plen2,
     validate_servo,
 };

@@ -197,12 +197,36 @@ pub fn load_motions(path: &Path) -> Result<Vec<Motion>, MotionJsonError> {
 
 /// Whether the text is a motion.json rather than a project file (read
 /// without building the document: a 200 MB project costs no memory here).
+/// Its top-level keys decide, as far as they can be read: a motion.json cut
+/// short after its `"frames"` key is still a motion.json (and is told so, with
+/// where it breaks), not "a project file with no format".
 pub fn looks_like_motion(text: &str) -> bool {
-    #[derive(serde::Deserialize)]
-    struct Keys {
-        format: Option<serde::de::IgnoredAny>,
-        frames: Option<serde::de::IgnoredAny>,
+    use serde::Deserializer as _;
+
+    /// The top-level keys seen: (`format`, `frames`).
+    struct Keys<'a>(&'a std::cell::Cell<(bool, bool)>);
+
+    impl<'de> serde::de::Visitor<'de> for Keys<'_> {
+        type Value = ();
+
+        fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+            f.write_str("a JSON object")
+        }
+
+        fn visit_map<A: serde::de::MapAccess<'de>>(self, mut map: A) -> Result<(), A::Error> {
+            while let Some(key) = map.next_key::<std::borrow::Cow<'de, str>>()? {
+                let (format, frames) = self.0.get();
+                self.0.set((format || key == "format", frames || key == "frames"));
+                map.next_value::<serde::de::IgnoredAny>()?;
+            }
+            Ok(())
+        }
     }
+
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    serde_json::from_str::<Keys>(text).is_ok_and(|keys| keys.frames.is_some() && keys.format.is_none())
+    let seen = std::cell::Cell::new((false, false));
+    // An error (a file cut short) leaves the keys read before it.
+    let _ = serde_json::Deserializer::from_str(text).deserialize_map(Keys(&seen));
+    let (format, frames) = seen.get();
+    frames && !format
 }

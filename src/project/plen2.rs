@@ -12,13 +12,13 @@ pub use crate::protocol::plen2::{
 pub struct Plen2Project {
     /// Joint settings as held by the robot (`<JS`); empty when the project does
     /// not hold them (then an upload never touches them).
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    #[serde(default, deserialize_with = "super::bounded::list", skip_serializing_if = "Vec::is_empty")]
     pub joints: Vec<JointSetting>,
     /// Motions, each in its slot.
-    #[serde(default)]
+    #[serde(default, deserialize_with = "super::bounded::list")]
     pub motions: Vec<Motion>,
     /// Motions queued with a number of plays (`#PU` … `#PO`).
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    #[serde(default, deserialize_with = "super::bounded::list", skip_serializing_if = "Vec::is_empty")]
     pub play_lists: Vec<PlayList>,
 }
 
@@ -44,7 +44,7 @@ pub struct Motion {
     #[serde(default)]
     pub name: String,
     /// 1..=20 frames.
-    #[serde(default)]
+    #[serde(default, deserialize_with = "super::bounded::list")]
     pub frames: Vec<Frame>,
     /// Frames played again after the first pass, if any.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -150,7 +150,7 @@ pub struct PlayList {
     #[serde(default)]
     pub name: String,
     /// The queue, in order (at most 31).
-    #[serde(default)]
+    #[serde(default, deserialize_with = "super::bounded::list")]
     pub entries: Vec<PlayEntry>,
 }
 

@@ -11,16 +11,16 @@ pub struct ServoProject {
     #[serde(default)]
     pub project_id: i32,
     /// The servos, in display order.
-    #[serde(default)]
+    #[serde(default, deserialize_with = "super::bounded::list")]
     pub servos: Vec<Servo>,
     /// The actions (poses), in display order.
-    #[serde(default)]
+    #[serde(default, deserialize_with = "super::bounded::list")]
     pub actions: Vec<Action>,
     /// The macros (sequences of actions and delays), in display order.
-    #[serde(default)]
+    #[serde(default, deserialize_with = "super::bounded::list")]
     pub macros: Vec<Macro>,
     /// The remote-control button tables, in display order.
-    #[serde(default)]
+    #[serde(default, deserialize_with = "super::bounded::list")]
     pub joystick_tables: Vec<JoystickTable>,
     /// The table the board uses, if any.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -131,7 +131,7 @@ pub struct Action {
     #[serde(default)]
     pub caption: String,
     /// One step per servo.
-    #[serde(default)]
+    #[serde(default, deserialize_with = "super::bounded::list")]
     pub steps: Vec<Step>,
 }
 
@@ -155,7 +155,7 @@ pub struct Macro {
     #[serde(default)]
     pub caption: String,
     /// The commands, in order.
-    #[serde(default)]
+    #[serde(default, deserialize_with = "super::bounded::list")]
     pub commands: Vec<Command>,
 }
 
@@ -223,7 +223,7 @@ pub struct JoystickTable {
     #[serde(default)]
     pub caption: String,
     /// The buttons.
-    #[serde(default)]
+    #[serde(default, deserialize_with = "super::bounded::list")]
     pub buttons: Vec<Button>,
 }
 

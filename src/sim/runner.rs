@@ -9,7 +9,7 @@ use std::thread::JoinHandle;
 use crossbeam_channel::{Receiver, Sender};
 
 use super::servo::{SimCommand, SimEvent};
-use crate::link::{Connection, Driver, LinkEvent, LinkHandle, Owner, Waker, run, spawn};
+use crate::link::{Connection, Driver, LinkEvent, LinkHandle, Owner, Waker, idle, run, spawn};
 
 /// A running emulated board; `C` and `E` are its emulator's commands and
 /// events (the servo board's by default).
@@ -60,11 +60,12 @@ impl<C, E> Drop for SimHandle<C, E> {
     fn drop(&mut self) {
         if let Inner::Server { close, thread, address, .. } = &mut self.inner {
             *close = None;
-            // The accept loop blocks in `accept`: a throwaway connection wakes it.
-            let _ = std::net::TcpStream::connect(*address);
+            // The board's thread sees the close at once; the accept thread blocks
+            // in `accept`: a throwaway connection wakes it.
             if let Some(thread) = thread.take() {
                 let _ = thread.join();
             }
+            let _ = std::net::TcpStream::connect(*address);
         }
     }
 }
@@ -95,28 +96,43 @@ pub fn spawn_pty<D: Driver>(sim: D, waker: Waker) -> io::Result<SimHandle<D::Com
     Ok(SimHandle { port_name, inner: Inner::Link(link) })
 }
 
-/// Runs `sim` as a TCP server on `address` (port 0 picks a free one). One
-/// client at a time; the board keeps its contents from one client to the next.
+/// Runs `sim` as a TCP server on `address` (port 0 picks one). One client at
+/// a time; the board keeps its contents from one client to the next, and
+/// runs on its own between clients (its clock, its dead-man), as a real
+/// board does with no cable in.
 pub fn spawn_tcp<D: Driver>(sim: D, address: SocketAddr, waker: Waker) -> io::Result<SimHandle<D::Command, D::Event>> {
     let listener = TcpListener::bind(address)?;
     let port_name = format!("tcp://{}", listener.local_addr()?);
     let (command_tx, command_rx) = crossbeam_channel::unbounded();
     let (close_tx, close_rx) = crossbeam_channel::bounded::<()>(0);
     let (event_tx, event_rx) = crossbeam_channel::unbounded();
+    let (client_tx, client_rx) = crossbeam_channel::bounded::<std::net::TcpStream>(0);
     let wake_listener = listener.local_addr()?;
-    let thread = std::thread::Builder::new().name("sim tcp".into()).spawn(move || {
-        let owner = Owner { commands: command_rx, close: close_rx };
-        let mut sim = sim;
+    // Accepting blocks: it has a thread of its own, handing each client over.
+    let accept_close = close_rx.clone();
+    std::thread::Builder::new().name("sim tcp accept".into()).spawn(move || {
         for stream in listener.incoming() {
-            if matches!(owner.close.try_recv(), Err(crossbeam_channel::TryRecvError::Disconnected)) {
+            if matches!(accept_close.try_recv(), Err(crossbeam_channel::TryRecvError::Disconnected)) {
                 return;
             }
             let Ok(stream) = stream else { continue };
+            if client_tx.send(stream).is_err() {
+                return;
+            }
+        }
+    })?;
+    let thread = std::thread::Builder::new().name("sim tcp".into()).spawn(move || {
+        let owner = Owner { commands: command_rx, close: close_rx };
+        let mut sim = sim;
+        while let Some(stream) = idle(&mut sim, &owner, &client_rx, &event_tx, &waker) {
             let description = stream.peer_addr().map_or_else(|_| "client".to_string(), |peer| peer.to_string());
             let Ok(connection) = Connection::from_tcp(stream, description) else {
                 continue;
             };
             sim = run(connection, sim, &owner, &event_tx, &waker);
+            if matches!(owner.close.try_recv(), Err(crossbeam_channel::TryRecvError::Disconnected)) {
+                return;
+            }
         }
     })?;
     Ok(SimHandle {

@@ -85,6 +85,17 @@ impl<K, O: Send + 'static> Operation<K, O> {
         self.outcome_rx.try_recv().ok()
     }
 
+    /// Like [`poll`](Self::poll), waiting up to `timeout` for the outcome
+    /// (only when the editor ends: a frame never waits).
+    pub fn wait(&mut self, timeout: std::time::Duration) -> Option<O> {
+        if let Some(outcome) = self.poll() {
+            return Some(outcome);
+        }
+        let outcome = self.outcome_rx.recv_timeout(timeout).ok();
+        let _ = self.poll();
+        outcome
+    }
+
     /// The fraction done of the part running, for a progress bar.
     pub fn fraction(&self) -> f32 {
         self.progress.as_ref().map_or(0.0, |step| {

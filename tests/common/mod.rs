@@ -232,6 +232,34 @@ pub fn record_bytes(image: &servo_studio::device::servo::ServoImage) -> Vec<Vec<
     out
 }
 
+/// Runs `servo-studio ARGS` in `cwd` with a watchdog; (exit code, stdout, stderr, how long).
+pub fn run_in(cwd: &std::path::Path, args: &[&str], within: Duration) -> (Option<i32>, String, String, Duration) {
+    let began = std::time::Instant::now();
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_servo-studio"))
+        .current_dir(cwd)
+        .args(args)
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let stdout = child.stdout.take().unwrap();
+    let reader = std::thread::spawn(move || std::io::read_to_string(stdout).unwrap_or_default());
+    let (code, stderr) = ended(child, within);
+    (code, reader.join().unwrap(), stderr, began.elapsed())
+}
+
+/// Starts `servo-studio ARGS` with its stderr kept (for [`ended`]) and its stdout dropped.
+pub fn spawn_quiet(args: &[&str]) -> Child {
+    std::process::Command::new(env!("CARGO_BIN_EXE_servo-studio"))
+        .args(args)
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap()
+}
+
 /// Waits for the child with a watchdog; returns its exit code and stderr.
 pub fn ended(mut child: Child, within: Duration) -> (Option<i32>, String) {
     let mut stderr = child.stderr.take().unwrap();
@@ -258,6 +286,9 @@ pub enum Chatter {
     Garbage,
     /// One byte every 500 ms.
     Drip,
+    /// To every servo-board request, the header of its response (claiming
+    /// 200 content bytes), then a byte every 100 ms: a line too slow for its traffic.
+    Begins,
 }
 
 /// A pseudo-terminal whose other end the test holds, saying `chatter` until dropped.
@@ -277,6 +308,11 @@ pub fn peer(chatter: Chatter) -> Peer {
     use serialport::SerialPort;
     let (mut master, slave) = serialport::TTYPort::pair().unwrap();
     let port = slave.name().unwrap();
+    if chatter == Chatter::Begins {
+        let stop = begins(master.try_clone_native().unwrap());
+        master.set_timeout(Duration::from_millis(10)).unwrap();
+        return Peer { _master: master, _slave: slave, port, _stop: Some(stop) };
+    }
     let stop = (chatter != Chatter::Silent).then(|| {
         let (stop, stopped) = crossbeam_channel::bounded::<()>(0);
         let mut writer = master.try_clone_native().unwrap();
@@ -311,4 +347,45 @@ pub fn peer(chatter: Chatter) -> Peer {
     });
     master.set_timeout(Duration::from_millis(10)).unwrap();
     Peer { _master: master, _slave: slave, port, _stop: stop }
+}
+
+/// [`Chatter::Begins`] on the master end `line`, until the returned sender is dropped.
+#[cfg(unix)]
+fn begins(mut line: serialport::TTYPort) -> crossbeam_channel::Sender<()> {
+    use serialport::SerialPort;
+    let (stop, stopped) = crossbeam_channel::bounded::<()>(0);
+    line.set_timeout(Duration::from_millis(10)).unwrap();
+    std::thread::spawn(move || {
+        const MAGIC: [u8; 4] = [0x13, 0x4c, 0x05, 0x1d];
+        let mut heard = Vec::new();
+        let mut buffer = [0u8; 256];
+        let mut next_drip = std::time::Instant::now();
+        loop {
+            match line.read(&mut buffer) {
+                Ok(count) => heard.extend_from_slice(&buffer[..count]),
+                Err(error) if error.kind() == std::io::ErrorKind::TimedOut => {}
+                Err(_) => return,
+            }
+            // Each request's header: answer with its response's header (packet id + 1).
+            while let Some(at) = heard.windows(4).position(|window| window == MAGIC) {
+                if heard.len() < at + 8 {
+                    break;
+                }
+                let id = u16::from_le_bytes([heard[at + 4], heard[at + 5]]).wrapping_add(1);
+                let mut header = MAGIC.to_vec();
+                header.extend_from_slice(&id.to_le_bytes());
+                header.extend_from_slice(&200u16.to_le_bytes());
+                let _ = line.write_all(&header);
+                heard.drain(..at + 8);
+            }
+            if std::time::Instant::now() >= next_drip {
+                let _ = line.write_all(&[0]);
+                next_drip += Duration::from_millis(100);
+            }
+            if !matches!(stopped.try_recv(), Err(crossbeam_channel::TryRecvError::Empty)) {
+                return;
+            }
+        }
+    });
+    stop
 }

@@ -1,7 +1,56 @@
 //! A project's motion as the commands that store it, and a `<MO` reply as a motion.
 
 use crate::project::plen2::{Frame, LoopRange, Motion, Plen2Project, Pose};
-use crate::protocol::plen2::{Command, DEVICE_IDS, Joint, MotionFrame, MotionHeader, MotionReply, NAME_LEN};
+use crate::protocol::plen2::{
+    Command, DEVICE_IDS, Joint, MAX_FRAMES, MotionFrame, MotionHeader, MotionReply, NAME_LEN, SLOTS,
+};
+
+/// A motion the robot cannot store at all, whatever `--force` says: its
+/// header or frames cannot be encoded (`plen2.md` §2: a header with a frame
+/// count outside 1..=20 is dropped; slots are 0..=89; the name is 20 bytes of
+/// printable ASCII, where `$ # > <` would start a command).
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("motion {slot} {name:?} {why}")]
+pub struct Unstorable {
+    /// Its slot.
+    pub slot: u8,
+    /// Its name.
+    pub name: String,
+    /// What cannot be stored.
+    pub why: NotStorable,
+}
+
+/// What of a motion cannot be stored.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum NotStorable {
+    /// A frame count outside 1..=20.
+    #[error("holds {0} frames; a PLEN2 motion holds 1 to {MAX_FRAMES}")]
+    Frames(usize),
+    /// A slot of 90 or more.
+    #[error("is in a slot a PLEN2 does not have (it has 0 to {})", SLOTS - 1)]
+    Slot,
+    /// A name longer than 20 bytes or not printable ASCII.
+    #[error("has a name a PLEN2 cannot store (at most {NAME_LEN} printable ASCII characters)")]
+    Name,
+}
+
+/// Whether every motion of `project` can be stored on a robot.
+pub fn storable(project: &Plen2Project) -> Result<(), Unstorable> {
+    for motion in &project.motions {
+        let frames = motion.frames.len();
+        let why = if !(1..=MAX_FRAMES).contains(&frames) {
+            NotStorable::Frames(frames)
+        } else if motion.slot >= SLOTS {
+            NotStorable::Slot
+        } else if motion.name.len() > NAME_LEN || !motion.name.bytes().all(|byte| (0x20..0x7f).contains(&byte)) {
+            NotStorable::Name
+        } else {
+            continue;
+        };
+        return Err(Unstorable { slot: motion.slot, name: motion.name.clone(), why });
+    }
+    Ok(())
+}
 
 /// A pose as the 24 device values of a `>MF` (unused ids 0).
 pub fn device_values(pose: &Pose) -> [i16; DEVICE_IDS] {

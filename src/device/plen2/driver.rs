@@ -80,13 +80,13 @@ pub enum ReplyError {
     },
     /// Bytes came, but no reply of the PLEN2's in them, before the reply's own
     /// time on the line had passed.
-    #[error("the device answers, but not in the PLEN2's protocol ({bytes} bytes and no reply): is it a PLEN2?")]
+    #[error("the device answers, but not in the PLEN2's protocol ({} and no reply): is it a PLEN2?", crate::device::bytes(*.bytes))]
     NotThisProtocol {
         /// How many bytes came while waiting.
         bytes: usize,
     },
     /// So much came that it can only be garbage (a never-written slot).
-    #[error("the reply was {bytes} bytes of garbage")]
+    #[error("the reply was {} of garbage", crate::device::bytes(*.bytes))]
     Garbage {
         /// Its size.
         bytes: usize,
@@ -428,7 +428,7 @@ impl Driver for Plen2Driver {
                         now,
                         Direction::Received,
                         format!("{kind:?} reply"),
-                        format!("{bytes} bytes of garbage"),
+                        format!("{} of garbage", crate::device::bytes(bytes)),
                         &[],
                     );
                     if let Some(awaited) = self.reply.take() {

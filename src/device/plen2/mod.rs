@@ -13,7 +13,7 @@ use std::time::Instant;
 
 use crossbeam_channel::Sender;
 
-pub use convert::{frames_of, motion_commands, motion_from_reply, store_commands};
+pub use convert::{NotStorable, Unstorable, frames_of, motion_commands, motion_from_reply, storable, store_commands};
 pub use driver::{
     Pacing, Plen2Command, Plen2Driver, Plen2Event, Plen2Options, REPLY_IDLE, RESYNC, ReplyError, ReplySender,
 };

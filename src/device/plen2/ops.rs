@@ -10,7 +10,7 @@ use super::convert::{motion_commands, motion_from_reply};
 use super::driver::ReplyError;
 use crate::device::{Cancel, Left, Stage, UploadFailure};
 use crate::project::plen2::{JointSetting, Motion, Plen2Project};
-use crate::project::{self, Problem, Project};
+use crate::project::{self, Problems, Project};
 use crate::protocol::plen2::{Command, Joint, SLOTS, decode_joint_settings, decode_motion, decode_version};
 
 pub use crate::device::Phase as Plen2Phase;
@@ -81,16 +81,19 @@ pub enum Plen2OpError {
     /// The project has errors; nothing was written.
     #[error(
         "the project has {} error(s); nothing was written:\n{}\nFix them, or write it as it is with --force",
-        .problems.len(),
-        .problems.iter().map(ToString::to_string).collect::<Vec<_>>().join("\n")
+        .problems.errors(),
+        .problems.listed(20)
     )]
     Invalid {
         /// The errors.
-        problems: Vec<Problem>,
+        problems: Problems,
     },
     /// The backup could not be saved; nothing was written.
     #[error("backup failed, so nothing was written: {0}")]
     Backup(project::SaveError),
+    /// A motion the robot cannot store, even with --force; nothing was written.
+    #[error("{0}; nothing was written")]
+    Unstorable(#[from] super::Unstorable),
     /// The owner cancelled.
     #[error("cancelled")]
     Cancelled,
@@ -290,13 +293,13 @@ fn upload(
     progress: &mut dyn FnMut(&Plen2Progress),
     cancel: &Cancel,
 ) -> Result<Plen2ImportReport, Plen2ImportFailure> {
-    let problems: Vec<Problem> =
+    let checking = |error| UploadFailure::untouched(error, Stage::Checking, None);
+    super::storable(project).map_err(|error| checking(error.into()))?;
+    let problems =
         project::validate(&Project { family: project::Family::Plen2, plen2: project.clone(), ..Project::default() })
-            .into_iter()
-            .filter(|p| p.severity == project::Severity::Error)
-            .collect();
-    if !problems.is_empty() && !options.force {
-        return Err(UploadFailure::untouched(Plen2OpError::Invalid { problems }, Stage::Checking, None));
+            .errors_only();
+    if problems.has_errors() && !options.force {
+        return Err(checking(Plen2OpError::Invalid { problems }));
     }
     let slots: Vec<u8> = project.motions.iter().map(|m| m.slot).filter(|slot| *slot < SLOTS).collect();
     // Something is read before anything is written: the backup, the joint

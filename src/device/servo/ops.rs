@@ -10,7 +10,7 @@ use super::image::{ImageError, ServoImage};
 use super::item::Item;
 use super::session::RequestError;
 use crate::device::{Cancel, Left, Stage, UploadFailure};
-use crate::project::{self, Problem, Project, SaveError, ServoProject};
+use crate::project::{self, Problems, Project, SaveError, ServoProject};
 use crate::protocol::servo::{ALL_SERVOS, EncodeError, Message, ServoStatus};
 
 pub use crate::device::Phase;
@@ -48,12 +48,12 @@ pub enum OpError {
     /// The project has validation errors; nothing was written.
     #[error(
         "the project has {} error(s); nothing was written:\n{}\nFix them, or restore it as it is with `import --force` (Upload anyway in the editor)",
-        .problems.len(),
-        list(.problems)
+        .problems.errors(),
+        .problems.listed(20)
     )]
     Invalid {
         /// The errors.
-        problems: Vec<Problem>,
+        problems: Problems,
     },
     /// The project is larger than the board's memory; nothing was written.
     #[error(
@@ -289,9 +289,8 @@ fn upload(
 ) -> Result<ImportReport, ImportFailure> {
     use Message as M;
     let checking = |error: OpError| UploadFailure::untouched(error, Stage::Checking, None);
-    let problems: Vec<Problem> =
-        project::validate_servo(project).into_iter().filter(|p| p.severity == project::Severity::Error).collect();
-    if !problems.is_empty() && !options.force {
+    let problems = project::validate_servo(project).errors_only();
+    if problems.has_errors() && !options.force {
         return Err(checking(OpError::Invalid { problems }));
     }
     let image = ServoImage::from_project(project).map_err(|error| checking(error.into()))?;

@@ -65,13 +65,30 @@ pub enum RequestError {
     },
     /// Bytes came, but nothing in them was a frame of this protocol.
     #[error(
-        "{request}: the device answers, but not in this protocol ({bytes} bytes and no servo-board frame): is it a servo board?"
+        "{request}: the device answers, but not in this protocol ({} and no servo-board frame): is it a servo board?", crate::device::bytes(*.bytes)
     )]
     NotThisProtocol {
         /// The request's name.
         request: &'static str,
         /// How many bytes came while waiting.
         bytes: usize,
+    },
+    /// The awaited response began (its header came) but the rest did not
+    /// arrive in time: a line too slow or losing bytes, not another protocol.
+    #[error(
+        "{request}: the response began but did not arrive whole within {timeout_ms} ms after its header ({received} of its {expected} bytes, {attempts} attempt(s)). The line is too slow or loses bytes: check the baud rate and the cable"
+    )]
+    Incomplete {
+        /// The request's name.
+        request: &'static str,
+        /// Bytes of the response that came.
+        received: usize,
+        /// Its whole length, as its header gives it.
+        expected: usize,
+        /// How many times it was sent.
+        attempts: u8,
+        /// The timeout each attempt had, on top of the line time, ms.
+        timeout_ms: u64,
     },
     /// The response came but its content does not match its layout.
     #[error("{request}: malformed response: {error}")]
@@ -159,6 +176,8 @@ struct InFlight {
     deadline: Instant,
     /// Whether the response's header has set the deadline.
     sized: bool,
+    /// The response's whole length, once its header came.
+    expected: usize,
     /// Bytes received since the request was written.
     bytes: usize,
     /// Frames of this protocol among them: whole ones, and ones that began
@@ -308,7 +327,7 @@ impl Session {
         // The request must first cross the line (behind whatever was written before it).
         let on_the_line = self.line_free_at.map_or(now, |free| free.max(now));
         let deadline = on_the_line + self.config.response_timeout;
-        self.in_flight = Some(InFlight { request, deadline, sized: false, bytes: 0, frames: 0 });
+        self.in_flight = Some(InFlight { request, deadline, sized: false, expected: 0, bytes: 0, frames: 0 });
     }
 
     /// Bytes received from the board.
@@ -334,6 +353,7 @@ impl Session {
             && in_flight.request.frame.packet_id.checked_add(1) == Some(packet_id)
         {
             in_flight.sized = true;
+            in_flight.expected = frame_len;
             in_flight.deadline = in_flight.deadline.max(now + wire + timeout);
         }
     }
@@ -405,16 +425,28 @@ impl Session {
             self.drain_decoder(now);
         }
         if self.in_flight.as_ref().is_some_and(|f| now >= f.deadline) {
-            let Some(InFlight { request, bytes, frames, .. }) = self.in_flight.take() else {
+            let Some(InFlight { request, bytes, frames, sized, expected, .. }) = self.in_flight.take() else {
                 return;
             };
-            if bytes > 0 && frames == 0 {
+            let timeout_ms = u64::try_from(self.config.response_timeout.as_millis()).unwrap_or(u64::MAX);
+            if sized {
+                // Its header came, the rest is late (or was given up as cut short): a slow
+                // or lossy line, not another protocol; asking again may get it whole.
+                let attempts = request.attempts;
+                let received = bytes.min(expected);
+                self.retry_or_fail(now, request, |request| RequestError::Incomplete {
+                    request,
+                    received,
+                    expected,
+                    attempts,
+                    timeout_ms,
+                });
+            } else if bytes > 0 && frames == 0 {
                 // Something answers, in another protocol: asking again will not help.
                 let error = RequestError::NotThisProtocol { request: request.message.name(), bytes };
                 self.events.push_back(SessionEvent::Response { id: request.id, result: Err(error) });
             } else {
                 let attempts = request.attempts;
-                let timeout_ms = u64::try_from(self.config.response_timeout.as_millis()).unwrap_or(u64::MAX);
                 self.retry_or_fail(now, request, |request| RequestError::Timeout { request, attempts, timeout_ms });
             }
             self.start_next(now);
@@ -610,6 +642,42 @@ mod tests {
             events(&mut session).as_slice(),
             [SessionEvent::Response { id: got, result: Err(RequestError::Malformed { request: "QueryProjectIDRequest", .. }) }] if *got == id
         ));
+    }
+
+    #[test]
+    fn a_response_that_begins_and_then_drips_is_incomplete_not_another_protocol() {
+        let t0 = Instant::now();
+        let mut session = Session::new(SessionConfig { query_retries: 0, ..config() });
+        let id = session.submit(t0, Message::QueryActionListRequest).unwrap();
+        sent(&mut session);
+        // The action list's header, claiming 200 content bytes, then one byte every 5 ms.
+        let mut header = vec![0x13, 0x4c, 0x05, 0x1d];
+        header.extend_from_slice(&30011u16.to_le_bytes());
+        header.extend_from_slice(&200u16.to_le_bytes());
+        session.handle_input(t0 + Duration::from_millis(10), &header);
+        let mut at = t0 + Duration::from_millis(15);
+        while at < t0 + Duration::from_millis(200) {
+            session.handle_input(at, &[0]);
+            if let Some(due) = session.poll_timeout().filter(|due| *due <= at) {
+                session.handle_timeout(due);
+            }
+            at += Duration::from_millis(5);
+        }
+        let responses: Vec<SessionEvent> =
+            events(&mut session).into_iter().filter(|e| matches!(e, SessionEvent::Response { .. })).collect();
+        assert!(
+            matches!(
+                responses.as_slice(),
+                [SessionEvent::Response { id: got, result: Err(RequestError::Incomplete { expected: 209, received, .. }) }]
+                    if *got == id && (8..209).contains(received)
+            ),
+            "{responses:?}"
+        );
+        let text = match &responses[0] {
+            SessionEvent::Response { result: Err(error), .. } => error.to_string(),
+            other => panic!("{other:?}"),
+        };
+        assert!(text.contains("began but did not arrive whole") && !text.contains("not in this protocol"), "{text}");
     }
 
     #[test]

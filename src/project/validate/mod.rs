@@ -6,10 +6,12 @@ use super::document::{Family, Project};
 use crate::protocol::servo::STR32_LEN;
 
 mod plen2;
-
-pub use plen2::validate_plen2;
+mod problems;
 mod rflex;
 mod servo;
+
+pub use plen2::validate_plen2;
+pub use problems::Problems;
 
 pub use servo::validate_servo;
 
@@ -123,26 +125,46 @@ pub enum Location {
 
 impl fmt::Display for Location {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let q = |text| Shortened { text, quoted: true };
         match self {
             Self::Project => write!(f, "project"),
-            Self::Servo { servo_id, caption } => write!(f, "servo {servo_id} {caption:?}"),
-            Self::Action { action_id, caption } => write!(f, "action {action_id} {caption:?}"),
-            Self::Step { action_id, caption, step } => write!(f, "action {action_id} {caption:?}, step {step}"),
-            Self::Macro { macro_id, caption } => write!(f, "macro {macro_id} {caption:?}"),
+            Self::Servo { servo_id, caption } => write!(f, "servo {servo_id} {}", q(caption)),
+            Self::Action { action_id, caption } => write!(f, "action {action_id} {}", q(caption)),
+            Self::Step { action_id, caption, step } => write!(f, "action {action_id} {}, step {step}", q(caption)),
+            Self::Macro { macro_id, caption } => write!(f, "macro {macro_id} {}", q(caption)),
             Self::Command { macro_id, caption, command } => {
-                write!(f, "macro {macro_id} {caption:?}, command {command}")
+                write!(f, "macro {macro_id} {}, command {command}", q(caption))
             }
-            Self::Table { table_id, caption } => write!(f, "joystick table {table_id} {caption:?}"),
+            Self::Table { table_id, caption } => write!(f, "joystick table {table_id} {}", q(caption)),
             Self::Button { table_id, table_caption, button_id, caption } => {
-                write!(f, "joystick table {table_id} {table_caption:?}, button 0x{button_id:08x} {caption:?}")
+                write!(f, "joystick table {table_id} {}, button 0x{button_id:08x} {}", q(table_caption), q(caption))
             }
             Self::Joint { joint } => write!(f, "joint {joint}"),
-            Self::Motion { slot, name } => write!(f, "motion {slot} {name:?}"),
-            Self::Frame { slot, name, frame } => write!(f, "motion {slot} {name:?}, frame {frame}"),
-            Self::PlayList { index, name } => write!(f, "play list {index} {name:?}"),
+            Self::Motion { slot, name } => write!(f, "motion {slot} {}", q(name)),
+            Self::Frame { slot, name, frame } => write!(f, "motion {slot} {}, frame {frame}", q(name)),
+            Self::PlayList { index, name } => write!(f, "play list {index} {}", q(name)),
             Self::Robot => write!(f, "robot"),
-            Self::Key { path } => write!(f, "{path}"),
+            Self::Key { path } => write!(f, "{}", Shortened { text: path, quoted: false }),
         }
+    }
+}
+
+/// At most this many characters of a caption or a key are shown in a
+/// location; the rest is "…" (a 100,000-character caption is not echoed).
+pub const SHOWN_CHARS: usize = 40;
+
+/// Text cut to [`SHOWN_CHARS`] characters, in quotes (with escapes) when `quoted`.
+struct Shortened<'a> {
+    text: &'a str,
+    quoted: bool,
+}
+
+impl fmt::Display for Shortened<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let cut = self.text.char_indices().nth(SHOWN_CHARS).map(|(at, _)| at);
+        let shown = cut.map_or(self.text, |at| &self.text[..at]);
+        let more = if cut.is_some() { "…" } else { "" };
+        if self.quoted { write!(f, "{shown:?}{more}") } else { write!(f, "{shown}{more}") }
     }
 }
 
@@ -493,8 +515,9 @@ impl fmt::Display for Problem {
     }
 }
 
-/// Every problem of the document's own family's section, in document order.
-pub fn validate(project: &Project) -> Vec<Problem> {
+/// Every problem of the document's own family's section, in document order
+/// (the first thousand of each severity kept, all counted).
+pub fn validate(project: &Project) -> Problems {
     match project.family {
         Family::Servo => validate_servo(&project.servo),
         Family::Plen2 => validate_plen2(&project.plen2),
@@ -505,4 +528,19 @@ pub fn validate(project: &Project) -> Vec<Problem> {
 /// Whether any problem is an error.
 pub fn has_errors(problems: &[Problem]) -> bool {
     problems.iter().any(|problem| problem.severity == Severity::Error)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_long_caption_is_cut_where_a_location_is_shown() {
+        let caption = "揮手".repeat(50_000);
+        let shown = Location::Action { action_id: 3, caption }.to_string();
+        assert_eq!(shown, format!("action 3 {:?}…", "揮手".repeat(20)));
+        assert_eq!(Location::Servo { servo_id: 1, caption: "頭".into() }.to_string(), "servo 1 \"頭\"");
+        let key = Location::Key { path: format!("servos[0].{}", "k".repeat(100)) }.to_string();
+        assert_eq!(key, format!("servos[0].{}…", "k".repeat(30)));
+    }
 }

@@ -2,25 +2,25 @@
 
 use std::collections::HashSet;
 
-use super::{Location, Problem, ProblemKind, Severity};
+use super::{Location, Problem, ProblemKind, Problems, Severity};
 use crate::project::plen2::{Motion, Plen2Project};
 use crate::protocol::plen2::{
     ANGLE_LIMIT_TENTHS_DEG, MAX_FRAMES, MAX_TRANSITION_MS, MIN_TRANSITION_MS, NAME_LEN, QUEUE_LEN, SLOTS,
 };
 
-fn error(problems: &mut Vec<Problem>, location: &Location, kind: ProblemKind) {
+fn error(problems: &mut Problems, location: &Location, kind: ProblemKind) {
     problems.push(Problem { severity: Severity::Error, location: location.clone(), kind });
 }
 
-fn range(problems: &mut Vec<Problem>, at: &Location, field: &'static str, value: i64, min: i64, max: i64) {
+fn range(problems: &mut Problems, at: &Location, field: &'static str, value: i64, min: i64, max: i64) {
     if !(min..=max).contains(&value) {
         error(problems, at, ProblemKind::OutOfRange { field, value, min, max });
     }
 }
 
 /// Every problem of a PLEN2 section, in document order.
-pub fn validate_plen2(project: &Plen2Project) -> Vec<Problem> {
-    let mut problems = Vec::new();
+pub fn validate_plen2(project: &Plen2Project) -> Problems {
+    let mut problems = Problems::new();
     let limit = i64::from(ANGLE_LIMIT_TENTHS_DEG);
     let mut joints = HashSet::new();
     for setting in &project.joints {
@@ -67,7 +67,7 @@ pub fn validate_plen2(project: &Plen2Project) -> Vec<Problem> {
     problems
 }
 
-fn motion_problems(problems: &mut Vec<Problem>, motion: &Motion, slots: &HashSet<u8>, seen: &mut HashSet<u8>) {
+fn motion_problems(problems: &mut Problems, motion: &Motion, slots: &HashSet<u8>, seen: &mut HashSet<u8>) {
     let at = Location::Motion { slot: motion.slot, name: motion.name.clone() };
     range(problems, &at, "slot", motion.slot.into(), 0, i64::from(SLOTS) - 1);
     if !seen.insert(motion.slot) {

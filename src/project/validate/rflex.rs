@@ -1,10 +1,10 @@
 //! Validation of the rFLEX section.
 
-use super::{Location, Problem, ProblemKind, Severity};
+use super::{Location, Problem, ProblemKind, Problems, Severity};
 use crate::project::rflex::RflexProject;
 
 /// Every problem of an rFLEX section.
-pub fn validate_rflex(project: &RflexProject) -> Vec<Problem> {
+pub fn validate_rflex(project: &RflexProject) -> Problems {
     let conversion = project.robot.conversion();
     let drive = project.drive;
     [

@@ -5,12 +5,12 @@ use std::fmt;
 
 use super::super::servo::{Command, Run, ServoProject};
 use super::super::timing::Timing;
-use super::{ButtonSlot, ItemKind, Location, Problem, ProblemKind, Severity};
+use super::{ButtonSlot, ItemKind, Location, Problem, ProblemKind, Problems, Severity};
 use crate::protocol::servo::{ALL_SERVOS, ButtonRecord, MAX_CONTENT_LEN, MacroCommandRecord, STR32_LEN};
 
 /// Every problem of a servo section, in document order.
-pub fn validate_servo(project: &ServoProject) -> Vec<Problem> {
-    let mut check = Checker { problems: Vec::new() };
+pub fn validate_servo(project: &ServoProject) -> Problems {
+    let mut check = Checker { problems: Problems::new() };
     check.servos(project);
     check.rig(project);
     check.actions(project);
@@ -26,7 +26,7 @@ fn max_entries(entry_len: usize) -> usize {
 }
 
 struct Checker {
-    problems: Vec<Problem>,
+    problems: Problems,
 }
 
 impl Checker {

@@ -63,10 +63,18 @@ impl std::str::FromStr for LinkKind {
                 Ok(Self::Bursty { interval: Duration::from_secs_f64(ms / 1000.0) })
             }
             Some(("late", ms)) => {
-                Ok(Self::Late { max_hold: Duration::from_secs_f64(number(ms).ok_or_else(bad)? / 1000.0) })
+                let ms = number(ms)
+                    .filter(|ms| *ms <= 1000.0)
+                    .ok_or_else(|| format!("{text:?}: writes are held back up to late=MS, 0 to 1000 ms"))?;
+                Ok(Self::Late { max_hold: Duration::from_secs_f64(ms / 1000.0) })
             }
             Some(("slow", baud)) => {
-                let baud = baud.trim().parse::<u32>().ok().filter(|baud| *baud >= 300).ok_or_else(bad)?;
+                let baud = baud
+                    .trim()
+                    .parse::<u32>()
+                    .ok()
+                    .filter(|baud| (300..=4_000_000).contains(baud))
+                    .ok_or_else(|| format!("{text:?}: a line rate is slow=BAUD, 300 to 4000000"))?;
                 Ok(Self::Slow { baud })
             }
             _ => Err(bad()),

@@ -50,13 +50,21 @@ impl StudioApp {
 
     /// Hands the running operation's outcome to the family that started it.
     fn poll_operation(&mut self) {
-        let outcome = match &mut self.operation {
-            Some(RunningOperation::Servo(operation)) => operation.poll().map(Finished::Servo),
-            Some(RunningOperation::Plen2(operation)) => operation.poll().map(Finished::Plen2),
-            None => None,
+        self.finish_operation(None);
+    }
+
+    /// Hands the running operation's outcome to the family that started it,
+    /// waiting up to `wait` for it (None: not at all); returns the whole summary it left.
+    pub(super) fn finish_operation(&mut self, wait: Option<std::time::Duration>) -> Option<(String, bool)> {
+        let outcome = match (&mut self.operation, wait) {
+            (Some(RunningOperation::Servo(operation)), None) => operation.poll().map(Finished::Servo),
+            (Some(RunningOperation::Plen2(operation)), None) => operation.poll().map(Finished::Plen2),
+            (Some(RunningOperation::Servo(operation)), Some(wait)) => operation.wait(wait).map(Finished::Servo),
+            (Some(RunningOperation::Plen2(operation)), Some(wait)) => operation.wait(wait).map(Finished::Plen2),
+            (None, _) => None,
         };
-        let Some(outcome) = outcome else { return };
-        let Some(operation) = self.operation.take() else { return };
+        let outcome = outcome?;
+        let operation = self.operation.take()?;
         let summary = match (outcome, operation) {
             (Finished::Servo(outcome), RunningOperation::Servo(operation)) => {
                 self.servo.finish(&operation, outcome);
@@ -70,9 +78,11 @@ impl StudioApp {
         };
         // The status line follows: what the connection said of the board
         // ("factory-fresh") may no longer hold.
-        if let Some((text, is_error)) = summary {
-            self.report(text, is_error);
+        // The status line holds its first line; the whole text (what an upload left) is returned.
+        if let Some((text, is_error)) = &summary {
+            self.report(text.lines().next().unwrap_or_default(), *is_error);
         }
+        summary
     }
 
     /// Reads the list of serial ports, at most every two seconds.

@@ -11,34 +11,33 @@ impl StudioApp {
     }
 
     pub(super) fn open_now(&mut self, path: PathBuf) {
-        // The PLEN community's motion.json (one file, or a folder of them) opens
-        // as a new, unsaved PLEN2 project.
-        let is_motion = path.is_dir()
-            || std::fs::read_to_string(&path).is_ok_and(|text| crate::project::motion_json::looks_like_motion(&text));
-        if is_motion {
-            match crate::project::motion_json::load_motions(&path) {
-                Ok(motions) => {
-                    let plen2 = crate::project::plen2::Plen2Project { motions, ..Default::default() };
-                    self.report(format!("{} {}", self.words().msg_opened, path.display()), false);
-                    self.replace_document(Project { family: Family::Plen2, plen2, ..Project::default() }, None);
-                    self.document.dirty = true;
-                }
-                Err(error) => self.report(error.to_string(), true),
-            }
-            return;
-        }
-        match crate::project::read(&path) {
-            Ok(crate::project::Loaded { project, unknown_keys }) => {
-                files::remember(&mut self.recent, &path);
-                if unknown_keys.is_empty() {
+        use crate::project::input::{self, InputKind, OpenError};
+        match input::open(&path) {
+            Ok(opened) => {
+                let loaded = opened.loaded;
+                let unknown = loaded.unknown_key_count();
+                if unknown == 0 {
                     self.report(format!("{} {}", self.words().msg_opened, path.display()), false);
                 } else {
                     // A misspelt key changes nothing in the editor: say so.
-                    self.report(self.language.opened_with_unknown_keys(&path, &unknown_keys), true);
+                    self.report(self.language.opened_with_unknown_keys(&path, &loaded.unknown_keys, unknown), true);
                 }
-                self.replace_document(project, Some(path));
+                match opened.kind {
+                    InputKind::ProjectFile => {
+                        files::remember(&mut self.recent, &path);
+                        self.replace_document(loaded.project, Some(path));
+                    }
+                    // The PLEN community's motion.json (one file, or a folder of them) opens
+                    // as a new, unsaved PLEN2 project.
+                    InputKind::Motions => {
+                        self.replace_document(loaded.project, None);
+                        self.document.dirty = true;
+                    }
+                }
             }
-            Err(error) => self.report(self.language.load_error(&path, &error), true),
+            Err(OpenError::Project { source, .. }) => self.report(self.language.load_error(&path, &source), true),
+            Err(OpenError::Read(error)) => self.report(self.language.read_error(&error), true),
+            Err(error) => self.report(error.to_string(), true),
         }
     }
 

@@ -10,8 +10,9 @@ mod file_ops;
 mod shell;
 mod tabs;
 
+use std::io::Write;
 use std::path::PathBuf;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use crossbeam_channel::Receiver;
 
@@ -290,7 +291,18 @@ impl StudioApp {
             Action::Terminate => {
                 // Asked to end from outside (Ctrl-C, kill, a closing session): the board
                 // first — a base stops and brakes as its link is dropped — then the work,
-                // into the recovery file, then the window, without asking.
+                // into the recovery file, then the window, without asking. An upload
+                // running stops at its next safe point (never mid-packet); what it left
+                // on the board, and how to restore the backup, go to the terminal.
+                if let Some(operation) = &self.operation {
+                    operation.cancel();
+                    let summary = self.finish_operation(Some(TERMINATE_WAIT));
+                    let said = match summary {
+                        Some((text, _)) => text,
+                        None => self.words().msg_operation_left_running.to_string(),
+                    };
+                    let _ = writeln!(std::io::stderr(), "servo-studio: {said}");
+                }
                 self.link = None;
                 self.apply(Action::Autosave);
                 self.quit_allowed = true;
@@ -495,6 +507,10 @@ pub struct Remembered {
     #[serde(default)]
     pub layouts: [Layout; 3],
 }
+
+/// How long the editor, ending on a signal, waits for a board operation to
+/// reach its next safe point: a request's timeout and its retries.
+pub const TERMINATE_WAIT: Duration = Duration::from_secs(10);
 
 /// The key under which [`Remembered`] is stored.
 pub const REMEMBERED_KEY: &str = "servo-studio";

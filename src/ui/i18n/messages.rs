@@ -27,6 +27,19 @@ impl Language {
             (Self::TraditionalChinese, E::Refused { port }) => {
                 format!("{port}：連線被拒。該位址上的橋接程式（或 `servo-studio sim --tcp`）是否正在執行？")
             }
+            (Self::TraditionalChinese, E::NotAPort { port, what }) => {
+                let what = match *what {
+                    "a regular file" => "一般檔案",
+                    "a folder" => "資料夾",
+                    "a named pipe (FIFO)" => "具名管道（FIFO）",
+                    "a socket" => "socket",
+                    "a block device" => "區塊裝置",
+                    _ => "不是終端機的裝置",
+                };
+                format!(
+                    "{port} 是{what}，不是序列埠：請選擇控制板所在的連接埠（`servo-studio ports` 會列出），或 tcp://主機:埠號"
+                )
+            }
             (Self::TraditionalChinese, E::Open { port, source }) => format!("{port}：無法開啟：{source}"),
         }
     }
@@ -200,6 +213,11 @@ impl Language {
                     "{request}：嘗試 {attempts} 次，每次等候 {timeout_ms} 毫秒都沒有回應。請確認控制板已開機、鮑率相符、線材已接好"
                 )
             }
+            (_, R::Incomplete { request, received, expected, timeout_ms, .. }) => {
+                format!(
+                    "{request}：回應已開始，但表頭之後 {timeout_ms} 毫秒內沒有收完（{received}／{expected} 位元組）。線路太慢或遺失資料：請確認鮑率與線材"
+                )
+            }
             (_, R::NotThisProtocol { request, bytes }) => {
                 format!("{request}：裝置有回應（{bytes} 位元組），但不是這個協定。它是伺服控制板嗎？請確認板子種類")
             }
@@ -224,13 +242,18 @@ impl Language {
             }
             O::ReadFailed { item } => format!("{}：控制板回報讀取失敗", self.item(item)),
             O::Invalid { problems } => {
-                let list: Vec<String> = problems
+                let mut list: Vec<String> = problems
                     .iter()
+                    .take(20)
                     .map(|p| format!("{}：{}", self.location(&p.location), self.problem(&p.kind)))
                     .collect();
+                let more = problems.errors() + problems.warnings() - list.len();
+                if more > 0 {
+                    list.push(format!("……還有 {more} 個（servo-studio check 會全部列出）"));
+                }
                 format!(
                     "專案有 {} 個錯誤，沒有寫入任何資料：\n{}\n請修正，或用「仍要上傳」（命令列 `import --force`）照原樣還原",
-                    problems.len(),
+                    problems.errors(),
                     list.join("\n")
                 )
             }
@@ -402,17 +425,37 @@ impl Language {
     }
 
     /// A file opened, but with keys Servo Studio does not know (ignored).
-    pub fn opened_with_unknown_keys(self, path: &std::path::Path, keys: &[String]) -> String {
+    /// `keys` are the first unknown keys by name, `count` how many there were.
+    pub fn opened_with_unknown_keys(self, path: &std::path::Path, keys: &[String], count: usize) -> String {
         let file = path.display();
         let shown: Vec<&str> = keys.iter().take(3).map(String::as_str).collect();
-        let more = if keys.len() > shown.len() { ", …" } else { "" };
+        let more = if count > shown.len() { ", …" } else { "" };
         match self {
             Self::English => {
-                format!("opened {file}; {} unknown key(s) ignored (misspelt?): {}{more}", keys.len(), shown.join(", "))
+                format!("opened {file}; {count} unknown key(s) ignored (misspelt?): {}{more}", shown.join(", "))
             }
             Self::TraditionalChinese => {
-                format!("已開啟 {file}；略過 {} 個不認得的欄位（是否拼錯？）：{}{more}", keys.len(), shown.join("、"))
+                format!("已開啟 {file}；略過 {count} 個不認得的欄位（是否拼錯？）：{}{more}", shown.join("、"))
             }
+        }
+    }
+
+    /// A file that could not be read at all, in one sentence.
+    pub fn read_error(self, error: &crate::project::input::ReadError) -> String {
+        use crate::project::input::ReadError as E;
+        match (self, error) {
+            (Self::English, _) => error.to_string(),
+            (_, E::Io { path, source }) => format!("無法開啟 {}：{}", path.display(), io_words(source.kind())),
+            (_, E::NotAFile { path, .. }) => {
+                format!("無法開啟 {}：它不是一般檔案（具名管道、裝置或資料夾）", path.display())
+            }
+            (_, E::TooLarge { path, bytes, max }) => format!(
+                "無法開啟 {}：檔案有 {} MB，超過上限 {} MB（是正確的檔案嗎？）",
+                path.display(),
+                bytes / 1_000_000,
+                max / 1_000_000
+            ),
+            (_, E::NotText { path, .. }) => format!("無法開啟 {}：內容不是有效的 UTF-8 文字", path.display()),
         }
     }
 
@@ -421,8 +464,9 @@ impl Language {
         use crate::project::LoadError as E;
         let file = path.display();
         match (self, error) {
+            (Self::English, E::Read(error)) => error.to_string(),
             (Self::English, _) => format!("cannot open {file}: {error}"),
-            (_, E::Io { source, .. }) => format!("無法開啟 {file}：{}", io_words(source.kind())),
+            (_, E::Read(error)) => self.read_error(error),
             (_, E::Syntax { line, column, .. }) => {
                 format!("無法開啟 {file}：第 {line} 行第 {column} 欄不是有效的專案內容")
             }
@@ -437,9 +481,12 @@ impl Language {
     pub fn save_error(self, error: &crate::project::SaveError) -> String {
         match self {
             Self::English => error.to_string(),
-            Self::TraditionalChinese => {
-                format!("無法儲存 {}：{}；原本的檔案沒有改變", error.path.display(), io_words(error.source.kind()))
-            }
+            Self::TraditionalChinese => format!(
+                "無法儲存 {}：{}；{}",
+                error.path.display(),
+                io_words(error.source.kind()),
+                if error.existed { "原本的檔案沒有改變" } else { "沒有寫入任何東西" }
+            ),
         }
     }
 

@@ -109,13 +109,27 @@ impl Language {
                 format!("{}：裝置有回應，但不是 PLEN2 的協定。它是韌體 1.4.x 的 PLEN2 嗎？", self.plen2_item(item))
             }
             Plen2OpError::Invalid { problems } => {
-                let list: Vec<String> = problems
+                let mut list: Vec<String> = problems
                     .iter()
+                    .take(20)
                     .map(|p| format!("{}：{}", self.location(&p.location), self.problem(&p.kind)))
                     .collect();
-                format!("專案有 {} 個錯誤，沒有寫入任何資料：\n{}", problems.len(), list.join("\n"))
+                let more = problems.errors() + problems.warnings() - list.len();
+                if more > 0 {
+                    list.push(format!("……還有 {more} 個（servo-studio check 會全部列出）"));
+                }
+                format!("專案有 {} 個錯誤，沒有寫入任何資料：\n{}", problems.errors(), list.join("\n"))
             }
             Plen2OpError::Backup(error) => format!("備份失敗，因此沒有寫入任何資料：{}", self.save_error(error)),
+            Plen2OpError::Unstorable(error) => {
+                use crate::device::plen2::NotStorable;
+                let why = match error.why {
+                    NotStorable::Frames(count) => format!("它有 {count} 個影格，PLEN2 的動作只能有 1 到 20 個"),
+                    NotStorable::Slot => "PLEN2 只有 0 到 89 號槽位".to_string(),
+                    NotStorable::Name => "名稱最多 20 個可列印的 ASCII 字元".to_string(),
+                };
+                format!("動作 {} {:?} 無法存進 PLEN2，沒有寫入任何資料：{why}", error.slot, error.name)
+            }
             Plen2OpError::Cancelled => "已取消".into(),
         }
     }

@@ -261,6 +261,8 @@ pub struct Strings {
     pub saved_board_to: &'static str,
     /// "Cancelled.".
     pub cancelled: &'static str,
+    /// The editor ended while a board operation did not stop in time.
+    pub msg_operation_left_running: &'static str,
     /// "Servo Studio did not close cleanly. Autosaved work can be recovered from".
     pub recover_body: &'static str,
     /// "project needs (bytes)".

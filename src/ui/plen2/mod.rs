@@ -19,7 +19,7 @@ pub use live::homes;
 use crate::device::plen2::{self, Command, Plen2ImportFailure, Plen2ImportOptions, Plen2ImportReport, Plen2OpError};
 use crate::device::plen2::{Plen2Item, ReplyError};
 use crate::project::plen2::{Plen2Project, SLOTS};
-use crate::project::{Edit, Family, Problem, Project, Severity};
+use crate::project::{Edit, Family, Project};
 use crate::ui::action::{Action, Plen2Action, Plen2Intent, Tab};
 use crate::ui::app::{RunningOperation, Shell, ShellView};
 use crate::ui::layout::{Layout, Pane};
@@ -83,7 +83,7 @@ pub enum Plen2Result {
     /// Joint settings written.
     JointsWritten(usize),
     /// The project has errors; nothing was written.
-    Invalid(Vec<Problem>),
+    Invalid(crate::project::Problems),
     /// What the robot held replaced the project's PLEN2 section.
     ReadIntoProject,
     /// What the robot held was saved to this file.
@@ -109,7 +109,7 @@ pub struct Plen2Ui {
     /// The last operation's outcome.
     pub result: Option<Plen2Result>,
     /// The PLEN2 section's problems, per document revision (the motion editor marks them every frame).
-    problems: Option<(u64, Vec<Problem>)>,
+    problems: Option<(u64, crate::project::Problems)>,
     /// The robot panel's slot map, for (document revision, robot reads).
     slots: Option<((u64, u64), Vec<SlotCell>)>,
     motions: motions::MotionsPanel,
@@ -168,7 +168,13 @@ fn run(
             let options = Plen2ImportOptions { backup_dir: Some(backups), verify: true, force: false };
             match plen2::import(requester, project, &options, &mut progress, cancel) {
                 Ok(done) => Plen2Outcome::Uploaded(done),
-                Err(failure) if matches!(failure.error, Plen2OpError::Cancelled) => Plen2Outcome::Cancelled,
+                // Cancelled before a byte was written: nothing to say but that; after, what it left.
+                Err(failure)
+                    if matches!(failure.error, Plen2OpError::Cancelled)
+                        && matches!(failure.left, crate::device::Left::Untouched) =>
+                {
+                    Plen2Outcome::Cancelled
+                }
                 Err(failure) => Plen2Outcome::Failed(Plen2Failure::Upload(failure)),
             }
         }
@@ -214,7 +220,7 @@ impl Plen2Ui {
                     match crate::project::atomic_write(&path, |file| std::io::Write::write_all(file, text.as_bytes())) {
                         Ok(()) => shell.report(format!("{} {}", shell.words().msg_saved, path.display()), false),
                         Err(source) => {
-                            let error = crate::project::SaveError { path, source };
+                            let error = crate::project::SaveError::new(&path, source);
                             shell.report(shell.language.save_error(&error), true);
                         }
                     }
@@ -265,9 +271,8 @@ impl Plen2Ui {
             Plen2Intent::Read => self.start(shell, Plen2Kind::Read, plen2),
             Plen2Intent::Upload => {
                 let document = Project { family: Family::Plen2, plen2: plen2.clone(), ..Project::default() };
-                let errors: Vec<Problem> =
-                    crate::project::validate(&document).into_iter().filter(|p| p.severity == Severity::Error).collect();
-                if errors.is_empty() {
+                let errors = crate::project::validate(&document).errors_only();
+                if !errors.has_errors() {
                     self.start(shell, Plen2Kind::Upload, plen2);
                 } else {
                     self.result = Some(Plen2Result::Invalid(errors));
@@ -323,7 +328,7 @@ impl Plen2Ui {
                 if self.problems.as_ref().is_none_or(|(at, _)| *at != revision) {
                     self.problems = Some((revision, crate::project::validate_plen2(project)));
                 }
-                let problems = self.problems.as_ref().map_or(&[][..], |(_, problems)| problems.as_slice());
+                let problems = self.problems.as_ref().map_or(&[][..], |(_, problems)| &problems[..]);
                 let panes = (&mut self.layout, &mut self.preview, &self.pose);
                 self.motions.ui(ui, (view, problems), panes, actions);
             }
@@ -361,10 +366,9 @@ impl Plen2Ui {
         }
     }
 
-    /// The last operation's outcome in one status line, and whether it is an error.
+    /// The last operation's outcome, whole (the status line shows its first line), and whether it is an error.
     pub fn summary(&self, language: crate::ui::i18n::Language) -> Option<(String, bool)> {
-        let (text, is_error) = language.plen2_result(self.result.as_ref()?);
-        Some((text.lines().next().unwrap_or_default().to_string(), is_error))
+        Some(language.plen2_result(self.result.as_ref()?))
     }
 
     /// The item a step works on, in words.

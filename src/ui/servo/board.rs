@@ -7,7 +7,6 @@ use std::sync::Arc;
 
 use super::operations::{ServoFailure, ServoKind, ServoOutcome};
 use crate::device::servo::{Difference, ImageError, Item};
-use crate::project::Problem;
 use crate::ui::action::{Action, BoardIntent, FileRequest, ServoAction};
 use crate::ui::i18n::Language;
 use crate::ui::operation::{Operation, Subject};
@@ -36,7 +35,7 @@ pub enum BoardResult {
     /// The project has authoring errors; nothing was written. The user may upload anyway.
     Invalid {
         /// The errors, with their locations.
-        problems: Vec<Problem>,
+        problems: crate::project::Problems,
     },
     /// Stopped with an error.
     Failed {

@@ -194,7 +194,7 @@ impl ServoUi {
         board::ui(ui, &board, language, actions);
     }
 
-    /// The last operation's outcome in one status line, and whether it is an error.
+    /// The last operation's outcome, whole (the status line shows its first line), and whether it is an error.
     pub fn summary(&self, language: Language) -> Option<(String, bool)> {
         let words = language.strings();
         if self.pending.is_some() {
@@ -202,7 +202,7 @@ impl ServoUi {
         }
         let result = self.board_result.as_ref()?;
         if let Some(error) = result.error_text(language) {
-            return Some((error.lines().next().unwrap_or_default().to_string(), true));
+            return Some((error, true));
         }
         let text = match result {
             BoardResult::Uploaded { items, .. } => format!("{} {}", words.uploaded_items, items.len()),

@@ -9,7 +9,7 @@ use super::board::{BoardResult, PendingConfirm};
 use crate::device::servo::{
     Difference, ImageError, ImportFailure, ImportOptions, ImportReport, OpError, ServoImage, import, read_image,
 };
-use crate::project::{Edit, Project, ServoProject, Severity, has_errors, validate_servo};
+use crate::project::{Edit, Project, ServoProject, has_errors, validate_servo};
 use crate::ui::action::BoardIntent;
 use crate::ui::app::{RunningOperation, Shell};
 use crate::ui::operation::{Operation, Step, Subject};
@@ -91,7 +91,13 @@ fn run(
             let options = ImportOptions { backup_dir: Some(backups), verify: true, force: *force };
             match import(requester, project, &options, &mut progress, cancel) {
                 Ok(done) => ServoOutcome::Uploaded(done),
-                Err(failure) if matches!(failure.error, OpError::Cancelled) => ServoOutcome::Cancelled,
+                // Cancelled before a byte was written: nothing to say but that; after, what it left.
+                Err(failure)
+                    if matches!(failure.error, OpError::Cancelled)
+                        && matches!(failure.left, crate::device::Left::Untouched) =>
+                {
+                    ServoOutcome::Cancelled
+                }
                 Err(failure) => ServoOutcome::Failed(ServoFailure::Upload(failure)),
             }
         }
@@ -125,8 +131,7 @@ impl ServoUi {
         if intent == BoardIntent::Upload {
             let problems = validate_servo(&shell.document.project.servo);
             if has_errors(&problems) {
-                let problems = problems.into_iter().filter(|p| p.severity == Severity::Error).collect();
-                self.board_result = Some(BoardResult::Invalid { problems });
+                self.board_result = Some(BoardResult::Invalid { problems: problems.errors_only() });
                 return;
             }
         }

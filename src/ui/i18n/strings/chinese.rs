@@ -131,6 +131,7 @@ pub(in crate::ui::i18n) const TRADITIONAL_CHINESE: Strings = Strings {
     slots_differ: "重寫後仍不一致（請檢查連接線後再上傳一次），槽位：",
     saved_board_to: "已將控制板存至",
     cancelled: "已取消。",
+    msg_operation_left_running: "編輯器結束時，控制板作業仍在執行且未能及時停止：控制板上可能只有部分內容。請重新連線，並與備份（backups 資料夾）比對後再使用。",
     recover_body: "Servo Studio 未正常關閉。可以復原自動儲存的工作，時間：",
     project_needs: "專案所需（位元組）",
     of_capacity: "／",

@@ -131,6 +131,7 @@ pub(in crate::ui::i18n) const ENGLISH: Strings = Strings {
     slots_differ: "Still different after writing again (check the cable and upload again), slots:",
     saved_board_to: "Saved the board to",
     cancelled: "Cancelled.",
+    msg_operation_left_running: "The editor ended while a board operation was still running and did not stop in time: the board may hold part of it. Connect again and compare it with the backup (in the backups folder) before using it.",
     recover_body: "Servo Studio did not close cleanly. Autosaved work can be recovered from",
     project_needs: "project needs (bytes)",
     of_capacity: "of",

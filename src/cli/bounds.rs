@@ -1,0 +1,126 @@
+//! Every number a user types, read with its bounds: a value outside them is
+//! refused while the command line is parsed, before a port is opened or a
+//! byte sent, with what the bounds are. Nothing later does arithmetic on an
+//! unbounded number (a duration of 1e20 s cannot be added to a clock).
+
+use std::time::Duration;
+
+/// The longest `rflex drive` and `trajectory` take, s (an hour).
+pub const MAX_SECONDS: f64 = 3600.0;
+/// The longest a device may be given to answer, ms (ten minutes).
+pub const MAX_TIMEOUT_MS: u64 = 600_000;
+/// Line rates a serial port or the emulator takes.
+pub const BAUD: std::ops::RangeInclusive<u32> = 300..=4_000_000;
+/// The longest the emulated servo board waits before answering, ms.
+pub const MAX_TURNAROUND_MS: u64 = 60_000;
+/// The emulated servo board's memory, bytes (up to 1 GiB).
+pub const MEMORY_BYTES: std::ops::RangeInclusive<i32> = 0..=(1 << 30);
+/// Fastest a base is ever asked to go, m/s (each robot's own limit is lower).
+pub const MAX_SPEED_M_PER_S: f64 = 10.0;
+/// Fastest a base is ever asked to turn, rad/s.
+pub const MAX_TURN_RAD_PER_S: f64 = 10.0;
+/// Largest acceleration asked, m/s².
+pub const MAX_ACCEL_M_PER_S2: f64 = 10.0;
+
+fn real(text: &str) -> Result<f64, String> {
+    let value: f64 = text.trim().parse().map_err(|_| format!("{text:?} is not a number"))?;
+    if value.is_finite() { Ok(value) } else { Err(format!("{text:?} is not a finite number")) }
+}
+
+fn within_f64(text: &str, min: f64, max: f64, unit: &str) -> Result<f64, String> {
+    let value = real(text)?;
+    if (min..=max).contains(&value) { Ok(value) } else { Err(format!("{value} is outside {min}..={max} {unit}")) }
+}
+
+fn integer<T: std::str::FromStr + PartialOrd + std::fmt::Display + Copy>(
+    text: &str,
+    range: &std::ops::RangeInclusive<T>,
+    unit: &str,
+) -> Result<T, String> {
+    let value: T = text
+        .trim()
+        .parse()
+        .map_err(|_| format!("{text:?} is not a whole number in {}..={} {unit}", range.start(), range.end()))?;
+    if range.contains(&value) {
+        Ok(value)
+    } else {
+        Err(format!("{value} is outside {}..={} {unit}", range.start(), range.end()))
+    }
+}
+
+/// `rflex drive --seconds`: 0 to an hour.
+pub fn drive_seconds(text: &str) -> Result<f64, String> {
+    within_f64(text, 0.0, MAX_SECONDS, "s")
+}
+
+/// `trajectory --seconds`: above 0, at most an hour.
+pub fn trajectory_seconds(text: &str) -> Result<f64, String> {
+    let value = within_f64(text, 0.0, MAX_SECONDS, "s")?;
+    if value > 0.0 { Ok(value) } else { Err("--seconds must be above 0".into()) }
+}
+
+/// `--speed`, m/s, either way.
+pub fn speed(text: &str) -> Result<f64, String> {
+    within_f64(text, -MAX_SPEED_M_PER_S, MAX_SPEED_M_PER_S, "m/s")
+}
+
+/// `--turn`, rad/s, either way.
+pub fn turn(text: &str) -> Result<f64, String> {
+    within_f64(text, -MAX_TURN_RAD_PER_S, MAX_TURN_RAD_PER_S, "rad/s")
+}
+
+/// `--accel`, m/s², above 0.
+pub fn accel(text: &str) -> Result<f64, String> {
+    let value = within_f64(text, 0.0, MAX_ACCEL_M_PER_S2, "m/s²")?;
+    if value > 0.0 { Ok(value) } else { Err("--accel must be above 0".into()) }
+}
+
+/// `--timeout-ms`: 1 ms to ten minutes.
+pub fn timeout_ms(text: &str) -> Result<u64, String> {
+    integer(text, &(1..=MAX_TIMEOUT_MS), "ms")
+}
+
+/// `--baud`: a rate a serial port can run.
+pub fn baud(text: &str) -> Result<u32, String> {
+    integer(text, &BAUD, "baud")
+}
+
+/// `sim --turnaround-ms`.
+pub fn turnaround_ms(text: &str) -> Result<u64, String> {
+    integer(text, &(0..=MAX_TURNAROUND_MS), "ms")
+}
+
+/// `sim --memory`.
+pub fn memory_bytes(text: &str) -> Result<i32, String> {
+    integer(text, &MEMORY_BYTES, "bytes")
+}
+
+/// A PLEN2 slot, 0..=89.
+pub fn slot(text: &str) -> Result<u8, String> {
+    integer(text, &(0..=servo_studio::protocol::plen2::SLOTS - 1), "(a PLEN2 slot)")
+}
+
+/// A duration of `seconds` that is known to be bounded (parsed by the functions above).
+pub fn duration(seconds: f64) -> Duration {
+    Duration::try_from_secs_f64(seconds.clamp(0.0, MAX_SECONDS)).unwrap_or(Duration::ZERO)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_outside_their_bounds_are_refused_with_the_bounds() {
+        assert_eq!(drive_seconds("1e20"), Err("100000000000000000000 is outside 0..=3600 s".into()));
+        assert_eq!(drive_seconds("NaN"), Err("\"NaN\" is not a finite number".into()));
+        assert_eq!(drive_seconds("-1"), Err("-1 is outside 0..=3600 s".into()));
+        assert_eq!(drive_seconds("2.5"), Ok(2.5));
+        assert!(trajectory_seconds("0").is_err());
+        assert_eq!(baud("0"), Err("0 is outside 300..=4000000 baud".into()));
+        assert_eq!(timeout_ms("18446744073709551615"), Err("18446744073709551615 is outside 1..=600000 ms".into()));
+        assert!(timeout_ms("99999999999999999999999").unwrap_err().contains("not a whole number"));
+        assert_eq!(slot("90"), Err("90 is outside 0..=89 (a PLEN2 slot)".into()));
+        assert_eq!(accel("0"), Err("--accel must be above 0".into()));
+        assert_eq!(memory_bytes("-5"), Err("-5 is outside 0..=1073741824 bytes".into()));
+    }
+}
