@@ -69,7 +69,7 @@ fn check_reads_a_plen2_motion_json_and_locates_its_problems() {
         r#"{{"slot": 70, "name": "Walk Forward", "codes": [], "frames": [{}, {}, {}]}}"#,
         frame(100),
         frame(100),
-        frame(20)
+        frame(9000)
     );
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("70_Walk_Forward.json");
@@ -78,7 +78,7 @@ fn check_reads_a_plen2_motion_json_and_locates_its_problems() {
     assert_eq!(output.status.code(), Some(1));
     let printed = stdout(&output);
     assert!(
-        printed.contains("error: motion 70 \"Walk Forward\", frame 3: transition_ms 20 is outside 32..=8191"),
+        printed.contains("error: motion 70 \"Walk Forward\", frame 3: transition_ms 9000 is outside 32..=8191"),
         "{printed}"
     );
     assert!(printed.contains("1 error(s)"), "{printed}");

@@ -162,3 +162,48 @@ fn the_official_motions_take_the_cycles_their_transitions_say() {
     }
     assert_eq!(checked, 90);
 }
+
+/// plen2.md §6's edges, with figures worked by hand: a loop of count 0 runs
+/// forever (and says so), a jump to a slot ≥ 90 replays the motion, a frame
+/// of 0 cycles is skipped but the next steps from it.
+#[test]
+fn motions_on_the_firmwares_edges_play_as_the_robot_plays_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = format!(
+        r#"{{"format": "servo-studio-project", "version": 2, "family": "plen2", "plen2": {{"motions": [
+            {{"slot": 0, "name": "Forever", "frames": [{}, {}, {}], "loop_range": {{"begin_frame": 0, "end_frame": 1, "count": 0}}}},
+            {{"slot": 1, "name": "Beyond", "frames": [{}, {}], "jump_slot": 90}},
+            {{"slot": 2, "name": "Skip", "frames": [{}, {}, {}]}}
+        ]}}}}"#,
+        frame(100, 100),
+        frame(100, 300),
+        frame(100, 0),
+        frame(64, 100),
+        frame(32, 50),
+        frame(100, 100),
+        frame(0, 300),
+        frame(100, 210),
+    );
+    let project = write(dir.path(), "edges.json", &text);
+    let project = project.to_str().unwrap();
+    // Joint values are relative to home; the knee's column is the frame value itself.
+    let out = dir.path().join("out.csv");
+    let output = Command::new(EXE)
+        .args(["trajectory", project, "--slot", "0", "--seconds", "0.39", "--out", out.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    assert!(String::from_utf8_lossy(&output.stderr).contains("motion 0 never ends"), "said, not only cut");
+    let rows: Vec<Vec<String>> = std::fs::read_to_string(&out)
+        .unwrap()
+        .lines()
+        .map(|line| line.split(',').map(str::to_string).collect())
+        .collect();
+    assert_eq!(column(&rows, "left_knee_pitch"), [33, 66, 99, 166, 233, 299, 233, 166, 100, 166, 233, 299]);
+
+    let rows = trajectory(dir.path(), &[project, "--slot", "1", "--seconds", "0.29"]).unwrap();
+    assert_eq!(column(&rows, "left_knee_pitch"), [50, 100, 50, 75, 100, 50, 75, 100, 50]);
+
+    let rows = trajectory(dir.path(), &[project, "--slot", "2"]).unwrap();
+    assert_eq!(column(&rows, "left_knee_pitch"), [33, 66, 99, 270, 240, 210], "300 never shown; 210 from it");
+}

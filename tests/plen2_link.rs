@@ -176,3 +176,25 @@ impl Commands for Motion {
         motion_commands(&self).iter().map(servo_studio::protocol::plen2::Command::to_ascii).collect()
     }
 }
+
+/// The robot refuses a max at or below its current min (plen2.md §3): joint
+/// settings moved wholly below the current range are still written, in an
+/// order the robot takes, and read back as asked.
+#[test]
+fn joint_settings_moved_below_the_current_range_are_written_in_an_order_the_robot_takes() {
+    let robot = robot();
+    let (_handle, requester) = connect(&robot);
+    let setting = |min, max, home| JointSetting {
+        joint: Joint::LeftKneePitch,
+        min_tenths_deg: min,
+        max_tenths_deg: max,
+        home_tenths_deg: home,
+    };
+    for wanted in [setting(100, 900, 450), setting(-500, 0, -200), setting(200, 800, 300)] {
+        let current = servo_studio::device::plen2::read_joint_settings(&requester).unwrap();
+        servo_studio::device::plen2::write_joint_settings(&requester, &[wanted], &current).unwrap();
+        // Read back: the robot answers after it has taken (or refused) every write before.
+        let now = servo_studio::device::plen2::read_joint_settings(&requester).unwrap();
+        assert_eq!(now.iter().find(|s| s.joint == Joint::LeftKneePitch), Some(&wanted));
+    }
+}

@@ -174,11 +174,11 @@ fn the_checked_in_version_2_fixture_loads_every_section() {
 #[test]
 fn validation_follows_the_documents_family() {
     let mut document = project::load(&fixture_v2_path()).unwrap();
-    document.plen2.motions[0].frames[1].transition_ms = 20;
+    document.plen2.motions[0].frames[1].transition_ms = 9000;
     assert_eq!(project::validate(&document), [], "a servo document does not validate its PLEN2 section");
     document.family = Family::Plen2;
     let texts: Vec<String> = project::validate(&document).iter().map(ToString::to_string).collect();
-    assert_eq!(texts, ["error: motion 70 \"Walk Forward\", frame 2: transition_ms 20 is outside 32..=8191"]);
+    assert_eq!(texts, ["error: motion 70 \"Walk Forward\", frame 2: transition_ms 9000 is outside 32..=8191"]);
     document.family = Family::Rflex;
     document.rflex.drive.max_speed_m_per_s = 0.0;
     let texts: Vec<String> = project::validate(&document).iter().map(ToString::to_string).collect();

@@ -231,3 +231,26 @@ fn the_pacing_is_chosen_in_the_connection_settings_and_used_at_the_next_connecti
     // Remembered between runs.
     assert_eq!(harness.state().remembered().plen2_pacing, PacingMode::Safe);
 }
+
+/// plen2.md §6 in the editor: a loop of count 0 is said to run forever (in
+/// the preview and as a warning), a first frame under 32 ms as undefined.
+#[test]
+fn the_motion_editor_says_what_the_robot_really_does_with_an_edge_motion() {
+    let mut document = project();
+    document.plen2.motions[0].loop_range =
+        Some(servo_studio::project::plen2::LoopRange { begin_frame: 0, end_frame: 1, count: 0 });
+    document.plen2.motions[0].frames[0].transition_ms = 20;
+    let data = tempfile::tempdir().unwrap().keep();
+    let app = StudioApp::new(document, None, no_waker()).with_data_dir(data);
+    let mut harness = Harness::builder()
+        .with_size(egui::vec2(1200.0, 800.0))
+        .with_context_setup(servo_studio::ui::fonts::install)
+        .build_ui_state(|ui, app: &mut StudioApp| app.show(ui), app);
+    harness.state_mut().apply(Action::ShowTab(Tab::Motions));
+    harness.run_steps(3);
+    assert!(harness.query_by_label_contains("This motion never ends on the robot").is_some());
+    assert!(harness.query_by_label_contains("the robot divides by zero there").is_some());
+    let problems: Vec<String> =
+        servo_studio::project::validate(&harness.state().document.project).iter().map(ToString::to_string).collect();
+    assert!(problems.iter().any(|p| p.contains("loop count 0 runs forever")), "{problems:?}");
+}

@@ -86,7 +86,14 @@ fn plen2_rows(project: &Project, slot: u8, from_slot: Option<u8>, max_cycles: us
     within_cap(max_cycles, Joint::ALL.len() + 1, Playback::CYCLE_MS)?;
     let stored = StoredMotions::new(plen2);
     let from = from_slot.map_or([0; DEVICE_IDS], |previous| playback::after(&stored, previous, max_cycles));
-    let Playback { cycles, .. } = playback::play(&stored, slot, from, max_cycles);
+    let Playback { cycles, ended, .. } = playback::play(&stored, slot, from, max_cycles);
+    if !ended && !cycles.is_empty() {
+        // A loop of count 0 or 255, or a jump to a slot ≥ 90 (plen2.md §6).
+        super::out::say!(
+            "note: motion {slot} never ends on the robot (it loops forever, or jumps to a slot it cannot play and replays itself): the CSV stops after {} cycles (--seconds)",
+            cycles.len()
+        );
+    }
     let mut rows = vec![
         std::iter::once("t_ms".to_string())
             .chain(Joint::ALL.map(|j| j.name().to_string()))

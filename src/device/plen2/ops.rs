@@ -11,7 +11,9 @@ use super::driver::ReplyError;
 use crate::device::{Cancel, Left, Stage, UploadFailure};
 use crate::project::plen2::{JointSetting, Motion, Plen2Project};
 use crate::project::{self, Problems, Project};
-use crate::protocol::plen2::{Command, Joint, SLOTS, decode_joint_settings, decode_motion, decode_version};
+use crate::protocol::plen2::{
+    Command, FACTORY_LIMIT_TENTHS_DEG, Joint, SLOTS, decode_joint_settings, decode_motion, decode_version,
+};
 
 pub use crate::device::Phase as Plen2Phase;
 
@@ -240,11 +242,17 @@ pub fn write_joint_settings(
         let now = current.iter().find(|c| c.joint == setting.joint);
         let differs = |pick: fn(&JointSetting) -> i16| now.is_none_or(|now| pick(now) != pick(setting));
         let mut commands = Vec::new();
-        if differs(|s| s.max_tenths_deg) {
-            commands.push(Command::SetMax { device, angle: setting.max_tenths_deg });
-        }
-        if differs(|s| s.min_tenths_deg) {
-            commands.push(Command::SetMin { device, angle: setting.min_tenths_deg });
+        let set_max =
+            differs(|s| s.max_tenths_deg).then_some(Command::SetMax { device, angle: setting.max_tenths_deg });
+        let set_min =
+            differs(|s| s.min_tenths_deg).then_some(Command::SetMin { device, angle: setting.min_tenths_deg });
+        // The robot refuses a max at or below its current min (and a min at or above its
+        // max, plen2.md §3): a range moved wholly below the current one sets its min first.
+        let current_min = now.map_or(-FACTORY_LIMIT_TENTHS_DEG, |now| now.min_tenths_deg);
+        if setting.max_tenths_deg > current_min {
+            commands.extend(set_max.into_iter().chain(set_min));
+        } else {
+            commands.extend(set_min.into_iter().chain(set_max));
         }
         if differs(|s| s.home_tenths_deg) {
             commands.push(Command::SetHome { device, angle: setting.home_tenths_deg });

@@ -403,6 +403,24 @@ pub enum ProblemKind {
         /// The slot.
         slot: u8,
     },
+    /// A loop count of 0: the robot decrements it to 255 and loops forever (plen2.md §6).
+    LoopRunsForever,
+    /// A jump to a slot the robot does not have: it replays this motion forever.
+    JumpBeyondSlots {
+        /// The slot jumped to.
+        slot: u8,
+    },
+    /// The first frame lasts 0 cycles: the robot divides by zero there.
+    FirstFrameZeroCycles {
+        /// Its transition.
+        transition_ms: u16,
+    },
+    /// A later frame lasts 0 cycles: the robot skips it (its values are
+    /// never output; the next frame starts from them).
+    FrameSkipped {
+        /// Its transition.
+        transition_ms: u16,
+    },
     /// A conversion constant that is not a positive number.
     NotPositive {
         /// The field.
@@ -488,6 +506,21 @@ impl fmt::Display for ProblemKind {
                 write!(f, "loop from frame {begin_frame} to {end_frame} is not inside its {frames} frame(s)")
             }
             Self::MissingMotion { slot } => write!(f, "no motion in slot {slot}"),
+            Self::LoopRunsForever => write!(
+                f,
+                "loop count 0 runs forever: the robot counts it down to 255 (give 1 for two passes, 255 to say forever)"
+            ),
+            Self::JumpBeyondSlots { slot } => {
+                write!(f, "jump to slot {slot}: the robot has slots 0..=89, so it replays this motion forever instead")
+            }
+            Self::FirstFrameZeroCycles { transition_ms } => write!(
+                f,
+                "transition_ms {transition_ms} is 0 cycles of 32 ms: as the first frame the robot divides by zero (what it does is undefined); give 32..=8191"
+            ),
+            Self::FrameSkipped { transition_ms } => write!(
+                f,
+                "transition_ms {transition_ms} is 0 cycles of 32 ms: the robot skips this frame (its pose is never shown, the next frame starts from it)"
+            ),
             Self::NotPositive { field } => write!(f, "{field} must be a positive number"),
             Self::UnknownKey => write!(f, "unknown key, ignored (is it misspelt?)"),
         }

@@ -2,7 +2,9 @@
 //! (plen2.md §6, firmware 1.4.2's MotionController): two frame buffers,
 //! *current* and *next*; `(transition / 32) & 0xFF` cycles of 32.768 ms per
 //! frame; linear steps in 16.16 fixed point from *current*; loops that run
-//! their section count + 1 times; jumps. Sans-IO and clock-free: each call of
+//! their section count + 1 times (a stored 0 wraps to 255: forever); jumps (to
+//! a slot ≥ 90: the motion replays forever); a frame of 0 cycles reached from
+//! another frame skipped at once. Sans-IO and clock-free: each call of
 //! [`Player::cycle`] is one cycle. The emulated robot plays with it; the
 //! editor's preview and `servo-studio trajectory` compute what the robot
 //! will do with it.
@@ -126,7 +128,7 @@ impl Player {
                 }
             }
         }
-        self.load(store, header, 0);
+        self.load(store, header, 0, true);
         true
     }
 
@@ -144,8 +146,11 @@ impl Player {
     }
 
     /// Loads frame `index` of the header's slot into *next* and works out the
-    /// steps from *current*. A frame that is not stored stops playback.
-    fn load(&mut self, store: &impl MotionStore, header: MotionHeader, index: u8) {
+    /// steps from *current*. A frame that is not stored stops playback. A
+    /// frame of 0 cycles is held 256 cycles when it is the first of a start
+    /// (the robot divides by zero there: undefined, `check` refuses it); reached
+    /// from another frame it is skipped at once (see [`Player::cycle`]).
+    fn load(&mut self, store: &impl MotionStore, header: MotionHeader, index: u8, first: bool) {
         let Some(frame) = store.frame(header.slot, index) else {
             self.approach = None;
             return;
@@ -161,20 +166,20 @@ impl Player {
             // divides by zero on the robot (undefined): held still here.
             diff_fp[device] = if cycles == 0 { 0 } else { (to - from) / i32::from(cycles) };
         }
-        self.approach = Some(Approach {
-            header,
-            index,
-            values: frame.values,
-            now_fp,
-            diff_fp,
-            cycles_left: if cycles == 0 { 256 } else { u16::from(cycles) },
-        });
+        let cycles_left = match (cycles, first) {
+            (0, true) => 256,
+            (cycles, _) => u16::from(cycles),
+        };
+        self.approach = Some(Approach { header, index, values: frame.values, now_fp, diff_fp, cycles_left });
     }
 
     /// One cycle: each joint's frame value this cycle (relative to home,
     /// before clamping: the joint is set to [`joint_output`] of it), or `None`
     /// when nothing plays. After the frame's last cycle the next frame is
-    /// loaded (or playback stops).
+    /// loaded (or playback stops); frames of 0 cycles it reaches are skipped
+    /// in the same cycle — none of their values is output, but each becomes
+    /// *current*. A motion that would skip without end (every frame of a loop
+    /// forever under 32 ms) outputs nothing more and stops.
     pub fn cycle(&mut self, store: &impl MotionStore) -> Option<[i16; DEVICE_IDS]> {
         let approach = self.approach.as_mut()?;
         let mut out = [0i16; DEVICE_IDS];
@@ -184,7 +189,13 @@ impl Player {
             *value = i16::try_from(*now >> 16).unwrap_or(0);
         }
         approach.cycles_left -= 1;
-        if approach.cycles_left == 0 {
+        let mut skipped = 0;
+        while self.approach.as_ref().is_some_and(|approach| approach.cycles_left == 0) {
+            if skipped > MAX_SKIPS {
+                self.approach = None;
+                break;
+            }
+            skipped += 1;
             self.advance(store);
         }
         Some(out)
@@ -196,30 +207,38 @@ impl Player {
         self.current = values;
         let last = header.frame_count.saturating_sub(1);
         if header.loop_on && index >= header.loop_end {
-            if header.loop_count == 0 {
-                // The section has run count + 1 times: on past it.
-                header.loop_on = false;
-            } else {
-                if header.loop_count != LOOP_FOREVER {
-                    header.loop_count -= 1;
-                }
-                let begin = header.loop_begin;
-                self.load(store, header, begin);
-                return;
+            // The firmware decrements first (a stored 0 wraps to 255: forever),
+            // and a count that reaches 0 switches the loop off for next time.
+            if header.loop_count != LOOP_FOREVER {
+                header.loop_count = header.loop_count.wrapping_sub(1);
             }
+            if header.loop_count == 0 {
+                header.loop_on = false;
+            }
+            let begin = header.loop_begin;
+            self.load(store, header, begin, false);
+            return;
         }
         if header.jump_on && index >= last {
             let jump = header.jump_slot;
-            if let Some(jumped) = store.header(jump) {
-                self.load(store, jumped, 0);
+            if jump >= super::SLOTS {
+                // No header there to read: this one stays, and the motion replays.
+                self.load(store, header, 0, false);
+            } else if let Some(jumped) = store.header(jump) {
+                self.load(store, jumped, 0, false);
             }
             return;
         }
         if index < last {
-            self.load(store, header, index + 1);
+            self.load(store, header, index + 1, false);
         }
     }
 }
+
+/// Frames of 0 cycles skipped in one cycle before a motion is taken as
+/// outputting nothing more (a motion has at most 20 frames; a loop of them
+/// forever would spin without end).
+const MAX_SKIPS: usize = 64;
 
 /// Every cycle's output of `slot` played from a player in `player`'s state,
 /// until it stops or `max_cycles` have run (a loop forever never stops).
@@ -351,8 +370,8 @@ mod tests {
             header.loop_end = 2;
             header.loop_count = 0;
         });
-        let cycles = play_out(&mut Player::new(), &store, 0, Start::Play, 100);
-        assert_eq!(device0(&cycles), [10, 20, 30, 40], "count 0: once");
+        let cycles = play_out(&mut Player::new(), &store, 0, Start::Play, 9);
+        assert_eq!(device0(&cycles), [10, 20, 30, 20, 30, 20, 30, 20, 30], "count 0 wraps to 255: forever");
         let store = Store::default().with(0, &frames, |header| {
             header.loop_on = true;
             header.loop_begin = 1;
@@ -361,6 +380,73 @@ mod tests {
         });
         let cycles = play_out(&mut Player::new(), &store, 0, Start::Play, 9);
         assert_eq!(device0(&cycles), [10, 20, 30, 20, 30, 20, 30, 20, 30], "255: forever");
+    }
+
+    /// plen2.md §6 by hand: frames 100 then 300, 100 ms each (3 cycles),
+    /// `"loop", [0, 1, 0]`: the stored 0 wraps to 255 at the first pass's
+    /// end, so the section repeats forever and the frame after it (and any
+    /// jump) is never reached.
+    #[test]
+    fn a_loop_of_count_0_runs_forever_with_the_firmwares_figures() {
+        let store = Store::default().with(0, &[(100, 100), (100, 300), (100, 0)], |header| {
+            header.loop_on = true;
+            header.loop_begin = 0;
+            header.loop_end = 1;
+            header.loop_count = 0;
+            header.jump_on = true;
+            header.jump_slot = 1;
+        });
+        let mut player = Player::new();
+        let cycles = play_out(&mut player, &store, 0, Start::Play, 12);
+        assert_eq!(device0(&cycles), [33, 66, 99, 166, 233, 299, 233, 166, 100, 166, 233, 299]);
+        let later = play_out(&mut player, &store, 0, Start::Play, 2000);
+        assert_eq!(later.len(), 2000, "still playing after 2000 cycles");
+        assert!(later.iter().all(|out| out[0] >= 100), "frame 2 (value 0) is never reached");
+        assert_eq!(player.playing(), Some(0));
+    }
+
+    /// A jump to a slot ≥ 90 has no header to read: the motion's own header
+    /// stays and its frame 0 follows its last, forever.
+    #[test]
+    fn a_jump_to_a_slot_of_90_or_more_replays_the_motion_forever() {
+        let store = Store::default().with(0, &[(64, 100), (32, 50)], |header| {
+            header.jump_on = true;
+            header.jump_slot = 90;
+        });
+        let mut player = Player::new();
+        let cycles = play_out(&mut player, &store, 0, Start::Play, 9);
+        // 0 → 100 in 2 cycles, 50 in 1, then frame 0 again from 50: 75, 100; 50; …
+        assert_eq!(device0(&cycles), [50, 100, 50, 75, 100, 50, 75, 100, 50]);
+        assert_eq!(player.playing(), Some(0));
+        // A jump to an empty slot below 90 ends the motion, as before.
+        let store = Store::default().with(0, &[(64, 100)], |header| {
+            header.jump_on = true;
+            header.jump_slot = 7;
+        });
+        assert_eq!(device0(&play_out(&mut Player::new(), &store, 0, Start::Play, 100)), [50, 100]);
+    }
+
+    /// A frame of 0 cycles reached from another: none of its values is
+    /// output, but the next frame steps from them (a visible jump).
+    #[test]
+    fn a_frame_of_0_cycles_reached_from_another_is_skipped_but_starts_the_next() {
+        // 100 in 3 cycles; 300 in 0 ms (skipped); 210 in 3 cycles, from 300.
+        let store = Store::default().with(0, &[(100, 100), (0, 300), (100, 210)], |_| {});
+        let cycles = play_out(&mut Player::new(), &store, 0, Start::Play, 100);
+        assert_eq!(device0(&cycles), [33, 66, 99, 270, 240, 210]);
+        // 8192 ms wraps to 0 cycles: skipped the same way.
+        let store = Store::default().with(0, &[(100, 90), (8192, 300), (64, 200)], |_| {});
+        assert_eq!(device0(&play_out(&mut Player::new(), &store, 0, Start::Play, 100)), [30, 60, 90, 250, 200]);
+        // Every frame of a loop forever under 32 ms: nothing more is output, playback stops.
+        let store = Store::default().with(0, &[(64, 10), (0, 20), (0, 30)], |header| {
+            header.loop_on = true;
+            header.loop_begin = 1;
+            header.loop_end = 2;
+            header.loop_count = LOOP_FOREVER;
+        });
+        let mut player = Player::new();
+        assert_eq!(device0(&play_out(&mut player, &store, 0, Start::Play, 100)), [5, 10]);
+        assert_eq!(player.playing(), None);
     }
 
     #[test]

@@ -25,8 +25,8 @@ use motion_reply::{garbage_header, motion_json};
 
 use crate::protocol::plen2::playback::{MotionStore, Player, Start, joint_output};
 use crate::protocol::plen2::{
-    Command, CommandParser, DEVICE_IDS, FACTORY_LIMIT_TENTHS_DEG, Joint, MAX_FRAMES, MotionFrame, MotionHeader,
-    ParseError, QUEUE_LEN, SLOTS,
+    ANGLE_LIMIT_TENTHS_DEG, Command, CommandParser, DEVICE_IDS, FACTORY_LIMIT_TENTHS_DEG, Joint, MAX_FRAMES,
+    MotionFrame, MotionHeader, ParseError, QUEUE_LEN, SLOTS,
 };
 
 /// How the emulated robot's firmware spends its time.
@@ -323,17 +323,27 @@ impl Plen2Sim {
                 self.player.halt();
                 self.next_tick = None;
             }
+            // plen2.md §3: what the firmware refuses is not stored (and takes no EEPROM time).
             Command::SetHome { device, angle } if device_ok(*device) => {
-                self.joints[usize::from(*device)].home = *angle;
-                return Some(self.timing.joint_write);
+                let joint = &mut self.joints[usize::from(*device)];
+                if (joint.min..=joint.max).contains(angle) {
+                    joint.home = *angle;
+                    return Some(self.timing.joint_write);
+                }
             }
             Command::SetMax { device, angle } if device_ok(*device) => {
-                self.joints[usize::from(*device)].max = *angle;
-                return Some(self.timing.joint_write);
+                let joint = &mut self.joints[usize::from(*device)];
+                if *angle > joint.min && *angle <= ANGLE_LIMIT_TENTHS_DEG {
+                    joint.max = *angle;
+                    return Some(self.timing.joint_write);
+                }
             }
             Command::SetMin { device, angle } if device_ok(*device) => {
-                self.joints[usize::from(*device)].min = *angle;
-                return Some(self.timing.joint_write);
+                let joint = &mut self.joints[usize::from(*device)];
+                if *angle < joint.max && *angle >= -ANGLE_LIMIT_TENTHS_DEG {
+                    joint.min = *angle;
+                    return Some(self.timing.joint_write);
+                }
             }
             Command::ResetJoints => {
                 self.joints = factory();
@@ -349,7 +359,7 @@ impl Plen2Sim {
                 if usize::from(frame.index) < MAX_FRAMES {
                     // A frame written before its header lands in an otherwise garbage slot.
                     let slot = self.slots[usize::from(frame.slot)].get_or_insert_with(|| Slot {
-                        header: garbage_header(frame.slot),
+                        header: garbage_header(),
                         frames: std::array::from_fn(|_| None),
                     });
                     slot.frames[usize::from(frame.index)] = Some((**frame).clone());
@@ -373,7 +383,7 @@ impl Plen2Sim {
                 return self.reply(at, text.as_bytes());
             }
             Command::GetMotion { slot } if *slot < SLOTS => {
-                let bytes = motion_json(*slot, self.slots[usize::from(*slot)].as_ref());
+                let bytes = motion_json(self.slots[usize::from(*slot)].as_ref());
                 return self.reply(at, &bytes);
             }
             _ => {}
@@ -493,6 +503,55 @@ mod tests {
         }
     }
 
+    /// Everything the robot has sent, as bytes.
+    fn sent(sim: &mut Plen2Sim, at: Instant) -> Vec<u8> {
+        let later = at + Duration::from_secs(3600);
+        std::iter::from_fn(|| sim.poll_transmit(later)).flatten().collect()
+    }
+
+    /// plen2.md §3's bytes, literally: a motion with no code prints `"codes": [`,
+    /// CRLF, a tab, `],`; an erased slot says it is slot 255.
+    #[test]
+    fn motion_replies_are_the_firmwares_bytes() {
+        let t0 = Instant::now();
+        let mut sim = Plen2Sim::new(Plen2Timing::default());
+        let frame = format!(">MF09000064{}", "0000".repeat(24));
+        // One command at a time, as a paced client sends them (the ring holds 64 bytes).
+        let step = Duration::from_millis(100);
+        feed(&mut sim, t0, b">MH09Empty               0000000000001");
+        // The frame as the official tool paces it: 32 bytes, then 50 ms.
+        for (index, chunk) in frame.as_bytes().chunks(32).enumerate() {
+            feed(&mut sim, t0 + step + u32::try_from(index).unwrap() * step / 2, chunk);
+        }
+        feed(&mut sim, t0 + 4 * step, b"<MO09");
+        let reply = sent(&mut sim, t0);
+        assert_eq!((sim.state().dropped, sim.state().executed), (0, 3), "{:?}", sim.state());
+        let expected = b"{\r\n\t\"slot\": 9,\r\n\t\"name\": \"Empty               \",\r\n\t\"@frame_length\": 1,\r\n\t\"codes\": [\r\n\t],\r\n\t\"frames\": [\r\n\t\t{\r\n\t\t\t\"@index\": 0,\r\n\t\t\t\"transition_time_ms\": 100,";
+        assert_eq!(String::from_utf8_lossy(&reply[..expected.len()]), String::from_utf8_lossy(expected));
+        feed(&mut sim, t0 + 5 * step, b"<MO0a");
+        let erased = sent(&mut sim, t0);
+        assert!(erased.starts_with(b"{\r\n\t\"slot\": 255,\r\n\t\"name\": \"\xff"), "{:?}", &erased[..40]);
+    }
+
+    /// plen2.md §3: joint settings the firmware refuses are not stored.
+    #[test]
+    fn joint_settings_beyond_the_firmwares_rules_are_refused() {
+        let t0 = Instant::now();
+        let mut sim = Plen2Sim::new(Plen2Timing::default());
+        let before = sim.state().joints[0];
+        // >MA 901, >MI −901 (12-bit 0xc7b): outside ±900.
+        feed(&mut sim, t0, b">MA00385>MI00c7b");
+        assert_eq!(sim.state().joints[0], before);
+        // Max 0 (taken); min 100 (≥ max: refused); max −100 (taken); min 0 (refused);
+        // home 400 (outside [−900, −100]: refused); home −200 (taken).
+        feed(&mut sim, t0, b">MA00000>MI00064>MA00f9c>MI00000>HO00190");
+        let joint = sim.state().joints[0];
+        assert_eq!((joint.min, joint.max, joint.home), (-900, -100, before.home));
+        feed(&mut sim, t0, b">HO00f38>MA00384");
+        let joint = sim.state().joints[0];
+        assert_eq!((joint.min, joint.max, joint.home), (-900, 900, -200), "900 and a home inside are taken");
+    }
+
     #[test]
     fn a_burst_overflows_the_ring_and_a_paced_stream_does_not() {
         let t0 = Instant::now();
@@ -521,7 +580,7 @@ mod tests {
         feed(&mut sim, t0, b"$AN00fff$AN0c384");
         assert_eq!(sim.state().angles[0], -1, "−1 is inside the limits");
         assert_eq!(sim.state().angles[12], 900, "900 is the factory max");
-        let garbage = motion_json(5, None);
+        let garbage = motion_json(None);
         assert!(garbage.len() > 100_000, "{}", garbage.len());
         assert!(std::str::from_utf8(&garbage).is_err());
     }

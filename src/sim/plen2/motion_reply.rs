@@ -6,10 +6,11 @@ use std::fmt::Write as _;
 use super::Slot;
 use crate::protocol::plen2::{DEVICE_IDS, MotionHeader};
 
-/// A slot's header as a never-written EEPROM page reads.
-pub(super) fn garbage_header(slot: u8) -> MotionHeader {
+/// A slot's header as a never-written EEPROM page reads: every byte 0xff,
+/// so its own slot field says 255 (plen2.md §3).
+pub(super) fn garbage_header() -> MotionHeader {
     MotionHeader {
-        slot,
+        slot: 0xff,
         name: [0xff; 20],
         loop_on: true,
         loop_begin: 0xff,
@@ -23,11 +24,12 @@ pub(super) fn garbage_header(slot: u8) -> MotionHeader {
 
 /// `<MO` in the firmware's layout. A never-written slot prints its garbage:
 /// frame length 255, a name that is not UTF-8, 255 frames of 24 outputs.
-pub(super) fn motion_json(slot: u8, stored: Option<&Slot>) -> Vec<u8> {
-    let garbage = garbage_header(slot);
+pub(super) fn motion_json(stored: Option<&Slot>) -> Vec<u8> {
+    let garbage = garbage_header();
     let header = stored.map_or(&garbage, |s| &s.header);
     let mut out = Vec::new();
-    out.extend_from_slice(format!("{{\r\n\t\"slot\": {slot},\r\n\t\"name\": \"").as_bytes());
+    // The header's own slot byte: the slot asked for, or 255 read from erased EEPROM.
+    out.extend_from_slice(format!("{{\r\n\t\"slot\": {},\r\n\t\"name\": \"", header.slot).as_bytes());
     out.extend_from_slice(&header.name);
     let frames = usize::from(header.frame_count);
     let mut text = format!("\",\r\n\t\"@frame_length\": {frames},\r\n\t\"codes\": [");
@@ -45,7 +47,8 @@ pub(super) fn motion_json(slot: u8, stored: Option<&Slot>) -> Vec<u8> {
         ));
     }
     text.push_str(&codes.join(","));
-    text.push_str(if codes.is_empty() { "],\r\n\t\"frames\": [" } else { "\r\n\t],\r\n\t\"frames\": [" });
+    // No code at all still prints the list's line break and indent: `[`, CRLF, a tab, `],`.
+    text.push_str("\r\n\t],\r\n\t\"frames\": [");
     for index in 0..frames {
         let frame = stored.and_then(|s| s.frames.get(index).cloned().flatten());
         // An unwritten frame reads erased EEPROM: 0xffff everywhere.

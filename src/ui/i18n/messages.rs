@@ -118,6 +118,18 @@ impl Language {
                 format!("從影格 {begin_frame} 到 {end_frame} 的循環不在它的 {frames} 個影格之內")
             }
             P::MissingMotion { slot } => format!("位置 {slot} 沒有動作"),
+            P::LoopRunsForever => {
+                "循環次數 0 會永遠循環：機器人會把它倒數成 255（兩遍請填 1，永遠請填 255）".to_string()
+            }
+            P::JumpBeyondSlots { slot } => {
+                format!("跳到位置 {slot}：機器人只有位置 0..=89，因此會永遠重播這個動作")
+            }
+            P::FirstFrameZeroCycles { transition_ms } => format!(
+                "transition_ms {transition_ms} 是 0 個 32 毫秒週期：作為第一個影格，機器人會除以零（行為無法預測）；請填 32..=8191"
+            ),
+            P::FrameSkipped { transition_ms } => format!(
+                "transition_ms {transition_ms} 是 0 個 32 毫秒週期：機器人會跳過這個影格（不會顯示它的姿勢，下一個影格從它開始）"
+            ),
             P::NotPositive { field } => format!("{field} 必須是正數"),
             P::UnknownKey => "不認得的欄位，已略過（是否拼錯？）".to_string(),
         }

@@ -413,6 +413,10 @@ pub struct Strings {
     pub snap_note: &'static str,
     /// The sliders' pose differs from where the motion starts.
     pub snap_warning: &'static str,
+    /// The previewed motion never ends on the robot (plen2.md §6).
+    pub motion_never_ends: &'static str,
+    /// The previewed motion's first frame lasts 0 cycles: the robot divides by zero.
+    pub first_frame_undefined: &'static str,
     /// Servos shown as bars (no rig).
     pub not_rigged: &'static str,
     /// How to get a figure.

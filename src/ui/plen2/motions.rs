@@ -201,7 +201,12 @@ impl MotionsPanel {
                 ui.label("×");
                 ui.add(
                     egui::DragValue::new(&mut range.count)
-                        .custom_formatter(|n, _| if n >= 255.0 { "∞".into() } else { format!("{}", n + 1.0) }),
+                        // Passes: count + 1; 255, and a stored 0 (the robot counts it down to 255), forever.
+                        .custom_formatter(
+                            |n, _| {
+                                if n >= 255.0 || n <= 0.0 { "∞".into() } else { format!("{}", n + 1.0) }
+                            },
+                        ),
                 );
                 if range != before {
                     actions.push(edit(project, |p| p.motions[index].loop_range = Some(range), key("loop")));

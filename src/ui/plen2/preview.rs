@@ -149,6 +149,15 @@ impl Preview {
             })
             .collect();
         self.transport.ui(ui, played.duration_ms(), &marks, words);
+        // What the robot really does with this motion, where it is not what the file reads as (plen2.md §6).
+        let first_ms =
+            project.motions.iter().find(|m| m.slot == slot).and_then(|m| m.frames.first()).map(|f| f.transition_ms);
+        if first_ms.is_some_and(|ms| playback::cycles_for(ms) == 0) {
+            ui.colored_label(ui.visuals().error_fg_color, words.first_frame_undefined);
+        }
+        if !played.ended {
+            ui.colored_label(ui.visuals().warn_fg_color, words.motion_never_ends);
+        }
         // Where the robot stands now (the sliders) against where the motion starts.
         let mut standing = [0; DEVICE_IDS];
         for joint in Joint::ALL {
