@@ -8,7 +8,38 @@
 use std::collections::VecDeque;
 use std::time::{Duration, Instant};
 
-use super::driver::Pacing;
+/// The firmware timing the pacer assumes: plen2.md's figures at the slow end of their ranges.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Pacing {
+    /// Time the firmware takes to read one byte.
+    pub byte_read: Duration,
+    /// EEPROM write after a `>MH`.
+    pub header_write: Duration,
+    /// EEPROM write after a `>MF`.
+    pub frame_write: Duration,
+    /// EEPROM write after a `>HO` / `>MA` / `>MI`.
+    pub joint_write: Duration,
+    /// `>JS`.
+    pub factory_reset: Duration,
+    /// Bytes allowed to wait in the robot's 64-byte ring (the rest is slack for
+    /// delivery jitter: a late batch arrives together with the next).
+    pub ring_budget: u32,
+}
+
+impl Default for Pacing {
+    fn default() -> Self {
+        Self {
+            // plen2.md §5: "about 20 µs"; 5 % more.
+            byte_read: Duration::from_micros(21),
+            // The top of each range plen2.md gives: 5–6 ms, 10–12 ms, 3–7 ms, about 0.5 s.
+            header_write: Duration::from_millis(6),
+            frame_write: Duration::from_millis(12),
+            joint_write: Duration::from_millis(7),
+            factory_reset: Duration::from_millis(600),
+            ring_budget: 24,
+        }
+    }
+}
 
 /// How the driver paces an upload.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
