@@ -5,6 +5,7 @@
 mod decoder;
 mod drive;
 mod frame;
+pub mod layout;
 mod message;
 
 pub use decoder::{DecoderEvent, FrameDecoder, SkipReason};
