@@ -432,6 +432,18 @@ fn trajectory_refuses_what_it_cannot_play_and_caps_its_work() {
         assert!(!out.exists(), "{id}: nothing written");
     }
 
+    // An hour of 200 servos is 72 million values: refused, with what would fit.
+    let mut wide = common::rich_project();
+    wide.servos = (1..=200).map(|id| project::Servo::new(id, format!("s{id}"))).collect();
+    wide.macros.push(macro_of(600, vec![looped(Run::Delay { delay_ms: 4_000_000 }, 1)]));
+    let wide_path = dir.path().join("wide.json");
+    project::save(&wide_path, &Project::servo(wide)).unwrap();
+    let (code, _, stderr) =
+        run(&["trajectory", wide_path.to_str().unwrap(), "--macro", "600", "--seconds", "3600", "--out", out_text]);
+    assert_eq!(code, Some(1), "{stderr}");
+    assert!(stderr.contains("360002 rows × 201 columns") && stderr.contains("at most --seconds 2487"), "{stderr}");
+    assert!(!out.exists());
+
     // A PLEN2 motion of 21 frames cannot be stored, so cannot be played.
     let frame = r#"{"transition_time_ms": 100, "outputs": [{"device": "left_knee_pitch", "value": 100}]}"#;
     let frames = vec![frame; 21].join(", ");
