@@ -183,9 +183,12 @@ fn telemetry(seconds: u32) -> Telemetry {
             telemetry.record(&conversion, t, Report::Status { timestamp, voltage_raw, brake: 0 });
             telemetry.record(&conversion, t, Report::Dio { timestamp, address: 0x40 + (tick / 10 % 4) as u8, data: 0 });
         }
-        let bank = (tick % 2) as u8;
-        let readings = (0..if bank == 0 { 16 } else { 8 })
-            .map(|i| SonarReading { sonar_id: bank * 16 + i, range: 1000 + u16::from(i) * 50 })
+        // The B21r's own banks in turn (six of four, eight of three: rflex.md §6).
+        let layout = conversion.layout;
+        let bank = (tick % u32::from(layout.bank_count())) as u8;
+        let readings = layout
+            .bank_ids(bank)
+            .map(|id| SonarReading { sonar_id: id, range: 1000 + u16::from(id % 16) * 50 })
             .collect();
         telemetry.record(&conversion, t, Report::Sonar { unknown: 0, timestamp, readings });
     }

@@ -4,7 +4,7 @@
 
 use servo_studio::protocol::rflex::{
     Axis, B21R, Command, DecoderEvent, Frame, FrameDecoder, MAGELLAN, Report, SkipReason, SonarReading,
-    avoid_escape_bytes, normalise, sonar_metres,
+    avoid_escape_bytes, normalise,
 };
 
 fn hex(text: &str) -> Vec<u8> {
@@ -115,8 +115,9 @@ fn reports_are_read_at_the_documented_offsets() {
     let bytes = sonar.to_frame(2).to_bytes().unwrap();
     assert_eq!(&bytes[14..17], &[17, 0x05, 0xc4]);
     assert_eq!(Report::from_frame(&frames(&decode_all(&bytes))[0]).unwrap(), sonar);
-    assert_eq!(sonar_metres(1476), Some(1.0));
-    assert_eq!(sonar_metres(3001), None, "above 3000 is no echo");
+    assert_eq!(B21R.layout.range_m(1476), Some(1.0));
+    assert_eq!(MAGELLAN.layout.range_m(1474), Some(1.0), "the Magellan's own scale");
+    assert_eq!(B21R.layout.range_m(3001), None, "above 3000 is no echo");
     // DIO_REPORT: @10 address, @11 data u16.
     let dio = Report::Dio { timestamp: 3, address: 0x41, data: 0x0005 };
     let bytes = dio.to_frame(3).to_bytes().unwrap();

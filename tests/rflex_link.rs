@@ -77,18 +77,20 @@ fn status_reports_the_emulators_battery_pose_and_sonar_with_noise_and_stuffing_o
     for key in ["x_m", "y_m", "theta_rad"] {
         assert_eq!(report[key].as_f64(), Some(0.0), "{key}: a pose from the first report");
     }
-    let sonar = report["sonar_m"].as_object().unwrap();
-    assert_eq!(sonar.len(), 24, "a full sweep: {sonar:?}");
-    for (id, range) in sonar {
-        let expected = state.sonar_m[id.parse::<usize>().unwrap()];
-        match (range.as_f64(), expected) {
+    let sonar = report["sonar"].as_array().unwrap();
+    assert_eq!(sonar.len(), 48, "a B21r's two rings, a full sweep: {sonar:?}");
+    for reading in sonar {
+        let id = u8::try_from(reading["id"].as_u64().unwrap()).unwrap();
+        let expected = state.sonar_m[&id];
+        match (reading["range_m"].as_f64(), expected) {
             (Some(got), Some(want)) => assert!((got - want).abs() < 1e-3, "sonar {id}: {got} vs {want}"),
             (None, None) => {}
             other => panic!("sonar {id}: {other:?}"),
         }
     }
-    assert!(sonar.values().any(serde_json::Value::is_null), "corners are out of range");
-    assert!(report["bumpers"].as_object().is_some_and(|b| !b.is_empty()));
+    assert!(sonar.iter().any(|reading| reading["range_m"].is_null()), "corners are out of range");
+    assert_eq!(report["unknown_sonar"], serde_json::json!([]));
+    assert_eq!(report["bumpers_pressed"], serde_json::json!([]), "at rest");
     assert!(report["checksum_failures"].as_u64().unwrap() > 0, "corrupted reports were counted, not used");
 }
 

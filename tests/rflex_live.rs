@@ -53,14 +53,16 @@ fn a_full_set_of_reports_becomes_telemetry_in_si_units() {
     let state = inspect(&sim);
     assert!((telemetry.battery_volts.unwrap() - state.battery_volts).abs() < 0.02);
     assert_eq!(telemetry.brake, Some(true), "the base starts braked");
-    assert_eq!(telemetry.sonar_m.len(), 24);
-    assert_eq!(telemetry.bumpers.len(), 4);
+    assert_eq!(telemetry.sonar_m.len(), 48, "a B21r's body and base rings");
+    assert_eq!(telemetry.bumpers.len(), 14, "its 14 bump panels");
     assert_eq!(telemetry.checksum_failures, 0);
 
     sim.command(RflexSimCommand::Bump { panel: 2, corners: 0b0101 });
     sim.command(RflexSimCommand::Joystick { x: -12, y: 34, buttons: 0b10 });
     until(&mut base, &woken, "the pressed panel and the joystick", |base| {
-        base.telemetry.bumpers.get(&2) == Some(&0b0101) && base.telemetry.joystick == Some((-12, 34, 0b10))
+        base.telemetry.pressed() == [servo_studio::device::rflex::Bump::Panel { panel: 2, corners: 0b0101 }]
+            && base.telemetry.bumpers.get(&0x42) == Some(&0b0101)
+            && base.telemetry.joystick == Some((-12, 34, 0b10))
     });
 }
 

@@ -100,6 +100,23 @@ pub fn slot(text: &str) -> Result<u8, String> {
     integer(text, &(0..=servo_studio::protocol::plen2::SLOTS - 1), "(a PLEN2 slot)")
 }
 
+/// `sim --room WIDTHxDEPTH`, metres, each 0.5..=100.
+pub fn room(text: &str) -> Result<(f64, f64), String> {
+    let (width, depth) = text
+        .split_once(['x', 'X', '×'])
+        .ok_or_else(|| format!("{text:?} is not WIDTHxDEPTH in metres, e.g. 4.2x2.8"))?;
+    Ok((within_f64(width, 0.5, 100.0, "m")?, within_f64(depth, 0.5, 100.0, "m")?))
+}
+
+/// `sim --start X,Y,THETA_DEG`: metres from the room's centre (±50), degrees (±360).
+pub fn start(text: &str) -> Result<(f64, f64, f64), String> {
+    let parts: Vec<&str> = text.split(',').collect();
+    let [x, y, theta] = parts[..] else {
+        return Err(format!("{text:?} is not X,Y,THETA_DEG, e.g. 1.0,-0.5,30"));
+    };
+    Ok((within_f64(x, -50.0, 50.0, "m")?, within_f64(y, -50.0, 50.0, "m")?, within_f64(theta, -360.0, 360.0, "°")?))
+}
+
 /// A duration of `seconds` that is known to be bounded (parsed by the functions above).
 pub fn duration(seconds: f64) -> Duration {
     Duration::try_from_secs_f64(seconds.clamp(0.0, MAX_SECONDS)).unwrap_or(Duration::ZERO)
@@ -122,5 +139,9 @@ mod tests {
         assert_eq!(slot("90"), Err("90 is outside 0..=89 (a PLEN2 slot)".into()));
         assert_eq!(accel("0"), Err("--accel must be above 0".into()));
         assert_eq!(memory_bytes("-5"), Err("-5 is outside 0..=1073741824 bytes".into()));
+        assert_eq!(room("6x4.5"), Ok((6.0, 4.5)));
+        assert_eq!(room("0x4"), Err("0 is outside 0.5..=100 m".into()));
+        assert_eq!(start("1,-0.5,30"), Ok((1.0, -0.5, 30.0)));
+        assert!(start("1,2").unwrap_err().contains("X,Y,THETA_DEG"));
     }
 }

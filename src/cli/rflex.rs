@@ -263,18 +263,42 @@ fn status(args: &BaseArgs) -> anyhow::Result<()> {
         );
     }
     let telemetry = &session.base.telemetry;
-    let sonar: serde_json::Map<String, serde_json::Value> =
-        telemetry.sonar_m.iter().map(|(id, range)| (id.to_string(), serde_json::json!(range))).collect();
-    let bumpers: serde_json::Map<String, serde_json::Value> =
-        telemetry.bumpers.iter().map(|(panel, corners)| (panel.to_string(), serde_json::json!(corners))).collect();
+    let layout = session.base.conversion().layout;
+    // Each sonar by transducer (rflex.md §6): its ring, bearing, mount, range and raw id.
+    let sonar: Vec<serde_json::Value> = layout
+        .transducers()
+        .iter()
+        .map(|t| {
+            serde_json::json!({
+                "transducer": t.number,
+                "id": t.id,
+                "ring": t.ring.name(),
+                "bearing_deg": (t.bearing_rad.to_degrees() * 1000.0).round() / 1000.0,
+                "mount_m": [t.mount_m.0, t.mount_m.1],
+                "range_m": telemetry.sonar_m.get(&t.id).copied().flatten(),
+            })
+        })
+        .collect();
+    let unknown: Vec<serde_json::Value> =
+        telemetry.unknown_sonar.iter().map(|(id, raw)| serde_json::json!({"id": id, "raw": raw})).collect();
+    let bumpers: Vec<serde_json::Value> = telemetry
+        .pressed()
+        .iter()
+        .map(|bump| match bump {
+            device::rflex::Bump::Panel { panel, corners } => serde_json::json!({"panel": panel, "corners": corners}),
+            device::rflex::Bump::Bit { bumper } => serde_json::json!({"bumper": bumper}),
+        })
+        .collect();
     let report = serde_json::json!({
+        "robot": args.robot.name(),
         "battery_volts": telemetry.battery_volts,
         "brake": telemetry.brake,
         "x_m": telemetry.pose.x_m,
         "y_m": telemetry.pose.y_m,
         "theta_rad": telemetry.pose.theta_rad,
-        "sonar_m": sonar,
-        "bumpers": bumpers,
+        "sonar": sonar,
+        "unknown_sonar": unknown,
+        "bumpers_pressed": bumpers,
         "checksum_failures": telemetry.checksum_failures,
     });
     super::out::line(&report.to_string())?;

@@ -43,15 +43,25 @@ pub struct SimArgs {
     /// Servo board: faults to inject, e.g. garbage-every=3,drop-every=7,disconnect-after=40,refuse-add=42.
     #[arg(long)]
     pub faults: Option<Faults>,
+    /// rFLEX base: report only a B21r's six body panels (0x40–0x45), for the ROS b21_node.
+    #[arg(long)]
+    pub body_panels_only: bool,
     /// rFLEX base: send every frame stuffed.
     #[arg(long)]
     pub stuffed: bool,
     /// rFLEX base: line noise on the output, e.g. garbage-every=5,corrupt-every=7,cut-every=11.
     #[arg(long)]
     pub noise: Option<LineNoise>,
-    /// rFLEX base: the robot, b21r (default), atrv-jr or magellan.
+    /// rFLEX base: the robot, b21r (default), atrv-jr or magellan (its own sonars and bumpers).
     #[arg(long, value_parser = super::parse_robot)]
     pub robot: Option<Robot>,
+    /// rFLEX base: the room it stands in, WIDTHxDEPTH metres (default 4.2x2.8).
+    #[arg(long, value_parser = bounds::room)]
+    pub room: Option<(f64, f64)>,
+    /// rFLEX base: where it starts, X,Y,THETA_DEG — metres from the room's centre (x along its
+    /// width) and its heading in degrees from +x (default 0,0,0).
+    #[arg(long, allow_hyphen_values = true, value_parser = bounds::start)]
+    pub start: Option<(f64, f64, f64)>,
     /// PLEN2: the line to the robot: clean (default), bursty[=MS] (a Bluetooth
     /// LE bridge, 7.5–30 ms connection interval, 15 by default), late=MS
     /// (writes held back up to MS ms) or slow=BAUD.
@@ -69,8 +79,11 @@ impl SimArgs {
             ("--memory", self.memory.is_some(), [true, false, false]),
             ("--faults", self.faults.is_some(), [true, false, false]),
             ("--stuffed", self.stuffed, [false, false, true]),
+            ("--body-panels-only", self.body_panels_only, [false, false, true]),
             ("--noise", self.noise.is_some(), [false, false, true]),
             ("--robot", self.robot.is_some(), [false, false, true]),
+            ("--room", self.room.is_some(), [false, false, true]),
+            ("--start", self.start.is_some(), [false, false, true]),
             ("--link", self.link.is_some(), [false, true, false]),
         ];
         let column = match family {
@@ -87,7 +100,9 @@ fn takes(family: Family) -> &'static str {
     match family {
         Family::Servo => "--state, --baud, --turnaround-ms, --memory, --faults",
         Family::Plen2 => "--state, --link (a slow line is --link slow=BAUD)",
-        Family::Rflex => "--robot, --stuffed, --noise (a base stores nothing to preload)",
+        Family::Rflex => {
+            "--robot, --room, --start, --stuffed, --noise, --body-panels-only (a base stores nothing to preload)"
+        }
     }
 }
 
@@ -104,16 +119,34 @@ pub fn run(args: &SimArgs, family: Family) -> anyhow::Result<()> {
     match family {
         Family::Servo => servo(args),
         Family::Plen2 => plen2(args),
-        Family::Rflex => {
-            let config = RflexSimConfig {
-                conversion: args.robot.unwrap_or_default().conversion(),
-                stuffed: args.stuffed,
-                noise: args.noise.clone().unwrap_or_default(),
-                ..RflexSimConfig::default()
-            };
-            serve(args, RflexSim::new(config))
-        }
+        Family::Rflex => serve(args, RflexSim::new(rflex_config(args)?)),
     }
+}
+
+/// The emulated base's config: its robot, its room and where it stands in it
+/// (refused when the robot would not fit there).
+fn rflex_config(args: &SimArgs) -> anyhow::Result<RflexSimConfig> {
+    let defaults = RflexSimConfig::default();
+    let conversion = args.robot.unwrap_or_default().conversion();
+    let room_m = args.room.unwrap_or(defaults.room_m);
+    let (x, y, theta_deg) = args.start.unwrap_or((0.0, 0.0, 0.0));
+    let radius = conversion.layout.body_radius_m;
+    if x.abs() > room_m.0 / 2.0 - radius || y.abs() > room_m.1 / 2.0 - radius {
+        bail!(
+            "--start {x},{y}: the base (a radius of {radius} m) does not fit there in a {} × {} m room; nothing was started",
+            room_m.0,
+            room_m.1
+        );
+    }
+    Ok(RflexSimConfig {
+        conversion,
+        stuffed: args.stuffed,
+        noise: args.noise.clone().unwrap_or_default(),
+        room_m,
+        start: (x, y, theta_deg.to_radians()),
+        body_panels_only: args.body_panels_only,
+        ..defaults
+    })
 }
 
 fn servo(args: &SimArgs) -> anyhow::Result<()> {

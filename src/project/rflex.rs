@@ -45,8 +45,9 @@ impl Robot {
             Self::B21r => B21R,
             Self::AtrvJr => ATRV_JR,
             Self::Magellan => MAGELLAN,
+            // Choice: a custom base's sensors are taken as a B21r's (rflex.md §6 gives no other).
             Self::Custom { distance_units_per_m, angle_units_per_rad, power_offset_volts } => {
-                Conversion { distance_units_per_m, angle_units_per_rad, power_offset_volts }
+                Conversion { distance_units_per_m, angle_units_per_rad, power_offset_volts, layout: B21R.layout }
             }
         }
     }

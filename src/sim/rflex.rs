@@ -1,8 +1,9 @@
 //! The emulated rFLEX base: the server side of `rflex.md` over the same codec.
 //! Commanded velocities are integrated with their acceleration limits into
-//! odometry reports at the requested period; a ring of sonars measures a
-//! simple rectangular room, reported in banks; the battery falls slowly; bump
-//! panels can be pressed; the base starts braked and never moves while
+//! odometry reports at the requested period; the robot's own sonars (its
+//! layout, rflex.md §6: banks, mounts, bearings, range scale) measure a
+//! rectangular room, reported a bank at a time; the battery falls slowly; its
+//! bumpers (B21r panels, Magellan bits) can be pressed; the base starts braked and never moves while
 //! braked; a dead-man timeout stops it when motion commands stop arriving.
 //! Output can be stuffed and salted with line noise (garbage, corrupted and
 //! cut frames), each counted, so a test knows where it lands.
@@ -14,17 +15,8 @@ use crossbeam_channel::Sender;
 
 use super::faults::{LineNoise, hits};
 use crate::link::Driver;
-use crate::protocol::rflex::{
-    Axis, B21R, BUMP_PANEL_ADDRESS, Command, Conversion, DecoderEvent, FrameDecoder, Report, SONAR_UNITS_PER_M,
-    SonarReading,
-};
-
-pub use crate::protocol::rflex::SONARS;
-/// Bump panels (DIO addresses 0x40..0x44).
-pub const BUMP_PANELS: u8 = 4;
-/// The base's radius: it touches a wall when its centre is this close, and
-/// its sonars measure from there.
-pub const ROBOT_RADIUS_M: f64 = crate::protocol::rflex::B21R_RADIUS_M;
+use crate::protocol::rflex::layout::{Bumps, Transducer};
+use crate::protocol::rflex::{Axis, B21R, Command, Conversion, DecoderEvent, FrameDecoder, Report, SonarReading};
 /// How often one bank of the sonar ring reports while the sonar runs.
 const SONAR_BANK_EVERY: Duration = Duration::from_millis(50);
 
@@ -43,8 +35,13 @@ pub struct RflexSimConfig {
     pub battery_volts: f64,
     /// Battery drain while standing, volts per second (more while moving).
     pub drain_volts_per_s: f64,
-    /// The room, metres: the base starts in its middle, facing +x.
+    /// The room, metres (width along x, depth along y), its centre the origin.
     pub room_m: (f64, f64),
+    /// Where the base starts: x and y from the room's centre, metres, and its heading, radians from +x.
+    pub start: (f64, f64, f64),
+    /// Report only a B21r's six body panels (0x40–0x45), for the ROS `b21_node`,
+    /// which aborts on its base panels (rflex.md §6).
+    pub body_panels_only: bool,
 }
 
 impl Default for RflexSimConfig {
@@ -57,6 +54,8 @@ impl Default for RflexSimConfig {
             battery_volts: 26.4,
             drain_volts_per_s: 0.002,
             room_m: (4.2, 2.8),
+            start: (0.0, 0.0, 0.0),
+            body_panels_only: false,
         }
     }
 }
@@ -84,18 +83,20 @@ pub struct BaseState {
     pub battery_volts: f64,
     /// Motion commands received.
     pub motion_commands: u64,
-    /// What each sonar measures now, metres (`None` = no echo), by id.
-    pub sonar_m: Vec<Option<f64>>,
+    /// What each sonar measures now, metres after the raw quantisation (`None` = no echo), by id.
+    pub sonar_m: std::collections::BTreeMap<u8, Option<f64>>,
 }
 
 /// What the owner tells the emulated base.
 #[derive(Debug)]
 pub enum RflexSimCommand {
-    /// Press (`corners` ≠ 0) or release a bump panel (0..4).
+    /// Press (`corners` ≠ 0) or release a bumper: `panel` counts the robot's
+    /// bump addresses from the first (B21r: a panel, `corners` its low 4 bits;
+    /// Magellan: a byte of 8 bumpers, `corners` their bits).
     Bump {
-        /// The panel.
+        /// The panel (the address's offset).
         panel: u8,
-        /// The pressed corners, low 4 bits.
+        /// The data: pressed corners or bumper bits.
         corners: u16,
     },
     /// Move the joystick.
@@ -169,7 +170,7 @@ pub struct RflexSim {
     odometry: Option<(Duration, u32, Instant)>,
     dio: Option<(Duration, Instant)>,
     sonar_next: Option<(u8, Instant)>,
-    bumpers: [u16; BUMP_PANELS as usize],
+    bumpers: Vec<u16>,
     joystick: (i32, i32, u8),
     battery_volts: f64,
     world: (f64, f64, f64),
@@ -178,14 +179,16 @@ pub struct RflexSim {
     output: VecDeque<Vec<u8>>,
     events: VecDeque<RflexSimEvent>,
     close: bool,
-    /// The bump panel pressed against a wall, if any.
-    wall_contact: Option<usize>,
+    /// The bumper pressed against a wall, if any: its index and the data it showed.
+    wall_contact: Option<(usize, u16)>,
 }
 
 impl RflexSim {
-    /// A base at rest, braked, in the middle of its room.
+    /// A base at rest, braked, where its config starts it.
     pub fn new(config: RflexSimConfig) -> Self {
         let battery_volts = config.battery_volts;
+        let bumpers = vec![0; config.conversion.layout.bump_addresses().len()];
+        let world = config.start;
         Self {
             config,
             decoder: FrameDecoder::new(),
@@ -199,10 +202,10 @@ impl RflexSim {
             odometry: None,
             dio: None,
             sonar_next: None,
-            bumpers: [0; BUMP_PANELS as usize],
+            bumpers,
             joystick: (0, 0, 0),
             battery_volts,
-            world: (0.0, 0.0, 0.0),
+            world,
             frames_sent: 0,
             running_number: 0,
             output: VecDeque::new(),
@@ -257,24 +260,36 @@ impl RflexSim {
         }
     }
 
-    /// A base that reaches a wall stops there with the panel that hit it pressed
+    /// A base that reaches a wall stops there with the bumper that hit it pressed
     /// (front when driving forward, back when reversing); moving away releases it.
     fn walls(&mut self, moved_m: f64) {
         let (width, height) = self.config.room_m;
         let (x, y, theta) = self.world;
-        let (max_x, max_y) = (width / 2.0 - ROBOT_RADIUS_M, height / 2.0 - ROBOT_RADIUS_M);
+        let radius = self.config.conversion.layout.body_radius_m;
+        let (max_x, max_y) = ((width / 2.0 - radius).max(0.0), (height / 2.0 - radius).max(0.0));
         let clamped = (x.clamp(-max_x, max_x), y.clamp(-max_y, max_y));
-        let (front, back) = (0usize, 2usize);
         if clamped != (x, y) {
             self.world = (clamped.0, clamped.1, theta);
             self.translation.velocity = 0.0;
             self.translation.target = 0.0;
-            let panel = if moved_m >= 0.0 { front } else { back };
-            self.bumpers[panel] = 0b0011;
-            self.wall_contact = Some(panel);
-        } else if let Some(panel) = self.wall_contact.take() {
+            if let Some((index, data)) = self.contact(moved_m >= 0.0) {
+                self.bumpers[index] |= data;
+                self.wall_contact = Some((index, data));
+            }
+        } else if let Some((index, data)) = self.wall_contact.take() {
             // Off the wall again.
-            self.bumpers[panel] = 0;
+            self.bumpers[index] &= !data;
+        }
+    }
+
+    /// The bumper a wall presses (its index among the bump addresses, and its
+    /// data): choice — a B21r's body panel 0 faces ahead and panel 3 behind, a
+    /// Magellan's bumper 0 ahead and bumper 8 behind; an ATRV-Jr has none.
+    fn contact(&self, front: bool) -> Option<(usize, u16)> {
+        match self.config.conversion.layout.bumps {
+            Bumps::Panels { count, .. } => Some((if front { 0 } else { usize::from(count.min(6) / 2) }, 0b0011)),
+            Bumps::Bits { bytes, .. } => Some((if front { 0 } else { usize::from(bytes.saturating_sub(1)) }, 1)),
+            Bumps::None => None,
         }
     }
 
@@ -322,33 +337,39 @@ impl RflexSim {
         }
     }
 
-    /// The range the sonar `id` measures to the room's walls, in sonar units,
-    /// from the ring on the body's edge where the transducers sit.
-    fn sonar_range(&self, id: u8) -> u16 {
+    /// The range `transducer` measures to the room's walls, raw: from its
+    /// mount along its bearing, at the robot's range scale.
+    fn sonar_range(&self, transducer: &Transducer) -> u16 {
         let (x, y, theta) = self.world;
         let (width, height) = self.config.room_m;
-        let angle = theta + crate::protocol::rflex::sonar_bearing_rad(id);
+        let (sin, cos) = theta.sin_cos();
+        let (mx, my) = transducer.mount_m;
+        let (ox, oy) = (x + mx * cos - my * sin, y + mx * sin + my * cos);
+        let angle = theta + transducer.bearing_rad;
         let (dx, dy) = (angle.cos(), angle.sin());
         let mut distance = f64::INFINITY;
-        for (d, position, half) in [(dx, x, width / 2.0), (dy, y, height / 2.0)] {
+        for (d, position, half) in [(dx, ox, width / 2.0), (dy, oy, height / 2.0)] {
             if d > 1e-9 {
                 distance = distance.min((half - position) / d);
             } else if d < -1e-9 {
                 distance = distance.min((-half - position) / d);
             }
         }
-        let units = ((distance - ROBOT_RADIUS_M).max(0.0) * SONAR_UNITS_PER_M).round();
+        let units = (distance.max(0.0) * self.config.conversion.layout.raw_per_m).round();
         // Saturates at the field's maximum: beyond 3000 means no echo anyway.
         #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
         let range = units.min(f64::from(u16::MAX)) as u16;
         range
     }
 
+    /// The readings of one of the robot's banks.
     fn sonar_bank(&mut self, now: Instant, bank: u8) {
-        let first = bank * 16;
-        let last = (first + 16).min(SONARS);
-        let readings =
-            (first..last).map(|sonar_id| SonarReading { sonar_id, range: self.sonar_range(sonar_id) }).collect();
+        let layout = self.config.conversion.layout;
+        let readings = layout
+            .bank_ids(bank)
+            .filter_map(|id| layout.transducer(id))
+            .map(|transducer| SonarReading { sonar_id: transducer.id, range: self.sonar_range(&transducer) })
+            .collect();
         let timestamp = self.timestamp(now);
         self.send(&Report::Sonar { unknown: 0, timestamp, readings });
     }
@@ -426,7 +447,10 @@ impl RflexSim {
             theta_rad: self.world.2,
             battery_volts: self.battery_volts,
             motion_commands: self.motion_commands,
-            sonar_m: (0..SONARS).map(|id| crate::protocol::rflex::sonar_metres(self.sonar_range(id))).collect(),
+            sonar_m: {
+                let layout = self.config.conversion.layout;
+                layout.transducers().iter().map(|t| (t.id, layout.range_m(self.sonar_range(t)))).collect()
+            },
         }
     }
 
@@ -444,8 +468,12 @@ impl Driver for RflexSim {
         self.tick(now);
         match command {
             RflexSimCommand::Bump { panel, corners } => {
+                let mask = match self.config.conversion.layout.bumps {
+                    Bumps::Panels { .. } => 0x0f,
+                    Bumps::Bits { .. } | Bumps::None => 0xff,
+                };
                 if let Some(slot) = self.bumpers.get_mut(usize::from(panel)) {
-                    *slot = corners & 0x0f;
+                    *slot = corners & mask;
                 }
             }
             RflexSimCommand::Joystick { x, y, buttons } => self.joystick = (x, y, buttons),
@@ -482,16 +510,18 @@ impl Driver for RflexSim {
         {
             self.dio = Some((period, (due + period).max(now)));
             let timestamp = self.timestamp(now);
-            for panel in 0..BUMP_PANELS {
-                let data = self.bumpers[usize::from(panel)];
-                self.send(&Report::Dio { timestamp, address: BUMP_PANEL_ADDRESS + panel, data });
+            let addresses = self.config.conversion.layout.bump_addresses();
+            let reported = if self.config.body_panels_only { 6 } else { usize::MAX };
+            for (address, data) in addresses.zip(self.bumpers.clone()).take(reported) {
+                let Ok(address) = u8::try_from(address) else { continue };
+                self.send(&Report::Dio { timestamp, address, data });
             }
         }
         if let Some((bank, due)) = self.sonar_next
             && now >= due
         {
             self.sonar_bank(now, bank);
-            let banks = SONARS.div_ceil(16);
+            let banks = self.config.conversion.layout.bank_count().max(1);
             self.sonar_next = Some(((bank + 1) % banks, now + SONAR_BANK_EVERY));
         }
     }
@@ -582,7 +612,7 @@ mod tests {
             sim.tick(t);
         }
         let state = sim.state();
-        assert!((state.x_m - (2.1 - ROBOT_RADIUS_M)).abs() < 1e-9, "{state:?}");
+        assert!((state.x_m - (2.1 - B21R.layout.body_radius_m)).abs() < 1e-9, "{state:?}");
         assert_eq!(state.speed_m_per_s, 0.0);
         assert_eq!(sim.bumpers[0], 0b0011, "the front panel is pressed");
         // Backing away releases it.
@@ -592,15 +622,22 @@ mod tests {
     }
 
     #[test]
-    fn sonars_measure_the_room_from_the_ring() {
+    fn sonars_measure_the_room_from_their_mounts_along_their_bearings() {
         let (sim, _) = sim();
-        // Facing +x in a 4.2 × 2.8 m room, transducers 0.26 m out from the middle:
-        // 2.1 − 0.26 = 1.84 m ahead (2715.8 units), 1.4 − 0.26 = 1.14 m to the left (1682.6).
-        assert_eq!(sim.sonar_range(0), 2716);
-        assert_eq!(sim.sonar_range(6), 1683);
-        // Toward a corner (45°): 1.4 / sin 45° = 1.980 m to the long wall, less 0.26 m.
-        assert_eq!(sim.sonar_range(3), 2539);
-        // Toward the corner itself (30°): 2.1 / cos 30° − 0.26 = 2.165 m, past the 2.03 m limit.
-        assert!(sim.sonar_range(2) > crate::protocol::rflex::SONAR_NO_ECHO_ABOVE);
+        let range = |id: u8| sim.sonar_range(&B21R.layout.transducer(id).unwrap());
+        // A B21r in the middle of a 4.2 × 2.8 m room, facing +x. Its base ring's
+        // transducer 40 (id 177) faces ahead from 0.26 m: 2.1 − 0.26 = 1.84 m (2715.8 units);
+        // transducer 34 (id 145) faces left: 1.4 − 0.26 = 1.14 m (1682.6); transducer 28
+        // (id 113) faces behind: 1.84 m again.
+        assert_eq!(range(177), 2716);
+        assert_eq!(range(145), 1683);
+        assert_eq!(range(113), 2716);
+        // Body transducer 0 (id 0) faces 172.5° from (−0.2479, 0.0326): the back wall is
+        // (2.1 − 0.2479) / cos 7.5° = 1.8681 m away (2757.3 units).
+        assert_eq!(range(0), 2757);
+        // A Magellan: transducer 11 (id 19) faces ahead from 0.20 m, 1474 units a metre: 1.9 m.
+        let magellan =
+            RflexSim::new(RflexSimConfig { conversion: crate::protocol::rflex::MAGELLAN, ..RflexSimConfig::default() });
+        assert_eq!(magellan.sonar_range(&crate::protocol::rflex::MAGELLAN.layout.transducer(19).unwrap()), 2801);
     }
 }

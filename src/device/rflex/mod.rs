@@ -15,18 +15,18 @@ use std::time::{Duration, Instant};
 
 use crossbeam_channel::Receiver;
 
-pub use crate::protocol::rflex::{B21R_RADIUS_M, Odometry, sonar_bearing_rad};
+pub use crate::protocol::rflex::Odometry;
+pub use crate::protocol::rflex::layout::{Bump, Layout, Ring, Transducer};
 pub use driver::{POLL_EVERY, REPORT_PERIOD_US, RESEND_EVERY, RflexCommand, RflexDriver, RflexEvent, SILENCE_LIMIT};
-pub use echoes::{CELL_M as ECHO_CELL_M, EchoMap, FORGET_AFTER_S, echo_point};
+pub use echoes::{CELL_M as ECHO_CELL_M, EchoMap, FORGET_AFTER_S, echo_point, mount_point};
 
-/// The farthest a sonar hears, metres (a range above 3000 units is no echo).
-pub const SONAR_REACH_M: f64 =
-    crate::protocol::rflex::SONAR_NO_ECHO_ABOVE as f64 / crate::protocol::rflex::SONAR_UNITS_PER_M;
+/// The farthest a sonar hears, metres (a range above 3000 units is no echo, at about 1476 a metre).
+pub const SONAR_REACH_M: f64 = crate::protocol::rflex::SONAR_NO_ECHO_ABOVE as f64 / 1476.0;
 pub use trace::Trace;
 
 use crate::device::LogEntry;
 use crate::link::{self, Connection, DisconnectReason, LinkEvent, LinkHandle, Waker};
-use crate::protocol::rflex::{Axis, BUMP_PANEL_ADDRESS, Conversion, Report, SkipReason, sonar_metres};
+use crate::protocol::rflex::{Axis, Conversion, Report, SkipReason};
 
 /// The least gap between two writes: the base ignores commands sent too rapidly.
 pub const WRITE_GAP: Duration = Duration::from_millis(1);
@@ -50,12 +50,14 @@ pub struct Telemetry {
     pub speed_m_per_s: f64,
     /// Measured rotational velocity, rad/s.
     pub turn_rad_per_s: f64,
-    /// Latest range per sonar id, metres (`None` = no echo).
+    /// Latest range per sonar id, metres (`None` = no echo): only the robot's own transducers.
     pub sonar_m: BTreeMap<u8, Option<f64>>,
+    /// Readings for ids the robot does not have, raw: reported as unknown, never placed.
+    pub unknown_sonar: BTreeMap<u8, u16>,
     /// Every echo placed in the world at the pose it was heard from, fading.
     pub echoes: EchoMap,
-    /// Bump panels by number (address − 0x40): the pressed corners, low 4 bits.
-    pub bumpers: BTreeMap<u8, u16>,
+    /// The bumpers' DIO data by address (the robot's bump addresses only).
+    pub bumpers: BTreeMap<u16, u16>,
     /// Other digital I/O addresses and their state.
     pub digital_io: BTreeMap<u8, u16>,
     /// Joystick (x, y, buttons).
@@ -68,25 +70,39 @@ pub struct Telemetry {
     pub odometry_reports: (u64, u64),
     /// Status reports seen.
     pub status_reports: u64,
-    /// Sonar banks seen since the sonar started reporting, in order (for a full sweep).
-    sonar_banks: Vec<u8>,
+    /// Sonar banks of the robot seen since the sonar started reporting (for a full sweep).
+    sonar_banks: std::collections::BTreeSet<u8>,
+    /// The robot's layout, once a report has come.
+    layout: Option<&'static Layout>,
 }
 
 impl Telemetry {
-    /// Whether every sonar bank has reported since the sweep began (the first bank came round again).
+    /// Whether every bank the robot has has reported since the sonar started.
     pub fn full_sonar_sweep(&self) -> bool {
-        let Some(first) = self.sonar_banks.first() else { return false };
-        self.sonar_banks.iter().skip(1).any(|bank| bank == first)
+        self.layout.is_some_and(|layout| (0..layout.bank_count()).all(|bank| self.sonar_banks.contains(&bank)))
     }
 
     /// Whether one full set has arrived: status, odometry on both axes, a full
-    /// sonar sweep and digital I/O.
+    /// sonar sweep and, on a robot with bumpers, digital I/O.
     pub fn complete(&self) -> bool {
+        let bumpers_known =
+            self.layout.is_some_and(|layout| layout.bump_addresses().is_empty()) || !self.bumpers.is_empty();
         self.battery_volts.is_some()
             && self.odometry_reports.0 > 0
             && self.odometry_reports.1 > 0
             && self.full_sonar_sweep()
-            && !self.bumpers.is_empty()
+            && bumpers_known
+    }
+
+    /// The robot's layout, once a report has come.
+    pub fn layout(&self) -> Option<&'static Layout> {
+        self.layout
+    }
+
+    /// The bumpers pressed now, in the robot's style (B21r panels and corners, Magellan bits).
+    pub fn pressed(&self) -> Vec<Bump> {
+        let Some(layout) = self.layout else { return Vec::new() };
+        self.bumpers.iter().filter_map(|(&address, &data)| layout.bumps(address, data)).flatten().collect()
     }
 
     /// Whether the base has answered the start-up: a status and an odometry report.
@@ -101,6 +117,7 @@ impl Telemetry {
 
     /// Takes in one report that arrived `seconds` after the link opened.
     pub fn record(&mut self, conversion: &Conversion, seconds: f64, report: Report) {
+        self.layout = Some(conversion.layout);
         match report {
             Report::Odometry { axis, position, velocity, .. } => match Axis::from_code(axis) {
                 Some(Axis::Translation) => {
@@ -124,23 +141,23 @@ impl Telemetry {
                 self.battery_trend.push([seconds, volts]);
             }
             Report::Sonar { readings, .. } => {
-                if let Some(first) = readings.first() {
-                    self.sonar_banks.push(first.sonar_id / 16);
-                    if self.sonar_banks.len() > 64 {
-                        self.sonar_banks.drain(..32);
-                    }
-                }
+                let layout = conversion.layout;
                 for reading in readings {
-                    let range = sonar_metres(reading.range);
+                    let Some(transducer) = layout.transducer(reading.sonar_id) else {
+                        self.unknown_sonar.insert(reading.sonar_id, reading.range);
+                        continue;
+                    };
+                    self.sonar_banks.insert(reading.sonar_id / 16);
+                    let range = layout.range_m(reading.range);
                     if let Some(metres) = range {
-                        self.echoes.record(&self.pose, seconds, reading.sonar_id, metres);
+                        self.echoes.record(&self.pose, seconds, &transducer, metres);
                     }
                     self.sonar_m.insert(reading.sonar_id, range);
                 }
             }
             Report::Dio { address, data, .. } => {
-                if (BUMP_PANEL_ADDRESS..BUMP_PANEL_ADDRESS + 16).contains(&address) {
-                    self.bumpers.insert(address - BUMP_PANEL_ADDRESS, data & 0x0f);
+                if conversion.layout.bump_addresses().contains(&u16::from(address)) {
+                    self.bumpers.insert(u16::from(address), data);
                 } else {
                     self.digital_io.insert(address, data);
                 }

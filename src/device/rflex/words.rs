@@ -1,6 +1,6 @@
 //! rFLEX frames as a person reads them in the packet log.
 
-use crate::protocol::rflex::{Axis, Command, Conversion, Report, sonar_metres};
+use crate::protocol::rflex::{Axis, Command, Conversion, Report};
 
 fn axis(code: u8) -> &'static str {
     match Axis::from_code(code) {
@@ -68,7 +68,7 @@ pub fn report(report: &Report, conversion: &Conversion) -> String {
         Report::Sonar { readings, .. } => {
             let parts: Vec<String> = readings
                 .iter()
-                .map(|r| match sonar_metres(r.range) {
+                .map(|r| match conversion.layout.range_m(r.range) {
                     Some(metres) => format!("{} {metres:.2} m", r.sonar_id),
                     None => format!("{} —", r.sonar_id),
                 })

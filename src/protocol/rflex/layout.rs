@@ -25,6 +25,21 @@ pub enum Ring {
     Around,
 }
 
+impl Ring {
+    /// Its name, as `rflex status` prints it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Body => "body",
+            Self::Base => "base",
+            Self::Rear => "rear",
+            Self::Left => "left",
+            Self::Front => "front",
+            Self::Right => "right",
+            Self::Around => "ring",
+        }
+    }
+}
+
 /// Where a ring's transducers sit.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Placement {
@@ -88,6 +103,9 @@ pub struct Layout {
     pub raw_per_m: f64,
     /// Its bumpers.
     pub bumps: Bumps,
+    /// How far its body reaches from its centre, metres (for drawing it, and the
+    /// emulated room's walls it cannot pass).
+    pub body_radius_m: f64,
     rings: &'static [RingSpec],
 }
 
@@ -100,6 +118,7 @@ pub const B21R: Layout = Layout {
     banks: &[4, 4, 4, 4, 4, 4, 3, 3, 3, 3, 3, 3, 3, 3],
     raw_per_m: 1476.0,
     bumps: Bumps::Panels { first: 0x40, count: 14 },
+    body_radius_m: 0.26,
     rings: &[
         RingSpec {
             ring: Ring::Body,
@@ -119,6 +138,8 @@ pub const ATRV_JR: Layout = Layout {
     banks: &[5, 8, 5, 8],
     raw_per_m: 1476.0,
     bumps: Bumps::None,
+    // Half its diagonal: 0.35 m reaches its rear sonars' mounts.
+    body_radius_m: 0.40,
     rings: &[
         RingSpec {
             ring: Ring::Rear,
@@ -178,6 +199,7 @@ pub const MAGELLAN: Layout = Layout {
     banks: &[8, 8],
     raw_per_m: 1474.0,
     bumps: Bumps::Bits { first: 0x40, bytes: 2 },
+    body_radius_m: 0.20,
     rings: &[RingSpec {
         ring: Ring::Around,
         banks: 0..2,
@@ -203,6 +225,26 @@ pub enum Bump {
 }
 
 impl Layout {
+    /// How many banks report: a sweep is whole when each has.
+    pub fn bank_count(&self) -> u8 {
+        u8::try_from(self.banks.len()).unwrap_or(u8::MAX)
+    }
+
+    /// The sonar ids of bank `bank`.
+    pub fn bank_ids(&self, bank: u8) -> impl Iterator<Item = u8> + '_ {
+        let size = self.banks.get(usize::from(bank)).copied().unwrap_or(0);
+        (0..size).map(move |index| bank * 16 + index)
+    }
+
+    /// The DIO addresses its bumpers report at.
+    pub fn bump_addresses(&self) -> std::ops::Range<u16> {
+        match self.bumps {
+            Bumps::Panels { first, count } => first..first + count,
+            Bumps::Bits { first, bytes } => first..first + bytes,
+            Bumps::None => 0..0,
+        }
+    }
+
     /// How many transducers it has.
     pub fn sonar_count(&self) -> usize {
         self.banks.iter().map(|&size| usize::from(size)).sum()

@@ -13,7 +13,8 @@ pub use drive::{ROTATION_ACCELERATION, ROTATION_TORQUE, TRANSLATION_TORQUE, avoi
 pub use frame::{ETX, Frame, MAX_DATA_LEN, OVERHEAD_LEN, STX, TooLong, checksum, port};
 pub use message::{Axis, Command, LayoutError, Report, SonarReading};
 
-/// Converts between SI units and a base's own units (`rflex.md` §5).
+/// Converts between SI units and a base's own units (`rflex.md` §5), and
+/// where its sensors are (§6).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Conversion {
     /// Distance units per metre.
@@ -22,40 +23,34 @@ pub struct Conversion {
     pub angle_units_per_rad: f64,
     /// Added to the raw voltage / 100 to get volts.
     pub power_offset_volts: f64,
+    /// Its sonar banks, transducers, range scale and bump panels.
+    pub layout: &'static layout::Layout,
 }
 
 /// B21r: 103000 units/m, 35000 units/rad, +1.2 V.
-pub const B21R: Conversion =
-    Conversion { distance_units_per_m: 103_000.0, angle_units_per_rad: 35_000.0, power_offset_volts: 1.2 };
+pub const B21R: Conversion = Conversion {
+    distance_units_per_m: 103_000.0,
+    angle_units_per_rad: 35_000.0,
+    power_offset_volts: 1.2,
+    layout: &layout::B21R,
+};
 /// ATRV-Jr: 90810 units/m, 37000 units/rad, +1.2 V.
-pub const ATRV_JR: Conversion =
-    Conversion { distance_units_per_m: 90_810.0, angle_units_per_rad: 37_000.0, power_offset_volts: 1.2 };
+pub const ATRV_JR: Conversion = Conversion {
+    distance_units_per_m: 90_810.0,
+    angle_units_per_rad: 37_000.0,
+    power_offset_volts: 1.2,
+    layout: &layout::ATRV_JR,
+};
 /// Magellan: 31387 units/m, 4654.2 units/rad, +0 V.
-pub const MAGELLAN: Conversion =
-    Conversion { distance_units_per_m: 31_387.0, angle_units_per_rad: 4_654.2, power_offset_volts: 0.0 };
+pub const MAGELLAN: Conversion = Conversion {
+    distance_units_per_m: 31_387.0,
+    angle_units_per_rad: 4_654.2,
+    power_offset_volts: 0.0,
+    layout: &layout::MAGELLAN,
+};
 
-/// Sonar units per metre (B21r; rflex.md gives no other robot's, so every preset uses it).
-pub const SONAR_UNITS_PER_M: f64 = 1476.0;
 /// A sonar range above this is "no echo".
-pub const SONAR_NO_ECHO_ABOVE: u16 = 3000;
-/// The first bump-panel address of DIO_REPORT (B21r: 0x40..; the low 4 bits are the pressed corners).
-pub const BUMP_PANEL_ADDRESS: u8 = 0x40;
-
-/// Sonars in a B21r's ring (ids 0..24: bank 0 is 0..16, bank 1 is 16..24).
-pub const SONARS: u8 = 24;
-/// Radius of the B21r's body, where its sonar ring and bump panels sit, metres.
-pub const B21R_RADIUS_M: f64 = 0.26;
-
-/// Where sonar `id` looks, radians counter-clockwise from the base's heading:
-/// sonar 0 ahead, the ring evenly spaced (the B21r's; every preset uses it).
-pub fn sonar_bearing_rad(id: u8) -> f64 {
-    f64::from(id) * std::f64::consts::TAU / f64::from(SONARS)
-}
-
-/// A sonar range in metres, `None` for no echo.
-pub fn sonar_metres(range: u16) -> Option<f64> {
-    (range <= SONAR_NO_ECHO_ABOVE).then(|| f64::from(range) / SONAR_UNITS_PER_M)
-}
+pub const SONAR_NO_ECHO_ABOVE: u16 = layout::NO_ECHO_RAW;
 
 /// The odometry pose integrated from MOT_SYSTEM_REPORTs (`rflex.md` §4): the
 /// first report of each axis sets the origin; then θ += Δbearing (normalised

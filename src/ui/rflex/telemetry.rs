@@ -28,11 +28,14 @@ pub fn ui(ui: &mut egui::Ui, telemetry: &Telemetry, words: &Strings) {
         let thinned = plot::decimate(&trend, bounds.min()[0], bounds.max()[0], columns);
         plot.line(Line::new(words.battery, PlotPoints::from(thinned)));
     });
+    // In the robot's style: a B21r's panels with their corners, a Magellan's bumpers.
     let pressed: Vec<String> = telemetry
-        .bumpers
+        .pressed()
         .iter()
-        .filter(|(_, corners)| **corners != 0)
-        .map(|(panel, corners)| format!("{panel} ({corners:04b})"))
+        .map(|bump| match bump {
+            crate::device::rflex::Bump::Panel { panel, corners } => format!("{panel} ({corners:04b})"),
+            crate::device::rflex::Bump::Bit { bumper } => format!("#{bumper}"),
+        })
         .collect();
     let pressed = if pressed.is_empty() { "—".to_string() } else { pressed.join(", ") };
     ui.label(format!("{}: {pressed}", words.bumpers));
@@ -41,5 +44,9 @@ pub fn ui(ui: &mut egui::Ui, telemetry: &Telemetry, words: &Strings) {
     ui.monospace(format!("{}: {stick}", words.joystick_state));
     ui.label(format!("{}: {}", words.checksum_failures, telemetry.checksum_failures));
     let echoing = telemetry.sonar_m.values().filter(|range| range.is_some()).count();
-    ui.label(format!("{}: {echoing}/{}", words.sonar, telemetry.sonar_m.len()));
+    let of = telemetry.layout().map_or(telemetry.sonar_m.len(), |layout| layout.sonar_count());
+    let unknown = telemetry.unknown_sonar.len();
+    let unknown = if unknown == 0 { String::new() } else { format!(" (+{unknown} ?)") };
+    ui.label(format!("{}: {echoing}/{of}{unknown}", words.sonar))
+        .on_hover_text("(+N ?): readings for sonar ids this robot does not have; not drawn");
 }

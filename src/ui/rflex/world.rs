@@ -10,17 +10,19 @@
 use egui::{Color32, Pos2, Rect, Sense, Shape, Stroke, pos2, vec2};
 
 use crate::device::rflex::{
-    B21R_RADIUS_M, ECHO_CELL_M, EchoMap, FORGET_AFTER_S, Odometry, SONAR_REACH_M, Telemetry, echo_point,
-    sonar_bearing_rad,
+    ECHO_CELL_M, EchoMap, FORGET_AFTER_S, Layout, Odometry, SONAR_REACH_M, Telemetry, echo_point, mount_point,
 };
+use crate::protocol::rflex::layout::Bumps;
 use crate::ui::action::{Action, RflexAction};
 use crate::ui::i18n::Strings;
 use crate::ui::plot;
 
 /// Metres a point stands for at the start (6 m across a 600-point view).
 const START_SCALE: f64 = 0.01;
-/// Half the angle a sonar's cone covers, radians (the ring's 15° spacing).
+/// Half the angle a sonar's cone covers, radians (a B21r ring's 15° spacing).
 const CONE_HALF_RAD: f64 = std::f64::consts::PI / 24.0;
+/// The body drawn before the robot's layout is known, metres.
+const DEFAULT_RADIUS_M: f64 = 0.26;
 
 const ECHO: Color32 = Color32::from_rgb(40, 170, 220);
 const PRESSED: Color32 = Color32::from_rgb(230, 50, 40);
@@ -186,47 +188,77 @@ fn echoes(painter: &egui::Painter, frame: &Frame, map: &EchoMap) {
     painter.add(Shape::mesh(mesh));
 }
 
-/// Each sonar's cone from the ring to its echo (faint to its reach when it hears nothing).
+/// Each sonar's cone from its transducer's mount to its echo (faint to its
+/// reach when it hears nothing), along the transducer's own bearing: both
+/// rings of a B21r, an ATRV-Jr's four sides, a Magellan's ring.
 fn sonar(painter: &egui::Painter, frame: &Frame, telemetry: &Telemetry) {
+    let Some(layout) = telemetry.layout() else { return };
     let pose = &telemetry.pose;
     for (&id, &range) in &telemetry.sonar_m {
-        let bearing = sonar_bearing_rad(id);
+        let Some(transducer) = layout.transducer(id) else { continue };
         let (reach, fill) = match range {
             Some(metres) => (metres, ECHO.gamma_multiply(0.18)),
             None => (SONAR_REACH_M, ECHO.gamma_multiply(0.05)),
         };
-        let origin = frame.screen(around(pose, bearing, B21R_RADIUS_M));
-        let mut points = vec![origin];
+        let mount = mount_point(pose, &transducer);
+        let mut points = vec![frame.screen(mount)];
         for step in 0..=4 {
             let offset = -CONE_HALF_RAD + f64::from(step) * CONE_HALF_RAD / 2.0;
-            let angle = pose.theta_rad + bearing + offset;
-            let ring = around(pose, bearing, B21R_RADIUS_M);
-            points.push(frame.screen([ring[0] + reach * angle.cos(), ring[1] + reach * angle.sin()]));
+            let angle = pose.theta_rad + transducer.bearing_rad + offset;
+            points.push(frame.screen([mount[0] + reach * angle.cos(), mount[1] + reach * angle.sin()]));
         }
         painter.add(Shape::convex_polygon(points, fill, Stroke::NONE));
         if let Some(metres) = range {
-            painter.circle_filled(frame.screen(echo_point(pose, id, metres)), 3.0, ECHO);
+            painter.circle_filled(frame.screen(echo_point(pose, &transducer, metres)), 3.0, ECHO);
         }
     }
 }
 
-/// The footprint, its heading and the four bump panels (front, right, back, left).
+/// Where each bumper is drawn: (its DIO address, the bits that say it is pressed,
+/// its middle bearing, the ring it sits on as a multiple of the body's radius).
+/// Choice (rflex.md §6 gives addresses, not places): a B21r's six body panels
+/// round the body from ahead, clockwise, and its eight base panels round a
+/// ring outside them; a Magellan's sixteen bumpers round its body from ahead.
+fn bumper_arcs(layout: &Layout) -> Vec<(u16, u16, f64, f64)> {
+    let around = |index: u16, of: u16| -f64::from(index) * std::f64::consts::TAU / f64::from(of.max(1));
+    match layout.bumps {
+        Bumps::Panels { first, count } => {
+            let body = count.min(6);
+            (0..count)
+                .map(|k| {
+                    let (index, of, ring) = if k < body { (k, body, 1.0) } else { (k - body, count - body, 1.25) };
+                    (first + k, 0x0f, around(index, of), ring)
+                })
+                .collect()
+        }
+        Bumps::Bits { first, bytes } => {
+            let count = bytes * 8;
+            (0..count).map(|k| (first + k / 8, 1 << (k % 8), around(k, count), 1.0)).collect()
+        }
+        Bumps::None => Vec::new(),
+    }
+}
+
+/// The footprint, its heading and its bumpers, lit when pressed.
 fn base(painter: &egui::Painter, frame: &Frame, telemetry: &Telemetry, visuals: &egui::Visuals) {
     let pose = &telemetry.pose;
+    let body_m = telemetry.layout().map_or(DEFAULT_RADIUS_M, |layout| layout.body_radius_m);
     let centre = frame.screen([pose.x_m, pose.y_m]);
-    let radius = frame.points(B21R_RADIUS_M).max(4.0);
+    let radius = frame.points(body_m).max(4.0);
     painter.circle(centre, radius, visuals.widgets.inactive.bg_fill, Stroke::new(1.0, visuals.text_color()));
-    let nose = frame.screen(around(pose, 0.0, B21R_RADIUS_M * 0.9));
+    let nose = frame.screen(around(pose, 0.0, body_m * 0.9));
     painter.arrow(centre, nose - centre, Stroke::new(2.5, visuals.text_color()));
-    for panel in 0u8..4 {
-        let pressed = telemetry.bumpers.get(&panel).is_some_and(|corners| *corners != 0);
-        // Panel 0 faces ahead; the others follow clockwise, as the panels are numbered.
-        let middle = -f64::from(panel) * std::f64::consts::FRAC_PI_2;
+    let Some(layout) = telemetry.layout() else { return };
+    let arcs = bumper_arcs(layout);
+    // Each arc covers 85 % of its share of the ring.
+    #[allow(clippy::cast_precision_loss)]
+    let half_span = std::f64::consts::PI / (arcs.len().max(1) as f64).min(8.0) * 0.85;
+    for (address, bits, middle, ring) in arcs {
+        let pressed = telemetry.bumpers.get(&address).is_some_and(|data| data & bits != 0);
         let arc: Vec<Pos2> = (0..=8)
             .map(|step| {
-                let bearing = middle - std::f64::consts::FRAC_PI_4 * 0.85
-                    + f64::from(step) * std::f64::consts::FRAC_PI_4 * 0.85 / 4.0;
-                frame.screen(around(pose, bearing, B21R_RADIUS_M + frame.metres_per_point * 4.0))
+                let bearing = middle - half_span / 2.0 + f64::from(step) * half_span / 8.0;
+                frame.screen(around(pose, bearing, body_m * ring + frame.metres_per_point * 4.0))
             })
             .collect();
         let stroke = if pressed {
