@@ -413,6 +413,8 @@ pub struct Strings {
     pub snap_note: &'static str,
     /// The sliders' pose differs from where the motion starts.
     pub snap_warning: &'static str,
+    /// What "(+N ?)" after the sonar count means.
+    pub sonar_unknown_hint: &'static str,
     /// The previewed motion never ends on the robot (plen2.md §6).
     pub motion_never_ends: &'static str,
     /// The previewed motion's first frame lasts 0 cycles: the robot divides by zero.

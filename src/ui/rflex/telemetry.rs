@@ -47,6 +47,5 @@ pub fn ui(ui: &mut egui::Ui, telemetry: &Telemetry, words: &Strings) {
     let of = telemetry.layout().map_or(telemetry.sonar_m.len(), |layout| layout.sonar_count());
     let unknown = telemetry.unknown_sonar.len();
     let unknown = if unknown == 0 { String::new() } else { format!(" (+{unknown} ?)") };
-    ui.label(format!("{}: {echoing}/{of}{unknown}", words.sonar))
-        .on_hover_text("(+N ?): readings for sonar ids this robot does not have; not drawn");
+    ui.label(format!("{}: {echoing}/{of}{unknown}", words.sonar)).on_hover_text(words.sonar_unknown_hint);
 }

@@ -209,6 +209,7 @@ pub(in crate::ui::i18n) const TRADITIONAL_CHINESE: Strings = Strings {
     power_up: "開機（原位）",
     snap_note: "在機器人上，動作會從機器人最後播放的影格開始（開機後為原位），而不是從關節滑桿設定的姿勢開始。",
     snap_warning: "關節滑桿的姿勢與此動作的起點不同：機器人會在第一個週期瞬間跳到起點。",
+    sonar_unknown_hint: "（+N ?）：這台機器人沒有的聲納編號的讀數；不會畫出。",
     motion_never_ends: "這個動作在機器人上永遠不會結束（循環次數 0 或 255，或跳到無法播放的位置）：只顯示前 30 秒。",
     first_frame_undefined: "它的第一個影格不到 32 毫秒（0 個週期）：機器人會在這裡除以零，行為無法預測。請設為 32 毫秒以上。",
     not_rigged: "不在骨架中",

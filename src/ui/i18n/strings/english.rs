@@ -209,6 +209,7 @@ pub(in crate::ui::i18n) const ENGLISH: Strings = Strings {
     power_up: "power-up (home)",
     snap_note: "On the robot a motion starts from the last frame the robot played (home after power-up), never from a pose set with the joint sliders.",
     snap_warning: "The joint sliders' pose is not where this motion starts: the robot will snap there at the first cycle.",
+    sonar_unknown_hint: "(+N ?): readings for sonar ids this robot does not have; they are not drawn.",
     motion_never_ends: "This motion never ends on the robot (a loop of count 0 or 255, or a jump to a slot it cannot play): the first 30 s are shown.",
     first_frame_undefined: "Its first frame lasts under 32 ms (0 cycles): the robot divides by zero there, so what it does is undefined. Give it 32 ms or more.",
     not_rigged: "Not in the rig",
