@@ -16,7 +16,7 @@ use std::time::{Duration, Instant};
 use crossbeam_channel::Receiver;
 
 pub use crate::protocol::rflex::Odometry;
-pub use crate::protocol::rflex::layout::{Bump, Layout, Ring, Transducer};
+pub use crate::protocol::rflex::layout::{Bump, Bumps, Layout, Ring, Transducer};
 pub use driver::{POLL_EVERY, REPORT_PERIOD_US, RESEND_EVERY, RflexCommand, RflexDriver, RflexEvent, SILENCE_LIMIT};
 pub use echoes::{CELL_M as ECHO_CELL_M, EchoMap, FORGET_AFTER_S, echo_point, mount_point};
 

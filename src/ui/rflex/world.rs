@@ -10,9 +10,8 @@
 use egui::{Color32, Pos2, Rect, Sense, Shape, Stroke, pos2, vec2};
 
 use crate::device::rflex::{
-    ECHO_CELL_M, EchoMap, FORGET_AFTER_S, Layout, Odometry, SONAR_REACH_M, Telemetry, echo_point, mount_point,
+    Bumps, ECHO_CELL_M, EchoMap, FORGET_AFTER_S, Layout, Odometry, SONAR_REACH_M, Telemetry, echo_point, mount_point,
 };
-use crate::protocol::rflex::layout::Bumps;
 use crate::ui::action::{Action, RflexAction};
 use crate::ui::i18n::Strings;
 use crate::ui::plot;
