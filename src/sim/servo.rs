@@ -10,8 +10,8 @@ use super::faults::{Faults, hits};
 use crate::device::servo::ServoImage;
 use crate::link::Driver;
 use crate::protocol::servo::{
-    ALL_SERVOS, AngleUnit, ButtonEvent, CommandType, DecoderEvent, FrameDecoder, ListEntry, Message, ServoMove,
-    ServoStatus, ServoSwitches, TransmissionMode,
+    ALL_SERVOS, AngleUnit, ButtonEvent, DecoderEvent, FrameDecoder, ListEntry, Message, ServoMove, ServoStatus,
+    ServoSwitches, TransmissionMode,
 };
 
 /// Bytes a throttled line hands over at once (a USB-serial adapter's packet).
@@ -240,68 +240,6 @@ impl ServoSim {
         self.tx_line_free = Some(at);
     }
 
-    fn start_moves(&mut self, now: Instant, moves: &[ServoMove], speed_percent: u8) {
-        for servo_move in moves {
-            let targets: Vec<usize> = self
-                .servos
-                .iter()
-                .enumerate()
-                .filter(|(_, s)| {
-                    (servo_move.servo_id == ALL_SERVOS || s.servo_id == servo_move.servo_id) && s.switches.is_start
-                })
-                .map(|(index, _)| index)
-                .collect();
-            let interval_ms = u64::try_from(servo_move.interval_10ms.max(0)).unwrap_or(0) * 10 * 100
-                / u64::from(speed_percent.max(1));
-            for index in targets {
-                let state = &mut self.servos[index];
-                state.from = state.angle(now);
-                state.to = servo_move.degree;
-                state.start = now;
-                state.end = now + Duration::from_millis(interval_ms);
-            }
-        }
-    }
-
-    /// Lays out a macro's moves in time; returns when it ends. Nested macros
-    /// beyond a small depth are ignored (the client validates against cycles).
-    fn schedule_macro(&mut self, start: Instant, macro_id: i32, speed_percent: u32, depth: u8) -> Instant {
-        let Some(record) = self.image.macros.iter().find(|m| m.macro_id == macro_id).cloned() else {
-            return start;
-        };
-        if depth > 8 {
-            return start;
-        }
-        let mut at = start;
-        for command in &record.commands {
-            let ratio = u32::from(command.ratio_percent.max(1)) * speed_percent / 100;
-            for _ in 0..command.loop_count.max(0) {
-                match command.command_type {
-                    CommandType::RunAction => {
-                        let Some(action) = self.image.actions.iter().find(|a| a.action_id == command.command_id) else {
-                            break;
-                        };
-                        let scaled: Vec<ServoMove> = action.steps.clone();
-                        let longest_ms = scaled
-                            .iter()
-                            .map(|s| u64::try_from(s.interval_10ms.max(0)).unwrap_or(0) * 10)
-                            .max()
-                            .unwrap_or(0);
-                        self.schedule.push((at, scale_moves(&scaled, ratio.max(1))));
-                        at += Duration::from_millis(longest_ms * 100 / u64::from(ratio.max(1)));
-                    }
-                    CommandType::Delay => {
-                        at += Duration::from_millis(u64::try_from(command.command_id.max(0)).unwrap_or(0));
-                    }
-                    CommandType::RunMacro => {
-                        at = self.schedule_macro(at, command.command_id, ratio.max(1), depth + 1);
-                    }
-                }
-            }
-        }
-        at
-    }
-
     fn handle_message(&mut self, now: Instant, message: Message) {
         use Message as M;
         let image = &mut self.image;
@@ -490,15 +428,6 @@ impl ServoSim {
         ok
     }
 
-    fn apply_schedule(&mut self, now: Instant) {
-        let (due, later): (Vec<_>, Vec<_>) =
-            std::mem::take(&mut self.schedule).into_iter().partition(|(at, _)| *at <= now);
-        self.schedule = later;
-        for (at, moves) in due {
-            self.start_moves(at, &moves, 100);
-        }
-    }
-
     fn process_inbound(&mut self, now: Instant) {
         while self.inbound.front().is_some_and(|(at, _)| *at <= now) {
             let Some((at, bytes)) = self.inbound.pop_front() else {
@@ -521,17 +450,6 @@ impl ServoSim {
             }
         }
     }
-}
-
-fn scale_moves(moves: &[ServoMove], ratio_percent: u32) -> Vec<ServoMove> {
-    moves
-        .iter()
-        .map(|m| ServoMove {
-            interval_10ms: i16::try_from(i64::from(m.interval_10ms) * 100 / i64::from(ratio_percent.max(1)))
-                .unwrap_or(i16::MAX),
-            ..*m
-        })
-        .collect()
 }
 
 fn upsert<T>(items: &mut Vec<T>, item: T, id: impl Fn(&T) -> i32) {
@@ -618,5 +536,6 @@ impl Driver for ServoSim {
     }
 }
 
+mod playing;
 #[cfg(test)]
 mod tests;

@@ -1,7 +1,7 @@
 //! Tests of the emulated servo board.
 
 use super::*;
-use crate::protocol::servo::{ActionRecord, Frame, MacroRecord, ServoParameter};
+use crate::protocol::servo::{ActionRecord, CommandType, Frame, MacroRecord, ServoParameter};
 
 /// Feeds `message` at `now` and returns every response the board sends by `until`.
 fn ask(sim: &mut ServoSim, now: Instant, message: &Message, until: Instant) -> Vec<Message> {
