@@ -300,6 +300,22 @@ pub fn import_failed<E: std::error::Error + Send + Sync + 'static>(
     }
 }
 
+/// An export's result: stopped by `interrupt` (the signal's status), failed
+/// (why), or what was read; when it did not finish, `out` was not written.
+pub fn exported<T, E: std::error::Error + Send + Sync + 'static>(
+    result: Result<T, E>,
+    interrupt: Option<signals::Interrupt>,
+    port: &str,
+    out: &std::path::Path,
+) -> anyhow::Result<T> {
+    if let (Err(_), Some(interrupt)) = (&result, interrupt) {
+        return Err(interrupted(interrupt, &format!("export from {port}: {} was not written", out.display())));
+    }
+    result.map_err(|error| {
+        anyhow::Error::new(error).context(format!("export from {port} failed; {} was not written", out.display()))
+    })
+}
+
 /// Runs a parsed command line.
 pub fn run(command: CliCommand) -> ExitCode {
     let result = match command {

@@ -276,14 +276,7 @@ fn output_that_cannot_be_written_is_never_a_silent_success() {
 
     // `check | head -0`: the reader is gone before the first line; the result stands.
     for (file, status) in [(&bad, 1), (&good, 0)] {
-        let mut child = Command::new(EXE)
-            .args(["check", file.to_str().unwrap()])
-            .stdout(Stdio::piped())
-            .stderr(Stdio::piped())
-            .spawn()
-            .unwrap();
-        drop(child.stdout.take());
-        let (code, stderr) = ended(child, Duration::from_secs(20));
+        let (code, stderr) = common::with_stdout_closed(&["check", file.to_str().unwrap()]);
         assert_eq!(code, Some(status), "{}: {stderr}", file.display());
     }
     // `> /dev/full`: a quiet message, status 1.

@@ -10,10 +10,10 @@
 mod common;
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
+use std::process::Command;
 use std::time::Duration;
 
-use common::{Chatter, ended, peer, run_in, sim};
+use common::{Chatter, peer, run_in, sim};
 use servo_studio::link::no_waker;
 use servo_studio::project::{self, Action, Project, Servo, ServoProject, Step};
 use servo_studio::sim::{Plen2Sim, Plen2Timing, RflexSim, RflexSimConfig, spawn_pty};
@@ -193,16 +193,8 @@ fn export_writes_through_a_symlink_and_never_replaces_what_is_not_a_file() {
 fn board_info_into_a_reader_that_went_away_ends_quietly() {
     let fixture = format!("{}/tests/fixtures/project-v2.json", env!("CARGO_MANIFEST_DIR"));
     let board = sim(&["--tcp", "127.0.0.1:0", "--state", &fixture]);
-    let mut child = Command::new(EXE)
-        .args(["board", "info", "--port", &board.port])
-        .stdin(Stdio::null())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
     // `| head -0`: the reader is gone before the first line is printed.
-    drop(child.stdout.take());
-    let (code, stderr) = ended(child, Duration::from_secs(20));
+    let (code, stderr) = common::with_stdout_closed(&["board", "info", "--port", &board.port]);
     assert!(matches!(code, Some(0 | 141)), "{code:?}: {stderr}");
     assert!(!stderr.contains("panicked"), "{stderr}");
 }

@@ -104,14 +104,8 @@ pub fn export(port: &PortArgs, out: &Path, slots: &[u8]) -> anyhow::Result<()> {
     let requester = handle.requester();
     let mut progress = progress_line(&mut handle, port.pacing());
     let exported = plen2::export(&requester, slots, &mut progress, &cancel);
-    if let (Err(plen2::Plen2OpError::Cancelled), Some(interrupt)) = (&exported, caught.get()) {
-        return Err(super::interrupted(
-            interrupt,
-            &format!("export from {}: {} was not written", port.port, out.display()),
-        ));
-    }
-    let exported =
-        exported.with_context(|| format!("export from {} failed; {} was not written", port.port, out.display()))?;
+    let interrupt = caught.get().filter(|_| matches!(exported, Err(plen2::Plen2OpError::Cancelled)));
+    let exported = super::exported(exported, interrupt, &port.port, out)?;
     let count = exported.motions.len();
     project::save(out, &Project { family: Family::Plen2, plen2: exported, ..Project::default() })?;
     say!("exported {count} motion(s) and the joint settings to {}", out.display());

@@ -66,14 +66,8 @@ pub fn export(port: &PortArgs, out: &Path) -> anyhow::Result<()> {
     let (bar, mut update) = progress_bar();
     let exported = device::export(&board.requester(), &mut update, &cancel);
     bar.finish_and_clear();
-    if let (Err(device::OpError::Cancelled), Some(interrupt)) = (&exported, caught.get()) {
-        return Err(super::interrupted(
-            interrupt,
-            &format!("export from {}: {} was not written", port.port, out.display()),
-        ));
-    }
-    let exported =
-        exported.with_context(|| format!("export from {} failed; {} was not written", port.port, out.display()))?;
+    let interrupt = caught.get().filter(|_| matches!(exported, Err(device::OpError::Cancelled)));
+    let exported = super::exported(exported, interrupt, &port.port, out)?;
     project::save(out, &Project::servo(exported.clone()))?;
     say!(
         "exported project {} ({} servos, {} actions, {} macros, {} joystick tables) to {}",

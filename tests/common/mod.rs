@@ -249,6 +249,20 @@ pub fn run_in(cwd: &std::path::Path, args: &[&str], within: Duration) -> (Option
     (code, reader.join().unwrap(), stderr, began.elapsed())
 }
 
+/// Runs `servo-studio ARGS` with its stdout's reader gone before the first
+/// line (`| head -0`); its exit code and stderr, with a watchdog.
+pub fn with_stdout_closed(args: &[&str]) -> (Option<i32>, String) {
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_servo-studio"))
+        .args(args)
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    ended(child, Duration::from_secs(20))
+}
+
 /// Starts `servo-studio ARGS` with its stderr kept (for [`ended`]) and its stdout dropped.
 pub fn spawn_quiet(args: &[&str]) -> Child {
     std::process::Command::new(env!("CARGO_BIN_EXE_servo-studio"))
