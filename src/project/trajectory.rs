@@ -22,7 +22,7 @@ pub enum TraceError {
     Cycle(Vec<i32>),
     /// Tracing it takes more than [`MAX_TRACE_WORK`] steps and loop turns.
     #[error(
-        "it takes more than {MAX_TRACE_WORK} steps and loop turns to trace (loops inside loops); ask for fewer seconds"
+        "it takes more than {MAX_TRACE_WORK} steps and loop turns to trace (loops inside loops): lower the loop counts of the macros it runs, or ask for fewer seconds"
     )]
     TooMuch,
 }
