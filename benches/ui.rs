@@ -322,7 +322,7 @@ fn frame_times_of(small: &Scenario, large: &Scenario, tab: Tab, size: (f32, f32)
         times.sort_unstable();
         *median = times[frames / 2].as_secs_f64() * 1e3;
         println!(
-            "frame time {}/{tab:?} @{}x{} {}: median {:.3} ms, p90 {:.3} ms, max {:.3} ms",
+            "frame time {}/{tab} @{}x{} {}: median {:.3} ms, p90 {:.3} ms, max {:.3} ms",
             scenario.family.tag(),
             size.0,
             size.1,
@@ -350,8 +350,8 @@ fn frame_times() {
     for size in SIZES {
         for family in [Family::Servo, Family::Plen2, Family::Rflex] {
             let [small, large] = scenarios(family);
-            for &tab in Tab::for_family(family) {
-                if only.as_ref().is_some_and(|only| *only != format!("{}/{tab:?}", family.tag())) {
+            for tab in family_tabs(family) {
+                if only.as_ref().is_some_and(|only| *only != format!("{}/{tab}", family.tag())) {
                     continue;
                 }
                 let (small_ms, large_ms) = frame_times_of(&small, &large, tab, size);
@@ -361,7 +361,7 @@ fn frame_times() {
     }
     for (size, family, tab, ratio, large_ms) in ratios {
         println!(
-            "ratio {}/{tab:?} @{}x{}: large ÷ small = {ratio:.2} (large: median {large_ms:.2} ms a frame)",
+            "ratio {}/{tab} @{}x{}: large ÷ small = {ratio:.2} (large: median {large_ms:.2} ms a frame)",
             family.tag(),
             size.0,
             size.1
@@ -410,7 +410,7 @@ fn editing_frame_times() {
             .collect();
         times.sort_unstable();
         println!(
-            "frame time while editing servo/{tab:?} large (an edit every frame): median {:.2} ms, p90 {:.2} ms, max {:.2} ms",
+            "frame time while editing servo/{tab} large (an edit every frame): median {:.2} ms, p90 {:.2} ms, max {:.2} ms",
             times[frames / 2].as_secs_f64() * 1e3,
             times[frames * 9 / 10].as_secs_f64() * 1e3,
             times[frames - 1].as_secs_f64() * 1e3
@@ -445,7 +445,7 @@ fn cold_start_child(family: Family, path: &Path) {
     window.step();
     println!("first-frame");
     let large = &scenarios(family)[1];
-    for &tab in Tab::for_family(family) {
+    for tab in family_tabs(family) {
         Window::new(app(large, tab), SIZES[0]).run_steps(3);
     }
     let (rss, peak) = resident_mb().unwrap_or((f64::NAN, f64::NAN));
@@ -631,4 +631,9 @@ fn main() {
         cold_starts();
         slider_latency();
     }
+}
+
+/// The tabs the editor shows for `family`.
+fn family_tabs(family: Family) -> Vec<Tab> {
+    StudioApp::new(Project::default(), None, no_waker()).tabs(family)
 }

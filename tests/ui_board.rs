@@ -281,8 +281,10 @@ fn ending_the_editor_mid_upload_stops_it_at_a_safe_point_and_says_what_it_left()
     run_until(&mut harness, "the comparison", |app| app.servo.pending.is_some());
     harness.get_by_label("Back up the board, then overwrite it").click();
     run_until(&mut harness, "the first write", |app| {
-        matches!(&app.operation, Some(servo_studio::ui::RunningOperation::Servo(operation))
-            if operation.progress.as_ref().is_some_and(|step| step.phase == servo_studio::device::Phase::Write))
+        let running = app.operation.as_ref().and_then(|running| running.get::<servo_studio::ui::ServoOperation>());
+        running
+            .and_then(|operation| operation.progress.as_ref())
+            .is_some_and(|step| step.phase == servo_studio::device::Phase::Write)
     });
     terminate.send(()).unwrap();
     harness.step();

@@ -217,7 +217,7 @@ fn a_lost_link_is_one_whole_sentence_in_traditional_chinese() {
         servo_studio::ui::BoardLink::start(
             &servo_studio::project::Project::default(),
             connection,
-            (115_200, Default::default()),
+            servo_studio::ui::LinkOptions::default(),
             waker,
         )
         .unwrap(),

@@ -181,7 +181,31 @@ fn remembered_settings_round_trip() {
     let remembered = first.remembered();
     let text = serde_json::to_string(&remembered).unwrap();
     let mut second = app(data.path());
-    second.restore(serde_json::from_str(&text).unwrap());
+    second.restore(serde_json::from_str(&text).unwrap(), false);
     assert_eq!(second.remembered(), remembered);
     assert_eq!(second.recent, vec![fixture()]);
+}
+
+/// The family used last comes back with the tab, unless the project opened
+/// (or the demo) brings its own; a tab of another family falls back to the
+/// family's first. What an earlier version stored still reads.
+#[test]
+fn the_remembered_family_and_tab_are_restored() {
+    use servo_studio::project::Family;
+    use servo_studio::ui::{Remembered, Start, Tab};
+    let stored = r#"{"recent":[],"language":"English","tab":"Motions","family":"plen2","plen2_pacing":"Safe"}"#;
+    let remembered: Remembered = serde_json::from_str(stored).unwrap();
+    let app = Start::default().into_app(no_waker(), Some(remembered.clone()));
+    assert_eq!(app.document.project.family, Family::Plen2, "the family used last");
+    assert_eq!(app.tab, Tab::Motions);
+    assert_eq!(app.remembered().plen2_pacing, servo_studio::device::plen2::PacingMode::Safe);
+
+    let from_file = Start { project: Some(project::Project::default()), ..Start::default() };
+    let app = from_file.into_app(no_waker(), Some(remembered.clone()));
+    assert_eq!(app.document.project.family, Family::Servo, "the file's family wins");
+    assert_eq!(app.tab, Tab::Servos, "Motions is not a servo tab: the family's first");
+
+    let mut app = StudioApp::new(project::Project::default(), None, no_waker());
+    app.restore(Remembered { tab: "Log".into(), ..remembered }, false);
+    assert_eq!((app.document.project.family, app.tab), (Family::Plen2, Tab::Log));
 }

@@ -108,7 +108,7 @@ fn a_captured_pose_becomes_a_frame_relative_to_home() {
 
 /// The robot panel's last result, as it words it.
 fn shown_result(app: &StudioApp) -> String {
-    app.language.plen2_result(app.plen2.result.as_ref().expect("a result")).0
+    app.plen2.result.as_ref().expect("a result").words(app.language).0
 }
 
 #[test]
@@ -218,12 +218,12 @@ fn the_pacing_is_chosen_in_the_connection_settings_and_used_at_the_next_connecti
         .with_context_setup(servo_studio::ui::fonts::install)
         .build_ui_state(|ui, app: &mut StudioApp| app.show(ui), app);
     harness.run();
-    assert_eq!(harness.state().plen2_pacing, PacingMode::Adaptive, "adaptive by default");
+    assert_eq!(harness.state().plen2.pacing, PacingMode::Adaptive, "adaptive by default");
     harness.get_by_label("Pacing").click();
     harness.run();
     harness.get_by_label("Safe (official)").click();
     harness.run();
-    assert_eq!(harness.state().plen2_pacing, PacingMode::Safe);
+    assert_eq!(harness.state().plen2.pacing, PacingMode::Safe);
     harness.get_by_label("Demo board").click();
     harness.run();
     let link = harness.state().link.as_ref().expect("connected");

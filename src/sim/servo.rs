@@ -7,11 +7,10 @@ use std::collections::VecDeque;
 use std::time::{Duration, Instant};
 
 use super::faults::{Faults, hits};
-use crate::device::servo::ServoImage;
 use crate::link::Driver;
 use crate::protocol::servo::{
-    ALL_SERVOS, AngleUnit, ButtonEvent, DecoderEvent, FrameDecoder, ListEntry, Message, ServoMove, ServoStatus,
-    ServoSwitches, TransmissionMode,
+    ALL_SERVOS, AngleUnit, ButtonEvent, DecoderEvent, FrameDecoder, ListEntry, Message, ServoImage, ServoMove,
+    ServoStatus, ServoSwitches, TransmissionMode,
 };
 
 /// Bytes a throttled line hands over at once (a USB-serial adapter's packet).

@@ -5,66 +5,34 @@
 use std::path::PathBuf;
 
 use crate::project::{Edit, Family};
-use crate::ui::i18n::{Language, Strings};
+use crate::ui::i18n::Language;
 
-/// The editor's tabs.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
-pub enum Tab {
-    /// Servo sliders.
-    #[default]
-    Servos,
-    /// The action editor.
-    Actions,
-    /// The macro composer.
-    Macros,
-    /// Joystick mapping.
-    Joystick,
-    /// Upload / read / export.
-    Board,
+/// One of the editor's tabs: the packet log every family shares
+/// ([`Tab::Log`]), or one of a family's own panels. Families name their
+/// tabs themselves (`Tab::Servos`, `Tab::Drive`… are declared in their
+/// folders); the name is what is remembered between runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Tab(&'static str);
+
+#[allow(non_upper_case_globals)]
+impl Tab {
     /// Every frame sent and received.
-    Log,
-    /// Driving a mobile base.
-    Drive,
-    /// A mobile base's sensors.
-    Telemetry,
-    /// PLEN2 joint sliders and settings.
-    Joints,
-    /// PLEN2 motions in their slots.
-    Motions,
-    /// PLEN2 play lists.
-    PlayLists,
+    pub const Log: Self = Self("Log");
+
+    /// A family's tab called `name` (unique among all families' tabs).
+    pub const fn named(name: &'static str) -> Self {
+        Self(name)
+    }
+
+    /// Its name, as remembered between runs.
+    pub fn name(self) -> &'static str {
+        self.0
+    }
 }
 
-impl Tab {
-    /// The tabs that apply to a family, in order; the first is where a switch lands.
-    pub fn for_family(family: Family) -> &'static [Self] {
-        match family {
-            Family::Servo => &[Self::Servos, Self::Actions, Self::Macros, Self::Joystick, Self::Board, Self::Log],
-            Family::Rflex => &[Self::Drive, Self::Telemetry, Self::Log],
-            Family::Plen2 => &[Self::Joints, Self::Motions, Self::PlayLists, Self::Board, Self::Log],
-        }
-    }
-
-    /// Whether the tab has the robot's preview (or a base's world view) beside it.
-    pub fn has_view(self) -> bool {
-        !matches!(self, Self::Joystick | Self::Board | Self::Log | Self::PlayLists)
-    }
-
-    /// The tab's title.
-    pub fn title(self, words: &Strings) -> &'static str {
-        match self {
-            Self::Servos => words.servos,
-            Self::Actions => words.actions,
-            Self::Macros => words.macros,
-            Self::Joystick => words.joystick,
-            Self::Board => words.board,
-            Self::Log => words.packet_log,
-            Self::Drive => words.drive,
-            Self::Telemetry => words.telemetry,
-            Self::Joints => words.joints,
-            Self::Motions => words.motions,
-            Self::PlayLists => words.play_lists,
-        }
+impl std::fmt::Display for Tab {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.0)
     }
 }
 
@@ -100,8 +68,6 @@ pub enum Action {
         /// Undo coalescing key (e.g. `"servo 3 limits"`), if any.
         coalesce: Option<String>,
     },
-    /// Close the open coalesced undo step.
-    SealEdit,
     /// Undo the last step.
     Undo,
     /// Redo the last undone step.
@@ -115,8 +81,6 @@ pub enum Action {
     },
     /// Stop opening the port.
     CancelConnect,
-    /// Read the list of serial ports again (the connection bar asks every few seconds).
-    ScanPorts,
     /// Switch the document's board family (servo, PLEN2, rFLEX).
     SetFamily(Family),
     /// Start the in-process emulated board and connect to it.
@@ -126,8 +90,6 @@ pub enum Action {
     /// STOP, the family's way: every servo held where it is; a PLEN2's motion
     /// stopped and every joint home; a base stopped at once.
     Stop,
-    /// How a PLEN2 is paced from the next connection on.
-    SetPacing(crate::device::plen2::PacingMode),
     /// Switch the interface language.
     SetLanguage(Language),
     /// Show a tab.
@@ -282,6 +244,8 @@ pub enum Plen2Action {
         /// Where.
         path: PathBuf,
     },
+    /// How the robot is paced from the next connection on.
+    SetPacing(crate::device::plen2::PacingMode),
 }
 
 /// An rFLEX panel's request.

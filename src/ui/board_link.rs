@@ -94,6 +94,21 @@ impl From<std::io::Error> for StartError {
     }
 }
 
+/// How a family's driver is started: what the connection bar and the family's own pickers chose.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LinkOptions {
+    /// The line rate asked for.
+    pub baud: u32,
+    /// How a PLEN2 is paced.
+    pub pacing: PacingMode,
+}
+
+impl Default for LinkOptions {
+    fn default() -> Self {
+        Self { baud: 115_200, pacing: PacingMode::default() }
+    }
+}
+
 /// How often a mobile base's telemetry is redrawn while connected.
 const TELEMETRY_EVERY: Duration = Duration::from_millis(100);
 
@@ -104,11 +119,11 @@ impl BoardLink {
     }
 
     /// Starts the driver of the project's family over an opened connection
-    /// (a PLEN2 paced as `pacing` says).
+    /// (a PLEN2 paced as `options` say).
     pub fn start(
         project: &Project,
         connection: Connection,
-        (baud, pacing): (u32, PacingMode),
+        LinkOptions { baud, pacing }: LinkOptions,
         waker: Waker,
     ) -> Result<Self, StartError> {
         let label = connection.description.clone();
@@ -129,15 +144,16 @@ impl BoardLink {
 
     /// Starts the emulated board of the project's family in this process,
     /// preloaded with the project, and connects to it.
-    pub fn demo(project: &Project, pacing: PacingMode, waker: Waker) -> Result<Self, StartError> {
-        Self::demo_with(project, SimConfig::default(), pacing, waker)
+    /// (The demo's line rate is the family's own; `options` give the rest.)
+    pub fn demo(project: &Project, options: LinkOptions, waker: Waker) -> Result<Self, StartError> {
+        Self::demo_with(project, SimConfig::default(), options, waker)
     }
 
     /// Like [`BoardLink::demo`], with the emulated servo board configured (faults, memory…).
     pub fn demo_with(
         project: &Project,
         sim_config: SimConfig,
-        pacing: PacingMode,
+        options: LinkOptions,
         waker: Waker,
     ) -> Result<Self, StartError> {
         match project.family {
@@ -156,14 +172,14 @@ impl BoardLink {
                 let config =
                     RflexSimConfig { conversion: project.rflex.robot.conversion(), ..RflexSimConfig::default() };
                 let (sim, connection) = spawn_in_memory(RflexSim::new(config), waker.clone())?;
-                let mut link = Self::start(project, connection, (115_200, PacingMode::default()), waker)?;
+                let mut link = Self::start(project, connection, LinkOptions { baud: 115_200, ..options }, waker)?;
                 link.demo = Some(Demo::Rflex(sim));
                 link.label = String::new();
                 Ok(link)
             }
             Family::Plen2 => {
                 let (sim, connection) = spawn_in_memory(Plen2Sim::new(Plen2Timing::default()), waker.clone())?;
-                let mut link = Self::start(project, connection, (2_000_000, pacing), waker)?;
+                let mut link = Self::start(project, connection, LinkOptions { baud: 2_000_000, ..options }, waker)?;
                 link.demo = Some(Demo::Plen2(sim));
                 link.label = String::new();
                 Ok(link)

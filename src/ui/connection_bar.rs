@@ -5,8 +5,7 @@
 use crate::device::line_settings;
 use crate::link::PortInfo;
 use crate::project::Family;
-use crate::project::rflex::Robot;
-use crate::ui::action::{Action, RflexAction};
+use crate::ui::action::Action;
 use crate::ui::i18n::Language;
 
 /// Standard line rates offered in the picker, up to the PLEN2's 2,000,000.
@@ -18,24 +17,16 @@ const BAUDS: [u32; 11] =
 pub struct LinkStatus {
     /// The family of the document and of the connection.
     pub family: Family,
-    /// The rFLEX robot preset, for that family.
-    pub robot: Option<Robot>,
-    /// The PLEN2 pacing, for that family.
-    pub pacing: Option<crate::device::plen2::PacingMode>,
-    /// A base's battery, volts.
-    pub volts: Option<f64>,
+    /// Whether a link is open or opening (the settings cannot change then).
+    pub busy: bool,
     /// What it is connected to, if connected.
     pub label: Option<String>,
     /// The port being opened, while connecting.
     pub connecting: Option<String>,
     /// Whether this build can connect to the family.
     pub can_connect: bool,
-    /// The board's project id.
-    pub project_id: Option<i32>,
-    /// Battery, ‰.
-    pub battery_permil: Option<i16>,
-    /// Free and total memory.
-    pub memory: Option<(i32, Option<i32>)>,
+    /// What the family says of its connected board (project id, battery…), in words.
+    pub details: Vec<String>,
 }
 
 /// The connection bar's own state.
@@ -54,14 +45,13 @@ impl Default for ConnectionBar {
 }
 
 impl ConnectionBar {
-    /// Draws the bar.
+    /// Draws the bar; `extras` draws the family's own pickers after the family's.
     pub fn ui(
         &mut self,
         ui: &mut egui::Ui,
-        status: &LinkStatus,
-        ports: &[PortInfo],
-        language: Language,
+        (status, ports, language): (&LinkStatus, &[PortInfo], Language),
         actions: &mut Vec<Action>,
+        extras: impl FnOnce(&mut egui::Ui, &mut Vec<Action>),
     ) {
         let words = language.strings();
         if self.port.is_empty()
@@ -75,8 +65,7 @@ impl ConnectionBar {
             self.baud = line_settings(status.family).baud;
         }
         ui.horizontal_wrapped(|ui| {
-            let busy = status.label.is_some() || status.connecting.is_some();
-            ui.add_enabled_ui(!busy, |ui| {
+            ui.add_enabled_ui(!status.busy, |ui| {
                 let family_label = ui.label(words.family);
                 let mut family = status.family;
                 let picked = egui::ComboBox::from_id_salt("family-picker")
@@ -90,36 +79,7 @@ impl ConnectionBar {
                 if family != status.family {
                     actions.push(Action::SetFamily(family));
                 }
-                if let Some(current) = status.robot {
-                    let robot_label = ui.label(words.robot);
-                    let mut robot = current;
-                    let picked = egui::ComboBox::from_id_salt("robot-picker")
-                        .selected_text(robot_name(current))
-                        .show_ui(ui, |ui| {
-                            for option in [Robot::B21r, Robot::AtrvJr, Robot::Magellan] {
-                                ui.selectable_value(&mut robot, option, robot_name(option));
-                            }
-                        });
-                    picked.response.labelled_by(robot_label.id);
-                    if robot != current {
-                        actions.push(Action::Rflex(RflexAction::SetRobot(robot)));
-                    }
-                }
-                if let Some(current) = status.pacing {
-                    let pacing_label = ui.label(words.pacing);
-                    let mut pacing = current;
-                    let picked = egui::ComboBox::from_id_salt("pacing-picker")
-                        .selected_text(language.pacing(current))
-                        .show_ui(ui, |ui| {
-                            for option in crate::device::plen2::PacingMode::ALL {
-                                ui.selectable_value(&mut pacing, option, language.pacing(option));
-                            }
-                        });
-                    picked.response.labelled_by(pacing_label.id).on_hover_text(words.pacing_hint);
-                    if pacing != current {
-                        actions.push(Action::SetPacing(pacing));
-                    }
-                }
+                extras(ui, actions);
                 let port_label = ui.label(words.port);
                 // While connected the field shows what the link is to (the demo board
                 // has no port), not what was last typed.
@@ -187,16 +147,6 @@ impl ConnectionBar {
     }
 }
 
-/// A robot preset's name.
-fn robot_name(robot: Robot) -> &'static str {
-    match robot {
-        Robot::B21r => "B21r",
-        Robot::AtrvJr => "ATRV-Jr",
-        Robot::Magellan => "Magellan",
-        Robot::Custom { .. } => "custom",
-    }
-}
-
 /// The bar's status words: one sentence in the interface's language.
 pub fn status_text(status: &LinkStatus, language: Language) -> String {
     let words = language.strings();
@@ -205,20 +155,6 @@ pub fn status_text(status: &LinkStatus, language: Language) -> String {
     }
     let Some(label) = &status.label else { return words.not_connected.to_string() };
     let mut parts = vec![format!("{} {label}", words.connected_to)];
-    if let Some(project_id) = status.project_id {
-        parts.push(format!("{} {project_id}", words.project));
-    }
-    if let Some(volts) = status.volts {
-        parts.push(format!("{} {volts:.2} V", words.battery));
-    }
-    if let Some(permil) = status.battery_permil {
-        parts.push(format!("{} {}", words.battery, crate::device::servo::battery_text(permil)));
-    }
-    if let Some((free, total)) = status.memory {
-        parts.push(match total {
-            Some(total) => format!("{} {free} / {total} B", words.free_memory),
-            None => format!("{} {free} B", words.free_memory),
-        });
-    }
+    parts.extend(status.details.iter().cloned());
     parts.join(" · ")
 }

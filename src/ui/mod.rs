@@ -7,6 +7,7 @@ mod board_link;
 mod connection_bar;
 mod derive;
 mod document;
+mod family;
 pub mod files;
 pub mod fonts;
 mod i18n;
@@ -18,24 +19,27 @@ mod plot;
 mod rflex;
 mod rows;
 mod servo;
+mod shell;
 mod transport;
 pub mod view3d;
 
 pub use action::{
     Action, AfterUnsaved, BoardIntent, FileRequest, Plen2Action, Plen2Intent, RflexAction, ServoAction, Tab,
 };
-pub use app::{Connecting, Picker, REMEMBERED_KEY, Remembered, RunningOperation, StatusLine, StudioApp};
-pub use board_link::{BoardLink, Device, LinkNotice, StartError};
+pub use app::{Connecting, Picker, REMEMBERED_KEY, Remembered, StudioApp};
+pub use board_link::{BoardLink, Device, LinkNotice, LinkOptions, StartError};
 pub use document::Document;
+pub use family::FamilyUi;
 pub use i18n::{Language, Strings};
 pub use layout::Layout;
-pub use operation::{Operation, Step, Subject};
-pub use plen2::{Plen2Failure, Plen2Kind, Plen2Outcome, Plen2Result};
+pub use operation::{Operation, Step};
+pub use plen2::{Plen2Failure, Plen2Kind, Plen2Operation, Plen2Outcome, Plen2Result};
 pub use rflex::{DrivePanel, DriveView, WorldView};
 pub use servo::{
     BoardResult, CAPTURED_STEP_INTERVAL_10MS, LIVE_MOVE_INTERVAL_10MS, PendingConfirm, ServoFailure, ServoKind,
-    ServoOutcome, timeline_bars,
+    ServoOperation, ServoOutcome, timeline_bars,
 };
+pub use shell::{RunningOperation, StatusLine};
 
 /// The sample robot `gui --demo` opens when no file is given: a 16-servo
 /// biped with captions in English and Traditional Chinese, a few actions, a
@@ -73,11 +77,7 @@ impl Start {
         let mut app = StudioApp::new(project, self.path, waker);
         if let Some(remembered) = remembered {
             // A project's family wins over the one used last.
-            let family = remembered.family;
-            app.restore(remembered);
-            if !from_file && !self.demo {
-                app.document.project.family = family;
-            }
+            app.restore(remembered, from_file || self.demo);
         }
         if let Some(family) = self.family {
             app.document.project.family = family;

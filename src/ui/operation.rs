@@ -8,46 +8,38 @@ use crossbeam_channel::{Receiver, Sender};
 use crate::device::{Cancel, Phase, Progress};
 use crate::link::Waker;
 
-/// What a step of an operation works on, by family.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub enum Subject {
-    /// A servo board's item (an action, a macro, the project id…).
-    Servo(crate::device::servo::Item),
-    /// A PLEN2's item (a slot, the joint settings…).
-    Plen2(crate::device::plen2::Plen2Item),
-}
+/// How far an operation has come; `I` is what a step works on (the family's item).
+pub type Step<I> = Progress<I>;
 
-/// How far an operation has come.
-pub type Step = Progress<Subject>;
-
-/// A running operation; `O` is its family's outcome.
+/// A running operation; `K` is what it does, `O` its outcome and `I` what
+/// each step works on — all the family's own.
 #[derive(Debug)]
-pub struct Operation<K, O> {
+pub struct Operation<K, O, I> {
     /// What it does (the family says).
     pub kind: K,
     /// The latest progress.
-    pub progress: Option<Step>,
+    pub progress: Option<Step<I>>,
     /// Every item finished so far, in order, with the phase it belonged to.
-    pub done_items: Vec<(Phase, Subject)>,
-    progress_rx: Receiver<Step>,
+    pub done_items: Vec<(Phase, I)>,
+    progress_rx: Receiver<Step<I>>,
     outcome_rx: Receiver<O>,
     cancel: Sender<()>,
 }
 
-impl<K, O: Send + 'static> Operation<K, O> {
+impl<K, O: Send + 'static, I: Clone + Send + 'static> Operation<K, O, I> {
     /// Runs `work` on a worker thread; `waker` is called after each step and at the end.
     /// `failed` is the outcome when no thread can be started.
     pub fn start(
         kind: K,
         waker: Waker,
-        work: impl FnOnce(&mut dyn FnMut(Step), &Cancel) -> O + Send + 'static,
+        work: impl FnOnce(&mut dyn FnMut(Step<I>), &Cancel) -> O + Send + 'static,
         failed: impl FnOnce(std::io::Error) -> O,
     ) -> Self {
         let (progress_tx, progress_rx) = crossbeam_channel::unbounded();
         let (outcome_tx, outcome_rx) = crossbeam_channel::bounded(1);
         let (cancel, token) = Cancel::new();
         let spawned = std::thread::Builder::new().name("board operation".into()).spawn(move || {
-            let mut report = |step: Step| {
+            let mut report = |step: Step<I>| {
                 let _ = progress_tx.send(step);
                 waker();
             };
@@ -120,7 +112,7 @@ mod tests {
             crate::link::no_waker(),
             move |report, cancel| {
                 for done in 1..=3 {
-                    report(Step { phase: Phase::Write, done, total: 3, item: Subject::Servo(Item::ProjectId) });
+                    report(Step { phase: Phase::Write, done, total: 3, item: Item::ProjectId });
                 }
                 // Wait for the test to cancel, then say whether it was seen.
                 let _ = gate.recv();

@@ -236,6 +236,29 @@ fn solid_scroll_bar(ui: &mut egui::Ui) {
     ui.spacing_mut().scroll = egui::style::ScrollStyle::solid();
 }
 
+/// The nudge asked for by keys pressed on a focused slider, in steps (←/→/↑/↓
+/// 1, with Shift or PageUp/PageDown 10), consumed so that the slider does not
+/// also move by its own step.
+pub fn keyboard_nudge(ui: &egui::Ui) -> i32 {
+    ui.input_mut(|input| {
+        let mut delta = 0i32;
+        for (key, step) in [
+            (egui::Key::ArrowRight, 1),
+            (egui::Key::ArrowUp, 1),
+            (egui::Key::ArrowLeft, -1),
+            (egui::Key::ArrowDown, -1),
+        ] {
+            // Shift first: a plain match would also take Shift+key (shift is ignored logically).
+            delta += 10 * step * i32::try_from(input.count_and_consume_key(egui::Modifiers::SHIFT, key)).unwrap_or(0);
+            delta += step * i32::try_from(input.count_and_consume_key(egui::Modifiers::NONE, key)).unwrap_or(0);
+        }
+        delta += 10 * i32::try_from(input.count_and_consume_key(egui::Modifiers::NONE, egui::Key::PageUp)).unwrap_or(0);
+        delta -=
+            10 * i32::try_from(input.count_and_consume_key(egui::Modifiers::NONE, egui::Key::PageDown)).unwrap_or(0);
+        delta
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -1,29 +1,13 @@
-//! A board's stored contents as protocol records, and the conversion to and
-//! from a project. Both the upload (project → board) and the backup (board →
-//! project) go through here, and so does the emulated board's storage.
+//! A board's stored contents ([`ServoImage`], protocol records) converted to
+//! and from a project, and compared. Both the upload (project → board) and
+//! the backup (board → project) go through here.
 
 use crate::project::{Action, Button, Command, JoystickTable, Macro, Run, Servo, ServoProject, Step, Timing};
+pub use crate::protocol::servo::ServoImage;
 use crate::protocol::servo::{
-    ActionRecord, ButtonRecord, CommandType, EncodeError, JoystickTableRecord, MacroCommandRecord, MacroRecord,
-    Message, STR32_LEN, ServoMove, ServoParameter,
+    ActionRecord, ButtonRecord, CommandType, JoystickTableRecord, MacroCommandRecord, MacroRecord, STR32_LEN,
+    ServoMove, ServoParameter,
 };
-
-/// Everything a servo board stores, in the order the board lists it.
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
-pub struct ServoImage {
-    /// `projectID` (0 = none).
-    pub project_id: i32,
-    /// Stored servo parameters (30101).
-    pub servos: Vec<ServoParameter>,
-    /// Stored actions.
-    pub actions: Vec<ActionRecord>,
-    /// Stored macros, with `totalInterval` filled in.
-    pub macros: Vec<MacroRecord>,
-    /// Stored joystick tables.
-    pub tables: Vec<JoystickTableRecord>,
-    /// The active table (0 = none).
-    pub active_table: i32,
-}
 
 /// A project cannot be written onto a board at all (whatever `--force` says).
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
@@ -235,26 +219,6 @@ impl ServoImage {
                 .collect(),
             active_table: none_if_zero(self.active_table),
         }
-    }
-
-    /// The bytes these records occupy in board memory, as the emulated board
-    /// counts them: the content of every add request, plus 4 bytes each for
-    /// the project id and the active table id.
-    pub fn footprint_bytes(&self) -> Result<usize, EncodeError> {
-        let mut total = 8;
-        if !self.servos.is_empty() {
-            total += Message::AddServoParameterRequest { servos: self.servos.clone() }.encode_content()?.len();
-        }
-        for action in &self.actions {
-            total += Message::AddActionRequest(action.clone()).encode_content()?.len();
-        }
-        for record in &self.macros {
-            total += Message::AddMacroRequest(record.clone()).encode_content()?.len();
-        }
-        for table in &self.tables {
-            total += Message::AddJoystickTableRequest(table.clone()).encode_content()?.len();
-        }
-        Ok(total)
     }
 
     /// Every difference between `self` (what was meant) and `actual` (what the

@@ -11,6 +11,7 @@ mod error;
 mod frame;
 mod message;
 mod records;
+mod store;
 mod wire;
 
 pub use decoder::{DecoderEvent, FrameDecoder, SkipReason};
@@ -21,4 +22,5 @@ pub use records::{
     ActionRecord, AngleUnit, ButtonEvent, ButtonRecord, CommandType, JoystickTableRecord, ListEntry,
     MacroCommandRecord, MacroRecord, ServoMove, ServoParameter, ServoStatus, ServoSwitches, TransmissionMode,
 };
+pub use store::ServoImage;
 pub use wire::{STR32_LEN, truncate_utf8};

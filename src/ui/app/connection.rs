@@ -18,7 +18,8 @@ impl StudioApp {
     pub fn pump(&mut self, now: Instant) {
         self.poll_operation();
         self.poll_connecting();
-        let polling = self.servo.polling;
+        let Some(family) = self.link.as_ref().map(BoardLink::family) else { return };
+        let polling = self.family_ui(family).polling();
         let Some(link) = &mut self.link else { return };
         for notice in link.pump(now, polling) {
             match notice {
@@ -28,21 +29,15 @@ impl StudioApp {
                     // Not an error: the upload goes on, more carefully.
                     self.report(self.language.pacing_widened(&widened), false);
                 }
-                LinkNotice::BaseSilent => {
-                    self.rflex.stopped();
-                    self.report(self.words().msg_base_silent, true);
-                }
                 LinkNotice::MacroRefused => self.report(self.words().msg_macro_refused, true),
                 LinkNotice::Disconnected(reason) => {
                     self.report(self.language.link_ended(&reason), true);
-                    self.link = None;
-                    self.servo.polling = false;
-                    self.rflex.stopped();
+                    self.drop_link();
                     return;
                 }
-                LinkNotice::Button { button_id, event } => {
-                    let (mut shell, servo, _, _) = self.shell();
-                    servo.button(&mut shell, button_id, event);
+                notice => {
+                    let (mut shell, family_ui) = self.parts(family);
+                    family_ui.notice(&mut shell, notice);
                 }
             }
         }
@@ -56,26 +51,13 @@ impl StudioApp {
     /// Hands the running operation's outcome to the family that started it,
     /// waiting up to `wait` for it (None: not at all); returns the whole summary it left.
     pub(super) fn finish_operation(&mut self, wait: Option<std::time::Duration>) -> Option<(String, bool)> {
-        let outcome = match (&mut self.operation, wait) {
-            (Some(RunningOperation::Servo(operation)), None) => operation.poll().map(Finished::Servo),
-            (Some(RunningOperation::Plen2(operation)), None) => operation.poll().map(Finished::Plen2),
-            (Some(RunningOperation::Servo(operation)), Some(wait)) => operation.wait(wait).map(Finished::Servo),
-            (Some(RunningOperation::Plen2(operation)), Some(wait)) => operation.wait(wait).map(Finished::Plen2),
-            (None, _) => None,
-        };
-        let outcome = outcome?;
-        let operation = self.operation.take()?;
-        let summary = match (outcome, operation) {
-            (Finished::Servo(outcome), RunningOperation::Servo(operation)) => {
-                self.servo.finish(&operation, outcome);
-                self.servo.summary(self.language)
+        self.operation.as_ref()?;
+        let mut summary = None;
+        self.each_family(|family_ui, shell| {
+            if summary.is_none() {
+                summary = family_ui.finish_operation(shell, wait);
             }
-            (Finished::Plen2(outcome), _) => {
-                self.plen2.finish(outcome);
-                self.plen2.summary(self.language)
-            }
-            (Finished::Servo(_), RunningOperation::Plen2(_)) => None,
-        };
+        });
         // The status line follows: what the connection said of the board
         // ("factory-fresh") may no longer hold.
         // The status line holds its first line; the whole text (what an upload left) is returned.
@@ -120,7 +102,8 @@ impl StudioApp {
         let settings = crate::link::LineSettings { baud, ..crate::device::line_settings(family) };
         self.report(self.language.connecting_to(&name.to_string()), false);
         let opening = Opening::start(name, settings, self.opener.clone(), self.waker.clone());
-        self.connecting = Some(Connecting { opening, family, baud });
+        let options = self.family_ui(family).link_options(baud);
+        self.connecting = Some(Connecting { opening, family, options });
     }
 
     /// Starts the built-in emulated board of the document's family.
@@ -128,16 +111,13 @@ impl StudioApp {
         if self.link.is_some() {
             return;
         }
-        match BoardLink::demo(&self.document.project, self.plen2_pacing, self.waker.clone()) {
+        let family = self.document.project.family;
+        let options = self.family_ui(family).link_options(0);
+        match BoardLink::demo(&self.document.project, options, self.waker.clone()) {
             Ok(link) => {
                 self.link = Some(link);
                 self.connected();
-                let words = self.words();
-                let text = match self.document.project.family {
-                    Family::Servo => words.msg_connected_demo,
-                    Family::Plen2 => words.msg_connected_demo_plen2,
-                    Family::Rflex => words.msg_connected_demo_rflex,
-                };
+                let text = self.family_ui(family).demo_connected(self.words());
                 self.report(text, false);
             }
             Err(error) => self.report(self.language.start_error(&error), true),
@@ -146,22 +126,16 @@ impl StudioApp {
 
     /// A link was made: the families start from rest.
     fn connected(&mut self) {
-        self.rflex.connected(self.document.project.rflex.drive.sonar_on_connect);
-        self.servo.polling = false;
+        self.each_family(|family_ui, shell| family_ui.connected(&shell.document.project));
     }
 
     /// Starts the driver once the port is open, or reports why it did not open.
     pub(super) fn poll_connecting(&mut self) {
         let Some(connecting) = &self.connecting else { return };
         let Some(result) = connecting.opening.poll() else { return };
-        let Some(Connecting { opening, baud, .. }) = self.connecting.take() else { return };
+        let Some(Connecting { opening, options, .. }) = self.connecting.take() else { return };
         match result {
-            Ok(connection) => match BoardLink::start(
-                &self.document.project,
-                connection,
-                (baud, self.plen2_pacing),
-                self.waker.clone(),
-            ) {
+            Ok(connection) => match BoardLink::start(&self.document.project, connection, options, self.waker.clone()) {
                 Ok(mut link) => {
                     link.label = opening.port.to_string();
                     self.report(format!("{} {}", self.words().msg_connected_to, link.label), false);
@@ -180,9 +154,7 @@ impl StudioApp {
             return;
         }
         self.document.apply(Edit::SetFamily(family), None);
-        if !Tab::for_family(family).contains(&self.tab) {
-            self.tab = Tab::for_family(family)[0];
-        }
+        self.show_family_tab(family);
     }
 
     /// Opens ports with `opener` instead of the system's (tests use a double).
@@ -194,40 +166,20 @@ impl StudioApp {
     pub(super) fn link_status(&self) -> LinkStatus {
         let family = self.document.project.family;
         let connecting = self.connecting.as_ref().map(|connecting| connecting.opening.port.to_string());
-        let robot = (family == Family::Rflex).then_some(self.document.project.rflex.robot);
-        let pacing = (family == Family::Plen2).then_some(self.plen2_pacing);
+        let busy = self.connecting.is_some() || self.link.is_some();
         match &self.link {
             None => LinkStatus {
                 family,
-                robot,
-                pacing,
                 connecting,
+                busy,
                 can_connect: BoardLink::supports(family),
                 ..LinkStatus::default()
             },
             Some(link) => {
                 let label = if link.is_demo() { self.words().demo_board.to_string() } else { link.label.clone() };
-                let servo = link.servo();
-                let volts = link.rflex().and_then(|base| base.telemetry.battery_volts);
-                LinkStatus {
-                    family,
-                    robot,
-                    pacing,
-                    volts,
-                    label: Some(label),
-                    connecting,
-                    can_connect: true,
-                    project_id: servo.and_then(|servo| servo.project_id),
-                    battery_permil: servo.and_then(|servo| servo.battery_permil),
-                    memory: servo.and_then(|servo| servo.memory),
-                }
+                let details = self.family_ui(link.family()).link_details(link, self.words());
+                LinkStatus { family, busy, label: Some(label), connecting, can_connect: true, details }
             }
         }
     }
-}
-
-/// An operation's outcome, by family.
-enum Finished {
-    Servo(crate::ui::servo::ServoOutcome),
-    Plen2(crate::ui::plen2::Plen2Outcome),
 }

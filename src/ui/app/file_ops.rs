@@ -5,9 +5,8 @@ use super::*;
 
 impl StudioApp {
     pub(super) fn replace_document(&mut self, project: Project, path: Option<PathBuf>) {
-        self.servo.document_replaced(&project.servo);
-        self.plen2.document_replaced(&project.plen2);
         self.document = Document::new(project, path);
+        self.each_family(|family_ui, shell| family_ui.document_replaced(&shell.document.project));
     }
 
     pub(super) fn open_now(&mut self, path: PathBuf) {

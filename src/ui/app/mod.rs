@@ -7,7 +7,6 @@
 mod connection;
 mod dialogs;
 mod file_ops;
-mod shell;
 mod tabs;
 
 use std::io::Write;
@@ -17,30 +16,21 @@ use std::time::{Duration, Instant};
 use crossbeam_channel::Receiver;
 
 pub use dialogs::{Picker, system_picker};
-pub use shell::{RunningOperation, Shell, ShellView};
 
-use crate::device::plen2::PacingMode;
 use crate::link::{Opener, Opening, PortInfo, Waker, system_opener};
 use crate::project::{Family, Project};
 use crate::ui::action::{Action, AfterUnsaved, FileRequest, Tab};
 use crate::ui::board_link::BoardLink;
 use crate::ui::connection_bar::ConnectionBar;
 use crate::ui::document::Document;
+use crate::ui::family::FamilyUi;
 use crate::ui::files::{self, AUTOSAVE_EVERY, Recovery};
 use crate::ui::i18n::Language;
 use crate::ui::layout::Layout;
 use crate::ui::plen2::Plen2Ui;
 use crate::ui::rflex::RflexUi;
 use crate::ui::servo::ServoUi;
-
-/// A line for the status bar.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct StatusLine {
-    /// The text.
-    pub text: String,
-    /// Whether it reports a failure.
-    pub is_error: bool,
-}
+use crate::ui::shell::{RunningOperation, Shell, ShellView, StatusLine};
 
 /// A port being opened.
 #[derive(Debug)]
@@ -49,8 +39,8 @@ pub struct Connecting {
     pub opening: Opening,
     /// The family whose driver starts once it is open.
     pub family: Family,
-    /// The line rate asked for.
-    pub baud: u32,
+    /// How its driver is started.
+    pub options: crate::ui::board_link::LinkOptions,
 }
 
 /// The whole editor.
@@ -77,8 +67,6 @@ pub struct StudioApp {
     pub unsaved_prompt: Option<AfterUnsaved>,
     /// Work autosaved by a session that did not end cleanly, offered at start.
     pub recovery_offer: Option<Recovery>,
-    /// How a PLEN2 is paced (connection settings; remembered).
-    pub plen2_pacing: PacingMode,
     /// The servo board's state and panels.
     pub servo: ServoUi,
     /// The PLEN2's state and panels.
@@ -111,11 +99,9 @@ impl StudioApp {
     /// from other threads when there is something to show.
     pub fn new(project: impl Into<Project>, path: Option<PathBuf>, waker: Waker) -> Self {
         let project = project.into();
-        let mut plen2 = Plen2Ui::default();
-        plen2.document_replaced(&project.plen2);
         let mut app = Self {
-            servo: ServoUi::new(&project.servo),
-            plen2,
+            servo: ServoUi::default(),
+            plen2: Plen2Ui::default(),
             rflex: RflexUi::default(),
             document: Document::new(project, path),
             link: None,
@@ -124,13 +110,12 @@ impl StudioApp {
             picker: system_picker(),
             language: Language::detect(),
             status: None,
-            tab: Tab::default(),
+            tab: Tab::Log,
             operation: None,
             data_dir: eframe::storage_dir("Servo Studio").unwrap_or_else(|| std::env::temp_dir().join("servo-studio")),
             recent: Vec::new(),
             unsaved_prompt: None,
             recovery_offer: None,
-            plen2_pacing: PacingMode::default(),
             ports: Vec::new(),
             next_scan: None,
             dialog: None,
@@ -141,6 +126,9 @@ impl StudioApp {
             terminate: None,
         };
         app.recovery_offer = files::read_recovery(&app.data_dir);
+        app.each_family(|family_ui, shell| family_ui.document_replaced(&shell.document.project));
+        let family = app.document.project.family;
+        app.tab = app.family_ui(family).tabs()[0];
         app
     }
 
@@ -171,34 +159,72 @@ impl StudioApp {
         self.status = Some(StatusLine { text: text.into(), is_error });
     }
 
-    /// The shell as a family's ui changes it.
-    fn shell(&mut self) -> (Shell<'_>, &mut ServoUi, &mut Plen2Ui, &mut RflexUi) {
-        let shell = Shell {
-            document: &mut self.document,
-            link: &mut self.link,
-            status: &mut self.status,
-            operation: &mut self.operation,
-            language: self.language,
-            data_dir: &self.data_dir,
-            waker: &self.waker,
-        };
-        (shell, &mut self.servo, &mut self.plen2, &mut self.rflex)
+    /// The shell as a family's ui changes it, and the families' uis (borrowed apart).
+    fn split(&mut self) -> (Shell<'_>, Families<'_>) {
+        let Self { document, link, status, operation, language, data_dir, waker, servo, plen2, rflex, .. } = self;
+        let shell = Shell { document, link, status, operation, language: *language, data_dir, waker };
+        (shell, Families { servo, plen2, rflex })
     }
 
-    /// The layout of the document's family's panels.
-    pub fn layout(&self, family: Family) -> Layout {
+    /// The shell as a family's ui changes it, and that family's ui.
+    fn parts(&mut self, family: Family) -> (Shell<'_>, &mut dyn FamilyUi) {
+        let (shell, families) = self.split();
+        (shell, families.get(family))
+    }
+
+    /// A family's side of the editor.
+    pub fn family_ui(&self, family: Family) -> &dyn FamilyUi {
         match family {
-            Family::Servo => self.servo.layout,
-            Family::Plen2 => self.plen2.layout,
-            Family::Rflex => self.rflex.layout,
+            Family::Servo => &self.servo,
+            Family::Plen2 => &self.plen2,
+            Family::Rflex => &self.rflex,
         }
+    }
+
+    /// Runs `change` on every family's side of the editor, with the shell.
+    fn each_family(&mut self, mut change: impl FnMut(&mut dyn FamilyUi, &mut Shell<'_>)) {
+        for family in Family::ALL {
+            let (mut shell, family_ui) = self.parts(family);
+            change(family_ui, &mut shell);
+        }
+    }
+
+    /// What a family's panels draw from, and that family's ui.
+    fn drawing(&mut self, family: Family) -> (ShellView<'_>, &mut dyn FamilyUi, Tab) {
+        let Self { document, link, operation, language, servo, plen2, rflex, tab, .. } = self;
+        let view = ShellView {
+            project: &document.project,
+            revision: document.revision(),
+            link: link.as_ref(),
+            operation: operation.as_ref(),
+            language: *language,
+        };
+        (view, Families { servo, plen2, rflex }.get(family), *tab)
+    }
+
+    /// Shows `family`'s first tab when the tab shown is not one of its own.
+    fn show_family_tab(&mut self, family: Family) {
+        if !self.tabs(family).contains(&self.tab) {
+            self.tab = self.family_ui(family).tabs()[0];
+        }
+    }
+
+    /// The tabs shown for a family: its own, then the packet log.
+    pub fn tabs(&self, family: Family) -> Vec<Tab> {
+        let mut tabs = self.family_ui(family).tabs();
+        tabs.push(Tab::Log);
+        tabs
+    }
+
+    /// The layout of a family's panels.
+    pub fn layout(&self, family: Family) -> Layout {
+        self.family_ui(family).layout()
     }
 
     /// Applies one action. The only place that changes the editor's state.
     pub fn apply(&mut self, action: Action) {
         match action {
             Action::Edit { edit, coalesce } => self.document.apply(edit, coalesce.as_deref()),
-            Action::SealEdit => self.document.seal(),
             Action::Undo => {
                 self.document.undo();
             }
@@ -211,28 +237,19 @@ impl StudioApp {
                     self.report(self.language.connect_cancelled(&connecting.opening.port.to_string()), false);
                 }
             }
-            Action::ScanPorts => self.scan_ports(Instant::now()),
             Action::ConnectDemo => self.connect_demo(),
             Action::SetFamily(family) => self.set_family(family),
             Action::Disconnect => {
-                self.link = None;
-                self.servo.polling = false;
+                self.drop_link();
                 self.report(self.words().msg_disconnected, false);
             }
             Action::Stop => self.stop(),
-            Action::SetPacing(mode) => {
-                // Takes effect at the next connection (the driver is set up then).
-                if self.link.is_none() {
-                    self.plen2_pacing = mode;
-                }
-            }
             Action::SetLanguage(language) => self.language = language,
             Action::ShowTab(tab) => self.tab = tab,
-            Action::ShowView(open) => match self.document.project.family {
-                Family::Servo => self.servo.layout.view_open = open,
-                Family::Plen2 => self.plen2.layout.view_open = open,
-                Family::Rflex => self.rflex.layout.view_open = open,
-            },
+            Action::ShowView(open) => {
+                let (_, family_ui) = self.parts(self.document.project.family);
+                family_ui.layout_mut().view_open = open;
+            }
             Action::AskFile(request) => {
                 let answer = (self.picker)(&request, self.waker.clone());
                 self.dialog = Some((request, answer));
@@ -303,56 +320,46 @@ impl StudioApp {
                     };
                     let _ = writeln!(std::io::stderr(), "servo-studio: {said}");
                 }
-                self.link = None;
+                self.drop_link();
                 self.apply(Action::Autosave);
                 self.quit_allowed = true;
             }
             Action::Servo(action) => {
-                let (mut shell, servo, _, _) = self.shell();
-                servo.apply(&mut shell, action);
+                let (mut shell, families) = self.split();
+                families.servo.apply(&mut shell, action);
             }
             Action::Plen2(action) => {
-                let (mut shell, _, plen2, _) = self.shell();
-                plen2.apply(&mut shell, action);
+                let (mut shell, families) = self.split();
+                families.plen2.apply(&mut shell, action);
             }
             Action::Rflex(action) => {
-                let (mut shell, _, _, rflex) = self.shell();
-                rflex.apply(&mut shell, action);
+                let (mut shell, families) = self.split();
+                families.rflex.apply(&mut shell, action);
             }
         }
     }
 
     /// STOP, the family's way (always visible, Esc too).
     fn stop(&mut self) {
-        let Some(link) = &mut self.link else {
+        let Some(link) = &self.link else {
             self.report(self.words().msg_stop_no_board, false);
             return;
         };
-        match link.family() {
-            Family::Plen2 => {
-                self.plen2.stopped();
-                let _ = link.stop();
-                self.report(self.words().msg_plen2_stopped, false);
-            }
-            Family::Rflex => {
-                self.rflex.stopped();
-                // Both axes to 0 at once (never fails; a lost link is reported by pump).
-                let _ = link.stop();
-                self.report(self.words().msg_base_stopped, false);
-            }
-            Family::Servo => match link.stop() {
-                Ok(()) => self.report(self.words().msg_stopped_all, false),
-                Err(error) => self.report(self.language.request_error(&error), true),
-            },
-        }
+        let (mut shell, family_ui) = self.parts(link.family());
+        family_ui.stop(&mut shell);
+    }
+
+    /// Closes the link: every family starts again from rest.
+    fn drop_link(&mut self) {
+        self.link = None;
+        self.each_family(|family_ui, _| family_ui.disconnected());
     }
 
     /// Moves previews and streams on to `now`; whether the window should keep repainting.
     pub fn advance(&mut self, now: Instant) -> bool {
-        let (mut shell, servo, plen2, _) = self.shell();
-        let previewing = servo.tick(&shell.document.project, now);
-        let streaming = plen2.tick(&mut shell, now);
-        previewing || streaming
+        let mut moving = false;
+        self.each_family(|family_ui, shell| moving |= family_ui.tick(shell, now));
+        moving
     }
 
     /// Whether a PLEN2 motion is being streamed.
@@ -411,28 +418,34 @@ impl StudioApp {
                     if ui.add(stop).on_hover_text("Esc").clicked() {
                         actions.push(Action::Stop);
                     }
-                    if self.link.as_ref().is_some_and(BoardLink::stopped) && ui.button(words.resume).clicked() {
-                        actions.push(Action::Servo(crate::ui::action::ServoAction::Resume));
-                    }
+                    let (view, family_ui, _) = self.drawing(self.document.project.family);
+                    family_ui.toolbar(ui, &view, &mut actions);
                 });
             });
             let status = self.link_status();
-            self.connection_bar.ui(ui, &status, &self.ports, self.language, &mut actions);
+            let family = self.document.project.family;
+            let (ports, language) = (std::mem::take(&mut self.ports), self.language);
+            let mut bar = std::mem::take(&mut self.connection_bar);
+            let (view, family_ui, _) = self.drawing(family);
+            bar.ui(ui, (&status, &ports, language), &mut actions, |ui, actions| {
+                family_ui.connection_extras(ui, &view, actions);
+            });
+            (self.ports, self.connection_bar) = (ports, bar);
             ui.horizontal(|ui| {
+                let family_ui = self.family_ui(family);
                 let mut tab = self.tab;
                 // Only the panels that apply to the document's family are offered.
-                for option in Tab::for_family(self.document.project.family) {
-                    ui.selectable_value(&mut tab, *option, option.title(words));
+                for option in self.tabs(family) {
+                    let title = if option == Tab::Log { words.packet_log } else { family_ui.tab_title(option, words) };
+                    ui.selectable_value(&mut tab, option, title);
                 }
                 if tab != self.tab {
                     actions.push(Action::ShowTab(tab));
                 }
-                let family = self.document.project.family;
-                if self.tab.has_view() {
+                if self.tab != Tab::Log && family_ui.has_view(self.tab) {
                     ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
-                        let mut open = self.layout(family).view_open;
-                        let label = if family == Family::Rflex { words.world_view } else { words.show_preview };
-                        if ui.checkbox(&mut open, label).changed() {
+                        let mut open = family_ui.layout().view_open;
+                        if ui.checkbox(&mut open, family_ui.view_caption(words)).changed() {
                             actions.push(Action::ShowView(open));
                         }
                     });
@@ -453,13 +466,8 @@ impl StudioApp {
         });
 
         let family = self.document.project.family;
-        if self.tab != Tab::Drive && self.rflex.drive_asked() != (0.0, 0.0) {
-            // The pad and the keys live on the Drive tab: leaving it is letting go.
-            actions.push(Action::Stop);
-        }
-        if !Tab::for_family(family).contains(&self.tab) {
-            self.tab = Tab::for_family(family)[0];
-        }
+        actions.extend(self.family_ui(family).while_showing(self.tab));
+        self.show_family_tab(family);
         egui::CentralPanel::default().show(ui, |ui| self.tab_panel(ui, &mut actions));
 
         self.dialogs(ui, &mut actions);
@@ -478,11 +486,30 @@ impl StudioApp {
             ui.ctx().request_repaint_after(AUTOSAVE_EVERY);
         }
         if let Some(link) = &self.link {
-            let wait = link.next_refresh(self.servo.polling).saturating_duration_since(Instant::now());
+            let polling = self.family_ui(link.family()).polling();
+            let wait = link.next_refresh(polling).saturating_duration_since(Instant::now());
             ui.ctx().request_repaint_after(wait);
         }
         if let Some(at) = self.next_scan {
             ui.ctx().request_repaint_after(at.saturating_duration_since(now));
+        }
+    }
+}
+
+/// Each family's side of the editor, borrowed apart from the shell.
+struct Families<'a> {
+    servo: &'a mut ServoUi,
+    plen2: &'a mut Plen2Ui,
+    rflex: &'a mut RflexUi,
+}
+
+impl<'a> Families<'a> {
+    /// The one of `family`.
+    fn get(self, family: Family) -> &'a mut dyn FamilyUi {
+        match family {
+            Family::Servo => self.servo,
+            Family::Plen2 => self.plen2,
+            Family::Rflex => self.rflex,
         }
     }
 }
@@ -495,14 +522,14 @@ pub struct Remembered {
     pub recent: Vec<PathBuf>,
     /// The interface language.
     pub language: Language,
-    /// The tab shown.
-    pub tab: Tab,
+    /// The tab shown, by name.
+    pub tab: String,
     /// The board family last used.
     #[serde(default)]
     pub family: Family,
     /// How a PLEN2 is paced.
     #[serde(default)]
-    pub plen2_pacing: PacingMode,
+    pub plen2_pacing: crate::device::plen2::PacingMode,
     /// How each family's panels were laid out: servo, PLEN2, rFLEX.
     #[serde(default)]
     pub layouts: [Layout; 3],
@@ -521,20 +548,28 @@ impl StudioApp {
         Remembered {
             recent: self.recent.clone(),
             language: self.language,
-            tab: self.tab,
+            tab: self.tab.name().to_string(),
             family: self.document.project.family,
-            plen2_pacing: self.plen2_pacing,
-            layouts: [self.servo.layout, self.plen2.layout, self.rflex.layout],
+            plen2_pacing: self.plen2.pacing,
+            layouts: Family::ALL.map(|family| self.layout(family)),
         }
     }
 
-    /// Restores what was remembered.
-    pub fn restore(&mut self, remembered: Remembered) {
+    /// Restores what was remembered: the family too, unless `keep_family`
+    /// (a project opened from a file, or the demo, brings its own).
+    pub fn restore(&mut self, remembered: Remembered, keep_family: bool) {
         self.recent = remembered.recent;
         self.language = remembered.language;
-        self.tab = remembered.tab;
-        self.plen2_pacing = remembered.plen2_pacing;
-        [self.servo.layout, self.plen2.layout, self.rflex.layout] = remembered.layouts;
+        self.plen2.pacing = remembered.plen2_pacing;
+        for (family, layout) in Family::ALL.into_iter().zip(remembered.layouts) {
+            *self.parts(family).1.layout_mut() = layout;
+        }
+        if !keep_family {
+            self.document.project.family = remembered.family;
+        }
+        let family = self.document.project.family;
+        self.tab = self.tabs(family).into_iter().find(|tab| tab.name() == remembered.tab).unwrap_or(self.tab);
+        self.show_family_tab(family);
     }
 }
 
@@ -545,7 +580,7 @@ impl eframe::App for StudioApp {
 
     fn on_exit(&mut self, _gl: Option<&eframe::glow::Context>) {
         // Dropping the link stops a base and shuts it down (brake on) before the window goes.
-        self.link = None;
+        self.drop_link();
     }
 
     fn save(&mut self, storage: &mut dyn eframe::Storage) {

@@ -2,9 +2,7 @@
 //! the packet log every family shares.
 
 use super::StudioApp;
-use crate::project::Family;
 use crate::ui::action::{Action, Tab};
-use crate::ui::app::ShellView;
 use crate::ui::board_link::BoardLink;
 
 impl StudioApp {
@@ -24,17 +22,7 @@ impl StudioApp {
             }
             return;
         }
-        let view = ShellView {
-            project: &self.document.project,
-            revision: self.document.revision(),
-            link: self.link.as_ref(),
-            operation: self.operation.as_ref(),
-            language: self.language,
-        };
-        match family {
-            Family::Servo => self.servo.ui(ui, self.tab, &view, actions),
-            Family::Plen2 => self.plen2.ui(ui, self.tab, &view, actions),
-            Family::Rflex => self.rflex.ui(ui, self.tab, &view, actions),
-        }
+        let (view, family_ui, tab) = self.drawing(family);
+        family_ui.ui(ui, tab, &view, actions);
     }
 }

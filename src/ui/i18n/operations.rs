@@ -1,11 +1,10 @@
-//! Board operations in words: what a step works on, why an operation failed
-//! and what it left, how it ended — for every family, in the interface's
-//! language. Operations report typed outcomes; they become words only here.
+//! Device operations in words: what a step works on, why it failed and what
+//! an upload left, in the interface's language. Operations report typed
+//! outcomes; they become words here and in each family's ui (its own
+//! failures and results).
 
-use crate::device::plen2::{Plen2Item, Plen2OpError, ReplyError, SlotResult};
+use crate::device::plen2::{Plen2Item, Plen2OpError, ReplyError};
 use crate::device::{Left, Stage, UploadFailure};
-use crate::ui::plen2::{Plen2Failure, Plen2Result};
-use crate::ui::servo::ServoFailure;
 
 use super::Language;
 
@@ -45,20 +44,8 @@ impl Language {
         text
     }
 
-    /// Why a servo board operation failed, in this language.
-    pub fn servo_failure(self, failure: &ServoFailure) -> String {
-        match failure {
-            ServoFailure::Op(error) => self.op_error(error),
-            ServoFailure::Upload(failure) => {
-                self.upload_failure(failure, |error| self.op_error(error), |item| self.item(item))
-            }
-            ServoFailure::BackupFolder { folder, error } => self.backup_folder_failed(folder, error),
-            ServoFailure::Thread(error) => self.no_worker(error),
-        }
-    }
-
     /// No thread could be started for an operation.
-    fn no_worker(self, error: &std::io::Error) -> String {
+    pub fn no_worker(self, error: &std::io::Error) -> String {
         match self {
             Self::English => format!("cannot start the operation: {error}"),
             Self::TraditionalChinese => format!("無法開始此操作（{error}）。請關閉其他程式後再試"),
@@ -131,53 +118,6 @@ impl Language {
                 format!("動作 {} {:?} 無法存進 PLEN2，沒有寫入任何資料：{why}", error.slot, error.name)
             }
             Plen2OpError::Cancelled => "已取消".into(),
-        }
-    }
-
-    /// Why a PLEN2 operation failed, in this language.
-    pub fn plen2_failure(self, failure: &Plen2Failure) -> String {
-        match failure {
-            Plen2Failure::Op(error) => self.plen2_op_error(error),
-            Plen2Failure::Upload(failure) => {
-                self.upload_failure(failure, |error| self.plen2_op_error(error), |item| self.plen2_item(item))
-            }
-            Plen2Failure::Reply(error) => self.reply_error(error),
-            Plen2Failure::BackupFolder { folder, error } => self.backup_folder_failed(folder, error),
-            Plen2Failure::Thread(error) => self.no_worker(error),
-        }
-    }
-
-    /// What the robot panel says after an operation, and whether it is an error.
-    pub fn plen2_result(self, result: &Plen2Result) -> (String, bool) {
-        let words = self.strings();
-        match result {
-            Plen2Result::Read(count) => (format!("{} {count}", words.robot_read), false),
-            Plen2Result::Uploaded(report) => {
-                let verified = report.slots.iter().filter(|(_, r)| *r == SlotResult::Verified).count();
-                let mut text = format!("{} {verified}/{}", words.uploaded_items, report.slots.len());
-                let differing: Vec<String> = report
-                    .slots
-                    .iter()
-                    .filter(|(_, r)| *r == SlotResult::Differs)
-                    .map(|(slot, _)| slot.to_string())
-                    .collect();
-                if !differing.is_empty() {
-                    text.push_str(&format!("\n{} {}", words.slots_differ, differing.join(", ")));
-                }
-                if let Some(backup) = &report.backup {
-                    text.push_str(&format!("\n{} {}", words.backup_at, backup.display()));
-                }
-                (text, !differing.is_empty())
-            }
-            Plen2Result::JointsWritten(count) => (format!("{}: {count}", words.write_joints), false),
-            Plen2Result::Invalid(problems) => {
-                (self.plen2_op_error(&Plen2OpError::Invalid { problems: problems.clone() }), true)
-            }
-            Plen2Result::ReadIntoProject => (words.read_done.to_string(), false),
-            Plen2Result::Exported(path) => (format!("{} {}", words.saved_board_to, path.display()), false),
-            Plen2Result::ExportFailed(text) => (text.clone(), true),
-            Plen2Result::Failed(failure) => (self.plen2_failure(failure), true),
-            Plen2Result::Cancelled => (words.cancelled.to_string(), false),
         }
     }
 }

@@ -2,12 +2,11 @@
 //! project's motion and the robot's, differences marked), read the robot,
 //! upload with backup and verification, read into the project, export to a file.
 
-use super::{Plen2Kind, Plen2Outcome, Plen2Result};
+use super::Plen2Result;
 use crate::device::Phase;
 use crate::project::plen2::{Motion, Plen2Project, SLOTS};
 use crate::ui::action::{Action, FileRequest, Plen2Action, Plen2Intent};
 use crate::ui::i18n::{Language, Strings};
-use crate::ui::operation::{Operation, Subject};
 use crate::ui::rows;
 
 /// What the robot panel draws.
@@ -20,7 +19,7 @@ pub struct RobotView<'a> {
     /// Whether a robot is connected.
     pub connected: bool,
     /// The running operation.
-    pub operation: Option<&'a Operation<Plen2Kind, Plen2Outcome>>,
+    pub operation: Option<&'a super::Plen2Operation>,
     /// The last outcome.
     pub result: Option<&'a Plen2Result>,
 }
@@ -148,10 +147,7 @@ pub fn robot_panel(ui: &mut egui::Ui, view: &RobotView<'_>, language: Language, 
     }
     if let Some(operation) = view.operation {
         if let Some(progress) = &operation.progress {
-            let item = match &progress.item {
-                Subject::Plen2(item) => language.plen2_item(item),
-                Subject::Servo(item) => language.item(item),
-            };
+            let item = language.plen2_item(&progress.item);
             ui.add(egui::ProgressBar::new(operation.fraction()).show_percentage().text(format!(
                 "{} {}/{} {item}",
                 phase_word(progress.phase, words),
@@ -164,7 +160,7 @@ pub fn robot_panel(ui: &mut egui::Ui, view: &RobotView<'_>, language: Language, 
         }
     }
     if let Some(result) = view.result {
-        let (text, is_error) = language.plen2_result(result);
+        let (text, is_error) = result.words(language);
         if is_error {
             ui.colored_label(ui.visuals().error_fg_color, text);
         } else {

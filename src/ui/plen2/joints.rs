@@ -11,7 +11,6 @@ use crate::ui::action::{Action, Plen2Action, Plen2Intent};
 use crate::ui::i18n::Strings;
 use crate::ui::layout::{self, Layout, Pane};
 use crate::ui::rows;
-use crate::ui::servo::keyboard_nudge;
 
 /// The limits and home a joint has: the project's settings, else the factory's.
 pub fn limits(project: &Plen2Project, joint: Joint) -> JointSetting {
@@ -71,7 +70,7 @@ fn sliders(ui: &mut egui::Ui, view: &JointsView<'_>, actions: &mut Vec<Action>) 
         .memory(|memory| memory.focused())
         .and_then(|id| previous.iter().find(|(i, _)| *i == id).map(|&(_, joint)| joint));
     // Tenths of a degree: a step is 1°.
-    let nudge = if focused.is_some() { i16::try_from(keyboard_nudge(ui) * 10).unwrap_or(0) } else { 0 };
+    let nudge = if focused.is_some() { i16::try_from(rows::keyboard_nudge(ui) * 10).unwrap_or(0) } else { 0 };
     let mut ids = Vec::with_capacity(Joint::ALL.len());
     ui.spacing_mut().slider_width = (ui.available_width() - 340.0).clamp(160.0, 420.0);
     let height = ui.available_height();

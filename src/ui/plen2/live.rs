@@ -8,7 +8,7 @@ use super::Plen2Ui;
 use super::joints::limits;
 use crate::project::Edit;
 use crate::project::plen2::{Frame, Joint, Motion, Plen2Project, Pose};
-use crate::ui::app::Shell;
+use crate::ui::shell::Shell;
 
 /// A motion played from one of its frames by streaming its poses live.
 #[derive(Debug)]

@@ -9,6 +9,7 @@ mod live;
 mod motions;
 mod play_lists;
 mod preview;
+mod words;
 
 use std::path::PathBuf;
 use std::time::Instant;
@@ -17,13 +18,29 @@ pub use board::{SlotCell, slot_map};
 pub use live::homes;
 
 use crate::device::plen2::{self, Command, Plen2ImportFailure, Plen2ImportOptions, Plen2ImportReport, Plen2OpError};
-use crate::device::plen2::{Plen2Item, ReplyError};
+use crate::device::plen2::{PacingMode, Plen2Item, ReplyError};
 use crate::project::plen2::{Plen2Project, SLOTS};
 use crate::project::{Edit, Family, Project};
 use crate::ui::action::{Action, Plen2Action, Plen2Intent, Tab};
-use crate::ui::app::{RunningOperation, Shell, ShellView};
+use crate::ui::board_link::LinkOptions;
+use crate::ui::family::{FamilyUi, Panel};
+use crate::ui::i18n::{Language, Strings};
 use crate::ui::layout::{Layout, Pane};
-use crate::ui::operation::{Operation, Step, Subject};
+use crate::ui::operation::{Operation, Step};
+use crate::ui::shell::{RunningOperation, Shell, ShellView};
+
+#[allow(non_upper_case_globals)]
+impl Tab {
+    /// PLEN2 joint sliders and settings.
+    pub const Joints: Self = Self::named("Joints");
+    /// PLEN2 motions in their slots.
+    pub const Motions: Self = Self::named("Motions");
+    /// PLEN2 play lists.
+    pub const PlayLists: Self = Self::named("PlayLists");
+}
+
+/// A PLEN2 operation as it runs.
+pub type Plen2Operation = Operation<Plen2Kind, Plen2Outcome, Plen2Item>;
 
 /// What a PLEN2 operation does.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -118,6 +135,8 @@ pub struct Plen2Ui {
     pub preview: preview::Preview,
     /// How the family's panels are laid out (remembered).
     pub layout: Layout,
+    /// How the robot is paced (connection settings; remembered; used from the next connection).
+    pub pacing: PacingMode,
 }
 
 impl Default for Plen2Ui {
@@ -134,6 +153,7 @@ impl Default for Plen2Ui {
             play_lists: play_lists::PlayListsPanel::default(),
             preview: preview::Preview::default(),
             layout: Layout::default(),
+            pacing: PacingMode::default(),
         }
     }
 }
@@ -143,12 +163,10 @@ fn run(
     requester: &plen2::Plen2Requester,
     project: &Plen2Project,
     backups: PathBuf,
-    report: &mut dyn FnMut(Step),
+    report: &mut dyn FnMut(Step<Plen2Item>),
     cancel: &crate::device::Cancel,
 ) -> Plen2Outcome {
-    let mut progress = |step: &plen2::Plen2Progress| {
-        report(Step { phase: step.phase, done: step.done, total: step.total, item: Subject::Plen2(step.item.clone()) });
-    };
+    let mut progress = |step: &plen2::Plen2Progress| report(step.clone());
     let failed = |error: Plen2OpError| match error {
         Plen2OpError::Cancelled => Plen2Outcome::Cancelled,
         other => Plen2Outcome::Failed(Plen2Failure::Op(other)),
@@ -194,12 +212,6 @@ fn run(
 }
 
 impl Plen2Ui {
-    /// A new document: the joints go home.
-    pub fn document_replaced(&mut self, project: &Plen2Project) {
-        self.pose = homes(project);
-        self.stream = None;
-    }
-
     /// Applies one of the family's actions.
     pub fn apply(&mut self, shell: &mut Shell<'_>, action: Plen2Action) {
         match action {
@@ -214,6 +226,12 @@ impl Plen2Ui {
             Plen2Action::PlayList(index) => Self::play_list(shell, index),
             Plen2Action::CaptureFrame { slot } => self.capture_frame(shell, slot),
             Plen2Action::Robot(intent) => self.robot_operation(shell, intent),
+            Plen2Action::SetPacing(mode) => {
+                // Takes effect at the next connection (the driver is set up then).
+                if shell.link.is_none() {
+                    self.pacing = mode;
+                }
+            }
             Plen2Action::SaveMotionJson { slot, path } => {
                 if let Some(motion) = shell.document.project.plen2.motions.iter().find(|m| m.slot == slot) {
                     let text = crate::project::motion_json::motion_to_json(motion);
@@ -234,16 +252,6 @@ impl Plen2Ui {
         self.stream.is_some()
     }
 
-    /// STOP: no motion is streamed any more.
-    pub fn stopped(&mut self) {
-        self.stream = None;
-    }
-
-    /// Moves a streamed motion on; whether something still plays.
-    pub fn tick(&mut self, shell: &mut Shell<'_>, now: Instant) -> bool {
-        self.advance_stream(shell, now)
-    }
-
     fn start(&mut self, shell: &mut Shell<'_>, kind: Plen2Kind, project: Plen2Project) {
         let Some(robot) = shell.plen2() else {
             shell.report(shell.words().msg_connect_first, true);
@@ -259,7 +267,7 @@ impl Plen2Ui {
             move |report, cancel| run(&job_kind, &requester, &project, backups, report, cancel),
             |error| Plen2Outcome::Failed(Plen2Failure::Thread(error)),
         );
-        *shell.operation = Some(RunningOperation::Plen2(operation));
+        *shell.operation = Some(RunningOperation::new(operation));
     }
 
     fn robot_operation(&mut self, shell: &mut Shell<'_>, intent: Plen2Intent) {
@@ -316,8 +324,40 @@ impl Plen2Ui {
         });
     }
 
-    /// Draws the tab.
-    pub fn ui(&mut self, ui: &mut egui::Ui, tab: Tab, view: &ShellView<'_>, actions: &mut Vec<Action>) {
+    /// The last operation's outcome, whole (the status line shows its first line), and whether it is an error.
+    pub fn summary(&self, language: Language) -> Option<(String, bool)> {
+        Some(self.result.as_ref()?.words(language))
+    }
+
+    /// The item a step works on, in words.
+    pub fn item_words(language: Language, item: &Plen2Item) -> String {
+        language.plen2_item(item)
+    }
+}
+
+impl FamilyUi for Plen2Ui {
+    fn family(&self) -> Family {
+        Family::Plen2
+    }
+
+    fn panels(&self) -> &'static [Panel] {
+        &[
+            Panel { tab: Tab::Joints, title: |words| words.joints, has_view: true },
+            Panel { tab: Tab::Motions, title: |words| words.motions, has_view: true },
+            Panel { tab: Tab::PlayLists, title: |words| words.play_lists, has_view: false },
+            Panel { tab: Tab::Board, title: |words| words.board, has_view: false },
+        ]
+    }
+
+    fn layout(&self) -> Layout {
+        self.layout
+    }
+
+    fn layout_mut(&mut self) -> &mut Layout {
+        &mut self.layout
+    }
+
+    fn ui(&mut self, ui: &mut egui::Ui, tab: Tab, view: &ShellView<'_>, actions: &mut Vec<Action>) {
         let project = &view.project.plen2;
         let words = view.language.strings();
         let connected = view.link.is_some_and(|link| link.plen2().is_some());
@@ -343,7 +383,7 @@ impl Plen2Ui {
                     slots: self.slots.as_ref().map_or(&[][..], |(_, slots)| slots.as_slice()),
                     robot_read: self.robot.is_some(),
                     connected,
-                    operation: view.plen2_operation(),
+                    operation: view.operation(),
                     result: self.result.as_ref(),
                 };
                 board::robot_panel(ui, &robot, view.language, actions);
@@ -366,13 +406,58 @@ impl Plen2Ui {
         }
     }
 
-    /// The last operation's outcome, whole (the status line shows its first line), and whether it is an error.
-    pub fn summary(&self, language: crate::ui::i18n::Language) -> Option<(String, bool)> {
-        Some(language.plen2_result(self.result.as_ref()?))
+    fn connection_extras(&mut self, ui: &mut egui::Ui, view: &ShellView<'_>, actions: &mut Vec<Action>) {
+        let language = view.language;
+        let words = language.strings();
+        let pacing_label = ui.label(words.pacing);
+        let mut pacing = self.pacing;
+        let picked =
+            egui::ComboBox::from_id_salt("pacing-picker").selected_text(language.pacing(pacing)).show_ui(ui, |ui| {
+                for option in PacingMode::ALL {
+                    ui.selectable_value(&mut pacing, option, language.pacing(option));
+                }
+            });
+        picked.response.labelled_by(pacing_label.id).on_hover_text(words.pacing_hint);
+        if pacing != self.pacing {
+            actions.push(Action::Plen2(Plen2Action::SetPacing(pacing)));
+        }
     }
 
-    /// The item a step works on, in words.
-    pub fn item_words(language: crate::ui::i18n::Language, item: &Plen2Item) -> String {
-        language.plen2_item(item)
+    fn link_options(&self, baud: u32) -> LinkOptions {
+        LinkOptions { baud, pacing: self.pacing }
+    }
+
+    fn demo_connected(&self, words: &Strings) -> &'static str {
+        words.msg_connected_demo_plen2
+    }
+
+    fn stop(&mut self, shell: &mut Shell<'_>) {
+        // No motion is streamed any more; the robot stops and goes home.
+        self.stream = None;
+        if let Some(link) = shell.link.as_mut() {
+            let _ = link.stop();
+        }
+        shell.report(shell.words().msg_plen2_stopped, false);
+    }
+
+    fn disconnected(&mut self) {
+        self.stream = None;
+    }
+
+    /// A new document: the joints go home.
+    fn document_replaced(&mut self, project: &Project) {
+        self.pose = homes(&project.plen2);
+        self.stream = None;
+    }
+
+    /// Moves a streamed motion on; whether something still plays.
+    fn tick(&mut self, shell: &mut Shell<'_>, now: Instant) -> bool {
+        self.advance_stream(shell, now)
+    }
+
+    fn finish_operation(&mut self, shell: &mut Shell<'_>, wait: Option<std::time::Duration>) -> Option<(String, bool)> {
+        let (_, outcome) = RunningOperation::finished::<Plen2Kind, Plen2Outcome, Plen2Item>(shell.operation, wait)?;
+        self.finish(outcome);
+        self.summary(shell.language)
     }
 }

@@ -8,9 +8,9 @@ use crate::project::plen2::{Frame, Joint, LoopRange, Motion, Plen2Project, Pose}
 use crate::project::plen2::{MAX_TRANSITION_MS, MIN_TRANSITION_MS, SLOTS};
 use crate::project::{Edit, Location, Problem};
 use crate::ui::action::{Action, FileRequest, Plen2Action};
-use crate::ui::app::ShellView;
 use crate::ui::i18n::Strings;
 use crate::ui::layout::{self, Layout, Pane, Part};
+use crate::ui::shell::ShellView;
 use crate::ui::{plot, rows};
 
 /// The panel's own state: the selected motion and frame, the copied frame.

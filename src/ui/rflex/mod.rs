@@ -10,9 +10,22 @@ mod world;
 pub use drive::{DrivePanel, DriveView};
 pub use world::WorldView;
 
+use crate::project::rflex::Robot;
+use crate::project::{Family, Project};
 use crate::ui::action::{Action, RflexAction, Tab};
-use crate::ui::app::{Shell, ShellView};
+use crate::ui::board_link::{BoardLink, LinkNotice};
+use crate::ui::family::{FamilyUi, Panel};
+use crate::ui::i18n::Strings;
 use crate::ui::layout::{self, Layout, Pane};
+use crate::ui::shell::{Shell, ShellView};
+
+#[allow(non_upper_case_globals)]
+impl Tab {
+    /// Driving a mobile base.
+    pub const Drive: Self = Self::named("Drive");
+    /// A mobile base's sensors.
+    pub const Telemetry: Self = Self::named("Telemetry");
+}
 
 /// The rFLEX base's state in the editor.
 #[derive(Debug)]
@@ -80,24 +93,92 @@ impl RflexUi {
         }
     }
 
-    /// A new connection: the sonar as the project starts it, the pad at rest.
-    pub fn connected(&mut self, sonar_on_connect: bool) {
-        self.sonar_on = sonar_on_connect;
-        self.drive = DrivePanel::default();
-    }
-
-    /// The base was told to stop (STOP, silence): the pad forgets what it asked.
-    pub fn stopped(&mut self) {
-        self.drive = DrivePanel::default();
-    }
-
     /// What the pad asks the base for now (m/s, rad/s).
     pub fn drive_asked(&self) -> (f64, f64) {
         self.drive.asked()
     }
+}
+
+impl FamilyUi for RflexUi {
+    fn family(&self) -> Family {
+        Family::Rflex
+    }
+
+    fn panels(&self) -> &'static [Panel] {
+        &[
+            Panel { tab: Tab::Drive, title: |words| words.drive, has_view: true },
+            Panel { tab: Tab::Telemetry, title: |words| words.telemetry, has_view: true },
+        ]
+    }
+
+    fn layout(&self) -> Layout {
+        self.layout
+    }
+
+    fn layout_mut(&mut self) -> &mut Layout {
+        &mut self.layout
+    }
+
+    fn connection_extras(&mut self, ui: &mut egui::Ui, view: &ShellView<'_>, actions: &mut Vec<Action>) {
+        let words = view.language.strings();
+        let current = view.project.rflex.robot;
+        let robot_label = ui.label(words.robot);
+        let mut robot = current;
+        let picked =
+            egui::ComboBox::from_id_salt("robot-picker").selected_text(robot_name(current)).show_ui(ui, |ui| {
+                for option in [Robot::B21r, Robot::AtrvJr, Robot::Magellan] {
+                    ui.selectable_value(&mut robot, option, robot_name(option));
+                }
+            });
+        picked.response.labelled_by(robot_label.id);
+        if robot != current {
+            actions.push(Action::Rflex(RflexAction::SetRobot(robot)));
+        }
+    }
+
+    fn link_details(&self, link: &BoardLink, words: &Strings) -> Vec<String> {
+        let volts = link.rflex().and_then(|base| base.telemetry.battery_volts);
+        volts.map(|volts| format!("{} {volts:.2} V", words.battery)).into_iter().collect()
+    }
+
+    fn demo_connected(&self, words: &Strings) -> &'static str {
+        words.msg_connected_demo_rflex
+    }
+
+    fn stop(&mut self, shell: &mut Shell<'_>) {
+        self.disconnected();
+        if let Some(link) = shell.link.as_mut() {
+            // Both axes to 0 at once (never fails; a lost link is reported by pump).
+            let _ = link.stop();
+        }
+        shell.report(shell.words().msg_base_stopped, false);
+    }
+
+    /// A new connection: the sonar as the project starts it, the pad at rest.
+    fn connected(&mut self, project: &Project) {
+        self.sonar_on = project.rflex.drive.sonar_on_connect;
+        self.drive = DrivePanel::default();
+    }
+
+    /// The base was told to stop (STOP, silence, a lost link): the pad forgets what it asked.
+    fn disconnected(&mut self) {
+        self.drive = DrivePanel::default();
+    }
+
+    fn notice(&mut self, shell: &mut Shell<'_>, notice: LinkNotice) {
+        if notice == LinkNotice::BaseSilent {
+            self.disconnected();
+            shell.report(shell.words().msg_base_silent, true);
+        }
+    }
+
+    fn while_showing(&self, tab: Tab) -> Option<Action> {
+        // The pad and the keys live on the Drive tab: leaving it is letting go.
+        (tab != Tab::Drive && self.drive_asked() != (0.0, 0.0)).then_some(Action::Stop)
+    }
 
     /// Draws the tab: the drive pad or the telemetry, with the world view beside it.
-    pub fn ui(&mut self, ui: &mut egui::Ui, tab: Tab, view: &ShellView<'_>, actions: &mut Vec<Action>) {
+    fn ui(&mut self, ui: &mut egui::Ui, tab: Tab, view: &ShellView<'_>, actions: &mut Vec<Action>) {
         let words = view.language.strings();
         let base = view.link.and_then(|link| link.rflex());
         let telemetry = base.map(|base| &base.telemetry);
@@ -126,5 +207,15 @@ impl RflexUi {
                 drive.ui(ui, &shown, words, actions);
             }
         });
+    }
+}
+
+/// A robot preset's name.
+fn robot_name(robot: Robot) -> &'static str {
+    match robot {
+        Robot::B21r => "B21r",
+        Robot::AtrvJr => "ATRV-Jr",
+        Robot::Magellan => "Magellan",
+        Robot::Custom { .. } => "custom",
     }
 }

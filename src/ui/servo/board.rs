@@ -2,71 +2,11 @@
 //! export board to file — each starts by reading the board and showing what
 //! differs, and overwrites nothing until the user confirms.
 
-use std::path::PathBuf;
-use std::sync::Arc;
-
-use super::operations::{ServoFailure, ServoKind, ServoOutcome};
-use crate::device::servo::{Difference, ImageError, Item};
+use super::operations::{BoardResult, PendingConfirm, ServoKind};
+use crate::device::servo::Item;
 use crate::ui::action::{Action, BoardIntent, FileRequest, ServoAction};
 use crate::ui::i18n::Language;
-use crate::ui::operation::{Operation, Subject};
 use crate::ui::rows;
-
-/// A comparison waiting for the user's go-ahead.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct PendingConfirm {
-    /// What happens on confirm.
-    pub intent: BoardIntent,
-    /// What differs between project and board (empty = identical), or why
-    /// the project cannot be put in board records.
-    pub differences: Result<Vec<Difference>, ImageError>,
-}
-
-/// The outcome shown after an operation.
-#[derive(Clone, Debug)]
-pub enum BoardResult {
-    /// Written and verified.
-    Uploaded {
-        /// Each item written, in order.
-        items: Vec<Item>,
-        /// Where the board's previous contents were saved.
-        backup: Option<PathBuf>,
-    },
-    /// The project has authoring errors; nothing was written. The user may upload anyway.
-    Invalid {
-        /// The errors, with their locations.
-        problems: crate::project::Problems,
-    },
-    /// Stopped with an error.
-    Failed {
-        /// Items finished before the failure.
-        items: Vec<Item>,
-        /// What failed (and what it left).
-        failure: Arc<ServoFailure>,
-    },
-    /// The board replaced the project (undoable).
-    ReadIntoProject,
-    /// The board was saved to a file.
-    Exported(PathBuf),
-    /// The board could not be saved to the file; the text says why.
-    ExportFailed(String),
-    /// The user cancelled.
-    Cancelled,
-}
-
-impl BoardResult {
-    /// The failure or problems in `language`, if this is one.
-    pub fn error_text(&self, language: Language) -> Option<String> {
-        match self {
-            Self::Invalid { problems } => {
-                Some(language.op_error(&crate::device::servo::OpError::Invalid { problems: problems.clone() }))
-            }
-            Self::Failed { failure, .. } => Some(language.servo_failure(failure)),
-            Self::ExportFailed(text) => Some(text.clone()),
-            _ => None,
-        }
-    }
-}
 
 /// The differences of a comparison in `language`.
 pub fn difference_lines(pending: &PendingConfirm, language: Language) -> Vec<String> {
@@ -86,7 +26,7 @@ pub struct BoardView<'a> {
     /// The board's total memory, if known.
     pub board_total_bytes: Option<i64>,
     /// The running operation.
-    pub operation: Option<&'a Operation<ServoKind, ServoOutcome>>,
+    pub operation: Option<&'a super::operations::ServoOperation>,
     /// A comparison waiting for confirmation.
     pub pending: Option<&'a PendingConfirm>,
     /// The last outcome.
@@ -139,10 +79,7 @@ pub fn ui(ui: &mut egui::Ui, view: &BoardView<'_>, language: Language, actions: 
         };
         ui.label(what);
         if let Some(progress) = &operation.progress {
-            let item = match &progress.item {
-                Subject::Servo(item) => language.item(item),
-                Subject::Plen2(item) => item.to_string(),
-            };
+            let item = language.item(&progress.item);
             ui.add(
                 egui::ProgressBar::new(operation.fraction())
                     .show_percentage()
@@ -233,6 +170,7 @@ mod tests {
     use egui_kittest::kittest::Queryable;
 
     use super::*;
+    use crate::device::servo::Difference;
     use crate::ui::i18n::Language;
 
     /// With 500 differences waiting and 500 items uploaded, only the rows in

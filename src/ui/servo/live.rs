@@ -6,7 +6,7 @@ use std::time::Instant;
 use super::{CAPTURED_STEP_INTERVAL_10MS, LIVE_MOVE_INTERVAL_10MS, ServoUi};
 use crate::device::servo::ServoMove;
 use crate::project::{Action as ProjectAction, Edit, ServoProject, Step, next_free_id};
-use crate::ui::app::Shell;
+use crate::ui::shell::Shell;
 
 impl ServoUi {
     pub(super) fn set_pose(&mut self, shell: &mut Shell<'_>, servo_id: u8, degree: i16) {

@@ -9,10 +9,10 @@ use crate::project::{
     next_free_id, validate_servo,
 };
 use crate::ui::action::{Action, ServoAction};
-use crate::ui::app::ShellView;
 use crate::ui::derive::Derived;
 use crate::ui::i18n::Strings;
 use crate::ui::layout::{self, Layout, Part};
+use crate::ui::shell::ShellView;
 use crate::ui::{plot, rows};
 
 /// What the composer derives from the project, for a document revision and a

@@ -17,18 +17,31 @@ use std::collections::BTreeMap;
 use std::time::Instant;
 
 pub use actions::timeline_bars;
-pub use board::{BoardResult, PendingConfirm};
-pub use operations::{ServoFailure, ServoKind, ServoOutcome};
-pub use sliders::keyboard_nudge;
+pub use operations::{BoardResult, PendingConfirm, ServoFailure, ServoKind, ServoOperation, ServoOutcome};
 
 use crate::device::servo::{ButtonEvent, ServoImage};
-use crate::project::Project;
-use crate::project::ServoProject;
+use crate::project::{Family, Project, ServoProject};
 use crate::ui::action::{Action, ServoAction, Tab};
-use crate::ui::app::{Shell, ShellView};
+use crate::ui::board_link::{BoardLink, LinkNotice};
 use crate::ui::derive::Derived;
-use crate::ui::i18n::Language;
+use crate::ui::family::{FamilyUi, Panel};
+use crate::ui::i18n::{Language, Strings};
 use crate::ui::layout::Layout;
+use crate::ui::shell::{Shell, ShellView};
+
+#[allow(non_upper_case_globals)]
+impl Tab {
+    /// Servo sliders.
+    pub const Servos: Self = Self::named("Servos");
+    /// The action editor.
+    pub const Actions: Self = Self::named("Actions");
+    /// The macro composer.
+    pub const Macros: Self = Self::named("Macros");
+    /// The board remote's joystick tables.
+    pub const Joystick: Self = Self::named("Joystick");
+    /// Upload / read / export (the PLEN2 has one too).
+    pub const Board: Self = Self::named("Board");
+}
 
 /// Interval of a live move, in 10 ms: two frames' worth, so that a dragged
 /// servo follows smoothly instead of jumping at full speed.
@@ -76,7 +89,7 @@ impl ServoUi {
     }
 
     /// A new document: the sliders go home, comparisons are dropped.
-    pub fn document_replaced(&mut self, project: &ServoProject) {
+    fn replace_document(&mut self, project: &ServoProject) {
         self.pose = homes(project);
         self.pending = None;
         self.compared_board = None;
@@ -130,8 +143,77 @@ impl ServoUi {
         }
     }
 
-    /// Draws the tab.
-    pub fn ui(&mut self, ui: &mut egui::Ui, tab: Tab, view: &ShellView<'_>, actions: &mut Vec<Action>) {
+    fn board_tab(&mut self, ui: &mut egui::Ui, view: &ShellView<'_>, actions: &mut Vec<Action>) {
+        // Encoding every record takes milliseconds on a large project: once per
+        // revision, off the frame path then.
+        let language = view.language;
+        let footprint = self.footprint.get(ui.ctx(), (view.revision, language), || {
+            let project = view.project.servo.clone();
+            move || {
+                ServoImage::from_project(&project)
+                    .map_err(|error| language.op_error(&crate::device::servo::OpError::Image(error)))
+                    .and_then(|image| image.footprint_bytes().map_err(|error| error.to_string()))
+            }
+        });
+        let project_bytes = footprint.map_or(Ok(0), |(_, bytes)| bytes.clone());
+        let servo = view.link.and_then(|link| link.servo());
+        let board = board::BoardView {
+            connected: view.link.is_some(),
+            project_bytes,
+            board_total_bytes: servo
+                .and_then(|servo| servo.memory)
+                .map(|(free, total)| i64::from(total.unwrap_or(free))),
+            operation: view.operation(),
+            pending: self.pending.as_ref(),
+            result: self.board_result.as_ref(),
+        };
+        board::ui(ui, &board, language, actions);
+    }
+
+    /// The last operation's outcome, whole (the status line shows its first line), and whether it is an error.
+    pub fn summary(&self, language: Language) -> Option<(String, bool)> {
+        let words = language.strings();
+        if self.pending.is_some() {
+            return Some((words.msg_board_compared.to_string(), false));
+        }
+        let result = self.board_result.as_ref()?;
+        if let Some(error) = result.error_text(language) {
+            return Some((error, true));
+        }
+        let text = match result {
+            BoardResult::Uploaded { items, .. } => format!("{} {}", words.uploaded_items, items.len()),
+            BoardResult::ReadIntoProject => words.read_done.to_string(),
+            BoardResult::Exported(path) => format!("{} {}", words.saved_board_to, path.display()),
+            _ => words.cancelled.to_string(),
+        };
+        Some((text, false))
+    }
+}
+
+impl FamilyUi for ServoUi {
+    fn family(&self) -> Family {
+        Family::Servo
+    }
+
+    fn panels(&self) -> &'static [Panel] {
+        &[
+            Panel { tab: Tab::Servos, title: |words| words.servos, has_view: true },
+            Panel { tab: Tab::Actions, title: |words| words.actions, has_view: true },
+            Panel { tab: Tab::Macros, title: |words| words.macros, has_view: true },
+            Panel { tab: Tab::Joystick, title: |words| words.joystick, has_view: false },
+            Panel { tab: Tab::Board, title: |words| words.board, has_view: false },
+        ]
+    }
+
+    fn layout(&self) -> Layout {
+        self.layout
+    }
+
+    fn layout_mut(&mut self) -> &mut Layout {
+        &mut self.layout
+    }
+
+    fn ui(&mut self, ui: &mut egui::Ui, tab: Tab, view: &ShellView<'_>, actions: &mut Vec<Action>) {
         let project = &view.project.servo;
         let words = view.language.strings();
         let connected = view.link.is_some();
@@ -167,56 +249,75 @@ impl ServoUi {
         }
     }
 
-    fn board_tab(&mut self, ui: &mut egui::Ui, view: &ShellView<'_>, actions: &mut Vec<Action>) {
-        // Encoding every record takes milliseconds on a large project: once per
-        // revision, off the frame path then.
-        let language = view.language;
-        let footprint = self.footprint.get(ui.ctx(), (view.revision, language), || {
-            let project = view.project.servo.clone();
-            move || {
-                ServoImage::from_project(&project)
-                    .map_err(|error| language.op_error(&crate::device::servo::OpError::Image(error)))
-                    .and_then(|image| image.footprint_bytes().map_err(|error| error.to_string()))
-            }
-        });
-        let project_bytes = footprint.map_or(Ok(0), |(_, bytes)| bytes.clone());
-        let servo = view.link.and_then(|link| link.servo());
-        let board = board::BoardView {
-            connected: view.link.is_some(),
-            project_bytes,
-            board_total_bytes: servo
-                .and_then(|servo| servo.memory)
-                .map(|(free, total)| i64::from(total.unwrap_or(free))),
-            operation: view.servo_operation(),
-            pending: self.pending.as_ref(),
-            result: self.board_result.as_ref(),
-        };
-        board::ui(ui, &board, language, actions);
+    fn toolbar(&mut self, ui: &mut egui::Ui, view: &ShellView<'_>, actions: &mut Vec<Action>) {
+        // A board stopped by STOP holds every servo until told to go on.
+        if view.link.is_some_and(BoardLink::stopped) && ui.button(view.language.strings().resume).clicked() {
+            actions.push(Action::Servo(ServoAction::Resume));
+        }
     }
 
-    /// The last operation's outcome, whole (the status line shows its first line), and whether it is an error.
-    pub fn summary(&self, language: Language) -> Option<(String, bool)> {
-        let words = language.strings();
-        if self.pending.is_some() {
-            return Some((words.msg_board_compared.to_string(), false));
+    fn link_details(&self, link: &BoardLink, words: &Strings) -> Vec<String> {
+        let Some(servo) = link.servo() else { return Vec::new() };
+        let mut parts = Vec::new();
+        if let Some(project_id) = servo.project_id {
+            parts.push(format!("{} {project_id}", words.project));
         }
-        let result = self.board_result.as_ref()?;
-        if let Some(error) = result.error_text(language) {
-            return Some((error, true));
+        if let Some(permil) = servo.battery_permil {
+            parts.push(format!("{} {}", words.battery, crate::device::servo::battery_text(permil)));
         }
-        let text = match result {
-            BoardResult::Uploaded { items, .. } => format!("{} {}", words.uploaded_items, items.len()),
-            BoardResult::ReadIntoProject => words.read_done.to_string(),
-            BoardResult::Exported(path) => format!("{} {}", words.saved_board_to, path.display()),
-            _ => words.cancelled.to_string(),
-        };
-        Some((text, false))
+        if let Some((free, total)) = servo.memory {
+            parts.push(match total {
+                Some(total) => format!("{} {free} / {total} B", words.free_memory),
+                None => format!("{} {free} B", words.free_memory),
+            });
+        }
+        parts
+    }
+
+    fn demo_connected(&self, words: &Strings) -> &'static str {
+        words.msg_connected_demo
+    }
+
+    fn stop(&mut self, shell: &mut Shell<'_>) {
+        let Some(link) = shell.link.as_mut() else { return };
+        match link.stop() {
+            Ok(()) => shell.report(shell.words().msg_stopped_all, false),
+            Err(error) => shell.report(shell.language.request_error(&error), true),
+        }
+    }
+
+    fn connected(&mut self, _project: &Project) {
+        self.polling = false;
+    }
+
+    fn disconnected(&mut self) {
+        self.polling = false;
+    }
+
+    fn document_replaced(&mut self, project: &Project) {
+        self.replace_document(&project.servo);
     }
 
     /// Moves the previewed action on (the sliders follow it); whether it still plays.
-    pub fn tick(&mut self, project: &Project, now: Instant) -> bool {
-        self.advance_preview(&project.servo, now);
+    fn tick(&mut self, shell: &mut Shell<'_>, now: Instant) -> bool {
+        self.advance_preview(&shell.document.project.servo, now);
         self.preview.is_some()
+    }
+
+    fn finish_operation(&mut self, shell: &mut Shell<'_>, wait: Option<std::time::Duration>) -> Option<(String, bool)> {
+        let (operation, outcome) = crate::ui::shell::RunningOperation::finished(shell.operation, wait)?;
+        self.finish(&operation, outcome);
+        self.summary(shell.language)
+    }
+
+    fn notice(&mut self, shell: &mut Shell<'_>, notice: LinkNotice) {
+        if let LinkNotice::Button { button_id, event } = notice {
+            self.button(shell, button_id, event);
+        }
+    }
+
+    fn polling(&self) -> bool {
+        self.polling
     }
 }
 

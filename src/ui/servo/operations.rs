@@ -4,15 +4,74 @@
 
 use std::path::PathBuf;
 
+use std::sync::Arc;
+
 use super::ServoUi;
-use super::board::{BoardResult, PendingConfirm};
 use crate::device::servo::{
-    Difference, ImageError, ImportFailure, ImportOptions, ImportReport, OpError, ServoImage, import, read_image,
+    Difference, ImageError, ImportFailure, ImportOptions, ImportReport, Item, OpError, ServoImage, import, read_image,
 };
 use crate::project::{Edit, Project, ServoProject, has_errors, validate_servo};
 use crate::ui::action::BoardIntent;
-use crate::ui::app::{RunningOperation, Shell};
-use crate::ui::operation::{Operation, Step, Subject};
+use crate::ui::i18n::Language;
+use crate::ui::operation::{Operation, Step};
+use crate::ui::shell::{RunningOperation, Shell};
+
+/// A servo board operation as it runs.
+pub type ServoOperation = Operation<ServoKind, ServoOutcome, Item>;
+
+/// A comparison waiting for the user's go-ahead.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct PendingConfirm {
+    /// What happens on confirm.
+    pub intent: BoardIntent,
+    /// What differs between project and board (empty = identical), or why
+    /// the project cannot be put in board records.
+    pub differences: Result<Vec<Difference>, ImageError>,
+}
+
+/// The outcome shown after an operation.
+#[derive(Clone, Debug)]
+pub enum BoardResult {
+    /// Written and verified.
+    Uploaded {
+        /// Each item written, in order.
+        items: Vec<Item>,
+        /// Where the board's previous contents were saved.
+        backup: Option<PathBuf>,
+    },
+    /// The project has authoring errors; nothing was written. The user may upload anyway.
+    Invalid {
+        /// The errors, with their locations.
+        problems: crate::project::Problems,
+    },
+    /// Stopped with an error.
+    Failed {
+        /// Items finished before the failure.
+        items: Vec<Item>,
+        /// What failed (and what it left).
+        failure: Arc<ServoFailure>,
+    },
+    /// The board replaced the project (undoable).
+    ReadIntoProject,
+    /// The board was saved to a file.
+    Exported(PathBuf),
+    /// The board could not be saved to the file; the text says why.
+    ExportFailed(String),
+    /// The user cancelled.
+    Cancelled,
+}
+
+impl BoardResult {
+    /// The failure or problems in `language`, if this is one.
+    pub fn error_text(&self, language: Language) -> Option<String> {
+        match self {
+            Self::Invalid { problems } => Some(language.op_error(&OpError::Invalid { problems: problems.clone() })),
+            Self::Failed { failure, .. } => Some(failure.words(language)),
+            Self::ExportFailed(text) => Some(text.clone()),
+            _ => None,
+        }
+    }
+}
 
 /// What a servo board operation does.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -45,6 +104,20 @@ pub enum ServoFailure {
     Thread(std::io::Error),
 }
 
+impl ServoFailure {
+    /// Why it failed, in `language`.
+    pub fn words(&self, language: Language) -> String {
+        match self {
+            Self::Op(error) => language.op_error(error),
+            Self::Upload(failure) => {
+                language.upload_failure(failure, |error| language.op_error(error), |item| language.item(item))
+            }
+            Self::BackupFolder { folder, error } => language.backup_folder_failed(folder, error),
+            Self::Thread(error) => language.no_worker(error),
+        }
+    }
+}
+
 /// How a servo board operation ended.
 #[derive(Debug)]
 pub enum ServoOutcome {
@@ -69,12 +142,10 @@ fn run(
     requester: &crate::device::servo::Requester,
     project: &ServoProject,
     backups: PathBuf,
-    report: &mut dyn FnMut(Step),
+    report: &mut dyn FnMut(Step<Item>),
     cancel: &crate::device::Cancel,
 ) -> ServoOutcome {
-    let mut progress = |step: &crate::device::servo::Progress| {
-        report(Step { phase: step.phase, done: step.done, total: step.total, item: Subject::Servo(step.item.clone()) });
-    };
+    let mut progress = |step: &crate::device::servo::Progress| report(step.clone());
     match kind {
         ServoKind::Compare => match read_image(requester, &mut progress, cancel) {
             Ok(board) => {
@@ -121,7 +192,7 @@ impl ServoUi {
             move |report, cancel| run(&job_kind, &requester, &project, backups, report, cancel),
             |error| ServoOutcome::Failed(ServoFailure::Thread(error)),
         );
-        *shell.operation = Some(RunningOperation::Servo(operation));
+        *shell.operation = Some(RunningOperation::new(operation));
     }
 
     pub(super) fn board_compare(&mut self, shell: &mut Shell<'_>, intent: BoardIntent) {
@@ -164,22 +235,19 @@ impl ServoUi {
             BoardIntent::ExportToFile(path) => {
                 self.board_result = Some(match crate::project::save(&path, &Project::servo(board)) {
                     Ok(()) => BoardResult::Exported(path),
-                    Err(error) => BoardResult::ExportFailed(error.to_string()),
+                    Err(error) => BoardResult::ExportFailed(shell.language.save_error(&error)),
                 });
             }
         }
     }
 
     /// The family's operation ended: what it found, for the panel.
-    pub fn finish(&mut self, operation: &Operation<ServoKind, ServoOutcome>, outcome: ServoOutcome) {
-        let written: Vec<crate::device::servo::Item> = operation
+    pub fn finish(&mut self, operation: &ServoOperation, outcome: ServoOutcome) {
+        let written: Vec<Item> = operation
             .done_items
             .iter()
             .filter(|(phase, _)| *phase == crate::device::Phase::Write)
-            .filter_map(|(_, item)| match item {
-                Subject::Servo(item) => Some(item.clone()),
-                Subject::Plen2(_) => None,
-            })
+            .map(|(_, item)| item.clone())
             .collect();
         match outcome {
             ServoOutcome::Compared { differences, board } => {
@@ -192,7 +260,7 @@ impl ServoUi {
                 self.board_result = Some(BoardResult::Uploaded { items: written, backup: report.backup });
             }
             ServoOutcome::Failed(failure) => {
-                self.board_result = Some(BoardResult::Failed { items: written, failure: std::sync::Arc::new(failure) });
+                self.board_result = Some(BoardResult::Failed { items: written, failure: Arc::new(failure) });
             }
             ServoOutcome::Cancelled => self.board_result = Some(BoardResult::Cancelled),
         }

@@ -4,31 +4,12 @@
 
 use std::collections::{BTreeMap, HashMap};
 
-use egui::{Key, Modifiers};
-
 use crate::device::servo::ServoStatus;
 use crate::project::{Edit, Servo, ServoProject};
 use crate::ui::action::{Action, ServoAction};
 use crate::ui::i18n::Strings;
 use crate::ui::layout::{self, Layout, Pane};
 use crate::ui::rows;
-
-/// The nudge asked for by keys pressed on a focused slider, in steps (←/→/↑/↓
-/// 1, with Shift or PageUp/PageDown 10), consumed so that the slider does not
-/// also move by its own step.
-pub fn keyboard_nudge(ui: &egui::Ui) -> i32 {
-    ui.input_mut(|input| {
-        let mut delta = 0i32;
-        for (key, step) in [(Key::ArrowRight, 1), (Key::ArrowUp, 1), (Key::ArrowLeft, -1), (Key::ArrowDown, -1)] {
-            // Shift first: a plain match would also take Shift+key (shift is ignored logically).
-            delta += 10 * step * i32::try_from(input.count_and_consume_key(Modifiers::SHIFT, key)).unwrap_or(0);
-            delta += step * i32::try_from(input.count_and_consume_key(Modifiers::NONE, key)).unwrap_or(0);
-        }
-        delta += 10 * i32::try_from(input.count_and_consume_key(Modifiers::NONE, Key::PageUp)).unwrap_or(0);
-        delta -= 10 * i32::try_from(input.count_and_consume_key(Modifiers::NONE, Key::PageDown)).unwrap_or(0);
-        delta
-    })
-}
 
 /// What the panel draws.
 #[derive(Debug)]
@@ -100,7 +81,7 @@ impl ServoPanel {
 
     fn sliders(&mut self, ui: &mut egui::Ui, view: &ServoView<'_>, words: &Strings, actions: &mut Vec<Action>) {
         let focused = ui.memory(|memory| memory.focused()).and_then(|id| self.slider_ids.get(&id).copied());
-        let nudge = if focused.is_some() { keyboard_nudge(ui) } else { 0 };
+        let nudge = if focused.is_some() { rows::keyboard_nudge(ui) } else { 0 };
         self.slider_ids.clear();
         ui.spacing_mut().slider_width = (ui.available_width() - 320.0).clamp(160.0, 420.0);
         // Every slider the height holds; only those in view are laid out.

@@ -1,0 +1,120 @@
+//! The seam between the shell and a board family's side of the editor. The
+//! shell (`ui::app`) knows families only through [`FamilyUi`]: their tabs and
+//! panels, the pickers they add to the connection bar, what they say about a
+//! connected board, what they do when STOP is pressed, a link is made or
+//! lost, a document is replaced, time passes or their operation ends.
+//! Each family's own actions reach it through its [`Action`] variant.
+
+use std::time::{Duration, Instant};
+
+use crate::project::{Family, Project};
+use crate::ui::action::{Action, Tab};
+use crate::ui::board_link::{BoardLink, LinkNotice, LinkOptions};
+use crate::ui::i18n::Strings;
+use crate::ui::layout::Layout;
+use crate::ui::shell::{Shell, ShellView};
+
+/// One of a family's tabs.
+#[derive(Clone, Copy, Debug)]
+pub struct Panel {
+    /// The tab.
+    pub tab: Tab,
+    /// Its title.
+    pub title: fn(&Strings) -> &'static str,
+    /// Whether the robot's preview (or a base's world view) is beside it.
+    pub has_view: bool,
+}
+
+/// A board family's side of the editor.
+pub trait FamilyUi {
+    /// The family it edits.
+    fn family(&self) -> Family;
+
+    /// Its own tabs, in order (the shell adds the packet log); the first is
+    /// where a switch to the family lands.
+    fn panels(&self) -> &'static [Panel];
+
+    /// Its own tabs, in order.
+    fn tabs(&self) -> Vec<Tab> {
+        self.panels().iter().map(|panel| panel.tab).collect()
+    }
+
+    /// A tab's title.
+    fn tab_title(&self, tab: Tab, words: &Strings) -> &'static str {
+        self.panels().iter().find(|panel| panel.tab == tab).map_or(words.packet_log, |panel| (panel.title)(words))
+    }
+
+    /// Whether the tab has the robot's preview (or a base's world view) beside it.
+    fn has_view(&self, tab: Tab) -> bool {
+        self.panels().iter().any(|panel| panel.tab == tab && panel.has_view)
+    }
+
+    /// The caption of the checkbox that shows or hides that view.
+    fn view_caption(&self, words: &Strings) -> &'static str {
+        words.show_preview
+    }
+
+    /// How its panels are laid out (remembered).
+    fn layout(&self) -> Layout;
+
+    /// How its panels are laid out, to change.
+    fn layout_mut(&mut self) -> &mut Layout;
+
+    /// Draws one of its tabs, filling the space it is given.
+    fn ui(&mut self, ui: &mut egui::Ui, tab: Tab, view: &ShellView<'_>, actions: &mut Vec<Action>);
+
+    /// Its own buttons in the toolbar, beside STOP.
+    fn toolbar(&mut self, _ui: &mut egui::Ui, _view: &ShellView<'_>, _actions: &mut Vec<Action>) {}
+
+    /// Its own pickers in the connection bar (enabled only while no link is open).
+    fn connection_extras(&mut self, _ui: &mut egui::Ui, _view: &ShellView<'_>, _actions: &mut Vec<Action>) {}
+
+    /// How its driver is to be started, with the line rate asked for.
+    fn link_options(&self, baud: u32) -> LinkOptions {
+        LinkOptions { baud, ..LinkOptions::default() }
+    }
+
+    /// What the connection bar says of its connected board, after "connected to …".
+    fn link_details(&self, _link: &BoardLink, _words: &Strings) -> Vec<String> {
+        Vec::new()
+    }
+
+    /// What the status line says once its built-in emulated board is connected.
+    fn demo_connected(&self, words: &Strings) -> &'static str;
+
+    /// STOP, the family's way (the link is connected and of this family).
+    fn stop(&mut self, shell: &mut Shell<'_>);
+
+    /// A link was made: the family starts from rest.
+    fn connected(&mut self, _project: &Project) {}
+
+    /// The link is gone (disconnected, lost, the window closing).
+    fn disconnected(&mut self) {}
+
+    /// A new document was opened in the editor.
+    fn document_replaced(&mut self, _project: &Project) {}
+
+    /// Moves previews and streams on to `now`; whether the window should keep repainting.
+    fn tick(&mut self, _shell: &mut Shell<'_>, _now: Instant) -> bool {
+        false
+    }
+
+    /// Takes its running operation's outcome when it has ended (waiting up to
+    /// `wait`; None: not at all); returns the whole summary it left.
+    fn finish_operation(&mut self, _shell: &mut Shell<'_>, _wait: Option<Duration>) -> Option<(String, bool)> {
+        None
+    }
+
+    /// A notice from its link the shell does not handle itself.
+    fn notice(&mut self, _shell: &mut Shell<'_>, _notice: LinkNotice) {}
+
+    /// Whether the board is asked for its state continuously (the link polls then).
+    fn polling(&self) -> bool {
+        false
+    }
+
+    /// What showing `tab` this frame asks for (a base's pad stops once its tab is left).
+    fn while_showing(&self, _tab: Tab) -> Option<Action> {
+        None
+    }
+}

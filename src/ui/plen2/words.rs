@@ -1,0 +1,60 @@
+//! The PLEN2's operations in words: why one failed, what the robot panel
+//! says after one — in the interface's language.
+
+use crate::device::plen2::{Plen2OpError, SlotResult};
+use crate::ui::i18n::Language;
+
+use super::{Plen2Failure, Plen2Result};
+
+impl Plen2Failure {
+    /// Why a PLEN2 operation failed, in `language`.
+    pub fn words(&self, language: Language) -> String {
+        match self {
+            Self::Op(error) => language.plen2_op_error(error),
+            Self::Upload(failure) => language.upload_failure(
+                failure,
+                |error| language.plen2_op_error(error),
+                |item| language.plen2_item(item),
+            ),
+            Self::Reply(error) => language.reply_error(error),
+            Self::BackupFolder { folder, error } => language.backup_folder_failed(folder, error),
+            Self::Thread(error) => language.no_worker(error),
+        }
+    }
+}
+
+impl Plen2Result {
+    /// What the robot panel says after an operation, in `language`, and whether it is an error.
+    pub fn words(&self, language: Language) -> (String, bool) {
+        let words = language.strings();
+        match self {
+            Plen2Result::Read(count) => (format!("{} {count}", words.robot_read), false),
+            Plen2Result::Uploaded(report) => {
+                let verified = report.slots.iter().filter(|(_, r)| *r == SlotResult::Verified).count();
+                let mut text = format!("{} {verified}/{}", words.uploaded_items, report.slots.len());
+                let differing: Vec<String> = report
+                    .slots
+                    .iter()
+                    .filter(|(_, r)| *r == SlotResult::Differs)
+                    .map(|(slot, _)| slot.to_string())
+                    .collect();
+                if !differing.is_empty() {
+                    text.push_str(&format!("\n{} {}", words.slots_differ, differing.join(", ")));
+                }
+                if let Some(backup) = &report.backup {
+                    text.push_str(&format!("\n{} {}", words.backup_at, backup.display()));
+                }
+                (text, !differing.is_empty())
+            }
+            Plen2Result::JointsWritten(count) => (format!("{}: {count}", words.write_joints), false),
+            Plen2Result::Invalid(problems) => {
+                (language.plen2_op_error(&Plen2OpError::Invalid { problems: problems.clone() }), true)
+            }
+            Plen2Result::ReadIntoProject => (words.read_done.to_string(), false),
+            Plen2Result::Exported(path) => (format!("{} {}", words.saved_board_to, path.display()), false),
+            Plen2Result::ExportFailed(text) => (text.clone(), true),
+            Plen2Result::Failed(failure) => (failure.words(language), true),
+            Plen2Result::Cancelled => (words.cancelled.to_string(), false),
+        }
+    }
+}

@@ -1,0 +1,299 @@
+//! The shape of the code, checked: no two files of `src/` import each other
+//! through a loop of `crate::…` paths, and the emulators never reach the
+//! project model (an emulated board stores what a real one stores: protocol
+//! records, not a project). Each `crate::a::b::Name` path — in a `use` line,
+//! brace groups expanded, or written out in code — is an arrow from its file
+//! to the file of the deepest module it names. Comments and in-file test
+//! modules do not count.
+
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+
+/// Every `.rs` file under `dir`, as paths relative to `src`.
+fn sources(src: &Path, dir: &Path, into: &mut Vec<PathBuf>) {
+    let mut entries: Vec<_> = std::fs::read_dir(dir).unwrap().map(|entry| entry.unwrap().path()).collect();
+    entries.sort();
+    for path in entries {
+        if path.is_dir() {
+            sources(src, &path, into);
+        } else if path.extension().is_some_and(|ext| ext == "rs") {
+            into.push(path.strip_prefix(src).unwrap().to_path_buf());
+        }
+    }
+}
+
+/// The text that is code: comments removed, the in-file test module cut off.
+fn code(text: &str) -> String {
+    let text = match text.find("#[cfg(test)]\nmod tests {") {
+        Some(at) => &text[..at],
+        None => text,
+    };
+    text.lines().map(|line| line.find("//").map_or(line, |at| &line[..at])).collect::<Vec<_>>().join("\n")
+}
+
+/// `a::{b, c::{d, e}}` → `a::b`, `a::c::d`, `a::c::e` (whitespace removed).
+fn expand(tree: &str) -> Vec<String> {
+    let Some(open) = tree.find('{') else { return vec![tree.to_string()] };
+    let prefix = &tree[..open];
+    let inner = &tree[open + 1..tree.rfind('}').unwrap_or(tree.len())];
+    let mut parts = Vec::new();
+    let (mut depth, mut start) = (0, 0);
+    for (at, c) in inner.char_indices() {
+        match c {
+            '{' => depth += 1,
+            '}' => depth -= 1,
+            ',' if depth == 0 => {
+                parts.push(&inner[start..at]);
+                start = at + 1;
+            }
+            _ => {}
+        }
+    }
+    parts.push(&inner[start..]);
+    parts.into_iter().filter(|part| !part.is_empty()).flat_map(|part| expand(&format!("{prefix}{part}"))).collect()
+}
+
+/// Every `crate::…` path the code names, as its segments after `crate`.
+fn crate_paths(code: &str) -> Vec<Vec<String>> {
+    let mut paths = Vec::new();
+    let mut rest = code;
+    while let Some(at) = rest.find("crate::") {
+        let before = rest[..at].chars().next_back();
+        let tail = &rest[at + "crate::".len()..];
+        if before.is_some_and(|c| c.is_alphanumeric() || c == '_') {
+            rest = tail;
+            continue;
+        }
+        let is_use = rest[..at].trim_end().ends_with("use");
+        let end = if is_use {
+            tail.find(';').unwrap_or(tail.len())
+        } else {
+            tail.find(|c: char| !(c.is_alphanumeric() || c == '_' || c == ':')).unwrap_or(tail.len())
+        };
+        paths.extend(use_paths(&tail[..end]));
+        rest = &tail[end..];
+    }
+    paths
+}
+
+/// The paths a use tree names (`a::{b as c, d}` → `a::b`, `a::d`).
+fn use_paths(tree: &str) -> Vec<Vec<String>> {
+    let tree = tree.split_whitespace().collect::<Vec<_>>().join(" ");
+    expand(&tree)
+        .into_iter()
+        .map(|path| {
+            let path = path.split(" as ").next().unwrap_or_default();
+            path.split("::").map(str::trim).filter(|s| !s.is_empty()).map(str::to_string).collect()
+        })
+        .collect()
+}
+
+/// What a module file re-exports from its own child modules (`pub use
+/// child::Name;`): each name, and the child file it comes from.
+fn reexports(src: &Path, module: &Path) -> BTreeMap<String, PathBuf> {
+    let Ok(text) = std::fs::read_to_string(src.join(module)) else { return BTreeMap::new() };
+    let dir = if module.ends_with("mod.rs") || module == Path::new("lib.rs") {
+        module.parent().unwrap_or(Path::new("")).to_path_buf()
+    } else {
+        module.with_extension("")
+    };
+    let code = code(&text);
+    let mut names = BTreeMap::new();
+    for statement in code.split(';') {
+        let Some(at) = statement.find("pub use ") else { continue };
+        for path in use_paths(&statement[at + "pub use ".len()..]) {
+            let (Some(first), Some(name)) = (path.first(), path.last()) else { continue };
+            if src.join(&dir).join(format!("{first}.rs")).is_file()
+                || src.join(&dir).join(first).join("mod.rs").is_file()
+            {
+                let mut child_dir = dir.clone();
+                let mut file = module.to_path_buf();
+                for segment in &path[..path.len() - 1] {
+                    let flat = child_dir.join(format!("{segment}.rs"));
+                    let folder = child_dir.join(segment).join("mod.rs");
+                    if src.join(&flat).is_file() {
+                        file = flat;
+                    } else if src.join(&folder).is_file() {
+                        file = folder;
+                    } else {
+                        break;
+                    }
+                    child_dir = child_dir.join(segment);
+                }
+                names.insert(name.clone(), file);
+            }
+        }
+    }
+    names
+}
+
+/// The file of the deepest module `path` names (relative to `src`), or of
+/// the child module the item it names is re-exported from.
+fn module_file(src: &Path, path: &[String]) -> PathBuf {
+    let mut file = PathBuf::from("lib.rs");
+    let mut dir = PathBuf::new();
+    for segment in path {
+        let flat = dir.join(format!("{segment}.rs"));
+        let folder = dir.join(segment).join("mod.rs");
+        if src.join(&flat).is_file() {
+            file = flat;
+        } else if src.join(&folder).is_file() {
+            file = folder;
+        } else {
+            // An item: the module may only re-export it from a child (followed as far as it goes).
+            let mut seen = BTreeSet::new();
+            while let Some(child) = reexports(src, &file).remove(segment) {
+                if child == file || !seen.insert(child.clone()) {
+                    break;
+                }
+                file = child;
+            }
+            break;
+        }
+        dir = dir.join(segment);
+    }
+    file
+}
+
+/// Every file's arrows to the files it imports from.
+fn arrows() -> BTreeMap<PathBuf, BTreeSet<PathBuf>> {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    sources(&src, &src, &mut files);
+    let mut arrows = BTreeMap::new();
+    for file in files {
+        if file.file_name().is_some_and(|name| name == "tests.rs" || name == "props.rs") {
+            continue;
+        }
+        let text = std::fs::read_to_string(src.join(&file)).unwrap();
+        let targets: BTreeSet<PathBuf> = crate_paths(&code(&text))
+            .iter()
+            .map(|path| module_file(&src, path))
+            .filter(|target| *target != file && target != Path::new("lib.rs"))
+            .collect();
+        arrows.insert(file, targets);
+    }
+    arrows
+}
+
+/// The loops (strongly connected groups of more than one file), by Tarjan.
+fn loops(arrows: &BTreeMap<PathBuf, BTreeSet<PathBuf>>) -> Vec<Vec<PathBuf>> {
+    struct State<'a> {
+        arrows: &'a BTreeMap<PathBuf, BTreeSet<PathBuf>>,
+        index: BTreeMap<&'a Path, (usize, usize)>,
+        stack: Vec<&'a Path>,
+        on_stack: BTreeSet<&'a Path>,
+        found: Vec<Vec<PathBuf>>,
+    }
+    fn visit<'a>(state: &mut State<'a>, file: &'a Path) {
+        let next = state.index.len();
+        state.index.insert(file, (next, next));
+        state.stack.push(file);
+        state.on_stack.insert(file);
+        for target in state.arrows.get(file).into_iter().flatten() {
+            if !state.index.contains_key(target.as_path()) {
+                visit(state, target);
+                let low = state.index[target.as_path()].1;
+                let entry = state.index.get_mut(file).unwrap();
+                entry.1 = entry.1.min(low);
+            } else if state.on_stack.contains(target.as_path()) {
+                let low = state.index[target.as_path()].0;
+                let entry = state.index.get_mut(file).unwrap();
+                entry.1 = entry.1.min(low);
+            }
+        }
+        let (index, low) = state.index[file];
+        if index == low {
+            let mut group = Vec::new();
+            while let Some(member) = state.stack.pop() {
+                state.on_stack.remove(member);
+                group.push(member.to_path_buf());
+                if member == file {
+                    break;
+                }
+            }
+            if group.len() > 1 {
+                group.sort();
+                state.found.push(group);
+            }
+        }
+    }
+    let mut state =
+        State { arrows, index: BTreeMap::new(), stack: Vec::new(), on_stack: BTreeSet::new(), found: Vec::new() };
+    for file in arrows.keys() {
+        if !state.index.contains_key(file.as_path()) {
+            visit(&mut state, file);
+        }
+    }
+    state.found
+}
+
+fn under(file: &Path, folders: &[&str]) -> bool {
+    folders.iter().any(|folder| file.starts_with(folder))
+}
+
+#[test]
+fn no_file_of_the_ui_the_devices_or_the_emulators_is_in_an_import_loop() {
+    let arrows = arrows();
+    assert!(arrows.len() > 100, "the sources were read ({} files)", arrows.len());
+    let found: Vec<_> = loops(&arrows)
+        .into_iter()
+        .filter(|group| group.iter().any(|file| under(file, &["ui", "device", "sim"])))
+        .collect();
+    assert!(found.is_empty(), "import loops: {found:#?}");
+}
+
+#[test]
+fn the_emulators_never_reach_the_project_model() {
+    let arrows = arrows();
+    // Breadth first from every emulator file, remembering the way.
+    let mut way: BTreeMap<PathBuf, Option<PathBuf>> = BTreeMap::new();
+    let mut queue: Vec<PathBuf> = arrows.keys().filter(|file| under(file, &["sim"])).cloned().collect();
+    for file in &queue {
+        way.insert(file.clone(), None);
+    }
+    while let Some(file) = queue.pop() {
+        if under(&file, &["project"]) {
+            let mut chain = vec![file.clone()];
+            while let Some(Some(from)) = way.get(chain.last().unwrap()) {
+                chain.push(from.clone());
+            }
+            chain.reverse();
+            panic!("an emulator reaches the project model: {chain:?}");
+        }
+        for target in arrows.get(&file).into_iter().flatten() {
+            if !way.contains_key(target) {
+                way.insert(target.clone(), Some(file.clone()));
+                queue.push(target.clone());
+            }
+        }
+    }
+}
+
+/// The reading itself: brace groups, renames, paths in code, comments.
+#[test]
+fn the_reader_finds_the_paths_a_file_names() {
+    let text = "use crate::a::{b::{C, D}, e as f};\n// use crate::x::Y;\nfn g() { crate::h::i(); }\n";
+    let paths = crate_paths(&code(text));
+    let joined: Vec<String> = paths.iter().map(|path| path.join("::")).collect();
+    assert_eq!(joined, ["a::b::C", "a::b::D", "a::e", "h::i"]);
+}
+
+/// Loops are found whole, and only loops.
+#[test]
+fn a_loop_is_found_with_every_file_in_it() {
+    let file = |name: &str| PathBuf::from(name);
+    let arrows: BTreeMap<PathBuf, BTreeSet<PathBuf>> = [
+        ("a.rs", vec!["b.rs"]),
+        ("b.rs", vec!["c.rs", "d.rs"]),
+        ("c.rs", vec!["a.rs"]),
+        ("d.rs", vec![]),
+        ("e.rs", vec!["d.rs"]),
+    ]
+    .into_iter()
+    .map(|(from, to)| (file(from), to.into_iter().map(file).collect()))
+    .collect();
+    assert_eq!(loops(&arrows), vec![vec![file("a.rs"), file("b.rs"), file("c.rs")]]);
+}
