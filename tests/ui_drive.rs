@@ -171,3 +171,12 @@ fn a_signal_to_end_the_editor_drops_the_base_link_and_keeps_the_work() {
     assert_eq!(kept.project.rflex.drive.max_speed_m_per_s, 0.3);
     harness.key_up(egui::Key::ArrowUp);
 }
+
+/// The base's view beside its panels is its world, and says so on the tab row.
+#[test]
+fn the_tab_row_offers_the_world_view_not_a_3d_preview() {
+    let harness = harness();
+    assert!(harness.query_by_label("3D view").is_none(), "a base has no 3D preview");
+    // The checkbox on the tab row, besides the view's own heading.
+    assert!(harness.query_all_by_label("World view").count() >= 2);
+}

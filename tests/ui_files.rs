@@ -13,6 +13,9 @@ use servo_studio::link::no_waker;
 use servo_studio::project::{self, Servo, ServoProject};
 use servo_studio::ui::{Action, AfterUnsaved, StudioApp};
 
+/// Longest a test waits for file work (it is done at once on a healthy disk).
+const WAIT: Option<Duration> = Some(Duration::from_secs(10));
+
 fn fixture() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/project-v1.json")
 }
@@ -36,8 +39,10 @@ fn autosave_then_recovery_after_a_crash() {
     first.apply(Action::Servo(servo_studio::ui::ServoAction::CapturePose { from_board: false }));
     assert!(first.document.dirty);
     first.autosave_if_due(Instant::now() + Duration::from_secs(1));
+    first.finish_file_work(WAIT);
     assert!(!data.path().join("recovery.json").exists(), "not due yet");
     first.autosave_if_due(Instant::now() + Duration::from_secs(31));
+    first.finish_file_work(WAIT);
     assert!(data.path().join("recovery.json").exists());
     let unsaved = first.document.project.servo.clone();
     drop(first); // the "crash": no save
@@ -53,6 +58,7 @@ fn autosave_then_recovery_after_a_crash() {
     // Saving clears the recovery file, so the next start offers nothing.
     let saved = data.path().join("saved.json");
     harness.state_mut().apply(Action::SaveAs(saved.clone()));
+    harness.state_mut().finish_file_work(WAIT);
     assert!(!data.path().join("recovery.json").exists());
     assert_eq!(project::load(&saved).unwrap().servo, unsaved);
     assert!(app(data.path()).recovery_offer.is_none());
@@ -64,11 +70,13 @@ fn declining_recovery_removes_it() {
     let mut first = app(data.path());
     first.apply(Action::Servo(servo_studio::ui::ServoAction::CapturePose { from_board: false }));
     first.apply(Action::Autosave);
+    first.finish_file_work(WAIT);
     let mut harness = harness(app(data.path()));
     harness.run();
     harness.get_by_label("Discard").click();
     harness.run();
     assert!(harness.state().recovery_offer.is_none());
+    harness.state_mut().finish_file_work(WAIT);
     assert!(!data.path().join("recovery.json").exists());
     assert!(harness.state().document.project.servo.actions.is_empty());
 }
@@ -92,6 +100,7 @@ fn opening_with_unsaved_changes_asks_first() {
     harness.run();
     harness.get_by_label("Discard").click();
     harness.run();
+    harness.state_mut().finish_file_work(WAIT);
     assert_eq!(harness.state().document.project.servo, project::load(&fixture()).unwrap().servo);
     assert_eq!(harness.state().document.path, Some(fixture()));
     assert!(!harness.state().document.dirty);
@@ -104,6 +113,7 @@ fn save_in_the_question_saves_then_goes_on() {
     let path = data.path().join("mine.json");
     let mut start = app(data.path());
     start.apply(Action::SaveAs(path.clone()));
+    start.finish_file_work(WAIT);
     start.apply(Action::Servo(servo_studio::ui::ServoAction::CapturePose { from_board: false }));
     let edited = start.document.project.servo.clone();
     let mut harness = harness(start);
@@ -112,6 +122,7 @@ fn save_in_the_question_saves_then_goes_on() {
     harness.run();
     harness.get_by_label("Save").click();
     harness.run();
+    harness.state_mut().finish_file_work(WAIT);
     assert_eq!(project::load(&path).unwrap().servo, edited, "saved first");
     assert_eq!(harness.state().document.project.servo, ServoProject::default(), "then the new project");
 }
@@ -124,6 +135,7 @@ fn a_malformed_file_is_reported_not_opened() {
     let mut app = app(data.path());
     let before = app.document.project.servo.clone();
     app.apply(Action::Open(bad));
+    app.finish_file_work(WAIT);
     let status = app.status.clone().unwrap();
     assert!(status.is_error && status.text.contains("line 1, column"), "{}", status.text);
     assert_eq!(app.document.project.servo, before);
@@ -137,6 +149,7 @@ fn a_file_with_a_misspelt_key_opens_and_says_what_was_ignored() {
     std::fs::write(&misspelt, format!("\u{feff}{text}")).unwrap();
     let mut app = app(data.path());
     app.apply(Action::Open(misspelt.clone()));
+    app.finish_file_work(WAIT);
     assert_eq!(app.document.path, Some(misspelt));
     let status = app.status.clone().unwrap();
     assert!(status.is_error, "shown as a warning: {}", status.text);
@@ -167,6 +180,7 @@ fn a_dropped_project_file_opens() {
     harness.run();
     harness.input_mut().dropped_files.push(Arc::new(Dropped(fixture())));
     harness.run();
+    harness.state_mut().finish_file_work(WAIT);
     assert_eq!(harness.state().document.path, Some(fixture()));
     assert_eq!(harness.state().document.project.servo.project_id, 20261121);
 }
@@ -176,6 +190,7 @@ fn remembered_settings_round_trip() {
     let data = tempfile::tempdir().unwrap();
     let mut first = app(data.path());
     first.apply(Action::Open(fixture()));
+    first.finish_file_work(WAIT);
     first.apply(Action::SetLanguage(servo_studio::ui::Language::TraditionalChinese));
     first.apply(Action::ShowTab(servo_studio::ui::Tab::Board));
     let remembered = first.remembered();

@@ -1,12 +1,87 @@
-//! Keeping work safe: the recovery file written by autosave, and the list of
-//! recent files.
+//! Keeping work safe: the recovery file written by autosave, the list of
+//! recent files, and the file work the window never waits for — every
+//! open, save, autosave and export runs in order on one worker thread
+//! ([`FileWork`]) and reports back on a channel.
 
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use std::time::Duration;
 
+use crossbeam_channel::{Receiver, Sender};
 use serde::{Deserialize, Serialize};
 
-use crate::project::{Project, atomic_write, from_json, to_json};
+use crate::link::Waker;
+use crate::project::{Project, SaveError, atomic_write, from_json, to_json};
+
+/// Writes a whole file (atomically: the old content stays whole until the new
+/// one is). Tests give one that blocks, to prove the window does not wait.
+pub type FileWriter = Arc<dyn Fn(&Path, &[u8]) -> std::io::Result<()> + Send + Sync>;
+
+/// The system's writer: a temporary file beside the target, then a rename.
+pub fn system_writer() -> FileWriter {
+    Arc::new(|path: &Path, bytes: &[u8]| atomic_write(path, |file| std::io::Write::write_all(file, bytes)))
+}
+
+type Job = Box<dyn FnOnce() + Send>;
+
+/// File work off the window's thread: jobs run one after the other (a save
+/// and the autosave after it never overtake each other), each answer comes
+/// back on its own channel and wakes the window.
+#[derive(Clone)]
+pub struct FileWork {
+    jobs: Option<Sender<Job>>,
+    writer: FileWriter,
+    waker: Waker,
+}
+
+impl std::fmt::Debug for FileWork {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("FileWork").field("running", &self.jobs.is_some()).finish_non_exhaustive()
+    }
+}
+
+impl FileWork {
+    /// Starts the worker thread; files are written with `writer`.
+    pub fn start(writer: FileWriter, waker: Waker) -> Self {
+        let (jobs, queue) = crossbeam_channel::unbounded::<Job>();
+        let spawned = std::thread::Builder::new().name("files".into()).spawn(move || {
+            for job in queue {
+                job();
+            }
+        });
+        // No thread: the work is done where it is asked for (slow, but nothing is lost).
+        Self { jobs: spawned.is_ok().then_some(jobs), writer, waker }
+    }
+
+    /// Runs `job` on the worker; its answer arrives on the receiver.
+    pub fn run<T: Send + 'static>(&self, job: impl FnOnce(&FileWriter) -> T + Send + 'static) -> Receiver<T> {
+        let (answer, answered) = crossbeam_channel::bounded(1);
+        let (writer, waker) = (self.writer.clone(), self.waker.clone());
+        let work = move || {
+            let _ = answer.send(job(&writer));
+            waker();
+        };
+        match &self.jobs {
+            Some(jobs) => {
+                if let Err(crossbeam_channel::SendError(work)) = jobs.send(Box::new(work)) {
+                    work();
+                }
+            }
+            None => work(),
+        }
+        answered
+    }
+
+    /// Writes `bytes` to `path` on the worker.
+    pub fn write(&self, path: PathBuf, bytes: Vec<u8>) -> Receiver<Result<(), SaveError>> {
+        self.run(move |writer| writer(&path, &bytes).map_err(|source| SaveError::new(&path, source)))
+    }
+
+    /// Saves `project` to `path` on the worker (the JSON is made here, from the project as it is now).
+    pub fn save(&self, path: PathBuf, project: &Project) -> Receiver<Result<(), SaveError>> {
+        self.write(path, to_json(project).into_bytes())
+    }
+}
 
 /// How often unsaved changes are written to the recovery file.
 pub const AUTOSAVE_EVERY: Duration = Duration::from_secs(30);
@@ -38,16 +113,25 @@ pub fn recovery_path(data_dir: &Path) -> PathBuf {
     data_dir.join("recovery.json")
 }
 
-/// Writes the recovery file atomically.
-pub fn write_recovery(data_dir: &Path, path: Option<&Path>, project: &Project) -> std::io::Result<()> {
-    std::fs::create_dir_all(data_dir)?;
+/// The recovery file's bytes for `project` (opened from or saved to `path`).
+pub fn recovery_bytes(path: Option<&Path>, project: &Project) -> std::io::Result<Vec<u8>> {
     let recovery = RecoveryFile {
         path: path.map(Path::to_path_buf),
         saved_at: chrono::Local::now().format("%Y-%m-%d %H:%M:%S").to_string(),
         project: serde_json::from_str(&to_json(project)).map_err(std::io::Error::other)?,
     };
-    let text = serde_json::to_string_pretty(&recovery).map_err(std::io::Error::other)?;
-    atomic_write(&recovery_path(data_dir), |file| std::io::Write::write_all(file, text.as_bytes()))
+    Ok(serde_json::to_string_pretty(&recovery).map_err(std::io::Error::other)?.into_bytes())
+}
+
+/// Writes the recovery file with `writer`.
+pub fn write_recovery_with(writer: &FileWriter, data_dir: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    std::fs::create_dir_all(data_dir)?;
+    writer(&recovery_path(data_dir), bytes)
+}
+
+/// Writes the recovery file atomically.
+pub fn write_recovery(data_dir: &Path, path: Option<&Path>, project: &Project) -> std::io::Result<()> {
+    write_recovery_with(&system_writer(), data_dir, &recovery_bytes(path, project)?)
 }
 
 /// The recovery file left by a session that did not end cleanly, if any.

@@ -26,7 +26,7 @@ pub mod view3d;
 pub use action::{
     Action, AfterUnsaved, BoardIntent, FileRequest, Plen2Action, Plen2Intent, RflexAction, ServoAction, Tab,
 };
-pub use app::{Connecting, Picker, REMEMBERED_KEY, Remembered, StudioApp};
+pub use app::{Connecting, Picker, PortLister, REMEMBERED_KEY, Remembered, StudioApp, system_lister};
 pub use board_link::{BoardLink, Device, LinkNotice, LinkOptions, StartError};
 pub use document::Document;
 pub use family::FamilyUi;

@@ -13,6 +13,7 @@ use crate::link::Waker;
 use crate::project::Project;
 use crate::ui::board_link::BoardLink;
 use crate::ui::document::Document;
+use crate::ui::files::FileWork;
 use crate::ui::i18n::{Language, Strings};
 use crate::ui::operation::Operation;
 
@@ -125,6 +126,8 @@ pub struct Shell<'a> {
     pub data_dir: &'a Path,
     /// Wakes the window from other threads.
     pub waker: &'a Waker,
+    /// Writes files off the frame (exports).
+    pub files: &'a FileWork,
 }
 
 impl Shell<'_> {

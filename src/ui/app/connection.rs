@@ -2,16 +2,11 @@
 //! family's driver, the port list, the running operation, and turning what
 //! the board reports into status lines and family events.
 
-use std::time::Duration;
-
 use super::*;
-use crate::link::{PortName, list_ports};
+use crate::link::PortName;
 use crate::project::Edit;
 use crate::ui::board_link::LinkNotice;
 use crate::ui::connection_bar::LinkStatus;
-
-/// How often the port list is read again.
-const RESCAN_EVERY: Duration = Duration::from_secs(2);
 
 impl StudioApp {
     /// Picks up what the board and the running operation sent since the last frame.
@@ -50,7 +45,7 @@ impl StudioApp {
 
     /// Hands the running operation's outcome to the family that started it,
     /// waiting up to `wait` for it (None: not at all); returns the whole summary it left.
-    pub(super) fn finish_operation(&mut self, wait: Option<std::time::Duration>) -> Option<(String, bool)> {
+    pub(super) fn finish_operation(&mut self, wait: Option<Duration>) -> Option<(String, bool)> {
         self.operation.as_ref()?;
         let mut summary = None;
         self.each_family(|family_ui, shell| {
@@ -65,18 +60,6 @@ impl StudioApp {
             self.report(text.lines().next().unwrap_or_default(), *is_error);
         }
         summary
-    }
-
-    /// Reads the list of serial ports, at most every two seconds.
-    pub(super) fn scan_ports(&mut self, now: Instant) {
-        if self.next_scan.is_some_and(|at| now < at) {
-            return;
-        }
-        self.next_scan = Some(now + RESCAN_EVERY);
-        // A failed scan leaves the last list; the port can still be typed.
-        if let Ok(ports) = list_ports() {
-            self.ports = ports;
-        }
     }
 
     /// The connected servo board, if any.

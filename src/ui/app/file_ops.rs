@@ -9,9 +9,14 @@ impl StudioApp {
         self.each_family(|family_ui, shell| family_ui.document_replaced(&shell.document.project));
     }
 
-    pub(super) fn open_now(&mut self, path: PathBuf) {
-        use crate::project::input::{self, InputKind, OpenError};
-        match input::open(&path) {
+    /// What a file read off the frame gave.
+    pub(super) fn opened(
+        &mut self,
+        path: PathBuf,
+        result: Result<crate::project::input::Opened, crate::project::input::OpenError>,
+    ) {
+        use crate::project::input::InputKind;
+        match result {
             Ok(opened) => {
                 let loaded = opened.loaded;
                 let unknown = loaded.unknown_key_count();
@@ -34,26 +39,7 @@ impl StudioApp {
                     }
                 }
             }
-            Err(OpenError::Project { source, .. }) => self.report(self.language.load_error(&path, &source), true),
-            Err(OpenError::Read(error)) => self.report(self.language.read_error(&error), true),
-            Err(error) => self.report(error.to_string(), true),
-        }
-    }
-
-    pub(super) fn save_to(&mut self, path: PathBuf) -> bool {
-        match crate::project::save(&path, &self.document.project) {
-            Ok(()) => {
-                files::remember(&mut self.recent, &path);
-                files::clear_recovery(&self.data_dir);
-                self.report(format!("{} {}", self.words().msg_saved, path.display()), false);
-                self.document.path = Some(path);
-                self.document.dirty = false;
-                true
-            }
-            Err(error) => {
-                self.report(self.language.save_error(&error), true);
-                false
-            }
+            Err(error) => self.report(self.language.open_error(&path, &error), true),
         }
     }
 
@@ -63,9 +49,9 @@ impl StudioApp {
                 self.replace_document(Project::empty(self.document.project.family), None);
                 self.report(self.words().msg_new_project, false);
             }
-            AfterUnsaved::Open(path) => self.open_now(path),
+            AfterUnsaved::Open(path) => self.open_later(path),
             AfterUnsaved::Quit => {
-                files::clear_recovery(&self.data_dir);
+                self.clear_recovery_later();
                 self.quit_allowed = true;
             }
         }

@@ -4,6 +4,7 @@
 //! [`StudioApp::apply`] changes anything, handing each family's actions to
 //! the family that owns them.
 
+mod background;
 mod connection;
 mod dialogs;
 mod file_ops;
@@ -15,6 +16,7 @@ use std::time::{Duration, Instant};
 
 use crossbeam_channel::Receiver;
 
+pub use background::{PortLister, system_lister};
 pub use dialogs::{Picker, system_picker};
 
 use crate::link::{Opener, Opening, PortInfo, Waker, system_opener};
@@ -75,7 +77,13 @@ pub struct StudioApp {
     pub rflex: RflexUi,
     /// The serial ports seen at the last scan.
     pub ports: Vec<PortInfo>,
-    next_scan: Option<Instant>,
+    lister: PortLister,
+    scanner: Option<background::PortScanner>,
+    /// Opening, saving, autosaving and exporting, off the frame.
+    files: files::FileWork,
+    file_jobs: Vec<background::FileJob>,
+    /// Links being closed on their own threads.
+    closing: Vec<std::thread::JoinHandle<()>>,
     /// A file dialog open, and the request it answers.
     dialog: Option<(FileRequest, Receiver<Option<PathBuf>>)>,
     last_autosave: Instant,
@@ -117,7 +125,11 @@ impl StudioApp {
             unsaved_prompt: None,
             recovery_offer: None,
             ports: Vec::new(),
-            next_scan: None,
+            lister: system_lister(),
+            scanner: None,
+            files: files::FileWork::start(files::system_writer(), waker.clone()),
+            file_jobs: Vec::new(),
+            closing: Vec::new(),
             dialog: None,
             last_autosave: Instant::now(),
             quit_allowed: false,
@@ -161,8 +173,9 @@ impl StudioApp {
 
     /// The shell as a family's ui changes it, and the families' uis (borrowed apart).
     fn split(&mut self) -> (Shell<'_>, Families<'_>) {
-        let Self { document, link, status, operation, language, data_dir, waker, servo, plen2, rflex, .. } = self;
-        let shell = Shell { document, link, status, operation, language: *language, data_dir, waker };
+        let Self { document, link, status, operation, language, data_dir, waker, files, servo, plen2, rflex, .. } =
+            self;
+        let shell = Shell { document, link, status, operation, language: *language, data_dir, waker, files };
         (shell, Families { servo, plen2, rflex })
     }
 
@@ -262,21 +275,21 @@ impl StudioApp {
             Action::NewProject => self.guard_unsaved(AfterUnsaved::New),
             Action::Open(path) => self.guard_unsaved(AfterUnsaved::Open(path)),
             Action::Save => match self.document.path.clone() {
-                Some(path) => {
-                    self.save_to(path);
-                }
+                Some(path) => self.save_to(path, None),
                 None => self.apply(Action::AskFile(FileRequest::SaveAs)),
             },
-            Action::SaveAs(path) => {
-                self.save_to(path);
-            }
+            Action::SaveAs(path) => self.save_to(path, None),
             Action::UnsavedSave => {
-                let saved = match self.document.path.clone() {
-                    Some(path) => self.save_to(path),
-                    None => false,
-                };
-                if saved && let Some(next) = self.unsaved_prompt.take() {
-                    self.after_unsaved(next);
+                // Goes on once saved: after the Save as… just asked for, or a save to the file's own path.
+                if let Some(next) = self.unsaved_prompt.clone() {
+                    match self.continue_after_save(next) {
+                        Ok(()) => {}
+                        Err(next) => {
+                            if let Some(path) = self.document.path.clone() {
+                                self.save_to(path, Some(next));
+                            }
+                        }
+                    }
                 }
             }
             Action::UnsavedDiscard => {
@@ -295,14 +308,11 @@ impl StudioApp {
             }
             Action::DeclineRecovery => {
                 self.recovery_offer = None;
-                files::clear_recovery(&self.data_dir);
+                self.clear_recovery_later();
             }
             Action::Autosave => {
-                if self.document.dirty
-                    && let Err(error) =
-                        files::write_recovery(&self.data_dir, self.document.path.as_deref(), &self.document.project)
-                {
-                    self.report(self.language.autosave_failed(&error), true);
+                if self.document.dirty {
+                    self.autosave_later();
                 }
             }
             Action::Terminate => {
@@ -322,6 +332,8 @@ impl StudioApp {
                 }
                 self.drop_link();
                 self.apply(Action::Autosave);
+                // The work must be on disk before the process goes.
+                self.finish_file_work(Some(TERMINATE_WAIT));
                 self.quit_allowed = true;
             }
             Action::Servo(action) => {
@@ -349,9 +361,9 @@ impl StudioApp {
         family_ui.stop(&mut shell);
     }
 
-    /// Closes the link: every family starts again from rest.
+    /// Closes the link (off the frame): every family starts again from rest.
     fn drop_link(&mut self) {
-        self.link = None;
+        self.close_link();
         self.each_family(|family_ui, _| family_ui.disconnected());
     }
 
@@ -374,7 +386,8 @@ impl StudioApp {
         }
         let now = Instant::now();
         self.pump(now);
-        self.scan_ports(now);
+        self.scan_ports();
+        self.finish_file_work(None);
         let mut actions = Vec::new();
         Self::shortcuts(ui, &mut actions);
         self.poll_dialog(&mut actions);
@@ -490,9 +503,6 @@ impl StudioApp {
             let wait = link.next_refresh(polling).saturating_duration_since(Instant::now());
             ui.ctx().request_repaint_after(wait);
         }
-        if let Some(at) = self.next_scan {
-            ui.ctx().request_repaint_after(at.saturating_duration_since(now));
-        }
     }
 }
 
@@ -579,8 +589,11 @@ impl eframe::App for StudioApp {
     }
 
     fn on_exit(&mut self, _gl: Option<&eframe::glow::Context>) {
-        // Dropping the link stops a base and shuts it down (brake on) before the window goes.
+        // The link stops a base and shuts it down (brake on), and a save in
+        // flight reaches the disk, before the window goes.
         self.drop_link();
+        self.wait_for_closing_links();
+        self.finish_file_work(Some(TERMINATE_WAIT));
     }
 
     fn save(&mut self, storage: &mut dyn eframe::Storage) {

@@ -489,6 +489,28 @@ impl Language {
         }
     }
 
+    /// What the user asked to open (a project, a motion.json, a folder of
+    /// them) that could not be opened, in one sentence with its detail.
+    pub fn open_error(self, path: &std::path::Path, error: &crate::project::input::OpenError) -> String {
+        use crate::project::input::OpenError as E;
+        use crate::project::motion_json::MotionJsonError as M;
+        match (self, error) {
+            (_, E::Read(error)) => self.read_error(error),
+            (_, E::Project { source, .. }) => self.load_error(path, source),
+            (Self::English, _) => error.to_string(),
+            (_, E::Motion(M::Io { path, source })) => {
+                format!("無法讀取 {}：{}", path.display(), io_words(source.kind()))
+            }
+            (_, E::Motion(M::NotAMotion { path, reason })) => {
+                format!("{} 不是 PLEN2 的 motion.json：{reason}", path.display())
+            }
+            (_, E::Motion(M::Empty { path })) => format!("{} 裡沒有 motion.json（*.json）檔案", path.display()),
+            (_, E::Entry { folder, skipped }) => {
+                format!("無法開啟資料夾 {}（資料夾不會只開啟一部分）：{skipped}", folder.display())
+            }
+        }
+    }
+
     /// A project file that could not be saved; the previous file is intact.
     pub fn save_error(self, error: &crate::project::SaveError) -> String {
         match self {

@@ -165,6 +165,8 @@ pub struct Strings {
     pub msg_opened: &'static str,
     /// "saved".
     pub msg_saved: &'static str,
+    /// "saving…" (before the path, while the file is written).
+    pub msg_saving: &'static str,
     /// "new project".
     pub msg_new_project: &'static str,
     /// "connect a board (or the demo board) first".

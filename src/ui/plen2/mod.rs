@@ -137,6 +137,17 @@ pub struct Plen2Ui {
     pub layout: Layout,
     /// How the robot is paced (connection settings; remembered; used from the next connection).
     pub pacing: PacingMode,
+    /// Files being written off the frame.
+    writing: Vec<Writing>,
+}
+
+/// A file being written off the frame: what the robot held, or a motion.json.
+#[derive(Debug)]
+struct Writing {
+    path: PathBuf,
+    done: crossbeam_channel::Receiver<Result<(), crate::project::SaveError>>,
+    /// The robot's contents (its result shows in the robot panel), else a motion (on the status line).
+    export: bool,
 }
 
 impl Default for Plen2Ui {
@@ -154,6 +165,7 @@ impl Default for Plen2Ui {
             preview: preview::Preview::default(),
             layout: Layout::default(),
             pacing: PacingMode::default(),
+            writing: Vec::new(),
         }
     }
 }
@@ -234,14 +246,10 @@ impl Plen2Ui {
             }
             Plen2Action::SaveMotionJson { slot, path } => {
                 if let Some(motion) = shell.document.project.plen2.motions.iter().find(|m| m.slot == slot) {
+                    // Written off the frame; the status line says how it went (tick).
                     let text = crate::project::motion_json::motion_to_json(motion);
-                    match crate::project::atomic_write(&path, |file| std::io::Write::write_all(file, text.as_bytes())) {
-                        Ok(()) => shell.report(format!("{} {}", shell.words().msg_saved, path.display()), false),
-                        Err(source) => {
-                            let error = crate::project::SaveError::new(&path, source);
-                            shell.report(shell.language.save_error(&error), true);
-                        }
-                    }
+                    let done = shell.files.write(path.clone(), text.into_bytes());
+                    self.writing.push(Writing { path, done, export: false });
                 }
             }
         }
@@ -299,11 +307,27 @@ impl Plen2Ui {
             Plen2Intent::ExportToFile(path) => {
                 if let Some(robot) = self.robot.clone() {
                     let document = Project { family: Family::Plen2, plen2: robot, ..Project::default() };
-                    self.result = Some(match crate::project::save(&path, &document) {
-                        Ok(()) => Plen2Result::Exported(path),
-                        Err(error) => Plen2Result::ExportFailed(shell.language.save_error(&error)),
-                    });
+                    let done = shell.files.save(path.clone(), &document);
+                    self.writing.push(Writing { path, done, export: true });
                 }
+            }
+        }
+    }
+
+    /// Files written off the frame: what each gave.
+    fn finish_writing(&mut self, shell: &mut Shell<'_>) {
+        let language = shell.language;
+        let writing = std::mem::take(&mut self.writing);
+        for file in writing {
+            let Ok(result) = file.done.try_recv() else {
+                self.writing.push(file);
+                continue;
+            };
+            match (file.export, result) {
+                (true, Ok(())) => self.result = Some(Plen2Result::Exported(file.path)),
+                (true, Err(error)) => self.result = Some(Plen2Result::ExportFailed(language.save_error(&error))),
+                (false, Ok(())) => shell.report(format!("{} {}", shell.words().msg_saved, file.path.display()), false),
+                (false, Err(error)) => shell.report(language.save_error(&error), true),
             }
         }
     }
@@ -450,8 +474,9 @@ impl FamilyUi for Plen2Ui {
         self.stream = None;
     }
 
-    /// Moves a streamed motion on; whether something still plays.
+    /// Moves a streamed motion on, and takes written files' answers; whether something still plays.
     fn tick(&mut self, shell: &mut Shell<'_>, now: Instant) -> bool {
+        self.finish_writing(shell);
         self.advance_stream(shell, now)
     }
 

@@ -111,6 +111,10 @@ impl FamilyUi for RflexUi {
         ]
     }
 
+    fn view_caption(&self, words: &Strings) -> &'static str {
+        words.world_view
+    }
+
     fn layout(&self) -> Layout {
         self.layout
     }

@@ -16,6 +16,8 @@ mod sliders;
 use std::collections::BTreeMap;
 use std::time::Instant;
 
+use crossbeam_channel::Receiver;
+
 pub use actions::timeline_bars;
 pub use operations::{BoardResult, PendingConfirm, ServoFailure, ServoKind, ServoOperation, ServoOutcome};
 
@@ -69,6 +71,8 @@ pub struct ServoUi {
     /// The outcome of the last board operation.
     pub board_result: Option<BoardResult>,
     compare_intent: Option<crate::ui::action::BoardIntent>,
+    /// The board's contents being written to a file (off the frame).
+    exporting: Option<(std::path::PathBuf, Receiver<Result<(), crate::project::SaveError>>)>,
     compared_board: Option<ServoProject>,
     /// The project's size on the board (or why it cannot be stored), for a document revision and language.
     footprint: Derived<(u64, Language), Result<usize, String>>,
@@ -300,6 +304,7 @@ impl FamilyUi for ServoUi {
 
     /// Moves the previewed action on (the sliders follow it); whether it still plays.
     fn tick(&mut self, shell: &mut Shell<'_>, now: Instant) -> bool {
+        self.finish_export(shell.language);
         self.advance_preview(&shell.document.project.servo, now);
         self.preview.is_some()
     }

@@ -233,12 +233,22 @@ impl ServoUi {
                 self.board_result = Some(BoardResult::ReadIntoProject);
             }
             BoardIntent::ExportToFile(path) => {
-                self.board_result = Some(match crate::project::save(&path, &Project::servo(board)) {
-                    Ok(()) => BoardResult::Exported(path),
-                    Err(error) => BoardResult::ExportFailed(shell.language.save_error(&error)),
-                });
+                // Written off the frame; the panel says how it went (tick).
+                let done = shell.files.save(path.clone(), &Project::servo(board));
+                self.exporting = Some((path, done));
             }
         }
+    }
+
+    /// The board's contents written to a file, once they are.
+    pub(super) fn finish_export(&mut self, language: Language) {
+        let Some((path, done)) = &self.exporting else { return };
+        let Ok(result) = done.try_recv() else { return };
+        self.board_result = Some(match result {
+            Ok(()) => BoardResult::Exported(path.clone()),
+            Err(error) => BoardResult::ExportFailed(language.save_error(&error)),
+        });
+        self.exporting = None;
     }
 
     /// The family's operation ended: what it found, for the panel.

@@ -83,6 +83,7 @@ pub(in crate::ui::i18n) const TRADITIONAL_CHINESE: Strings = Strings {
     event_release: "放開",
     msg_opened: "已開啟",
     msg_saved: "已儲存",
+    msg_saving: "儲存中…",
     msg_new_project: "新專案",
     msg_connect_first: "請先連接控制板（或示範控制板）",
     msg_connected_to: "已連線至",

@@ -83,6 +83,7 @@ pub(in crate::ui::i18n) const ENGLISH: Strings = Strings {
     event_release: "release",
     msg_opened: "opened",
     msg_saved: "saved",
+    msg_saving: "saving…",
     msg_new_project: "new project",
     msg_connect_first: "connect a board (or the demo board) first",
     msg_connected_to: "connected to",
