@@ -290,3 +290,19 @@ fn too_many_entries_is_an_encode_error() {
 fn frame_wire_length_is_content_plus_nine() {
     assert_eq!(Frame::new(1, vec![0; 5]).wire_len(), 14);
 }
+
+/// The twelve responses whose content is a `result` byte (`board.md` §2)
+/// say so through `result()`; nothing else has one.
+#[test]
+fn the_result_byte_is_read_from_every_response_that_has_one() {
+    let with_result = [10021, 30031, 30041, 30071, 30081, 30091, 30111, 30121, 40031, 40041, 40051, 40071];
+    for id in with_result {
+        assert_eq!(Message::decode(id, &[1]).unwrap().result(), Some(true), "{id}");
+        assert_eq!(Message::decode(id, &[0]).unwrap().result(), Some(false), "{id}");
+    }
+    for (id, _) in MESSAGE_TABLE.iter().filter(|(id, _)| !with_result.contains(id)) {
+        let Ok(message) = Message::decode(*id, &[1]) else { continue };
+        assert_eq!(message.result(), None, "{id}");
+    }
+    assert_eq!(Message::QueryProjectIdResponse { project_id: 1 }.result(), None);
+}

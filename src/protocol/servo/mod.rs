@@ -6,6 +6,7 @@
 //! bytes into [`Frame`]s, [`Message::from_frame`] turns a frame into a typed
 //! [`Message`], and [`Message::encode`] goes the other way.
 
+mod codec;
 mod decoder;
 mod error;
 mod frame;

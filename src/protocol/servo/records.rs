@@ -1,8 +1,52 @@
 //! The compound values that several board messages share (`board.md` §2),
 //! each with its own wire layout.
 
+use super::codec::Coded;
 use super::error::{ContentError, EncodeError};
 use super::wire::{Reader, Writer};
+
+/// A one-byte code: each value's byte and name once, and what a wrong byte should have been.
+macro_rules! coded {
+    ($ty:ident, $expected:literal, $($value:ident = $code:literal: $words:literal),* $(,)?) => {
+        impl Coded for $ty {
+            fn code(self) -> u8 {
+                match self {
+                    $(Self::$value => $code),*
+                }
+            }
+
+            fn read(r: &mut Reader<'_>, field: &'static str) -> Result<Self, ContentError> {
+                match r.u8(field)? {
+                    $($code => Ok(Self::$value),)*
+                    other => Err(r.invalid(field, $expected, i64::from(other))),
+                }
+            }
+
+            fn words(self) -> &'static str {
+                match self {
+                    $(Self::$value => $words),*
+                }
+            }
+        }
+    };
+}
+
+coded!(AngleUnit, "0 (degree) or 1 (ADC)", Degree = 0: "angles in degrees", Adc = 1: "angles as ADC readings");
+coded!(TransmissionMode, "0 (old) or 1 (new)", Old = 0: "old protocol", New = 1: "new protocol");
+coded!(
+    CommandType,
+    "0 (action), 1 (delay) or 2 (macro)",
+    RunAction = 0: "run an action",
+    Delay = 1: "wait",
+    RunMacro = 2: "run a macro",
+);
+coded!(
+    ButtonEvent,
+    "1 (press), 2 (long press) or 4 (release)",
+    Press = 1: "press",
+    LongPress = 2: "long press",
+    Release = 4: "release",
+);
 
 /// Angle unit of a servo (20040 `unitType`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -13,23 +57,6 @@ pub enum AngleUnit {
     Adc,
 }
 
-impl AngleUnit {
-    pub(crate) fn read(r: &mut Reader<'_>, field: &'static str) -> Result<Self, ContentError> {
-        match r.u8(field)? {
-            0 => Ok(Self::Degree),
-            1 => Ok(Self::Adc),
-            other => Err(r.invalid(field, "0 (degree) or 1 (ADC)", i64::from(other))),
-        }
-    }
-
-    pub(crate) fn code(self) -> u8 {
-        match self {
-            Self::Degree => 0,
-            Self::Adc => 1,
-        }
-    }
-}
-
 /// Protocol generation selected by 10010 (`mode`) and echoed by 10011 (`result`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum TransmissionMode {
@@ -37,23 +64,6 @@ pub enum TransmissionMode {
     Old,
     /// `1`: the new protocol (this one).
     New,
-}
-
-impl TransmissionMode {
-    pub(crate) fn read(r: &mut Reader<'_>, field: &'static str) -> Result<Self, ContentError> {
-        match r.u8(field)? {
-            0 => Ok(Self::Old),
-            1 => Ok(Self::New),
-            other => Err(r.invalid(field, "0 (old) or 1 (new)", i64::from(other))),
-        }
-    }
-
-    pub(crate) fn code(self) -> u8 {
-        match self {
-            Self::Old => 0,
-            Self::New => 1,
-        }
-    }
 }
 
 /// What a macro command runs (30061 `type`).
@@ -67,25 +77,6 @@ pub enum CommandType {
     RunMacro,
 }
 
-impl CommandType {
-    fn read(r: &mut Reader<'_>) -> Result<Self, ContentError> {
-        match r.u8("type")? {
-            0 => Ok(Self::RunAction),
-            1 => Ok(Self::Delay),
-            2 => Ok(Self::RunMacro),
-            other => Err(r.invalid("type", "0 (action), 1 (delay) or 2 (macro)", i64::from(other))),
-        }
-    }
-
-    fn code(self) -> u8 {
-        match self {
-            Self::RunAction => 0,
-            Self::Delay => 1,
-            Self::RunMacro => 2,
-        }
-    }
-}
-
 /// A remote-control button event (40081 `event`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum ButtonEvent {
@@ -95,25 +86,6 @@ pub enum ButtonEvent {
     LongPress,
     /// `4`: the button came up.
     Release,
-}
-
-impl ButtonEvent {
-    pub(crate) fn read(r: &mut Reader<'_>) -> Result<Self, ContentError> {
-        match r.u8("event")? {
-            1 => Ok(Self::Press),
-            2 => Ok(Self::LongPress),
-            4 => Ok(Self::Release),
-            other => Err(r.invalid("event", "1 (press), 2 (long press) or 4 (release)", i64::from(other))),
-        }
-    }
-
-    pub(crate) fn code(self) -> u8 {
-        match self {
-            Self::Press => 1,
-            Self::LongPress => 2,
-            Self::Release => 4,
-        }
-    }
 }
 
 /// One servo's live state in 20021 (11 bytes).
@@ -283,7 +255,7 @@ impl MacroCommandRecord {
     fn read(r: &mut Reader<'_>) -> Result<Self, ContentError> {
         Ok(Self {
             command_id: r.i32("commandID")?,
-            command_type: CommandType::read(r)?,
+            command_type: CommandType::read(r, "type")?,
             ratio_percent: r.u8("ratio")?,
             loop_count: r.i16("loop")?,
             total_interval_ms: r.i32("totalInterval")?,

@@ -18,7 +18,7 @@ impl<'a> Reader<'a> {
         Self { message, bytes, pos: 0 }
     }
 
-    fn remaining(&self) -> usize {
+    pub(crate) fn remaining(&self) -> usize {
         self.bytes.len() - self.pos
     }
 
