@@ -11,7 +11,7 @@ pub mod plen2;
 pub mod rflex;
 pub mod servo;
 
-pub use operation::{Cancel, Left, Phase, Progress, Stage, UploadFailure, backup_path};
+pub use operation::{Cancel, Left, Phase, Progress, Stage, UploadFailure, UploadSteps, backup_path, upload};
 
 use std::time::Duration;
 

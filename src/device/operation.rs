@@ -153,6 +153,52 @@ impl<E: fmt::Display, I: fmt::Display> fmt::Display for UploadFailure<E, I> {
     }
 }
 
+/// The steps of an upload, each family's own; [`upload`] runs them in order
+/// and says, when one fails, what it left on the device.
+pub trait UploadSteps {
+    /// Why a step failed.
+    type Error;
+    /// What is written, item by item.
+    type Item;
+    /// What a finished upload reports.
+    type Report;
+    /// Everything done before the device is touched: validation, does it
+    /// fit, how the link delivers. Nothing is written when it fails.
+    fn check(&mut self) -> Result<(), Self::Error>;
+    /// Reads what the device holds and saves it, when asked to; where.
+    fn back_up(&mut self) -> Result<Option<PathBuf>, Self::Error>;
+    /// Writes, pushing onto `reached` each item the device took whole.
+    fn write(&mut self, reached: &mut Vec<Self::Item>) -> Result<(), Self::Error>;
+    /// How many items the write had to write in all.
+    fn total(&self) -> usize;
+    /// Reads back what was written and compares, when asked to.
+    fn verify(&mut self) -> Result<(), Self::Error>;
+    /// The report of the finished upload.
+    fn report(self, backup: Option<PathBuf>) -> Self::Report;
+}
+
+/// How an upload of `S`'s steps failed.
+pub type FailedUpload<S> = Box<UploadFailure<<S as UploadSteps>::Error, <S as UploadSteps>::Item>>;
+
+/// Runs an upload's steps: check, back up, write, verify. A failure is boxed
+/// (it is built once per failed upload) and says where it stopped, what it
+/// left — nothing, the items that reached the device, or everything — and
+/// where the backup is.
+pub fn upload<S: UploadSteps>(mut steps: S) -> Result<S::Report, FailedUpload<S>> {
+    let untouched = |error, stage| Box::new(UploadFailure::untouched(error, stage, None));
+    steps.check().map_err(|error| untouched(error, Stage::Checking))?;
+    let backup = steps.back_up().map_err(|error| untouched(error, Stage::BackingUp))?;
+    let mut reached = Vec::new();
+    if let Err(error) = steps.write(&mut reached) {
+        let left = Left::Partly { reached, total: steps.total() };
+        return Err(Box::new(UploadFailure { error, stage: Stage::Writing, left, backup }));
+    }
+    if let Err(error) = steps.verify() {
+        return Err(Box::new(UploadFailure { error, stage: Stage::Verifying, left: Left::Everything, backup }));
+    }
+    Ok(steps.report(backup))
+}
+
 impl<E: std::error::Error + 'static, I: fmt::Debug + fmt::Display> std::error::Error for UploadFailure<E, I> {
     fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
         Some(&self.error)

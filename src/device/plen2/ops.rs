@@ -8,7 +8,7 @@ use std::path::PathBuf;
 use super::Plen2Requester;
 use super::convert::{motion_commands, motion_from_reply};
 use super::driver::ReplyError;
-use crate::device::{Cancel, Left, Stage, UploadFailure};
+use crate::device::{Cancel, UploadFailure};
 use crate::project::plen2::{JointSetting, Motion, Plen2Project};
 use crate::project::{self, Problems, Project};
 use crate::protocol::plen2::{
@@ -289,75 +289,101 @@ pub fn import(
     progress: &mut dyn FnMut(&Plen2Progress),
     cancel: &Cancel,
 ) -> Result<Plen2ImportReport, Box<Plen2ImportFailure>> {
-    upload(requester, project, options, progress, cancel).map_err(Box::new)
+    let steps = Upload {
+        requester,
+        project,
+        options,
+        progress,
+        cancel,
+        current_joints: Vec::new(),
+        results: Vec::new(),
+        joint_writes: 0,
+        rewritten: 0,
+    };
+    crate::device::upload(steps)
 }
 
-// Built once per failed upload and boxed by `import` at once: its size costs nothing.
-#[allow(clippy::result_large_err)]
-fn upload(
-    requester: &Plen2Requester,
-    project: &Plen2Project,
-    options: &Plen2ImportOptions,
-    progress: &mut dyn FnMut(&Plen2Progress),
-    cancel: &Cancel,
-) -> Result<Plen2ImportReport, Plen2ImportFailure> {
-    let checking = |error| UploadFailure::untouched(error, Stage::Checking, None);
-    super::storable(project).map_err(|error| checking(error.into()))?;
-    let problems =
-        project::validate(&Project { family: project::Family::Plen2, plen2: project.clone(), ..Project::default() })
-            .errors_only();
-    if problems.has_errors() && !options.force {
-        return Err(checking(Plen2OpError::Invalid { problems }));
+/// A PLEN2's upload, step by step (run by [`crate::device::upload`]).
+struct Upload<'a> {
+    requester: &'a Plen2Requester,
+    project: &'a Plen2Project,
+    options: &'a Plen2ImportOptions,
+    progress: &'a mut dyn FnMut(&Plen2Progress),
+    cancel: &'a Cancel,
+    /// The robot's joint settings before the upload (read by the check or the backup).
+    current_joints: Vec<JointSetting>,
+    results: Vec<(u8, SlotResult)>,
+    joint_writes: usize,
+    rewritten: usize,
+}
+
+impl Upload<'_> {
+    fn slots(&self) -> Vec<u8> {
+        self.project.motions.iter().map(|m| m.slot).filter(|slot| *slot < SLOTS).collect()
     }
-    let slots: Vec<u8> = project.motions.iter().map(|m| m.slot).filter(|slot| *slot < SLOTS).collect();
-    // Something is read before anything is written: the backup, the joint
-    // settings (when the project holds some), or — once a session, when the
-    // adaptive pacing has not seen the link yet — a probe. A reply shows how
-    // the link delivers before the first byte of the upload.
-    let (backup, current_joints) = match &options.backup_dir {
-        Some(folder) => {
-            let backing_up = |error| UploadFailure::untouched(error, Stage::BackingUp, None);
-            let mut saved = export(requester, &slots, progress, cancel).map_err(backing_up)?;
-            saved.play_lists.clear();
-            let joints = saved.joints.clone();
-            let path = plen2_backup_path(folder);
-            let document = Project { family: project::Family::Plen2, plen2: saved, ..Project::default() };
-            project::save(&path, &document).map_err(|error| backing_up(Plen2OpError::Backup(error)))?;
-            (Some(path), joints)
+}
+
+impl crate::device::UploadSteps for Upload<'_> {
+    type Error = Plen2OpError;
+    type Item = Plen2Item;
+    type Report = Plen2ImportReport;
+
+    fn check(&mut self) -> Result<(), Plen2OpError> {
+        super::storable(self.project)?;
+        let document = Project { family: project::Family::Plen2, plen2: self.project.clone(), ..Project::default() };
+        let problems = project::validate(&document).errors_only();
+        if problems.has_errors() && !self.options.force {
+            return Err(Plen2OpError::Invalid { problems });
         }
-        None if project.joints.is_empty() => {
-            let item = Plen2Item::Link;
-            requester.probe().map_err(|source| {
-                UploadFailure::untouched(Plen2OpError::Reply { item, source }, Stage::Checking, None)
-            })?;
-            (None, Vec::new())
+        // Something is read before anything is written: the backup, the joint
+        // settings (when the project holds some), or — once a session, when the
+        // adaptive pacing has not seen the link yet — a probe. A reply shows how
+        // the link delivers before the first byte of the upload.
+        match &self.options.backup_dir {
+            Some(_) => {}
+            None if self.project.joints.is_empty() => {
+                let item = Plen2Item::Link;
+                self.requester.probe().map_err(|source| Plen2OpError::Reply { item, source })?;
+            }
+            None => self.current_joints = read_joint_settings(self.requester)?,
         }
-        None => {
-            let joints = read_joint_settings(requester)
-                .map_err(|error| UploadFailure::untouched(error, Stage::Checking, None))?;
-            (None, joints)
-        }
-    };
-    let mut reached = Vec::new();
-    let mut results = Vec::new();
-    let total = project.motions.len() + usize::from(!project.joints.is_empty());
-    let written = write_all(requester, project, &current_joints, &mut reached, &mut results, progress, cancel);
-    let joint_writes = match written {
-        Ok(joint_writes) => joint_writes,
-        Err(error) => {
-            let left = Left::Partly { reached, total };
-            return Err(UploadFailure { error, stage: Stage::Writing, left, backup });
-        }
-    };
-    let mut rewritten = 0;
-    if options.verify {
-        let verified = verify(requester, &project.motions, &mut results, progress, cancel)
-            .and_then(|()| rewrite(requester, &project.motions, &mut results, &mut rewritten, progress, cancel));
-        if let Err(error) = verified {
-            return Err(UploadFailure { error, stage: Stage::Verifying, left: Left::Everything, backup });
-        }
+        Ok(())
     }
-    Ok(Plen2ImportReport { backup, slots: results, joint_writes, rewritten })
+
+    fn back_up(&mut self) -> Result<Option<PathBuf>, Plen2OpError> {
+        let Some(folder) = &self.options.backup_dir else { return Ok(None) };
+        let mut saved = export(self.requester, &self.slots(), &mut *self.progress, self.cancel)?;
+        saved.play_lists.clear();
+        self.current_joints = saved.joints.clone();
+        let path = plen2_backup_path(folder);
+        let document = Project { family: project::Family::Plen2, plen2: saved, ..Project::default() };
+        project::save(&path, &document).map_err(Plen2OpError::Backup)?;
+        Ok(Some(path))
+    }
+
+    fn write(&mut self, reached: &mut Vec<Plen2Item>) -> Result<(), Plen2OpError> {
+        let (requester, project, current) = (self.requester, self.project, &self.current_joints);
+        let results = &mut self.results;
+        self.joint_writes = write_all(requester, project, current, reached, results, &mut *self.progress, self.cancel)?;
+        Ok(())
+    }
+
+    fn total(&self) -> usize {
+        self.project.motions.len() + usize::from(!self.project.joints.is_empty())
+    }
+
+    fn verify(&mut self) -> Result<(), Plen2OpError> {
+        if !self.options.verify {
+            return Ok(());
+        }
+        let (requester, motions) = (self.requester, &self.project.motions);
+        verify(requester, motions, &mut self.results, &mut *self.progress, self.cancel)?;
+        rewrite(requester, motions, &mut self.results, &mut self.rewritten, &mut *self.progress, self.cancel)
+    }
+
+    fn report(self, backup: Option<PathBuf>) -> Plen2ImportReport {
+        Plen2ImportReport { backup, slots: self.results, joint_writes: self.joint_writes, rewritten: self.rewritten }
+    }
 }
 
 /// Writes the joint settings (where they differ) and every motion; `reached`

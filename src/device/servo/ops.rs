@@ -9,7 +9,7 @@ use super::client::Requester;
 use super::image::{ImageError, ServoImage};
 use super::item::Item;
 use super::session::RequestError;
-use crate::device::{Cancel, Left, Stage, UploadFailure};
+use crate::device::{Cancel, UploadFailure};
 use crate::project::{self, Problems, Project, SaveError, ServoProject};
 use crate::protocol::servo::{ALL_SERVOS, EncodeError, Message, ServoStatus};
 
@@ -275,74 +275,97 @@ pub fn import(
     progress: &mut dyn FnMut(&Progress),
     cancel: &Cancel,
 ) -> Result<ImportReport, Box<ImportFailure>> {
-    upload(requester, project, options, progress, cancel).map_err(Box::new)
+    let steps =
+        Upload { requester, project, options, progress, cancel, image: ServoImage::default(), written: 0, total: 0 };
+    crate::device::upload(steps)
 }
 
-// Built once per failed upload and boxed by `import` at once: its size costs nothing.
-#[allow(clippy::result_large_err)]
-fn upload(
-    requester: &Requester,
-    project: &ServoProject,
-    options: &ImportOptions,
-    progress: &mut dyn FnMut(&Progress),
-    cancel: &Cancel,
-) -> Result<ImportReport, ImportFailure> {
-    use Message as M;
-    let checking = |error: OpError| UploadFailure::untouched(error, Stage::Checking, None);
-    let problems = project::validate_servo(project).errors_only();
-    if problems.has_errors() && !options.force {
-        return Err(checking(OpError::Invalid { problems }));
-    }
-    let image = ServoImage::from_project(project).map_err(|error| checking(error.into()))?;
-    let needed_bytes = image.footprint_bytes().map_err(|error| checking(error.into()))?;
+/// A servo board's upload, step by step (run by [`crate::device::upload`]).
+struct Upload<'a> {
+    requester: &'a Requester,
+    project: &'a ServoProject,
+    options: &'a ImportOptions,
+    progress: &'a mut dyn FnMut(&Progress),
+    cancel: &'a Cancel,
+    /// The records to write (made by the check).
+    image: ServoImage,
+    written: usize,
+    total: usize,
+}
 
-    // The fit check reads; the write phase proper starts after the backup.
-    let mut run = Run { requester, progress, cancel, phase: Phase::Read, done: 0, total: 1 };
-    let item = Item::MemorySize;
-    let total_bytes = match run.step(item.clone(), M::QueryMemorySizeRequest).map_err(checking)? {
-        // Boards that report only the free size: after clearing, free is all there is.
-        M::QueryMemorySizeResponse { free_bytes, total_bytes } => i64::from(total_bytes.unwrap_or(free_bytes)),
-        other => return Err(checking(unexpected(&item, &other))),
-    };
-    if i64::try_from(needed_bytes).unwrap_or(i64::MAX) > total_bytes {
-        return Err(checking(OpError::DoesNotFit { needed_bytes, total_bytes }));
-    }
+impl crate::device::UploadSteps for Upload<'_> {
+    type Error = OpError;
+    type Item = Item;
+    type Report = ImportReport;
 
-    let backup = match &options.backup_dir {
-        Some(folder) => {
-            let previous = read_image_as(requester, Phase::Read, progress, cancel)
-                .map_err(|error| UploadFailure::untouched(error, Stage::BackingUp, None))?
-                .to_project();
-            let path = backup_path(folder, previous.project_id);
-            project::save(&path, &Project::servo(previous))
-                .map_err(|error| UploadFailure::untouched(OpError::Backup(error), Stage::BackingUp, None))?;
-            Some(path)
+    fn check(&mut self) -> Result<(), OpError> {
+        use Message as M;
+        let problems = project::validate_servo(self.project).errors_only();
+        if problems.has_errors() && !self.options.force {
+            return Err(OpError::Invalid { problems });
         }
-        None => None,
-    };
-
-    let mut run = Run { requester, progress, cancel, phase: Phase::Write, done: 0, total: 0 };
-    let mut reached = Vec::new();
-    if let Err(error) = write_image(&mut run, &image, &mut reached) {
-        // Even with nothing acknowledged, the clear may have run: the board may be half written.
-        let left = Left::Partly { reached, total: run.total };
-        return Err(UploadFailure { error, stage: Stage::Writing, left, backup });
-    }
-    let written = run.done;
-
-    let verified = if options.verify {
-        let verified = read_image_as(requester, Phase::Verify, progress, cancel).and_then(|actual| {
-            let differences = image.differences(&actual);
-            if differences.is_empty() { Ok(()) } else { Err(OpError::Verify { differences }) }
-        });
-        if let Err(error) = verified {
-            return Err(UploadFailure { error, stage: Stage::Verifying, left: Left::Everything, backup });
+        self.image = ServoImage::from_project(self.project)?;
+        let needed_bytes = self.image.footprint_bytes()?;
+        // The fit check reads; the write phase proper starts after the backup.
+        let mut run = Run {
+            requester: self.requester,
+            progress: &mut *self.progress,
+            cancel: self.cancel,
+            phase: Phase::Read,
+            done: 0,
+            total: 1,
+        };
+        let item = Item::MemorySize;
+        let total_bytes = match run.step(item.clone(), M::QueryMemorySizeRequest)? {
+            // Boards that report only the free size: after clearing, free is all there is.
+            M::QueryMemorySizeResponse { free_bytes, total_bytes } => i64::from(total_bytes.unwrap_or(free_bytes)),
+            other => return Err(unexpected(&item, &other)),
+        };
+        if i64::try_from(needed_bytes).unwrap_or(i64::MAX) > total_bytes {
+            return Err(OpError::DoesNotFit { needed_bytes, total_bytes });
         }
-        true
-    } else {
-        false
-    };
-    Ok(ImportReport { backup, written, verified })
+        Ok(())
+    }
+
+    fn back_up(&mut self) -> Result<Option<PathBuf>, OpError> {
+        let Some(folder) = &self.options.backup_dir else { return Ok(None) };
+        let previous = read_image_as(self.requester, Phase::Read, &mut *self.progress, self.cancel)?.to_project();
+        let path = backup_path(folder, previous.project_id);
+        project::save(&path, &Project::servo(previous)).map_err(OpError::Backup)?;
+        Ok(Some(path))
+    }
+
+    fn write(&mut self, reached: &mut Vec<Item>) -> Result<(), OpError> {
+        let mut run = Run {
+            requester: self.requester,
+            progress: &mut *self.progress,
+            cancel: self.cancel,
+            phase: Phase::Write,
+            done: 0,
+            total: 0,
+        };
+        // Even with nothing acknowledged, the clear may have run: a failure leaves the board half written.
+        let written = write_image(&mut run, &self.image, reached);
+        (self.written, self.total) = (run.done, run.total);
+        written
+    }
+
+    fn total(&self) -> usize {
+        self.total
+    }
+
+    fn verify(&mut self) -> Result<(), OpError> {
+        if !self.options.verify {
+            return Ok(());
+        }
+        let actual = read_image_as(self.requester, Phase::Verify, &mut *self.progress, self.cancel)?;
+        let differences = self.image.differences(&actual);
+        if differences.is_empty() { Ok(()) } else { Err(OpError::Verify { differences }) }
+    }
+
+    fn report(self, backup: Option<PathBuf>) -> ImportReport {
+        ImportReport { backup, written: self.written, verified: self.options.verify }
+    }
 }
 
 /// Clears the board and writes `image` in the order of the import
