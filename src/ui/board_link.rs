@@ -19,7 +19,7 @@ use crate::ui::packet_log::PacketLog;
 #[derive(Clone, Debug, PartialEq)]
 pub enum LinkNotice {
     /// Something could not be sent; the text says why.
-    SendFailed(String),
+    SendFailed(crate::device::servo::EncodeError),
     /// A request failed.
     RequestFailed(RequestError),
     /// The board refused to run a macro (it does not store it).

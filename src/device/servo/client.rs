@@ -58,7 +58,7 @@ pub enum ServoEvent {
     /// A packet-log entry.
     Traffic(Traffic),
     /// A message could not be sent.
-    SendFailed(String),
+    SendFailed(crate::protocol::servo::EncodeError),
 }
 
 /// The driver the I/O thread runs for a servo board.
@@ -112,14 +112,14 @@ impl Driver for ServoDriver {
             },
             ServoCommand::Send { message } => {
                 if let Err(error) = self.session.send(now, message) {
-                    self.events.push_back(ServoEvent::SendFailed(error.to_string()));
+                    self.events.push_back(ServoEvent::SendFailed(error));
                 }
             }
             ServoCommand::LiveMove { moves } => self.session.set_live_moves(now, &moves),
             ServoCommand::Stop { message } => {
                 self.session.cancel_live_moves();
                 if let Err(error) = self.session.send(now, message) {
-                    self.events.push_back(ServoEvent::SendFailed(error.to_string()));
+                    self.events.push_back(ServoEvent::SendFailed(error));
                 }
             }
         }

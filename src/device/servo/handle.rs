@@ -36,7 +36,7 @@ enum Query {
 #[derive(Clone, Debug, PartialEq)]
 pub enum ServoNotice {
     /// Something could not be sent; the text says why.
-    SendFailed(String),
+    SendFailed(crate::protocol::servo::EncodeError),
     /// A request failed.
     RequestFailed(RequestError),
     /// The board refused to run a macro (it does not store it).

@@ -21,7 +21,7 @@ pub fn battery_text(permil: i16) -> String {
 
 /// Servo-board values the interface shows, re-exported so that the UI reaches
 /// the protocol only through this driver.
-pub use crate::protocol::servo::{ALL_SERVOS, ButtonEvent, ServoMove, ServoStatus};
+pub use crate::protocol::servo::{ALL_SERVOS, ButtonEvent, EncodeError, ServoMove, ServoStatus};
 
 pub use client::{Reply, Requester, ServoBoard, ServoCommand, ServoDriver, ServoEvent};
 pub use handle::{ServoHandle, ServoNotice};

@@ -370,10 +370,24 @@ impl Language {
     }
 
     /// Something could not be sent.
-    pub fn send_failed(self, detail: &str) -> String {
+    pub fn send_failed(self, error: &crate::device::servo::EncodeError) -> String {
         match self {
-            Self::English => format!("could not send: {detail}"),
-            Self::TraditionalChinese => "無法傳送：訊息無法編碼".into(),
+            Self::English => format!("could not send: {error}"),
+            Self::TraditionalChinese => format!("無法傳送：{}", self.encode_error(error)),
+        }
+    }
+
+    /// Why a message cannot be put into a frame (too many entries, too long).
+    pub fn encode_error(self, error: &crate::device::servo::EncodeError) -> String {
+        use crate::device::servo::EncodeError as E;
+        match (self, error) {
+            (Self::English, _) => error.to_string(),
+            (_, E::TooMany { message, field, max, actual }) => {
+                format!("{message} 的 `{field}` 最多 {max} 筆，但有 {actual} 筆")
+            }
+            (_, E::ContentTooLong { packet_id, max_bytes, actual_bytes }) => {
+                format!("封包 {packet_id}：內容有 {actual_bytes} 位元組，一個封包最多 {max_bytes} 位元組")
+            }
         }
     }
 

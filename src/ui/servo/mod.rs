@@ -156,7 +156,7 @@ impl ServoUi {
             move || {
                 ServoImage::from_project(&project)
                     .map_err(|error| language.op_error(&crate::device::servo::OpError::Image(error)))
-                    .and_then(|image| image.footprint_bytes().map_err(|error| error.to_string()))
+                    .and_then(|image| image.footprint_bytes().map_err(|error| language.encode_error(&error)))
             }
         });
         let project_bytes = footprint.map_or(Ok(0), |(_, bytes)| bytes.clone());
