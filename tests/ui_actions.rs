@@ -2,12 +2,13 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
+mod common;
+
 use std::path::Path;
 use std::time::{Duration, Instant};
 
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
-use servo_studio::link::no_waker;
 use servo_studio::project::{self, ServoProject, Step};
 use servo_studio::ui::{Action, StudioApp, Tab};
 
@@ -16,15 +17,7 @@ fn fixture() -> ServoProject {
 }
 
 fn harness(project: ServoProject) -> Harness<'static, StudioApp> {
-    let data = tempfile::tempdir().unwrap().keep();
-    let mut app = StudioApp::new(project, None, no_waker()).with_data_dir(data);
-    app.apply(Action::ShowTab(Tab::Actions));
-    let mut harness = Harness::builder()
-        .with_size(egui::vec2(1300.0, 900.0))
-        .with_context_setup(servo_studio::ui::fonts::install)
-        .build_ui_state(|ui, app: &mut StudioApp| app.show(ui), app);
-    harness.run_steps(3);
-    harness
+    common::ui::showing(common::ui::editor(project), Tab::Actions, (1300.0, 900.0))
 }
 
 #[test]

@@ -6,8 +6,6 @@
 
 mod common;
 
-use std::time::{Duration, Instant};
-
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use servo_studio::device::servo::ServoImage;
@@ -17,21 +15,10 @@ use servo_studio::sim::{Faults, SimConfig};
 use servo_studio::ui::{Action, BoardLink, BoardResult, ServoAction, StudioApp};
 
 fn harness(app: StudioApp) -> Harness<'static, StudioApp> {
-    Harness::builder()
-        .with_size(egui::vec2(1200.0, 800.0))
-        .with_context_setup(servo_studio::ui::fonts::install)
-        .build_ui_state(|ui, app: &mut StudioApp| app.show(ui), app)
+    common::ui::window(app, (1200.0, 800.0))
 }
 
-/// Runs frames until `done` holds, failing after a deadline (the job runs on its own thread).
-fn run_until(harness: &mut Harness<'static, StudioApp>, what: &str, done: impl Fn(&StudioApp) -> bool) {
-    let deadline = Instant::now() + Duration::from_secs(10);
-    while !done(harness.state()) {
-        assert!(Instant::now() < deadline, "timed out waiting for {what}");
-        harness.step();
-    }
-    frames(harness);
-}
+use common::ui::run_until;
 
 /// A few frames: the app keeps repainting while a board is connected, so it never "settles".
 fn frames(harness: &mut Harness<'static, StudioApp>) {

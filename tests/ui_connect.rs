@@ -3,6 +3,8 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
+mod common;
+
 use std::net::SocketAddr;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -33,10 +35,7 @@ fn app(opener: Opener, waker: Waker) -> StudioApp {
 }
 
 fn harness(app: StudioApp) -> Harness<'static, StudioApp> {
-    Harness::builder()
-        .with_size(egui::vec2(1300.0, 800.0))
-        .with_context_setup(servo_studio::ui::fonts::install)
-        .build_ui_state(|ui, app: &mut StudioApp| app.show(ui), app)
+    common::ui::window(app, (1300.0, 800.0))
 }
 
 /// Pumps the app each time it is woken, until `done` or 10 s.

@@ -4,28 +4,23 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
+mod common;
+
 use std::time::{Duration, Instant};
 
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
-use servo_studio::link::{LinkEvent, no_waker};
+use servo_studio::link::LinkEvent;
 use servo_studio::project::{Family, Project};
 use servo_studio::protocol::rflex::Command;
 use servo_studio::sim::{BaseState, RflexSimCommand, RflexSimEvent};
 use servo_studio::ui::{Action, StudioApp, Tab};
 
 fn harness() -> Harness<'static, StudioApp> {
-    let data = tempfile::tempdir().unwrap().keep();
-    let mut app = StudioApp::new(Project::empty(Family::Rflex), None, no_waker()).with_data_dir(data);
+    let mut app = common::ui::editor(Project::empty(Family::Rflex));
     app.apply(Action::ConnectDemo);
     assert!(app.link.as_ref().is_some_and(|link| link.rflex().is_some()), "{:?}", app.status);
-    app.apply(Action::ShowTab(Tab::Drive));
-    let mut harness = Harness::builder()
-        .with_size(egui::vec2(1100.0, 700.0))
-        .with_context_setup(servo_studio::ui::fonts::install)
-        .build_ui_state(|ui, app: &mut StudioApp| app.show(ui), app);
-    harness.run_steps(2);
-    harness
+    common::ui::showing(app, Tab::Drive, (1100.0, 700.0))
 }
 
 fn status(harness: &Harness<'static, StudioApp>) -> String {

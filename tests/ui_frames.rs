@@ -5,11 +5,12 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
+mod common;
+
 use std::sync::Arc;
 use std::time::Duration;
 
 use crossbeam_channel::{Receiver, Sender};
-use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use servo_studio::link::{PortInfo, Waker};
 use servo_studio::project::{self, Project};
@@ -62,10 +63,7 @@ fn a_stuck_port_scan_and_a_slow_save_leave_the_window_drawing_and_stop_working()
         .with_data_dir(data.path().to_path_buf())
         .with_port_lister(lister)
         .with_file_writer(writer);
-    let mut harness = Harness::builder()
-        .with_size(egui::vec2(1200.0, 800.0))
-        .with_context_setup(servo_studio::ui::fonts::install)
-        .build_ui_state(|ui, app: &mut StudioApp| app.show(ui), app);
+    let mut harness = common::ui::window(app, (1200.0, 800.0));
     harness.state_mut().apply(Action::ConnectDemo);
     harness.step();
     scanning.recv_timeout(WAIT).expect("the port list is being read");

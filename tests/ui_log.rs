@@ -2,24 +2,20 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
+mod common;
+
 use std::time::{Duration, Instant};
 
-use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
-use servo_studio::link::no_waker;
 use servo_studio::project::ServoProject;
-use servo_studio::ui::{Action, StudioApp, Tab};
+use servo_studio::ui::{Action, Tab};
 
 #[test]
 fn the_log_shows_decoded_frames_and_filters_them() {
-    let data = tempfile::tempdir().unwrap().keep();
-    let mut app = StudioApp::new(ServoProject::default(), None, no_waker()).with_data_dir(data);
+    let mut app = common::ui::editor(ServoProject::default());
     app.apply(Action::ConnectDemo);
     app.apply(Action::ShowTab(Tab::Log));
-    let mut harness = Harness::builder()
-        .with_size(egui::vec2(1300.0, 800.0))
-        .with_context_setup(servo_studio::ui::fonts::install)
-        .build_ui_state(|ui, app: &mut StudioApp| app.show(ui), app);
+    let mut harness = common::ui::window(app, (1300.0, 800.0));
     // The status queries on connecting and their answers fill the log.
     let deadline = Instant::now() + Duration::from_secs(10);
     while harness.state().link.as_ref().unwrap().log.len() < 8 {

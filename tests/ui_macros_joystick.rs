@@ -2,12 +2,12 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
+mod common;
+
 use std::path::Path;
-use std::time::{Duration, Instant};
 
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
-use servo_studio::link::no_waker;
 use servo_studio::project::{self, Command, Macro, Run, ServoProject};
 use servo_studio::protocol::servo::ButtonEvent;
 use servo_studio::sim::SimCommand;
@@ -18,15 +18,7 @@ fn fixture() -> ServoProject {
 }
 
 fn harness(project: ServoProject, tab: Tab) -> Harness<'static, StudioApp> {
-    let data = tempfile::tempdir().unwrap().keep();
-    let mut app = StudioApp::new(project, None, no_waker()).with_data_dir(data);
-    app.apply(Action::ShowTab(tab));
-    let mut harness = Harness::builder()
-        .with_size(egui::vec2(1300.0, 900.0))
-        .with_context_setup(servo_studio::ui::fonts::install)
-        .build_ui_state(|ui, app: &mut StudioApp| app.show(ui), app);
-    harness.run_steps(3);
-    harness
+    common::ui::showing(common::ui::editor(project), tab, (1300.0, 900.0))
 }
 
 #[test]
@@ -83,14 +75,7 @@ fn adding_a_macro_opens_it() {
     );
 }
 
-/// Runs frames until `done`, failing after a deadline (events come from the board's thread).
-fn run_until(harness: &mut Harness<'static, StudioApp>, what: &str, done: impl Fn(&StudioApp) -> bool) {
-    let deadline = Instant::now() + Duration::from_secs(10);
-    while !done(harness.state()) {
-        assert!(Instant::now() < deadline, "timed out waiting for {what}");
-        harness.step();
-    }
-}
+use common::ui::run_until;
 
 #[test]
 fn a_button_pressed_on_the_remote_is_picked_or_added() {

@@ -4,6 +4,8 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
+mod common;
+
 use std::time::{Duration, Instant};
 
 use egui::accesskit::Role;
@@ -38,18 +40,11 @@ fn project() -> Project {
 }
 
 fn harness(tab: Tab) -> Harness<'static, StudioApp> {
-    let data = tempfile::tempdir().unwrap().keep();
-    let mut app = StudioApp::new(project(), None, no_waker()).with_data_dir(data);
+    let mut app = common::ui::editor(project());
     app.apply(Action::ConnectDemo);
     assert!(app.link.as_ref().is_some_and(|link| link.plen2().is_some()), "{:?}", app.status);
     assert!(app.status.as_ref().unwrap().text.contains("factory-fresh"), "{:?}", app.status);
-    app.apply(Action::ShowTab(tab));
-    let mut harness = Harness::builder()
-        .with_size(egui::vec2(1200.0, 800.0))
-        .with_context_setup(servo_studio::ui::fonts::install)
-        .build_ui_state(|ui, app: &mut StudioApp| app.show(ui), app);
-    harness.run_steps(2);
-    harness
+    common::ui::showing(app, tab, (1200.0, 800.0))
 }
 
 fn inspect(harness: &Harness<'static, StudioApp>) -> Plen2State {
@@ -192,12 +187,8 @@ fn showing_out_of_range_values_does_not_change_them() {
         max_tenths_deg: 900,
         home_tenths_deg: 0,
     });
-    let data = tempfile::tempdir().unwrap().keep();
-    let app = StudioApp::new(document.clone(), None, no_waker()).with_data_dir(data);
-    let mut harness = Harness::builder()
-        .with_size(egui::vec2(1200.0, 800.0))
-        .with_context_setup(servo_studio::ui::fonts::install)
-        .build_ui_state(|ui, app: &mut StudioApp| app.show(ui), app);
+    let app = common::ui::editor(document.clone());
+    let mut harness = common::ui::window(app, (1200.0, 800.0));
     for tab in [Tab::Motions, Tab::Joints] {
         harness.state_mut().apply(Action::ShowTab(tab));
         harness.run_steps(3);
@@ -213,10 +204,7 @@ fn the_pacing_is_chosen_in_the_connection_settings_and_used_at_the_next_connecti
     use servo_studio::device::plen2::PacingMode;
     let data = tempfile::tempdir().unwrap();
     let app = StudioApp::new(project(), None, no_waker()).with_data_dir(data.path().to_path_buf());
-    let mut harness = Harness::builder()
-        .with_size(egui::vec2(1200.0, 800.0))
-        .with_context_setup(servo_studio::ui::fonts::install)
-        .build_ui_state(|ui, app: &mut StudioApp| app.show(ui), app);
+    let mut harness = common::ui::window(app, (1200.0, 800.0));
     harness.run();
     assert_eq!(harness.state().plen2.pacing, PacingMode::Adaptive, "adaptive by default");
     harness.get_by_label("Pacing").click();
@@ -240,12 +228,8 @@ fn the_motion_editor_says_what_the_robot_really_does_with_an_edge_motion() {
     document.plen2.motions[0].loop_range =
         Some(servo_studio::project::plen2::LoopRange { begin_frame: 0, end_frame: 1, count: 0 });
     document.plen2.motions[0].frames[0].transition_ms = 20;
-    let data = tempfile::tempdir().unwrap().keep();
-    let app = StudioApp::new(document, None, no_waker()).with_data_dir(data);
-    let mut harness = Harness::builder()
-        .with_size(egui::vec2(1200.0, 800.0))
-        .with_context_setup(servo_studio::ui::fonts::install)
-        .build_ui_state(|ui, app: &mut StudioApp| app.show(ui), app);
+    let app = common::ui::editor(document);
+    let mut harness = common::ui::window(app, (1200.0, 800.0));
     harness.state_mut().apply(Action::ShowTab(Tab::Motions));
     harness.run_steps(3);
     assert!(harness.query_by_label_contains("This motion never ends on the robot").is_some());

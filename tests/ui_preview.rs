@@ -6,27 +6,20 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
+mod common;
+
 use std::time::{Duration, Instant};
 
 use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
-use servo_studio::link::no_waker;
 use servo_studio::project::plen2::{Frame, Joint, JointSetting, Motion, Plen2Project, Pose};
 use servo_studio::project::{self, Family, Project};
 use servo_studio::sim::{BaseState, RflexSimCommand};
 use servo_studio::ui::{Action, StudioApp, Tab};
 
 fn harness(project: Project, tab: Tab) -> Harness<'static, StudioApp> {
-    let data = tempfile::tempdir().unwrap().keep();
-    let mut app = StudioApp::new(project, None, no_waker()).with_data_dir(data);
-    app.apply(Action::ShowTab(tab));
-    let mut harness = Harness::builder()
-        .with_size(egui::vec2(1400.0, 900.0))
-        .with_context_setup(servo_studio::ui::fonts::install)
-        .build_ui_state(|ui, app: &mut StudioApp| app.show(ui), app);
-    harness.run_steps(2);
-    harness
+    common::ui::showing(common::ui::editor(project), tab, (1400.0, 900.0))
 }
 
 /// Drags the time cursor to `fraction` of its length and lets go there.
@@ -228,14 +221,10 @@ fn on_the_walls(harness: &Harness<'static, StudioApp>, slack: f64) -> Result<usi
 
 #[test]
 fn the_world_view_maps_the_rooms_walls_as_the_base_drives() {
-    let data = tempfile::tempdir().unwrap().keep();
-    let mut app = StudioApp::new(Project::empty(Family::Rflex), None, no_waker()).with_data_dir(data);
+    let mut app = common::ui::editor(Project::empty(Family::Rflex));
     app.apply(Action::ConnectDemo);
     app.apply(Action::ShowTab(Tab::Drive));
-    let mut harness = Harness::builder()
-        .with_size(egui::vec2(1400.0, 900.0))
-        .with_context_setup(servo_studio::ui::fonts::install)
-        .build_ui_state(|ui, app: &mut StudioApp| app.show(ui), app);
+    let mut harness = common::ui::window(app, (1400.0, 900.0));
     harness.run_steps(2);
     assert!(harness.query_by_role_and_label(Role::Image, "World view").is_some());
     step_until(&mut harness, "a full sonar sweep", |h| {

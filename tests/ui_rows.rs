@@ -9,11 +9,12 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::cast_possible_truncation, clippy::cast_sign_loss)]
 
+mod common;
+
 use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::{By, Queryable, by};
 use servo_studio::device::{Direction, LogEntry};
-use servo_studio::link::no_waker;
 use servo_studio::project::plen2::{Frame, Motion, PlayEntry, PlayList, Plen2Project, Pose};
 use servo_studio::project::{
     Action, Button, Command, Family, JoystickTable, Macro, Project, Run, Servo, ServoProject, Step,
@@ -30,17 +31,14 @@ const MARGIN: usize = 3;
 const STATUS: &str = "status line";
 
 fn harness(project: Project, tab: Tab, connect: bool, (width, height): (f32, f32)) -> Harness<'static, StudioApp> {
-    let data = tempfile::tempdir().unwrap().keep();
-    let mut app = StudioApp::new(project, None, no_waker()).with_data_dir(data);
+    let mut app = common::ui::editor(project);
     if connect {
         app.apply(UiAction::ConnectDemo);
         assert!(app.link.is_some(), "{:?}", app.status);
     }
     app.apply(UiAction::ShowTab(tab));
     app.status = Some(StatusLine { text: STATUS.into(), is_error: false });
-    let mut harness = Harness::builder()
-        .with_size(egui::vec2(width, height))
-        .with_context_setup(servo_studio::ui::fonts::install)
+    let mut harness = common::ui::builder((width, height))
         .with_accessibility_check(false)
         .build_ui_state(|ui, app: &mut StudioApp| app.show(ui), app);
     harness.run_steps(3);

@@ -3,6 +3,8 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
+mod common;
+
 use std::time::{Duration, Instant};
 
 use egui::accesskit::Role;
@@ -32,10 +34,7 @@ fn new_app(project: ServoProject) -> StudioApp {
 
 fn harness(app: StudioApp) -> Harness<'static, StudioApp> {
     // Missing glyphs panic in the harness: the shipped CJK font must cover every caption.
-    Harness::builder()
-        .with_size(egui::vec2(1200.0, 700.0))
-        .with_context_setup(servo_studio::ui::fonts::install)
-        .build_ui_state(|ui, app: &mut StudioApp| app.show(ui), app)
+    common::ui::window(app, (1200.0, 700.0))
 }
 
 fn demo_harness() -> Harness<'static, StudioApp> {

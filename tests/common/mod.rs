@@ -5,6 +5,8 @@ use std::io::{BufRead, BufReader, Read, Write};
 use std::process::{Child, Stdio};
 use std::time::Duration;
 
+pub mod ui;
+
 use servo_studio::project::{Action, Button, Command, JoystickTable, Macro, Run, Servo, ServoProject, Step};
 
 /// A `servo-studio sim` process, killed when dropped.

@@ -1,0 +1,46 @@
+//! The editor in a test window, built one way for every ui test: the shipped
+//! fonts installed (a caption's missing glyph fails the test), its own data
+//! folder, and a deadline on anything waited for.
+
+use std::time::{Duration, Instant};
+
+use egui_kittest::{Harness, HarnessBuilder};
+use servo_studio::link::no_waker;
+use servo_studio::project::Project;
+use servo_studio::ui::{Action, StudioApp, Tab};
+
+/// A test window of `size` (the shipped fonts installed), to build with a state.
+pub fn builder((width, height): (f32, f32)) -> HarnessBuilder<StudioApp> {
+    Harness::builder().with_size(egui::vec2(width, height)).with_context_setup(servo_studio::ui::fonts::install)
+}
+
+/// A window of `size` showing `app`.
+pub fn window(app: StudioApp, size: (f32, f32)) -> Harness<'static, StudioApp> {
+    builder(size).build_ui_state(|ui, app: &mut StudioApp| app.show(ui), app)
+}
+
+/// An editor on `project`, keeping its backups and recovery file in a folder of its own.
+pub fn editor(project: impl Into<Project>) -> StudioApp {
+    let data = tempfile::tempdir().unwrap().keep();
+    StudioApp::new(project, None, no_waker()).with_data_dir(data)
+}
+
+/// `app` showing `tab` in a window of `size`, after a few frames.
+pub fn showing(mut app: StudioApp, tab: Tab, size: (f32, f32)) -> Harness<'static, StudioApp> {
+    app.apply(Action::ShowTab(tab));
+    let mut harness = window(app, size);
+    harness.run_steps(3);
+    harness
+}
+
+/// Runs frames until `done` holds, failing after 10 s (a board or a file
+/// answers on its own thread).
+pub fn run_until(harness: &mut Harness<'static, StudioApp>, what: &str, done: impl Fn(&StudioApp) -> bool) {
+    let deadline = Instant::now() + Duration::from_secs(10);
+    while !done(harness.state()) {
+        assert!(Instant::now() < deadline, "timed out waiting for {what}");
+        harness.step();
+    }
+    // A connected board keeps the window repainting: it never "settles".
+    harness.run_steps(3);
+}
