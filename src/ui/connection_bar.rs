@@ -158,3 +158,63 @@ pub fn status_text(status: &LinkStatus, language: Language) -> String {
     parts.extend(status.details.iter().cloned());
     parts.join(" · ")
 }
+
+#[cfg(test)]
+mod tests {
+    use egui_kittest::Harness;
+    use egui_kittest::kittest::Queryable;
+
+    use super::*;
+
+    type Bar = (ConnectionBar, Vec<Action>);
+
+    fn bar(status: LinkStatus, ports: Vec<PortInfo>) -> Harness<'static, Bar> {
+        Harness::builder()
+            .with_size(egui::vec2(1100.0, 120.0))
+            .with_context_setup(crate::ui::fonts::install)
+            .build_ui_state(
+                move |ui, (bar, actions): &mut Bar| {
+                    bar.ui(ui, (&status, &ports, Language::English), actions, |ui, _| {
+                        ui.label("the family's own picker");
+                    });
+                },
+                (ConnectionBar::default(), Vec::new()),
+            )
+    }
+
+    #[test]
+    fn connect_sends_the_first_port_found_at_the_familys_line_rate_and_the_family_picker_is_in_the_bar() {
+        let status = LinkStatus { family: Family::Plen2, can_connect: true, ..LinkStatus::default() };
+        let ports = vec![PortInfo { name: "/dev/ttyUSB7".into(), description: "test adapter".into() }];
+        let mut harness = bar(status, ports);
+        harness.run();
+        assert!(harness.query_by_label("the family's own picker").is_some());
+        harness.get_by_label("Connect").click();
+        harness.run();
+        assert_eq!(harness.state().1, [Action::Connect { port: "/dev/ttyUSB7".into(), baud: 2_000_000 }]);
+    }
+
+    #[test]
+    fn a_family_this_build_cannot_drive_offers_no_connect() {
+        let status = LinkStatus { family: Family::Servo, can_connect: false, ..LinkStatus::default() };
+        let ports = vec![PortInfo { name: "/dev/ttyUSB0".into(), description: String::new() }];
+        let mut harness = bar(status, ports);
+        harness.run();
+        harness.get_by_label("Connect").click();
+        harness.get_by_label("Demo board").click();
+        harness.run();
+        assert_eq!(harness.state().1, []);
+    }
+
+    #[test]
+    fn the_status_line_says_what_the_family_said_of_its_board() {
+        let status = LinkStatus {
+            label: Some("Demo board".into()),
+            details: vec!["Project 7".into(), "Battery 81.5 %".into()],
+            ..LinkStatus::default()
+        };
+        assert_eq!(status_text(&status, Language::English), "Connected to Demo board · Project 7 · Battery 81.5 %");
+        let connecting = LinkStatus { connecting: Some("/dev/ttyUSB0".into()), ..LinkStatus::default() };
+        assert!(status_text(&connecting, Language::English).contains("/dev/ttyUSB0"));
+    }
+}

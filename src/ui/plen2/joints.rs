@@ -152,3 +152,74 @@ fn settings_editor(ui: &mut egui::Ui, view: &JointsView<'_>, words: &Strings, ac
         }
     });
 }
+
+#[cfg(test)]
+mod tests {
+    use egui::accesskit::Role;
+    use egui_kittest::Harness;
+    use egui_kittest::kittest::Queryable;
+
+    use super::*;
+    use crate::ui::i18n::Language;
+
+    type Panel = (Layout, Vec<Action>);
+
+    fn joints(project: Plen2Project, connected: bool) -> Harness<'static, Panel> {
+        let pose = super::super::homes(&project);
+        Harness::builder()
+            .with_size(egui::vec2(900.0, 700.0))
+            .with_context_setup(crate::ui::fonts::install)
+            .build_ui_state(
+                move |panel, (layout, actions): &mut Panel| {
+                    let view = JointsView { project: &project, pose: &pose, connected, capture_slot: Some(3) };
+                    ui(panel, &view, layout, Language::English.strings(), actions);
+                },
+                (Layout::default(), Vec::new()),
+            )
+    }
+
+    fn set(actions: &[Action]) -> Vec<(Joint, i16)> {
+        actions
+            .iter()
+            .filter_map(|action| match action {
+                Action::Plen2(Plen2Action::SetJoint { joint, tenths }) => Some((*joint, *tenths)),
+                _ => None,
+            })
+            .collect()
+    }
+
+    /// ←/→ on a focused joint move it 1° (10 tenths), Shift 10°, never past
+    /// the limit the robot holds.
+    #[test]
+    fn keys_nudge_the_focused_joint_within_its_limits() {
+        let mut project = Plen2Project::default();
+        let joint = Joint::ALL[0];
+        let home = joint.factory_home_tenths_deg();
+        project.joints.push(JointSetting {
+            joint,
+            min_tenths_deg: home - 50,
+            max_tenths_deg: home + 15,
+            home_tenths_deg: home,
+        });
+        let mut harness = joints(project, true);
+        harness.run();
+        harness.get_all_by_role(Role::Slider).next().unwrap().focus();
+        harness.run();
+        harness.key_press(egui::Key::ArrowRight);
+        harness.run();
+        assert_eq!(set(&harness.state().1), [(joint, home + 10)]);
+        harness.key_press_modifiers(egui::Modifiers::SHIFT, egui::Key::ArrowLeft);
+        harness.run();
+        assert_eq!(set(&harness.state().1)[1], (joint, home - 50), "10° down from home stops at the 5° limit");
+    }
+
+    #[test]
+    fn home_needs_a_robot_and_capture_goes_to_the_selected_motion() {
+        let mut harness = joints(Plen2Project::default(), false);
+        harness.run();
+        harness.get_by_label("Home").click();
+        harness.get_by_label_contains("Capture into frame").click();
+        harness.run();
+        assert_eq!(harness.state().1, [Action::Plen2(Plen2Action::CaptureFrame { slot: 3 })]);
+    }
+}

@@ -171,3 +171,88 @@ impl DrivePanel {
         });
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use egui_kittest::Harness;
+    use egui_kittest::kittest::Queryable;
+
+    use super::*;
+    use crate::project::rflex::Robot;
+    use crate::ui::i18n::Language;
+
+    type Panel = (DrivePanel, Vec<Action>);
+
+    fn drive(connected: bool) -> Harness<'static, Panel> {
+        let view = DriveView {
+            connected,
+            settings: DriveSettings::default(),
+            limits: Robot::B21r.limits(),
+            commanded: (0.0, 0.0),
+            measured: (0.0, 0.0),
+            brake: Some(true),
+            sonar_on: false,
+        };
+        Harness::builder()
+            .with_size(egui::vec2(760.0, 420.0))
+            .with_context_setup(crate::ui::fonts::install)
+            .build_ui_state(
+                move |ui, (panel, actions): &mut Panel| panel.ui(ui, &view, Language::English.strings(), actions),
+                (DrivePanel::default(), Vec::new()),
+            )
+    }
+
+    fn drove(actions: &[Action]) -> Vec<(f64, f64)> {
+        actions
+            .iter()
+            .filter_map(|action| match action {
+                Action::Rflex(RflexAction::Drive { speed_m_per_s, turn_rad_per_s }) => {
+                    Some((*speed_m_per_s, *turn_rad_per_s))
+                }
+                _ => None,
+            })
+            .collect()
+    }
+
+    #[test]
+    fn an_arrow_held_drives_at_the_top_speed_and_letting_go_stops_in_the_same_frame() {
+        let mut harness = drive(true);
+        harness.run();
+        harness.key_down(egui::Key::ArrowUp);
+        harness.key_down(egui::Key::ArrowLeft);
+        harness.step();
+        let top = DriveSettings::default();
+        let asked = drove(&harness.state().1);
+        assert_eq!(asked.last(), Some(&(top.max_speed_m_per_s, top.max_turn_rad_per_s)), "{asked:?}");
+        harness.key_up(egui::Key::ArrowUp);
+        harness.key_up(egui::Key::ArrowLeft);
+        harness.step();
+        assert_eq!(harness.state().1.last(), Some(&Action::Stop), "released: stopped at once");
+        assert_eq!(harness.state().0.asked(), (0.0, 0.0));
+    }
+
+    #[test]
+    fn space_stops_a_base_driving_on_its_keys() {
+        let mut harness = drive(true);
+        harness.key_down(egui::Key::ArrowDown);
+        harness.step();
+        assert_eq!(drove(&harness.state().1), [(-DriveSettings::default().max_speed_m_per_s, 0.0)]);
+        harness.key_press(egui::Key::Space);
+        harness.step();
+        assert!(harness.state().1.contains(&Action::Stop));
+        harness.key_up(egui::Key::ArrowDown);
+    }
+
+    #[test]
+    fn with_no_base_nothing_is_sent_and_brake_and_sonar_are_off() {
+        let mut harness = drive(false);
+        harness.key_down(egui::Key::ArrowUp);
+        harness.step();
+        harness.get_by_label("Brake").click();
+        harness.get_by_label("Sonar").click();
+        harness.step();
+        harness.key_up(egui::Key::ArrowUp);
+        harness.step();
+        assert_eq!(harness.state().1, [], "no command without a base");
+    }
+}
