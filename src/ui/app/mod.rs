@@ -542,7 +542,7 @@ pub struct Remembered {
     pub plen2_pacing: crate::device::plen2::PacingMode,
     /// How each family's panels were laid out: servo, PLEN2, rFLEX.
     #[serde(default)]
-    pub layouts: [Layout; 3],
+    pub layouts: Vec<Layout>,
 }
 
 /// How long the editor, ending on a signal, waits for a board operation to
@@ -561,7 +561,7 @@ impl StudioApp {
             tab: self.tab.name().to_string(),
             family: self.document.project.family,
             plen2_pacing: self.plen2.pacing,
-            layouts: Family::ALL.map(|family| self.layout(family)),
+            layouts: Family::ALL.iter().map(|family| self.layout(*family)).collect(),
         }
     }
 
