@@ -5,8 +5,8 @@
 
 use super::error::{ContentError, EncodeError};
 use super::records::{
-    ActionRecord, CommandType, JoystickTableRecord, ListEntry, MacroRecord, ServoMove, ServoParameter, ServoStatus,
-    ServoSwitches,
+    ActionRecord, Coded, CommandType, JoystickTableRecord, ListEntry, MacroRecord, ServoMove, ServoParameter,
+    ServoStatus, ServoSwitches,
 };
 use super::wire::{Reader, Writer};
 
@@ -112,16 +112,6 @@ impl Codec<u32> for ButtonId {
     fn words(&self, value: &u32) -> String {
         format!("button 0x{value:08x}")
     }
-}
-
-/// A one-byte code with a name for each value.
-pub(super) trait Coded: Sized {
-    /// The byte.
-    fn code(self) -> u8;
-    /// Reads it from `field`.
-    fn read(r: &mut Reader<'_>, field: &'static str) -> Result<Self, ContentError>;
-    /// Its name.
-    fn words(self) -> &'static str;
 }
 
 /// A one-byte code in `field`.

@@ -1,9 +1,18 @@
 //! The compound values that several board messages share (`board.md` §2),
 //! each with its own wire layout.
 
-use super::codec::Coded;
 use super::error::{ContentError, EncodeError};
 use super::wire::{Reader, Writer};
+
+/// A one-byte code with a name for each value.
+pub(crate) trait Coded: Sized {
+    /// The byte.
+    fn code(self) -> u8;
+    /// Reads it from `field`.
+    fn read(r: &mut Reader<'_>, field: &'static str) -> Result<Self, ContentError>;
+    /// Its name.
+    fn words(self) -> &'static str;
+}
 
 /// A one-byte code: each value's byte and name once, and what a wrong byte should have been.
 macro_rules! coded {

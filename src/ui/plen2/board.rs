@@ -7,6 +7,7 @@ use crate::device::Phase;
 use crate::project::plen2::{Motion, Plen2Project, SLOTS};
 use crate::ui::action::{Action, FileRequest, Plen2Action, Plen2Intent};
 use crate::ui::i18n::{Language, Strings};
+use crate::ui::plen2::captions::Plen2Words;
 use crate::ui::rows;
 
 /// What the robot panel draws.
@@ -127,10 +128,10 @@ pub fn robot_panel(ui: &mut egui::Ui, view: &RobotView<'_>, language: Language, 
         ui.heading(words.board);
         let idle = view.operation.is_none();
         ui.add_enabled_ui(view.connected && idle, |ui| {
-            if ui.button(words.read_robot).clicked() {
+            if ui.button(words.plen2().read_robot).clicked() {
                 actions.push(Action::Plen2(Plen2Action::Robot(Plen2Intent::Read)));
             }
-            if ui.button(words.upload_motions).on_hover_text(words.upload_hint).clicked() {
+            if ui.button(words.plen2().upload_motions).on_hover_text(words.upload_hint).clicked() {
                 actions.push(Action::Plen2(Plen2Action::Robot(Plen2Intent::Upload)));
             }
             if ui.add_enabled(view.robot_read, egui::Button::new(words.confirm_read)).clicked() {
@@ -167,7 +168,7 @@ pub fn robot_panel(ui: &mut egui::Ui, view: &RobotView<'_>, language: Language, 
             ui.label(text);
         }
     }
-    ui.label(words.slot_map);
+    ui.label(words.plen2().slot_map);
     // Ten slots a row; only the rows in view are laid out.
     let per_row = 10;
     let rows_count = view.slots.len().div_ceil(per_row);

@@ -10,6 +10,7 @@ use crate::project::plen2::{FACTORY_LIMIT_TENTHS_DEG, Joint, JointSetting, Plen2
 use crate::ui::action::{Action, Plen2Action, Plen2Intent};
 use crate::ui::i18n::Strings;
 use crate::ui::layout::{self, Layout, Pane};
+use crate::ui::plen2::captions::Plen2Words;
 use crate::ui::rows;
 
 /// The limits and home a joint has: the project's settings, else the factory's.
@@ -44,13 +45,13 @@ pub fn ui(ui: &mut egui::Ui, view: &JointsView<'_>, layout: &mut Layout, words: 
             actions.push(Action::Plen2(Plen2Action::Home));
         }
         if let Some(slot) = view.capture_slot
-            && ui.button(format!("{} ({} {slot})", words.capture_frame, words.slot)).clicked()
+            && ui.button(format!("{} ({} {slot})", words.plen2().capture_frame, words.slot)).clicked()
         {
             actions.push(Action::Plen2(Plen2Action::CaptureFrame { slot }));
         }
     });
     let settings = (&mut layout.settings_share, &mut layout.settings_open);
-    layout::over(ui, "plen2-joint-settings", settings, words.joint_settings, |ui, pane| match pane {
+    layout::over(ui, "plen2-joint-settings", settings, words.plen2().joint_settings, |ui, pane| match pane {
         Pane::First => sliders(ui, view, actions),
         Pane::Second => {
             egui::ScrollArea::vertical().id_salt("plen2-settings-scroll").show(ui, |ui| {
@@ -142,7 +143,10 @@ fn settings_editor(ui: &mut egui::Ui, view: &JointsView<'_>, words: &Strings, ac
     }
     ui.horizontal(|ui| {
         if ui
-            .add_enabled(view.connected && !view.project.joints.is_empty(), egui::Button::new(words.write_joints))
+            .add_enabled(
+                view.connected && !view.project.joints.is_empty(),
+                egui::Button::new(words.plen2().write_joints),
+            )
             .clicked()
         {
             actions.push(Action::Plen2(Plen2Action::Robot(Plen2Intent::WriteJoints)));

@@ -4,6 +4,7 @@
 //! does with the actions its panels push.
 
 mod board;
+mod captions;
 mod joints;
 mod live;
 mod motions;
@@ -27,6 +28,7 @@ use crate::ui::family::{FamilyUi, Panel};
 use crate::ui::i18n::{Language, Strings};
 use crate::ui::layout::{Layout, Pane};
 use crate::ui::operation::{Operation, Step};
+use crate::ui::plen2::captions::Plen2Words;
 use crate::ui::shell::{RunningOperation, Shell, ShellView};
 
 #[allow(non_upper_case_globals)]
@@ -441,7 +443,7 @@ impl FamilyUi for Plen2Ui {
                     ui.selectable_value(&mut pacing, option, language.pacing(option));
                 }
             });
-        picked.response.labelled_by(pacing_label.id).on_hover_text(words.pacing_hint);
+        picked.response.labelled_by(pacing_label.id).on_hover_text(words.plen2().pacing_hint);
         if pacing != self.pacing {
             actions.push(Action::Plen2(Plen2Action::SetPacing(pacing)));
         }
@@ -452,7 +454,7 @@ impl FamilyUi for Plen2Ui {
     }
 
     fn demo_connected(&self, words: &Strings) -> &'static str {
-        words.msg_connected_demo_plen2
+        words.plen2().msg_connected_demo_plen2
     }
 
     fn stop(&mut self, shell: &mut Shell<'_>) {
@@ -461,7 +463,7 @@ impl FamilyUi for Plen2Ui {
         if let Some(link) = shell.link.as_mut() {
             let _ = link.stop();
         }
-        shell.report(shell.words().msg_plen2_stopped, false);
+        shell.report(shell.words().plen2().msg_plen2_stopped, false);
     }
 
     fn disconnected(&mut self) {

@@ -10,6 +10,7 @@ use crate::project::{Edit, Location, Problem};
 use crate::ui::action::{Action, FileRequest, Plen2Action};
 use crate::ui::i18n::Strings;
 use crate::ui::layout::{self, Layout, Pane, Part};
+use crate::ui::plen2::captions::Plen2Words;
 use crate::ui::shell::ShellView;
 use crate::ui::{plot, rows};
 
@@ -60,7 +61,7 @@ impl MotionsPanel {
         }
         ui.horizontal(|ui| {
             ui.heading(words.motions);
-            if ui.button(words.add_motion).clicked() {
+            if ui.button(words.plen2().add_motion).clicked() {
                 let slot = (0..SLOTS).find(|slot| !project.motions.iter().any(|m| m.slot == *slot)).unwrap_or(0);
                 let motion = Motion {
                     slot,
@@ -84,7 +85,7 @@ impl MotionsPanel {
         let mut picked = None;
         // The frame values' width beside the plot, remembered with the rest.
         let mut values_width = layout.values_width;
-        layout::list_and_editor(ui, "plen2-motions", layout, words.frame_and_plot, |ui, part| match part {
+        layout::list_and_editor(ui, "plen2-motions", layout, words.plen2().frame_and_plot, |ui, part| match part {
             Part::List => rows::names(ui, "plen2-motion-list", project.motions.len(), |ui, index| {
                 let motion = &project.motions[index];
                 let mark = if flagged.contains(&motion.slot) { "! " } else { "" };
@@ -168,11 +169,12 @@ impl MotionsPanel {
             {
                 actions.push(edit(project, |p| p.motions[index].name = name, key("name")));
             }
-            if ui.add_enabled(connected, egui::Button::new(words.play_on_robot)).on_hover_text("$PM").clicked() {
+            if ui.add_enabled(connected, egui::Button::new(words.plen2().play_on_robot)).on_hover_text("$PM").clicked()
+            {
                 actions.push(Action::Plen2(Plen2Action::PlayMotion(motion.slot)));
             }
             // The shell asks where, off the frame; the answer comes back as a save.
-            if ui.button("motion.json…").on_hover_text(words.motion_json_hint).clicked() {
+            if ui.button("motion.json…").on_hover_text(words.plen2().motion_json_hint).clicked() {
                 let name = format!("{:02X}_{}.json", motion.slot, motion.name.replace(' ', "_"));
                 actions.push(Action::AskFile(FileRequest::MotionJson { slot: motion.slot, name }));
             }
@@ -189,7 +191,7 @@ impl MotionsPanel {
         ui.horizontal(|ui| {
             let frames = u8::try_from(motion.frames.len().saturating_sub(1)).unwrap_or(0);
             let mut looping = motion.loop_range.is_some();
-            if ui.checkbox(&mut looping, words.loop_frames).changed() {
+            if ui.checkbox(&mut looping, words.plen2().loop_frames).changed() {
                 let range = looping.then_some(LoopRange { begin_frame: 0, end_frame: frames, count: 255 });
                 actions.push(edit(project, |p| p.motions[index].loop_range = range, None));
             }
@@ -214,7 +216,7 @@ impl MotionsPanel {
             }
             ui.separator();
             let mut jumping = motion.jump_slot.is_some();
-            if ui.checkbox(&mut jumping, words.jump_to).changed() {
+            if ui.checkbox(&mut jumping, words.plen2().jump_to).changed() {
                 actions.push(edit(project, |p| p.motions[index].jump_slot = jumping.then_some(0), None));
             }
             if let Some(mut jump) = motion.jump_slot
@@ -272,13 +274,16 @@ impl MotionsPanel {
                 *clipboard = Some(*frame);
             }
             if ui
-                .add_enabled(clipboard.is_some() && motion.frames.len() < 20, egui::Button::new(words.paste).small())
+                .add_enabled(
+                    clipboard.is_some() && motion.frames.len() < 20,
+                    egui::Button::new(words.plen2().paste).small(),
+                )
                 .clicked()
                 && let Some(copied) = *clipboard
             {
                 actions.push(edit(project, |p| p.motions[index].frames.insert(f + 1, copied), None));
             }
-            if ui.small_button(words.mirror).clicked() {
+            if ui.small_button(words.plen2().mirror).clicked() {
                 let mirrored = frame.values_tenths_deg.mirrored();
                 actions.push(edit(project, |p| p.motions[index].frames[f].values_tenths_deg = mirrored, None));
             }
@@ -299,7 +304,7 @@ impl MotionsPanel {
                     None,
                 ));
             }
-            if ui.add_enabled(connected, egui::Button::new(words.play_from_here).small()).clicked() {
+            if ui.add_enabled(connected, egui::Button::new(words.plen2().play_from_here).small()).clicked() {
                 actions.push(Action::Plen2(Plen2Action::PlayFrom { slot: motion.slot, frame: f }));
             }
         });

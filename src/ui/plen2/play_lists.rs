@@ -7,6 +7,7 @@ use crate::project::plen2::{PlayEntry, PlayList, Plen2Project};
 use crate::ui::action::{Action, Plen2Action};
 use crate::ui::i18n::Strings;
 use crate::ui::layout::{self, Layout, Pane};
+use crate::ui::plen2::captions::Plen2Words;
 use crate::ui::rows;
 
 /// The panel's own state: which list is open.
@@ -34,7 +35,7 @@ impl PlayListsPanel {
     ) {
         ui.horizontal(|ui| {
             ui.heading(words.play_lists);
-            if ui.button(words.add_play_list).clicked() {
+            if ui.button(words.plen2().add_play_list).clicked() {
                 let name = format!("{} {}", words.play_lists, project.play_lists.len() + 1);
                 actions.push(edit(project, |p| p.play_lists.push(PlayList { name, entries: Vec::new() })));
                 self.selected = project.play_lists.len();
@@ -79,13 +80,13 @@ impl PlayListsPanel {
                 actions.push(edit(project, |p| p.play_lists[index].name = name));
             }
             if ui
-                .add_enabled(connected && !list.entries.is_empty(), egui::Button::new(words.play_on_robot))
+                .add_enabled(connected && !list.entries.is_empty(), egui::Button::new(words.plen2().play_on_robot))
                 .on_hover_text("#RI, #PU…, #PO")
                 .clicked()
             {
                 actions.push(Action::Plen2(Plen2Action::PlayList(index)));
             }
-            if ui.button(words.add_entry).clicked() {
+            if ui.button(words.plen2().add_entry).clicked() {
                 let slot = project.motions.first().map_or(0, |m| m.slot);
                 actions.push(edit(project, |p| p.play_lists[index].entries.push(PlayEntry { slot, plays: 1 })));
             }
@@ -107,7 +108,7 @@ impl PlayListsPanel {
                 (motions[i].slot, format!("{} {}", motions[i].slot, motions[i].name))
             });
             ui.horizontal(|ui| {
-                ui.label(words.plays);
+                ui.label(words.plen2().plays);
                 ui.add(egui::DragValue::new(&mut changed.plays));
             });
             if changed != *entry {

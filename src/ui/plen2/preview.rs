@@ -8,6 +8,7 @@ use crate::device::plen2::playback::{self, DEVICE_IDS, Playback, Settings, Store
 use crate::figure::{self, Chain};
 use crate::project::plen2::{Joint, Plen2Project};
 use crate::ui::i18n::Strings;
+use crate::ui::plen2::captions::Plen2Words;
 use crate::ui::transport::Transport;
 use crate::ui::view3d::{Scene, View};
 
@@ -103,10 +104,10 @@ impl Preview {
     ) {
         let now = ui.input(|input| input.time);
         ui.horizontal(|ui| {
-            let label = ui.label(words.played_after);
+            let label = ui.label(words.plen2().played_after);
             let mut after = self.after;
             let name = |slot: Option<u8>| match slot {
-                None => words.power_up.to_string(),
+                None => words.plen2().power_up.to_string(),
                 Some(slot) => {
                     let motion = project.motions.iter().find(|m| m.slot == slot);
                     format!("{slot} {}", motion.map_or("", |m| m.name.as_str()))
@@ -122,7 +123,7 @@ impl Preview {
                 })
                 .response
                 .labelled_by(label.id)
-                .on_hover_text(words.snap_note);
+                .on_hover_text(words.plen2().snap_note);
             self.after = after;
         });
         self.refresh(project, revision, slot);
@@ -153,10 +154,10 @@ impl Preview {
         let first_ms =
             project.motions.iter().find(|m| m.slot == slot).and_then(|m| m.frames.first()).map(|f| f.transition_ms);
         if first_ms.is_some_and(|ms| playback::cycles_for(ms) == 0) {
-            ui.colored_label(ui.visuals().error_fg_color, words.first_frame_undefined);
+            ui.colored_label(ui.visuals().error_fg_color, words.plen2().first_frame_undefined);
         }
         if !played.ended {
-            ui.colored_label(ui.visuals().warn_fg_color, words.motion_never_ends);
+            ui.colored_label(ui.visuals().warn_fg_color, words.plen2().motion_never_ends);
         }
         // Where the robot stands now (the sliders) against where the motion starts.
         let mut standing = [0; DEVICE_IDS];
@@ -165,7 +166,8 @@ impl Preview {
             standing[device] = pose[joint.index()] - settings[device].0;
         }
         if playback::clamped(&standing, settings) != playback::clamped(&played.from, settings) {
-            ui.colored_label(ui.visuals().warn_fg_color, words.snap_warning).on_hover_text(words.snap_note);
+            ui.colored_label(ui.visuals().warn_fg_color, words.plen2().snap_warning)
+                .on_hover_text(words.plen2().snap_note);
         }
         let Some(cycle) = played.cycle_at(self.transport.t_ms) else {
             self.shown = None;

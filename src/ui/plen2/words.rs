@@ -5,6 +5,7 @@ use crate::device::plen2::{Plen2OpError, SlotResult};
 use crate::ui::i18n::Language;
 
 use super::{Plen2Failure, Plen2Result};
+use crate::ui::plen2::captions::Plen2Words;
 
 impl Plen2Failure {
     /// Why a PLEN2 operation failed, in `language`.
@@ -28,7 +29,7 @@ impl Plen2Result {
     pub fn words(&self, language: Language) -> (String, bool) {
         let words = language.strings();
         match self {
-            Plen2Result::Read(count) => (format!("{} {count}", words.robot_read), false),
+            Plen2Result::Read(count) => (format!("{} {count}", words.plen2().robot_read), false),
             Plen2Result::Uploaded(report) => {
                 let verified = report.slots.iter().filter(|(_, r)| *r == SlotResult::Verified).count();
                 let mut text = format!("{} {verified}/{}", words.uploaded_items, report.slots.len());
@@ -39,14 +40,14 @@ impl Plen2Result {
                     .map(|(slot, _)| slot.to_string())
                     .collect();
                 if !differing.is_empty() {
-                    text.push_str(&format!("\n{} {}", words.slots_differ, differing.join(", ")));
+                    text.push_str(&format!("\n{} {}", words.plen2().slots_differ, differing.join(", ")));
                 }
                 if let Some(backup) = &report.backup {
                     text.push_str(&format!("\n{} {}", words.backup_at, backup.display()));
                 }
                 (text, !differing.is_empty())
             }
-            Plen2Result::JointsWritten(count) => (format!("{}: {count}", words.write_joints), false),
+            Plen2Result::JointsWritten(count) => (format!("{}: {count}", words.plen2().write_joints), false),
             Plen2Result::Invalid(problems) => {
                 (language.plen2_op_error(&Plen2OpError::Invalid { problems: problems.clone() }), true)
             }

@@ -11,6 +11,7 @@ use crate::project::Edit;
 use crate::project::rflex::{DriveSettings, SpeedLimits};
 use crate::ui::action::{Action, RflexAction};
 use crate::ui::i18n::Strings;
+use crate::ui::rflex::captions::RflexWords;
 
 /// Side of the drag pad, points.
 const PAD_SIZE: f32 = 220.0;
@@ -94,11 +95,12 @@ impl DrivePanel {
                 self.asked = (0.0, 0.0);
                 actions.push(Action::Rflex(RflexAction::SetBrake(!braked)));
             }
-            if ui.add_enabled(view.connected, egui::Button::new(words.sonar).selected(view.sonar_on)).clicked() {
+            if ui.add_enabled(view.connected, egui::Button::new(words.rflex().sonar).selected(view.sonar_on)).clicked()
+            {
                 actions.push(Action::Rflex(RflexAction::SetSonar(!view.sonar_on)));
             }
         });
-        ui.label(words.pad_hint);
+        ui.label(words.rflex().pad_hint);
         ui.horizontal_top(|ui| {
             let (rect, response) = ui.allocate_exact_size(egui::vec2(PAD_SIZE, PAD_SIZE), egui::Sense::drag());
             let painter = ui.painter_at(rect);
@@ -133,9 +135,9 @@ impl DrivePanel {
                 let mut changed = settings;
                 let limits = view.limits;
                 let speed = 0.05..=limits.max_speed_m_per_s;
-                ui.add(egui::Slider::new(&mut changed.max_speed_m_per_s, speed).text(words.max_speed));
+                ui.add(egui::Slider::new(&mut changed.max_speed_m_per_s, speed).text(words.rflex().max_speed));
                 let turn = 0.1..=limits.max_turn_rad_per_s;
-                ui.add(egui::Slider::new(&mut changed.max_turn_rad_per_s, turn).text(words.max_turn));
+                ui.add(egui::Slider::new(&mut changed.max_turn_rad_per_s, turn).text(words.rflex().max_turn));
                 let accel = 0.1..=limits.max_accel_m_per_s2;
                 ui.add(egui::Slider::new(&mut changed.accel_m_per_s2, accel).text(words.acceleration));
                 if changed != settings {
@@ -154,7 +156,7 @@ impl DrivePanel {
             }
             if view.connected && !focused {
                 // Keys and the pad do nothing without the window's focus: say why.
-                ui.colored_label(ui.visuals().warn_fg_color, words.drive_needs_focus);
+                ui.colored_label(ui.visuals().warn_fg_color, words.rflex().drive_needs_focus);
             }
             let wanted = if !view.connected || !focused {
                 (0.0, 0.0)

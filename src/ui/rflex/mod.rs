@@ -3,6 +3,7 @@
 //! actions its panels push. A base is never left driving: leaving the Drive
 //! tab, losing the window's focus, STOP and a closed link all stop it.
 
+mod captions;
 mod drive;
 mod telemetry;
 mod world;
@@ -17,6 +18,7 @@ use crate::ui::board_link::{BoardLink, LinkNotice};
 use crate::ui::family::{FamilyUi, Panel};
 use crate::ui::i18n::Strings;
 use crate::ui::layout::{self, Layout, Pane};
+use crate::ui::rflex::captions::RflexWords;
 use crate::ui::shell::{Shell, ShellView};
 
 #[allow(non_upper_case_globals)]
@@ -76,7 +78,7 @@ impl RflexUi {
                     base.set_brake(on);
                     // The connection message said "braked": the status follows the brake.
                     let words = shell.words();
-                    shell.report(if on { words.msg_brake_on } else { words.msg_brake_released }, false);
+                    shell.report(if on { words.rflex().msg_brake_on } else { words.rflex().msg_brake_released }, false);
                 }
             }
             RflexAction::SetSonar(on) => {
@@ -112,7 +114,7 @@ impl FamilyUi for RflexUi {
     }
 
     fn view_caption(&self, words: &Strings) -> &'static str {
-        words.world_view
+        words.rflex().world_view
     }
 
     fn layout(&self) -> Layout {
@@ -146,7 +148,7 @@ impl FamilyUi for RflexUi {
     }
 
     fn demo_connected(&self, words: &Strings) -> &'static str {
-        words.msg_connected_demo_rflex
+        words.rflex().msg_connected_demo_rflex
     }
 
     fn stop(&mut self, shell: &mut Shell<'_>) {
@@ -155,7 +157,7 @@ impl FamilyUi for RflexUi {
             // Both axes to 0 at once (never fails; a lost link is reported by pump).
             let _ = link.stop();
         }
-        shell.report(shell.words().msg_base_stopped, false);
+        shell.report(shell.words().rflex().msg_base_stopped, false);
     }
 
     /// A new connection: the sonar as the project starts it, the pad at rest.
@@ -172,7 +174,7 @@ impl FamilyUi for RflexUi {
     fn notice(&mut self, shell: &mut Shell<'_>, notice: LinkNotice) {
         if notice == LinkNotice::BaseSilent {
             self.disconnected();
-            shell.report(shell.words().msg_base_silent, true);
+            shell.report(shell.words().rflex().msg_base_silent, true);
         }
     }
 

@@ -7,6 +7,7 @@ use egui_plot::{Line, Plot, PlotPoints};
 use crate::device::rflex::Telemetry;
 use crate::ui::i18n::Strings;
 use crate::ui::plot;
+use crate::ui::rflex::captions::RflexWords;
 
 /// Draws the panel.
 pub fn ui(ui: &mut egui::Ui, telemetry: &Telemetry, words: &Strings) {
@@ -41,11 +42,12 @@ pub fn ui(ui: &mut egui::Ui, telemetry: &Telemetry, words: &Strings) {
     ui.label(format!("{}: {pressed}", words.bumpers));
     let stick =
         telemetry.joystick.map_or("—".to_string(), |(x, y, buttons)| format!("x {x}  y {y}  buttons {buttons:08b}"));
-    ui.monospace(format!("{}: {stick}", words.joystick_state));
+    ui.monospace(format!("{}: {stick}", words.rflex().joystick_state));
     ui.label(format!("{}: {}", words.checksum_failures, telemetry.checksum_failures));
     let echoing = telemetry.sonar_m.values().filter(|range| range.is_some()).count();
     let of = telemetry.layout().map_or(telemetry.sonar_m.len(), |layout| layout.sonar_count());
     let unknown = telemetry.unknown_sonar.len();
     let unknown = if unknown == 0 { String::new() } else { format!(" (+{unknown} ?)") };
-    ui.label(format!("{}: {echoing}/{of}{unknown}", words.sonar)).on_hover_text(words.sonar_unknown_hint);
+    ui.label(format!("{}: {echoing}/{of}{unknown}", words.rflex().sonar))
+        .on_hover_text(words.rflex().sonar_unknown_hint);
 }

@@ -15,6 +15,7 @@ use crate::device::rflex::{
 use crate::ui::action::{Action, RflexAction};
 use crate::ui::i18n::Strings;
 use crate::ui::plot;
+use crate::ui::rflex::captions::RflexWords;
 
 /// Metres a point stands for at the start (6 m across a 600-point view).
 const START_SCALE: f64 = 0.01;
@@ -132,17 +133,17 @@ pub fn panel(
     actions: &mut Vec<Action>,
 ) {
     ui.horizontal(|ui| {
-        ui.heading(words.world_view);
-        ui.checkbox(&mut view.follow, words.follow);
-        if ui.add_enabled(telemetry.is_some(), egui::Button::new(words.clear_map)).clicked() {
+        ui.heading(words.rflex().world_view);
+        ui.checkbox(&mut view.follow, words.rflex().follow);
+        if ui.add_enabled(telemetry.is_some(), egui::Button::new(words.rflex().clear_map)).clicked() {
             actions.push(Action::Rflex(RflexAction::ClearMap));
         }
     });
-    ui.label(egui::RichText::new(words.world_hint).small().weak());
+    ui.label(egui::RichText::new(words.rflex().world_hint).small().weak());
     match telemetry {
         Some(telemetry) => {
             let rect = ui.available_rect_before_wrap();
-            view.show(ui, rect, telemetry, words.world_view);
+            view.show(ui, rect, telemetry, words.rflex().world_view);
         }
         None => {
             ui.label(words.not_connected);

@@ -12,6 +12,7 @@ use crate::ui::action::{Action, ServoAction};
 use crate::ui::derive::Derived;
 use crate::ui::i18n::Strings;
 use crate::ui::layout::{self, Layout, Part};
+use crate::ui::servo::captions::ServoWords;
 use crate::ui::shell::ShellView;
 use crate::ui::{plot, rows};
 
@@ -86,15 +87,16 @@ impl ActionPanel {
         let words = view.language.strings();
         ui.horizontal(|ui| {
             ui.heading(words.actions);
-            if ui.button(words.add_action).clicked() {
+            if ui.button(words.servo().add_action).clicked() {
                 let id = next_free_id(project.actions.iter().map(|a| a.id));
-                let action = ProjectAction { id, caption: format!("{} {id}", words.action_word), steps: Vec::new() };
+                let action =
+                    ProjectAction { id, caption: format!("{} {id}", words.servo().action_word), steps: Vec::new() };
                 actions.push(Action::Edit { edit: Edit::AddAction(action), coalesce: None });
                 self.selected = project.actions.len();
             }
         });
         if project.actions.is_empty() {
-            ui.label(words.no_actions);
+            ui.label(words.servo().no_actions);
             return;
         }
         self.selected = self.selected.min(project.actions.len() - 1);
@@ -111,7 +113,7 @@ impl ActionPanel {
         // The preview's time cursor, drawn on the plot too (while the preview is open).
         let cursor = layout.view_open.then_some(preview.transport.t_ms);
         let mut seek = None;
-        layout::list_and_editor(ui, "actions", layout, words.timeline_and_plot, |ui, part| match part {
+        layout::list_and_editor(ui, "actions", layout, words.servo().timeline_and_plot, |ui, part| match part {
             Part::List => rows::names(ui, "action-list", project.actions.len(), |ui, index| {
                 let action = &project.actions[index];
                 if ui.selectable_label(index == *selected, format!("{} {}", action.id, action.caption)).clicked() {
@@ -155,7 +157,7 @@ impl ActionPanel {
         let action = &project.actions[index];
         // Buttons wrap under the caption when the pane is narrow, never clipped.
         ui.horizontal_wrapped(|ui| {
-            let label = ui.label(format!("{} {}", words.action_word, action.id));
+            let label = ui.label(format!("{} {}", words.servo().action_word, action.id));
             let mut caption = action.caption.clone();
             if ui.text_edit_singleline(&mut caption).labelled_by(label.id).changed() {
                 actions.push(set(
@@ -164,7 +166,7 @@ impl ActionPanel {
                     Some(format!("action {} caption", action.id)),
                 ));
             }
-            if ui.add_enabled(connected, egui::Button::new(words.play_on_board)).clicked() {
+            if ui.add_enabled(connected, egui::Button::new(words.servo().play_on_board)).clicked() {
                 actions.push(Action::Servo(ServoAction::PlayAction(action.id)));
             }
             if ui.button(words.preview).clicked() {
@@ -178,7 +180,7 @@ impl ActionPanel {
             ui.colored_label(ui.visuals().warn_fg_color, words.lang.problem(&problem.kind));
         }
         let headings = words.headings();
-        let heading = [headings.step, words.servo_word, headings.angle, headings.interval, "", ""];
+        let heading = [headings.step, words.servo().servo_word, headings.angle, headings.interval, "", ""];
         // The steps fill the pane but for the "Add step" row under them.
         let height = ui.available_height() - rows::widget_row_height(ui) - 2.0 * ui.spacing().item_spacing.y;
         rows::table(ui, "steps", &heading, action.steps.len(), height, |row, position| {
@@ -193,7 +195,7 @@ impl ActionPanel {
                 // The step's number: a click shows in the preview where its servo arrives.
                 let number = ui.add(egui::Button::new(format!("{}", position + 1)).frame(false));
                 row_id = number.id;
-                if number.on_hover_text(words.step_seek_hint).clicked() {
+                if number.on_hover_text(words.servo().step_seek_hint).clicked() {
                     seek = Some(f64::from(step.interval_10ms.max(0)) * 10.0);
                 }
             });
@@ -249,7 +251,7 @@ impl ActionPanel {
             });
         });
         let unused = project.servos.iter().find(|servo| action.steps.iter().all(|step| step.servo_id != servo.id));
-        if ui.add_enabled(unused.is_some(), egui::Button::new(words.add_step)).clicked()
+        if ui.add_enabled(unused.is_some(), egui::Button::new(words.servo().add_step)).clicked()
             && let Some(servo) = unused
         {
             let mut more = action.clone();

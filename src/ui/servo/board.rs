@@ -7,6 +7,7 @@ use crate::device::servo::Item;
 use crate::ui::action::{Action, BoardIntent, FileRequest, ServoAction};
 use crate::ui::i18n::Language;
 use crate::ui::rows;
+use crate::ui::servo::captions::ServoWords;
 
 /// The differences of a comparison in `language`.
 pub fn difference_lines(pending: &PendingConfirm, language: Language) -> Vec<String> {
@@ -40,12 +41,15 @@ pub fn ui(ui: &mut egui::Ui, view: &BoardView<'_>, language: Language, actions: 
     match (&view.project_bytes, view.board_total_bytes) {
         (Ok(bytes), Some(total)) if total > 0 => {
             let fraction = *bytes as f32 / total as f32;
-            let bar = egui::ProgressBar::new(fraction.min(1.0))
-                .text(format!("{} {bytes} {} {total}", words.project_needs, words.of_capacity));
+            let bar = egui::ProgressBar::new(fraction.min(1.0)).text(format!(
+                "{} {bytes} {} {total}",
+                words.servo().project_needs,
+                words.servo().of_capacity
+            ));
             ui.add(bar.fill(if fraction > 1.0 { ui.visuals().error_fg_color } else { ui.visuals().selection.bg_fill }));
         }
         (Ok(bytes), _) => {
-            ui.label(format!("{} {bytes}", words.project_needs));
+            ui.label(format!("{} {bytes}", words.servo().project_needs));
         }
         (Err(error), _) => {
             ui.colored_label(ui.visuals().error_fg_color, error);
@@ -55,10 +59,10 @@ pub fn ui(ui: &mut egui::Ui, view: &BoardView<'_>, language: Language, actions: 
     let idle = view.operation.is_none() && view.pending.is_none();
     ui.horizontal(|ui| {
         ui.add_enabled_ui(view.connected && idle, |ui| {
-            if ui.button(words.upload_to_board).on_hover_text(words.upload_hint).clicked() {
+            if ui.button(words.servo().upload_to_board).on_hover_text(words.upload_hint).clicked() {
                 actions.push(Action::Servo(ServoAction::BoardCompare(BoardIntent::Upload)));
             }
-            if ui.button(words.read_board).on_hover_text(words.read_hint).clicked() {
+            if ui.button(words.servo().read_board).on_hover_text(words.servo().read_hint).clicked() {
                 actions.push(Action::Servo(ServoAction::BoardCompare(BoardIntent::ReadIntoProject)));
             }
             // The shell asks where, off the frame; the answer comes back as a comparison.
@@ -74,8 +78,8 @@ pub fn ui(ui: &mut egui::Ui, view: &BoardView<'_>, language: Language, actions: 
     if let Some(operation) = view.operation {
         ui.separator();
         let what = match operation.kind {
-            ServoKind::Compare => words.reading_to_compare,
-            ServoKind::Upload { .. } => words.uploading,
+            ServoKind::Compare => words.servo().reading_to_compare,
+            ServoKind::Upload { .. } => words.servo().uploading,
         };
         ui.label(what);
         if let Some(progress) = &operation.progress {
@@ -95,7 +99,7 @@ pub fn ui(ui: &mut egui::Ui, view: &BoardView<'_>, language: Language, actions: 
         ui.separator();
         let differences = difference_lines(pending, language);
         if differences.is_empty() {
-            ui.label(words.already_identical);
+            ui.label(words.servo().already_identical);
         } else {
             ui.label(format!("{} {}", differences.len(), words.differences));
             let row_height = ui.text_style_height(&egui::TextStyle::Monospace);
@@ -106,9 +110,9 @@ pub fn ui(ui: &mut egui::Ui, view: &BoardView<'_>, language: Language, actions: 
         }
         ui.horizontal(|ui| {
             let confirm = match &pending.intent {
-                BoardIntent::Upload | BoardIntent::UploadAnyway => words.confirm_upload,
+                BoardIntent::Upload | BoardIntent::UploadAnyway => words.servo().confirm_upload,
                 BoardIntent::ReadIntoProject => words.confirm_read,
-                BoardIntent::ExportToFile(_) => words.confirm_export,
+                BoardIntent::ExportToFile(_) => words.servo().confirm_export,
             };
             if ui.button(confirm).clicked() {
                 actions.push(Action::Servo(ServoAction::BoardConfirm));
@@ -133,8 +137,8 @@ pub fn ui(ui: &mut egui::Ui, view: &BoardView<'_>, language: Language, actions: 
                 items.as_slice()
             }
             BoardResult::Invalid { .. } => {
-                let anyway = ui.add_enabled(view.connected && idle, egui::Button::new(words.upload_anyway));
-                if anyway.on_hover_text(words.upload_anyway_hint).clicked() {
+                let anyway = ui.add_enabled(view.connected && idle, egui::Button::new(words.servo().upload_anyway));
+                if anyway.on_hover_text(words.servo().upload_anyway_hint).clicked() {
                     actions.push(Action::Servo(ServoAction::BoardCompare(BoardIntent::UploadAnyway)));
                 }
                 &[]

@@ -8,6 +8,7 @@ use crate::ui::action::{Action, ServoAction};
 use crate::ui::i18n::Strings;
 use crate::ui::layout::{self, Layout, Pane};
 use crate::ui::rows;
+use crate::ui::servo::captions::ServoWords;
 
 /// What the panel draws besides the project.
 #[derive(Debug)]
@@ -32,9 +33,9 @@ pub struct JoystickPanel {
 
 fn event_name(event: ButtonEvent, words: &Strings) -> &'static str {
     match event {
-        ButtonEvent::Press => words.event_press,
-        ButtonEvent::LongPress => words.event_long_press,
-        ButtonEvent::Release => words.event_release,
+        ButtonEvent::Press => words.servo().event_press,
+        ButtonEvent::LongPress => words.servo().event_long_press,
+        ButtonEvent::Release => words.servo().event_release,
     }
 }
 
@@ -57,7 +58,7 @@ impl JoystickPanel {
         let project = view.project;
         ui.horizontal(|ui| {
             ui.heading(words.joystick);
-            if ui.button(words.add_table).clicked() {
+            if ui.button(words.servo().add_table).clicked() {
                 let id = next_free_id(project.joystick_tables.iter().map(|t| t.id));
                 let table = JoystickTable { id, caption: format!("{} {id}", words.table), buttons: Vec::new() };
                 actions.push(Action::Edit { edit: Edit::AddTable(table), coalesce: None });
@@ -65,7 +66,7 @@ impl JoystickPanel {
             }
         });
         let Some(index) = self.selected(project) else {
-            ui.label(words.no_tables);
+            ui.label(words.servo().no_tables);
             return;
         };
         self.selected = index;
@@ -86,7 +87,7 @@ impl JoystickPanel {
                     });
                 });
                 ui.separator();
-                ui.label(words.live_events);
+                ui.label(words.servo().live_events);
                 for (button_id, event) in view.events.iter().rev().take(12) {
                     ui.monospace(format!("0x{button_id:08x} {}", event_name(*event, words)));
                 }
@@ -116,7 +117,7 @@ impl JoystickPanel {
                     .push(set(JoystickTable { caption, ..table.clone() }, Some(format!("table {} caption", table.id))));
             }
             let mut active = project.active_table == Some(table.id);
-            if ui.checkbox(&mut active, words.active).changed() {
+            if ui.checkbox(&mut active, words.servo().active).changed() {
                 actions.push(Action::Edit { edit: Edit::SetActiveTable(active.then_some(table.id)), coalesce: None });
             }
             if ui.button(words.remove).clicked() {
@@ -124,11 +125,11 @@ impl JoystickPanel {
             }
         });
         ui.horizontal(|ui| {
-            let pick_text = if view.picking { words.waiting_for_button } else { words.pick_button };
+            let pick_text = if view.picking { words.servo().waiting_for_button } else { words.servo().pick_button };
             if ui.add_enabled(view.connected, egui::Button::new(pick_text).selected(view.picking)).clicked() {
                 actions.push(Action::Servo(ServoAction::PickButton { table_index: (!view.picking).then_some(index) }));
             }
-            if ui.button(words.add_button).clicked() {
+            if ui.button(words.servo().add_button).clicked() {
                 let used: Vec<i32> = table.buttons.iter().filter_map(|b| i32::try_from(b.id).ok()).collect();
                 let id = u32::try_from(next_free_id(used)).unwrap_or(1);
                 let mut more = table.clone();
@@ -152,9 +153,9 @@ impl JoystickPanel {
         let heading = [
             words.button,
             words.caption,
-            words.on_press,
-            words.on_long_press,
-            words.on_release,
+            words.servo().on_press,
+            words.servo().on_long_press,
+            words.servo().on_release,
             words.uninterruptible,
             "",
         ];

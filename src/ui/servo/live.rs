@@ -6,6 +6,7 @@ use std::time::Instant;
 use super::{CAPTURED_STEP_INTERVAL_10MS, LIVE_MOVE_INTERVAL_10MS, ServoUi};
 use crate::device::servo::ServoMove;
 use crate::project::{Action as ProjectAction, Edit, ServoProject, Step, next_free_id};
+use crate::ui::servo::captions::ServoWords;
 use crate::ui::shell::Shell;
 
 impl ServoUi {
@@ -18,7 +19,7 @@ impl ServoUi {
         self.pose.insert(servo_id, degree);
         if let Some(link) = shell.servo() {
             if link.stopped {
-                shell.report(shell.words().msg_press_resume, true);
+                shell.report(shell.words().servo().msg_press_resume, true);
                 return;
             }
             let servo_move = ServoMove { servo_id, degree, interval_10ms: LIVE_MOVE_INTERVAL_10MS };
@@ -48,13 +49,13 @@ impl ServoUi {
             })
             .collect();
         if steps.is_empty() {
-            shell.report(shell.words().msg_nothing_to_capture, true);
+            shell.report(shell.words().servo().msg_nothing_to_capture, true);
             return;
         }
         let id = next_free_id(project.actions.iter().map(|action| action.id));
         let caption = format!("{} {id}", shell.words().pose);
         shell.document.apply(Edit::AddAction(ProjectAction { id, caption: caption.clone(), steps }), None);
-        shell.report(format!("{} {id} \"{caption}\"", shell.words().msg_captured), false);
+        shell.report(format!("{} {id} \"{caption}\"", shell.words().servo().msg_captured), false);
     }
 
     /// Sends an action's steps as one live move (clamped to each servo's limits)
@@ -75,11 +76,11 @@ impl ServoUi {
             })
             .collect();
         let Some(link) = shell.servo() else {
-            shell.report(shell.words().msg_connect_for_play, true);
+            shell.report(shell.words().servo().msg_connect_for_play, true);
             return;
         };
         if link.stopped {
-            shell.report(shell.words().msg_press_resume, true);
+            shell.report(shell.words().servo().msg_press_resume, true);
             return;
         }
         if let Err(error) = link.move_now(moves.clone()) {
@@ -114,7 +115,7 @@ impl ServoUi {
         self.picked_button = Some(button_id);
         let Some(table) = shell.document.project.servo.joystick_tables.get(table_index) else { return };
         if table.buttons.iter().any(|button| button.id == button_id) {
-            shell.report(format!("{} 0x{button_id:08x}", shell.words().msg_picked), false);
+            shell.report(format!("{} 0x{button_id:08x}", shell.words().servo().msg_picked), false);
             return;
         }
         let mut table = table.clone();
@@ -127,6 +128,6 @@ impl ServoUi {
             uninterruptible: false,
         });
         shell.document.apply(Edit::SetTable { index: table_index, table }, None);
-        shell.report(format!("{} 0x{button_id:08x}", shell.words().msg_added_button), false);
+        shell.report(format!("{} 0x{button_id:08x}", shell.words().servo().msg_added_button), false);
     }
 }

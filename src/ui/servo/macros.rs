@@ -12,6 +12,7 @@ use crate::ui::action::{Action, ServoAction};
 use crate::ui::derive::Derived;
 use crate::ui::i18n::Strings;
 use crate::ui::layout::{self, Layout, Part};
+use crate::ui::servo::captions::ServoWords;
 use crate::ui::shell::ShellView;
 use crate::ui::{plot, rows};
 
@@ -108,12 +109,12 @@ impl MacroPanel {
         let words = view.language.strings();
         ui.horizontal(|ui| {
             ui.heading(words.macros);
-            if ui.button(words.add_macro).clicked() {
+            if ui.button(words.servo().add_macro).clicked() {
                 let id = next_free_id(project.macros.iter().map(|m| m.id));
                 actions.push(Action::Edit {
                     edit: Edit::AddMacro(Macro {
                         id,
-                        caption: format!("{} {id}", words.macro_word),
+                        caption: format!("{} {id}", words.servo().macro_word),
                         commands: Vec::new(),
                     }),
                     coalesce: None,
@@ -122,7 +123,7 @@ impl MacroPanel {
             }
         });
         if project.macros.is_empty() {
-            ui.label(words.no_macros);
+            ui.label(words.servo().no_macros);
             return;
         }
         self.selected = self.selected.min(project.macros.len() - 1);
@@ -138,7 +139,7 @@ impl MacroPanel {
         let selected = &mut self.selected;
         // The preview's time cursor, drawn on the plot too (while the preview is open).
         let cursor = layout.view_open.then_some(preview.transport.t_ms);
-        layout::list_and_editor(ui, "macros", layout, words.plot, |ui, part| match part {
+        layout::list_and_editor(ui, "macros", layout, words.servo().plot, |ui, part| match part {
             Part::List => rows::names(ui, "macro-list", project.macros.len(), |ui, index| {
                 let item = &project.macros[index];
                 let flagged = derived.flagged.contains(&item.id);
@@ -170,7 +171,7 @@ impl MacroPanel {
         let item = &project.macros[index];
         // Buttons wrap under the caption when the pane is narrow, never clipped.
         ui.horizontal_wrapped(|ui| {
-            let label = ui.label(format!("{} {}", words.macro_word, item.id));
+            let label = ui.label(format!("{} {}", words.servo().macro_word, item.id));
             let mut caption = item.caption.clone();
             if ui.text_edit_singleline(&mut caption).labelled_by(label.id).changed() {
                 let key = format!("macro {} caption", item.id);
@@ -181,7 +182,7 @@ impl MacroPanel {
                 Some(Err(error)) => ui.colored_label(ui.visuals().warn_fg_color, words.lang.timing_error(&error)),
                 None => ui.label(format!("{} …", words.total)),
             };
-            if ui.add_enabled(connected, egui::Button::new(words.run_on_board)).clicked() {
+            if ui.add_enabled(connected, egui::Button::new(words.servo().run_on_board)).clicked() {
                 actions.push(Action::Servo(ServoAction::RunMacro(item.id)));
             }
             if ui.button(words.remove).clicked() {
@@ -224,14 +225,14 @@ impl MacroPanel {
                 changed.commands.push(Command::once(run));
                 edit(index, changed, None)
             };
-            if ui.button(words.add_action_command).clicked() {
+            if ui.button(words.servo().add_action_command).clicked() {
                 let action_id = project.actions.first().map_or(1, |a| a.id);
                 actions.push(add(Run::Action { action_id }));
             }
-            if ui.button(words.add_delay).clicked() {
+            if ui.button(words.servo().add_delay).clicked() {
                 actions.push(add(Run::Delay { delay_ms: 500 }));
             }
-            if ui.button(words.add_macro_command).clicked() {
+            if ui.button(words.servo().add_macro_command).clicked() {
                 let macro_id = project.macros.iter().find(|m| m.id != item.id).map_or(item.id, |m| m.id);
                 actions.push(add(Run::Macro { macro_id }));
             }
@@ -270,17 +271,17 @@ impl MacroPanel {
         }
         let mut run = command.run;
         let kind_label = match run {
-            Run::Action { .. } => words.action_word,
-            Run::Delay { .. } => words.delay,
-            Run::Macro { .. } => words.macro_word,
+            Run::Action { .. } => words.servo().action_word,
+            Run::Delay { .. } => words.servo().delay,
+            Run::Macro { .. } => words.servo().macro_word,
         };
         egui::ComboBox::from_id_salt(("kind", position))
             .selected_text(kind_label)
             .show_ui(ui, |ui| {
                 let first_action = project.actions.first().map_or(1, |a| a.id);
-                ui.selectable_value(&mut run, Run::Action { action_id: first_action }, words.action_word);
-                ui.selectable_value(&mut run, Run::Delay { delay_ms: 500 }, words.delay);
-                ui.selectable_value(&mut run, Run::Macro { macro_id: item.id }, words.macro_word);
+                ui.selectable_value(&mut run, Run::Action { action_id: first_action }, words.servo().action_word);
+                ui.selectable_value(&mut run, Run::Delay { delay_ms: 500 }, words.servo().delay);
+                ui.selectable_value(&mut run, Run::Macro { macro_id: item.id }, words.servo().macro_word);
             })
             .response
             .labelled_by(row.id);

@@ -5,6 +5,7 @@
 
 mod actions;
 mod board;
+mod captions;
 mod joystick;
 mod live;
 mod macros;
@@ -29,6 +30,7 @@ use crate::ui::derive::Derived;
 use crate::ui::family::{FamilyUi, Panel};
 use crate::ui::i18n::{Language, Strings};
 use crate::ui::layout::Layout;
+use crate::ui::servo::captions::ServoWords;
 use crate::ui::shell::{Shell, ShellView};
 
 #[allow(non_upper_case_globals)]
@@ -112,7 +114,7 @@ impl ServoUi {
             ServoAction::Resume => {
                 if let Some(servo) = shell.servo_mut() {
                     servo.resume();
-                    shell.report(shell.words().msg_resumed, false);
+                    shell.report(shell.words().servo().msg_resumed, false);
                 }
             }
             ServoAction::CapturePose { from_board } => self.capture_pose(shell, from_board),
@@ -127,14 +129,14 @@ impl ServoUi {
             ServoAction::PreviewAction(action_id) => self.preview = Some((action_id, Instant::now())),
             ServoAction::RunMacro(macro_id) => match shell.servo_mut() {
                 Some(servo) => servo.run_macro(macro_id),
-                None => shell.report(shell.words().msg_connect_for_macro, true),
+                None => shell.report(shell.words().servo().msg_connect_for_macro, true),
             },
             ServoAction::PickButton { table_index } => match shell.servo_mut() {
                 Some(servo) => {
                     servo.subscribe_buttons(true);
                     self.picking = table_index;
                 }
-                None => shell.report(shell.words().msg_connect_for_pick, true),
+                None => shell.report(shell.words().servo().msg_connect_for_pick, true),
             },
         }
     }
@@ -178,7 +180,7 @@ impl ServoUi {
     pub fn summary(&self, language: Language) -> Option<(String, bool)> {
         let words = language.strings();
         if self.pending.is_some() {
-            return Some((words.msg_board_compared.to_string(), false));
+            return Some((words.servo().msg_board_compared.to_string(), false));
         }
         let result = self.board_result.as_ref()?;
         if let Some(error) = result.error_text(language) {
@@ -255,7 +257,7 @@ impl FamilyUi for ServoUi {
 
     fn toolbar(&mut self, ui: &mut egui::Ui, view: &ShellView<'_>, actions: &mut Vec<Action>) {
         // A board stopped by STOP holds every servo until told to go on.
-        if view.link.is_some_and(BoardLink::stopped) && ui.button(view.language.strings().resume).clicked() {
+        if view.link.is_some_and(BoardLink::stopped) && ui.button(view.language.strings().servo().resume).clicked() {
             actions.push(Action::Servo(ServoAction::Resume));
         }
     }
@@ -271,21 +273,21 @@ impl FamilyUi for ServoUi {
         }
         if let Some((free, total)) = servo.memory {
             parts.push(match total {
-                Some(total) => format!("{} {free} / {total} B", words.free_memory),
-                None => format!("{} {free} B", words.free_memory),
+                Some(total) => format!("{} {free} / {total} B", words.servo().free_memory),
+                None => format!("{} {free} B", words.servo().free_memory),
             });
         }
         parts
     }
 
     fn demo_connected(&self, words: &Strings) -> &'static str {
-        words.msg_connected_demo
+        words.servo().msg_connected_demo
     }
 
     fn stop(&mut self, shell: &mut Shell<'_>) {
         let Some(link) = shell.link.as_mut() else { return };
         match link.stop() {
-            Ok(()) => shell.report(shell.words().msg_stopped_all, false),
+            Ok(()) => shell.report(shell.words().servo().msg_stopped_all, false),
             Err(error) => shell.report(shell.language.request_error(&error), true),
         }
     }

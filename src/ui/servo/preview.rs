@@ -11,6 +11,7 @@ use crate::project::{self, ServoProject};
 use crate::ui::i18n::Strings;
 use crate::ui::layout;
 use crate::ui::rows;
+use crate::ui::servo::captions::ServoWords;
 use crate::ui::transport::Transport;
 use crate::ui::view3d::{Scene, View};
 
@@ -97,7 +98,7 @@ impl Preview {
         let view = if live { &mut self.live_view } else { &mut self.timed_view };
         let rigged = self.rig.as_ref().is_some_and(|(_, chain, ..)| chain.links.len() > 1);
         let bars = |ui: &mut egui::Ui| {
-            ui.label(words.not_rigged).on_hover_text(words.rig_hint);
+            ui.label(words.servo().not_rigged).on_hover_text(words.servo().rig_hint);
             let height = ui.available_height();
             rows::list(ui, "unrigged-servos", rows::name_row_height(ui), outside.len(), height, |ui, index| {
                 let servo = outside[index];
@@ -112,7 +113,7 @@ impl Preview {
             });
         };
         if !rigged {
-            ui.label(words.rig_hint);
+            ui.label(words.servo().rig_hint);
             bars(ui);
             return;
         }

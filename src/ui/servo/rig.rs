@@ -7,6 +7,7 @@ use crate::project::{Edit, RigAxis, RigJoint, Servo, ServoProject};
 use crate::ui::action::Action;
 use crate::ui::i18n::Strings;
 use crate::ui::rows;
+use crate::ui::servo::captions::ServoWords;
 
 /// A new servo in the rig: on the body, turning about y (a pitch).
 fn placed() -> RigJoint {
@@ -25,12 +26,12 @@ fn axis_name(axis: RigAxis) -> &'static str {
 pub fn table(ui: &mut egui::Ui, project: &ServoProject, height: f32, words: &Strings, actions: &mut Vec<Action>) {
     let heading = [
         words.servo_id,
-        words.in_rig,
-        words.mounted_on,
+        words.servo().in_rig,
+        words.servo().mounted_on,
         words.offset_mm,
         words.axis,
         words.reversed,
-        words.straight_at,
+        words.servo().straight_at,
     ];
     // Wider than a narrow pane: it scrolls sideways rather than hide its last columns.
     egui::ScrollArea::horizontal().id_salt("servo-rig-sideways").show(ui, |ui| {

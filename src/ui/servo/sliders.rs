@@ -10,6 +10,7 @@ use crate::ui::action::{Action, ServoAction};
 use crate::ui::i18n::Strings;
 use crate::ui::layout::{self, Layout, Pane};
 use crate::ui::rows;
+use crate::ui::servo::captions::ServoWords;
 
 /// What the panel draws.
 #[derive(Debug)]
@@ -45,24 +46,24 @@ impl ServoPanel {
     ) {
         ui.horizontal(|ui| {
             ui.heading(words.servos);
-            if ui.button(words.capture_pose).clicked() {
+            if ui.button(words.servo().capture_pose).clicked() {
                 actions.push(Action::Servo(ServoAction::CapturePose { from_board: false }));
             }
             if view.readback.is_some() {
-                if ui.button(words.capture_from_board).clicked() {
+                if ui.button(words.servo().capture_from_board).clicked() {
                     actions.push(Action::Servo(ServoAction::CapturePose { from_board: true }));
                 }
                 let mut polling = view.polling;
-                if ui.checkbox(&mut polling, words.read_angles).changed() {
+                if ui.checkbox(&mut polling, words.servo().read_angles).changed() {
                     actions.push(Action::Servo(ServoAction::SetPolling(polling)));
                 }
             }
         });
         if view.project.servos.is_empty() {
-            ui.label(words.no_servos);
+            ui.label(words.servo().no_servos);
         }
         let settings = (&mut layout.settings_share, &mut layout.settings_open);
-        layout::over(ui, "servo-settings", settings, words.servo_settings, |ui, pane| match pane {
+        layout::over(ui, "servo-settings", settings, words.servo().servo_settings, |ui, pane| match pane {
             Pane::First => self.sliders(ui, view, words, actions),
             Pane::Second => {
                 ui.horizontal(|ui| {
@@ -170,11 +171,11 @@ pub fn settings_ui(ui: &mut egui::Ui, project: &ServoProject, words: &Strings, a
             });
         });
         let free = (0..=254u8).find(|id| project.servo(*id).is_none());
-        if ui.add_enabled(free.is_some(), egui::Button::new(words.add_servo)).clicked()
+        if ui.add_enabled(free.is_some(), egui::Button::new(words.servo().add_servo)).clicked()
             && let Some(id) = free
         {
             actions.push(Action::Edit {
-                edit: Edit::AddServo(Servo::new(id, format!("{} {id}", words.servo_word))),
+                edit: Edit::AddServo(Servo::new(id, format!("{} {id}", words.servo().servo_word))),
                 coalesce: None,
             });
         }

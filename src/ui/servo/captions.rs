@@ -1,0 +1,299 @@
+//! The servo board's own captions, in English and Traditional Chinese: the
+//! words only its panels use (the shell's and the shared ones are in `ui::i18n`).
+//! A panel holding the interface's [`Strings`] reaches them as `words.servo()`.
+
+use crate::ui::i18n::{Language, Strings};
+
+/// The servo board's own captions.
+#[derive(Debug)]
+pub struct ServoCaptions {
+    /// "Upload anyway".
+    pub upload_anyway: &'static str,
+    /// Hover text of "Upload anyway".
+    pub upload_anyway_hint: &'static str,
+    /// "Free memory".
+    pub free_memory: &'static str,
+    /// "Resume".
+    pub resume: &'static str,
+    /// "Read angles".
+    pub read_angles: &'static str,
+    /// "Capture pose".
+    pub capture_pose: &'static str,
+    /// "Capture from board".
+    pub capture_from_board: &'static str,
+    /// "No servos yet: read a board, or add one".
+    pub no_servos: &'static str,
+    /// "Add servo".
+    pub add_servo: &'static str,
+    /// "press".
+    pub event_press: &'static str,
+    /// "long press".
+    pub event_long_press: &'static str,
+    /// "release".
+    pub event_release: &'static str,
+    /// "connected to the demo board (emulated, preloaded with this project)".
+    pub msg_connected_demo: &'static str,
+    /// "STOP: every servo stopped where it is, holding torque".
+    pub msg_stopped_all: &'static str,
+    /// "servos may move again".
+    pub msg_resumed: &'static str,
+    /// "connect a board to run a macro".
+    pub msg_connect_for_macro: &'static str,
+    /// "connect a board to pick buttons from its remote".
+    pub msg_connect_for_pick: &'static str,
+    /// "stopped: press Resume before moving servos".
+    pub msg_press_resume: &'static str,
+    /// "nothing to capture: the project has no servos".
+    pub msg_nothing_to_capture: &'static str,
+    /// "captured the pose as action".
+    pub msg_captured: &'static str,
+    /// "connect a board to play an action on it (Preview works without one)".
+    pub msg_connect_for_play: &'static str,
+    /// "picked button".
+    pub msg_picked: &'static str,
+    /// "added to the table: button".
+    pub msg_added_button: &'static str,
+    /// "Upload to board".
+    pub upload_to_board: &'static str,
+    /// "Read board into project".
+    pub read_board: &'static str,
+    /// "Compare, then replace the project (undoable)".
+    pub read_hint: &'static str,
+    /// "Reading the board to compare".
+    pub reading_to_compare: &'static str,
+    /// "Uploading".
+    pub uploading: &'static str,
+    /// "The board already holds exactly this project.".
+    pub already_identical: &'static str,
+    /// "Back up the board, then overwrite it".
+    pub confirm_upload: &'static str,
+    /// "Save the board to the file".
+    pub confirm_export: &'static str,
+    /// "project needs (bytes)".
+    pub project_needs: &'static str,
+    /// "of".
+    pub of_capacity: &'static str,
+    /// "Servo settings".
+    pub servo_settings: &'static str,
+    /// "Servo".
+    pub servo_word: &'static str,
+    /// "Add action".
+    pub add_action: &'static str,
+    /// "No actions yet: capture a pose, or add one".
+    pub no_actions: &'static str,
+    /// "Play on board".
+    pub play_on_board: &'static str,
+    /// "Add step".
+    pub add_step: &'static str,
+    /// "Macro".
+    pub macro_word: &'static str,
+    /// "Add macro".
+    pub add_macro: &'static str,
+    /// "No macros yet".
+    pub no_macros: &'static str,
+    /// "Run on board".
+    pub run_on_board: &'static str,
+    /// "Action".
+    pub action_word: &'static str,
+    /// "Delay".
+    pub delay: &'static str,
+    /// "+ Action".
+    pub add_action_command: &'static str,
+    /// "+ Delay".
+    pub add_delay: &'static str,
+    /// "+ Macro".
+    pub add_macro_command: &'static str,
+    /// "Add table".
+    pub add_table: &'static str,
+    /// "No joystick tables yet".
+    pub no_tables: &'static str,
+    /// "Live button events".
+    pub live_events: &'static str,
+    /// "Active".
+    pub active: &'static str,
+    /// "Press a button to pick it".
+    pub pick_button: &'static str,
+    /// "Waiting for a button… (click to stop)".
+    pub waiting_for_button: &'static str,
+    /// "Add button".
+    pub add_button: &'static str,
+    /// "Press".
+    pub on_press: &'static str,
+    /// "Long press".
+    pub on_long_press: &'static str,
+    /// "Release".
+    pub on_release: &'static str,
+    /// The lower pane of the action editor: "Timeline and plot".
+    pub timeline_and_plot: &'static str,
+    /// The lower pane of the macro composer: "Plot".
+    pub plot: &'static str,
+    /// The status after a board was read for comparison.
+    pub msg_board_compared: &'static str,
+    /// Hover text of a step's number (a click moves the preview's cursor to its end).
+    pub step_seek_hint: &'static str,
+    /// Servos shown as bars (no rig).
+    pub not_rigged: &'static str,
+    /// How to get a figure.
+    pub rig_hint: &'static str,
+    /// A rig joint's parent.
+    pub mounted_on: &'static str,
+    /// A rig joint's straight angle.
+    pub straight_at: &'static str,
+    /// Whether a servo is in the rig.
+    pub in_rig: &'static str,
+}
+
+const ENGLISH: ServoCaptions = ServoCaptions {
+    upload_anyway: "Upload anyway",
+    upload_anyway_hint: "Restore it exactly as it is (e.g. a backup of a board another tool wrote). The board is still compared first, backed up, and verified after writing.",
+    free_memory: "Free memory",
+    resume: "Resume",
+    read_angles: "Read angles",
+    capture_pose: "Capture pose",
+    capture_from_board: "Capture from board",
+    no_servos: "No servos yet: read a board, or add one",
+    add_servo: "Add servo",
+    event_press: "press",
+    event_long_press: "long press",
+    event_release: "release",
+    msg_connected_demo: "connected to the demo board (emulated, preloaded with this project)",
+    msg_stopped_all: "STOP: every servo stopped where it is, holding torque",
+    msg_resumed: "servos may move again",
+    msg_connect_for_macro: "connect a board to run a macro",
+    msg_connect_for_pick: "connect a board to pick buttons from its remote",
+    msg_press_resume: "stopped: press Resume before moving servos",
+    msg_nothing_to_capture: "nothing to capture: the project has no servos",
+    msg_captured: "captured the pose as action",
+    msg_connect_for_play: "connect a board to play an action on it (Preview works without one)",
+    msg_picked: "picked button",
+    msg_added_button: "added to the table: button",
+    upload_to_board: "Upload to board",
+    read_board: "Read board into project",
+    read_hint: "Compare, then replace the project (undoable)",
+    reading_to_compare: "Reading the board to compare",
+    uploading: "Uploading",
+    already_identical: "The board already holds exactly this project.",
+    confirm_upload: "Back up the board, then overwrite it",
+    confirm_export: "Save the board to the file",
+    project_needs: "project needs (bytes)",
+    of_capacity: "of",
+    servo_settings: "Servo settings",
+    servo_word: "Servo",
+    add_action: "Add action",
+    no_actions: "No actions yet: capture a pose, or add one",
+    play_on_board: "Play on board",
+    add_step: "Add step",
+    macro_word: "Macro",
+    add_macro: "Add macro",
+    no_macros: "No macros yet",
+    run_on_board: "Run on board",
+    action_word: "Action",
+    delay: "Delay",
+    add_action_command: "+ Action",
+    add_delay: "+ Delay",
+    add_macro_command: "+ Macro",
+    add_table: "Add table",
+    no_tables: "No joystick tables yet",
+    live_events: "Live button events",
+    active: "Active",
+    pick_button: "Press a button to pick it",
+    waiting_for_button: "Waiting for a button… (click to stop)",
+    add_button: "Add button",
+    on_press: "Press",
+    on_long_press: "Long press",
+    on_release: "Release",
+    timeline_and_plot: "Timeline and plot",
+    plot: "Plot",
+    msg_board_compared: "Board read: check what differs on the Board tab, then confirm",
+    step_seek_hint: "Show in the preview where this step's servo arrives",
+    not_rigged: "Not in the rig",
+    rig_hint: "Place the servos in a skeleton (Servo settings → Rig) to see the robot.",
+    mounted_on: "Mounted on",
+    straight_at: "Straight at (°)",
+    in_rig: "In rig",
+};
+
+const TRADITIONAL_CHINESE: ServoCaptions = ServoCaptions {
+    upload_anyway: "仍要上傳",
+    upload_anyway_hint: "照原樣還原（例如其他工具寫入的控制板備份）。仍會先比較、備份控制板，寫入後再驗證。",
+    free_memory: "可用記憶體",
+    resume: "繼續",
+    read_angles: "讀取角度",
+    capture_pose: "擷取姿勢",
+    capture_from_board: "從控制板擷取",
+    no_servos: "尚無舵機：請讀取控制板或新增舵機",
+    add_servo: "新增舵機",
+    event_press: "按下",
+    event_long_press: "長按",
+    event_release: "放開",
+    msg_connected_demo: "已連線至示範控制板（模擬，已載入此專案）",
+    msg_stopped_all: "停止：所有舵機停在原處並保持鎖定",
+    msg_resumed: "舵機可以再次移動",
+    msg_connect_for_macro: "請連接控制板以執行巨集",
+    msg_connect_for_pick: "請連接控制板以從遙控器選取按鍵",
+    msg_press_resume: "已停止：移動舵機前請按「繼續」",
+    msg_nothing_to_capture: "無法擷取：專案沒有舵機",
+    msg_captured: "已將姿勢擷取為動作",
+    msg_connect_for_play: "請連接控制板以播放動作（預覽不需控制板）",
+    msg_picked: "已選取按鍵",
+    msg_added_button: "已加入對應表：按鍵",
+    upload_to_board: "上傳至控制板",
+    read_board: "讀取控制板至專案",
+    read_hint: "先比較，再取代專案（可復原）",
+    reading_to_compare: "讀取控制板以比較",
+    uploading: "上傳中",
+    already_identical: "控制板內容已與此專案完全相同。",
+    confirm_upload: "備份控制板後覆寫",
+    confirm_export: "將控制板存成檔案",
+    project_needs: "專案所需（位元組）",
+    of_capacity: "／",
+    servo_settings: "舵機設定",
+    servo_word: "舵機",
+    add_action: "新增動作",
+    no_actions: "尚無動作：擷取姿勢或新增動作",
+    play_on_board: "在控制板上播放",
+    add_step: "新增步驟",
+    macro_word: "巨集",
+    add_macro: "新增巨集",
+    no_macros: "尚無巨集",
+    run_on_board: "在控制板上執行",
+    action_word: "動作",
+    delay: "延遲",
+    add_action_command: "+ 動作",
+    add_delay: "+ 延遲",
+    add_macro_command: "+ 巨集",
+    add_table: "新增對應表",
+    no_tables: "尚無遙控對應表",
+    live_events: "即時按鍵事件",
+    active: "使用中",
+    pick_button: "按下遙控器按鍵以選取",
+    waiting_for_button: "等待按鍵…（按此停止）",
+    add_button: "新增按鍵",
+    on_press: "按下",
+    on_long_press: "長按",
+    on_release: "放開",
+    timeline_and_plot: "時間軸與曲線圖",
+    plot: "曲線圖",
+    msg_board_compared: "已讀取控制板：請在「控制板」分頁檢查差異後再確認",
+    step_seek_hint: "在預覽中顯示此步驟的伺服機到達的位置",
+    not_rigged: "不在骨架中",
+    rig_hint: "在「舵機設定 → 骨架」中把舵機放進骨架，就能看到機器人。",
+    mounted_on: "裝在",
+    straight_at: "伸直角度（°）",
+    in_rig: "在骨架中",
+};
+
+/// The servo board's captions in the interface's language.
+pub trait ServoWords {
+    /// The servo board's captions in this language.
+    fn servo(&self) -> &'static ServoCaptions;
+}
+
+impl ServoWords for Strings {
+    fn servo(&self) -> &'static ServoCaptions {
+        match self.lang {
+            Language::English => &ENGLISH,
+            Language::TraditionalChinese => &TRADITIONAL_CHINESE,
+        }
+    }
+}
