@@ -55,7 +55,7 @@ fn play_on_board_moves_the_emulated_servos() {
     harness.run_steps(2);
     harness.get_by_label("Play on board").click();
     harness.run_steps(2);
-    let requester = harness.state().servo_board().unwrap().requester();
+    let requester = common::ui::servo_board(harness.state()).unwrap().requester();
     let deadline = Instant::now() + Duration::from_secs(5);
     loop {
         let servos = requester.query_servos(255).unwrap();

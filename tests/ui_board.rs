@@ -226,7 +226,9 @@ fn upload_anyway_restores_a_board_image_with_authoring_problems_exactly() {
     app.apply(Action::ShowTab(servo_studio::ui::Tab::Board));
     let mut harness = harness(app);
     // Wait for the board's status, so the bar's text no longer changes under the pointer.
-    run_until(&mut harness, "the board's status", |app| app.servo_board().is_some_and(|servo| servo.memory.is_some()));
+    run_until(&mut harness, "the board's status", |app| {
+        common::ui::servo_board(app).is_some_and(|servo| servo.memory.is_some())
+    });
     harness.get_by_label("Upload to board").click();
     frames(&mut harness);
     assert!(matches!(harness.state().servo.board_result, Some(BoardResult::Invalid { .. })));
@@ -245,7 +247,7 @@ fn upload_anyway_restores_a_board_image_with_authoring_problems_exactly() {
         "{:?}",
         harness.state().servo.board_result
     );
-    let requester = harness.state().servo_board().unwrap().requester();
+    let requester = common::ui::servo_board(harness.state()).unwrap().requester();
     let board =
         servo_studio::device::servo::read_image(&requester, &mut |_| {}, &servo_studio::device::Cancel::never())
             .unwrap();

@@ -101,7 +101,7 @@ fn a_slow_port_that_opens_connects_and_talks_to_the_board() {
     let image = ServoImage { project_id: 77, ..ServoImage::default() };
     let _board = servo_studio::link::spawn(board_end, ServoSim::new(SimConfig::default(), image), waker).unwrap();
     wait_for(&mut app, &woken, "the project id", |app| {
-        app.servo_board().is_some_and(|servo| servo.project_id == Some(77))
+        common::ui::servo_board(app).is_some_and(|servo| servo.project_id == Some(77))
     });
     assert!(app.connecting.is_none());
     assert_eq!(app.status.as_ref().unwrap().text, "connected to /dev/ttyUSB-slow");
@@ -239,7 +239,7 @@ fn gui_demo_without_a_file_opens_the_sample_robot_on_the_demo_board() {
     assert!(!app.document.dirty);
     // The demo board holds the sample: its project id comes back.
     wait_for(&mut app, &woken, "the demo board's project id", |app| {
-        app.servo_board().is_some_and(|servo| servo.project_id == Some(1601))
+        common::ui::servo_board(app).is_some_and(|servo| servo.project_id == Some(1601))
     });
 }
 

@@ -91,7 +91,7 @@ fn a_button_pressed_on_the_remote_is_picked_or_added() {
         link.demo_board().unwrap().command(SimCommand::Button { button_id, event: ButtonEvent::Press });
     };
     run_until(&mut harness, "the subscription", |app| {
-        app.servo_board()
+        common::ui::servo_board(app)
             .unwrap()
             .requester()
             .request(servo_studio::protocol::servo::Message::QueryProjectIdRequest)

@@ -238,3 +238,34 @@ fn the_motion_editor_says_what_the_robot_really_does_with_an_edge_motion() {
         servo_studio::project::validate(&harness.state().document.project).iter().map(ToString::to_string).collect();
     assert!(problems.iter().any(|p| p.contains("loop count 0 runs forever")), "{problems:?}");
 }
+
+/// motion.json… asks the shell where (the dialog is answered here), and the
+/// motion is written there off the frame, in the official editor's format.
+#[test]
+fn a_motion_is_saved_as_motion_json_where_the_user_chose() {
+    use servo_studio::ui::{FileRequest, Picker};
+    let data = tempfile::tempdir().unwrap();
+    let chosen = data.path().join("wave.json");
+    let answer = chosen.clone();
+    let offered = std::sync::Arc::new(std::sync::Mutex::new(None));
+    let seen = offered.clone();
+    let picker: Picker = std::sync::Arc::new(move |request: &FileRequest, waker: servo_studio::link::Waker| {
+        if let FileRequest::Export(export) = request {
+            *seen.lock().unwrap() = Some(export.name.clone());
+        }
+        let (tx, rx) = crossbeam_channel::bounded(1);
+        tx.send(Some(answer.clone())).unwrap();
+        waker();
+        rx
+    });
+    let app = common::ui::editor(project()).with_picker(picker);
+    let mut harness = common::ui::showing(app, Tab::Motions, (1200.0, 800.0));
+    harness.get_by_label("motion.json…").click();
+    common::ui::run_until(&mut harness, "the motion.json", |_| chosen.exists());
+    assert_eq!(offered.lock().unwrap().as_deref(), Some("03_Wave.json"), "the name the official editor gives it");
+    let written = servo_studio::project::motion_json::motion_from_json(&std::fs::read_to_string(&chosen).unwrap());
+    assert_eq!(written.unwrap(), project().plen2.motions[0]);
+    common::ui::run_until(&mut harness, "the status line", |app| {
+        app.status.as_ref().is_some_and(|status| status.text == format!("saved {}", chosen.display()))
+    });
+}

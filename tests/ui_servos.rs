@@ -84,7 +84,7 @@ fn a_drag_sends_coalesced_live_moves_and_the_last_value_arrives() {
     assert!(degrees.windows(2).all(|pair| pair[0] < pair[1]), "moves follow the drag, never back: {degrees:?}");
     assert!(degrees.len() <= 22, "at most one move per frame: {degrees:?}");
     // Nothing stale after the release: the board ends at the last value.
-    let requester = harness.state().servo_board().unwrap().requester();
+    let requester = common::ui::servo_board(harness.state()).unwrap().requester();
     let deadline = Instant::now() + Duration::from_secs(5);
     while requester.query_servos(1).unwrap()[0].angle != 90 {
         assert!(Instant::now() < deadline, "the servo never reached 90°");
@@ -148,7 +148,7 @@ fn escape_stops_every_servo_holding_torque_and_blocks_moves_until_resume() {
     let mut harness = demo_harness();
     harness.key_press(egui::Key::Escape);
     harness.run();
-    let requester = harness.state().servo_board().unwrap().requester();
+    let requester = common::ui::servo_board(harness.state()).unwrap().requester();
     // The STOP frame is written ahead of this query, so the query sees it applied.
     let servos = requester.query_servos(1).unwrap();
     assert!(!servos[0].is_start && servos[0].is_hold, "{servos:?}");

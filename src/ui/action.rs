@@ -45,18 +45,50 @@ pub enum FileRequest {
     SaveAs,
     /// Where to save the project before going on with what waits on the unsaved question.
     SaveAsThenContinue,
-    /// Where to export the servo board's contents.
-    ExportBoard,
-    /// Where to export what was read from the PLEN2.
-    ExportRobot,
-    /// Where to save one motion as the official editor's motion.json.
-    MotionJson {
-        /// The motion's slot.
-        slot: u8,
-        /// The file name offered.
-        name: String,
-    },
+    /// Where a family writes something of its own (an export).
+    Export(Export),
 }
+
+/// What the file dialogs call a project file.
+pub const PROJECT_FILE: &str = "Servo Studio project";
+
+/// A family's request for a place to write a file: the name offered, the kind
+/// of file, and the action the chosen path becomes.
+#[derive(Clone)]
+pub struct Export {
+    /// The file name offered.
+    pub name: String,
+    /// The kind of file, as the dialog's filter names it.
+    pub kind: &'static str,
+    /// The action the chosen path becomes.
+    pub then: std::sync::Arc<dyn Fn(PathBuf) -> Action + Send + Sync>,
+}
+
+impl Export {
+    /// Asks where to write a JSON file called `name` (offered) of `kind`; `then` makes the action.
+    pub fn json(
+        name: impl Into<String>,
+        kind: &'static str,
+        then: impl Fn(PathBuf) -> Action + Send + Sync + 'static,
+    ) -> Self {
+        Self { name: name.into(), kind, then: std::sync::Arc::new(then) }
+    }
+}
+
+impl std::fmt::Debug for Export {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Export").field("name", &self.name).field("kind", &self.kind).finish_non_exhaustive()
+    }
+}
+
+/// Two requests are the same when they offer the same file for the same answer.
+impl PartialEq for Export {
+    fn eq(&self, other: &Self) -> bool {
+        self.name == other.name && self.kind == other.kind && std::sync::Arc::ptr_eq(&self.then, &other.then)
+    }
+}
+
+impl Eq for Export {}
 
 /// One request from a panel to the app shell.
 #[derive(Clone, Debug, PartialEq)]

@@ -6,9 +6,6 @@ use std::any::Any;
 use std::path::Path;
 use std::time::Duration;
 
-use crate::device::plen2::Plen2Handle;
-use crate::device::rflex::RflexBase;
-use crate::device::servo::ServoHandle;
 use crate::link::Waker;
 use crate::project::Project;
 use crate::ui::board_link::BoardLink;
@@ -139,31 +136,6 @@ impl Shell<'_> {
     /// Says something on the status line.
     pub fn report(&mut self, text: impl Into<String>, is_error: bool) {
         *self.status = Some(StatusLine { text: text.into(), is_error });
-    }
-
-    /// The connected servo board.
-    pub fn servo(&self) -> Option<&ServoHandle> {
-        self.link.as_ref().and_then(BoardLink::servo)
-    }
-
-    /// The connected servo board, mutably.
-    pub fn servo_mut(&mut self) -> Option<&mut ServoHandle> {
-        self.link.as_mut().and_then(BoardLink::servo_mut)
-    }
-
-    /// The connected PLEN2.
-    pub fn plen2(&self) -> Option<&Plen2Handle> {
-        self.link.as_ref().and_then(BoardLink::plen2)
-    }
-
-    /// The connected PLEN2, mutably.
-    pub fn plen2_mut(&mut self) -> Option<&mut Plen2Handle> {
-        self.link.as_mut().and_then(BoardLink::plen2_mut)
-    }
-
-    /// The connected base, mutably.
-    pub fn rflex_mut(&mut self) -> Option<&mut RflexBase> {
-        self.link.as_mut().and_then(BoardLink::rflex_mut)
     }
 }
 

@@ -5,9 +5,10 @@
 use std::time::{Duration, Instant};
 
 use egui_kittest::{Harness, HarnessBuilder};
+use servo_studio::device::servo::ServoHandle;
 use servo_studio::link::no_waker;
 use servo_studio::project::Project;
-use servo_studio::ui::{Action, StudioApp, Tab};
+use servo_studio::ui::{Action, BoardLink, StudioApp, Tab};
 
 /// A test window of `size` (the shipped fonts installed), to build with a state.
 pub fn builder((width, height): (f32, f32)) -> HarnessBuilder<StudioApp> {
@@ -43,4 +44,9 @@ pub fn run_until(harness: &mut Harness<'static, StudioApp>, what: &str, done: im
     }
     // A connected board keeps the window repainting: it never "settles".
     harness.run_steps(3);
+}
+
+/// The connected servo board, if that is what the editor is connected to.
+pub fn servo_board(app: &StudioApp) -> Option<&ServoHandle> {
+    app.link.as_ref().and_then(BoardLink::servo)
 }

@@ -62,11 +62,6 @@ impl StudioApp {
         summary
     }
 
-    /// The connected servo board, if any.
-    pub fn servo_board(&self) -> Option<&crate::device::servo::ServoHandle> {
-        self.link.as_ref().and_then(BoardLink::servo)
-    }
-
     /// Opens `port` off the UI thread with the document's family's line settings.
     pub(super) fn connect(&mut self, port: &str, baud: u32) {
         let name = match PortName::parse(port) {

@@ -11,7 +11,7 @@ use std::sync::Arc;
 use crossbeam_channel::Receiver;
 
 use crate::link::Waker;
-use crate::ui::action::{Action, BoardIntent, FileRequest, Plen2Action, Plen2Intent, ServoAction};
+use crate::ui::action::{Action, FileRequest};
 
 /// Opens the dialog for a request; the path chosen (or `None`) arrives on the receiver.
 pub type Picker = Arc<dyn Fn(&FileRequest, Waker) -> Receiver<Option<PathBuf>> + Send + Sync>;
@@ -19,7 +19,7 @@ pub type Picker = Arc<dyn Fn(&FileRequest, Waker) -> Receiver<Option<PathBuf>> +
 /// The system's file dialogs (rfd, asynchronous: on Linux the desktop portal).
 pub fn system_picker() -> Picker {
     Arc::new(|request: &FileRequest, waker: Waker| {
-        let project = ("Servo Studio project", &["json"][..]);
+        let project = (crate::ui::action::PROJECT_FILE, &["json"][..]);
         let dialog = rfd::AsyncFileDialog::new();
         let (sender, answer) = crossbeam_channel::bounded(1);
         // The dialog is made here, on the window's thread (macOS wants that);
@@ -29,14 +29,8 @@ pub fn system_picker() -> Picker {
             FileRequest::SaveAs | FileRequest::SaveAsThenContinue => {
                 Box::pin(dialog.add_filter(project.0, project.1).set_file_name("project.json").save_file())
             }
-            FileRequest::ExportBoard => {
-                Box::pin(dialog.add_filter(project.0, project.1).set_file_name("board.json").save_file())
-            }
-            FileRequest::ExportRobot => {
-                Box::pin(dialog.add_filter(project.0, project.1).set_file_name("plen2.json").save_file())
-            }
-            FileRequest::MotionJson { name, .. } => {
-                Box::pin(dialog.add_filter("PLEN motion", &["json"]).set_file_name(name).save_file())
+            FileRequest::Export(export) => {
+                Box::pin(dialog.add_filter(export.kind, &["json"]).set_file_name(&export.name).save_file())
             }
         };
         let spawned = std::thread::Builder::new().name("file dialog".into()).spawn(move || {
@@ -57,8 +51,6 @@ pub fn answered(request: &FileRequest, path: PathBuf) -> Vec<Action> {
         FileRequest::Open => vec![Action::Open(path)],
         FileRequest::SaveAs => vec![Action::SaveAs(path)],
         FileRequest::SaveAsThenContinue => vec![Action::SaveAs(path), Action::UnsavedSave],
-        FileRequest::ExportBoard => vec![Action::Servo(ServoAction::BoardCompare(BoardIntent::ExportToFile(path)))],
-        FileRequest::ExportRobot => vec![Action::Plen2(Plen2Action::Robot(Plen2Intent::ExportToFile(path)))],
-        FileRequest::MotionJson { slot, .. } => vec![Action::Plen2(Plen2Action::SaveMotionJson { slot: *slot, path })],
+        FileRequest::Export(export) => vec![(export.then)(path)],
     }
 }

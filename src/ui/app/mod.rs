@@ -374,11 +374,6 @@ impl StudioApp {
         moving
     }
 
-    /// Whether a PLEN2 motion is being streamed.
-    pub fn streaming(&self) -> bool {
-        self.plen2.streaming()
-    }
-
     /// Draws the editor and applies what its panels asked for.
     pub fn show(&mut self, ui: &mut egui::Ui) {
         if self.terminate.as_ref().is_some_and(|terminated| terminated.try_recv().is_ok()) {

@@ -5,7 +5,7 @@
 use super::Plen2Result;
 use crate::device::Phase;
 use crate::project::plen2::{Motion, Plen2Project, SLOTS};
-use crate::ui::action::{Action, FileRequest, Plen2Action, Plen2Intent};
+use crate::ui::action::{Action, Export, FileRequest, PROJECT_FILE, Plen2Action, Plen2Intent};
 use crate::ui::i18n::{Language, Strings};
 use crate::ui::plen2::captions::Plen2Words;
 use crate::ui::rows;
@@ -139,7 +139,9 @@ pub fn robot_panel(ui: &mut egui::Ui, view: &RobotView<'_>, language: Language, 
             }
             // The shell asks where, off the frame.
             if ui.add_enabled(view.robot_read, egui::Button::new(words.export_board)).clicked() {
-                actions.push(Action::AskFile(FileRequest::ExportRobot));
+                actions.push(Action::AskFile(FileRequest::Export(Export::json("plen2.json", PROJECT_FILE, |path| {
+                    Action::Plen2(Plen2Action::Robot(Plen2Intent::ExportToFile(path)))
+                }))));
             }
         });
     });

@@ -4,6 +4,7 @@
 
 use std::time::Instant;
 
+use super::Plen2Link;
 use super::Plen2Ui;
 use super::joints::limits;
 use crate::project::Edit;

@@ -23,7 +23,7 @@ use crate::device::plen2::{PacingMode, Plen2Item, ReplyError};
 use crate::project::plen2::{Plen2Project, SLOTS};
 use crate::project::{Edit, Family, Project};
 use crate::ui::action::{Action, Plen2Action, Plen2Intent, Tab};
-use crate::ui::board_link::LinkOptions;
+use crate::ui::board_link::{BoardLink, LinkOptions};
 use crate::ui::family::{FamilyUi, Panel};
 use crate::ui::i18n::{Language, Strings};
 use crate::ui::layout::{Layout, Pane};
@@ -486,5 +486,23 @@ impl FamilyUi for Plen2Ui {
         let (_, outcome) = RunningOperation::finished::<Plen2Kind, Plen2Outcome, Plen2Item>(shell.operation, wait)?;
         self.finish(outcome);
         self.summary(shell.language)
+    }
+}
+
+/// The connected plen2 through the shell (the shell itself knows no family).
+pub(crate) trait Plen2Link {
+    /// The connected PLEN2.
+    fn plen2(&self) -> Option<&plen2::Plen2Handle>;
+    /// The connected PLEN2, mutably.
+    fn plen2_mut(&mut self) -> Option<&mut plen2::Plen2Handle>;
+}
+
+impl Plen2Link for Shell<'_> {
+    fn plen2(&self) -> Option<&plen2::Plen2Handle> {
+        self.link.as_ref().and_then(BoardLink::plen2)
+    }
+
+    fn plen2_mut(&mut self) -> Option<&mut plen2::Plen2Handle> {
+        self.link.as_mut().and_then(BoardLink::plen2_mut)
     }
 }

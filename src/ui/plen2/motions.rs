@@ -7,7 +7,7 @@ use super::preview::Preview;
 use crate::project::plen2::{Frame, Joint, LoopRange, Motion, Plen2Project, Pose};
 use crate::project::plen2::{MAX_TRANSITION_MS, MIN_TRANSITION_MS, SLOTS};
 use crate::project::{Edit, Location, Problem};
-use crate::ui::action::{Action, FileRequest, Plen2Action};
+use crate::ui::action::{Action, Export, FileRequest, Plen2Action};
 use crate::ui::i18n::Strings;
 use crate::ui::layout::{self, Layout, Pane, Part};
 use crate::ui::plen2::captions::Plen2Words;
@@ -176,7 +176,11 @@ impl MotionsPanel {
             // The shell asks where, off the frame; the answer comes back as a save.
             if ui.button("motion.json…").on_hover_text(words.plen2().motion_json_hint).clicked() {
                 let name = format!("{:02X}_{}.json", motion.slot, motion.name.replace(' ', "_"));
-                actions.push(Action::AskFile(FileRequest::MotionJson { slot: motion.slot, name }));
+                let slot = motion.slot;
+                let export = Export::json(name, "PLEN motion", move |path| {
+                    Action::Plen2(Plen2Action::SaveMotionJson { slot, path })
+                });
+                actions.push(Action::AskFile(FileRequest::Export(export)));
             }
             if ui.button(words.remove).clicked() {
                 actions.push(edit(

@@ -225,3 +225,15 @@ fn robot_name(robot: Robot) -> &'static str {
         Robot::Custom { .. } => "custom",
     }
 }
+
+/// The connected rflex through the shell (the shell itself knows no family).
+pub(crate) trait RflexLink {
+    /// The connected base, mutably.
+    fn rflex_mut(&mut self) -> Option<&mut crate::device::rflex::RflexBase>;
+}
+
+impl RflexLink for Shell<'_> {
+    fn rflex_mut(&mut self) -> Option<&mut crate::device::rflex::RflexBase> {
+        self.link.as_mut().and_then(BoardLink::rflex_mut)
+    }
+}

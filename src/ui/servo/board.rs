@@ -4,7 +4,7 @@
 
 use super::operations::{BoardResult, PendingConfirm, ServoKind};
 use crate::device::servo::Item;
-use crate::ui::action::{Action, BoardIntent, FileRequest, ServoAction};
+use crate::ui::action::{Action, BoardIntent, Export, FileRequest, PROJECT_FILE, ServoAction};
 use crate::ui::i18n::Language;
 use crate::ui::rows;
 use crate::ui::servo::captions::ServoWords;
@@ -67,7 +67,9 @@ pub fn ui(ui: &mut egui::Ui, view: &BoardView<'_>, language: Language, actions: 
             }
             // The shell asks where, off the frame; the answer comes back as a comparison.
             if ui.button(words.export_board).clicked() {
-                actions.push(Action::AskFile(FileRequest::ExportBoard));
+                actions.push(Action::AskFile(FileRequest::Export(Export::json("board.json", PROJECT_FILE, |path| {
+                    Action::Servo(ServoAction::BoardCompare(BoardIntent::ExportToFile(path)))
+                }))));
             }
         });
     });

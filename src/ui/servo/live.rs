@@ -3,6 +3,7 @@
 
 use std::time::Instant;
 
+use super::ServoLink;
 use super::{CAPTURED_STEP_INTERVAL_10MS, LIVE_MOVE_INTERVAL_10MS, ServoUi};
 use crate::device::servo::ServoMove;
 use crate::project::{Action as ProjectAction, Edit, ServoProject, Step, next_free_id};

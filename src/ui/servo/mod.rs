@@ -331,3 +331,21 @@ impl FamilyUi for ServoUi {
 fn homes(project: &ServoProject) -> BTreeMap<u8, i16> {
     project.servos.iter().map(|servo| (servo.id, servo.home_deg)).collect()
 }
+
+/// The connected servo through the shell (the shell itself knows no family).
+pub(crate) trait ServoLink {
+    /// The connected servo board.
+    fn servo(&self) -> Option<&crate::device::servo::ServoHandle>;
+    /// The connected servo board, mutably.
+    fn servo_mut(&mut self) -> Option<&mut crate::device::servo::ServoHandle>;
+}
+
+impl ServoLink for Shell<'_> {
+    fn servo(&self) -> Option<&crate::device::servo::ServoHandle> {
+        self.link.as_ref().and_then(BoardLink::servo)
+    }
+
+    fn servo_mut(&mut self) -> Option<&mut crate::device::servo::ServoHandle> {
+        self.link.as_mut().and_then(BoardLink::servo_mut)
+    }
+}

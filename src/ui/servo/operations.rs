@@ -6,6 +6,7 @@ use std::path::PathBuf;
 
 use std::sync::Arc;
 
+use super::ServoLink;
 use super::ServoUi;
 use crate::device::servo::{
     Difference, ImageError, ImportFailure, ImportOptions, ImportReport, Item, OpError, ServoImage, import, read_image,
