@@ -6,7 +6,7 @@
 use super::error::{ContentError, EncodeError};
 use super::records::{
     ActionRecord, Coded, CommandType, JoystickTableRecord, ListEntry, MacroRecord, ServoMove, ServoParameter,
-    ServoStatus, ServoSwitches,
+    ServoStatus, ServoSwitches, Stored,
 };
 use super::wire::{Reader, Writer};
 
@@ -346,39 +346,19 @@ impl Codec<ServoSwitches> for Switches {
     }
 }
 
-/// A record the board stores under an id: an action, a macro, a joystick table.
-pub(super) trait Stored: Sized {
-    /// The id's field name.
-    const ID_FIELD: &'static str;
-    /// Reads the rest of the record after its id.
-    fn read_after(r: &mut Reader<'_>, id: i32) -> Result<Self, ContentError>;
-    /// Appends the whole record.
-    fn write_record(&self, w: &mut Writer) -> Result<(), EncodeError>;
+/// A stored record in words.
+pub(super) trait RecordWords: Stored {
     /// The record in words.
     fn record_words(&self) -> String;
 }
 
-impl Stored for ActionRecord {
-    const ID_FIELD: &'static str = "actionID";
-    fn read_after(r: &mut Reader<'_>, id: i32) -> Result<Self, ContentError> {
-        Self::read_after_id(r, id)
-    }
-    fn write_record(&self, w: &mut Writer) -> Result<(), EncodeError> {
-        self.write(w)
-    }
+impl RecordWords for ActionRecord {
     fn record_words(&self) -> String {
         format!("action {} {:?}: {}", self.action_id, self.caption, group_words(&self.steps))
     }
 }
 
-impl Stored for MacroRecord {
-    const ID_FIELD: &'static str = "macroID";
-    fn read_after(r: &mut Reader<'_>, id: i32) -> Result<Self, ContentError> {
-        Self::read_after_id(r, id)
-    }
-    fn write_record(&self, w: &mut Writer) -> Result<(), EncodeError> {
-        self.write(w)
-    }
+impl RecordWords for MacroRecord {
     fn record_words(&self) -> String {
         let commands: Vec<String> = self
             .commands
@@ -396,14 +376,7 @@ impl Stored for MacroRecord {
     }
 }
 
-impl Stored for JoystickTableRecord {
-    const ID_FIELD: &'static str = "tableID";
-    fn read_after(r: &mut Reader<'_>, id: i32) -> Result<Self, ContentError> {
-        Self::read_after_id(r, id)
-    }
-    fn write_record(&self, w: &mut Writer) -> Result<(), EncodeError> {
-        self.write(w)
-    }
+impl RecordWords for JoystickTableRecord {
     fn record_words(&self) -> String {
         let buttons: Vec<String> = self
             .buttons
@@ -427,13 +400,13 @@ impl Stored for JoystickTableRecord {
 /// A whole stored record.
 pub(super) struct Record;
 
-impl<T: Stored> Codec<T> for Record {
+impl<T: RecordWords> Codec<T> for Record {
     fn write(&self, w: &mut Writer, value: &T) -> Result<(), EncodeError> {
-        value.write_record(w)
+        value.write(w)
     }
     fn read(&self, r: &mut Reader<'_>) -> Result<T, ContentError> {
         let id = r.i32(T::ID_FIELD)?;
-        T::read_after(r, id)
+        T::read_after_id(r, id)
     }
     fn words(&self, value: &T) -> String {
         value.record_words()
@@ -444,10 +417,10 @@ impl<T: Stored> Codec<T> for Record {
 /// found; whatever follows the id is arbitrary and ignored).
 pub(super) struct Found;
 
-impl<T: Stored> Codec<Option<T>> for Found {
+impl<T: RecordWords> Codec<Option<T>> for Found {
     fn write(&self, w: &mut Writer, value: &Option<T>) -> Result<(), EncodeError> {
         match value {
-            Some(record) => record.write_record(w),
+            Some(record) => record.write(w),
             None => {
                 // Failure: id 0, an empty caption and a count of 0.
                 w.i32(0).str32("").i16(0);
@@ -461,10 +434,10 @@ impl<T: Stored> Codec<Option<T>> for Found {
                 let _ = r.rest();
                 Ok(None)
             }
-            id => T::read_after(r, id).map(Some),
+            id => T::read_after_id(r, id).map(Some),
         }
     }
     fn words(&self, value: &Option<T>) -> String {
-        value.as_ref().map_or_else(|| "not found".into(), Stored::record_words)
+        value.as_ref().map_or_else(|| "not found".into(), RecordWords::record_words)
     }
 }

@@ -14,6 +14,16 @@ pub(crate) trait Coded: Sized {
     fn words(self) -> &'static str;
 }
 
+/// A record the board stores under an id: an action, a macro, a joystick table.
+pub(crate) trait Stored: Sized {
+    /// The id's field name.
+    const ID_FIELD: &'static str;
+    /// Reads the rest of the record after its id.
+    fn read_after_id(r: &mut Reader<'_>, id: i32) -> Result<Self, ContentError>;
+    /// Appends the whole record, id first.
+    fn write(&self, w: &mut Writer) -> Result<(), EncodeError>;
+}
+
 /// A one-byte code: each value's byte and name once, and what a wrong byte should have been.
 macro_rules! coded {
     ($ty:ident, $expected:literal, $($value:ident = $code:literal: $words:literal),* $(,)?) => {
@@ -227,15 +237,17 @@ pub struct ActionRecord {
     pub steps: Vec<ServoMove>,
 }
 
-impl ActionRecord {
-    pub(crate) fn read_after_id(r: &mut Reader<'_>, action_id: i32) -> Result<Self, ContentError> {
+impl Stored for ActionRecord {
+    const ID_FIELD: &'static str = "actionID";
+
+    fn read_after_id(r: &mut Reader<'_>, action_id: i32) -> Result<Self, ContentError> {
         let caption = r.str32("actionCaption")?;
         let count = r.count_i16("stepCount")?;
         let steps = r.group("stepCount", count, ServoMove::WIRE_LEN, ServoMove::read)?;
         Ok(Self { action_id, caption, steps })
     }
 
-    pub(crate) fn write(&self, w: &mut Writer) -> Result<(), EncodeError> {
+    fn write(&self, w: &mut Writer) -> Result<(), EncodeError> {
         w.i32(self.action_id).str32(&self.caption).count_i16("stepCount", self.steps.len())?;
         self.steps.iter().for_each(|step| step.write(w));
         Ok(())
@@ -291,15 +303,17 @@ pub struct MacroRecord {
     pub commands: Vec<MacroCommandRecord>,
 }
 
-impl MacroRecord {
-    pub(crate) fn read_after_id(r: &mut Reader<'_>, macro_id: i32) -> Result<Self, ContentError> {
+impl Stored for MacroRecord {
+    const ID_FIELD: &'static str = "macroID";
+
+    fn read_after_id(r: &mut Reader<'_>, macro_id: i32) -> Result<Self, ContentError> {
         let caption = r.str32("macroCaption")?;
         let count = r.count_i16("commandCount")?;
         let commands = r.group("commandCount", count, MacroCommandRecord::WIRE_LEN, MacroCommandRecord::read)?;
         Ok(Self { macro_id, caption, commands })
     }
 
-    pub(crate) fn write(&self, w: &mut Writer) -> Result<(), EncodeError> {
+    fn write(&self, w: &mut Writer) -> Result<(), EncodeError> {
         w.i32(self.macro_id).str32(&self.caption).count_i16("commandCount", self.commands.len())?;
         self.commands.iter().for_each(|command| command.write(w));
         Ok(())
@@ -387,15 +401,17 @@ pub struct JoystickTableRecord {
     pub buttons: Vec<ButtonRecord>,
 }
 
-impl JoystickTableRecord {
-    pub(crate) fn read_after_id(r: &mut Reader<'_>, table_id: i32) -> Result<Self, ContentError> {
+impl Stored for JoystickTableRecord {
+    const ID_FIELD: &'static str = "tableID";
+
+    fn read_after_id(r: &mut Reader<'_>, table_id: i32) -> Result<Self, ContentError> {
         let caption = r.str32("tableCaption")?;
         let count = r.count_i16("buttonCount")?;
         let buttons = r.group("buttonCount", count, ButtonRecord::WIRE_LEN, ButtonRecord::read)?;
         Ok(Self { table_id, caption, buttons })
     }
 
-    pub(crate) fn write(&self, w: &mut Writer) -> Result<(), EncodeError> {
+    fn write(&self, w: &mut Writer) -> Result<(), EncodeError> {
         w.i32(self.table_id).str32(&self.caption).count_i16("buttonCount", self.buttons.len())?;
         self.buttons.iter().for_each(|button| button.write(w));
         Ok(())
