@@ -198,3 +198,51 @@ fn joint_settings_moved_below_the_current_range_are_written_in_an_order_the_robo
         assert_eq!(now.iter().find(|s| s.joint == Joint::LeftKneePitch), Some(&wanted));
     }
 }
+
+/// A factory-fresh PLEN2 behind a Bluetooth-like line (`sim --link bursty`):
+/// `import` backs up the slot it is about to write first — an erased slot,
+/// whose ~340 KB of EEPROM garbage takes seconds on such a line — and then
+/// writes and verifies. The backup once failed here with "not in the PLEN2's
+/// protocol" (issue 22).
+#[test]
+fn import_backs_up_a_factory_fresh_robot_over_a_bursty_line() {
+    use servo_studio::sim::LinkKind;
+    let link = LinkKind::Bursty { interval: Duration::from_millis(15) };
+    let robot = spawn_pty(Plen2Sim::new(Plen2Timing::default()).with_link(link), no_waker()).unwrap();
+    let folder = tempfile::tempdir().unwrap();
+    let mut pose = Pose::default();
+    pose.set(Joint::LeftShoulderPitch, 300);
+    let motion = Motion {
+        slot: 5,
+        name: "Wave".into(),
+        frames: vec![Frame { transition_ms: 200, values_tenths_deg: pose }],
+        loop_range: None,
+        jump_slot: None,
+    };
+    let plen2 = Plen2Project { motions: vec![motion.clone()], ..Plen2Project::default() };
+    let file = folder.path().join("wave.json");
+    let document = servo_studio::project::Project { family: Family::Plen2, plen2, ..Default::default() };
+    servo_studio::project::save(&file, &document).unwrap();
+    let output = std::process::Command::new(env!("CARGO_BIN_EXE_servo-studio"))
+        .args(["import", "--protocol", "plen2", "--port", &robot.port_name, "--yes", "--in"])
+        .arg(&file)
+        .arg("--backup-dir")
+        .arg(folder.path())
+        .stdin(std::process::Stdio::null())
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success(), "{stderr}");
+    assert!(!stderr.contains("not in the PLEN2's protocol"), "{stderr}");
+    let backups: Vec<_> = std::fs::read_dir(folder.path())
+        .unwrap()
+        .map(|entry| entry.unwrap().path())
+        .filter(|path| path.file_name().is_some_and(|name| name.to_string_lossy().starts_with("plen2-backup")))
+        .collect();
+    assert_eq!(backups.len(), 1, "{stderr}");
+    let backup = servo_studio::project::load(&backups[0]).unwrap();
+    assert!(backup.plen2.motions.is_empty(), "the slot was never written: nothing to keep");
+    let state = inspect(&robot);
+    assert_eq!((state.lost_bytes, state.dropped), (0, 0), "{state:?}");
+    assert_eq!(state.written_slots.len(), 1);
+}

@@ -352,3 +352,34 @@ fn the_official_pacing_is_32_bytes_then_50_ms() {
     assert!(rig.largest_write <= 32, "{}", rig.largest_write);
     assert!(sent.windows(2).all(|pair| pair[1] - pair[0] >= Duration::from_millis(50)), "{sent:?}");
 }
+
+/// A factory-fresh robot answers `<MO` for a never-written slot with its
+/// erased EEPROM, some 300 KB (`plen2.md` §3). Over a Bluetooth-like or a
+/// slower line that takes seconds to minutes: once the reply is recognised as
+/// the protocol's own, its deadline follows the rate it really arrives at,
+/// and it is read whole — never called "not in the PLEN2's protocol".
+#[test]
+fn an_erased_slot_is_read_whole_over_every_line() {
+    let links = [
+        LinkKind::Clean,
+        LinkKind::Bursty { interval: Duration::from_millis(15) },
+        LinkKind::Bursty { interval: Duration::from_millis(30) },
+        LinkKind::Late { max_hold: Duration::from_millis(20) },
+        LinkKind::Slow { baud: 115_200 },
+    ];
+    for link in links {
+        let mut rig = Rig::new(PacingMode::Adaptive, link);
+        let began = rig.now;
+        let reply = rig.get(Command::GetMotion { slot: 0 });
+        // Drained to its end and recognised as an erased slot (what `read_slot` calls never written).
+        let bytes = match rig.reply(&reply) {
+            Err(ReplyError::Garbage { bytes }) => bytes,
+            other => panic!("{link}: {other:?}"),
+        };
+        assert!(bytes > 200_000, "{link}: {bytes} bytes");
+        // The robot reads nothing while it prints: the next getter is answered after it.
+        let version = rig.get(Command::GetVersion);
+        assert!(rig.reply(&version).is_ok(), "{link}: the robot answers again");
+        eprintln!("{link}: erased slot, {bytes} bytes, in {:?}", rig.now - began);
+    }
+}

@@ -123,11 +123,20 @@ struct Awaited {
     sender: ReplySender,
     /// The silence limit, never past `overall`.
     deadline: Instant,
-    /// Fixed by the first byte: the longest such a reply can take on the line,
-    /// plus the timeout. Later bytes cannot move it.
+    /// The longest the reply may take, plus the timeout. Until the reply is
+    /// recognised as the protocol's own (a JSON reply's start), the first byte
+    /// fixes it from the line's nominal rate and later bytes cannot move it;
+    /// once recognised, it follows the rate the reply really arrives at (a
+    /// Bluetooth bridge's, a slower line's), up to [`REPLY_CEILING`].
     overall: Option<Instant>,
+    /// When its first byte arrived.
+    first: Option<Instant>,
     bytes: usize,
 }
+
+/// The longest any reply may take once it is recognised: an erased slot's
+/// 400 KB at a Bluetooth LE bridge's 20 bytes per 15 ms is five minutes.
+pub const REPLY_CEILING: Duration = Duration::from_secs(600);
 
 /// The most bytes a reply of `kind` can have on the line: a never-written
 /// slot's garbage (255 frames of 24 outputs) for `<MO`.
@@ -306,7 +315,7 @@ impl Plen2Driver {
                 self.reader.expect(kind);
                 self.pacer.watch_reply(idle);
                 let deadline = idle + self.reply_timeout;
-                self.reply = Some(Awaited { kind, sender, deadline, overall: None, bytes: 0 });
+                self.reply = Some(Awaited { kind, sender, deadline, overall: None, first: None, bytes: 0 });
             }
         }
         if !chunk.is_empty() {
@@ -370,11 +379,24 @@ impl Driver for Plen2Driver {
         if self.reply.is_some() {
             self.pacer.reply_bytes(now, bytes.len());
         }
+        let recognised = self.reader.started();
         if let Some(awaited) = &mut self.reply {
             awaited.bytes += bytes.len();
-            // 10 bits a byte on the line.
-            let longest = longest_reply(awaited.kind) as f64 * 10.0 / f64::from(baud);
-            let overall = *awaited.overall.get_or_insert(now + Duration::from_secs_f64(longest) + timeout);
+            let first = *awaited.first.get_or_insert(now);
+            // 10 bits a byte on the line; once the reply is the protocol's own,
+            // the rate it really arrives at, if slower.
+            let nominal = f64::from(baud) / 10.0;
+            let elapsed = now.saturating_duration_since(first).as_secs_f64();
+            let measured = if elapsed > 0.0 { awaited.bytes as f64 / elapsed } else { f64::INFINITY };
+            let rate = if recognised { nominal.min(measured) } else { nominal };
+            let longest = Duration::from_secs_f64(longest_reply(awaited.kind) as f64 / rate.max(1.0));
+            let overall = first + longest.min(REPLY_CEILING) + timeout;
+            let overall = match awaited.overall {
+                Some(fixed) if !recognised => fixed,
+                Some(earlier) => earlier.max(overall),
+                None => overall,
+            };
+            awaited.overall = Some(overall);
             awaited.deadline = (now + timeout).min(overall);
         }
         while let Some(event) = self.reader.poll() {
@@ -416,11 +438,10 @@ impl Driver for Plen2Driver {
     fn handle_timeout(&mut self, now: Instant) {
         self.now = self.now.max(now);
         if let Some(awaited) = self.reply.take_if(|awaited| now >= awaited.deadline) {
-            // A reply that began and then stopped may have lost bytes (worth
-            // asking again); bytes that never began one, or that run past the
-            // longest reply's time, are another protocol.
-            let cut = self.reader.started() && awaited.overall.is_none_or(|overall| now < overall);
-            let error = if awaited.bytes == 0 || cut {
+            // A reply that began and then stopped (or ran past the longest
+            // reply's time) is the protocol's own, cut short: worth asking
+            // again. Only bytes that never began one are another protocol.
+            let error = if awaited.bytes == 0 || self.reader.started() {
                 ReplyError::Timeout { timeout_ms: u64::try_from(self.reply_timeout.as_millis()).unwrap_or(u64::MAX) }
             } else {
                 ReplyError::NotThisProtocol { bytes: awaited.bytes }
