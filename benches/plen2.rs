@@ -38,7 +38,9 @@ fn line_floor(link: LinkKind, timing: &Plen2Timing, bytes: u32, reply: u32) -> D
     match link {
         LinkKind::Clean | LinkKind::Late { .. } => timing.line_byte * bytes + timing.reply_byte * reply,
         LinkKind::Slow { baud } => Duration::from_secs_f64(f64::from(bytes + reply) * 10.0 / f64::from(baud)),
-        LinkKind::Bursty { interval } => interval * (bytes.div_ceil(80) + reply.div_ceil(1464)),
+        LinkKind::Bursty { interval, whole: false } => interval * (bytes.div_ceil(80) + reply.div_ceil(1464)),
+        // Each reply whole at one event (this bench reads back one reply).
+        LinkKind::Bursty { interval, whole: true } => interval * (bytes.div_ceil(80) + u32::from(reply > 0)),
     }
 }
 
@@ -111,8 +113,10 @@ fn main() {
     );
     let links = [
         (LinkKind::Clean, None, 10),
-        (LinkKind::Bursty { interval: Duration::from_millis(15) }, Some(2.5), 5),
-        (LinkKind::Bursty { interval: Duration::from_millis(30) }, Some(1.5), 5),
+        (LinkKind::Bursty { interval: Duration::from_millis(15), whole: false }, Some(2.5), 5),
+        (LinkKind::Bursty { interval: Duration::from_millis(30), whole: false }, Some(1.5), 5),
+        (LinkKind::Bursty { interval: Duration::from_millis(15), whole: true }, Some(2.5), 5),
+        (LinkKind::Bursty { interval: Duration::from_millis(30), whole: true }, Some(1.5), 5),
         (LinkKind::Late { max_hold: Duration::from_millis(20) }, Some(3.0), 5),
         (LinkKind::Slow { baud: 115_200 }, Some(1.2), 5),
     ];

@@ -207,7 +207,7 @@ fn joint_settings_moved_below_the_current_range_are_written_in_an_order_the_robo
 #[test]
 fn import_backs_up_a_factory_fresh_robot_over_a_bursty_line() {
     use servo_studio::sim::LinkKind;
-    let link = LinkKind::Bursty { interval: Duration::from_millis(15) };
+    let link = LinkKind::Bursty { interval: Duration::from_millis(15), whole: false };
     let robot = spawn_pty(Plen2Sim::new(Plen2Timing::default()).with_link(link), no_waker()).unwrap();
     let folder = tempfile::tempdir().unwrap();
     let mut pose = Pose::default();

@@ -158,7 +158,7 @@ fn the_official_folder_uploads_over_a_bursty_link_losing_nothing() {
     use servo_studio::link::no_waker;
     use servo_studio::sim::{LinkKind, Plen2Sim, Plen2SimCommand, Plen2Timing, spawn_pty};
     let Some(folder) = motions_folder() else { return };
-    let link = LinkKind::Bursty { interval: std::time::Duration::from_millis(15) };
+    let link = LinkKind::Bursty { interval: std::time::Duration::from_millis(15), whole: false };
     let robot = spawn_pty(Plen2Sim::new(Plen2Timing::default()).with_link(link), no_waker()).unwrap();
     let output = Command::new(EXE)
         .args(["import", "--protocol", "plen2", "--port", &robot.port_name, "--yes", "--no-backup", "--in"])

@@ -273,8 +273,10 @@ fn a_write_that_leaves_late_shifts_every_later_send() {
 #[test]
 fn adaptive_pacing_loses_nothing_on_bursty_late_and_slow_links() {
     let links = [
-        LinkKind::Bursty { interval: Duration::from_millis(15) },
-        LinkKind::Bursty { interval: Duration::from_millis(30) },
+        LinkKind::Bursty { interval: Duration::from_millis(15), whole: false },
+        LinkKind::Bursty { interval: Duration::from_millis(30), whole: false },
+        LinkKind::Bursty { interval: Duration::from_millis(15), whole: true },
+        LinkKind::Bursty { interval: Duration::from_millis(30), whole: true },
         LinkKind::Late { max_hold: Duration::from_millis(20) },
         LinkKind::Slow { baud: 115_200 },
     ];
@@ -296,8 +298,11 @@ fn adaptive_pacing_loses_nothing_on_bursty_late_and_slow_links() {
 fn the_ninety_official_motions_lose_nothing_on_a_bursty_or_late_link() {
     let Some(motions) = official_motions() else { return };
     for link in [
-        LinkKind::Bursty { interval: Duration::from_millis(15) },
+        LinkKind::Bursty { interval: Duration::from_millis(15), whole: false },
+        LinkKind::Bursty { interval: Duration::from_millis(15), whole: true },
+        LinkKind::Bursty { interval: Duration::from_millis(30), whole: true },
         LinkKind::Late { max_hold: Duration::from_millis(20) },
+        LinkKind::Slow { baud: 115_200 },
     ] {
         let mut rig = Rig::new(PacingMode::Adaptive, link);
         rig.upload(&motions);
@@ -362,8 +367,9 @@ fn the_official_pacing_is_32_bytes_then_50_ms() {
 fn an_erased_slot_is_read_whole_over_every_line() {
     let links = [
         LinkKind::Clean,
-        LinkKind::Bursty { interval: Duration::from_millis(15) },
-        LinkKind::Bursty { interval: Duration::from_millis(30) },
+        LinkKind::Bursty { interval: Duration::from_millis(15), whole: false },
+        LinkKind::Bursty { interval: Duration::from_millis(30), whole: false },
+        LinkKind::Bursty { interval: Duration::from_millis(15), whole: true },
         LinkKind::Late { max_hold: Duration::from_millis(20) },
         LinkKind::Slow { baud: 115_200 },
     ];

@@ -62,8 +62,9 @@ pub struct SimArgs {
     /// width) and its heading in degrees from +x (default 0,0,0).
     #[arg(long, allow_hyphen_values = true, value_parser = bounds::start)]
     pub start: Option<(f64, f64, f64)>,
-    /// PLEN2: the line to the robot: clean (default), bursty[=MS] (a Bluetooth
-    /// LE bridge, 7.5–30 ms connection interval, 15 by default), late=MS
+    /// PLEN2: the line to the robot: clean (default), bursty[=MS][,whole] (a
+    /// Bluetooth LE bridge, 7.5–30 ms connection interval, 15 by default;
+    /// `whole`: replies buffered and delivered whole at the next event), late=MS
     /// (writes held back up to MS ms) or slow=BAUD.
     #[arg(long)]
     pub link: Option<LinkKind>,

@@ -96,6 +96,13 @@ pub enum WidenReason {
         /// The measured rate, bytes a second.
         bytes_per_s: u32,
     },
+    /// Replies arrived whole but this late (a bridge that buffers each reply
+    /// and hands it over at its next event shows no gap inside one): the
+    /// link holds bytes back as long.
+    Late {
+        /// How late the first byte came, beyond the time its clump needs.
+        delay: Duration,
+    },
     /// A slot read back different from what was written.
     ReadBackDiffered,
 }
@@ -123,6 +130,12 @@ impl std::fmt::Display for Widened {
             WidenReason::Slow { bytes_per_s } => {
                 write!(f, "pacing widened: the link carries {bytes_per_s} bytes/s; pacing for that rate from now on")
             }
+            WidenReason::Late { delay } => write!(
+                f,
+                "pacing widened: replies arrive up to {:.1} ms late; from now on every byte may arrive {:.1} ms late and no more than {RING_WINDOW_BYTES} are in flight",
+                ms(delay),
+                ms(self.window)
+            ),
             WidenReason::ReadBackDiffered => write!(
                 f,
                 "pacing widened: a slot read back different; from now on every byte may arrive {:.1} ms late and no more than {RING_WINDOW_BYTES} are in flight",
@@ -150,6 +163,8 @@ pub const CLUMP_BYTES: usize = 128;
 const RATE_SAMPLE_BYTES: usize = 1024;
 /// The window a read-back difference widens to when nothing else was seen.
 pub const DIFFERENCE_WINDOW: Duration = Duration::from_millis(25);
+/// The fastest the robot prints a reply: a byte a microsecond (USB full speed).
+const FASTEST_REPLY_BYTE: Duration = Duration::from_micros(1);
 /// The widest window: beyond it the link is not a serial line any more.
 pub const MAX_WINDOW: Duration = Duration::from_millis(200);
 
@@ -162,6 +177,8 @@ struct Watched {
     last: Option<Instant>,
     /// Bytes after the first arrival (for the rate).
     later_bytes: usize,
+    /// Bytes of the first arrival.
+    first_bytes: usize,
     /// The clump arriving now: its bytes and the gap before it.
     clump: (usize, Duration),
     /// The longest gap before a clump.
@@ -348,6 +365,7 @@ impl Pacer {
             first: None,
             last: None,
             later_bytes: 0,
+            first_bytes: 0,
             clump: (0, Duration::ZERO),
             max_gap: Duration::ZERO,
         });
@@ -365,8 +383,10 @@ impl Pacer {
             }
             None => watched.clump = (bytes, Duration::ZERO),
         }
-        if watched.first.is_some() {
+        if watched.first.is_some_and(|first| first != now) {
             watched.later_bytes += bytes;
+        } else {
+            watched.first_bytes += bytes;
         }
         watched.first.get_or_insert(now);
         watched.last = Some(now);
@@ -382,12 +402,15 @@ impl Pacer {
         self.measured |= watched.later_bytes >= RATE_SAMPLE_BYTES;
         if !watched.max_gap.is_zero() {
             self.widen(watched.max_gap, WidenReason::Bursts { gap: watched.max_gap });
+            self.widen_for_lateness(&watched, first, FASTEST_REPLY_BYTE);
             return;
         }
         // A smooth reply slower than the line the driver was given: a slower line.
         let took = last.saturating_duration_since(first);
+        let mut print = FASTEST_REPLY_BYTE;
         if watched.later_bytes >= RATE_SAMPLE_BYTES && !took.is_zero() {
             let measured = took / u32::try_from(watched.later_bytes).unwrap_or(u32::MAX);
+            print = print.max(measured);
             if self.mode == PacingMode::Adaptive && measured > self.line_byte.mul_f64(1.25) {
                 self.line_byte = measured;
                 // A byte takes 10 bits: bytes a second from the time per byte.
@@ -397,12 +420,25 @@ impl Pacer {
                 self.widened.push_back(Widened { window, reason: WidenReason::Slow { bytes_per_s } });
             }
         }
+        self.widen_for_lateness(&watched, first, print);
     }
 
     /// A slot read back different: widen (twice as wide each time).
     pub fn read_back_differed(&mut self) {
         let window = self.window.map_or(DIFFERENCE_WINDOW, |window| window * 2);
         self.widen(window, WidenReason::ReadBackDiffered);
+    }
+
+    /// A reply's first bytes came later than the robot began printing, by more
+    /// than the time they need at `print` a byte: the link held them back (a
+    /// bridge that hands replies over whole shows no gap inside one). That
+    /// lateness counts as much as a gap.
+    fn widen_for_lateness(&mut self, watched: &Watched, first: Instant, print: Duration) {
+        let own = print * u32::try_from(watched.first_bytes).unwrap_or(u32::MAX);
+        let late = first.saturating_duration_since(watched.expected).saturating_sub(own);
+        if late > CLUMP_GAP {
+            self.widen(late, WidenReason::Late { delay: late });
+        }
     }
 
     /// Adaptive only: allow for a delivery delay of `seen`, for the rest of the session.
@@ -525,5 +561,30 @@ mod tests {
                 assert_eq!(pacer.window(), None);
             }
         }
+    }
+
+    /// A bridge that hands each reply over whole shows no gap inside it: how
+    /// late the reply came, beyond the time its bytes need, widens the
+    /// window as much. A reply on time (USB's 64-byte packets) does not.
+    #[test]
+    fn a_reply_that_comes_whole_but_late_widens_the_adaptive_pacer() {
+        let t0 = Instant::now();
+        let mut late = pacer(PacingMode::Adaptive);
+        late.watch_reply(t0);
+        // 1,200 bytes, printed by 1.2 ms, handed over at the bridge's event 16 ms after.
+        late.reply_bytes(t0 + Duration::from_millis(16), 1200);
+        late.reply_ended();
+        let widened = late.poll_widened().unwrap();
+        assert_eq!(widened.reason, WidenReason::Late { delay: Duration::from_micros(14_800) });
+        assert_eq!(widened.window, Duration::from_micros(14_800 + 3_700 + 1_000));
+        assert!(widened.to_string().contains("replies arrive up to 14.8 ms late"), "{widened}");
+
+        let mut clean = pacer(PacingMode::Adaptive);
+        clean.watch_reply(t0);
+        for packet in 0..20u32 {
+            clean.reply_bytes(t0 + Duration::from_micros(64) * (packet + 1), 64);
+        }
+        clean.reply_ended();
+        assert_eq!((clean.poll_widened(), clean.window()), (None, None), "on time");
     }
 }

@@ -26,10 +26,14 @@ pub enum LinkKind {
     /// A Bluetooth LE serial bridge: what the host writes waits for the next
     /// connection event, which carries at most 80 bytes to the robot (at the
     /// line rate from there); replies wait for an event too, which carries at
-    /// most 1,464 bytes to the host at once.
+    /// most 1,464 bytes to the host at once — or, with `whole`, the bridge
+    /// buffers a reply until the robot has printed it all and hands it over
+    /// whole at the next event (replies that look clean, only late).
     Bursty {
         /// The connection interval (BLE: 7.5–30 ms).
         interval: Duration,
+        /// Replies arrive whole at the event after the robot printed them.
+        whole: bool,
     },
     /// Writes, both ways, leave late: every other write, at random, is held
     /// back a random time up to `max_hold` (uniform; FIFO: nothing overtakes a
@@ -49,18 +53,24 @@ pub enum LinkKind {
 impl std::str::FromStr for LinkKind {
     type Err = String;
 
-    /// `clean`, `bursty` (15 ms), `bursty=MS`, `late=MS`, `slow=BAUD`.
+    /// `clean`, `bursty` (15 ms), `bursty=MS`, either with `,whole`, `late=MS`, `slow=BAUD`.
     fn from_str(text: &str) -> Result<Self, String> {
-        let bad = || format!("{text:?} is not a link: use clean, bursty[=MS], late=MS or slow=BAUD");
+        let bad = || format!("{text:?} is not a link: use clean, bursty[=MS][,whole], late=MS or slow=BAUD");
+        if let Some(bursty) = text.trim().strip_suffix(",whole") {
+            return match bursty.parse::<Self>()? {
+                Self::Bursty { interval, .. } => Ok(Self::Bursty { interval, whole: true }),
+                _ => Err(format!("{text:?}: only a bursty link delivers replies whole")),
+            };
+        }
         let number = |value: &str| value.trim().parse::<f64>().ok().filter(|n| n.is_finite() && *n > 0.0);
         match text.trim().split_once('=') {
             None if text.trim() == "clean" => Ok(Self::Clean),
-            None if text.trim() == "bursty" => Ok(Self::Bursty { interval: Duration::from_millis(15) }),
+            None if text.trim() == "bursty" => Ok(Self::Bursty { interval: Duration::from_millis(15), whole: false }),
             Some(("bursty", ms)) => {
                 let ms = number(ms)
                     .filter(|ms| (7.5..=30.0).contains(ms))
                     .ok_or_else(|| format!("{text:?}: a Bluetooth LE connection interval is 7.5 to 30 ms"))?;
-                Ok(Self::Bursty { interval: Duration::from_secs_f64(ms / 1000.0) })
+                Ok(Self::Bursty { interval: Duration::from_secs_f64(ms / 1000.0), whole: false })
             }
             Some(("late", ms)) => {
                 let ms = number(ms)
@@ -86,7 +96,9 @@ impl std::fmt::Display for LinkKind {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             Self::Clean => write!(f, "clean"),
-            Self::Bursty { interval } => write!(f, "bursty={}", interval.as_secs_f64() * 1000.0),
+            Self::Bursty { interval, whole } => {
+                write!(f, "bursty={}{}", interval.as_secs_f64() * 1000.0, if *whole { ",whole" } else { "" })
+            }
             Self::Late { max_hold } => write!(f, "late={}", max_hold.as_millis()),
             Self::Slow { baud } => write!(f, "slow={baud}"),
         }
@@ -183,7 +195,7 @@ impl Link {
                 }
                 self.to_robot_free = Some(at);
             }
-            LinkKind::Bursty { interval } => {
+            LinkKind::Bursty { interval, .. } => {
                 let (mut index, mut used) = self.robot_event;
                 let first = Self::event_at_or_after(start, interval, now);
                 if first > index {
@@ -232,7 +244,14 @@ impl Link {
                     pieces.push((arrives, piece.to_vec()));
                 }
             }
-            LinkKind::Bursty { interval } => {
+            LinkKind::Bursty { interval, whole: true } => {
+                // Buffered until printed, then handed over whole at the next event.
+                printed += self.reply_byte * u32::try_from(bytes.len()).unwrap_or(u32::MAX);
+                let index = Self::event_at_or_after(start, interval, printed).max(self.host_event.0 + 1);
+                self.host_event = (index, bytes.len());
+                pieces.push((self.event(start, interval, index), bytes.to_vec()));
+            }
+            LinkKind::Bursty { interval, whole: false } => {
                 let (mut index, mut used) = self.host_event;
                 for &value in bytes {
                     printed += self.reply_byte;
@@ -268,8 +287,13 @@ mod tests {
     #[test]
     fn links_parse_as_the_command_line_writes_them() {
         assert_eq!("clean".parse(), Ok(LinkKind::Clean));
-        assert_eq!("bursty".parse(), Ok(LinkKind::Bursty { interval: Duration::from_millis(15) }));
-        assert_eq!("bursty=7.5".parse(), Ok(LinkKind::Bursty { interval: Duration::from_micros(7_500) }));
+        assert_eq!("bursty".parse(), Ok(LinkKind::Bursty { interval: Duration::from_millis(15), whole: false }));
+        assert_eq!("bursty=7.5".parse(), Ok(LinkKind::Bursty { interval: Duration::from_micros(7_500), whole: false }));
+        let whole = LinkKind::Bursty { interval: Duration::from_millis(30), whole: true };
+        assert_eq!("bursty=30,whole".parse(), Ok(whole));
+        assert_eq!(whole.to_string().parse(), Ok(whole), "{whole}");
+        assert_eq!("bursty,whole".parse::<LinkKind>().map(|link| link.to_string()), Ok("bursty=15,whole".into()));
+        assert!("slow=9600,whole".parse::<LinkKind>().unwrap_err().contains("only a bursty link"));
         assert_eq!("late=20".parse(), Ok(LinkKind::Late { max_hold: Duration::from_millis(20) }));
         assert_eq!("slow=115200".parse(), Ok(LinkKind::Slow { baud: 115_200 }));
         assert!("bursty=40".parse::<LinkKind>().unwrap_err().contains("7.5 to 30 ms"));
@@ -279,7 +303,7 @@ mod tests {
     #[test]
     fn a_bluetooth_bridge_delivers_80_bytes_per_connection_event() {
         let t0 = Instant::now();
-        let mut bursty = link(LinkKind::Bursty { interval: Duration::from_millis(15) });
+        let mut bursty = link(LinkKind::Bursty { interval: Duration::from_millis(15), whole: false });
         // 100 bytes written at once: 80 ride the event at 0 (the link's start), 20 the next one.
         let arrivals = bursty.carry_to_robot(t0, 100);
         assert_eq!(arrivals[0], t0 + Duration::from_micros(5));
@@ -294,6 +318,23 @@ mod tests {
         assert_eq!(sizes, [1464, 536]);
         assert_eq!(pieces[0].0, t0 + Duration::from_millis(30));
         assert_eq!(pieces[1].0, t0 + Duration::from_millis(45));
+    }
+
+    /// A bridge that buffers replies hands each one over whole, at the first
+    /// connection event after the robot printed its last byte (and never two
+    /// replies at one event).
+    #[test]
+    fn a_whole_reply_bridge_delivers_each_reply_in_one_piece_at_the_next_event() {
+        let t0 = Instant::now();
+        let mut bridge = link(LinkKind::Bursty { interval: Duration::from_millis(15), whole: true });
+        let _ = bridge.carry_to_robot(t0, 3);
+        let (pieces, printed) = bridge.carry_to_host(t0 + Duration::from_millis(16), &[b'x'; 2000]);
+        assert_eq!(printed, t0 + Duration::from_millis(16) + Duration::from_micros(2000));
+        assert_eq!(pieces.len(), 1);
+        assert_eq!((pieces[0].0, pieces[0].1.len()), (t0 + Duration::from_millis(30), 2000));
+        // The next reply, printed within the same interval, waits for the event after.
+        let (next, _) = bridge.carry_to_host(t0 + Duration::from_millis(20), b"{}");
+        assert_eq!(next[0].0, t0 + Duration::from_millis(45));
     }
 
     #[test]

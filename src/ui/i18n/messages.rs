@@ -444,6 +444,10 @@ impl Language {
             WidenReason::Slow { bytes_per_s } => {
                 format!("傳送節奏已放寬：連線每秒只傳送 {bytes_per_s} 位元組；之後依這個速率傳送")
             }
+            WidenReason::Late { delay } => format!(
+                "傳送節奏已放寬：回應最多晚 {:.1} ms 才送達；之後每 {window:.1} ms 最多傳送 {RING_WINDOW_BYTES} 位元組",
+                ms(delay)
+            ),
             WidenReason::ReadBackDiffered => {
                 format!("傳送節奏已放寬：讀回的位置內容不同；之後每 {window:.1} ms 最多傳送 {RING_WINDOW_BYTES} 位元組")
             }
