@@ -27,91 +27,107 @@ pub(super) trait Codec<T> {
     }
 }
 
-/// A response's `result` byte (0 = failure).
-pub(super) struct Outcome;
+/// A value the wire carries as is: a flag byte, a byte, a 16- or 32-bit number.
+pub(super) trait Wire: Copy {
+    /// Appends it.
+    fn put(self, w: &mut Writer);
+    /// Reads it from `field`.
+    fn get(r: &mut Reader<'_>, field: &'static str) -> Result<Self, ContentError>;
+}
 
-impl Codec<bool> for Outcome {
-    fn write(&self, w: &mut Writer, value: &bool) -> Result<(), EncodeError> {
-        w.flag(*value);
-        Ok(())
-    }
-    fn read(&self, r: &mut Reader<'_>) -> Result<bool, ContentError> {
-        r.flag("result")
-    }
-    fn words(&self, value: &bool) -> String {
-        (if *value { "ok" } else { "refused" }).into()
-    }
-    fn result(&self, value: &bool) -> Option<bool> {
-        Some(*value)
+macro_rules! wire {
+    ($($ty:ty => $method:ident),*) => {
+        $(impl Wire for $ty {
+            fn put(self, w: &mut Writer) {
+                w.$method(self);
+            }
+            fn get(r: &mut Reader<'_>, field: &'static str) -> Result<Self, ContentError> {
+                r.$method(field)
+            }
+        })*
+    };
+}
+
+wire!(bool => flag, u8 => u8, i16 => i16, i32 => i32, u32 => u32);
+
+/// A plain field: its name on the page, how it reads in the log (with a
+/// label), and — for a response's `result` byte — the result it carries.
+pub(super) struct Plain<T> {
+    field: &'static str,
+    label: &'static str,
+    words: fn(T, &'static str) -> String,
+    result: fn(T) -> Option<bool>,
+}
+
+impl<T> Plain<T> {
+    const fn new(field: &'static str, label: &'static str, words: fn(T, &'static str) -> String) -> Self {
+        Self { field, label, words, result: |_| None }
     }
 }
 
-/// A byte that turns something on (1) or off (0).
-pub(super) struct Switch(pub &'static str);
+impl Plain<bool> {
+    /// A response's `result` byte.
+    pub(super) const fn outcome() -> Self {
+        Self { result: Some, ..Self::new("result", "", |ok, _| (if ok { "ok" } else { "refused" }).into()) }
+    }
 
-impl Codec<bool> for Switch {
-    fn write(&self, w: &mut Writer, value: &bool) -> Result<(), EncodeError> {
-        w.flag(*value);
-        Ok(())
-    }
-    fn read(&self, r: &mut Reader<'_>) -> Result<bool, ContentError> {
-        r.flag(self.0)
-    }
-    fn words(&self, value: &bool) -> String {
-        (if *value { "on" } else { "off" }).into()
+    /// A byte that turns something on (1) or off (0).
+    pub(super) const fn switch(field: &'static str) -> Self {
+        Self::new(field, "", |on, _| (if on { "on" } else { "off" }).into())
     }
 }
 
-/// A 32-bit id (or number) of something, read as `label id`.
-pub(super) struct Id(pub &'static str, pub &'static str);
+impl Plain<i32> {
+    /// A 32-bit id (or number) of something, read as `label id`.
+    pub(super) const fn id(field: &'static str, label: &'static str) -> Self {
+        Self::new(field, label, |id, label| format!("{label} {id}"))
+    }
 
-impl Codec<i32> for Id {
-    fn write(&self, w: &mut Writer, value: &i32) -> Result<(), EncodeError> {
-        w.i32(*value);
-        Ok(())
-    }
-    fn read(&self, r: &mut Reader<'_>) -> Result<i32, ContentError> {
-        r.i32(self.0)
-    }
-    fn words(&self, value: &i32) -> String {
-        format!("{} {value}", self.1)
+    /// A memory size in bytes, read as `N bytes <what>`.
+    pub(super) const fn bytes(field: &'static str, what: &'static str) -> Self {
+        Self::new(field, what, |bytes, what| format!("{bytes} bytes {what}"))
     }
 }
 
-/// A `servoID` byte ([`ALL_SERVOS`] = every servo).
-pub(super) struct ServoId;
+impl Plain<u8> {
+    /// A `servoID` byte ([`ALL_SERVOS`] = every servo).
+    pub(super) const fn servo_id() -> Self {
+        Self::new("servoID", "", |servo_id, _| servo_words(servo_id))
+    }
+}
 
-impl Codec<u8> for ServoId {
-    fn write(&self, w: &mut Writer, value: &u8) -> Result<(), EncodeError> {
-        w.u8(*value);
+impl Plain<u32> {
+    /// A remote button's 32-bit `buttonID`.
+    pub(super) const fn button_id() -> Self {
+        Self::new("buttonID", "", |button_id, _| format!("button 0x{button_id:08x}"))
+    }
+}
+
+impl Plain<i16> {
+    /// The remaining battery, ‰.
+    pub(super) const fn permil() -> Self {
+        Self::new("permil", "", |permil, _| format!("battery {:.1} %", f64::from(permil) / 10.0))
+    }
+}
+
+impl<T: Wire> Codec<T> for Plain<T> {
+    fn write(&self, w: &mut Writer, value: &T) -> Result<(), EncodeError> {
+        value.put(w);
         Ok(())
     }
-    fn read(&self, r: &mut Reader<'_>) -> Result<u8, ContentError> {
-        r.u8("servoID")
+    fn read(&self, r: &mut Reader<'_>) -> Result<T, ContentError> {
+        T::get(r, self.field)
     }
-    fn words(&self, value: &u8) -> String {
-        servo_words(*value)
+    fn words(&self, value: &T) -> String {
+        (self.words)(*value, self.label)
+    }
+    fn result(&self, value: &T) -> Option<bool> {
+        (self.result)(*value)
     }
 }
 
 fn servo_words(servo_id: u8) -> String {
     if servo_id == ALL_SERVOS { "all servos".into() } else { format!("servo {servo_id}") }
-}
-
-/// A remote button's 32-bit `buttonID`.
-pub(super) struct ButtonId;
-
-impl Codec<u32> for ButtonId {
-    fn write(&self, w: &mut Writer, value: &u32) -> Result<(), EncodeError> {
-        w.u32(*value);
-        Ok(())
-    }
-    fn read(&self, r: &mut Reader<'_>) -> Result<u32, ContentError> {
-        r.u32("buttonID")
-    }
-    fn words(&self, value: &u32) -> String {
-        format!("button 0x{value:08x}")
-    }
 }
 
 /// A one-byte code in `field`.
@@ -127,38 +143,6 @@ impl<T: Coded + Copy> Codec<T> for Code {
     }
     fn words(&self, value: &T) -> String {
         value.words().into()
-    }
-}
-
-/// The remaining battery, ‰.
-pub(super) struct Permil;
-
-impl Codec<i16> for Permil {
-    fn write(&self, w: &mut Writer, value: &i16) -> Result<(), EncodeError> {
-        w.i16(*value);
-        Ok(())
-    }
-    fn read(&self, r: &mut Reader<'_>) -> Result<i16, ContentError> {
-        r.i16("permil")
-    }
-    fn words(&self, value: &i16) -> String {
-        format!("battery {:.1} %", f64::from(*value) / 10.0)
-    }
-}
-
-/// A memory size in bytes, read as `N bytes <what>`.
-pub(super) struct Bytes(pub &'static str, pub &'static str);
-
-impl Codec<i32> for Bytes {
-    fn write(&self, w: &mut Writer, value: &i32) -> Result<(), EncodeError> {
-        w.i32(*value);
-        Ok(())
-    }
-    fn read(&self, r: &mut Reader<'_>) -> Result<i32, ContentError> {
-        r.i32(self.0)
-    }
-    fn words(&self, value: &i32) -> String {
-        format!("{value} bytes {}", self.1)
     }
 }
 

@@ -4,10 +4,7 @@
 //! decoding, the `result` byte and the packet log's words are all made from
 //! that one table.
 
-use super::codec::{
-    ButtonId, ByteGroup, Bytes, Code, Codec, Found, Id, List, Outcome, Permil, Record, Rest, ServoId, ServoIds, Switch,
-    Switches, Trailing, WordGroup,
-};
+use super::codec::{ByteGroup, Code, Codec, Found, List, Plain, Record, Rest, ServoIds, Switches, Trailing, WordGroup};
 use super::error::{ContentError, EncodeError};
 use super::frame::Frame;
 use super::records::{
@@ -170,7 +167,7 @@ messages! {
     /// 10021: result of the erase.
     10021 ClearAllDataResponse {
         /// `result` (0 fail, anything else ok).
-        ok: bool = Outcome,
+        ok: bool = Plain::outcome(),
     },
     /// 10030: ask for the memory size.
     10030 QueryMemorySizeRequest,
@@ -178,16 +175,16 @@ messages! {
     /// a 4-byte content decodes with `total_bytes: None`.
     10031 QueryMemorySizeResponse {
         /// `size`: free bytes.
-        free_bytes: i32 = Bytes("size", "free"),
+        free_bytes: i32 = Plain::bytes("size", "free"),
         /// `totalSize`: total bytes.
-        total_bytes: Option<i32> = Trailing(Bytes("totalSize", "in all")),
+        total_bytes: Option<i32> = Trailing(Plain::bytes("totalSize", "in all")),
     },
     /// 10040: ask for the remaining battery.
     10040 QueryRemainPowerRequest,
     /// 10041: remaining battery.
     10041 QueryRemainPowerResponse {
         /// `permil`: remaining battery in ‰.
-        permil: i16 = Permil,
+        permil: i16 = Plain::permil(),
     },
     /// 10050: test data, which the board discards (no response).
     10050 SendDummyDataRequest {
@@ -204,7 +201,7 @@ messages! {
     /// 20020: ask for one servo's state, or all ([`ALL_SERVOS`]).
     20020 QueryServoRequest {
         /// `servoID`.
-        servo_id: u8 = ServoId,
+        servo_id: u8 = Plain::servo_id(),
     },
     /// 20021: servo states (empty if the id is unknown).
     20021 QueryServoResponse {
@@ -218,14 +215,14 @@ messages! {
     /// 20040: set a servo's angle unit.
     20040 SetAngleUnitRequest {
         /// `servoID` (0xFF = all).
-        servo_id: u8 = ServoId,
+        servo_id: u8 = Plain::servo_id(),
         /// `unitType`.
         unit: AngleUnit = Code("unitType"),
     },
     /// 20041: the angle unit now set.
     20041 SetAngleUnitResponse {
         /// `servoID`.
-        servo_id: u8 = ServoId,
+        servo_id: u8 = Plain::servo_id(),
         /// `unitType`.
         unit: AngleUnit = Code("unitType"),
     },
@@ -237,7 +234,7 @@ messages! {
     /// 20060: run a stored action (no response).
     20060 ExecuteActionExRequest {
         /// `actionID`.
-        action_id: i32 = Id("actionID", "action"),
+        action_id: i32 = Plain::id("actionID", "action"),
     },
     /// 30010: ask for the action list.
     30010 QueryActionListRequest,
@@ -249,7 +246,7 @@ messages! {
     /// 30020: ask for one action.
     30020 QueryActionRequest {
         /// `actionID`.
-        action_id: i32 = Id("actionID", "action"),
+        action_id: i32 = Plain::id("actionID", "action"),
     },
     /// 30021: one action, or `None` when the board answered `actionID` 0 (failure).
     30021 QueryActionResponse {
@@ -261,17 +258,17 @@ messages! {
     /// 30031: result of the store.
     30031 AddActionResponse {
         /// `result`.
-        ok: bool = Outcome,
+        ok: bool = Plain::outcome(),
     },
     /// 30040: delete an action.
     30040 DeleteActionRequest {
         /// `actionID`.
-        action_id: i32 = Id("actionID", "action"),
+        action_id: i32 = Plain::id("actionID", "action"),
     },
     /// 30041: result of the delete.
     30041 DeleteActionResponse {
         /// `result`.
-        ok: bool = Outcome,
+        ok: bool = Plain::outcome(),
     },
     /// 30050: ask for the macro list.
     30050 QueryMacroListRequest,
@@ -283,7 +280,7 @@ messages! {
     /// 30060: ask for one macro.
     30060 QueryMacroRequest {
         /// `macroID`.
-        macro_id: i32 = Id("macroID", "macro"),
+        macro_id: i32 = Plain::id("macroID", "macro"),
     },
     /// 30061: one macro, or `None` when the board answered `macroID` 0 (failure).
     30061 QueryMacroResponse {
@@ -295,27 +292,27 @@ messages! {
     /// 30071: result of the store.
     30071 AddMacroResponse {
         /// `result`.
-        ok: bool = Outcome,
+        ok: bool = Plain::outcome(),
     },
     /// 30080: delete a macro.
     30080 DeleteMacroRequest {
         /// `macroID`.
-        macro_id: i32 = Id("macroID", "macro"),
+        macro_id: i32 = Plain::id("macroID", "macro"),
     },
     /// 30081: result of the delete.
     30081 DeleteMacroResponse {
         /// `result`.
-        ok: bool = Outcome,
+        ok: bool = Plain::outcome(),
     },
     /// 30090: run a stored macro.
     30090 ExecuteMacroRequest {
         /// `macroID`.
-        macro_id: i32 = Id("macroID", "macro"),
+        macro_id: i32 = Plain::id("macroID", "macro"),
     },
     /// 30091: whether the macro started.
     30091 ExecuteMacroResponse {
         /// `result`.
-        ok: bool = Outcome,
+        ok: bool = Plain::outcome(),
     },
     /// 30100: ask for the servo parameters.
     30100 QueryServoParameterRequest,
@@ -332,24 +329,24 @@ messages! {
     /// 30111: result of the store.
     30111 AddServoParameterResponse {
         /// `result`.
-        ok: bool = Outcome,
+        ok: bool = Plain::outcome(),
     },
     /// 30120: write the project id (overwrites).
     30120 WriteProjectIdRequest "WriteProjectIDRequest" {
         /// `projectID`.
-        project_id: i32 = Id("projectID", "project"),
+        project_id: i32 = Plain::id("projectID", "project"),
     },
     /// 30121: result of the write.
     30121 WriteProjectIdResponse "WriteProjectIDResponse" {
         /// `result`.
-        ok: bool = Outcome,
+        ok: bool = Plain::outcome(),
     },
     /// 30130: ask for the project id.
     30130 QueryProjectIdRequest "QueryProjectIDRequest",
     /// 30131: the project id (0 = none).
     30131 QueryProjectIdResponse "QueryProjectIDResponse" {
         /// `projectID`.
-        project_id: i32 = Id("projectID", "project"),
+        project_id: i32 = Plain::id("projectID", "project"),
     },
     /// 40010: ask for the joystick table list.
     40010 QueryJoystickTableListRequest,
@@ -361,7 +358,7 @@ messages! {
     /// 40020: ask for one joystick table.
     40020 QueryJoystickTableRequest {
         /// `tableID`.
-        table_id: i32 = Id("tableID", "table"),
+        table_id: i32 = Plain::id("tableID", "table"),
     },
     /// 40021: one table, or `None` when the board answered `tableID` 0 (failure).
     40021 QueryJoystickTableResponse {
@@ -373,49 +370,49 @@ messages! {
     /// 40031: result of the store.
     40031 AddJoystickTableResponse {
         /// `result`.
-        ok: bool = Outcome,
+        ok: bool = Plain::outcome(),
     },
     /// 40040: delete a joystick table.
     40040 DeleteJoystickTableRequest {
         /// `tableID`.
-        table_id: i32 = Id("tableID", "table"),
+        table_id: i32 = Plain::id("tableID", "table"),
     },
     /// 40041: result of the delete.
     40041 DeleteJoystickTableResponse {
         /// `result`.
-        ok: bool = Outcome,
+        ok: bool = Plain::outcome(),
     },
     /// 40050: make a table the active one.
     40050 SetActiveJoystickTableRequest {
         /// `tableID`.
-        table_id: i32 = Id("tableID", "table"),
+        table_id: i32 = Plain::id("tableID", "table"),
     },
     /// 40051: result.
     40051 SetActiveJoystickTableResponse {
         /// `result`.
-        ok: bool = Outcome,
+        ok: bool = Plain::outcome(),
     },
     /// 40060: ask which table is active.
     40060 QueryActiveJoystickTableRequest,
     /// 40061: the active table (0 = none).
     40061 QueryActiveJoystickTableResponse {
         /// `tableID`.
-        table_id: i32 = Id("tableID", "table"),
+        table_id: i32 = Plain::id("tableID", "table"),
     },
     /// 40070: start or stop button events.
     40070 SubscribeButtonEventRequest {
         /// `subscribe` (false = cancel).
-        subscribe: bool = Switch("subscribe"),
+        subscribe: bool = Plain::switch("subscribe"),
     },
     /// 40071: result.
     40071 SubscribeButtonEventResponse {
         /// `result`.
-        ok: bool = Outcome,
+        ok: bool = Plain::outcome(),
     },
     /// 40081: a button event, sent unsolicited while subscribed.
     40081 ButtonEventResponse {
         /// `buttonID`.
-        button_id: u32 = ButtonId,
+        button_id: u32 = Plain::button_id(),
         /// `event`.
         event: ButtonEvent = Code("event"),
     },
