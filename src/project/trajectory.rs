@@ -274,11 +274,11 @@ impl<'a> Follower<'a> {
         }
         let mut angle = self.held;
         for (index, pair) in points[self.next..].windows(2).enumerate() {
-            let ((t0, a0), (t1, a1)) = (pair[0], pair[1]);
+            let ((t0, _), (t1, a1)) = (pair[0], pair[1]);
             if time_ms >= t1 {
                 angle = a1;
             } else if time_ms >= t0 {
-                angle = if t1 > t0 { a0 + (a1 - a0) * (time_ms - t0) / (t1 - t0) } else { a1 };
+                angle = along(pair[0], pair[1], time_ms);
                 break;
             } else if self.next + index >= self.sorted_from {
                 // Every later segment starts later still.
@@ -293,6 +293,12 @@ impl<'a> Follower<'a> {
 /// the last one; `None` before the first point.
 pub fn angle_at(points: &[(f64, f64)], time_ms: f64) -> Option<f64> {
     Follower::new(points).at(time_ms)
+}
+
+/// The angle at `time_ms` on the straight move from `(t0, a0)` to `(t1, a1)`
+/// (a move that takes no time is already there).
+fn along((t0, a0): (f64, f64), (t1, a1): (f64, f64), time_ms: f64) -> f64 {
+    if t1 > t0 { a0 + (a1 - a0) * (time_ms - t0) / (t1 - t0) } else { a1 }
 }
 
 #[cfg(test)]
@@ -435,11 +441,11 @@ mod tests {
         }
         let mut angle = first.1;
         for pair in points.windows(2) {
-            let ((t0, a0), (t1, a1)) = (pair[0], pair[1]);
+            let ((t0, _), (t1, a1)) = (pair[0], pair[1]);
             if time_ms >= t1 {
                 angle = a1;
             } else if time_ms >= t0 {
-                angle = if t1 > t0 { a0 + (a1 - a0) * (time_ms - t0) / (t1 - t0) } else { a1 };
+                angle = along(pair[0], pair[1], time_ms);
                 break;
             }
         }
