@@ -234,17 +234,17 @@ pub fn record_bytes(image: &servo_studio::device::servo::ServoImage) -> Vec<Vec<
     out
 }
 
+/// `servo-studio ARGS` with no input and both outputs piped.
+fn piped(args: &[&str]) -> std::process::Command {
+    let mut command = std::process::Command::new(env!("CARGO_BIN_EXE_servo-studio"));
+    command.args(args).stdin(Stdio::null()).stdout(Stdio::piped()).stderr(Stdio::piped());
+    command
+}
+
 /// Runs `servo-studio ARGS` in `cwd` with a watchdog; (exit code, stdout, stderr, how long).
 pub fn run_in(cwd: &std::path::Path, args: &[&str], within: Duration) -> (Option<i32>, String, String, Duration) {
     let began = std::time::Instant::now();
-    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_servo-studio"))
-        .current_dir(cwd)
-        .args(args)
-        .stdin(Stdio::null())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
+    let mut child = piped(args).current_dir(cwd).spawn().unwrap();
     let stdout = child.stdout.take().unwrap();
     let reader = std::thread::spawn(move || std::io::read_to_string(stdout).unwrap_or_default());
     let (code, stderr) = ended(child, within);
@@ -254,13 +254,7 @@ pub fn run_in(cwd: &std::path::Path, args: &[&str], within: Duration) -> (Option
 /// Runs `servo-studio ARGS` with its stdout's reader gone before the first
 /// line (`| head -0`); its exit code and stderr, with a watchdog.
 pub fn with_stdout_closed(args: &[&str]) -> (Option<i32>, String) {
-    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_servo-studio"))
-        .args(args)
-        .stdin(Stdio::null())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
+    let mut child = piped(args).spawn().unwrap();
     drop(child.stdout.take());
     ended(child, Duration::from_secs(20))
 }
