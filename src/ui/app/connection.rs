@@ -13,6 +13,9 @@ impl StudioApp {
     pub fn pump(&mut self, now: Instant) {
         self.poll_operation();
         self.poll_connecting();
+        // A link made just now is due its first status queries: they go out in this pump, not
+        // at a later frame that nothing may ask for.
+        let now = now.max(Instant::now());
         let Some(family) = self.link.as_ref().map(BoardLink::family) else { return };
         let polling = self.family_ui(family).polling();
         let Some(link) = &mut self.link else { return };
