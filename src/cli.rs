@@ -9,6 +9,7 @@ mod check;
 mod gui;
 mod out;
 mod plen2;
+mod probe;
 mod rflex;
 mod servo;
 mod signals;
@@ -110,6 +111,21 @@ pub enum CliCommand {
     },
     /// List the serial ports this computer sees.
     Ports,
+    /// The connection doctor: which family answers on a port (or on every
+    /// port), at which baud, what it says of itself, and how its link delivers.
+    /// Sends only requests that change nothing on a servo board, a PLEN2 or an
+    /// rFLEX base. Exits 1 when nothing answered.
+    Probe {
+        /// The port (default: every port this computer sees).
+        #[arg(long)]
+        port: Option<String>,
+        /// Ask every family at this line rate (default: each family's own).
+        #[arg(long, allow_hyphen_values = true, value_parser = bounds::baud)]
+        baud: Option<u32>,
+        /// How long a request may wait for its reply to begin, ms (default 500).
+        #[arg(long, allow_hyphen_values = true, value_parser = bounds::timeout_ms)]
+        timeout_ms: Option<u64>,
+    },
     /// Run an emulated board. Prints the port to connect to on the first line.
     Sim {
         /// The emulator's options.
@@ -321,6 +337,7 @@ pub fn run(command: CliCommand) -> ExitCode {
     let result = match command {
         CliCommand::Check { file } => return check::run(&file),
         CliCommand::Ports => servo::ports(),
+        CliCommand::Probe { port, baud, timeout_ms } => probe::run(port.as_deref(), baud, timeout_ms),
         CliCommand::Sim { args, protocol } => sim::run(&args, protocol),
         CliCommand::Rflex { command } => rflex::run(&command),
         CliCommand::Export { port, out, slots, force } => export(&port, &out, slots, force),

@@ -8,6 +8,7 @@
 
 mod operation;
 pub mod plen2;
+pub mod probe;
 pub mod rflex;
 pub mod servo;
 

@@ -21,7 +21,7 @@ pub use ops::{
     Plen2Import, Plen2ImportFailure, Plen2ImportOptions, Plen2ImportReport, Plen2Info, Plen2Item, Plen2OpError,
     Plen2Phase, Plen2Progress, SlotResult, export, import, info, read_joint_settings, read_slot, write_joint_settings,
 };
-pub use pacer::{PacingMode, RING_WINDOW_BYTES, SAFE_BURST, SAFE_PAUSE, WidenReason, Widened};
+pub use pacer::{LinkReport, Pacer, PacingMode, RING_WINDOW_BYTES, SAFE_BURST, SAFE_PAUSE, WidenReason, Widened};
 
 use crate::device::LogEntry;
 use crate::link::{self, Connection, DisconnectReason, LinkEvent, LinkHandle, Waker};

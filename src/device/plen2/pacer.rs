@@ -145,6 +145,48 @@ impl std::fmt::Display for Widened {
     }
 }
 
+/// What the replies so far showed of the link (the connection doctor's
+/// figures; the adaptive pacing acts on the same measurements).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct LinkReport {
+    /// Replies measured.
+    pub replies: u32,
+    /// The shortest delay from when the robot began printing a reply to its
+    /// first byte's arrival (what every reply costs on this link).
+    pub latency: Option<Duration>,
+    /// The longest such delay beyond the time the first bytes need: how late
+    /// the link may hold bytes back (a bridge's connection events).
+    pub late: Duration,
+    /// The longest gap before a clump inside a reply (zero: none).
+    pub clump_gap: Duration,
+    /// A long reply arrived in one piece (a bridge that hands replies over whole).
+    pub whole: bool,
+    /// The delivery rate a reply of at least a kilobyte arrived at, bytes a second.
+    pub bytes_per_s: Option<u32>,
+}
+
+impl std::fmt::Display for LinkReport {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let ms = |d: Duration| d.as_secs_f64() * 1000.0;
+        let Some(latency) = self.latency else { return write!(f, "not measured") };
+        write!(f, "first byte after {:.1} ms", ms(latency))?;
+        if self.late > CLUMP_GAP {
+            write!(f, ", up to {:.1} ms late", ms(self.late))?;
+        }
+        if !self.clump_gap.is_zero() {
+            write!(f, ", in clumps up to {:.1} ms apart", ms(self.clump_gap))?;
+        } else if self.whole {
+            write!(f, ", replies whole")?;
+        } else {
+            write!(f, ", smooth")?;
+        }
+        if let Some(rate) = self.bytes_per_s {
+            write!(f, ", {rate} bytes/s")?;
+        }
+        Ok(())
+    }
+}
+
 /// Bytes the widened pacer lets be in flight, not yet read by the firmware
 /// even if each arrived as late as the window allows (the rest of the
 /// 64-byte ring is slack for a STOP).
@@ -216,6 +258,7 @@ pub struct Pacer {
     watched: Option<Watched>,
     /// A reply long enough to show the link has been watched.
     measured: bool,
+    report: LinkReport,
     widened: VecDeque<Widened>,
 }
 
@@ -235,6 +278,7 @@ impl Pacer {
             safe_left: SAFE_BURST,
             watched: None,
             measured: false,
+            report: LinkReport::default(),
             widened: VecDeque::new(),
         }
     }
@@ -248,6 +292,11 @@ impl Pacer {
     /// (only the adaptive pacing learns).
     pub fn wants_measurement(&self) -> bool {
         self.mode == PacingMode::Adaptive && !self.measured
+    }
+
+    /// What the replies so far showed of the link.
+    pub fn report(&self) -> LinkReport {
+        self.report
     }
 
     /// The window the pacer allows for, once widened.
@@ -399,7 +448,8 @@ impl Pacer {
         let Some(mut watched) = self.watched.take() else { return };
         watched.close_clump();
         let (Some(first), Some(last)) = (watched.first, watched.last) else { return };
-        self.measured |= watched.later_bytes >= RATE_SAMPLE_BYTES;
+        self.measured |= watched.first_bytes + watched.later_bytes >= RATE_SAMPLE_BYTES;
+        self.note(&watched, first, last);
         if !watched.max_gap.is_zero() {
             self.widen(watched.max_gap, WidenReason::Bursts { gap: watched.max_gap });
             self.widen_for_lateness(&watched, first, FASTEST_REPLY_BYTE);
@@ -421,6 +471,25 @@ impl Pacer {
             }
         }
         self.widen_for_lateness(&watched, first, print);
+    }
+
+    /// What one reply showed, added to the report.
+    fn note(&mut self, watched: &Watched, first: Instant, last: Instant) {
+        let report = &mut self.report;
+        report.replies += 1;
+        let delay = first.saturating_duration_since(watched.expected);
+        report.latency = Some(report.latency.map_or(delay, |latency| latency.min(delay)));
+        let own = FASTEST_REPLY_BYTE * u32::try_from(watched.first_bytes).unwrap_or(u32::MAX);
+        report.late = report.late.max(delay.saturating_sub(own));
+        report.clump_gap = report.clump_gap.max(watched.max_gap);
+        let total = watched.first_bytes + watched.later_bytes;
+        report.whole |= total >= RATE_SAMPLE_BYTES && watched.first_bytes == total;
+        let took = last.saturating_duration_since(first);
+        if watched.later_bytes >= RATE_SAMPLE_BYTES && !took.is_zero() {
+            #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, clippy::cast_precision_loss)]
+            let rate = (watched.later_bytes as f64 / took.as_secs_f64()).round() as u32;
+            report.bytes_per_s = Some(report.bytes_per_s.map_or(rate, |known| known.min(rate)));
+        }
     }
 
     /// A slot read back different: widen (twice as wide each time).

@@ -6,7 +6,7 @@
 
 use serde::Deserialize;
 
-use super::joint::{DEVICE_IDS, MAX_FRAMES};
+use super::joint::{DEVICE_IDS, MAX_FRAMES, SLOTS};
 
 /// Most bytes of one reply kept in memory (a full 20-frame motion is about 30 KB).
 pub const MAX_REPLY_BYTES: usize = 96 * 1024;
@@ -87,6 +87,28 @@ impl ReplyReader {
     /// Whether a reply has begun (some of it arrived).
     pub fn started(&self) -> bool {
         self.started
+    }
+
+    /// Whether the `<MO` reply being read is a never-written slot's garbage,
+    /// known from its first bytes: its `"slot"` field prints a number no slot
+    /// has (255 from erased EEPROM, `plen2.md` §3). `None` until that field
+    /// has arrived whole (or for another reply).
+    pub fn erased_slot(&self) -> Option<bool> {
+        if self.expecting != Some(ReplyKind::Motion) || !self.started {
+            return None;
+        }
+        // `{`, CRLF, a tab, `"slot": 255,` — well within the first 32 bytes.
+        let head = &self.kept[..self.kept.len().min(32)];
+        let at = head.windows(7).position(|window| window == b"\"slot\":")? + 7;
+        let rest = &head[at..];
+        let digits: Vec<u8> = rest.iter().copied().skip_while(u8::is_ascii_whitespace).collect();
+        let number: Vec<u8> = digits.iter().copied().take_while(u8::is_ascii_digit).collect();
+        // The number is whole only once something follows it.
+        if number.is_empty() || number.len() == digits.len() {
+            return None;
+        }
+        let slot: u32 = std::str::from_utf8(&number).ok()?.parse().ok()?;
+        Some(slot >= u32::from(SLOTS))
     }
 
     /// Gives up the awaited reply (its timeout ran out); returns what was awaited.
@@ -303,6 +325,27 @@ mod tests {
         let mut reader = ReplyReader::new();
         reader.push(b"\r\nok\r\n");
         assert_eq!(reader.poll(), Some(ReplyEvent::Ignored { bytes: 2 }));
+    }
+
+    /// An erased slot is known from its first bytes, long before its 300 KB end.
+    #[test]
+    fn an_erased_slot_is_known_from_its_first_bytes() {
+        let mut reader = ReplyReader::new();
+        reader.expect(ReplyKind::Motion);
+        let erased = b"{\r\n\t\"slot\": 255,\r\n\t\"name\": \"\xff\xff";
+        for (cut, _) in erased.iter().enumerate() {
+            let mut reader = ReplyReader::new();
+            reader.expect(ReplyKind::Motion);
+            reader.push(&erased[..cut]);
+            // "slot": 2 could still become 25 or 255: undecided until a byte follows the number.
+            let whole = cut > erased.iter().position(|b| *b == b',').unwrap();
+            assert_eq!(reader.erased_slot(), whole.then_some(true), "after {cut} bytes");
+        }
+        reader.push(b"{\r\n\t\"slot\": 7,\r\n");
+        assert_eq!(reader.erased_slot(), Some(false), "a written slot prints its own number");
+        reader.expect(ReplyKind::Version);
+        reader.push(b"{\"slot\": 255,");
+        assert_eq!(reader.erased_slot(), None, "only <MO has slots");
     }
 
     #[test]
