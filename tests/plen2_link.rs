@@ -246,3 +246,47 @@ fn import_backs_up_a_factory_fresh_robot_over_a_bursty_line() {
     assert_eq!((state.lost_bytes, state.dropped), (0, 0), "{state:?}");
     assert_eq!(state.written_slots.len(), 1);
 }
+
+/// Connecting measures the link before anything relies on it: the first two
+/// things the robot reads are `<VI` and `<JS` (harmless getters), whose
+/// replies the adaptive pacing learns from.
+#[test]
+fn connecting_reads_the_version_and_joint_settings_first() {
+    let robot = robot();
+    let (handle, requester) = connect(&robot);
+    // A getter queued behind the connect's probe is answered after it.
+    requester.get(servo_studio::device::plen2::Command::GetVersion).unwrap();
+    let executed: Vec<_> = robot
+        .events()
+        .try_iter()
+        .filter_map(|event| match event {
+            servo_studio::link::LinkEvent::Driver(Plen2SimEvent::Executed(command)) => Some(command.code()),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(executed[..2], ["<VI", "<JS"], "{executed:?}");
+    drop(handle);
+}
+
+/// Exporting a never-written slot over a Bluetooth-like line says, while it
+/// lasts, why it is slow and about how long is left (plen2.md §3: the robot
+/// prints all of it before it reads anything else).
+#[test]
+fn export_says_why_an_erased_slot_is_slow() {
+    use servo_studio::sim::LinkKind;
+    let link = LinkKind::Bursty { interval: Duration::from_millis(15), whole: false };
+    let robot = spawn_pty(Plen2Sim::new(Plen2Timing::default()).with_link(link), no_waker()).unwrap();
+    let folder = tempfile::tempdir().unwrap();
+    let out = folder.path().join("fresh.json");
+    let output = std::process::Command::new(env!("CARGO_BIN_EXE_servo-studio"))
+        .args(["export", "--protocol", "plen2", "--port", &robot.port_name, "--slots", "3", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success(), "{stderr}");
+    let said: Vec<&str> = stderr.lines().filter(|line| line.contains("slot 3 was never written")).collect();
+    assert!(said.len() >= 2, "said at once, then with the time left: {stderr}");
+    assert!(said.iter().any(|line| line.contains("s more on this link")), "{stderr}");
+    assert!(servo_studio::project::load(&out).unwrap().plen2.motions.is_empty());
+}

@@ -14,7 +14,8 @@ use std::time::{Duration, Instant};
 
 use crossbeam_channel::Receiver;
 use servo_studio::device::plen2::{
-    Command, PacingMode, Plen2Command, Plen2Driver, Plen2Options, ReplyError, motion_commands, motion_from_reply,
+    Command, PacingMode, Plen2Command, Plen2Driver, Plen2Options, ReplyError, ReplyNews, motion_commands,
+    motion_from_reply,
 };
 use servo_studio::link::Driver;
 use servo_studio::project::motion_json;
@@ -88,7 +89,7 @@ impl Rig {
 
     fn get(&mut self, command: Command) -> Reply {
         let (reply, outcome) = crossbeam_channel::bounded(1);
-        self.command(Plen2Command::Get { command, reply });
+        self.command(Plen2Command::Get { command, reply, news: None });
         outcome
     }
 
@@ -376,13 +377,35 @@ fn an_erased_slot_is_read_whole_over_every_line() {
     for link in links {
         let mut rig = Rig::new(PacingMode::Adaptive, link);
         let began = rig.now;
-        let reply = rig.get(Command::GetMotion { slot: 0 });
+        let (reply, outcome) = crossbeam_channel::bounded(1);
+        let (news, told) = crossbeam_channel::unbounded();
+        rig.command(Plen2Command::Get { command: Command::GetMotion { slot: 0 }, reply, news: Some(news) });
+        // Said at once (from its first bytes), then with the time left once it
+        // has come a while — unless the link hands it over whole, when there
+        // is nothing to say before it is all there.
+        let whole = matches!(link, LinkKind::Bursty { whole: true, .. });
+        let estimate = (!whole).then(|| {
+            rig.until(|_| !told.is_empty());
+            let said_at = rig.now - began;
+            assert_eq!(told.try_recv(), Ok(ReplyNews::Erased { remaining: None }), "{link}");
+            rig.until(|_| !told.is_empty());
+            let Ok(ReplyNews::Erased { remaining: Some(remaining) }) = told.try_recv() else { panic!("{link}") };
+            (said_at, remaining, rig.now - began)
+        });
+        let reply = outcome;
         // Drained to its end and recognised as an erased slot (what `read_slot` calls never written).
         let bytes = match rig.reply(&reply) {
             Err(ReplyError::Garbage { bytes }) => bytes,
             other => panic!("{link}: {other:?}"),
         };
         assert!(bytes > 200_000, "{link}: {bytes} bytes");
+        let took = rig.now - began;
+        if let Some((said_at, remaining, estimated_at)) = estimate {
+            assert!(said_at * 5 < took, "{link}: said after {said_at:?} of {took:?}");
+            // The reckoned 345 KB at the rate so far: within a half of what it really took.
+            let real = took - estimated_at;
+            assert!(remaining > real / 2 && remaining < real * 2, "{link}: {remaining:?} estimated, {real:?} taken");
+        }
         // The robot reads nothing while it prints: the next getter is answered after it.
         let version = rig.get(Command::GetVersion);
         assert!(rig.reply(&version).is_ok(), "{link}: the robot answers again");

@@ -83,6 +83,8 @@ pub enum Plen2Command {
         command: Command,
         /// Where the reply goes.
         reply: ReplySender,
+        /// Told what the reply turns out to be while it is still arriving.
+        news: Option<Sender<ReplyNews>>,
     },
     /// Joints to absolute angles (`$AN`), coalesced: the latest angle per device wins.
     LiveAngles(Vec<(u8, i16)>),
@@ -96,14 +98,33 @@ pub enum Plen2Command {
     /// A slot read back different from what was written: the adaptive pacing
     /// widens its margins for the rest of the session.
     ReadBackDiffered,
-    /// Before an upload: if the adaptive pacing has not yet seen how the link
-    /// delivers, read the joint settings (a reply of about 1.7 KB) to see it;
-    /// `reply` is told when that is done (at once when nothing is needed).
+    /// On connecting, and before an upload: if the adaptive pacing has not yet
+    /// seen how the link delivers, read the version and the joint settings (a
+    /// short reply, then one of about 1.7 KB) to see it; `reply` is told when
+    /// that is done (at once when nothing is needed).
     Probe {
         /// Told when the link is known.
         reply: ReplySender,
     },
 }
+
+/// What a reply turns out to be, said while it still arrives.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ReplyNews {
+    /// The slot was never written: the robot prints its erased EEPROM (about
+    /// 300 KB, `plen2.md` §3) before it reads anything else.
+    Erased {
+        /// How long that is likely to take on this link, at the rate the
+        /// reply's first bytes came (`None` until it can be told).
+        remaining: Option<Duration>,
+    },
+}
+
+/// The size a never-written slot's reply is reckoned at (plen2.md §3: 260–345 KB).
+pub const ERASED_REPLY_BYTES: usize = 345 * 1024;
+
+/// An erased slot's time is reckoned once this much of it has come.
+const ESTIMATE_AFTER_BYTES: usize = 64 * 1024;
 
 /// What [`Plen2Command::Resync`] sends: more than the longest command's arguments.
 pub const RESYNC: &[u8; 110] = &[b'x'; 110];
@@ -124,7 +145,7 @@ struct Awaited {
     /// The silence limit, never past `overall`.
     deadline: Instant,
     /// The longest the reply may take, plus the timeout. Until the reply is
-    /// recognised as the protocol's own (a JSON reply's start), the first byte
+    /// recognised as the protocol's own (its first key), the first byte
     /// fixes it from the line's nominal rate and later bytes cannot move it;
     /// once recognised, it follows the rate the reply really arrives at (a
     /// Bluetooth bridge's, a slower line's), up to [`REPLY_CEILING`].
@@ -132,6 +153,11 @@ struct Awaited {
     /// When its first byte arrived.
     first: Option<Instant>,
     bytes: usize,
+    news: Option<Sender<ReplyNews>>,
+    /// Part of a probe.
+    probe: bool,
+    /// Whether the reply was said to be an erased slot's: 0 not, 1 said, 2 said with how long.
+    erased: u8,
 }
 
 /// The longest any reply may take once it is recognised: an erased slot's
@@ -154,6 +180,9 @@ struct Queued {
     bytes: Vec<u8>,
     done: Option<Sender<()>>,
     reply: Option<ReplySender>,
+    news: Option<Sender<ReplyNews>>,
+    /// Part of a probe: its reply goes to the probe's callers.
+    probe: bool,
 }
 
 /// The driver.
@@ -171,6 +200,8 @@ pub struct Plen2Driver {
     waiting: Vec<(Instant, Sender<()>)>,
     reader: ReplyReader,
     reply: Option<Awaited>,
+    /// Who waits for the probe under way (`<VI`, then `<JS` if that answered).
+    probing: Vec<ReplySender>,
     opened_at: Option<Instant>,
     /// The latest time the driver was told (deadlines are never before it).
     now: Instant,
@@ -218,6 +249,7 @@ impl Plen2Driver {
             waiting: Vec::new(),
             reader: ReplyReader::new(),
             reply: None,
+            probing: Vec::new(),
             opened_at: None,
             now: Instant::now(),
             output: VecDeque::new(),
@@ -234,7 +266,33 @@ impl Plen2Driver {
 
     fn enqueue(&mut self, command: Command, done: Option<Sender<()>>, reply: Option<ReplySender>) {
         let bytes = command.to_ascii().into_bytes();
-        self.queue.push_back(Queued { command: Some(command), bytes, done, reply });
+        self.queue.push_back(Queued { command: Some(command), bytes, done, reply, news: None, probe: false });
+    }
+
+    /// A probe's getter, ahead of what is queued (a probe is asked for before what it measures).
+    fn enqueue_probe(&mut self, command: Command) {
+        let (timed, _) = crossbeam_channel::bounded(1);
+        let bytes = command.to_ascii().into_bytes();
+        let queued = Queued { command: Some(command), bytes, done: None, reply: Some(timed), news: None, probe: true };
+        self.queue.push_front(queued);
+    }
+
+    /// A getter's reply came, or did not: to its caller — or, for a probe's,
+    /// on to the next getter (`<VI` answered: `<JS`), or to the probe's callers.
+    /// A probe whose first getter gets no answer stops there: a silent line
+    /// is not asked twice.
+    fn resolve(&mut self, awaited: &Awaited, result: Result<Vec<u8>, ReplyError>) {
+        if !awaited.probe {
+            let _ = awaited.sender.send(result);
+            return;
+        }
+        if result.is_ok() && awaited.kind == ReplyKind::Version {
+            self.enqueue_probe(Command::GetJointSettings);
+            return;
+        }
+        for caller in self.probing.drain(..) {
+            let _ = caller.send(result.clone());
+        }
     }
 
     /// When the firmware will have finished everything sent so far.
@@ -315,7 +373,18 @@ impl Plen2Driver {
                 self.reader.expect(kind);
                 self.pacer.watch_reply(idle);
                 let deadline = idle + self.reply_timeout;
-                self.reply = Some(Awaited { kind, sender, deadline, overall: None, first: None, bytes: 0 });
+                let (news, probe) = (queued.news, queued.probe);
+                self.reply = Some(Awaited {
+                    kind,
+                    sender,
+                    deadline,
+                    overall: None,
+                    first: None,
+                    bytes: 0,
+                    news,
+                    probe,
+                    erased: 0,
+                });
             }
         }
         if !chunk.is_empty() {
@@ -344,7 +413,12 @@ impl Driver for Plen2Driver {
     fn handle_command(&mut self, now: Instant, command: Plen2Command) {
         match command {
             Plen2Command::Send { command, done } => self.enqueue(command, done, None),
-            Plen2Command::Get { command, reply } => self.enqueue(command, None, Some(reply)),
+            Plen2Command::Get { command, reply, news } => {
+                self.enqueue(command, None, Some(reply));
+                if let Some(queued) = self.queue.back_mut() {
+                    queued.news = news;
+                }
+            }
             Plen2Command::LiveAngles(moves) => self.live.extend(moves),
             Plen2Command::Stop => {
                 self.live.clear();
@@ -353,16 +427,34 @@ impl Driver for Plen2Driver {
                 self.urgent.clear();
                 for command in [Command::ResetInterpreter, Command::HomePosition] {
                     let bytes = command.to_ascii().into_bytes();
-                    self.urgent.push_back(Queued { bytes, command: Some(command), done: None, reply: None });
+                    self.urgent.push_back(Queued {
+                        bytes,
+                        command: Some(command),
+                        done: None,
+                        reply: None,
+                        news: None,
+                        probe: false,
+                    });
                 }
             }
             Plen2Command::Resync => {
-                self.queue.push_back(Queued { command: None, bytes: RESYNC.to_vec(), done: None, reply: None });
+                self.queue.push_back(Queued {
+                    command: None,
+                    bytes: RESYNC.to_vec(),
+                    done: None,
+                    reply: None,
+                    news: None,
+                    probe: false,
+                });
             }
             Plen2Command::ReadBackDiffered => self.pacer.read_back_differed(),
             Plen2Command::Probe { reply } => {
-                if self.pacer.wants_measurement() {
-                    self.enqueue(Command::GetJointSettings, None, Some(reply));
+                if !self.probing.is_empty() {
+                    // One under way already: its answer is this one's too.
+                    self.probing.push(reply);
+                } else if self.pacer.wants_measurement() {
+                    self.probing.push(reply);
+                    self.enqueue_probe(Command::GetVersion);
                 } else {
                     let _ = reply.send(Ok(Vec::new()));
                 }
@@ -379,7 +471,8 @@ impl Driver for Plen2Driver {
         if self.reply.is_some() {
             self.pacer.reply_bytes(now, bytes.len());
         }
-        let recognised = self.reader.started();
+        let recognised = self.reader.recognised();
+        let mut newly_erased = false;
         if let Some(awaited) = &mut self.reply {
             awaited.bytes += bytes.len();
             let first = *awaited.first.get_or_insert(now);
@@ -398,6 +491,27 @@ impl Driver for Plen2Driver {
             };
             awaited.overall = Some(overall);
             awaited.deadline = (now + timeout).min(overall);
+            // An erased slot is said at once, and again once the rate it comes at tells how long it takes.
+            let told = awaited.erased;
+            if told < 2 && self.reader.erased_slot() == Some(true) {
+                let estimate = awaited.bytes >= ESTIMATE_AFTER_BYTES && elapsed > 0.0;
+                if told == 0 || estimate {
+                    awaited.erased = if estimate { 2 } else { 1 };
+                    let remaining = estimate.then(|| {
+                        let left = ERASED_REPLY_BYTES.saturating_sub(awaited.bytes) as f64;
+                        // At the rate it really comes (a USB CDC line can beat its nominal baud).
+                        Duration::from_secs_f64(left / measured.max(1.0))
+                    });
+                    if let Some(news) = &awaited.news {
+                        let _ = news.send(ReplyNews::Erased { remaining });
+                    }
+                    newly_erased = told == 0;
+                }
+            }
+        }
+        if newly_erased {
+            let text = "never written: the robot prints its erased memory (about 300 KB) before it reads anything else; nothing is sent meanwhile";
+            self.log(now, Direction::Note, "erased slot".into(), text.into(), &[]);
         }
         while let Some(event) = self.reader.poll() {
             match event {
@@ -407,7 +521,7 @@ impl Driver for Plen2Driver {
                     let summary: String = summary.chars().take(120).collect();
                     self.log(now, Direction::Received, format!("{kind:?} reply"), summary, &bytes);
                     if let Some(awaited) = self.reply.take() {
-                        let _ = awaited.sender.send(Ok(bytes));
+                        self.resolve(&awaited, Ok(bytes));
                     }
                     // What its arrival says about the link; the firmware is idle again.
                     self.pacer.reply_ended();
@@ -422,7 +536,7 @@ impl Driver for Plen2Driver {
                         &[],
                     );
                     if let Some(awaited) = self.reply.take() {
-                        let _ = awaited.sender.send(Err(ReplyError::Garbage { bytes }));
+                        self.resolve(&awaited, Err(ReplyError::Garbage { bytes }));
                     }
                     self.pacer.reply_ended();
                     self.pacer.idle_from(now);
@@ -441,13 +555,13 @@ impl Driver for Plen2Driver {
             // A reply that began and then stopped (or ran past the longest
             // reply's time) is the protocol's own, cut short: worth asking
             // again. Only bytes that never began one are another protocol.
-            let error = if awaited.bytes == 0 || self.reader.started() {
+            let error = if awaited.bytes == 0 || self.reader.recognised() {
                 ReplyError::Timeout { timeout_ms: u64::try_from(self.reply_timeout.as_millis()).unwrap_or(u64::MAX) }
             } else {
                 ReplyError::NotThisProtocol { bytes: awaited.bytes }
             };
             self.reader.abandon();
-            let _ = awaited.sender.send(Err(error));
+            self.resolve(&awaited, Err(error));
         }
         let (due, later): (Vec<_>, Vec<_>) =
             std::mem::take(&mut self.waiting).into_iter().partition(|(at, _)| *at <= now);
@@ -461,6 +575,9 @@ impl Driver for Plen2Driver {
     fn handle_disconnect(&mut self, _reason: &str) {
         if let Some(awaited) = self.reply.take() {
             let _ = awaited.sender.send(Err(ReplyError::Disconnected));
+        }
+        for caller in self.probing.drain(..) {
+            let _ = caller.send(Err(ReplyError::Disconnected));
         }
         for queued in self.queue.drain(..) {
             if let Some(reply) = queued.reply {
@@ -515,7 +632,7 @@ mod tests {
 
     fn getter(driver: &mut Plen2Driver, now: Instant) -> crossbeam_channel::Receiver<Result<Vec<u8>, ReplyError>> {
         let (reply, outcome) = crossbeam_channel::bounded(1);
-        driver.handle_command(now, Plen2Command::Get { command: Command::GetVersion, reply });
+        driver.handle_command(now, Plen2Command::Get { command: Command::GetVersion, reply, news: None });
         while driver.poll_transmit(now).is_some() {}
         outcome
     }

@@ -15,11 +15,13 @@ use crossbeam_channel::Sender;
 
 pub use convert::{NotStorable, Unstorable, frames_of, motion_commands, motion_from_reply, storable, store_commands};
 pub use driver::{
-    Pacing, Plen2Command, Plen2Driver, Plen2Event, Plen2Options, REPLY_IDLE, RESYNC, ReplyError, ReplySender,
+    ERASED_REPLY_BYTES, Pacing, Plen2Command, Plen2Driver, Plen2Event, Plen2Options, REPLY_IDLE, RESYNC, ReplyError,
+    ReplyNews, ReplySender,
 };
 pub use ops::{
     Plen2Import, Plen2ImportFailure, Plen2ImportOptions, Plen2ImportReport, Plen2Info, Plen2Item, Plen2OpError,
-    Plen2Phase, Plen2Progress, SlotResult, export, import, info, read_joint_settings, read_slot, write_joint_settings,
+    Plen2Phase, Plen2Progress, SlotResult, export, import, info, read_joint_settings, read_slot, read_slot_noting,
+    write_joint_settings,
 };
 pub use pacer::{LinkReport, Pacer, PacingMode, RING_WINDOW_BYTES, SAFE_BURST, SAFE_PAUSE, WidenReason, Widened};
 
@@ -50,13 +52,7 @@ impl Plen2Requester {
     /// parser may be stuck inside a command whose bytes were lost: the resync
     /// bytes end it, and the getter is sent once more.
     pub fn get(&self, command: Command) -> Result<Vec<u8>, ReplyError> {
-        match self.get_once(command.clone()) {
-            Err(ReplyError::Timeout { .. }) => {
-                self.commands.send(Plen2Command::Resync).map_err(|_| ReplyError::Disconnected)?;
-                self.get_once(command)
-            }
-            other => other,
-        }
+        self.get_noting(command, &mut |_| {})
     }
 
     /// Before an upload: lets the adaptive pacing see how the link delivers
@@ -72,10 +68,34 @@ impl Plen2Requester {
         self.commands.send(Plen2Command::ReadBackDiffered).map_err(|_| ReplyError::Disconnected)
     }
 
-    fn get_once(&self, command: Command) -> Result<Vec<u8>, ReplyError> {
+    /// As [`Plen2Requester::get`], telling `on_news` what the reply turns out
+    /// to be while it still arrives (an erased slot takes long).
+    pub fn get_noting(&self, command: Command, on_news: &mut dyn FnMut(ReplyNews)) -> Result<Vec<u8>, ReplyError> {
+        match self.get_once(command.clone(), on_news) {
+            Err(ReplyError::Timeout { .. }) => {
+                self.commands.send(Plen2Command::Resync).map_err(|_| ReplyError::Disconnected)?;
+                self.get_once(command, on_news)
+            }
+            other => other,
+        }
+    }
+
+    fn get_once(&self, command: Command, on_news: &mut dyn FnMut(ReplyNews)) -> Result<Vec<u8>, ReplyError> {
         let (reply, outcome) = crossbeam_channel::bounded(1);
-        self.commands.send(Plen2Command::Get { command, reply }).map_err(|_| ReplyError::Disconnected)?;
-        outcome.recv().unwrap_or(Err(ReplyError::Disconnected))
+        let (news, told) = crossbeam_channel::unbounded();
+        self.commands
+            .send(Plen2Command::Get { command, reply, news: Some(news) })
+            .map_err(|_| ReplyError::Disconnected)?;
+        loop {
+            crossbeam_channel::select! {
+                recv(outcome) -> result => return result.unwrap_or(Err(ReplyError::Disconnected)),
+                recv(told) -> news => match news {
+                    Ok(news) => on_news(news),
+                    // The driver dropped it with the reply: the outcome is there.
+                    Err(_) => return outcome.recv().unwrap_or(Err(ReplyError::Disconnected)),
+                },
+            }
+        }
     }
 }
 
@@ -108,6 +128,10 @@ impl Plen2Handle {
     /// Starts the I/O thread over an open connection.
     pub fn over(connection: Connection, options: Plen2Options, waker: Waker) -> std::io::Result<Self> {
         let link = link::spawn(connection, Plen2Driver::new(options), waker)?;
+        // The link is measured before anything relies on it (plen2.md §5: the
+        // first EEPROM write must not overrun the ring, whatever the line).
+        let (reply, _) = crossbeam_channel::bounded(1);
+        let _ = link.commands().send(Plen2Command::Probe { reply });
         Ok(Self { link, pacing: options.mode, stopped: false })
     }
 

@@ -36,6 +36,14 @@ pub enum Plen2Item {
     },
     /// Reading a reply to see how the link delivers.
     Link,
+    /// A slot found never written while it is read: the robot prints its
+    /// erased memory before it reads anything else, which takes long on a slow link.
+    Erased {
+        /// The slot.
+        slot: u8,
+        /// How much longer that takes, once the rate it comes at tells.
+        remaining: Option<std::time::Duration>,
+    },
     /// Telling the pacing a read-back differed.
     Pacing,
     /// The factory reset of the joint settings (`>JS`).
@@ -53,6 +61,16 @@ impl std::fmt::Display for Plen2Item {
             Self::Slot { slot, name } if name.is_empty() => write!(f, "slot {slot}"),
             Self::Slot { slot, name } => write!(f, "slot {slot} {name:?}"),
             Self::Link => write!(f, "the link"),
+            Self::Erased { slot, remaining } => {
+                write!(
+                    f,
+                    "slot {slot} was never written: the robot prints all of its erased memory (about 300 KB) before it reads anything else"
+                )?;
+                match remaining {
+                    Some(left) => write!(f, "; about {} s more on this link", left.as_secs().max(1)),
+                    None => Ok(()),
+                }
+            }
             Self::Pacing => write!(f, "pacing"),
             Self::FactoryReset => write!(f, "factory joint settings"),
             Self::Done => write!(f, "done"),
@@ -111,7 +129,21 @@ fn slot_item(slot: u8, name: &str) -> Plen2Item {
 
 /// Reads one slot: `None` when it was never written (its garbage is drained).
 pub fn read_slot(requester: &Plen2Requester, slot: u8) -> Result<Option<Motion>, Plen2OpError> {
-    match requester.get(Command::GetMotion { slot }) {
+    read_slot_noting(requester, slot, &mut |_| {})
+}
+
+/// Reads one slot as [`read_slot`] does; when its reply shows the slot was
+/// never written, `erased` is told (and told again with how long the rest
+/// takes, once that is known).
+pub fn read_slot_noting(
+    requester: &Plen2Requester,
+    slot: u8,
+    erased: &mut dyn FnMut(Option<std::time::Duration>),
+) -> Result<Option<Motion>, Plen2OpError> {
+    let mut news = |news: super::ReplyNews| match news {
+        super::ReplyNews::Erased { remaining } => erased(remaining),
+    };
+    match requester.get_noting(Command::GetMotion { slot }, &mut news) {
         Ok(bytes) => Ok(decode_motion(&bytes).map(|reply| motion_from_reply(&reply))),
         Err(ReplyError::Garbage { .. }) => Ok(None),
         Err(source) => Err(Plen2OpError::Reply { item: slot_item(slot, ""), source }),
@@ -176,7 +208,8 @@ pub fn export(
     for (index, &slot) in slots.iter().enumerate() {
         check(cancel)?;
         step(index + 1, slot_item(slot, ""));
-        if let Some(motion) = read_slot(requester, slot)? {
+        let mut erased = |remaining| step(index + 1, Plen2Item::Erased { slot, remaining });
+        if let Some(motion) = read_slot_noting(requester, slot, &mut erased)? {
             motions.push(motion);
         }
     }

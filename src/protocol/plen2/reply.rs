@@ -89,6 +89,20 @@ impl ReplyReader {
         self.started
     }
 
+    /// Whether the reply being read is recognisably the one asked for: its
+    /// first key has arrived (`{"device"` for `<VI`, `[{"@device"` for `<JS`,
+    /// `{"slot"` for `<MO`, blanks aside). A stray `{` on a noisy line is not.
+    pub fn recognised(&self) -> bool {
+        let Some(kind) = self.expecting.filter(|_| self.started) else { return false };
+        let start: &[u8] = match kind {
+            ReplyKind::Version => b"{\"device\"",
+            ReplyKind::JointSettings => b"[{\"@device\"",
+            ReplyKind::Motion => b"{\"slot\"",
+        };
+        let mut seen = self.kept.iter().filter(|byte| !byte.is_ascii_whitespace());
+        start.iter().all(|wanted| seen.next() == Some(wanted))
+    }
+
     /// Whether the `<MO` reply being read is a never-written slot's garbage,
     /// known from its first bytes: its `"slot"` field prints a number no slot
     /// has (255 from erased EEPROM, `plen2.md` §3). `None` until that field
@@ -325,6 +339,30 @@ mod tests {
         let mut reader = ReplyReader::new();
         reader.push(b"\r\nok\r\n");
         assert_eq!(reader.poll(), Some(ReplyEvent::Ignored { bytes: 2 }));
+    }
+
+    /// A reply is recognised by its first key, however it is laid out; a
+    /// stray bracket is not a reply.
+    #[test]
+    fn a_reply_is_recognised_by_its_first_key() {
+        for (kind, text) in [
+            (ReplyKind::Version, &b"{\r\n\t\"device\": \"PLEN2\""[..]),
+            (ReplyKind::JointSettings, b"[\r\n\t{\r\n\t\t\"@device\": 0"),
+            (ReplyKind::Motion, b"{\"slot\": 3"),
+        ] {
+            let mut reader = ReplyReader::new();
+            reader.expect(kind);
+            // The key's closing quote: the second quote in the text.
+            let key_end = text.iter().enumerate().filter(|(_, b)| **b == b'"').nth(1).unwrap().0;
+            for (cut, byte) in text.iter().enumerate() {
+                reader.push(&[*byte]);
+                assert_eq!(reader.recognised(), cut >= key_end, "{kind:?} after {} bytes", cut + 1);
+            }
+        }
+        let mut noise = ReplyReader::new();
+        noise.expect(ReplyKind::Motion);
+        noise.push(b"{\x07\x93\"slot\"");
+        assert!(!noise.recognised());
     }
 
     /// An erased slot is known from its first bytes, long before its 300 KB end.

@@ -64,6 +64,15 @@ impl Language {
             Plen2Item::Slot { slot, name } if name.is_empty() => format!("槽位 {slot}"),
             Plen2Item::Slot { slot, name } => format!("槽位 {slot} {name:?}"),
             Plen2Item::Link => "連線".into(),
+            Plen2Item::Erased { slot, remaining } => {
+                let mut text = format!(
+                    "槽位 {slot} 從未寫入：機器人會先送出整個未寫入的記憶體（約 300 KB），之後才讀取下一個指令"
+                );
+                if let Some(left) = remaining {
+                    text.push_str(&format!("；在這條連線上約還需 {} 秒", left.as_secs().max(1)));
+                }
+                text
+            }
             Plen2Item::Pacing => "傳送節奏".into(),
             Plen2Item::FactoryReset => "出廠關節設定".into(),
             Plen2Item::Done => "完成".into(),
