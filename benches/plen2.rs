@@ -101,6 +101,32 @@ fn measure(link: LinkKind, rounds: u8) -> Figures {
     }
 }
 
+/// Import of one motion into a factory-fresh robot with a backup first: the
+/// backup drains the slot's erased memory (plen2.md §3), then the motion is
+/// written and verified. Returns the time, bytes lost, slots written again,
+/// and whether the progress said why the slot was slow (with the time left).
+fn backup_of_a_fresh_robot(link: LinkKind) -> (Duration, u64, usize, bool) {
+    let robot = spawn_pty(Plen2Sim::new(Plen2Timing::default()).with_link(link), no_waker()).unwrap();
+    let port = PortName::parse(&robot.port_name).unwrap();
+    let connection = servo_studio::link::open(&port, &servo_studio::device::line_settings(Family::Plen2)).unwrap();
+    let handle = Plen2Handle::over(connection, Plen2Options::default(), no_waker()).unwrap();
+    let folder = tempfile::tempdir().unwrap();
+    let options = Plen2ImportOptions { backup_dir: Some(folder.path().to_path_buf()), verify: true, force: false };
+    let project = Plen2Project { motions: vec![motion(3)], ..Plen2Project::default() };
+    let mut said = false;
+    let mut progress = |progress: &servo_studio::device::plen2::Plen2Progress| {
+        said |= matches!(progress.item, servo_studio::device::plen2::Plen2Item::Erased { remaining: Some(_), .. });
+    };
+    let began = Instant::now();
+    let report = import(&handle.requester(), &project, &options, &mut progress, &Cancel::never()).unwrap();
+    let took = began.elapsed();
+    assert!(report.slots.iter().all(|(_, r)| *r == SlotResult::Verified), "{report:?}");
+    let (reply, state) = crossbeam_channel::bounded(1);
+    robot.command(Plen2SimCommand::Inspect(reply));
+    let state = state.recv_timeout(Duration::from_secs(5)).unwrap();
+    (took, state.lost_bytes, report.rewritten, said)
+}
+
 fn main() {
     let timing = Plen2Timing::default();
     let bytes: u32 = motion_commands(&motion(0)).iter().map(|c| u32::try_from(c.to_ascii().len()).unwrap()).sum();
@@ -145,5 +171,23 @@ fn main() {
         for widened in figures.widened {
             println!("               {widened}");
         }
+    }
+    println!(
+        "backup of a factory-fresh robot's slot (its erased memory, {} KB, drained whole), then upload + verify of one motion:",
+        servo_studio::device::plen2::ERASED_REPLY_BYTES / 1024
+    );
+    for link in [
+        LinkKind::Clean,
+        LinkKind::Bursty { interval: Duration::from_millis(15), whole: false },
+        LinkKind::Bursty { interval: Duration::from_millis(15), whole: true },
+        LinkKind::Late { max_hold: Duration::from_millis(20) },
+        LinkKind::Slow { baud: 115_200 },
+    ] {
+        let (took, lost, rewritten, said) = backup_of_a_fresh_robot(link);
+        println!(
+            "  {link:<16} {:.2} s; bytes lost {lost}, slots written again {rewritten}; the progress said why and how long: {}",
+            took.as_secs_f64(),
+            if said { "yes" } else { "no (the reply came whole: nothing to say before it was there)" }
+        );
     }
 }
