@@ -113,6 +113,23 @@ pub enum Action {
     },
     /// Stop opening the port.
     CancelConnect,
+    /// Ask the board on `port` which family it is (the connection doctor);
+    /// with `connect`, connect to it as that family (Hardware = Auto).
+    FindBoard {
+        /// As typed.
+        port: String,
+        /// Connect once it is known.
+        connect: bool,
+    },
+    /// Connect to what the doctor found: its family (the document's becomes it) at its line rate.
+    ConnectFound {
+        /// The port.
+        port: String,
+        /// The family that answered.
+        family: Family,
+        /// The line rate it answered at.
+        baud: u32,
+    },
     /// Switch the document's board family (servo, PLEN2, rFLEX).
     SetFamily(Family),
     /// Start the in-process emulated board and connect to it.

@@ -27,6 +27,21 @@ pub struct LinkStatus {
     pub can_connect: bool,
     /// What the family says of its connected board (project id, battery…), in words.
     pub details: Vec<String>,
+    /// What the connection doctor found, while not connected.
+    pub doctor: Option<DoctorLine>,
+    /// A lost link waits for its device to come back (it can be given up).
+    pub reconnecting: bool,
+}
+
+/// The connection doctor's line under the bar.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct DoctorLine {
+    /// What it found (or is doing), in words.
+    pub text: String,
+    /// A board that answered: its port, family and line rate.
+    pub offer: Option<(String, Family, u32)>,
+    /// Still asking.
+    pub busy: bool,
 }
 
 /// The connection bar's own state.
@@ -36,11 +51,13 @@ pub struct ConnectionBar {
     baud: u32,
     /// The family whose default baud `baud` was set from.
     baud_family: Option<Family>,
+    /// Hardware = Auto: Connect asks the board which family it is first.
+    auto: bool,
 }
 
 impl Default for ConnectionBar {
     fn default() -> Self {
-        Self { port: String::new(), baud: line_settings(Family::Servo).baud, baud_family: None }
+        Self { port: String::new(), baud: line_settings(Family::Servo).baud, baud_family: None, auto: false }
     }
 }
 
@@ -67,16 +84,21 @@ impl ConnectionBar {
         ui.horizontal_wrapped(|ui| {
             ui.add_enabled_ui(!status.busy, |ui| {
                 let family_label = ui.label(words.family);
-                let mut family = status.family;
-                let picked = egui::ComboBox::from_id_salt("family-picker")
-                    .selected_text(language.family(family))
-                    .show_ui(ui, |ui| {
-                        for option in Family::ALL {
-                            ui.selectable_value(&mut family, option, language.family(option));
-                        }
-                    });
+                // `None` is Auto: the board is asked which family it is when Connect is pressed.
+                let mut family = (!self.auto).then_some(status.family);
+                let shown = match family {
+                    Some(family) => language.family(family).to_string(),
+                    None => format!("{} · {}", words.auto_family, language.family(status.family)),
+                };
+                let picked = egui::ComboBox::from_id_salt("family-picker").selected_text(shown).show_ui(ui, |ui| {
+                    ui.selectable_value(&mut family, None, words.auto_family);
+                    for option in Family::ALL {
+                        ui.selectable_value(&mut family, Some(option), language.family(option));
+                    }
+                });
                 picked.response.labelled_by(family_label.id);
-                if family != status.family {
+                self.auto = family.is_none();
+                if let Some(family) = family.filter(|family| *family != status.family) {
                     actions.push(Action::SetFamily(family));
                 }
                 extras(ui, actions);
@@ -131,7 +153,17 @@ impl ConnectionBar {
                     .add_enabled(status.can_connect && !self.port.trim().is_empty(), egui::Button::new(words.connect))
                     .on_disabled_hover_text(&unsupported);
                 if connect.clicked() {
-                    actions.push(Action::Connect { port: self.port.trim().to_string(), baud: self.baud });
+                    let port = self.port.trim().to_string();
+                    actions.push(if self.auto {
+                        Action::FindBoard { port, connect: true }
+                    } else {
+                        Action::Connect { port, baud: self.baud }
+                    });
+                }
+                let find =
+                    ui.add_enabled(!status.busy && !self.port.trim().is_empty(), egui::Button::new(words.find_board));
+                if find.clicked() {
+                    actions.push(Action::FindBoard { port: self.port.trim().to_string(), connect: false });
                 }
                 let demo = ui
                     .add_enabled(status.can_connect, egui::Button::new(words.demo_board))
@@ -139,11 +171,33 @@ impl ConnectionBar {
                 if demo.clicked() {
                     actions.push(Action::ConnectDemo);
                 }
+                if status.reconnecting {
+                    ui.spinner();
+                    if ui.button(words.cancel).on_hover_text(words.msg_stop_waiting).clicked() {
+                        actions.push(Action::CancelConnect);
+                    }
+                }
             }
         });
         // Its own line, never wrapped: the controls above must not move when the status arrives.
         let text = status_text(status, language);
         ui.add(egui::Label::new(&text).truncate()).on_hover_text(text);
+        if let Some(doctor) = &status.doctor {
+            ui.horizontal(|ui| {
+                if doctor.busy {
+                    ui.spinner();
+                }
+                if let Some((port, family, baud)) = &doctor.offer
+                    && ui.add_enabled(!status.busy, egui::Button::new(words.use_found)).clicked()
+                {
+                    // The picker shows the family and rate it will connect with.
+                    self.baud_family = Some(*family);
+                    self.baud = *baud;
+                    actions.push(Action::ConnectFound { port: port.clone(), family: *family, baud: *baud });
+                }
+                ui.add(egui::Label::new(&doctor.text).truncate()).on_hover_text(&doctor.text);
+            });
+        }
     }
 }
 
@@ -161,8 +215,9 @@ pub fn status_text(status: &LinkStatus, language: Language) -> String {
 
 #[cfg(test)]
 mod tests {
+    use egui::accesskit::Role;
     use egui_kittest::Harness;
-    use egui_kittest::kittest::Queryable;
+    use egui_kittest::kittest::{Queryable, by};
 
     use super::*;
 
@@ -192,6 +247,40 @@ mod tests {
         harness.get_by_label("Connect").click();
         harness.run();
         assert_eq!(harness.state().1, [Action::Connect { port: "/dev/ttyUSB7".into(), baud: 2_000_000 }]);
+    }
+
+    /// Hardware = Auto: Connect asks the board which family it is first;
+    /// Find board only asks; what was found is offered with its family and rate.
+    #[test]
+    fn auto_connects_through_the_doctor_and_a_finding_is_offered() {
+        let status = LinkStatus { family: Family::Servo, can_connect: true, ..LinkStatus::default() };
+        let ports = vec![PortInfo { name: "/dev/ttyACM0".into(), description: String::new() }];
+        let mut harness = bar(status.clone(), ports.clone());
+        harness.run();
+        harness.get_by_label("Find board").click();
+        harness.run();
+        harness.get(by().role(Role::ComboBox).label("Hardware")).click();
+        harness.run();
+        harness.get_by_label("Auto (find it)").click();
+        harness.run();
+        harness.get_by_label("Connect").click();
+        harness.run();
+        let asked = vec![
+            Action::FindBoard { port: "/dev/ttyACM0".into(), connect: false },
+            Action::FindBoard { port: "/dev/ttyACM0".into(), connect: true },
+        ];
+        assert_eq!(harness.state().1, asked);
+        assert!(harness.state().0.auto, "the picker stays on Auto");
+
+        let offer = Some(("/dev/ttyACM0".to_string(), Family::Plen2, 2_000_000));
+        let doctor = DoctorLine { text: "/dev/ttyACM0: PLEN2 Cytisus 1.4.2".into(), offer, busy: false };
+        let mut harness = bar(LinkStatus { doctor: Some(doctor), ..status }, ports);
+        harness.run();
+        assert!(harness.query_by_label("/dev/ttyACM0: PLEN2 Cytisus 1.4.2").is_some());
+        harness.get_by_label("Connect to it").click();
+        harness.run();
+        let found = Action::ConnectFound { port: "/dev/ttyACM0".into(), family: Family::Plen2, baud: 2_000_000 };
+        assert_eq!(harness.state().1, [found]);
     }
 
     #[test]

@@ -23,7 +23,9 @@ pub use ops::{
     Plen2Phase, Plen2Progress, SlotResult, export, import, info, read_joint_settings, read_slot, read_slot_noting,
     write_joint_settings,
 };
-pub use pacer::{LinkReport, Pacer, PacingMode, RING_WINDOW_BYTES, SAFE_BURST, SAFE_PAUSE, WidenReason, Widened};
+pub use pacer::{
+    CLUMP_GAP, LinkReport, Pacer, PacingMode, RING_WINDOW_BYTES, SAFE_BURST, SAFE_PAUSE, WidenReason, Widened,
+};
 
 use crate::device::LogEntry;
 use crate::link::{self, Connection, DisconnectReason, LinkEvent, LinkHandle, Waker};

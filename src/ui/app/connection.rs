@@ -29,7 +29,7 @@ impl StudioApp {
                 }
                 LinkNotice::MacroRefused => self.report(self.words().msg_macro_refused, true),
                 LinkNotice::Disconnected(reason) => {
-                    self.report(self.language.link_ended(&reason), true);
+                    self.link_ended(&reason);
                     self.drop_link();
                     return;
                 }
@@ -67,6 +67,15 @@ impl StudioApp {
 
     /// Opens `port` off the UI thread with the document's family's line settings.
     pub(super) fn connect(&mut self, port: &str, baud: u32) {
+        self.open_port(port, baud, false);
+    }
+
+    /// Tries to make a lost link again: a port that does not open yet is waited for, not reported.
+    pub(super) fn connect_quietly(&mut self, port: &str, baud: u32) {
+        self.open_port(port, baud, true);
+    }
+
+    fn open_port(&mut self, port: &str, baud: u32, quiet: bool) {
         let name = match PortName::parse(port) {
             Ok(name) => name,
             Err(error) => {
@@ -81,10 +90,12 @@ impl StudioApp {
             return;
         }
         let settings = crate::link::LineSettings { baud, ..crate::device::line_settings(family) };
-        self.report(self.language.connecting_to(&name.to_string()), false);
+        if !quiet {
+            self.report(self.language.connecting_to(&name.to_string()), false);
+        }
         let opening = Opening::start(name, settings, self.opener.clone(), self.waker.clone());
         let options = self.family_ui(family).link_options(baud);
-        self.connecting = Some(Connecting { opening, family, options });
+        self.connecting = Some(Connecting { opening, family, options, quiet });
     }
 
     /// Starts the built-in emulated board of the document's family.
@@ -114,17 +125,21 @@ impl StudioApp {
     pub(super) fn poll_connecting(&mut self) {
         let Some(connecting) = &self.connecting else { return };
         let Some(result) = connecting.opening.poll() else { return };
-        let Some(Connecting { opening, options, .. }) = self.connecting.take() else { return };
+        let Some(Connecting { opening, options, family, quiet }) = self.connecting.take() else { return };
         match result {
             Ok(connection) => match BoardLink::start(&self.document.project, connection, options, self.waker.clone()) {
                 Ok(mut link) => {
                     link.label = opening.port.to_string();
                     self.report(format!("{} {}", self.words().msg_connected_to, link.label), false);
+                    let label = link.label.clone();
                     self.link = Some(link);
+                    self.link_made(&label, options.baud, family);
                     self.connected();
                 }
                 Err(error) => self.report(self.language.start_error(&error), true),
             },
+            // Still gone: tried again at the next turn.
+            Err(_) if quiet => {}
             Err(error) => self.report(self.language.link_error(&error), true),
         }
     }
@@ -147,19 +162,30 @@ impl StudioApp {
     pub(super) fn link_status(&self) -> LinkStatus {
         let family = self.document.project.family;
         let connecting = self.connecting.as_ref().map(|connecting| connecting.opening.port.to_string());
-        let busy = self.connecting.is_some() || self.link.is_some();
+        let busy = self.connecting.is_some() || self.link.is_some() || self.finding_board();
+        let doctor = self.doctor_line();
         match &self.link {
             None => LinkStatus {
                 family,
                 connecting,
                 busy,
                 can_connect: BoardLink::supports(family),
+                doctor,
+                reconnecting: self.waiting_to_reconnect(),
                 ..LinkStatus::default()
             },
             Some(link) => {
                 let label = if link.is_demo() { self.words().demo_board.to_string() } else { link.label.clone() };
                 let details = self.family_ui(link.family()).link_details(link, self.words());
-                LinkStatus { family, busy, label: Some(label), connecting, can_connect: true, details }
+                LinkStatus {
+                    family,
+                    busy,
+                    label: Some(label),
+                    connecting,
+                    can_connect: true,
+                    details,
+                    ..LinkStatus::default()
+                }
             }
         }
     }

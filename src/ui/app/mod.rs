@@ -7,6 +7,7 @@
 mod background;
 mod connection;
 mod dialogs;
+mod doctor;
 mod file_ops;
 mod tabs;
 
@@ -43,6 +44,8 @@ pub struct Connecting {
     pub family: Family,
     /// How its driver is started.
     pub options: crate::ui::board_link::LinkOptions,
+    /// A lost link being made again: a port not there yet is not an error.
+    pub quiet: bool,
 }
 
 /// The whole editor.
@@ -92,6 +95,7 @@ pub struct StudioApp {
     opener: Opener,
     picker: Picker,
     connection_bar: ConnectionBar,
+    doctor: doctor::Doctor,
     /// Told when the process is asked to end.
     terminate: Option<Receiver<()>>,
 }
@@ -135,6 +139,7 @@ impl StudioApp {
             quit_allowed: false,
             waker,
             connection_bar: ConnectionBar::default(),
+            doctor: doctor::Doctor::default(),
             terminate: None,
         };
         app.recovery_offer = files::read_recovery(&app.data_dir);
@@ -244,8 +249,17 @@ impl StudioApp {
             Action::Redo => {
                 self.document.redo();
             }
-            Action::Connect { port, baud } => self.connect(&port, baud),
+            Action::Connect { port, baud } => {
+                self.forget_link();
+                self.connect(&port, baud);
+            }
+            Action::FindBoard { port, connect } => self.find_board(&port, connect),
+            Action::ConnectFound { port, family, baud } => {
+                self.forget_link();
+                self.connect_found(&port, family, baud);
+            }
             Action::CancelConnect => {
+                self.forget_link();
                 if let Some(connecting) = self.connecting.take() {
                     self.report(self.language.connect_cancelled(&connecting.opening.port.to_string()), false);
                 }
@@ -253,6 +267,7 @@ impl StudioApp {
             Action::ConnectDemo => self.connect_demo(),
             Action::SetFamily(family) => self.set_family(family),
             Action::Disconnect => {
+                self.forget_link();
                 self.drop_link();
                 self.report(self.words().msg_disconnected, false);
             }
@@ -382,6 +397,8 @@ impl StudioApp {
         let now = Instant::now();
         self.pump(now);
         self.scan_ports();
+        self.poll_probe();
+        self.reconnect_when_back(now);
         self.finish_file_work(None);
         let mut actions = Vec::new();
         Self::shortcuts(ui, &mut actions);

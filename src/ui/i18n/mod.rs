@@ -2,6 +2,7 @@
 //! OS locale and switchable at run time: captions in [`strings`], whole
 //! sentences for errors, problems and status in `messages`.
 
+mod doctor;
 mod headings;
 mod messages;
 mod operations;

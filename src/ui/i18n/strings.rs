@@ -59,6 +59,12 @@ pub struct Strings {
     pub demo_board: &'static str,
     /// "Refresh".
     pub refresh: &'static str,
+    /// "Find board" (the connection doctor).
+    pub find_board: &'static str,
+    /// "Auto (find it)" (the family chooser's choice that asks the board).
+    pub auto_family: &'static str,
+    /// "Connect to it" (what the doctor found).
+    pub use_found: &'static str,
     /// "Not connected".
     pub not_connected: &'static str,
     /// "Connected to".
@@ -101,6 +107,8 @@ pub struct Strings {
     pub msg_connected_to: &'static str,
     /// "disconnected".
     pub msg_disconnected: &'static str,
+    /// The tooltip of Cancel while a lost link waits for its device: "Stop waiting for the board to come back".
+    pub msg_stop_waiting: &'static str,
     /// "STOP: no board is connected".
     pub msg_stop_no_board: &'static str,
     /// "recovered the autosaved project: save it to keep it".

@@ -1,0 +1,121 @@
+//! The connection doctor's sentences: what answered on a port, how its link
+//! delivers, and a lost link waiting for its device to come back.
+
+use std::time::Duration;
+
+use super::Language;
+use crate::device::plen2::LinkReport;
+use crate::device::probe::{Identity, ProbeResult};
+
+impl Language {
+    /// A port is being asked who is there.
+    pub fn probing(self, port: &str) -> String {
+        match self {
+            Self::English => format!("asking {port} which board it is…"),
+            Self::TraditionalChinese => format!("正在詢問 {port} 是哪一種控制板…"),
+        }
+    }
+
+    /// What the doctor found on `port`.
+    pub fn probe_result(self, port: &str, result: &ProbeResult) -> String {
+        if self == Self::English {
+            return format!("{port}: {}", result.describe(None));
+        }
+        let text = match &result.found {
+            Some(found) => {
+                format!("{}，鮑率 {}；連線：{}", identity_zh(&found.identity), found.baud, link_zh(&found.link))
+            }
+            None if result.unrecognised > 0 => {
+                format!("收到 {} 位元組，但不屬於任何一種控制板的協定：可能是其他裝置，或鮑率不同", result.unrecognised)
+            }
+            None => "沒有任何回應：裝置是否已通電、線材是否接好？（PLEN2 需要 DTR）".to_string(),
+        };
+        format!("{port}：{text}")
+    }
+
+    /// Hardware = Auto, and nothing on `port` said which board it is.
+    pub fn auto_found_nothing(self, port: &str, result: &ProbeResult) -> String {
+        match self {
+            Self::English => format!("cannot connect automatically: {}", self.probe_result(port, result)),
+            Self::TraditionalChinese => format!("無法自動連線：{}", self.probe_result(port, result)),
+        }
+    }
+
+    /// The link ended on its own (a pulled cable): it is made again when the device comes back.
+    pub fn lost_waiting(self, reason: &crate::link::DisconnectReason, port: &str) -> String {
+        let why = self.disconnect_reason(reason);
+        match self {
+            Self::English => format!(
+                "The board link ended ({why}). Reconnecting by itself when {port} comes back; your project is unchanged."
+            ),
+            Self::TraditionalChinese => {
+                format!("與控制板的連線已中斷（{why}）。{port} 重新出現時會自動重新連線；專案未變更。")
+            }
+        }
+    }
+
+    /// The lost link was made again.
+    pub fn reconnected(self, port: &str) -> String {
+        match self {
+            Self::English => format!("reconnected to {port}: the same device came back"),
+            Self::TraditionalChinese => format!("已重新連線至 {port}：同一個裝置回來了"),
+        }
+    }
+
+    /// Another device appeared where the lost one was: it is not connected to by itself.
+    pub fn other_device(self, port: &str, description: &str) -> String {
+        match self {
+            Self::English => format!(
+                "{port} is back, but as a different device ({description}): not reconnecting by itself; connect if it is the board"
+            ),
+            Self::TraditionalChinese => {
+                format!("{port} 回來了，但是另一個裝置（{description}）：不會自動重新連線；若它是控制板請手動連線")
+            }
+        }
+    }
+}
+
+fn identity_zh(identity: &Identity) -> String {
+    match identity {
+        Identity::Servo { project_id, memory } => {
+            let mut text = "伺服控制板".to_string();
+            match project_id {
+                Some(0) => text.push_str("，沒有專案"),
+                Some(id) => text.push_str(&format!("，專案 {id}")),
+                None => {}
+            }
+            match memory {
+                Some((free, Some(total))) => text.push_str(&format!("，{total} 位元組中 {free} 可用")),
+                Some((free, None)) => text.push_str(&format!("，{free} 位元組可用")),
+                None => {}
+            }
+            text
+        }
+        Identity::Plen2 { version } => version.clone(),
+        Identity::Rflex { voltage_raw, braked } => format!(
+            "rFLEX 底盤，電池 {:.2} V（原始值），煞車{}",
+            f64::from(*voltage_raw) / 100.0,
+            if *braked { "已鎖定" } else { "已放開" }
+        ),
+    }
+}
+
+fn link_zh(link: &LinkReport) -> String {
+    let ms = |d: Duration| d.as_secs_f64() * 1000.0;
+    let Some(latency) = link.latency else { return "未量測".to_string() };
+    let mut parts = vec![format!("第一個位元組 {:.1} ms 後到達", ms(latency))];
+    if link.late > crate::device::plen2::CLUMP_GAP {
+        parts.push(format!("最多延遲 {:.1} ms", ms(link.late)));
+    }
+    if !link.clump_gap.is_zero() {
+        parts.push(format!("成批送達，間隔最長 {:.1} ms", ms(link.clump_gap)));
+    } else if link.whole {
+        parts.push("回覆整批送達".to_string());
+    } else {
+        parts.push("平順".to_string());
+    }
+    if let Some(rate) = link.bytes_per_s {
+        parts.push(format!("每秒 {rate} 位元組"));
+    }
+    parts.join("、")
+}
