@@ -140,6 +140,13 @@ fn the_doctor_measures_a_bursty_line() {
     assert!(link.whole && link.clump_gap.is_zero(), "{link:?}");
     assert!(link.late >= Duration::from_millis(10), "{link:?}");
     assert!(link.to_string().contains("replies whole"), "{link}");
+
+    // The command line says the same, a line per port, and exits 0.
+    let (code, stdout, stderr, _) =
+        common::run_in(std::path::Path::new("."), &["probe", "--port", &whole.port], Duration::from_secs(60));
+    assert_eq!(code, Some(0), "{stderr}");
+    let said = format!("{}: PLEN2 Cytisus 1.4.2 at 2000000 baud; link: first byte after ", whole.port);
+    assert!(stdout.starts_with(&said) && stdout.contains("replies whole"), "{stdout}");
 }
 
 /// A silent line and a line of noise are told apart, each with what to check,

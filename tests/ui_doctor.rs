@@ -179,3 +179,31 @@ fn a_pulled_cable_reconnects_when_the_same_device_comes_back_and_not_to_another(
     harness.state_mut().apply(Action::Disconnect);
     assert!(!harness.state().waiting_to_reconnect());
 }
+
+/// "Find a board on every port" asks each listed port in turn and says, for
+/// each, what answered — offering to connect to those that did.
+#[test]
+fn every_port_is_asked_and_each_answer_is_offered() {
+    let plen2 = robot();
+    let base = spawn_pty(servo_studio::sim::RflexSim::new(Default::default()), no_waker()).unwrap();
+    let silent = common::peer(common::Chatter::Silent);
+    let listed: Listed = Arc::new(Mutex::new(vec![
+        PortInfo { name: plen2.port_name.clone(), description: "USB PLEN2".into() },
+        PortInfo { name: base.port_name.clone(), description: "USB FTDI".into() },
+        PortInfo { name: silent.port.clone(), description: "PCI".into() },
+    ]));
+    let mut harness = app(ServoProject::default(), &listed);
+    run_until(&mut harness, "the port list", |app| app.ports.len() == 3);
+    harness.state_mut().apply(Action::FindEveryBoard);
+    assert!(harness.state().finding_board());
+    run_until(&mut harness, "every port's answer", |app| !app.finding_board());
+    for text in [
+        format!("{}: PLEN2 Cytisus 1.4.2 at 2000000 baud", plen2.port_name),
+        format!("{}: rFLEX base, battery", base.port_name),
+        format!("{}: nothing answered", silent.port),
+    ] {
+        assert!(harness.query_all_by_label_contains(&text).next().is_some(), "{text}");
+    }
+    assert_eq!(harness.query_all_by_label("Connect to it").count(), 2, "the two that answered");
+    assert!(harness.state().link.is_none());
+}

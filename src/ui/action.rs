@@ -121,6 +121,8 @@ pub enum Action {
         /// Connect once it is known.
         connect: bool,
     },
+    /// Ask every port the computer lists which board is on it.
+    FindEveryBoard,
     /// Connect to what the doctor found: its family (the document's becomes it) at its line rate.
     ConnectFound {
         /// The port.

@@ -27,8 +27,8 @@ pub struct LinkStatus {
     pub can_connect: bool,
     /// What the family says of its connected board (project id, battery…), in words.
     pub details: Vec<String>,
-    /// What the connection doctor found, while not connected.
-    pub doctor: Option<DoctorLine>,
+    /// What the connection doctor found, a line per port, while not connected.
+    pub doctor: Vec<DoctorLine>,
     /// A lost link waits for its device to come back (it can be given up).
     pub reconnecting: bool,
 }
@@ -36,10 +36,12 @@ pub struct LinkStatus {
 /// The connection doctor's line under the bar.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct DoctorLine {
+    /// The port asked.
+    pub port: String,
     /// What it found (or is doing), in words.
     pub text: String,
-    /// A board that answered: its port, family and line rate.
-    pub offer: Option<(String, Family, u32)>,
+    /// A board that answered: its family and line rate.
+    pub offer: Option<(Family, u32)>,
     /// Still asking.
     pub busy: bool,
 }
@@ -124,6 +126,8 @@ impl ConnectionBar {
                         }
                         if ports.is_empty() {
                             ui.label("—");
+                        } else if ui.button(words.find_every_board).clicked() {
+                            actions.push(Action::FindEveryBoard);
                         }
                     });
                 picked.response.labelled_by(port_label.id);
@@ -182,18 +186,17 @@ impl ConnectionBar {
         // Its own line, never wrapped: the controls above must not move when the status arrives.
         let text = status_text(status, language);
         ui.add(egui::Label::new(&text).truncate()).on_hover_text(text);
-        if let Some(doctor) = &status.doctor {
+        for doctor in &status.doctor {
             ui.horizontal(|ui| {
                 if doctor.busy {
                     ui.spinner();
                 }
-                if let Some((port, family, baud)) = &doctor.offer
+                if let Some((family, baud)) = doctor.offer
                     && ui.add_enabled(!status.busy, egui::Button::new(words.use_found)).clicked()
                 {
-                    // The picker shows the family and rate it will connect with.
-                    self.baud_family = Some(*family);
-                    self.baud = *baud;
-                    actions.push(Action::ConnectFound { port: port.clone(), family: *family, baud: *baud });
+                    // The pickers show the port, family and rate it connects with.
+                    (self.port, self.baud_family, self.baud) = (doctor.port.clone(), Some(family), baud);
+                    actions.push(Action::ConnectFound { port: doctor.port.clone(), family, baud });
                 }
                 ui.add(egui::Label::new(&doctor.text).truncate()).on_hover_text(&doctor.text);
             });
@@ -272,9 +275,13 @@ mod tests {
         assert_eq!(harness.state().1, asked);
         assert!(harness.state().0.auto, "the picker stays on Auto");
 
-        let offer = Some(("/dev/ttyACM0".to_string(), Family::Plen2, 2_000_000));
-        let doctor = DoctorLine { text: "/dev/ttyACM0: PLEN2 Cytisus 1.4.2".into(), offer, busy: false };
-        let mut harness = bar(LinkStatus { doctor: Some(doctor), ..status }, ports);
+        let doctor = DoctorLine {
+            port: "/dev/ttyACM0".into(),
+            text: "/dev/ttyACM0: PLEN2 Cytisus 1.4.2".into(),
+            offer: Some((Family::Plen2, 2_000_000)),
+            busy: false,
+        };
+        let mut harness = bar(LinkStatus { doctor: vec![doctor], ..status }, ports);
         harness.run();
         assert!(harness.query_by_label("/dev/ttyACM0: PLEN2 Cytisus 1.4.2").is_some());
         harness.get_by_label("Connect to it").click();

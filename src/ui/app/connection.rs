@@ -163,7 +163,7 @@ impl StudioApp {
         let family = self.document.project.family;
         let connecting = self.connecting.as_ref().map(|connecting| connecting.opening.port.to_string());
         let busy = self.connecting.is_some() || self.link.is_some() || self.finding_board();
-        let doctor = self.doctor_line();
+        let doctor = self.doctor_lines();
         match &self.link {
             None => LinkStatus {
                 family,

@@ -15,18 +15,22 @@ const RETRY_EVERY: Duration = Duration::from_secs(2);
 #[derive(Debug, Default)]
 pub(super) struct Doctor {
     probing: Option<Probing>,
-    /// What the last probe found, shown under the bar.
-    line: Option<DoctorLine>,
+    /// What the last probe found, a line per port, shown under the bar.
+    lines: Vec<DoctorLine>,
     /// The port and line rate of the link now open (what a lost link is made again with).
     current: Option<Current>,
     lost: Option<Lost>,
 }
 
+/// Ports being asked, one after another, on a helper thread.
 #[derive(Debug)]
 struct Probing {
-    port: String,
+    /// Connect to what answers (Hardware = Auto; one port).
     connect: bool,
-    done: Receiver<Result<ProbeResult, LinkError>>,
+    /// Each port's answer, as it comes.
+    done: Receiver<(String, Result<ProbeResult, LinkError>)>,
+    /// Ports not answered yet.
+    left: usize,
 }
 
 /// The link open now, as it was made.
@@ -51,30 +55,51 @@ impl StudioApp {
     /// Asks the board on `port` which family it is, off the frame; with
     /// `connect`, connects to it as that family once known.
     pub(super) fn find_board(&mut self, port: &str, connect: bool) {
-        let name = match PortName::parse(port) {
-            Ok(name) => name,
-            Err(error) => {
-                self.report(self.language.link_error(&error), true);
-                return;
-            }
-        };
+        if let Err(error) = PortName::parse(port) {
+            self.report(self.language.link_error(&error), true);
+            return;
+        }
+        self.ask(&[port.to_string()], connect);
+    }
+
+    /// Asks every port the computer lists which board is on it.
+    pub(super) fn find_every_board(&mut self) {
+        let ports: Vec<String> = self.ports.iter().map(|info| info.name.clone()).collect();
+        if ports.is_empty() {
+            self.report(self.words().msg_no_ports, true);
+            return;
+        }
+        self.ask(&ports, false);
+    }
+
+    fn ask(&mut self, ports: &[String], connect: bool) {
         if self.link.is_some() || self.connecting.is_some() || self.doctor.probing.is_some() {
             return;
         }
         self.doctor.lost = None;
-        let (sender, done) = crossbeam_channel::bounded(1);
-        let (opener, waker) = (self.opener.clone(), self.waker.clone());
-        let spawned = std::thread::Builder::new().name(format!("probe {name}")).spawn(move || {
-            let _ = sender.send(probe::probe_port(&name, &opener, &ProbeOptions::default()));
-            waker();
+        let (sender, done) = crossbeam_channel::unbounded();
+        let (opener, waker, asked) = (self.opener.clone(), self.waker.clone(), ports.to_vec());
+        let spawned = std::thread::Builder::new().name("probe".into()).spawn(move || {
+            for port in asked {
+                let result =
+                    PortName::parse(&port).and_then(|name| probe::probe_port(&name, &opener, &ProbeOptions::default()));
+                if sender.send((port, result)).is_err() {
+                    return;
+                }
+                waker();
+            }
         });
         if let Err(error) = spawned {
             self.report(self.language.no_worker(&error), true);
             return;
         }
-        self.report(self.language.probing(port), false);
-        self.doctor.line = Some(DoctorLine { text: self.language.probing(port), offer: None, busy: true });
-        self.doctor.probing = Some(Probing { port: port.to_string(), connect, done });
+        let text = self.language.probing(&ports.join(", "));
+        self.report(text, false);
+        self.doctor.lines = ports
+            .iter()
+            .map(|port| DoctorLine { port: port.clone(), text: self.language.probing(port), offer: None, busy: true })
+            .collect();
+        self.doctor.probing = Some(Probing { connect, done, left: ports.len() });
     }
 
     /// Whether a port is being asked which board it is.
@@ -87,32 +112,40 @@ impl StudioApp {
         self.doctor.lost.is_some()
     }
 
-    /// What the doctor says under the bar.
-    pub(super) fn doctor_line(&self) -> Option<DoctorLine> {
-        self.doctor.line.clone()
+    /// What the doctor says under the bar, a line per port.
+    pub(super) fn doctor_lines(&self) -> Vec<DoctorLine> {
+        self.doctor.lines.clone()
     }
 
-    /// Takes the probe's answer: says it, and (Hardware = Auto) connects as the family that answered.
+    /// Takes the probes' answers: says each, and (Hardware = Auto) connects as the family that answered.
     pub(super) fn poll_probe(&mut self) {
         let Some(probing) = &self.doctor.probing else { return };
-        let Ok(outcome) = probing.done.try_recv() else { return };
-        let Some(Probing { port, connect, .. }) = self.doctor.probing.take() else { return };
-        let result = match outcome {
-            Ok(result) => result,
-            Err(error) => {
-                let text = self.language.link_error(&error);
-                self.doctor.line = Some(DoctorLine { text: text.clone(), offer: None, busy: false });
-                self.report(text, true);
-                return;
+        let answers: Vec<_> = probing.done.try_iter().collect();
+        let connect = probing.connect;
+        for (port, outcome) in answers {
+            let (text, offer) = match &outcome {
+                Ok(result) => (
+                    self.language.probe_result(&port, result),
+                    result.found.as_ref().map(|found| (found.identity.family(), found.baud)),
+                ),
+                Err(error) => (self.language.link_error(error), None),
+            };
+            let line = DoctorLine { port: port.clone(), text: text.clone(), offer, busy: false };
+            match self.doctor.lines.iter_mut().find(|shown| shown.busy && shown.port == port) {
+                Some(shown) => *shown = line,
+                None => self.doctor.lines.push(line),
             }
-        };
-        let text = self.language.probe_result(&port, &result);
-        let offer = result.found.as_ref().map(|found| (port.clone(), found.identity.family(), found.baud));
-        self.doctor.line = Some(DoctorLine { text: text.clone(), offer: offer.clone(), busy: false });
-        match (connect, offer) {
-            (true, Some((port, family, baud))) => self.connect_found(&port, family, baud),
-            (true, None) => self.report(self.language.auto_found_nothing(&port, &result), true),
-            (false, found) => self.report(text, found.is_none()),
+            if let Some(probing) = &mut self.doctor.probing {
+                probing.left = probing.left.saturating_sub(1);
+            }
+            match (connect, offer, &outcome) {
+                (true, Some((family, baud)), _) => self.connect_found(&port, family, baud),
+                (true, None, Ok(result)) => self.report(self.language.auto_found_nothing(&port, result), true),
+                (_, offer, _) => self.report(text, offer.is_none()),
+            }
+        }
+        if self.doctor.probing.as_ref().is_some_and(|probing| probing.left == 0) {
+            self.doctor.probing = None;
         }
     }
 
@@ -132,7 +165,7 @@ impl StudioApp {
         let description = self.ports.iter().find(|info| info.name == port).map(|info| info.description.clone());
         let again = self.doctor.lost.take().is_some_and(|lost| lost.link.port == port);
         self.doctor.current = Some(Current { port: port.to_string(), baud, family, description });
-        self.doctor.line = None;
+        self.doctor.lines.clear();
         if again {
             self.report(self.language.reconnected(port), false);
         }

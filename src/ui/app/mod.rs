@@ -254,6 +254,7 @@ impl StudioApp {
                 self.connect(&port, baud);
             }
             Action::FindBoard { port, connect } => self.find_board(&port, connect),
+            Action::FindEveryBoard => self.find_every_board(),
             Action::ConnectFound { port, family, baud } => {
                 self.forget_link();
                 self.connect_found(&port, family, baud);

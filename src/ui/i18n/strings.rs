@@ -63,6 +63,10 @@ pub struct Strings {
     pub find_board: &'static str,
     /// "Auto (find it)" (the family chooser's choice that asks the board).
     pub auto_family: &'static str,
+    /// "Find a board on every port" (the port picker's last entry).
+    pub find_every_board: &'static str,
+    /// "No serial ports found: plug the board in, or type tcp://HOST:PORT".
+    pub msg_no_ports: &'static str,
     /// "Connect to it" (what the doctor found).
     pub use_found: &'static str,
     /// "Not connected".

@@ -32,6 +32,8 @@ pub(in crate::ui::i18n) const TRADITIONAL_CHINESE: Strings = Strings {
     refresh: "重新整理",
     find_board: "尋找控制板",
     auto_family: "自動（偵測）",
+    find_every_board: "在每個連接埠尋找控制板",
+    msg_no_ports: "找不到序列埠：請插上控制板，或輸入 tcp://主機:埠號",
     use_found: "連線到它",
     not_connected: "未連線",
     connected_to: "已連線至",

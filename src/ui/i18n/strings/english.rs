@@ -32,6 +32,8 @@ pub(in crate::ui::i18n) const ENGLISH: Strings = Strings {
     refresh: "Refresh",
     find_board: "Find board",
     auto_family: "Auto (find it)",
+    find_every_board: "Find a board on every port",
+    msg_no_ports: "No serial ports found: plug the board in, or type tcp://HOST:PORT",
     use_found: "Connect to it",
     not_connected: "Not connected",
     connected_to: "Connected to",
