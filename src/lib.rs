@@ -7,6 +7,7 @@
 
 pub mod device;
 pub mod figure;
+pub mod gamepad;
 pub mod link;
 pub mod project;
 pub mod protocol;

@@ -122,6 +122,26 @@ pub fn duration(seconds: f64) -> Duration {
     Duration::try_from_secs_f64(seconds.clamp(0.0, MAX_SECONDS)).unwrap_or(Duration::ZERO)
 }
 
+/// `--axis-range MIN:MAX`: the raw values a gamepad path's axes span, MIN below MAX.
+pub fn axis_range(text: &str) -> Result<(i32, i32), String> {
+    let bad = || format!("{text:?} is not an axis range: write MIN:MAX, e.g. -32768:32767 or 0:255");
+    let (min, max) = text.split_once(':').ok_or_else(bad)?;
+    let min: i32 = min.trim().parse().map_err(|_| bad())?;
+    let max: i32 = max.trim().parse().map_err(|_| bad())?;
+    if min < max { Ok((min, max)) } else { Err(format!("{text:?}: MIN must be below MAX")) }
+}
+
+/// `--dead-zone`: the part of a stick around its centre that counts as centred, 0 to 0.9.
+pub fn dead_zone(text: &str) -> Result<f64, String> {
+    within_f64(text, 0.0, 0.9, "")
+}
+
+/// `--speed` / `--turn` for teleop: a top speed, above 0.
+pub fn top_speed(text: &str) -> Result<f64, String> {
+    let value = within_f64(text, 0.0, MAX_SPEED_M_PER_S.max(MAX_TURN_RAD_PER_S), "")?;
+    if value > 0.0 { Ok(value) } else { Err("a top speed must be above 0".into()) }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

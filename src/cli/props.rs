@@ -37,6 +37,10 @@ const NUMERIC: &[&[&str]] = &[
     &["rflex", "drive", "--port", "p", "--seconds", "1", "--speed"],
     &["rflex", "drive", "--port", "p", "--seconds", "1", "--speed", "0", "--turn"],
     &["rflex", "drive", "--port", "p", "--seconds", "1", "--speed", "0", "--accel"],
+    &["rflex", "teleop", "--port", "p", "--gamepad", "g", "--speed"],
+    &["rflex", "teleop", "--port", "p", "--gamepad", "g", "--turn"],
+    &["rflex", "teleop", "--port", "p", "--gamepad", "g", "--accel"],
+    &["rflex", "teleop", "--port", "p", "--gamepad", "g", "--dead-zone"],
     &["board", "info", "--port", "p", "--timeout-ms"],
     &["board", "info", "--port", "p", "--baud"],
     &["sim", "--baud"],
@@ -65,6 +69,19 @@ fn within_bounds(command: &CliCommand) -> bool {
                 && *accel > 0.0
                 && *accel <= bounds::MAX_ACCEL_M_PER_S2
         }
+        CliCommand::Rflex {
+            command: rflex::RflexCommand::Teleop { base, speed, turn, accel, dead_zone, axis_range, .. },
+        } => {
+            let top = bounds::MAX_SPEED_M_PER_S.max(bounds::MAX_TURN_RAD_PER_S);
+            let top_ok = |value: &Option<f64>| value.is_none_or(|value| value > 0.0 && value <= top);
+            port_ok(&base.port)
+                && top_ok(speed)
+                && top_ok(turn)
+                && *accel > 0.0
+                && *accel <= bounds::MAX_ACCEL_M_PER_S2
+                && (0.0..=0.9).contains(dead_zone)
+                && axis_range.is_none_or(|(min, max)| min < max)
+        }
         CliCommand::Board { command: BoardCommand::Info { port } } => port_ok(port),
         CliCommand::Sim { args, .. } => {
             args.baud.is_none_or(|baud| bounds::BAUD.contains(&baud))
@@ -84,6 +101,18 @@ fn within_bounds(command: &CliCommand) -> bool {
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(512))]
+
+    /// Any text given as an axis range is refused or a range with MIN below MAX.
+    #[test]
+    fn an_axis_range_is_refused_or_ordered(min in number_text(), max in number_text()) {
+        let text = format!("{min}:{max}");
+        let line = ["servo-studio", "rflex", "teleop", "--port", "p", "--gamepad", "g", "--axis-range", &text];
+        if let Ok(Cli { command: Some(CliCommand::Rflex { command: rflex::RflexCommand::Teleop { axis_range, .. } }) }) =
+            Cli::try_parse_from(line)
+        {
+            prop_assert!(axis_range.is_some_and(|(min, max)| min < max), "{text}: {axis_range:?}");
+        }
+    }
 
     /// Any text given to any numeric option is refused or parsed within its bounds.
     #[test]

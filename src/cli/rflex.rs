@@ -17,6 +17,8 @@ use servo_studio::link::{self, LineSettings, PortName, Waker};
 use servo_studio::project::Family;
 use servo_studio::project::rflex::Robot;
 
+mod teleop;
+
 /// `servo-studio rflex …`
 #[derive(Debug, Subcommand)]
 pub enum RflexCommand {
@@ -45,6 +47,36 @@ pub enum RflexCommand {
         #[arg(long, allow_hyphen_values = true, value_parser = bounds::drive_seconds)]
         seconds: f64,
     },
+    /// Drive a base from a gamepad: hold the dead-man button (the left
+    /// shoulder, BTN_TL) and the left stick drives (up forward, left turns
+    /// left), scaled to the robot's top speeds, with a dead zone. The base is
+    /// stopped at once when the dead-man is released, the stick centred, the
+    /// gamepad's events dropped (until known again) or the gamepad gone — then
+    /// the brake is set and the command exits 1 — and on Ctrl-C or kill.
+    Teleop {
+        /// The base.
+        #[command(flatten)]
+        base: BaseArgs,
+        /// The gamepad: an event device (/dev/input/eventN), or a file or named
+        /// pipe of Linux `struct input_event` records.
+        #[arg(long)]
+        gamepad: std::path::PathBuf,
+        /// Full stick forward, m/s (default: the robot's top speed).
+        #[arg(long, allow_hyphen_values = true, value_parser = bounds::top_speed)]
+        speed: Option<f64>,
+        /// Full stick to the side, rad/s (default: the robot's top turn rate).
+        #[arg(long, allow_hyphen_values = true, value_parser = bounds::top_speed)]
+        turn: Option<f64>,
+        /// Acceleration, m/s².
+        #[arg(long, default_value_t = 0.5, allow_hyphen_values = true, value_parser = bounds::accel)]
+        accel: f64,
+        /// The raw values the gamepad path's axes span (an event device says its own).
+        #[arg(long, allow_hyphen_values = true, value_parser = bounds::axis_range)]
+        axis_range: Option<(i32, i32)>,
+        /// The part of the stick around its centre that counts as centred, 0 to 0.9.
+        #[arg(long, default_value_t = 0.15, allow_hyphen_values = true, value_parser = bounds::dead_zone)]
+        dead_zone: f64,
+    },
 }
 
 /// Where the base is and which robot it is.
@@ -60,7 +92,8 @@ pub struct BaseArgs {
 
 /// Runs `servo-studio rflex …`.
 pub fn run(command: &RflexCommand) -> anyhow::Result<()> {
-    let (RflexCommand::Status { base } | RflexCommand::Drive { base, .. }) = command;
+    let (RflexCommand::Status { base } | RflexCommand::Drive { base, .. } | RflexCommand::Teleop { base, .. }) =
+        command;
     if let Some(family) = base.port.protocol
         && family != Family::Rflex
     {
@@ -70,6 +103,10 @@ pub fn run(command: &RflexCommand) -> anyhow::Result<()> {
     match command {
         RflexCommand::Status { base } => status(base),
         RflexCommand::Drive { base, speed, turn, accel, seconds } => drive(base, *speed, *turn, *accel, *seconds),
+        RflexCommand::Teleop { base, gamepad, speed, turn, accel, axis_range, dead_zone } => {
+            let pad = teleop::Pad { path: gamepad, axis_range: *axis_range, dead_zone: *dead_zone };
+            teleop::run(base, &pad, (*speed, *turn, *accel))
+        }
     }
 }
 

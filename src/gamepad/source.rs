@@ -1,0 +1,219 @@
+//! Opening a gamepad and reading it on its own thread: an event device
+//! (`/dev/input/eventN`, through the `evdev` crate: its name, its axes'
+//! ranges, its own resynchronisation after a drop), or any file or named pipe
+//! that carries `struct input_event` records (a remote stick forwarded over a
+//! pipe, a recording, a test). Each frame's state, a drop, or the end is sent
+//! on a channel the moment it is read.
+
+use std::io::Read;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use crossbeam_channel::Receiver;
+
+use super::event::{EVENT_SIZE, RawEvent};
+use super::state::{PadState, Step};
+use crate::link::Waker;
+
+/// Why a gamepad stopped being read.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum Gone {
+    /// The file or pipe ended (its writer closed it).
+    #[error("the gamepad's input ended (end of file)")]
+    Ended,
+    /// The device went away (`ENODEV`: unplugged, out of range).
+    #[error("the gamepad was unplugged or went out of range")]
+    Unplugged,
+    /// Reading failed otherwise.
+    #[error("reading the gamepad failed: {0}")]
+    Failed(String),
+    /// It could not be opened.
+    #[error("cannot open the gamepad {path}: {error}")]
+    Open {
+        /// The path.
+        path: String,
+        /// Why.
+        error: String,
+    },
+}
+
+/// What the reading thread says, with when it read it.
+#[derive(Clone, Debug, PartialEq)]
+pub enum PadUpdate {
+    /// A frame ended: the state now.
+    State(PadState),
+    /// Events were lost: the state is unknown until the next frame ends.
+    Dropped,
+    /// The gamepad cannot be read any more.
+    Gone(Gone),
+}
+
+/// A gamepad being read.
+#[derive(Debug)]
+pub struct Gamepad {
+    /// What it is called (its device name, or the path's file name).
+    pub name: String,
+    /// Where it was opened.
+    pub path: PathBuf,
+    updates: Receiver<(Instant, PadUpdate)>,
+}
+
+/// A gamepad this computer has.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct GamepadInfo {
+    /// Its event device.
+    pub path: PathBuf,
+    /// Its name.
+    pub name: String,
+}
+
+impl Gamepad {
+    /// Starts reading `path`: an event device, or a file or pipe of
+    /// `input_event` records whose axes span `range` (default
+    /// −32768..32767). Opening happens on the reading thread (a named pipe
+    /// waits for its writer): a failure arrives as [`Gone::Open`].
+    pub fn open(path: &Path, range: Option<(i32, i32)>, waker: Waker) -> std::io::Result<Self> {
+        let (sender, updates) = crossbeam_channel::unbounded();
+        let name = path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned());
+        let owned = path.to_path_buf();
+        std::thread::Builder::new().name(format!("gamepad {}", path.display())).spawn(move || {
+            let send = |update: PadUpdate| {
+                let sent = sender.send((Instant::now(), update)).is_ok();
+                waker();
+                sent
+            };
+            read(&owned, range, &send);
+        })?;
+        Ok(Self { name, path: path.to_path_buf(), updates })
+    }
+
+    /// Every update as it is read.
+    pub fn updates(&self) -> &Receiver<(Instant, PadUpdate)> {
+        &self.updates
+    }
+}
+
+/// Reads `path` until it ends or nobody listens.
+fn read(path: &Path, range: Option<(i32, i32)>, send: &dyn Fn(PadUpdate) -> bool) {
+    #[cfg(target_os = "linux")]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if std::fs::metadata(path).is_ok_and(|metadata| metadata.file_type().is_char_device()) {
+            return linux::read_device(path, send);
+        }
+    }
+    let file = match std::fs::File::open(path) {
+        Ok(file) => file,
+        Err(error) => {
+            send(PadUpdate::Gone(Gone::Open { path: path.display().to_string(), error: error.to_string() }));
+            return;
+        }
+    };
+    read_records(file, PadState::new(range.unwrap_or(super::state::DEFAULT_RANGE)), send);
+}
+
+/// Reads `input_event` records from `source` into `state`, telling each frame.
+pub fn read_records(mut source: impl Read, mut state: PadState, send: &dyn Fn(PadUpdate) -> bool) {
+    let mut record = [0u8; EVENT_SIZE];
+    loop {
+        match source.read_exact(&mut record) {
+            Ok(()) => {}
+            Err(error) if error.kind() == std::io::ErrorKind::UnexpectedEof => {
+                send(PadUpdate::Gone(Gone::Ended));
+                return;
+            }
+            Err(error) if error.kind() == std::io::ErrorKind::Interrupted => continue,
+            Err(error) => {
+                send(PadUpdate::Gone(gone(&error)));
+                return;
+            }
+        }
+        if !tell(&mut state, RawEvent::from_bytes(&record), send) {
+            return;
+        }
+    }
+}
+
+/// Applies one event; tells what it did. False when nobody listens any more.
+fn tell(state: &mut PadState, event: RawEvent, send: &dyn Fn(PadUpdate) -> bool) -> bool {
+    match state.apply(event) {
+        Step::Pending => true,
+        Step::Dropped => send(PadUpdate::Dropped),
+        Step::Frame | Step::Resynced => send(PadUpdate::State(state.clone())),
+    }
+}
+
+fn gone(error: &std::io::Error) -> Gone {
+    // ENODEV (19): the device was removed.
+    if error.raw_os_error() == Some(19) { Gone::Unplugged } else { Gone::Failed(error.to_string()) }
+}
+
+/// The gamepads this computer has (event devices with a stick and gamepad or joystick buttons).
+pub fn list() -> Vec<GamepadInfo> {
+    #[cfg(target_os = "linux")]
+    {
+        linux::list()
+    }
+    #[cfg(not(target_os = "linux"))]
+    {
+        Vec::new()
+    }
+}
+
+#[cfg(target_os = "linux")]
+mod linux {
+    use super::*;
+
+    /// Buttons only gamepads and joysticks have (`BTN_SOUTH`, `BTN_TRIGGER`).
+    const PAD_BUTTONS: [u16; 2] = [0x130, 0x120];
+
+    pub(super) fn list() -> Vec<GamepadInfo> {
+        evdev::enumerate()
+            .filter(|(_, device)| {
+                let buttons = device
+                    .supported_keys()
+                    .is_some_and(|keys| PAD_BUTTONS.iter().any(|code| keys.contains(evdev::KeyCode(*code))));
+                let stick = device
+                    .supported_absolute_axes()
+                    .is_some_and(|axes| axes.contains(evdev::AbsoluteAxisCode(super::super::event::ABS_X)));
+                buttons && stick
+            })
+            .map(|(path, device)| GamepadInfo { name: device.name().unwrap_or("gamepad").to_string(), path })
+            .collect()
+    }
+
+    pub(super) fn read_device(path: &Path, send: &dyn Fn(PadUpdate) -> bool) {
+        let mut device = match evdev::Device::open(path) {
+            Ok(device) => device,
+            Err(error) => {
+                send(PadUpdate::Gone(Gone::Open { path: path.display().to_string(), error: error.to_string() }));
+                return;
+            }
+        };
+        let mut state = PadState::default();
+        if let Ok(axes) = device.get_absinfo() {
+            for (axis, info) in axes {
+                state.set_range(axis.0, (info.minimum(), info.maximum()));
+            }
+        }
+        loop {
+            // The crate resynchronises after SYN_DROPPED itself (it reads the
+            // device's state and hands it over as events).
+            let events: Vec<RawEvent> = match device.fetch_events() {
+                Ok(events) => events
+                    .map(|event| RawEvent { kind: event.event_type().0, code: event.code(), value: event.value() })
+                    .collect(),
+                Err(error) if error.kind() == std::io::ErrorKind::Interrupted => continue,
+                Err(error) => {
+                    send(PadUpdate::Gone(gone(&error)));
+                    return;
+                }
+            };
+            for event in events {
+                if !tell(&mut state, event, send) {
+                    return;
+                }
+            }
+        }
+    }
+}
