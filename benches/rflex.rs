@@ -1,7 +1,8 @@
 //! rFLEX driving figures, over a pseudo-terminal against the emulated base:
 //! the command cadence while a velocity is held (against the 100 ms of the
-//! reference drivers), and the time from a release / STOP to the stop frame
-//! arriving at the base.
+//! reference drivers), the time from a release / STOP to the stop frame
+//! arriving at the base, and the same from a gamepad's dead-man released on a
+//! named pipe read by `rflex teleop`.
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::print_stdout, clippy::cast_possible_truncation)]
 
@@ -79,6 +80,63 @@ fn main() {
     latencies.sort();
     println!(
         "release / STOP → stop frame at the base, 50 times: median {:.2} ms, p90 {:.2} ms, worst {:.2} ms",
+        percentile(&latencies, 0.5).as_secs_f64() * 1e3,
+        percentile(&latencies, 0.9).as_secs_f64() * 1e3,
+        latencies.last().unwrap().as_secs_f64() * 1e3
+    );
+    gamepad_release();
+}
+
+/// `rflex teleop` reading a named pipe of input events, as a gamepad forwarded
+/// over a pipe is read: the time from the dead-man's release written to the
+/// pipe to the stop frame arriving at the base, 50 times.
+fn gamepad_release() {
+    use servo_studio::gamepad::{ABS_Y, BTN_TL, RawEvent};
+    use std::io::Write;
+    let sim = spawn_pty(RflexSim::new(RflexSimConfig::default()), no_waker()).unwrap();
+    let folder = tempfile::tempdir().unwrap();
+    let fifo = folder.path().join("pad");
+    assert!(std::process::Command::new("mkfifo").arg(&fifo).status().unwrap().success());
+    let mut teleop = std::process::Command::new(env!("CARGO_BIN_EXE_servo-studio"))
+        .args(["rflex", "teleop", "--port", &sim.port_name, "--gamepad", fifo.to_str().unwrap(), "--speed", "0.4"])
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let mut pipe = std::fs::OpenOptions::new().write(true).open(&fifo).unwrap();
+    let mut frame = |events: &[RawEvent]| {
+        let mut bytes: Vec<u8> = events.iter().flat_map(|event| event.to_bytes(0)).collect();
+        bytes.extend(RawEvent::report().to_bytes(0));
+        pipe.write_all(&bytes).unwrap();
+        Instant::now()
+    };
+    let events = sim.events().clone();
+    let translation = |event: &LinkEvent<RflexSimEvent>| match event {
+        LinkEvent::Driver(RflexSimEvent::Received(Command::AxisSetDir { axis: 0, speed, .. })) => Some(*speed),
+        _ => None,
+    };
+    let mut latencies = Vec::new();
+    for _ in 0..50 {
+        frame(&[RawEvent::key(BTN_TL, true), RawEvent::abs(ABS_Y, -32768)]);
+        loop {
+            let event = events.recv_timeout(Duration::from_secs(10)).expect("the drive arrived");
+            if translation(&event).is_some_and(|speed| speed > 0) {
+                break;
+            }
+        }
+        let released = frame(&[RawEvent::key(BTN_TL, false)]);
+        loop {
+            let event = events.recv_timeout(Duration::from_secs(2)).expect("the stop arrived");
+            if translation(&event) == Some(0) {
+                latencies.push(released.elapsed());
+                break;
+            }
+        }
+    }
+    let _ = teleop.kill();
+    let _ = teleop.wait();
+    latencies.sort();
+    println!(
+        "gamepad dead-man released on a pipe → stop frame at the base (rflex teleop), 50 times: median {:.2} ms, p90 {:.2} ms, worst {:.2} ms (target: median under 15 ms)",
         percentile(&latencies, 0.5).as_secs_f64() * 1e3,
         percentile(&latencies, 0.9).as_secs_f64() * 1e3,
         latencies.last().unwrap().as_secs_f64() * 1e3

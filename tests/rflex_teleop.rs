@@ -207,3 +207,20 @@ fn a_gamepad_that_cannot_be_opened_stops_nothing_it_never_drove_and_exits_1() {
     let state = state.recv_timeout(Duration::from_secs(5)).unwrap();
     assert!(state.braked && state.target_speed_m_per_s == 0.0, "{state:?}");
 }
+
+/// Ctrl-C or kill while driving: stopped at once, braked, and the signal's status.
+#[test]
+fn a_signal_while_driving_stops_and_brakes_the_base() {
+    for (signal, status) in [("-INT", 130), ("-TERM", 143)] {
+        let mut rig = Rig::start();
+        rig.drives("a drive", &forward());
+        let pid = rig.teleop.as_ref().unwrap().id().to_string();
+        assert!(Process::new("kill").args([signal, &pid]).status().unwrap().success());
+        let took = rig.stopped("the stop on a signal");
+        rig.until("the brake set", Duration::from_secs(2), |command, _| *command == Command::BrakeSet);
+        let (code, stderr) = common::ended(rig.teleop.take().unwrap(), Duration::from_secs(10));
+        assert_eq!(code, Some(status), "{stderr}");
+        assert!(stderr.contains("the base stopped and its brake is set"), "{stderr}");
+        eprintln!("{signal}: stopped after {took:?}");
+    }
+}
