@@ -87,12 +87,14 @@ pub struct Teleop {
     last_change: Option<Instant>,
     /// A velocity change waiting for [`CHANGE_EVERY`] to pass.
     pending: Option<(f64, f64)>,
+    /// Halted by the owner: the dead-man must be let go and pressed again to drive.
+    latched: bool,
 }
 
 impl Teleop {
     /// A teleop that has not driven.
     pub fn new(config: TeleopConfig) -> Self {
-        Self { config, driving: None, last_change: None, pending: None }
+        Self { config, driving: None, last_change: None, pending: None, latched: false }
     }
 
     /// Its configuration.
@@ -126,6 +128,11 @@ impl Teleop {
     /// Takes a gamepad update at `now`; returns what the base must be told now, if anything.
     pub fn update(&mut self, now: Instant, update: &PadUpdate) -> Option<Order> {
         let wanted = match update {
+            PadUpdate::State(state) if self.latched => {
+                // After a halt, only a fresh press of the dead-man drives again.
+                self.latched = state.pressed(self.config.deadman);
+                Err(StopReason::Halted)
+            }
             PadUpdate::State(state) => self.wanted(state),
             PadUpdate::Dropped => Err(StopReason::Dropped),
             PadUpdate::Gone(_) => Err(StopReason::Gone),
@@ -136,8 +143,11 @@ impl Teleop {
         }
     }
 
-    /// The owner stops the base (STOP, lost focus, a signal): told at once while driving.
+    /// The owner stops the base (STOP, lost focus, a signal): told at once
+    /// while driving; it drives again only once the dead-man is let go and
+    /// pressed again.
     pub fn halt(&mut self) -> Option<Order> {
+        self.latched = true;
         self.stop(StopReason::Halted)
     }
 
@@ -163,6 +173,16 @@ impl Teleop {
         self.driving = Some((speed_m_per_s, turn_rad_per_s));
         self.last_change = Some(now);
         Some(Order::Drive { speed_m_per_s, turn_rad_per_s })
+    }
+
+    /// While the owner does not let the pad drive (after [`Teleop::halt`]):
+    /// follows the dead-man only, so that driving again takes a press made
+    /// once it is allowed.
+    pub fn follow(&mut self, update: &PadUpdate) {
+        self.latched = match update {
+            PadUpdate::State(state) => state.pressed(self.config.deadman),
+            PadUpdate::Dropped | PadUpdate::Gone(_) => true,
+        };
     }
 
     /// When a held-back change is due.
@@ -242,5 +262,18 @@ mod tests {
         let gone = PadUpdate::Gone(super::super::source::Gone::Ended);
         assert_eq!(teleop.update(at + CHANGE_EVERY, &gone), Some(Order::Stop(StopReason::Gone)));
         assert_eq!(teleop.halt(), None, "already stopped: nothing more");
+    }
+
+    #[test]
+    fn after_a_halt_the_dead_man_must_be_pressed_again() {
+        let t0 = Instant::now();
+        let mut teleop = Teleop::new(TeleopConfig::default());
+        let full = PadUpdate::State(state(&[RawEvent::key(BTN_TL, true), RawEvent::abs(ABS_Y, -32768)]));
+        assert!(teleop.update(t0, &full).is_some());
+        assert_eq!(teleop.halt(), Some(Order::Stop(StopReason::Halted)));
+        assert_eq!(teleop.update(t0 + CHANGE_EVERY, &full), None, "still held from before the halt");
+        let let_go = PadUpdate::State(state(&[RawEvent::abs(ABS_Y, -32768)]));
+        assert_eq!(teleop.update(t0 + CHANGE_EVERY, &let_go), None);
+        assert!(teleop.update(t0 + CHANGE_EVERY * 2, &full).is_some(), "pressed again: drives");
     }
 }

@@ -300,7 +300,7 @@ pub enum Plen2Action {
 }
 
 /// An rFLEX panel's request.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum RflexAction {
     /// Drive the base at this velocity (held until changed; 0, 0 stops).
     Drive {
@@ -317,6 +317,8 @@ pub enum RflexAction {
     SetSonar(bool),
     /// Forget the echoes heard so far.
     ClearMap,
+    /// Drive with the gamepad at this path (an event device or a pipe of input events); None: let it go.
+    UseGamepad(Option<PathBuf>),
 }
 
 /// What was asked for when the document had unsaved changes.

@@ -152,6 +152,8 @@ pub struct ShellView<'a> {
     pub operation: Option<&'a RunningOperation>,
     /// The interface language.
     pub language: Language,
+    /// Wakes the window from other threads (a family's own readers: a gamepad).
+    pub waker: &'a Waker,
 }
 
 impl<'a> ShellView<'a> {

@@ -209,13 +209,14 @@ impl StudioApp {
 
     /// What a family's panels draw from, and that family's ui.
     fn drawing(&mut self, family: Family) -> (ShellView<'_>, &mut dyn FamilyUi, Tab) {
-        let Self { document, link, operation, language, servo, plen2, rflex, tab, .. } = self;
+        let Self { document, link, operation, language, servo, plen2, rflex, tab, waker, .. } = self;
         let view = ShellView {
             project: &document.project,
             revision: document.revision(),
             link: link.as_ref(),
             operation: operation.as_ref(),
             language: *language,
+            waker,
         };
         (view, Families { servo, plen2, rflex }.get(family), *tab)
     }

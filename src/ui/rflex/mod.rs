@@ -5,6 +5,7 @@
 
 mod captions;
 mod drive;
+mod pad;
 mod telemetry;
 mod world;
 
@@ -39,6 +40,8 @@ pub struct RflexUi {
     pub world: WorldView,
     /// How the family's panels are laid out (remembered).
     pub layout: Layout,
+    /// A gamepad driving the base.
+    pub pad: pad::PadDrive,
 }
 
 impl Default for RflexUi {
@@ -49,6 +52,7 @@ impl Default for RflexUi {
             world: WorldView::default(),
             // The world view is the larger part of the base's panels.
             layout: Layout { side_width: 520.0, ..Layout::default() },
+            pad: pad::PadDrive::default(),
         }
     }
 }
@@ -86,6 +90,10 @@ impl RflexUi {
                     base.set_sonar(on);
                     self.sonar_on = on;
                 }
+            }
+            RflexAction::UseGamepad(path) => {
+                let settings = shell.document.project.rflex.drive;
+                self.pad.choose(shell, path, &settings);
             }
             RflexAction::ClearMap => {
                 if let Some(base) = shell.rflex_mut() {
@@ -153,6 +161,7 @@ impl FamilyUi for RflexUi {
 
     fn stop(&mut self, shell: &mut Shell<'_>) {
         self.disconnected();
+        self.pad.halt(shell);
         if let Some(link) = shell.link.as_mut() {
             // Both axes to 0 at once (never fails; a lost link is reported by pump).
             let _ = link.stop();
@@ -179,8 +188,16 @@ impl FamilyUi for RflexUi {
     }
 
     fn while_showing(&self, tab: Tab) -> Option<Action> {
-        // The pad and the keys live on the Drive tab: leaving it is letting go.
-        (tab != Tab::Drive && self.drive_asked() != (0.0, 0.0)).then_some(Action::Stop)
+        // The pad, the keys and the gamepad live on the Drive tab: leaving it is letting go.
+        let driving = self.drive_asked() != (0.0, 0.0) || self.pad.driving();
+        (tab != Tab::Drive && driving).then_some(Action::Stop)
+    }
+
+    /// Drives the base by the gamepad's updates.
+    fn tick(&mut self, shell: &mut Shell<'_>, now: std::time::Instant) -> bool {
+        let rflex = &shell.document.project.rflex;
+        let accel = rflex.drive.accel_m_per_s2.min(rflex.robot.limits().max_accel_m_per_s2);
+        self.pad.tick(shell, now, accel)
     }
 
     /// Draws the tab: the drive pad or the telemetry, with the world view beside it.
@@ -188,7 +205,7 @@ impl FamilyUi for RflexUi {
         let words = view.language.strings();
         let base = view.link.and_then(|link| link.rflex());
         let telemetry = base.map(|base| &base.telemetry);
-        let Self { drive, world, layout, sonar_on } = self;
+        let Self { drive, world, layout, sonar_on, pad } = self;
         let open = layout.view_open;
         layout::beside(ui, "rflex-world", (&mut layout.side_width, open), |ui, pane| match (pane, tab) {
             (Pane::Second, _) => world::panel(ui, world, telemetry, words, actions),
@@ -211,6 +228,8 @@ impl FamilyUi for RflexUi {
                     sonar_on: *sonar_on,
                 };
                 drive.ui(ui, &shown, words, actions);
+                ui.separator();
+                pad.ui(ui, words, view.waker, actions);
             }
         });
     }
