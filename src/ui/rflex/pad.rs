@@ -214,7 +214,7 @@ impl PadDrive {
             }
         });
         if !self.in_use() {
-            ui.weak(words.rflex().gamepad_hint);
+            ui.add(egui::Label::new(egui::RichText::new(words.rflex().gamepad_hint).weak()).wrap());
             return;
         }
         let captions = words.rflex();
