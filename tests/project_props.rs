@@ -3,6 +3,9 @@
 #![allow(clippy::unwrap_used)]
 
 use proptest::prelude::*;
+use servo_studio::project::gamepad::{
+    AxisBinding, AxisMode, AxisTarget, ButtonBinding, Fire, GamepadMappings, Mapping,
+};
 use servo_studio::project::plen2::{
     Frame, Joint, JointSetting, LoopRange, Motion, PlayEntry, PlayList, Plen2Project, Pose,
 };
@@ -152,14 +155,44 @@ fn rflex_section() -> impl Strategy<Value = RflexProject> {
     (robot, drive).prop_map(|(robot, drive)| RflexProject { robot, drive })
 }
 
+/// Gamepad bindings of every kind, for any family.
+fn mapping() -> impl Strategy<Value = Mapping> {
+    let finite = || -1e9f64..1e9f64;
+    let target = prop_oneof![
+        any::<u8>().prop_map(AxisTarget::Servo),
+        prop::sample::select(Joint::ALL.to_vec()).prop_map(AxisTarget::Joint),
+    ];
+    let mode = prop_oneof![Just(AxisMode::Absolute), finite().prop_map(|deg_per_s| AxisMode::Rate { deg_per_s })];
+    let axis = (any::<u16>(), target, finite(), finite(), finite(), any::<bool>(), mode).prop_map(
+        |(axis, target, min_deg, max_deg, dead_zone, invert, mode)| AxisBinding {
+            axis,
+            target,
+            min_deg,
+            max_deg,
+            dead_zone,
+            invert,
+            mode,
+        },
+    );
+    let fire = prop_oneof![
+        any::<i32>().prop_map(Fire::Action),
+        any::<i32>().prop_map(Fire::Macro),
+        any::<u8>().prop_map(Fire::Motion),
+        (0usize..100).prop_map(Fire::PlayList),
+        Just(Fire::Stop),
+        Just(Fire::Brake),
+    ];
+    let button = (any::<u16>(), fire).prop_map(|(button, fire)| ButtonBinding { button, fire });
+    (prop::collection::vec(axis, 0..4), prop::collection::vec(button, 0..4))
+        .prop_map(|(axes, buttons)| Mapping { axes, buttons })
+}
+
 fn project_strategy() -> impl Strategy<Value = Project> {
     let family = prop::sample::select(Family::ALL.to_vec());
-    (family, servo_section(), plen2_section(), rflex_section()).prop_map(|(family, servo, plen2, rflex)| Project {
-        family,
-        servo,
-        plen2,
-        rflex,
-    })
+    let gamepad =
+        (mapping(), mapping(), mapping()).prop_map(|(servo, plen2, rflex)| GamepadMappings { servo, plen2, rflex });
+    (family, servo_section(), plen2_section(), rflex_section(), gamepad)
+        .prop_map(|(family, servo, plen2, rflex, gamepad)| Project { family, servo, plen2, rflex, gamepad })
 }
 
 proptest! {

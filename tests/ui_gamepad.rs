@@ -16,7 +16,7 @@ use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use servo_studio::gamepad::{ABS_Y, BTN_TL, PadState, RawEvent};
 use servo_studio::project::{Family, Project};
-use servo_studio::ui::{Action, RflexAction, StudioApp, Tab};
+use servo_studio::ui::{Action, StudioApp, Tab};
 
 struct Rig {
     harness: Harness<'static, StudioApp>,
@@ -35,7 +35,7 @@ impl Rig {
         let folder = tempfile::tempdir().unwrap();
         let fifo: PathBuf = folder.path().join("pad");
         assert!(std::process::Command::new("mkfifo").arg(&fifo).status().unwrap().success());
-        harness.state_mut().apply(Action::Rflex(RflexAction::UseGamepad(Some(fifo.clone()))));
+        harness.state_mut().apply(Action::UseGamepad(Some(fifo.clone())));
         // Opening for writing waits for the reading thread to open it.
         let pipe = std::fs::OpenOptions::new().write(true).open(&fifo).unwrap();
         Self { harness, pipe: Some(pipe), _folder: folder }
@@ -105,7 +105,7 @@ fn the_gamepad_drives_while_the_dead_man_is_held_and_the_window_has_the_focus() 
     // The pipe ends: stopped, and said.
     rig.pipe = None;
     rig.until("the end to stop", |commanded| commanded == (0.0, 0.0));
-    common::ui::run_until(&mut rig.harness, "the gamepad to be let go", |app| !app.rflex.pad.in_use());
+    common::ui::run_until(&mut rig.harness, "the gamepad to be let go", |app| !app.pad.in_use());
     let status = rig.harness.state().status.clone().unwrap();
     assert!(status.is_error && status.text.starts_with("The gamepad is gone"), "{status:?}");
 }
@@ -122,4 +122,151 @@ fn stop_halts_the_gamepad_until_its_dead_man_is_pressed_again() {
     rig.frame(&[RawEvent::key(BTN_TL, false)]);
     rig.frame(&forward());
     rig.until("a fresh press to drive", |(speed, _)| speed > 0.0);
+}
+
+mod bindings {
+    use super::*;
+    use servo_studio::gamepad::{ABS_RX, BTN_SOUTH, BTN_WEST};
+    use servo_studio::link::LinkEvent;
+    use servo_studio::project::gamepad::{AxisBinding, AxisTarget, ButtonBinding, Fire, Mapping};
+    use servo_studio::project::plen2::{Frame, Joint, Motion, Plen2Project, Pose};
+    use servo_studio::protocol::plen2::Command;
+    use servo_studio::sim::{Plen2SimCommand, Plen2SimEvent, Plen2State};
+
+    /// A PLEN2 project whose gamepad moves the left shoulder with the right
+    /// stick (asking for ±120°, beyond the joint's ±90°) and plays slot 3 on A.
+    fn project() -> Project {
+        let mut project = Project::empty(Family::Plen2);
+        project.plen2 = Plen2Project {
+            motions: vec![Motion {
+                slot: 3,
+                name: "Wave".into(),
+                frames: vec![Frame { transition_ms: 200, values_tenths_deg: Pose::default() }],
+                loop_range: None,
+                jump_slot: None,
+            }],
+            ..Plen2Project::default()
+        };
+        project.gamepad.plen2 = Mapping {
+            axes: vec![AxisBinding::absolute(ABS_RX, AxisTarget::Joint(Joint::LeftShoulderPitch), (-120.0, 120.0))],
+            buttons: vec![ButtonBinding { button: BTN_SOUTH, fire: Fire::Motion(3) }],
+        };
+        project
+    }
+
+    struct Robot {
+        harness: Harness<'static, StudioApp>,
+        pipe: std::fs::File,
+        _folder: tempfile::TempDir,
+    }
+
+    impl Robot {
+        fn start(tab: Tab) -> Self {
+            let mut app = common::ui::editor(project());
+            app.apply(Action::ConnectDemo);
+            let mut harness = common::ui::showing(app, tab, (1200.0, 800.0));
+            let folder = tempfile::tempdir().unwrap();
+            let fifo: PathBuf = folder.path().join("pad");
+            assert!(std::process::Command::new("mkfifo").arg(&fifo).status().unwrap().success());
+            harness.state_mut().apply(Action::UseGamepad(Some(fifo.clone())));
+            let pipe = std::fs::OpenOptions::new().write(true).open(&fifo).unwrap();
+            harness.run_steps(2);
+            Self { harness, pipe, _folder: folder }
+        }
+
+        fn frame(&mut self, events: &[RawEvent]) {
+            let mut bytes: Vec<u8> = events.iter().flat_map(|event| event.to_bytes(0)).collect();
+            bytes.extend(RawEvent::report().to_bytes(0));
+            self.pipe.write_all(&bytes).unwrap();
+        }
+
+        fn robot(&self) -> Plen2State {
+            let (reply, state) = crossbeam_channel::bounded(1);
+            self.harness.state().link.as_ref().unwrap().demo_plen2().unwrap().command(Plen2SimCommand::Inspect(reply));
+            state.recv_timeout(std::time::Duration::from_secs(5)).unwrap()
+        }
+
+        /// Runs frames until the robot executes a command `wanted` picks; whether it did within 3 s.
+        fn executes(&mut self, wanted: impl Fn(&Command) -> bool) -> bool {
+            let events = self.harness.state().link.as_ref().unwrap().demo_plen2().unwrap().events().clone();
+            let deadline = std::time::Instant::now() + std::time::Duration::from_secs(3);
+            while std::time::Instant::now() < deadline {
+                self.harness.step();
+                for event in events.try_iter() {
+                    if let LinkEvent::Driver(Plen2SimEvent::Executed(command)) = event
+                        && wanted(&command)
+                    {
+                        return true;
+                    }
+                }
+            }
+            false
+        }
+    }
+
+    #[test]
+    fn an_axis_moves_its_joint_within_its_limits_and_a_button_plays_a_motion_on_the_robot() {
+        let mut robot = Robot::start(Tab::Gamepad);
+        // Full right: 120° asked, the joint stops at its limit of 90.0°.
+        robot.frame(&[RawEvent::abs(ABS_RX, 32767)]);
+        assert!(robot.executes(|command| matches!(command, Command::SetAngle { device: 0, angle: 900 })));
+        assert_eq!(robot.robot().angles[0], 900);
+        // A quarter left: beyond the 10 % dead zone, (0.25 − 0.1) / 0.9 = 1/6 of the way to −120°: −20.0°.
+        robot.frame(&[RawEvent::abs(ABS_RX, -8192)]);
+        assert!(robot.executes(|command| matches!(command, Command::SetAngle { device: 0, angle: -200 })));
+        // Only that joint moved.
+        let angles = robot.robot().angles;
+        let home = Pose::default();
+        assert!(
+            angles.iter().enumerate().filter(|(device, _)| *device != 0).all(|(device, angle)| {
+                let joint = Joint::ALL.iter().find(|joint| usize::from(joint.device_id()) == device);
+                joint.is_none_or(|joint| *angle == joint.factory_home_tenths_deg() + home.get(*joint))
+            }),
+            "{angles:?}"
+        );
+
+        robot.frame(&[RawEvent::key(BTN_SOUTH, true)]);
+        assert!(robot.executes(|command| *command == Command::PlayMotion { slot: 3 }), "A plays slot 3");
+
+        // Test mode: buttons light up, nothing fires.
+        robot.frame(&[RawEvent::key(BTN_SOUTH, false)]);
+        robot.harness.state_mut().apply(Action::PadTestMode(true));
+        robot.frame(&[RawEvent::key(BTN_SOUTH, true)]);
+        assert!(!robot.executes(|command| *command == Command::PlayMotion { slot: 3 }), "nothing fires in test mode");
+        assert!(robot.harness.state().pad.state.as_ref().is_some_and(|pad| pad.pressed(BTN_SOUTH)), "but it is seen");
+    }
+
+    #[test]
+    fn a_button_is_bound_by_pressing_it_and_the_binding_is_one_undo_step() {
+        let mut robot = Robot::start(Tab::Gamepad);
+        robot.harness.get_by_label("Bind a button: press it").click();
+        robot.harness.run_steps(2);
+        assert!(robot.harness.query_by_label("Waiting for the gamepad… (Cancel to stop)").is_some());
+        robot.frame(&[RawEvent::key(BTN_WEST, true)]);
+        common::ui::run_until(&mut robot.harness, "the binding", |app| {
+            app.document.project.gamepad.plen2.buttons.iter().any(|binding| binding.button == BTN_WEST)
+        });
+        // Bound to the first thing a button can fire (STOP) until changed; pressing it while
+        // binding fired nothing.
+        let bound = robot.harness.state().document.project.gamepad.plen2.buttons.last().cloned().unwrap();
+        assert_eq!(bound, ButtonBinding { button: BTN_WEST, fire: Fire::Stop });
+        assert_eq!(
+            robot.harness.query_all_by_label("BTN_WEST").count(),
+            2,
+            "lit in the test view, and its binding's row"
+        );
+        robot.harness.state_mut().apply(Action::Undo);
+        assert_eq!(robot.harness.state().document.project.gamepad.plen2.buttons.len(), 1, "one undo step");
+
+        // The same button bound twice is named as a conflict.
+        robot.harness.state_mut().apply(Action::Redo);
+        let mut mapping = robot.harness.state().document.project.gamepad.plen2.clone();
+        mapping.buttons.push(ButtonBinding { button: BTN_WEST, fire: Fire::Motion(3) });
+        robot.harness.state_mut().apply(Action::Edit {
+            edit: servo_studio::project::Edit::SetGamepad(Family::Plen2, Box::new(mapping)),
+            coalesce: None,
+        });
+        robot.harness.run_steps(2);
+        assert!(robot.harness.query_by_label("Conflict: BTN_WEST is bound more than once").is_some());
+    }
 }

@@ -3,6 +3,7 @@
 //! dead-man button mean to a mobile base ([`teleop`]).
 
 mod event;
+pub mod puppet;
 mod source;
 mod state;
 pub mod teleop;

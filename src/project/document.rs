@@ -66,6 +66,8 @@ pub struct Project {
     pub plen2: Plen2Project,
     /// rFLEX settings.
     pub rflex: RflexProject,
+    /// Gamepad bindings, per family.
+    pub gamepad: super::gamepad::GamepadMappings,
 }
 
 impl From<ServoProject> for Project {
@@ -83,5 +85,27 @@ impl Project {
     /// An empty project for `family`.
     pub fn empty(family: Family) -> Self {
         Self { family, ..Self::default() }
+    }
+}
+
+/// A family's gamepad bindings (here, beside [`Family`]: the bindings
+/// themselves know no family).
+impl super::gamepad::GamepadMappings {
+    /// The bindings for `family`.
+    pub fn of(&self, family: Family) -> &super::gamepad::Mapping {
+        match family {
+            Family::Servo => &self.servo,
+            Family::Plen2 => &self.plen2,
+            Family::Rflex => &self.rflex,
+        }
+    }
+
+    /// The bindings for `family`, to change.
+    pub fn of_mut(&mut self, family: Family) -> &mut super::gamepad::Mapping {
+        match family {
+            Family::Servo => &mut self.servo,
+            Family::Plen2 => &mut self.plen2,
+            Family::Rflex => &mut self.rflex,
+        }
     }
 }

@@ -75,6 +75,8 @@ pub enum Edit {
     SetRflexRobot(super::rflex::Robot),
     /// Change the rFLEX drive limits.
     SetRflexDrive(super::rflex::DriveSettings),
+    /// Replace a family's gamepad bindings.
+    SetGamepad(Family, Box<super::gamepad::Mapping>),
     /// Replace the PLEN2 section (motions, play lists, joint settings).
     SetPlen2(Box<super::plen2::Plen2Project>),
 }
@@ -119,11 +121,19 @@ impl Edit {
                 project.plen2 = *plen2;
                 return true;
             }
+            Self::SetGamepad(family, mapping) => {
+                *project.gamepad.of_mut(family) = *mapping;
+                return true;
+            }
             _ => {}
         }
         let project = &mut project.servo;
         match self {
-            Self::SetFamily(_) | Self::SetRflexRobot(_) | Self::SetRflexDrive(_) | Self::SetPlen2(_) => false,
+            Self::SetFamily(_)
+            | Self::SetRflexRobot(_)
+            | Self::SetRflexDrive(_)
+            | Self::SetPlen2(_)
+            | Self::SetGamepad(..) => false,
             Self::SetServo { index, servo } => set(&mut project.servos, index, servo),
             Self::AddServo(servo) => {
                 project.servos.push(servo);

@@ -88,6 +88,8 @@ struct Envelope<'a> {
     plen2: Option<&'a Plen2Project>,
     #[serde(skip_serializing_if = "Option::is_none")]
     rflex: Option<&'a RflexProject>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    gamepad: Option<&'a super::gamepad::GamepadMappings>,
 }
 
 #[derive(Deserialize)]
@@ -100,6 +102,8 @@ struct Sections {
     plen2: Plen2Project,
     #[serde(default)]
     rflex: RflexProject,
+    #[serde(default)]
+    gamepad: super::gamepad::GamepadMappings,
 }
 
 fn syntax(error: &serde_json::Error) -> LoadError {
@@ -226,6 +230,7 @@ pub fn parse(text: &str) -> Result<Loaded, LoadError> {
                 servo: sections.servo,
                 plen2: sections.plen2,
                 rflex: sections.rflex,
+                gamepad: sections.gamepad,
             };
             Ok(Loaded { project, unknown_keys, unknown_keys_not_kept })
         }
@@ -245,6 +250,7 @@ pub fn to_json(project: &Project) -> String {
         servo: wanted(Family::Servo, project.servo == ServoProject::default()).then_some(&project.servo),
         plen2: wanted(Family::Plen2, project.plen2 == Plen2Project::default()).then_some(&project.plen2),
         rflex: wanted(Family::Rflex, project.rflex == RflexProject::default()).then_some(&project.rflex),
+        gamepad: (!project.gamepad.is_empty()).then_some(&project.gamepad),
     };
     // Serializing plain structs of strings and integers to a String cannot fail.
     let mut text = serde_json::to_string_pretty(&envelope).unwrap_or_default();

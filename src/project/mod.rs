@@ -6,6 +6,7 @@ mod bounded;
 mod document;
 mod edit;
 mod file;
+pub mod gamepad;
 mod history;
 pub mod input;
 pub mod motion_json;

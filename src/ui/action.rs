@@ -18,6 +18,8 @@ pub struct Tab(&'static str);
 impl Tab {
     /// Every frame sent and received.
     pub const Log: Self = Self("Log");
+    /// The gamepad: which, its live state, the family's bindings.
+    pub const Gamepad: Self = Self("Gamepad");
 
     /// A family's tab called `name` (unique among all families' tabs).
     pub const fn named(name: &'static str) -> Self {
@@ -34,6 +36,15 @@ impl std::fmt::Display for Tab {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(self.0)
     }
+}
+
+/// What the Gamepad tab binds by pressing or moving it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Bind {
+    /// The next button pressed.
+    Button,
+    /// The next axis moved.
+    Axis,
 }
 
 /// A file the user is asked for (the shell opens the dialog, off the frame).
@@ -145,6 +156,12 @@ pub enum Action {
     SetLanguage(Language),
     /// Show a tab.
     ShowTab(Tab),
+    /// Read the gamepad at this path (an event device or a pipe of input events); None: let it go.
+    UseGamepad(Option<PathBuf>),
+    /// Test mode on or off: buttons light up, nothing fires or moves.
+    PadTestMode(bool),
+    /// Wait for the next button pressed or axis moved, to bind it; None: stop waiting.
+    BindPad(Option<Bind>),
     /// Show or hide the robot's preview (the world view for a base) beside the panels.
     ShowView(bool),
     /// Ask the user for a file (the answer comes back as the matching action).
@@ -300,7 +317,7 @@ pub enum Plen2Action {
 }
 
 /// An rFLEX panel's request.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum RflexAction {
     /// Drive the base at this velocity (held until changed; 0, 0 stops).
     Drive {
@@ -317,8 +334,6 @@ pub enum RflexAction {
     SetSonar(bool),
     /// Forget the echoes heard so far.
     ClearMap,
-    /// Drive with the gamepad at this path (an event device or a pipe of input events); None: let it go.
-    UseGamepad(Option<PathBuf>),
 }
 
 /// What was asked for when the document had unsaved changes.

@@ -7,9 +7,13 @@
 
 use std::time::{Duration, Instant};
 
+use crate::gamepad::PadUpdate;
+use crate::gamepad::puppet::Cue;
+use crate::project::gamepad::Fire;
 use crate::project::{Family, Project};
 use crate::ui::action::{Action, Tab};
 use crate::ui::board_link::{BoardLink, LinkNotice, LinkOptions};
+use crate::ui::gamepad::PadTarget;
 use crate::ui::i18n::Strings;
 use crate::ui::layout::Layout;
 use crate::ui::shell::{Shell, ShellView};
@@ -116,5 +120,39 @@ pub trait FamilyUi {
     /// What showing `tab` this frame asks for (a base's pad stops once its tab is left).
     fn while_showing(&self, _tab: Tab) -> Option<Action> {
         None
+    }
+
+    /// What a gamepad axis can move (its servos, its joints).
+    fn pad_targets(&self, _project: &Project) -> Vec<PadTarget> {
+        Vec::new()
+    }
+
+    /// What a gamepad button can fire, with names.
+    fn pad_fires(&self, _project: &Project, words: &Strings) -> Vec<(Fire, String)> {
+        vec![(Fire::Stop, words.stop.to_string())]
+    }
+
+    /// The family's action for what a binding asks for.
+    fn pad_cue(&self, cue: Cue) -> Option<Action> {
+        (cue == Cue::Fire(Fire::Stop)).then_some(Action::Stop)
+    }
+
+    /// Buttons the family keeps for itself (an rFLEX base's dead-man).
+    fn pad_reserved(&self) -> &'static [u16] {
+        &[]
+    }
+
+    /// The gamepad's updates for the family's own use (a base driven by its
+    /// stick); `armed`: whether the window lets the pad act now (focused, not
+    /// in test mode). Whether the window should keep repainting.
+    fn pad_drive(
+        &mut self,
+        _shell: &mut Shell<'_>,
+        _now: Instant,
+        _updates: &[(Instant, PadUpdate)],
+        _armed: bool,
+        _tab: Tab,
+    ) -> bool {
+        false
     }
 }

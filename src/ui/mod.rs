@@ -10,6 +10,7 @@ mod document;
 mod family;
 pub mod files;
 pub mod fonts;
+pub mod gamepad;
 mod i18n;
 mod layout;
 mod operation;

@@ -9,6 +9,7 @@ mod connection;
 mod dialogs;
 mod doctor;
 mod file_ops;
+mod gamepad;
 mod tabs;
 
 use std::io::Write;
@@ -96,6 +97,8 @@ pub struct StudioApp {
     picker: Picker,
     connection_bar: ConnectionBar,
     doctor: doctor::Doctor,
+    /// The gamepad, its live state and the binding being made.
+    pub pad: crate::ui::gamepad::PadInput,
     /// Told when the process is asked to end.
     terminate: Option<Receiver<()>>,
 }
@@ -140,6 +143,7 @@ impl StudioApp {
             waker,
             connection_bar: ConnectionBar::default(),
             doctor: doctor::Doctor::default(),
+            pad: crate::ui::gamepad::PadInput::default(),
             terminate: None,
         };
         app.recovery_offer = files::read_recovery(&app.data_dir);
@@ -231,7 +235,7 @@ impl StudioApp {
     /// The tabs shown for a family: its own, then the packet log.
     pub fn tabs(&self, family: Family) -> Vec<Tab> {
         let mut tabs = self.family_ui(family).tabs();
-        tabs.push(Tab::Log);
+        tabs.extend([Tab::Gamepad, Tab::Log]);
         tabs
     }
 
@@ -276,6 +280,9 @@ impl StudioApp {
             Action::Stop => self.stop(),
             Action::SetLanguage(language) => self.language = language,
             Action::ShowTab(tab) => self.tab = tab,
+            Action::UseGamepad(path) => self.use_gamepad(path),
+            Action::PadTestMode(on) => self.pad.test_mode = on,
+            Action::BindPad(bind) => self.bind_pad(bind),
             Action::ShowView(open) => {
                 let (_, family_ui) = self.parts(self.document.project.family);
                 family_ui.layout_mut().view_open = open;
@@ -408,7 +415,8 @@ impl StudioApp {
         let words = self.language.strings();
 
         self.file_events(ui, now, &mut actions);
-        if self.advance(now) {
+        let focused = ui.input(|input| input.focused);
+        if self.feed_gamepad(now, focused) | self.advance(now) {
             ui.ctx().request_repaint();
         }
         egui::Panel::top("toolbar").show(ui, |ui| {
@@ -463,13 +471,17 @@ impl StudioApp {
                 let mut tab = self.tab;
                 // Only the panels that apply to the document's family are offered.
                 for option in self.tabs(family) {
-                    let title = if option == Tab::Log { words.packet_log } else { family_ui.tab_title(option, words) };
+                    let title = match option {
+                        Tab::Log => words.packet_log,
+                        Tab::Gamepad => words.gamepad,
+                        _ => family_ui.tab_title(option, words),
+                    };
                     ui.selectable_value(&mut tab, option, title);
                 }
                 if tab != self.tab {
                     actions.push(Action::ShowTab(tab));
                 }
-                if self.tab != Tab::Log && family_ui.has_view(self.tab) {
+                if ![Tab::Log, Tab::Gamepad].contains(&self.tab) && family_ui.has_view(self.tab) {
                     ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
                         let mut open = family_ui.layout().view_open;
                         if ui.checkbox(&mut open, family_ui.view_caption(words)).changed() {

@@ -59,6 +59,48 @@ pub struct Strings {
     pub demo_board: &'static str,
     /// "Refresh".
     pub refresh: &'static str,
+    /// "Gamepad" (its tab and picker).
+    pub gamepad: &'static str,
+    /// "Use" (a gamepad).
+    pub use_gamepad: &'static str,
+    /// "Let go" (stop reading the gamepad).
+    pub drop_gamepad: &'static str,
+    /// What the Gamepad tab says with no gamepad.
+    pub gamepad_none: &'static str,
+    /// The test mode checkbox.
+    pub pad_test_mode: &'static str,
+    /// "Axes" (bindings).
+    pub pad_axes: &'static str,
+    /// "Buttons" (bindings).
+    pub pad_buttons: &'static str,
+    /// Bind an axis by moving it.
+    pub pad_bind_axis: &'static str,
+    /// Bind a button by pressing it.
+    pub pad_bind_button: &'static str,
+    /// Waiting for the gamepad while binding.
+    pub pad_binding_wait: &'static str,
+    /// "moves" (an axis binding).
+    pub pad_moves: &'static str,
+    /// "fires" (a button binding).
+    pub pad_fires: &'static str,
+    /// The angle at the axis low end.
+    pub pad_min: &'static str,
+    /// The angle at the axis high end.
+    pub pad_max: &'static str,
+    /// "dead zone".
+    pub pad_dead_zone: &'static str,
+    /// "invert".
+    pub pad_invert: &'static str,
+    /// Rate mode checkbox.
+    pub pad_rate: &'static str,
+    /// Remove a binding.
+    pub pad_remove: &'static str,
+    /// Prefix of a conflict line.
+    pub pad_conflict: &'static str,
+    /// No servo or joint to bind an axis to.
+    pub pad_nothing_to_move: &'static str,
+    /// The gamepad went away (the reason follows).
+    pub msg_pad_gone: &'static str,
     /// "Find board" (the connection doctor).
     pub find_board: &'static str,
     /// "Auto (find it)" (the family chooser's choice that asks the board).

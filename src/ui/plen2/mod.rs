@@ -8,6 +8,7 @@ mod captions;
 mod joints;
 mod live;
 mod motions;
+mod pad;
 mod play_lists;
 mod preview;
 mod words;
@@ -364,6 +365,18 @@ impl Plen2Ui {
 impl FamilyUi for Plen2Ui {
     fn family(&self) -> Family {
         Family::Plen2
+    }
+
+    fn pad_targets(&self, project: &Project) -> Vec<crate::ui::gamepad::PadTarget> {
+        pad::targets(&project.plen2, &self.pose)
+    }
+
+    fn pad_fires(&self, project: &Project, words: &Strings) -> Vec<(crate::project::gamepad::Fire, String)> {
+        pad::fires(&project.plen2, words)
+    }
+
+    fn pad_cue(&self, cue: crate::gamepad::puppet::Cue) -> Option<Action> {
+        pad::cue(cue)
     }
 
     fn panels(&self) -> &'static [Panel] {

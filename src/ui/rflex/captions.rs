@@ -39,12 +39,6 @@ pub struct RflexCaptions {
     pub world_hint: &'static str,
     /// The drive pad says the window lacks keyboard focus.
     pub drive_needs_focus: &'static str,
-    /// "Gamepad".
-    pub gamepad: &'static str,
-    /// "Use" (a gamepad).
-    pub use_gamepad: &'static str,
-    /// "Let go" (stop using the gamepad).
-    pub drop_gamepad: &'static str,
     /// How the gamepad drives.
     pub gamepad_hint: &'static str,
     /// "driving".
@@ -57,8 +51,6 @@ pub struct RflexCaptions {
     pub pad_dropped: &'static str,
     /// "stopped: let go of the dead-man and press it again to drive".
     pub pad_halted: &'static str,
-    /// "The gamepad is gone; the base was stopped".
-    pub msg_pad_gone: &'static str,
 }
 
 const ENGLISH: RflexCaptions = RflexCaptions {
@@ -78,16 +70,12 @@ const ENGLISH: RflexCaptions = RflexCaptions {
     clear_map: "Clear the map",
     world_hint: "Drag to pan, wheel to zoom, double-click to centre on the base",
     drive_needs_focus: "The keys do nothing: the window does not have the keyboard focus. Click in the window first.",
-    gamepad: "Gamepad",
-    use_gamepad: "Use",
-    drop_gamepad: "Let go",
-    gamepad_hint: "Hold the left shoulder (BTN_TL) and move the left stick to drive; let go to stop. An event device, or a pipe of input events.",
+    gamepad_hint: "A gamepad drives too: hold the left shoulder (BTN_TL) and move the left stick; let go to stop. Choose it on the Gamepad tab.",
     pad_driving: "driving",
     pad_released: "stopped: the dead-man button (left shoulder) is not held",
     pad_centred: "stopped: the stick is centred",
     pad_dropped: "stopped: the gamepad's events were dropped; press the dead-man again",
     pad_halted: "stopped: let go of the dead-man and press it again to drive",
-    msg_pad_gone: "The gamepad is gone; the base was told to stop",
 };
 
 const TRADITIONAL_CHINESE: RflexCaptions = RflexCaptions {
@@ -107,16 +95,12 @@ const TRADITIONAL_CHINESE: RflexCaptions = RflexCaptions {
     clear_map: "清除地圖",
     world_hint: "拖曳平移，滾輪縮放，按兩下回到底盤",
     drive_needs_focus: "按鍵沒有作用：視窗沒有鍵盤焦點。請先點一下視窗。",
-    gamepad: "遊戲手把",
-    use_gamepad: "使用",
-    drop_gamepad: "放開",
-    gamepad_hint: "按住左肩鍵（BTN_TL）並推動左搖桿即可行駛；放開即停止。可用事件裝置，或輸入事件的管道。",
+    gamepad_hint: "也可用遊戲手把行駛：按住左肩鍵（BTN_TL）並推動左搖桿；放開即停止。請在「遊戲手把」分頁選擇手把。",
     pad_driving: "行駛中",
     pad_released: "已停止：未按住安全鍵（左肩鍵）",
     pad_centred: "已停止：搖桿在中央",
     pad_dropped: "已停止：手把的事件遺失；請重新按下安全鍵",
     pad_halted: "已停止：放開安全鍵再按一次才能行駛",
-    msg_pad_gone: "遊戲手把已中斷；已命令底盤停止",
 };
 
 /// The rFLEX base's captions in the interface's language.

@@ -12,6 +12,8 @@ mod world;
 pub use drive::{DrivePanel, DriveView};
 pub use world::WorldView;
 
+use crate::gamepad::puppet::Cue;
+use crate::project::gamepad::Fire;
 use crate::project::rflex::Robot;
 use crate::project::{Family, Project};
 use crate::ui::action::{Action, RflexAction, Tab};
@@ -90,10 +92,6 @@ impl RflexUi {
                     base.set_sonar(on);
                     self.sonar_on = on;
                 }
-            }
-            RflexAction::UseGamepad(path) => {
-                let settings = shell.document.project.rflex.drive;
-                self.pad.choose(shell, path, &settings);
             }
             RflexAction::ClearMap => {
                 if let Some(base) = shell.rflex_mut() {
@@ -193,11 +191,34 @@ impl FamilyUi for RflexUi {
         (tab != Tab::Drive && driving).then_some(Action::Stop)
     }
 
-    /// Drives the base by the gamepad's updates.
-    fn tick(&mut self, shell: &mut Shell<'_>, now: std::time::Instant) -> bool {
+    /// Drives the base by the gamepad's stick while the Drive tab is shown.
+    fn pad_drive(
+        &mut self,
+        shell: &mut Shell<'_>,
+        now: std::time::Instant,
+        updates: &[(std::time::Instant, crate::gamepad::PadUpdate)],
+        armed: bool,
+        tab: Tab,
+    ) -> bool {
         let rflex = &shell.document.project.rflex;
-        let accel = rflex.drive.accel_m_per_s2.min(rflex.robot.limits().max_accel_m_per_s2);
-        self.pad.tick(shell, now, accel)
+        let (settings, accel) = (rflex.drive, rflex.drive.accel_m_per_s2.min(rflex.robot.limits().max_accel_m_per_s2));
+        self.pad.drive(shell, now, updates, armed && tab == Tab::Drive, &settings, accel)
+    }
+
+    fn pad_fires(&self, _project: &Project, words: &Strings) -> Vec<(Fire, String)> {
+        vec![(Fire::Stop, words.stop.to_string()), (Fire::Brake, words.brake.to_string())]
+    }
+
+    fn pad_cue(&self, cue: Cue) -> Option<Action> {
+        match cue {
+            Cue::Fire(Fire::Stop) => Some(Action::Stop),
+            Cue::Fire(Fire::Brake) => Some(Action::Rflex(RflexAction::SetBrake(true))),
+            _ => None,
+        }
+    }
+
+    fn pad_reserved(&self) -> &'static [u16] {
+        &[crate::gamepad::BTN_TL]
     }
 
     /// Draws the tab: the drive pad or the telemetry, with the world view beside it.
@@ -229,7 +250,7 @@ impl FamilyUi for RflexUi {
                 };
                 drive.ui(ui, &shown, words, actions);
                 ui.separator();
-                pad.ui(ui, words, view.waker, actions);
+                pad.ui(ui, words);
             }
         });
     }

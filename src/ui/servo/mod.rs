@@ -10,6 +10,7 @@ mod joystick;
 mod live;
 mod macros;
 mod operations;
+mod pad;
 mod preview;
 mod rig;
 mod sliders;
@@ -199,6 +200,18 @@ impl ServoUi {
 impl FamilyUi for ServoUi {
     fn family(&self) -> Family {
         Family::Servo
+    }
+
+    fn pad_targets(&self, project: &Project) -> Vec<crate::ui::gamepad::PadTarget> {
+        pad::targets(&project.servo, &self.pose)
+    }
+
+    fn pad_fires(&self, project: &Project, words: &Strings) -> Vec<(crate::project::gamepad::Fire, String)> {
+        pad::fires(&project.servo, words)
+    }
+
+    fn pad_cue(&self, cue: crate::gamepad::puppet::Cue) -> Option<Action> {
+        pad::cue(cue)
     }
 
     fn panels(&self) -> &'static [Panel] {

@@ -1,0 +1,82 @@
+//! The editor's gamepad: read once a frame and handed to the family shown —
+//! its own use (a base's stick), its bindings (the puppeteer), and the
+//! binding being made by pressing or moving — and the Gamepad tab.
+
+use super::*;
+use crate::gamepad::{Gone, PadUpdate};
+use crate::ui::action::Bind;
+use crate::ui::gamepad::PadPanel;
+
+impl StudioApp {
+    /// Reads `path` as the gamepad (None: lets it go, stopping what it drove).
+    pub(super) fn use_gamepad(&mut self, path: Option<PathBuf>) {
+        if self.pad.in_use() {
+            // Letting go is the gamepad going away: whatever it drove stops.
+            let now = Instant::now();
+            let gone = [(now, PadUpdate::Gone(Gone::Ended))];
+            let family = self.document.project.family;
+            let tab = self.tab;
+            let (mut shell, family_ui) = self.parts(family);
+            family_ui.pad_drive(&mut shell, now, &gone, false, tab);
+        }
+        if let Err(error) = self.pad.choose(path, &self.waker) {
+            self.report(error, true);
+        }
+    }
+
+    /// Starts (or stops) waiting for a button or an axis to bind.
+    pub(super) fn bind_pad(&mut self, bind: Option<Bind>) {
+        self.pad.binding = bind.filter(|_| self.pad.in_use()).map(|bind| (bind, self.pad.state.clone()));
+    }
+
+    /// Takes what the gamepad sent and lets it act; `focused`: whether the
+    /// window has the focus (a gamepad acts only then). Whether the window
+    /// should keep repainting.
+    pub(super) fn feed_gamepad(&mut self, now: Instant, focused: bool) -> bool {
+        let (updates, gone) = self.pad.take();
+        let family = self.document.project.family;
+        let armed = focused && !self.pad.test_mode && self.pad.binding.is_none();
+        let tab = self.tab;
+        let mapping = self.document.project.gamepad.of(family).clone();
+        let mut actions = Vec::new();
+        let (targets, fires) = {
+            let family_ui = self.family_ui(family);
+            (family_ui.pad_targets(&self.document.project), family_ui.pad_fires(&self.document.project, self.words()))
+        };
+        if !updates.is_empty() {
+            actions.extend(self.pad.bound(family, &mapping, &targets, &fires));
+        }
+        let cues = self.pad.cues(&mapping, now, &updates, &targets);
+        let (mut shell, family_ui) = self.parts(family);
+        let mut moving = family_ui.pad_drive(&mut shell, now, &updates, armed, tab);
+        if armed {
+            actions.extend(cues.into_iter().filter_map(|cue| family_ui.pad_cue(cue)));
+        }
+        moving |= self.pad.moving(&mapping);
+        for action in actions {
+            self.apply(action);
+        }
+        if let Some(why) = gone {
+            self.report(format!("{}: {why}", self.words().msg_pad_gone), true);
+        }
+        moving
+    }
+
+    /// The Gamepad tab.
+    pub(super) fn gamepad_panel(&mut self, ui: &mut egui::Ui, actions: &mut Vec<Action>) {
+        let family = self.document.project.family;
+        let words = self.language.strings();
+        let family_ui = self.family_ui(family);
+        let targets = family_ui.pad_targets(&self.document.project);
+        let fires = family_ui.pad_fires(&self.document.project, words);
+        let view = PadPanel {
+            family,
+            mapping: self.document.project.gamepad.of(family),
+            targets: &targets,
+            fires: &fires,
+            reserved: family_ui.pad_reserved(),
+            waker: &self.waker,
+        };
+        crate::ui::gamepad::panel(ui, &mut self.pad, &view, words, actions);
+    }
+}
