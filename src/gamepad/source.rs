@@ -102,6 +102,10 @@ fn read(path: &Path, range: Option<(i32, i32)>, send: &dyn Fn(PadUpdate) -> bool
             return linux::read_device(path, send);
         }
     }
+    #[cfg(not(target_os = "linux"))]
+    if let Some(id) = path.to_str().and_then(|path| path.strip_prefix(other::PREFIX)).and_then(|id| id.parse().ok()) {
+        return other::read_pad(id, send);
+    }
     let file = match std::fs::File::open(path) {
         Ok(file) => file,
         Err(error) => {
@@ -156,7 +160,106 @@ pub fn list() -> Vec<GamepadInfo> {
     }
     #[cfg(not(target_os = "linux"))]
     {
-        Vec::new()
+        other::list()
+    }
+}
+
+/// Other systems: a thin adapter over `gilrs` (not yet verified on those
+/// systems). Its buttons and axes are given the kernel's codes (the left
+/// shoulder is `BTN_TL`, the left stick `ABS_X`/`ABS_Y`, up low as on Linux),
+/// so bindings and the dead-man mean the same everywhere. A pad is named
+/// `gilrs:N` where Linux names an event device.
+#[cfg(not(target_os = "linux"))]
+mod other {
+    use super::*;
+    use crate::gamepad::event::{
+        ABS_RX, ABS_RY, ABS_RZ, ABS_X, ABS_Y, ABS_Z, BTN_EAST, BTN_NORTH, BTN_SELECT, BTN_SOUTH, BTN_START, BTN_TL,
+        BTN_TR, BTN_WEST,
+    };
+
+    /// How a gamepad is named in place of a path.
+    pub(super) const PREFIX: &str = "gilrs:";
+
+    pub(super) fn list() -> Vec<GamepadInfo> {
+        let Ok(gilrs) = gilrs::Gilrs::new() else { return Vec::new() };
+        gilrs
+            .gamepads()
+            .map(|(id, pad)| GamepadInfo {
+                path: PathBuf::from(format!("{PREFIX}{}", usize::from(id))),
+                name: pad.name().to_string(),
+            })
+            .collect()
+    }
+
+    fn button(button: gilrs::Button) -> Option<u16> {
+        use gilrs::Button as B;
+        Some(match button {
+            B::South => BTN_SOUTH,
+            B::East => BTN_EAST,
+            B::North => BTN_NORTH,
+            B::West => BTN_WEST,
+            B::LeftTrigger => BTN_TL,
+            B::RightTrigger => BTN_TR,
+            B::Select => BTN_SELECT,
+            B::Start => BTN_START,
+            _ => return None,
+        })
+    }
+
+    /// The kernel's code, and whether up (gilrs: positive) is the axis's low end.
+    fn axis(axis: gilrs::Axis) -> Option<(u16, bool)> {
+        use gilrs::Axis as A;
+        Some(match axis {
+            A::LeftStickX => (ABS_X, false),
+            A::LeftStickY => (ABS_Y, true),
+            A::RightStickX => (ABS_RX, false),
+            A::RightStickY => (ABS_RY, true),
+            A::LeftZ => (ABS_Z, false),
+            A::RightZ => (ABS_RZ, false),
+            _ => return None,
+        })
+    }
+
+    pub(super) fn read_pad(wanted: usize, send: &dyn Fn(PadUpdate) -> bool) {
+        let mut gilrs = match gilrs::Gilrs::new() {
+            Ok(gilrs) => gilrs,
+            Err(error) => {
+                send(PadUpdate::Gone(Gone::Open { path: format!("{PREFIX}{wanted}"), error: error.to_string() }));
+                return;
+            }
+        };
+        let mut state = PadState::default();
+        loop {
+            let Some(event) = gilrs.next_event_blocking(Some(std::time::Duration::from_millis(200))) else {
+                continue;
+            };
+            if usize::from(event.id) != wanted {
+                continue;
+            }
+            let raw = match event.event {
+                gilrs::EventType::ButtonPressed(pressed, _) => button(pressed).map(|code| RawEvent::key(code, true)),
+                gilrs::EventType::ButtonReleased(released, _) => {
+                    button(released).map(|code| RawEvent::key(code, false))
+                }
+                gilrs::EventType::AxisChanged(moved, value, _) => axis(moved).map(|(code, flip)| {
+                    let value = if flip { -value } else { value };
+                    // −1..1 onto the range a path's axes are taken to span.
+                    #[allow(clippy::cast_possible_truncation)]
+                    let raw = (f64::from(value.clamp(-1.0, 1.0)) * 32767.0).round() as i32;
+                    RawEvent::abs(code, raw)
+                }),
+                gilrs::EventType::Disconnected => {
+                    send(PadUpdate::Gone(Gone::Unplugged));
+                    return;
+                }
+                _ => None,
+            };
+            if let Some(raw) = raw
+                && !(tell(&mut state, raw, send) && tell(&mut state, RawEvent::report(), send))
+            {
+                return;
+            }
+        }
     }
 }
 

@@ -33,7 +33,7 @@ pub fn fires(project: &Plen2Project, words: &Strings) -> Vec<(Fire, String)> {
         project
             .motions
             .iter()
-            .map(|motion| (Fire::Motion(motion.slot), format!("{} {} {}", words.motions, motion.slot, motion.name))),
+            .map(|motion| (Fire::Motion(motion.slot), format!("{} {} {}", words.slot, motion.slot, motion.name))),
     );
     fires.extend(
         project
