@@ -270,3 +270,94 @@ mod bindings {
         assert!(robot.harness.query_by_label("Conflict: BTN_WEST is bound more than once").is_some());
     }
 }
+
+mod other_families {
+    use super::*;
+    use servo_studio::gamepad::{ABS_RX, BTN_EAST, BTN_SOUTH};
+    use servo_studio::link::LinkEvent;
+    use servo_studio::project::gamepad::{AxisBinding, AxisTarget, ButtonBinding, Fire, Mapping};
+    use servo_studio::protocol::servo::Message;
+    use servo_studio::sim::{RflexSimCommand, SimEvent};
+
+    fn pad(harness: &mut Harness<'static, StudioApp>, folder: &tempfile::TempDir) -> std::fs::File {
+        let fifo: PathBuf = folder.path().join("pad");
+        assert!(std::process::Command::new("mkfifo").arg(&fifo).status().unwrap().success());
+        harness.state_mut().apply(Action::UseGamepad(Some(fifo.clone())));
+        let pipe = std::fs::OpenOptions::new().write(true).open(&fifo).unwrap();
+        harness.run_steps(2);
+        pipe
+    }
+
+    fn frame(pipe: &mut std::fs::File, events: &[RawEvent]) {
+        let mut bytes: Vec<u8> = events.iter().flat_map(|event| event.to_bytes(0)).collect();
+        bytes.extend(RawEvent::report().to_bytes(0));
+        pipe.write_all(&bytes).unwrap();
+    }
+
+    /// A servo board: the right stick moves servo 1 within its limits, A runs macro 1 on the board.
+    #[test]
+    fn a_servo_axis_moves_its_servo_and_a_button_runs_a_macro_on_the_board() {
+        let mut project = servo_studio::ui::sample_project();
+        let servo = project.servo.servos[0].clone();
+        let macro_id = project.servo.macros.first().map_or(1, |run| run.id);
+        project.gamepad.servo = Mapping {
+            axes: vec![AxisBinding::absolute(ABS_RX, AxisTarget::Servo(servo.id), (-180.0, 180.0))],
+            buttons: vec![ButtonBinding { button: BTN_SOUTH, fire: Fire::Macro(macro_id) }],
+        };
+        let mut app = common::ui::editor(project);
+        app.apply(Action::ConnectDemo);
+        let mut harness = common::ui::showing(app, Tab::Gamepad, (1200.0, 800.0));
+        let folder = tempfile::tempdir().unwrap();
+        let mut pipe = pad(&mut harness, &folder);
+        let events = harness.state().link.as_ref().unwrap().demo_board().unwrap().events().clone();
+        let handled = |harness: &mut Harness<'static, StudioApp>, wanted: &dyn Fn(&Message) -> bool| {
+            let deadline = std::time::Instant::now() + std::time::Duration::from_secs(5);
+            while std::time::Instant::now() < deadline {
+                harness.step();
+                for event in events.try_iter() {
+                    if let LinkEvent::Driver(SimEvent::Handled(message)) = event
+                        && wanted(&message)
+                    {
+                        return true;
+                    }
+                }
+            }
+            false
+        };
+        // Full right asks for 180°: the servo stops at its own maximum.
+        frame(&mut pipe, &[RawEvent::abs(ABS_RX, 32767)]);
+        let top = servo.max_deg;
+        assert!(handled(&mut harness, &|message| matches!(message,
+            Message::ExecuteActionRequest { moves } if moves.iter().any(|m| m.servo_id == servo.id && m.degree == top))));
+        frame(&mut pipe, &[RawEvent::key(BTN_SOUTH, true)]);
+        assert!(handled(&mut harness, &|message| *message == Message::ExecuteMacroRequest { macro_id }));
+    }
+
+    /// An rFLEX base: B sets the brake.
+    #[test]
+    fn an_rflex_button_sets_the_brake() {
+        let mut project = Project::empty(Family::Rflex);
+        project.gamepad.rflex.buttons = vec![ButtonBinding { button: BTN_EAST, fire: Fire::Brake }];
+        let mut app = common::ui::editor(project);
+        app.apply(Action::ConnectDemo);
+        let mut harness = common::ui::showing(app, Tab::Drive, (1100.0, 800.0));
+        harness.get_by_label("Brake").click();
+        harness.run_steps(2);
+        let folder = tempfile::tempdir().unwrap();
+        let mut pipe = pad(&mut harness, &folder);
+        let braked = |harness: &Harness<'static, StudioApp>| {
+            let (reply, state) = crossbeam_channel::bounded(1);
+            harness.state().link.as_ref().unwrap().demo_base().unwrap().command(RflexSimCommand::Inspect(reply));
+            state.recv_timeout(std::time::Duration::from_secs(5)).unwrap().braked
+        };
+        common::ui::run_until(&mut harness, "the brake released", |app| {
+            app.link.as_ref().and_then(|link| link.rflex()).is_some_and(|base| base.telemetry.brake == Some(false))
+        });
+        assert!(!braked(&harness));
+        frame(&mut pipe, &[RawEvent::key(BTN_EAST, true)]);
+        common::ui::run_until(&mut harness, "the brake set", |app| {
+            app.link.as_ref().and_then(|link| link.rflex()).is_some_and(|base| base.telemetry.brake == Some(true))
+        });
+        assert!(braked(&harness));
+    }
+}
