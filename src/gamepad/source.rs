@@ -320,3 +320,43 @@ mod linux {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::event::{ABS_Y, BTN_TL, EV_KEY};
+    use super::*;
+
+    /// Records as the kernel writes them, built here byte by byte: each frame
+    /// is told at its SYN_REPORT, a drop at once, and a record cut short at
+    /// the end is the end of the input.
+    #[test]
+    fn records_are_read_frame_by_frame_and_a_cut_record_ends_the_input() {
+        let mut bytes = Vec::new();
+        for event in [RawEvent::key(BTN_TL, true), RawEvent::abs(ABS_Y, -32768), RawEvent::report()] {
+            bytes.extend(event.to_bytes(1_000));
+        }
+        bytes.extend(RawEvent::dropped().to_bytes(2_000));
+        // A key event with a value of 2 (auto-repeat) is held, as 1 is.
+        let mut repeat = RawEvent::key(BTN_TL, true);
+        repeat.value = 2;
+        assert_eq!(repeat.kind, EV_KEY);
+        for event in [repeat, RawEvent::report(), RawEvent::report()] {
+            bytes.extend(event.to_bytes(3_000));
+        }
+        bytes.extend(&RawEvent::report().to_bytes(4_000)[..10]);
+        let told = std::cell::RefCell::new(Vec::new());
+        read_records(bytes.as_slice(), PadState::default(), &|update| {
+            told.borrow_mut().push(update);
+            true
+        });
+        let told = told.into_inner();
+        assert_eq!(told.len(), 5, "{told:?}");
+        let PadUpdate::State(first) = &told[0] else { panic!("{told:?}") };
+        assert!(first.pressed(BTN_TL) && first.axis(ABS_Y) == -1.0);
+        assert_eq!(told[1], PadUpdate::Dropped);
+        let (PadUpdate::State(torn), PadUpdate::State(after)) = (&told[2], &told[3]) else { panic!("{told:?}") };
+        assert!(!torn.pressed(BTN_TL), "the frame that ends a drop is discarded");
+        assert!(!after.pressed(BTN_TL) && after.known());
+        assert_eq!(told[4], PadUpdate::Gone(Gone::Ended));
+    }
+}

@@ -16,7 +16,7 @@ use crate::link::Waker;
 use crate::project::gamepad::{AxisBinding, AxisMode, AxisTarget, ButtonBinding, Conflict, Fire, Mapping};
 use crate::project::{Edit, Family};
 use crate::ui::action::{Action, Bind};
-use crate::ui::i18n::Strings;
+use crate::ui::i18n::{PadConflict, Strings};
 
 /// How often the gamepad list is read again.
 const RESCAN_EVERY: Duration = Duration::from_secs(2);
@@ -287,14 +287,13 @@ fn bindings(ui: &mut egui::Ui, pad: &PadInput, view: &PadPanel<'_>, words: &Stri
     let mut mapping = view.mapping.clone();
     let conflicts = mapping.conflicts(view.reserved);
     for conflict in &conflicts {
+        let button = |code: &u16| code_name(EV_KEY, *code);
         let what = match conflict {
-            Conflict::Button(code) => format!("{} is bound more than once", code_name(EV_KEY, *code)),
-            Conflict::Reserved(code) => {
-                format!("{} is the dead-man button: it drives the base", code_name(EV_KEY, *code))
-            }
+            Conflict::Button(code) => words.lang.pad_conflict(PadConflict::Button(&button(code))),
+            Conflict::Reserved(code) => words.lang.pad_conflict(PadConflict::Deadman(&button(code))),
             Conflict::Target(target) => {
                 let name = view.targets.iter().find(|t| t.target == *target).map_or("?", |t| t.name.as_str());
-                format!("{name} is moved by more than one axis")
+                words.lang.pad_conflict(PadConflict::Target(name))
             }
         };
         ui.colored_label(ui.visuals().error_fg_color, format!("{}: {what}", words.pad_conflict));

@@ -1,5 +1,6 @@
-//! The connection doctor's sentences: what answered on a port, how its link
-//! delivers, and a lost link waiting for its device to come back.
+//! The connection doctor's sentences (what answered on a port, how its link
+//! delivers, a lost link waiting for its device to come back) and the
+//! gamepad's (a binding in conflict).
 
 use std::time::Duration;
 
@@ -71,6 +72,31 @@ impl Language {
             Self::TraditionalChinese => {
                 format!("{port} 回來了，但是另一個裝置（{description}）：不會自動重新連線；若它是控制板請手動連線")
             }
+        }
+    }
+}
+
+/// Why gamepad bindings cannot all work.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PadConflict<'a> {
+    /// A button bound more than once.
+    Button(&'a str),
+    /// A binding on the rFLEX dead-man.
+    Deadman(&'a str),
+    /// A servo or joint two axes move.
+    Target(&'a str),
+}
+
+impl Language {
+    /// A gamepad conflict, in this language.
+    pub fn pad_conflict(self, conflict: PadConflict<'_>) -> String {
+        match (self, conflict) {
+            (Self::English, PadConflict::Button(name)) => format!("{name} is bound more than once"),
+            (Self::English, PadConflict::Deadman(name)) => format!("{name} is the dead-man button: it drives the base"),
+            (Self::English, PadConflict::Target(name)) => format!("{name} is moved by more than one axis"),
+            (Self::TraditionalChinese, PadConflict::Button(name)) => format!("{name} 綁定了不只一次"),
+            (Self::TraditionalChinese, PadConflict::Deadman(name)) => format!("{name} 是安全鍵：它用來驅動底盤"),
+            (Self::TraditionalChinese, PadConflict::Target(name)) => format!("{name} 被不只一個搖桿軸移動"),
         }
     }
 }
