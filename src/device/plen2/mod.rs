@@ -5,6 +5,8 @@
 
 mod convert;
 mod driver;
+mod link_report;
+mod messages;
 mod ops;
 mod pacer;
 pub mod playback;

@@ -4,6 +4,7 @@
 //! [`StudioApp::apply`] changes anything, handing each family's actions to
 //! the family that owns them.
 
+mod apply;
 mod background;
 mod connection;
 mod dialogs;
@@ -242,137 +243,6 @@ impl StudioApp {
     /// The layout of a family's panels.
     pub fn layout(&self, family: Family) -> Layout {
         self.family_ui(family).layout()
-    }
-
-    /// Applies one action. The only place that changes the editor's state.
-    pub fn apply(&mut self, action: Action) {
-        match action {
-            Action::Edit { edit, coalesce } => self.document.apply(edit, coalesce.as_deref()),
-            Action::Undo => {
-                self.document.undo();
-            }
-            Action::Redo => {
-                self.document.redo();
-            }
-            Action::Connect { port, baud } => {
-                self.forget_link();
-                self.connect(&port, baud);
-            }
-            Action::FindBoard { port, connect } => self.find_board(&port, connect),
-            Action::FindEveryBoard => self.find_every_board(),
-            Action::ConnectFound { port, family, baud } => {
-                self.forget_link();
-                self.connect_found(&port, family, baud);
-            }
-            Action::CancelConnect => {
-                self.forget_link();
-                if let Some(connecting) = self.connecting.take() {
-                    self.report(self.language.connect_cancelled(&connecting.opening.port.to_string()), false);
-                }
-            }
-            Action::ConnectDemo => self.connect_demo(),
-            Action::SetFamily(family) => self.set_family(family),
-            Action::Disconnect => {
-                self.forget_link();
-                self.drop_link();
-                self.report(self.words().msg_disconnected, false);
-            }
-            Action::Stop => self.stop(),
-            Action::SetLanguage(language) => self.language = language,
-            Action::ShowTab(tab) => self.tab = tab,
-            Action::UseGamepad(path) => self.use_gamepad(path),
-            Action::PadTestMode(on) => self.pad.test_mode = on,
-            Action::BindPad(bind) => self.bind_pad(bind),
-            Action::ShowView(open) => {
-                let (_, family_ui) = self.parts(self.document.project.family);
-                family_ui.layout_mut().view_open = open;
-            }
-            Action::AskFile(request) => {
-                let answer = (self.picker)(&request, self.waker.clone());
-                self.dialog = Some((request, answer));
-            }
-            Action::CancelOperation => {
-                if let Some(operation) = &self.operation {
-                    operation.cancel();
-                }
-            }
-            Action::NewProject => self.guard_unsaved(AfterUnsaved::New),
-            Action::Open(path) => self.guard_unsaved(AfterUnsaved::Open(path)),
-            Action::Save => match self.document.path.clone() {
-                Some(path) => self.save_to(path, None),
-                None => self.apply(Action::AskFile(FileRequest::SaveAs)),
-            },
-            Action::SaveAs(path) => self.save_to(path, None),
-            Action::UnsavedSave => {
-                // Goes on once saved: after the Save as… just asked for, or a save to the file's own path.
-                if let Some(next) = self.unsaved_prompt.clone() {
-                    match self.continue_after_save(next) {
-                        Ok(()) => {}
-                        Err(next) => {
-                            if let Some(path) = self.document.path.clone() {
-                                self.save_to(path, Some(next));
-                            }
-                        }
-                    }
-                }
-            }
-            Action::UnsavedDiscard => {
-                if let Some(next) = self.unsaved_prompt.take() {
-                    self.after_unsaved(next);
-                }
-            }
-            Action::UnsavedCancel => self.unsaved_prompt = None,
-            Action::Recover => {
-                if let Some(recovery) = self.recovery_offer.take() {
-                    self.replace_document(recovery.project, recovery.path);
-                    // Recovered work is unsaved until the user saves it.
-                    self.document.dirty = true;
-                    self.report(self.words().msg_recovered, false);
-                }
-            }
-            Action::DeclineRecovery => {
-                self.recovery_offer = None;
-                self.clear_recovery_later();
-            }
-            Action::Autosave => {
-                if self.document.dirty {
-                    self.autosave_later();
-                }
-            }
-            Action::Terminate => {
-                // Asked to end from outside (Ctrl-C, kill, a closing session): the board
-                // first — a base stops and brakes as its link is dropped — then the work,
-                // into the recovery file, then the window, without asking. An upload
-                // running stops at its next safe point (never mid-packet); what it left
-                // on the board, and how to restore the backup, go to the terminal.
-                if let Some(operation) = &self.operation {
-                    operation.cancel();
-                    let summary = self.finish_operation(Some(TERMINATE_WAIT));
-                    let said = match summary {
-                        Some((text, _)) => text,
-                        None => self.words().msg_operation_left_running.to_string(),
-                    };
-                    let _ = writeln!(std::io::stderr(), "servo-studio: {said}");
-                }
-                self.drop_link();
-                self.apply(Action::Autosave);
-                // The work must be on disk before the process goes.
-                self.finish_file_work(Some(TERMINATE_WAIT));
-                self.quit_allowed = true;
-            }
-            Action::Servo(action) => {
-                let (mut shell, families) = self.split();
-                families.servo.apply(&mut shell, action);
-            }
-            Action::Plen2(action) => {
-                let (mut shell, families) = self.split();
-                families.plen2.apply(&mut shell, action);
-            }
-            Action::Rflex(action) => {
-                let (mut shell, families) = self.split();
-                families.rflex.apply(&mut shell, action);
-            }
-        }
     }
 
     /// STOP, the family's way (always visible, Esc too).
