@@ -15,7 +15,7 @@ use std::path::PathBuf;
 use std::process::{Child, Command as Process};
 use std::time::{Duration, Instant};
 
-use servo_studio::gamepad::{ABS_RX, ABS_X, ABS_Y, BTN_SOUTH, BTN_TL, RawEvent};
+use servo_studio::gamepad::{ABS_RX, ABS_X, ABS_Y, BTN_SOUTH, BTN_TL, BTN_TR, RawEvent};
 use servo_studio::link::{LinkEvent, no_waker};
 use servo_studio::protocol::rflex::Command;
 use servo_studio::sim::{BaseState, RflexSim, RflexSimCommand, RflexSimConfig, RflexSimEvent, SimHandle, spawn_pty};
@@ -38,11 +38,16 @@ impl Rig {
     /// The emulated base on a pseudo-terminal, `rflex teleop` reading a named
     /// pipe the test writes, and the base's start-up done (its brake released).
     fn start() -> Self {
+        Self::with(&[])
+    }
+
+    /// As [`Rig::start`], with more options for `rflex teleop`.
+    fn with(extra: &[&str]) -> Self {
         let base = spawn_pty(RflexSim::new(RflexSimConfig::default()), no_waker()).unwrap();
         let folder = tempfile::tempdir().unwrap();
         let fifo: PathBuf = folder.path().join("pad");
         assert!(Process::new("mkfifo").arg(&fifo).status().unwrap().success());
-        let teleop = common::spawn_quiet(&[
+        let mut args = vec![
             "rflex",
             "teleop",
             "--port",
@@ -53,7 +58,9 @@ impl Rig {
             "0.4",
             "--turn",
             "1.0",
-        ]);
+        ];
+        args.extend_from_slice(extra);
+        let teleop = common::spawn_quiet(&args);
         // Opening a pipe for writing waits for its reader: the command has started reading.
         let pipe = std::fs::OpenOptions::new().write(true).open(&fifo).unwrap();
         let mut rig = Self { base, teleop: Some(teleop), pipe: Some(pipe), _folder: folder, received: Vec::new() };
@@ -161,6 +168,19 @@ fn the_base_drives_only_while_the_dead_man_is_held_and_every_cause_stops_it_with
         rig.received[start_up..].iter().filter(|command| matches!(command, Command::AxisSetDir { .. })).collect();
     assert_eq!(motion.len(), 1, "no motion command before the dead-man: {motion:?}");
 
+    // Held still: the base's driver re-sends the velocity at its 10 Hz (no pad events needed).
+    let (began, mut resent) = (Instant::now(), 0);
+    while began.elapsed() < Duration::from_millis(350) {
+        let left = Duration::from_millis(350).saturating_sub(began.elapsed());
+        if let Ok(LinkEvent::Driver(RflexSimEvent::Received(Command::AxisSetDir { axis: 0, speed, .. }))) =
+            rig.base.events().recv_timeout(left)
+            && speed > 0
+        {
+            resent += 1;
+        }
+    }
+    assert!((3..=5).contains(&resent), "{resent} drive frames in 350 ms");
+
     // Released: stopped at once.
     let released = rig.stops("the stop on release", &[RawEvent::key(BTN_TL, false)]);
     // Centred with the dead-man still held.
@@ -223,4 +243,17 @@ fn a_signal_while_driving_stops_and_brakes_the_base() {
         assert!(stderr.contains("the base stopped and its brake is set"), "{stderr}");
         eprintln!("{signal}: stopped after {took:?}");
     }
+}
+
+/// `--deadman BTN_TR`: the right shoulder drives, the left does nothing.
+#[test]
+fn another_dead_man_button_can_be_chosen() {
+    let mut rig = Rig::with(&["--deadman", "BTN_TR"]);
+    let start_up = rig.received.len();
+    rig.frame(&forward());
+    rig.drives("a drive with the right shoulder", &[RawEvent::key(BTN_TR, true), RawEvent::abs(ABS_Y, -32768)]);
+    let after = &rig.received[start_up..];
+    let motion = after.iter().filter(|command| matches!(command, Command::AxisSetDir { .. })).count();
+    assert_eq!(motion, 1, "the left shoulder drove nothing: {after:?}");
+    rig.stops("the stop on its release", &[RawEvent::key(BTN_TR, false)]);
 }

@@ -131,6 +131,13 @@ pub fn axis_range(text: &str) -> Result<(i32, i32), String> {
     if min < max { Ok((min, max)) } else { Err(format!("{text:?}: MIN must be below MAX")) }
 }
 
+/// `--deadman`: a gamepad button by its kernel name.
+pub fn button(text: &str) -> Result<u16, String> {
+    servo_studio::gamepad::code_by_name(text)
+        .filter(|code| *code >= 0x100)
+        .ok_or_else(|| format!("{text:?} is not a gamepad button: use BTN_TL, BTN_TR, BTN_SOUTH, BTN_EAST, BTN_NORTH, BTN_WEST, BTN_SELECT or BTN_START"))
+}
+
 /// `--dead-zone`: the part of a stick around its centre that counts as centred, 0 to 0.9.
 pub fn dead_zone(text: &str) -> Result<f64, String> {
     within_f64(text, 0.0, 0.9, "")

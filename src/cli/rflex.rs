@@ -76,6 +76,9 @@ pub enum RflexCommand {
         /// The part of the stick around its centre that counts as centred, 0 to 0.9.
         #[arg(long, default_value_t = 0.15, allow_hyphen_values = true, value_parser = bounds::dead_zone)]
         dead_zone: f64,
+        /// The dead-man button, by its kernel name (BTN_TL, BTN_TR, BTN_SOUTH, …).
+        #[arg(long, default_value = "BTN_TL", value_parser = bounds::button)]
+        deadman: u16,
     },
 }
 
@@ -103,8 +106,8 @@ pub fn run(command: &RflexCommand) -> anyhow::Result<()> {
     match command {
         RflexCommand::Status { base } => status(base),
         RflexCommand::Drive { base, speed, turn, accel, seconds } => drive(base, *speed, *turn, *accel, *seconds),
-        RflexCommand::Teleop { base, gamepad, speed, turn, accel, axis_range, dead_zone } => {
-            let pad = teleop::Pad { path: gamepad, axis_range: *axis_range, dead_zone: *dead_zone };
+        RflexCommand::Teleop { base, gamepad, speed, turn, accel, axis_range, dead_zone, deadman } => {
+            let pad = teleop::Pad { path: gamepad, axis_range: *axis_range, dead_zone: *dead_zone, deadman: *deadman };
             teleop::run(base, &pad, (*speed, *turn, *accel))
         }
     }

@@ -110,6 +110,11 @@ impl PadInput {
             cues.extend(self.puppet.update(mapping, *when, update, &limits, &at));
         }
         cues.extend(self.puppet.tick(mapping, now, &limits, &at));
+        // A binding to a servo or joint the project does not have (a file edited by hand) moves nothing.
+        cues.retain(|cue| match cue {
+            Cue::Move { target, .. } => targets.iter().any(|known| known.target == *target),
+            Cue::Fire(_) => true,
+        });
         if self.test_mode || self.binding.is_some() { Vec::new() } else { cues }
     }
 
@@ -396,5 +401,33 @@ fn axis_row(
     }
     if ui.button(words.pad_remove).clicked() {
         *remove = Some(index);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::gamepad::{ABS_RX, ABS_X, RawEvent};
+
+    /// Axes move only what the project has; a binding to a servo it does not
+    /// have (a file edited by hand) moves nothing, rather than send it to 0°.
+    #[test]
+    fn a_binding_to_a_missing_servo_moves_nothing() {
+        let mapping = Mapping {
+            axes: vec![
+                AxisBinding::absolute(ABS_RX, AxisTarget::Servo(1), (-90.0, 90.0)),
+                AxisBinding::absolute(ABS_X, AxisTarget::Servo(99), (-90.0, 90.0)),
+            ],
+            buttons: Vec::new(),
+        };
+        let targets = [PadTarget { target: AxisTarget::Servo(1), name: "#1".into(), limits: (-45.0, 45.0), at: 0.0 }];
+        let mut state = PadState::default();
+        state.apply(RawEvent::abs(ABS_RX, 32767));
+        state.apply(RawEvent::abs(ABS_X, 32767));
+        state.apply(RawEvent::report());
+        let now = Instant::now();
+        let mut pad = PadInput::default();
+        let cues = pad.cues(&mapping, now, &[(now, PadUpdate::State(state))], &targets);
+        assert_eq!(cues, [Cue::Move { target: AxisTarget::Servo(1), degrees: 45.0 }]);
     }
 }

@@ -21,6 +21,8 @@ pub struct Pad<'a> {
     pub axis_range: Option<(i32, i32)>,
     /// The part of the stick that counts as centred.
     pub dead_zone: f64,
+    /// The button that must be held to drive.
+    pub deadman: u16,
 }
 
 /// How often the progress line is said while driving.
@@ -36,6 +38,7 @@ pub fn run(
     let (speed, turn) = (speed.unwrap_or(limits.max_speed_m_per_s), turn.unwrap_or(limits.max_turn_rad_per_s));
     check_drive(args.robot, speed, turn, accel, 0.0)?;
     let config = TeleopConfig {
+        deadman: pad.deadman,
         dead_zone: pad.dead_zone,
         max_speed_m_per_s: speed,
         max_turn_rad_per_s: turn,

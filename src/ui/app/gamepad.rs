@@ -34,6 +34,10 @@ impl StudioApp {
     /// should keep repainting.
     pub(super) fn feed_gamepad(&mut self, now: Instant, focused: bool) -> bool {
         let (updates, gone) = self.pad.take();
+        if !self.pad.in_use() && updates.is_empty() {
+            // No gamepad: nothing to do (and nothing to work out) this frame.
+            return false;
+        }
         let family = self.document.project.family;
         let armed = focused && !self.pad.test_mode && self.pad.binding.is_none();
         let tab = self.tab;
