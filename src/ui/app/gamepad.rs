@@ -72,10 +72,17 @@ impl StudioApp {
         let words = self.language.strings();
         let family_ui = self.family_ui(family);
         let targets = family_ui.pad_targets(&self.document.project);
-        let fires = family_ui.pad_fires(&self.document.project, words);
+        let mapping = self.document.project.gamepad.of(family);
+        // What a button can fire is listed only for the buttons bound or being bound (a
+        // large project's thousand actions are not named every frame for nothing).
+        let fires = if mapping.buttons.is_empty() && self.pad.binding.is_none() {
+            Vec::new()
+        } else {
+            family_ui.pad_fires(&self.document.project, words)
+        };
         let view = PadPanel {
             family,
-            mapping: self.document.project.gamepad.of(family),
+            mapping,
             targets: &targets,
             fires: &fires,
             reserved: family_ui.pad_reserved(),
