@@ -19,6 +19,35 @@ fn percentile(sorted: &[Duration], p: f64) -> Duration {
     sorted[index]
 }
 
+/// The translation speed of an axis-0 command the base received, if that is what `event` is.
+fn translation(event: &LinkEvent<RflexSimEvent>) -> Option<u32> {
+    match event {
+        LinkEvent::Driver(RflexSimEvent::Received(Command::AxisSetDir { axis: 0, speed, .. })) => Some(*speed),
+        _ => None,
+    }
+}
+
+/// Waits until the base receives a translation command whose speed `wanted` picks.
+fn received(events: &crossbeam_channel::Receiver<LinkEvent<RflexSimEvent>>, what: &str, wanted: impl Fn(u32) -> bool) {
+    loop {
+        let event = events.recv_timeout(Duration::from_secs(10)).unwrap_or_else(|_| panic!("{what} never arrived"));
+        if translation(&event).is_some_and(&wanted) {
+            return;
+        }
+    }
+}
+
+/// Prints the median, p90 and worst of `latencies`, after `what`.
+fn print_latencies(what: &str, latencies: &mut [Duration]) {
+    latencies.sort();
+    println!(
+        "{what}: median {:.2} ms, p90 {:.2} ms, worst {:.2} ms",
+        percentile(latencies, 0.5).as_secs_f64() * 1e3,
+        percentile(latencies, 0.9).as_secs_f64() * 1e3,
+        latencies.last().unwrap().as_secs_f64() * 1e3
+    );
+}
+
 fn main() {
     let sim = spawn_pty(RflexSim::new(RflexSimConfig::default()), no_waker()).unwrap();
     let port = PortName::parse(&sim.port_name).unwrap();
@@ -27,10 +56,6 @@ fn main() {
     base.start(false);
     base.set_brake(false);
     let events = sim.events().clone();
-    let translation = |event: &LinkEvent<RflexSimEvent>| match event {
-        LinkEvent::Driver(RflexSimEvent::Received(Command::AxisSetDir { axis: 0, speed, .. })) => Some(*speed),
-        _ => None,
-    };
 
     // Cadence: 5 s of a held velocity; when each translation frame arrives.
     base.drive(0.4, 0.1, 0.5);
@@ -60,30 +85,14 @@ fn main() {
     for _ in 0..50 {
         base.drive(0.3, 0.0, 0.5);
         // Wait for the drive to arrive, so the stop is the next thing on the wire.
-        loop {
-            let event = events.recv_timeout(Duration::from_secs(2)).expect("the drive arrived");
-            if translation(&event).is_some_and(|speed| speed > 0) {
-                break;
-            }
-        }
+        received(&events, "the drive", |speed| speed > 0);
         let pressed = Instant::now();
         base.stop();
-        loop {
-            let event = events.recv_timeout(Duration::from_secs(2)).expect("the stop arrived");
-            if translation(&event) == Some(0) {
-                latencies.push(pressed.elapsed());
-                break;
-            }
-        }
+        received(&events, "the stop", |speed| speed == 0);
+        latencies.push(pressed.elapsed());
         base.pump(Instant::now());
     }
-    latencies.sort();
-    println!(
-        "release / STOP → stop frame at the base, 50 times: median {:.2} ms, p90 {:.2} ms, worst {:.2} ms",
-        percentile(&latencies, 0.5).as_secs_f64() * 1e3,
-        percentile(&latencies, 0.9).as_secs_f64() * 1e3,
-        latencies.last().unwrap().as_secs_f64() * 1e3
-    );
+    print_latencies("release / STOP → stop frame at the base, 50 times", &mut latencies);
     gamepad_release();
 }
 
@@ -110,35 +119,18 @@ fn gamepad_release() {
         Instant::now()
     };
     let events = sim.events().clone();
-    let translation = |event: &LinkEvent<RflexSimEvent>| match event {
-        LinkEvent::Driver(RflexSimEvent::Received(Command::AxisSetDir { axis: 0, speed, .. })) => Some(*speed),
-        _ => None,
-    };
     let mut latencies = Vec::new();
     for _ in 0..50 {
         frame(&[RawEvent::key(BTN_TL, true), RawEvent::abs(ABS_Y, -32768)]);
-        loop {
-            let event = events.recv_timeout(Duration::from_secs(10)).expect("the drive arrived");
-            if translation(&event).is_some_and(|speed| speed > 0) {
-                break;
-            }
-        }
+        received(&events, "the drive", |speed| speed > 0);
         let released = frame(&[RawEvent::key(BTN_TL, false)]);
-        loop {
-            let event = events.recv_timeout(Duration::from_secs(2)).expect("the stop arrived");
-            if translation(&event) == Some(0) {
-                latencies.push(released.elapsed());
-                break;
-            }
-        }
+        received(&events, "the stop", |speed| speed == 0);
+        latencies.push(released.elapsed());
     }
     let _ = teleop.kill();
     let _ = teleop.wait();
-    latencies.sort();
-    println!(
-        "gamepad dead-man released on a pipe → stop frame at the base (rflex teleop), 50 times: median {:.2} ms, p90 {:.2} ms, worst {:.2} ms (target: median under 15 ms)",
-        percentile(&latencies, 0.5).as_secs_f64() * 1e3,
-        percentile(&latencies, 0.9).as_secs_f64() * 1e3,
-        latencies.last().unwrap().as_secs_f64() * 1e3
+    print_latencies(
+        "gamepad dead-man released on a pipe → stop frame at the base (rflex teleop), 50 times (target: median under 15 ms)",
+        &mut latencies,
     );
 }

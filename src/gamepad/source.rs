@@ -22,13 +22,15 @@ pub enum Gone {
     #[error("the gamepad's input ended (end of file)")]
     Ended,
     /// The device went away (`ENODEV`: unplugged, out of range).
-    #[error("the gamepad was unplugged or went out of range")]
+    #[error("the gamepad was unplugged or went out of range; plug it in and pick it again")]
     Unplugged,
     /// Reading failed otherwise.
-    #[error("reading the gamepad failed: {0}")]
+    #[error("reading the gamepad failed: {0}; pick it again once it is back")]
     Failed(String),
     /// It could not be opened.
-    #[error("cannot open the gamepad {path}: {error}")]
+    #[error(
+        "cannot open the gamepad {path}: {error}. Is the path right (the Gamepad tab lists the gamepads this computer has), and may you read it (Linux: the `input` group)?"
+    )]
     Open {
         /// The path.
         path: String,
