@@ -27,7 +27,7 @@ fn motion(slot: u8) -> Motion {
             for (j, joint) in (0i16..).zip(Joint::ALL) {
                 pose.set(joint, (i * 53 + j * 29) % 600 - 300);
             }
-            Frame { transition_ms: 100 + 20 * u16::try_from(i).unwrap(), values_tenths_deg: pose }
+            Frame::new(100 + 20 * u16::try_from(i).unwrap(), pose)
         })
         .collect();
     Motion { slot, name: "Bench Walk".into(), frames, loop_range: None, jump_slot: None }

@@ -131,7 +131,7 @@ fn motion(slot: u8, frames: usize) -> Motion {
                 for (j, joint) in Joint::ALL.into_iter().enumerate() {
                     pose.set(joint, ((f * 37 + j * 11 + usize::from(slot)) % 600) as i16 - 300);
                 }
-                Frame { transition_ms: 100 + (f as u16 % 5) * 50, values_tenths_deg: pose }
+                Frame::new(100 + (f as u16 % 5) * 50, pose)
             })
             .collect(),
         loop_range: None,

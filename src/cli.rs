@@ -6,6 +6,7 @@
 
 mod bounds;
 mod check;
+mod fit;
 mod gui;
 mod out;
 mod plen2;
@@ -226,6 +227,34 @@ pub enum CliCommand {
         #[arg(long)]
         force: bool,
     },
+    /// Fit a recording (the CSV `trajectory` writes: `t_ms`, then a column per
+    /// joint or servo by name; PLEN2 values in tenths of a degree relative to
+    /// home, servo values in degrees; any sample rate) into the fewest frames
+    /// or steps whose playback on the board stays within the tolerance at every
+    /// update. PLEN2: writes a motion.json; servo board: a project with one
+    /// action per step and macro 1 running them in order.
+    Fit {
+        /// The CSV recording.
+        recording: PathBuf,
+        /// The board that plays it: plen2 or servo.
+        #[arg(long, value_parser = parse_family)]
+        protocol: Family,
+        /// How far the board's playback may stray from the recording at any update, degrees.
+        #[arg(long, default_value_t = 1.0, allow_hyphen_values = true, value_parser = bounds::tolerance_deg)]
+        tolerance_deg: f64,
+        /// At most this many frames or steps (PLEN2: 20, what a motion holds).
+        #[arg(long, allow_hyphen_values = true, value_parser = bounds::max_frames)]
+        max_frames: Option<usize>,
+        /// The motion's or macro's name (default: the recording's file name).
+        #[arg(long)]
+        name: Option<String>,
+        /// The file to write.
+        #[arg(long)]
+        out: PathBuf,
+        /// Replace the output file even when it is read-only.
+        #[arg(long)]
+        force: bool,
+    },
 }
 
 /// `servo-studio board …`
@@ -352,6 +381,13 @@ pub fn run(command: CliCommand) -> ExitCode {
             })
         }
         CliCommand::Gui { file, demo, protocol } => gui::run(file.as_deref(), demo, protocol),
+        CliCommand::Fit { recording, protocol, tolerance_deg, max_frames, name, out, force } => {
+            let request = fit::FitRequest { recording, family: protocol, tolerance_deg, max_frames, name, out, force };
+            fit::run(&request).and_then(|fitted| match out::line(&fit::said(&fitted, protocol, &request.out)) {
+                Ok(()) | Err(out::Unwritten::Closed) => Ok(()),
+                Err(error) => Err(error.into()),
+            })
+        }
         CliCommand::Trajectory { file, slot, action, macro_id, from_slot, seconds, out, force } => {
             let subject = match (slot, action, macro_id) {
                 (Some(slot), _, _) => trajectory::Subject::Slot { slot, from_slot },

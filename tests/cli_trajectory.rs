@@ -207,3 +207,149 @@ fn motions_on_the_firmwares_edges_play_as_the_robot_plays_them() {
     let rows = trajectory(dir.path(), &[project, "--slot", "2"]).unwrap();
     assert_eq!(column(&rows, "left_knee_pitch"), [33, 66, 99, 270, 240, 210], "300 never shown; 210 from it");
 }
+
+/// Runs `fit RECORDING ARGS --out OUT`: stdout, or stderr on failure.
+fn fit(recording: &Path, out: &Path, args: &[&str]) -> Result<String, String> {
+    let output = Command::new(EXE).arg("fit").arg(recording).args(args).arg("--out").arg(out).output().unwrap();
+    let stdout = String::from_utf8_lossy(&output.stdout).into_owned();
+    if output.status.success() { Ok(stdout) } else { Err(String::from_utf8_lossy(&output.stderr).into_owned()) }
+}
+
+/// A CSV as `trajectory` writes it, from rows of (t_ms, values).
+fn csv(header: &str, rows: impl Iterator<Item = (f64, Vec<f64>)>) -> String {
+    let mut text = format!("t_ms,{header}\n");
+    for (t_ms, values) in rows {
+        let values: Vec<String> = values.iter().map(|value| format!("{value:.2}")).collect();
+        text.push_str(&format!("{t_ms:.3},{}\n", values.join(",")));
+    }
+    text
+}
+
+fn frames_of(motion_json: &Path) -> usize {
+    let value: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(motion_json).unwrap()).unwrap();
+    value["frames"].as_array().unwrap().len()
+}
+
+/// Every joint's column of two trajectories: same length, within `tolerance` at every cycle.
+fn within(wanted: &[Vec<String>], played: &[Vec<String>], tolerance: f64, what: &str) {
+    assert_eq!(wanted.len(), played.len(), "{what}: as many cycles");
+    assert_eq!(wanted[0], played[0], "{what}: the same columns");
+    for (row, (a, b)) in wanted.iter().zip(played).enumerate().skip(1) {
+        for (column, (a, b)) in a.iter().zip(b).enumerate().skip(1) {
+            let (a, b): (f64, f64) = (a.parse().unwrap(), b.parse().unwrap());
+            assert!((a - b).abs() <= tolerance + 1e-9, "{what}: row {row}, {}: {b} played for {a}", wanted[0][column]);
+        }
+    }
+}
+
+#[test]
+fn fitting_a_plen2_line_gives_one_frame_and_a_too_tight_budget_names_the_tolerance_that_fits() {
+    let dir = tempfile::tempdir().unwrap();
+    // A knee going 0 → 450 tenths over 2 s, sampled every 20 ms (not the robot's rate).
+    let line = csv("left_knee_pitch", (0..=100).map(|i| (f64::from(i) * 20.0, vec![f64::from(i) * 4.5])));
+    let recording = write(dir.path(), "line.csv", &line);
+    let out = dir.path().join("line.json");
+    let said = fit(&recording, &out, &["--protocol", "plen2"]).unwrap();
+    assert!(said.starts_with("1 frames for 2.0"), "{said}");
+    assert_eq!(frames_of(&out), 1);
+
+    // Three swings of ±40° in 3 s cannot be held by 3 frames within 1°.
+    let swings = csv(
+        "left_knee_pitch,right_knee_pitch",
+        (0..=150).map(|i| {
+            let value = 400.0 * (std::f64::consts::PI * f64::from(i) / 25.0).sin();
+            (f64::from(i) * 20.0, vec![value, -value])
+        }),
+    );
+    let recording = write(dir.path(), "swings.csv", &swings);
+    let out = dir.path().join("swings.json");
+    let error = fit(&recording, &out, &["--protocol", "plen2", "--max-frames", "3"]).unwrap_err();
+    assert!(!out.exists(), "nothing written on failure");
+    let smallest = error.split("--tolerance-deg ").nth(1).unwrap().split(". ").next().unwrap().to_string();
+    assert!(error.contains("at most 3 are allowed"), "{error}");
+    fit(&recording, &out, &["--protocol", "plen2", "--max-frames", "3", "--tolerance-deg", &smallest]).unwrap();
+    assert!(frames_of(&out) <= 3);
+    let tighter = format!("{:.1}", smallest.parse::<f64>().unwrap() - 0.1);
+    assert!(fit(&recording, &out, &["--protocol", "plen2", "--max-frames", "3", "--tolerance-deg", &tighter]).is_err());
+
+    // A PLEN2 motion holds 20 frames; a column that is no joint is named.
+    let error = fit(&recording, &out, &["--protocol", "plen2", "--max-frames", "21"]).unwrap_err();
+    assert!(error.contains("at most 20 frames"), "{error}");
+    let wrong = write(dir.path(), "wrong.csv", "t_ms,left_knee\n0,0\n32,1\n");
+    let error = fit(&wrong, &out, &["--protocol", "plen2"]).unwrap_err();
+    assert!(error.contains("\"left_knee\" is not a PLEN2 joint"), "{error}");
+}
+
+#[test]
+fn a_fitted_servo_recording_plays_back_within_the_tolerance() {
+    let dir = tempfile::tempdir().unwrap();
+    // Two servos over 3 s at 10 ms: an eased swing and a sine.
+    let rows = (0..=300).map(|i| {
+        let t = f64::from(i) / 300.0;
+        let eased = 90.0 * (1.0 - (std::f64::consts::PI * t).cos()) / 2.0;
+        (f64::from(i) * 10.0, vec![eased - 45.0, 30.0 * (2.0 * std::f64::consts::PI * t).sin()])
+    });
+    let recording = write(dir.path(), "wave.csv", &csv("1 shoulder,2 手肘", rows));
+    let out = dir.path().join("wave.json");
+    let said = fit(&recording, &out, &["--protocol", "servo", "--tolerance-deg", "0.5", "--name", "揮手"]).unwrap();
+    assert!(said.contains("steps"), "{said}");
+    let played = trajectory(dir.path(), &[out.to_str().unwrap(), "--macro", "1"]).unwrap();
+    assert_eq!(played[0], vec!["t_ms", "1 shoulder", "2 手肘"]);
+    let text = std::fs::read_to_string(&recording).unwrap();
+    let input: Vec<Vec<String>> = text
+        .lines()
+        .skip(1)
+        .map(|line| {
+            let mut fields: Vec<String> = line.split(',').map(str::to_string).collect();
+            fields[0] = format!("{:.0}", fields[0].parse::<f64>().unwrap());
+            fields
+        })
+        .collect();
+    // The macro plays up to its last step; every row is within 0.5°.
+    assert_eq!(played.len() - 1, input.len(), "3 s at 10 ms, and the start");
+    for (row, (a, b)) in input.iter().zip(&played[1..]).enumerate() {
+        for column in 1..=2 {
+            let (a, b): (f64, f64) = (a[column].parse().unwrap(), b[column].parse().unwrap());
+            assert!((a - b).abs() <= 0.5 + 0.005, "row {row}, servo {column}: {b} played for {a}");
+        }
+    }
+    let project: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    assert_eq!(project["servo"]["macros"][0]["caption"], "揮手");
+    let actions = project["servo"]["actions"].as_array().unwrap().len();
+    assert!((4..=30).contains(&actions), "{actions} steps for an eased swing and a sine within 0.5°");
+}
+
+#[test]
+fn fitting_the_official_motions_gives_them_back_within_the_tolerance_in_no_more_frames() {
+    let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/plen2/motions");
+    if !folder.exists() {
+        eprintln!("skipped: {} is absent", folder.display());
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&folder).unwrap().map(|entry| entry.unwrap().path()).collect();
+    files.sort();
+    assert_eq!(files.len(), 90);
+    let (mut original_frames, mut fitted_frames) = (0, 0);
+    for file in files {
+        // One pass of its frames (a loop or a jump would play for ever).
+        let (mut motion, _) = servo_studio::project::motion_json::read_motion_file(&file).unwrap();
+        motion.loop_range = None;
+        motion.jump_slot = None;
+        let once = write(dir.path(), "once.json", &servo_studio::project::motion_json::motion_to_json(&motion));
+        let slot = motion.slot.to_string();
+        let wanted = trajectory(dir.path(), &[once.to_str().unwrap(), "--slot", &slot]).unwrap();
+        let recording = dir.path().join("recording.csv");
+        std::fs::copy(dir.path().join("out.csv"), &recording).unwrap();
+        let fitted = dir.path().join("fitted.json");
+        fit(&recording, &fitted, &["--protocol", "plen2"])
+            .unwrap_or_else(|error| panic!("{}: {error}", file.display()));
+        let played = trajectory(dir.path(), &[fitted.to_str().unwrap(), "--slot", "0"]).unwrap();
+        within(&wanted, &played, 10.0, &file.display().to_string());
+        let frames = frames_of(&fitted);
+        assert!(frames <= motion.frames.len(), "{}: {frames} frames for {}", file.display(), motion.frames.len());
+        original_frames += motion.frames.len();
+        fitted_frames += frames;
+    }
+    eprintln!("90 official motions: {original_frames} frames, fitted within 1° in {fitted_frames}");
+}

@@ -30,7 +30,7 @@ fn pose() -> impl Strategy<Value = Pose> {
 fn motion() -> impl Strategy<Value = Motion> {
     let frames = proptest::collection::vec(
         (MIN_TRANSITION_MS..=MAX_TRANSITION_MS, pose())
-            .prop_map(|(transition_ms, values_tenths_deg)| Frame { transition_ms, values_tenths_deg }),
+            .prop_map(|(transition_ms, values_tenths_deg)| Frame::new(transition_ms, values_tenths_deg)),
         1..=MAX_FRAMES,
     );
     (0..SLOTS, "[A-Za-z0-9][A-Za-z0-9 ()!-]{0,18}[A-Za-z0-9]", frames, any::<(u8, u8, u8)>(), any::<bool>(), 0..SLOTS)

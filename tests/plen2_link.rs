@@ -44,7 +44,7 @@ fn frame(transition_ms: u16, seed: i16) -> Frame {
         let index = i16::try_from(index).unwrap();
         pose.set(joint, (seed * 37 + index * 11) % 700 - 350);
     }
-    Frame { transition_ms, values_tenths_deg: pose }
+    Frame::new(transition_ms, pose)
 }
 
 /// Three motions using loops (a partial range, forever), a jump, 20 frames, and re-calibrated joints.
@@ -212,13 +212,8 @@ fn import_backs_up_a_factory_fresh_robot_over_a_bursty_line() {
     let folder = tempfile::tempdir().unwrap();
     let mut pose = Pose::default();
     pose.set(Joint::LeftShoulderPitch, 300);
-    let motion = Motion {
-        slot: 5,
-        name: "Wave".into(),
-        frames: vec![Frame { transition_ms: 200, values_tenths_deg: pose }],
-        loop_range: None,
-        jump_slot: None,
-    };
+    let motion =
+        Motion { slot: 5, name: "Wave".into(), frames: vec![Frame::new(200, pose)], loop_range: None, jump_slot: None };
     let plen2 = Plen2Project { motions: vec![motion.clone()], ..Plen2Project::default() };
     let file = folder.path().join("wave.json");
     let document = servo_studio::project::Project { family: Family::Plen2, plen2, ..Default::default() };

@@ -107,10 +107,7 @@ fn sim_state_preloads_the_robot() {
     let mut pose = Pose::default();
     pose.set(Joint::LeftKneePitch, 321);
     pose.set(Joint::RightFootRoll, -123);
-    let frames = vec![
-        Frame { transition_ms: 300, values_tenths_deg: pose },
-        Frame { transition_ms: 500, values_tenths_deg: Pose::default() },
-    ];
+    let frames = vec![Frame::new(300, pose), Frame::new(500, Pose::default())];
     let plen2 = Plen2Project {
         joints: vec![JointSetting {
             joint: Joint::LeftKneePitch,

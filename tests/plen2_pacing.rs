@@ -30,7 +30,7 @@ fn motion(slot: u8) -> Motion {
             for (index, joint) in Joint::ALL.into_iter().enumerate() {
                 pose.set(joint, (i * 37 + i16::try_from(index).unwrap() * 11) % 700 - 350);
             }
-            Frame { transition_ms: 100, values_tenths_deg: pose }
+            Frame::new(100, pose)
         })
         .collect();
     Motion { slot, name: format!("Motion {slot}"), frames, loop_range: None, jump_slot: None }

@@ -112,8 +112,8 @@ fn plen2_section() -> impl Strategy<Value = Plen2Project> {
             home_tenths_deg,
         },
     );
-    let frame = (any::<u16>(), any::<[i16; 18]>())
-        .prop_map(|(transition_ms, values)| Frame { transition_ms, values_tenths_deg: Pose(values) });
+    let frame =
+        (any::<u16>(), any::<[i16; 18]>()).prop_map(|(transition_ms, values)| Frame::new(transition_ms, Pose(values)));
     let range = (any::<u8>(), any::<u8>(), any::<u8>()).prop_map(|(begin_frame, end_frame, count)| LoopRange {
         begin_frame,
         end_frame,

@@ -141,7 +141,7 @@ mod bindings {
             motions: vec![Motion {
                 slot: 3,
                 name: "Wave".into(),
-                frames: vec![Frame { transition_ms: 200, values_tenths_deg: Pose::default() }],
+                frames: vec![Frame::new(200, Pose::default())],
                 loop_range: None,
                 jump_slot: None,
             }],

@@ -24,10 +24,7 @@ fn project() -> Project {
     let motion = Motion {
         slot: 3,
         name: "Wave".into(),
-        frames: vec![
-            Frame { transition_ms: 200, values_tenths_deg: pose },
-            Frame { transition_ms: 300, values_tenths_deg: Pose::default() },
-        ],
+        frames: vec![Frame::new(200, pose), Frame::new(300, Pose::default())],
         loop_range: None,
         jump_slot: None,
     };

@@ -41,10 +41,7 @@ fn plen2_project() -> Project {
     let motion = Motion {
         slot: 3,
         name: "Raise 舉手".into(),
-        frames: vec![
-            Frame { transition_ms: 200, values_tenths_deg: raised },
-            Frame { transition_ms: 300, values_tenths_deg: Pose::default() },
-        ],
+        frames: vec![Frame::new(200, raised), Frame::new(300, Pose::default())],
         loop_range: None,
         jump_slot: None,
     };
@@ -284,7 +281,7 @@ fn a_motion_played_after_another_starts_from_its_last_frame_and_the_snap_is_said
     project.plen2.motions.push(Motion {
         slot: 4,
         name: "Hold 舉高".into(),
-        frames: vec![Frame { transition_ms: 100, values_tenths_deg: held }],
+        frames: vec![Frame::new(100, held)],
         loop_range: None,
         jump_slot: None,
     });

@@ -207,7 +207,7 @@ fn plen2(motions: usize, frames: usize, lists: usize, entries: usize) -> Project
         .map(|index| Motion {
             slot: u8::try_from(index % 90).unwrap(),
             name: format!("Motion {index}"),
-            frames: (0..frames).map(|_| Frame { transition_ms: 100, values_tenths_deg: Pose::default() }).collect(),
+            frames: (0..frames).map(|_| Frame::new(100, Pose::default())).collect(),
             loop_range: None,
             jump_slot: None,
         })

@@ -95,6 +95,16 @@ pub fn memory_bytes(text: &str) -> Result<i32, String> {
     integer(text, &MEMORY_BYTES, "bytes")
 }
 
+/// `fit --tolerance-deg`: 0.05° (half a PLEN2 tenth) to 180°.
+pub fn tolerance_deg(text: &str) -> Result<f64, String> {
+    within_f64(text, 0.05, 180.0, "°")
+}
+
+/// `fit --max-frames`: 1 to as many actions as a project holds.
+pub fn max_frames(text: &str) -> Result<usize, String> {
+    integer(text, &(1..=servo_studio::project::MAX_LIST_LEN), "frames")
+}
+
 /// A PLEN2 slot, 0..=89.
 pub fn slot(text: &str) -> Result<u8, String> {
     integer(text, &(0..=servo_studio::protocol::plen2::SLOTS - 1), "(a PLEN2 slot)")

@@ -4,6 +4,7 @@
 
 mod bounded;
 mod document;
+mod easing;
 mod edit;
 mod file;
 pub mod gamepad;
@@ -20,6 +21,7 @@ mod validate;
 
 pub use bounded::MAX_LIST_LEN;
 pub use document::{Family, Project};
+pub use easing::Easing;
 pub use edit::{Edit, next_free_id};
 pub use file::{
     CURRENT_VERSION, FORMAT_TAG, LoadError, Loaded, MAX_UNKNOWN_KEYS_KEPT, SaveError, atomic_write, from_json, load,

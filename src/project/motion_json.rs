@@ -125,7 +125,7 @@ pub fn read_motion(text: &str) -> Result<(Motion, Vec<String>), String> {
             int(&frame["transition_time_ms"], &format!("{at}: transition_time_ms"))?,
             &format!("{at}: transition_time_ms"),
         )?;
-        frames.push(Frame { transition_ms, values_tenths_deg: pose });
+        frames.push(Frame::new(transition_ms, pose));
     }
     Ok((Motion { slot, name, frames, loop_range, jump_slot }, unknown))
 }

@@ -3,6 +3,8 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::Easing;
+
 pub use crate::protocol::plen2::{
     FACTORY_LIMIT_TENTHS_DEG, JOINTS, Joint, MAX_FRAMES, MAX_TRANSITION_MS, MIN_TRANSITION_MS, SLOTS,
 };
@@ -72,6 +74,16 @@ pub struct Frame {
     pub transition_ms: u16,
     /// Each joint's angle relative to home, tenths of a degree.
     pub values_tenths_deg: Pose,
+    /// The curve of the move to it (the robot plays it baked into straight frames).
+    #[serde(default, skip_serializing_if = "Easing::is_linear")]
+    pub easing: Easing,
+}
+
+impl Frame {
+    /// A frame reached at constant speed.
+    pub fn new(transition_ms: u16, values_tenths_deg: Pose) -> Self {
+        Self { transition_ms, values_tenths_deg, easing: Easing::Linear }
+    }
 }
 
 /// One value per joint, in device-map order; written in files as an object

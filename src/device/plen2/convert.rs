@@ -1,5 +1,6 @@
 //! A project's motion as the commands that store it, and a `<MO` reply as a motion.
 
+use crate::authoring::bake::{DEFAULT_TOLERANCE_TENTHS, bake_plen2};
 use crate::project::plen2::{Frame, LoopRange, Motion, Plen2Project, Pose};
 use crate::protocol::plen2::{
     Command, DEVICE_IDS, Joint, MAX_FRAMES, MotionFrame, MotionHeader, MotionReply, NAME_LEN, SLOTS,
@@ -61,9 +62,20 @@ pub fn device_values(pose: &Pose) -> [i16; DEVICE_IDS] {
     values
 }
 
-/// The `>MH` and every `>MF` that store `motion` in its slot. The name is
-/// space-padded to 20 bytes (validation keeps it printable ASCII).
+/// `motion` as the robot stores it: its eased frames baked into straight
+/// ones (`authoring::bake`, at 1°, widened when 20 frames are short); a
+/// motion without curves is itself. Upload, verify, motion.json, the preview
+/// and `trajectory` all use this form.
+pub fn stored_motion(motion: &Motion) -> Motion {
+    bake_plen2(motion, DEFAULT_TOLERANCE_TENTHS).motion
+}
+
+/// The `>MH` and every `>MF` that store `motion` (baked: [`stored_motion`])
+/// in its slot. The name is space-padded to 20 bytes (validation keeps it
+/// printable ASCII).
 pub fn motion_commands(motion: &Motion) -> Vec<Command> {
+    let stored = stored_motion(motion);
+    let motion = &stored;
     let mut name = [b' '; NAME_LEN];
     for (slot, byte) in name.iter_mut().zip(motion.name.bytes()) {
         *slot = byte;
@@ -120,7 +132,7 @@ pub fn frames_of(reply: &MotionReply) -> Vec<Frame> {
             for joint in Joint::ALL {
                 pose.set(joint, values[usize::from(joint.device_id())]);
             }
-            Frame { transition_ms: *transition_ms, values_tenths_deg: pose }
+            Frame::new(*transition_ms, pose)
         })
         .collect()
 }

@@ -15,7 +15,9 @@ use std::time::Instant;
 
 use crossbeam_channel::Sender;
 
-pub use convert::{NotStorable, Unstorable, frames_of, motion_commands, motion_from_reply, storable, store_commands};
+pub use convert::{
+    NotStorable, Unstorable, frames_of, motion_commands, motion_from_reply, storable, store_commands, stored_motion,
+};
 pub use driver::{
     ERASED_REPLY_BYTES, Pacing, Plen2Command, Plen2Driver, Plen2Event, Plen2Options, REPLY_IDLE, RESYNC, ReplyError,
     ReplyNews, ReplySender,

@@ -509,7 +509,8 @@ fn verify(
         let item = slot_item(motion.slot, &motion.name);
         progress(&Plen2Progress { phase: Plen2Phase::Verify, done: index, total, item: item.clone() });
         let back = read_slot(requester, motion.slot)?;
-        results[index].1 = if back.as_ref() == Some(motion) { SlotResult::Verified } else { SlotResult::Differs };
+        let stored = super::convert::stored_motion(motion);
+        results[index].1 = if back.as_ref() == Some(&stored) { SlotResult::Verified } else { SlotResult::Differs };
         progress(&Plen2Progress { phase: Plen2Phase::Verify, done: index + 1, total, item });
     }
     Ok(())

@@ -173,7 +173,7 @@ mod tests {
                 .map(|&(transition_ms, value)| {
                     let mut pose = Pose::default();
                     pose.set(Joint::LeftKneePitch, value);
-                    Frame { transition_ms, values_tenths_deg: pose }
+                    Frame::new(transition_ms, pose)
                 })
                 .collect(),
             loop_range: None,

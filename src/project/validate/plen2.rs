@@ -138,7 +138,7 @@ mod tests {
 
     #[test]
     fn a_short_transition_is_named_with_its_motion_and_frame() {
-        let frame = Frame { transition_ms: 100, values_tenths_deg: Pose::default() };
+        let frame = Frame::new(100, Pose::default());
         let mut motion =
             Motion { slot: 70, name: "Walk Forward".into(), frames: vec![frame; 3], loop_range: None, jump_slot: None };
         motion.frames[2].transition_ms = 9000;
@@ -151,7 +151,7 @@ mod tests {
     /// plen2.md §6: what the robot really does with these motions, said by check.
     #[test]
     fn motions_the_robot_plays_unlike_their_file_are_said_so() {
-        let frame = Frame { transition_ms: 100, values_tenths_deg: Pose::default() };
+        let frame = Frame::new(100, Pose::default());
         let motion =
             |slot: u8| Motion { slot, name: "M".into(), frames: vec![frame; 3], loop_range: None, jump_slot: None };
         let mut forever = motion(1);

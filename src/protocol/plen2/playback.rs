@@ -27,6 +27,24 @@ pub fn cycles_for(transition_ms: u16) -> u8 {
     cycles
 }
 
+/// The step per cycle toward a frame, 16.16: `((to << 16) − (from << 16)) /
+/// cycles` in 32 bits, truncating toward zero as C does (0 for 0 cycles: the
+/// robot divides by zero there). `from_fp` and `to_fp` are already shifted.
+fn step_fp(from_fp: i32, to_fp: i32, cycles: u8) -> i32 {
+    if cycles == 0 { 0 } else { to_fp.wrapping_sub(from_fp) / i32::from(cycles) }
+}
+
+/// The value a joint is given at cycle `k` (1..=`cycles`) of a move from the
+/// frame value `from` to `to` over `cycles` cycles (before clamping): the
+/// firmware's 16.16 arithmetic, exactly as [`Player::cycle`] runs it. At `k =
+/// cycles` it can be one below `to` (truncated steps, floored output).
+pub fn step_value(from: i16, to: i16, cycles: u8, k: u16) -> i16 {
+    let from_fp = i32::from(from) << 16;
+    let diff_fp = step_fp(from_fp, i32::from(to) << 16, cycles);
+    let now_fp = from_fp.wrapping_add(diff_fp.wrapping_mul(i32::from(k)));
+    i16::try_from(now_fp >> 16).unwrap_or(0)
+}
+
 /// What a joint is set to for a frame value: home + value, clamped to [min, max].
 pub fn joint_output(home: i16, min: i16, max: i16, value: i16) -> i16 {
     let angle = i32::from(home) + i32::from(value);
@@ -164,7 +182,7 @@ impl Player {
             now_fp[device] = from;
             // Rust's `/` truncates toward zero, as C's does. A count of 0
             // divides by zero on the robot (undefined): held still here.
-            diff_fp[device] = if cycles == 0 { 0 } else { (to - from) / i32::from(cycles) };
+            diff_fp[device] = step_fp(from, to, cycles);
         }
         let cycles_left = match (cycles, first) {
             (0, true) => 256,
@@ -307,6 +325,31 @@ mod tests {
         }
         fn frame(&self, slot: u8, index: u8) -> Option<MotionFrame> {
             self.0.get(&slot).and_then(|(_, frames)| frames.get(usize::from(index)).cloned())
+        }
+    }
+
+    #[test]
+    fn step_value_is_what_the_player_outputs_at_every_cycle() {
+        // Frames of every length from 1 to 255 cycles, values up and down,
+        // far apart and one tenth apart, including the i16 extremes (wrapping).
+        let values: [i16; 9] = [0, 1, -1, 7, -900, 900, 1234, i16::MAX, -i16::MAX];
+        for (index, &to) in values.iter().enumerate() {
+            let from = values[(index * 5 + 3) % values.len()];
+            for cycles in [1u8, 2, 3, 7, 31, 100, 255] {
+                let transition_ms = u16::from(cycles) * 32;
+                let store = Store::default().with(1, &[(transition_ms, to)], |_| {});
+                let mut start = [0; DEVICE_IDS];
+                start[0] = from;
+                start[12] = from.wrapping_neg();
+                let mut player = Player::from_frame(start);
+                assert!(player.start(&store, 1, Start::Play));
+                for k in 1..=u16::from(cycles) {
+                    let out = player.cycle(&store).expect("the frame plays");
+                    assert_eq!(out[0], step_value(from, to, cycles, k), "{from} → {to} in {cycles}, cycle {k}");
+                    assert_eq!(out[12], step_value(from.wrapping_neg(), to.wrapping_neg(), cycles, k));
+                }
+                assert_eq!(player.cycle(&store), None, "one frame of {cycles} cycles is {cycles} outputs");
+            }
         }
     }
 

@@ -65,6 +65,22 @@ pub struct Plen2Captions {
     pub motion_never_ends: &'static str,
     /// The previewed motion's first frame lasts 0 cycles: the robot divides by zero.
     pub first_frame_undefined: &'static str,
+    /// Each curve's name, in `Easing::ALL` order.
+    pub curves: [&'static str; 5],
+    /// What a curve does to the frames the robot stores (hover text).
+    pub curve_hint: &'static str,
+    /// The budget meter: "On the robot".
+    pub on_robot: &'static str,
+    /// "frames of 20".
+    pub frames_of_20: &'static str,
+    /// "largest deviation from the curves".
+    pub largest_deviation: &'static str,
+    /// "the tolerance was widened from 1° so the curves fit in 20 frames".
+    pub tolerance_widened: &'static str,
+    /// A plot line's suffix for the intended curve: "meant".
+    pub meant: &'static str,
+    /// A plot line's suffix for what the robot plays: "robot".
+    pub robot: &'static str,
 }
 
 const ENGLISH: Plen2Captions = Plen2Captions {
@@ -97,6 +113,14 @@ const ENGLISH: Plen2Captions = Plen2Captions {
     snap_warning: "The joint sliders' pose is not where this motion starts: the robot will snap there at the first cycle.",
     motion_never_ends: "This motion never ends on the robot (a loop of count 0 or 255, or a jump to a slot it cannot play): the first 30 s are shown.",
     first_frame_undefined: "Its first frame lasts under 32 ms (0 cycles): the robot divides by zero there, so what it does is undefined. Give it 32 ms or more.",
+    curves: ["Linear", "Ease in", "Ease out", "Ease in-out", "Hold"],
+    curve_hint: "How the move to this frame runs. The robot plays only straight moves: a curve is stored as several straight frames within 1° of it (widened when the motion's 20 frames are short). The project keeps the curve.",
+    on_robot: "On the robot",
+    frames_of_20: "frames of 20",
+    largest_deviation: "largest deviation from the curves",
+    tolerance_widened: "the tolerance was widened from 1° so the curves fit in 20 frames",
+    meant: "meant",
+    robot: "robot",
 };
 
 const TRADITIONAL_CHINESE: Plen2Captions = Plen2Captions {
@@ -129,6 +153,14 @@ const TRADITIONAL_CHINESE: Plen2Captions = Plen2Captions {
     snap_warning: "關節滑桿的姿勢與此動作的起點不同：機器人會在第一個週期瞬間跳到起點。",
     motion_never_ends: "這個動作在機器人上永遠不會結束（循環次數 0 或 255，或跳到無法播放的位置）：只顯示前 30 秒。",
     first_frame_undefined: "它的第一個影格不到 32 毫秒（0 個週期）：機器人會在這裡除以零，行為無法預測。請設為 32 毫秒以上。",
+    curves: ["線性", "漸入", "漸出", "漸入漸出", "保持"],
+    curve_hint: "移動到此影格的方式。機器人只播放直線移動：曲線會存成數個直線影格，與曲線相差不超過 1°（動作的 20 個影格不夠時會放寬）。專案保留原本的曲線。",
+    on_robot: "機器人上",
+    frames_of_20: "個影格（共 20）",
+    largest_deviation: "與曲線的最大偏差",
+    tolerance_widened: "為了讓曲線放進 20 個影格，容差已從 1° 放寬",
+    meant: "預期",
+    robot: "機器人",
 };
 
 /// The PLEN2's captions in the interface's language.

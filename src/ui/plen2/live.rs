@@ -68,7 +68,7 @@ impl Plen2Ui {
             shell.report(shell.language.problem(&full), true);
             return;
         }
-        motion.frames.push(Frame { transition_ms: 500, values_tenths_deg: pose });
+        motion.frames.push(Frame::new(500, pose));
         shell.document.apply(Edit::SetPlen2(Box::new(plen2)), None);
     }
 

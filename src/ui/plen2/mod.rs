@@ -250,7 +250,9 @@ impl Plen2Ui {
             Plen2Action::SaveMotionJson { slot, path } => {
                 if let Some(motion) = shell.document.project.plen2.motions.iter().find(|m| m.slot == slot) {
                     // Written off the frame; the status line says how it went (tick).
-                    let text = crate::project::motion_json::motion_to_json(motion);
+                    // As the robot stores it: curves baked into straight frames.
+                    let stored = plen2::stored_motion(motion);
+                    let text = crate::project::motion_json::motion_to_json(&stored);
                     let done = shell.files.write(path.clone(), text.into_bytes());
                     self.writing.push(Writing { path, done, export: false });
                 }

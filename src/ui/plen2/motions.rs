@@ -4,6 +4,8 @@
 //! relative to home, a timeline and an angle plot.
 
 use super::preview::Preview;
+use crate::authoring::bake::{self, Baked, DEFAULT_TOLERANCE_TENTHS};
+use crate::project::Easing;
 use crate::project::plen2::{Frame, Joint, LoopRange, Motion, Plen2Project, Pose};
 use crate::project::plen2::{MAX_TRANSITION_MS, MIN_TRANSITION_MS, SLOTS};
 use crate::project::{Edit, Location, Problem};
@@ -25,6 +27,8 @@ pub struct MotionsPanel {
     flagged_at: Option<u64>,
     /// The selected motion's joint angles over time, for (revision, motion index).
     series: Option<((u64, usize), plot::Series)>,
+    /// The selected motion as the robot stores it, for (revision, motion index).
+    baked: Option<((u64, usize), Baked)>,
 }
 
 fn edit(project: &Plen2Project, change: impl FnOnce(&mut Plen2Project), key: Option<String>) -> Action {
@@ -66,7 +70,7 @@ impl MotionsPanel {
                 let motion = Motion {
                     slot,
                     name: format!("Motion {slot}"),
-                    frames: vec![Frame { transition_ms: 500, values_tenths_deg: Pose::default() }],
+                    frames: vec![Frame::new(500, Pose::default())],
                     loop_range: None,
                     jump_slot: None,
                 };
@@ -122,7 +126,7 @@ impl MotionsPanel {
         timeline(ui, motion, self.frame);
         let key = (self.flagged_at.unwrap_or_default(), index);
         if self.series.as_ref().is_none_or(|(at, _)| *at != key) {
-            self.series = Some((key, joint_series(motion)));
+            self.series = Some((key, joint_series(motion, words)));
         }
         let series = self.series.take();
         layout::columns(ui, "plen2-frame-values", values_width, 200.0, |ui, pane| match pane {
@@ -239,7 +243,39 @@ impl MotionsPanel {
                 format!("{}: {}", words.lang.location(&problem.location), words.lang.problem(&problem.kind)),
             );
         }
+        self.budget(ui, motion, words);
         self.frames_table(ui, project, connected, words, actions);
+    }
+
+    /// What the curves cost on the robot: its frames of 20, and how far it strays.
+    fn budget(&mut self, ui: &mut egui::Ui, motion: &Motion, words: &Strings) {
+        if !bake::has_curves(motion) {
+            return;
+        }
+        let key = (self.flagged_at.unwrap_or_default(), self.selected);
+        if self.baked.as_ref().is_none_or(|(at, _)| *at != key) {
+            self.baked = Some((key, bake::bake_plen2(motion, DEFAULT_TOLERANCE_TENTHS)));
+        }
+        let Some((_, baked)) = &self.baked else { return };
+        let used = baked.motion.frames.len();
+        let captions = words.plen2();
+        let text = format!(
+            "{}: {used} {} · {} {:.1}°",
+            captions.on_robot,
+            captions.frames_of_20,
+            captions.largest_deviation,
+            baked.max_error_tenths / 10.0
+        );
+        // Frame counts of at most 20.
+        #[allow(clippy::cast_precision_loss)]
+        let fill = used as f32 / 20.0;
+        ui.add(egui::ProgressBar::new(fill.min(1.0)).text(text).desired_width(ui.available_width().min(460.0)));
+        if baked.widened(DEFAULT_TOLERANCE_TENTHS) {
+            ui.colored_label(
+                ui.visuals().warn_fg_color,
+                format!("{} → {:.1}°", captions.tolerance_widened, baked.tolerance_tenths / 10.0),
+            );
+        }
     }
 
     fn frames_table(
@@ -273,6 +309,22 @@ impl MotionsPanel {
                     |p| p.motions[index].frames[f].transition_ms = transition,
                     Some(format!("plen2 {index} frame {f} transition")),
                 ));
+            }
+            let mut easing = frame.easing;
+            let names = words.plen2().curves;
+            let shown = Easing::ALL.iter().position(|curve| *curve == easing).map_or("?", |at| names[at]);
+            egui::ComboBox::from_id_salt(("plen2-curve", f))
+                .selected_text(shown)
+                .width(96.0)
+                .show_ui(ui, |ui| {
+                    for (curve, name) in Easing::ALL.into_iter().zip(names) {
+                        ui.selectable_value(&mut easing, curve, name);
+                    }
+                })
+                .response
+                .on_hover_text(words.plen2().curve_hint);
+            if easing != frame.easing {
+                actions.push(edit(project, |p| p.motions[index].frames[f].easing = easing, None));
             }
             if ui.small_button(words.copy_frame()).clicked() {
                 *clipboard = Some(*frame);
@@ -346,8 +398,14 @@ impl MotionsPanel {
     }
 }
 
-/// Every joint's angle (degrees) at the end of each frame, from 0 at time 0.
-fn joint_series(motion: &Motion) -> plot::Series {
+/// Every joint's angle (degrees) at the end of each frame, from 0 at time 0;
+/// for a motion with curves, each moving joint twice: the curve meant and
+/// what the robot plays (the baked frames through the firmware's playback),
+/// both on the robot's clock of 32.768 ms cycles.
+fn joint_series(motion: &Motion, words: &Strings) -> plot::Series {
+    if bake::has_curves(motion) {
+        return curve_series(motion, words);
+    }
     Joint::ALL
         .into_iter()
         .map(|joint| {
@@ -360,6 +418,43 @@ fn joint_series(motion: &Motion) -> plot::Series {
             (joint.name().to_string(), points)
         })
         .collect()
+}
+
+fn curve_series(motion: &Motion, words: &Strings) -> plot::Series {
+    use crate::device::plen2::playback::{self, StoredMotions};
+    use crate::protocol::plen2::playback::cycles_for;
+    let cycle_ms = crate::authoring::fitted::PLEN2_UPDATE_MS;
+    // The curve meant, cycle by cycle, from power-up (as the bake and `trajectory` start).
+    let mut meant: Vec<Vec<f64>> = vec![vec![0.0; Joint::ALL.len()]];
+    let mut from = [0i16; Joint::ALL.len()];
+    for frame in &motion.frames {
+        let cycles = usize::from(cycles_for(frame.transition_ms));
+        meant.extend(bake::eased_rows(&from, frame, cycles));
+        from = frame.values_tenths_deg.0;
+    }
+    // One pass of the frames: a loop or a jump would run for ever.
+    let once = Motion { loop_range: None, jump_slot: None, ..motion.clone() };
+    let project = Plen2Project { motions: vec![once], ..Plen2Project::default() };
+    let played = playback::play(&StoredMotions::new(&project), motion.slot, [0; playback::DEVICE_IDS], 20 * 256).cycles;
+    let captions = words.plen2();
+    let mut series = Vec::new();
+    for joint in Joint::ALL {
+        let column = joint.index();
+        if meant.iter().all(|row| row[column].abs() < f64::EPSILON) {
+            continue;
+        }
+        // Cycle counts of at most 20 × 255: exact.
+        #[allow(clippy::cast_precision_loss)]
+        let at = |cycle: usize| cycle as f64 * cycle_ms;
+        let points = meant.iter().enumerate().map(|(cycle, row)| [at(cycle), row[column] / 10.0]).collect();
+        series.push((format!("{} ({})", joint.name(), captions.meant), points));
+        let device = usize::from(joint.device_id());
+        let robot = std::iter::once([0.0, 0.0])
+            .chain(played.iter().enumerate().map(|(cycle, values)| [at(cycle + 1), f64::from(values[device]) / 10.0]))
+            .collect();
+        series.push((format!("{} ({})", joint.name(), captions.robot), robot));
+    }
+    series
 }
 
 /// A bar per frame, as long as its transition.

@@ -1,0 +1,392 @@
+//! Fitting a sampled movement into the fewest straight moves a board plays,
+//! checked against the board's own playback at every update: a PLEN2 frame
+//! is played in 16.16 steps per 32.768 ms cycle (plen2.md §6), a servo-board
+//! action moves each servo linearly in 10 ms updates.
+//!
+//! The fit is greedy: from where the last move ended, the longest move whose
+//! playback stays within the tolerance of every sample it covers, ending on
+//! the sample it reaches (a few longer lengths are tried past the first that
+//! fails, so a rounding step does not end a move early). [`fewest_moves`]
+//! finds the true minimum over the same moves, for tests and the benchmark.
+
+use crate::protocol::plen2::playback::step_value;
+
+/// How a board plays one straight move, update by update.
+pub trait Board {
+    /// The most updates one move may last.
+    fn max_updates(&self) -> usize;
+    /// The value stored for a wanted value (whole units, in range).
+    fn store(&self, value: f64) -> i32;
+    /// What the board outputs at update `k` (1..=`updates`) of a move from
+    /// the stored value `from` to `to`.
+    fn output(&self, from: i32, to: i32, updates: usize, k: usize) -> f64;
+}
+
+/// A PLEN2: 32.768 ms cycles, frames of 1..=255 cycles, values in tenths of
+/// a degree, the firmware's 16.16 steps ([`step_value`]).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Plen2Board;
+
+impl Board for Plen2Board {
+    fn max_updates(&self) -> usize {
+        255
+    }
+
+    fn store(&self, value: f64) -> i32 {
+        stored_i16(value)
+    }
+
+    fn output(&self, from: i32, to: i32, updates: usize, k: usize) -> f64 {
+        let (from, to) = (i16::try_from(from).unwrap_or(0), i16::try_from(to).unwrap_or(0));
+        let (updates, k) = (u8::try_from(updates).unwrap_or(u8::MAX), u16::try_from(k).unwrap_or(0));
+        f64::from(step_value(from, to, updates, k))
+    }
+}
+
+/// A servo board: 10 ms updates, a step of 1..=32767 updates, whole degrees,
+/// each servo moving linearly over its step.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct ServoBoard;
+
+impl Board for ServoBoard {
+    fn max_updates(&self) -> usize {
+        usize::from(i16::MAX.unsigned_abs())
+    }
+
+    fn store(&self, value: f64) -> i32 {
+        stored_i16(value)
+    }
+
+    fn output(&self, from: i32, to: i32, updates: usize, k: usize) -> f64 {
+        // Counts of at most 32767 updates: exact in f64.
+        #[allow(clippy::cast_precision_loss)]
+        let done = k as f64 / updates.max(1) as f64;
+        f64::from(from) + f64::from(to - from) * done
+    }
+}
+
+/// A value rounded to a whole i16.
+fn stored_i16(value: f64) -> i32 {
+    if value.is_nan() {
+        return 0;
+    }
+    // Rounded and clamped into i16 first.
+    #[allow(clippy::cast_possible_truncation)]
+    let stored = value.round().clamp(f64::from(i16::MIN), f64::from(i16::MAX)) as i32;
+    stored
+}
+
+/// One straight move: how many updates it lasts and where each channel ends.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Move {
+    /// Board updates (PLEN2 cycles, servo-board 10 ms ticks).
+    pub updates: usize,
+    /// Each channel's stored value at the end.
+    pub values: Vec<i32>,
+}
+
+/// Moves that play a sampled movement back, and how close they come.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Fit {
+    /// The moves, in order.
+    pub moves: Vec<Move>,
+    /// The largest distance between the board's output and a sample, in the
+    /// board's units (PLEN2: tenths of a degree; servo board: degrees).
+    pub max_error: f64,
+}
+
+/// Past the first length that fails, how many longer ones are still tried.
+const LOOK_PAST: usize = 4;
+
+/// The greedy fit (see the module documentation). `start` is where each
+/// channel is before the first update; `rows[u]` holds every channel's
+/// wanted value at update `u + 1`. A tolerance under half a unit cannot be
+/// kept by whole values: a one-update move is taken then anyway.
+pub fn fit(board: &impl Board, start: &[i32], rows: &[Vec<f64>], tolerance: f64) -> Fit {
+    let mut moves = Vec::new();
+    let mut anchor = start.to_vec();
+    let mut at = 0;
+    let mut max_error = 0.0_f64;
+    while at < rows.len() {
+        let longest = board.max_updates().min(rows.len() - at);
+        let mut best: Option<(usize, Vec<i32>, f64)> = None;
+        let mut updates = 1;
+        while updates <= longest {
+            let end = stored_row(board, &rows[at + updates - 1]);
+            match error_within(board, &anchor, &end, &rows[at..at + updates], tolerance) {
+                Some(error) => best = Some((updates, end, error)),
+                None if best.as_ref().is_some_and(|(reached, ..)| updates > reached + LOOK_PAST) => break,
+                None if best.is_none() => {
+                    let error = error_within(board, &anchor, &end, &rows[at..=at], f64::INFINITY).unwrap_or(0.0);
+                    best = Some((1, end, error));
+                    break;
+                }
+                None => {}
+            }
+            updates += 1;
+        }
+        let Some((updates, end, error)) = best else { break };
+        max_error = max_error.max(error);
+        anchor.clone_from(&end);
+        moves.push(Move { updates, values: end });
+        at += updates;
+    }
+    Fit { moves, max_error }
+}
+
+fn stored_row(board: &impl Board, row: &[f64]) -> Vec<i32> {
+    row.iter().map(|value| board.store(*value)).collect()
+}
+
+/// The largest error of one move over the samples it covers, or `None` as
+/// soon as one exceeds `tolerance`.
+fn error_within(board: &impl Board, from: &[i32], to: &[i32], samples: &[Vec<f64>], tolerance: f64) -> Option<f64> {
+    let updates = samples.len();
+    let mut worst = 0.0_f64;
+    for (index, row) in samples.iter().enumerate() {
+        for ((&from, &to), &wanted) in from.iter().zip(to).zip(row) {
+            let error = (board.output(from, to, updates, index + 1) - wanted).abs();
+            if error > tolerance {
+                return None;
+            }
+            worst = worst.max(error);
+        }
+    }
+    Some(worst)
+}
+
+/// What the board outputs playing `moves` from `start`, one row per update.
+pub fn play(board: &impl Board, start: &[i32], moves: &[Move]) -> Vec<Vec<f64>> {
+    let mut rows = Vec::new();
+    let mut from = start.to_vec();
+    for step in moves {
+        for k in 1..=step.updates {
+            rows.push(from.iter().zip(&step.values).map(|(&a, &b)| board.output(a, b, step.updates, k)).collect());
+        }
+        from.clone_from(&step.values);
+    }
+    rows
+}
+
+/// The fewest moves (ending on samples, as [`fit`]'s do) whose playback
+/// stays within `tolerance` of every sample: a search over every place a
+/// move may end, O(updates × longest move² × channels) — for tests and the
+/// benchmark, not for the editor. `None` when no such moves exist (a
+/// tolerance under half a unit).
+pub fn fewest_moves(board: &impl Board, start: &[i32], rows: &[Vec<f64>], tolerance: f64) -> Option<usize> {
+    let count = rows.len();
+    let mut fewest: Vec<Option<usize>> = vec![None; count + 1];
+    fewest[0] = Some(0);
+    for end in 1..=count {
+        let earliest = end.saturating_sub(board.max_updates());
+        let to = stored_row(board, &rows[end - 1]);
+        for begin in earliest..end {
+            let Some(before) = fewest[begin] else { continue };
+            if fewest[end].is_some_and(|known| known <= before + 1) {
+                continue;
+            }
+            let from = if begin == 0 { start.to_vec() } else { stored_row(board, &rows[begin - 1]) };
+            if error_within(board, &from, &to, &rows[begin..end], tolerance).is_some() {
+                fewest[end] = Some(before + 1);
+            }
+        }
+    }
+    fewest[count]
+}
+
+/// Why a movement cannot be fitted into the moves allowed.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum FitError {
+    /// More moves are needed at this tolerance; a wider one fits.
+    #[error(
+        "{needed} frames are needed within {tolerance} and at most {allowed} are allowed; the smallest tolerance that fits is {smallest}"
+    )]
+    Tolerance {
+        /// Moves the fit needs at the tolerance asked for.
+        needed: usize,
+        /// The most allowed.
+        allowed: usize,
+        /// The tolerance asked for, board units.
+        tolerance: f64,
+        /// The smallest tolerance (in steps of the resolution asked) that fits.
+        smallest: f64,
+    },
+    /// Too long for the moves allowed at any tolerance.
+    #[error(
+        "{updates} updates need at least {needed} moves of at most {longest} updates each, and at most {allowed} are allowed"
+    )]
+    TooLong {
+        /// Updates to fit.
+        updates: usize,
+        /// Moves needed at the least.
+        needed: usize,
+        /// The most updates in one move.
+        longest: usize,
+        /// The most moves allowed.
+        allowed: usize,
+    },
+}
+
+/// [`fit`] with at most `allowed` moves. When the tolerance needs more, the
+/// error names the smallest tolerance that fits, found in steps of
+/// `resolution` (board units).
+pub fn fit_within(
+    board: &impl Board,
+    start: &[i32],
+    rows: &[Vec<f64>],
+    tolerance: f64,
+    allowed: usize,
+    resolution: f64,
+) -> Result<Fit, FitError> {
+    let fitted = fit(board, start, rows, tolerance);
+    if fitted.moves.len() <= allowed {
+        return Ok(fitted);
+    }
+    let longest = board.max_updates();
+    let needed = rows.len().div_ceil(longest);
+    if needed > allowed {
+        return Err(FitError::TooLong { updates: rows.len(), needed, longest, allowed });
+    }
+    let (smallest, _) = widest_needed(board, start, rows, tolerance, allowed, resolution);
+    Err(FitError::Tolerance { needed: fitted.moves.len(), allowed, tolerance, smallest })
+}
+
+/// The smallest tolerance at or above `tolerance`, in steps of `resolution`,
+/// whose fit takes at most `allowed` moves, and that fit (a search by halves:
+/// a wider tolerance never needs many more moves). Assumes the movement is
+/// short enough for `allowed` moves at some tolerance.
+pub fn widest_needed(
+    board: &impl Board,
+    start: &[i32],
+    rows: &[Vec<f64>],
+    tolerance: f64,
+    allowed: usize,
+    resolution: f64,
+) -> (f64, Fit) {
+    let resolution = resolution.max(f64::EPSILON);
+    let span = rows
+        .iter()
+        .flatten()
+        .chain(start.iter().map(|&value| f64::from(value)).collect::<Vec<_>>().iter())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(low, high), &value| (low.min(value), high.max(value)));
+    let widest = (span.1 - span.0).max(0.0) + 1.0;
+    // Steps of the resolution from the tolerance asked: a handful of thousands at most.
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    let mut high = ((widest - tolerance) / resolution).ceil().max(1.0) as u64;
+    let at = |steps: u64| {
+        // Step counts far below 2^52: exact.
+        #[allow(clippy::cast_precision_loss)]
+        let widened = tolerance + steps as f64 * resolution;
+        widened
+    };
+    let mut high_fit = fit(board, start, rows, at(high));
+    while high_fit.moves.len() > allowed {
+        // Not reached for movements that fit at all; doubled to be safe.
+        high *= 2;
+        high_fit = fit(board, start, rows, at(high));
+        if high > 1 << 40 {
+            break;
+        }
+    }
+    let mut low = 0;
+    while high - low > 1 {
+        let middle = low + (high - low) / 2;
+        let fitted = fit(board, start, rows, at(middle));
+        if fitted.moves.len() <= allowed {
+            high = middle;
+            high_fit = fitted;
+        } else {
+            low = middle;
+        }
+    }
+    (at(high), high_fit)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn rows_of(values: &[f64]) -> Vec<Vec<f64>> {
+        values.iter().map(|&value| vec![value]).collect()
+    }
+
+    #[test]
+    fn a_straight_line_is_one_move() {
+        // 0 → 600 tenths over 100 cycles, sampled as the robot would play it.
+        let rows: Vec<Vec<f64>> = (1..=100).map(|k| vec![Plen2Board.output(0, 600, 100, k)]).collect();
+        let fitted = fit(&Plen2Board, &[0], &rows, 10.0);
+        assert_eq!(fitted.moves, vec![Move { updates: 100, values: vec![600] }]);
+        assert!(fitted.max_error < 1e-9);
+        // The servo board's line, in degrees.
+        let rows: Vec<Vec<f64>> = (1..=300).map(|k| vec![f64::from(k) * 0.3]).collect();
+        let fitted = fit(&ServoBoard, &[0], &rows, 1.0);
+        assert_eq!(fitted.moves, vec![Move { updates: 300, values: vec![90] }]);
+    }
+
+    #[test]
+    fn a_ramp_with_one_corner_is_two_moves() {
+        // Up 4 per update for 50 updates, then down 2 per update for 60.
+        let values: Vec<f64> =
+            (1..=50).map(|k| f64::from(k) * 4.0).chain((1..=60).map(|k| 200.0 - f64::from(k) * 2.0)).collect();
+        let fitted = fit(&ServoBoard, &[0], &rows_of(&values), 0.5);
+        assert_eq!(fitted.moves, vec![Move { updates: 50, values: vec![200] }, Move { updates: 60, values: vec![80] }]);
+        assert_eq!(fewest_moves(&ServoBoard, &[0], &rows_of(&values), 0.5), Some(2));
+    }
+
+    #[test]
+    fn a_sine_within_a_known_tolerance() {
+        // One period of 90·sin over 2 s at 10 ms. A chord of length h on a
+        // curve of curvature ≤ 90·ω² sags by ≤ 90·ω²·h²/8; with ω = π per
+        // second that bounds the moves from below and the fit from above.
+        let omega = std::f64::consts::PI;
+        let values: Vec<f64> = (1..=200).map(|k| 90.0 * (omega * f64::from(k) / 100.0).sin()).collect();
+        let rows = rows_of(&values);
+        let fitted = fit(&ServoBoard, &[0], &rows, 2.0);
+        let played = play(&ServoBoard, &[0], &fitted.moves);
+        assert_eq!(played.len(), rows.len());
+        for (out, wanted) in played.iter().zip(&rows) {
+            assert!((out[0] - wanted[0]).abs() <= 2.0, "{} vs {}", out[0], wanted[0]);
+        }
+        assert!(fitted.max_error <= 2.0);
+        let minimum = fewest_moves(&ServoBoard, &[0], &rows, 2.0).expect("2° is wide enough");
+        // Sag ≤ 2° (minus rounding) needs chords of at most ~0.42 s: at least 5 over 2 s.
+        assert!(minimum >= 5, "{minimum}");
+        assert!(fitted.moves.len() <= minimum + minimum / 5, "{} vs minimum {minimum}", fitted.moves.len());
+    }
+
+    #[test]
+    fn a_hold_then_a_jump() {
+        let values: Vec<f64> = std::iter::repeat_n(0.0, 40).chain(std::iter::once(300.0)).collect();
+        let fitted = fit(&Plen2Board, &[0], &rows_of(&values), 10.0);
+        assert_eq!(fitted.moves, vec![Move { updates: 40, values: vec![0] }, Move { updates: 1, values: vec![300] }]);
+    }
+
+    #[test]
+    fn moves_never_exceed_what_the_board_holds() {
+        let rows = rows_of(&[5.0; 600]);
+        let fitted = fit(&Plen2Board, &[5], &rows, 10.0);
+        let lengths: Vec<usize> = fitted.moves.iter().map(|step| step.updates).collect();
+        assert_eq!(lengths, vec![255, 255, 90]);
+    }
+
+    #[test]
+    fn too_many_moves_names_the_smallest_tolerance_that_fits() {
+        let omega = std::f64::consts::PI;
+        let values: Vec<f64> = (1..=300).map(|k| 400.0 * (omega * f64::from(k) / 50.0).sin()).collect();
+        let rows = rows_of(&values);
+        let Err(FitError::Tolerance { needed, allowed, smallest, .. }) =
+            fit_within(&Plen2Board, &[0], &rows, 10.0, 4, 1.0)
+        else {
+            panic!("4 frames cannot hold three periods within 1°");
+        };
+        assert!(needed > 4);
+        assert_eq!(allowed, 4);
+        assert!(fit(&Plen2Board, &[0], &rows, smallest).moves.len() <= 4);
+        assert!(fit(&Plen2Board, &[0], &rows, smallest - 1.0).moves.len() > 4, "{smallest} is the smallest");
+        let too_long = rows_of(&[0.0; 1000]);
+        assert!(matches!(
+            fit_within(&Plen2Board, &[0], &too_long, 10.0, 3, 1.0),
+            Err(FitError::TooLong { needed: 4, .. })
+        ));
+    }
+}
