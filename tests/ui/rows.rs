@@ -9,7 +9,7 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::cast_possible_truncation, clippy::cast_sign_loss)]
 
-mod common;
+use crate::common;
 
 use egui::accesskit::Role;
 use egui_kittest::Harness;
@@ -245,7 +245,7 @@ fn the_plen2_motion_list_and_frames_fill_the_window() {
         let harness = harness(plen2(ITEMS, 2, 0, 0), Tab::Motions, false, size);
         assert_fills((&harness, size), by().label_contains("Motion "), None, "motion list");
         // A motion of 500 frames (more than the robot takes, still drawn): each row has a mirror button.
-        let harness = crate::harness(plen2(1, ITEMS, 0, 0), Tab::Motions, false, size);
+        let harness = self::harness(plen2(1, ITEMS, 0, 0), Tab::Motions, false, size);
         let lower = Some(by().label("Frame values and plot"));
         assert_fills((&harness, size), by().role(Role::Button).label("Mirror L/R"), lower, "frame table");
     }

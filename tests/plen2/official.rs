@@ -11,7 +11,7 @@ use std::process::{Command, Stdio};
 use common::Sim;
 use servo_studio::project::{self, motion_json};
 
-mod common;
+use crate::common;
 
 const EXE: &str = env!("CARGO_BIN_EXE_servo-studio");
 
