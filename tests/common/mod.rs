@@ -1,5 +1,5 @@
 //! Shared test fixtures.
-#![allow(dead_code, clippy::unwrap_used)]
+#![allow(dead_code, clippy::unwrap_used, clippy::expect_used)]
 
 use std::io::{BufRead, BufReader, Read, Write};
 use std::process::{Child, Stdio};
