@@ -154,6 +154,8 @@ pub enum Action {
     Stop,
     /// Switch the interface language.
     SetLanguage(Language),
+    /// Set the live speed limit, °/s.
+    SetLiveSpeed(f64),
     /// Show a tab.
     ShowTab(Tab),
     /// Read the gamepad at this path (an event device or a pipe of input events); None: let it go.

@@ -21,6 +21,7 @@ mod rflex;
 mod rows;
 mod servo;
 mod shell;
+pub mod speed;
 mod transport;
 pub mod view3d;
 

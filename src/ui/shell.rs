@@ -119,6 +119,8 @@ pub struct Shell<'a> {
     pub operation: &'a mut Option<RunningOperation>,
     /// The interface language.
     pub language: Language,
+    /// How fast anything sent live may turn a servo or joint.
+    pub speed: crate::ui::speed::LiveSpeed,
     /// Where backups go (under `backups/`).
     pub data_dir: &'a Path,
     /// Wakes the window from other threads.

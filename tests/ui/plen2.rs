@@ -10,7 +10,7 @@ use std::time::{Duration, Instant};
 
 use egui::accesskit::Role;
 use egui_kittest::Harness;
-use egui_kittest::kittest::Queryable;
+use egui_kittest::kittest::{NodeT, Queryable, by};
 use servo_studio::link::{LinkEvent, no_waker};
 use servo_studio::project::plen2::{Frame, Joint, Motion, PlayEntry, PlayList, Plen2Project, Pose};
 use servo_studio::project::{Family, Project};
@@ -63,6 +63,24 @@ fn executed(harness: &Harness<'static, StudioApp>, what: &str, wanted: impl Fn(&
     }
 }
 
+/// Runs frames (a joint is walked a step per cycle at the live speed limit)
+/// until the robot executes a command matching `wanted`.
+fn walked(harness: &mut Harness<'static, StudioApp>, what: &str, wanted: impl Fn(&Command) -> bool) {
+    let events = harness.state().link.as_ref().unwrap().demo_plen2().unwrap().events().clone();
+    let deadline = Instant::now() + Duration::from_secs(10);
+    loop {
+        assert!(Instant::now() < deadline, "the robot never executed {what}");
+        harness.step();
+        while let Ok(event) = events.try_recv() {
+            if let LinkEvent::Driver(Plen2SimEvent::Executed(command)) = event
+                && wanted(&command)
+            {
+                return;
+            }
+        }
+    }
+}
+
 #[test]
 fn a_joint_moves_live_within_its_limits_and_stop_sends_ri_then_hp() {
     let mut harness = harness(Tab::Joints);
@@ -73,7 +91,23 @@ fn a_joint_moves_live_within_its_limits_and_stop_sends_ri_then_hp() {
     harness.step();
     // Clamped to the factory max of 90.0°.
     assert_eq!(harness.state().plen2.pose[Joint::LeftKneePitch.index()], 900);
-    executed(&harness, "$AN for the knee", |c| *c == Command::SetAngle { device: 6, angle: 900 });
+    // Walked there from home (50.0°) at the live speed limit, 180°/s: a step per
+    // firmware cycle at most, the first at once, never the whole 40° in one go.
+    let events = harness.state().link.as_ref().unwrap().demo_plen2().unwrap().events().clone();
+    let deadline = Instant::now() + Duration::from_secs(10);
+    let mut angles = vec![500];
+    while angles.last() != Some(&900) {
+        assert!(Instant::now() < deadline, "the knee never reached 90°: {angles:?}");
+        harness.step();
+        while let Ok(event) = events.try_recv() {
+            if let LinkEvent::Driver(Plen2SimEvent::Executed(Command::SetAngle { device: 6, angle })) = event {
+                angles.push(angle);
+            }
+        }
+    }
+    assert!(angles.len() >= 3, "walked, not sent at once: {angles:?}");
+    assert!(angles[1] - angles[0] <= 58, "the first step is one cycle's worth (5.8°): {angles:?}");
+    assert!(angles.windows(2).all(|pair| pair[0] < pair[1]), "{angles:?}");
     assert_eq!(inspect(&harness).angles[6], 900);
 
     harness.get_all_by_label_contains("STOP").next().unwrap().click();
@@ -157,7 +191,7 @@ fn keyboard_nudges_the_focused_joint_by_1_and_10_degrees_within_its_limits() {
     harness.key_press_modifiers(egui::Modifiers::SHIFT, egui::Key::ArrowLeft);
     harness.run_steps(2);
     assert_eq!(harness.state().plen2.pose[knee.index()], start - 90);
-    executed(&harness, "$AN for the nudged knee", |c| *c == Command::SetAngle { device: 6, angle: start - 90 });
+    walked(&mut harness, "$AN for the nudged knee", |c| *c == Command::SetAngle { device: 6, angle: start - 90 });
     for _ in 0..200 {
         harness.key_press(egui::Key::PageUp);
         harness.step();
@@ -265,4 +299,34 @@ fn a_motion_is_saved_as_motion_json_where_the_user_chose() {
     common::ui::run_until(&mut harness, "the status line", |app| {
         app.status.as_ref().is_some_and(|status| status.text == format!("saved {}", chosen.display()))
     });
+}
+
+#[test]
+fn a_curve_picked_for_a_frame_is_one_undo_step_and_the_meter_shows_what_it_costs() {
+    let mut harness = harness(Tab::Motions);
+    assert!(harness.query_by_label_contains("On the robot").is_none(), "no curve, no meter");
+    // The first frame's curve (its name is its hover text).
+    harness.query_all(by().role(Role::ComboBox).value("Linear")).next().unwrap().click();
+    harness.run();
+    harness.get_by_label("Ease in-out").click();
+    harness.run();
+    let motion = &harness.state().document.project.plen2.motions[0];
+    assert_eq!(motion.frames[0].easing, servo_studio::project::Easing::EaseInOut);
+    assert_eq!(motion.frames[1].easing, servo_studio::project::Easing::Linear);
+    // What the robot will store: the eased frame baked, the other as it is.
+    let stored = servo_studio::device::plen2::stored_motion(motion);
+    assert!(stored.frames.len() > 2, "{} frames", stored.frames.len());
+    let meter = harness.get_by_label_contains("On the robot").accesskit_node().label().unwrap_or_default();
+    assert!(meter.contains(&format!("On the robot: {} frames of 20", stored.frames.len())), "{meter}");
+    assert!(meter.contains("largest deviation from the curves"), "{meter}");
+    // The plot draws each moving joint twice: the curve meant and what the robot plays.
+    assert!(harness.query_by_label_contains("left_shoulder_pitch (meant)").is_some());
+    assert!(harness.query_by_label_contains("left_shoulder_pitch (robot)").is_some());
+    harness.state_mut().apply(Action::Undo);
+    harness.run();
+    assert_eq!(
+        harness.state().document.project.plen2.motions[0].frames[0].easing,
+        servo_studio::project::Easing::Linear
+    );
+    assert!(harness.query_by_label_contains("On the robot").is_none());
 }

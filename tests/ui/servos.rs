@@ -220,3 +220,70 @@ fn status_messages_follow_the_language() {
     app.apply(Action::Stop);
     assert_eq!(app.status.as_ref().unwrap().text, "停止：所有舵機停在原處並保持鎖定");
 }
+
+/// The first live move the demo board handles for `servo_id`: (degree, interval in 10 ms).
+fn next_move(harness: &Harness<'static, StudioApp>, servo_id: u8) -> (i16, i16) {
+    let deadline = Instant::now() + Duration::from_secs(5);
+    loop {
+        let link = harness.state().link.as_ref().unwrap();
+        let event = link.demo_board().unwrap().events().recv_deadline(deadline).expect("the move arrived in time");
+        if let LinkEvent::Driver(SimEvent::Handled(Message::ExecuteActionRequest { moves })) = event
+            && let Some(found) = moves.iter().find(|m| m.servo_id == servo_id)
+        {
+            return (found.degree, found.interval_10ms);
+        }
+    }
+}
+
+/// Waits (with a deadline) until the demo board reports servo 1 at `angle`.
+fn arrived(harness: &Harness<'static, StudioApp>, angle: i16) {
+    let requester = common::ui::servo_board(harness.state()).unwrap().requester();
+    let deadline = Instant::now() + Duration::from_secs(5);
+    while requester.query_servos(1).unwrap()[0].angle != angle {
+        assert!(Instant::now() < deadline, "the servo never reached {angle}°");
+    }
+}
+
+/// Clicks servo 1's slider at its far right (`true`) or left end.
+fn click_far_end(harness: &mut Harness<'static, StudioApp>, right: bool) {
+    let slider = harness.get_all_by_role(Role::Slider).next().unwrap().rect();
+    let x = if right { slider.right() - 1.0 } else { slider.left() + 1.0 };
+    harness.drag_at(egui::pos2(x, slider.center().y));
+    harness.drop_at(egui::pos2(x, slider.center().y));
+    harness.run();
+}
+
+#[test]
+fn a_far_slider_click_reaches_its_angle_at_the_live_speed_limit() {
+    let mut harness = demo_harness();
+    // A click at the far end: 0° → 90° at the default 180°/s takes 0.5 s, 50 units of 10 ms.
+    click_far_end(&mut harness, true);
+    assert_eq!(harness.state().servo.pose.get(&1), Some(&90));
+    assert_eq!(next_move(&harness, 1), (90, 50));
+    arrived(&harness, 90);
+    // The Settings menu shows the limit; at 45°/s, 90° → −90° takes 4 s.
+    harness.get_by_label("Settings").click();
+    harness.run();
+    assert_eq!(harness.get_by_label("Live speed limit").value().as_deref(), Some("180 °/s"));
+    harness.get_by_label("Settings").click();
+    harness.run();
+    // What the menu's value sends when set to 45.
+    harness.state_mut().apply(Action::SetLiveSpeed(45.0));
+    click_far_end(&mut harness, false);
+    assert_eq!(harness.state().servo.pose.get(&1), Some(&-90));
+    assert_eq!(next_move(&harness, 1), (-90, 400));
+    // Clicked back at once: the servo has barely left 90°, so the move back
+    // counts from there, not from the −90° it was sent to (no faster than 45°/s).
+    click_far_end(&mut harness, true);
+    let (degree, interval_10ms) = next_move(&harness, 1);
+    assert_eq!(degree, 90);
+    assert!(interval_10ms <= 40, "a few degrees back take well under 0.4 s: {interval_10ms}");
+    arrived(&harness, 90);
+    // A keyboard nudge is small: the board's shortest live move.
+    harness.get_all_by_role(Role::Slider).next().unwrap().focus();
+    harness.run();
+    harness.key_press(egui::Key::ArrowLeft);
+    harness.run();
+    assert_eq!(next_move(&harness, 1), (89, 2));
+    assert!((harness.state().remembered().live_speed.deg_per_s - 45.0).abs() < 1e-9, "remembered between runs");
+}

@@ -2,6 +2,7 @@
 //! a shortcut or a dialog pushed, applied in order.
 
 use super::*;
+use crate::ui::speed::LiveSpeed;
 
 impl StudioApp {
     /// Applies one action. The only place that changes the editor's state.
@@ -39,6 +40,7 @@ impl StudioApp {
             }
             Action::Stop => self.stop(),
             Action::SetLanguage(language) => self.language = language,
+            Action::SetLiveSpeed(deg_per_s) => self.live_speed = LiveSpeed { deg_per_s }.clamped(),
             Action::ShowTab(tab) => self.tab = tab,
             Action::UseGamepad(path) => self.use_gamepad(path),
             Action::PadTestMode(on) => self.pad.test_mode = on,

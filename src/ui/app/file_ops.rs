@@ -125,6 +125,25 @@ impl StudioApp {
         });
     }
 
+    /// Settings: the live speed limit.
+    pub(super) fn settings_menu(&self, ui: &mut egui::Ui, actions: &mut Vec<Action>) {
+        let words = self.language.strings();
+        ui.menu_button(words.settings, |ui| {
+            ui.horizontal(|ui| {
+                let label = ui.label(words.live_speed_limit);
+                let mut deg_per_s = self.live_speed.deg_per_s();
+                let drag = egui::DragValue::new(&mut deg_per_s)
+                    .range(crate::ui::speed::RANGE_DEG_PER_S)
+                    .speed(1.0)
+                    .suffix(" °/s");
+                let response = ui.add(drag).labelled_by(label.id).on_hover_text(words.live_speed_hint);
+                if response.changed() {
+                    actions.push(Action::SetLiveSpeed(deg_per_s));
+                }
+            });
+        });
+    }
+
     /// The "unsaved changes" question and the recovery offer.
     pub(super) fn dialogs(&self, ui: &egui::Ui, actions: &mut Vec<Action>) {
         let words = self.language.strings();

@@ -36,6 +36,7 @@ use crate::ui::plen2::Plen2Ui;
 use crate::ui::rflex::RflexUi;
 use crate::ui::servo::ServoUi;
 use crate::ui::shell::{RunningOperation, Shell, ShellView, StatusLine};
+use crate::ui::speed::LiveSpeed;
 
 /// A port being opened.
 #[derive(Debug)]
@@ -58,6 +59,8 @@ pub struct StudioApp {
     pub link: Option<BoardLink>,
     /// The interface language.
     pub language: Language,
+    /// How fast anything sent live may turn a servo or joint (a setting).
+    pub live_speed: LiveSpeed,
     /// The latest message for the user.
     pub status: Option<StatusLine>,
     /// A port being opened (off the UI thread), with the family and line rate to start.
@@ -125,6 +128,7 @@ impl StudioApp {
             opener: system_opener(),
             picker: system_picker(),
             language: Language::detect(),
+            live_speed: LiveSpeed::default(),
             status: None,
             tab: Tab::Log,
             operation: None,
@@ -183,9 +187,32 @@ impl StudioApp {
 
     /// The shell as a family's ui changes it, and the families' uis (borrowed apart).
     fn split(&mut self) -> (Shell<'_>, Families<'_>) {
-        let Self { document, link, status, operation, language, data_dir, waker, files, servo, plen2, rflex, .. } =
-            self;
-        let shell = Shell { document, link, status, operation, language: *language, data_dir, waker, files };
+        let Self {
+            document,
+            link,
+            status,
+            operation,
+            language,
+            live_speed,
+            data_dir,
+            waker,
+            files,
+            servo,
+            plen2,
+            rflex,
+            ..
+        } = self;
+        let shell = Shell {
+            document,
+            link,
+            status,
+            operation,
+            language: *language,
+            speed: *live_speed,
+            data_dir,
+            waker,
+            files,
+        };
         (shell, Families { servo, plen2, rflex })
     }
 
@@ -292,6 +319,7 @@ impl StudioApp {
         egui::Panel::top("toolbar").show(ui, |ui| {
             ui.horizontal(|ui| {
                 self.file_menu(ui, &mut actions);
+                self.settings_menu(ui, &mut actions);
                 ui.separator();
                 if ui.add_enabled(self.document.can_undo(), egui::Button::new(words.undo)).clicked() {
                     actions.push(Action::Undo);
@@ -436,6 +464,9 @@ pub struct Remembered {
     /// How a PLEN2 is paced.
     #[serde(default)]
     pub plen2_pacing: crate::device::plen2::PacingMode,
+    /// The live speed limit.
+    #[serde(default)]
+    pub live_speed: LiveSpeed,
     /// How each family's panels were laid out: servo, PLEN2, rFLEX.
     #[serde(default)]
     pub layouts: Vec<Layout>,
@@ -457,6 +488,7 @@ impl StudioApp {
             tab: self.tab.name().to_string(),
             family: self.document.project.family,
             plen2_pacing: self.plen2.pacing,
+            live_speed: self.live_speed,
             layouts: Family::ALL.iter().map(|family| self.layout(*family)).collect(),
         }
     }
@@ -467,6 +499,7 @@ impl StudioApp {
         self.recent = remembered.recent;
         self.language = remembered.language;
         self.plen2.pacing = remembered.plen2_pacing;
+        self.live_speed = remembered.live_speed;
         for (family, layout) in Family::ALL.into_iter().zip(remembered.layouts) {
             *self.parts(family).1.layout_mut() = layout;
         }

@@ -221,6 +221,12 @@ pub struct Strings {
     pub save_as: &'static str,
     /// "Recent".
     pub recent: &'static str,
+    /// "Settings" (the menu).
+    pub settings: &'static str,
+    /// "Live speed limit".
+    pub live_speed_limit: &'static str,
+    /// What the live speed limit does (hover text).
+    pub live_speed_hint: &'static str,
     /// "Recover unsaved work?".
     pub recover_title: &'static str,
     /// "Recover".

@@ -7,9 +7,11 @@ use std::time::Instant;
 use super::Plen2Link;
 use super::Plen2Ui;
 use super::joints::limits;
+use crate::authoring::bake::{DEFAULT_TOLERANCE_TENTHS, bake_plen2};
 use crate::project::Edit;
 use crate::project::plen2::{Frame, Joint, Motion, Plen2Project, Pose};
 use crate::ui::shell::Shell;
+use crate::ui::speed::{PLEN2_CYCLE, Slew};
 
 /// A motion played from one of its frames by streaming its poses live.
 #[derive(Debug)]
@@ -40,19 +42,55 @@ impl Plen2Ui {
         let high = setting.max_tenths_deg.max(setting.min_tenths_deg);
         // The limits clamp every move the app sends.
         let tenths = tenths.clamp(low, high);
+        let before = self.pose;
         self.pose[joint.index()] = tenths;
         self.stream = None;
-        if let Some(robot) = shell.plen2_mut() {
-            robot.move_joints(vec![(joint.device_id(), tenths)]);
-        }
+        self.walk_to_pose(shell, before, Instant::now());
     }
 
+    /// Home at the live speed limit: the joints are walked there (a `$HP`
+    /// would send them at once).
     pub(super) fn home(&mut self, shell: &mut Shell<'_>) {
+        let before = self.pose;
         self.pose = homes(&shell.document.project.plen2);
         self.stream = None;
-        if let Some(robot) = shell.plen2_mut() {
-            robot.home();
+        self.walk_to_pose(shell, before, Instant::now());
+    }
+
+    /// Starts (or redirects) the walk toward the sliders' pose from where the
+    /// robot was last sent (`before` when no walk is under way); the first
+    /// step goes at once.
+    fn walk_to_pose(&mut self, shell: &mut Shell<'_>, before: [i16; 18], now: Instant) {
+        if shell.plen2_mut().is_none() {
+            self.slew = None;
+            return;
         }
+        let slew = match self.slew.take() {
+            Some(mut slew) => {
+                slew.target = self.pose;
+                slew
+            }
+            None => Slew::new(before, self.pose, now.checked_sub(PLEN2_CYCLE).unwrap_or(now)),
+        };
+        self.slew = Some(slew);
+        self.advance_slew(shell, now);
+    }
+
+    /// Sends the walk's next step if a cycle has passed; whether it still walks.
+    pub fn advance_slew(&mut self, shell: &mut Shell<'_>, now: Instant) -> bool {
+        let speed = shell.speed;
+        let Some(slew) = &mut self.slew else { return false };
+        let moved = slew.step(now, speed);
+        let arrived = slew.arrived();
+        if !moved.is_empty()
+            && let Some(robot) = shell.plen2_mut()
+        {
+            robot.move_joints(moved.into_iter().map(|(index, angle)| (Joint::ALL[index].device_id(), angle)).collect());
+        }
+        if arrived {
+            self.slew = None;
+        }
+        !arrived
     }
 
     pub(super) fn capture_frame(&mut self, shell: &mut Shell<'_>, slot: u8) {
@@ -73,10 +111,14 @@ impl Plen2Ui {
     }
 
     pub(super) fn play_from(&mut self, shell: &Shell<'_>, slot: u8, frame: usize) {
-        let Some(motion) = shell.document.project.plen2.motions.iter().find(|m| m.slot == slot).cloned() else {
+        let Some(authored) = shell.document.project.plen2.motions.iter().find(|m| m.slot == slot) else {
             return;
         };
-        self.stream = Some(Stream { motion, frame, started: Instant::now(), from: self.pose });
+        // As the robot stores it: curves baked into straight frames, from the authored frame's first piece.
+        let baked = bake_plen2(authored, DEFAULT_TOLERANCE_TENTHS);
+        let frame = baked.source.iter().position(|&source| source == frame).unwrap_or(0);
+        self.slew = None;
+        self.stream = Some(Stream { motion: baked.motion, frame, started: Instant::now(), from: self.pose });
     }
 
     pub(super) fn play_list(shell: &mut Shell<'_>, index: usize) {

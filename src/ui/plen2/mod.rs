@@ -122,6 +122,8 @@ pub struct Plen2Ui {
     /// Every joint's angle on the sliders, tenths of a degree, device-map order.
     pub pose: [i16; 18],
     stream: Option<live::Stream>,
+    /// Joints walked toward the sliders at the live speed limit.
+    slew: Option<crate::ui::speed::Slew>,
     /// What the robot held when last read.
     pub robot: Option<Plen2Project>,
     /// Robots read so far (a new read invalidates the slot map).
@@ -158,6 +160,7 @@ impl Default for Plen2Ui {
         Self {
             pose: homes(&Plen2Project::default()),
             stream: None,
+            slew: None,
             robot: None,
             robot_reads: 0,
             result: None,
@@ -473,8 +476,9 @@ impl FamilyUi for Plen2Ui {
     }
 
     fn stop(&mut self, shell: &mut Shell<'_>) {
-        // No motion is streamed any more; the robot stops and goes home.
+        // No motion is streamed and no joint walked any more; the robot stops and goes home.
         self.stream = None;
+        self.slew = None;
         if let Some(link) = shell.link.as_mut() {
             let _ = link.stop();
         }
@@ -483,18 +487,20 @@ impl FamilyUi for Plen2Ui {
 
     fn disconnected(&mut self) {
         self.stream = None;
+        self.slew = None;
     }
 
     /// A new document: the joints go home.
     fn document_replaced(&mut self, project: &Project) {
         self.pose = homes(&project.plen2);
         self.stream = None;
+        self.slew = None;
     }
 
     /// Moves a streamed motion on, and takes written files' answers; whether something still plays.
     fn tick(&mut self, shell: &mut Shell<'_>, now: Instant) -> bool {
         self.finish_writing(shell);
-        self.advance_stream(shell, now)
+        self.advance_slew(shell, now) | self.advance_stream(shell, now)
     }
 
     fn finish_operation(&mut self, shell: &mut Shell<'_>, wait: Option<std::time::Duration>) -> Option<(String, bool)> {

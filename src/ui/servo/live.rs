@@ -1,7 +1,7 @@
 //! Live moves from the servo panels: sliders, captured poses, played and
 //! previewed actions, and buttons picked on the remote.
 
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use super::ServoLink;
 use super::{CAPTURED_STEP_INTERVAL_10MS, LIVE_MOVE_INTERVAL_10MS, ServoUi};
@@ -9,21 +9,64 @@ use crate::device::servo::ServoMove;
 use crate::project::{Action as ProjectAction, Edit, ServoProject, Step, next_free_id};
 use crate::ui::servo::captions::ServoWords;
 use crate::ui::shell::Shell;
+use crate::ui::speed::LiveSpeed;
+
+/// A live move as sent: the board turns the servo linearly from `from` to
+/// `to` over `interval`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Moving {
+    from: f64,
+    to: i16,
+    start: Instant,
+    interval: Duration,
+}
+
+impl Moving {
+    /// Where the servo is at `now`, by the board's linear move.
+    fn at(&self, now: Instant) -> f64 {
+        let done = now.saturating_duration_since(self.start).as_secs_f64() / self.interval.as_secs_f64().max(1e-9);
+        self.from + (f64::from(self.to) - self.from) * done.min(1.0)
+    }
+}
 
 impl ServoUi {
+    /// A live move of `servo_id` to `degree`, from where it is now (along its
+    /// last live move; else where the board last read it; else the slider's
+    /// last value), its interval from the distance at the live speed limit,
+    /// at least `least` (10 ms units). Remembered for the next one.
+    fn limited_move(
+        &mut self,
+        speed: LiveSpeed,
+        servo_id: u8,
+        degree: i16,
+        from: (i16, Option<i16>),
+        least: i16,
+    ) -> ServoMove {
+        let now = Instant::now();
+        let (shown, reading) = from;
+        let here =
+            self.moving.get(&servo_id).map_or_else(|| f64::from(reading.unwrap_or(shown)), |moving| moving.at(now));
+        let interval_10ms = speed.interval_10ms(f64::from(degree) - here, least);
+        let interval = Duration::from_millis(u64::from(interval_10ms.unsigned_abs()) * 10);
+        self.moving.insert(servo_id, Moving { from: here, to: degree, start: now, interval });
+        ServoMove { servo_id, degree, interval_10ms }
+    }
+
     pub(super) fn set_pose(&mut self, shell: &mut Shell<'_>, servo_id: u8, degree: i16) {
         let Some(servo) = shell.document.project.servo.servo(servo_id) else {
             return;
         };
         // The limits clamp every move the app sends, whatever asked for it.
         let degree = servo.clamp(degree);
-        self.pose.insert(servo_id, degree);
+        let before = self.pose.insert(servo_id, degree).unwrap_or(servo.home_deg);
+        let speed = shell.speed;
         if let Some(link) = shell.servo() {
             if link.stopped {
                 shell.report(shell.words().servo().msg_press_resume, true);
                 return;
             }
-            let servo_move = ServoMove { servo_id, degree, interval_10ms: LIVE_MOVE_INTERVAL_10MS };
+            let reading = link.servos.get(&servo_id).map(|state| state.angle);
+            let servo_move = self.limited_move(speed, servo_id, degree, (before, reading), LIVE_MOVE_INTERVAL_10MS);
             if let Err(error) = link.live_move(vec![servo_move]) {
                 shell.report(shell.language.request_error(&error), true);
             }
@@ -64,18 +107,22 @@ impl ServoUi {
     pub(super) fn play_action(&mut self, shell: &mut Shell<'_>, action_id: i32) {
         let project = &shell.document.project.servo;
         let Some(action) = project.action(action_id) else { return };
-        let moves: Vec<ServoMove> = action
-            .steps
-            .iter()
-            .filter_map(|step| {
-                let servo = project.servo(step.servo_id)?;
-                Some(ServoMove {
-                    servo_id: step.servo_id,
-                    degree: servo.clamp(step.degree),
-                    interval_10ms: step.interval_10ms,
-                })
-            })
-            .collect();
+        let read = shell.servo().map(|link| &link.servos);
+        let mut moves = Vec::new();
+        for step in &action.steps {
+            let Some(servo) = project.servo(step.servo_id) else { continue };
+            let shown = self.pose.get(&step.servo_id).copied().unwrap_or(servo.home_deg);
+            let reading = read.and_then(|servos| servos.get(&step.servo_id)).map(|state| state.angle);
+            // The step's own interval, or longer when the live speed limit needs it.
+            let least = step.interval_10ms.max(1);
+            moves.push(self.limited_move(
+                shell.speed,
+                step.servo_id,
+                servo.clamp(step.degree),
+                (shown, reading),
+                least,
+            ));
+        }
         let Some(link) = shell.servo() else {
             shell.report(shell.words().servo().msg_connect_for_play, true);
             return;

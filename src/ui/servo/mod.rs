@@ -69,6 +69,9 @@ pub struct ServoUi {
     pub picked_button: Option<u32>,
     /// An action being previewed on the sliders, and when it started.
     pub preview: Option<(i32, Instant)>,
+    /// The live move each servo was last sent, to tell where it is now (the
+    /// board moves it linearly): the live speed limit counts from there.
+    moving: BTreeMap<u8, live::Moving>,
     /// A board comparison waiting for the user's go-ahead.
     pub pending: Option<PendingConfirm>,
     /// The outcome of the last board operation.
@@ -298,6 +301,8 @@ impl FamilyUi for ServoUi {
     }
 
     fn stop(&mut self, shell: &mut Shell<'_>) {
+        // Held wherever they were: where is read again, not guessed.
+        self.moving.clear();
         let Some(link) = shell.link.as_mut() else { return };
         match link.stop() {
             Ok(()) => shell.report(shell.words().servo().msg_stopped_all, false),
@@ -307,10 +312,12 @@ impl FamilyUi for ServoUi {
 
     fn connected(&mut self, _project: &Project) {
         self.polling = false;
+        self.moving.clear();
     }
 
     fn disconnected(&mut self) {
         self.polling = false;
+        self.moving.clear();
     }
 
     fn document_replaced(&mut self, project: &Project) {
