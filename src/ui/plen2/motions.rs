@@ -447,12 +447,12 @@ fn curve_series(motion: &Motion, words: &Strings) -> plot::Series {
         #[allow(clippy::cast_precision_loss)]
         let at = |cycle: usize| cycle as f64 * cycle_ms;
         let points = meant.iter().enumerate().map(|(cycle, row)| [at(cycle), row[column] / 10.0]).collect();
-        series.push((format!("{} ({})", joint.name(), captions.meant), points));
+        series.push((format!("{}: {}", captions.meant, joint.name()), points));
         let device = usize::from(joint.device_id());
         let robot = std::iter::once([0.0, 0.0])
             .chain(played.iter().enumerate().map(|(cycle, values)| [at(cycle + 1), f64::from(values[device]) / 10.0]))
             .collect();
-        series.push((format!("{} ({})", joint.name(), captions.robot), robot));
+        series.push((format!("{}: {}", captions.robot, joint.name()), robot));
     }
     series
 }
