@@ -7,3 +7,4 @@ pub mod bake;
 pub mod fit;
 pub mod fitted;
 pub mod recording;
+pub mod retime;

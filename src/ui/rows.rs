@@ -280,3 +280,34 @@ mod tests {
         }
     }
 }
+
+/// How a span is to be retimed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Retime {
+    /// Each time is multiplied by this.
+    pub factor: f64,
+    /// Dragged on the total: part of one gesture (one undo step).
+    pub dragging: bool,
+}
+
+/// A span's times scaled: "Retime ×0.5 ×2 total [ms]", the span lasting
+/// `total_ms` now; the total can be typed or dragged.
+pub fn retime(ui: &mut egui::Ui, words: &crate::ui::i18n::Strings, total_ms: f64) -> Option<Retime> {
+    let mut asked = None;
+    ui.label(words.retime);
+    if ui.small_button("×0.5").clicked() {
+        asked = Some(Retime { factor: 0.5, dragging: false });
+    }
+    if ui.small_button("×2").clicked() {
+        asked = Some(Retime { factor: 2.0, dragging: false });
+    }
+    let label = ui.label(words.to_total);
+    let mut total = total_ms.round();
+    let drag = egui::DragValue::new(&mut total).range(10.0..=3_600_000.0).speed(10.0).suffix(" ms");
+    let response = ui.add(drag).labelled_by(label.id);
+    if response.changed() && (total - total_ms.round()).abs() >= 1.0 {
+        let factor = crate::authoring::retime::factor_to_total(total_ms, total);
+        asked = Some(Retime { factor, dragging: response.dragged() });
+    }
+    asked
+}

@@ -86,3 +86,19 @@ fn an_out_of_range_degree_is_flagged_not_silently_changed_and_undoable() {
     harness.state_mut().apply(Action::Undo);
     assert_eq!(harness.state().document.project.servo, before);
 }
+
+#[test]
+fn an_actions_steps_are_retimed_together() {
+    let mut harness = harness(fixture());
+    let intervals = |harness: &Harness<'static, StudioApp>| -> Vec<i16> {
+        harness.state().document.project.servo.actions[0].steps.iter().map(|step| step.interval_10ms).collect()
+    };
+    let before = intervals(&harness);
+    assert_eq!(before, vec![50, 100], "500 ms and 1 s");
+    harness.get_by_label("×0.5").click();
+    harness.run();
+    assert_eq!(intervals(&harness), vec![25, 50], "both steps, so the action keeps its shape");
+    harness.state_mut().apply(Action::Undo);
+    harness.run();
+    assert_eq!(intervals(&harness), before);
+}

@@ -330,3 +330,32 @@ fn a_curve_picked_for_a_frame_is_one_undo_step_and_the_meter_shows_what_it_costs
     );
     assert!(harness.query_by_label_contains("On the robot").is_none());
 }
+
+#[test]
+fn frames_are_retimed_twice_as_slow_or_to_a_total_each_one_undo_step() {
+    let mut harness = harness(Tab::Motions);
+    let times = |harness: &Harness<'static, StudioApp>| -> Vec<u16> {
+        harness.state().document.project.plen2.motions[0].frames.iter().map(|frame| frame.transition_ms).collect()
+    };
+    assert_eq!(times(&harness), vec![200, 300]);
+    harness.get_by_label("×2").click();
+    harness.run();
+    assert_eq!(times(&harness), vec![400, 600]);
+    // The total shows 1 s; typed as 1.5 s, each frame keeps its share.
+    let total = || by().role(Role::SpinButton).label("total");
+    assert_eq!(harness.get(total()).value().as_deref(), Some("1000 ms"));
+    harness.get(total()).click();
+    harness.run();
+    harness.get(total()).type_text("1500");
+    harness.run();
+    harness.key_press(egui::Key::Enter);
+    harness.run();
+    assert_eq!(times(&harness), vec![600, 900]);
+    assert_eq!(harness.get(total()).value().as_deref(), Some("1500 ms"));
+    harness.state_mut().apply(Action::Undo);
+    harness.run();
+    assert_eq!(times(&harness), vec![400, 600], "one undo step each");
+    harness.state_mut().apply(Action::Undo);
+    harness.run();
+    assert_eq!(times(&harness), vec![200, 300]);
+}

@@ -343,3 +343,32 @@ fn the_world_view_pans_zooms_and_goes_back_to_following_the_base() {
     harness.run_steps(2);
     assert!(harness.state().rflex.world.follow, "a double-click centres on the base again");
 }
+
+/// A frame with a curve is stored as several: selecting the authored frame
+/// after it still puts the cursor where that frame is reached, and the view
+/// shows the curve (eased in: slower than the line at first).
+#[test]
+fn a_curve_shows_in_the_preview_and_selecting_a_frame_after_it_finds_its_cycle() {
+    let mut project = plen2_project();
+    let frames = &mut project.plen2.motions[0].frames;
+    frames[0].transition_ms = 640;
+    frames[0].easing = project::Easing::EaseIn;
+    let mut harness = harness(project, Tab::Motions);
+    // 640 ms is 20 cycles eased in to 30°, then 9 cycles back: 29 cycles.
+    harness.get_by_label("#1").click();
+    harness.run();
+    let t = harness.state().plen2.preview.transport.t_ms;
+    assert_eq!((t / 32.768).floor(), 28.0, "the last cycle of frame #1: t = {t} ms");
+    assert_eq!(shoulder(&harness), 0);
+    harness.get_by_label("#0").click();
+    harness.run();
+    let t = harness.state().plen2.preview.transport.t_ms;
+    assert_eq!((t / 32.768).floor(), 19.0, "the last cycle of frame #0: t = {t} ms");
+    assert_eq!(shoulder(&harness), 300);
+    // Halfway through the curve (cycle 9 of 20) an ease-in is a quarter of the way: within 1° of 7.5°.
+    scrub(&mut harness, 9.5 / 29.0);
+    let t = harness.state().plen2.preview.transport.t_ms;
+    assert_eq!((t / 32.768).floor(), 9.0, "t = {t} ms");
+    let eased = 300.0 * (10.0_f64 / 20.0).powi(2);
+    assert!((f64::from(shoulder(&harness)) - eased).abs() <= 10.0, "{} for {eased}", shoulder(&harness));
+}

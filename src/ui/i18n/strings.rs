@@ -221,6 +221,10 @@ pub struct Strings {
     pub save_as: &'static str,
     /// "Recent".
     pub recent: &'static str,
+    /// "Retime" (scale a span's times).
+    pub retime: &'static str,
+    /// "total".
+    pub to_total: &'static str,
     /// "Settings" (the menu).
     pub settings: &'static str,
     /// "Live speed limit".

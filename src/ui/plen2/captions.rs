@@ -77,6 +77,8 @@ pub struct Plen2Captions {
     pub largest_deviation: &'static str,
     /// "the tolerance was widened from 1° so the curves fit in 20 frames".
     pub tolerance_widened: &'static str,
+    /// The retimed span's last frame: "to frame".
+    pub to_frame: &'static str,
     /// A plot line's suffix for the intended curve: "meant".
     pub meant: &'static str,
     /// A plot line's suffix for what the robot plays: "robot".
@@ -119,6 +121,7 @@ const ENGLISH: Plen2Captions = Plen2Captions {
     frames_of_20: "frames of 20",
     largest_deviation: "largest deviation from the curves",
     tolerance_widened: "the tolerance was widened from 1° so the curves fit in 20 frames",
+    to_frame: "to frame",
     meant: "meant",
     robot: "robot",
 };
@@ -159,6 +162,7 @@ const TRADITIONAL_CHINESE: Plen2Captions = Plen2Captions {
     frames_of_20: "個影格（共 20）",
     largest_deviation: "與曲線的最大偏差",
     tolerance_widened: "為了讓曲線放進 20 個影格，容差已從 1° 放寬",
+    to_frame: "到影格",
     meant: "預期",
     robot: "機器人",
 };

@@ -29,6 +29,8 @@ pub struct MotionsPanel {
     series: Option<((u64, usize), plot::Series)>,
     /// The selected motion as the robot stores it, for (revision, motion index).
     baked: Option<((u64, usize), Baked)>,
+    /// The frames a retime applies to: first and last, from 0 (all, unless set).
+    retime_span: Option<(usize, usize)>,
 }
 
 fn edit(project: &Plen2Project, change: impl FnOnce(&mut Plen2Project), key: Option<String>) -> Action {
@@ -290,6 +292,7 @@ impl MotionsPanel {
         let motion = &project.motions[index];
         self.frame = self.frame.min(motion.frames.len().saturating_sub(1));
         ui.label(format!("{} ({})", words.frames, motion.frames.len()));
+        self.retime_row(ui, project, words, actions);
         let mut selected = self.frame;
         let clipboard = &mut self.clipboard;
         let height = ui.available_height();
@@ -365,6 +368,33 @@ impl MotionsPanel {
             }
         });
         self.frame = selected;
+    }
+
+    /// Retimes frames `#first–#last` (all unless set): ×0.5, ×2 or to a total.
+    fn retime_row(&mut self, ui: &mut egui::Ui, project: &Plen2Project, words: &Strings, actions: &mut Vec<Action>) {
+        let index = self.selected;
+        let last = project.motions[index].frames.len().saturating_sub(1);
+        let (mut first, mut end) = self.retime_span.unwrap_or((0, last));
+        end = end.min(last);
+        first = first.min(end);
+        let mut factor = None;
+        ui.horizontal_wrapped(|ui| {
+            let label = ui.label(words.frames);
+            ui.add(egui::DragValue::new(&mut first).range(0..=end).prefix("#")).labelled_by(label.id);
+            let label = ui.label(words.plen2().to_frame);
+            ui.add(egui::DragValue::new(&mut end).range(first..=last).prefix("#")).labelled_by(label.id);
+            let total_ms: f64 =
+                project.motions[index].frames[first..=end].iter().map(|frame| f64::from(frame.transition_ms)).sum();
+            factor = rows::retime(ui, words, total_ms);
+        });
+        self.retime_span = Some((first, end)).filter(|span| *span != (0, last));
+        if let Some(asked) = factor {
+            actions.push(edit(
+                project,
+                |p| crate::authoring::retime::scale_frames(&mut p.motions[index].frames[first..=end], asked.factor),
+                asked.dragging.then(|| format!("plen2 {index} retime")),
+            ));
+        }
     }
 
     fn frame_values(&mut self, ui: &mut egui::Ui, project: &Plen2Project, words: &Strings, actions: &mut Vec<Action>) {

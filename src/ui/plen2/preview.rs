@@ -4,6 +4,7 @@
 //! joint shows is home + value clamped to the joint settings, minus home: what
 //! the servo really does.
 
+use crate::authoring::bake;
 use crate::device::plen2::playback::{self, DEVICE_IDS, Playback, Settings, StoredMotions};
 use crate::figure::{self, Chain};
 use crate::project::plen2::{Joint, Plen2Project};
@@ -130,8 +131,16 @@ impl Preview {
         let Some((_, played, settings)) = &self.playback else { return };
         if self.selected != Some((slot, frame)) {
             self.selected = Some((slot, frame));
-            // The cursor to where the selected frame is reached (its last cycle).
-            let index = u8::try_from(frame).unwrap_or(0);
+            // The cursor to where the selected frame is reached (its last cycle):
+            // a frame with a curve is stored as several, the last of them.
+            let stored =
+                project.motions.iter().find(|m| m.slot == slot).filter(|m| bake::has_curves(m)).and_then(|m| {
+                    bake::bake_plen2(m, bake::DEFAULT_TOLERANCE_TENTHS)
+                        .source
+                        .iter()
+                        .rposition(|&source| source == frame)
+                });
+            let index = u8::try_from(stored.unwrap_or(frame)).unwrap_or(0);
             if let Some(first) = played.first_cycle_of(slot, index) {
                 let last = played.frames[first..].iter().take_while(|f| **f == (slot, index)).count() + first - 1;
                 // Cycle counts are small.

@@ -176,6 +176,16 @@ impl ActionPanel {
                 actions.push(Action::Edit { edit: Edit::RemoveAction { index }, coalesce: None });
             }
         });
+        ui.horizontal_wrapped(|ui| {
+            // Every step: they all start together, so the action keeps its shape.
+            #[allow(clippy::cast_precision_loss)]
+            let total_ms = crate::project::action_duration_ms(action) as f64;
+            if let Some(asked) = rows::retime(ui, words, total_ms) {
+                let mut retimed = action.clone();
+                crate::authoring::retime::scale_steps(&mut retimed.steps, asked.factor);
+                actions.push(set(index, retimed, asked.dragging.then(|| format!("action {} retime", action.id))));
+            }
+        });
         for problem in &derived.action_problems {
             ui.colored_label(ui.visuals().warn_fg_color, words.lang.problem(&problem.kind));
         }

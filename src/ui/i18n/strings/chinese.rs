@@ -111,6 +111,8 @@ pub(in crate::ui::i18n) const TRADITIONAL_CHINESE: Strings = Strings {
     save: "儲存",
     save_as: "另存新檔…",
     recent: "最近的檔案",
+    retime: "調整時間",
+    to_total: "總長",
     settings: "設定",
     live_speed_limit: "即時速度上限",
     live_speed_hint: "即時送出的任何動作轉動伺服機或關節的最快速度：在滑桿遠端點一下、在板子上播放、回原位、遊戲手把。伺服機板的移動會依距離取得所需的時間；PLEN2 的關節則每個韌體週期走一步到達。停止永遠不會被放慢。",

@@ -111,6 +111,8 @@ pub(in crate::ui::i18n) const ENGLISH: Strings = Strings {
     save: "Save",
     save_as: "Save As…",
     recent: "Recent",
+    retime: "Retime",
+    to_total: "total",
     settings: "Settings",
     live_speed_limit: "Live speed limit",
     live_speed_hint: "How fast anything sent live may turn a servo or a joint: a slider click at the far end, Play on board, Home, a gamepad. A servo-board move gets the interval its distance needs; a PLEN2 joint is walked there a step per firmware cycle. STOP is never slowed.",
