@@ -210,3 +210,83 @@ mod tests {
         assert!(matches!(Recording::parse("t_ms,a\n0,1\n1e12,2\n"), Err(RecordingError::TooLarge { .. })));
     }
 }
+
+/// How long a recording counts in before it samples, s.
+pub const COUNT_IN_S: f64 = 3.0;
+
+/// Where a recording is at a moment.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Phase {
+    /// Counting in: this many seconds before sampling starts.
+    CountIn(f64),
+    /// Sampling for this many seconds.
+    Recording(f64),
+}
+
+/// A live movement being recorded: after a count-in, every sample given
+/// (with its time, on the window's clock) is kept; [`Recorder::finish`]
+/// gives the recording, to resample at the board's update and fit.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Recorder {
+    /// When the first sample came (the count-in starts then), s.
+    began_s: Option<f64>,
+    /// Sampled (time since the count-in ended, ms; values).
+    samples: Vec<(f64, Vec<f64>)>,
+}
+
+impl Recorder {
+    /// A recorder that starts counting in at its first sample.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Where the recording is at `now_s`.
+    pub fn phase(&self, now_s: f64) -> Phase {
+        let since = now_s - self.began_s.unwrap_or(now_s);
+        if since < COUNT_IN_S { Phase::CountIn(COUNT_IN_S - since) } else { Phase::Recording(since - COUNT_IN_S) }
+    }
+
+    /// Takes the values at `now_s` (kept once the count-in is over; a sample
+    /// at the same time as the last replaces it).
+    pub fn sample(&mut self, now_s: f64, values: &[f64]) {
+        let began = *self.began_s.get_or_insert(now_s);
+        let t_ms = (now_s - began - COUNT_IN_S) * 1000.0;
+        if t_ms < 0.0 {
+            return;
+        }
+        match self.samples.last_mut() {
+            Some((last, kept)) if t_ms <= *last => kept.clone_from(&values.to_vec()),
+            _ => self.samples.push((t_ms, values.to_vec())),
+        }
+    }
+
+    /// The recording, with `names` for its columns; `None` when nothing was sampled.
+    pub fn finish(self, names: Vec<String>) -> Option<Recording> {
+        if self.samples.is_empty() {
+            return None;
+        }
+        let (times_ms, rows) = self.samples.into_iter().unzip();
+        Some(Recording { names, times_ms, rows })
+    }
+}
+
+#[cfg(test)]
+mod recorder_tests {
+    use super::*;
+
+    #[test]
+    fn counts_in_then_keeps_what_it_is_given_in_time_order() {
+        let mut recorder = Recorder::new();
+        recorder.sample(10.0, &[1.0]);
+        assert_eq!(recorder.phase(11.0), Phase::CountIn(2.0));
+        recorder.sample(12.5, &[2.0]);
+        recorder.sample(13.0, &[3.0]);
+        recorder.sample(13.0, &[4.0]);
+        recorder.sample(13.5, &[5.0]);
+        assert_eq!(recorder.phase(14.0), Phase::Recording(1.0));
+        let recording = recorder.finish(vec!["a".into()]).expect("sampled");
+        assert_eq!(recording.times_ms, vec![0.0, 500.0]);
+        assert_eq!(recording.rows, vec![vec![4.0], vec![5.0]]);
+        assert_eq!(Recorder::new().finish(vec![]), None);
+    }
+}

@@ -300,6 +300,14 @@ pub enum Plen2Action {
     },
     /// Play a play list of the project on the robot.
     PlayList(usize),
+    /// Start recording the live pose into a motion (after a count-in), to be
+    /// fitted into frames inserted after the motion's selected frame.
+    Record {
+        /// The motion's slot.
+        slot: u8,
+    },
+    /// Stop recording: fit what was recorded and insert it (one undo step).
+    StopRecording,
     /// Append the current joint pose to a motion as a frame.
     CaptureFrame {
         /// The motion's slot.

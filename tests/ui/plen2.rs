@@ -359,3 +359,55 @@ fn frames_are_retimed_twice_as_slow_or_to_a_total_each_one_undo_step() {
     harness.run();
     assert_eq!(times(&harness), vec![200, 300]);
 }
+
+/// Recording a scripted sequence of joint moves: after the 3 s count-in the
+/// knee ramps 32° in 2 s and holds 1 s; Stop fits it into the fewest frames
+/// the robot plays within 1°, inserted after the selected frame, one undo step.
+#[test]
+fn recording_joint_moves_fits_them_into_frames_after_the_selected_one() {
+    use servo_studio::ui::Plen2Action;
+    let app = common::ui::editor(project());
+    let mut harness = common::ui::showing(app, Tab::Joints, (1200.0, 800.0));
+    let knee = Joint::LeftKneePitch;
+    let home = harness.state().plen2.pose[knee.index()];
+    let set = |harness: &mut Harness<'static, StudioApp>, relative: i16| {
+        harness.state_mut().apply(Action::Plen2(Plen2Action::SetJoint { joint: knee, tenths: home + relative }));
+    };
+    harness.get_by_label("● Record").click();
+    harness.step();
+    // The harness's clock moves 250 ms a frame: this frame starts the count-in.
+    harness.step();
+    assert!(harness.query_by_label_contains("Recording in 3").is_some());
+    for _ in 0..11 {
+        harness.step();
+    }
+    for k in 0..=8 {
+        set(&mut harness, 40 * k);
+        harness.step();
+    }
+    assert!(harness.query_by_label_contains("REC 2.0 s").is_some());
+    for _ in 0..4 {
+        harness.step();
+    }
+    harness.get_by_label("■ Stop recording").click();
+    harness.step();
+    harness.step();
+    let frames = &harness.state().document.project.plen2.motions[0].frames;
+    let knees: Vec<i16> = frames.iter().map(|frame| frame.values_tenths_deg.get(knee)).collect();
+    let times: Vec<u16> = frames.iter().map(|frame| frame.transition_ms).collect();
+    // Frame 0 (shoulder at 30°) stays; the recording starts with the shoulder at home:
+    // one cycle takes it there, one frame ramps the knee, one holds; then the old frame 1.
+    assert_eq!(frames.len(), 5, "{times:?} {knees:?}");
+    assert_eq!(frames[1].values_tenths_deg.get(Joint::LeftShoulderPitch), 0);
+    assert_eq!(times[1], 32, "{times:?}");
+    assert!((i32::from(knees[2]) - 320).abs() <= 10, "{knees:?}");
+    assert!((i32::from(times[2]) - 2000).abs() <= 100, "{times:?}");
+    assert_eq!(knees[3], knees[2], "{knees:?}");
+    assert_eq!(times[4], 300, "the motion's own frame 1 follows");
+    let status = harness.state().status.as_ref().unwrap().text.clone();
+    assert!(status.starts_with("Recorded and fitted: "), "{status}");
+    assert!(status.contains(" s → 3 frames inserted after frame 0 · largest error "), "{status}");
+    harness.state_mut().apply(Action::Undo);
+    harness.step();
+    assert_eq!(harness.state().document.project.plen2.motions[0].frames.len(), 2, "one undo step");
+}

@@ -5,6 +5,7 @@
 //! Shift+←/→ or PageDown/PageUp by 10°. Below, the joint settings editor
 //! (min / max / home).
 
+use crate::authoring::recording::Phase;
 use crate::project::Edit;
 use crate::project::plen2::{FACTORY_LIMIT_TENTHS_DEG, Joint, JointSetting, Plen2Project};
 use crate::ui::action::{Action, Plen2Action, Plen2Intent};
@@ -34,6 +35,8 @@ pub struct JointsView<'a> {
     pub connected: bool,
     /// The slot frames are captured into.
     pub capture_slot: Option<u8>,
+    /// Where a recording is, if one runs.
+    pub recording: Option<Phase>,
 }
 
 /// Draws the panel: the 18 joints fill the height, the joint settings below
@@ -48,6 +51,29 @@ pub fn ui(ui: &mut egui::Ui, view: &JointsView<'_>, layout: &mut Layout, words: 
             && ui.button(format!("{} ({} {slot})", words.plen2().capture_frame, words.slot)).clicked()
         {
             actions.push(Action::Plen2(Plen2Action::CaptureFrame { slot }));
+        }
+        let captions = words.plen2();
+        match (view.recording, view.capture_slot) {
+            (Some(phase), _) => {
+                if ui.button(captions.stop_recording).clicked() {
+                    actions.push(Action::Plen2(Plen2Action::StopRecording));
+                }
+                let (text, color) = match phase {
+                    Phase::CountIn(left) => {
+                        (format!("{} {:.0}…", captions.count_in, left.ceil()), ui.visuals().warn_fg_color)
+                    }
+                    Phase::Recording(for_s) => {
+                        (format!("● {} {for_s:.1} s", captions.recording), ui.visuals().error_fg_color)
+                    }
+                };
+                ui.colored_label(color, text);
+            }
+            (None, Some(slot)) => {
+                if ui.button(captions.record).on_hover_text(captions.record_hint).clicked() {
+                    actions.push(Action::Plen2(Plen2Action::Record { slot }));
+                }
+            }
+            (None, None) => {}
         }
     });
     let settings = (&mut layout.settings_share, &mut layout.settings_open);
@@ -175,7 +201,13 @@ mod tests {
             .with_context_setup(crate::ui::fonts::install)
             .build_ui_state(
                 move |panel, (layout, actions): &mut Panel| {
-                    let view = JointsView { project: &project, pose: &pose, connected, capture_slot: Some(3) };
+                    let view = JointsView {
+                        project: &project,
+                        pose: &pose,
+                        connected,
+                        capture_slot: Some(3),
+                        recording: None,
+                    };
                     ui(panel, &view, layout, Language::English.strings(), actions);
                 },
                 (Layout::default(), Vec::new()),

@@ -8,8 +8,13 @@ use super::Plen2Link;
 use super::Plen2Ui;
 use super::joints::limits;
 use crate::authoring::bake::{DEFAULT_TOLERANCE_TENTHS, bake_plen2};
+use crate::authoring::fit::{self, FitError, Plen2Board};
+use crate::authoring::fitted::{PLEN2_UPDATE_MS, plen2_frames};
+use crate::authoring::recording::Recorder;
 use crate::project::Edit;
+use crate::project::plen2::MAX_FRAMES;
 use crate::project::plen2::{Frame, Joint, Motion, Plen2Project, Pose};
+use crate::ui::plen2::captions::Plen2Words;
 use crate::ui::shell::Shell;
 use crate::ui::speed::{PLEN2_CYCLE, Slew};
 
@@ -20,6 +25,17 @@ pub struct Stream {
     frame: usize,
     started: Instant,
     from: [i16; 18],
+}
+
+/// The live pose being recorded into a motion.
+#[derive(Debug)]
+pub struct Recording {
+    /// The motion's slot.
+    pub slot: u8,
+    /// The frame the fitted frames go after.
+    pub after: usize,
+    /// What was sampled.
+    pub recorder: Recorder,
 }
 
 /// Every joint's home, as the project's joint settings (else the factory's) say.
@@ -101,7 +117,7 @@ impl Plen2Ui {
         }
         let mut plen2 = shell.document.project.plen2.clone();
         let Some(motion) = plen2.motions.iter_mut().find(|m| m.slot == slot) else { return };
-        if motion.frames.len() >= crate::project::plen2::MAX_FRAMES {
+        if motion.frames.len() >= MAX_FRAMES {
             let full = crate::project::ProblemKind::OutOfRange { field: "frames", value: 21, min: 1, max: 20 };
             shell.report(shell.language.problem(&full), true);
             return;
@@ -119,6 +135,61 @@ impl Plen2Ui {
         let frame = baked.source.iter().position(|&source| source == frame).unwrap_or(0);
         self.slew = None;
         self.stream = Some(Stream { motion: baked.motion, frame, started: Instant::now(), from: self.pose });
+    }
+
+    /// Fits what was recorded into frames and inserts them after the frame
+    /// selected when recording began (one undo step); says how it went.
+    pub(super) fn finish_recording(&mut self, shell: &mut Shell<'_>) {
+        let Some(Recording { slot, after, recorder }) = self.recording.take() else { return };
+        let captions = shell.words().plen2();
+        let names = Joint::ALL.iter().map(|joint| joint.name().to_string()).collect();
+        let Some(recorded) = recorder.finish(names) else {
+            shell.report(captions.msg_nothing_recorded, true);
+            return;
+        };
+        let rows = recorded.resample(PLEN2_UPDATE_MS);
+        let mut plen2 = shell.document.project.plen2.clone();
+        let Some(motion) = plen2.motions.iter_mut().find(|m| m.slot == slot) else { return };
+        let allowed = MAX_FRAMES.saturating_sub(motion.frames.len());
+        if allowed == 0 {
+            shell.report(captions.msg_no_room, true);
+            return;
+        }
+        // From the frame it goes after (the robot's frame buffer holds it then).
+        let after = after.min(motion.frames.len().saturating_sub(1));
+        let start: Vec<i32> =
+            motion.frames.get(after).map_or([0; 18], |frame| frame.values_tenths_deg.0).map(i32::from).to_vec();
+        let tolerance = DEFAULT_TOLERANCE_TENTHS;
+        let (fitted, widened) = match fit::fit_within(&Plen2Board, &start, &rows, tolerance, allowed, 1.0) {
+            Ok(fitted) => (fitted, None),
+            Err(FitError::Tolerance { .. }) => {
+                let (wider, fitted) = fit::widest_needed(&Plen2Board, &start, &rows, tolerance, allowed, 1.0);
+                (fitted, Some(wider))
+            }
+            Err(FitError::TooLong { .. }) => {
+                shell.report(captions.msg_recording_too_long, true);
+                return;
+            }
+        };
+        let frames = plen2_frames(&fitted);
+        let count = frames.len();
+        let at = if motion.frames.is_empty() { 0 } else { after + 1 };
+        motion.frames.splice(at..at, frames);
+        shell.document.apply(Edit::SetPlen2(Box::new(plen2)), None);
+        // Update counts at most an hour's: exact.
+        #[allow(clippy::cast_precision_loss)]
+        let seconds = rows.len() as f64 * PLEN2_UPDATE_MS / 1000.0;
+        let mut said = format!(
+            "{}: {seconds:.1} s → {count} {} {after} · {} {:.1}°",
+            captions.msg_recorded,
+            captions.frames_inserted_after,
+            captions.largest_error,
+            fitted.max_error / 10.0
+        );
+        if let Some(wider) = widened {
+            said.push_str(&format!(" ({} → {:.1}°)", captions.tolerance_widened, wider / 10.0));
+        }
+        shell.report(said, false);
     }
 
     pub(super) fn play_list(shell: &mut Shell<'_>, index: usize) {

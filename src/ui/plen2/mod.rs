@@ -13,6 +13,7 @@ mod play_lists;
 mod preview;
 mod words;
 
+use crate::authoring::recording::Recorder;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -124,6 +125,8 @@ pub struct Plen2Ui {
     stream: Option<live::Stream>,
     /// Joints walked toward the sliders at the live speed limit.
     slew: Option<crate::ui::speed::Slew>,
+    /// The live pose being recorded into a motion.
+    recording: Option<live::Recording>,
     /// What the robot held when last read.
     pub robot: Option<Plen2Project>,
     /// Robots read so far (a new read invalidates the slot map).
@@ -161,6 +164,7 @@ impl Default for Plen2Ui {
             pose: homes(&Plen2Project::default()),
             stream: None,
             slew: None,
+            recording: None,
             robot: None,
             robot_reads: 0,
             result: None,
@@ -243,6 +247,11 @@ impl Plen2Ui {
             Plen2Action::PlayFrom { slot, frame } => self.play_from(shell, slot, frame),
             Plen2Action::PlayList(index) => Self::play_list(shell, index),
             Plen2Action::CaptureFrame { slot } => self.capture_frame(shell, slot),
+            Plen2Action::Record { slot } => {
+                let after = self.motions.selected_frame();
+                self.recording = Some(live::Recording { slot, after, recorder: Recorder::new() });
+            }
+            Plen2Action::StopRecording => self.finish_recording(shell),
             Plen2Action::Robot(intent) => self.robot_operation(shell, intent),
             Plen2Action::SetPacing(mode) => {
                 // Takes effect at the next connection (the driver is set up then).
@@ -405,6 +414,16 @@ impl FamilyUi for Plen2Ui {
         let project = &view.project.plen2;
         let words = view.language.strings();
         let connected = view.link.is_some_and(|link| link.plen2().is_some());
+        // Recording samples the pose every frame, whichever tab shows, on the window's clock.
+        let now_s = ui.input(|input| input.time);
+        let phase = self.recording.as_mut().map(|recording| {
+            let homes = homes(project);
+            let values: Vec<f64> =
+                self.pose.iter().zip(&homes).map(|(&at, &home)| f64::from(at) - f64::from(home)).collect();
+            recording.recorder.sample(now_s, &values);
+            ui.ctx().request_repaint();
+            recording.recorder.phase(now_s)
+        });
         match tab {
             Tab::Motions => {
                 // Validated once per revision, not every frame.
@@ -438,6 +457,7 @@ impl FamilyUi for Plen2Ui {
                     pose: &self.pose,
                     connected,
                     capture_slot: self.motions.selected_slot(project),
+                    recording: phase,
                 };
                 let (mut side, open) = (self.layout.side_width, self.layout.view_open);
                 let (layout, preview) = (&mut self.layout, &mut self.preview);
@@ -495,6 +515,7 @@ impl FamilyUi for Plen2Ui {
         self.pose = homes(&project.plen2);
         self.stream = None;
         self.slew = None;
+        self.recording = None;
     }
 
     /// Moves a streamed motion on, and takes written files' answers; whether something still plays.

@@ -40,6 +40,11 @@ fn edit(project: &Plen2Project, change: impl FnOnce(&mut Plen2Project), key: Opt
 }
 
 impl MotionsPanel {
+    /// The selected frame, from 0.
+    pub fn selected_frame(&self) -> usize {
+        self.frame
+    }
+
     /// The selected motion's slot, if any.
     pub fn selected_slot(&self, project: &Plen2Project) -> Option<u8> {
         project.motions.get(self.selected).map(|m| m.slot)
