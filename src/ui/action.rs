@@ -234,6 +234,11 @@ pub enum ServoAction {
     },
     /// Let servos move again after a STOP.
     Resume,
+    /// Start recording the sliders (after a count-in), to be fitted into
+    /// actions and a macro running them.
+    Record,
+    /// Stop recording: fit what was recorded and add it (one undo step).
+    StopRecording,
     /// Turn the current pose into a new action.
     CapturePose {
         /// Use the angles read back from the board instead of the sliders.

@@ -311,3 +311,24 @@ pub fn retime(ui: &mut egui::Ui, words: &crate::ui::i18n::Strings, total_ms: f64
     }
     asked
 }
+
+/// "● Record", or while recording "■ Stop recording" and where it is (the
+/// count-in, then the seconds recorded). Some(true): start; Some(false): stop.
+pub fn record(
+    ui: &mut egui::Ui,
+    words: &crate::ui::i18n::Strings,
+    phase: Option<crate::authoring::recording::Phase>,
+    hint: &str,
+) -> Option<bool> {
+    use crate::authoring::recording::Phase;
+    let Some(phase) = phase else {
+        return ui.button(words.record).on_hover_text(hint).clicked().then_some(true);
+    };
+    let stop = ui.button(words.stop_recording).clicked();
+    let (text, color) = match phase {
+        Phase::CountIn(left) => (format!("{} {:.0}…", words.count_in, left.ceil()), ui.visuals().warn_fg_color),
+        Phase::Recording(for_s) => (format!("● {} {for_s:.1} s", words.recording), ui.visuals().error_fg_color),
+    };
+    ui.colored_label(color, text);
+    stop.then_some(false)
+}

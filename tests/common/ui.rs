@@ -4,6 +4,7 @@
 
 use std::time::{Duration, Instant};
 
+use egui_kittest::kittest::Queryable;
 use egui_kittest::{Harness, HarnessBuilder};
 use servo_studio::device::servo::ServoHandle;
 use servo_studio::link::no_waker;
@@ -49,4 +50,15 @@ pub fn run_until(harness: &mut Harness<'static, StudioApp>, what: &str, done: im
 /// The connected servo board, if that is what the editor is connected to.
 pub fn servo_board(app: &StudioApp) -> Option<&ServoHandle> {
     app.link.as_ref().and_then(BoardLink::servo)
+}
+
+/// Clicks "● Record" and runs frames through its 3 s count-in (the harness's
+/// clock moves 250 ms a frame): the next frame is the recording's first sample.
+pub fn record_through_count_in(harness: &mut Harness<'static, StudioApp>) {
+    harness.get_by_label("● Record").click();
+    harness.step();
+    // This frame starts the count-in.
+    harness.step();
+    assert!(harness.query_by_label_contains("Recording in 3").is_some());
+    harness.run_steps(11);
 }

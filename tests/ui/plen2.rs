@@ -373,14 +373,7 @@ fn recording_joint_moves_fits_them_into_frames_after_the_selected_one() {
     let set = |harness: &mut Harness<'static, StudioApp>, relative: i16| {
         harness.state_mut().apply(Action::Plen2(Plen2Action::SetJoint { joint: knee, tenths: home + relative }));
     };
-    harness.get_by_label("● Record").click();
-    harness.step();
-    // The harness's clock moves 250 ms a frame: this frame starts the count-in.
-    harness.step();
-    assert!(harness.query_by_label_contains("Recording in 3").is_some());
-    for _ in 0..11 {
-        harness.step();
-    }
+    common::ui::record_through_count_in(&mut harness);
     for k in 0..=8 {
         set(&mut harness, 40 * k);
         harness.step();

@@ -271,7 +271,10 @@ fn a_far_slider_click_reaches_its_angle_at_the_live_speed_limit() {
     harness.state_mut().apply(Action::SetLiveSpeed(45.0));
     click_far_end(&mut harness, false);
     assert_eq!(harness.state().servo.pose.get(&1), Some(&-90));
-    assert_eq!(next_move(&harness, 1), (-90, 400));
+    // The board reads 90° once within half a degree of it: 179.5°–180° at 45°/s.
+    let (degree, interval_10ms) = next_move(&harness, 1);
+    assert_eq!(degree, -90);
+    assert!((399..=400).contains(&interval_10ms), "{interval_10ms}");
     // Clicked back at once: the servo has barely left 90°, so the move back
     // counts from there, not from the −90° it was sent to (no faster than 45°/s).
     click_far_end(&mut harness, true);
@@ -279,11 +282,60 @@ fn a_far_slider_click_reaches_its_angle_at_the_live_speed_limit() {
     assert_eq!(degree, 90);
     assert!(interval_10ms <= 40, "a few degrees back take well under 0.4 s: {interval_10ms}");
     arrived(&harness, 90);
-    // A keyboard nudge is small: the board's shortest live move.
+    assert!((harness.state().remembered().live_speed.deg_per_s - 45.0).abs() < 1e-9, "remembered between runs");
+    // A keyboard nudge is small: at 180°/s, 1° (or the little left of the last
+    // move) keeps the board's shortest live move.
+    harness.state_mut().apply(Action::SetLiveSpeed(180.0));
     harness.get_all_by_role(Role::Slider).next().unwrap().focus();
     harness.run();
     harness.key_press(egui::Key::ArrowLeft);
     harness.run();
     assert_eq!(next_move(&harness, 1), (89, 2));
-    assert!((harness.state().remembered().live_speed.deg_per_s - 45.0).abs() < 1e-9, "remembered between runs");
+}
+
+/// Recording a scripted sequence of slider moves: after the 3 s count-in
+/// servo 1 ramps to 60° in 2 s and holds; Stop fits it into two steps — an
+/// action each — and a macro running them, one undo step.
+#[test]
+fn recording_slider_moves_fits_them_into_actions_and_a_macro() {
+    use servo_studio::ui::ServoAction;
+    let mut harness = harness(new_app(project()));
+    harness.run();
+    let actions_before = harness.state().document.project.servo.actions.len();
+    common::ui::record_through_count_in(&mut harness);
+    for k in 0..=8 {
+        harness.state_mut().apply(Action::Servo(ServoAction::SetPose { servo_id: 1, degree: 15 * k / 2 }));
+        harness.step();
+    }
+    for _ in 0..4 {
+        harness.step();
+    }
+    harness.get_by_label("■ Stop recording").click();
+    harness.step();
+    harness.step();
+    let servo = &harness.state().document.project.servo;
+    let added = &servo.actions[actions_before..];
+    let steps: Vec<(u8, i16, i16)> =
+        added.iter().flat_map(|action| action.steps.iter().map(|s| (s.servo_id, s.degree, s.interval_10ms))).collect();
+    assert_eq!(added.len(), 2, "{steps:?}");
+    // The ramp: 60° (7.5° × 8) in about 2 s, servo 3 staying at 0; then the hold.
+    assert_eq!((steps[0].0, steps[0].1), (1, 60), "{steps:?}");
+    assert!((steps[0].2 - 200).abs() <= 5, "{steps:?}");
+    assert_eq!((steps[1].0, steps[1].1), (3, 0), "{steps:?}");
+    assert_eq!((steps[2].0, steps[2].1), (1, 60), "{steps:?}");
+    let recorded = servo.macros.last().unwrap();
+    let runs: Vec<i32> = recorded
+        .commands
+        .iter()
+        .map(|command| match command.run {
+            project::Run::Action { action_id } => action_id,
+            _ => 0,
+        })
+        .collect();
+    assert_eq!(runs, added.iter().map(|action| action.id).collect::<Vec<_>>(), "the macro runs them in order");
+    let status = harness.state().status.as_ref().unwrap().text.clone();
+    assert!(status.contains("→ 2 actions, run in order by macro"), "{status}");
+    harness.state_mut().apply(Action::Undo);
+    harness.step();
+    assert_eq!(harness.state().document.project.servo.actions.len(), actions_before, "one undo step");
 }

@@ -221,6 +221,20 @@ pub struct Strings {
     pub save_as: &'static str,
     /// "Recent".
     pub recent: &'static str,
+    /// "● Record".
+    pub record: &'static str,
+    /// "■ Stop recording".
+    pub stop_recording: &'static str,
+    /// "Recording in" (the count-in).
+    pub count_in: &'static str,
+    /// "REC".
+    pub recording: &'static str,
+    /// "Recorded and fitted".
+    pub msg_recorded: &'static str,
+    /// Nothing was sampled.
+    pub msg_nothing_recorded: &'static str,
+    /// "largest error" (of a fitted recording).
+    pub largest_error: &'static str,
     /// "Retime" (scale a span's times).
     pub retime: &'static str,
     /// "total".

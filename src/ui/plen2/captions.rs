@@ -77,26 +77,12 @@ pub struct Plen2Captions {
     pub largest_deviation: &'static str,
     /// "the tolerance was widened from 1° so the curves fit in 20 frames".
     pub tolerance_widened: &'static str,
-    /// "● Record".
-    pub record: &'static str,
     /// What Record does (hover text).
     pub record_hint: &'static str,
-    /// "■ Stop recording".
-    pub stop_recording: &'static str,
-    /// "Recording in" (the count-in).
-    pub count_in: &'static str,
-    /// "REC".
-    pub recording: &'static str,
-    /// "Recorded and fitted".
-    pub msg_recorded: &'static str,
-    /// Nothing was sampled.
-    pub msg_nothing_recorded: &'static str,
     /// The motion has no room.
     pub msg_no_room: &'static str,
     /// Too long for the frames left.
     pub msg_recording_too_long: &'static str,
-    /// "largest error" (of a fitted recording).
-    pub largest_error: &'static str,
     /// "frames inserted after frame".
     pub frames_inserted_after: &'static str,
     /// The retimed span's last frame: "to frame".
@@ -143,16 +129,9 @@ const ENGLISH: Plen2Captions = Plen2Captions {
     frames_of_20: "frames of 20",
     largest_deviation: "largest deviation from the curves",
     tolerance_widened: "the tolerance was widened from 1° so the curves fit in 20 frames",
-    record: "● Record",
     record_hint: "Record the joints as you move them (sliders, keys, a gamepad), after a 3 s count-in; Stop fits what you did into the fewest frames the robot plays within 1° (wider if the motion's 20 frames are short) and inserts them after the selected frame. One undo step.",
-    stop_recording: "■ Stop recording",
-    count_in: "Recording in",
-    recording: "REC",
-    msg_recorded: "Recorded and fitted",
-    msg_nothing_recorded: "Nothing was recorded (stopped during the count-in)",
     msg_no_room: "The motion already holds 20 frames: nothing was inserted",
     msg_recording_too_long: "Too long for the frames left in the motion, at any tolerance: nothing was inserted",
-    largest_error: "largest error",
     frames_inserted_after: "frames inserted after frame",
     to_frame: "to frame",
     meant: "meant",
@@ -195,16 +174,9 @@ const TRADITIONAL_CHINESE: Plen2Captions = Plen2Captions {
     frames_of_20: "個影格（共 20）",
     largest_deviation: "與曲線的最大偏差",
     tolerance_widened: "為了讓曲線放進 20 個影格，容差已從 1° 放寬",
-    record: "● 錄製",
     record_hint: "倒數 3 秒後錄下你移動關節的過程（滑桿、按鍵、遊戲手把）；停止時會把動作擬合成機器人播放誤差在 1° 內的最少影格（動作的 20 個影格不夠時放寬），並插入在所選影格之後。可一步復原。",
-    stop_recording: "■ 停止錄製",
-    count_in: "即將錄製",
-    recording: "錄製中",
-    msg_recorded: "已錄製並擬合",
-    msg_nothing_recorded: "沒有錄到任何內容（在倒數時停止）",
     msg_no_room: "此動作已有 20 個影格：沒有插入任何內容",
     msg_recording_too_long: "對動作剩下的影格來說太長，任何容差都放不下：沒有插入任何內容",
-    largest_error: "最大誤差",
     frames_inserted_after: "個影格，插入在影格之後：",
     to_frame: "到影格",
     meant: "預期",

@@ -5,7 +5,6 @@
 //! Shift+←/→ or PageDown/PageUp by 10°. Below, the joint settings editor
 //! (min / max / home).
 
-use crate::authoring::recording::Phase;
 use crate::project::Edit;
 use crate::project::plen2::{FACTORY_LIMIT_TENTHS_DEG, Joint, JointSetting, Plen2Project};
 use crate::ui::action::{Action, Plen2Action, Plen2Intent};
@@ -36,7 +35,7 @@ pub struct JointsView<'a> {
     /// The slot frames are captured into.
     pub capture_slot: Option<u8>,
     /// Where a recording is, if one runs.
-    pub recording: Option<Phase>,
+    pub recording: Option<crate::authoring::recording::Phase>,
 }
 
 /// Draws the panel: the 18 joints fill the height, the joint settings below
@@ -52,28 +51,16 @@ pub fn ui(ui: &mut egui::Ui, view: &JointsView<'_>, layout: &mut Layout, words: 
         {
             actions.push(Action::Plen2(Plen2Action::CaptureFrame { slot }));
         }
-        let captions = words.plen2();
-        match (view.recording, view.capture_slot) {
-            (Some(phase), _) => {
-                if ui.button(captions.stop_recording).clicked() {
-                    actions.push(Action::Plen2(Plen2Action::StopRecording));
-                }
-                let (text, color) = match phase {
-                    Phase::CountIn(left) => {
-                        (format!("{} {:.0}…", captions.count_in, left.ceil()), ui.visuals().warn_fg_color)
+        if view.capture_slot.is_some() || view.recording.is_some() {
+            match rows::record(ui, words, view.recording, words.plen2().record_hint) {
+                Some(true) => {
+                    if let Some(slot) = view.capture_slot {
+                        actions.push(Action::Plen2(Plen2Action::Record { slot }));
                     }
-                    Phase::Recording(for_s) => {
-                        (format!("● {} {for_s:.1} s", captions.recording), ui.visuals().error_fg_color)
-                    }
-                };
-                ui.colored_label(color, text);
-            }
-            (None, Some(slot)) => {
-                if ui.button(captions.record).on_hover_text(captions.record_hint).clicked() {
-                    actions.push(Action::Plen2(Plen2Action::Record { slot }));
                 }
+                Some(false) => actions.push(Action::Plen2(Plen2Action::StopRecording)),
+                None => {}
             }
-            (None, None) => {}
         }
     });
     let settings = (&mut layout.settings_share, &mut layout.settings_open);

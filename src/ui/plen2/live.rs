@@ -141,10 +141,10 @@ impl Plen2Ui {
     /// selected when recording began (one undo step); says how it went.
     pub(super) fn finish_recording(&mut self, shell: &mut Shell<'_>) {
         let Some(Recording { slot, after, recorder }) = self.recording.take() else { return };
-        let captions = shell.words().plen2();
+        let (shared, captions) = (shell.words(), shell.words().plen2());
         let names = Joint::ALL.iter().map(|joint| joint.name().to_string()).collect();
         let Some(recorded) = recorder.finish(names) else {
-            shell.report(captions.msg_nothing_recorded, true);
+            shell.report(shared.msg_nothing_recorded, true);
             return;
         };
         let rows = recorded.resample(PLEN2_UPDATE_MS);
@@ -181,9 +181,9 @@ impl Plen2Ui {
         let seconds = rows.len() as f64 * PLEN2_UPDATE_MS / 1000.0;
         let mut said = format!(
             "{}: {seconds:.1} s → {count} {} {after} · {} {:.1}°",
-            captions.msg_recorded,
+            shared.msg_recorded,
             captions.frames_inserted_after,
-            captions.largest_error,
+            shared.largest_error,
             fitted.max_error / 10.0
         );
         if let Some(wider) = widened {

@@ -5,6 +5,8 @@ use std::time::{Duration, Instant};
 
 use super::ServoLink;
 use super::{CAPTURED_STEP_INTERVAL_10MS, LIVE_MOVE_INTERVAL_10MS, ServoUi};
+use crate::authoring::fit::{self, Board, ServoBoard};
+use crate::authoring::fitted::{self, SERVO_UPDATE_MS};
 use crate::device::servo::ServoMove;
 use crate::project::{Action as ProjectAction, Edit, ServoProject, Step, next_free_id};
 use crate::ui::servo::captions::ServoWords;
@@ -100,6 +102,48 @@ impl ServoUi {
         let caption = format!("{} {id}", shell.words().pose);
         shell.document.apply(Edit::AddAction(ProjectAction { id, caption: caption.clone(), steps }), None);
         shell.report(format!("{} {id} \"{caption}\"", shell.words().servo().msg_captured), false);
+    }
+
+    /// Fits what was recorded into steps — one action each, and a macro
+    /// running them in order — and adds them (one undo step); says how it went.
+    pub(super) fn finish_recording(&mut self, shell: &mut Shell<'_>) {
+        let Some(recorder) = self.recording.take() else { return };
+        let (shared, captions) = (shell.words(), shell.words().servo());
+        let project = &shell.document.project.servo;
+        let names = project.servos.iter().map(|servo| servo.id.to_string()).collect();
+        let rows = recorder.finish(names).map(|recorded| recorded.resample(SERVO_UPDATE_MS)).unwrap_or_default();
+        let Some((first, rest)) = rows.split_first().filter(|(_, rest)| !rest.is_empty()) else {
+            shell.report(shared.msg_nothing_recorded, true);
+            return;
+        };
+        // From where the servos were when recording began, within 1°.
+        let start: Vec<i32> = first.iter().map(|&value| ServoBoard.store(value)).collect();
+        let fitted = fit::fit(&ServoBoard, &start, rest, 1.0);
+        let ids: Vec<u8> = project.servos.iter().map(|servo| servo.id).collect();
+        let mut changed = project.clone();
+        let macro_id = next_free_id(changed.macros.iter().map(|item| item.id));
+        let caption = format!("{} {macro_id}", captions.recording_caption);
+        let mut added = fitted::servo_actions(&fitted, &ids, 0, &caption);
+        for action in &mut added {
+            action.id = next_free_id(changed.actions.iter().map(|known| known.id));
+            changed.actions.push(action.clone());
+        }
+        changed.macros.push(fitted::macro_running(macro_id, &caption, &added));
+        shell.document.apply(Edit::ReplaceAll(Box::new(changed)), None);
+        // Update counts at most an hour's: exact.
+        #[allow(clippy::cast_precision_loss)]
+        let seconds = rest.len() as f64 * SERVO_UPDATE_MS / 1000.0;
+        shell.report(
+            format!(
+                "{}: {seconds:.1} s → {} {} {macro_id} \"{caption}\" · {} {:.1}°",
+                shared.msg_recorded,
+                added.len(),
+                captions.actions_run_by_macro,
+                shared.largest_error,
+                fitted.max_error
+            ),
+            false,
+        );
     }
 
     /// Sends an action's steps as one live move (clamped to each servo's limits)

@@ -72,6 +72,8 @@ pub struct ServoUi {
     /// The live move each servo was last sent, to tell where it is now (the
     /// board moves it linearly): the live speed limit counts from there.
     moving: BTreeMap<u8, live::Moving>,
+    /// The sliders being recorded.
+    recording: Option<crate::authoring::recording::Recorder>,
     /// A board comparison waiting for the user's go-ahead.
     pub pending: Option<PendingConfirm>,
     /// The outcome of the last board operation.
@@ -109,6 +111,8 @@ impl ServoUi {
     /// Applies one of the family's actions.
     pub fn apply(&mut self, shell: &mut Shell<'_>, action: ServoAction) {
         match action {
+            ServoAction::Record => self.recording = Some(crate::authoring::recording::Recorder::new()),
+            ServoAction::StopRecording => self.finish_recording(shell),
             ServoAction::SetPose { servo_id, degree } => self.set_pose(shell, servo_id, degree),
             ServoAction::SetHold { servo_id, hold } => {
                 if let Some(servo) = shell.servo_mut() {
@@ -239,6 +243,18 @@ impl FamilyUi for ServoUi {
         let project = &view.project.servo;
         let words = view.language.strings();
         let connected = view.link.is_some();
+        // Recording samples the sliders every frame, whichever tab shows, on the window's clock.
+        let now_s = ui.input(|input| input.time);
+        let phase = self.recording.as_mut().map(|recorder| {
+            let values: Vec<f64> = project
+                .servos
+                .iter()
+                .map(|servo| f64::from(self.pose.get(&servo.id).copied().unwrap_or(servo.home_deg)))
+                .collect();
+            recorder.sample(now_s, &values);
+            ui.ctx().request_repaint();
+            recorder.phase(now_s)
+        });
         match tab {
             Tab::Actions => self.actions.ui(ui, view, (&mut self.layout, &mut self.figure), actions),
             Tab::Macros => self.macros.ui(ui, view, (&mut self.layout, &mut self.figure), actions),
@@ -259,6 +275,7 @@ impl FamilyUi for ServoUi {
                     pose: &self.pose,
                     readback: view.link.and_then(|link| link.servo()).map(|servo| &servo.servos),
                     polling: self.polling,
+                    recording: phase,
                 };
                 let (mut side, open) = (self.layout.side_width, self.layout.view_open);
                 let (panel, layout, figure) = (&mut self.sliders, &mut self.layout, &mut self.figure);
@@ -321,6 +338,7 @@ impl FamilyUi for ServoUi {
     }
 
     fn document_replaced(&mut self, project: &Project) {
+        self.recording = None;
         self.replace_document(&project.servo);
     }
 

@@ -23,6 +23,8 @@ pub struct ServoView<'a> {
     pub readback: Option<&'a BTreeMap<u8, ServoStatus>>,
     /// Whether angles are being read back.
     pub polling: bool,
+    /// Where a recording is, if one runs.
+    pub recording: Option<crate::authoring::recording::Phase>,
 }
 
 /// The servo panel's own state: which widget is whose slider.
@@ -48,6 +50,11 @@ impl ServoPanel {
             ui.heading(words.servos);
             if ui.button(words.servo().capture_pose).clicked() {
                 actions.push(Action::Servo(ServoAction::CapturePose { from_board: false }));
+            }
+            match rows::record(ui, words, view.recording, words.servo().record_hint) {
+                Some(true) => actions.push(Action::Servo(ServoAction::Record)),
+                Some(false) => actions.push(Action::Servo(ServoAction::StopRecording)),
+                None => {}
             }
             if view.readback.is_some() {
                 if ui.button(words.servo().capture_from_board).clicked() {
