@@ -227,17 +227,22 @@ pub enum FitError {
     },
 }
 
-/// [`fit`] with at most `allowed` moves. When the tolerance needs more, the
-/// error names the smallest tolerance that fits, found in steps of
-/// `resolution` (board units).
-pub fn fit_within(
-    board: &impl Board,
-    start: &[i32],
-    rows: &[Vec<f64>],
-    tolerance: f64,
-    allowed: usize,
-    resolution: f64,
-) -> Result<Fit, FitError> {
+/// What a fit may cost: how far it may stray, how many moves it may take,
+/// and the steps in which a wider tolerance is looked for (board units).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Budget {
+    /// How far the board's output may stray from a sample.
+    pub tolerance: f64,
+    /// The most moves.
+    pub allowed: usize,
+    /// The steps of a wider tolerance (a PLEN2's tenth of a degree, say).
+    pub resolution: f64,
+}
+
+/// [`fit`] with at most `budget.allowed` moves. When the tolerance needs
+/// more, the error names the smallest tolerance that fits.
+pub fn fit_within(board: &impl Board, start: &[i32], rows: &[Vec<f64>], budget: Budget) -> Result<Fit, FitError> {
+    let Budget { tolerance, allowed, .. } = budget;
     let fitted = fit(board, start, rows, tolerance);
     if fitted.moves.len() <= allowed {
         return Ok(fitted);
@@ -247,22 +252,16 @@ pub fn fit_within(
     if needed > allowed {
         return Err(FitError::TooLong { updates: rows.len(), needed, longest, allowed });
     }
-    let (smallest, _) = widest_needed(board, start, rows, tolerance, allowed, resolution);
+    let (smallest, _) = widest_needed(board, start, rows, budget);
     Err(FitError::Tolerance { needed: fitted.moves.len(), allowed, tolerance, smallest })
 }
 
-/// The smallest tolerance at or above `tolerance`, in steps of `resolution`,
-/// whose fit takes at most `allowed` moves, and that fit (a search by halves:
-/// a wider tolerance never needs many more moves). Assumes the movement is
-/// short enough for `allowed` moves at some tolerance.
-pub fn widest_needed(
-    board: &impl Board,
-    start: &[i32],
-    rows: &[Vec<f64>],
-    tolerance: f64,
-    allowed: usize,
-    resolution: f64,
-) -> (f64, Fit) {
+/// The smallest tolerance at or above the budget's, in steps of its
+/// resolution, whose fit takes at most the moves allowed, and that fit (a
+/// search by halves: a wider tolerance never needs many more moves). Assumes
+/// the movement is short enough for them at some tolerance.
+pub fn widest_needed(board: &impl Board, start: &[i32], rows: &[Vec<f64>], budget: Budget) -> (f64, Fit) {
+    let Budget { tolerance, allowed, resolution } = budget;
     let resolution = resolution.max(f64::EPSILON);
     let span = rows
         .iter()
@@ -375,7 +374,7 @@ mod tests {
         let values: Vec<f64> = (1..=300).map(|k| 400.0 * (omega * f64::from(k) / 50.0).sin()).collect();
         let rows = rows_of(&values);
         let Err(FitError::Tolerance { needed, allowed, smallest, .. }) =
-            fit_within(&Plen2Board, &[0], &rows, 10.0, 4, 1.0)
+            fit_within(&Plen2Board, &[0], &rows, Budget { tolerance: 10.0, allowed: 4, resolution: 1.0 })
         else {
             panic!("4 frames cannot hold three periods within 1°");
         };
@@ -385,7 +384,7 @@ mod tests {
         assert!(fit(&Plen2Board, &[0], &rows, smallest - 1.0).moves.len() > 4, "{smallest} is the smallest");
         let too_long = rows_of(&[0.0; 1000]);
         assert!(matches!(
-            fit_within(&Plen2Board, &[0], &too_long, 10.0, 3, 1.0),
+            fit_within(&Plen2Board, &[0], &too_long, Budget { tolerance: 10.0, allowed: 3, resolution: 1.0 }),
             Err(FitError::TooLong { needed: 4, .. })
         ));
     }

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 
-use servo_studio::authoring::fit::{self, Board, Fit, FitError, Plen2Board, ServoBoard};
+use servo_studio::authoring::fit::{self, Board, Budget, Fit, FitError, Plen2Board, ServoBoard};
 use servo_studio::authoring::fitted::{self, PLEN2_UPDATE_MS, SERVO_UPDATE_MS};
 use servo_studio::authoring::recording::Recording;
 use servo_studio::project::plen2::{JOINTS, Joint, MAX_FRAMES, Motion};
@@ -90,7 +90,8 @@ fn plen2(recording: &Recording, request: &FitRequest, name: &str) -> anyhow::Res
         anyhow::bail!("--max-frames {allowed}: a PLEN2 motion holds at most {MAX_FRAMES} frames");
     }
     // `$PM` from power-up: every joint's frame buffer at 0 (plen2.md §6), as `trajectory` plays.
-    let fit = fitted_within(&Plen2Board, &[0; JOINTS], &rows, request.tolerance_deg * 10.0, allowed, 1.0, 10.0)?;
+    let budget = Budget { tolerance: request.tolerance_deg * 10.0, allowed, resolution: 1.0 };
+    let fit = fitted_within(&Plen2Board, &[0; JOINTS], &rows, budget, 10.0)?;
     if !name.is_ascii() || name.len() > 20 {
         anyhow::bail!("--name {name:?}: a PLEN2 motion's name is at most 20 ASCII characters");
     }
@@ -132,7 +133,8 @@ fn servo(recording: &Recording, request: &FitRequest, name: &str) -> anyhow::Res
         servo.home_deg = servo.clamp(i16::try_from(home).unwrap_or(0));
     }
     let allowed = request.max_frames.unwrap_or(project::MAX_LIST_LEN);
-    let fit = fitted_within(&ServoBoard, &start, rest, request.tolerance_deg, allowed, 0.1, 1.0)?;
+    let budget = Budget { tolerance: request.tolerance_deg, allowed, resolution: 0.1 };
+    let fit = fitted_within(&ServoBoard, &start, rest, budget, 1.0)?;
     let ids: Vec<u8> = servos.iter().map(|servo| servo.id).collect();
     let actions = fitted::servo_actions(&fit, &ids, 1, name);
     let macros = vec![fitted::macro_running(1, name, &actions)];
@@ -146,12 +148,11 @@ fn fitted_within(
     board: &impl Board,
     start: &[i32],
     rows: &[Vec<f64>],
-    tolerance: f64,
-    allowed: usize,
-    resolution: f64,
+    budget: Budget,
     per_degree: f64,
 ) -> anyhow::Result<Fit> {
-    fit::fit_within(board, start, rows, tolerance, allowed, resolution).map_err(|error| match error {
+    let tolerance = budget.tolerance;
+    fit::fit_within(board, start, rows, budget).map_err(|error| match error {
         FitError::Tolerance { needed, allowed, smallest, .. } => anyhow::anyhow!(
             "{needed} frames are needed to stay within {}° and at most {allowed} are allowed: the smallest tolerance that fits is --tolerance-deg {}. Nothing was written",
             tolerance / per_degree,

@@ -8,7 +8,7 @@ use super::Plen2Link;
 use super::Plen2Ui;
 use super::joints::limits;
 use crate::authoring::bake::{DEFAULT_TOLERANCE_TENTHS, bake_plen2};
-use crate::authoring::fit::{self, FitError, Plen2Board};
+use crate::authoring::fit::{self, Budget, FitError, Plen2Board};
 use crate::authoring::fitted::{PLEN2_UPDATE_MS, plen2_frames};
 use crate::authoring::recording::Recorder;
 use crate::project::Edit;
@@ -160,10 +160,11 @@ impl Plen2Ui {
         let start: Vec<i32> =
             motion.frames.get(after).map_or([0; 18], |frame| frame.values_tenths_deg.0).map(i32::from).to_vec();
         let tolerance = DEFAULT_TOLERANCE_TENTHS;
-        let (fitted, widened) = match fit::fit_within(&Plen2Board, &start, &rows, tolerance, allowed, 1.0) {
+        let budget = Budget { tolerance, allowed, resolution: 1.0 };
+        let (fitted, widened) = match fit::fit_within(&Plen2Board, &start, &rows, budget) {
             Ok(fitted) => (fitted, None),
             Err(FitError::Tolerance { .. }) => {
-                let (wider, fitted) = fit::widest_needed(&Plen2Board, &start, &rows, tolerance, allowed, 1.0);
+                let (wider, fitted) = fit::widest_needed(&Plen2Board, &start, &rows, budget);
                 (fitted, Some(wider))
             }
             Err(FitError::TooLong { .. }) => {
