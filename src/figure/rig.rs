@@ -127,7 +127,7 @@ mod tests {
 
     fn rigged(id: u8, parent: Option<u8>, offset_mm: [i16; 3], axis: RigAxis) -> Servo {
         let mut servo = Servo::new(id, format!("s{id}"));
-        servo.rig = Some(RigJoint { parent, offset_mm, axis, reversed: false, straight_deg: 0 });
+        servo.rig = Some(RigJoint { parent, offset_mm, axis, reversed: false, straight_deg: 0, mirror: None });
         servo
     }
 

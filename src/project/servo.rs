@@ -73,6 +73,10 @@ pub struct RigJoint {
     /// servos mounted on it are given), °.
     #[serde(default)]
     pub straight_deg: i16,
+    /// Its twin on the other side (Mirror L/R hands a move to it, the angle
+    /// reflected about their homes); either twin may name the other.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mirror: Option<u8>,
 }
 
 /// An axis of a link's frame.
@@ -254,6 +258,29 @@ impl ServoProject {
     /// The servo with this id.
     pub fn servo(&self, servo_id: u8) -> Option<&Servo> {
         self.servos.iter().find(|servo| servo.id == servo_id)
+    }
+
+    /// The servo's twin on the other side, as either one's rig names it.
+    pub fn twin(&self, servo_id: u8) -> Option<&Servo> {
+        let named = self.servo(servo_id)?.rig.and_then(|rig| rig.mirror);
+        let naming = || self.servos.iter().find(|other| other.rig.and_then(|rig| rig.mirror) == Some(servo_id));
+        named.and_then(|id| self.servo(id)).filter(|twin| twin.id != servo_id).or_else(naming)
+    }
+
+    /// Steps mirrored left↔right: a servo with a twin hands its move to it,
+    /// the angle reflected about their homes and kept within the twin's
+    /// limits; a servo without one keeps its step.
+    pub fn mirrored(&self, steps: &[Step]) -> Vec<Step> {
+        steps
+            .iter()
+            .map(|step| match (self.servo(step.servo_id), self.twin(step.servo_id)) {
+                (Some(servo), Some(twin)) => {
+                    let from_home = step.degree.saturating_sub(servo.home_deg);
+                    Step { servo_id: twin.id, degree: twin.clamp(twin.home_deg.saturating_sub(from_home)), ..*step }
+                }
+                _ => *step,
+            })
+            .collect()
     }
 
     /// The action with this id.

@@ -29,6 +29,7 @@ fn rig() -> impl Strategy<Value = Option<RigJoint>> {
                 axis: RigAxis::ALL[axis],
                 reversed,
                 straight_deg,
+                mirror: None,
             },
         ),
     )

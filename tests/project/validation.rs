@@ -155,7 +155,7 @@ fn macro_cycles_direct_and_indirect() {
 }
 
 fn rig(parent: Option<u8>) -> Option<RigJoint> {
-    Some(RigJoint { parent, offset_mm: [0, 30, 0], axis: RigAxis::Y, reversed: false, straight_deg: 0 })
+    Some(RigJoint { parent, offset_mm: [0, 30, 0], axis: RigAxis::Y, reversed: false, straight_deg: 0, mirror: None })
 }
 
 #[test]

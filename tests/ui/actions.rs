@@ -102,3 +102,33 @@ fn an_actions_steps_are_retimed_together() {
     harness.run();
     assert_eq!(intervals(&harness), before);
 }
+
+/// The sample robot's rig names each left servo's twin: Mirror L/R turns the
+/// right-arm wave into a left-arm wave, angles reflected about home, one undo step.
+#[test]
+fn mirror_hands_each_step_to_its_twin_reflected_about_home() {
+    let sample = project::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/sample-biped.json")).unwrap();
+    let mut servo = sample.servo;
+    // A home off zero on one twin: the reflection is about each one's home.
+    servo.servos.iter_mut().find(|s| s.id == 2).unwrap().home_deg = 10;
+    let wave = servo.actions.iter().position(|action| action.id == 2).unwrap();
+    servo.actions.swap(0, wave);
+    let mut harness = harness(servo);
+    let steps = |harness: &Harness<'static, StudioApp>| -> Vec<(u8, i16)> {
+        let mut steps: Vec<(u8, i16)> =
+            harness.state().document.project.servo.actions[0].steps.iter().map(|s| (s.servo_id, s.degree)).collect();
+        steps.sort_unstable();
+        steps
+    };
+    let before = steps(&harness);
+    assert_eq!(&before[..6], &[(1, 0), (2, 0), (3, 0), (4, -80), (5, 60), (6, -45)]);
+    harness.get_by_label("Mirror L/R").click();
+    harness.run();
+    // Servo 5's 60° from its home 0 becomes servo 2's 10° − 60°; servo 2's 0° (−10° from its
+    // home) becomes servo 5's +10°.
+    assert_eq!(&steps(&harness)[..6], &[(1, 80), (2, -50), (3, 45), (4, 0), (5, 10), (6, 0)]);
+    assert_eq!(steps(&harness)[6..], before[6..], "the legs' twins hold 0 both sides");
+    harness.state_mut().apply(Action::Undo);
+    harness.run();
+    assert_eq!(steps(&harness), before);
+}

@@ -172,6 +172,15 @@ impl ActionPanel {
             if ui.button(words.preview).clicked() {
                 actions.push(Action::Servo(ServoAction::PreviewAction(action.id)));
             }
+            let twins = action.steps.iter().any(|step| project.twin(step.servo_id).is_some());
+            if ui
+                .add_enabled(twins, egui::Button::new(words.servo().mirror))
+                .on_hover_text(words.servo().mirror_hint)
+                .clicked()
+            {
+                let steps = project.mirrored(&action.steps);
+                actions.push(set(index, ProjectAction { steps, ..action.clone() }, None));
+            }
             if ui.button(words.remove).clicked() {
                 actions.push(Action::Edit { edit: Edit::RemoveAction { index }, coalesce: None });
             }

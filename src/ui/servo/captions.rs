@@ -145,6 +145,12 @@ pub struct ServoCaptions {
     pub mounted_on: &'static str,
     /// A rig joint's straight angle.
     pub straight_at: &'static str,
+    /// The rig table's twin column: "Twin (Mirror L/R)".
+    pub twin: &'static str,
+    /// "Mirror L/R".
+    pub mirror: &'static str,
+    /// What Mirror L/R does (hover text).
+    pub mirror_hint: &'static str,
     /// Whether a servo is in the rig.
     pub in_rig: &'static str,
 }
@@ -219,6 +225,9 @@ const ENGLISH: ServoCaptions = ServoCaptions {
     rig_hint: "Place the servos in a skeleton (Servo settings → Rig) to see the robot.",
     mounted_on: "Mounted on",
     straight_at: "Straight at (°)",
+    twin: "Twin (Mirror L/R)",
+    mirror: "Mirror L/R",
+    mirror_hint: "Each step moves the servo's twin instead (the rig's Twin column), its angle reflected about their homes: a left-arm wave becomes a right-arm wave. A servo without a twin keeps its step.",
     in_rig: "In rig",
 };
 
@@ -292,6 +301,9 @@ const TRADITIONAL_CHINESE: ServoCaptions = ServoCaptions {
     rig_hint: "在「舵機設定 → 骨架」中把舵機放進骨架，就能看到機器人。",
     mounted_on: "裝在",
     straight_at: "伸直角度（°）",
+    twin: "對側伺服機（左右鏡像）",
+    mirror: "左右鏡像",
+    mirror_hint: "每個步驟改由該伺服機的對側伺服機執行（骨架表的「對側」欄），角度以原點對稱反轉：左手揮手變成右手揮手。沒有對側的伺服機保留原步驟。",
     in_rig: "在骨架中",
 };
 

@@ -11,7 +11,7 @@ use crate::ui::servo::captions::ServoWords;
 
 /// A new servo in the rig: on the body, turning about y (a pitch).
 fn placed() -> RigJoint {
-    RigJoint { parent: None, offset_mm: [0, 0, 0], axis: RigAxis::Y, reversed: false, straight_deg: 0 }
+    RigJoint { parent: None, offset_mm: [0, 0, 0], axis: RigAxis::Y, reversed: false, straight_deg: 0, mirror: None }
 }
 
 fn axis_name(axis: RigAxis) -> &'static str {
@@ -32,6 +32,7 @@ pub fn table(ui: &mut egui::Ui, project: &ServoProject, height: f32, words: &Str
         words.axis,
         words.reversed,
         words.servo().straight_at,
+        words.servo().twin,
     ];
     // Wider than a narrow pane: it scrolls sideways rather than hide its last columns.
     egui::ScrollArea::horizontal().id_salt("servo-rig-sideways").show(ui, |ui| {
@@ -107,6 +108,27 @@ pub fn table(ui: &mut egui::Ui, project: &ServoProject, height: f32, words: &Str
                 let drag = egui::DragValue::new(&mut straight).range(-360..=360).suffix("°");
                 if ui.add(drag).labelled_by(row_id).changed() {
                     actions.push(set(Some(RigJoint { straight_deg: straight, ..rig }), "straight"));
+                }
+            });
+            row.col(|ui| {
+                let name = |twin: Option<u8>| match twin.and_then(|id| project.servo(id)) {
+                    None => "—".to_string(),
+                    Some(twin) => format!("{} {}", twin.id, twin.caption),
+                };
+                let mut mirror = rig.mirror;
+                egui::ComboBox::from_id_salt(("rig-twin", servo.id))
+                    .selected_text(name(mirror))
+                    .width(150.0)
+                    .show_ui(ui, |ui| {
+                        ui.selectable_value(&mut mirror, None, "—");
+                        for other in project.servos.iter().filter(|other| other.id != servo.id) {
+                            ui.selectable_value(&mut mirror, Some(other.id), name(Some(other.id)));
+                        }
+                    })
+                    .response
+                    .labelled_by(row_id);
+                if mirror != rig.mirror {
+                    actions.push(set(Some(RigJoint { mirror, ..rig }), "mirror"));
                 }
             });
         });
