@@ -52,21 +52,8 @@ pub fn table(ui: &mut egui::Ui, project: &ServoProject, height: f32, words: &Str
             });
             let Some(rig) = servo.rig else { return };
             row.col(|ui| {
-                let name = |parent: Option<u8>| match parent.and_then(|id| project.servo(id)) {
-                    None => words.body.to_string(),
-                    Some(parent) => format!("{} {}", parent.id, parent.caption),
-                };
                 let mut parent = rig.parent;
-                egui::ComboBox::from_id_salt(("rig-parent", servo.id))
-                    .selected_text(name(parent))
-                    .width(150.0)
-                    .show_ui(ui, |ui| {
-                        ui.selectable_value(&mut parent, None, words.body);
-                        for other in project.servos.iter().filter(|other| other.id != servo.id) {
-                            ui.selectable_value(&mut parent, Some(other.id), name(Some(other.id)));
-                        }
-                    })
-                    .response
+                other_servo(ui, ("rig-parent", servo.id), (project, servo.id), &mut parent, words.body)
                     .labelled_by(row_id);
                 if parent != rig.parent {
                     actions.push(set(Some(RigJoint { parent, ..rig }), "parent"));
@@ -111,26 +98,36 @@ pub fn table(ui: &mut egui::Ui, project: &ServoProject, height: f32, words: &Str
                 }
             });
             row.col(|ui| {
-                let name = |twin: Option<u8>| match twin.and_then(|id| project.servo(id)) {
-                    None => "—".to_string(),
-                    Some(twin) => format!("{} {}", twin.id, twin.caption),
-                };
                 let mut mirror = rig.mirror;
-                egui::ComboBox::from_id_salt(("rig-twin", servo.id))
-                    .selected_text(name(mirror))
-                    .width(150.0)
-                    .show_ui(ui, |ui| {
-                        ui.selectable_value(&mut mirror, None, "—");
-                        for other in project.servos.iter().filter(|other| other.id != servo.id) {
-                            ui.selectable_value(&mut mirror, Some(other.id), name(Some(other.id)));
-                        }
-                    })
-                    .response
-                    .labelled_by(row_id);
+                other_servo(ui, ("rig-twin", servo.id), (project, servo.id), &mut mirror, "—").labelled_by(row_id);
                 if mirror != rig.mirror {
                     actions.push(set(Some(RigJoint { mirror, ..rig }), "mirror"));
                 }
             });
         });
     });
+}
+
+/// A choice of another servo of the project than `own` (or `none`).
+fn other_servo(
+    ui: &mut egui::Ui,
+    id_salt: (&str, u8),
+    (project, own): (&ServoProject, u8),
+    value: &mut Option<u8>,
+    none: &str,
+) -> egui::Response {
+    let name = |id: Option<u8>| match id.and_then(|id| project.servo(id)) {
+        None => none.to_string(),
+        Some(servo) => format!("{} {}", servo.id, servo.caption),
+    };
+    egui::ComboBox::from_id_salt(id_salt)
+        .selected_text(name(*value))
+        .width(150.0)
+        .show_ui(ui, |ui| {
+            ui.selectable_value(value, None, none);
+            for other in project.servos.iter().filter(|other| other.id != own) {
+                ui.selectable_value(value, Some(other.id), name(Some(other.id)));
+            }
+        })
+        .response
 }
