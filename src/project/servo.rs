@@ -268,17 +268,25 @@ impl ServoProject {
     }
 
     /// Steps mirrored left↔right: a servo with a twin hands its move to it,
-    /// the angle reflected about their homes and kept within the twin's
-    /// limits; a servo without one keeps its step.
+    /// turned as the mirror image of its own link (a pitch — about the
+    /// left-pointing y axis — keeps its sense, a roll or a yaw turns the other
+    /// way; each side's `reversed` and `straight_deg` applied), within the
+    /// twin's limits. A servo without a twin (or a rig) keeps its step.
     pub fn mirrored(&self, steps: &[Step]) -> Vec<Step> {
+        let sense = |rig: &RigJoint| if rig.reversed { -1 } else { 1 };
         steps
             .iter()
-            .map(|step| match (self.servo(step.servo_id), self.twin(step.servo_id)) {
-                (Some(servo), Some(twin)) => {
-                    let from_home = step.degree.saturating_sub(servo.home_deg);
-                    Step { servo_id: twin.id, degree: twin.clamp(twin.home_deg.saturating_sub(from_home)), ..*step }
-                }
-                _ => *step,
+            .map(|step| {
+                let own = self.servo(step.servo_id).and_then(|servo| servo.rig);
+                let twin = self.twin(step.servo_id);
+                let (Some(own), Some((twin, other))) = (own, twin.and_then(|twin| Some((twin, twin.rig?)))) else {
+                    return *step;
+                };
+                let reflect = if own.axis == RigAxis::Y { 1 } else { -1 };
+                let turned = sense(&own) * (i32::from(step.degree) - i32::from(own.straight_deg));
+                let angle = i32::from(other.straight_deg) + sense(&other) * reflect * turned;
+                let angle = i16::try_from(angle.clamp(i32::from(i16::MIN), i32::from(i16::MAX))).unwrap_or(0);
+                Step { servo_id: twin.id, degree: twin.clamp(angle), ..*step }
             })
             .collect()
     }

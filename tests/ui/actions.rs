@@ -104,13 +104,14 @@ fn an_actions_steps_are_retimed_together() {
 }
 
 /// The sample robot's rig names each left servo's twin: Mirror L/R turns the
-/// right-arm wave into a left-arm wave, angles reflected about home, one undo step.
+/// right-arm wave into a left-arm wave, each joint turned as the mirror image
+/// of its twin's link, one undo step.
 #[test]
 fn mirror_hands_each_step_to_its_twin_reflected_about_home() {
     let sample = project::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/sample-biped.json")).unwrap();
     let mut servo = sample.servo;
-    // A home off zero on one twin: the reflection is about each one's home.
-    servo.servos.iter_mut().find(|s| s.id == 2).unwrap().home_deg = 10;
+    // A twin straight at 10°: the mirror image is of the link, not of the number.
+    servo.servos.iter_mut().find(|s| s.id == 2).unwrap().rig.as_mut().unwrap().straight_deg = 10;
     let wave = servo.actions.iter().position(|action| action.id == 2).unwrap();
     servo.actions.swap(0, wave);
     let mut harness = harness(servo);
@@ -124,11 +125,43 @@ fn mirror_hands_each_step_to_its_twin_reflected_about_home() {
     assert_eq!(&before[..6], &[(1, 0), (2, 0), (3, 0), (4, -80), (5, 60), (6, -45)]);
     harness.get_by_label("Mirror L/R").click();
     harness.run();
-    // Servo 5's 60° from its home 0 becomes servo 2's 10° − 60°; servo 2's 0° (−10° from its
-    // home) becomes servo 5's +10°.
-    assert_eq!(&steps(&harness)[..6], &[(1, 80), (2, -50), (3, 45), (4, 0), (5, 10), (6, 0)]);
+    // Pitches (shoulder 4 → 1, elbow 6 → 3) keep their sense: the left arm rises as the right did.
+    // Shoulder roll 5 is reversed, 2 is not: 5's 60° turns its link −60° about x; the mirror
+    // image turns 2's link +60°, from its straight 10°: 70°. Back the other way, 2's 0° is its
+    // link at −10°; mirrored +10°, reversed on 5: −10°.
+    assert_eq!(&steps(&harness)[..6], &[(1, -80), (2, 70), (3, -45), (4, 0), (5, -10), (6, 0)]);
     assert_eq!(steps(&harness)[6..], before[6..], "the legs' twins hold 0 both sides");
     harness.state_mut().apply(Action::Undo);
     harness.run();
     assert_eq!(steps(&harness), before);
+}
+
+/// Checked on the rig's own geometry, not on the formula: the sample robot
+/// posed with its right-arm wave and with that wave mirrored puts every
+/// left arm link where the right one was, reflected through the body's
+/// middle (y → −y), turned as its mirror image.
+#[test]
+fn a_mirrored_pose_is_the_mirror_image_of_the_robot() {
+    use servo_studio::figure::{Mat3, Vec3, rig};
+    use std::collections::BTreeMap;
+    let sample = project::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/sample-biped.json")).unwrap();
+    let servo = sample.servo;
+    let wave = servo.action(2).unwrap();
+    let right: Vec<Step> = wave.steps.iter().filter(|step| (4..=6).contains(&step.servo_id)).copied().collect();
+    let left = servo.mirrored(&right);
+    let (chain, index_of) = rig::chain(&servo);
+    let placed = |steps: &[Step]| {
+        let degrees: BTreeMap<u8, f64> = steps.iter().map(|step| (step.servo_id, f64::from(step.degree))).collect();
+        chain.pose(&rig::angles(&servo, &index_of, &degrees, chain.links.len()))
+    };
+    let (right_pose, left_pose) = (placed(&right), placed(&left));
+    let flip = Mat3::from_diagonal(Vec3::new(1.0, -1.0, 1.0));
+    for (right_id, left_id) in [(4u8, 1u8), (5, 2), (6, 3)] {
+        let (r, l) = (&right_pose[index_of[&right_id]], &left_pose[index_of[&left_id]]);
+        let reflected = flip * r.position;
+        assert!((l.position - reflected).length() < 0.5, "servo {left_id}'s joint at {} for {reflected}", l.position);
+        // A link's axes reflected: the mirror image of its frame, its y column flipped back.
+        let image = flip * r.rotation * flip;
+        assert!(l.rotation.abs_diff_eq(image, 1e-3), "servo {left_id}: {} vs {image}", l.rotation);
+    }
 }
