@@ -456,8 +456,7 @@ fn joint_series(motion: &Motion, words: &Strings) -> plot::Series {
 }
 
 fn curve_series(motion: &Motion, words: &Strings) -> plot::Series {
-    use crate::device::plen2::playback::{self, StoredMotions};
-    use crate::protocol::plen2::playback::cycles_for;
+    use crate::device::plen2::playback::{self, StoredMotions, cycles_for};
     let cycle_ms = crate::authoring::fitted::PLEN2_UPDATE_MS;
     // The curve meant, cycle by cycle, from power-up (as the bake and `trajectory` start).
     let mut meant: Vec<Vec<f64>> = vec![vec![0.0; Joint::ALL.len()]];
