@@ -119,17 +119,25 @@ fn a_servo_action_and_macro_are_one_row_per_10_ms_in_degrees() {
     assert!(trajectory(dir.path(), &[project.to_str().unwrap(), "--macro", "8"]).unwrap_err().contains("no macro 8"));
 }
 
-#[test]
-fn the_official_motions_take_the_cycles_their_transitions_say() {
+/// The official motion files in name order, or `None` (said on stderr) when
+/// `../shared` is absent.
+fn official_motions() -> Option<Vec<PathBuf>> {
     let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/plen2/motions");
     if !folder.is_dir() {
         eprintln!("skipped: {} is absent", folder.display());
-        return;
+        return None;
     }
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&folder).unwrap().map(|entry| entry.unwrap().path()).collect();
+    files.sort();
+    Some(files)
+}
+
+#[test]
+fn the_official_motions_take_the_cycles_their_transitions_say() {
+    let Some(files) = official_motions() else { return };
     let dir = tempfile::tempdir().unwrap();
     let mut checked = 0;
-    for entry in std::fs::read_dir(&folder).unwrap() {
-        let path = entry.unwrap().path();
+    for path in files {
         let motion: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
         let slot = motion["slot"].as_u64().unwrap().to_string();
         let codes = motion["codes"].as_array().unwrap();
@@ -321,14 +329,8 @@ fn a_fitted_servo_recording_plays_back_within_the_tolerance() {
 
 #[test]
 fn fitting_the_official_motions_gives_them_back_within_the_tolerance_in_no_more_frames() {
-    let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/plen2/motions");
-    if !folder.exists() {
-        eprintln!("skipped: {} is absent", folder.display());
-        return;
-    }
+    let Some(files) = official_motions() else { return };
     let dir = tempfile::tempdir().unwrap();
-    let mut files: Vec<PathBuf> = std::fs::read_dir(&folder).unwrap().map(|entry| entry.unwrap().path()).collect();
-    files.sort();
     assert_eq!(files.len(), 90);
     let (mut original_frames, mut fitted_frames) = (0, 0);
     for file in files {

@@ -116,7 +116,7 @@ pub(in crate::ui::i18n) const TRADITIONAL_CHINESE: Strings = Strings {
     count_in: "即將錄製",
     recording: "錄製中",
     msg_recorded: "已錄製並擬合",
-    msg_nothing_recorded: "沒有錄到任何內容（在倒數時停止）",
+    msg_nothing_recorded: "沒有錄到任何內容：在倒數時就停止了。請再按一次錄製，等計時開始後再移動",
     largest_error: "最大誤差",
     retime: "調整時間",
     to_total: "總長",

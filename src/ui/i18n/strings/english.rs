@@ -116,7 +116,7 @@ pub(in crate::ui::i18n) const ENGLISH: Strings = Strings {
     count_in: "Recording in",
     recording: "REC",
     msg_recorded: "Recorded and fitted",
-    msg_nothing_recorded: "Nothing was recorded (stopped during the count-in)",
+    msg_nothing_recorded: "Nothing was recorded: it was stopped during the count-in. Press Record again and move once the clock runs",
     largest_error: "largest error",
     retime: "Retime",
     to_total: "total",
