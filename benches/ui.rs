@@ -579,7 +579,7 @@ fn view_costs() {
     let plen2 = view_median(|ui, rect| {
         let mut solids = chain.dress(&chain.pose(&figure::plen2::angles(&chain, &ghost)), true);
         solids.extend(chain.dress(&chain.pose(&figure::plen2::angles(&chain, &pose)), false));
-        view.show(ui, rect, &Scene { solids, ground_z: 0.0 }, "PLEN2");
+        view.show(ui, rect, &Scene { solids, ground_z: 0.0, ..Scene::default() }, "PLEN2");
     });
 
     // The demo biped mid-"Wave up", with where it goes as a ghost.
@@ -594,7 +594,7 @@ fn view_costs() {
         let links_len = chain.links.len();
         let mut solids = chain.dress(&chain.pose(&figure::rig::angles(&project, &links, &next, links_len)), true);
         solids.extend(chain.dress(&chain.pose(&figure::rig::angles(&project, &links, &now, links_len)), false));
-        view.show(ui, rect, &Scene { solids, ground_z: -400.0 }, "biped");
+        view.show(ui, rect, &Scene { solids, ground_z: -400.0, ..Scene::default() }, "biped");
     });
 
     // The base after ten minutes of driving circles: path and echo map full.

@@ -80,6 +80,8 @@ pub struct WorldSolid {
     pub color: [u8; 3],
     /// Drawn faint: a ghost of another pose.
     pub faint: bool,
+    /// The link it is fixed to (its index in the chain).
+    pub link: usize,
 }
 
 /// Links, each after its parent.
@@ -111,7 +113,7 @@ impl Chain {
     /// The solids of every link, placed.
     pub fn dress(&self, placed: &[Placed], faint: bool) -> Vec<WorldSolid> {
         let mut solids = Vec::new();
-        for (link, place) in self.links.iter().zip(placed) {
+        for (index, (link, place)) in self.links.iter().zip(placed).enumerate() {
             for solid in &link.solids {
                 let at = place.position + place.rotation * solid.at;
                 let shape = match solid.shape {
@@ -120,10 +122,18 @@ impl Chain {
                     }
                     shape => shape,
                 };
-                solids.push(WorldSolid { at, rotation: place.rotation, shape, color: solid.color, faint });
+                solids.push(WorldSolid { at, rotation: place.rotation, shape, color: solid.color, faint, link: index });
             }
         }
         solids
+    }
+
+    /// Where `link`'s joint is and the axis it turns about (world, unit), in
+    /// the pose `placed`; none for a link that does not turn.
+    pub fn joint(&self, placed: &[Placed], link: usize) -> Option<(Vec3, Vec3)> {
+        let axis = self.links.get(link)?.axis;
+        let place = placed.get(link)?;
+        (axis != Vec3::ZERO).then(|| (place.position, (place.rotation * axis).normalize()))
     }
 
     /// The index of the link named `name`.

@@ -1,10 +1,32 @@
 //! Undo and redo for the document: snapshots of the project, one per edit.
 //! Consecutive edits that share a coalescing key (one slider drag, one text
-//! field being typed into) make a single undo step.
+//! field being typed into) make a single undo step. A turn of a joint in the
+//! 3D view changes the live pose, which no file holds: its step keeps the
+//! pose from before it, in the same order as the edits.
+
+use std::collections::BTreeMap;
 
 use super::document::Project;
 #[cfg(test)]
 use super::servo::ServoProject;
+
+/// The live pose (what the sliders hold).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum LivePose {
+    /// A PLEN2's joints, tenths of a degree, device-map order.
+    Plen2([i16; 18]),
+    /// A servo board's servos, degrees by id.
+    Servo(BTreeMap<u8, i16>),
+}
+
+/// What one undo step brings back.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Step {
+    /// The project before an edit.
+    Project(Box<Project>),
+    /// The live pose before a turn in the 3D view.
+    Pose(LivePose),
+}
 
 /// Most undo steps kept.
 pub const MAX_UNDO_STEPS: usize = 200;
@@ -12,8 +34,8 @@ pub const MAX_UNDO_STEPS: usize = 200;
 /// The undo and redo stacks.
 #[derive(Debug, Default)]
 pub struct History {
-    undo: Vec<Project>,
-    redo: Vec<Project>,
+    undo: Vec<Step>,
+    redo: Vec<Step>,
     /// The key of the last recorded edit, while it may still be extended.
     open_key: Option<String>,
 }
@@ -27,11 +49,22 @@ impl History {
         if self.continues(key) {
             return;
         }
-        self.undo.push(before.clone());
+        self.push(Step::Project(Box::new(before.clone())));
+        self.open_key = key.map(str::to_string);
+    }
+
+    /// Records that the live pose is about to change from `before` (a turn in the 3D view).
+    pub fn record_pose(&mut self, before: LivePose) {
+        self.redo.clear();
+        self.push(Step::Pose(before));
+        self.open_key = None;
+    }
+
+    fn push(&mut self, step: Step) {
+        self.undo.push(step);
         if self.undo.len() > MAX_UNDO_STEPS {
             self.undo.remove(0);
         }
-        self.open_key = key.map(str::to_string);
     }
 
     /// Whether an edit with coalesce `key` joins the open step (so needs no snapshot).
@@ -44,20 +77,29 @@ impl History {
         self.open_key = None;
     }
 
-    /// Steps back: returns the project to show, given the current one.
-    pub fn undo(&mut self, current: &Project) -> Option<Project> {
+    /// Steps back: returns what to show, given the current project and
+    /// `pose_now`, the current live pose of the family a pose step is of.
+    pub fn undo(&mut self, current: &Project, pose_now: impl FnOnce(&LivePose) -> LivePose) -> Option<Step> {
         let previous = self.undo.pop()?;
-        self.redo.push(current.clone());
+        self.redo.push(Self::now(&previous, current, pose_now));
         self.open_key = None;
         Some(previous)
     }
 
     /// Steps forward again.
-    pub fn redo(&mut self, current: &Project) -> Option<Project> {
+    pub fn redo(&mut self, current: &Project, pose_now: impl FnOnce(&LivePose) -> LivePose) -> Option<Step> {
         let next = self.redo.pop()?;
-        self.undo.push(current.clone());
+        self.undo.push(Self::now(&next, current, pose_now));
         self.open_key = None;
         Some(next)
+    }
+
+    /// What stands now in place of `step`.
+    fn now(step: &Step, current: &Project, pose_now: impl FnOnce(&LivePose) -> LivePose) -> Step {
+        match step {
+            Step::Project(_) => Step::Project(Box::new(current.clone())),
+            Step::Pose(pose) => Step::Pose(pose_now(pose)),
+        }
     }
 
     /// Whether there is something to undo.
@@ -84,6 +126,39 @@ mod tests {
         Project::servo(ServoProject { project_id, ..ServoProject::default() })
     }
 
+    fn undo(history: &mut History, current: &Project) -> Option<Project> {
+        match history.undo(current, Clone::clone)? {
+            Step::Project(project) => Some(*project),
+            Step::Pose(pose) => panic!("a pose step: {pose:?}"),
+        }
+    }
+
+    fn redo(history: &mut History, current: &Project) -> Option<Project> {
+        match history.redo(current, Clone::clone)? {
+            Step::Project(project) => Some(*project),
+            Step::Pose(pose) => panic!("a pose step: {pose:?}"),
+        }
+    }
+
+    #[test]
+    fn a_pose_step_sits_between_edits_and_redo_brings_the_pose_it_replaced() {
+        let mut history = History::default();
+        history.record(&with_id(1), Some("drag"));
+        history.record_pose(LivePose::Plen2([5; 18]));
+        // The turn closed the drag's step: the next edit with the same key is its own step.
+        history.record(&with_id(2), Some("drag"));
+        let current = with_id(3);
+        assert_eq!(undo(&mut history, &current), Some(with_id(2)));
+        let turned = LivePose::Plen2([7; 18]);
+        assert_eq!(history.undo(&with_id(2), |_| turned.clone()), Some(Step::Pose(LivePose::Plen2([5; 18]))));
+        assert_eq!(undo(&mut history, &with_id(2)), Some(with_id(1)));
+        assert_eq!(redo(&mut history, &with_id(1)), Some(with_id(2)));
+        assert_eq!(history.redo(&with_id(2), |_| LivePose::Plen2([5; 18])), Some(Step::Pose(turned)));
+        // A new turn drops what could be redone.
+        history.record_pose(LivePose::Servo(BTreeMap::from([(1, 90)])));
+        assert!(!history.can_redo());
+    }
+
     #[test]
     fn undo_and_redo_restore_exact_states() {
         let mut history = History::default();
@@ -92,17 +167,17 @@ mod tests {
             history.record(&current, None);
             current = with_id(next);
         }
-        current = history.undo(&current).unwrap();
+        current = undo(&mut history, &current).unwrap();
         assert_eq!(current, with_id(3));
-        current = history.undo(&current).unwrap();
+        current = undo(&mut history, &current).unwrap();
         assert_eq!(current, with_id(2));
-        current = history.redo(&current).unwrap();
+        current = redo(&mut history, &current).unwrap();
         assert_eq!(current, with_id(3));
         // A new edit drops the redo stack.
         history.record(&current, None);
         current = with_id(9);
         assert!(!history.can_redo());
-        assert_eq!(history.undo(&current).unwrap(), with_id(3));
+        assert_eq!(undo(&mut history, &current).unwrap(), with_id(3));
     }
 
     #[test]
@@ -116,9 +191,9 @@ mod tests {
         history.seal();
         history.record(&current, Some("servo 3 calibration"));
         current = with_id(11);
-        let back = history.undo(&current).unwrap();
+        let back = undo(&mut history, &current).unwrap();
         assert_eq!(back, with_id(10), "the second drag is its own step");
-        assert_eq!(history.undo(&back).unwrap(), with_id(0), "the first drag was one step");
+        assert_eq!(undo(&mut history, &back).unwrap(), with_id(0), "the first drag was one step");
         assert!(!history.can_undo());
     }
 
@@ -130,7 +205,7 @@ mod tests {
         }
         let mut current = with_id(-1);
         let mut steps = 0;
-        while let Some(previous) = history.undo(&current) {
+        while let Some(previous) = undo(&mut history, &current) {
             current = previous;
             steps += 1;
         }

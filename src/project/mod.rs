@@ -27,7 +27,7 @@ pub use file::{
     CURRENT_VERSION, FORMAT_TAG, LoadError, Loaded, MAX_UNKNOWN_KEYS_KEPT, SaveError, atomic_write, from_json, load,
     output_path, parse, read, save, to_json,
 };
-pub use history::{History, MAX_UNDO_STEPS};
+pub use history::{History, LivePose, MAX_UNDO_STEPS, Step as UndoStep};
 pub use servo::{Action, Button, Command, JoystickTable, Macro, RigAxis, RigJoint, Run, Servo, ServoProject, Step};
 pub use timing::{Timing, TimingError, action_duration_ms};
 pub use trajectory::{

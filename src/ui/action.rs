@@ -225,6 +225,17 @@ pub enum ServoAction {
         /// The angle asked for (clamped to the servo's limits).
         degree: i16,
     },
+    /// Select a servo (its slider row and its link in the 3D view), or none.
+    SelectServo(Option<u8>),
+    /// A servo turned in the 3D view: to where it was when the drag began, plus this (live).
+    TurnServo {
+        /// The servo.
+        servo_id: u8,
+        /// Degrees from where the drag began.
+        by_deg: i32,
+    },
+    /// The drag turning a servo let go: the turn is one undo step.
+    TurnDone,
     /// Hold or release one servo's torque.
     SetHold {
         /// The servo.
@@ -292,6 +303,17 @@ pub enum Plen2Action {
         /// Tenths of a degree.
         tenths: i16,
     },
+    /// Select a joint (its slider row and its link in the 3D view), or none.
+    SelectJoint(Option<crate::project::plen2::Joint>),
+    /// A joint turned in the 3D view: to where it was when the drag began, plus this (live).
+    TurnJoint {
+        /// The joint.
+        joint: crate::project::plen2::Joint,
+        /// Tenths of a degree from where the drag began.
+        by_tenths: i32,
+    },
+    /// The drag turning a joint let go: the turn is one undo step.
+    TurnDone,
     /// Every joint to home.
     Home,
     /// Play a motion stored on the robot (`$PM`).

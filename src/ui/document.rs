@@ -4,7 +4,7 @@
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicU64, Ordering};
 
-use crate::project::{Edit, History, Project};
+use crate::project::{Edit, History, LivePose, Project, UndoStep};
 
 /// The project being edited.
 #[derive(Debug, Default)]
@@ -63,29 +63,33 @@ impl Document {
         self.history.seal();
     }
 
-    /// Undoes the last step.
-    pub fn undo(&mut self) -> bool {
-        match self.history.undo(&self.project) {
-            Some(previous) => {
-                self.project = previous;
-                self.dirty = true;
-                self.revision = next_revision();
-                true
-            }
-            None => false,
-        }
+    /// Records that the live pose is about to change from `before` (a turn in the 3D view), as one undo step.
+    pub fn record_pose(&mut self, before: LivePose) {
+        self.history.record_pose(before);
     }
 
-    /// Redoes the last undone step.
-    pub fn redo(&mut self) -> bool {
-        match self.history.redo(&self.project) {
-            Some(next) => {
-                self.project = next;
+    /// Undoes the last step; a pose step's pose is returned, for the live side
+    /// to move to (`pose_now`: the live pose of that family now, for redo).
+    pub fn undo(&mut self, pose_now: impl FnOnce(&LivePose) -> LivePose) -> Option<LivePose> {
+        let step = self.history.undo(&self.project, pose_now)?;
+        self.show(step)
+    }
+
+    /// Redoes the last undone step, as [`Self::undo`].
+    pub fn redo(&mut self, pose_now: impl FnOnce(&LivePose) -> LivePose) -> Option<LivePose> {
+        let step = self.history.redo(&self.project, pose_now)?;
+        self.show(step)
+    }
+
+    fn show(&mut self, step: UndoStep) -> Option<LivePose> {
+        match step {
+            UndoStep::Project(project) => {
+                self.project = *project;
                 self.dirty = true;
                 self.revision = next_revision();
-                true
+                None
             }
-            None => false,
+            UndoStep::Pose(pose) => Some(pose),
         }
     }
 

@@ -236,6 +236,19 @@ fn solid_scroll_bar(ui: &mut egui::Ui) {
     ui.spacing_mut().scroll = egui::style::ScrollStyle::solid();
 }
 
+/// Whether the row selected (a joint, a servo) changed since the last frame
+/// this was asked under `key`: a row selected from elsewhere (the 3D view)
+/// then has its slider take the keyboard focus, so the arrow keys nudge it.
+pub fn selection_changed<T>(ui: &egui::Ui, key: &str, selected: Option<&T>) -> bool
+where
+    T: Clone + PartialEq + Send + Sync + 'static,
+{
+    let id = ui.scope_id().with(key);
+    let before: Option<Option<T>> = ui.data(|data| data.get_temp(id));
+    ui.data_mut(|data| data.insert_temp(id, selected.cloned()));
+    before.is_some_and(|before| before.as_ref() != selected)
+}
+
 /// The nudge asked for by keys pressed on a focused slider, in steps (←/→/↑/↓
 /// 1, with Shift or PageUp/PageDown 10), consumed so that the slider does not
 /// also move by its own step.

@@ -15,6 +15,7 @@ mod gamepad;
 mod log;
 mod macros_joystick;
 mod plen2;
+mod pose3d;
 mod preview;
 mod rows;
 mod servos;

@@ -2,6 +2,7 @@
 //! a shortcut or a dialog pushed, applied in order.
 
 use super::*;
+use crate::project::LivePose;
 use crate::ui::speed::LiveSpeed;
 
 impl StudioApp {
@@ -9,11 +10,19 @@ impl StudioApp {
     pub fn apply(&mut self, action: Action) {
         match action {
             Action::Edit { edit, coalesce } => self.document.apply(edit, coalesce.as_deref()),
-            Action::Undo => {
-                self.document.undo();
-            }
-            Action::Redo => {
-                self.document.redo();
+            Action::Undo | Action::Redo => {
+                let (mut shell, families) = self.split();
+                // A turn in the 3D view is undone by moving the live pose back.
+                let now = |pose: &LivePose| match pose {
+                    LivePose::Plen2(_) => LivePose::Plen2(families.plen2.pose),
+                    LivePose::Servo(_) => LivePose::Servo(families.servo.pose.clone()),
+                };
+                let pose = if action == Action::Undo { shell.document.undo(now) } else { shell.document.redo(now) };
+                match pose {
+                    Some(LivePose::Plen2(pose)) => families.plen2.restore_pose(&mut shell, pose),
+                    Some(LivePose::Servo(pose)) => families.servo.restore_pose(&mut shell, pose),
+                    None => {}
+                }
             }
             Action::Connect { port, baud } => {
                 self.forget_link();

@@ -36,6 +36,8 @@ pub struct JointsView<'a> {
     pub capture_slot: Option<u8>,
     /// Where a recording is, if one runs.
     pub recording: Option<crate::authoring::recording::Phase>,
+    /// The joint selected (here or in the 3D view).
+    pub selected: Option<Joint>,
 }
 
 /// Draws the panel: the 18 joints fill the height, the joint settings below
@@ -85,13 +87,15 @@ fn sliders(ui: &mut egui::Ui, view: &JointsView<'_>, actions: &mut Vec<Action>) 
         .and_then(|id| previous.iter().find(|(i, _)| *i == id).map(|&(_, joint)| joint));
     // Tenths of a degree: a step is 1°.
     let nudge = if focused.is_some() { i16::try_from(rows::keyboard_nudge(ui) * 10).unwrap_or(0) } else { 0 };
+    let newly_selected = rows::selection_changed(ui, "plen2-joint-selection", view.selected.as_ref());
     let mut ids = Vec::with_capacity(Joint::ALL.len());
     ui.spacing_mut().slider_width = (ui.available_width() - 340.0).clamp(160.0, 420.0);
     let height = ui.available_height();
     rows::grid(ui, "plen2-joint-sliders", Joint::ALL.len(), height, |ui, index| {
         let joint = Joint::ALL[index];
         let setting = limits(view.project, joint);
-        let label = ui.label(format!("{} #{}", joint.name(), joint.device_id()));
+        let selected = view.selected == Some(joint);
+        let label = ui.selectable_label(selected, format!("{} #{}", joint.name(), joint.device_id()));
         let mut value = view.pose[joint.index()];
         let low = setting.min_tenths_deg.min(setting.max_tenths_deg);
         let high = setting.max_tenths_deg.max(setting.min_tenths_deg);
@@ -99,6 +103,12 @@ fn sliders(ui: &mut egui::Ui, view: &JointsView<'_>, actions: &mut Vec<Action>) 
             egui::Slider::new(&mut value, low..=high).custom_formatter(|v, _| format!("{:.1}°", v / 10.0)).step_by(1.0);
         let response = ui.add(slider).labelled_by(label.id);
         ids.push((response.id, joint));
+        if selected && newly_selected && !response.has_focus() {
+            response.request_focus();
+        }
+        if !selected && (label.clicked() || response.gained_focus() || response.drag_started()) {
+            actions.push(Action::Plen2(Plen2Action::SelectJoint(Some(joint))));
+        }
         if focused == Some(joint) && nudge != 0 {
             value = value.saturating_add(nudge).clamp(low, high);
         }
@@ -194,6 +204,7 @@ mod tests {
                         connected,
                         capture_slot: Some(3),
                         recording: None,
+                        selected: None,
                     };
                     ui(panel, &view, layout, Language::English.strings(), actions);
                 },

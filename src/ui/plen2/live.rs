@@ -64,6 +64,15 @@ impl Plen2Ui {
         self.walk_to_pose(shell, before, Instant::now());
     }
 
+    /// Back to `pose` (an undone turn in the 3D view), walked at the live speed limit.
+    pub fn restore_pose(&mut self, shell: &mut Shell<'_>, pose: [i16; 18]) {
+        let before = self.pose;
+        self.pose = pose;
+        self.turning = None;
+        self.stream = None;
+        self.walk_to_pose(shell, before, Instant::now());
+    }
+
     /// Home at the live speed limit: the joints are walked there (a `$HP`
     /// would send them at once).
     pub(super) fn home(&mut self, shell: &mut Shell<'_>) {

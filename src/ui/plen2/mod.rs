@@ -22,8 +22,8 @@ pub use live::homes;
 
 use crate::device::plen2::{self, Command, Plen2ImportFailure, Plen2ImportOptions, Plen2ImportReport, Plen2OpError};
 use crate::device::plen2::{PacingMode, Plen2Item, ReplyError};
-use crate::project::plen2::{Plen2Project, SLOTS};
-use crate::project::{Edit, Family, Project};
+use crate::project::plen2::{Joint, Plen2Project, SLOTS};
+use crate::project::{Edit, Family, LivePose, Project};
 use crate::ui::action::{Action, Plen2Action, Plen2Intent, Tab};
 use crate::ui::board_link::{BoardLink, LinkOptions};
 use crate::ui::family::{FamilyUi, Panel};
@@ -122,6 +122,10 @@ pub enum Plen2Result {
 pub struct Plen2Ui {
     /// Every joint's angle on the sliders, tenths of a degree, device-map order.
     pub pose: [i16; 18],
+    /// The joint selected (its slider row, its link in the 3D view).
+    pub selected_joint: Option<Joint>,
+    /// The pose before the joint being turned in the 3D view was grabbed.
+    turning: Option<[i16; 18]>,
     stream: Option<live::Stream>,
     /// Joints walked toward the sliders at the live speed limit.
     slew: Option<crate::ui::speed::Slew>,
@@ -162,6 +166,8 @@ impl Default for Plen2Ui {
     fn default() -> Self {
         Self {
             pose: homes(&Plen2Project::default()),
+            selected_joint: None,
+            turning: None,
             stream: None,
             slew: None,
             recording: None,
@@ -238,6 +244,21 @@ impl Plen2Ui {
     pub fn apply(&mut self, shell: &mut Shell<'_>, action: Plen2Action) {
         match action {
             Plen2Action::SetJoint { joint, tenths } => self.set_joint(shell, joint, tenths),
+            Plen2Action::SelectJoint(joint) => self.selected_joint = joint,
+            Plen2Action::TurnJoint { joint, by_tenths } => {
+                let before = *self.turning.get_or_insert(self.pose);
+                self.selected_joint = Some(joint);
+                let tenths = i32::from(before[joint.index()]).saturating_add(by_tenths);
+                let tenths = i16::try_from(tenths.clamp(i32::from(i16::MIN), i32::from(i16::MAX))).unwrap_or(0);
+                self.set_joint(shell, joint, tenths);
+            }
+            Plen2Action::TurnDone => {
+                if let Some(before) = self.turning.take()
+                    && before != self.pose
+                {
+                    shell.document.record_pose(LivePose::Plen2(before));
+                }
+            }
             Plen2Action::Home => self.home(shell),
             Plen2Action::PlayMotion(slot) => {
                 if let Some(robot) = shell.plen2_mut() {
@@ -458,12 +479,13 @@ impl FamilyUi for Plen2Ui {
                     connected,
                     capture_slot: self.motions.selected_slot(project),
                     recording: phase,
+                    selected: self.selected_joint,
                 };
                 let (mut side, open) = (self.layout.side_width, self.layout.view_open);
                 let (layout, preview) = (&mut self.layout, &mut self.preview);
                 crate::ui::layout::beside(ui, "plen2-joints", (&mut side, open), |ui, pane| match pane {
                     Pane::First => joints::ui(ui, &joints, layout, words, actions),
-                    Pane::Second => preview.joints(ui, project, &self.pose, words),
+                    Pane::Second => preview.joints(ui, (project, &self.pose), self.selected_joint, words, actions),
                 });
                 self.layout.side_width = side;
             }

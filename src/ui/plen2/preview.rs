@@ -8,10 +8,11 @@ use crate::authoring::bake;
 use crate::device::plen2::playback::{self, DEVICE_IDS, Playback, Settings, StoredMotions};
 use crate::figure::{self, Chain};
 use crate::project::plen2::{Joint, Plen2Project};
+use crate::ui::action::{Action, Plen2Action};
 use crate::ui::i18n::Strings;
 use crate::ui::plen2::captions::Plen2Words;
 use crate::ui::transport::Transport;
-use crate::ui::view3d::{Scene, View};
+use crate::ui::view3d::{Handle, Scene, Touch, View};
 
 /// At most this long is played out for the preview (a loop forever stops here).
 const MAX_CYCLES: usize = 916;
@@ -35,6 +36,10 @@ pub struct Preview {
     selected: Option<(u8, usize)>,
     /// What the view showed last: each device's value relative to home, clamped.
     pub shown: Option<[i16; DEVICE_IDS]>,
+    /// The turn last sent for the joint a drag in the live view holds (tenths).
+    turned: Option<i32>,
+    /// What the live view drew last.
+    live_scene: Scene,
 }
 
 impl Default for Preview {
@@ -48,6 +53,8 @@ impl Default for Preview {
             playback: None,
             selected: None,
             shown: None,
+            turned: None,
+            live_scene: Scene::default(),
         }
     }
 }
@@ -62,11 +69,26 @@ impl Preview {
         }
         let placed = self.chain.pose(&figure::plen2::angles(&self.chain, values));
         solids.extend(self.chain.dress(&placed, false));
-        Scene { solids, ground_z: 0.0 }
+        Scene { solids, ground_z: 0.0, ..Scene::default() }
     }
 
-    /// The live pose beside the joint sliders (`pose`: absolute angles, device-map order).
-    pub fn joints(&mut self, ui: &mut egui::Ui, project: &Plen2Project, pose: &[i16; 18], words: &Strings) {
+    /// The joint a link of the figure is.
+    fn joint_of(&self, link: usize) -> Option<Joint> {
+        let name = &self.chain.links.get(link)?.name;
+        Joint::ALL.into_iter().find(|joint| joint.name() == name)
+    }
+
+    /// The live pose beside the joint sliders (`pose`: absolute angles,
+    /// device-map order), to be posed by touching it: hovering a joint's link
+    /// names it and its angle, a click selects it, a drag turns it.
+    pub fn joints(
+        &mut self,
+        ui: &mut egui::Ui,
+        (project, pose): (&Plen2Project, &[i16; 18]),
+        selected: Option<Joint>,
+        words: &Strings,
+        actions: &mut Vec<Action>,
+    ) {
         let settings = playback::joint_settings(project);
         let mut values = [0; DEVICE_IDS];
         for joint in Joint::ALL {
@@ -75,9 +97,47 @@ impl Preview {
         }
         let values = playback::clamped(&values, &settings);
         self.shown = Some(values);
-        let scene = self.scene(&values, None);
+        let mut scene = self.scene(&values, None);
+        let placed = self.chain.pose(&figure::plen2::angles(&self.chain, &values));
+        scene.handles = (0..self.chain.links.len())
+            .map(|link| {
+                let joint = self.joint_of(link)?;
+                let angle = f64::from(pose[joint.index()]) / 10.0;
+                let reading = format!("{} #{}  {angle:.1}°", joint.name(), joint.device_id());
+                Some(Handle { reading, joint: self.chain.joint(&placed, link) })
+            })
+            .collect();
+        scene.selected = selected.and_then(|joint| self.chain.link(joint.name()));
         let rect = ui.available_rect_before_wrap();
-        self.joints_view.show(ui, rect, &scene, words.robot_preview).on_hover_text(words.preview_hint);
+        let (response, touch) = self.joints_view.show(ui, rect, &scene, words.robot_preview);
+        if touch.hovered.is_none() {
+            response.on_hover_text(words.preview_hint);
+        }
+        self.live_scene = scene;
+        self.touched(touch, actions);
+    }
+
+    /// What touching the live figure asks for.
+    fn touched(&mut self, touch: Touch, actions: &mut Vec<Action>) {
+        if let Some(joint) = touch.clicked.and_then(|link| self.joint_of(link)) {
+            actions.push(Action::Plen2(Plen2Action::SelectJoint(Some(joint))));
+        }
+        // A joint's value turns its link by as many tenths of a degree, right-hand rule.
+        if let Some((link, by_tenths)) = touch.new_turn(&mut self.turned, 10.0)
+            && let Some(joint) = self.joint_of(link)
+        {
+            actions.push(Action::Plen2(Plen2Action::TurnJoint { joint, by_tenths }));
+        }
+        if touch.let_go.is_some() {
+            actions.push(Action::Plen2(Plen2Action::TurnDone));
+        }
+    }
+
+    /// Where on the screen a point of `joint`'s link was last drawn in the
+    /// live view (the one farthest from its axis), to touch it there.
+    pub fn joint_on_screen(&self, joint: Joint) -> Option<egui::Pos2> {
+        let grip = crate::ui::view3d::grip(&self.live_scene, self.chain.link(joint.name())?)?;
+        self.joints_view.on_screen(grip)
     }
 
     /// Plays `slot` out again when the revision, the slot or what it is played after changed.
@@ -199,6 +259,6 @@ impl Preview {
         self.shown = Some(values);
         let scene = self.scene(&values, ghost.as_ref());
         let rect = ui.available_rect_before_wrap();
-        self.motion_view.show(ui, rect, &scene, words.robot_preview).on_hover_text(words.preview_hint);
+        self.motion_view.show(ui, rect, &scene, words.robot_preview).0.on_hover_text(words.preview_hint);
     }
 }

@@ -75,6 +75,17 @@ impl ServoUi {
         }
     }
 
+    /// Back to `pose` (an undone turn in the 3D view): each servo that differs
+    /// is moved there live, at the live speed limit.
+    pub fn restore_pose(&mut self, shell: &mut Shell<'_>, pose: std::collections::BTreeMap<u8, i16>) {
+        self.turning = None;
+        for (servo_id, degree) in pose {
+            if self.pose.get(&servo_id) != Some(&degree) {
+                self.set_pose(shell, servo_id, degree);
+            }
+        }
+    }
+
     pub(super) fn capture_pose(&mut self, shell: &mut Shell<'_>, from_board: bool) {
         let project = &shell.document.project.servo;
         let read = shell.servo().map(|link| &link.servos);

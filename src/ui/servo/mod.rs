@@ -59,6 +59,10 @@ pub const CAPTURED_STEP_INTERVAL_10MS: i16 = 50;
 pub struct ServoUi {
     /// Slider values per servo id.
     pub pose: BTreeMap<u8, i16>,
+    /// The servo selected (its slider row, its link in the 3D view).
+    pub selected_servo: Option<u8>,
+    /// The pose before the servo being turned in the 3D view was grabbed.
+    turning: Option<BTreeMap<u8, i16>>,
     /// Reading angles back continuously.
     pub polling: bool,
     /// Remote button events seen, newest last.
@@ -103,6 +107,8 @@ impl ServoUi {
     /// A new document: the sliders go home, comparisons are dropped.
     fn replace_document(&mut self, project: &ServoProject) {
         self.pose = homes(project);
+        self.turning = None;
+        self.selected_servo = None;
         self.pending = None;
         self.compared_board = None;
         self.preview = None;
@@ -114,6 +120,22 @@ impl ServoUi {
             ServoAction::Record => self.recording = Some(crate::authoring::recording::Recorder::new()),
             ServoAction::StopRecording => self.finish_recording(shell),
             ServoAction::SetPose { servo_id, degree } => self.set_pose(shell, servo_id, degree),
+            ServoAction::SelectServo(servo_id) => self.selected_servo = servo_id,
+            ServoAction::TurnServo { servo_id, by_deg } => {
+                let before = self.turning.get_or_insert_with(|| self.pose.clone());
+                let home = shell.document.project.servo.servo(servo_id).map_or(0, |servo| servo.home_deg);
+                let degree = i32::from(before.get(&servo_id).copied().unwrap_or(home)).saturating_add(by_deg);
+                let degree = i16::try_from(degree.clamp(i32::from(i16::MIN), i32::from(i16::MAX))).unwrap_or(home);
+                self.selected_servo = Some(servo_id);
+                self.set_pose(shell, servo_id, degree);
+            }
+            ServoAction::TurnDone => {
+                if let Some(before) = self.turning.take()
+                    && before != self.pose
+                {
+                    shell.document.record_pose(crate::project::LivePose::Servo(before));
+                }
+            }
             ServoAction::SetHold { servo_id, hold } => {
                 if let Some(servo) = shell.servo_mut() {
                     servo.set_hold(servo_id, hold);
@@ -276,12 +298,15 @@ impl FamilyUi for ServoUi {
                     readback: view.link.and_then(|link| link.servo()).map(|servo| &servo.servos),
                     polling: self.polling,
                     recording: phase,
+                    selected: self.selected_servo,
                 };
                 let (mut side, open) = (self.layout.side_width, self.layout.view_open);
                 let (panel, layout, figure) = (&mut self.sliders, &mut self.layout, &mut self.figure);
                 crate::ui::layout::beside(ui, "servo-sliders", (&mut side, open), |ui, pane| match pane {
                     crate::ui::layout::Pane::First => panel.ui(ui, &sliders, layout, words, actions),
-                    crate::ui::layout::Pane::Second => figure.live(ui, project, &self.pose, words),
+                    crate::ui::layout::Pane::Second => {
+                        figure.live(ui, (project, &self.pose), self.selected_servo, words, actions);
+                    }
                 });
                 self.layout.side_width = side;
             }

@@ -8,12 +8,13 @@ use std::collections::BTreeMap;
 
 use crate::figure::{self, Chain, Shape};
 use crate::project::{self, ServoProject};
+use crate::ui::action::{Action, ServoAction};
 use crate::ui::i18n::Strings;
 use crate::ui::layout;
 use crate::ui::rows;
 use crate::ui::servo::captions::ServoWords;
 use crate::ui::transport::Transport;
-use crate::ui::view3d::{Scene, View};
+use crate::ui::view3d::{Handle, Scene, Touch, View};
 
 /// What a timed preview plays: an action's or a macro's trajectories (the
 /// ones its plot draws), when it ends, and the times where a move starts or
@@ -53,6 +54,10 @@ pub struct Preview {
     pub transport: Transport,
     /// What the view showed last: each servo's angle, °.
     pub shown: Option<BTreeMap<u8, f64>>,
+    /// The turn last sent for the servo a drag in the live view holds (°).
+    turned: Option<i32>,
+    /// What the live view drew last.
+    live_scene: Scene,
 }
 
 /// The lowest point of a scene's solids.
@@ -88,11 +93,17 @@ impl Preview {
         }
         let placed = chain.pose(&figure::rig::angles(project, links, degrees, chain.links.len()));
         solids.extend(chain.dress(&placed, false));
-        Scene { solids, ground_z: *ground }
+        Scene { solids, ground_z: *ground, ..Scene::default() }
     }
 
-    /// The view and, beside it, a bar per servo outside the rig.
-    fn draw(&mut self, ui: &mut egui::Ui, project: &ServoProject, scene: &Scene, live: bool, words: &Strings) {
+    /// The servo a link of the figure is.
+    fn servo_of(&self, link: usize) -> Option<u8> {
+        let (_, _, links, _) = self.rig.as_ref()?;
+        links.iter().find(|(_, index)| **index == link).map(|(id, _)| *id)
+    }
+
+    /// The view and, beside it, a bar per servo outside the rig; what touching the view did.
+    fn draw(&mut self, ui: &mut egui::Ui, project: &ServoProject, scene: &Scene, live: bool, words: &Strings) -> Touch {
         let degrees = self.shown.clone().unwrap_or_default();
         let outside: Vec<&project::Servo> = project.servos.iter().filter(|servo| servo.rig.is_none()).collect();
         let view = if live { &mut self.live_view } else { &mut self.timed_view };
@@ -115,30 +126,77 @@ impl Preview {
         if !rigged {
             ui.label(words.servo().rig_hint);
             bars(ui);
-            return;
+            return Touch::default();
         }
-        if outside.is_empty() {
+        let mut touch = Touch::default();
+        let mut figure = |ui: &mut egui::Ui| {
             let rect = ui.available_rect_before_wrap();
-            view.show(ui, rect, scene, words.robot_preview).on_hover_text(words.preview_hint);
-            return;
+            let (response, touched) = view.show(ui, rect, scene, words.robot_preview);
+            if touched.hovered.is_none() {
+                response.on_hover_text(words.preview_hint);
+            }
+            touch = touched;
+        };
+        if outside.is_empty() {
+            figure(ui);
+            return touch;
         }
         let mut width = 150.0;
         layout::columns(ui, "preview-bars", &mut width, 100.0, |ui, pane| match pane {
             layout::Pane::First => bars(ui),
-            layout::Pane::Second => {
-                let rect = ui.available_rect_before_wrap();
-                view.show(ui, rect, scene, words.robot_preview).on_hover_text(words.preview_hint);
-            }
+            layout::Pane::Second => figure(ui),
         });
+        touch
     }
 
-    /// The live pose beside the sliders.
-    pub fn live(&mut self, ui: &mut egui::Ui, project: &ServoProject, pose: &BTreeMap<u8, i16>, words: &Strings) {
+    /// The live pose beside the sliders, to be posed by touching it: hovering
+    /// a servo's link names it and its angle, a click selects it, a drag turns it.
+    pub fn live(
+        &mut self,
+        ui: &mut egui::Ui,
+        (project, pose): (&ServoProject, &BTreeMap<u8, i16>),
+        selected: Option<u8>,
+        words: &Strings,
+        actions: &mut Vec<Action>,
+    ) {
         self.rig(project);
         let degrees: BTreeMap<u8, f64> = pose.iter().map(|(id, degree)| (*id, f64::from(*degree))).collect();
-        let scene = self.scene(project, &degrees, None);
+        let mut scene = self.scene(project, &degrees, None);
+        if let Some((_, chain, links, _)) = &self.rig {
+            let placed = chain.pose(&figure::rig::angles(project, links, &degrees, chain.links.len()));
+            scene.handles = (0..chain.links.len())
+                .map(|link| {
+                    let servo = project.servo(self.servo_of(link)?)?;
+                    let angle = pose.get(&servo.id).copied().unwrap_or(servo.home_deg);
+                    let reading = format!("{} #{}  {angle}°", servo.caption, servo.id);
+                    Some(Handle { reading, joint: chain.joint(&placed, link) })
+                })
+                .collect();
+            scene.selected = selected.and_then(|id| links.get(&id).copied());
+        }
         self.shown = Some(degrees);
-        self.draw(ui, project, &scene, true, words);
+        let touch = self.draw(ui, project, &scene, true, words);
+        self.live_scene = scene;
+        if let Some(servo_id) = touch.clicked.and_then(|link| self.servo_of(link)) {
+            actions.push(Action::Servo(ServoAction::SelectServo(Some(servo_id))));
+        }
+        // A servo's angle turns its link by as many degrees (its axis carries `reversed`).
+        if let Some((link, by_deg)) = touch.new_turn(&mut self.turned, 1.0)
+            && let Some(servo_id) = self.servo_of(link)
+        {
+            actions.push(Action::Servo(ServoAction::TurnServo { servo_id, by_deg }));
+        }
+        if touch.let_go.is_some() {
+            actions.push(Action::Servo(ServoAction::TurnDone));
+        }
+    }
+
+    /// Where on the screen a point of `servo_id`'s link was last drawn in the
+    /// live view (the one farthest from its axis), to touch it there.
+    pub fn servo_on_screen(&self, servo_id: u8) -> Option<egui::Pos2> {
+        let (_, _, links, _) = self.rig.as_ref()?;
+        let grip = crate::ui::view3d::grip(&self.live_scene, *links.get(&servo_id)?)?;
+        self.live_view.on_screen(grip)
     }
 
     /// An action's or a macro's trajectory at the time cursor, with the pose

@@ -25,6 +25,8 @@ pub struct ServoView<'a> {
     pub polling: bool,
     /// Where a recording is, if one runs.
     pub recording: Option<crate::authoring::recording::Phase>,
+    /// The servo selected (here or in the 3D view).
+    pub selected: Option<u8>,
 }
 
 /// The servo panel's own state: which widget is whose slider.
@@ -91,18 +93,26 @@ impl ServoPanel {
         let focused = ui.memory(|memory| memory.focused()).and_then(|id| self.slider_ids.get(&id).copied());
         let nudge = if focused.is_some() { rows::keyboard_nudge(ui) } else { 0 };
         self.slider_ids.clear();
+        let newly_selected = rows::selection_changed(ui, "servo-selection", view.selected.as_ref());
         ui.spacing_mut().slider_width = (ui.available_width() - 320.0).clamp(160.0, 420.0);
         // Every slider the height holds; only those in view are laid out.
         let height = ui.available_height();
         rows::grid(ui, "servo-grid", view.project.servos.len(), height, |ui, index| {
             let servo = &view.project.servos[index];
             let current = view.pose.get(&servo.id).copied().unwrap_or(servo.home_deg);
-            let label = ui.label(format!("{} #{}", servo.caption, servo.id));
+            let selected = view.selected == Some(servo.id);
+            let label = ui.selectable_label(selected, format!("{} #{}", servo.caption, servo.id));
             let mut value = i32::from(current);
             let slider = egui::Slider::new(&mut value, i32::from(servo.min_deg)..=i32::from(servo.max_deg))
                 .step_by(1.0)
                 .suffix("°");
             let response = ui.add(slider).labelled_by(label.id);
+            if selected && newly_selected && !response.has_focus() {
+                response.request_focus();
+            }
+            if !selected && (label.clicked() || response.gained_focus() || response.drag_started()) {
+                actions.push(Action::Servo(ServoAction::SelectServo(Some(servo.id))));
+            }
             if response.gained_focus() {
                 // Tabbing onto a half-shown slider brings it into view.
                 response.scroll_to_me(None);

@@ -2,11 +2,16 @@
 //! eframe runs and in headless tests: an orbit camera of our own (drag to
 //! orbit, wheel to zoom, double-click to reset), flat-shaded boxes, balls and
 //! capsules sorted back to front, a ground grid and the figure's shadow. A
-//! ghost (another pose, drawn faint) can share the scene.
+//! ghost (another pose, drawn faint) can share the scene. A scene whose links
+//! have handles can be posed: hovering a link names it, a click selects it,
+//! and a drag that starts on a joint turns that joint ([`touch`]).
+
+mod touch;
 
 use egui::{Color32, Pos2, Rect, Sense, Shape as Paint, Stroke, pos2};
 
 use crate::figure::{Shape, Vec3, WorldSolid};
+pub use touch::{Handle, Touch};
 
 /// What the view draws: solids over a ground at `ground_z`.
 #[derive(Clone, Debug, Default)]
@@ -15,6 +20,11 @@ pub struct Scene {
     pub solids: Vec<WorldSolid>,
     /// The ground's height.
     pub ground_z: f32,
+    /// Each link's handle, by link index (none: the link cannot be touched;
+    /// empty: nothing can, the view only orbits).
+    pub handles: Vec<Option<Handle>>,
+    /// The link drawn as selected.
+    pub selected: Option<usize>,
 }
 
 impl Scene {
@@ -41,6 +51,21 @@ impl Scene {
         let low = low.min(Vec3::new(low.x, low.y, self.ground_z));
         ((low + high) / 2.0, ((high - low).length() / 2.0).max(10.0))
     }
+}
+
+/// A point of `link`'s solids to hold it by: of their centres (a rod's
+/// middle), the one farthest from its joint's axis.
+pub fn grip(scene: &Scene, link: usize) -> Option<Vec3> {
+    let (pivot, axis) = scene.handles.get(link)?.as_ref()?.joint?;
+    scene
+        .solids
+        .iter()
+        .filter(|solid| solid.link == link && !solid.faint)
+        .map(|solid| match solid.shape {
+            Shape::Capsule { to, .. } => solid.at.lerp(to, 0.5),
+            _ => solid.at,
+        })
+        .max_by(|a, b| (*a - pivot).cross(axis).length().total_cmp(&(*b - pivot).cross(axis).length()))
 }
 
 /// An orbit camera: it looks at `target` from `distance` away, turned `yaw`
@@ -174,6 +199,15 @@ fn hull(mut points: Vec<Pos2>) -> Vec<Pos2> {
     lower
 }
 
+/// The colour of a selected (or hovered, `strength` less) link: toward amber.
+fn tinted(color: [u8; 3], strength: f32) -> [u8; 3] {
+    const AMBER: [f32; 3] = [255.0, 170.0, 40.0];
+    // Channels stay within 0..=255.
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    let mix = |index: usize| (f32::from(color[index]) * (1.0 - strength) + AMBER[index] * strength).round() as u8;
+    [mix(0), mix(1), mix(2)]
+}
+
 fn solid_pieces(solid: &WorldSolid, projector: &Projector, pieces: &mut Vec<Piece>) {
     match solid.shape {
         Shape::Box { half } => {
@@ -276,16 +310,61 @@ fn nice_step(raw: f32) -> f32 {
     nice * power
 }
 
-/// The view's own state: its camera (none until it has seen a scene).
+/// The view's own state: its camera (none until it has seen a scene), the
+/// joint a drag holds, and where it drew last.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct View {
     camera: Option<Camera>,
+    grab: Option<touch::Grab>,
+    drawn: Option<(Camera, Rect)>,
 }
 
 impl View {
-    /// Draws `scene` filling `rect`; dragging orbits, the wheel zooms, a
-    /// double-click puts the camera back.
-    pub fn show(&mut self, ui: &mut egui::Ui, rect: Rect, scene: &Scene, label: &str) -> egui::Response {
+    /// Where a point of the world was on the screen when last drawn.
+    pub fn on_screen(&self, point: Vec3) -> Option<Pos2> {
+        let (camera, rect) = self.drawn?;
+        Projector::new(&camera, rect).point(point).map(|(at, _)| at)
+    }
+
+    /// What the pointer does to a posable scene: hover, click, and a drag
+    /// that started on a joint turns it (any other drag orbits).
+    fn touch(&mut self, ui: &egui::Ui, response: &egui::Response, scene: &Scene, projector: &Projector) -> Touch {
+        let handle = |link: usize| scene.handles.get(link).and_then(Option::as_ref);
+        let under = |at: Pos2| touch::pick(scene, projector, at).filter(|(link, _)| handle(*link).is_some());
+        let mut touch = Touch::default();
+        if scene.handles.is_empty() {
+            self.grab = None;
+            return touch;
+        }
+        touch.hovered = response.hover_pos().and_then(under).map(|(link, _)| link);
+        if response.clicked() {
+            touch.clicked = response.interact_pointer_pos().and_then(under).map(|(link, _)| link);
+        }
+        if response.drag_started()
+            && let Some(origin) = ui.input(|input| input.pointer.press_origin())
+            && let Some((link, point)) = under(origin)
+            && let Some(joint) = handle(link).and_then(|handle| handle.joint)
+        {
+            self.grab = Some(touch::Grab::new(link, joint, point, origin));
+        }
+        if let Some(grab) = &mut self.grab {
+            if let Some(pointer) = ui.input(|input| input.pointer.latest_pos()) {
+                grab.drag(projector, pointer);
+            }
+            touch.turned = Some((grab.link, grab.total));
+            touch.hovered = Some(grab.link);
+            if !response.dragged() {
+                touch.let_go = Some(grab.link);
+                self.grab = None;
+            }
+        }
+        touch
+    }
+
+    /// Draws `scene` filling `rect`; dragging orbits (or turns a joint of a
+    /// posable scene), the wheel zooms, a double-click puts the camera back.
+    /// Hovering a link with a handle names it.
+    pub fn show(&mut self, ui: &mut egui::Ui, rect: Rect, scene: &Scene, label: &str) -> (egui::Response, Touch) {
         let response = ui.allocate_rect(rect, Sense::click_and_drag());
         response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Image, true, label));
         let (center, radius) = scene.bounds();
@@ -293,7 +372,8 @@ impl View {
         if response.double_clicked() {
             camera = Camera::fit(center, radius);
         }
-        if response.dragged() {
+        let touch = self.touch(ui, &response, scene, &Projector::new(&camera, rect));
+        if response.dragged() && touch.turned.is_none() {
             let delta = response.drag_delta();
             camera.yaw -= delta.x * 0.01;
             camera.pitch = (camera.pitch + delta.y * 0.01).clamp(-1.2, 1.45);
@@ -305,6 +385,7 @@ impl View {
             }
         }
         self.camera = Some(camera);
+        self.drawn = Some((camera, rect));
         let painter = ui.painter_at(rect);
         let visuals = ui.visuals();
         painter.rect_filled(rect, 4.0, visuals.extreme_bg_color);
@@ -321,12 +402,28 @@ impl View {
         );
         let mut pieces = Vec::with_capacity(scene.solids.len() * 3);
         for solid in &scene.solids {
-            solid_pieces(solid, &projector, &mut pieces);
+            let strength = match Some(solid.link) {
+                _ if solid.faint => 0.0,
+                link if link == scene.selected => 0.55,
+                link if link == touch.hovered => 0.3,
+                _ => 0.0,
+            };
+            if strength > 0.0 {
+                let solid = WorldSolid { color: tinted(solid.color, strength), ..*solid };
+                solid_pieces(&solid, &projector, &mut pieces);
+            } else {
+                solid_pieces(solid, &projector, &mut pieces);
+            }
         }
         // Far first: the near ones cover them (the painter's algorithm).
         pieces.sort_by(|a, b| b.depth.total_cmp(&a.depth));
         painter.extend(pieces.into_iter().map(|piece| piece.paint));
-        response
+        let reading = touch.hovered.and_then(|link| scene.handles.get(link)?.as_ref()).map(|h| h.reading.clone());
+        let response = match reading {
+            Some(reading) => response.on_hover_text_at_pointer(reading),
+            None => response,
+        };
+        (response, touch)
     }
 }
 
@@ -363,6 +460,7 @@ mod tests {
             shape: Shape::Box { half: Vec3::splat(20.0) },
             color: [200, 200, 200],
             faint: false,
+            link: 0,
         };
         let mut pieces = Vec::new();
         solid_pieces(&solid, &projector, &mut pieces);
