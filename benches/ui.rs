@@ -63,11 +63,7 @@ fn servo_project(
             id,
             caption: format!("動作{id}"),
             steps: (0..steps)
-                .map(|servo_id| Step {
-                    servo_id: servo_id % servos,
-                    degree: ((id * 7 + i32::from(servo_id)) % 180 - 90) as i16,
-                    interval_10ms: 50,
-                })
+                .map(|servo_id| Step::new(servo_id % servos, ((id * 7 + i32::from(servo_id)) % 180 - 90) as i16, 50))
                 .collect(),
         })
         .collect();

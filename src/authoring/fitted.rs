@@ -48,10 +48,12 @@ pub fn servo_actions(fit: &Fit, servo_ids: &[u8], first_id: i32, caption: &str) 
             steps: servo_ids
                 .iter()
                 .zip(&step.values)
-                .map(|(&servo_id, &degree)| Step {
-                    servo_id,
-                    degree: i16::try_from(degree).unwrap_or(0),
-                    interval_10ms: i16::try_from(step.updates).unwrap_or(i16::MAX),
+                .map(|(&servo_id, &degree)| {
+                    Step::new(
+                        servo_id,
+                        i16::try_from(degree).unwrap_or(0),
+                        i16::try_from(step.updates).unwrap_or(i16::MAX),
+                    )
                 })
                 .collect(),
         })

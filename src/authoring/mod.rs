@@ -4,6 +4,7 @@
 //! model; nothing of link, device, sim or ui.
 
 pub mod bake;
+pub mod bake_servo;
 pub mod fit;
 pub mod fitted;
 pub mod recording;

@@ -54,11 +54,7 @@ mod tests {
 
     #[test]
     fn steps_scale_and_a_jump_stays_a_jump() {
-        let mut steps = vec![
-            Step { servo_id: 1, degree: 10, interval_10ms: 50 },
-            Step { servo_id: 2, degree: 20, interval_10ms: 0 },
-            Step { servo_id: 3, degree: 30, interval_10ms: 1 },
-        ];
+        let mut steps = vec![Step::new(1, 10, 50), Step::new(2, 20, 0), Step::new(3, 30, 1)];
         scale_steps(&mut steps, 0.5);
         assert_eq!(steps.iter().map(|step| step.interval_10ms).collect::<Vec<_>>(), vec![25, 0, 1]);
         scale_steps(&mut steps, 2000.0);

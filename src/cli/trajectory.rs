@@ -129,7 +129,9 @@ fn servo_trace(project: &Project, subject: Subject, max_ms: f64) -> anyhow::Resu
         Subject::Macro(macro_id) => project::Run::Macro { macro_id },
         Subject::Slot { .. } => anyhow::bail!("--slot is for PLEN2 motions: give --action or --macro"),
     };
-    let (trajectories, end_ms) = project::trace(servo, run, max_ms).map_err(|error| match subject {
+    // As the board plays it: curves baked into straight steps.
+    let (stored, run) = servo_studio::authoring::bake_servo::stored_run(servo, run);
+    let (trajectories, end_ms) = project::trace(&stored, run, max_ms).map_err(|error| match subject {
         Subject::Macro(id) => anyhow::anyhow!("macro {id}: {error}; nothing was written"),
         _ => anyhow::anyhow!("{error}; nothing was written"),
     })?;

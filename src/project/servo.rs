@@ -148,6 +148,17 @@ pub struct Step {
     pub degree: i16,
     /// How long the move takes, in units of 10 ms.
     pub interval_10ms: i16,
+    /// The curve of the move (the board moves straight: a curve is baked into
+    /// straight sub-steps for it, `authoring::bake_servo`); absent in files when linear.
+    #[serde(default, skip_serializing_if = "super::Easing::is_linear")]
+    pub easing: super::Easing,
+}
+
+impl Step {
+    /// A straight step.
+    pub fn new(servo_id: u8, degree: i16, interval_10ms: i16) -> Self {
+        Self { servo_id, degree, interval_10ms, easing: super::Easing::Linear }
+    }
 }
 
 /// A sequence of commands run one after another.

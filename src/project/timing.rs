@@ -120,7 +120,7 @@ mod tests {
     fn action(id: i32, intervals_10ms: &[i16]) -> Action {
         let steps = (0u8..)
             .zip(intervals_10ms)
-            .map(|(servo_id, &interval_10ms)| Step { servo_id, degree: 0, interval_10ms })
+            .map(|(servo_id, &interval_10ms)| Step::new(servo_id, 0, interval_10ms))
             .collect();
         Action { id, caption: String::new(), steps }
     }

@@ -1,6 +1,8 @@
 //! Servo trajectories over time: what a macro or an action does to each servo,
 //! as (time ms, angle) points joined by straight lines — the board moves each
-//! servo linearly over its step's interval.
+//! servo linearly over its step's interval. A step with a curve is traced as
+//! meant, a point per 10 ms update; what the board plays is the trace of the
+//! project baked for it (`authoring::bake_servo`).
 
 use std::collections::BTreeMap;
 
@@ -62,6 +64,15 @@ impl Tracer<'_> {
             let to = f64::from(step.degree);
             let points = self.points.entry(step.servo_id).or_default();
             points.push((start_ms, from));
+            if !step.easing.is_linear() && step.interval_10ms > 1 {
+                // The curve meant, a point per board update (the board plays it baked into straight pieces).
+                let updates = step.interval_10ms;
+                self.work = self.work.saturating_add(updates.unsigned_abs().into());
+                for k in 1..updates {
+                    let along = f64::from(k) / f64::from(updates);
+                    points.push((start_ms + duration * along, from + (to - from) * step.easing.at(along)));
+                }
+            }
             points.push((start_ms + duration, to));
             self.angles.insert(step.servo_id, to);
             end_ms = end_ms.max(start_ms + duration);
@@ -312,16 +323,8 @@ mod tests {
         ServoProject {
             servos: vec![servo],
             actions: vec![
-                Action {
-                    id: 1,
-                    caption: String::new(),
-                    steps: vec![Step { servo_id: 1, degree: 90, interval_10ms: 100 }],
-                },
-                Action {
-                    id: 2,
-                    caption: String::new(),
-                    steps: vec![Step { servo_id: 1, degree: -90, interval_10ms: 50 }],
-                },
+                Action { id: 1, caption: String::new(), steps: vec![Step::new(1, 90, 100)] },
+                Action { id: 2, caption: String::new(), steps: vec![Step::new(1, -90, 50)] },
             ],
             macros: vec![
                 Macro {

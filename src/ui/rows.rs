@@ -236,6 +236,28 @@ fn solid_scroll_bar(ui: &mut egui::Ui) {
     ui.spacing_mut().scroll = egui::style::ScrollStyle::solid();
 }
 
+/// A move's curve picker: `names` in `Easing::ALL` order, `hint` on hover.
+pub fn curve(
+    ui: &mut egui::Ui,
+    id_salt: impl egui::AsIdSalt,
+    easing: &mut crate::project::Easing,
+    names: [&str; 5],
+    hint: &str,
+) -> egui::Response {
+    use crate::project::Easing;
+    let shown = Easing::ALL.iter().position(|curve| curve == easing).map_or("?", |at| names[at]);
+    egui::ComboBox::from_id_salt(id_salt)
+        .selected_text(shown)
+        .width(96.0)
+        .show_ui(ui, |ui| {
+            for (curve, name) in Easing::ALL.into_iter().zip(names) {
+                ui.selectable_value(easing, curve, name);
+            }
+        })
+        .response
+        .on_hover_text(hint)
+}
+
 /// Whether the row selected (a joint, a servo) changed since the last frame
 /// this was asked under `key`: a row selected from elsewhere (the 3D view)
 /// then has its slider take the keyboard focus, so the arrow keys nudge it.

@@ -125,7 +125,7 @@ fn thousand_actions() -> ServoProject {
             .map(|id| Action {
                 id,
                 caption: format!("動作{id}"),
-                steps: vec![Step { servo_id: 1, degree: i16::try_from(id % 90).unwrap(), interval_10ms: 20 }],
+                steps: vec![Step::new(1, i16::try_from(id % 90).unwrap(), 20)],
             })
             .collect(),
         ..ServoProject::default()
@@ -326,9 +326,7 @@ fn checking_a_200_mb_project_stays_under_1_gb() {
         .map(|id| Action {
             id,
             caption: format!("動作{id}"),
-            steps: (0..64u8)
-                .map(|servo_id| Step { servo_id, degree: i16::try_from(id % 90).unwrap(), interval_10ms: 50 })
-                .collect(),
+            steps: (0..64u8).map(|servo_id| Step::new(servo_id, i16::try_from(id % 90).unwrap(), 50)).collect(),
         })
         .collect();
     let path = dir.path().join("huge.json");

@@ -196,3 +196,52 @@ fn commands_that_do_not_apply_to_a_family_say_what_to_use_instead() {
     assert_eq!(bad.status.code(), Some(2));
     assert!(stderr(&bad).contains("use servo, plen2 or rflex"), "{}", stderr(&bad));
 }
+
+/// A step with a curve goes to the board as straight sub-steps run by a macro
+/// of their own: the import is verified against that, and what the board then
+/// holds, traced at its 10 ms updates, stays within 1° of the curve meant.
+#[test]
+fn an_eased_step_is_imported_baked_verified_and_plays_within_a_degree_of_its_curve() {
+    let dir = tempfile::tempdir().unwrap();
+    let authored = dir.path().join("eased.json");
+    std::fs::write(
+        &authored,
+        r#"{"format": "servo-studio-project", "version": 2, "family": "servo", "servo": {"project_id": 5,
+        "servos": [{"id": 1, "caption": "臂"}, {"id": 2, "caption": "腕"}],
+        "actions": [{"id": 1, "caption": "揮手", "steps": [
+            {"servo_id": 1, "degree": 90, "interval_10ms": 100, "easing": "ease_in_out"},
+            {"servo_id": 2, "degree": -40, "interval_10ms": 50}]}],
+        "macros": [{"id": 1, "caption": "show", "commands": [{"kind": "action", "action_id": 1, "loop_count": 2}]}]}}"#,
+    )
+    .unwrap();
+    let sim = sim(&["--tcp", "127.0.0.1:0"]);
+    let import = run(&["import", "--port", &sim.port, "--in", authored.to_str().unwrap(), "--yes", "--no-backup"]);
+    assert!(import.status.success(), "{}", stderr(&import));
+    assert!(stderr(&import).contains("verified"), "{}", stderr(&import));
+    let exported = dir.path().join("board.json");
+    let export = run(&["export", "--port", &sim.port, "--out", exported.to_str().unwrap()]);
+    assert!(export.status.success(), "{}", stderr(&export));
+    let board = servo_studio::project::load(&exported).unwrap().servo;
+    assert!(board.actions.len() > 2, "sub-actions for the curve: {}", board.actions.len());
+    assert!(board.actions.iter().flat_map(|a| &a.steps).all(|s| s.easing.is_linear()), "the board holds no curves");
+    // What the board holds, traced: the curve once (90 · ease-in-out over 1 s), then the second turn holds.
+    let csv = dir.path().join("board.csv");
+    let traced = run(&["trajectory", exported.to_str().unwrap(), "--macro", "1", "--out", csv.to_str().unwrap()]);
+    assert!(traced.status.success(), "{}", stderr(&traced));
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let rows: Vec<Vec<f64>> =
+        text.lines().skip(1).map(|line| line.split(',').map(|field| field.parse().unwrap()).collect()).collect();
+    assert_eq!(rows.len(), 201, "two turns of a second, a row per 10 ms");
+    for row in &rows {
+        let t = (row[0] / 1000.0).min(1.0);
+        let meant = 90.0 * if t < 0.5 { 2.0 * t * t } else { 1.0 - 2.0 * (1.0 - t) * (1.0 - t) };
+        assert!((row[1] - meant).abs() <= 1.0, "at {} ms: {} for {meant}", row[0], row[1]);
+        let wrist = -40.0 * (row[0] / 500.0).min(1.0);
+        assert!((row[2] - wrist).abs() <= 1.0, "the straight step stays straight: {row:?}");
+    }
+    // The authored project's own trajectory is what the board plays.
+    let own_csv = dir.path().join("own.csv");
+    let own = run(&["trajectory", authored.to_str().unwrap(), "--macro", "1", "--out", own_csv.to_str().unwrap()]);
+    assert!(own.status.success(), "{}", stderr(&own));
+    assert_eq!(std::fs::read_to_string(&own_csv).unwrap(), text);
+}

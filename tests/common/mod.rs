@@ -51,25 +51,14 @@ pub fn rich_project() -> ServoProject {
     let servos: Vec<Servo> = (0..60u8)
         .map(|id| Servo { calibration_offset_deg: i16::from(id) - 30, ..Servo::new(id, format!("關節{id}號")) })
         .collect();
-    let big_step = |id: u8| Step { servo_id: id, degree: -180 + 6 * i16::from(id), interval_10ms: 10 + i16::from(id) };
+    let big_step = |id: u8| Step::new(id, -180 + 6 * i16::from(id), 10 + i16::from(id));
     ServoProject {
         project_id: i32::MAX,
         servos,
         actions: vec![
             Action { id: 1, caption: "六十步的大動作".into(), steps: (0..60).map(big_step).collect() },
-            Action {
-                id: 42,
-                caption: "揮手".into(),
-                steps: vec![
-                    Step { servo_id: 3, degree: -90, interval_10ms: 50 },
-                    Step { servo_id: 4, degree: 45, interval_10ms: 100 },
-                ],
-            },
-            Action {
-                id: i32::MAX,
-                caption: "最後".into(),
-                steps: vec![Step { servo_id: 59, degree: -1, interval_10ms: 0 }],
-            },
+            Action { id: 42, caption: "揮手".into(), steps: vec![Step::new(3, -90, 50), Step::new(4, 45, 100)] },
+            Action { id: i32::MAX, caption: "最後".into(), steps: vec![Step::new(59, -1, 0)] },
         ],
         macros: vec![
             Macro {

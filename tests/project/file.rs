@@ -24,9 +24,7 @@ fn rich_project() -> ServoProject {
         servos,
         actions: vec![
             Action {
-                id: 1,
-                caption: "動作一二三四五六七八九十".into(),
-                steps: vec![Step { servo_id: 0, degree: -120, interval_10ms: 0 }],
+                id: 1, caption: "動作一二三四五六七八九十".into(), steps: vec![Step::new(0, -120, 0)]
             },
             Action { id: i32::MAX, caption: String::new(), steps: vec![] },
         ],

@@ -61,11 +61,8 @@ fn command() -> impl Strategy<Value = Command> {
 }
 
 fn servo_section() -> impl Strategy<Value = ServoProject> {
-    let step = (any::<u8>(), any::<i16>(), any::<i16>()).prop_map(|(servo_id, degree, interval_10ms)| Step {
-        servo_id,
-        degree,
-        interval_10ms,
-    });
+    let step = (any::<u8>(), any::<i16>(), any::<i16>())
+        .prop_map(|(servo_id, degree, interval_10ms)| Step::new(servo_id, degree, interval_10ms));
     let action = (any::<i32>(), text(), prop::collection::vec(step, 0..4)).prop_map(|(id, caption, steps)| Action {
         id,
         caption,

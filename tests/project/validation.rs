@@ -9,7 +9,7 @@ use servo_studio::project::{
 };
 
 fn step(servo_id: u8, degree: i16) -> Step {
-    Step { servo_id, degree, interval_10ms: 50 }
+    Step::new(servo_id, degree, 50)
 }
 
 /// A small valid project: two servos, two actions, two macros, one table.

@@ -30,7 +30,7 @@ fn the_timeline_has_a_bar_per_step_and_steps_can_be_added() {
     harness.run_steps(2);
     let steps = &harness.state().document.project.servo.actions[0].steps;
     assert_eq!(steps.len(), 3);
-    assert_eq!(steps[2], Step { servo_id: 3, degree: 0, interval_10ms: 50 }, "the unused servo, at home");
+    assert_eq!(steps[2], Step::new(3, 0, 50), "the unused servo, at home");
 }
 
 #[test]
@@ -164,4 +164,60 @@ fn a_mirrored_pose_is_the_mirror_image_of_the_robot() {
         let image = flip * r.rotation * flip;
         assert!(l.rotation.abs_diff_eq(image, 1e-3), "servo {left_id}: {} vs {image}", l.rotation);
     }
+}
+
+/// A step's curve is picked in its row (one undo step); the editor then says
+/// what the curves cost on the board, and Play on board sends the curve as
+/// straight sub-steps, one after another, from where the servo is.
+#[test]
+fn a_curve_picked_for_a_step_shows_its_cost_and_plays_on_the_board_as_sub_steps() {
+    use servo_studio::link::LinkEvent;
+    use servo_studio::project::Easing;
+    use servo_studio::protocol::servo::Message;
+    use servo_studio::sim::SimEvent;
+    let mut harness = harness(fixture());
+    harness.state_mut().apply(Action::ConnectDemo);
+    harness.run_steps(2);
+    assert!(harness.query_by_label_contains("On the board:").is_none(), "no curves, no meter");
+    let curve = harness.query_all(egui_kittest::kittest::by().value("Linear")).next().expect("step 1's curve");
+    curve.click();
+    harness.run_steps(2);
+    harness.get_by_label("Ease in-out").click();
+    harness.run_steps(3);
+    let easing =
+        |harness: &Harness<'static, StudioApp>| harness.state().document.project.servo.actions[0].steps[0].easing;
+    assert_eq!(easing(&harness), Easing::EaseInOut);
+    // Worked out off the frame: a few frames at most.
+    let deadline = Instant::now() + Duration::from_secs(10);
+    while harness.query_by_label_contains("On the board:").is_none() {
+        assert!(Instant::now() < deadline, "no budget meter");
+        harness.step();
+    }
+    let meter = harness.get_by_label_contains("On the board:");
+    let text = egui_kittest::kittest::NodeT::accesskit_node(&meter).label().unwrap_or_default().to_string();
+    assert!(
+        text.contains("for curves") && text.contains(" of 262144 bytes") && text.contains("largest deviation"),
+        "{text}"
+    );
+
+    let events = harness.state().link.as_ref().unwrap().demo_board().unwrap().events().clone();
+    harness.get_by_label("Play on board").click();
+    let deadline = Instant::now() + Duration::from_secs(10);
+    let mut sent = Vec::new();
+    while sent.last() != Some(&-90) {
+        assert!(Instant::now() < deadline, "the curve never ended: {sent:?}");
+        harness.step();
+        while let Ok(event) = events.try_recv() {
+            if let LinkEvent::Driver(SimEvent::Handled(Message::ExecuteActionRequest { moves })) = event {
+                sent.extend(moves.iter().filter(|m| m.servo_id == 1).map(|m| m.degree));
+            }
+        }
+    }
+    assert!(sent.len() >= 3, "sub-steps, not one straight move: {sent:?}");
+    assert!(sent.windows(2).all(|pair| pair[1] <= pair[0]), "{sent:?}");
+    assert!(sent[0] > -20, "eased in: the first piece covers little of the way: {sent:?}");
+
+    harness.state_mut().apply(Action::Undo);
+    harness.run_steps(2);
+    assert_eq!(easing(&harness), Easing::Linear, "one undo step");
 }

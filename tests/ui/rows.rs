@@ -112,7 +112,7 @@ fn the_servo_sliders_and_settings_fill_the_window() {
 
 #[test]
 fn the_action_list_and_its_steps_fill_the_window() {
-    let steps: Vec<Step> = (0..255u8).map(|servo_id| Step { servo_id, degree: 0, interval_10ms: 50 }).collect();
+    let steps: Vec<Step> = (0..255u8).map(|servo_id| Step::new(servo_id, 0, 50)).collect();
     let actions: Vec<Action> = (1..=ITEMS)
         .map(|id| Action {
             id: i32::try_from(id).unwrap(),

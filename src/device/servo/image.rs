@@ -2,6 +2,7 @@
 //! and from a project, and compared. Both the upload (project → board) and
 //! the backup (board → project) go through here.
 
+use crate::authoring::bake_servo::{BakedServo, DEFAULT_TOLERANCE_DEG, bake_servo};
 use crate::project::{Action, Button, Command, JoystickTable, Macro, Run, Servo, ServoProject, Step, Timing};
 pub use crate::protocol::servo::ServoImage;
 use crate::protocol::servo::{
@@ -45,11 +46,28 @@ fn total_interval_ms(timing: &Timing<'_>, command: &Command) -> i32 {
 }
 
 impl ServoImage {
-    /// The records a project becomes on the board. Content Servo Studio would
-    /// not author (a servo twice in an action, dangling references) is kept
-    /// as it is, so that a backup restores exactly; only what cannot be
-    /// encoded at all is refused.
+    /// The records a project becomes on the board, its curves baked into
+    /// straight steps at the default tolerance ([`bake_servo`]). Content Servo
+    /// Studio would not author (a servo twice in an action, dangling
+    /// references) is kept as it is, so that a backup restores exactly; only
+    /// what cannot be encoded at all is refused.
     pub fn from_project(project: &ServoProject) -> Result<Self, ImageError> {
+        Self::within(project, None).map(|(image, _)| image)
+    }
+
+    /// As [`Self::from_project`], the curves' tolerance widened until the
+    /// records fit `total_bytes` of the board (when known); also what baking cost.
+    pub fn within(project: &ServoProject, total_bytes: Option<i64>) -> Result<(Self, BakedServo), ImageError> {
+        let fits = |stored: &ServoProject| {
+            let bytes = Self::from_stored(stored).ok().and_then(|image| image.footprint_bytes().ok());
+            total_bytes.is_none_or(|total| bytes.is_some_and(|bytes| i64::try_from(bytes).is_ok_and(|b| b <= total)))
+        };
+        let baked = bake_servo(project, DEFAULT_TOLERANCE_DEG, fits);
+        Ok((Self::from_stored(&baked.project)?, baked))
+    }
+
+    /// The records of a project with only straight steps.
+    fn from_stored(project: &ServoProject) -> Result<Self, ImageError> {
         let timing = Timing::new(project);
         let mut servos = Vec::with_capacity(project.servos.len());
         for servo in &project.servos {
@@ -167,11 +185,7 @@ impl ServoImage {
                     steps: record
                         .steps
                         .iter()
-                        .map(|step| Step {
-                            servo_id: step.servo_id,
-                            degree: step.degree,
-                            interval_10ms: step.interval_10ms,
-                        })
+                        .map(|step| Step::new(step.servo_id, step.degree, step.interval_10ms))
                         .collect(),
                 })
                 .collect(),
@@ -335,8 +349,7 @@ mod tests {
 
     #[test]
     fn a_stored_total_is_written_back_and_an_edited_command_gets_the_derived_one() {
-        let action =
-            Action { id: 1, caption: "a".into(), steps: vec![Step { servo_id: 1, degree: 0, interval_10ms: 50 }] };
+        let action = Action { id: 1, caption: "a".into(), steps: vec![Step::new(1, 0, 50)] };
         let kept = Command { stored_total_ms: Some(777), ..Command::once(Run::Action { action_id: 1 }) };
         let derived = Command::once(Run::Action { action_id: 1 });
         let dangling = Command::once(Run::Macro { macro_id: 999 });

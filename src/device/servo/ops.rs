@@ -304,8 +304,6 @@ impl crate::device::UploadSteps for Upload<'_> {
         if problems.has_errors() && !self.options.force {
             return Err(OpError::Invalid { problems });
         }
-        self.image = ServoImage::from_project(self.project)?;
-        let needed_bytes = self.image.footprint_bytes()?;
         // The fit check reads; the write phase proper starts after the backup.
         let mut run = Run {
             requester: self.requester,
@@ -321,6 +319,9 @@ impl crate::device::UploadSteps for Upload<'_> {
             M::QueryMemorySizeResponse { free_bytes, total_bytes } => i64::from(total_bytes.unwrap_or(free_bytes)),
             other => return Err(unexpected(&item, &other)),
         };
+        // Curves baked to fit the board: the tolerance widens rather than the upload failing.
+        self.image = ServoImage::within(self.project, Some(total_bytes))?.0;
+        let needed_bytes = self.image.footprint_bytes()?;
         if i64::try_from(needed_bytes).unwrap_or(i64::MAX) > total_bytes {
             return Err(OpError::DoesNotFit { needed_bytes, total_bytes });
         }

@@ -5,7 +5,6 @@
 
 use super::preview::Preview;
 use crate::authoring::bake::{self, Baked, DEFAULT_TOLERANCE_TENTHS};
-use crate::project::Easing;
 use crate::project::plen2::{Frame, Joint, LoopRange, Motion, Plen2Project, Pose};
 use crate::project::plen2::{MAX_TRANSITION_MS, MIN_TRANSITION_MS, SLOTS};
 use crate::project::{Edit, Location, Problem};
@@ -319,18 +318,7 @@ impl MotionsPanel {
                 ));
             }
             let mut easing = frame.easing;
-            let names = words.plen2().curves;
-            let shown = Easing::ALL.iter().position(|curve| *curve == easing).map_or("?", |at| names[at]);
-            egui::ComboBox::from_id_salt(("plen2-curve", f))
-                .selected_text(shown)
-                .width(96.0)
-                .show_ui(ui, |ui| {
-                    for (curve, name) in Easing::ALL.into_iter().zip(names) {
-                        ui.selectable_value(&mut easing, curve, name);
-                    }
-                })
-                .response
-                .on_hover_text(words.plen2().curve_hint);
+            rows::curve(ui, ("plen2-curve", f), &mut easing, words.plen2().curves, words.plen2().curve_hint);
             if easing != frame.easing {
                 actions.push(edit(project, |p| p.motions[index].frames[f].easing = easing, None));
             }

@@ -3,10 +3,10 @@
 //! together), and as a plot of each servo's angle over time; play it on the
 //! board, or preview it on the sliders without one.
 
+use super::played::Budget;
 use super::preview::{Preview, Timed};
 use crate::project::{
-    Action as ProjectAction, Edit, Location, Problem, ServoProject, Step, action_trajectories, next_free_id,
-    validate_servo,
+    Action as ProjectAction, Edit, Location, Problem, Run, ServoProject, Step, next_free_id, validate_servo,
 };
 use crate::ui::action::{Action, ServoAction};
 use crate::ui::derive::Derived;
@@ -32,17 +32,9 @@ struct Facts {
 }
 
 impl Facts {
-    fn compute(project: &ServoProject, selected: usize) -> Self {
+    fn compute(project: &ServoProject, selected: usize, board: &str) -> Self {
         let Some(selected_action) = project.actions.get(selected) else { return Self::default() };
-        let (trajectories, end_ms) = action_trajectories(project, selected_action.id);
-        let timed = Timed::new(trajectories.clone(), end_ms);
-        let series = trajectories
-            .into_iter()
-            .map(|(servo_id, points)| {
-                let caption = project.servo(servo_id).map_or_else(String::new, |s| s.caption.clone());
-                (format!("{servo_id} {caption}"), points.into_iter().map(|(t, angle)| [t, angle]).collect())
-            })
-            .collect();
+        let (timed, series) = super::played::played(project, Run::Action { action_id: selected_action.id }, board);
         let problems = validate_servo(project);
         let action_id = selected_action.id;
         let mut step_problems = std::collections::BTreeMap::new();
@@ -67,6 +59,8 @@ impl Facts {
 pub struct ActionPanel {
     selected: usize,
     facts: Derived<(u64, usize), Facts>,
+    /// What the project's curves cost on the board, for (revision, the board's memory).
+    budget: Derived<(u64, Option<i64>), Option<Budget>>,
 }
 
 fn set(index: usize, action: ProjectAction, key: Option<String>) -> Action {
@@ -106,9 +100,22 @@ impl ActionPanel {
             .facts
             .for_selected(ui.ctx(), revision, index, || {
                 let project = project.clone();
-                move || Facts::compute(&project, index)
+                let board = words.servo().board_line;
+                move || Facts::compute(&project, index, board)
             })
             .unwrap_or(&empty);
+        let total_bytes = view
+            .link
+            .and_then(|link| link.servo())
+            .and_then(|servo| servo.memory)
+            .map(|(free, total)| i64::from(total.unwrap_or(free)));
+        let budget = self
+            .budget
+            .get(ui.ctx(), (revision, total_bytes), || {
+                let project = project.clone();
+                move || Budget::of(&project, total_bytes)
+            })
+            .and_then(|(_, budget)| budget.as_ref());
         let selected = &mut self.selected;
         // The preview's time cursor, drawn on the plot too (while the preview is open).
         let cursor = layout.view_open.then_some(preview.transport.t_ms);
@@ -120,7 +127,10 @@ impl ActionPanel {
                     *selected = index;
                 }
             }),
-            Part::Editor => seek = Self::editor(ui, project, index, facts, connected, words, actions),
+            Part::Editor => {
+                budget_meter(ui, budget, words);
+                seek = Self::editor(ui, project, index, facts, connected, words, actions);
+            }
             Part::Lower => Self::lower(ui, project, index, (facts, cursor), words),
             Part::View => preview.timed(ui, project, &facts.timed, words),
         });
@@ -199,7 +209,8 @@ impl ActionPanel {
             ui.colored_label(ui.visuals().warn_fg_color, words.lang.problem(&problem.kind));
         }
         let headings = words.headings();
-        let heading = [headings.step, words.servo().servo_word, headings.angle, headings.interval, "", ""];
+        let heading =
+            [headings.step, words.servo().servo_word, headings.angle, headings.interval, words.servo().curve, "", ""];
         // The steps fill the pane but for the "Add step" row under them.
         let height = ui.available_height() - rows::widget_row_height(ui) - 2.0 * ui.spacing().item_spacing.y;
         rows::table(ui, "steps", &heading, action.steps.len(), height, |row, position| {
@@ -257,6 +268,15 @@ impl ActionPanel {
                 }
             });
             row.col(|ui| {
+                let mut easing = step.easing;
+                let captions = words.servo();
+                rows::curve(ui, ("step-curve", position), &mut easing, captions.curves, captions.curve_hint)
+                    .labelled_by(row_id);
+                if easing != step.easing {
+                    actions.push(with(Step { easing, ..*step }, None));
+                }
+            });
+            row.col(|ui| {
                 if let Some(asked) = rows::reorder_buttons(ui, position, action.steps.len(), words.remove) {
                     let mut changed = action.clone();
                     asked.apply(&mut changed.steps, position);
@@ -274,10 +294,48 @@ impl ActionPanel {
             && let Some(servo) = unused
         {
             let mut more = action.clone();
-            more.steps.push(Step { servo_id: servo.id, degree: servo.home_deg, interval_10ms: 50 });
+            more.steps.push(Step::new(servo.id, servo.home_deg, 50));
             actions.push(set(index, more, None));
         }
         seek
+    }
+}
+
+/// What the project's curves cost on the board: its steps (those for curves)
+/// and bytes of the board's memory (when connected), how far the board strays
+/// from the curves, and a warning when the tolerance had to widen.
+fn budget_meter(ui: &mut egui::Ui, budget: Option<&Budget>, words: &Strings) {
+    let Some(budget) = budget else { return };
+    let captions = words.servo();
+    let baked = &budget.baked;
+    let added: usize =
+        baked.project.actions.iter().rev().take(baked.added_actions).map(|action| action.steps.len()).sum();
+    let bytes = budget.bytes.map_or_else(|| "?".to_string(), |bytes| bytes.to_string());
+    let memory = match budget.total_bytes {
+        Some(total) => format!("{bytes} {} {total} {}", captions.of_word, captions.bytes_word),
+        None => format!("{bytes} {}", captions.bytes_word),
+    };
+    let text = format!(
+        "{}: {} {} ({added} {}) · {memory} · {} {:.1}°",
+        captions.on_board,
+        baked.steps(),
+        captions.steps_word,
+        captions.for_curves,
+        captions.largest_deviation,
+        baked.max_error_deg
+    );
+    // Byte counts far below 2^24: exact enough for a bar.
+    #[allow(clippy::cast_precision_loss)]
+    let fill = match (budget.bytes, budget.total_bytes) {
+        (Some(bytes), Some(total)) if total > 0 => bytes as f32 / total as f32,
+        _ => 0.0,
+    };
+    ui.add(egui::ProgressBar::new(fill.min(1.0)).text(text).desired_width(ui.available_width().min(560.0)));
+    if budget.widened() {
+        ui.colored_label(
+            ui.visuals().warn_fg_color,
+            format!("{} → {:.1}°", captions.tolerance_widened, baked.tolerance_deg),
+        );
     }
 }
 

@@ -153,6 +153,28 @@ pub struct ServoCaptions {
     pub mirror_hint: &'static str,
     /// Whether a servo is in the rig.
     pub in_rig: &'static str,
+    /// The steps table's heading for a step's curve: "Curve".
+    pub curve: &'static str,
+    /// Each curve's name, in `Easing::ALL` order.
+    pub curves: [&'static str; 5],
+    /// What a curve does to what the board stores (hover text).
+    pub curve_hint: &'static str,
+    /// The budget meter's start: "On the board".
+    pub on_board: &'static str,
+    /// "steps".
+    pub steps_word: &'static str,
+    /// "for curves".
+    pub for_curves: &'static str,
+    /// "bytes".
+    pub bytes_word: &'static str,
+    /// "of".
+    pub of_word: &'static str,
+    /// "largest deviation from the curves".
+    pub largest_deviation: &'static str,
+    /// "the tolerance was widened from 1° so the curves fit the board's memory".
+    pub tolerance_widened: &'static str,
+    /// A plot line's suffix for what the board plays: "board".
+    pub board_line: &'static str,
 }
 
 const ENGLISH: ServoCaptions = ServoCaptions {
@@ -229,6 +251,17 @@ const ENGLISH: ServoCaptions = ServoCaptions {
     mirror: "Mirror L/R",
     mirror_hint: "Each step moves the servo's twin instead (the rig's Twin column), its angle reflected about their homes: a left-arm wave becomes a right-arm wave. A servo without a twin keeps its step.",
     in_rig: "In rig",
+    curve: "Curve",
+    curves: ["Linear", "Ease in", "Ease out", "Ease in-out", "Hold"],
+    curve_hint: "How the step's move runs. The board moves only in straight lines: a curve is stored as straight sub-steps within 1° of it (widened when the board's memory is short), run by a macro of their own, eased from where the macro has put the servo. The project keeps the curve.",
+    on_board: "On the board",
+    steps_word: "steps",
+    for_curves: "for curves",
+    bytes_word: "bytes",
+    of_word: "of",
+    largest_deviation: "largest deviation from the curves",
+    tolerance_widened: "the tolerance was widened from 1° so the curves fit the board's memory",
+    board_line: "board",
 };
 
 const TRADITIONAL_CHINESE: ServoCaptions = ServoCaptions {
@@ -305,6 +338,17 @@ const TRADITIONAL_CHINESE: ServoCaptions = ServoCaptions {
     mirror: "左右鏡像",
     mirror_hint: "每個步驟改由該伺服機的對側伺服機執行（骨架表的「對側」欄），角度以原點對稱反轉：左手揮手變成右手揮手。沒有對側的伺服機保留原步驟。",
     in_rig: "在骨架中",
+    curve: "曲線",
+    curves: ["線性", "漸入", "漸出", "漸入漸出", "保持"],
+    curve_hint: "此步驟的移動方式。控制板只會直線移動：曲線會存成數個誤差 1° 以內的直線子步驟（控制板記憶體不足時放寬），由專屬巨集依序執行，從巨集讓伺服機到達的角度開始漸變。專案保留曲線本身。",
+    on_board: "控制板上",
+    steps_word: "個步驟",
+    for_curves: "用於曲線",
+    bytes_word: "位元組",
+    of_word: "／",
+    largest_deviation: "與曲線的最大偏差",
+    tolerance_widened: "已將容許誤差從 1° 放寬，讓曲線放得進控制板記憶體",
+    board_line: "控制板",
 };
 
 /// The servo board's captions in the interface's language.

@@ -5,6 +5,7 @@ use std::time::{Duration, Instant};
 
 use super::ServoLink;
 use super::{CAPTURED_STEP_INTERVAL_10MS, LIVE_MOVE_INTERVAL_10MS, ServoUi};
+use crate::authoring::bake_servo;
 use crate::authoring::fit::{self, Board, ServoBoard};
 use crate::authoring::fitted::{self, SERVO_UPDATE_MS};
 use crate::device::servo::ServoMove;
@@ -99,11 +100,7 @@ impl ServoUi {
         let steps: Vec<Step> = project
             .servos
             .iter()
-            .map(|servo| Step {
-                servo_id: servo.id,
-                degree: servo.clamp(angle(servo.id, servo.home_deg)),
-                interval_10ms: CAPTURED_STEP_INTERVAL_10MS,
-            })
+            .map(|servo| Step::new(servo.id, servo.clamp(angle(servo.id, servo.home_deg)), CAPTURED_STEP_INTERVAL_10MS))
             .collect();
         if steps.is_empty() {
             shell.report(shell.words().servo().msg_nothing_to_capture, true);
@@ -159,12 +156,44 @@ impl ServoUi {
 
     /// Sends an action's steps as one live move (clamped to each servo's limits)
     /// and shows the targets on the sliders.
+    /// Plays an action of the project on the board now, from where its servos
+    /// are: a curved one as its straight sub-steps, one after another (the
+    /// tick sends the next when the last is done).
     pub(super) fn play_action(&mut self, shell: &mut Shell<'_>, action_id: i32) {
         let project = &shell.document.project.servo;
         let Some(action) = project.action(action_id) else { return };
+        self.playing.clear();
+        let parts = if bake_servo::is_curved(action) {
+            let read = shell.servo().map(|link| &link.servos);
+            let from: std::collections::BTreeMap<u8, f64> = action
+                .steps
+                .iter()
+                .filter_map(|step| {
+                    let servo = project.servo(step.servo_id)?;
+                    let shown = self.pose.get(&step.servo_id).copied().unwrap_or(servo.home_deg);
+                    let reading = read.and_then(|servos| servos.get(&step.servo_id)).map(|state| state.angle);
+                    Some((step.servo_id, f64::from(reading.unwrap_or(shown))))
+                })
+                .collect();
+            bake_servo::bake_action(action, &from, bake_servo::DEFAULT_TOLERANCE_DEG, 1).0
+        } else {
+            vec![action.clone()]
+        };
+        self.playing = parts.into_iter().map(|part| part.steps).collect();
+        self.play_next(shell, Instant::now());
+    }
+
+    /// Sends the next part of the action being played, if the last is done.
+    pub(super) fn play_next(&mut self, shell: &mut Shell<'_>, now: Instant) {
+        if self.playing_until.is_some_and(|until| now < until) {
+            return;
+        }
+        self.playing_until = None;
+        let Some(steps) = self.playing.pop_front() else { return };
+        let project = &shell.document.project.servo;
         let read = shell.servo().map(|link| &link.servos);
         let mut moves = Vec::new();
-        for step in &action.steps {
+        for step in &steps {
             let Some(servo) = project.servo(step.servo_id) else { continue };
             let shown = self.pose.get(&step.servo_id).copied().unwrap_or(servo.home_deg);
             let reading = read.and_then(|servos| servos.get(&step.servo_id)).map(|state| state.angle);
@@ -179,17 +208,22 @@ impl ServoUi {
             ));
         }
         let Some(link) = shell.servo() else {
+            self.playing.clear();
             shell.report(shell.words().servo().msg_connect_for_play, true);
             return;
         };
         if link.stopped {
+            self.playing.clear();
             shell.report(shell.words().servo().msg_press_resume, true);
             return;
         }
         if let Err(error) = link.move_now(moves.clone()) {
+            self.playing.clear();
             shell.report(shell.language.op_error(&error), true);
             return;
         }
+        let longest = moves.iter().map(|m| m.interval_10ms.max(0).unsigned_abs()).max().unwrap_or(0);
+        self.playing_until = Some(now + Duration::from_millis(u64::from(longest) * 10));
         for servo_move in moves {
             self.pose.insert(servo_move.servo_id, servo_move.degree);
         }

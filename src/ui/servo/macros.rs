@@ -5,8 +5,8 @@
 
 use super::preview::{Preview, Timed};
 use crate::project::{
-    Command, Edit, Location, Macro, Problem, Run, ServoProject, Severity, Timing, TimingError, macro_trajectories,
-    next_free_id, validate_servo,
+    Command, Edit, Location, Macro, Problem, Run, ServoProject, Severity, Timing, TimingError, next_free_id,
+    validate_servo,
 };
 use crate::ui::action::{Action, ServoAction};
 use crate::ui::derive::Derived;
@@ -36,18 +36,10 @@ struct Facts {
 }
 
 impl Facts {
-    fn compute(project: &ServoProject, selected: usize) -> Self {
+    fn compute(project: &ServoProject, selected: usize, board: &str) -> Self {
         let Some(item) = project.macros.get(selected) else { return Self::default() };
         let timing = Timing::new(project);
-        let (trajectories, end_ms) = macro_trajectories(project, item.id);
-        let timed = Timed::new(trajectories.clone(), end_ms);
-        let series = trajectories
-            .into_iter()
-            .map(|(servo_id, points)| {
-                let caption = project.servo(servo_id).map_or_else(String::new, |s| s.caption.clone());
-                (format!("{servo_id} {caption}"), points.into_iter().map(|(t, angle)| [t, angle]).collect())
-            })
-            .collect();
+        let (timed, series) = super::played::played(project, Run::Macro { macro_id: item.id }, board);
         let problems = validate_servo(project);
         let mut flagged = std::collections::BTreeSet::new();
         let mut command_problems = std::collections::BTreeMap::new();
@@ -133,7 +125,8 @@ impl MacroPanel {
             .facts
             .for_selected(ui.ctx(), revision, index, || {
                 let project = project.clone();
-                move || Facts::compute(&project, index)
+                let board = words.servo().board_line;
+                move || Facts::compute(&project, index, board)
             })
             .unwrap_or(&empty);
         let selected = &mut self.selected;

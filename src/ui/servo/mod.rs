@@ -11,6 +11,7 @@ mod live;
 mod macros;
 mod operations;
 mod pad;
+mod played;
 mod preview;
 mod rig;
 mod sliders;
@@ -73,6 +74,11 @@ pub struct ServoUi {
     pub picked_button: Option<u32>,
     /// An action being previewed on the sliders, and when it started.
     pub preview: Option<(i32, Instant)>,
+    /// The parts of an action being played on the board still to send (a
+    /// curved action is played as its straight sub-steps).
+    playing: std::collections::VecDeque<Vec<crate::project::Step>>,
+    /// When the part last sent is done.
+    playing_until: Option<Instant>,
     /// The live move each servo was last sent, to tell where it is now (the
     /// board moves it linearly): the live speed limit counts from there.
     moving: BTreeMap<u8, live::Moving>,
@@ -345,6 +351,7 @@ impl FamilyUi for ServoUi {
     fn stop(&mut self, shell: &mut Shell<'_>) {
         // Held wherever they were: where is read again, not guessed.
         self.moving.clear();
+        self.playing.clear();
         let Some(link) = shell.link.as_mut() else { return };
         match link.stop() {
             Ok(()) => shell.report(shell.words().servo().msg_stopped_all, false),
@@ -360,10 +367,12 @@ impl FamilyUi for ServoUi {
     fn disconnected(&mut self) {
         self.polling = false;
         self.moving.clear();
+        self.playing.clear();
     }
 
     fn document_replaced(&mut self, project: &Project) {
         self.recording = None;
+        self.playing.clear();
         self.replace_document(&project.servo);
     }
 
@@ -371,7 +380,8 @@ impl FamilyUi for ServoUi {
     fn tick(&mut self, shell: &mut Shell<'_>, now: Instant) -> bool {
         self.finish_export(shell.language);
         self.advance_preview(&shell.document.project.servo, now);
-        self.preview.is_some()
+        self.play_next(shell, now);
+        self.preview.is_some() || !self.playing.is_empty()
     }
 
     fn finish_operation(&mut self, shell: &mut Shell<'_>, wait: Option<std::time::Duration>) -> Option<(String, bool)> {
