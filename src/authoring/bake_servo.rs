@@ -100,7 +100,25 @@ pub fn bake_action(action: &Action, from: &BTreeMap<u8, f64>, tolerance: f64, fi
     let (start, rows) = action_rows(action, from);
     let fitted = fit::fit(&ServoBoard, &start, &rows, tolerance);
     let ids: Vec<u8> = action.steps.iter().map(|step| step.servo_id).collect();
-    (fitted::servo_actions(&fitted, &ids, first_id, &format!("{} ~", action.caption)), fitted.max_error)
+    let mut subs = fitted::servo_actions(&fitted, &ids, first_id, &format!("{} ~", action.caption));
+    // A servo that stays where the last sub-action left it needs no step (every move of a
+    // sub-action ends with it, so none is under way): the board leaves it be. A sub-action
+    // where nothing moves keeps one step, for its time.
+    let mut at = start;
+    for sub in &mut subs {
+        let before = at.clone();
+        for (place, step) in at.iter_mut().zip(&sub.steps) {
+            *place = i32::from(step.degree);
+        }
+        let keep: Vec<bool> = sub.steps.iter().zip(&before).map(|(step, &was)| i32::from(step.degree) != was).collect();
+        if keep.iter().any(|&moves| moves) {
+            let mut flags = keep.into_iter();
+            sub.steps.retain(|_| flags.next().unwrap_or(true));
+        } else {
+            sub.steps.truncate(1);
+        }
+    }
+    (subs, fitted.max_error)
 }
 
 /// `project` baked at `tolerance` (°), widened until `fits` holds for it (in
@@ -287,6 +305,9 @@ mod tests {
                 assert_eq!(baked.project, authored, "a straight project is stored as it is");
             } else {
                 assert!(baked.added_actions >= 2, "{easing:?}: {}", baked.added_actions);
+                // The wrist is done at 500 ms: the sub-actions after that hold only the arm's step.
+                let added: usize = baked.project.actions[1..].iter().map(|a| a.steps.len()).sum();
+                assert!(added < 2 * baked.added_actions, "{easing:?}: {added} steps in {}", baked.added_actions);
                 assert_eq!(baked.added_macros, 1);
                 // The authored action is still there, straight, for a loop's later turns.
                 let straight: Vec<(u8, i16, i16)> =

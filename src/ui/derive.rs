@@ -119,6 +119,12 @@ impl<T: Send + 'static> Derived<(u64, usize), T> {
     }
 }
 
+/// A revision key that changes with the interface's language too (for what
+/// is derived with words in it): each revision and language its own key.
+pub fn with_language(revision: u64, language: crate::ui::i18n::Language) -> u64 {
+    revision.wrapping_mul(2) + u64::from(language == crate::ui::i18n::Language::TraditionalChinese)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -98,7 +98,7 @@ impl ActionPanel {
         let empty = Facts::default();
         let facts = self
             .facts
-            .for_selected(ui.ctx(), revision, index, || {
+            .for_selected(ui.ctx(), crate::ui::derive::with_language(revision, view.language), index, || {
                 let project = project.clone();
                 let board = words.servo().board_line;
                 move || Facts::compute(&project, index, board)
@@ -316,13 +316,11 @@ fn budget_meter(ui: &mut egui::Ui, budget: Option<&Budget>, words: &Strings) {
         None => format!("{bytes} {}", captions.bytes_word),
     };
     let text = format!(
-        "{}: {} {} ({added} {}) · {memory} · {} {:.1}°",
+        "{}: {} {} ({added} {}) · {memory}",
         captions.on_board,
         baked.steps(),
         captions.steps_word,
-        captions.for_curves,
-        captions.largest_deviation,
-        baked.max_error_deg
+        captions.for_curves
     );
     // Byte counts far below 2^24: exact enough for a bar.
     #[allow(clippy::cast_precision_loss)]
@@ -330,7 +328,10 @@ fn budget_meter(ui: &mut egui::Ui, budget: Option<&Budget>, words: &Strings) {
         (Some(bytes), Some(total)) if total > 0 => bytes as f32 / total as f32,
         _ => 0.0,
     };
-    ui.add(egui::ProgressBar::new(fill.min(1.0)).text(text).desired_width(ui.available_width().min(560.0)));
+    ui.horizontal_wrapped(|ui| {
+        ui.add(egui::ProgressBar::new(fill.min(1.0)).text(text).desired_width(ui.available_width().min(420.0)));
+        ui.label(format!("{} {:.1}°", captions.largest_deviation, baked.max_error_deg));
+    });
     if budget.widened() {
         ui.colored_label(
             ui.visuals().warn_fg_color,

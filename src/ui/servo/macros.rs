@@ -123,7 +123,7 @@ impl MacroPanel {
         let empty = Facts::default();
         let derived = self
             .facts
-            .for_selected(ui.ctx(), revision, index, || {
+            .for_selected(ui.ctx(), crate::ui::derive::with_language(revision, view.language), index, || {
                 let project = project.clone();
                 let board = words.servo().board_line;
                 move || Facts::compute(&project, index, board)

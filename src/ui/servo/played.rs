@@ -20,7 +20,7 @@ fn traced(project: &ServoProject, run: Run) -> (Trajectories, f64) {
 
 /// The preview's timing and the plot's series for `run`: each servo as meant
 /// ("id caption") and, where the board plays it otherwise, as the board does
-/// ("id caption (`board`)").
+/// ("id caption (`board`)"); those pairs first.
 pub fn played(project: &ServoProject, run: Run, board: &str) -> (Timed, plot::Series) {
     let (meant, meant_end) = traced(project, run);
     let name = |servo_id: u8| {
@@ -28,27 +28,36 @@ pub fn played(project: &ServoProject, run: Run, board: &str) -> (Timed, plot::Se
         format!("{servo_id} {caption}")
     };
     let points = |points: &[(f64, f64)]| points.iter().map(|&(t, angle)| [t, angle]).collect::<Vec<_>>();
-    let mut series: plot::Series = meant.iter().map(|(&id, line)| (name(id), points(line))).collect();
     if !bake_servo::has_curves(project) {
+        let series = meant.iter().map(|(&id, line)| (name(id), points(line))).collect();
         return (Timed::new(meant, meant_end), series);
     }
     let (stored, stored_run) = bake_servo::stored_run(project, run);
     let (plays, plays_end) = traced(&stored, stored_run);
-    for (id, line) in &plays {
-        let apart = |meant: &Vec<(f64, f64)>| {
-            // At every update: a straight step split with the curve's pieces stays on its line.
+    // A servo the board plays otherwise than meant: both lines, first (the plot shows the first few).
+    let (mut pairs, mut single) = (plot::Series::new(), plot::Series::new());
+    for (id, line) in &meant {
+        let apart = plays.get(id).filter(|played| {
+            // At every update: a straight step split with a curve's pieces stays on its line.
             (0..=crate::project::sample_count(plays_end.max(meant_end))).any(|k| {
                 // Update counts are small.
                 #[allow(clippy::cast_precision_loss)]
                 let t = k as f64 * crate::project::SAMPLE_MS;
-                let (a, b) = (angle_at(meant, t), angle_at(line, t));
-                a.zip(b).is_none_or(|(a, b)| (a - b).abs() > 0.05)
+                // Before the board moves it, a servo holds where it starts.
+                let held = angle_at(played, t).or_else(|| line.first().map(|&(_, start)| start));
+                angle_at(line, t).zip(held).is_none_or(|(a, b)| (a - b).abs() > 0.05)
             })
-        };
-        if meant.get(id).is_none_or(apart) {
-            series.push((format!("{} ({board})", name(*id)), points(line)));
+        });
+        match apart {
+            Some(played) => {
+                pairs.push((name(*id), points(line)));
+                pairs.push((format!("{} ({board})", name(*id)), points(played)));
+            }
+            None => single.push((name(*id), points(line))),
         }
     }
+    pairs.extend(single);
+    let series = pairs;
     (Timed::new(plays, plays_end), series)
 }
 
@@ -107,10 +116,11 @@ mod tests {
         let (_, series) = played(&eased(), Run::Action { action_id: 3 }, "board");
         let names: Vec<&str> = series.iter().map(|(name, _)| name.as_str()).collect();
         // The wrist's straight step, split with the arm's pieces into whole degrees, is drawn too when that shows.
-        assert_eq!(names[..3], ["1 arm", "2 wrist", "1 arm (board)"]);
+        assert_eq!(names[..2], ["1 arm", "1 arm (board)"], "the curve and the board's line first");
+        assert!(names.contains(&"2 wrist"));
         // Meant: a point per update; the board: a few straight pieces, never more than 1° away.
         assert_eq!(series[0].1.len(), 81);
-        assert!(series[2].1.len() < 20, "{}", series[2].1.len());
+        assert!(series[1].1.len() < 20, "{}", series[1].1.len());
         let mut straight = eased();
         straight.actions[0].steps[0].easing = Easing::Linear;
         let (_, series) = played(&straight, Run::Macro { macro_id: 1 }, "board");
