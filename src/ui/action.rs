@@ -267,6 +267,14 @@ pub enum ServoAction {
     RunMacro(i32),
     /// Move the servos through an action of the project now (live).
     PlayAction(i32),
+    /// Play a macro of the project live from one of its commands (its actions
+    /// sent one after another, curves as their sub-steps).
+    PlayMacroFrom {
+        /// The macro.
+        macro_id: i32,
+        /// The first command played, from 0.
+        command: usize,
+    },
     /// Play an action on the sliders, without a board.
     PreviewAction(i32),
     /// Start (with the table to pick into) or stop picking a button by pressing it on the remote.

@@ -160,3 +160,35 @@ fn inline_problems_speak_the_interface_language() {
     harness.run_steps(2);
     assert!(harness.query_all_by_label_contains("巨集循環 100 → 101 → 100").next().is_some());
 }
+
+/// ▶ on a command plays the macro from there: on the board, that command and
+/// those after it (nothing before), each at its own speed and loops; the
+/// preview's cursor goes to where the command starts.
+#[test]
+fn play_from_here_sends_the_macro_from_that_command_and_moves_the_preview_there() {
+    use servo_studio::link::LinkEvent;
+    use servo_studio::protocol::servo::Message;
+    use servo_studio::sim::SimEvent;
+    use std::time::{Duration, Instant};
+    let mut harness = harness(fixture(), Tab::Macros);
+    harness.state_mut().apply(Action::ConnectDemo);
+    harness.run_steps(2);
+    let events = harness.state().link.as_ref().unwrap().demo_board().unwrap().events().clone();
+    // Macro 100: action 1 (1.00 s), a 0.50 s delay, action 2 at 50 % three times.
+    harness.get_all_by_label("Play here").nth(2).expect("the third command's Play here").click();
+    let deadline = Instant::now() + Duration::from_secs(10);
+    let mut sent = Vec::new();
+    while sent.len() < 3 {
+        assert!(Instant::now() < deadline, "the loops never all played: {sent:?}");
+        harness.step();
+        while let Ok(event) = events.try_recv() {
+            if let LinkEvent::Driver(SimEvent::Handled(Message::ExecuteActionRequest { moves })) = event {
+                sent.extend(moves.iter().map(|m| (m.servo_id, m.degree, m.interval_10ms)));
+            }
+        }
+    }
+    // Nod: servo 3 to 30° over 200 ms, at half speed 400 ms, three times; nothing of action 1.
+    assert_eq!(sent, [(3, 30, 40); 3]);
+    let t = harness.state().servo.figure.transport.t_ms;
+    assert!((1500.0..1510.0).contains(&t), "the preview's cursor at the command's start: {t}");
+}

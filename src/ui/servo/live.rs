@@ -9,10 +9,11 @@ use crate::authoring::bake_servo;
 use crate::authoring::fit::{self, Board, ServoBoard};
 use crate::authoring::fitted::{self, SERVO_UPDATE_MS};
 use crate::device::servo::ServoMove;
-use crate::project::{Action as ProjectAction, Edit, ServoProject, Step, next_free_id};
+use crate::project::{Action as ProjectAction, Edit, Run, ServoProject, Step, next_free_id};
 use crate::ui::servo::captions::ServoWords;
 use crate::ui::shell::Shell;
 use crate::ui::speed::LiveSpeed;
+use std::collections::BTreeMap;
 
 /// A live move as sent: the board turns the servo linearly from `from` to
 /// `to` over `interval`.
@@ -29,6 +30,79 @@ impl Moving {
     fn at(&self, now: Instant) -> f64 {
         let done = now.saturating_duration_since(self.start).as_secs_f64() / self.interval.as_secs_f64().max(1e-9);
         self.from + (f64::from(self.to) - self.from) * done.min(1.0)
+    }
+}
+
+/// A part of what is played live: steps sent together, then at least
+/// `wait_ms` (a delay) before the next.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Part {
+    steps: Vec<Step>,
+    wait_ms: u64,
+}
+
+/// At most this many parts are played from one click (a macro of long loops
+/// is cut there rather than planned for hours).
+const MOST_PARTS: usize = 10_000;
+
+/// The parts of `action` at `speed` (ratio / 100) from `angles` (moved on to
+/// where it ends): a curved one as its straight sub-steps.
+fn action_parts(action: &ProjectAction, angles: &mut BTreeMap<u8, f64>, speed: f64, parts: &mut Vec<Part>) {
+    let pieces = if bake_servo::is_curved(action) {
+        bake_servo::bake_action(action, angles, bake_servo::DEFAULT_TOLERANCE_DEG, 1).0
+    } else {
+        vec![action.clone()]
+    };
+    for piece in pieces {
+        let steps = piece
+            .steps
+            .iter()
+            .map(|step| {
+                // Intervals of at most 32767 × 100: the ratio slows, never overflows an i32.
+                #[allow(clippy::cast_possible_truncation)]
+                let interval = (f64::from(step.interval_10ms.max(0)) / speed).round().min(f64::from(i16::MAX)) as i16;
+                Step::new(step.servo_id, step.degree, interval)
+            })
+            .collect();
+        parts.push(Part { steps, wait_ms: 0 });
+    }
+    for step in &action.steps {
+        angles.insert(step.servo_id, f64::from(step.degree));
+    }
+}
+
+/// The parts `command` plays at `speed`, as the board runs it (a delay is not
+/// slowed by the ratio; a macro already running is not entered again).
+fn command_parts(
+    project: &ServoProject,
+    command: &crate::project::Command,
+    speed: f64,
+    (angles, running): (&mut BTreeMap<u8, f64>, &mut Vec<i32>),
+    parts: &mut Vec<Part>,
+) {
+    let speed = speed * f64::from(command.ratio_percent.max(1)) / 100.0;
+    for _ in 0..command.loop_count.max(0) {
+        if parts.len() >= MOST_PARTS {
+            return;
+        }
+        match command.run {
+            Run::Action { action_id } => {
+                if let Some(action) = project.action(action_id) {
+                    action_parts(action, angles, speed, parts);
+                }
+            }
+            Run::Delay { delay_ms } => {
+                parts.push(Part { steps: Vec::new(), wait_ms: u64::from(delay_ms.max(0).unsigned_abs()) });
+            }
+            Run::Macro { macro_id } => {
+                let Some(item) = project.macro_by_id(macro_id).filter(|_| !running.contains(&macro_id)) else { return };
+                running.push(macro_id);
+                for inner in &item.commands {
+                    command_parts(project, inner, speed, (&mut *angles, &mut *running), parts);
+                }
+                running.pop();
+            }
+        }
     }
 }
 
@@ -78,7 +152,7 @@ impl ServoUi {
 
     /// Back to `pose` (an undone turn in the 3D view): each servo that differs
     /// is moved there live, at the live speed limit.
-    pub fn restore_pose(&mut self, shell: &mut Shell<'_>, pose: std::collections::BTreeMap<u8, i16>) {
+    pub fn restore_pose(&mut self, shell: &mut Shell<'_>, pose: BTreeMap<u8, i16>) {
         self.turning = None;
         for (servo_id, degree) in pose {
             if self.pose.get(&servo_id) != Some(&degree) {
@@ -156,56 +230,78 @@ impl ServoUi {
 
     /// Sends an action's steps as one live move (clamped to each servo's limits)
     /// and shows the targets on the sliders.
+    /// Where each servo is now, as far as the editor knows: the board's
+    /// reading, else the slider.
+    fn where_now(&self, shell: &Shell<'_>) -> BTreeMap<u8, f64> {
+        let read = shell.servo().map(|link| &link.servos);
+        shell
+            .document
+            .project
+            .servo
+            .servos
+            .iter()
+            .map(|servo| {
+                let shown = self.pose.get(&servo.id).copied().unwrap_or(servo.home_deg);
+                let reading = read.and_then(|servos| servos.get(&servo.id)).map(|state| state.angle);
+                (servo.id, f64::from(reading.unwrap_or(shown)))
+            })
+            .collect()
+    }
+
     /// Plays an action of the project on the board now, from where its servos
     /// are: a curved one as its straight sub-steps, one after another (the
     /// tick sends the next when the last is done).
     pub(super) fn play_action(&mut self, shell: &mut Shell<'_>, action_id: i32) {
         let project = &shell.document.project.servo;
         let Some(action) = project.action(action_id) else { return };
-        self.playing.clear();
-        let parts = if bake_servo::is_curved(action) {
-            let read = shell.servo().map(|link| &link.servos);
-            let from: std::collections::BTreeMap<u8, f64> = action
-                .steps
-                .iter()
-                .filter_map(|step| {
-                    let servo = project.servo(step.servo_id)?;
-                    let shown = self.pose.get(&step.servo_id).copied().unwrap_or(servo.home_deg);
-                    let reading = read.and_then(|servos| servos.get(&step.servo_id)).map(|state| state.angle);
-                    Some((step.servo_id, f64::from(reading.unwrap_or(shown))))
-                })
-                .collect();
-            bake_servo::bake_action(action, &from, bake_servo::DEFAULT_TOLERANCE_DEG, 1).0
-        } else {
-            vec![action.clone()]
-        };
-        self.playing = parts.into_iter().map(|part| part.steps).collect();
+        let mut angles = self.where_now(shell);
+        let mut parts = Vec::new();
+        action_parts(action, &mut angles, 1.0, &mut parts);
+        self.play_parts(shell, parts);
+    }
+
+    /// Plays a macro on the board live from its command `from` (its own
+    /// commands on, what they run flattened into parts), from where the servos are.
+    pub(super) fn play_macro_from(&mut self, shell: &mut Shell<'_>, macro_id: i32, from: usize) {
+        let project = &shell.document.project.servo;
+        let Some(item) = project.macro_by_id(macro_id) else { return };
+        let mut angles = self.where_now(shell);
+        let mut parts = Vec::new();
+        let mut running = vec![macro_id];
+        for command in item.commands.iter().skip(from) {
+            command_parts(project, command, 1.0, (&mut angles, &mut running), &mut parts);
+        }
+        self.play_parts(shell, parts);
+    }
+
+    fn play_parts(&mut self, shell: &mut Shell<'_>, parts: Vec<Part>) {
+        if shell.servo().is_none() {
+            shell.report(shell.words().servo().msg_connect_for_play, true);
+            return;
+        }
+        self.playing = parts.into();
+        self.playing_until = None;
         self.play_next(shell, Instant::now());
     }
 
-    /// Sends the next part of the action being played, if the last is done.
+    /// Sends the next part of what is being played, if the last is done.
     pub(super) fn play_next(&mut self, shell: &mut Shell<'_>, now: Instant) {
         if self.playing_until.is_some_and(|until| now < until) {
             return;
         }
         self.playing_until = None;
-        let Some(steps) = self.playing.pop_front() else { return };
+        let Some(part) = self.playing.pop_front() else { return };
         let project = &shell.document.project.servo;
         let read = shell.servo().map(|link| &link.servos);
         let mut moves = Vec::new();
-        for step in &steps {
+        for step in &part.steps {
             let Some(servo) = project.servo(step.servo_id) else { continue };
             let shown = self.pose.get(&step.servo_id).copied().unwrap_or(servo.home_deg);
             let reading = read.and_then(|servos| servos.get(&step.servo_id)).map(|state| state.angle);
             // The step's own interval, or longer when the live speed limit needs it.
             let least = step.interval_10ms.max(1);
-            moves.push(self.limited_move(
-                shell.speed,
-                step.servo_id,
-                servo.clamp(step.degree),
-                (shown, reading),
-                least,
-            ));
+            let degree = servo.clamp(step.degree);
+            moves.push(self.limited_move(shell.speed, step.servo_id, degree, (shown, reading), least));
         }
         let Some(link) = shell.servo() else {
             self.playing.clear();
@@ -217,13 +313,15 @@ impl ServoUi {
             shell.report(shell.words().servo().msg_press_resume, true);
             return;
         }
-        if let Err(error) = link.move_now(moves.clone()) {
+        if !moves.is_empty()
+            && let Err(error) = link.move_now(moves.clone())
+        {
             self.playing.clear();
             shell.report(shell.language.op_error(&error), true);
             return;
         }
-        let longest = moves.iter().map(|m| m.interval_10ms.max(0).unsigned_abs()).max().unwrap_or(0);
-        self.playing_until = Some(now + Duration::from_millis(u64::from(longest) * 10));
+        let longest = moves.iter().map(|m| u64::from(m.interval_10ms.max(0).unsigned_abs()) * 10).max().unwrap_or(0);
+        self.playing_until = Some(now + Duration::from_millis(longest.max(part.wait_ms)));
         for servo_move in moves {
             self.pose.insert(servo_move.servo_id, servo_move.degree);
         }

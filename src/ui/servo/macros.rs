@@ -132,6 +132,7 @@ impl MacroPanel {
         let selected = &mut self.selected;
         // The preview's time cursor, drawn on the plot too (while the preview is open).
         let cursor = layout.view_open.then_some(preview.transport.t_ms);
+        let mut played_from = None;
         layout::list_and_editor(ui, "macros", layout, words.servo().plot, |ui, part| match part {
             Part::List => rows::names(ui, "macro-list", project.macros.len(), |ui, index| {
                 let item = &project.macros[index];
@@ -141,7 +142,7 @@ impl MacroPanel {
                     *selected = index;
                 }
             }),
-            Part::Editor => Self::editor(ui, project, index, derived, connected, words, actions),
+            Part::Editor => played_from = Self::editor(ui, project, index, derived, connected, words, actions),
             Part::Lower => {
                 if !derived.series.is_empty() {
                     plot::series(ui, "macro-plot", words, &derived.series, cursor);
@@ -149,6 +150,15 @@ impl MacroPanel {
             }
             Part::View => preview.timed(ui, project, &derived.timed, words),
         });
+        // Played from a command: the preview's cursor goes where it starts.
+        if let Some(position) = played_from {
+            let before: Result<i64, _> = derived.command_totals_ms.iter().take(position).cloned().sum();
+            if let Ok(start_ms) = before {
+                // Times of a few hours at most: exact.
+                #[allow(clippy::cast_precision_loss)]
+                preview.transport.seek(start_ms as f64, ui.input(|input| input.time));
+            }
+        }
     }
 
     #[allow(clippy::too_many_arguments)]
@@ -160,7 +170,8 @@ impl MacroPanel {
         connected: bool,
         words: &Strings,
         actions: &mut Vec<Action>,
-    ) {
+    ) -> Option<usize> {
+        let mut played_from = None;
         let item = &project.macros[index];
         // Buttons wrap under the caption when the pane is narrow, never clipped.
         ui.horizontal_wrapped(|ui| {
@@ -192,6 +203,10 @@ impl MacroPanel {
         rows::grid(ui, "commands", item.commands.len(), height, |ui, position| {
             let command = &item.commands[position];
             let total = derived.command_totals_ms.get(position).copied().unwrap_or(Err(TimingError::ZeroRatio));
+            if ui.small_button(words.servo().play_here).on_hover_text(words.servo().play_from_here_hint).clicked() {
+                played_from = Some(position);
+                actions.push(Action::Servo(ServoAction::PlayMacroFrom { macro_id: item.id, command: position }));
+            }
             Self::command_row(ui, project, total, item, index, position, command, words, actions);
             if let Some(problem) = derived.command_problems.get(&(position + 1)) {
                 let color = match problem.severity {
@@ -230,6 +245,7 @@ impl MacroPanel {
                 actions.push(add(Run::Macro { macro_id }));
             }
         });
+        played_from
     }
 
     #[allow(clippy::too_many_arguments)]

@@ -76,7 +76,7 @@ pub struct ServoUi {
     pub preview: Option<(i32, Instant)>,
     /// The parts of an action being played on the board still to send (a
     /// curved action is played as its straight sub-steps).
-    playing: std::collections::VecDeque<Vec<crate::project::Step>>,
+    playing: std::collections::VecDeque<live::Part>,
     /// When the part last sent is done.
     playing_until: Option<Instant>,
     /// The live move each servo was last sent, to tell where it is now (the
@@ -162,6 +162,7 @@ impl ServoUi {
                 self.compared_board = None;
             }
             ServoAction::PlayAction(action_id) => self.play_action(shell, action_id),
+            ServoAction::PlayMacroFrom { macro_id, command } => self.play_macro_from(shell, macro_id, command),
             ServoAction::PreviewAction(action_id) => self.preview = Some((action_id, Instant::now())),
             ServoAction::RunMacro(macro_id) => match shell.servo_mut() {
                 Some(servo) => servo.run_macro(macro_id),
