@@ -58,7 +58,7 @@ fn action_parts(action: &ProjectAction, angles: &mut BTreeMap<u8, f64>, speed: f
             .steps
             .iter()
             .map(|step| {
-                // Intervals of at most 32767 × 100: the ratio slows, never overflows an i32.
+                // A slowed step lasts at most what one step can (32767 × 10 ms).
                 #[allow(clippy::cast_possible_truncation)]
                 let interval = (f64::from(step.interval_10ms.max(0)) / speed).round().min(f64::from(i16::MAX)) as i16;
                 Step::new(step.servo_id, step.degree, interval)
