@@ -140,6 +140,14 @@ pub fn import(port: &PortArgs, input: &Path, loaded: &Project, choices: ImportCh
         say!("backup of the previous contents: {}", backup.display());
     }
     say!("wrote {} item(s) to {} and verified them", report.written, port.port);
+    if let Some(curves) = report.curves {
+        let widened = if curves.widened() { ", widened from 1° to fit the board's memory" } else { "" };
+        say!(
+            "curves stored as straight steps within {:.1}° of them (tolerance {:.1}°{widened})",
+            f64::from(curves.max_error_tenths) / 10.0,
+            f64::from(curves.tolerance_tenths) / 10.0
+        );
+    }
     Ok(())
 }
 

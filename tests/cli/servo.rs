@@ -218,6 +218,8 @@ fn an_eased_step_is_imported_baked_verified_and_plays_within_a_degree_of_its_cur
     let import = run(&["import", "--port", &sim.port, "--in", authored.to_str().unwrap(), "--yes", "--no-backup"]);
     assert!(import.status.success(), "{}", stderr(&import));
     assert!(stderr(&import).contains("verified"), "{}", stderr(&import));
+    assert!(stderr(&import).contains("curves stored as straight steps within"), "{}", stderr(&import));
+    assert!(!stderr(&import).contains("widened"), "{}", stderr(&import));
     let exported = dir.path().join("board.json");
     let export = run(&["export", "--port", &sim.port, "--out", exported.to_str().unwrap()]);
     assert!(export.status.success(), "{}", stderr(&export));
@@ -244,4 +246,34 @@ fn an_eased_step_is_imported_baked_verified_and_plays_within_a_degree_of_its_cur
     let own = run(&["trajectory", authored.to_str().unwrap(), "--macro", "1", "--out", own_csv.to_str().unwrap()]);
     assert!(own.status.success(), "{}", stderr(&own));
     assert_eq!(std::fs::read_to_string(&own_csv).unwrap(), text);
+}
+
+/// A board whose memory cannot hold the curves at 1°: the upload widens the
+/// tolerance until they fit, says so, and verifies, rather than failing.
+#[test]
+fn a_board_too_small_for_the_curves_gets_them_at_a_wider_tolerance_and_is_told() {
+    use servo_studio::device::servo::ServoImage;
+    let dir = tempfile::tempdir().unwrap();
+    let authored = dir.path().join("eased.json");
+    std::fs::write(
+        &authored,
+        r#"{"format": "servo-studio-project", "version": 2, "family": "servo", "servo": {"project_id": 5,
+        "servos": [{"id": 1, "caption": "arm"}],
+        "actions": [{"id": 1, "caption": "swing", "steps": [{"servo_id": 1, "degree": 90, "interval_10ms": 300, "easing": "ease_in_out"}]}],
+        "macros": [{"id": 1, "caption": "show", "commands": [{"kind": "action", "action_id": 1}]}]}}"#,
+    )
+    .unwrap();
+    let project = servo_studio::project::load(&authored).unwrap().servo;
+    let (image, _) = ServoImage::within(&project, None).unwrap();
+    let at_one_degree = image.footprint_bytes().unwrap();
+    let memory = (at_one_degree - 1).to_string();
+    let sim = sim(&["--tcp", "127.0.0.1:0", "--memory", &memory]);
+    let import = run(&["import", "--port", &sim.port, "--in", authored.to_str().unwrap(), "--yes", "--no-backup"]);
+    assert!(import.status.success(), "{}", stderr(&import));
+    let said = stderr(&import);
+    assert!(said.contains("verified") && said.contains("widened from 1° to fit the board's memory"), "{said}");
+    let exported = dir.path().join("board.json");
+    assert!(run(&["export", "--port", &sim.port, "--out", exported.to_str().unwrap()]).status.success());
+    let held = ServoImage::from_project(&servo_studio::project::load(&exported).unwrap().servo).unwrap();
+    assert!(held.footprint_bytes().unwrap() < at_one_degree);
 }

@@ -83,7 +83,7 @@ fn upload_then_read_back_round_trips_and_keeps_a_backup() {
     frames(&mut harness);
     run_until(&mut harness, "the upload", |app| app.servo.board_result.is_some());
     match harness.state().servo.board_result.clone().unwrap() {
-        BoardResult::Uploaded { items, backup } => {
+        BoardResult::Uploaded { items, backup, .. } => {
             // clear, project id, servo parameters, 2 actions
             assert_eq!(items.len(), 5, "{items:?}");
             assert!(items.iter().any(|item| item.to_string().starts_with("action 2")), "{items:?}");

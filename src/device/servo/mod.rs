@@ -29,7 +29,7 @@ pub use image::{Difference, ImageError, RecordKind, ServoImage};
 pub use item::Item;
 pub use log::{fields as message_fields, log_entry};
 pub use ops::{
-    ImportFailure, ImportOptions, ImportReport, OpError, Phase, Progress, ServoInfo, backup_path, board_info, export,
-    import, read_image,
+    CurveCost, ImportFailure, ImportOptions, ImportReport, OpError, Phase, Progress, ServoInfo, backup_path,
+    board_info, export, import, read_image,
 };
 pub use session::{RequestError, RequestId, Session, SessionConfig, SessionEvent, Traffic, is_idempotent};

@@ -252,6 +252,35 @@ pub struct ImportReport {
     pub written: usize,
     /// Whether the read-back matched exactly.
     pub verified: bool,
+    /// What baking the project's curves cost, when it had any.
+    pub curves: Option<CurveCost>,
+}
+
+/// How closely the board plays a project's curves baked into straight steps.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct CurveCost {
+    /// The tolerance used, tenths of a degree (above 10 when widened to fit the board).
+    pub tolerance_tenths: u32,
+    /// The largest distance from a curve at any 10 ms update, tenths of a degree (rounded up).
+    pub max_error_tenths: u32,
+}
+
+impl CurveCost {
+    /// The cost of `baked`, none when it baked no curve.
+    fn of(baked: &crate::authoring::bake_servo::BakedServo) -> Option<Self> {
+        // Tenths of a few hundred degrees at most.
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        let tenths = |deg: f64| (deg * 10.0 - 1e-9).ceil().max(0.0) as u32;
+        (baked.added_actions > 0).then(|| Self {
+            tolerance_tenths: tenths(baked.tolerance_deg),
+            max_error_tenths: tenths(baked.max_error_deg),
+        })
+    }
+
+    /// True when the tolerance was widened from 1° to fit the board's memory.
+    pub fn widened(&self) -> bool {
+        self.tolerance_tenths > 10
+    }
 }
 
 /// The file name a backup gets: `board-backup-YYYYMMDD-HHMMSS-project<ID>.json`,
@@ -275,8 +304,17 @@ pub fn import(
     progress: &mut dyn FnMut(&Progress),
     cancel: &Cancel,
 ) -> Result<ImportReport, Box<ImportFailure>> {
-    let steps =
-        Upload { requester, project, options, progress, cancel, image: ServoImage::default(), written: 0, total: 0 };
+    let steps = Upload {
+        requester,
+        project,
+        options,
+        progress,
+        cancel,
+        image: ServoImage::default(),
+        curves: None,
+        written: 0,
+        total: 0,
+    };
     crate::device::upload(steps)
 }
 
@@ -289,6 +327,8 @@ struct Upload<'a> {
     cancel: &'a Cancel,
     /// The records to write (made by the check).
     image: ServoImage,
+    /// What baking the curves cost (made by the check).
+    curves: Option<CurveCost>,
     written: usize,
     total: usize,
 }
@@ -320,7 +360,9 @@ impl crate::device::UploadSteps for Upload<'_> {
             other => return Err(unexpected(&item, &other)),
         };
         // Curves baked to fit the board: the tolerance widens rather than the upload failing.
-        self.image = ServoImage::within(self.project, Some(total_bytes))?.0;
+        let (image, baked) = ServoImage::within(self.project, Some(total_bytes))?;
+        self.image = image;
+        self.curves = CurveCost::of(&baked);
         let needed_bytes = self.image.footprint_bytes()?;
         if i64::try_from(needed_bytes).unwrap_or(i64::MAX) > total_bytes {
             return Err(OpError::DoesNotFit { needed_bytes, total_bytes });
@@ -365,7 +407,7 @@ impl crate::device::UploadSteps for Upload<'_> {
     }
 
     fn report(self, backup: Option<PathBuf>) -> ImportReport {
-        ImportReport { backup, written: self.written, verified: self.options.verify }
+        ImportReport { backup, written: self.written, verified: self.options.verify, curves: self.curves }
     }
 }
 

@@ -131,10 +131,22 @@ pub fn ui(ui: &mut egui::Ui, view: &BoardView<'_>, language: Language, actions: 
             ui.colored_label(ui.visuals().error_fg_color, error);
         }
         let items: &[Item] = match result {
-            BoardResult::Uploaded { items, backup } => {
+            BoardResult::Uploaded { items, backup, curves } => {
                 ui.label(format!("{} {}", words.uploaded_items, items.len()));
                 if let Some(backup) = backup {
                     ui.label(format!("{} {}", words.backup_at, backup.display()));
+                }
+                if let Some(curves) = curves {
+                    let captions = words.servo();
+                    let deviation = f64::from(curves.max_error_tenths) / 10.0;
+                    ui.label(format!("{} {deviation:.1}°", captions.curves_stored));
+                    if curves.widened() {
+                        let tolerance = f64::from(curves.tolerance_tenths) / 10.0;
+                        ui.colored_label(
+                            ui.visuals().warn_fg_color,
+                            format!("{} → {tolerance:.1}°", captions.tolerance_widened),
+                        );
+                    }
                 }
                 items.as_slice()
             }
@@ -191,6 +203,7 @@ mod tests {
         let result = BoardResult::Uploaded {
             items: (0..500).map(|id| Item::Action { id, caption: format!("uploaded {id}") }).collect(),
             backup: None,
+            curves: None,
         };
         let mut harness =
             Harness::builder().with_size(egui::vec2(1000.0, 800.0)).with_accessibility_check(false).build_ui(|panel| {

@@ -175,6 +175,8 @@ pub struct ServoCaptions {
     pub tolerance_widened: &'static str,
     /// A plot line's suffix for what the board plays: "board".
     pub board_line: &'static str,
+    /// After an upload: "Curves stored as straight steps; largest deviation".
+    pub curves_stored: &'static str,
     /// A macro command's button that plays the macro from it: "Play here".
     pub play_here: &'static str,
     /// What "Play here" does (hover text).
@@ -266,6 +268,7 @@ const ENGLISH: ServoCaptions = ServoCaptions {
     largest_deviation: "largest deviation from the curves",
     tolerance_widened: "the tolerance was widened from 1° so the curves fit the board's memory",
     board_line: "board",
+    curves_stored: "Curves stored as straight steps; largest deviation",
     play_here: "Play here",
     play_from_here_hint: "Play from here: on the board (connected), this command and those after it are sent live, one after another, from where the servos are; the preview's cursor goes to where it starts",
 };
@@ -355,6 +358,7 @@ const TRADITIONAL_CHINESE: ServoCaptions = ServoCaptions {
     largest_deviation: "與曲線的最大偏差",
     tolerance_widened: "已將容許誤差從 1° 放寬，讓曲線放得進控制板記憶體",
     board_line: "控制板",
+    curves_stored: "曲線已存成直線步驟；最大偏差",
     play_here: "由此播放",
     play_from_here_hint: "從這裡播放：已連線時，從此指令起依序即時送到控制板，從伺服機目前的位置開始；預覽的時間游標移到此指令開始處",
 };

@@ -39,6 +39,8 @@ pub enum BoardResult {
         items: Vec<Item>,
         /// Where the board's previous contents were saved.
         backup: Option<PathBuf>,
+        /// What baking the project's curves cost, if it had any.
+        curves: Option<crate::device::servo::CurveCost>,
     },
     /// The project has authoring errors; nothing was written. The user may upload anyway.
     Invalid {
@@ -268,7 +270,8 @@ impl ServoUi {
                 }
             }
             ServoOutcome::Uploaded(report) => {
-                self.board_result = Some(BoardResult::Uploaded { items: written, backup: report.backup });
+                let (backup, curves) = (report.backup, report.curves);
+                self.board_result = Some(BoardResult::Uploaded { items: written, backup, curves });
             }
             ServoOutcome::Failed(failure) => {
                 self.board_result = Some(BoardResult::Failed { items: written, failure: Arc::new(failure) });
