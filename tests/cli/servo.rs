@@ -197,23 +197,30 @@ fn commands_that_do_not_apply_to_a_family_say_what_to_use_instead() {
     assert!(stderr(&bad).contains("use servo, plen2 or rflex"), "{}", stderr(&bad));
 }
 
+/// A servo project file (project id 5) of `section`'s servos, actions and macros, in `dir`.
+fn eased(dir: &Path, section: &str) -> std::path::PathBuf {
+    let path = dir.join("eased.json");
+    let text = format!(
+        r#"{{"format": "servo-studio-project", "version": 2, "family": "servo", "servo": {{"project_id": 5, {section}}}}}"#
+    );
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
 /// A step with a curve goes to the board as straight sub-steps run by a macro
 /// of their own: the import is verified against that, and what the board then
 /// holds, traced at its 10 ms updates, stays within 1° of the curve meant.
 #[test]
 fn an_eased_step_is_imported_baked_verified_and_plays_within_a_degree_of_its_curve() {
     let dir = tempfile::tempdir().unwrap();
-    let authored = dir.path().join("eased.json");
-    std::fs::write(
-        &authored,
-        r#"{"format": "servo-studio-project", "version": 2, "family": "servo", "servo": {"project_id": 5,
-        "servos": [{"id": 1, "caption": "臂"}, {"id": 2, "caption": "腕"}],
+    let authored = eased(
+        dir.path(),
+        r#""servos": [{"id": 1, "caption": "臂"}, {"id": 2, "caption": "腕"}],
         "actions": [{"id": 1, "caption": "揮手", "steps": [
             {"servo_id": 1, "degree": 90, "interval_10ms": 100, "easing": "ease_in_out"},
             {"servo_id": 2, "degree": -40, "interval_10ms": 50}]}],
-        "macros": [{"id": 1, "caption": "show", "commands": [{"kind": "action", "action_id": 1, "loop_count": 2}]}]}}"#,
-    )
-    .unwrap();
+        "macros": [{"id": 1, "caption": "show", "commands": [{"kind": "action", "action_id": 1, "loop_count": 2}]}]"#,
+    );
     let sim = sim(&["--tcp", "127.0.0.1:0"]);
     let import = run(&["import", "--port", &sim.port, "--in", authored.to_str().unwrap(), "--yes", "--no-backup"]);
     assert!(import.status.success(), "{}", stderr(&import));
@@ -254,15 +261,12 @@ fn an_eased_step_is_imported_baked_verified_and_plays_within_a_degree_of_its_cur
 fn a_board_too_small_for_the_curves_gets_them_at_a_wider_tolerance_and_is_told() {
     use servo_studio::device::servo::ServoImage;
     let dir = tempfile::tempdir().unwrap();
-    let authored = dir.path().join("eased.json");
-    std::fs::write(
-        &authored,
-        r#"{"format": "servo-studio-project", "version": 2, "family": "servo", "servo": {"project_id": 5,
-        "servos": [{"id": 1, "caption": "arm"}],
+    let authored = eased(
+        dir.path(),
+        r#""servos": [{"id": 1, "caption": "arm"}],
         "actions": [{"id": 1, "caption": "swing", "steps": [{"servo_id": 1, "degree": 90, "interval_10ms": 300, "easing": "ease_in_out"}]}],
-        "macros": [{"id": 1, "caption": "show", "commands": [{"kind": "action", "action_id": 1}]}]}}"#,
-    )
-    .unwrap();
+        "macros": [{"id": 1, "caption": "show", "commands": [{"kind": "action", "action_id": 1}]}]"#,
+    );
     let project = servo_studio::project::load(&authored).unwrap().servo;
     let (image, _) = ServoImage::within(&project, None).unwrap();
     let at_one_degree = image.footprint_bytes().unwrap();
