@@ -95,7 +95,7 @@ pub fn action_rows(action: &Action, from: &BTreeMap<u8, f64>) -> (Vec<i32>, Vec<
 }
 
 /// `action` played from `from`, baked into straight sub-actions with ids from
-/// `first_id`, and the largest deviation from its curves, °.
+/// `first_id` (for the caller to replace when it stores them), and the largest deviation from its curves, °.
 pub fn bake_action(action: &Action, from: &BTreeMap<u8, f64>, tolerance: f64, first_id: i32) -> (Vec<Action>, f64) {
     let (start, rows) = action_rows(action, from);
     let fitted = fit::fit(&ServoBoard, &start, &rows, tolerance);
@@ -119,6 +119,39 @@ pub fn bake_action(action: &Action, from: &BTreeMap<u8, f64>, tolerance: f64, fi
         }
     }
     (subs, fitted.max_error)
+}
+
+/// Ids not used yet: above the highest in use, then from 1 again (a project
+/// using ids up to 2147483647 still gets fresh ones, never a taken one).
+struct FreshIds {
+    used: std::collections::BTreeSet<i32>,
+    next: i32,
+}
+
+impl FreshIds {
+    fn new(used: impl IntoIterator<Item = i32>) -> Self {
+        let used: std::collections::BTreeSet<i32> = used.into_iter().filter(|id| *id > 0).collect();
+        let next = used.last().map_or(1, |highest| highest.checked_add(1).unwrap_or(1));
+        Self { used, next }
+    }
+
+    fn take(&mut self) -> i32 {
+        loop {
+            let id = self.next;
+            self.next = id.checked_add(1).unwrap_or(1);
+            if self.used.insert(id) {
+                return id;
+            }
+        }
+    }
+
+    /// `subs` given fresh ids, and a macro (fresh id) running them.
+    fn wrap(&mut self, caption: &str, mut subs: Vec<Action>) -> (crate::project::Macro, Vec<Action>) {
+        for sub in &mut subs {
+            sub.id = self.take();
+        }
+        (fitted::macro_running(0, caption, &subs), subs)
+    }
 }
 
 /// `project` baked at `tolerance` (°), widened until `fits` holds for it (in
@@ -159,12 +192,13 @@ pub fn stored_run(project: &ServoProject, run: Run) -> (ServoProject, Run) {
     };
     let Some(action) = curved else { return (stored, run) };
     let homes: BTreeMap<u8, f64> = project.servos.iter().map(|servo| (servo.id, f64::from(servo.home_deg))).collect();
-    let first_id = stored.actions.iter().map(|action| action.id).max().unwrap_or(0).saturating_add(1);
-    let (subs, _) = bake_action(action, &homes, DEFAULT_TOLERANCE_DEG, first_id);
-    let id = stored.macros.iter().map(|item| item.id).max().unwrap_or(0).saturating_add(1);
-    stored.macros.push(fitted::macro_running(id, &action.caption, &subs));
+    let (subs, _) = bake_action(action, &homes, DEFAULT_TOLERANCE_DEG, 1);
+    let (mut wrapper, subs) = FreshIds::new(stored.actions.iter().map(|a| a.id)).wrap(&action.caption, subs);
+    wrapper.id = FreshIds::new(stored.macros.iter().map(|m| m.id)).take();
+    let macro_id = wrapper.id;
+    stored.macros.push(wrapper);
     stored.actions.extend(subs);
-    (stored, Run::Macro { macro_id: id })
+    (stored, Run::Macro { macro_id })
 }
 
 /// Every servo's angle once `command` has run from `angles` (a macro already
@@ -203,8 +237,8 @@ fn bake_at(project: &ServoProject, tolerance: f64) -> BakedServo {
             added_macros: 0,
         };
     }
-    let mut next_action = project.actions.iter().map(|action| action.id).max().unwrap_or(0).saturating_add(1);
-    let mut next_macro = project.macros.iter().map(|item| item.id).max().unwrap_or(0).saturating_add(1);
+    let mut action_ids = FreshIds::new(project.actions.iter().map(|action| action.id));
+    let mut macro_ids = FreshIds::new(project.macros.iter().map(|item| item.id));
     let homes: BTreeMap<u8, f64> = project.servos.iter().map(|servo| (servo.id, f64::from(servo.home_deg))).collect();
     // (action, where its servos start) → the macro running its sub-actions.
     let mut baked: HashMap<(i32, Vec<i32>), i32> = HashMap::new();
@@ -221,13 +255,13 @@ fn bake_at(project: &ServoProject, tolerance: f64) -> BakedServo {
                 Some(action) if command.loop_count > 0 => {
                     let start: Vec<i32> = action_rows(action, &angles).0;
                     let wrapper = *baked.entry((action.id, start)).or_insert_with(|| {
-                        let (subs, error) = bake_action(action, &angles, tolerance, next_action);
+                        let (subs, error) = bake_action(action, &angles, tolerance, 1);
                         max_error = max_error.max(error);
                         added_actions += subs.len();
-                        next_action = next_action.saturating_add(i32::try_from(subs.len()).unwrap_or(i32::MAX));
-                        let id = next_macro;
-                        next_macro = next_macro.saturating_add(1);
-                        out.macros.push(fitted::macro_running(id, &format!("{} ~", action.caption), &subs));
+                        let (mut wrapper, subs) = action_ids.wrap(&format!("{} ~", action.caption), subs);
+                        wrapper.id = macro_ids.take();
+                        let id = wrapper.id;
+                        out.macros.push(wrapper);
                         out.actions.extend(subs);
                         id
                     });
@@ -335,6 +369,27 @@ mod tests {
             assert!((a - b).abs() <= DEFAULT_TOLERANCE_DEG, "at {t} ms: {a} vs {b}");
         }
         assert!(project::angle_at(&got[&1], 500.0).unwrap() < 30.0, "eased in: a quarter of the way at half the time");
+    }
+
+    #[test]
+    fn ids_at_the_top_of_the_range_give_fresh_ids_never_a_taken_one() {
+        let mut authored = project(Easing::EaseOut, run_wave(100, 1));
+        authored.actions[0].id = i32::MAX;
+        authored.macros[0].id = i32::MAX;
+        authored.macros[0].commands[0].run = Run::Action { action_id: i32::MAX };
+        authored.actions.push(Action { id: 1, caption: "one".into(), steps: vec![Step::new(2, 5, 10)] });
+        let baked = bake_servo(&authored, DEFAULT_TOLERANCE_DEG, |_| true);
+        let mut ids: Vec<i32> = baked.project.actions.iter().map(|a| a.id).collect();
+        ids.sort_unstable();
+        let count = ids.len();
+        ids.dedup();
+        assert_eq!(ids.len(), count, "no id twice: {ids:?}");
+        assert!(ids.iter().all(|id| *id > 0));
+        assert_eq!(baked.project.macros.len(), 2);
+        assert_ne!(baked.project.macros[0].id, baked.project.macros[1].id);
+        assert!(deviation(&authored, &baked.project).0 <= DEFAULT_TOLERANCE_DEG);
+        let (stored, run) = stored_run(&authored, Run::Action { action_id: i32::MAX });
+        assert!(matches!(run, Run::Macro { macro_id } if stored.macro_by_id(macro_id).is_some()));
     }
 
     #[test]
