@@ -7,6 +7,17 @@ use std::time::{Duration, Instant};
 use super::ServoSim;
 use crate::protocol::servo::{ALL_SERVOS, CommandType, ServoMove};
 
+/// The most loop turns one macro run is laid out for.
+pub const MOST_TURNS: u64 = 1_000_000;
+/// How far ahead one macro run is laid out.
+pub const HORIZON: Duration = Duration::from_secs(24 * 3600);
+
+/// What is left of one macro run's lay-out.
+struct Plan {
+    turns_left: u64,
+    until: Instant,
+}
+
 impl ServoSim {
     pub(super) fn start_moves(&mut self, now: Instant, moves: &[ServoMove], speed_percent: u8) {
         for servo_move in moves {
@@ -33,7 +44,22 @@ impl ServoSim {
 
     /// Lays out a macro's moves in time; returns when it ends. Nested macros
     /// beyond a small depth are ignored (the client validates against cycles).
+    /// A macro of loops inside loops is laid out for its first
+    /// [`MOST_TURNS`] loop turns and [`HORIZON`] at most: the emulator stays
+    /// responsive where a real board would play for years.
     pub(super) fn schedule_macro(&mut self, start: Instant, macro_id: i32, speed_percent: u32, depth: u8) -> Instant {
+        let mut plan = Plan { turns_left: MOST_TURNS, until: start.checked_add(HORIZON).unwrap_or(start) };
+        self.schedule_within(start, macro_id, speed_percent, depth, &mut plan)
+    }
+
+    fn schedule_within(
+        &mut self,
+        start: Instant,
+        macro_id: i32,
+        speed_percent: u32,
+        depth: u8,
+        plan: &mut Plan,
+    ) -> Instant {
         let Some(record) = self.image.macros.iter().find(|m| m.macro_id == macro_id).cloned() else {
             return start;
         };
@@ -44,6 +70,10 @@ impl ServoSim {
         for command in &record.commands {
             let ratio = u32::from(command.ratio_percent.max(1)) * speed_percent / 100;
             for _ in 0..command.loop_count.max(0) {
+                if plan.turns_left == 0 || at > plan.until {
+                    return at;
+                }
+                plan.turns_left -= 1;
                 match command.command_type {
                     CommandType::RunAction => {
                         let Some(action) = self.image.actions.iter().find(|a| a.action_id == command.command_id) else {
@@ -62,7 +92,7 @@ impl ServoSim {
                         at += Duration::from_millis(u64::try_from(command.command_id.max(0)).unwrap_or(0));
                     }
                     CommandType::RunMacro => {
-                        at = self.schedule_macro(at, command.command_id, ratio.max(1), depth + 1);
+                        at = self.schedule_within(at, command.command_id, ratio.max(1), depth + 1, plan);
                     }
                 }
             }

@@ -139,6 +139,50 @@ fn a_stored_macro_runs_its_actions_in_time() {
     assert_eq!(sim.angle(1, t0 + Duration::from_millis(1000)), Some(-60));
 }
 
+/// Loops inside loops that would play for years (32767 turns, eight deep)
+/// are laid out only so far: the board answers at once and stays responsive.
+#[test]
+fn a_macro_of_loops_inside_loops_is_laid_out_only_so_far() {
+    let t0 = Instant::now();
+    let command = |command_id, command_type| crate::protocol::servo::MacroCommandRecord {
+        command_id,
+        command_type,
+        ratio_percent: 100,
+        loop_count: i16::MAX,
+        total_interval_ms: 0,
+    };
+    let macros = (1..=9)
+        .map(|macro_id| MacroRecord {
+            macro_id,
+            caption: String::new(),
+            commands: if macro_id == 9 {
+                vec![command(1, CommandType::RunAction), command(1, CommandType::Delay)]
+            } else {
+                vec![command(macro_id + 1, CommandType::RunMacro)]
+            },
+        })
+        .collect();
+    let image = ServoImage {
+        servos: vec![ServoParameter { servo_id: 1, adjusted_degree: 0, caption: String::new() }],
+        actions: vec![ActionRecord {
+            action_id: 1,
+            caption: String::new(),
+            steps: vec![ServoMove { servo_id: 1, degree: 30, interval_10ms: 1 }],
+        }],
+        macros,
+        ..ServoImage::default()
+    };
+    let mut sim = ServoSim::new(SimConfig::default(), image);
+    assert_eq!(
+        ask(&mut sim, t0, &Message::ExecuteMacroRequest { macro_id: 1 }, t0),
+        [Message::ExecuteMacroResponse { ok: true }]
+    );
+    assert!(sim.schedule.len() <= usize::try_from(playing::MOST_TURNS).unwrap());
+    assert!(sim.schedule.iter().all(|(at, _)| *at <= t0 + playing::HORIZON + Duration::from_secs(1)));
+    let later = t0 + Duration::from_millis(50);
+    assert_eq!(angle_of(&ask(&mut sim, later, &Message::QueryServoRequest { servo_id: 1 }, later), 1), 30);
+}
+
 #[test]
 fn a_line_rate_delays_requests_and_responses_by_their_wire_time() {
     let t0 = Instant::now();
