@@ -49,6 +49,27 @@ fn check_prints_every_problem_and_exits_1_on_errors() {
     assert!(printed.contains("2 error(s)"), "{printed}");
 }
 
+/// The editor's own settings are checked too: a Mirror L/R twin outside the
+/// rig and a gamepad button firing a macro the project lacks are warnings.
+#[test]
+fn check_warns_of_a_twin_outside_the_rig_and_a_gamepad_button_firing_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("pad.json");
+    std::fs::write(
+        &path,
+        r#"{"format": "servo-studio-project", "version": 2, "family": "servo",
+        "servo": {"servos": [{"id": 1, "caption": "臂", "rig": {"axis": "y", "mirror": 7}}]},
+        "gamepad": {"servo": {"buttons": [{"button": 304, "fire": {"macro": 5}}]}}}"#,
+    )
+    .unwrap();
+    let output = run(&["check", path.to_str().unwrap()]);
+    assert!(output.status.success(), "warnings only: {}", stdout(&output));
+    let printed = stdout(&output);
+    assert!(printed.contains("warning: servo 1 \"臂\": its Mirror L/R twin is servo 7"), "{printed}");
+    assert!(printed.contains("warning: gamepad button 0x130: macro 5 does not exist"), "{printed}");
+    assert!(printed.ends_with("0 error(s), 2 warning(s)\n"), "{printed}");
+}
+
 #[test]
 fn check_of_a_malformed_file_gives_line_and_column() {
     let dir = tempfile::tempdir().unwrap();

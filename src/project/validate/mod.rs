@@ -116,6 +116,16 @@ pub enum Location {
     },
     /// The rFLEX robot settings.
     Robot,
+    /// A gamepad button's binding.
+    GamepadButton {
+        /// Its code (`BTN_SOUTH` = 0x130, …).
+        button: u16,
+    },
+    /// A gamepad axis's binding.
+    GamepadAxis {
+        /// Its code (`ABS_X` = 0, …).
+        axis: u16,
+    },
     /// A key of the file, by its path (`servo.servos[3].min_degs`).
     Key {
         /// Where it is, from the top of the file.
@@ -144,6 +154,8 @@ impl fmt::Display for Location {
             Self::Frame { slot, name, frame } => write!(f, "motion {slot} {}, frame {frame}", q(name)),
             Self::PlayList { index, name } => write!(f, "play list {index} {}", q(name)),
             Self::Robot => write!(f, "robot"),
+            Self::GamepadButton { button } => write!(f, "gamepad button 0x{button:03x}"),
+            Self::GamepadAxis { axis } => write!(f, "gamepad axis {axis}"),
             Self::Key { path } => write!(f, "{}", Shortened { text: path, quoted: false }),
         }
     }
@@ -317,6 +329,19 @@ pub enum ProblemKind {
         /// The parent named.
         parent: u8,
     },
+    /// A rigged servo whose Mirror L/R twin is not another rigged servo.
+    RigUnknownTwin {
+        /// The twin named.
+        twin: u8,
+    },
+    /// A gamepad binding that is also made by another (a button twice, a
+    /// servo or joint moved by two axes), or a button another use holds.
+    BoundTwice,
+    /// A gamepad button that plays a play list the project lacks.
+    MissingPlayList {
+        /// The play list's position, from 1.
+        index: usize,
+    },
     /// Rigged servos mounted on each other in a ring.
     RigCycle {
         /// The servo ids along the ring, first repeated at the end.
@@ -478,6 +503,14 @@ impl fmt::Display for ProblemKind {
                 let names: Vec<String> = path.iter().map(ToString::to_string).collect();
                 write!(f, "rig cycle {}: a servo cannot be mounted on itself", names.join(" → "))
             }
+            Self::RigUnknownTwin { twin } => write!(
+                f,
+                "its Mirror L/R twin is servo {twin}, which is not another servo of the rig: Mirror L/R keeps its steps; name a rigged servo on the other side"
+            ),
+            Self::BoundTwice => {
+                write!(f, "is bound twice (or held by another use): only one of its bindings works; remove the others")
+            }
+            Self::MissingPlayList { index } => write!(f, "play list {index} does not exist"),
             Self::TooManyButtons { count, max } => {
                 write!(f, "has {count} buttons; one board frame holds at most {max}")
             }
@@ -549,13 +582,66 @@ impl fmt::Display for Problem {
 }
 
 /// Every problem of the document's own family's section, in document order
-/// (the first thousand of each severity kept, all counted).
+/// (the first thousand of each severity kept, all counted), then of its
+/// gamepad bindings.
 pub fn validate(project: &Project) -> Problems {
-    match project.family {
+    let mut problems = match project.family {
         Family::Servo => validate_servo(&project.servo),
         Family::Plen2 => validate_plen2(&project.plen2),
         Family::Rflex => rflex::validate_rflex(&project.rflex),
+    };
+    problems.extend(gamepad(project));
+    problems
+}
+
+/// The family's gamepad bindings: what they fire or move exists, and nothing
+/// is bound twice (warnings: the bindings are the editor's, not the robot's;
+/// a PLEN2 motion may be on the robot without being in the project).
+fn gamepad(project: &Project) -> Vec<Problem> {
+    use super::gamepad::{AxisTarget, Conflict, Fire};
+    let mapping = match project.family {
+        Family::Servo => &project.gamepad.servo,
+        Family::Plen2 => &project.gamepad.plen2,
+        Family::Rflex => &project.gamepad.rflex,
+    };
+    let warning = |location, kind| Problem { severity: Severity::Warning, location, kind };
+    let mut problems = Vec::new();
+    for binding in &mapping.buttons {
+        let missing = match binding.fire {
+            Fire::Action(action_id) if project.servo.action(action_id).is_none() => {
+                Some(ProblemKind::MissingAction { action_id })
+            }
+            Fire::Macro(macro_id) if project.servo.macro_by_id(macro_id).is_none() => {
+                Some(ProblemKind::MissingMacro { macro_id })
+            }
+            Fire::PlayList(index) if index >= project.plen2.play_lists.len() => {
+                Some(ProblemKind::MissingPlayList { index: index + 1 })
+            }
+            _ => None,
+        };
+        problems.extend(missing.map(|kind| warning(Location::GamepadButton { button: binding.button }, kind)));
     }
+    for binding in &mapping.axes {
+        if let AxisTarget::Servo(servo_id) = binding.target
+            && project.servo.servo(servo_id).is_none()
+        {
+            problems
+                .push(warning(Location::GamepadAxis { axis: binding.axis }, ProblemKind::MissingServo { servo_id }));
+        }
+    }
+    // The rFLEX dead-man is the base's own: `ui` reserves it; here only twice-bound is said.
+    for conflict in mapping.conflicts(&[]) {
+        let location = match conflict {
+            Conflict::Button(button) | Conflict::Reserved(button) => Location::GamepadButton { button },
+            Conflict::Target(target) => {
+                let axis =
+                    mapping.axes.iter().find(|binding| binding.target == target).map_or(0, |binding| binding.axis);
+                Location::GamepadAxis { axis }
+            }
+        };
+        problems.push(warning(location, ProblemKind::BoundTwice));
+    }
+    problems
 }
 
 /// Whether any problem is an error.
@@ -566,6 +652,42 @@ pub fn has_errors(problems: &[Problem]) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_twin_outside_the_rig_and_gamepad_bindings_to_nothing_or_twice_are_warned_about() {
+        use crate::project::gamepad::{AxisBinding, AxisTarget, ButtonBinding, Fire};
+        use crate::project::{RigAxis, RigJoint, Servo, ServoProject};
+        let rig = |mirror| RigJoint {
+            parent: None,
+            offset_mm: [0; 3],
+            axis: RigAxis::Y,
+            reversed: false,
+            straight_deg: 0,
+            mirror,
+        };
+        let mut servos = vec![Servo::new(1, "L"), Servo::new(2, "R"), Servo::new(3, "head")];
+        servos[0].rig = Some(rig(Some(2)));
+        servos[1].rig = Some(rig(Some(9)));
+        servos[2].rig = Some(rig(Some(3)));
+        let mut project = Project::servo(ServoProject { servos, ..ServoProject::default() });
+        let button = |button, fire| ButtonBinding { button, fire };
+        project.gamepad.servo.buttons =
+            vec![button(0x130, Fire::Action(7)), button(0x131, Fire::Macro(8)), button(0x131, Fire::Stop)];
+        project.gamepad.servo.axes = vec![AxisBinding::absolute(0, AxisTarget::Servo(42), (-90.0, 90.0))];
+        let said: Vec<String> = validate(&project).iter().map(ToString::to_string).collect();
+        assert_eq!(
+            said,
+            [
+                "warning: servo 2 \"R\": its Mirror L/R twin is servo 9, which is not another servo of the rig: Mirror L/R keeps its steps; name a rigged servo on the other side",
+                "warning: servo 3 \"head\": its Mirror L/R twin is servo 3, which is not another servo of the rig: Mirror L/R keeps its steps; name a rigged servo on the other side",
+                "warning: gamepad button 0x130: action 7 does not exist",
+                "warning: gamepad button 0x131: macro 8 does not exist",
+                "warning: gamepad axis 0: servo 42 does not exist",
+                "warning: gamepad button 0x131: is bound twice (or held by another use): only one of its bindings works; remove the others",
+            ]
+        );
+        assert!(!validate(&project).has_errors(), "the bindings and twins are the editor's: nothing is refused");
+    }
 
     #[test]
     fn a_long_caption_is_cut_where_a_location_is_shown() {

@@ -102,6 +102,11 @@ impl Checker {
                 self.error(&at, ProblemKind::RigUnknownParent { parent });
                 continue;
             }
+            if let Some(twin) = rig.mirror
+                && (twin == servo.id || !parents.contains_key(&twin))
+            {
+                self.warning(&at, ProblemKind::RigUnknownTwin { twin });
+            }
             // Up the parents: back at this servo is a ring (each ring said once).
             let mut path = vec![servo.id];
             let mut next = rig.parent;

@@ -93,6 +93,13 @@ impl Language {
                 let names: Vec<String> = path.iter().map(ToString::to_string).collect();
                 format!("骨架循環 {}：舵機不可裝在自己身上", names.join(" → "))
             }
+            P::RigUnknownTwin { twin } => {
+                format!(
+                    "左右鏡像的對側是舵機 {twin}，但它不是骨架中的另一個舵機：左右鏡像會保留此步驟；請指定另一側的骨架舵機"
+                )
+            }
+            P::BoundTwice => "重複綁定（或已被其他用途佔用）：只有其中一個綁定有效；請移除其他的".into(),
+            P::MissingPlayList { index } => format!("播放清單 {index} 不存在"),
             P::TooManyButtons { count, max } => format!("有 {count} 個按鍵；一個封包最多容納 {max} 個"),
             P::DuplicateButton { button_id } => format!("按鍵編號 0x{button_id:08x} 在此對應表中重複"),
             P::MissingButtonMacro { slot, macro_id } => {
@@ -157,6 +164,8 @@ impl Language {
             L::Frame { slot, name, frame } => format!("動作 {slot} {name:?}，影格 {frame}"),
             L::PlayList { index, name } => format!("播放清單 {index} {name:?}"),
             L::Robot => "機器人".into(),
+            L::GamepadButton { button } => format!("遊戲手把按鈕 0x{button:03x}"),
+            L::GamepadAxis { axis } => format!("遊戲手把搖桿軸 {axis}"),
             L::Key { path } => path.clone(),
         }
     }
