@@ -5,6 +5,11 @@
 //! 2. For a set of smooth curves, the frames the fit takes against the fewest
 //!    possible (`fewest_moves`, an exhaustive search over the same moves):
 //!    the fit must stay within 20 % of it.
+//! 3. Baking a servo project's curves for the board (what an upload, the
+//!    budget meter and the plots do, the latter two off the frame): 32
+//!    servos, 40 actions of 32 eased 2 s steps, 20 macros running them in
+//!    turn; and the same with the board's memory short (the tolerance widened
+//!    by halving).
 
 #![allow(
     clippy::unwrap_used,
@@ -104,4 +109,61 @@ fn main() {
         worst = worst.max(fitted as f64 / minimum as f64);
     }
     println!("largest ratio fitted / fewest: {worst:.2} (target ≤ 1.20)");
+    bake_figures();
+}
+
+/// Figure 3: baking a project of curves.
+fn bake_figures() {
+    use servo_studio::authoring::bake_servo::{DEFAULT_TOLERANCE_DEG, bake_servo};
+    use servo_studio::project::{Action, Command, Easing, Macro, Run, Servo, ServoProject, Step};
+    let servos: Vec<Servo> = (1..=32).map(|id| Servo::new(id, format!("s{id}"))).collect();
+    let curves = [Easing::EaseIn, Easing::EaseOut, Easing::EaseInOut];
+    let actions: Vec<Action> = (1..=40)
+        .map(|id: i32| Action {
+            id,
+            caption: format!("a{id}"),
+            steps: (1..=32u8)
+                .map(|servo| {
+                    let mut step = Step::new(servo, ((id * 17 + i32::from(servo) * 7) % 120 - 60) as i16, 200);
+                    step.easing = curves[(id as usize + usize::from(servo)) % 3];
+                    step
+                })
+                .collect(),
+        })
+        .collect();
+    let macros: Vec<Macro> = (1..=20)
+        .map(|id: i32| Macro {
+            id,
+            caption: format!("m{id}"),
+            commands: (0..4).map(|k| Command::once(Run::Action { action_id: (id * 3 + k) % 40 + 1 })).collect(),
+        })
+        .collect();
+    let project = ServoProject { servos, actions, macros, ..ServoProject::default() };
+    let mut runs = Vec::new();
+    let mut baked = None;
+    for _ in 0..5 {
+        let start = Instant::now();
+        baked = Some(bake_servo(&project, DEFAULT_TOLERANCE_DEG, |_| true));
+        runs.push(start.elapsed());
+    }
+    runs.sort();
+    let baked = baked.unwrap();
+    println!(
+        "baking 80 curved action runs (32 servos × 2 s) at 1°: median {:.1} ms; {} sub-actions, {} steps, largest deviation {:.2}°",
+        runs[2].as_secs_f64() * 1000.0,
+        baked.added_actions,
+        baked.steps(),
+        baked.max_error_deg
+    );
+    let allowed = baked.steps() * 2 / 3;
+    let start = Instant::now();
+    let short = bake_servo(&project, DEFAULT_TOLERANCE_DEG, |stored| {
+        stored.actions.iter().map(|a| a.steps.len()).sum::<usize>() <= allowed
+    });
+    println!(
+        "  the same, the board holding two thirds of those steps: {:.1} ms, widened to {:.1}° ({} steps)",
+        start.elapsed().as_secs_f64() * 1000.0,
+        short.tolerance_deg,
+        short.steps()
+    );
 }

@@ -31,7 +31,7 @@ pub use history::{History, LivePose, MAX_UNDO_STEPS, Step as UndoStep};
 pub use servo::{Action, Button, Command, JoystickTable, Macro, RigAxis, RigJoint, Run, Servo, ServoProject, Step};
 pub use timing::{Timing, TimingError, action_duration_ms};
 pub use trajectory::{
-    MAX_TRACE_WORK, SAMPLE_MS, Samples, TraceError, Trajectories, action_trajectories, angle_at, macro_cycle,
+    Follower, MAX_TRACE_WORK, SAMPLE_MS, Samples, TraceError, Trajectories, action_trajectories, angle_at, macro_cycle,
     macro_trajectories, pose_at, sample, sample_count, trace,
 };
 pub use validate::{

@@ -7,7 +7,7 @@
 use super::preview::Timed;
 use crate::authoring::bake_servo::{self, BakedServo, DEFAULT_TOLERANCE_DEG};
 use crate::device::servo::ServoImage;
-use crate::project::{Run, ServoProject, Trajectories, action_trajectories, angle_at, macro_trajectories};
+use crate::project::{Follower, Run, ServoProject, Trajectories, action_trajectories, macro_trajectories};
 use crate::ui::plot;
 
 fn traced(project: &ServoProject, run: Run) -> (Trajectories, f64) {
@@ -38,14 +38,15 @@ pub fn played(project: &ServoProject, run: Run, board: &str) -> (Timed, plot::Se
     let (mut pairs, mut single) = (plot::Series::new(), plot::Series::new());
     for (id, line) in &meant {
         let apart = plays.get(id).filter(|played| {
-            // At every update: a straight step split with a curve's pieces stays on its line.
+            // At every update (read in time order): a straight step split with a curve's pieces stays on its line.
+            let (mut meant_at, mut played_at) = (Follower::new(line), Follower::new(played));
             (0..=crate::project::sample_count(plays_end.max(meant_end))).any(|k| {
                 // Update counts are small.
                 #[allow(clippy::cast_precision_loss)]
                 let t = k as f64 * crate::project::SAMPLE_MS;
                 // Before the board moves it, a servo holds where it starts.
-                let held = angle_at(played, t).or_else(|| line.first().map(|&(_, start)| start));
-                angle_at(line, t).zip(held).is_none_or(|(a, b)| (a - b).abs() > 0.05)
+                let held = played_at.at(t).or_else(|| line.first().map(|&(_, start)| start));
+                meant_at.at(t).zip(held).is_none_or(|(a, b)| (a - b).abs() > 0.05)
             })
         });
         match apart {
