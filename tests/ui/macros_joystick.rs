@@ -172,7 +172,10 @@ fn play_from_here_sends_the_macro_from_that_command_and_moves_the_preview_there(
     use std::time::{Duration, Instant};
     let mut harness = harness(fixture(), Tab::Macros);
     harness.state_mut().apply(Action::ConnectDemo);
-    harness.run_steps(2);
+    // Until the board is first read, where a servo stands is not known (its first move would be timed from the far end).
+    run_until(&mut harness, "the first reading", |app| {
+        common::ui::servo_board(app).is_some_and(|board| board.servos_read_at.is_some())
+    });
     let events = harness.state().link.as_ref().unwrap().demo_board().unwrap().events().clone();
     // Macro 100: action 1 (1.00 s), a 0.50 s delay, action 2 at 50 % three times.
     harness.get_all_by_label("Play here").nth(2).expect("the third command's Play here").click();

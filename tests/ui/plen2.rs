@@ -404,3 +404,43 @@ fn recording_joint_moves_fits_them_into_frames_after_the_selected_one() {
     harness.step();
     assert_eq!(harness.state().document.project.plen2.motions[0].frames.len(), 2, "one undo step");
 }
+
+/// The robot reports no angles: after a motion played on it, the joints are
+/// where its last frame leaves them (the firmware's playback of the project's
+/// motion), so a joint moved next is walked from there, never jumped from
+/// where the sliders were.
+#[test]
+fn after_a_motion_played_on_the_robot_a_joint_is_walked_from_where_the_motion_left_it() {
+    let mut document = project();
+    let mut bent = Pose::default();
+    bent.set(Joint::LeftKneePitch, -300);
+    document.plen2.motions.push(Motion {
+        slot: 4,
+        name: "Crouch".into(),
+        frames: vec![Frame::new(300, bent)],
+        loop_range: None,
+        jump_slot: None,
+    });
+    let mut app = common::ui::editor(document);
+    app.apply(Action::ConnectDemo);
+    let mut harness = common::ui::showing(app, Tab::Joints, (1200.0, 800.0));
+    let knee = Joint::LeftKneePitch;
+    let home = harness.state().plen2.pose[knee.index()];
+    harness.state_mut().apply(Action::Plen2(servo_studio::ui::Plen2Action::PlayMotion(4)));
+    harness.step();
+    assert_eq!(harness.state().plen2.pose[knee.index()], home - 300, "the sliders show where the motion ends");
+    // A nudge up from there: the robot gets 1° above the crouch, not 1° above home.
+    harness
+        .state_mut()
+        .apply(Action::Plen2(servo_studio::ui::Plen2Action::SetJoint { joint: knee, tenths: home - 290 }));
+    let device = knee.device_id();
+    let first = std::cell::Cell::new(None);
+    walked(&mut harness, "$AN for the knee", |c| match c {
+        Command::SetAngle { device: d, angle } if *d == device => {
+            first.set(Some(*angle));
+            true
+        }
+        _ => false,
+    });
+    assert_eq!(first.get(), Some(home - 290), "one step from the crouch, not a walk from home");
+}

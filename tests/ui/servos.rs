@@ -293,6 +293,46 @@ fn a_far_slider_click_reaches_its_angle_at_the_live_speed_limit() {
     assert_eq!(next_move(&harness, 1), (89, 2));
 }
 
+/// After a macro ran on the board, the editor does not know where it left the
+/// servos until the board is read again: a slider click then is timed from
+/// the far end of the servo's limits (slow, never a slam); once read, from the
+/// reading.
+#[test]
+fn after_a_macro_ran_on_the_board_a_click_is_timed_from_where_the_servo_could_be() {
+    use servo_studio::project::{Action as ProjectAction, Command, Macro, Run, Step};
+    use servo_studio::ui::ServoAction;
+    let mut project = project();
+    project.actions.push(ProjectAction { id: 1, caption: "raise".into(), steps: vec![Step::new(1, 60, 10)] });
+    project.macros.push(Macro {
+        id: 1,
+        caption: "go".into(),
+        commands: vec![Command::once(Run::Action { action_id: 1 })],
+    });
+    let mut app = new_app(project);
+    app.apply(Action::ConnectDemo);
+    let mut harness = harness(app);
+    harness.run();
+    let read_after = |harness: &mut Harness<'static, StudioApp>, after: Instant| {
+        common::ui::run_until(harness, "a reading", |app| {
+            common::ui::servo_board(app).and_then(|board| board.servos_read_at).is_some_and(|at| at > after)
+        });
+    };
+    read_after(&mut harness, Instant::now() - Duration::from_secs(3600));
+    // The board raises servo 1 to 60° on its own; at once a click asks for 0°.
+    harness.state_mut().apply(Action::Servo(ServoAction::RunMacro(1)));
+    harness.state_mut().apply(Action::Servo(ServoAction::SetPose { servo_id: 1, degree: 0 }));
+    // It could be at either end (±90°): 90° at 180°/s, 0.5 s, not the 20 ms a slider move takes.
+    assert_eq!(next_move(&harness, 1), (0, 50));
+    arrived(&harness, 0);
+    // Run again, and read once the macro is over: the next click counts from the reading.
+    harness.state_mut().apply(Action::Servo(ServoAction::RunMacro(1)));
+    arrived(&harness, 60);
+    read_after(&mut harness, Instant::now());
+    harness.state_mut().apply(Action::Servo(ServoAction::SetPose { servo_id: 1, degree: 30 }));
+    // 60° → 30° at 180°/s: 1/6 s, 17 units.
+    assert_eq!(next_move(&harness, 1), (30, 17));
+}
+
 /// Recording a scripted sequence of slider moves: after the 3 s count-in
 /// servo 1 ramps to 60° in 2 s and holds; Stop fits it into two steps — an
 /// action each — and a macro running them, one undo step.

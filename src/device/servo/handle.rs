@@ -66,6 +66,8 @@ pub struct ServoHandle {
     pub memory: Option<(i32, Option<i32>)>,
     /// The latest servo states read back.
     pub servos: BTreeMap<u8, ServoStatus>,
+    /// When they were read.
+    pub servos_read_at: Option<Instant>,
     /// Servos were stopped with STOP and not resumed.
     pub stopped: bool,
     opened_at: Instant,
@@ -94,6 +96,7 @@ impl ServoHandle {
             battery_permil: None,
             memory: None,
             servos: BTreeMap::new(),
+            servos_read_at: None,
             stopped: false,
             opened_at: now,
             inflight: Vec::new(),
@@ -184,6 +187,7 @@ impl ServoHandle {
             }
             Message::QueryServoResponse { servos } => {
                 self.servos = servos.into_iter().map(|servo| (servo.servo_id, servo)).collect();
+                self.servos_read_at = Some(Instant::now());
             }
             Message::SetServoParameterResponse(switches) => {
                 for servo in self

@@ -11,6 +11,7 @@ use crate::authoring::bake::{DEFAULT_TOLERANCE_TENTHS, bake_plen2};
 use crate::authoring::fit::{self, Budget, FitError, Plen2Board};
 use crate::authoring::fitted::{PLEN2_UPDATE_MS, plen2_frames};
 use crate::authoring::recording::Recorder;
+use crate::device::plen2::playback::{self, DEVICE_IDS, StoredMotions};
 use crate::project::Edit;
 use crate::project::plen2::MAX_FRAMES;
 use crate::project::plen2::{Frame, Joint, Motion, Plen2Project, Pose};
@@ -202,11 +203,50 @@ impl Plen2Ui {
         shell.report(said, false);
     }
 
-    pub(super) fn play_list(shell: &mut Shell<'_>, index: usize) {
+    pub(super) fn play_list(&mut self, shell: &mut Shell<'_>, index: usize) {
         let Some(list) = shell.document.project.plen2.play_lists.get(index) else { return };
         let entries: Vec<(u8, u8)> = list.entries.iter().map(|e| (e.slot, e.plays)).collect();
+        let last = entries.last().copied();
         if let Some(robot) = shell.plen2_mut() {
             robot.play_list(&entries);
+            // Where the last motion leaves the robot (one played forever never ends).
+            if let Some((slot, _)) = last.filter(|&(_, plays)| plays > 0) {
+                self.after_playing(shell, slot);
+            }
+        }
+    }
+
+    /// Plays a motion stored on the robot (`$PM`).
+    pub(super) fn play_motion(&mut self, shell: &mut Shell<'_>, slot: u8) {
+        if let Some(robot) = shell.plen2_mut() {
+            robot.play(slot);
+            self.after_playing(shell, slot);
+        }
+    }
+
+    /// The sliders to where `slot` leaves the robot (the project's motion
+    /// played through the firmware's playback, plen2.md §6), so that a joint
+    /// moved next is walked from there and not from where the sliders were:
+    /// the robot reports no angles. A motion the project lacks, or one that
+    /// never ends, leaves them be.
+    fn after_playing(&mut self, shell: &Shell<'_>, slot: u8) {
+        /// An hour of cycles: longer is playing on as far as the editor is concerned.
+        const HOUR_OF_CYCLES: usize = 110_000;
+        let project = &shell.document.project.plen2;
+        if !project.motions.iter().any(|motion| motion.slot == slot) {
+            return;
+        }
+        let stored = StoredMotions::new(project);
+        if !playback::play(&stored, slot, [0; DEVICE_IDS], HOUR_OF_CYCLES).ended {
+            return;
+        }
+        let settings = playback::joint_settings(project);
+        let end = playback::clamped(&playback::after(&stored, slot, HOUR_OF_CYCLES), &settings);
+        self.slew = None;
+        self.stream = None;
+        for joint in Joint::ALL {
+            let device = usize::from(joint.device_id());
+            self.pose[joint.index()] = settings[device].0.saturating_add(end[device]);
         }
     }
 

@@ -260,13 +260,9 @@ impl Plen2Ui {
                 }
             }
             Plen2Action::Home => self.home(shell),
-            Plen2Action::PlayMotion(slot) => {
-                if let Some(robot) = shell.plen2_mut() {
-                    robot.play(slot);
-                }
-            }
+            Plen2Action::PlayMotion(slot) => self.play_motion(shell, slot),
             Plen2Action::PlayFrom { slot, frame } => self.play_from(shell, slot, frame),
-            Plen2Action::PlayList(index) => Self::play_list(shell, index),
+            Plen2Action::PlayList(index) => self.play_list(shell, index),
             Plen2Action::CaptureFrame { slot } => self.capture_frame(shell, slot),
             Plen2Action::Record { slot } => {
                 let after = self.motions.selected_frame();

@@ -107,26 +107,45 @@ fn command_parts(
 }
 
 impl ServoUi {
-    /// A live move of `servo_id` to `degree`, from where it is now (along its
+    /// A live move of `servo` to `degree`, from where it is now (along its
     /// last live move; else where the board last read it; else the slider's
     /// last value), its interval from the distance at the live speed limit,
-    /// at least `least` (10 ms units). Remembered for the next one.
+    /// at least `least` (10 ms units). Remembered for the next one. Where the
+    /// servo cannot be known (the board moved it on its own: a macro, a remote
+    /// button, a STOP mid-move) and no reading has come since, the move is
+    /// timed from the far end of its limits: slow, never a slam.
     fn limited_move(
         &mut self,
         speed: LiveSpeed,
-        servo_id: u8,
-        degree: i16,
-        from: (i16, Option<i16>),
+        (servo, degree): (&crate::project::Servo, i16),
+        from: (i16, Option<i16>, Option<Instant>),
         least: i16,
     ) -> ServoMove {
         let now = Instant::now();
-        let (shown, reading) = from;
-        let here =
-            self.moving.get(&servo_id).map_or_else(|| f64::from(reading.unwrap_or(shown)), |moving| moving.at(now));
+        let (shown, reading, read_at) = from;
+        let unknown = self.unsure.remove(&servo.id).is_some_and(|since| read_at.is_none_or(|at| at <= since));
+        let here = if unknown {
+            let (low, high) =
+                (f64::from(servo.min_deg.min(servo.max_deg)), f64::from(servo.max_deg.max(servo.min_deg)));
+            let to = f64::from(degree);
+            if (to - low).abs() > (to - high).abs() { low } else { high }
+        } else {
+            self.moving.get(&servo.id).map_or_else(|| f64::from(reading.unwrap_or(shown)), |moving| moving.at(now))
+        };
         let interval_10ms = speed.interval_10ms(f64::from(degree) - here, least);
         let interval = Duration::from_millis(u64::from(interval_10ms.unsigned_abs()) * 10);
-        self.moving.insert(servo_id, Moving { from: here, to: degree, start: now, interval });
-        ServoMove { servo_id, degree, interval_10ms }
+        self.moving.insert(servo.id, Moving { from: here, to: degree, start: now, interval });
+        ServoMove { servo_id: servo.id, degree, interval_10ms }
+    }
+
+    /// The board moves the servos on its own from `now` for `running` (a
+    /// macro, a remote button, a STOP): where they are is not known until
+    /// the board is read after that.
+    pub(super) fn board_moved_them(&mut self, project: &ServoProject, now: Instant, running: Duration) {
+        self.moving.clear();
+        for servo in &project.servos {
+            self.unsure.insert(servo.id, now + running);
+        }
     }
 
     pub(super) fn set_pose(&mut self, shell: &mut Shell<'_>, servo_id: u8, degree: i16) {
@@ -143,7 +162,8 @@ impl ServoUi {
                 return;
             }
             let reading = link.servos.get(&servo_id).map(|state| state.angle);
-            let servo_move = self.limited_move(speed, servo_id, degree, (before, reading), LIVE_MOVE_INTERVAL_10MS);
+            let from = (before, reading, link.servos_read_at);
+            let servo_move = self.limited_move(speed, (servo, degree), from, LIVE_MOVE_INTERVAL_10MS);
             if let Err(error) = link.live_move(vec![servo_move]) {
                 shell.report(shell.language.request_error(&error), true);
             }
@@ -293,6 +313,7 @@ impl ServoUi {
         let Some(part) = self.playing.pop_front() else { return };
         let project = &shell.document.project.servo;
         let read = shell.servo().map(|link| &link.servos);
+        let read_at = shell.servo().and_then(|link| link.servos_read_at);
         let mut moves = Vec::new();
         for step in &part.steps {
             let Some(servo) = project.servo(step.servo_id) else { continue };
@@ -301,7 +322,7 @@ impl ServoUi {
             // The step's own interval, or longer when the live speed limit needs it.
             let least = step.interval_10ms.max(1);
             let degree = servo.clamp(step.degree);
-            moves.push(self.limited_move(shell.speed, step.servo_id, degree, (shown, reading), least));
+            moves.push(self.limited_move(shell.speed, (servo, degree), (shown, reading, read_at), least));
         }
         let Some(link) = shell.servo() else {
             self.playing.clear();

@@ -82,6 +82,8 @@ pub struct ServoUi {
     /// The live move each servo was last sent, to tell where it is now (the
     /// board moves it linearly): the live speed limit counts from there.
     moving: BTreeMap<u8, live::Moving>,
+    /// Servos the board moved on its own, and after when a reading tells where they are.
+    unsure: BTreeMap<u8, Instant>,
     /// The sliders being recorded.
     recording: Option<crate::authoring::recording::Recorder>,
     /// A board comparison waiting for the user's go-ahead.
@@ -165,7 +167,13 @@ impl ServoUi {
             ServoAction::PlayMacroFrom { macro_id, command } => self.play_macro_from(shell, macro_id, command),
             ServoAction::PreviewAction(action_id) => self.preview = Some((action_id, Instant::now())),
             ServoAction::RunMacro(macro_id) => match shell.servo_mut() {
-                Some(servo) => servo.run_macro(macro_id),
+                Some(servo) => {
+                    servo.run_macro(macro_id);
+                    let project = &shell.document.project.servo;
+                    let running = crate::project::Timing::new(project).macro_total_ms(macro_id).unwrap_or(0);
+                    let running = std::time::Duration::from_millis(u64::try_from(running).unwrap_or(0));
+                    self.board_moved_them(project, Instant::now(), running);
+                }
                 None => shell.report(shell.words().servo().msg_connect_for_macro, true),
             },
             ServoAction::PickButton { table_index } => match shell.servo_mut() {
@@ -181,6 +189,8 @@ impl ServoUi {
     /// A remote button event arrived.
     pub fn button(&mut self, shell: &mut Shell<'_>, button_id: u32, event: ButtonEvent) {
         self.button_events.push((button_id, event));
+        // The board may run a macro for it on its own.
+        self.board_moved_them(&shell.document.project.servo, Instant::now(), std::time::Duration::ZERO);
         if let Some(table_index) = self.picking.take() {
             self.pick_button(shell, table_index, button_id);
         }
@@ -351,7 +361,7 @@ impl FamilyUi for ServoUi {
 
     fn stop(&mut self, shell: &mut Shell<'_>) {
         // Held wherever they were: where is read again, not guessed.
-        self.moving.clear();
+        self.board_moved_them(&shell.document.project.servo, Instant::now(), std::time::Duration::ZERO);
         self.playing.clear();
         let Some(link) = shell.link.as_mut() else { return };
         match link.stop() {
@@ -360,14 +370,16 @@ impl FamilyUi for ServoUi {
         }
     }
 
-    fn connected(&mut self, _project: &Project) {
+    fn connected(&mut self, project: &Project) {
         self.polling = false;
-        self.moving.clear();
+        // Where the servos stand is known once the board is first read.
+        self.board_moved_them(&project.servo, Instant::now(), std::time::Duration::ZERO);
     }
 
     fn disconnected(&mut self) {
         self.polling = false;
         self.moving.clear();
+        self.unsure.clear();
         self.playing.clear();
     }
 
