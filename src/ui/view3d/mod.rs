@@ -4,7 +4,7 @@
 //! capsules sorted back to front, a ground grid and the figure's shadow. A
 //! ghost (another pose, drawn faint) can share the scene. A scene whose links
 //! have handles can be posed: hovering a link names it, a click selects it,
-//! and a drag that starts on a joint turns that joint ([`touch`]).
+//! and a drag that starts on a joint turns that joint (the `touch` module).
 
 mod touch;
 
