@@ -24,6 +24,12 @@ impl Drop for Sim {
     }
 }
 
+/// The sample robot shipped in `assets/` (a rigged biped, its twins named), its servo section.
+pub fn sample_biped() -> ServoProject {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/sample-biped.json");
+    servo_studio::project::load(&path).expect("the sample loads").servo
+}
+
 /// Starts `servo-studio sim ARGS` and waits for the port it prints.
 pub fn sim(args: &[&str]) -> Sim {
     let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_servo-studio"))

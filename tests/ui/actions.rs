@@ -108,8 +108,7 @@ fn an_actions_steps_are_retimed_together() {
 /// of its twin's link, one undo step.
 #[test]
 fn mirror_hands_each_step_to_its_twin_reflected_about_home() {
-    let sample = project::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/sample-biped.json")).unwrap();
-    let mut servo = sample.servo;
+    let mut servo = common::sample_biped();
     // A twin straight at 10°: the mirror image is of the link, not of the number.
     servo.servos.iter_mut().find(|s| s.id == 2).unwrap().rig.as_mut().unwrap().straight_deg = 10;
     let wave = servo.actions.iter().position(|action| action.id == 2).unwrap();
@@ -144,8 +143,7 @@ fn mirror_hands_each_step_to_its_twin_reflected_about_home() {
 fn a_mirrored_pose_is_the_mirror_image_of_the_robot() {
     use servo_studio::figure::{Mat3, Vec3, rig};
     use std::collections::BTreeMap;
-    let sample = project::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/sample-biped.json")).unwrap();
-    let servo = sample.servo;
+    let servo = common::sample_biped();
     let wave = servo.action(2).unwrap();
     let right: Vec<Step> = wave.steps.iter().filter(|step| (4..=6).contains(&step.servo_id)).copied().collect();
     let left = servo.mirrored(&right);

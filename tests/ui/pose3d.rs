@@ -7,7 +7,6 @@
 
 use crate::common;
 
-use std::path::Path;
 use std::time::{Duration, Instant};
 
 use egui::Pos2;
@@ -168,8 +167,7 @@ const ELBOW_ROLL: u8 = 2;
 
 #[test]
 fn a_servo_of_the_rig_is_turned_by_touching_it_clamped_and_undone_in_one_step() {
-    let sample = project::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/sample-biped.json")).unwrap();
-    let mut servo = sample.servo;
+    let mut servo = common::sample_biped();
     let shoulder = servo.servos.iter_mut().find(|s| s.id == ELBOW_ROLL).unwrap();
     (shoulder.min_deg, shoulder.max_deg) = (-20, 35);
     let mut app = common::ui::editor(servo);
