@@ -2,7 +2,12 @@
 //! here, once: printed with what to try, and turned into the exit status.
 //! Every number is bounded as it is parsed (`bounds`), an option is refused
 //! where it does not apply, and output that cannot be written is never a
-//! silent success (`out`).
+//! silent success (`out`). The `servo-studio` binary is `main.rs` calling
+//! [`run`]; the module lives in the library so that its unit tests run with
+//! the library's.
+
+// Output goes through `cli::out`, which never panics when stdout or stderr fail (clippy.toml names the macros).
+#![warn(clippy::disallowed_macros)]
 
 mod bounds;
 mod check;
@@ -22,10 +27,10 @@ use std::process::ExitCode;
 
 use clap::{Args, Parser, Subcommand};
 
+use crate::device;
+use crate::project::rflex::Robot;
+use crate::project::{self, Family};
 use out::say;
-use servo_studio::device;
-use servo_studio::project::rflex::Robot;
-use servo_studio::project::{self, Family};
 
 /// Servo Studio: pose robot servos live, author actions and macros, and back up
 /// and upload servo controller boards.

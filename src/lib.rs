@@ -6,6 +6,7 @@
 //! a posed 3D figure) uses the project and the PLEN2's device map.
 
 pub mod authoring;
+pub mod cli;
 pub mod device;
 pub mod figure;
 pub mod gamepad;

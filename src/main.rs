@@ -1,15 +1,10 @@
 //! The `servo-studio` binary.
 
-// Output goes through `cli::out`, which never panics when stdout or stderr fail (clippy.toml names the macros).
-#![warn(clippy::disallowed_macros)]
-
 use std::process::ExitCode;
 
 use clap::Parser;
 
-mod cli;
-
-use cli::Cli;
+use servo_studio::cli::{self, Cli};
 
 fn main() -> ExitCode {
     let args = Cli::parse();

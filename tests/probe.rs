@@ -5,11 +5,9 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-mod common;
-
 use std::time::{Duration, Instant};
 
-use common::{Chatter, peer, sim};
+use crate::common::{self, Chatter, peer, sim};
 use servo_studio::device::probe::{Identity, ProbeDriver, ProbeOptions, plan, probe_port, requests};
 use servo_studio::link::{Driver, PortName, system_opener};
 use servo_studio::project::Family;

@@ -102,12 +102,12 @@ pub fn tolerance_deg(text: &str) -> Result<f64, String> {
 
 /// `fit --max-frames`: 1 to as many actions as a project holds.
 pub fn max_frames(text: &str) -> Result<usize, String> {
-    integer(text, &(1..=servo_studio::project::MAX_LIST_LEN), "frames")
+    integer(text, &(1..=crate::project::MAX_LIST_LEN), "frames")
 }
 
 /// A PLEN2 slot, 0..=89.
 pub fn slot(text: &str) -> Result<u8, String> {
-    integer(text, &(0..=servo_studio::protocol::plen2::SLOTS - 1), "(a PLEN2 slot)")
+    integer(text, &(0..=crate::protocol::plen2::SLOTS - 1), "(a PLEN2 slot)")
 }
 
 /// `sim --room WIDTHxDEPTH`, metres, each 0.5..=100.
@@ -143,7 +143,7 @@ pub fn axis_range(text: &str) -> Result<(i32, i32), String> {
 
 /// `--deadman`: a gamepad button by its kernel name.
 pub fn button(text: &str) -> Result<u16, String> {
-    servo_studio::gamepad::code_by_name(text)
+    crate::gamepad::code_by_name(text)
         .filter(|code| *code >= 0x100)
         .ok_or_else(|| format!("{text:?} is not a gamepad button: use BTN_TL, BTN_TR, BTN_SOUTH, BTN_EAST, BTN_NORTH, BTN_WEST, BTN_SELECT or BTN_START"))
 }

@@ -9,9 +9,9 @@ use std::path::Path;
 use std::process::ExitCode;
 
 use super::out::{self, Unwritten, say};
-use servo_studio::project::input::{self, InputKind, OpenError};
-use servo_studio::project::motion_json;
-use servo_studio::project::{self, Family, Location, Problem, ProblemKind, Problems, Project, Severity};
+use crate::project::input::{self, InputKind, OpenError};
+use crate::project::motion_json;
+use crate::project::{self, Family, Location, Problem, ProblemKind, Problems, Project, Severity};
 
 /// What `check` prints, decided before any of it is.
 #[derive(Debug, Default)]

@@ -7,11 +7,11 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 
-use servo_studio::authoring::fit::{self, Board, Budget, Fit, FitError, Plen2Board, ServoBoard};
-use servo_studio::authoring::fitted::{self, PLEN2_UPDATE_MS, SERVO_UPDATE_MS};
-use servo_studio::authoring::recording::Recording;
-use servo_studio::project::plen2::{JOINTS, Joint, MAX_FRAMES, Motion};
-use servo_studio::project::{self, Family, Project, Servo, ServoProject};
+use crate::authoring::fit::{self, Board, Budget, Fit, FitError, Plen2Board, ServoBoard};
+use crate::authoring::fitted::{self, PLEN2_UPDATE_MS, SERVO_UPDATE_MS};
+use crate::authoring::recording::Recording;
+use crate::project::plen2::{JOINTS, Joint, MAX_FRAMES, Motion};
+use crate::project::{self, Family, Project, Servo, ServoProject};
 
 /// What `fit` is asked.
 #[derive(Clone, Debug)]

@@ -5,7 +5,7 @@
 
 use std::path::Path;
 
-use servo_studio::project::{self, Family};
+use crate::project::{self, Family};
 
 /// Opens the editor, with `file` if given; with `demo` and no file, on the sample robot.
 pub fn run(file: Option<&Path>, demo: bool, protocol: Option<Family>) -> anyhow::Result<()> {
@@ -36,8 +36,8 @@ pub fn run(file: Option<&Path>, demo: bool, protocol: Option<Family>) -> anyhow:
         });
         forwarded
     });
-    let start = servo_studio::ui::Start { project, path, demo, family: protocol, interrupts };
-    let ended = servo_studio::ui::run(start);
+    let start = crate::ui::Start { project, path, demo, family: protocol, interrupts };
+    let ended = crate::ui::run(start);
     if let Some(interrupt) = caught.get() {
         // Ended by a signal: the shell stopped the board and kept the work; the status says so.
         return Err(

@@ -8,12 +8,12 @@ use anyhow::{Context, bail};
 use super::PortArgs;
 use super::out::say;
 use super::servo::ImportChoices;
-use servo_studio::device;
-use servo_studio::device::plen2::{
+use crate::device;
+use crate::device::plen2::{
     self as plen2, Plen2Handle, Plen2ImportOptions, Plen2Options, Plen2Phase, Plen2Progress, SlotResult,
 };
-use servo_studio::link::{self, LineSettings, PortName, no_waker};
-use servo_studio::project::{self, Family, Project};
+use crate::link::{self, LineSettings, PortName, no_waker};
+use crate::project::{self, Family, Project};
 
 fn connect(port: &PortArgs) -> anyhow::Result<Plen2Handle> {
     let name = PortName::parse(&port.port)?;
@@ -34,9 +34,16 @@ pub struct Slots(pub Vec<u8>);
 
 /// Parses `0-19,70` into slots.
 pub fn parse_slots(text: &str) -> Result<Slots, String> {
+    const FORMS: &str = "a slot (0..89), a range (0-19) or a list of them separated by commas, e.g. 0-19,70";
+    if text.trim().is_empty() {
+        return Err(format!("no slots given: name {FORMS}"));
+    }
     let mut slots = Vec::new();
-    for part in text.split(',').map(str::trim).filter(|p| !p.is_empty()) {
-        let bad = || format!("{part:?} is not a slot or a range of slots (0..89), e.g. 0-19,70");
+    for part in text.split(',').map(str::trim) {
+        if part.is_empty() {
+            return Err(format!("{text:?} has an empty item between commas: name {FORMS}"));
+        }
+        let bad = || format!("{part:?} is not {FORMS}");
         let (first, last) = match part.split_once('-') {
             Some((a, b)) => (a.trim().parse::<u8>().map_err(|_| bad())?, b.trim().parse::<u8>().map_err(|_| bad())?),
             None => {
@@ -44,7 +51,7 @@ pub fn parse_slots(text: &str) -> Result<Slots, String> {
                 (slot, slot)
             }
         };
-        if first > last || last >= servo_studio::protocol::plen2::SLOTS {
+        if first > last || last >= crate::protocol::plen2::SLOTS {
             return Err(bad());
         }
         slots.extend(first..=last);

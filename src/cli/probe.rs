@@ -2,8 +2,8 @@
 
 use std::time::Duration;
 
-use servo_studio::device::probe::{self, ProbeOptions};
-use servo_studio::link::{self, PortName};
+use crate::device::probe::{self, ProbeOptions};
+use crate::link::{self, PortName};
 
 use super::out;
 

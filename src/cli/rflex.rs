@@ -12,10 +12,10 @@ use super::PortArgs;
 use super::bounds;
 use super::out::say;
 use super::signals::{self, Interrupt};
-use servo_studio::device::{self, rflex::RflexBase};
-use servo_studio::link::{self, LineSettings, PortName, Waker};
-use servo_studio::project::Family;
-use servo_studio::project::rflex::Robot;
+use crate::device::{self, rflex::RflexBase};
+use crate::link::{self, LineSettings, PortName, Waker};
+use crate::project::Family;
+use crate::project::rflex::Robot;
 
 mod teleop;
 

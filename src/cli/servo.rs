@@ -9,11 +9,9 @@ use indicatif::{ProgressBar, ProgressStyle};
 
 use super::PortArgs;
 use super::out::say;
-use servo_studio::device::servo::{
-    self as device, ImportOptions, Phase, Progress, Requester, ServoBoard, SessionConfig,
-};
-use servo_studio::link::{self, PortName, no_waker};
-use servo_studio::project::{self, Family, Project};
+use crate::device::servo::{self as device, ImportOptions, Phase, Progress, Requester, ServoBoard, SessionConfig};
+use crate::link::{self, PortName, no_waker};
+use crate::project::{self, Family, Project};
 
 fn session_config(port: &PortArgs) -> SessionConfig {
     SessionConfig {

@@ -85,9 +85,9 @@ impl Caught {
 /// of ending the process: an operation stops at its next safe point (never
 /// mid-packet) and the command says what it left. Which signal it was is in
 /// the returned [`Caught`].
-pub fn cancel_on_signal(what: &'static str) -> std::io::Result<(servo_studio::device::Cancel, Caught)> {
+pub fn cancel_on_signal(what: &'static str) -> std::io::Result<(crate::device::Cancel, Caught)> {
     let interrupts = listen()?;
-    let (trigger, cancel) = servo_studio::device::Cancel::new();
+    let (trigger, cancel) = crate::device::Cancel::new();
     let caught = Caught::default();
     let seen = caught.clone();
     std::thread::Builder::new().name("cancel on signal".into()).spawn(move || {

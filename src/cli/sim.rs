@@ -11,11 +11,11 @@ use clap::Args;
 
 use super::bounds;
 use super::out::say;
-use servo_studio::device::servo::ServoImage;
-use servo_studio::link::{Driver, LinkEvent, no_waker};
-use servo_studio::project::Family;
-use servo_studio::project::rflex::Robot;
-use servo_studio::sim::{
+use crate::device::servo::ServoImage;
+use crate::link::{Driver, LinkEvent, no_waker};
+use crate::project::Family;
+use crate::project::rflex::Robot;
+use crate::sim::{
     self, Faults, LineNoise, LinkKind, Plen2Sim, Plen2Timing, RflexSim, RflexSimConfig, ServoSim, SimConfig,
 };
 
@@ -153,7 +153,7 @@ fn rflex_config(args: &SimArgs) -> anyhow::Result<RflexSimConfig> {
 fn servo(args: &SimArgs) -> anyhow::Result<()> {
     let image = match &args.state {
         Some(path) => {
-            let loaded = servo_studio::project::read(path)
+            let loaded = crate::project::read(path)
                 .with_context(|| format!("cannot preload the board from {}", path.display()))?
                 .project;
             if loaded.family != Family::Servo {
@@ -189,7 +189,10 @@ fn plen2(args: &SimArgs) -> anyhow::Result<()> {
     }
     if let Some(path) = &args.state {
         let plen2 = super::open_input(path)?.loaded.project.plen2;
-        robot.preload(&servo_studio::device::plen2::store_commands(&plen2));
+        // A stand-in robot holds only what a robot can (check, import and trajectory refuse the same).
+        crate::device::plen2::storable(&plen2)
+            .map_err(|error| anyhow::anyhow!("cannot preload the robot from {}: {error}", path.display()))?;
+        robot.preload(&crate::device::plen2::store_commands(&plen2));
         say!(
             "preloaded {} motion(s) and {} joint setting(s) from {}",
             plen2.motions.len(),

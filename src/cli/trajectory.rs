@@ -10,9 +10,9 @@ use std::path::Path;
 
 use anyhow::Context;
 
-use servo_studio::device::plen2::playback::{self, Playback, StoredMotions};
-use servo_studio::project::{self, Family, Project};
-use servo_studio::protocol::plen2::{DEVICE_IDS, Joint};
+use crate::device::plen2::playback::{self, Playback, StoredMotions};
+use crate::project::{self, Family, Project};
+use crate::protocol::plen2::{DEVICE_IDS, Joint};
 
 /// What to play.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -82,7 +82,7 @@ fn plen2_rows(project: &Project, slot: u8, from_slot: Option<u8>, max_cycles: us
         anyhow::bail!("--from-slot {previous}: there is no motion in that slot (slots: {})", slots(project));
     }
     // A motion the robot cannot store (over 20 frames, say) cannot be played either.
-    servo_studio::device::plen2::storable(plen2).map_err(|error| anyhow::anyhow!("{error}; it cannot be played"))?;
+    crate::device::plen2::storable(plen2).map_err(|error| anyhow::anyhow!("{error}; it cannot be played"))?;
     within_cap(max_cycles, Joint::ALL.len() + 1, Playback::CYCLE_MS)?;
     let stored = StoredMotions::new(plen2);
     let from = from_slot.map_or([0; DEVICE_IDS], |previous| playback::after(&stored, previous, max_cycles));
@@ -130,7 +130,7 @@ fn servo_trace(project: &Project, subject: Subject, max_ms: f64) -> anyhow::Resu
         Subject::Slot { .. } => anyhow::bail!("--slot is for PLEN2 motions: give --action or --macro"),
     };
     // As the board plays it: curves baked into straight steps.
-    let (stored, run) = servo_studio::authoring::bake_servo::stored_run(servo, run);
+    let (stored, run) = crate::authoring::bake_servo::stored_run(servo, run);
     let (trajectories, end_ms) = project::trace(&stored, run, max_ms).map_err(|error| match subject {
         Subject::Macro(id) => anyhow::anyhow!("macro {id}: {error}; nothing was written"),
         _ => anyhow::anyhow!("{error}; nothing was written"),

@@ -9,5 +9,5 @@ mod state;
 pub mod teleop;
 
 pub use event::*;
-pub use source::{Gamepad, GamepadInfo, Gone, PadUpdate, list, read_records};
+pub use source::{Gamepad, GamepadInfo, Gone, PadUpdate, list, read_batches, read_records};
 pub use state::{DEFAULT_RANGE, PadState, Step, dead_zone};

@@ -1,6 +1,7 @@
 //! Opening a gamepad and reading it on its own thread: an event device
-//! (`/dev/input/eventN`, through the `evdev` crate: its name, its axes'
-//! ranges, its own resynchronisation after a drop), or any file or named pipe
+//! (`/dev/input/eventN`, through the `evdev` crate's raw stream: its axes'
+//! ranges, and a drop (`SYN_DROPPED`) seen as the kernel reports it, not
+//! resynchronised behind our back), or any file or named pipe
 //! that carries `struct input_event` records (a remote stick forwarded over a
 //! pipe, a recording, a test). Each frame's state, a drop, or the end is sent
 //! on a channel the moment it is read.
@@ -288,7 +289,11 @@ mod linux {
     }
 
     pub(super) fn read_device(path: &Path, send: &dyn Fn(PadUpdate) -> bool) {
-        let mut device = match evdev::Device::open(path) {
+        // The raw stream, not the crate's synchronised `Device`: that one
+        // swallows SYN_DROPPED and replays the state it reads back, so a
+        // dead-man held across a drop would read held without a fresh press.
+        // Read raw, a drop reaches `PadState` as it does from a pipe.
+        let mut device = match evdev::raw_stream::RawDevice::open(path) {
             Ok(device) => device,
             Err(error) => {
                 send(PadUpdate::Gone(Gone::Open { path: path.display().to_string(), error: error.to_string() }));
@@ -301,23 +306,40 @@ mod linux {
                 state.set_range(axis.0, (info.minimum(), info.maximum()));
             }
         }
-        loop {
-            // The crate resynchronises after SYN_DROPPED itself (it reads the
-            // device's state and hands it over as events).
-            let events: Vec<RawEvent> = match device.fetch_events() {
-                Ok(events) => events
-                    .map(|event| RawEvent { kind: event.event_type().0, code: event.code(), value: event.value() })
-                    .collect(),
-                Err(error) if error.kind() == std::io::ErrorKind::Interrupted => continue,
-                Err(error) => {
-                    send(PadUpdate::Gone(gone(&error)));
-                    return;
-                }
-            };
-            for event in events {
-                if !tell(&mut state, event, send) {
-                    return;
-                }
+        read_batches(
+            || {
+                device.fetch_events().map(|events| {
+                    events
+                        .map(|event| RawEvent { kind: event.event_type().0, code: event.code(), value: event.value() })
+                        .collect()
+                })
+            },
+            state,
+            send,
+        );
+    }
+}
+
+/// Reads batches of events (as an event device hands them over, a read at a
+/// time) into `state`, telling each frame, until the source fails or nobody
+/// listens.
+pub fn read_batches(
+    mut fetch: impl FnMut() -> std::io::Result<Vec<RawEvent>>,
+    mut state: PadState,
+    send: &dyn Fn(PadUpdate) -> bool,
+) {
+    loop {
+        let events = match fetch() {
+            Ok(events) => events,
+            Err(error) if error.kind() == std::io::ErrorKind::Interrupted => continue,
+            Err(error) => {
+                send(PadUpdate::Gone(gone(&error)));
+                return;
+            }
+        };
+        for event in events {
+            if !tell(&mut state, event, send) {
+                return;
             }
         }
     }
@@ -360,5 +382,54 @@ mod tests {
         assert!(!torn.pressed(BTN_TL), "the frame that ends a drop is discarded");
         assert!(!after.pressed(BTN_TL) && after.known());
         assert_eq!(told[4], PadUpdate::Gone(Gone::Ended));
+    }
+
+    /// An event device read a batch at a time, as `evdev`'s raw stream hands
+    /// the kernel's buffer over (SYN_DROPPED included, nothing replayed): a
+    /// drop arrives mid-batch, and a dead-man held through it sends no new
+    /// event. The base stops at the drop and does not drive while the stick
+    /// moves on: only a dead-man let go and pressed again drives.
+    #[test]
+    fn a_drop_on_an_event_device_stops_the_base_until_a_fresh_press() {
+        use super::super::event::{ABS_Y, BTN_TL};
+        use super::super::teleop::{Order, StopReason, Teleop, TeleopConfig};
+        let held = [RawEvent::key(BTN_TL, true), RawEvent::abs(ABS_Y, -32768), RawEvent::report()];
+        let mut batches = vec![
+            // Held and driving; then the buffer overran: a drop, and the torn frame after it.
+            held.to_vec(),
+            vec![RawEvent::abs(ABS_Y, -30000), RawEvent::dropped(), RawEvent::abs(ABS_Y, -32000), RawEvent::report()],
+            // Still held (no key event: nothing changed), the stick full again.
+            vec![RawEvent::abs(ABS_Y, -32768), RawEvent::report()],
+            // Let go, then pressed again.
+            vec![RawEvent::key(BTN_TL, false), RawEvent::report()],
+            held.to_vec(),
+        ]
+        .into_iter();
+        let told = std::cell::RefCell::new(Vec::new());
+        read_batches(
+            || batches.next().ok_or_else(|| std::io::Error::from_raw_os_error(19)),
+            PadState::default(),
+            &|update| {
+                told.borrow_mut().push(update);
+                true
+            },
+        );
+        let told = told.into_inner();
+        assert_eq!(told.last(), Some(&PadUpdate::Gone(Gone::Unplugged)), "ENODEV: unplugged");
+        let t0 = Instant::now();
+        let mut teleop = Teleop::new(TeleopConfig::default());
+        let orders: Vec<Option<Order>> = told
+            .iter()
+            .enumerate()
+            .map(|(index, update)| teleop.update(t0 + std::time::Duration::from_secs(index as u64), update))
+            .collect();
+        let drive = Some(Order::Drive { speed_m_per_s: 0.5, turn_rad_per_s: 0.0 });
+        assert_eq!(orders[0], drive, "{told:?}");
+        assert_eq!(told[1], PadUpdate::Dropped);
+        assert_eq!(orders[1], Some(Order::Stop(StopReason::Dropped)));
+        assert!(orders[2..5].iter().all(Option::is_none), "no drive after the drop until a fresh press: {orders:?}");
+        assert!(matches!(&told[3], PadUpdate::State(after) if after.axis(ABS_Y) == -1.0), "{told:?}");
+        assert_eq!(orders[5], drive, "pressed again: drives ({told:?})");
+        assert_eq!(orders[6], Some(Order::Stop(StopReason::Gone)));
     }
 }

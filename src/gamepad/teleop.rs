@@ -134,7 +134,13 @@ impl Teleop {
                 Err(StopReason::Halted)
             }
             PadUpdate::State(state) => self.wanted(state),
-            PadUpdate::Dropped => Err(StopReason::Dropped),
+            PadUpdate::Dropped => {
+                // Events were lost: whatever state is read back afterwards (a
+                // device's resynchronisation replays what it finds held), only
+                // a dead-man let go and pressed again drives.
+                self.latched = true;
+                Err(StopReason::Dropped)
+            }
             PadUpdate::Gone(_) => Err(StopReason::Gone),
         };
         match wanted {
@@ -258,7 +264,9 @@ mod tests {
             "a stop does not hold back the next drive"
         );
         assert_eq!(teleop.update(at, &PadUpdate::Dropped), Some(Order::Stop(StopReason::Dropped)));
-        teleop.update(at + CHANGE_EVERY, &PadUpdate::State(full));
+        // After a drop the dead-man is let go and pressed again to drive.
+        teleop.update(at + CHANGE_EVERY, &PadUpdate::State(state(&[RawEvent::abs(ABS_Y, -32768)])));
+        assert!(teleop.update(at + CHANGE_EVERY, &PadUpdate::State(full)).is_some(), "pressed again: drives");
         let gone = PadUpdate::Gone(super::super::source::Gone::Ended);
         assert_eq!(teleop.update(at + CHANGE_EVERY, &gone), Some(Order::Stop(StopReason::Gone)));
         assert_eq!(teleop.halt(), None, "already stopped: nothing more");

@@ -4,6 +4,11 @@
 //! shows the last result meanwhile, so a drag on a 500-action project costs a
 //! frame what it costs on a small one; the result follows a few milliseconds
 //! later.
+//!
+//! Where a computation runs is decided by what the last one cost, measured on
+//! the wall clock — unless the context carries a [`Costing`] (tests): then
+//! every computation is taken to cost that, so a test decides where they run
+//! and no verdict depends on how fast the machine is.
 
 use std::time::{Duration, Instant};
 
@@ -12,6 +17,32 @@ use crossbeam_channel::{Receiver, TryRecvError};
 /// A computation that took less than this runs in the frame (its result shows
 /// at once); one that took longer runs on a worker thread from then on.
 pub const IN_FRAME_BUDGET: Duration = Duration::from_millis(1);
+
+/// What every computation is taken to cost in one context, instead of the
+/// wall clock's measure: [`Costing::IN_FRAME`] runs each in the frame (its
+/// result shows at once), [`Costing::OFF_FRAME`] each on a worker.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Costing(pub Duration);
+
+impl Costing {
+    /// Every computation cheap: computed in the frame.
+    pub const IN_FRAME: Self = Self(Duration::ZERO);
+    /// Every computation costly: computed on a worker thread.
+    pub const OFF_FRAME: Self = Self(Duration::from_secs(1));
+
+    /// Makes every computation in `ctx` cost this from now on.
+    pub fn install(self, ctx: &egui::Context) {
+        ctx.data_mut(|data| data.insert_temp(Self::id(), self));
+    }
+
+    fn of(ctx: &egui::Context) -> Option<Self> {
+        ctx.data(|data| data.get_temp::<Self>(Self::id()))
+    }
+
+    fn id() -> egui::Id {
+        egui::Id::NULL.with("servo-studio derive costing")
+    }
+}
 
 /// A value derived from the document, for a key (the revision, and whatever
 /// else it depends on, such as the selected item).
@@ -54,7 +85,8 @@ impl<K: Clone + PartialEq, T: Send + 'static> Derived<K, T> {
         let current = self.shown.as_ref().is_some_and(|(shown_key, _)| *shown_key == key);
         if !current && self.running.is_none() {
             let job = prepare();
-            if self.last_cost < IN_FRAME_BUDGET {
+            let costing = Costing::of(ctx);
+            if costing.map_or(self.last_cost, |Costing(cost)| cost) < IN_FRAME_BUDGET {
                 self.shown = Some((key, self.timed(job)));
             } else {
                 self.spawn(ctx, key, job);
@@ -146,19 +178,53 @@ mod tests {
     }
 
     #[test]
+    fn a_costing_decides_where_every_computation_runs_whatever_the_clock_says() {
+        let ctx = egui::Context::default();
+        Costing::IN_FRAME.install(&ctx);
+        let mut derived: Derived<u64, u64> = Derived::default();
+        // However long it takes, the next one is computed in the frame too.
+        assert_eq!(derived.get(&ctx, 1, || costly(10)), Some((&1, &10)));
+        assert_eq!(derived.get(&ctx, 2, || || 20), Some((&2, &20)), "in the frame: at once");
+        Costing::OFF_FRAME.install(&ctx);
+        let (release, hold) = crossbeam_channel::bounded::<()>(1);
+        let value = derived.get(&ctx, 3, move || {
+            move || {
+                hold.recv().ok();
+                30
+            }
+        });
+        assert_eq!(value, Some((&2, &20)), "off the frame, however cheap the last one was");
+        release.send(()).unwrap();
+        wait_current(&ctx, &mut derived, 3);
+    }
+
+    /// A job that costs more than the frame's budget on any machine.
+    fn costly(value: u64) -> impl FnOnce() -> u64 {
+        move || {
+            let began = Instant::now();
+            while began.elapsed() < IN_FRAME_BUDGET * 3 {
+                std::hint::spin_loop();
+            }
+            value
+        }
+    }
+
+    /// Asks for `key` as frames would until its value is shown (the worker answers on its own thread).
+    fn wait_current(ctx: &egui::Context, derived: &mut Derived<u64, u64>, key: u64) {
+        let deadline = Instant::now() + Duration::from_secs(10);
+        while !derived.is_current(&key) {
+            assert!(Instant::now() < deadline, "the worker never answered");
+            derived.get(ctx, key, || -> fn() -> u64 { panic!("key {key} is running") });
+            std::thread::yield_now();
+        }
+    }
+
+    #[test]
     fn a_costly_value_is_computed_off_the_frame_and_the_last_one_shown_meanwhile() {
         let ctx = egui::Context::default();
         let mut derived: Derived<u64, u64> = Derived::default();
         // The first computation runs in the frame and turns out costly.
-        let value = derived.get(&ctx, 1, || {
-            || {
-                let began = Instant::now();
-                while began.elapsed() < IN_FRAME_BUDGET * 3 {
-                    std::hint::spin_loop();
-                }
-                10
-            }
-        });
+        let value = derived.get(&ctx, 1, || costly(10));
         assert_eq!(value, Some((&1, &10)));
         // The next goes to a worker, held until the test lets it finish.
         let (release, hold) = crossbeam_channel::bounded::<()>(1);
@@ -173,13 +239,7 @@ mod tests {
         // Another edit meanwhile starts nothing: one job at a time.
         assert_eq!(derived.get(&ctx, 3, || -> fn() -> u64 { panic!("a second job while one runs") }), Some((&1, &10)));
         release.send(()).unwrap();
-        let deadline = Instant::now() + Duration::from_secs(5);
-        while !derived.is_current(&2) {
-            assert!(Instant::now() < deadline, "the worker never answered");
-            // Key 2 again, as a frame would ask while waiting for it.
-            derived.get(&ctx, 2, || -> fn() -> u64 { panic!("key 2 is running") });
-            std::thread::yield_now();
-        }
+        wait_current(&ctx, &mut derived, 2);
         assert_eq!(derived.get(&ctx, 2, || -> fn() -> u64 { panic!("key 2 is ready") }), Some((&2, &20)));
     }
 }

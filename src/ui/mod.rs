@@ -30,6 +30,7 @@ pub use action::{
 };
 pub use app::{Connecting, Picker, PortLister, REMEMBERED_KEY, Remembered, StudioApp, system_lister};
 pub use board_link::{BoardLink, Device, LinkNotice, LinkOptions, StartError};
+pub use derive::Costing;
 pub use document::Document;
 pub use family::FamilyUi;
 pub use i18n::{Language, Strings};

@@ -122,14 +122,7 @@ fn a_servo_action_and_macro_are_one_row_per_10_ms_in_degrees() {
 /// The official motion files in name order, or `None` (said on stderr) when
 /// `../shared` is absent.
 fn official_motions() -> Option<Vec<PathBuf>> {
-    let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/plen2/motions");
-    if !folder.is_dir() {
-        eprintln!("skipped: {} is absent", folder.display());
-        return None;
-    }
-    let mut files: Vec<PathBuf> = std::fs::read_dir(&folder).unwrap().map(|entry| entry.unwrap().path()).collect();
-    files.sort();
-    Some(files)
+    crate::common::official_motion_files()
 }
 
 #[test]

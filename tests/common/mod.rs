@@ -24,6 +24,39 @@ impl Drop for Sim {
     }
 }
 
+/// Whether a test that needs `../shared` must fail without it: in CI (`CI`
+/// set, as CI sets it) or when `SERVO_STUDIO_REQUIRE_SHARED=1`.
+pub fn shared_required() -> bool {
+    let set = |name: &str| std::env::var(name).is_ok_and(|value| !value.is_empty() && value != "0" && value != "false");
+    set("CI") || set("SERVO_STUDIO_REQUIRE_SHARED")
+}
+
+/// `../shared/<relative>` (the workplace's shared folder beside the clone):
+/// `None` with a notice on stderr when it is absent, or a failure naming
+/// what is missing where it is required ([`shared_required`]).
+pub fn shared(relative: &str) -> Option<std::path::PathBuf> {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared").join(relative);
+    if path.exists() {
+        return Some(path);
+    }
+    assert!(
+        !shared_required(),
+        "{} is missing: this test needs the shared folder beside the clone (CI / SERVO_STUDIO_REQUIRE_SHARED require it)",
+        path.display()
+    );
+    eprintln!("skipped: {} is absent (a clone without ../shared)", path.display());
+    None
+}
+
+/// The 90 official PLEN2 motion files (`../shared/plen2/motions`), in name order; see [`shared`].
+pub fn official_motion_files() -> Option<Vec<std::path::PathBuf>> {
+    let folder = shared("plen2/motions")?;
+    let mut files: Vec<std::path::PathBuf> =
+        std::fs::read_dir(&folder).unwrap().map(|entry| entry.unwrap().path()).collect();
+    files.sort();
+    Some(files)
+}
+
 /// The sample robot shipped in `assets/` (a rigged biped, its twins named), its servo section.
 pub fn sample_biped() -> ServoProject {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/sample-biped.json");

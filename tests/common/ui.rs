@@ -11,9 +11,15 @@ use servo_studio::link::no_waker;
 use servo_studio::project::Project;
 use servo_studio::ui::{Action, BoardLink, StudioApp, Tab};
 
-/// A test window of `size` (the shipped fonts installed), to build with a state.
+/// A test window of `size` (the shipped fonts installed), to build with a
+/// state. What panels derive from the document (validation, timing, plots)
+/// is computed in the frame, whatever it costs on this machine: a frame shows
+/// it at once, so no test waits on a worker's clock.
 pub fn builder((width, height): (f32, f32)) -> HarnessBuilder<StudioApp> {
-    Harness::builder().with_size(egui::vec2(width, height)).with_context_setup(servo_studio::ui::fonts::install)
+    Harness::builder().with_size(egui::vec2(width, height)).with_context_setup(|ctx| {
+        servo_studio::ui::fonts::install(ctx);
+        servo_studio::ui::Costing::IN_FRAME.install(ctx);
+    })
 }
 
 /// A window of `size` showing `app`.

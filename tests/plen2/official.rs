@@ -16,13 +16,7 @@ use crate::common;
 const EXE: &str = env!("CARGO_BIN_EXE_servo-studio");
 
 fn motions_folder() -> Option<PathBuf> {
-    let folder = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/plen2/motions");
-    if folder.is_dir() {
-        Some(folder)
-    } else {
-        eprintln!("skipped: {} is absent (a clone outside the workplace has no shared/ folder)", folder.display());
-        None
-    }
+    common::shared("plen2/motions")
 }
 
 fn sim_with(extra: &[&str]) -> Sim {
@@ -145,32 +139,4 @@ fn sim_state_preloads_the_robot() {
     let exported = project::load(&exported_path).unwrap();
     assert_eq!(exported.plen2.motions, plen2.motions);
     assert!(exported.plen2.joints.contains(&plen2.joints[0]), "{:?}", exported.plen2.joints);
-}
-
-/// The 90 motions through a Bluetooth LE serial bridge (bursts every 15 ms,
-/// 80 bytes an event): the adaptive pacing learns the link from the first
-/// reply, and no byte is lost — every slot verifies at once, none is written again.
-#[test]
-fn the_official_folder_uploads_over_a_bursty_link_losing_nothing() {
-    use servo_studio::link::no_waker;
-    use servo_studio::sim::{LinkKind, Plen2Sim, Plen2SimCommand, Plen2Timing, spawn_pty};
-    let Some(folder) = motions_folder() else { return };
-    let link = LinkKind::Bursty { interval: std::time::Duration::from_millis(15), whole: false };
-    let robot = spawn_pty(Plen2Sim::new(Plen2Timing::default()).with_link(link), no_waker()).unwrap();
-    let output = Command::new(EXE)
-        .args(["import", "--protocol", "plen2", "--port", &robot.port_name, "--yes", "--no-backup", "--in"])
-        .arg(&folder)
-        .stdin(Stdio::null())
-        .output()
-        .unwrap();
-    let stderr = String::from_utf8_lossy(&output.stderr);
-    assert!(output.status.success(), "{stderr}");
-    assert_eq!(stderr.matches("written and verified").count(), 90, "{stderr}");
-    assert!(!stderr.contains("written again"), "no slot rewritten: {stderr}");
-    assert!(stderr.contains("pacing widened: the link delivers in bursts"), "said on the progress line: {stderr}");
-    let (reply, state) = crossbeam_channel::bounded(1);
-    robot.command(Plen2SimCommand::Inspect(reply));
-    let state = state.recv_timeout(std::time::Duration::from_secs(5)).unwrap();
-    assert_eq!((state.lost_bytes, state.dropped), (0, 0), "the robot's own count");
-    assert_eq!(state.written_slots.len(), 90);
 }

@@ -9,7 +9,6 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use std::collections::VecDeque;
-use std::path::Path;
 use std::time::{Duration, Instant};
 
 use crossbeam_channel::Receiver;
@@ -301,11 +300,7 @@ fn the_ninety_official_motions_import_with_a_backup_of_a_fresh_robot_on_every_li
 }
 
 fn official_motions() -> Option<Vec<Motion>> {
-    let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/plen2/motions");
-    if !folder.is_dir() {
-        eprintln!("skipped: {} is absent (a fresh clone without ../shared)", folder.display());
-        return None;
-    }
+    let folder = crate::common::shared("plen2/motions")?;
     Some(motion_json::load_motions(&folder).unwrap())
 }
 

@@ -116,11 +116,7 @@ fn a_looping_jumping_clamped_motion_plays_on_the_emulator_as_the_model_says() {
 
 #[test]
 fn the_official_motions_play_on_the_emulator_as_the_model_says() {
-    let folder = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/plen2/motions");
-    if !folder.is_dir() {
-        eprintln!("skipped: {} is absent", folder.display());
-        return;
-    }
+    let Some(folder) = crate::common::shared("plen2/motions") else { return };
     let motions = servo_studio::project::motion_json::load_motions(&folder).unwrap();
     assert_eq!(motions.len(), 90);
     let project = Plen2Project { motions, ..Plen2Project::default() };

@@ -122,7 +122,9 @@ fn garbage_and_interleaved_button_events_do_not_disturb_an_export() {
 fn dropped_and_corrupted_responses_are_retried() {
     let faults = Faults { drop_every: Some(4), corrupt_every: Some(7), ..Faults::default() };
     let sim = start(Transport::Tcp, SimConfig { faults, ..SimConfig::default() }, &rich_project());
-    let board = connect(&sim, Duration::from_millis(150));
+    // Each dropped response costs a timeout; 500 ms keeps that short and is
+    // far beyond what a loaded machine takes to answer (the retries cover the rest).
+    let board = connect(&sim, Duration::from_millis(500));
     assert_eq!(export(&board.requester(), &mut quiet, &Cancel::never()).unwrap(), exported(rich_project()));
 }
 

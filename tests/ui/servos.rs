@@ -37,11 +37,17 @@ fn harness(app: StudioApp) -> Harness<'static, StudioApp> {
     common::ui::window(app, (1200.0, 700.0))
 }
 
+/// The editor connected to the demo board, once the board's first reading of
+/// the servos is in (before it, where a servo is cannot be known and a live
+/// move is timed from the far end of its limits).
 fn demo_harness() -> Harness<'static, StudioApp> {
     let mut app = new_app(project());
     app.apply(Action::ConnectDemo);
     let mut harness = harness(app);
     harness.run();
+    common::ui::run_until(&mut harness, "the first reading of the servos", |app| {
+        common::ui::servo_board(app).is_some_and(|board| board.servos_read_at.is_some())
+    });
     harness
 }
 
@@ -269,18 +275,26 @@ fn a_far_slider_click_reaches_its_angle_at_the_live_speed_limit() {
     harness.run();
     // What the menu's value sends when set to 45.
     harness.state_mut().apply(Action::SetLiveSpeed(45.0));
+    let sent_away = Instant::now();
     click_far_end(&mut harness, false);
     assert_eq!(harness.state().servo.pose.get(&1), Some(&-90));
     // The board reads 90° once within half a degree of it: 179.5°–180° at 45°/s.
     let (degree, interval_10ms) = next_move(&harness, 1);
     assert_eq!(degree, -90);
     assert!((399..=400).contains(&interval_10ms), "{interval_10ms}");
-    // Clicked back at once: the servo has barely left 90°, so the move back
-    // counts from there, not from the −90° it was sent to (no faster than 45°/s).
+    // Clicked back: the servo has only left 90° for as long as the test took
+    // between the two clicks, so the move back counts from where that put it,
+    // not from the −90° it was sent to (no faster than 45°/s).
     click_far_end(&mut harness, true);
+    let between = sent_away.elapsed();
     let (degree, interval_10ms) = next_move(&harness, 1);
     assert_eq!(degree, 90);
-    assert!(interval_10ms <= 40, "a few degrees back take well under 0.4 s: {interval_10ms}");
+    // At 45°/s the way back takes as long as the way out so far: at most `between`.
+    let most_10ms = i16::try_from(between.as_millis() / 10 + 1).unwrap_or(i16::MAX).max(2);
+    assert!(
+        interval_10ms <= most_10ms.min(399),
+        "{interval_10ms} × 10 ms back after {between:?} away (the whole way is 400)"
+    );
     arrived(&harness, 90);
     assert!((harness.state().remembered().live_speed.deg_per_s - 45.0).abs() < 1e-9, "remembered between runs");
     // A keyboard nudge is small: at 180°/s, 1° (or the little left of the last

@@ -8,10 +8,10 @@ use anyhow::bail;
 
 use super::{BaseArgs, Break, Session, check_drive};
 use crate::cli::out::say;
-use servo_studio::device;
-use servo_studio::gamepad::teleop::{Order, StopReason, Teleop, TeleopConfig};
-use servo_studio::gamepad::{EV_KEY, Gamepad, PadUpdate, code_name};
-use servo_studio::link::no_waker;
+use crate::device;
+use crate::gamepad::teleop::{Order, StopReason, Teleop, TeleopConfig};
+use crate::gamepad::{EV_KEY, Gamepad, PadUpdate, code_name};
+use crate::link::no_waker;
 
 /// The gamepad and how its stick is read.
 pub struct Pad<'a> {
@@ -81,7 +81,7 @@ pub fn run(
                     order
                 }
                 // The reading thread ended without a word: as good as gone.
-                Err(_) => teleop.update(Instant::now(), &PadUpdate::Gone(servo_studio::gamepad::Gone::Ended)),
+                Err(_) => teleop.update(Instant::now(), &PadUpdate::Gone(crate::gamepad::Gone::Ended)),
             },
             recv(session.woken) -> _ => teleop.poll(Instant::now()),
             recv(session.interrupts) -> interrupt => {

@@ -161,8 +161,12 @@ pub struct ServoBoard {
 }
 
 impl ServoBoard {
-    /// Opens `port` at `baud` with the servo family's line settings and starts the I/O thread.
+    /// Opens `port` at `baud` with the servo family's line settings and starts
+    /// the I/O thread. Where the session times bytes on the line, it times
+    /// them at this `baud` (a request at 19200 baud takes six times its time
+    /// at 115200: its response deadline must count it).
     pub fn connect(port: &PortName, baud: u32, config: SessionConfig, waker: Waker) -> Result<Self, LinkError> {
+        let config = SessionConfig { line_baud: config.line_baud.map(|_| baud), ..config };
         let settings = LineSettings { baud, ..crate::device::line_settings(Family::Servo) };
         let connection = link::open(port, &settings)?;
         let description = connection.description.clone();

@@ -183,6 +183,9 @@ struct InFlight {
     /// Frames of this protocol among them: whole ones, and ones that began
     /// with the magic but came damaged (a bad checksum, cut short).
     frames: usize,
+    /// Whether a frame of this protocol (its header and length seen) was
+    /// arriving: a long one still coming at a slow baud is not garbage.
+    in_frame: bool,
 }
 
 /// The session state machine (see the module documentation).
@@ -324,10 +327,15 @@ impl Session {
         self.write(now, request.bytes.clone());
         let (frame, message) = (request.frame.clone(), request.message.clone());
         self.log(|| Traffic::Sent { frame, message });
-        // The request must first cross the line (behind whatever was written before it).
+        // The request must first cross the line (behind whatever was written
+        // before it), and the board answers once a frame it is still sending ends.
         let on_the_line = self.line_free_at.map_or(now, |free| free.max(now));
-        let deadline = on_the_line + self.config.response_timeout;
-        self.in_flight = Some(InFlight { request, deadline, sized: false, expected: 0, bytes: 0, frames: 0 });
+        let incoming = self.decoder.pending_header().map_or(Duration::ZERO, |(_, frame_len)| {
+            self.wire_time(frame_len.saturating_sub(self.decoder.pending_len()))
+        });
+        let deadline = on_the_line + incoming + self.config.response_timeout;
+        let in_frame = self.decoder.pending_header().is_some();
+        self.in_flight = Some(InFlight { request, deadline, sized: false, expected: 0, bytes: 0, frames: 0, in_frame });
     }
 
     /// Bytes received from the board.
@@ -348,6 +356,9 @@ impl Session {
         let pending = self.decoder.pending_len();
         let wire = self.wire_time(frame_len.saturating_sub(pending));
         let timeout = self.config.response_timeout;
+        if let Some(in_flight) = &mut self.in_flight {
+            in_flight.in_frame = true;
+        }
         if let Some(in_flight) = &mut self.in_flight
             && !in_flight.sized
             && in_flight.request.frame.packet_id.checked_add(1) == Some(packet_id)
@@ -425,7 +436,7 @@ impl Session {
             self.drain_decoder(now);
         }
         if self.in_flight.as_ref().is_some_and(|f| now >= f.deadline) {
-            let Some(InFlight { request, bytes, frames, sized, expected, .. }) = self.in_flight.take() else {
+            let Some(InFlight { request, bytes, frames, sized, expected, in_frame, .. }) = self.in_flight.take() else {
                 return;
             };
             let timeout_ms = u64::try_from(self.config.response_timeout.as_millis()).unwrap_or(u64::MAX);
@@ -441,7 +452,7 @@ impl Session {
                     attempts,
                     timeout_ms,
                 });
-            } else if bytes > 0 && frames == 0 {
+            } else if bytes > 0 && frames == 0 && !in_frame {
                 // Something answers, in another protocol: asking again will not help.
                 let error = RequestError::NotThisProtocol { request: request.message.name(), bytes };
                 self.events.push_back(SessionEvent::Response { id: request.id, result: Err(error) });

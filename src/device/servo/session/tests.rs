@@ -264,6 +264,56 @@ fn a_device_that_chatters_in_another_protocol_ends_the_request_at_its_deadline()
     );
 }
 
+/// At 19200 baud a long frame takes seconds: one still arriving when a
+/// request's deadline comes (the late answer to one given up on before) is
+/// the protocol's own, not another protocol's bytes. The request is asked
+/// again, and the retry waits for that frame to end before its own answer.
+#[test]
+fn a_long_frame_still_arriving_at_the_deadline_is_not_another_protocol() {
+    let t0 = Instant::now();
+    let baud = 19_200;
+    let mut session = Session::new(SessionConfig { line_baud: Some(baud), ..config() });
+    let id = session.submit(t0, Message::QueryProjectIdRequest).unwrap();
+    let sent_at_first = sent(&mut session);
+    assert_eq!(sent_at_first, [Message::QueryProjectIdRequest]);
+    // Another packet id's frame: 4000 content bytes, of which the header and 100 came.
+    let content_len: u16 = 4000;
+    let mut header = vec![0x13, 0x4c, 0x05, 0x1d];
+    header.extend_from_slice(&7u16.to_le_bytes());
+    header.extend_from_slice(&content_len.to_le_bytes());
+    session.handle_input(t0 + Duration::from_millis(10), &header);
+    // The request's deadline: its own time on the line and the timeout (a foreign frame does not move it).
+    let request_len = bytes(&Message::QueryProjectIdRequest).len();
+    let deadline = t0 + session.wire_time(request_len) + Duration::from_millis(100);
+    // The frame keeps coming, 16 bytes every 10 ms (19200 baud delivers about 19).
+    let mut at = t0 + Duration::from_millis(10);
+    let mut came = header.len();
+    while at < deadline {
+        at += Duration::from_millis(10);
+        session.handle_input(at.min(deadline), &[0x55; 16]);
+        came += 16;
+        assert_eq!(session.pending_requests(), 1, "still waiting at {:?}", at - t0);
+    }
+    assert_eq!(session.poll_timeout(), Some(deadline));
+    session.handle_timeout(deadline);
+    let told: Vec<SessionEvent> =
+        events(&mut session).into_iter().filter(|e| matches!(e, SessionEvent::Response { .. })).collect();
+    assert_eq!(told, [], "not given up as another protocol: asked again");
+    assert_eq!(sent(&mut session), [Message::QueryProjectIdRequest]);
+    // The retry's deadline counts the rest of the frame on the line.
+    let rest = usize::from(content_len) + 9 - came;
+    let retry_deadline = session.in_flight.as_ref().map(|f| f.deadline).unwrap();
+    assert!(retry_deadline >= deadline + session.wire_time(rest) + Duration::from_millis(100), "{retry_deadline:?}");
+    // Nothing at all comes after that: a timeout, said as one.
+    session.handle_timeout(retry_deadline + Duration::from_secs(10));
+    let told: Vec<SessionEvent> =
+        events(&mut session).into_iter().filter(|e| matches!(e, SessionEvent::Response { .. })).collect();
+    assert!(
+        matches!(told.as_slice(), [SessionEvent::Response { id: got, result: Err(RequestError::Timeout { .. } | RequestError::Incomplete { .. }) }] if *got == id),
+        "{told:?}"
+    );
+}
+
 #[test]
 fn disconnect_fails_every_pending_request() {
     let t0 = Instant::now();

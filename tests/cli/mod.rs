@@ -1,0 +1,8 @@
+//! The command line, run as a user runs it.
+
+mod commands;
+mod honest;
+mod hostile;
+mod robust;
+mod servo;
+mod trajectory;

@@ -1,0 +1,5 @@
+//! The project document: file format, properties, validation.
+
+mod file;
+mod props;
+mod validation;

@@ -1,0 +1,17 @@
+//! The editor's window, driven through egui_kittest.
+
+mod actions;
+mod board;
+mod connect;
+mod doctor;
+mod drive;
+mod files;
+mod frames;
+mod gamepad;
+mod log;
+mod macros_joystick;
+mod plen2;
+mod pose3d;
+mod preview;
+mod rows;
+mod servos;
