@@ -459,7 +459,20 @@ fn trajectory_refuses_what_it_cannot_play_and_caps_its_work() {
     );
     assert_eq!(code, Some(1), "{stderr}");
     assert!(stderr.contains("21 frames") && stderr.contains("nothing was written"), "{stderr}");
-    assert!(robot.events().try_iter().all(|event| !matches!(event, LinkEvent::Driver(Plen2SimEvent::Executed(_)))));
+    // A barrier: `board info` reads the robot through the same line, after
+    // anything the refused import could have sent; the first thing the robot
+    // runs is its `<VI`.
+    let (code, _, stderr) = run(&["board", "info", "--protocol", "plen2", "--port", &robot.port_name]);
+    assert_eq!(code, Some(0), "{stderr}");
+    let executed: Vec<Plen2Command> = robot
+        .events()
+        .try_iter()
+        .filter_map(|event| match event {
+            LinkEvent::Driver(Plen2SimEvent::Executed(command)) => Some(command),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(executed.first().map(Plen2Command::code), Some("<VI"), "nothing before the barrier: {executed:?}");
 }
 
 /// A file of 9 million entries, each with an unknown key (about 150 MB), is

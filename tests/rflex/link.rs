@@ -276,6 +276,23 @@ fn a_speed_beyond_the_robots_limit_is_refused_before_anything_is_sent() {
         assert!(stderr(&output).contains(words), "{}", stderr(&output));
         assert!(stderr(&output).contains("nothing was sent"), "{}", stderr(&output));
     }
+    // A barrier: `rflex status` talks to the base through the same line, after
+    // anything the refused commands could have sent; once it has its answers,
+    // the base has read all of that.
+    let status = run(&["rflex", "status", "--port", &base.port_name]);
+    assert!(status.status.success(), "{}", stderr(&status));
     assert_eq!(inspect(&base).motion_commands, 0);
-    assert!(base.events().try_iter().all(|event| !matches!(event, LinkEvent::Driver(RflexSimEvent::Received(_)))));
+    let received: Vec<_> = base
+        .events()
+        .try_iter()
+        .filter_map(|event| match event {
+            LinkEvent::Driver(RflexSimEvent::Received(command)) => Some(command),
+            _ => None,
+        })
+        .collect();
+    assert!(!received.is_empty(), "the status's own commands arrived");
+    assert!(
+        received.iter().all(|command| !matches!(command, servo_studio::protocol::rflex::Command::AxisSetDir { .. })),
+        "nothing moved the base: {received:?}"
+    );
 }

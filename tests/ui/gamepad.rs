@@ -186,21 +186,40 @@ mod bindings {
             state.recv_timeout(std::time::Duration::from_secs(5)).unwrap()
         }
 
-        /// Runs frames until the robot executes a command `wanted` picks; whether it did within 3 s.
+        /// Runs frames until the robot executes a command `wanted` picks; whether it did (10 s
+        /// tell a hang apart).
         fn executes(&mut self, wanted: impl Fn(&Command) -> bool) -> bool {
+            self.executed_until(wanted).is_some()
+        }
+
+        /// Every command the robot executes, in order, up to the first that
+        /// `wanted` picks (`None`: none came within 10 s).
+        fn executed_until(&mut self, wanted: impl Fn(&Command) -> bool) -> Option<Vec<Command>> {
             let events = self.harness.state().link.as_ref().unwrap().demo_plen2().unwrap().events().clone();
-            let deadline = std::time::Instant::now() + std::time::Duration::from_secs(3);
+            let deadline = std::time::Instant::now() + std::time::Duration::from_secs(10);
+            let mut executed = Vec::new();
             while std::time::Instant::now() < deadline {
                 self.harness.step();
                 for event in events.try_iter() {
-                    if let LinkEvent::Driver(Plen2SimEvent::Executed(command)) = event
-                        && wanted(&command)
-                    {
-                        return true;
+                    if let LinkEvent::Driver(Plen2SimEvent::Executed(command)) = event {
+                        let done = wanted(&command);
+                        executed.push(command);
+                        if done {
+                            return Some(executed);
+                        }
                     }
                 }
+                // The robot answers on its own threads: wait for its next event, not a spin.
+                let _ = events.recv_timeout(std::time::Duration::from_millis(20)).map(|event| {
+                    if let LinkEvent::Driver(Plen2SimEvent::Executed(command)) = event {
+                        executed.push(command);
+                    }
+                });
+                if executed.last().is_some_and(&wanted) {
+                    return Some(executed);
+                }
             }
-            false
+            None
         }
     }
 
@@ -230,10 +249,24 @@ mod bindings {
 
         // Test mode: buttons light up, nothing fires.
         robot.frame(&[RawEvent::key(BTN_SOUTH, false)]);
+        let seen = |pressed: bool| {
+            move |app: &StudioApp| app.pad.state.as_ref().is_some_and(|pad| pad.pressed(BTN_SOUTH) == pressed)
+        };
+        common::ui::run_until(&mut robot.harness, "the release seen", seen(false));
         robot.harness.state_mut().apply(Action::PadTestMode(true));
         robot.frame(&[RawEvent::key(BTN_SOUTH, true)]);
-        assert!(!robot.executes(|command| *command == Command::PlayMotion { slot: 3 }), "nothing fires in test mode");
-        assert!(robot.harness.state().pad.state.as_ref().is_some_and(|pad| pad.pressed(BTN_SOUTH)), "but it is seen");
+        common::ui::run_until(&mut robot.harness, "the press seen", seen(true));
+        // Out of test mode, the axis moves the joint: that command goes out after
+        // anything the press could have fired, so the robot runs it after too.
+        robot.harness.state_mut().apply(Action::PadTestMode(false));
+        robot.frame(&[RawEvent::abs(ABS_RX, 32767)]);
+        let executed = robot
+            .executed_until(|command| matches!(command, Command::SetAngle { device: 0, angle: 900 }))
+            .expect("the axis moved the joint");
+        assert!(
+            !executed.contains(&Command::PlayMotion { slot: 3 }),
+            "nothing fired in test mode, though the press was seen: {executed:?}"
+        );
     }
 
     #[test]
