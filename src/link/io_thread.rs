@@ -10,8 +10,6 @@
 use std::io::{self, Read, Write};
 use std::sync::Arc;
 use std::thread::JoinHandle;
-#[cfg(test)]
-use std::time::Duration;
 use std::time::Instant;
 
 use crossbeam_channel::{Receiver, Select, Sender};
