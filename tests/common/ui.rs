@@ -68,3 +68,23 @@ pub fn record_through_count_in(harness: &mut Harness<'static, StudioApp>) {
     assert!(harness.query_by_label_contains("Recording in 3").is_some());
     harness.run_steps(11);
 }
+
+/// Asks the board for its servos until `done` holds for them, at most every
+/// 10 ms (a servo's move is timed on the board's clock: nothing tells when it
+/// ends but asking), failing after 10 s.
+pub fn servos_until(
+    requester: &servo_studio::device::servo::Requester,
+    what: &str,
+    done: impl Fn(&[servo_studio::protocol::servo::ServoStatus]) -> bool,
+) {
+    let deadline = Instant::now() + Duration::from_secs(10);
+    let pace = crossbeam_channel::tick(Duration::from_millis(10));
+    loop {
+        let servos = requester.query_servos(255).unwrap();
+        if done(&servos) {
+            return;
+        }
+        assert!(Instant::now() < deadline, "timed out waiting for {what}: {servos:?}");
+        let _ = pace.recv();
+    }
+}

@@ -25,7 +25,7 @@ fn robot() -> Robot {
 fn inspect(robot: &Robot) -> Plen2State {
     let (reply, state) = crossbeam_channel::bounded(1);
     robot.command(Plen2SimCommand::Inspect(reply));
-    state.recv_timeout(Duration::from_secs(5)).unwrap()
+    state.recv_timeout(Duration::from_secs(10)).unwrap()
 }
 
 fn connect(robot: &Robot) -> (Plen2Handle, Plen2Requester) {
@@ -155,7 +155,7 @@ fn unpaced_sending_loses_bytes() {
     careless.writer_mut().write_all(bytes.as_bytes()).unwrap();
     careless.writer_mut().flush().unwrap();
     // Wait (on the robot's own events) until it reports lost bytes.
-    let deadline = std::time::Instant::now() + Duration::from_secs(5);
+    let deadline = std::time::Instant::now() + Duration::from_secs(10);
     loop {
         match robot.events().recv_deadline(deadline) {
             Ok(servo_studio::link::LinkEvent::Driver(Plen2SimEvent::Lost(_))) => break,

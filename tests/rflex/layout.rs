@@ -79,7 +79,7 @@ type Base = servo_studio::sim::SimHandle<RflexSimCommand, servo_studio::sim::Rfl
 fn inspect(base: &Base) -> BaseState {
     let (reply, state) = crossbeam_channel::bounded(1);
     base.command(RflexSimCommand::Inspect(reply));
-    state.recv_timeout(Duration::from_secs(5)).unwrap()
+    state.recv_timeout(Duration::from_secs(10)).unwrap()
 }
 
 #[test]

@@ -28,7 +28,7 @@ fn connect() -> (Sim, RflexBase, Receiver<()>) {
 }
 
 fn until(base: &mut RflexBase, woken: &Receiver<()>, what: &str, done: impl Fn(&RflexBase) -> bool) {
-    let deadline = Instant::now() + Duration::from_secs(5);
+    let deadline = Instant::now() + Duration::from_secs(10);
     loop {
         base.pump(Instant::now());
         if done(base) {
@@ -41,7 +41,7 @@ fn until(base: &mut RflexBase, woken: &Receiver<()>, what: &str, done: impl Fn(&
 fn inspect(sim: &Sim) -> BaseState {
     let (reply, state) = crossbeam_channel::bounded(1);
     sim.command(RflexSimCommand::Inspect(reply));
-    state.recv_timeout(Duration::from_secs(5)).unwrap()
+    state.recv_timeout(Duration::from_secs(10)).unwrap()
 }
 
 #[test]

@@ -74,7 +74,7 @@ impl Rig {
     fn state(&self) -> BaseState {
         let (reply, state) = crossbeam_channel::bounded(1);
         self.base.command(RflexSimCommand::Inspect(reply));
-        state.recv_timeout(Duration::from_secs(5)).unwrap()
+        state.recv_timeout(Duration::from_secs(10)).unwrap()
     }
 
     /// Writes one frame of events (its SYN_REPORT added) to the pipe; returns when it was written.
@@ -223,7 +223,7 @@ fn a_gamepad_that_cannot_be_opened_stops_nothing_it_never_drove_and_exits_1() {
     assert!(stderr.contains("cannot open the gamepad"), "{stderr}");
     let (reply, state) = crossbeam_channel::bounded(1);
     base.command(RflexSimCommand::Inspect(reply));
-    let state = state.recv_timeout(Duration::from_secs(5)).unwrap();
+    let state = state.recv_timeout(Duration::from_secs(10)).unwrap();
     assert!(state.braked && state.target_speed_m_per_s == 0.0, "{state:?}");
 }
 

@@ -205,7 +205,7 @@ fn a_disconnect_mid_import_is_a_clear_error_and_the_backup_is_whole() {
     // And the link reports its end.
     let ended = board
         .events()
-        .recv_timeout(Duration::from_secs(5))
+        .recv_timeout(Duration::from_secs(10))
         .into_iter()
         .chain(board.events().try_iter())
         .any(|event| matches!(event, LinkEvent::Disconnected { .. }));

@@ -20,7 +20,7 @@ fn start() -> (SimHandle, ServoBoard) {
 
 /// Waits (on the board's own event channel, with a deadline) until it has handled `count` messages.
 fn wait_handled(sim: &SimHandle, count: usize) {
-    let deadline = Instant::now() + Duration::from_secs(5);
+    let deadline = Instant::now() + Duration::from_secs(10);
     let mut seen = 0;
     while seen < count {
         match sim.events().recv_deadline(deadline) {
@@ -73,7 +73,7 @@ fn torque_off_then_teach_by_hand() {
     assert_eq!(requester.set_servo_switches(released).unwrap(), released);
     sim.command(SimCommand::TurnByHand { servo_id: 2, angle: 44 });
     // The command and the query travel different channels: ask until the turn shows.
-    let deadline = Instant::now() + Duration::from_secs(5);
+    let deadline = Instant::now() + Duration::from_secs(10);
     while requester.query_servos(2).unwrap()[0].angle != 44 {
         assert!(Instant::now() < deadline, "the hand turn never showed");
         std::thread::yield_now();
@@ -86,7 +86,7 @@ fn subscribed_button_events_arrive() {
     let (sim, board) = start();
     board.requester().subscribe_buttons(true).unwrap();
     sim.command(SimCommand::Button { button_id: 0x8000_0001, event: ButtonEvent::LongPress });
-    let event = board.events().recv_timeout(Duration::from_secs(5)).unwrap();
+    let event = board.events().recv_timeout(Duration::from_secs(10)).unwrap();
     assert_eq!(event, LinkEvent::Driver(ServoEvent::Button { button_id: 0x8000_0001, event: ButtonEvent::LongPress }));
 }
 
@@ -98,7 +98,7 @@ fn dropping_the_board_closes_the_link() {
     let error = requester.project_id().unwrap_err();
     assert!(error.to_string().contains("the link"), "{error}");
     // The emulated board sees its client go.
-    let deadline = Instant::now() + Duration::from_secs(5);
+    let deadline = Instant::now() + Duration::from_secs(10);
     loop {
         match sim.events().recv_deadline(deadline) {
             Ok(LinkEvent::Disconnected { .. }) => break,

@@ -56,15 +56,10 @@ fn play_on_board_moves_the_emulated_servos() {
     harness.get_by_label("Play on board").click();
     harness.run_steps(2);
     let requester = common::ui::servo_board(harness.state()).unwrap().requester();
-    let deadline = Instant::now() + Duration::from_secs(5);
-    loop {
-        let servos = requester.query_servos(255).unwrap();
-        let angle = |id: u8| servos.iter().find(|s| s.servo_id == id).unwrap().angle;
-        if angle(1) == -90 && angle(2) == 45 {
-            break;
-        }
-        assert!(Instant::now() < deadline, "the servos never reached the action's angles");
-    }
+    common::ui::servos_until(&requester, "the action's angles", |servos| {
+        let angle = |id: u8| servos.iter().find(|s| s.servo_id == id).map(|s| s.angle);
+        angle(1) == Some(-90) && angle(2) == Some(45)
+    });
 }
 
 #[test]
@@ -185,12 +180,7 @@ fn a_curve_picked_for_a_step_shows_its_cost_and_plays_on_the_board_as_sub_steps(
     let easing =
         |harness: &Harness<'static, StudioApp>| harness.state().document.project.servo.actions[0].steps[0].easing;
     assert_eq!(easing(&harness), Easing::EaseInOut);
-    // Worked out off the frame: a few frames at most.
-    let deadline = Instant::now() + Duration::from_secs(10);
-    while harness.query_by_label_contains("On the board:").is_none() {
-        assert!(Instant::now() < deadline, "no budget meter");
-        harness.step();
-    }
+    // Derived in the frame in tests (common::ui's Costing): shown at once.
     let meter = harness.get_by_label_contains("On the board:");
     let text = egui_kittest::kittest::NodeT::accesskit_node(&meter).label().unwrap_or_default().to_string();
     assert!(text.contains("for curves") && text.contains(" of 262144 bytes"), "{text}");

@@ -30,13 +30,13 @@ fn status(harness: &Harness<'static, StudioApp>) -> String {
 fn inspect(harness: &Harness<'static, StudioApp>) -> BaseState {
     let (reply, state) = crossbeam_channel::bounded(1);
     harness.state().link.as_ref().unwrap().demo_base().unwrap().command(RflexSimCommand::Inspect(reply));
-    state.recv_timeout(Duration::from_secs(5)).unwrap()
+    state.recv_timeout(Duration::from_secs(10)).unwrap()
 }
 
 /// Waits (on the base's own events) until it receives a motion command matching `wanted`.
 fn wait_for_motion(harness: &Harness<'static, StudioApp>, what: &str, wanted: impl Fn(u32, u8) -> bool) {
     let events = harness.state().link.as_ref().unwrap().demo_base().unwrap().events().clone();
-    let deadline = Instant::now() + Duration::from_secs(5);
+    let deadline = Instant::now() + Duration::from_secs(10);
     loop {
         match events.recv_deadline(deadline) {
             Ok(LinkEvent::Driver(RflexSimEvent::Received(Command::AxisSetDir {
@@ -56,7 +56,7 @@ fn an_arrow_key_drives_the_base_and_letting_go_stops_it_within_one_frame() {
     assert!(status(&harness).contains("braked"), "{}", status(&harness));
     harness.get_by_label("Brake").click();
     harness.run_steps(2);
-    let deadline = Instant::now() + Duration::from_secs(5);
+    let deadline = Instant::now() + Duration::from_secs(10);
     while inspect(&harness).braked {
         assert!(Instant::now() < deadline, "the brake was never released");
         harness.step();
@@ -103,7 +103,7 @@ fn a_lost_link_is_reported_and_the_pad_stops_sending() {
     wait_for_motion(&harness, "the first command", |_, _| true);
     // The cable is pulled: the base closes the link.
     harness.state().link.as_ref().unwrap().demo_base().unwrap().command(RflexSimCommand::Disconnect);
-    let deadline = Instant::now() + Duration::from_secs(5);
+    let deadline = Instant::now() + Duration::from_secs(10);
     while harness.state().link.is_some() {
         assert!(Instant::now() < deadline, "the lost link was never noticed");
         harness.step();

@@ -183,7 +183,7 @@ mod bindings {
         fn robot(&self) -> Plen2State {
             let (reply, state) = crossbeam_channel::bounded(1);
             self.harness.state().link.as_ref().unwrap().demo_plen2().unwrap().command(Plen2SimCommand::Inspect(reply));
-            state.recv_timeout(std::time::Duration::from_secs(5)).unwrap()
+            state.recv_timeout(std::time::Duration::from_secs(10)).unwrap()
         }
 
         /// Runs frames until the robot executes a command `wanted` picks; whether it did (10 s
@@ -344,7 +344,7 @@ mod other_families {
         let mut pipe = pad(&mut harness, &folder);
         let events = harness.state().link.as_ref().unwrap().demo_board().unwrap().events().clone();
         let handled = |harness: &mut Harness<'static, StudioApp>, wanted: &dyn Fn(&Message) -> bool| {
-            let deadline = std::time::Instant::now() + std::time::Duration::from_secs(5);
+            let deadline = std::time::Instant::now() + std::time::Duration::from_secs(10);
             while std::time::Instant::now() < deadline {
                 harness.step();
                 for event in events.try_iter() {
@@ -381,7 +381,7 @@ mod other_families {
         let braked = |harness: &Harness<'static, StudioApp>| {
             let (reply, state) = crossbeam_channel::bounded(1);
             harness.state().link.as_ref().unwrap().demo_base().unwrap().command(RflexSimCommand::Inspect(reply));
-            state.recv_timeout(std::time::Duration::from_secs(5)).unwrap().braked
+            state.recv_timeout(std::time::Duration::from_secs(10)).unwrap().braked
         };
         common::ui::run_until(&mut harness, "the brake released", |app| {
             app.link.as_ref().and_then(|link| link.rflex()).is_some_and(|base| base.telemetry.brake == Some(false))

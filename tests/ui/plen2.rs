@@ -47,7 +47,7 @@ fn harness(tab: Tab) -> Harness<'static, StudioApp> {
 fn inspect(harness: &Harness<'static, StudioApp>) -> Plen2State {
     let (reply, state) = crossbeam_channel::bounded(1);
     harness.state().link.as_ref().unwrap().demo_plen2().unwrap().command(Plen2SimCommand::Inspect(reply));
-    state.recv_timeout(Duration::from_secs(5)).unwrap()
+    state.recv_timeout(Duration::from_secs(10)).unwrap()
 }
 
 /// Waits (on the robot's own events) until it executes a command matching `wanted`.

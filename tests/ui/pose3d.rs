@@ -189,7 +189,7 @@ fn a_servo_of_the_rig_is_turned_by_touching_it_clamped_and_undone_in_one_step() 
         }
     }
     // Sent to the board.
-    let deadline = Instant::now() + Duration::from_secs(5);
+    let deadline = Instant::now() + Duration::from_secs(10);
     loop {
         let link = harness.state().link.as_ref().unwrap();
         let event = link.demo_board().unwrap().events().recv_deadline(deadline).expect("the move arrived in time");

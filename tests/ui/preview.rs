@@ -185,7 +185,7 @@ fn the_view_toggle_hides_and_shows_the_preview() {
 fn inspect(harness: &Harness<'static, StudioApp>) -> BaseState {
     let (reply, state) = crossbeam_channel::bounded(1);
     harness.state().link.as_ref().unwrap().demo_base().unwrap().command(RflexSimCommand::Inspect(reply));
-    state.recv_timeout(Duration::from_secs(5)).unwrap()
+    state.recv_timeout(Duration::from_secs(10)).unwrap()
 }
 
 /// Steps the window until `done` holds (the link's reports arrive on their own thread).

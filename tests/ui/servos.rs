@@ -54,7 +54,7 @@ fn demo_harness() -> Harness<'static, StudioApp> {
 /// The live moves the demo board handled, as (servo, degree), waiting (with a
 /// deadline) until the board has handled one that puts `servo_id` at `last`.
 fn moves_until(harness: &mut Harness<'static, StudioApp>, servo_id: u8, last: i16) -> Vec<(u8, i16)> {
-    let deadline = Instant::now() + Duration::from_secs(5);
+    let deadline = Instant::now() + Duration::from_secs(10);
     let mut moves = Vec::new();
     loop {
         let link = harness.state().link.as_ref().unwrap();
@@ -90,11 +90,7 @@ fn a_drag_sends_coalesced_live_moves_and_the_last_value_arrives() {
     assert!(degrees.windows(2).all(|pair| pair[0] < pair[1]), "moves follow the drag, never back: {degrees:?}");
     assert!(degrees.len() <= 22, "at most one move per frame: {degrees:?}");
     // Nothing stale after the release: the board ends at the last value.
-    let requester = common::ui::servo_board(harness.state()).unwrap().requester();
-    let deadline = Instant::now() + Duration::from_secs(5);
-    while requester.query_servos(1).unwrap()[0].angle != 90 {
-        assert!(Instant::now() < deadline, "the servo never reached 90°");
-    }
+    arrived(&harness, 90);
 }
 
 #[test]
@@ -229,7 +225,7 @@ fn status_messages_follow_the_language() {
 
 /// The first live move the demo board handles for `servo_id`: (degree, interval in 10 ms).
 fn next_move(harness: &Harness<'static, StudioApp>, servo_id: u8) -> (i16, i16) {
-    let deadline = Instant::now() + Duration::from_secs(5);
+    let deadline = Instant::now() + Duration::from_secs(10);
     loop {
         let link = harness.state().link.as_ref().unwrap();
         let event = link.demo_board().unwrap().events().recv_deadline(deadline).expect("the move arrived in time");
@@ -244,10 +240,9 @@ fn next_move(harness: &Harness<'static, StudioApp>, servo_id: u8) -> (i16, i16) 
 /// Waits (with a deadline) until the demo board reports servo 1 at `angle`.
 fn arrived(harness: &Harness<'static, StudioApp>, angle: i16) {
     let requester = common::ui::servo_board(harness.state()).unwrap().requester();
-    let deadline = Instant::now() + Duration::from_secs(5);
-    while requester.query_servos(1).unwrap()[0].angle != angle {
-        assert!(Instant::now() < deadline, "the servo never reached {angle}°");
-    }
+    common::ui::servos_until(&requester, &format!("servo 1 at {angle}°"), |servos| {
+        servos.iter().any(|servo| servo.servo_id == 1 && servo.angle == angle)
+    });
 }
 
 /// Clicks servo 1's slider at its far right (`true`) or left end.
