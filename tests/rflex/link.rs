@@ -285,9 +285,9 @@ fn a_speed_beyond_the_robots_limit_is_refused_before_anything_is_sent() {
     let deadline = Instant::now() + Duration::from_secs(10);
     let mut received = Vec::new();
     while received.last() != Some(&RflexCommand::SystemStatus) {
-        match base.events().recv_deadline(deadline).expect("the base read the barrier") {
-            LinkEvent::Driver(RflexSimEvent::Received(command)) => received.push(command),
-            _ => {}
+        let event = base.events().recv_deadline(deadline).expect("the base read the barrier");
+        if let LinkEvent::Driver(RflexSimEvent::Received(command)) = event {
+            received.push(command);
         }
     }
     assert_eq!(received, [RflexCommand::SystemStatus], "nothing before the barrier");
