@@ -53,23 +53,23 @@ fn a_large_project_uploads_and_verifies_at_19200_baud() {
 #[test]
 fn a_report_printed_to_a_closed_stdout_is_an_error() {
     let base = common::sim(&["--protocol", "rflex", "--pty"]);
-    let output = Command::new("sh")
-        .args(["-c", "exec \"$0\" \"$@\" >&-", EXE, "rflex", "status", "--port", &base.port])
-        .stdin(Stdio::null())
-        .stderr(Stdio::piped())
-        .output()
-        .unwrap();
-    let stderr = String::from_utf8_lossy(&output.stderr);
-    assert_eq!(output.status.code(), Some(1), "{stderr}");
+    // The command run by a shell with its stdout redirected as `redirect` says.
+    let status_with = |redirect: &str| {
+        let script = format!("exec \"$0\" \"$@\" {redirect}");
+        let output = Command::new("sh")
+            .args(["-c", &script, EXE, "rflex", "status", "--port", &base.port])
+            .stdin(Stdio::null())
+            .stderr(Stdio::piped())
+            .output()
+            .unwrap();
+        (output.status.code(), String::from_utf8_lossy(&output.stderr).into_owned())
+    };
+    let (code, stderr) = status_with(">&-");
+    assert_eq!(code, Some(1), "{stderr}");
     assert!(stderr.contains("standard output is closed"), "{stderr}");
     // Into /dev/null on purpose (opened for writing, as a shell does): the user's choice, a success.
-    let output = Command::new("sh")
-        .args(["-c", "exec \"$0\" \"$@\" >/dev/null", EXE, "rflex", "status", "--port", &base.port])
-        .stdin(Stdio::null())
-        .stderr(Stdio::piped())
-        .output()
-        .unwrap();
-    assert_eq!(output.status.code(), Some(0), "{}", String::from_utf8_lossy(&output.stderr));
+    let (code, stderr) = status_with(">/dev/null");
+    assert_eq!(code, Some(0), "{stderr}");
 }
 
 /// `--slots ''` or `--slots 0,,1` names no slot or an empty one: refused with
