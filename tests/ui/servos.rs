@@ -286,10 +286,8 @@ fn a_far_slider_click_reaches_its_angle_at_the_live_speed_limit() {
     assert_eq!(degree, 90);
     // At 45°/s the way back takes as long as the way out so far: at most `between`.
     let most_10ms = i16::try_from(between.as_millis() / 10 + 1).unwrap_or(i16::MAX).max(2);
-    assert!(
-        interval_10ms <= most_10ms.min(399),
-        "{interval_10ms} × 10 ms back after {between:?} away (the whole way is 400)"
-    );
+    // (On a machine so slow that the servo got all the way, that is the whole 400.)
+    assert!(interval_10ms <= most_10ms, "{interval_10ms} × 10 ms back after {between:?} away (the whole way is 400)");
     arrived(&harness, 90);
     assert!((harness.state().remembered().live_speed.deg_per_s - 45.0).abs() < 1e-9, "remembered between runs");
     // A keyboard nudge is small: at 180°/s, 1° (or the little left of the last
