@@ -322,3 +322,17 @@ fn a_loop_is_found_with_every_file_in_it() {
     .collect();
     assert_eq!(loops(&arrows), vec![vec![file("a.rs"), file("b.rs"), file("c.rs")]]);
 }
+
+/// A test that needs `../shared` skips without it on a developer's clone, and
+/// fails naming what is missing where it is required (CI).
+#[test]
+fn a_missing_shared_folder_skips_only_where_it_is_not_required() {
+    let empty = tempfile::tempdir().unwrap();
+    assert_eq!(crate::common::shared_in(empty.path(), "plen2/motions", false), None);
+    let required = std::panic::catch_unwind(|| crate::common::shared_in(empty.path(), "plen2/motions", true));
+    let message = required.expect_err("required: a failure, not a skip");
+    let text = message.downcast_ref::<String>().cloned().unwrap_or_default();
+    assert!(text.contains("plen2/motions is missing"), "{text}");
+    let here = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    assert_eq!(crate::common::shared_in(here, "tests", true), Some(here.join("tests")), "present: found");
+}

@@ -35,12 +35,17 @@ pub fn shared_required() -> bool {
 /// `None` with a notice on stderr when it is absent, or a failure naming
 /// what is missing where it is required ([`shared_required`]).
 pub fn shared(relative: &str) -> Option<std::path::PathBuf> {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared").join(relative);
+    shared_in(&std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared"), relative, shared_required())
+}
+
+/// [`shared`] under `root`, failing when `required` and it is absent.
+pub fn shared_in(root: &std::path::Path, relative: &str, required: bool) -> Option<std::path::PathBuf> {
+    let path = root.join(relative);
     if path.exists() {
         return Some(path);
     }
     assert!(
-        !shared_required(),
+        !required,
         "{} is missing: this test needs the shared folder beside the clone (CI / SERVO_STUDIO_REQUIRE_SHARED require it)",
         path.display()
     );
