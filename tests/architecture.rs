@@ -333,6 +333,6 @@ fn a_missing_shared_folder_skips_only_where_it_is_not_required() {
     let message = required.expect_err("required: a failure, not a skip");
     let text = message.downcast_ref::<String>().cloned().unwrap_or_default();
     assert!(text.contains("plen2/motions is missing"), "{text}");
-    let here = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let here = Path::new(env!("CARGO_MANIFEST_DIR"));
     assert_eq!(crate::common::shared_in(here, "tests", true), Some(here.join("tests")), "present: found");
 }
