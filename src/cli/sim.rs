@@ -191,7 +191,12 @@ fn plen2(args: &SimArgs) -> anyhow::Result<()> {
         let plen2 = super::open_input(path)?.loaded.project.plen2;
         // A stand-in robot holds only what a robot can (check, import and trajectory refuse the same).
         crate::device::plen2::storable(&plen2)
-            .map_err(|error| anyhow::anyhow!("cannot preload the robot from {}: {error}", path.display()))?;
+            .map_err(|error| {
+                anyhow::anyhow!(
+                    "cannot preload the robot from {}: {error}. Fix the motion (`servo-studio check` lists every problem) and start it again",
+                    path.display()
+                )
+            })?;
         robot.preload(&crate::device::plen2::store_commands(&plen2));
         say!(
             "preloaded {} motion(s) and {} joint setting(s) from {}",
