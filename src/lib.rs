@@ -10,6 +10,7 @@ pub mod cli;
 pub mod device;
 pub mod figure;
 pub mod gamepad;
+pub mod interchange;
 pub mod link;
 pub mod project;
 pub mod protocol;

@@ -100,6 +100,11 @@ pub fn tolerance_deg(text: &str) -> Result<f64, String> {
     within_f64(text, 0.05, 180.0, "°")
 }
 
+/// `convert --fps`: 1..=1000 frames a second.
+pub fn fps(text: &str) -> Result<f64, String> {
+    within_f64(text, 1.0, 1000.0, " fps")
+}
+
 /// `fit --max-frames`: 1 to as many actions as a project holds.
 pub fn max_frames(text: &str) -> Result<usize, String> {
     integer(text, &(1..=crate::project::MAX_LIST_LEN), "frames")

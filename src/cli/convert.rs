@@ -1,0 +1,243 @@
+//! `servo-studio convert`: motions from another tool (Maestro settings,
+//! RoboPlus `.mtn`, R+ Motion `.mtnx`, Blender add-on JSON) into a servo or
+//! PLEN2 project, and projects (or those tools' files) out to a Maestro
+//! settings file or add-on JSON. What was converted, approximated and dropped
+//! is printed, each once; nothing is written unless everything converted.
+
+use std::path::PathBuf;
+
+use anyhow::Context;
+
+use crate::interchange::build::{self, Options, Selection};
+use crate::interchange::{self, Format, JointMap, Report, export};
+use crate::project::input::{MAX_PROJECT_BYTES, read_text};
+use crate::project::{self, Family, Project, motion_json};
+
+/// What `convert` writes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum To {
+    /// A servo-board project.
+    Servo,
+    /// A PLEN2 project.
+    Plen2,
+    /// A Maestro settings file.
+    Maestro,
+    /// Blender add-on JSON.
+    Blender,
+}
+
+/// `--to`'s words.
+pub fn parse_to(text: &str) -> Result<To, String> {
+    match text.to_ascii_lowercase().as_str() {
+        "servo" => Ok(To::Servo),
+        "plen2" => Ok(To::Plen2),
+        "maestro" => Ok(To::Maestro),
+        "blender" => Ok(To::Blender),
+        _ => Err(format!("{text:?}: convert to servo, plen2, maestro or blender")),
+    }
+}
+
+/// `--from`'s words.
+pub fn parse_from(text: &str) -> Result<Format, String> {
+    Format::from_tag(text).ok_or_else(|| format!("{text:?}: read as maestro, mtn, mtnx or blender"))
+}
+
+/// What `convert` is asked.
+#[derive(Clone, Debug)]
+pub struct ConvertRequest {
+    /// The file read.
+    pub input: PathBuf,
+    /// Its format, when not guessed.
+    pub from: Option<Format>,
+    /// What to write.
+    pub to: To,
+    /// A joint map file.
+    pub map: Option<PathBuf>,
+    /// A Maestro sequence, R+ page or flow, or a macro's or motion's name.
+    pub sequence: Option<String>,
+    /// A RoboPlus page, or a PLEN2 slot to export.
+    pub page: Option<u32>,
+    /// How far a fitted animation may stray, degrees.
+    pub tolerance_deg: f64,
+    /// Add-on JSON's frame rate.
+    pub fps: f64,
+    /// Where to also write the joint map used.
+    pub save_map: Option<PathBuf>,
+    /// The file written.
+    pub out: PathBuf,
+    /// Replace a read-only output.
+    pub force: bool,
+}
+
+/// What the input was.
+enum Input {
+    Foreign(interchange::Source),
+    Ours(Box<Project>),
+}
+
+fn read_input(request: &ConvertRequest) -> anyhow::Result<Input> {
+    let text = read_text(&request.input, MAX_PROJECT_BYTES)?;
+    let name = request.input.display();
+    let format = match request.from {
+        Some(format) => Some(format),
+        None if project::parse(&text).is_ok() => return Ok(Input::Ours(Box::new(project::from_json(&text)?))),
+        None if motion_json::looks_like_motion(&text) => {
+            let (motion, _) = motion_json::read_motion(&text).map_err(|error| anyhow::anyhow!("{name}: {error}"))?;
+            let mut project = Project::empty(Family::Plen2);
+            project.plen2.motions.push(motion);
+            return Ok(Input::Ours(Box::new(project)));
+        }
+        None => Format::guess(&text),
+    };
+    let Some(format) = format else {
+        anyhow::bail!("cannot tell what {name} is: give --from maestro, mtn, mtnx or blender");
+    };
+    let source = interchange::read(format, &text)
+        .with_context(|| format!("{name} is not a {} ({})", format.name(), format.tag()))?;
+    Ok(Input::Foreign(source))
+}
+
+/// Converts and writes; returns the report's lines.
+pub fn run(request: &ConvertRequest) -> anyhow::Result<Vec<String>> {
+    super::writable_output(&request.out, request.force)?;
+    let map = match &request.map {
+        Some(path) => {
+            let text = read_text(path, MAX_PROJECT_BYTES)?;
+            Some(
+                JointMap::from_json(&text)
+                    .with_context(|| format!("{} cannot be used as a joint map", path.display()))?,
+            )
+        }
+        None => None,
+    };
+    let (written, report) = match read_input(request)? {
+        Input::Foreign(source) => foreign(request, &source, map.as_ref())?,
+        Input::Ours(project) => ours(request, &project, map.as_ref())?,
+    };
+    project::atomic_write(&request.out, |file| std::io::Write::write_all(file, written.as_bytes()))
+        .with_context(|| format!("cannot write {}", request.out.display()))?;
+    let mut lines = report.lines();
+    lines.push(format!("wrote {}", request.out.display()));
+    Ok(lines)
+}
+
+fn selection(request: &ConvertRequest) -> Selection {
+    match (&request.sequence, request.page) {
+        (Some(name), _) => Selection::Named(name.clone()),
+        (None, Some(page)) => Selection::Page(page),
+        (None, None) => Selection::All,
+    }
+}
+
+fn foreign(
+    request: &ConvertRequest,
+    source: &interchange::Source,
+    given: Option<&JointMap>,
+) -> anyhow::Result<(String, Report)> {
+    let family = match request.to {
+        To::Plen2 => Family::Plen2,
+        To::Servo | To::Maestro => Family::Servo,
+        // Through the family the map drives (servos unless it names PLEN2 joints).
+        To::Blender => {
+            let joints = given
+                .is_some_and(|map| map.entries.iter().any(|e| e.target.is_some_and(|t| t.family() == Family::Plen2)));
+            if joints { Family::Plen2 } else { Family::Servo }
+        }
+    };
+    let map = JointMap::for_source(source, family, given);
+    if let Some(path) = &request.save_map {
+        project::atomic_write(path, |file| std::io::Write::write_all(file, map.to_json().as_bytes()))
+            .with_context(|| format!("cannot write {}", path.display()))?;
+    }
+    let options = Options { family, selection: selection(request), tolerance_deg: request.tolerance_deg };
+    let built = build::build(source, &map, &options).context("nothing was written")?;
+    let problems = project::validate(&built.project);
+    if project::has_errors(&problems) {
+        let first: Vec<String> = problems.iter().take(3).map(ToString::to_string).collect();
+        anyhow::bail!(
+            "the converted project would not pass `check` ({}); nothing was written. Please report this file",
+            first.join("; ")
+        );
+    }
+    let mut report = built.report;
+    let written = match request.to {
+        To::Servo | To::Plen2 => project::to_json(&built.project),
+        To::Maestro => merge(&mut report, export::maestro(&built.project.servo, Some(&map))?),
+        To::Blender => {
+            let mut request = request.clone();
+            request.sequence = None;
+            request.page = None;
+            merge(&mut report, blender(&request, &built.project, Some(&map))?)
+        }
+    };
+    Ok((written, report))
+}
+
+fn merge(report: &mut Report, (text, more): (String, Report)) -> String {
+    report.converted.extend(more.converted);
+    for note in more.approximated {
+        report.approximated(note);
+    }
+    for note in more.dropped {
+        report.dropped(note);
+    }
+    text
+}
+
+fn ours(request: &ConvertRequest, project: &Project, map: Option<&JointMap>) -> anyhow::Result<(String, Report)> {
+    let name = request.input.display();
+    match request.to {
+        To::Servo | To::Plen2 => {
+            anyhow::bail!("{name} is a Servo Studio file already: convert it --to maestro or --to blender")
+        }
+        To::Maestro if project.family != Family::Servo => {
+            anyhow::bail!("{name} is a {} project: only servo-board projects go to a Maestro", project.family.name())
+        }
+        To::Maestro => Ok(export::maestro(&project.servo, map)?),
+        To::Blender => blender(request, project, map),
+    }
+}
+
+fn blender(request: &ConvertRequest, project: &Project, map: Option<&JointMap>) -> anyhow::Result<(String, Report)> {
+    if project.family == Family::Plen2 {
+        let motions = &project.plen2.motions;
+        let chosen = match (&request.sequence, request.page) {
+            (Some(name), _) => motions.iter().find(|m| &m.name == name),
+            (None, Some(slot)) => motions.iter().find(|m| u32::from(m.slot) == slot),
+            (None, None) => motions.iter().min_by_key(|m| m.slot),
+        };
+        let Some(motion) = chosen else {
+            let held: Vec<String> = motions.iter().map(|m| format!("slot {} {:?}", m.slot, m.name)).collect();
+            anyhow::bail!(
+                "no such motion (the project holds: {}); choose with --sequence NAME or --page SLOT",
+                held.join(", ")
+            );
+        };
+        let (text, mut report) = export::blender_plen2(&project.plen2, motion.slot, request.fps, map)?;
+        if request.sequence.is_none() && request.page.is_none() && motions.len() > 1 {
+            report.dropped(format!(
+                "the other {} motions (one animation per file: choose with --sequence or --page)",
+                motions.len() - 1
+            ));
+        }
+        return Ok((text, report));
+    }
+    let macros = &project.servo.macros;
+    let chosen = match &request.sequence {
+        Some(name) => macros.iter().find(|m| &m.caption == name),
+        None => macros.first(),
+    };
+    let Some(item) = chosen else {
+        let held: Vec<String> = macros.iter().map(|m| format!("{} {:?}", m.id, m.caption)).collect();
+        anyhow::bail!(
+            "no such macro (the project holds: {}); choose with --sequence NAME",
+            if held.is_empty() { "none".into() } else { held.join(", ") }
+        );
+    };
+    let (text, mut report) = export::blender_servo(&project.servo, item.id, request.fps, map)?;
+    if request.sequence.is_none() && macros.len() > 1 {
+        report
+            .dropped(format!("the other {} macros (one animation per file: choose with --sequence)", macros.len() - 1));
+    }
+    Ok((text, report))
+}

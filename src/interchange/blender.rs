@@ -1,0 +1,186 @@
+//! The Blender servo-animation add-on's JSON export: `fps`, `frames`, and per
+//! servo (`servos`: id → `name`, `positions`; older versions: `positions`:
+//! bone name → list) one position per animation frame, in whatever unit the
+//! bone's servo settings map to (the add-on's default: 150..600 over 180°).
+
+use serde_json::{Map, Value, json};
+
+use super::source::{Body, Channel, Clip, Source, Unit};
+use super::{Format, ReadError};
+
+/// The add-on's default servo settings: positions 150..=600 over 180°, 90° neutral.
+pub const ADDON_DEFAULT: Unit = Unit { zero: 375.0, per_degree: 2.5, label: "add-on positions" };
+/// Pulse widths: 1500 µs at 0°, 2000 µs over 180°.
+pub const MICROSECONDS: Unit = Unit { zero: 1500.0, per_degree: 2000.0 / 180.0, label: "µs" };
+/// Servo angles 0..180 with 90 at the centre.
+pub const ANGLE_0_180: Unit = Unit { zero: 90.0, per_degree: 1.0, label: "0..180°" };
+/// The key Servo Studio adds to what it writes, saying the unit (other readers ignore it).
+const UNIT_KEY: &str = "servo_studio_unit";
+
+/// Reads an add-on export.
+pub fn read(text: &str) -> Result<Source, ReadError> {
+    let value: Value = serde_json::from_str(text).map_err(|error| ReadError {
+        line: Some(error.line()),
+        element: None,
+        message: format!("not JSON: {error}"),
+    })?;
+    let root = value.as_object().ok_or_else(|| at("", "the file is not a JSON object"))?;
+    let fps = root
+        .get("fps")
+        .and_then(Value::as_f64)
+        .ok_or_else(|| at("fps", "no frame rate (fps): is this the add-on's JSON export?"))?;
+    if !(fps > 0.0 && fps <= 1000.0) {
+        return Err(at("fps", format!("{fps} frames per second is not a frame rate")));
+    }
+    let hint = root.get(UNIT_KEY).and_then(unit_hint);
+    let mut channels = Vec::new();
+    let mut columns: Vec<Vec<f64>> = Vec::new();
+    if let Some(servos) = root.get("servos") {
+        let servos = servos.as_object().ok_or_else(|| at("servos", "not an object of servos by id"))?;
+        for (id, servo) in servos {
+            let where_ = format!("servos.{id}");
+            let positions = servo.get("positions").ok_or_else(|| at(&where_, "no positions"))?;
+            let mut channel = Channel::new(id.clone(), ADDON_DEFAULT);
+            channel.name = servo.get("name").and_then(Value::as_str).unwrap_or_default().to_string();
+            columns.push(positions_of(positions, &format!("{where_}.positions"))?);
+            channels.push(channel);
+        }
+    } else if let Some(Value::Object(bones)) = root.get("positions") {
+        for (bone, positions) in bones {
+            let mut channel = Channel::new(bone.clone(), ADDON_DEFAULT);
+            channel.name.clone_from(bone);
+            columns.push(positions_of(positions, &format!("positions.{bone}"))?);
+            channels.push(channel);
+        }
+    } else {
+        return Err(at("", "no servos and no positions: is this the add-on's JSON export?"));
+    }
+    let frames = columns.first().map_or(0, Vec::len);
+    if let Some((channel, column)) = channels.iter().zip(&columns).find(|(_, column)| column.len() != frames) {
+        return Err(at(&channel.key, format!("{} positions where the first servo has {frames}", column.len())));
+    }
+    if frames == 0 {
+        return Err(at("servos", "no positions at all"));
+    }
+    for (channel, column) in channels.iter_mut().zip(&columns) {
+        channel.unit = hint.unwrap_or_else(|| guess_unit(column));
+    }
+    let rows = (0..frames).map(|frame| columns.iter().map(|column| column[frame]).collect()).collect();
+    let name = root.get("scene").and_then(Value::as_str).unwrap_or("animation").to_string();
+    Ok(Source {
+        format: Format::Blender,
+        channels,
+        clips: vec![Clip::new(name, Body::Samples { fps, rows })],
+        dropped: Vec::new(),
+    })
+}
+
+fn at(element: &str, message: impl Into<String>) -> ReadError {
+    ReadError { line: None, element: (!element.is_empty()).then(|| element.to_string()), message: message.into() }
+}
+
+fn positions_of(value: &Value, where_: &str) -> Result<Vec<f64>, ReadError> {
+    let list = value.as_array().ok_or_else(|| at(where_, "not a list of positions"))?;
+    list.iter()
+        .enumerate()
+        .map(|(frame, position)| {
+            position
+                .as_f64()
+                .filter(|v| v.is_finite())
+                .ok_or_else(|| at(&format!("{where_}[{frame}]"), format!("{position} is not a number")))
+        })
+        .collect()
+}
+
+fn unit_hint(value: &Value) -> Option<Unit> {
+    let zero = value.get("zero")?.as_f64()?;
+    let per_degree = value.get("per_degree")?.as_f64().filter(|per| *per != 0.0)?;
+    Some(Unit { zero, per_degree, label: "as written" })
+}
+
+/// The unit a servo's positions most likely are: µs past 600, the add-on's
+/// default 150..=600, else angles 0..180.
+pub fn guess_unit(positions: &[f64]) -> Unit {
+    let (low, high) = positions.iter().fold((f64::MAX, f64::MIN), |(low, high), v| (low.min(*v), high.max(*v)));
+    if high > 600.0 {
+        MICROSECONDS
+    } else if low >= 150.0 {
+        ADDON_DEFAULT
+    } else {
+        ANGLE_0_180
+    }
+}
+
+/// One servo's positions for [`write`].
+pub struct Written<'a> {
+    /// Its id in the export.
+    pub id: String,
+    /// Its bone's name.
+    pub name: &'a str,
+    /// One position per frame.
+    pub positions: Vec<f64>,
+}
+
+/// An add-on export: `servos` at `fps`, positions in `unit` (said in a key of its own).
+pub fn write(fps: f64, scene: &str, unit: Unit, servos: &[Written<'_>]) -> String {
+    let frames = servos.first().map_or(0, |servo| servo.positions.len());
+    // Frame counts far below 2^52.
+    #[allow(clippy::cast_precision_loss)]
+    let seconds = (frames as f64 / fps).round();
+    let mut by_id = Map::new();
+    for servo in servos {
+        let positions: Vec<Value> = servo.positions.iter().map(|p| json!((p * 100.0).round() / 100.0)).collect();
+        by_id.insert(servo.id.clone(), json!({ "name": servo.name, "positions": positions }));
+    }
+    let value = json!({
+        "description": "Blender Servo Animation Positions",
+        "fps": fps,
+        "frames": frames,
+        "seconds": seconds,
+        "bones": servos.len(),
+        "armature": "Servo Studio",
+        "file": "",
+        "scene": scene,
+        "servos": by_id,
+        UNIT_KEY: { "zero": unit.zero, "per_degree": unit.per_degree },
+    });
+    serde_json::to_string_pretty(&value).unwrap_or_default()
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, clippy::float_cmp)]
+    use super::*;
+
+    #[test]
+    fn both_layouts_are_read_and_units_guessed() {
+        let new = r#"{"description":"x","fps":30,"frames":3,"servos":{"3":{"name":"Jaw","positions":[1500,1600,2000]},"7":{"name":"Eye","positions":[90,100,80]}}}"#;
+        let source = read(new).unwrap();
+        assert_eq!(source.channels[0].name, "Jaw");
+        assert_eq!(source.channels[0].unit, MICROSECONDS);
+        assert_eq!(source.channels[1].unit, ANGLE_0_180);
+        let Body::Samples { fps, rows } = &source.clips[0].body else { panic!() };
+        assert_eq!((*fps, rows[2].clone()), (30.0, vec![2000.0, 80.0]));
+        let old = r#"{"fps":24,"positions":{"Bone":[375,400]}}"#;
+        assert_eq!(read(old).unwrap().channels[0].unit, ADDON_DEFAULT);
+    }
+
+    #[test]
+    fn what_servo_studio_writes_reads_back_in_its_unit() {
+        let text =
+            write(50.0, "s", MICROSECONDS, &[Written { id: "1".into(), name: "a", positions: vec![1000.0, 1500.5] }]);
+        let source = read(&text).unwrap();
+        assert_eq!(source.channels[0].unit.per_degree, MICROSECONDS.per_degree);
+        let Body::Samples { rows, .. } = &source.clips[0].body else { panic!() };
+        assert_eq!(rows[1], [1500.5]);
+    }
+
+    #[test]
+    fn bad_exports_say_where() {
+        assert_eq!(read("{\n\"fps\": 30,\n\"servos\": [\n").unwrap_err().line, Some(4));
+        let word = read(r#"{"fps":30,"servos":{"1":{"positions":[1, "x"]}}}"#).unwrap_err();
+        assert_eq!(word.element.as_deref(), Some("servos.1.positions[1]"), "{word}");
+        assert!(read(r#"{"servos":{}}"#).unwrap_err().message.contains("fps"));
+        assert!(read("[1,2]").unwrap_err().message.contains("not a JSON object"));
+    }
+}

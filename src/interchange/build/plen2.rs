@@ -1,0 +1,277 @@
+//! PLEN2 motions and play lists: a key is a frame (and a held frame when it
+//! pauses), timed in whole firmware cycles so that every key ends within half
+//! a cycle of the source's time; a clip longer than 20 frames continues in
+//! the next slot (`jump_slot`); repeats are loops, next pages jumps, flows
+//! and exit pages play lists.
+
+use super::servo::fit_said;
+use super::{BuildError, CUT_SHORT, Input, JUMP, LIVE_DEG_PER_S, frame_move, timing};
+use crate::authoring::fit::{self, Budget, Plen2Board};
+use crate::authoring::fitted::{self, PLEN2_UPDATE_MS};
+use crate::authoring::recording::Recording;
+use crate::interchange::map::Target;
+use crate::interchange::report::Report;
+use crate::interchange::source::{Body, Clip, Key};
+use crate::project::plen2::{
+    Frame, JOINTS, Joint, LoopRange, MAX_FRAMES, Motion, PlayEntry, PlayList, Plen2Project, Pose, SLOTS,
+};
+use crate::protocol::plen2::ANGLE_LIMIT_TENTHS_DEG;
+
+/// A firmware cycle, ms.
+const CYCLE_MS: f64 = PLEN2_UPDATE_MS;
+/// The most cycles one frame lasts.
+const MAX_CYCLES: u32 = 255;
+/// How far a frame may turn a joint from its home, tenths.
+const FRAME_LIMIT: f64 = 2.0 * ANGLE_LIMIT_TENTHS_DEG as f64;
+/// A play list's longest queue.
+const MAX_QUEUE: usize = 31;
+/// A motion name's longest.
+const NAME_CHARS: usize = 20;
+
+pub(super) fn build(input: &Input<'_>, report: &mut Report) -> Result<Plen2Project, BuildError> {
+    let joints: Vec<Option<Joint>> = input
+        .mapped
+        .iter()
+        .map(|entry| match entry.and_then(|e| e.target) {
+            Some(Target::Joint(joint)) => Some(joint),
+            _ => None,
+        })
+        .collect();
+    // Each clip's frames first, then slots for them.
+    let mut framed: Vec<(usize, Vec<Frame>)> = Vec::new();
+    for &index in &input.clips {
+        let clip = input.clip(index);
+        let frames = match &clip.body {
+            Body::Keys(keys) => keyed(input, &joints, clip, keys, report),
+            Body::Samples { fps, rows } => sampled(input, &joints, clip, *fps, rows, report)?,
+            Body::Chain(_) => Vec::new(),
+        };
+        framed.push((index, frames));
+    }
+    let needed: usize = framed.iter().map(|(_, frames)| frames.len().div_ceil(MAX_FRAMES)).sum();
+    if needed > usize::from(SLOTS) {
+        return Err(BuildError::TooBig(format!(
+            "the motions need {needed} slots and a PLEN2 holds {SLOTS}: convert fewer at once (--page, --sequence)"
+        )));
+    }
+    let mut project = Plen2Project::default();
+    // (clip, its first slot, how many slots it takes).
+    let mut first_slot: Vec<(usize, u8, u8)> = Vec::new();
+    let mut slot = 0u8;
+    for (index, frames) in &framed {
+        if frames.is_empty() {
+            continue;
+        }
+        let clip = input.clip(*index);
+        let chunks: Vec<&[Frame]> = frames.chunks(MAX_FRAMES).collect();
+        first_slot.push((*index, slot, u8::try_from(chunks.len()).unwrap_or(u8::MAX)));
+        for (part, chunk) in chunks.iter().enumerate() {
+            let name = motion_name(&clip.name, part, report);
+            let jump_slot = (part + 1 < chunks.len()).then_some(slot + 1);
+            project.motions.push(Motion { slot, name, frames: chunk.to_vec(), loop_range: None, jump_slot });
+            slot += 1;
+        }
+        let first = slot - u8::try_from(chunks.len()).unwrap_or(0);
+        report.converted(format!("{:?}: motion in slot {first} ({} frames)", clip.name, frames.len()));
+    }
+    let slot_of = |clip: usize| first_slot.iter().find(|(index, ..)| *index == clip).map(|(_, slot, _)| *slot);
+    for &(index, first, parts) in &first_slot {
+        let clip = input.clip(index);
+        // Motions are pushed in slot order from slot 0.
+        let last = usize::from(first + parts - 1);
+        if clip.repeat > 1 {
+            if parts == 1 {
+                let motion = &mut project.motions[last];
+                let count = u8::try_from((clip.repeat - 1).min(254)).unwrap_or(254);
+                let end_frame = u8::try_from(motion.frames.len() - 1).unwrap_or(0);
+                motion.loop_range = Some(LoopRange { begin_frame: 0, end_frame, count });
+            } else {
+                report.approximated(
+                    "a repeated motion over 20 frames: a play list repeats it (a loop stays within one motion)",
+                );
+                let plays = u8::try_from(clip.repeat.min(255)).unwrap_or(255);
+                project
+                    .play_lists
+                    .push(PlayList { name: clip.name.clone(), entries: vec![PlayEntry { slot: first, plays }] });
+            }
+        }
+        if let Some(next) = clip.next.and_then(slot_of) {
+            project.motions[last].jump_slot = Some(next);
+        }
+        if let Some(exit) = clip.exit.and_then(slot_of) {
+            report.approximated("exit pages: a play list \"… then exit\" plays the page, then its exit page");
+            let entries = vec![PlayEntry { slot: first, plays: 1 }, PlayEntry { slot: exit, plays: 1 }];
+            project.play_lists.push(PlayList { name: format!("{} then exit", clip.name), entries });
+        }
+    }
+    for &index in &input.clips {
+        let clip = input.clip(index);
+        let Body::Chain(links) = &clip.body else { continue };
+        let mut entries: Vec<PlayEntry> = links
+            .iter()
+            .filter_map(|link| {
+                if (link.speed - 1.0).abs() > 1e-9 {
+                    report.approximated("a flow's unit speeds: a play list plays each motion at its own speed");
+                }
+                Some(PlayEntry { slot: slot_of(link.clip)?, plays: u8::try_from(link.plays.min(255)).unwrap_or(255) })
+            })
+            .collect();
+        if entries.len() > MAX_QUEUE {
+            report.approximated(format!("a flow of over {MAX_QUEUE} units: its play list keeps the first {MAX_QUEUE}"));
+            entries.truncate(MAX_QUEUE);
+        }
+        project.play_lists.push(PlayList { name: clip.name.clone(), entries });
+    }
+    Ok(project)
+}
+
+/// A name a PLEN2 stores: at most 20 ASCII characters (a part after the first numbered).
+fn motion_name(name: &str, part: usize, report: &mut Report) -> String {
+    let mut ascii: String = name.chars().map(|c| if c.is_ascii() && !c.is_ascii_control() { c } else { '_' }).collect();
+    let suffix = if part == 0 { String::new() } else { format!(" {}", part + 1) };
+    if ascii.len() + suffix.len() > NAME_CHARS || ascii != name {
+        report.approximated("motion names cut to a PLEN2's 20 ASCII characters");
+    }
+    ascii.truncate(NAME_CHARS - suffix.len());
+    ascii + &suffix
+}
+
+/// Tenths of a degree as a frame stores them.
+fn tenths(degrees: f64, report: &mut Report) -> i16 {
+    let wanted = (degrees * 10.0).round();
+    if wanted.abs() > FRAME_LIMIT {
+        report.approximated("joint angles beyond ±180° from home are held at ±180°");
+    }
+    // Clamped into ±1800 first.
+    #[allow(clippy::cast_possible_truncation)]
+    let value = wanted.clamp(-FRAME_LIMIT, FRAME_LIMIT) as i16;
+    value
+}
+
+/// Frames timed in cycles: `cycles` to reach `pose` (split when over 255).
+struct Timeline<'r> {
+    frames: Vec<Frame>,
+    /// Source time reached, ms.
+    source_ms: f64,
+    /// Cycles played.
+    cycles: i64,
+    pose: [f64; JOINTS],
+    report: &'r mut Report,
+}
+
+impl Timeline<'_> {
+    /// Moves to `to` so that it ends `after_ms` of source time later, at least `least` cycles.
+    fn go(&mut self, to: [f64; JOINTS], after_ms: f64, least: i64) {
+        self.source_ms += after_ms;
+        // Cycle counts of any real file are far below 2^52.
+        #[allow(clippy::cast_possible_truncation)]
+        let end = (self.source_ms / CYCLE_MS).round() as i64;
+        let mut cycles = end - self.cycles;
+        if cycles < least {
+            cycles = least;
+        }
+        if cycles < 1 {
+            return;
+        }
+        let from = self.pose;
+        let mut done = 0;
+        while done < cycles {
+            let part = (cycles - done).min(i64::from(MAX_CYCLES));
+            done += part;
+            // Fractions of a whole move.
+            #[allow(clippy::cast_precision_loss)]
+            let share = done as f64 / cycles as f64;
+            let mut values = [0i16; JOINTS];
+            for joint in 0..JOINTS {
+                values[joint] = tenths(from[joint] + (to[joint] - from[joint]) * share, self.report);
+            }
+            let transition_ms = u16::try_from(part * 32).unwrap_or(u16::MAX);
+            self.frames.push(Frame::new(transition_ms, Pose(values)));
+        }
+        self.cycles += cycles;
+        self.pose = to;
+    }
+}
+
+fn keyed(input: &Input<'_>, joints: &[Option<Joint>], clip: &Clip, keys: &[Key], report: &mut Report) -> Vec<Frame> {
+    let mut at: Vec<Option<f64>> = vec![Some(0.0); joints.len()];
+    let mut timeline = Timeline { frames: Vec::new(), source_ms: 0.0, cycles: 0, pose: [0.0; JOINTS], report };
+    for key in keys {
+        let (move_ms, hold_ms, is_frame) = timing(clip, key.timing);
+        let (end, move_ms, hold_ms) = if is_frame {
+            let moved = frame_move(input, &at, &key.values, move_ms);
+            if moved.cut_short {
+                timeline.report.approximated(CUT_SHORT);
+            }
+            let took = f64::from(moved.updates.iter().copied().max().unwrap_or(0)) * 10.0;
+            (moved.end, took.min(move_ms), (move_ms - took).max(0.0))
+        } else {
+            let wanted = input.degrees(&key.values);
+            (wanted.iter().zip(&at).map(|(w, a)| w.or(*a)).collect(), move_ms, hold_ms)
+        };
+        let mut pose = timeline.pose;
+        for (channel, joint) in joints.iter().enumerate() {
+            if let (Some(joint), Some(degrees)) = (joint, end[channel]) {
+                pose[joint.index()] = degrees;
+            }
+        }
+        let farthest = pose.iter().zip(&timeline.pose).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+        // The live speed limit: a move of no time still takes what 180°/s needs.
+        #[allow(clippy::cast_possible_truncation)]
+        let least = (farthest / LIVE_DEG_PER_S * 1000.0 / CYCLE_MS).ceil().max(1.0) as i64;
+        if move_ms < least as f64 * CYCLE_MS - CYCLE_MS / 2.0 && farthest > 0.0 {
+            timeline.report.approximated(if move_ms < 1.0 {
+                JUMP
+            } else {
+                "a move shorter than a PLEN2 plays at the live speed limit (180°/s) takes as long as it needs"
+            });
+        }
+        timeline.go(pose, move_ms, least);
+        if hold_ms > 0.0 {
+            timeline.go(pose, hold_ms, 0);
+        }
+        at = end;
+    }
+    timeline.frames
+}
+
+fn sampled(
+    input: &Input<'_>,
+    joints: &[Option<Joint>],
+    clip: &Clip,
+    fps: f64,
+    rows: &[Vec<f64>],
+    report: &mut Report,
+) -> Result<Vec<Frame>, BuildError> {
+    let tenths_rows: Vec<Vec<f64>> = rows
+        .iter()
+        .map(|row| {
+            let mut values = vec![0.0; JOINTS];
+            for (channel, joint) in joints.iter().enumerate() {
+                if let (Some(joint), Some(entry)) = (joint, input.mapped[channel]) {
+                    values[joint.index()] = entry.degrees(row[channel]) * 10.0;
+                }
+            }
+            values
+        })
+        .collect();
+    // Frame numbers far below 2^52.
+    #[allow(clippy::cast_precision_loss)]
+    let times_ms = (0..rows.len()).map(|frame| frame as f64 * 1000.0 / (fps * clip.speed)).collect();
+    let names = Joint::ALL.iter().map(|joint| joint.name().to_string()).collect();
+    let resampled = Recording { names, times_ms, rows: tenths_rows }.resample(PLEN2_UPDATE_MS);
+    let budget =
+        Budget { tolerance: input.tolerance_deg * 10.0, allowed: MAX_FRAMES * usize::from(SLOTS), resolution: 1.0 };
+    // `$PM` from power-up: every joint's frame buffer at 0 (plen2.md §6).
+    let fitted = fit::fit_within(&Plen2Board, &[0; JOINTS], &resampled, budget)
+        .map_err(|error| BuildError::Fit(fit_said(&error, 10.0)))?;
+    report.converted(format!(
+        "{:?}: {} samples at {fps} fps fitted into {} frames within {:.2}° (asked {}°)",
+        clip.name,
+        rows.len(),
+        fitted.moves.len(),
+        fitted.max_error / 10.0,
+        input.tolerance_deg
+    ));
+    Ok(fitted::plen2_frames(&fitted))
+}
