@@ -190,6 +190,9 @@ pub enum CliCommand {
         /// The board family to start with (default: the project file's, else the last one used).
         #[arg(long, value_parser = parse_family)]
         protocol: Option<Family>,
+        /// Open another tool's file (Maestro settings, .mtn, .mtnx, Blender JSON) in the import window.
+        #[arg(long)]
+        import: Option<PathBuf>,
     },
     /// Drive an rFLEX mobile base, or read its sensors.
     Rflex {
@@ -430,7 +433,7 @@ pub fn run(command: CliCommand) -> ExitCode {
                 family => servo_only(family, "board info").and_then(|()| servo::info(&port)),
             })
         }
-        CliCommand::Gui { file, demo, protocol } => gui::run(file.as_deref(), demo, protocol),
+        CliCommand::Gui { file, demo, protocol, import } => gui::run(file.as_deref(), demo, protocol, import),
         CliCommand::Convert(args) => {
             let request = convert::ConvertRequest {
                 input: args.input,

@@ -17,6 +17,8 @@ use crate::protocol::plen2::DEVICE_IDS;
 const MAX_SEQUENCE_FRAMES: usize = 10_000;
 /// How deep macros running macros are followed.
 const MAX_DEPTH: usize = 16;
+/// The most PLEN2 cycles written (ten minutes).
+const MAX_CYCLES: usize = 18_311;
 /// Maestro pulse widths from 64 to 4080 µs, in quarter-µs; min and max in 64-unit steps.
 const MAESTRO_RANGE: (f64, f64) = (256.0, 16320.0);
 
@@ -275,14 +277,17 @@ pub fn blender_plen2(
     crate::device::plen2::storable(plen2)
         .map_err(|error| ExportError::Play(format!("{error}; it cannot be played")))?;
     let stored = StoredMotions::new(plen2);
-    // An hour of cycles at most: a motion that loops forever is cut there.
-    let Playback { cycles, .. } = plen2_playback::play(&stored, slot, [0; DEVICE_IDS], 110_000);
-    let end_ms = Playback::CYCLE_MS * (cycles.len().saturating_sub(1)) as f64;
+    // Ten minutes of cycles at most: a motion that loops forever is cut there.
+    let Playback { cycles, ended, .. } = plen2_playback::play(&stored, slot, [0; DEVICE_IDS], MAX_CYCLES);
+    // Cycle counts far below 2^52.
+    #[allow(clippy::cast_precision_loss)]
+    let end_ms = Playback::CYCLE_MS * cycles.len().saturating_sub(1) as f64;
     let frames = frame_count(end_ms, fps);
     let mut columns: Vec<Vec<f64>> = vec![Vec::with_capacity(frames); Joint::ALL.len()];
     for frame in 0..frames {
         #[allow(clippy::cast_precision_loss, clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-        let cycle = ((frame as f64 * 1000.0 / fps) / Playback::CYCLE_MS).floor() as usize;
+        let cycle = ((frame as f64 * 1000.0 / fps) / Playback::CYCLE_MS + 1e-9).floor() as usize;
+        // Cycle k at k × 32.768 ms, as `trajectory` writes it.
         let values = cycles.get(cycle.min(cycles.len().saturating_sub(1))).copied().unwrap_or([0; DEVICE_IDS]);
         for (column, joint) in columns.iter_mut().zip(Joint::ALL) {
             column.push(f64::from(values[usize::from(joint.device_id())]) / 10.0);
@@ -291,7 +296,12 @@ pub fn blender_plen2(
     let targets = Joint::ALL
         .iter()
         .map(|&joint| (Target::Joint(joint), (joint.index() + 1).to_string(), joint.name().to_string()));
-    Ok(written(fps, &motion.name, &targets.collect::<Vec<_>>(), columns, map))
+    let (text, mut report) = written(fps, &motion.name, &targets.collect::<Vec<_>>(), columns, map);
+    if !ended {
+        report
+            .approximated("a motion that never ends (a loop forever, a jump back): its first ten minutes are written");
+    }
+    Ok((text, report))
 }
 
 fn frame_count(end_ms: f64, fps: f64) -> usize {

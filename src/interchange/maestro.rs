@@ -30,13 +30,13 @@ pub fn read(text: &str) -> Result<Source, ReadError> {
         let mode = element.attr("mode").unwrap_or("Servo");
         if !mode.starts_with("Servo") {
             servos.push(None);
-            source.dropped.push(format!("channel {index} ({mode}): not a servo"));
+            source.drop_note(format!("channel {index} ({mode}): not a servo"));
             continue;
         }
         servos.push(Some(source.channels.len()));
         let (channel, accelerates) = channel(index, element)?;
         if accelerates {
-            source.dropped.push("acceleration limits (the board moves each step at one speed)".into());
+            source.drop_note("acceleration limits (the board moves each step at one speed)");
         }
         source.channels.push(channel);
     }
@@ -44,12 +44,14 @@ pub fn read(text: &str) -> Result<Source, ReadError> {
         return Err(ReadError::at(channels_element.line, "Channels", "no <Channel> in it"));
     }
     if root.child("Script").is_some_and(|script| !script.text.trim().is_empty()) {
-        source.dropped.push("the script (a board runs no Maestro script)".into());
+        source.drop_note("the script (a board runs no Maestro script)");
     }
     if let Some(sequences) = root.child("Sequences") {
         for sequence in sequences.children_named("Sequence") {
-            let clip = sequence_clip(sequence, &servos, source.channels.len(), &mut source.dropped)?;
+            let mut dropped = Vec::new();
+            let clip = sequence_clip(sequence, &servos, source.channels.len(), &mut dropped)?;
             source.clips.push(clip);
+            dropped.into_iter().for_each(|note| source.drop_note(note));
         }
     }
     Ok(source)

@@ -14,6 +14,8 @@ pub mod build;
 pub mod export;
 mod maestro;
 pub mod map;
+pub mod merge;
+pub mod preview;
 mod report;
 mod robotis;
 mod source;

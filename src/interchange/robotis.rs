@@ -144,11 +144,11 @@ fn mtn_source(pages: &[Page], enabled: Option<&[bool]>) -> Source {
         clip.next = (next != 0).then(|| index_of(next)).flatten();
         clip.exit = (exit != 0).then(|| index_of(exit)).flatten();
         if (next != 0 && clip.next.is_none()) || (exit != 0 && clip.exit.is_none()) {
-            source.dropped.push(format!("page {}: a next or exit page with no steps", page.number));
+            source.drop_note(format!("page {}: a next or exit page with no steps", page.number));
         }
         source.clips.push(clip);
     }
-    source.dropped.push("compliance and inertial force (each step moves straight)".into());
+    source.drop_note("compliance and inertial force (each step moves straight)");
     source
 }
 

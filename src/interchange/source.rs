@@ -153,3 +153,13 @@ pub struct Source {
     /// What the file held that no board plays, said once each (scripts, compliance…).
     pub dropped: Vec<String>,
 }
+
+impl Source {
+    /// Notes something the file held that is left out, once however often it comes.
+    pub fn drop_note(&mut self, note: impl Into<String>) {
+        let note = note.into();
+        if !self.dropped.contains(&note) {
+            self.dropped.push(note);
+        }
+    }
+}

@@ -58,7 +58,36 @@ pub enum FileRequest {
     SaveAsThenContinue,
     /// Where a family writes something of its own (an export).
     Export(Export),
+    /// A file to read (an import, a joint map).
+    Pick(Pick),
 }
+
+/// A request for a file to read: the kind of file, the names it may end in,
+/// and the action the chosen path becomes.
+#[derive(Clone)]
+pub struct Pick {
+    /// The kind of file, as the dialog's filter names it.
+    pub kind: &'static str,
+    /// The endings the filter offers.
+    pub extensions: &'static [&'static str],
+    /// The action the chosen path becomes.
+    pub then: std::sync::Arc<dyn Fn(PathBuf) -> Action + Send + Sync>,
+}
+
+impl std::fmt::Debug for Pick {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Pick").field("kind", &self.kind).field("extensions", &self.extensions).finish_non_exhaustive()
+    }
+}
+
+/// Two requests are the same when they ask for the same kind for the same answer.
+impl PartialEq for Pick {
+    fn eq(&self, other: &Self) -> bool {
+        self.kind == other.kind && std::sync::Arc::ptr_eq(&self.then, &other.then)
+    }
+}
+
+impl Eq for Pick {}
 
 /// What the file dialogs call a project file.
 pub const PROJECT_FILE: &str = "Servo Studio project";
@@ -193,6 +222,8 @@ pub enum Action {
     /// The process is asked to end (a signal): stop the board, keep the work
     /// in the recovery file, close.
     Terminate,
+    /// What the import window asks for.
+    Import(crate::ui::import::ImportAction),
     /// What the servo board's panels ask for.
     Servo(ServoAction),
     /// What the PLEN2's panels ask for.

@@ -12,6 +12,7 @@ pub mod files;
 pub mod fonts;
 pub mod gamepad;
 mod i18n;
+pub mod import;
 mod layout;
 mod operation;
 pub mod packet_log;
@@ -26,7 +27,7 @@ mod transport;
 pub mod view3d;
 
 pub use action::{
-    Action, AfterUnsaved, BoardIntent, FileRequest, Plen2Action, Plen2Intent, RflexAction, ServoAction, Tab,
+    Action, AfterUnsaved, BoardIntent, FileRequest, Pick, Plen2Action, Plen2Intent, RflexAction, ServoAction, Tab,
 };
 pub use app::{Connecting, Picker, PortLister, REMEMBERED_KEY, Remembered, StudioApp, system_lister};
 pub use board_link::{BoardLink, Device, LinkNotice, LinkOptions, StartError};
@@ -66,6 +67,8 @@ pub struct Start {
     /// Signals asking the process to end (Ctrl-C, kill, a closing session):
     /// each stops the board and closes the window, keeping unsaved work.
     pub interrupts: Option<crossbeam_channel::Receiver<()>>,
+    /// Another tool's file to open in the import window at once.
+    pub import: Option<std::path::PathBuf>,
 }
 
 impl Start {
@@ -87,6 +90,9 @@ impl Start {
         }
         if self.demo {
             app.apply(Action::ConnectDemo);
+        }
+        if let Some(path) = self.import {
+            app.apply(Action::Import(import::ImportAction::Read(path)));
         }
         app
     }

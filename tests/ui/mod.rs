@@ -8,6 +8,7 @@ mod drive;
 mod files;
 mod frames;
 mod gamepad;
+mod import;
 mod log;
 mod macros_joystick;
 mod plen2;

@@ -163,9 +163,12 @@ impl Timeline<'_> {
     /// Moves to `to` so that it ends `after_ms` of source time later, at least `least` cycles.
     fn go(&mut self, to: [f64; JOINTS], after_ms: f64, least: i64) {
         self.source_ms += after_ms;
+        // Cycle k is output at k × 32.768 ms (cycle 0 as `$PM` starts, as
+        // `trajectory` and the fitter count): a frame ending at source time T
+        // ends with cycle round(T / cycle), the cycle count so far one more.
         // Cycle counts of any real file are far below 2^52.
         #[allow(clippy::cast_possible_truncation)]
-        let end = (self.source_ms / CYCLE_MS).round() as i64;
+        let end = (self.source_ms / CYCLE_MS).round() as i64 + 1;
         let mut cycles = end - self.cycles;
         if cycles < least {
             cycles = least;
@@ -216,16 +219,17 @@ fn keyed(input: &Input<'_>, joints: &[Option<Joint>], clip: &Clip, keys: &[Key],
             }
         }
         let farthest = pose.iter().zip(&timeline.pose).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
-        // The live speed limit: a move of no time still takes what 180°/s needs.
-        #[allow(clippy::cast_possible_truncation)]
-        let least = (farthest / LIVE_DEG_PER_S * 1000.0 / CYCLE_MS).ceil().max(1.0) as i64;
-        if move_ms < least as f64 * CYCLE_MS - CYCLE_MS / 2.0 && farthest > 0.0 {
-            timeline.report.approximated(if move_ms < 1.0 {
-                JUMP
-            } else {
-                "a move shorter than a PLEN2 plays at the live speed limit (180°/s) takes as long as it needs"
-            });
-        }
+        // A timed move keeps its time; a jump (under half a cycle) takes what
+        // the live speed limit needs, so that no joint slams.
+        let least = if move_ms < CYCLE_MS / 2.0 && farthest > 0.0 {
+            timeline.report.approximated(JUMP);
+            // A few hundred cycles at most.
+            #[allow(clippy::cast_possible_truncation)]
+            let cycles = (farthest / LIVE_DEG_PER_S * 1000.0 / CYCLE_MS).ceil().max(1.0) as i64;
+            cycles
+        } else {
+            1
+        };
         timeline.go(pose, move_ms, least);
         if hold_ms > 0.0 {
             timeline.go(pose, hold_ms, 0);

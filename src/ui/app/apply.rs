@@ -48,6 +48,7 @@ impl StudioApp {
                 self.report(self.words().msg_disconnected, false);
             }
             Action::Stop => self.stop(),
+            Action::Import(action) => self.import.apply(action, &self.files, &self.document.project),
             Action::SetLanguage(language) => self.language = language,
             Action::SetLiveSpeed(deg_per_s) => self.live_speed = LiveSpeed { deg_per_s }.clamped(),
             Action::ShowTab(tab) => self.tab = tab,

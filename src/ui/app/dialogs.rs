@@ -32,6 +32,7 @@ pub fn system_picker() -> Picker {
             FileRequest::Export(export) => {
                 Box::pin(dialog.add_filter(export.kind, &["json"]).set_file_name(&export.name).save_file())
             }
+            FileRequest::Pick(pick) => Box::pin(dialog.add_filter(pick.kind, pick.extensions).pick_file()),
         };
         let spawned = std::thread::Builder::new().name("file dialog".into()).spawn(move || {
             let path = pollster::block_on(chosen).map(|handle| handle.path().to_path_buf());
@@ -52,5 +53,6 @@ pub fn answered(request: &FileRequest, path: PathBuf) -> Vec<Action> {
         FileRequest::SaveAs => vec![Action::SaveAs(path)],
         FileRequest::SaveAsThenContinue => vec![Action::SaveAs(path), Action::UnsavedSave],
         FileRequest::Export(export) => vec![(export.then)(path)],
+        FileRequest::Pick(pick) => vec![(pick.then)(path)],
     }
 }

@@ -113,6 +113,11 @@ impl StudioApp {
             if ui.add_enabled(!asking, egui::Button::new(words.save_as)).clicked() {
                 actions.push(Action::AskFile(FileRequest::SaveAs));
             }
+            ui.separator();
+            let import = crate::ui::import::words(self.language).title;
+            if ui.add_enabled(!asking, egui::Button::new(import)).clicked() {
+                actions.push(crate::ui::import::ask_file());
+            }
             if !self.recent.is_empty() {
                 ui.separator();
                 ui.label(words.recent);

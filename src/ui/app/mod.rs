@@ -11,6 +11,7 @@ mod dialogs;
 mod doctor;
 mod file_ops;
 mod gamepad;
+mod import;
 mod tabs;
 
 use std::io::Write;
@@ -103,6 +104,8 @@ pub struct StudioApp {
     doctor: doctor::Doctor,
     /// The gamepad, its live state and the binding being made.
     pub pad: crate::ui::gamepad::PadInput,
+    /// File → Import from another tool…: its window and work.
+    pub import: crate::ui::import::ImportDesk,
     /// Told when the process is asked to end.
     terminate: Option<Receiver<()>>,
 }
@@ -149,6 +152,7 @@ impl StudioApp {
             connection_bar: ConnectionBar::default(),
             doctor: doctor::Doctor::default(),
             pad: crate::ui::gamepad::PadInput::default(),
+            import: crate::ui::import::ImportDesk::default(),
             terminate: None,
         };
         app.recovery_offer = files::read_recovery(&app.data_dir);
@@ -306,6 +310,7 @@ impl StudioApp {
         self.poll_probe();
         self.reconnect_when_back(now);
         self.finish_file_work(None);
+        self.poll_import(ui.ctx());
         let mut actions = Vec::new();
         Self::shortcuts(ui, &mut actions);
         self.poll_dialog(&mut actions);
@@ -408,6 +413,7 @@ impl StudioApp {
         egui::CentralPanel::default().show(ui, |ui| self.tab_panel(ui, &mut actions));
 
         self.dialogs(ui, &mut actions);
+        self.import.window(ui.ctx(), &self.document.project, self.language, &mut actions);
         for action in actions {
             self.apply(action);
         }

@@ -1,0 +1,582 @@
+//! File → Import from another tool…: a Maestro settings file, a RoboPlus
+//! `.mtn`, an R+ Motion `.mtnx` or Blender add-on JSON is read off the frame,
+//! its joint map (guessed from ids and names) is edited in a table while a 3D
+//! figure plays the motion through it, and Create adds what it makes to the
+//! open project as one undo step. The desk keeps its own state; the shell
+//! hands it its actions and takes back what it finished (`poll`).
+
+mod words;
+
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use crossbeam_channel::Receiver;
+
+use crate::figure::{self, Chain};
+use crate::interchange::build::{self, Built, Options, Selection};
+use crate::interchange::map::{JointMap, Target};
+use crate::interchange::{Body, Format, Source, preview};
+use crate::project::input::{MAX_PROJECT_BYTES, read_text};
+use crate::project::plen2::Joint;
+use crate::project::{Family, Project};
+use crate::protocol::plen2::DEVICE_IDS;
+use crate::ui::action::{Action, Export, FileRequest, Pick};
+use crate::ui::files::FileWork;
+use crate::ui::i18n::Language;
+use crate::ui::view3d::{Scene, View};
+pub use words::{ImportWords, words};
+
+/// What the import window asks of the shell.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ImportAction {
+    /// Read this file (off the frame) and open the window on it.
+    Read(PathBuf),
+    /// Use the joint map in this file.
+    LoadMap(PathBuf),
+    /// Write the joint map to this file.
+    SaveMap(PathBuf),
+    /// Make what the window shows and add it to the project.
+    Create,
+    /// Close the window.
+    Close,
+}
+
+/// What the desk finished, for the shell.
+#[derive(Debug)]
+pub enum Finished {
+    /// Something could not be done: the status line says it.
+    Failed(String),
+    /// A conversion to add to the project.
+    Built(Box<Built>),
+    /// The joint map was written.
+    MapSaved(PathBuf),
+}
+
+/// An open import: the file, its map, and where the preview is.
+#[derive(Debug)]
+pub struct Session {
+    /// The file read.
+    pub path: PathBuf,
+    /// What it holds.
+    pub source: Source,
+    /// The project's family when it was opened.
+    pub family: Family,
+    /// The joint map being edited.
+    pub map: JointMap,
+    /// The clip previewed and converted (`None`: all of them).
+    pub clip: Option<usize>,
+    /// Fitted animations' tolerance, degrees.
+    pub tolerance_deg: f64,
+    /// The preview's time, ms.
+    pub time_ms: f64,
+    /// Whether the preview plays.
+    pub playing: bool,
+    /// What Create made: the report, shown until the window is closed.
+    pub done: Option<crate::interchange::Report>,
+}
+
+/// The import desk: a file being read, the open session, work running.
+#[derive(Default)]
+pub struct ImportDesk {
+    reading: Option<(PathBuf, Receiver<Result<Source, String>>)>,
+    loading_map: Option<Receiver<Result<JointMap, String>>>,
+    saving_map: Option<(PathBuf, Receiver<Result<(), String>>)>,
+    building: Option<Receiver<Result<Built, String>>>,
+    /// The window's content, when open.
+    pub session: Option<Session>,
+    view: View,
+    plen2_chain: Option<Chain>,
+}
+
+impl std::fmt::Debug for ImportDesk {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("ImportDesk").field("session", &self.session).finish_non_exhaustive()
+    }
+}
+
+/// The file dialog for File → Import from another tool….
+pub fn ask_file() -> Action {
+    Action::AskFile(FileRequest::Pick(Pick {
+        kind: "Maestro settings, RoboPlus .mtn, R+ .mtnx, Blender JSON",
+        extensions: &["xml", "txt", "mtn", "mtnx", "json"],
+        then: Arc::new(|path| Action::Import(ImportAction::Read(path))),
+    }))
+}
+
+fn read_source(path: &std::path::Path) -> Result<Source, String> {
+    let text = read_text(path, MAX_PROJECT_BYTES).map_err(|error| error.to_string())?;
+    let format = Format::guess(&text).ok_or_else(|| {
+        format!("{} is not a file Servo Studio can import (a Maestro settings file, RoboPlus .mtn, R+ Motion .mtnx or Blender servo-animation JSON)", path.display())
+    })?;
+    crate::interchange::read(format, &text).map_err(|error| format!("{} ({}): {error}", path.display(), format.name()))
+}
+
+impl ImportDesk {
+    /// Takes an action of the import window.
+    pub fn apply(&mut self, action: ImportAction, files: &FileWork, project: &Project) {
+        match action {
+            ImportAction::Read(path) => {
+                let reading = path.clone();
+                self.reading = Some((path, files.run(move |_| read_source(&reading))));
+            }
+            ImportAction::LoadMap(path) => {
+                self.loading_map = Some(files.run(move |_| {
+                    let text = read_text(&path, MAX_PROJECT_BYTES).map_err(|error| error.to_string())?;
+                    JointMap::from_json(&text).map_err(|error| format!("{}: {error}", path.display()))
+                }));
+            }
+            ImportAction::SaveMap(path) => {
+                let Some(session) = &self.session else { return };
+                let bytes = session.map.to_json().into_bytes();
+                let writing = path.clone();
+                let done = files.run(move |writer| writer(&writing, &bytes).map_err(|error| error.to_string()));
+                self.saving_map = Some((path, done));
+            }
+            ImportAction::Create => {
+                let Some(session) = &self.session else { return };
+                let source = session.source.clone();
+                let map = session.map.clone();
+                let selection = session
+                    .clip
+                    .map_or(Selection::All, |clip| Selection::Named(session.source.clips[clip].name.clone()));
+                let options = Options { family: project.family, selection, tolerance_deg: session.tolerance_deg };
+                self.building =
+                    Some(files.run(move |_| build::build(&source, &map, &options).map_err(|error| error.to_string())));
+            }
+            ImportAction::Close => {
+                self.session = None;
+                self.view = View::default();
+            }
+        }
+    }
+
+    /// Whether work runs (the window keeps repainting until it ends).
+    pub fn busy(&self) -> bool {
+        self.reading.is_some() || self.loading_map.is_some() || self.saving_map.is_some() || self.building.is_some()
+    }
+
+    /// Takes what finished off the frame; `family` is the project's.
+    pub fn poll(&mut self, family: Family) -> Vec<Finished> {
+        let mut finished = Vec::new();
+        if let Some((path, done)) = &self.reading
+            && let Some(result) = taken(done)
+        {
+            let path = path.clone();
+            self.reading = None;
+            match result {
+                Ok(source) => {
+                    let map = JointMap::for_source(&source, family, None);
+                    let clip = if source.clips.len() > 1 { None } else { Some(0).filter(|_| !source.clips.is_empty()) };
+                    self.session = Some(Session {
+                        path,
+                        source,
+                        family,
+                        map,
+                        clip,
+                        tolerance_deg: 1.0,
+                        time_ms: 0.0,
+                        playing: false,
+                        done: None,
+                    });
+                    self.view = View::default();
+                }
+                Err(error) => finished.push(Finished::Failed(error)),
+            }
+        }
+        if let Some(done) = &self.loading_map
+            && let Some(result) = taken(done)
+        {
+            self.loading_map = None;
+            match (result, self.session.as_mut()) {
+                (Ok(map), Some(session)) => {
+                    session.map = JointMap::for_source(&session.source, session.family, Some(&map));
+                }
+                (Err(error), _) => finished.push(Finished::Failed(error)),
+                (Ok(_), None) => {}
+            }
+        }
+        if let Some((path, done)) = &self.saving_map
+            && let Some(result) = taken(done)
+        {
+            let path = path.clone();
+            self.saving_map = None;
+            finished.push(result.map_or_else(Finished::Failed, |()| Finished::MapSaved(path)));
+        }
+        if let Some(done) = &self.building
+            && let Some(result) = taken(done)
+        {
+            self.building = None;
+            finished.push(result.map_or_else(Finished::Failed, |built| Finished::Built(Box::new(built))));
+        }
+        finished
+    }
+
+    /// Shows what Create made, until the window is closed.
+    pub fn created(&mut self, report: crate::interchange::Report) {
+        if let Some(session) = &mut self.session {
+            session.done = Some(report);
+        }
+    }
+
+    /// The window, when a file is open.
+    pub fn window(&mut self, ctx: &egui::Context, project: &Project, language: Language, actions: &mut Vec<Action>) {
+        let words = words(language);
+        if let Some((path, _)) = &self.reading {
+            egui::Window::new(words.title).collapsible(false).show(ctx, |ui| {
+                ui.horizontal(|ui| {
+                    ui.spinner();
+                    ui.label(format!("{} {}", words.reading, path.display()));
+                });
+            });
+        }
+        let Some(mut session) = self.session.take() else { return };
+        let mut open = true;
+        let room = ctx.content_rect().size() - egui::vec2(40.0, 60.0);
+        egui::Window::new(words.title)
+            .open(&mut open)
+            .resizable(true)
+            .default_size(egui::vec2(980.0, 600.0).min(room))
+            .max_size(room)
+            .show(ctx, |ui| {
+                if let Some(report) = &session.done {
+                    report_ui(ui, report, words, actions);
+                } else {
+                    self.session_ui(ui, &mut session, project, words, actions);
+                }
+            });
+        if session.playing {
+            let length =
+                session.clip.map_or(0.0, |clip| preview::length_ms(&session.source, &session.source.clips[clip]));
+            session.time_ms += f64::from(ctx.input(|input| input.stable_dt)) * 1000.0;
+            if session.time_ms > length {
+                session.time_ms = 0.0;
+            }
+            ctx.request_repaint();
+        }
+        self.session = Some(session);
+        if !open {
+            actions.push(Action::Import(ImportAction::Close));
+        }
+    }
+
+    fn session_ui(
+        &mut self,
+        ui: &mut egui::Ui,
+        session: &mut Session,
+        project: &Project,
+        words: &ImportWords,
+        actions: &mut Vec<Action>,
+    ) {
+        let name = session
+            .path
+            .file_name()
+            .map_or_else(|| session.path.display().to_string(), |n| n.to_string_lossy().into_owned());
+        ui.label(egui::RichText::new(format!("{name} — {}", session.source.format.name())).strong());
+        ui.horizontal(|ui| {
+            let label = ui.label(words.motion);
+            let shown = session.clip.map_or_else(
+                || format!("{} ({})", words.all, session.source.clips.len()),
+                |clip| clip_name(&session.source, clip),
+            );
+            egui::ComboBox::from_id_salt("import-clip")
+                .selected_text(shown)
+                .show_ui(ui, |ui| {
+                    ui.selectable_value(
+                        &mut session.clip,
+                        None,
+                        format!("{} ({})", words.all, session.source.clips.len()),
+                    );
+                    for clip in 0..session.source.clips.len() {
+                        ui.selectable_value(&mut session.clip, Some(clip), clip_name(&session.source, clip));
+                    }
+                })
+                .response
+                .labelled_by(label.id);
+            ui.separator();
+            ui.label(format!("{} {}", words.for_board, project.family.name()));
+            if session.source.clips.iter().any(|clip| matches!(clip.body, Body::Samples { .. })) {
+                ui.separator();
+                let label = ui.label(words.tolerance);
+                ui.add(egui::DragValue::new(&mut session.tolerance_deg).range(0.05..=180.0).speed(0.05))
+                    .labelled_by(label.id);
+            }
+        });
+        if project.family == Family::Rflex {
+            ui.colored_label(ui.visuals().warn_fg_color, words.rflex);
+        }
+        if project.family != session.family {
+            session.family = project.family;
+            session.map = JointMap::for_source(&session.source, project.family, None);
+        }
+        let clip = session.clip.unwrap_or(0);
+        let length = session.source.clips.get(clip).map_or(0.0, |c| preview::length_ms(&session.source, c));
+        let now = session
+            .source
+            .clips
+            .get(clip)
+            .map(|c| preview::degrees_at(&session.source, c, &session.map, session.time_ms))
+            .unwrap_or_default();
+        ui.separator();
+        let height = (ui.available_height() - 34.0).max(160.0);
+        let width = ui.available_width();
+        ui.allocate_ui(egui::vec2(width, height), |ui| {
+            use egui_extras::{Size, StripBuilder};
+            StripBuilder::new(ui).size(Size::remainder().at_least(360.0)).size(Size::exact(330.0)).horizontal(
+                |mut strip| {
+                    strip.cell(|ui| map_table(ui, session, &now, words));
+                    strip.cell(|ui| self.preview_ui(ui, session, project, (&now, length), words));
+                },
+            );
+        });
+        ui.separator();
+        ui.horizontal(|ui| {
+            if ui.button(words.load_map).clicked() {
+                actions.push(Action::AskFile(FileRequest::Pick(Pick {
+                    kind: words.joint_map,
+                    extensions: &["json"],
+                    then: Arc::new(|path| Action::Import(ImportAction::LoadMap(path))),
+                })));
+            }
+            if ui.button(words.save_map).clicked() {
+                let offered = format!(
+                    "{}.map.json",
+                    session.path.file_stem().map_or_else(|| "joints".into(), |s| s.to_string_lossy())
+                );
+                actions.push(Action::AskFile(FileRequest::Export(Export::json(offered, words.joint_map, |path| {
+                    Action::Import(ImportAction::SaveMap(path))
+                }))));
+            }
+            ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
+                let can = project.family != Family::Rflex
+                    && !self.busy()
+                    && session.map.entries.iter().any(|e| e.target.is_some());
+                if ui.add_enabled(can, egui::Button::new(words.create)).clicked() {
+                    actions.push(Action::Import(ImportAction::Create));
+                }
+                if self.building.is_some() {
+                    ui.spinner();
+                }
+                if ui.button(words.cancel).clicked() {
+                    actions.push(Action::Import(ImportAction::Close));
+                }
+            });
+        });
+    }
+
+    /// The figure at the preview's time, the play button and time slider, and what the file held that is left out.
+    fn preview_ui(
+        &mut self,
+        ui: &mut egui::Ui,
+        session: &mut Session,
+        project: &Project,
+        (now, length): (&[Option<f64>], f64),
+        words: &ImportWords,
+    ) {
+        let size = egui::vec2(ui.available_width(), (ui.available_height() - 90.0).clamp(120.0, 330.0));
+        let (rect, _) = ui.allocate_exact_size(size, egui::Sense::hover());
+        match self.scene(session, project, now) {
+            Some(scene) => {
+                self.view.show(ui, rect, &scene, words.title);
+            }
+            None => {
+                ui.put(rect, egui::Label::new(words.no_rig).wrap());
+            }
+        }
+        ui.horizontal(|ui| {
+            let caption = if session.playing { words.pause } else { words.play };
+            if ui.add_enabled(session.clip.is_some(), egui::Button::new(caption)).clicked() {
+                session.playing = !session.playing;
+            }
+            let mut seconds = session.time_ms / 1000.0;
+            let label = ui.label(words.time);
+            let slider = egui::Slider::new(&mut seconds, 0.0..=(length / 1000.0).max(0.001)).max_decimals(2);
+            if ui.add(slider).labelled_by(label.id).changed() {
+                session.time_ms = seconds * 1000.0;
+            }
+        });
+        if !session.source.dropped.is_empty() {
+            ui.label(egui::RichText::new(words.left_out).small().strong());
+            egui::ScrollArea::vertical().id_salt("import-left-out").show(ui, |ui| {
+                for note in &session.source.dropped {
+                    ui.label(egui::RichText::new(format!("• {note}")).small());
+                }
+            });
+        }
+    }
+
+    /// The figure posed at the preview's time: the PLEN2, or the project's rig.
+    fn scene(&mut self, session: &Session, project: &Project, now: &[Option<f64>]) -> Option<Scene> {
+        let targets = session
+            .source
+            .channels
+            .iter()
+            .zip(now)
+            .filter_map(|(channel, degrees)| Some((session.map.entry(&channel.key)?.target?, (*degrees)?)));
+        match project.family {
+            Family::Plen2 => {
+                let chain = self.plen2_chain.get_or_insert_with(figure::plen2::chain);
+                let mut values = [0i16; DEVICE_IDS];
+                for (target, degrees) in targets {
+                    if let Target::Joint(joint) = target {
+                        // Tenths of a degree within ±180°.
+                        #[allow(clippy::cast_possible_truncation)]
+                        let tenths = (degrees * 10.0).round().clamp(-1800.0, 1800.0) as i16;
+                        values[usize::from(joint.device_id())] = tenths;
+                    }
+                }
+                let placed = chain.pose(&figure::plen2::angles(chain, &values));
+                Some(Scene { solids: chain.dress(&placed, false), ..Scene::default() })
+            }
+            Family::Servo => {
+                if project.servo.servos.iter().all(|servo| servo.rig.is_none()) {
+                    return None;
+                }
+                let (chain, index_of) = figure::rig::chain(&project.servo);
+                let degrees = targets.filter_map(|(target, degrees)| match target {
+                    Target::Servo(id) => Some((id, degrees)),
+                    Target::Joint(_) => None,
+                });
+                let angles = figure::rig::angles(&project.servo, &index_of, &degrees.collect(), chain.links.len());
+                let placed = chain.pose(&angles);
+                let ground = placed.iter().map(|p| p.position.z).fold(f32::MAX, f32::min);
+                Some(Scene {
+                    solids: chain.dress(&placed, false),
+                    ground_z: ground.min(0.0) - 10.0,
+                    ..Scene::default()
+                })
+            }
+            Family::Rflex => None,
+        }
+    }
+}
+
+fn taken<T>(done: &Receiver<T>) -> Option<T> {
+    match done.try_recv() {
+        Ok(value) => Some(value),
+        Err(crossbeam_channel::TryRecvError::Empty) => None,
+        // The worker is gone: nothing will come (the caller says so).
+        Err(crossbeam_channel::TryRecvError::Disconnected) => None,
+    }
+}
+
+fn clip_name(source: &Source, clip: usize) -> String {
+    let item = &source.clips[clip];
+    item.number.map_or_else(|| item.name.clone(), |number| format!("{number}: {}", item.name))
+}
+
+/// The joint map as a table: a row per channel.
+fn map_table(ui: &mut egui::Ui, session: &mut Session, now: &[Option<f64>], words: &ImportWords) {
+    use egui_extras::{Column, TableBuilder};
+    let family = session.family;
+    let channels = session.source.channels.clone();
+    TableBuilder::new(ui)
+        .striped(true)
+        .column(Column::auto().at_least(56.0))
+        .column(Column::auto().at_least(90.0).clip(true))
+        .column(Column::auto().at_least(170.0))
+        .column(Column::auto().at_least(64.0))
+        .column(Column::auto().at_least(64.0))
+        .column(Column::auto().at_least(40.0))
+        .column(Column::auto().at_least(56.0))
+        .column(Column::remainder().at_least(56.0))
+        .header(22.0, |mut header| {
+            for head in [
+                words.channel,
+                words.name,
+                words.drives,
+                words.zero,
+                words.per_degree,
+                words.reversed,
+                words.offset,
+                words.now,
+            ] {
+                header.col(|ui| {
+                    ui.strong(head);
+                });
+            }
+        })
+        .body(|body| {
+            body.rows(24.0, channels.len(), |mut row| {
+                let index = row.index();
+                let channel = &channels[index];
+                let Some(entry) = session.map.entries.iter_mut().find(|e| e.source == channel.key) else { return };
+                // Each row's widgets are named by the channel (screen readers, tests).
+                let mut named = egui::Id::NULL;
+                row.col(|ui| {
+                    named = ui.label(&channel.key).id;
+                });
+                row.col(|ui| {
+                    ui.label(&channel.name);
+                });
+                row.col(|ui| target_picker(ui, &mut entry.target, (family, &channel.key, named), words));
+                row.col(|ui| {
+                    ui.add(egui::DragValue::new(&mut entry.zero).speed(1.0)).labelled_by(named);
+                });
+                row.col(|ui| {
+                    let mut per = entry.per_degree;
+                    let response =
+                        ui.add(egui::DragValue::new(&mut per).speed(0.01).max_decimals(3)).labelled_by(named);
+                    if response.changed() && per != 0.0 {
+                        entry.per_degree = per;
+                    }
+                });
+                row.col(|ui| {
+                    let mut reversed = entry.direction < 0;
+                    if ui.checkbox(&mut reversed, "").labelled_by(named).on_hover_text(words.reversed).changed() {
+                        entry.direction = if reversed { -1 } else { 1 };
+                    }
+                });
+                row.col(|ui| {
+                    ui.add(egui::DragValue::new(&mut entry.offset_deg).speed(0.5).suffix("°")).labelled_by(named);
+                });
+                row.col(|ui| {
+                    let shown = now.get(index).copied().flatten().filter(|_| entry.target.is_some());
+                    ui.label(shown.map_or_else(|| "—".to_string(), |d| format!("{d:.1}")));
+                });
+            });
+        });
+}
+
+fn target_picker(
+    ui: &mut egui::Ui,
+    target: &mut Option<Target>,
+    (family, key, named): (Family, &str, egui::Id),
+    words: &ImportWords,
+) {
+    let shown = target.map_or_else(|| words.not_imported.to_string(), Target::word);
+    let picked =
+        egui::ComboBox::from_id_salt(("import-target", key)).selected_text(shown).width(160.0).show_ui(ui, |ui| {
+            ui.selectable_value(target, None, words.not_imported);
+            match family {
+                Family::Plen2 => {
+                    for joint in Joint::ALL {
+                        ui.selectable_value(target, Some(Target::Joint(joint)), joint.name());
+                    }
+                }
+                _ => {
+                    for id in 0..=254u8 {
+                        ui.selectable_value(target, Some(Target::Servo(id)), format!("servo {id}"));
+                    }
+                }
+            }
+        });
+    picked.response.labelled_by(named);
+}
+
+fn report_ui(ui: &mut egui::Ui, report: &crate::interchange::Report, words: &ImportWords, actions: &mut Vec<Action>) {
+    ui.heading(words.imported);
+    egui::ScrollArea::vertical().max_height(420.0).show(ui, |ui| {
+        for (head, notes) in words.report_heads.iter().zip([&report.converted, &report.approximated, &report.dropped]) {
+            if notes.is_empty() {
+                continue;
+            }
+            ui.strong(*head);
+            for note in notes {
+                ui.label(format!("• {note}"));
+            }
+        }
+    });
+    if ui.button(words.close).clicked() {
+        actions.push(Action::Import(ImportAction::Close));
+    }
+}
