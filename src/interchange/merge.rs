@@ -12,12 +12,16 @@ use crate::project::{Run, ServoProject, next_free_id};
 pub fn servo(into: &ServoProject, built: &ServoProject) -> (ServoProject, Vec<String>) {
     let mut merged = into.clone();
     let mut notes = Vec::new();
+    let mut kept = Vec::new();
     for servo in &built.servos {
         if merged.servo(servo.id).is_some() {
-            notes.push(format!("servo {} is in the project already: its settings are kept", servo.id));
+            kept.push(servo.id.to_string());
         } else {
             merged.servos.push(servo.clone());
         }
+    }
+    if !kept.is_empty() {
+        notes.push(format!("servos already in the project keep their settings: {}", kept.join(", ")));
     }
     merged.servos.sort_by_key(|servo| servo.id);
     let mut action_ids = HashMap::new();
@@ -115,7 +119,7 @@ mod tests {
         assert_eq!(merged.servo(2).unwrap().caption, "new");
         assert_eq!(merged.macros[1].commands[0].run, Run::Action { action_id: 2 });
         assert_eq!(merged.macros[2].commands[0].run, Run::Macro { macro_id: 2 });
-        assert!(notes.iter().any(|n| n.contains("servo 1")));
+        assert!(notes.iter().any(|n| n.ends_with("keep their settings: 1")), "{notes:?}");
     }
 
     #[test]

@@ -130,6 +130,21 @@ impl PartialEq for Export {
 
 impl Eq for Export {}
 
+/// What the import window asks of the shell.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ImportAction {
+    /// Read this file (off the frame) and open the window on it.
+    Read(PathBuf),
+    /// Use the joint map in this file.
+    LoadMap(PathBuf),
+    /// Write the joint map to this file.
+    SaveMap(PathBuf),
+    /// Make what the window shows and add it to the project.
+    Create,
+    /// Close the window.
+    Close,
+}
+
 /// One request from a panel to the app shell.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Action {
@@ -223,7 +238,7 @@ pub enum Action {
     /// in the recovery file, close.
     Terminate,
     /// What the import window asks for.
-    Import(crate::ui::import::ImportAction),
+    Import(ImportAction),
     /// What the servo board's panels ask for.
     Servo(ServoAction),
     /// What the PLEN2's panels ask for.

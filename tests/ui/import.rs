@@ -102,10 +102,11 @@ fn a_roboplus_page_previews_on_the_plen2_figure_and_lands_in_free_slots() {
     app.apply(Action::Import(servo_studio::ui::import::ImportAction::Read(file)));
     let mut harness = common::ui::showing(app, Tab::Motions, (1280.0, 800.0));
     common::ui::run_until(&mut harness, "the file read", |app| app.import.session.is_some());
-    assert!(
-        harness.query_all(by().role(Role::ComboBox).value("right_knee_pitch")).next().is_some(),
-        "id 13 guessed as the right knee"
-    );
+    // Id 1 shows as the right shoulder (the table's first row); id 13 is guessed as the right knee.
+    assert!(harness.query_all(by().role(Role::ComboBox).value("right_shoulder_pitch")).next().is_some());
+    let map = &harness.state().import.session.as_ref().unwrap().map;
+    let knee = servo_studio::interchange::Target::Joint(servo_studio::project::plen2::Joint::RightKneePitch);
+    assert_eq!(map.entry("13").unwrap().target, Some(knee));
     harness.get_by_label("Create").click();
     common::ui::run_until(&mut harness, "the import made", |app| app.document.project.plen2.motions.len() > 1);
     let motions = &harness.state().document.project.plen2.motions;

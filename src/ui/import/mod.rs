@@ -20,26 +20,12 @@ use crate::project::input::{MAX_PROJECT_BYTES, read_text};
 use crate::project::plen2::Joint;
 use crate::project::{Family, Project};
 use crate::protocol::plen2::DEVICE_IDS;
+pub use crate::ui::action::ImportAction;
 use crate::ui::action::{Action, Export, FileRequest, Pick};
 use crate::ui::files::FileWork;
 use crate::ui::i18n::Language;
 use crate::ui::view3d::{Scene, View};
 pub use words::{ImportWords, words};
-
-/// What the import window asks of the shell.
-#[derive(Clone, Debug, PartialEq)]
-pub enum ImportAction {
-    /// Read this file (off the frame) and open the window on it.
-    Read(PathBuf),
-    /// Use the joint map in this file.
-    LoadMap(PathBuf),
-    /// Write the joint map to this file.
-    SaveMap(PathBuf),
-    /// Make what the window shows and add it to the project.
-    Create,
-    /// Close the window.
-    Close,
-}
 
 /// What the desk finished, for the shell.
 #[derive(Debug)]
@@ -245,8 +231,8 @@ impl ImportDesk {
                 }
             });
         if session.playing {
-            let length =
-                session.clip.map_or(0.0, |clip| preview::length_ms(&session.source, &session.source.clips[clip]));
+            let shown = session.source.clips.get(session.clip.unwrap_or(0));
+            let length = shown.map_or(0.0, |clip| preview::length_ms(&session.source, clip));
             session.time_ms += f64::from(ctx.input(|input| input.stable_dt)) * 1000.0;
             if session.time_ms > length {
                 session.time_ms = 0.0;
@@ -384,7 +370,7 @@ impl ImportDesk {
         }
         ui.horizontal(|ui| {
             let caption = if session.playing { words.pause } else { words.play };
-            if ui.add_enabled(session.clip.is_some(), egui::Button::new(caption)).clicked() {
+            if ui.add_enabled(!session.source.clips.is_empty(), egui::Button::new(caption)).clicked() {
                 session.playing = !session.playing;
             }
             let mut seconds = session.time_ms / 1000.0;
