@@ -307,7 +307,8 @@ pub fn blender_plen2(
 fn frame_count(end_ms: f64, fps: f64) -> usize {
     // An hour at 1000 fps at most: small and non-negative.
     #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-    let frames = (end_ms.max(0.0) * fps / 1000.0 + 1e-9).floor() as usize + 1;
+    // The last frame at or past the end: the final pose is always written.
+    let frames = (end_ms.max(0.0) * fps / 1000.0 - 1e-9).ceil().max(0.0) as usize + 1;
     frames
 }
 

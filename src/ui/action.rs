@@ -100,6 +100,8 @@ pub struct Export {
     pub name: String,
     /// The kind of file, as the dialog's filter names it.
     pub kind: &'static str,
+    /// The ending the filter offers (`json`, `xml`).
+    pub extension: &'static str,
     /// The action the chosen path becomes.
     pub then: std::sync::Arc<dyn Fn(PathBuf) -> Action + Send + Sync>,
 }
@@ -111,7 +113,7 @@ impl Export {
         kind: &'static str,
         then: impl Fn(PathBuf) -> Action + Send + Sync + 'static,
     ) -> Self {
-        Self { name: name.into(), kind, then: std::sync::Arc::new(then) }
+        Self { name: name.into(), kind, extension: "json", then: std::sync::Arc::new(then) }
     }
 }
 
@@ -143,6 +145,12 @@ pub enum ImportAction {
     Create,
     /// Close the window.
     Close,
+    /// Open the window that exports for another tool.
+    OpenExport,
+    /// Write the export chosen in that window to this file.
+    Export(PathBuf),
+    /// Close that window.
+    CloseExport,
 }
 
 /// One request from a panel to the app shell.

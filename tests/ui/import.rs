@@ -2,7 +2,7 @@
 //! map guessed and edited in the table while the figure plays it, Create
 //! adding everything as one undo step, the map saved and loaded again.
 
-#![allow(clippy::unwrap_used, clippy::expect_used)]
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::float_cmp)]
 
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
@@ -66,8 +66,12 @@ fn a_maestro_file_is_mapped_previewed_and_created_as_one_undo_step() {
     common::ui::run_until(&mut harness, "the map saved", |_| map_file.exists());
     let saved = servo_studio::interchange::JointMap::from_json(&std::fs::read_to_string(&map_file).unwrap()).unwrap();
     assert_eq!(saved.entries[2].target, None);
+    // A change made after saving is undone by loading the saved map.
+    harness.state_mut().import.session.as_mut().unwrap().map.entries[0].offset_deg = 5.0;
     harness.get_by_label("Load map…").click();
-    common::ui::run_until(&mut harness, "the map loaded", |app| !app.import.busy());
+    common::ui::run_until(&mut harness, "the map loaded", |app| {
+        !app.import.busy() && app.import.session.as_ref().unwrap().map.entries[0].offset_deg == 0.0
+    });
     let before = harness.state().document.project.clone();
     harness.get_by_label("Create").click();
     common::ui::run_until(&mut harness, "the import made", |app| !app.document.project.servo.macros.is_empty());
@@ -115,4 +119,76 @@ fn a_roboplus_page_previews_on_the_plen2_figure_and_lands_in_free_slots() {
         [(0, "mine"), (1, "Bow"), (2, "Walk"), (3, "Rest")]
     );
     assert_eq!(motions[1].jump_slot, Some(2), "the jump follows the motion to its new slot");
+}
+
+#[test]
+fn a_servo_project_is_exported_for_a_maestro_and_a_plen2_motion_for_blender() {
+    let dir = tempfile::tempdir().unwrap();
+    // A servo project made from the Maestro file, written back from the editor.
+    let source = servo_studio::interchange::read(
+        servo_studio::interchange::Format::Maestro,
+        crate::interchange::maestro::SETTINGS,
+    )
+    .unwrap();
+    let map = servo_studio::interchange::JointMap::for_source(&source, Family::Servo, None);
+    let built = servo_studio::interchange::build::build(
+        &source,
+        &map,
+        &servo_studio::interchange::build::Options::new(Family::Servo),
+    )
+    .unwrap();
+    let out = dir.path().join("skull.maestro.xml");
+    let app = common::ui::editor(built.project).with_picker(picker(vec![out.clone()]));
+    let mut harness = common::ui::showing(app, Tab::Servos, (1280.0, 800.0));
+    harness.get_by_label("File").click();
+    harness.run();
+    harness.get_by_label("Export for another tool…").click();
+    harness.run();
+    assert!(harness.query_all(by().role(Role::ComboBox).value("Maestro settings file (sequences)")).next().is_some());
+    harness.get_by_label("Export…").click();
+    common::ui::run_until(&mut harness, "the file written", |app| !app.import.busy() && out.exists());
+    let written = servo_studio::interchange::read(
+        servo_studio::interchange::Format::Maestro,
+        &std::fs::read_to_string(&out).unwrap(),
+    )
+    .unwrap();
+    assert_eq!(written.clips.iter().map(|c| c.name.as_str()).collect::<Vec<_>>(), ["talk", "blink"]);
+    assert!(
+        harness
+            .state()
+            .status
+            .as_ref()
+            .unwrap()
+            .text
+            .starts_with(&format!("Exported {}: 3 channels, 2 sequences, 5 frames", out.display()))
+    );
+    // A PLEN2 motion as Blender JSON.
+    let mut project = Project::empty(Family::Plen2);
+    let mut pose = servo_studio::project::plen2::Pose::default();
+    pose.set(servo_studio::project::plen2::Joint::LeftKneePitch, 300);
+    project.plen2.motions.push(servo_studio::project::plen2::Motion {
+        slot: 4,
+        name: "kneel".into(),
+        frames: vec![servo_studio::project::plen2::Frame::new(320, pose)],
+        loop_range: None,
+        jump_slot: None,
+    });
+    let out = dir.path().join("kneel.json");
+    let mut app = common::ui::editor(project).with_picker(picker(vec![out.clone()]));
+    app.apply(Action::Import(servo_studio::ui::import::ImportAction::OpenExport));
+    let mut harness = common::ui::showing(app, Tab::Motions, (1280.0, 800.0));
+    assert!(harness.query_all(by().role(Role::ComboBox).value("4 kneel")).next().is_some(), "the motion offered");
+    harness.get_by_label("Export…").click();
+    common::ui::run_until(&mut harness, "the file written", |app| !app.import.busy() && out.exists());
+    let written = servo_studio::interchange::read(
+        servo_studio::interchange::Format::Blender,
+        &std::fs::read_to_string(&out).unwrap(),
+    )
+    .unwrap();
+    assert_eq!(written.channels.len(), 18);
+    let servo_studio::interchange::Body::Samples { rows, .. } = &written.clips[0].body else { panic!("samples") };
+    let knee = written.channels.iter().position(|c| c.name == "left_knee_pitch").unwrap();
+    let map = servo_studio::interchange::JointMap::for_source(&written, Family::Plen2, None);
+    let last = map.entries[knee].degrees(rows.last().unwrap()[knee]);
+    assert!((last - 30.0).abs() < 0.2, "the knee ends at 30°: {last}");
 }

@@ -30,7 +30,7 @@ pub fn system_picker() -> Picker {
                 Box::pin(dialog.add_filter(project.0, project.1).set_file_name("project.json").save_file())
             }
             FileRequest::Export(export) => {
-                Box::pin(dialog.add_filter(export.kind, &["json"]).set_file_name(&export.name).save_file())
+                Box::pin(dialog.add_filter(export.kind, &[export.extension]).set_file_name(&export.name).save_file())
             }
             FileRequest::Pick(pick) => Box::pin(dialog.add_filter(pick.kind, pick.extensions).pick_file()),
         };

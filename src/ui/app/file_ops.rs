@@ -118,6 +118,10 @@ impl StudioApp {
             if ui.add_enabled(!asking, egui::Button::new(import)).clicked() {
                 actions.push(crate::ui::import::ask_file());
             }
+            let export = crate::ui::import::words(self.language).export_title;
+            if ui.button(export).clicked() {
+                actions.push(Action::Import(crate::ui::action::ImportAction::OpenExport));
+            }
             if !self.recent.is_empty() {
                 ui.separator();
                 ui.label(words.recent);

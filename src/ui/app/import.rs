@@ -16,6 +16,18 @@ impl StudioApp {
                     self.report(format!("{} {}", self.words().msg_saved, path.display()), false);
                 }
                 Finished::Built(built) => self.add_imported(*built),
+                Finished::Exported(path, report) => {
+                    let words = crate::ui::import::words(self.language);
+                    let notes = report.approximated.len() + report.dropped.len();
+                    let said = report.converted.join("; ");
+                    let text = format!("{} {}: {said}", words.exported, path.display());
+                    let text = if notes > 0 {
+                        format!("{text} ({})", report.lines()[report.converted.len()..].join("; "))
+                    } else {
+                        text
+                    };
+                    self.report(text, false);
+                }
             }
         }
         if self.import.busy() {

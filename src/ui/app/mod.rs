@@ -414,6 +414,8 @@ impl StudioApp {
 
         self.dialogs(ui, &mut actions);
         self.import.window(ui.ctx(), &self.document.project, self.language, &mut actions);
+        let document = (&self.document.project, self.document.path.as_ref());
+        self.import.export_window(ui.ctx(), document, self.language, &mut actions);
         for action in actions {
             self.apply(action);
         }

@@ -5,6 +5,7 @@
 //! open project as one undo step. The desk keeps its own state; the shell
 //! hands it its actions and takes back what it finished (`poll`).
 
+mod export;
 mod words;
 
 use std::path::PathBuf;
@@ -25,6 +26,7 @@ use crate::ui::action::{Action, Export, FileRequest, Pick};
 use crate::ui::files::FileWork;
 use crate::ui::i18n::Language;
 use crate::ui::view3d::{Scene, View};
+pub use export::{ExportSession, ExportTo};
 pub use words::{ImportWords, words};
 
 /// What the desk finished, for the shell.
@@ -36,6 +38,8 @@ pub enum Finished {
     Built(Box<Built>),
     /// The joint map was written.
     MapSaved(PathBuf),
+    /// An export was written: where, and what it holds.
+    Exported(PathBuf, crate::interchange::Report),
 }
 
 /// An open import: the file, its map, and where the preview is.
@@ -68,6 +72,9 @@ pub struct ImportDesk {
     loading_map: Option<Receiver<Result<JointMap, String>>>,
     saving_map: Option<(PathBuf, Receiver<Result<(), String>>)>,
     building: Option<Receiver<Result<Built, String>>>,
+    writing_export: Option<(PathBuf, Receiver<Result<crate::interchange::Report, String>>)>,
+    /// The export window's choices, when open.
+    pub exporting: Option<ExportSession>,
     /// The window's content, when open.
     pub session: Option<Session>,
     view: View,
@@ -133,12 +140,30 @@ impl ImportDesk {
                 self.session = None;
                 self.view = View::default();
             }
+            ImportAction::OpenExport => self.exporting = Some(ExportSession::new(project)),
+            ImportAction::CloseExport => self.exporting = None,
+            ImportAction::Export(path) => {
+                let Some(session) = self.exporting.clone() else { return };
+                let project = project.clone();
+                let writing = path.clone();
+                let done = files.run(move |writer| {
+                    let (text, report) = export::exported(&session, &project)?;
+                    writer(&writing, text.as_bytes())
+                        .map_err(|error| format!("cannot write {}: {error}", writing.display()))?;
+                    Ok(report)
+                });
+                self.writing_export = Some((path, done));
+            }
         }
     }
 
     /// Whether work runs (the window keeps repainting until it ends).
     pub fn busy(&self) -> bool {
-        self.reading.is_some() || self.loading_map.is_some() || self.saving_map.is_some() || self.building.is_some()
+        self.reading.is_some()
+            || self.loading_map.is_some()
+            || self.saving_map.is_some()
+            || self.building.is_some()
+            || self.writing_export.is_some()
     }
 
     /// Takes what finished off the frame; `family` is the project's.
@@ -188,6 +213,13 @@ impl ImportDesk {
             self.saving_map = None;
             finished.push(result.map_or_else(Finished::Failed, |()| Finished::MapSaved(path)));
         }
+        if let Some((path, done)) = &self.writing_export
+            && let Some(result) = taken(done)
+        {
+            let path = path.clone();
+            self.writing_export = None;
+            finished.push(result.map_or_else(Finished::Failed, |report| Finished::Exported(path, report)));
+        }
         if let Some(done) = &self.building
             && let Some(result) = taken(done)
         {
@@ -201,6 +233,25 @@ impl ImportDesk {
     pub fn created(&mut self, report: crate::interchange::Report) {
         if let Some(session) = &mut self.session {
             session.done = Some(report);
+        }
+    }
+
+    /// The export window, when open.
+    pub fn export_window(
+        &mut self,
+        ctx: &egui::Context,
+        (project, path): (&Project, Option<&PathBuf>),
+        language: Language,
+        actions: &mut Vec<Action>,
+    ) {
+        let words = words(language);
+        let Some(session) = self.exporting.as_mut() else { return };
+        let mut open = true;
+        egui::Window::new(words.export_title).open(&mut open).collapsible(false).resizable(false).show(ctx, |ui| {
+            export::ui(ui, session, (project, path), words, actions);
+        });
+        if !open {
+            actions.push(Action::Import(ImportAction::CloseExport));
         }
     }
 

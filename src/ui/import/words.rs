@@ -63,6 +63,24 @@ pub struct ImportWords {
     pub report_heads: [&'static str; 3],
     /// "Joint map".
     pub joint_map: &'static str,
+    /// The File menu's export entry and its window's title.
+    pub export_title: &'static str,
+    /// "Format".
+    pub format: &'static str,
+    /// The two formats written.
+    pub formats: [&'static str; 2],
+    /// "Macro", "Motion".
+    pub subjects: [&'static str; 2],
+    /// "Frames per second".
+    pub fps: &'static str,
+    /// "Export…".
+    pub export: &'static str,
+    /// "Nothing to export: the project holds no macro or motion".
+    pub nothing: &'static str,
+    /// "A Maestro takes a servo board's project".
+    pub maestro_servo_only: &'static str,
+    /// "Exported".
+    pub exported: &'static str,
 }
 
 const ENGLISH: ImportWords = ImportWords {
@@ -95,6 +113,15 @@ const ENGLISH: ImportWords = ImportWords {
     imported: "Imported",
     report_heads: ["Converted", "Approximated", "Dropped"],
     joint_map: "Servo Studio joint map",
+    export_title: "Export for another tool…",
+    format: "Format",
+    formats: ["Maestro settings file (sequences)", "Blender servo-animation JSON"],
+    subjects: ["Macro", "Motion"],
+    fps: "Frames per second",
+    export: "Export…",
+    nothing: "Nothing to export: the project holds no macro or motion.",
+    maestro_servo_only: "A Maestro settings file is written from a servo board's project.",
+    exported: "Exported",
 };
 
 const CHINESE: ImportWords = ImportWords {
@@ -127,6 +154,15 @@ const CHINESE: ImportWords = ImportWords {
     imported: "已匯入",
     report_heads: ["已轉換", "近似處理", "已捨棄"],
     joint_map: "Servo Studio 關節對應",
+    export_title: "匯出給其他工具…",
+    format: "格式",
+    formats: ["Maestro 設定檔（序列）", "Blender 伺服動畫 JSON"],
+    subjects: ["巨集", "動作"],
+    fps: "每秒影格數",
+    export: "匯出…",
+    nothing: "沒有可匯出的內容：專案中沒有巨集或動作。",
+    maestro_servo_only: "Maestro 設定檔只能由伺服板專案匯出。",
+    exported: "已匯出",
 };
 
 /// The captions in `language`.
