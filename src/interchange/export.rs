@@ -88,35 +88,44 @@ pub fn maestro(servo: &ServoProject, map: Option<&JointMap>) -> Result<(String, 
                 .map_or(0.0, |((_, entry), item)| entry.raw(f64::from(item.home_deg)))
         })
         .collect();
-    let mut sequences: Vec<(String, Vec<Frame>)> = Vec::new();
     let mut speeds = vec![0.0f64; count];
-    for item in &servo.macros {
-        let mut walk = Walk {
-            servo,
-            entries: &entries,
-            targets: homes.clone(),
-            frames: Vec::new(),
-            speeds: &mut speeds,
-            report: &mut report,
-        };
-        walk.run_macro(item, 1.0, 0);
-        sequences.push((item.caption.clone(), walk.frames));
-    }
-    if servo.macros.is_empty() && !servo.actions.is_empty() {
-        let mut walk = Walk {
-            servo,
-            entries: &entries,
-            targets: homes.clone(),
-            frames: Vec::new(),
-            speeds: &mut speeds,
-            report: &mut report,
-        };
-        for action in &servo.actions {
-            walk.action(action.id, 1.0);
+    let mut walk = |from: Option<&Macro>, report: &mut Report| {
+        let mut walk =
+            Walk { servo, entries: &entries, targets: homes.clone(), frames: Vec::new(), speeds: &mut speeds, report };
+        match from {
+            Some(item) => walk.run_macro(item, 1.0, 0),
+            None => servo.actions.iter().for_each(|action| walk.action(action.id, 1.0)),
         }
-        sequences.push(("actions".to_string(), walk.frames));
+        walk.frames
+    };
+    let mut sequences: Vec<(String, Vec<Frame>)> =
+        servo.macros.iter().map(|item| (item.caption.clone(), walk(Some(item), &mut report))).collect();
+    if servo.macros.is_empty() && !servo.actions.is_empty() {
+        sequences.push(("actions".to_string(), walk(None, &mut report)));
         report.approximated("no macros: the actions are one sequence, a frame each, in id order");
     }
+    let channels = Channels { servo, entries: &entries, homes: &homes, speeds: &speeds };
+    let text = settings_xml(&channels, count, &sequences, &mut report);
+    let frames: usize = sequences.iter().map(|(_, frames)| frames.len()).sum();
+    report.converted(format!("{} channels, {} sequences, {frames} frames", entries.len(), sequences.len()));
+    Ok((text, report))
+}
+
+/// What a settings file's channels are made from.
+struct Channels<'a> {
+    servo: &'a ServoProject,
+    entries: &'a [(usize, MapEntry)],
+    homes: &'a [f64],
+    speeds: &'a [f64],
+}
+
+/// The settings file's text.
+fn settings_xml(
+    channels: &Channels<'_>,
+    count: usize,
+    sequences: &[(String, Vec<Frame>)],
+    report: &mut Report,
+) -> String {
     let mut text = String::from(
         "<!--Pololu Maestro servo controller settings file, http://www.pololu.com/catalog/product/1350-->\n",
     );
@@ -124,7 +133,8 @@ pub fn maestro(servo: &ServoProject, map: Option<&JointMap>) -> Result<(String, 
     let _ = writeln!(text, "  <Channels ServosAvailable=\"{count}\" ServoPeriod=\"156\">");
     for channel in 0..count {
         let _ = writeln!(text, "    <!--Channel {channel}-->");
-        let Some(((_, entry), item)) = entries.iter().zip(&servo.servos).find(|((c, _), _)| *c == channel) else {
+        let found = channels.entries.iter().zip(&channels.servo.servos).find(|((c, _), _)| *c == channel);
+        let Some(((_, entry), item)) = found else {
             text.push_str("    <Channel name=\"\" mode=\"Servo\" min=\"3968\" max=\"8000\" homemode=\"Off\" home=\"3968\" speed=\"0\" acceleration=\"0\" neutral=\"6000\" range=\"1905\" />\n");
             continue;
         };
@@ -138,28 +148,26 @@ pub fn maestro(servo: &ServoProject, map: Option<&JointMap>) -> Result<(String, 
             text,
             "    <Channel name=\"{}\" mode=\"Servo\" min=\"{min:.0}\" max=\"{max:.0}\" homemode=\"Goto\" home=\"{:.0}\" speed=\"{:.0}\" acceleration=\"0\" neutral=\"6000\" range=\"1905\" />",
             escape(&item.caption),
-            homes[channel].round(),
-            speeds[channel].ceil()
+            channels.homes[channel].round(),
+            channels.speeds[channel].ceil()
         );
     }
     text.push_str("  </Channels>\n  <Sequences>\n");
-    for (name, frames) in &sequences {
+    for (name, frames) in sequences {
         let _ = writeln!(text, "    <Sequence name=\"{}\">", escape(name));
         for (index, frame) in frames.iter().enumerate() {
             let targets: Vec<String> = frame.targets.iter().map(|t| format!("{:.0}", t.round())).collect();
+            let duration = frame.duration_ms.round();
             let _ = writeln!(
                 text,
-                "      <Frame name=\"Frame {index}\" duration=\"{:.0}\">{}</Frame>",
-                frame.duration_ms.round(),
+                "      <Frame name=\"Frame {index}\" duration=\"{duration:.0}\">{}</Frame>",
                 targets.join(" ")
             );
         }
         text.push_str("    </Sequence>\n");
     }
     text.push_str("  </Sequences>\n  <Script ScriptDone=\"true\" />\n</UscSettings>\n");
-    let frames: usize = sequences.iter().map(|(_, frames)| frames.len()).sum();
-    report.converted(format!("{} channels, {} sequences, {frames} frames", entries.len(), sequences.len()));
-    Ok((text, report))
+    text
 }
 
 fn escape(text: &str) -> String {

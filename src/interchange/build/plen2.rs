@@ -55,10 +55,25 @@ pub(super) fn build(input: &Input<'_>, report: &mut Report) -> Result<Plen2Proje
         )));
     }
     let mut project = Plen2Project::default();
+    let first_slot = place(input, &framed, &mut project, report);
+    let slot_of = |clip: usize| first_slot.iter().find(|(index, ..)| *index == clip).map(|(_, slot, _)| *slot);
+    link(input, &first_slot, &mut project, report);
+    flows(input, &slot_of, &mut project, report);
+    Ok(project)
+}
+
+/// The clips' frames as motions from slot 0, 20 frames a slot (a longer one
+/// jumping on to its next part): each clip's (index, first slot, slots).
+fn place(
+    input: &Input<'_>,
+    framed: &[(usize, Vec<Frame>)],
+    project: &mut Plen2Project,
+    report: &mut Report,
+) -> Vec<(usize, u8, u8)> {
     // (clip, its first slot, how many slots it takes).
     let mut first_slot: Vec<(usize, u8, u8)> = Vec::new();
     let mut slot = 0u8;
-    for (index, frames) in &framed {
+    for (index, frames) in framed {
         if frames.is_empty() {
             continue;
         }
@@ -74,8 +89,13 @@ pub(super) fn build(input: &Input<'_>, report: &mut Report) -> Result<Plen2Proje
         let first = slot - u8::try_from(chunks.len()).unwrap_or(0);
         report.converted(format!("{:?}: motion in slot {first} ({} frames)", clip.name, frames.len()));
     }
+    first_slot
+}
+
+/// Repeats as loops, next pages as jumps, exit pages as play lists.
+fn link(input: &Input<'_>, first_slot: &[(usize, u8, u8)], project: &mut Plen2Project, report: &mut Report) {
     let slot_of = |clip: usize| first_slot.iter().find(|(index, ..)| *index == clip).map(|(_, slot, _)| *slot);
-    for &(index, first, parts) in &first_slot {
+    for &(index, first, parts) in first_slot {
         let clip = input.clip(index);
         // Motions are pushed in slot order from slot 0.
         let last = usize::from(first + parts - 1);
@@ -104,6 +124,10 @@ pub(super) fn build(input: &Input<'_>, report: &mut Report) -> Result<Plen2Proje
             project.play_lists.push(PlayList { name: format!("{} then exit", clip.name), entries });
         }
     }
+}
+
+/// Flows as play lists.
+fn flows(input: &Input<'_>, slot_of: &dyn Fn(usize) -> Option<u8>, project: &mut Plen2Project, report: &mut Report) {
     for &index in &input.clips {
         let clip = input.clip(index);
         let Body::Chain(links) = &clip.body else { continue };
@@ -122,7 +146,6 @@ pub(super) fn build(input: &Input<'_>, report: &mut Report) -> Result<Plen2Proje
         }
         project.play_lists.push(PlayList { name: clip.name.clone(), entries });
     }
-    Ok(project)
 }
 
 /// A name a PLEN2 stores: at most 20 ASCII characters (a part after the first numbered).

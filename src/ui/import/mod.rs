@@ -304,40 +304,7 @@ impl ImportDesk {
         words: &ImportWords,
         actions: &mut Vec<Action>,
     ) {
-        let name = session
-            .path
-            .file_name()
-            .map_or_else(|| session.path.display().to_string(), |n| n.to_string_lossy().into_owned());
-        ui.label(egui::RichText::new(format!("{name} — {}", session.source.format.name())).strong());
-        ui.horizontal(|ui| {
-            let label = ui.label(words.motion);
-            let shown = session.clip.map_or_else(
-                || format!("{} ({})", words.all, session.source.clips.len()),
-                |clip| clip_name(&session.source, clip),
-            );
-            egui::ComboBox::from_id_salt("import-clip")
-                .selected_text(shown)
-                .show_ui(ui, |ui| {
-                    ui.selectable_value(
-                        &mut session.clip,
-                        None,
-                        format!("{} ({})", words.all, session.source.clips.len()),
-                    );
-                    for clip in 0..session.source.clips.len() {
-                        ui.selectable_value(&mut session.clip, Some(clip), clip_name(&session.source, clip));
-                    }
-                })
-                .response
-                .labelled_by(label.id);
-            ui.separator();
-            ui.label(format!("{} {}", words.for_board, project.family.name()));
-            if session.source.clips.iter().any(|clip| matches!(clip.body, Body::Samples { .. })) {
-                ui.separator();
-                let label = ui.label(words.tolerance);
-                ui.add(egui::DragValue::new(&mut session.tolerance_deg).range(0.05..=180.0).speed(0.05))
-                    .labelled_by(label.id);
-            }
-        });
+        header_ui(ui, session, project.family, words);
         if project.family == Family::Rflex {
             ui.colored_label(ui.visuals().warn_fg_color, words.rflex);
         }
@@ -366,6 +333,18 @@ impl ImportDesk {
             );
         });
         ui.separator();
+        self.buttons_ui(ui, session, project, words, actions);
+    }
+
+    /// Load map…, Save map…, Cancel and Create.
+    fn buttons_ui(
+        &self,
+        ui: &mut egui::Ui,
+        session: &Session,
+        project: &Project,
+        words: &ImportWords,
+        actions: &mut Vec<Action>,
+    ) {
         ui.horizontal(|ui| {
             if ui.button(words.load_map).clicked() {
                 actions.push(Action::AskFile(FileRequest::Pick(Pick {
@@ -494,6 +473,40 @@ fn taken<T>(done: &Receiver<T>) -> Option<T> {
         // The worker is gone: nothing will come (the caller says so).
         Err(crossbeam_channel::TryRecvError::Disconnected) => None,
     }
+}
+
+/// The file's name and format, the motion chosen, the board, and the fit's tolerance.
+fn header_ui(ui: &mut egui::Ui, session: &mut Session, family: Family, words: &ImportWords) {
+    let name = session
+        .path
+        .file_name()
+        .map_or_else(|| session.path.display().to_string(), |n| n.to_string_lossy().into_owned());
+    ui.label(egui::RichText::new(format!("{name} — {}", session.source.format.name())).strong());
+    ui.horizontal(|ui| {
+        let label = ui.label(words.motion);
+        let shown = session.clip.map_or_else(
+            || format!("{} ({})", words.all, session.source.clips.len()),
+            |clip| clip_name(&session.source, clip),
+        );
+        egui::ComboBox::from_id_salt("import-clip")
+            .selected_text(shown)
+            .show_ui(ui, |ui| {
+                ui.selectable_value(&mut session.clip, None, format!("{} ({})", words.all, session.source.clips.len()));
+                for clip in 0..session.source.clips.len() {
+                    ui.selectable_value(&mut session.clip, Some(clip), clip_name(&session.source, clip));
+                }
+            })
+            .response
+            .labelled_by(label.id);
+        ui.separator();
+        ui.label(format!("{} {}", words.for_board, family.name()));
+        if session.source.clips.iter().any(|clip| matches!(clip.body, Body::Samples { .. })) {
+            ui.separator();
+            let label = ui.label(words.tolerance);
+            ui.add(egui::DragValue::new(&mut session.tolerance_deg).range(0.05..=180.0).speed(0.05))
+                .labelled_by(label.id);
+        }
+    });
 }
 
 fn clip_name(source: &Source, clip: usize) -> String {
