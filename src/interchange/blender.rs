@@ -5,8 +5,8 @@
 
 use serde_json::{Map, Value, json};
 
+use super::format::{Format, ReadError};
 use super::source::{Body, Channel, Clip, Source, Unit};
-use super::{Format, ReadError};
 
 /// The add-on's default servo settings: positions 150..=600 over 180°, 90° neutral.
 pub const ADDON_DEFAULT: Unit = Unit { zero: 375.0, per_degree: 2.5, label: "add-on positions" };

@@ -3,9 +3,9 @@
 //! microseconds) and sequences of frames, each a duration in ms and a target
 //! per channel (0 = the channel's pulses off).
 
+use super::format::{Format, ReadError, number};
 use super::source::{Body, Channel, Clip, Key, Source, Timing, Unit};
 use super::xml::{self, Element};
-use super::{Format, ReadError, number};
 
 /// Quarter-microseconds: 1500 µs at 0°, 10 µs a degree (docs/import-export.md).
 pub const QUARTER_US: Unit = Unit { zero: 6000.0, per_degree: 40.0, label: "¼ µs" };

@@ -5,7 +5,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::Format;
+use super::format::Format;
 use super::source::{Channel, Source};
 use crate::project::Family;
 use crate::project::plen2::Joint;

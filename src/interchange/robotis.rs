@@ -3,9 +3,9 @@
 //! the page's play parameters) and R+ Motion 2.0 `.mtnx` (XML: pages of steps
 //! at absolute times in 1/128 s with poses in degrees, and flows of units).
 
+use super::format::{Format, ReadError, number};
 use super::source::{Body, Channel, Clip, Key, Link, Source, Timing, Unit};
 use super::xml;
-use super::{Format, ReadError, number};
 
 /// AX-12/AX-18 positions: 0..=1023 over 300°, 512 at the centre.
 pub const AX: Unit = Unit { zero: 512.0, per_degree: 1024.0 / 300.0, label: "AX units" };

@@ -145,7 +145,7 @@ impl Clip {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Source {
     /// The format it was read as.
-    pub format: super::Format,
+    pub format: super::format::Format,
     /// Its channels.
     pub channels: Vec<Channel>,
     /// Its motions.

@@ -1,0 +1,111 @@
+//! The formats other tools write, told from a file's content, and the error
+//! a file that cannot be read as its format gives: where, and what is wrong.
+
+/// A file format another tool writes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Format {
+    /// Pololu Maestro Control Center's settings file (`<UscSettings>`).
+    Maestro,
+    /// ROBOTIS RoboPlus Motion 1.0 (`.mtn`, text).
+    Mtn,
+    /// ROBOTIS R+ Motion 2.0 (`.mtnx`, XML).
+    Mtnx,
+    /// The Blender servo-animation add-on's JSON export.
+    Blender,
+}
+
+impl Format {
+    /// Every format, in the order menus list them.
+    pub const ALL: [Self; 4] = [Self::Maestro, Self::Mtn, Self::Mtnx, Self::Blender];
+
+    /// The command line's word for it.
+    pub fn tag(self) -> &'static str {
+        match self {
+            Self::Maestro => "maestro",
+            Self::Mtn => "mtn",
+            Self::Mtnx => "mtnx",
+            Self::Blender => "blender",
+        }
+    }
+
+    /// The format a command-line word names.
+    pub fn from_tag(tag: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|format| format.tag().eq_ignore_ascii_case(tag))
+    }
+
+    /// What people call it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Maestro => "Maestro settings file",
+            Self::Mtn => "RoboPlus Motion .mtn",
+            Self::Mtnx => "R+ Motion .mtnx",
+            Self::Blender => "Blender servo-animation JSON",
+        }
+    }
+
+    /// The format a file's content shows, if any.
+    pub fn guess(text: &str) -> Option<Self> {
+        let start = text.trim_start_matches('\u{feff}').trim_start();
+        if start.starts_with('{') {
+            return Some(Self::Blender);
+        }
+        if start.starts_with('<') {
+            if text.contains("<UscSettings") {
+                return Some(Self::Maestro);
+            }
+            let lower = text.to_ascii_lowercase();
+            return (lower.contains("<pageroot") || lower.contains("<page ") || lower.contains("<step "))
+                .then_some(Self::Mtnx);
+        }
+        text.lines().any(|line| matches!(line.trim(), "page_begin" | "type=motion")).then_some(Self::Mtn)
+    }
+}
+
+/// A file that cannot be read as its format, and where.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("{}{}{message}", .line.map(|line| format!("line {line}: ")).unwrap_or_default(), .element.as_ref().map(|element| format!("<{element}>: ")).unwrap_or_default())]
+pub struct ReadError {
+    /// The line (from 1), when known.
+    pub line: Option<usize>,
+    /// The element (XML) or key (text, JSON) it is in.
+    pub element: Option<String>,
+    /// What is wrong and, where it helps, what to do.
+    pub message: String,
+}
+
+impl ReadError {
+    /// An error at `line` in `element`.
+    pub fn at(line: usize, element: &str, message: impl Into<String>) -> Self {
+        Self { line: Some(line), element: (!element.is_empty()).then(|| element.to_string()), message: message.into() }
+    }
+}
+
+impl From<super::xml::XmlError> for ReadError {
+    fn from(error: super::xml::XmlError) -> Self {
+        Self { line: Some(error.line), element: None, message: format!("not well-formed XML: {}", error.message) }
+    }
+}
+
+/// A number in a file, or an error naming what it should have been.
+pub(super) fn number(text: &str, line: usize, element: &str, what: &str) -> Result<f64, ReadError> {
+    text.trim()
+        .parse::<f64>()
+        .ok()
+        .filter(|value| value.is_finite())
+        .ok_or_else(|| ReadError::at(line, element, format!("{what} {text:?} is not a number")))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn formats_are_guessed_from_content() {
+        assert_eq!(Format::guess("<!--Pololu-->\n<UscSettings version=\"1\">"), Some(Format::Maestro));
+        assert_eq!(Format::guess("<?xml version=\"1.0\"?><Root><PageRoot>"), Some(Format::Mtnx));
+        assert_eq!(Format::guess("type=motion\nversion=1.01\npage_begin"), Some(Format::Mtn));
+        assert_eq!(Format::guess("\u{feff} {\"fps\": 30}"), Some(Format::Blender));
+        assert_eq!(Format::guess("t_ms,a\n0,1"), None);
+        assert_eq!(Format::from_tag("MTNX"), Some(Format::Mtnx));
+    }
+}

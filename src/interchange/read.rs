@@ -1,0 +1,15 @@
+//! A file's text read as its format: each format's reader, by name.
+
+use super::format::{Format, ReadError};
+use super::source::Source;
+use super::{blender, maestro, robotis};
+
+/// Reads `text` as `format`.
+pub fn read(format: Format, text: &str) -> Result<Source, ReadError> {
+    match format {
+        Format::Maestro => maestro::read(text),
+        Format::Mtn => robotis::read_mtn(text),
+        Format::Mtnx => robotis::read_mtnx(text),
+        Format::Blender => blender::read(text),
+    }
+}
