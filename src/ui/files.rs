@@ -134,9 +134,11 @@ pub fn write_recovery(data_dir: &Path, path: Option<&Path>, project: &Project) -
     write_recovery_with(&system_writer(), data_dir, &recovery_bytes(path, project)?)
 }
 
-/// The recovery file left by a session that did not end cleanly, if any.
+/// The recovery file left by a session that did not end cleanly, if any:
+/// read only when it is a regular file within a project file's size cap.
 pub fn read_recovery(data_dir: &Path) -> Option<Recovery> {
-    let text = std::fs::read_to_string(recovery_path(data_dir)).ok()?;
+    let text =
+        crate::project::input::read_text(&recovery_path(data_dir), crate::project::input::MAX_PROJECT_BYTES).ok()?;
     let file: RecoveryFile = serde_json::from_str(&text).ok()?;
     let project = from_json(&file.project.to_string()).ok()?;
     Some(Recovery { path: file.path, saved_at: file.saved_at, project })

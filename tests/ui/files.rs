@@ -24,7 +24,10 @@ fn fixture() -> PathBuf {
 
 fn app(data_dir: &Path) -> StudioApp {
     let project = ServoProject { servos: vec![Servo::new(1, "左肩")], ..ServoProject::default() };
-    StudioApp::new(project, None, no_waker()).with_data_dir(data_dir.to_path_buf())
+    let mut app = StudioApp::new(project, None, no_waker()).with_data_dir(data_dir.to_path_buf());
+    // The recovery file is read off the frame: its offer is there once that read is done.
+    app.finish_file_work(WAIT);
+    app
 }
 
 fn harness(app: StudioApp) -> Harness<'static, StudioApp> {
@@ -222,4 +225,20 @@ fn the_remembered_family_and_tab_are_restored() {
     let mut app = StudioApp::new(project::Project::default(), None, no_waker());
     app.restore(Remembered { tab: "Log".into(), ..remembered }, false);
     assert_eq!((app.document.project.family, app.tab), (Family::Plen2, Tab::Log));
+}
+
+#[test]
+fn a_recovery_file_that_is_a_named_pipe_neither_blocks_the_start_nor_is_read() {
+    let data = tempfile::tempdir().unwrap();
+    let fifo = data.path().join("recovery.json");
+    assert!(std::process::Command::new("mkfifo").arg(&fifo).status().unwrap().success());
+    // Read in the frame, a pipe nobody writes to would hold the editor's start for ever.
+    let (started, start) = crossbeam_channel::bounded(1);
+    let dir = data.path().to_path_buf();
+    std::thread::spawn(move || {
+        let offer = app(&dir).recovery_offer;
+        let _ = started.send(offer.is_some());
+    });
+    let offered = start.recv_timeout(Duration::from_secs(10)).expect("the editor starts, the pipe refused at once");
+    assert!(!offered, "a pipe is no recovery file");
 }

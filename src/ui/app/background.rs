@@ -72,6 +72,8 @@ pub(super) enum FileJob {
     Autosaving { done: Receiver<std::io::Result<()>> },
     /// The recovery file being removed.
     Clearing { done: Receiver<()> },
+    /// The recovery file of `data_dir` being read (at start, off the frame).
+    Recovering { data_dir: PathBuf, done: Receiver<Option<Recovery>> },
 }
 
 impl StudioApp {
@@ -143,6 +145,14 @@ impl StudioApp {
         self.file_jobs.push(FileJob::Autosaving { done });
     }
 
+    /// Reads the recovery file off the frame: the offer appears when it is read.
+    pub(super) fn read_recovery_later(&mut self) {
+        let data_dir = self.data_dir.clone();
+        let reading = data_dir.clone();
+        let done = self.files.run(move |_| files::read_recovery(&reading));
+        self.file_jobs.push(FileJob::Recovering { data_dir, done });
+    }
+
     /// Removes the recovery file, after whatever file work was asked before.
     pub(super) fn clear_recovery_later(&mut self) {
         let data_dir = self.data_dir.clone();
@@ -190,6 +200,12 @@ impl StudioApp {
                     self.file_jobs.push(FileJob::Clearing { done });
                 }
             }
+            FileJob::Recovering { data_dir, done } => match answer(&done, left, || None) {
+                // An offer read from a folder the editor no longer uses is not made.
+                Some(offer) if data_dir == self.data_dir => self.recovery_offer = offer,
+                Some(_) => {}
+                None => self.file_jobs.push(FileJob::Recovering { data_dir, done }),
+            },
         }
     }
 

@@ -155,7 +155,7 @@ impl StudioApp {
             import: crate::ui::import::ImportDesk::default(),
             terminate: None,
         };
-        app.recovery_offer = files::read_recovery(&app.data_dir);
+        app.read_recovery_later();
         app.each_family(|family_ui, shell| family_ui.document_replaced(&shell.document.project));
         let family = app.document.project.family;
         app.tab = app.family_ui(family).tabs()[0];
@@ -166,7 +166,8 @@ impl StudioApp {
     /// platform's data folder.
     pub fn with_data_dir(mut self, data_dir: PathBuf) -> Self {
         self.data_dir = data_dir;
-        self.recovery_offer = files::read_recovery(&self.data_dir);
+        self.recovery_offer = None;
+        self.read_recovery_later();
         self
     }
 
