@@ -10,20 +10,7 @@ impl StudioApp {
     pub fn apply(&mut self, action: Action) {
         match action {
             Action::Edit { edit, coalesce } => self.document.apply(edit, coalesce.as_deref()),
-            Action::Undo | Action::Redo => {
-                let (mut shell, families) = self.split();
-                // A turn in the 3D view is undone by moving the live pose back.
-                let now = |pose: &LivePose| match pose {
-                    LivePose::Plen2(_) => LivePose::Plen2(families.plen2.pose),
-                    LivePose::Servo(_) => LivePose::Servo(families.servo.pose.clone()),
-                };
-                let pose = if action == Action::Undo { shell.document.undo(now) } else { shell.document.redo(now) };
-                match pose {
-                    Some(LivePose::Plen2(pose)) => families.plen2.restore_pose(&mut shell, pose),
-                    Some(LivePose::Servo(pose)) => families.servo.restore_pose(&mut shell, pose),
-                    None => {}
-                }
-            }
+            Action::Undo | Action::Redo => self.undo_redo(action == Action::Undo),
             Action::Connect { port, baud } => {
                 self.forget_link();
                 self.connect(&port, baud);
@@ -68,6 +55,35 @@ impl StudioApp {
                     operation.cancel();
                 }
             }
+            Action::NewProject
+            | Action::Open(_)
+            | Action::Save
+            | Action::SaveAs(_)
+            | Action::UnsavedSave
+            | Action::UnsavedDiscard
+            | Action::UnsavedCancel
+            | Action::Recover
+            | Action::DeclineRecovery
+            | Action::Autosave
+            | Action::Terminate => self.apply_file(action),
+            Action::Servo(action) => {
+                let (mut shell, families) = self.split();
+                families.servo.apply(&mut shell, action);
+            }
+            Action::Plen2(action) => {
+                let (mut shell, families) = self.split();
+                families.plen2.apply(&mut shell, action);
+            }
+            Action::Rflex(action) => {
+                let (mut shell, families) = self.split();
+                families.rflex.apply(&mut shell, action);
+            }
+        }
+    }
+
+    /// The document's file, the unsaved-changes question, autosave and recovery, and the end.
+    fn apply_file(&mut self, action: Action) {
+        match action {
             Action::NewProject => self.guard_unsaved(AfterUnsaved::New),
             Action::Open(path) => self.guard_unsaved(AfterUnsaved::Open(path)),
             Action::Save => match self.document.path.clone() {
@@ -106,44 +122,52 @@ impl StudioApp {
                 self.recovery_offer = None;
                 self.clear_recovery_later();
             }
-            Action::Autosave => {
-                if self.document.dirty {
-                    self.autosave_later();
-                }
-            }
-            Action::Terminate => {
-                // Asked to end from outside (Ctrl-C, kill, a closing session): the board
-                // first — a base stops and brakes as its link is dropped — then the work,
-                // into the recovery file, then the window, without asking. An upload
-                // running stops at its next safe point (never mid-packet); what it left
-                // on the board, and how to restore the backup, go to the terminal.
-                if let Some(operation) = &self.operation {
-                    operation.cancel();
-                    let summary = self.finish_operation(Some(TERMINATE_WAIT));
-                    let said = match summary {
-                        Some((text, _)) => text,
-                        None => self.words().msg_operation_left_running.to_string(),
-                    };
-                    let _ = writeln!(std::io::stderr(), "servo-studio: {said}");
-                }
-                self.drop_link();
-                self.apply(Action::Autosave);
-                // The work must be on disk before the process goes.
-                self.finish_file_work(Some(TERMINATE_WAIT));
-                self.quit_allowed = true;
-            }
-            Action::Servo(action) => {
-                let (mut shell, families) = self.split();
-                families.servo.apply(&mut shell, action);
-            }
-            Action::Plen2(action) => {
-                let (mut shell, families) = self.split();
-                families.plen2.apply(&mut shell, action);
-            }
-            Action::Rflex(action) => {
-                let (mut shell, families) = self.split();
-                families.rflex.apply(&mut shell, action);
-            }
+            // Nothing unsaved: nothing to keep.
+            Action::Autosave if self.document.dirty => self.autosave_later(),
+            Action::Terminate => self.terminate(),
+            // Every other action is applied by `apply`.
+            _ => {}
         }
+    }
+
+    /// Undo or redo one step; a turn in the 3D view is undone by moving the live pose back.
+    fn undo_redo(&mut self, undo: bool) {
+        let (mut shell, families) = self.split();
+        // A turn in the 3D view is undone by moving the live pose back.
+        let now = |pose: &LivePose| match pose {
+            LivePose::Plen2(_) => LivePose::Plen2(families.plen2.pose),
+            LivePose::Servo(_) => LivePose::Servo(families.servo.pose.clone()),
+        };
+        let pose = if undo { shell.document.undo(now) } else { shell.document.redo(now) };
+        match pose {
+            Some(LivePose::Plen2(pose)) => families.plen2.restore_pose(&mut shell, pose),
+            Some(LivePose::Servo(pose)) => families.servo.restore_pose(&mut shell, pose),
+            None => {}
+        }
+    }
+
+    /// Asked to end from outside (Ctrl-C, kill, a closing session): the board
+    /// first — a base stops and brakes as its link is dropped — then the work,
+    /// into the recovery file, then the window, without asking.
+    fn terminate(&mut self) {
+        // Asked to end from outside (Ctrl-C, kill, a closing session): the board
+        // first — a base stops and brakes as its link is dropped — then the work,
+        // into the recovery file, then the window, without asking. An upload
+        // running stops at its next safe point (never mid-packet); what it left
+        // on the board, and how to restore the backup, go to the terminal.
+        if let Some(operation) = &self.operation {
+            operation.cancel();
+            let summary = self.finish_operation(Some(TERMINATE_WAIT));
+            let said = match summary {
+                Some((text, _)) => text,
+                None => self.words().msg_operation_left_running.to_string(),
+            };
+            let _ = writeln!(std::io::stderr(), "servo-studio: {said}");
+        }
+        self.drop_link();
+        self.apply(Action::Autosave);
+        // The work must be on disk before the process goes.
+        self.finish_file_work(Some(TERMINATE_WAIT));
+        self.quit_allowed = true;
     }
 }

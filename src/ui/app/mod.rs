@@ -300,6 +300,94 @@ impl StudioApp {
         moving
     }
 
+    /// The toolbar: File and Settings, undo / redo, the language, STOP and
+    /// the family's buttons; the connection bar; the tabs.
+    fn toolbar(&mut self, ui: &mut egui::Ui, actions: &mut Vec<Action>) {
+        let words = self.language.strings();
+        ui.horizontal(|ui| {
+            self.file_menu(ui, actions);
+            self.settings_menu(ui, actions);
+            ui.separator();
+            if ui.add_enabled(self.document.can_undo(), egui::Button::new(words.undo)).clicked() {
+                actions.push(Action::Undo);
+            }
+            if ui.add_enabled(self.document.can_redo(), egui::Button::new(words.redo)).clicked() {
+                actions.push(Action::Redo);
+            }
+            ui.separator();
+            let mut language = self.language;
+            let language_label = ui.label(words.language);
+            let picked = egui::ComboBox::from_id_salt("language").selected_text(language.name()).show_ui(ui, |ui| {
+                for option in [Language::English, Language::TraditionalChinese] {
+                    ui.selectable_value(&mut language, option, option.name());
+                }
+            });
+            picked.response.labelled_by(language_label.id);
+            if language != self.language {
+                actions.push(Action::SetLanguage(language));
+            }
+            ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
+                let stop = egui::Button::new(
+                    egui::RichText::new(format!("■ {}", words.stop)).strong().size(18.0).color(egui::Color32::WHITE),
+                )
+                .fill(egui::Color32::from_rgb(200, 30, 30));
+                if ui.add(stop).on_hover_text("Esc").clicked() {
+                    actions.push(Action::Stop);
+                }
+                let (view, family_ui, _) = self.drawing(self.document.project.family);
+                family_ui.toolbar(ui, &view, actions);
+            });
+        });
+        let status = self.link_status();
+        let family = self.document.project.family;
+        let (ports, language) = (std::mem::take(&mut self.ports), self.language);
+        let mut bar = std::mem::take(&mut self.connection_bar);
+        let (view, family_ui, _) = self.drawing(family);
+        bar.ui(ui, (&status, &ports, language), actions, |ui, actions| {
+            family_ui.connection_extras(ui, &view, actions);
+        });
+        (self.ports, self.connection_bar) = (ports, bar);
+        ui.horizontal(|ui| {
+            let family_ui = self.family_ui(family);
+            let mut tab = self.tab;
+            // Only the panels that apply to the document's family are offered.
+            for option in self.tabs(family) {
+                let title = match option {
+                    Tab::Log => words.packet_log,
+                    Tab::Gamepad => words.gamepad,
+                    _ => family_ui.tab_title(option, words),
+                };
+                ui.selectable_value(&mut tab, option, title);
+            }
+            if tab != self.tab {
+                actions.push(Action::ShowTab(tab));
+            }
+            if ![Tab::Log, Tab::Gamepad].contains(&self.tab) && family_ui.has_view(self.tab) {
+                ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
+                    let mut open = family_ui.layout().view_open;
+                    if ui.checkbox(&mut open, family_ui.view_caption(words)).changed() {
+                        actions.push(Action::ShowView(open));
+                    }
+                });
+            }
+        });
+    }
+
+    /// The status line.
+    fn status_line(&self, ui: &mut egui::Ui) {
+        match &self.status {
+            Some(line) if line.is_error => {
+                ui.colored_label(ui.visuals().error_fg_color, &line.text);
+            }
+            Some(line) => {
+                ui.label(&line.text);
+            }
+            None => {
+                ui.label("");
+            }
+        }
+    }
+
     /// Draws the editor and applies what its panels asked for.
     pub fn show(&mut self, ui: &mut egui::Ui) {
         if self.terminate.as_ref().is_some_and(|terminated| terminated.try_recv().is_ok()) {
@@ -315,98 +403,15 @@ impl StudioApp {
         let mut actions = Vec::new();
         Self::shortcuts(ui, &mut actions);
         self.poll_dialog(&mut actions);
-        let words = self.language.strings();
 
         self.file_events(ui, now, &mut actions);
         let focused = ui.input(|input| input.focused);
         if self.feed_gamepad(now, focused) | self.advance(now) {
             ui.ctx().request_repaint();
         }
-        egui::Panel::top("toolbar").show(ui, |ui| {
-            ui.horizontal(|ui| {
-                self.file_menu(ui, &mut actions);
-                self.settings_menu(ui, &mut actions);
-                ui.separator();
-                if ui.add_enabled(self.document.can_undo(), egui::Button::new(words.undo)).clicked() {
-                    actions.push(Action::Undo);
-                }
-                if ui.add_enabled(self.document.can_redo(), egui::Button::new(words.redo)).clicked() {
-                    actions.push(Action::Redo);
-                }
-                ui.separator();
-                let mut language = self.language;
-                let language_label = ui.label(words.language);
-                let picked =
-                    egui::ComboBox::from_id_salt("language").selected_text(language.name()).show_ui(ui, |ui| {
-                        for option in [Language::English, Language::TraditionalChinese] {
-                            ui.selectable_value(&mut language, option, option.name());
-                        }
-                    });
-                picked.response.labelled_by(language_label.id);
-                if language != self.language {
-                    actions.push(Action::SetLanguage(language));
-                }
-                ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
-                    let stop = egui::Button::new(
-                        egui::RichText::new(format!("■ {}", words.stop))
-                            .strong()
-                            .size(18.0)
-                            .color(egui::Color32::WHITE),
-                    )
-                    .fill(egui::Color32::from_rgb(200, 30, 30));
-                    if ui.add(stop).on_hover_text("Esc").clicked() {
-                        actions.push(Action::Stop);
-                    }
-                    let (view, family_ui, _) = self.drawing(self.document.project.family);
-                    family_ui.toolbar(ui, &view, &mut actions);
-                });
-            });
-            let status = self.link_status();
-            let family = self.document.project.family;
-            let (ports, language) = (std::mem::take(&mut self.ports), self.language);
-            let mut bar = std::mem::take(&mut self.connection_bar);
-            let (view, family_ui, _) = self.drawing(family);
-            bar.ui(ui, (&status, &ports, language), &mut actions, |ui, actions| {
-                family_ui.connection_extras(ui, &view, actions);
-            });
-            (self.ports, self.connection_bar) = (ports, bar);
-            ui.horizontal(|ui| {
-                let family_ui = self.family_ui(family);
-                let mut tab = self.tab;
-                // Only the panels that apply to the document's family are offered.
-                for option in self.tabs(family) {
-                    let title = match option {
-                        Tab::Log => words.packet_log,
-                        Tab::Gamepad => words.gamepad,
-                        _ => family_ui.tab_title(option, words),
-                    };
-                    ui.selectable_value(&mut tab, option, title);
-                }
-                if tab != self.tab {
-                    actions.push(Action::ShowTab(tab));
-                }
-                if ![Tab::Log, Tab::Gamepad].contains(&self.tab) && family_ui.has_view(self.tab) {
-                    ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
-                        let mut open = family_ui.layout().view_open;
-                        if ui.checkbox(&mut open, family_ui.view_caption(words)).changed() {
-                            actions.push(Action::ShowView(open));
-                        }
-                    });
-                }
-            });
-        });
+        egui::Panel::top("toolbar").show(ui, |ui| self.toolbar(ui, &mut actions));
 
-        egui::Panel::bottom("status").show(ui, |ui| match &self.status {
-            Some(line) if line.is_error => {
-                ui.colored_label(ui.visuals().error_fg_color, &line.text);
-            }
-            Some(line) => {
-                ui.label(&line.text);
-            }
-            None => {
-                ui.label("");
-            }
-        });
+        egui::Panel::bottom("status").show(ui, |ui| self.status_line(ui));
 
         let family = self.document.project.family;
         actions.extend(self.family_ui(family).while_showing(self.tab));
