@@ -84,104 +84,8 @@ impl ConnectionBar {
             self.baud = line_settings(status.family).baud;
         }
         ui.horizontal_wrapped(|ui| {
-            ui.add_enabled_ui(!status.busy, |ui| {
-                let family_label = ui.label(words.family);
-                // `None` is Auto: the board is asked which family it is when Connect is pressed.
-                let mut family = (!self.auto).then_some(status.family);
-                let shown = match family {
-                    Some(family) => language.family(family).to_string(),
-                    None => format!("{} · {}", words.auto_family, language.family(status.family)),
-                };
-                let picked = egui::ComboBox::from_id_salt("family-picker").selected_text(shown).show_ui(ui, |ui| {
-                    ui.selectable_value(&mut family, None, words.auto_family);
-                    for option in Family::ALL {
-                        ui.selectable_value(&mut family, Some(option), language.family(option));
-                    }
-                });
-                picked.response.labelled_by(family_label.id);
-                self.auto = family.is_none();
-                if let Some(family) = family.filter(|family| *family != status.family) {
-                    actions.push(Action::SetFamily(family));
-                }
-                extras(ui, actions);
-                let port_label = ui.label(words.port);
-                // While connected the field shows what the link is to (the demo board
-                // has no port), not what was last typed.
-                let mut shown = status.label.clone().or_else(|| status.connecting.clone());
-                let field = shown.as_mut().unwrap_or(&mut self.port);
-                ui.add(
-                    egui::TextEdit::singleline(field)
-                        .hint_text("/dev/ttyUSB0, COM3, tcp://host:port")
-                        .desired_width(180.0),
-                )
-                .labelled_by(port_label.id);
-                let picked =
-                    egui::ComboBox::from_id_salt("port-picker").selected_text("").width(24.0).show_ui(ui, |ui| {
-                        for port in ports {
-                            ui.selectable_value(
-                                &mut self.port,
-                                port.name.clone(),
-                                format!("{} — {}", port.name, port.description),
-                            );
-                        }
-                        if ports.is_empty() {
-                            ui.label("—");
-                        } else if ui.button(words.find_every_board).clicked() {
-                            actions.push(Action::FindEveryBoard);
-                        }
-                    });
-                picked.response.labelled_by(port_label.id);
-                let baud_label = ui.label(words.baud);
-                let picked = egui::ComboBox::from_id_salt("baud-picker").selected_text(self.baud.to_string()).show_ui(
-                    ui,
-                    |ui| {
-                        for baud in BAUDS {
-                            ui.selectable_value(&mut self.baud, baud, baud.to_string());
-                        }
-                    },
-                );
-                picked.response.labelled_by(baud_label.id);
-            });
-            if status.connecting.is_some() {
-                ui.spinner();
-                if ui.button(words.cancel).clicked() {
-                    actions.push(Action::CancelConnect);
-                }
-            } else if status.label.is_some() {
-                if ui.button(words.disconnect).clicked() {
-                    actions.push(Action::Disconnect);
-                }
-            } else {
-                let unsupported = language.family_not_in_build(status.family);
-                let connect = ui
-                    .add_enabled(status.can_connect && !self.port.trim().is_empty(), egui::Button::new(words.connect))
-                    .on_disabled_hover_text(&unsupported);
-                if connect.clicked() {
-                    let port = self.port.trim().to_string();
-                    actions.push(if self.auto {
-                        Action::FindBoard { port, connect: true }
-                    } else {
-                        Action::Connect { port, baud: self.baud }
-                    });
-                }
-                let find =
-                    ui.add_enabled(!status.busy && !self.port.trim().is_empty(), egui::Button::new(words.find_board));
-                if find.clicked() {
-                    actions.push(Action::FindBoard { port: self.port.trim().to_string(), connect: false });
-                }
-                let demo = ui
-                    .add_enabled(status.can_connect, egui::Button::new(words.demo_board))
-                    .on_disabled_hover_text(&unsupported);
-                if demo.clicked() {
-                    actions.push(Action::ConnectDemo);
-                }
-                if status.reconnecting {
-                    ui.spinner();
-                    if ui.button(words.cancel).on_hover_text(words.msg_stop_waiting).clicked() {
-                        actions.push(Action::CancelConnect);
-                    }
-                }
-            }
+            ui.add_enabled_ui(!status.busy, |ui| self.pickers(ui, (status, ports, language), actions, extras));
+            self.buttons(ui, status, language, actions);
         });
         // Its own line, never wrapped: the controls above must not move when the status arrives.
         let text = status_text(status, language);
@@ -200,6 +104,106 @@ impl ConnectionBar {
                 }
                 ui.add(egui::Label::new(&doctor.text).truncate()).on_hover_text(&doctor.text);
             });
+        }
+    }
+    /// The family, the family's own pickers, the port and the line rate.
+    fn pickers(
+        &mut self,
+        ui: &mut egui::Ui,
+        (status, ports, language): (&LinkStatus, &[PortInfo], Language),
+        actions: &mut Vec<Action>,
+        extras: impl FnOnce(&mut egui::Ui, &mut Vec<Action>),
+    ) {
+        let words = language.strings();
+        let family_label = ui.label(words.family);
+        // `None` is Auto: the board is asked which family it is when Connect is pressed.
+        let mut family = (!self.auto).then_some(status.family);
+        let shown = match family {
+            Some(family) => language.family(family).to_string(),
+            None => format!("{} · {}", words.auto_family, language.family(status.family)),
+        };
+        let picked = egui::ComboBox::from_id_salt("family-picker").selected_text(shown).show_ui(ui, |ui| {
+            ui.selectable_value(&mut family, None, words.auto_family);
+            for option in Family::ALL {
+                ui.selectable_value(&mut family, Some(option), language.family(option));
+            }
+        });
+        picked.response.labelled_by(family_label.id);
+        self.auto = family.is_none();
+        if let Some(family) = family.filter(|family| *family != status.family) {
+            actions.push(Action::SetFamily(family));
+        }
+        extras(ui, actions);
+        let port_label = ui.label(words.port);
+        // While connected the field shows what the link is to (the demo board
+        // has no port), not what was last typed.
+        let mut shown = status.label.clone().or_else(|| status.connecting.clone());
+        let field = shown.as_mut().unwrap_or(&mut self.port);
+        ui.add(egui::TextEdit::singleline(field).hint_text("/dev/ttyUSB0, COM3, tcp://host:port").desired_width(180.0))
+            .labelled_by(port_label.id);
+        let picked = egui::ComboBox::from_id_salt("port-picker").selected_text("").width(24.0).show_ui(ui, |ui| {
+            for port in ports {
+                ui.selectable_value(&mut self.port, port.name.clone(), format!("{} — {}", port.name, port.description));
+            }
+            if ports.is_empty() {
+                ui.label("—");
+            } else if ui.button(words.find_every_board).clicked() {
+                actions.push(Action::FindEveryBoard);
+            }
+        });
+        picked.response.labelled_by(port_label.id);
+        let baud_label = ui.label(words.baud);
+        let picked =
+            egui::ComboBox::from_id_salt("baud-picker").selected_text(self.baud.to_string()).show_ui(ui, |ui| {
+                for baud in BAUDS {
+                    ui.selectable_value(&mut self.baud, baud, baud.to_string());
+                }
+            });
+        picked.response.labelled_by(baud_label.id);
+    }
+
+    /// Connect, Find board and Demo board; Cancel or Disconnect once started.
+    fn buttons(&mut self, ui: &mut egui::Ui, status: &LinkStatus, language: Language, actions: &mut Vec<Action>) {
+        let words = language.strings();
+        if status.connecting.is_some() {
+            ui.spinner();
+            if ui.button(words.cancel).clicked() {
+                actions.push(Action::CancelConnect);
+            }
+        } else if status.label.is_some() {
+            if ui.button(words.disconnect).clicked() {
+                actions.push(Action::Disconnect);
+            }
+        } else {
+            let unsupported = language.family_not_in_build(status.family);
+            let connect = ui
+                .add_enabled(status.can_connect && !self.port.trim().is_empty(), egui::Button::new(words.connect))
+                .on_disabled_hover_text(&unsupported);
+            if connect.clicked() {
+                let port = self.port.trim().to_string();
+                actions.push(if self.auto {
+                    Action::FindBoard { port, connect: true }
+                } else {
+                    Action::Connect { port, baud: self.baud }
+                });
+            }
+            let find =
+                ui.add_enabled(!status.busy && !self.port.trim().is_empty(), egui::Button::new(words.find_board));
+            if find.clicked() {
+                actions.push(Action::FindBoard { port: self.port.trim().to_string(), connect: false });
+            }
+            let demo = ui
+                .add_enabled(status.can_connect, egui::Button::new(words.demo_board))
+                .on_disabled_hover_text(&unsupported);
+            if demo.clicked() {
+                actions.push(Action::ConnectDemo);
+            }
+            if status.reconnecting {
+                ui.spinner();
+                if ui.button(words.cancel).on_hover_text(words.msg_stop_waiting).clicked() {
+                    actions.push(Action::CancelConnect);
+                }
+            }
         }
     }
 }

@@ -163,38 +163,8 @@ impl ActionPanel {
         words: &Strings,
         actions: &mut Vec<Action>,
     ) -> Option<f64> {
-        let mut seek = None;
         let action = &project.actions[index];
-        // Buttons wrap under the caption when the pane is narrow, never clipped.
-        ui.horizontal_wrapped(|ui| {
-            let label = ui.label(format!("{} {}", words.servo().action_word, action.id));
-            let mut caption = action.caption.clone();
-            if ui.text_edit_singleline(&mut caption).labelled_by(label.id).changed() {
-                actions.push(set(
-                    index,
-                    ProjectAction { caption, ..action.clone() },
-                    Some(format!("action {} caption", action.id)),
-                ));
-            }
-            if ui.add_enabled(connected, egui::Button::new(words.servo().play_on_board)).clicked() {
-                actions.push(Action::Servo(ServoAction::PlayAction(action.id)));
-            }
-            if ui.button(words.preview).clicked() {
-                actions.push(Action::Servo(ServoAction::PreviewAction(action.id)));
-            }
-            let twins = action.steps.iter().any(|step| project.twin(step.servo_id).is_some());
-            if ui
-                .add_enabled(twins, egui::Button::new(words.servo().mirror))
-                .on_hover_text(words.servo().mirror_hint)
-                .clicked()
-            {
-                let steps = project.mirrored(&action.steps);
-                actions.push(set(index, ProjectAction { steps, ..action.clone() }, None));
-            }
-            if ui.button(words.remove).clicked() {
-                actions.push(Action::Edit { edit: Edit::RemoveAction { index }, coalesce: None });
-            }
-        });
+        header(ui, project, index, connected, words, actions);
         ui.horizontal_wrapped(|ui| {
             // Every step: they all start together, so the action keeps its shape.
             #[allow(clippy::cast_precision_loss)]
@@ -208,87 +178,7 @@ impl ActionPanel {
         for problem in &derived.action_problems {
             ui.colored_label(ui.visuals().warn_fg_color, words.lang.problem(&problem.kind));
         }
-        let headings = words.headings();
-        let heading =
-            [headings.step, words.servo().servo_word, headings.angle, headings.interval, words.servo().curve, "", ""];
-        // The steps fill the pane but for the "Add step" row under them.
-        let height = ui.available_height() - rows::widget_row_height(ui) - 2.0 * ui.spacing().item_spacing.y;
-        rows::table(ui, "steps", &heading, action.steps.len(), height, |row, position| {
-            let step = &action.steps[position];
-            let with = |changed: Step, key: Option<String>| {
-                let mut action = action.clone();
-                action.steps[position] = changed;
-                set(index, action, key)
-            };
-            let mut row_id = egui::Id::NULL;
-            row.col(|ui| {
-                // The step's number: a click shows in the preview where its servo arrives.
-                let number = ui.add(egui::Button::new(format!("{}", position + 1)).frame(false));
-                row_id = number.id;
-                if number.on_hover_text(words.servo().step_seek_hint).clicked() {
-                    seek = Some(f64::from(step.interval_10ms.max(0)) * 10.0);
-                }
-            });
-            row.col(|ui| {
-                let servo_text = project
-                    .servo(step.servo_id)
-                    .map_or_else(|| format!("{} ?", step.servo_id), |s| format!("{} {}", s.id, s.caption));
-                let mut servo_id = step.servo_id;
-                let servos = &project.servos;
-                // A long caption is cut (its whole text is in the list) so the row fits a narrow pane.
-                ui.set_max_width(150.0);
-                ui.style_mut().wrap_mode = Some(egui::TextWrapMode::Truncate);
-                rows::combo(ui, ("step-servo", position), servo_text, &mut servo_id, servos.len(), |i| {
-                    (servos[i].id, format!("{} {}", servos[i].id, servos[i].caption))
-                })
-                .labelled_by(row_id);
-                if servo_id != step.servo_id {
-                    actions.push(with(Step { servo_id, ..*step }, None));
-                }
-            });
-            row.col(|ui| {
-                let (low, high) = project.servo(step.servo_id).map_or((i16::MIN, i16::MAX), |s| (s.min_deg, s.max_deg));
-                let mut degree = step.degree;
-                let drag =
-                    egui::DragValue::new(&mut degree).clamp_existing_to_range(false).range(low..=high).suffix("°");
-                if ui.add(drag).labelled_by(row_id).changed() {
-                    let key = format!("action {} step {position} degree", action.id);
-                    actions.push(with(Step { degree, ..*step }, Some(key)));
-                }
-            });
-            row.col(|ui| {
-                let mut interval = step.interval_10ms;
-                let drag = egui::DragValue::new(&mut interval)
-                    .clamp_existing_to_range(false)
-                    .range(0..=i16::MAX)
-                    .suffix(" × 10 ms");
-                if ui.add(drag).labelled_by(row_id).changed() {
-                    let key = format!("action {} step {position} interval", action.id);
-                    actions.push(with(Step { interval_10ms: interval, ..*step }, Some(key)));
-                }
-            });
-            row.col(|ui| {
-                let mut easing = step.easing;
-                let captions = words.servo();
-                rows::curve(ui, ("step-curve", position), &mut easing, captions.curves, captions.curve_hint)
-                    .labelled_by(row_id);
-                if easing != step.easing {
-                    actions.push(with(Step { easing, ..*step }, None));
-                }
-            });
-            row.col(|ui| {
-                if let Some(asked) = rows::reorder_buttons(ui, position, action.steps.len(), words.remove) {
-                    let mut changed = action.clone();
-                    asked.apply(&mut changed.steps, position);
-                    actions.push(set(index, changed, None));
-                }
-            });
-            row.col(|ui| {
-                if let Some(problem) = derived.step_problems.get(&(position + 1)) {
-                    ui.colored_label(ui.visuals().error_fg_color, words.lang.problem(&problem.kind));
-                }
-            });
-        });
+        let seek = steps_table(ui, project, index, derived, words, actions);
         let unused = project.servos.iter().find(|servo| action.steps.iter().all(|step| step.servo_id != servo.id));
         if ui.add_enabled(unused.is_some(), egui::Button::new(words.servo().add_step)).clicked()
             && let Some(servo) = unused
@@ -299,6 +189,165 @@ impl ActionPanel {
         }
         seek
     }
+}
+
+/// An action's caption and its buttons: play on the board, preview, mirror, remove.
+fn header(
+    ui: &mut egui::Ui,
+    project: &ServoProject,
+    index: usize,
+    connected: bool,
+    words: &Strings,
+    actions: &mut Vec<Action>,
+) {
+    let action = &project.actions[index];
+    // Buttons wrap under the caption when the pane is narrow, never clipped.
+    ui.horizontal_wrapped(|ui| {
+        let label = ui.label(format!("{} {}", words.servo().action_word, action.id));
+        let mut caption = action.caption.clone();
+        if ui.text_edit_singleline(&mut caption).labelled_by(label.id).changed() {
+            actions.push(set(
+                index,
+                ProjectAction { caption, ..action.clone() },
+                Some(format!("action {} caption", action.id)),
+            ));
+        }
+        if ui.add_enabled(connected, egui::Button::new(words.servo().play_on_board)).clicked() {
+            actions.push(Action::Servo(ServoAction::PlayAction(action.id)));
+        }
+        if ui.button(words.preview).clicked() {
+            actions.push(Action::Servo(ServoAction::PreviewAction(action.id)));
+        }
+        let twins = action.steps.iter().any(|step| project.twin(step.servo_id).is_some());
+        if ui
+            .add_enabled(twins, egui::Button::new(words.servo().mirror))
+            .on_hover_text(words.servo().mirror_hint)
+            .clicked()
+        {
+            let steps = project.mirrored(&action.steps);
+            actions.push(set(index, ProjectAction { steps, ..action.clone() }, None));
+        }
+        if ui.button(words.remove).clicked() {
+            actions.push(Action::Edit { edit: Edit::RemoveAction { index }, coalesce: None });
+        }
+    });
+}
+
+/// An action's steps as a table (servo, angle, interval, curve, order, problem);
+/// a click on a step's number asks the preview to seek to where it arrives.
+fn steps_table(
+    ui: &mut egui::Ui,
+    project: &ServoProject,
+    index: usize,
+    derived: &Facts,
+    words: &Strings,
+    actions: &mut Vec<Action>,
+) -> Option<f64> {
+    let mut seek = None;
+    let action = &project.actions[index];
+    let headings = words.headings();
+    let heading =
+        [headings.step, words.servo().servo_word, headings.angle, headings.interval, words.servo().curve, "", ""];
+    // The steps fill the pane but for the "Add step" row under them.
+    let height = ui.available_height() - rows::widget_row_height(ui) - 2.0 * ui.spacing().item_spacing.y;
+    rows::table(ui, "steps", &heading, action.steps.len(), height, |row, position| {
+        step_row(row, position, (project, index, derived), words, actions, &mut seek);
+    });
+    seek
+}
+
+/// One step's row: its number (a click seeks the preview), servo, angle,
+/// interval, curve, order buttons and problem.
+fn step_row(
+    row: &mut egui_extras::TableRow<'_, '_>,
+    position: usize,
+    (project, index, derived): (&ServoProject, usize, &Facts),
+    words: &Strings,
+    actions: &mut Vec<Action>,
+    seek: &mut Option<f64>,
+) {
+    let action = &project.actions[index];
+    let step = &action.steps[position];
+    let with = |changed: Step, key: Option<String>| {
+        let mut action = action.clone();
+        action.steps[position] = changed;
+        set(index, action, key)
+    };
+    let mut row_id = egui::Id::NULL;
+    row.col(|ui| {
+        // The step's number: a click shows in the preview where its servo arrives.
+        let number = ui.add(egui::Button::new(format!("{}", position + 1)).frame(false));
+        row_id = number.id;
+        if number.on_hover_text(words.servo().step_seek_hint).clicked() {
+            *seek = Some(f64::from(step.interval_10ms.max(0)) * 10.0);
+        }
+    });
+    row.col(|ui| {
+        if let Some(servo_id) = servo_cell(ui, project, (step, position), row_id) {
+            actions.push(with(Step { servo_id, ..*step }, None));
+        }
+    });
+    row.col(|ui| {
+        let (low, high) = project.servo(step.servo_id).map_or((i16::MIN, i16::MAX), |s| (s.min_deg, s.max_deg));
+        let mut degree = step.degree;
+        let drag = egui::DragValue::new(&mut degree).clamp_existing_to_range(false).range(low..=high).suffix("°");
+        if ui.add(drag).labelled_by(row_id).changed() {
+            let key = format!("action {} step {position} degree", action.id);
+            actions.push(with(Step { degree, ..*step }, Some(key)));
+        }
+    });
+    row.col(|ui| {
+        let mut interval = step.interval_10ms;
+        let drag =
+            egui::DragValue::new(&mut interval).clamp_existing_to_range(false).range(0..=i16::MAX).suffix(" × 10 ms");
+        if ui.add(drag).labelled_by(row_id).changed() {
+            let key = format!("action {} step {position} interval", action.id);
+            actions.push(with(Step { interval_10ms: interval, ..*step }, Some(key)));
+        }
+    });
+    row.col(|ui| {
+        let mut easing = step.easing;
+        let captions = words.servo();
+        rows::curve(ui, ("step-curve", position), &mut easing, captions.curves, captions.curve_hint)
+            .labelled_by(row_id);
+        if easing != step.easing {
+            actions.push(with(Step { easing, ..*step }, None));
+        }
+    });
+    row.col(|ui| {
+        if let Some(asked) = rows::reorder_buttons(ui, position, action.steps.len(), words.remove) {
+            let mut changed = action.clone();
+            asked.apply(&mut changed.steps, position);
+            actions.push(set(index, changed, None));
+        }
+    });
+    row.col(|ui| {
+        if let Some(problem) = derived.step_problems.get(&(position + 1)) {
+            ui.colored_label(ui.visuals().error_fg_color, words.lang.problem(&problem.kind));
+        }
+    });
+}
+
+/// A step's servo, picked from the project's (its caption cut to fit); the one picked when it changes.
+fn servo_cell(
+    ui: &mut egui::Ui,
+    project: &ServoProject,
+    (step, position): (&Step, usize),
+    row_id: egui::Id,
+) -> Option<u8> {
+    let servo_text = project
+        .servo(step.servo_id)
+        .map_or_else(|| format!("{} ?", step.servo_id), |s| format!("{} {}", s.id, s.caption));
+    let mut servo_id = step.servo_id;
+    let servos = &project.servos;
+    // A long caption is cut (its whole text is in the list) so the row fits a narrow pane.
+    ui.set_max_width(150.0);
+    ui.style_mut().wrap_mode = Some(egui::TextWrapMode::Truncate);
+    rows::combo(ui, ("step-servo", position), servo_text, &mut servo_id, servos.len(), |i| {
+        (servos[i].id, format!("{} {}", servos[i].id, servos[i].caption))
+    })
+    .labelled_by(row_id);
+    (servo_id != step.servo_id).then_some(servo_id)
 }
 
 /// What the project's curves cost on the board: its steps (those for curves)

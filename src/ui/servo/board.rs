@@ -78,107 +78,133 @@ pub fn ui(ui: &mut egui::Ui, view: &BoardView<'_>, language: Language, actions: 
     }
 
     if let Some(operation) = view.operation {
-        ui.separator();
-        let what = match operation.kind {
-            ServoKind::Compare => words.servo().reading_to_compare,
-            ServoKind::Upload { .. } => words.servo().uploading,
-        };
-        ui.label(what);
-        if let Some(progress) = &operation.progress {
-            let item = language.item(&progress.item);
-            ui.add(
-                egui::ProgressBar::new(operation.fraction())
-                    .show_percentage()
-                    .text(format!("{}/{} {item}", progress.done, progress.total)),
-            );
-        }
-        if ui.button(words.cancel).clicked() {
-            actions.push(Action::CancelOperation);
-        }
+        running(ui, operation, language, actions);
     }
-
     if let Some(pending) = view.pending {
-        ui.separator();
-        let differences = difference_lines(pending, language);
-        if differences.is_empty() {
-            ui.label(words.servo().already_identical);
-        } else {
-            ui.label(format!("{} {}", differences.len(), words.differences));
-            let row_height = ui.text_style_height(&egui::TextStyle::Monospace);
-            let height = (ui.available_height() * 0.5).max(row_height * 4.0);
-            rows::list(ui, "differences", row_height, differences.len(), height, |ui, index| {
-                ui.monospace(&differences[index]);
-            });
-        }
-        ui.horizontal(|ui| {
-            let confirm = match &pending.intent {
-                BoardIntent::Upload | BoardIntent::UploadAnyway => words.servo().confirm_upload,
-                BoardIntent::ReadIntoProject => words.confirm_read,
-                BoardIntent::ExportToFile(_) => words.servo().confirm_export,
-            };
-            if ui.button(confirm).clicked() {
-                actions.push(Action::Servo(ServoAction::BoardConfirm));
-            }
-            if ui.button(words.cancel).clicked() {
-                actions.push(Action::Servo(ServoAction::BoardDismiss));
-            }
+        confirming(ui, pending, language, actions);
+    }
+    if let Some(result) = view.result {
+        outcome(ui, result, (view.connected && idle, language), actions);
+    }
+}
+
+/// The running operation: what it does, how far it is, Cancel.
+fn running(
+    ui: &mut egui::Ui,
+    operation: &super::operations::ServoOperation,
+    language: Language,
+    actions: &mut Vec<Action>,
+) {
+    let words = language.strings();
+    ui.separator();
+    let what = match operation.kind {
+        ServoKind::Compare => words.servo().reading_to_compare,
+        ServoKind::Upload { .. } => words.servo().uploading,
+    };
+    ui.label(what);
+    if let Some(progress) = &operation.progress {
+        let item = language.item(&progress.item);
+        ui.add(
+            egui::ProgressBar::new(operation.fraction())
+                .show_percentage()
+                .text(format!("{}/{} {item}", progress.done, progress.total)),
+        );
+    }
+    if ui.button(words.cancel).clicked() {
+        actions.push(Action::CancelOperation);
+    }
+}
+
+/// A comparison waiting for confirmation: its differences, Confirm and Cancel.
+fn confirming(ui: &mut egui::Ui, pending: &PendingConfirm, language: Language, actions: &mut Vec<Action>) {
+    let words = language.strings();
+    ui.separator();
+    let differences = difference_lines(pending, language);
+    if differences.is_empty() {
+        ui.label(words.servo().already_identical);
+    } else {
+        ui.label(format!("{} {}", differences.len(), words.differences));
+        let row_height = ui.text_style_height(&egui::TextStyle::Monospace);
+        let height = (ui.available_height() * 0.5).max(row_height * 4.0);
+        rows::list(ui, "differences", row_height, differences.len(), height, |ui, index| {
+            ui.monospace(&differences[index]);
         });
     }
-
-    if let Some(result) = view.result {
-        ui.separator();
-        if let Some(error) = result.error_text(language) {
-            ui.colored_label(ui.visuals().error_fg_color, error);
-        }
-        let items: &[Item] = match result {
-            BoardResult::Uploaded { items, backup, curves } => {
-                ui.label(format!("{} {}", words.uploaded_items, items.len()));
-                if let Some(backup) = backup {
-                    ui.label(format!("{} {}", words.backup_at, backup.display()));
-                }
-                if let Some(curves) = curves {
-                    let captions = words.servo();
-                    let deviation = f64::from(curves.max_error_tenths) / 10.0;
-                    ui.label(format!("{} {deviation:.1}°", captions.curves_stored));
-                    if curves.widened() {
-                        let tolerance = f64::from(curves.tolerance_tenths) / 10.0;
-                        ui.colored_label(
-                            ui.visuals().warn_fg_color,
-                            format!("{} → {tolerance:.1}°", captions.tolerance_widened),
-                        );
-                    }
-                }
-                items.as_slice()
-            }
-            BoardResult::Invalid { .. } => {
-                let anyway = ui.add_enabled(view.connected && idle, egui::Button::new(words.servo().upload_anyway));
-                if anyway.on_hover_text(words.servo().upload_anyway_hint).clicked() {
-                    actions.push(Action::Servo(ServoAction::BoardCompare(BoardIntent::UploadAnyway)));
-                }
-                &[]
-            }
-            BoardResult::Failed { items, .. } => items.as_slice(),
-            BoardResult::ReadIntoProject => {
-                ui.label(words.read_done);
-                &[]
-            }
-            BoardResult::Exported(path) => {
-                ui.label(format!("{} {}", words.saved_board_to, path.display()));
-                &[]
-            }
-            BoardResult::ExportFailed(_) => &[],
-            BoardResult::Cancelled => {
-                ui.label(words.cancelled);
-                &[]
-            }
+    ui.horizontal(|ui| {
+        let confirm = match &pending.intent {
+            BoardIntent::Upload | BoardIntent::UploadAnyway => words.servo().confirm_upload,
+            BoardIntent::ReadIntoProject => words.confirm_read,
+            BoardIntent::ExportToFile(_) => words.servo().confirm_export,
         };
-        if !items.is_empty() {
-            // The rest of the panel's height: the list fills it.
-            let row_height = ui.text_style_height(&egui::TextStyle::Body);
-            rows::list(ui, "items", row_height, items.len(), ui.available_height(), |ui, index| {
-                ui.label(format!("√ {}", language.item(&items[index])));
-            });
+        if ui.button(confirm).clicked() {
+            actions.push(Action::Servo(ServoAction::BoardConfirm));
         }
+        if ui.button(words.cancel).clicked() {
+            actions.push(Action::Servo(ServoAction::BoardDismiss));
+        }
+    });
+}
+
+/// The last outcome: what was done or went wrong, and the items it went through.
+fn outcome(
+    ui: &mut egui::Ui,
+    result: &BoardResult,
+    (can_upload, language): (bool, Language),
+    actions: &mut Vec<Action>,
+) {
+    let words = language.strings();
+    ui.separator();
+    if let Some(error) = result.error_text(language) {
+        ui.colored_label(ui.visuals().error_fg_color, error);
+    }
+    let items: &[Item] = match result {
+        BoardResult::Uploaded { items, backup, curves } => {
+            ui.label(format!("{} {}", words.uploaded_items, items.len()));
+            if let Some(backup) = backup {
+                ui.label(format!("{} {}", words.backup_at, backup.display()));
+            }
+            if let Some(curves) = curves {
+                let captions = words.servo();
+                let deviation = f64::from(curves.max_error_tenths) / 10.0;
+                ui.label(format!("{} {deviation:.1}°", captions.curves_stored));
+                if curves.widened() {
+                    let tolerance = f64::from(curves.tolerance_tenths) / 10.0;
+                    ui.colored_label(
+                        ui.visuals().warn_fg_color,
+                        format!("{} → {tolerance:.1}°", captions.tolerance_widened),
+                    );
+                }
+            }
+            items.as_slice()
+        }
+        BoardResult::Invalid { .. } => {
+            let anyway = ui.add_enabled(can_upload, egui::Button::new(words.servo().upload_anyway));
+            if anyway.on_hover_text(words.servo().upload_anyway_hint).clicked() {
+                actions.push(Action::Servo(ServoAction::BoardCompare(BoardIntent::UploadAnyway)));
+            }
+            &[]
+        }
+        BoardResult::Failed { items, .. } => items.as_slice(),
+        BoardResult::ReadIntoProject => {
+            ui.label(words.read_done);
+            &[]
+        }
+        BoardResult::Exported(path) => {
+            ui.label(format!("{} {}", words.saved_board_to, path.display()));
+            &[]
+        }
+        BoardResult::ExportFailed(_) => &[],
+        BoardResult::Cancelled => {
+            ui.label(words.cancelled);
+            &[]
+        }
+    };
+    if !items.is_empty() {
+        // The rest of the panel's height: the list fills it.
+        let row_height = ui.text_style_height(&egui::TextStyle::Body);
+        rows::list(ui, "items", row_height, items.len(), ui.available_height(), |ui, index| {
+            ui.label(format!("√ {}", language.item(&items[index])));
+        });
     }
 }
 
