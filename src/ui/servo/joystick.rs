@@ -105,6 +105,32 @@ impl JoystickPanel {
     ) {
         let project = view.project;
         let table = &project.joystick_tables[index];
+        Self::table_header(ui, view, index, words, actions);
+        let heading = [
+            words.button,
+            words.caption,
+            words.servo().on_press,
+            words.servo().on_long_press,
+            words.servo().on_release,
+            words.uninterruptible,
+            "",
+        ];
+        let height = ui.available_height();
+        rows::table(ui, "buttons", &heading, table.buttons.len(), height, |row, position| {
+            Self::button_row(row, position, view, index, words, actions);
+        });
+    }
+
+    /// The table's caption, Active and Remove; Pick a button and Add button.
+    fn table_header(
+        ui: &mut egui::Ui,
+        view: &JoystickView<'_>,
+        index: usize,
+        words: &Strings,
+        actions: &mut Vec<Action>,
+    ) {
+        let project = view.project;
+        let table = &project.joystick_tables[index];
         let set = |table: JoystickTable, key: Option<String>| Action::Edit {
             edit: Edit::SetTable { index, table },
             coalesce: key,
@@ -144,84 +170,97 @@ impl JoystickPanel {
                 actions.push(set(more, None));
             }
         });
-        let macro_text = |id: Option<i32>| match id {
-            None => "—".to_string(),
-            Some(id) => {
-                project.macro_by_id(id).map_or_else(|| format!("{id} ?"), |m| format!("{} {}", m.id, m.caption))
-            }
+    }
+
+    /// One button's row: its id, caption, the three macros it runs, uninterruptible, remove.
+    fn button_row(
+        row: &mut egui_extras::TableRow<'_, '_>,
+        position: usize,
+        view: &JoystickView<'_>,
+        index: usize,
+        words: &Strings,
+        actions: &mut Vec<Action>,
+    ) {
+        let project = view.project;
+        let table = &project.joystick_tables[index];
+        let set = |table: JoystickTable, key: Option<String>| Action::Edit {
+            edit: Edit::SetTable { index, table },
+            coalesce: key,
         };
-        let heading = [
-            words.button,
-            words.caption,
-            words.servo().on_press,
-            words.servo().on_long_press,
-            words.servo().on_release,
-            words.uninterruptible,
-            "",
-        ];
-        let height = ui.available_height();
-        rows::table(ui, "buttons", &heading, table.buttons.len(), height, |row, position| {
-            let button = &table.buttons[position];
-            let with = |changed: Button, key: Option<String>| {
-                let mut table = table.clone();
-                table.buttons[position] = changed;
-                set(table, key)
+        let button = &table.buttons[position];
+        let with = |changed: Button, key: Option<String>| {
+            let mut table = table.clone();
+            table.buttons[position] = changed;
+            set(table, key)
+        };
+        let mut row_id = egui::Id::NULL;
+        row.col(|ui| {
+            let id_text = format!("0x{:08x}", button.id);
+            let label = if view.picked == Some(button.id) {
+                ui.label(egui::RichText::new(format!("→ {id_text}")).strong())
+            } else {
+                ui.monospace(id_text)
             };
-            let mut row_id = egui::Id::NULL;
-            row.col(|ui| {
-                let id_text = format!("0x{:08x}", button.id);
-                let label = if view.picked == Some(button.id) {
-                    ui.label(egui::RichText::new(format!("→ {id_text}")).strong())
-                } else {
-                    ui.monospace(id_text)
-                };
-                row_id = label.id;
-            });
-            row.col(|ui| {
-                let mut caption = button.caption.clone();
-                if ui.add(egui::TextEdit::singleline(&mut caption).desired_width(140.0)).labelled_by(row_id).changed() {
-                    actions.push(with(
-                        Button { caption, ..button.clone() },
-                        Some(format!("table {} button {} caption", table.id, button.id)),
-                    ));
-                }
-            });
-            for (slot, current) in [(0, button.press_macro), (1, button.long_press_macro), (2, button.release_macro)] {
-                row.col(|ui| {
-                    let mut chosen = current;
-                    let all = &project.macros;
-                    // "—" (none) first, then every macro.
-                    rows::combo(ui, ("macro", position, slot), macro_text(current), &mut chosen, all.len() + 1, |i| {
-                        match i.checked_sub(1).and_then(|i| all.get(i)) {
-                            Some(item) => (Some(item.id), format!("{} {}", item.id, item.caption)),
-                            None => (None, "—".to_string()),
-                        }
-                    })
-                    .labelled_by(row_id);
-                    if chosen != current {
-                        let mut changed = button.clone();
-                        match slot {
-                            0 => changed.press_macro = chosen,
-                            1 => changed.long_press_macro = chosen,
-                            _ => changed.release_macro = chosen,
-                        }
-                        actions.push(with(changed, None));
-                    }
-                });
+            row_id = label.id;
+        });
+        row.col(|ui| {
+            let mut caption = button.caption.clone();
+            if ui.add(egui::TextEdit::singleline(&mut caption).desired_width(140.0)).labelled_by(row_id).changed() {
+                actions.push(with(
+                    Button { caption, ..button.clone() },
+                    Some(format!("table {} button {} caption", table.id, button.id)),
+                ));
             }
+        });
+        for (slot, current) in [(0, button.press_macro), (1, button.long_press_macro), (2, button.release_macro)] {
             row.col(|ui| {
-                let mut uninterruptible = button.uninterruptible;
-                if ui.checkbox(&mut uninterruptible, "").labelled_by(row_id).changed() {
-                    actions.push(with(Button { uninterruptible, ..button.clone() }, None));
+                if let Some(chosen) = macro_cell(ui, project, (position, slot, current), row_id) {
+                    let mut changed = button.clone();
+                    match slot {
+                        0 => changed.press_macro = chosen,
+                        1 => changed.long_press_macro = chosen,
+                        _ => changed.release_macro = chosen,
+                    }
+                    actions.push(with(changed, None));
                 }
             });
-            row.col(|ui| {
-                if ui.button("×").on_hover_text(words.remove).clicked() {
-                    let mut fewer = table.clone();
-                    fewer.buttons.remove(position);
-                    actions.push(set(fewer, None));
-                }
-            });
+        }
+        row.col(|ui| {
+            let mut uninterruptible = button.uninterruptible;
+            if ui.checkbox(&mut uninterruptible, "").labelled_by(row_id).changed() {
+                actions.push(with(Button { uninterruptible, ..button.clone() }, None));
+            }
+        });
+        row.col(|ui| {
+            if ui.button("×").on_hover_text(words.remove).clicked() {
+                let mut fewer = table.clone();
+                fewer.buttons.remove(position);
+                actions.push(set(fewer, None));
+            }
         });
     }
+}
+
+/// A button's macro for one of its events ("—" for none, then every macro); the one picked when it changes.
+fn macro_cell(
+    ui: &mut egui::Ui,
+    project: &ServoProject,
+    (position, slot, current): (usize, usize, Option<i32>),
+    row_id: egui::Id,
+) -> Option<Option<i32>> {
+    let macro_text = |id: Option<i32>| match id {
+        None => "—".to_string(),
+        Some(id) => project.macro_by_id(id).map_or_else(|| format!("{id} ?"), |m| format!("{} {}", m.id, m.caption)),
+    };
+    let mut chosen = current;
+    let all = &project.macros;
+    // "—" (none) first, then every macro.
+    rows::combo(ui, ("macro", position, slot), macro_text(current), &mut chosen, all.len() + 1, |i| {
+        match i.checked_sub(1).and_then(|i| all.get(i)) {
+            Some(item) => (Some(item.id), format!("{} {}", item.id, item.caption)),
+            None => (None, "—".to_string()),
+        }
+    })
+    .labelled_by(row_id);
+    (chosen != current).then_some(chosen)
 }
