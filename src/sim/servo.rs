@@ -240,9 +240,24 @@ impl ServoSim {
     }
 
     fn handle_message(&mut self, now: Instant, message: Message) {
+        // Each group answers the messages it knows: `Some(response)` (a response or none), else `None`.
+        let response = self
+            .board_answer(now, &message)
+            .or_else(|| self.store_answer(now, &message))
+            .or_else(|| self.remote_answer(&message))
+            // Test data and anything a board would not answer: discarded.
+            .flatten();
+        if let Some(response) = response {
+            self.respond(now, &response);
+        }
+        self.events.push_back(SimEvent::Handled(message));
+    }
+
+    /// The line, memory, power, the servos and live moves (1xxxx, 20xxx).
+    fn board_answer(&mut self, now: Instant, message: &Message) -> Option<Option<Message>> {
         use Message as M;
         let image = &mut self.image;
-        let response = match &message {
+        Some(match message {
             M::TransmissionModeSettingRequest { mode } => {
                 self.mode = *mode;
                 Some(M::TransmissionModeSettingResponse { mode: self.mode })
@@ -308,6 +323,15 @@ impl ServoSim {
                 }
                 None
             }
+            _ => return None,
+        })
+    }
+
+    /// Actions, macros, servo parameters and the project id (30xxx).
+    fn store_answer(&mut self, now: Instant, message: &Message) -> Option<Option<Message>> {
+        use Message as M;
+        let image = &mut self.image;
+        Some(match message {
             M::QueryActionListRequest => Some(M::QueryActionListResponse {
                 actions: image
                     .actions
@@ -361,6 +385,15 @@ impl ServoSim {
                 Some(M::WriteProjectIdResponse { ok: true })
             }
             M::QueryProjectIdRequest => Some(M::QueryProjectIdResponse { project_id: image.project_id }),
+            _ => return None,
+        })
+    }
+
+    /// Joystick tables and button events (40xxx).
+    fn remote_answer(&mut self, message: &Message) -> Option<Option<Message>> {
+        use Message as M;
+        let image = &mut self.image;
+        Some(match message {
             M::QueryJoystickTableListRequest => Some(M::QueryJoystickTableListResponse {
                 tables: image.tables.iter().map(|t| ListEntry { id: t.table_id, caption: t.caption.clone() }).collect(),
             }),
@@ -396,13 +429,8 @@ impl ServoSim {
                 self.subscribed = *subscribe;
                 Some(M::SubscribeButtonEventResponse { ok: true })
             }
-            // Test data and anything a board would not answer: discarded.
-            _ => None,
-        };
-        if let Some(response) = response {
-            self.respond(now, &response);
-        }
-        self.events.push_back(SimEvent::Handled(message));
+            _ => return None,
+        })
     }
 
     fn refused(&self, id: i32) -> bool {
