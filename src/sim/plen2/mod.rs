@@ -293,6 +293,23 @@ impl Plen2Sim {
     }
 
     fn execute(&mut self, at: Instant, command: &Command) -> Option<Duration> {
+        match command {
+            Command::SetHome { .. }
+            | Command::SetMax { .. }
+            | Command::SetMin { .. }
+            | Command::ResetJoints
+            | Command::Header(_)
+            | Command::Frame(_) => self.store(command),
+            Command::GetVersion | Command::GetJointSettings | Command::GetMotion { .. } => self.answer(at, command),
+            _ => {
+                self.drive(at, command);
+                None
+            }
+        }
+    }
+
+    /// Live angles, home, playing and the queue: no EEPROM time.
+    fn drive(&mut self, at: Instant, command: &Command) {
         let device_ok = |device: u8| usize::from(device) < DEVICE_IDS;
         match command {
             Command::SetAngle { device, angle } if device_ok(*device) => {
@@ -323,6 +340,14 @@ impl Plen2Sim {
                 self.player.halt();
                 self.next_tick = None;
             }
+            _ => {}
+        }
+    }
+
+    /// Joint settings and motions written to EEPROM: how long the write keeps the firmware busy.
+    fn store(&mut self, command: &Command) -> Option<Duration> {
+        let device_ok = |device: u8| usize::from(device) < DEVICE_IDS;
+        match command {
             // plen2.md §3: what the firmware refuses is not stored (and takes no EEPROM time).
             Command::SetHome { device, angle } if device_ok(*device) => {
                 let joint = &mut self.joints[usize::from(*device)];
@@ -366,6 +391,14 @@ impl Plen2Sim {
                 }
                 return Some(self.timing.frame_write);
             }
+            _ => {}
+        }
+        None
+    }
+
+    /// The getters' replies, printed as the line takes them.
+    fn answer(&mut self, at: Instant, command: &Command) -> Option<Duration> {
+        match command {
             Command::GetVersion => {
                 return self.reply(at, b"{\r\n\t\"device\": \"PLEN2\",\r\n\t\"codename\": \"Cytisus\",\r\n\t\"version\": \"1.4.2\"\r\n}\r\n");
             }
