@@ -78,28 +78,7 @@ impl DrivePanel {
             // Nothing to drive: forget what was asked, so a new link starts at rest.
             self.asked = (0.0, 0.0);
         }
-        ui.horizontal(|ui| {
-            ui.heading(words.drive);
-            let stop = egui::Button::new(
-                egui::RichText::new(format!("■ {}", words.stop)).strong().size(22.0).color(egui::Color32::WHITE),
-            )
-            .fill(egui::Color32::from_rgb(200, 30, 30))
-            .min_size(egui::vec2(140.0, 40.0));
-            if ui.add(stop).on_hover_text("Space / Esc").clicked() {
-                self.asked = (0.0, 0.0);
-                actions.push(Action::Stop);
-            }
-            let braked = view.brake.unwrap_or(true);
-            let brake = ui.add_enabled(view.connected, egui::Button::new(words.brake).selected(braked));
-            if brake.clicked() {
-                self.asked = (0.0, 0.0);
-                actions.push(Action::Rflex(RflexAction::SetBrake(!braked)));
-            }
-            if ui.add_enabled(view.connected, egui::Button::new(words.rflex().sonar).selected(view.sonar_on)).clicked()
-            {
-                actions.push(Action::Rflex(RflexAction::SetSonar(!view.sonar_on)));
-            }
-        });
+        ui.horizontal(|ui| self.buttons(ui, view, words, actions));
         ui.label(words.rflex().pad_hint);
         ui.horizontal_top(|ui| {
             let (rect, response) = ui.allocate_exact_size(egui::vec2(PAD_SIZE, PAD_SIZE), egui::Sense::drag());
@@ -125,28 +104,7 @@ impl DrivePanel {
                     (-self.asked.0 / settings.max_speed_m_per_s.max(1e-9) * half) as f32,
                 );
             painter.circle_filled(marker, 10.0, visuals.selection.bg_fill);
-            ui.vertical(|ui| {
-                let row = |ui: &mut egui::Ui, label: &str, (speed, turn): (f64, f64)| {
-                    ui.monospace(format!("{label:<10} {speed:+.2} m/s  {turn:+.2} rad/s"));
-                };
-                row(ui, words.commanded, view.commanded);
-                row(ui, words.measured, view.measured);
-                ui.separator();
-                let mut changed = settings;
-                let limits = view.limits;
-                let speed = 0.05..=limits.max_speed_m_per_s;
-                ui.add(egui::Slider::new(&mut changed.max_speed_m_per_s, speed).text(words.rflex().max_speed));
-                let turn = 0.1..=limits.max_turn_rad_per_s;
-                ui.add(egui::Slider::new(&mut changed.max_turn_rad_per_s, turn).text(words.rflex().max_turn));
-                let accel = 0.1..=limits.max_accel_m_per_s2;
-                ui.add(egui::Slider::new(&mut changed.accel_m_per_s2, accel).text(words.acceleration));
-                if changed != settings {
-                    actions.push(Action::Edit {
-                        edit: Edit::SetRflexDrive(changed),
-                        coalesce: Some("rflex drive".into()),
-                    });
-                }
-            });
+            ui.vertical(|ui| readings(ui, view, words, actions));
             // Keys count only when no field has the keyboard, and only while the window has focus.
             let keys_free = ui.memory(|memory| memory.focused().is_none());
             let focused = ui.input(|input| input.focused);
@@ -171,6 +129,50 @@ impl DrivePanel {
                 self.ask(wanted, actions);
             }
         });
+    }
+    /// STOP, the brake and the sonar.
+    fn buttons(&mut self, ui: &mut egui::Ui, view: &DriveView, words: &Strings, actions: &mut Vec<Action>) {
+        ui.heading(words.drive);
+        let stop = egui::Button::new(
+            egui::RichText::new(format!("■ {}", words.stop)).strong().size(22.0).color(egui::Color32::WHITE),
+        )
+        .fill(egui::Color32::from_rgb(200, 30, 30))
+        .min_size(egui::vec2(140.0, 40.0));
+        if ui.add(stop).on_hover_text("Space / Esc").clicked() {
+            self.asked = (0.0, 0.0);
+            actions.push(Action::Stop);
+        }
+        let braked = view.brake.unwrap_or(true);
+        let brake = ui.add_enabled(view.connected, egui::Button::new(words.brake).selected(braked));
+        if brake.clicked() {
+            self.asked = (0.0, 0.0);
+            actions.push(Action::Rflex(RflexAction::SetBrake(!braked)));
+        }
+        if ui.add_enabled(view.connected, egui::Button::new(words.rflex().sonar).selected(view.sonar_on)).clicked() {
+            actions.push(Action::Rflex(RflexAction::SetSonar(!view.sonar_on)));
+        }
+    }
+}
+
+/// What is commanded and measured, and the drive limits (one undo step per drag).
+fn readings(ui: &mut egui::Ui, view: &DriveView, words: &Strings, actions: &mut Vec<Action>) {
+    let settings = view.settings;
+    let row = |ui: &mut egui::Ui, label: &str, (speed, turn): (f64, f64)| {
+        ui.monospace(format!("{label:<10} {speed:+.2} m/s  {turn:+.2} rad/s"));
+    };
+    row(ui, words.commanded, view.commanded);
+    row(ui, words.measured, view.measured);
+    ui.separator();
+    let mut changed = settings;
+    let limits = view.limits;
+    let speed = 0.05..=limits.max_speed_m_per_s;
+    ui.add(egui::Slider::new(&mut changed.max_speed_m_per_s, speed).text(words.rflex().max_speed));
+    let turn = 0.1..=limits.max_turn_rad_per_s;
+    ui.add(egui::Slider::new(&mut changed.max_turn_rad_per_s, turn).text(words.rflex().max_turn));
+    let accel = 0.1..=limits.max_accel_m_per_s2;
+    ui.add(egui::Slider::new(&mut changed.accel_m_per_s2, accel).text(words.acceleration));
+    if changed != settings {
+        actions.push(Action::Edit { edit: Edit::SetRflexDrive(changed), coalesce: Some("rflex drive".into()) });
     }
 }
 
