@@ -159,86 +159,8 @@ impl MotionsPanel {
     ) {
         let index = self.selected;
         let motion = &project.motions[index];
-        let key = |what: &str| Some(format!("plen2 motion {index} {what}"));
-        ui.horizontal(|ui| {
-            let label = ui.label(words.slot);
-            let mut slot = motion.slot;
-            if ui
-                .add(egui::DragValue::new(&mut slot).clamp_existing_to_range(false).range(0..=SLOTS - 1))
-                .labelled_by(label.id)
-                .changed()
-            {
-                actions.push(edit(project, |p| p.motions[index].slot = slot, key("slot")));
-            }
-            let label = ui.label(words.name);
-            let mut name = motion.name.clone();
-            if ui
-                .add(egui::TextEdit::singleline(&mut name).char_limit(20).desired_width(170.0))
-                .labelled_by(label.id)
-                .changed()
-            {
-                actions.push(edit(project, |p| p.motions[index].name = name, key("name")));
-            }
-            if ui.add_enabled(connected, egui::Button::new(words.plen2().play_on_robot)).on_hover_text("$PM").clicked()
-            {
-                actions.push(Action::Plen2(Plen2Action::PlayMotion(motion.slot)));
-            }
-            // The shell asks where, off the frame; the answer comes back as a save.
-            if ui.button("motion.json…").on_hover_text(words.plen2().motion_json_hint).clicked() {
-                let name = format!("{:02X}_{}.json", motion.slot, motion.name.replace(' ', "_"));
-                let slot = motion.slot;
-                let export = Export::json(name, "PLEN motion", move |path| {
-                    Action::Plen2(Plen2Action::SaveMotionJson { slot, path })
-                });
-                actions.push(Action::AskFile(FileRequest::Export(export)));
-            }
-            if ui.button(words.remove).clicked() {
-                actions.push(edit(
-                    project,
-                    |p| {
-                        p.motions.remove(index);
-                    },
-                    None,
-                ));
-            }
-        });
-        ui.horizontal(|ui| {
-            let frames = u8::try_from(motion.frames.len().saturating_sub(1)).unwrap_or(0);
-            let mut looping = motion.loop_range.is_some();
-            if ui.checkbox(&mut looping, words.plen2().loop_frames).changed() {
-                let range = looping.then_some(LoopRange { begin_frame: 0, end_frame: frames, count: 255 });
-                actions.push(edit(project, |p| p.motions[index].loop_range = range, None));
-            }
-            if let Some(mut range) = motion.loop_range {
-                let before = range;
-                ui.add(egui::DragValue::new(&mut range.begin_frame).clamp_existing_to_range(false).range(0..=frames));
-                ui.label("–");
-                ui.add(egui::DragValue::new(&mut range.end_frame).clamp_existing_to_range(false).range(0..=frames));
-                ui.label("×");
-                ui.add(
-                    egui::DragValue::new(&mut range.count)
-                        // Passes: count + 1; 255, and a stored 0 (the robot counts it down to 255), forever.
-                        .custom_formatter(
-                            |n, _| {
-                                if n >= 255.0 || n <= 0.0 { "∞".into() } else { format!("{}", n + 1.0) }
-                            },
-                        ),
-                );
-                if range != before {
-                    actions.push(edit(project, |p| p.motions[index].loop_range = Some(range), key("loop")));
-                }
-            }
-            ui.separator();
-            let mut jumping = motion.jump_slot.is_some();
-            if ui.checkbox(&mut jumping, words.plen2().jump_to).changed() {
-                actions.push(edit(project, |p| p.motions[index].jump_slot = jumping.then_some(0), None));
-            }
-            if let Some(mut jump) = motion.jump_slot
-                && ui.add(egui::DragValue::new(&mut jump).clamp_existing_to_range(false).range(0..=SLOTS - 1)).changed()
-            {
-                actions.push(edit(project, |p| p.motions[index].jump_slot = Some(jump), key("jump")));
-            }
-        });
+        ui.horizontal(|ui| motion_row(ui, (project, index), connected, words, actions));
+        ui.horizontal(|ui| loop_and_jump_row(ui, (project, index), words, actions));
         for problem in self.flagged.get(&motion.slot).map_or(&[][..], Vec::as_slice) {
             let color = match problem.severity {
                 crate::project::Severity::Error => ui.visuals().error_fg_color,
@@ -493,6 +415,95 @@ fn timeline(ui: &mut egui::Ui, motion: &Motion, selected: usize) {
         let fill = if f == selected { ui.visuals().selection.bg_fill } else { ui.visuals().widgets.inactive.bg_fill };
         painter.rect_filled(bar, 2.0, fill);
         x += w;
+    }
+}
+
+/// A motion's slot, name, Play on robot, motion.json… and Remove.
+fn motion_row(
+    ui: &mut egui::Ui,
+    (project, index): (&Plen2Project, usize),
+    connected: bool,
+    words: &Strings,
+    actions: &mut Vec<Action>,
+) {
+    let motion = &project.motions[index];
+    let key = |what: &str| Some(format!("plen2 motion {index} {what}"));
+    let label = ui.label(words.slot);
+    let mut slot = motion.slot;
+    if ui
+        .add(egui::DragValue::new(&mut slot).clamp_existing_to_range(false).range(0..=SLOTS - 1))
+        .labelled_by(label.id)
+        .changed()
+    {
+        actions.push(edit(project, |p| p.motions[index].slot = slot, key("slot")));
+    }
+    let label = ui.label(words.name);
+    let mut name = motion.name.clone();
+    if ui.add(egui::TextEdit::singleline(&mut name).char_limit(20).desired_width(170.0)).labelled_by(label.id).changed()
+    {
+        actions.push(edit(project, |p| p.motions[index].name = name, key("name")));
+    }
+    if ui.add_enabled(connected, egui::Button::new(words.plen2().play_on_robot)).on_hover_text("$PM").clicked() {
+        actions.push(Action::Plen2(Plen2Action::PlayMotion(motion.slot)));
+    }
+    // The shell asks where, off the frame; the answer comes back as a save.
+    if ui.button("motion.json…").on_hover_text(words.plen2().motion_json_hint).clicked() {
+        let name = format!("{:02X}_{}.json", motion.slot, motion.name.replace(' ', "_"));
+        let slot = motion.slot;
+        let export =
+            Export::json(name, "PLEN motion", move |path| Action::Plen2(Plen2Action::SaveMotionJson { slot, path }));
+        actions.push(Action::AskFile(FileRequest::Export(export)));
+    }
+    if ui.button(words.remove).clicked() {
+        actions.push(edit(
+            project,
+            |p| {
+                p.motions.remove(index);
+            },
+            None,
+        ));
+    }
+}
+
+/// A motion's loop (frames and passes) and the slot it jumps to after.
+fn loop_and_jump_row(
+    ui: &mut egui::Ui,
+    (project, index): (&Plen2Project, usize),
+    words: &Strings,
+    actions: &mut Vec<Action>,
+) {
+    let motion = &project.motions[index];
+    let key = |what: &str| Some(format!("plen2 motion {index} {what}"));
+    let frames = u8::try_from(motion.frames.len().saturating_sub(1)).unwrap_or(0);
+    let mut looping = motion.loop_range.is_some();
+    if ui.checkbox(&mut looping, words.plen2().loop_frames).changed() {
+        let range = looping.then_some(LoopRange { begin_frame: 0, end_frame: frames, count: 255 });
+        actions.push(edit(project, |p| p.motions[index].loop_range = range, None));
+    }
+    if let Some(mut range) = motion.loop_range {
+        let before = range;
+        ui.add(egui::DragValue::new(&mut range.begin_frame).clamp_existing_to_range(false).range(0..=frames));
+        ui.label("–");
+        ui.add(egui::DragValue::new(&mut range.end_frame).clamp_existing_to_range(false).range(0..=frames));
+        ui.label("×");
+        ui.add(
+            egui::DragValue::new(&mut range.count)
+                // Passes: count + 1; 255, and a stored 0 (the robot counts it down to 255), forever.
+                .custom_formatter(|n, _| if n >= 255.0 || n <= 0.0 { "∞".into() } else { format!("{}", n + 1.0) }),
+        );
+        if range != before {
+            actions.push(edit(project, |p| p.motions[index].loop_range = Some(range), key("loop")));
+        }
+    }
+    ui.separator();
+    let mut jumping = motion.jump_slot.is_some();
+    if ui.checkbox(&mut jumping, words.plen2().jump_to).changed() {
+        actions.push(edit(project, |p| p.motions[index].jump_slot = jumping.then_some(0), None));
+    }
+    if let Some(mut jump) = motion.jump_slot
+        && ui.add(egui::DragValue::new(&mut jump).clamp_existing_to_range(false).range(0..=SLOTS - 1)).changed()
+    {
+        actions.push(edit(project, |p| p.motions[index].jump_slot = Some(jump), key("jump")));
     }
 }
 
