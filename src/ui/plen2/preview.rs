@@ -164,29 +164,7 @@ impl Preview {
         words: &Strings,
     ) {
         let now = ui.input(|input| input.time);
-        ui.horizontal(|ui| {
-            let label = ui.label(words.plen2().played_after);
-            let mut after = self.after;
-            let name = |slot: Option<u8>| match slot {
-                None => words.plen2().power_up.to_string(),
-                Some(slot) => {
-                    let motion = project.motions.iter().find(|m| m.slot == slot);
-                    format!("{slot} {}", motion.map_or("", |m| m.name.as_str()))
-                }
-            };
-            egui::ComboBox::from_id_salt("plen2-played-after")
-                .selected_text(name(after))
-                .show_ui(ui, |ui| {
-                    ui.selectable_value(&mut after, None, name(None));
-                    for motion in &project.motions {
-                        ui.selectable_value(&mut after, Some(motion.slot), name(Some(motion.slot)));
-                    }
-                })
-                .response
-                .labelled_by(label.id)
-                .on_hover_text(words.plen2().snap_note);
-            self.after = after;
-        });
+        ui.horizontal(|ui| self.played_after_ui(ui, project, words));
         self.refresh(project, revision, slot);
         let Some((_, played, settings)) = &self.playback else { return };
         if self.selected != Some((slot, frame)) {
@@ -219,25 +197,7 @@ impl Preview {
             })
             .collect();
         self.transport.ui(ui, played.duration_ms(), &marks, words);
-        // What the robot really does with this motion, where it is not what the file reads as (plen2.md §6).
-        let first_ms =
-            project.motions.iter().find(|m| m.slot == slot).and_then(|m| m.frames.first()).map(|f| f.transition_ms);
-        if first_ms.is_some_and(|ms| playback::cycles_for(ms) == 0) {
-            ui.colored_label(ui.visuals().error_fg_color, words.plen2().first_frame_undefined);
-        }
-        if !played.ended {
-            ui.colored_label(ui.visuals().warn_fg_color, words.plen2().motion_never_ends);
-        }
-        // Where the robot stands now (the sliders) against where the motion starts.
-        let mut standing = [0; DEVICE_IDS];
-        for joint in Joint::ALL {
-            let device = usize::from(joint.device_id());
-            standing[device] = pose[joint.index()] - settings[device].0;
-        }
-        if playback::clamped(&standing, settings) != playback::clamped(&played.from, settings) {
-            ui.colored_label(ui.visuals().warn_fg_color, words.plen2().snap_warning)
-                .on_hover_text(words.plen2().snap_note);
-        }
+        warnings(ui, (project, slot), played, (settings, pose), words);
         let Some(cycle) = played.cycle_at(self.transport.t_ms) else {
             self.shown = None;
             return;
@@ -260,5 +220,58 @@ impl Preview {
         let scene = self.scene(&values, ghost.as_ref());
         let rect = ui.available_rect_before_wrap();
         self.motion_view.show(ui, rect, &scene, words.robot_preview).0.on_hover_text(words.preview_hint);
+    }
+
+    /// Which motion the previewed one is played after (none: from power-up).
+    fn played_after_ui(&mut self, ui: &mut egui::Ui, project: &Plen2Project, words: &Strings) {
+        let label = ui.label(words.plen2().played_after);
+        let mut after = self.after;
+        let name = |slot: Option<u8>| match slot {
+            None => words.plen2().power_up.to_string(),
+            Some(slot) => {
+                let motion = project.motions.iter().find(|m| m.slot == slot);
+                format!("{slot} {}", motion.map_or("", |m| m.name.as_str()))
+            }
+        };
+        egui::ComboBox::from_id_salt("plen2-played-after")
+            .selected_text(name(after))
+            .show_ui(ui, |ui| {
+                ui.selectable_value(&mut after, None, name(None));
+                for motion in &project.motions {
+                    ui.selectable_value(&mut after, Some(motion.slot), name(Some(motion.slot)));
+                }
+            })
+            .response
+            .labelled_by(label.id)
+            .on_hover_text(words.plen2().snap_note);
+        self.after = after;
+    }
+}
+
+/// What the robot really does with this motion where it is not what the file
+/// reads as (plen2.md §6), and a robot standing elsewhere than it starts.
+fn warnings(
+    ui: &mut egui::Ui,
+    (project, slot): (&Plen2Project, u8),
+    played: &Playback,
+    (settings, pose): (&Settings, &[i16; 18]),
+    words: &Strings,
+) {
+    let first_ms =
+        project.motions.iter().find(|m| m.slot == slot).and_then(|m| m.frames.first()).map(|f| f.transition_ms);
+    if first_ms.is_some_and(|ms| playback::cycles_for(ms) == 0) {
+        ui.colored_label(ui.visuals().error_fg_color, words.plen2().first_frame_undefined);
+    }
+    if !played.ended {
+        ui.colored_label(ui.visuals().warn_fg_color, words.plen2().motion_never_ends);
+    }
+    // Where the robot stands now (the sliders) against where the motion starts.
+    let mut standing = [0; DEVICE_IDS];
+    for joint in Joint::ALL {
+        let device = usize::from(joint.device_id());
+        standing[device] = pose[joint.index()] - settings[device].0;
+    }
+    if playback::clamped(&standing, settings) != playback::clamped(&played.from, settings) {
+        ui.colored_label(ui.visuals().warn_fg_color, words.plen2().snap_warning).on_hover_text(words.plen2().snap_note);
     }
 }
