@@ -174,25 +174,7 @@ impl MacroPanel {
         let mut played_from = None;
         let item = &project.macros[index];
         // Buttons wrap under the caption when the pane is narrow, never clipped.
-        ui.horizontal_wrapped(|ui| {
-            let label = ui.label(format!("{} {}", words.servo().macro_word, item.id));
-            let mut caption = item.caption.clone();
-            if ui.text_edit_singleline(&mut caption).labelled_by(label.id).changed() {
-                let key = format!("macro {} caption", item.id);
-                actions.push(edit(index, Macro { caption, ..item.clone() }, Some(key)));
-            }
-            match derived.macro_total_ms {
-                Some(Ok(total)) => ui.label(format!("{} {}", words.total, seconds(total))),
-                Some(Err(error)) => ui.colored_label(ui.visuals().warn_fg_color, words.lang.timing_error(&error)),
-                None => ui.label(format!("{} …", words.total)),
-            };
-            if ui.add_enabled(connected, egui::Button::new(words.servo().run_on_board)).clicked() {
-                actions.push(Action::Servo(ServoAction::RunMacro(item.id)));
-            }
-            if ui.button(words.remove).clicked() {
-                actions.push(Action::Edit { edit: Edit::RemoveMacro { index }, coalesce: None });
-            }
-        });
+        ui.horizontal_wrapped(|ui| macro_header(ui, (item, index), derived, connected, words, actions));
         for problem in &derived.macro_problems {
             ui.colored_label(ui.visuals().warn_fg_color, words.lang.problem(&problem.kind));
         }
@@ -227,24 +209,7 @@ impl MacroPanel {
         if notes > 3 {
             ui.colored_label(ui.visuals().warn_fg_color, format!("… +{}", notes - 3));
         }
-        ui.horizontal(|ui| {
-            let add = |run: Run| {
-                let mut changed = item.clone();
-                changed.commands.push(Command::once(run));
-                edit(index, changed, None)
-            };
-            if ui.button(words.servo().add_action_command).clicked() {
-                let action_id = project.actions.first().map_or(1, |a| a.id);
-                actions.push(add(Run::Action { action_id }));
-            }
-            if ui.button(words.servo().add_delay).clicked() {
-                actions.push(add(Run::Delay { delay_ms: 500 }));
-            }
-            if ui.button(words.servo().add_macro_command).clicked() {
-                let macro_id = project.macros.iter().find(|m| m.id != item.id).map_or(item.id, |m| m.id);
-                actions.push(add(Run::Macro { macro_id }));
-            }
-        });
+        ui.horizontal(|ui| add_buttons(ui, project, (item, index), words, actions));
         played_from
     }
 
@@ -278,47 +243,7 @@ impl MacroPanel {
             moved.commands.insert(position, command);
             actions.push(edit(index, moved, None));
         }
-        let mut run = command.run;
-        let kind_label = match run {
-            Run::Action { .. } => words.servo().action_word,
-            Run::Delay { .. } => words.servo().delay,
-            Run::Macro { .. } => words.servo().macro_word,
-        };
-        egui::ComboBox::from_id_salt(("kind", position))
-            .selected_text(kind_label)
-            .show_ui(ui, |ui| {
-                let first_action = project.actions.first().map_or(1, |a| a.id);
-                ui.selectable_value(&mut run, Run::Action { action_id: first_action }, words.servo().action_word);
-                ui.selectable_value(&mut run, Run::Delay { delay_ms: 500 }, words.servo().delay);
-                ui.selectable_value(&mut run, Run::Macro { macro_id: item.id }, words.servo().macro_word);
-            })
-            .response
-            .labelled_by(row.id);
-        match &mut run {
-            Run::Action { action_id } => {
-                let shown = project
-                    .action(*action_id)
-                    .map_or_else(|| format!("{action_id} ?"), |a| format!("{} {}", a.id, a.caption));
-                let all = &project.actions;
-                rows::combo(ui, ("target", position), shown, action_id, all.len(), |i| {
-                    (all[i].id, format!("{} {}", all[i].id, all[i].caption))
-                })
-                .labelled_by(row.id);
-            }
-            Run::Macro { macro_id } => {
-                let shown = project
-                    .macro_by_id(*macro_id)
-                    .map_or_else(|| format!("{macro_id} ?"), |m| format!("{} {}", m.id, m.caption));
-                let all = &project.macros;
-                rows::combo(ui, ("target", position), shown, macro_id, all.len(), |i| {
-                    (all[i].id, format!("{} {}", all[i].id, all[i].caption))
-                })
-                .labelled_by(row.id);
-            }
-            Run::Delay { delay_ms } => {
-                ui.add(egui::DragValue::new(delay_ms).clamp_existing_to_range(false).range(0..=i32::MAX).suffix(" ms"));
-            }
-        }
+        let run = run_picker(ui, project, (item, position, command.run), row.id, words);
         if run != command.run {
             let key = matches!(run, Run::Delay { .. }).then(|| format!("macro {} command {position} delay", item.id));
             actions.push(with(Command { run, ..*command }, key));
@@ -353,4 +278,110 @@ impl MacroPanel {
             }
         });
     }
+}
+
+/// A macro's caption, its total time, Run on board and Remove.
+fn macro_header(
+    ui: &mut egui::Ui,
+    (item, index): (&Macro, usize),
+    derived: &Facts,
+    connected: bool,
+    words: &Strings,
+    actions: &mut Vec<Action>,
+) {
+    let label = ui.label(format!("{} {}", words.servo().macro_word, item.id));
+    let mut caption = item.caption.clone();
+    if ui.text_edit_singleline(&mut caption).labelled_by(label.id).changed() {
+        let key = format!("macro {} caption", item.id);
+        actions.push(edit(index, Macro { caption, ..item.clone() }, Some(key)));
+    }
+    match derived.macro_total_ms {
+        Some(Ok(total)) => ui.label(format!("{} {}", words.total, seconds(total))),
+        Some(Err(error)) => ui.colored_label(ui.visuals().warn_fg_color, words.lang.timing_error(&error)),
+        None => ui.label(format!("{} …", words.total)),
+    };
+    if ui.add_enabled(connected, egui::Button::new(words.servo().run_on_board)).clicked() {
+        actions.push(Action::Servo(ServoAction::RunMacro(item.id)));
+    }
+    if ui.button(words.remove).clicked() {
+        actions.push(Action::Edit { edit: Edit::RemoveMacro { index }, coalesce: None });
+    }
+}
+
+/// Add an action, a delay or a macro at the end of a macro.
+fn add_buttons(
+    ui: &mut egui::Ui,
+    project: &ServoProject,
+    (item, index): (&Macro, usize),
+    words: &Strings,
+    actions: &mut Vec<Action>,
+) {
+    let add = |run: Run| {
+        let mut changed = item.clone();
+        changed.commands.push(Command::once(run));
+        edit(index, changed, None)
+    };
+    if ui.button(words.servo().add_action_command).clicked() {
+        let action_id = project.actions.first().map_or(1, |a| a.id);
+        actions.push(add(Run::Action { action_id }));
+    }
+    if ui.button(words.servo().add_delay).clicked() {
+        actions.push(add(Run::Delay { delay_ms: 500 }));
+    }
+    if ui.button(words.servo().add_macro_command).clicked() {
+        let macro_id = project.macros.iter().find(|m| m.id != item.id).map_or(item.id, |m| m.id);
+        actions.push(add(Run::Macro { macro_id }));
+    }
+}
+
+/// What a command runs: its kind and its action, delay or macro; the run as picked.
+fn run_picker(
+    ui: &mut egui::Ui,
+    project: &ServoProject,
+    (item, position, run): (&Macro, usize, Run),
+    row_id: egui::Id,
+    words: &Strings,
+) -> Run {
+    let mut run = run;
+    let kind_label = match run {
+        Run::Action { .. } => words.servo().action_word,
+        Run::Delay { .. } => words.servo().delay,
+        Run::Macro { .. } => words.servo().macro_word,
+    };
+    egui::ComboBox::from_id_salt(("kind", position))
+        .selected_text(kind_label)
+        .show_ui(ui, |ui| {
+            let first_action = project.actions.first().map_or(1, |a| a.id);
+            ui.selectable_value(&mut run, Run::Action { action_id: first_action }, words.servo().action_word);
+            ui.selectable_value(&mut run, Run::Delay { delay_ms: 500 }, words.servo().delay);
+            ui.selectable_value(&mut run, Run::Macro { macro_id: item.id }, words.servo().macro_word);
+        })
+        .response
+        .labelled_by(row_id);
+    match &mut run {
+        Run::Action { action_id } => {
+            let shown = project
+                .action(*action_id)
+                .map_or_else(|| format!("{action_id} ?"), |a| format!("{} {}", a.id, a.caption));
+            let all = &project.actions;
+            rows::combo(ui, ("target", position), shown, action_id, all.len(), |i| {
+                (all[i].id, format!("{} {}", all[i].id, all[i].caption))
+            })
+            .labelled_by(row_id);
+        }
+        Run::Macro { macro_id } => {
+            let shown = project
+                .macro_by_id(*macro_id)
+                .map_or_else(|| format!("{macro_id} ?"), |m| format!("{} {}", m.id, m.caption));
+            let all = &project.macros;
+            rows::combo(ui, ("target", position), shown, macro_id, all.len(), |i| {
+                (all[i].id, format!("{} {}", all[i].id, all[i].caption))
+            })
+            .labelled_by(row_id);
+        }
+        Run::Delay { delay_ms } => {
+            ui.add(egui::DragValue::new(delay_ms).clamp_existing_to_range(false).range(0..=i32::MAX).suffix(" ms"));
+        }
+    }
+    run
 }
