@@ -463,20 +463,22 @@ fn timeline(
                 let x = x_of((t_ms as f32).min(longest_ms));
                 painter.vline(x, rect.y_range(), egui::Stroke::new(1.5, visuals.strong_text_color()));
             }
-            let axis_y = rect.bottom() - 8.0;
-            painter.text(
-                egui::pos2(x_of(0.0), axis_y),
-                egui::Align2::LEFT_CENTER,
-                "0",
-                small.clone(),
-                visuals.weak_text_color(),
-            );
-            painter.text(
-                egui::pos2(x_of(longest_ms), axis_y),
-                egui::Align2::RIGHT_CENTER,
-                format!("{longest_ms} ms"),
-                small,
-                visuals.weak_text_color(),
+            time_axis(
+                &painter,
+                (x_of(0.0), x_of(longest_ms), rect.bottom() - 8.0),
+                longest_ms,
+                (&small, visuals.weak_text_color()),
             );
         });
+}
+
+/// The timeline's time axis: 0 at the start of the track, the longest step at its end.
+fn time_axis(
+    painter: &egui::Painter,
+    (start_x, end_x, y): (f32, f32, f32),
+    longest_ms: f32,
+    (font, color): (&egui::FontId, egui::Color32),
+) {
+    painter.text(egui::pos2(start_x, y), egui::Align2::LEFT_CENTER, "0", font.clone(), color);
+    painter.text(egui::pos2(end_x, y), egui::Align2::RIGHT_CENTER, format!("{longest_ms} ms"), font.clone(), color);
 }

@@ -37,74 +37,84 @@ pub fn table(ui: &mut egui::Ui, project: &ServoProject, height: f32, words: &Str
     // Wider than a narrow pane: it scrolls sideways rather than hide its last columns.
     egui::ScrollArea::horizontal().id_salt("servo-rig-sideways").show(ui, |ui| {
         rows::table(ui, "servo-rig", &heading, project.servos.len(), height, |row, index| {
-            let servo = &project.servos[index];
-            let set = |rig: Option<RigJoint>, field: &str| Action::Edit {
-                edit: Edit::SetServo { index, servo: Servo { rig, ..servo.clone() } },
-                coalesce: Some(format!("servo {} rig {field}", servo.id)),
-            };
-            let mut row_id = egui::Id::NULL;
-            row.col(|ui| row_id = ui.label(format!("{} {}", servo.id, servo.caption)).id);
-            row.col(|ui| {
-                let mut rigged = servo.rig.is_some();
-                if ui.checkbox(&mut rigged, "").labelled_by(row_id).changed() {
-                    actions.push(set(rigged.then(placed), "in"));
-                }
-            });
-            let Some(rig) = servo.rig else { return };
-            row.col(|ui| {
-                let mut parent = rig.parent;
-                other_servo(ui, ("rig-parent", servo.id), (project, servo.id), &mut parent, words.body)
-                    .labelled_by(row_id);
-                if parent != rig.parent {
-                    actions.push(set(Some(RigJoint { parent, ..rig }), "parent"));
-                }
-            });
-            row.col(|ui| {
-                let mut offset = rig.offset_mm;
-                for value in &mut offset {
-                    ui.add(egui::DragValue::new(value).range(-2000..=2000)).labelled_by(row_id);
-                }
-                if offset != rig.offset_mm {
-                    actions.push(set(Some(RigJoint { offset_mm: offset, ..rig }), "offset"));
-                }
-            });
-            row.col(|ui| {
-                let mut axis = rig.axis;
-                egui::ComboBox::from_id_salt(("rig-axis", servo.id))
-                    .selected_text(axis_name(axis))
-                    .width(80.0)
-                    .show_ui(ui, |ui| {
-                        for option in RigAxis::ALL {
-                            ui.selectable_value(&mut axis, option, axis_name(option));
-                        }
-                    })
-                    .response
-                    .labelled_by(row_id);
-                if axis != rig.axis {
-                    actions.push(set(Some(RigJoint { axis, ..rig }), "axis"));
-                }
-            });
-            row.col(|ui| {
-                let mut reversed = rig.reversed;
-                if ui.checkbox(&mut reversed, "").labelled_by(row_id).changed() {
-                    actions.push(set(Some(RigJoint { reversed, ..rig }), "reversed"));
-                }
-            });
-            row.col(|ui| {
-                let mut straight = rig.straight_deg;
-                let drag = egui::DragValue::new(&mut straight).range(-360..=360).suffix("°");
-                if ui.add(drag).labelled_by(row_id).changed() {
-                    actions.push(set(Some(RigJoint { straight_deg: straight, ..rig }), "straight"));
-                }
-            });
-            row.col(|ui| {
-                let mut mirror = rig.mirror;
-                other_servo(ui, ("rig-twin", servo.id), (project, servo.id), &mut mirror, "—").labelled_by(row_id);
-                if mirror != rig.mirror {
-                    actions.push(set(Some(RigJoint { mirror, ..rig }), "mirror"));
-                }
-            });
+            rig_row(row, project, index, words, actions);
         });
+    });
+}
+
+/// One servo's row of the rig: in the rig, mounted on, offset, axis, reversed, straight at, twin.
+fn rig_row(
+    row: &mut egui_extras::TableRow<'_, '_>,
+    project: &ServoProject,
+    index: usize,
+    words: &Strings,
+    actions: &mut Vec<Action>,
+) {
+    let servo = &project.servos[index];
+    let set = |rig: Option<RigJoint>, field: &str| Action::Edit {
+        edit: Edit::SetServo { index, servo: Servo { rig, ..servo.clone() } },
+        coalesce: Some(format!("servo {} rig {field}", servo.id)),
+    };
+    let mut row_id = egui::Id::NULL;
+    row.col(|ui| row_id = ui.label(format!("{} {}", servo.id, servo.caption)).id);
+    row.col(|ui| {
+        let mut rigged = servo.rig.is_some();
+        if ui.checkbox(&mut rigged, "").labelled_by(row_id).changed() {
+            actions.push(set(rigged.then(placed), "in"));
+        }
+    });
+    let Some(rig) = servo.rig else { return };
+    row.col(|ui| {
+        let mut parent = rig.parent;
+        other_servo(ui, ("rig-parent", servo.id), (project, servo.id), &mut parent, words.body).labelled_by(row_id);
+        if parent != rig.parent {
+            actions.push(set(Some(RigJoint { parent, ..rig }), "parent"));
+        }
+    });
+    row.col(|ui| {
+        let mut offset = rig.offset_mm;
+        for value in &mut offset {
+            ui.add(egui::DragValue::new(value).range(-2000..=2000)).labelled_by(row_id);
+        }
+        if offset != rig.offset_mm {
+            actions.push(set(Some(RigJoint { offset_mm: offset, ..rig }), "offset"));
+        }
+    });
+    row.col(|ui| {
+        let mut axis = rig.axis;
+        egui::ComboBox::from_id_salt(("rig-axis", servo.id))
+            .selected_text(axis_name(axis))
+            .width(80.0)
+            .show_ui(ui, |ui| {
+                for option in RigAxis::ALL {
+                    ui.selectable_value(&mut axis, option, axis_name(option));
+                }
+            })
+            .response
+            .labelled_by(row_id);
+        if axis != rig.axis {
+            actions.push(set(Some(RigJoint { axis, ..rig }), "axis"));
+        }
+    });
+    row.col(|ui| {
+        let mut reversed = rig.reversed;
+        if ui.checkbox(&mut reversed, "").labelled_by(row_id).changed() {
+            actions.push(set(Some(RigJoint { reversed, ..rig }), "reversed"));
+        }
+    });
+    row.col(|ui| {
+        let mut straight = rig.straight_deg;
+        let drag = egui::DragValue::new(&mut straight).range(-360..=360).suffix("°");
+        if ui.add(drag).labelled_by(row_id).changed() {
+            actions.push(set(Some(RigJoint { straight_deg: straight, ..rig }), "straight"));
+        }
+    });
+    row.col(|ui| {
+        let mut mirror = rig.mirror;
+        other_servo(ui, ("rig-twin", servo.id), (project, servo.id), &mut mirror, "—").labelled_by(row_id);
+        if mirror != rig.mirror {
+            actions.push(set(Some(RigJoint { mirror, ..rig }), "mirror"));
+        }
     });
 }
 
