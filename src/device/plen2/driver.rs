@@ -395,39 +395,7 @@ impl Driver for Plen2Driver {
             let text = "never written: the robot prints its erased memory (about 300 KB) before it reads anything else; nothing is sent meanwhile";
             self.log(now, Direction::Note, "erased slot".into(), text.into(), &[]);
         }
-        while let Some(event) = self.reader.poll() {
-            match event {
-                ReplyEvent::Complete { kind, bytes } => {
-                    let text = String::from_utf8_lossy(&bytes);
-                    let summary: String = text.split_whitespace().collect::<Vec<_>>().join(" ");
-                    let summary: String = summary.chars().take(120).collect();
-                    self.log(now, Direction::Received, format!("{kind:?} reply"), summary, &bytes);
-                    if let Some(awaited) = self.reply.take() {
-                        self.resolve(&awaited, Ok(bytes));
-                    }
-                    // What its arrival says about the link; the firmware is idle again.
-                    self.pacer.reply_ended();
-                    self.pacer.idle_from(now);
-                }
-                ReplyEvent::Oversized { kind, bytes } => {
-                    self.log(
-                        now,
-                        Direction::Received,
-                        format!("{kind:?} reply"),
-                        format!("{} of garbage", crate::device::bytes(bytes)),
-                        &[],
-                    );
-                    if let Some(awaited) = self.reply.take() {
-                        self.resolve(&awaited, Err(ReplyError::Garbage { bytes }));
-                    }
-                    self.pacer.reply_ended();
-                    self.pacer.idle_from(now);
-                }
-                ReplyEvent::Ignored { bytes } => {
-                    self.log(now, Direction::Skipped, format!("{bytes} byte(s) outside a reply"), String::new(), &[]);
-                }
-            }
-        }
+        self.take_replies(now);
         self.pace(now);
     }
 
@@ -504,6 +472,45 @@ impl Driver for Plen2Driver {
         let waiting = self.waiting.iter().map(|(at, _)| *at).min();
         let reply = self.reply.as_ref().map(|awaited| awaited.deadline);
         [self.next_send(self.now), waiting, reply].into_iter().flatten().min()
+    }
+}
+
+impl Plen2Driver {
+    /// Every reply (or garbage, or bytes outside one) the reader has finished: logged, and the awaited request answered.
+    fn take_replies(&mut self, now: Instant) {
+        while let Some(event) = self.reader.poll() {
+            match event {
+                ReplyEvent::Complete { kind, bytes } => {
+                    let text = String::from_utf8_lossy(&bytes);
+                    let summary: String = text.split_whitespace().collect::<Vec<_>>().join(" ");
+                    let summary: String = summary.chars().take(120).collect();
+                    self.log(now, Direction::Received, format!("{kind:?} reply"), summary, &bytes);
+                    if let Some(awaited) = self.reply.take() {
+                        self.resolve(&awaited, Ok(bytes));
+                    }
+                    // What its arrival says about the link; the firmware is idle again.
+                    self.pacer.reply_ended();
+                    self.pacer.idle_from(now);
+                }
+                ReplyEvent::Oversized { kind, bytes } => {
+                    self.log(
+                        now,
+                        Direction::Received,
+                        format!("{kind:?} reply"),
+                        format!("{} of garbage", crate::device::bytes(bytes)),
+                        &[],
+                    );
+                    if let Some(awaited) = self.reply.take() {
+                        self.resolve(&awaited, Err(ReplyError::Garbage { bytes }));
+                    }
+                    self.pacer.reply_ended();
+                    self.pacer.idle_from(now);
+                }
+                ReplyEvent::Ignored { bytes } => {
+                    self.log(now, Direction::Skipped, format!("{bytes} byte(s) outside a reply"), String::new(), &[]);
+                }
+            }
+        }
     }
 }
 

@@ -119,28 +119,7 @@ impl ServoImage {
                 commands,
             });
         }
-        let mut tables = Vec::with_capacity(project.joystick_tables.len());
-        for table in &project.joystick_tables {
-            let mut buttons = Vec::with_capacity(table.buttons.len());
-            for button in &table.buttons {
-                buttons.push(ButtonRecord {
-                    button_id: button.id,
-                    caption: caption(
-                        || format!("joystick table {} button 0x{:08x} {:?}", table.id, button.id, button.caption),
-                        &button.caption,
-                    )?,
-                    press_macro: button.press_macro.unwrap_or(0),
-                    long_press_macro: button.long_press_macro.unwrap_or(0),
-                    up_macro: button.release_macro.unwrap_or(0),
-                    uninterruptible: button.uninterruptible,
-                });
-            }
-            tables.push(JoystickTableRecord {
-                table_id: table.id,
-                caption: caption(|| format!("joystick table {} {:?}", table.id, table.caption), &table.caption)?,
-                buttons,
-            });
-        }
+        let tables = table_records(project)?;
         Ok(Self {
             project_id: project.project_id,
             servos,
@@ -251,6 +230,33 @@ impl ServoImage {
         }
         out
     }
+}
+
+/// A project's joystick tables as the board stores them (no macro: 0).
+fn table_records(project: &ServoProject) -> Result<Vec<JoystickTableRecord>, ImageError> {
+    let mut tables = Vec::with_capacity(project.joystick_tables.len());
+    for table in &project.joystick_tables {
+        let mut buttons = Vec::with_capacity(table.buttons.len());
+        for button in &table.buttons {
+            buttons.push(ButtonRecord {
+                button_id: button.id,
+                caption: caption(
+                    || format!("joystick table {} button 0x{:08x} {:?}", table.id, button.id, button.caption),
+                    &button.caption,
+                )?,
+                press_macro: button.press_macro.unwrap_or(0),
+                long_press_macro: button.long_press_macro.unwrap_or(0),
+                up_macro: button.release_macro.unwrap_or(0),
+                uninterruptible: button.uninterruptible,
+            });
+        }
+        tables.push(JoystickTableRecord {
+            table_id: table.id,
+            caption: caption(|| format!("joystick table {} {:?}", table.id, table.caption), &table.caption)?,
+            buttons,
+        });
+    }
+    Ok(tables)
 }
 
 /// Which kind of stored record a difference is about: the project's own item kinds.

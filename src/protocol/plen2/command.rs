@@ -293,51 +293,59 @@ fn parse(code: &[u8; 3], args: &[u8]) -> Result<Command, ParseError> {
         "<JS" => Command::GetJointSettings,
         "<VI" => Command::GetVersion,
         "<MO" => Command::GetMotion { slot: byte(args).ok_or_else(bad)? },
-        ">MH" => {
-            let mut name_bytes = [b' '; NAME_LEN];
-            name_bytes.copy_from_slice(&args[2..22]);
-            let rest = &args[22..];
-            let header = MotionHeader {
-                slot: byte(&args[..2]).ok_or_else(bad)?,
-                name: name_bytes,
-                loop_on: flag(rest[0]).ok_or_else(bad)?,
-                loop_begin: byte(&rest[1..3]).ok_or_else(bad)?,
-                loop_end: byte(&rest[3..5]).ok_or_else(bad)?,
-                loop_count: byte(&rest[5..7]).ok_or_else(bad)?,
-                jump_on: flag(rest[7]).ok_or_else(bad)?,
-                jump_slot: byte(&rest[8..10]).ok_or_else(bad)?,
-                frame_count: {
-                    // rest[10] is the extra flag, ignored by the firmware.
-                    byte(&rest[11..13]).ok_or_else(bad)?
-                },
-            };
-            if !(1..=20).contains(&header.frame_count) {
-                return Err(ParseError::OutOfRange { code: name, what: "frame count" });
-            }
-            if header.slot >= super::joint::SLOTS {
-                return Err(ParseError::OutOfRange { code: name, what: "slot" });
-            }
-            Command::Header(header)
-        }
-        ">MF" => {
-            let mut values = [0i16; DEVICE_IDS];
-            for (index, value) in values.iter_mut().enumerate() {
-                let at = 8 + 4 * index;
-                *value = signed(&args[at..at + 4]).ok_or_else(bad)?;
-            }
-            let frame = MotionFrame {
-                slot: byte(&args[..2]).ok_or_else(bad)?,
-                index: byte(&args[2..4]).ok_or_else(bad)?,
-                transition_ms: u16::try_from(hex(&args[4..8]).ok_or_else(bad)?).map_err(|_| bad())?,
-                values,
-            };
-            if frame.slot >= super::joint::SLOTS {
-                return Err(ParseError::OutOfRange { code: name, what: "slot" });
-            }
-            Command::Frame(Box::new(frame))
-        }
+        ">MH" => motion_header(args, name)?,
+        ">MF" => motion_frame(args, name)?,
         _ => return Err(ParseError::UnknownCode(name)),
     })
+}
+
+/// `>MH`'s arguments: a motion's header (slot, name, loop, jump, frame count).
+fn motion_header(args: &[u8], name: String) -> Result<Command, ParseError> {
+    let bad = || ParseError::BadArgument { code: name.clone(), argument: String::from_utf8_lossy(args).into_owned() };
+    let mut name_bytes = [b' '; NAME_LEN];
+    name_bytes.copy_from_slice(&args[2..22]);
+    let rest = &args[22..];
+    let header = MotionHeader {
+        slot: byte(&args[..2]).ok_or_else(bad)?,
+        name: name_bytes,
+        loop_on: flag(rest[0]).ok_or_else(bad)?,
+        loop_begin: byte(&rest[1..3]).ok_or_else(bad)?,
+        loop_end: byte(&rest[3..5]).ok_or_else(bad)?,
+        loop_count: byte(&rest[5..7]).ok_or_else(bad)?,
+        jump_on: flag(rest[7]).ok_or_else(bad)?,
+        jump_slot: byte(&rest[8..10]).ok_or_else(bad)?,
+        frame_count: {
+            // rest[10] is the extra flag, ignored by the firmware.
+            byte(&rest[11..13]).ok_or_else(bad)?
+        },
+    };
+    if !(1..=20).contains(&header.frame_count) {
+        return Err(ParseError::OutOfRange { code: name, what: "frame count" });
+    }
+    if header.slot >= super::joint::SLOTS {
+        return Err(ParseError::OutOfRange { code: name, what: "slot" });
+    }
+    Ok(Command::Header(header))
+}
+
+/// `>MF`'s arguments: one frame of a motion (slot, index, transition, a value per device).
+fn motion_frame(args: &[u8], name: String) -> Result<Command, ParseError> {
+    let bad = || ParseError::BadArgument { code: name.clone(), argument: String::from_utf8_lossy(args).into_owned() };
+    let mut values = [0i16; DEVICE_IDS];
+    for (index, value) in values.iter_mut().enumerate() {
+        let at = 8 + 4 * index;
+        *value = signed(&args[at..at + 4]).ok_or_else(bad)?;
+    }
+    let frame = MotionFrame {
+        slot: byte(&args[..2]).ok_or_else(bad)?,
+        index: byte(&args[2..4]).ok_or_else(bad)?,
+        transition_ms: u16::try_from(hex(&args[4..8]).ok_or_else(bad)?).map_err(|_| bad())?,
+        values,
+    };
+    if frame.slot >= super::joint::SLOTS {
+        return Err(ParseError::OutOfRange { code: name, what: "slot" });
+    }
+    Ok(Command::Frame(Box::new(frame)))
 }
 
 /// The firmware's command reader: one byte at a time; bytes between commands
