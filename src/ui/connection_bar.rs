@@ -106,6 +106,7 @@ impl ConnectionBar {
             });
         }
     }
+
     /// The family, the family's own pickers, the port and the line rate.
     fn pickers(
         &mut self,

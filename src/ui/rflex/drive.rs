@@ -130,6 +130,7 @@ impl DrivePanel {
             }
         });
     }
+
     /// STOP, the brake and the sonar.
     fn buttons(&mut self, ui: &mut egui::Ui, view: &DriveView, words: &Strings, actions: &mut Vec<Action>) {
         ui.heading(words.drive);

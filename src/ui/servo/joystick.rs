@@ -131,10 +131,7 @@ impl JoystickPanel {
     ) {
         let project = view.project;
         let table = &project.joystick_tables[index];
-        let set = |table: JoystickTable, key: Option<String>| Action::Edit {
-            edit: Edit::SetTable { index, table },
-            coalesce: key,
-        };
+        let set = |table: JoystickTable, key: Option<String>| set_table(index, table, key);
         ui.horizontal(|ui| {
             let label = ui.label(format!("{} {}", words.table, table.id));
             let mut caption = table.caption.clone();
@@ -183,10 +180,7 @@ impl JoystickPanel {
     ) {
         let project = view.project;
         let table = &project.joystick_tables[index];
-        let set = |table: JoystickTable, key: Option<String>| Action::Edit {
-            edit: Edit::SetTable { index, table },
-            coalesce: key,
-        };
+        let set = |table: JoystickTable, key: Option<String>| set_table(index, table, key);
         let button = &table.buttons[position];
         let with = |changed: Button, key: Option<String>| {
             let mut table = table.clone();
@@ -263,4 +257,9 @@ fn macro_cell(
     })
     .labelled_by(row_id);
     (chosen != current).then_some(chosen)
+}
+
+/// Replaces the table at `index` (edits sharing `key` form one undo step).
+fn set_table(index: usize, table: JoystickTable, key: Option<String>) -> Action {
+    Action::Edit { edit: Edit::SetTable { index, table }, coalesce: key }
 }
