@@ -241,7 +241,7 @@ pub enum CliCommand {
     /// PLEN2 project, or a project (or one of those files) into a Maestro
     /// settings file or Blender JSON. Prints what was converted, approximated
     /// and dropped (docs/import-export.md).
-    Convert(ConvertArgs),
+    Convert(convert::ConvertArgs),
     /// Fit a recording (the CSV `trajectory` writes: `t_ms`, then a column per
     /// joint or servo by name; PLEN2 values in tenths of a degree relative to
     /// home, servo values in degrees; any sample rate) into the fewest frames
@@ -270,44 +270,6 @@ pub enum CliCommand {
         #[arg(long)]
         force: bool,
     },
-}
-
-/// `servo-studio convert`'s arguments.
-#[derive(Debug, Args)]
-pub struct ConvertArgs {
-    /// The file: a Maestro settings file, a RoboPlus .mtn, an R+ Motion .mtnx,
-    /// a Blender servo-animation JSON, or a Servo Studio project / motion.json.
-    pub input: PathBuf,
-    /// Its format (default: told from the content): maestro, mtn, mtnx or blender.
-    #[arg(long, value_parser = convert::parse_from)]
-    pub from: Option<crate::interchange::Format>,
-    /// What to write: servo (a project), plen2 (a project), maestro (a settings file) or blender (add-on JSON).
-    #[arg(long, value_parser = convert::parse_to)]
-    pub to: convert::To,
-    /// A joint map (JSON): which channel drives which servo or joint, with offset, direction and scale.
-    #[arg(long)]
-    pub map: Option<PathBuf>,
-    /// Only this Maestro sequence / R+ page or flow (and what it plays); exporting: this macro or motion.
-    #[arg(long)]
-    pub sequence: Option<String>,
-    /// Only this RoboPlus page (and the pages it leads to); exporting a PLEN2 motion: its slot.
-    #[arg(long, value_parser = clap::value_parser!(u32).range(0..=65535))]
-    pub page: Option<u32>,
-    /// How far a fitted animation (Blender) may stray from the source, degrees.
-    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true, value_parser = bounds::tolerance_deg)]
-    pub tolerance_deg: f64,
-    /// Frames per second of Blender JSON written, 1..=1000.
-    #[arg(long, default_value_t = 30.0, allow_hyphen_values = true, value_parser = bounds::fps)]
-    pub fps: f64,
-    /// Also write the joint map used (guessed where --map says nothing), to edit and give again with --map.
-    #[arg(long)]
-    pub save_map: Option<PathBuf>,
-    /// The file to write.
-    #[arg(long)]
-    pub out: PathBuf,
-    /// Replace the output file even when it is read-only.
-    #[arg(long)]
-    pub force: bool,
 }
 
 /// `servo-studio board …`
@@ -434,31 +396,7 @@ pub fn run(command: CliCommand) -> ExitCode {
             })
         }
         CliCommand::Gui { file, demo, protocol, import } => gui::run(file.as_deref(), demo, protocol, import),
-        CliCommand::Convert(args) => {
-            let request = convert::ConvertRequest {
-                input: args.input,
-                from: args.from,
-                to: args.to,
-                map: args.map,
-                sequence: args.sequence,
-                page: args.page,
-                tolerance_deg: args.tolerance_deg,
-                fps: args.fps,
-                save_map: args.save_map,
-                out: args.out,
-                force: args.force,
-            };
-            convert::run(&request).and_then(|lines| {
-                for line in lines {
-                    match out::line(&line) {
-                        Ok(()) => {}
-                        Err(out::Unwritten::Closed) => return Ok(()),
-                        Err(error) => return Err(error.into()),
-                    }
-                }
-                Ok(())
-            })
-        }
+        CliCommand::Convert(args) => convert::run_args(args),
         CliCommand::Fit { recording, protocol, tolerance_deg, max_frames, name, out, force } => {
             let request = fit::FitRequest { recording, family: protocol, tolerance_deg, max_frames, name, out, force };
             fit::run(&request).and_then(|fitted| match out::line(&fit::said(&fitted, protocol, &request.out)) {

@@ -7,11 +7,52 @@
 use std::path::PathBuf;
 
 use anyhow::Context;
+use clap::Args;
+
+use super::{bounds, out};
 
 use crate::interchange::build::{self, Options, Selection};
 use crate::interchange::{self, Format, JointMap, Report, export};
 use crate::project::input::{MAX_PROJECT_BYTES, read_text};
 use crate::project::{self, Family, Project, motion_json};
+
+/// `servo-studio convert`'s arguments.
+#[derive(Debug, Args)]
+pub struct ConvertArgs {
+    /// The file: a Maestro settings file, a RoboPlus .mtn, an R+ Motion .mtnx,
+    /// a Blender servo-animation JSON, or a Servo Studio project / motion.json.
+    pub input: PathBuf,
+    /// Its format (default: told from the content): maestro, mtn, mtnx or blender.
+    #[arg(long, value_parser = parse_from)]
+    pub from: Option<Format>,
+    /// What to write: servo (a project), plen2 (a project), maestro (a settings file) or blender (add-on JSON).
+    #[arg(long, value_parser = parse_to)]
+    pub to: To,
+    /// A joint map (JSON): which channel drives which servo or joint, with offset, direction and scale.
+    #[arg(long)]
+    pub map: Option<PathBuf>,
+    /// Only this Maestro sequence / R+ page or flow (and what it plays); exporting: this macro or motion.
+    #[arg(long)]
+    pub sequence: Option<String>,
+    /// Only this RoboPlus page (and the pages it leads to); exporting a PLEN2 motion: its slot.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(0..=65535))]
+    pub page: Option<u32>,
+    /// How far a fitted animation (Blender) may stray from the source, degrees.
+    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true, value_parser = bounds::tolerance_deg)]
+    pub tolerance_deg: f64,
+    /// Frames per second of Blender JSON written, 1..=1000.
+    #[arg(long, default_value_t = 30.0, allow_hyphen_values = true, value_parser = bounds::fps)]
+    pub fps: f64,
+    /// Also write the joint map used (guessed where --map says nothing), to edit and give again with --map.
+    #[arg(long)]
+    pub save_map: Option<PathBuf>,
+    /// The file to write.
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Replace the output file even when it is read-only.
+    #[arg(long)]
+    pub force: bool,
+}
 
 /// What `convert` writes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -240,4 +281,29 @@ fn blender(request: &ConvertRequest, project: &Project, map: Option<&JointMap>) 
             .dropped(format!("the other {} macros (one animation per file: choose with --sequence)", macros.len() - 1));
     }
     Ok((text, report))
+}
+
+/// `servo-studio convert`: converts, then prints the report's lines (a closed stdout is no failure).
+pub fn run_args(args: ConvertArgs) -> anyhow::Result<()> {
+    let request = ConvertRequest {
+        input: args.input,
+        from: args.from,
+        to: args.to,
+        map: args.map,
+        sequence: args.sequence,
+        page: args.page,
+        tolerance_deg: args.tolerance_deg,
+        fps: args.fps,
+        save_map: args.save_map,
+        out: args.out,
+        force: args.force,
+    };
+    for line in run(&request)? {
+        match out::line(&line) {
+            Ok(()) => {}
+            Err(out::Unwritten::Closed) => return Ok(()),
+            Err(error) => return Err(error.into()),
+        }
+    }
+    Ok(())
 }

@@ -8,25 +8,26 @@
 //! firmware's layout (tab indentation, CRLF); playback on the 32.768 ms tick
 //! and the interpreter queue. Time is emulated from the `now` it is given.
 
+mod eeprom;
 mod link;
 mod motion_reply;
 
+use eeprom::{Eeprom, Slot};
 use link::Link;
 pub use link::LinkKind;
 
 use std::collections::VecDeque;
-use std::fmt::Write as _;
 use std::time::{Duration, Instant};
 
 use crossbeam_channel::Sender;
 
 use crate::link::Driver;
-use motion_reply::{garbage_header, motion_json};
+use motion_reply::{VERSION_REPLY, garbage_header, joint_settings_json, motion_json};
 
-use crate::protocol::plen2::playback::{MotionStore, Player, Start, joint_output};
+use crate::protocol::plen2::playback::{Player, Start, joint_output};
 use crate::protocol::plen2::{
     ANGLE_LIMIT_TENTHS_DEG, Command, CommandParser, DEVICE_IDS, FACTORY_LIMIT_TENTHS_DEG, Joint, MAX_FRAMES,
-    MotionFrame, MotionHeader, ParseError, QUEUE_LEN, SLOTS,
+    ParseError, QUEUE_LEN, SLOTS,
 };
 
 /// How the emulated robot's firmware spends its time.
@@ -86,27 +87,6 @@ fn factory() -> [JointLimits; DEVICE_IDS] {
         table[usize::from(joint.device_id())].home = joint.factory_home_tenths_deg();
     }
     table
-}
-
-#[derive(Clone, Debug, PartialEq, Eq)]
-struct Slot {
-    header: MotionHeader,
-    frames: [Option<MotionFrame>; MAX_FRAMES],
-}
-
-/// The slots as the motion controller reads them.
-struct Eeprom<'a>(&'a [Option<Slot>]);
-
-impl MotionStore for Eeprom<'_> {
-    fn header(&self, slot: u8) -> Option<MotionHeader> {
-        let header = &self.0.get(usize::from(slot))?.as_ref()?.header;
-        // The firmware drops a header whose frame count is not 1..=20.
-        (1..=MAX_FRAMES).contains(&usize::from(header.frame_count)).then(|| header.clone())
-    }
-
-    fn frame(&self, slot: u8, index: u8) -> Option<MotionFrame> {
-        self.0.get(usize::from(slot))?.as_ref()?.frames.get(usize::from(index))?.clone()
-    }
 }
 
 /// The robot as a test inspects it.
@@ -399,22 +379,8 @@ impl Plen2Sim {
     /// The getters' replies, printed as the line takes them.
     fn answer(&mut self, at: Instant, command: &Command) -> Option<Duration> {
         match command {
-            Command::GetVersion => {
-                return self.reply(at, b"{\r\n\t\"device\": \"PLEN2\",\r\n\t\"codename\": \"Cytisus\",\r\n\t\"version\": \"1.4.2\"\r\n}\r\n");
-            }
-            Command::GetJointSettings => {
-                let mut text = String::from("[\r\n");
-                for (device, joint) in self.joints.iter().enumerate() {
-                    let comma = if device + 1 < DEVICE_IDS { "," } else { "" };
-                    let _ = write!(
-                        text,
-                        "\t{{\r\n\t\t\"@device\": {device},\r\n\t\t\"max\": {},\r\n\t\t\"min\": {},\r\n\t\t\"home\": {}\r\n\t}}{comma}\r\n",
-                        joint.max, joint.min, joint.home
-                    );
-                }
-                text.push_str("]\r\n");
-                return self.reply(at, text.as_bytes());
-            }
+            Command::GetVersion => return self.reply(at, VERSION_REPLY),
+            Command::GetJointSettings => return self.reply(at, joint_settings_json(&self.joints).as_bytes()),
             Command::GetMotion { slot } if *slot < SLOTS => {
                 let bytes = motion_json(self.slots[usize::from(*slot)].as_ref());
                 return self.reply(at, &bytes);
@@ -528,6 +494,7 @@ impl Driver for Plen2Sim {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::protocol::plen2::MotionFrame;
 
     fn feed(sim: &mut Plen2Sim, at: Instant, bytes: &[u8]) {
         sim.handle_input(at, bytes);

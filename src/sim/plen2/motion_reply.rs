@@ -1,10 +1,30 @@
-//! `<MO` as the firmware prints it: tab indentation, CRLF, no end marker; a
-//! never-written slot prints the erased EEPROM's garbage.
+//! The getters' replies as the firmware prints them: `<VI`, `<JS`, and `<MO`
+//! (tab indentation, CRLF, no end marker; a never-written slot prints the
+//! erased EEPROM's garbage).
 
 use std::fmt::Write as _;
 
-use super::Slot;
+use super::{JointLimits, Slot};
 use crate::protocol::plen2::{DEVICE_IDS, MotionHeader};
+
+/// `<VI`: the firmware's version.
+pub(super) const VERSION_REPLY: &[u8] =
+    b"{\r\n\t\"device\": \"PLEN2\",\r\n\t\"codename\": \"Cytisus\",\r\n\t\"version\": \"1.4.2\"\r\n}\r\n";
+
+/// `<JS`: every joint's limits and home, as the firmware prints them.
+pub(super) fn joint_settings_json(joints: &[JointLimits; DEVICE_IDS]) -> String {
+    let mut text = String::from("[\r\n");
+    for (device, joint) in joints.iter().enumerate() {
+        let comma = if device + 1 < DEVICE_IDS { "," } else { "" };
+        let _ = write!(
+            text,
+            "\t{{\r\n\t\t\"@device\": {device},\r\n\t\t\"max\": {},\r\n\t\t\"min\": {},\r\n\t\t\"home\": {}\r\n\t}}{comma}\r\n",
+            joint.max, joint.min, joint.home
+        );
+    }
+    text.push_str("]\r\n");
+    text
+}
 
 /// A slot's header as a never-written EEPROM page reads: every byte 0xff,
 /// so its own slot field says 255 (plen2.md §3).
