@@ -42,7 +42,7 @@ use servo_studio::protocol::rflex::{B21R, Report, SonarReading};
 use servo_studio::protocol::servo::Message;
 use servo_studio::sim::{SimConfig, SimEvent};
 use servo_studio::ui::packet_log::MAX_ENTRIES;
-use servo_studio::ui::{Action as UiAction, BoardLink, StudioApp, Tab};
+use servo_studio::ui::{Action as UiAction, RflexBoardLink as _, ServoBoardLink as _, StudioApp, Tab, servo_demo_link};
 
 /// Frames measured per panel (`UI_BENCH_FRAMES` for more, when profiling).
 fn measured_frames() -> usize {
@@ -487,8 +487,7 @@ fn slider_latency() {
     let project = ServoProject { servos: vec![Servo::new(1, "左肩")], ..ServoProject::default() };
     let mut app = StudioApp::new(project.clone(), None, no_waker());
     let config = SimConfig { baud: Some(115_200), ..SimConfig::default() };
-    app.link =
-        Some(BoardLink::demo_with(&Project::servo(project.clone()), config, Default::default(), no_waker()).unwrap());
+    app.link = Some(servo_demo_link(&Project::servo(project.clone()), config, no_waker()).unwrap());
     let mut latencies = Vec::new();
     for drag in 0..20 {
         // A drag: a new angle every frame (60 Hz), then the user lets go.

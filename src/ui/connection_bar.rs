@@ -23,8 +23,6 @@ pub struct LinkStatus {
     pub label: Option<String>,
     /// The port being opened, while connecting.
     pub connecting: Option<String>,
-    /// Whether this build can connect to the family.
-    pub can_connect: bool,
     /// What the family says of its connected board (project id, battery…), in words.
     pub details: Vec<String>,
     /// What the connection doctor found, a line per port, while not connected.
@@ -176,10 +174,7 @@ impl ConnectionBar {
                 actions.push(Action::Disconnect);
             }
         } else {
-            let unsupported = language.family_not_in_build(status.family);
-            let connect = ui
-                .add_enabled(status.can_connect && !self.port.trim().is_empty(), egui::Button::new(words.connect))
-                .on_disabled_hover_text(&unsupported);
+            let connect = ui.add_enabled(!self.port.trim().is_empty(), egui::Button::new(words.connect));
             if connect.clicked() {
                 let port = self.port.trim().to_string();
                 actions.push(if self.auto {
@@ -193,9 +188,7 @@ impl ConnectionBar {
             if find.clicked() {
                 actions.push(Action::FindBoard { port: self.port.trim().to_string(), connect: false });
             }
-            let demo = ui
-                .add_enabled(status.can_connect, egui::Button::new(words.demo_board))
-                .on_disabled_hover_text(&unsupported);
+            let demo = ui.button(words.demo_board);
             if demo.clicked() {
                 actions.push(Action::ConnectDemo);
             }
@@ -247,7 +240,7 @@ mod tests {
 
     #[test]
     fn connect_sends_the_first_port_found_at_the_familys_line_rate_and_the_family_picker_is_in_the_bar() {
-        let status = LinkStatus { family: Family::Plen2, can_connect: true, ..LinkStatus::default() };
+        let status = LinkStatus { family: Family::Plen2, ..LinkStatus::default() };
         let ports = vec![PortInfo { name: "/dev/ttyUSB7".into(), description: "test adapter".into() }];
         let mut harness = bar(status, ports);
         harness.run();
@@ -261,7 +254,7 @@ mod tests {
     /// Find board only asks; what was found is offered with its family and rate.
     #[test]
     fn auto_connects_through_the_doctor_and_a_finding_is_offered() {
-        let status = LinkStatus { family: Family::Servo, can_connect: true, ..LinkStatus::default() };
+        let status = LinkStatus { family: Family::Servo, ..LinkStatus::default() };
         let ports = vec![PortInfo { name: "/dev/ttyACM0".into(), description: String::new() }];
         let mut harness = bar(status.clone(), ports.clone());
         harness.run();
@@ -293,18 +286,6 @@ mod tests {
         harness.run();
         let found = Action::ConnectFound { port: "/dev/ttyACM0".into(), family: Family::Plen2, baud: 2_000_000 };
         assert_eq!(harness.state().1, [found]);
-    }
-
-    #[test]
-    fn a_family_this_build_cannot_drive_offers_no_connect() {
-        let status = LinkStatus { family: Family::Servo, can_connect: false, ..LinkStatus::default() };
-        let ports = vec![PortInfo { name: "/dev/ttyUSB0".into(), description: String::new() }];
-        let mut harness = bar(status, ports);
-        harness.run();
-        harness.get_by_label("Connect").click();
-        harness.get_by_label("Demo board").click();
-        harness.run();
-        assert_eq!(harness.state().1, []);
     }
 
     #[test]

@@ -9,10 +9,11 @@ use std::time::{Duration, Instant};
 
 use crate::gamepad::PadUpdate;
 use crate::gamepad::puppet::Cue;
+use crate::link::Waker;
 use crate::project::gamepad::Fire;
 use crate::project::{Family, Project};
 use crate::ui::action::{Action, Tab};
-use crate::ui::board_link::{BoardLink, LinkNotice, LinkOptions};
+use crate::ui::board_link::{BoardLink, FamilyNotice, LinkStarter, StartError};
 use crate::ui::gamepad::PadTarget;
 use crate::ui::i18n::Strings;
 use crate::ui::layout::Layout;
@@ -73,10 +74,13 @@ pub trait FamilyUi {
     /// Its own pickers in the connection bar (enabled only while no link is open).
     fn connection_extras(&mut self, _ui: &mut egui::Ui, _view: &ShellView<'_>, _actions: &mut Vec<Action>) {}
 
-    /// How its driver is to be started, with the line rate asked for.
-    fn link_options(&self, baud: u32) -> LinkOptions {
-        LinkOptions { baud, ..LinkOptions::default() }
-    }
+    /// How its driver is started over a port being opened at `baud`, as its
+    /// pickers choose now.
+    fn link_starter(&self, baud: u32) -> LinkStarter;
+
+    /// Starts its built-in emulated board in this process, preloaded with the
+    /// project where the board stores one, and connects to it (at the board's own line rate).
+    fn demo_link(&self, project: &Project, waker: Waker) -> Result<BoardLink, StartError>;
 
     /// What the connection bar says of its connected board, after "connected to …".
     fn link_details(&self, _link: &BoardLink, _words: &Strings) -> Vec<String> {
@@ -109,8 +113,8 @@ pub trait FamilyUi {
         None
     }
 
-    /// A notice from its link the shell does not handle itself.
-    fn notice(&mut self, _shell: &mut Shell<'_>, _notice: LinkNotice) {}
+    /// A notice from its own link (or from STOP that could not be sent).
+    fn notice(&mut self, _shell: &mut Shell<'_>, _notice: FamilyNotice) {}
 
     /// Whether the board is asked for its state continuously (the link polls then).
     fn polling(&self) -> bool {

@@ -30,18 +30,18 @@ pub use action::{
     Action, AfterUnsaved, BoardIntent, FileRequest, Pick, Plen2Action, Plen2Intent, RflexAction, ServoAction, Tab,
 };
 pub use app::{Connecting, Picker, PortLister, REMEMBERED_KEY, Remembered, StudioApp, system_lister};
-pub use board_link::{BoardLink, Device, LinkNotice, LinkOptions, StartError};
+pub use board_link::{BoardLink, FamilyLink, FamilyNotice, LinkNotice, LinkStarter, StartError};
 pub use derive::Costing;
 pub use document::Document;
 pub use family::FamilyUi;
 pub use i18n::{Language, Strings};
 pub use layout::Layout;
 pub use operation::{Operation, Step};
-pub use plen2::{Plen2Failure, Plen2Kind, Plen2Operation, Plen2Outcome, Plen2Result};
-pub use rflex::{DrivePanel, DriveView, WorldView};
+pub use plen2::{Plen2BoardLink, Plen2Failure, Plen2Kind, Plen2Operation, Plen2Outcome, Plen2Result};
+pub use rflex::{DrivePanel, DriveView, RflexBoardLink, WorldView};
 pub use servo::{
-    BoardResult, CAPTURED_STEP_INTERVAL_10MS, LIVE_MOVE_INTERVAL_10MS, PendingConfirm, ServoFailure, ServoKind,
-    ServoOperation, ServoOutcome, timeline_bars,
+    BoardResult, CAPTURED_STEP_INTERVAL_10MS, LIVE_MOVE_INTERVAL_10MS, PendingConfirm, ServoBoardLink, ServoFailure,
+    ServoKind, ServoOperation, ServoOutcome, demo_link as servo_demo_link, timeline_bars,
 };
 pub use shell::{RunningOperation, StatusLine};
 

@@ -9,7 +9,7 @@ use egui_kittest::{Harness, HarnessBuilder};
 use servo_studio::device::servo::ServoHandle;
 use servo_studio::link::no_waker;
 use servo_studio::project::Project;
-use servo_studio::ui::{Action, BoardLink, StudioApp, Tab};
+use servo_studio::ui::{Action, BoardLink, ServoBoardLink as _, StudioApp, Tab};
 
 /// A test window of `size` (the shipped fonts installed), to build with a
 /// state. What panels derive from the document (validation, timing, plots)

@@ -10,7 +10,7 @@ use std::time::{Duration, Instant};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use servo_studio::project::{self, ServoProject, Step};
-use servo_studio::ui::{Action, StudioApp, Tab};
+use servo_studio::ui::{Action, ServoBoardLink as _, StudioApp, Tab};
 
 fn fixture() -> ServoProject {
     project::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/project-v1.json")).unwrap().servo

@@ -12,7 +12,7 @@ use servo_studio::device::servo::ServoImage;
 use servo_studio::link::no_waker;
 use servo_studio::project::{Project, Servo, ServoProject};
 use servo_studio::sim::{Faults, SimConfig};
-use servo_studio::ui::{Action, BoardLink, BoardResult, ServoAction, StudioApp};
+use servo_studio::ui::{Action, BoardResult, ServoAction, StudioApp, servo_demo_link};
 
 fn harness(app: StudioApp) -> Harness<'static, StudioApp> {
     common::ui::window(app, (1200.0, 800.0))
@@ -50,8 +50,7 @@ fn servos_only() -> ServoProject {
 /// that starts out holding `board`.
 fn composed(board: &ServoProject, config: SimConfig, data_dir: &std::path::Path) -> Harness<'static, StudioApp> {
     let mut app = StudioApp::new(servos_only(), None, no_waker()).with_data_dir(data_dir.to_path_buf());
-    app.link =
-        Some(BoardLink::demo_with(&Project::servo(board.clone()), config, Default::default(), no_waker()).unwrap());
+    app.link = Some(servo_demo_link(&Project::servo(board.clone()), config, no_waker()).unwrap());
     let mut harness = harness(app);
     frames(&mut harness);
     // Compose through the UI: two poses.
@@ -221,8 +220,7 @@ fn upload_anyway_restores_a_board_image_with_authoring_problems_exactly() {
     let image = common::unauthorable_image();
     // A backup of a board another tool wrote, opened as the project.
     let mut app = StudioApp::new(image.to_project(), None, no_waker()).with_data_dir(data.path().to_path_buf());
-    app.link =
-        Some(BoardLink::demo_with(&Project::default(), SimConfig::default(), Default::default(), no_waker()).unwrap());
+    app.link = Some(servo_demo_link(&Project::default(), SimConfig::default(), no_waker()).unwrap());
     app.apply(Action::ShowTab(servo_studio::ui::Tab::Board));
     let mut harness = harness(app);
     // Wait for the board's status, so the bar's text no longer changes under the pointer.

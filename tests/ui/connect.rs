@@ -212,15 +212,8 @@ fn a_lost_link_is_one_whole_sentence_in_traditional_chinese() {
     let faults = Faults { disconnect_after: Some(2), ..Faults::default() };
     let sim = ServoSim::new(SimConfig { faults, ..SimConfig::default() }, ServoImage::default());
     let (sim, connection) = spawn_in_memory(sim, waker.clone()).unwrap();
-    app.link = Some(
-        servo_studio::ui::BoardLink::start(
-            &servo_studio::project::Project::default(),
-            connection,
-            servo_studio::ui::LinkOptions::default(),
-            waker,
-        )
-        .unwrap(),
-    );
+    let handle = servo_studio::device::servo::ServoHandle::over(connection, None, waker).unwrap();
+    app.link = Some(servo_studio::ui::BoardLink::new(Box::new(handle), "a board"));
     wait_for(&mut app, &woken, "the disconnect", |app| app.link.is_none());
     drop(sim);
     assert_eq!(

@@ -14,7 +14,7 @@ use servo_studio::link::LinkEvent;
 use servo_studio::project::{Family, Project};
 use servo_studio::protocol::rflex::Command;
 use servo_studio::sim::{BaseState, RflexSimCommand, RflexSimEvent};
-use servo_studio::ui::{Action, StudioApp, Tab};
+use servo_studio::ui::{Action, RflexBoardLink as _, StudioApp, Tab};
 
 fn harness() -> Harness<'static, StudioApp> {
     let mut app = common::ui::editor(Project::empty(Family::Rflex));

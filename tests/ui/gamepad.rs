@@ -16,7 +16,7 @@ use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use servo_studio::gamepad::{ABS_Y, BTN_TL, PadState, RawEvent};
 use servo_studio::project::{Family, Project};
-use servo_studio::ui::{Action, StudioApp, Tab};
+use servo_studio::ui::{Action, Plen2BoardLink as _, RflexBoardLink as _, ServoBoardLink as _, StudioApp, Tab};
 
 struct Rig {
     harness: Harness<'static, StudioApp>,

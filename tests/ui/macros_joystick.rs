@@ -11,7 +11,7 @@ use egui_kittest::kittest::Queryable;
 use servo_studio::project::{self, Command, Macro, Run, ServoProject};
 use servo_studio::protocol::servo::ButtonEvent;
 use servo_studio::sim::SimCommand;
-use servo_studio::ui::{Action, StudioApp, Tab};
+use servo_studio::ui::{Action, ServoBoardLink as _, StudioApp, Tab};
 
 fn fixture() -> ServoProject {
     project::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/project-v1.json")).unwrap().servo

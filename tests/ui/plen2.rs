@@ -16,7 +16,7 @@ use servo_studio::project::plen2::{Frame, Joint, Motion, PlayEntry, PlayList, Pl
 use servo_studio::project::{Family, Project};
 use servo_studio::protocol::plen2::Command;
 use servo_studio::sim::{Plen2SimCommand, Plen2SimEvent, Plen2State};
-use servo_studio::ui::{Action, Plen2Intent, StudioApp, Tab};
+use servo_studio::ui::{Action, Plen2BoardLink as _, Plen2Intent, StudioApp, Tab};
 
 fn project() -> Project {
     let mut pose = Pose::default();

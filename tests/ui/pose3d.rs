@@ -19,7 +19,7 @@ use servo_studio::project::{self, Family, Project};
 use servo_studio::protocol::plen2::Command;
 use servo_studio::protocol::servo::Message;
 use servo_studio::sim::{Plen2SimEvent, SimEvent};
-use servo_studio::ui::{Action, StudioApp, Tab};
+use servo_studio::ui::{Action, Plen2BoardLink as _, ServoBoardLink as _, StudioApp, Tab};
 
 /// Presses at `from`, moves the pointer `by` in a few frames, lets go.
 fn drag(harness: &mut Harness<'static, StudioApp>, from: Pos2, by: egui::Vec2) {

@@ -16,7 +16,7 @@ use egui_kittest::kittest::Queryable;
 use servo_studio::project::plen2::{Frame, Joint, JointSetting, Motion, Plen2Project, Pose};
 use servo_studio::project::{self, Family, Project};
 use servo_studio::sim::{BaseState, RflexSimCommand};
-use servo_studio::ui::{Action, StudioApp, Tab};
+use servo_studio::ui::{Action, RflexBoardLink as _, StudioApp, Tab};
 
 fn harness(project: Project, tab: Tab) -> Harness<'static, StudioApp> {
     common::ui::showing(common::ui::editor(project), tab, (1400.0, 900.0))

@@ -14,7 +14,7 @@ use servo_studio::link::{LinkEvent, no_waker};
 use servo_studio::project::{self, Servo, ServoProject};
 use servo_studio::protocol::servo::Message;
 use servo_studio::sim::SimEvent;
-use servo_studio::ui::{Action, StudioApp};
+use servo_studio::ui::{Action, ServoBoardLink as _, StudioApp};
 
 fn project() -> ServoProject {
     let mut left = Servo::new(1, "左肩");

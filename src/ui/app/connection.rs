@@ -21,19 +21,12 @@ impl StudioApp {
         let Some(link) = &mut self.link else { return };
         for notice in link.pump(now, polling) {
             match notice {
-                LinkNotice::SendFailed(error) => self.report(self.language.send_failed(&error), true),
-                LinkNotice::RequestFailed(error) => self.report(self.language.request_error(&error), true),
-                LinkNotice::PacingWidened(widened) => {
-                    // Not an error: the upload goes on, more carefully.
-                    self.report(self.language.pacing_widened(&widened), false);
-                }
-                LinkNotice::MacroRefused => self.report(self.words().msg_macro_refused, true),
                 LinkNotice::Disconnected(reason) => {
                     self.link_ended(&reason);
                     self.drop_link();
                     return;
                 }
-                notice => {
+                LinkNotice::Family(notice) => {
                     let (mut shell, family_ui) = self.parts(family);
                     family_ui.notice(&mut shell, notice);
                 }
@@ -84,18 +77,13 @@ impl StudioApp {
             }
         };
         let family = self.document.project.family;
-        if !BoardLink::supports(family) {
-            // Say so before touching the port.
-            self.report(self.language.family_not_in_build(family), true);
-            return;
-        }
         let settings = crate::link::LineSettings { baud, ..crate::device::line_settings(family) };
         if !quiet {
             self.report(self.language.connecting_to(&name.to_string()), false);
         }
         let opening = Opening::start(name, settings, self.opener.clone(), self.waker.clone());
-        let options = self.family_ui(family).link_options(baud);
-        self.connecting = Some(Connecting { opening, family, options, quiet });
+        let starter = self.family_ui(family).link_starter(baud);
+        self.connecting = Some(Connecting { opening, family, baud, starter, quiet });
     }
 
     /// Starts the built-in emulated board of the document's family.
@@ -104,8 +92,7 @@ impl StudioApp {
             return;
         }
         let family = self.document.project.family;
-        let options = self.family_ui(family).link_options(0);
-        match BoardLink::demo(&self.document.project, options, self.waker.clone()) {
+        match self.family_ui(family).demo_link(&self.document.project, self.waker.clone()) {
             Ok(link) => {
                 self.link = Some(link);
                 self.connected();
@@ -125,15 +112,14 @@ impl StudioApp {
     pub(super) fn poll_connecting(&mut self) {
         let Some(connecting) = &self.connecting else { return };
         let Some(result) = connecting.opening.poll() else { return };
-        let Some(Connecting { opening, options, family, quiet }) = self.connecting.take() else { return };
+        let Some(Connecting { opening, family, baud, starter, quiet }) = self.connecting.take() else { return };
         match result {
-            Ok(connection) => match BoardLink::start(&self.document.project, connection, options, self.waker.clone()) {
-                Ok(mut link) => {
-                    link.label = opening.port.to_string();
-                    self.report(format!("{} {}", self.words().msg_connected_to, link.label), false);
-                    let label = link.label.clone();
-                    self.link = Some(link);
-                    self.link_made(&label, options.baud, family);
+            Ok(connection) => match starter(&self.document.project, connection, self.waker.clone()) {
+                Ok(device) => {
+                    let label = opening.port.to_string();
+                    self.report(format!("{} {label}", self.words().msg_connected_to), false);
+                    self.link = Some(BoardLink::new(device, label.clone()));
+                    self.link_made(&label, baud, family);
                     self.connected();
                 }
                 Err(error) => self.report(self.language.start_error(&error), true),
@@ -169,7 +155,6 @@ impl StudioApp {
                 family,
                 connecting,
                 busy,
-                can_connect: BoardLink::supports(family),
                 doctor,
                 reconnecting: self.waiting_to_reconnect(),
                 ..LinkStatus::default()
@@ -177,15 +162,7 @@ impl StudioApp {
             Some(link) => {
                 let label = if link.is_demo() { self.words().demo_board.to_string() } else { link.label.clone() };
                 let details = self.family_ui(link.family()).link_details(link, self.words());
-                LinkStatus {
-                    family,
-                    busy,
-                    label: Some(label),
-                    connecting,
-                    can_connect: true,
-                    details,
-                    ..LinkStatus::default()
-                }
+                LinkStatus { family, busy, label: Some(label), connecting, details, ..LinkStatus::default() }
             }
         }
     }

@@ -40,16 +40,26 @@ use crate::ui::shell::{RunningOperation, Shell, ShellView, StatusLine};
 use crate::ui::speed::LiveSpeed;
 
 /// A port being opened.
-#[derive(Debug)]
 pub struct Connecting {
     /// The opening, on its own thread.
     pub opening: Opening,
     /// The family whose driver starts once it is open.
     pub family: Family,
+    /// The line rate asked for.
+    pub baud: u32,
     /// How its driver is started.
-    pub options: crate::ui::board_link::LinkOptions,
+    pub starter: crate::ui::board_link::LinkStarter,
     /// A lost link being made again: a port not there yet is not an error.
     pub quiet: bool,
+}
+
+impl std::fmt::Debug for Connecting {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Connecting")
+            .field("opening", &self.opening)
+            .field("family", &self.family)
+            .finish_non_exhaustive()
+    }
 }
 
 /// The whole editor.

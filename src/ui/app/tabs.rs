@@ -3,7 +3,6 @@
 
 use super::StudioApp;
 use crate::ui::action::{Action, Tab};
-use crate::ui::board_link::BoardLink;
 
 impl StudioApp {
     /// Draws the current tab's panel, filling the space it is given.
@@ -19,9 +18,6 @@ impl StudioApp {
                 Some(link) => link.log.ui(ui, words),
                 None => {
                     ui.label(words.not_connected);
-                    if !BoardLink::supports(family) {
-                        ui.label(self.language.family_not_in_build(family));
-                    }
                 }
             }
             return;

@@ -354,26 +354,9 @@ impl Language {
     pub fn start_error(self, error: &crate::ui::board_link::StartError) -> String {
         use crate::ui::board_link::StartError as S;
         match (self, error) {
-            (_, S::Unsupported(family)) => self.family_not_in_build(*family),
             (Self::English, S::Thread(text)) => format!("cannot start the connection: {text}"),
             (Self::TraditionalChinese, S::Thread(_)) => {
                 "無法啟動連線：系統無法再建立執行緒，請關閉一些程式後重試".into()
-            }
-        }
-    }
-
-    /// A family whose driver and panels this build does not have yet.
-    pub fn family_not_in_build(self, family: crate::project::Family) -> String {
-        match self {
-            Self::English => format!(
-                "The {} panels and driver are not in this build of Servo Studio yet; choose Servo board to connect.",
-                self.family(family)
-            ),
-            Self::TraditionalChinese => {
-                format!(
-                    "此版本的 Servo Studio 尚未包含 {} 的面板與驅動程式；請選擇「舵機控制板」再連線。",
-                    self.family(family)
-                )
             }
         }
     }

@@ -6,6 +6,7 @@
 mod board;
 mod captions;
 mod joints;
+mod link;
 mod live;
 mod motions;
 mod pad;
@@ -18,6 +19,8 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 pub use board::{SlotCell, slot_map};
+pub use link::Plen2BoardLink;
+pub(crate) use link::Plen2Link;
 pub use live::homes;
 
 use crate::device::plen2::{self, Command, Plen2ImportFailure, Plen2ImportOptions, Plen2ImportReport, Plen2OpError};
@@ -25,7 +28,7 @@ use crate::device::plen2::{PacingMode, Plen2Item, ReplyError};
 use crate::project::plen2::{Joint, Plen2Project, SLOTS};
 use crate::project::{Edit, Family, LivePose, Project};
 use crate::ui::action::{Action, Plen2Action, Plen2Intent, Tab};
-use crate::ui::board_link::{BoardLink, LinkOptions};
+use crate::ui::board_link::{BoardLink, FamilyNotice, LinkStarter, StartError};
 use crate::ui::family::{FamilyUi, Panel};
 use crate::ui::i18n::{Language, Strings};
 use crate::ui::layout::{Layout, Pane};
@@ -505,8 +508,19 @@ impl FamilyUi for Plen2Ui {
         }
     }
 
-    fn link_options(&self, baud: u32) -> LinkOptions {
-        LinkOptions { baud, pacing: self.pacing }
+    fn link_starter(&self, baud: u32) -> LinkStarter {
+        link::starter(baud, self.pacing)
+    }
+
+    fn demo_link(&self, project: &Project, waker: crate::link::Waker) -> Result<BoardLink, StartError> {
+        link::demo_link(project, self.pacing, waker)
+    }
+
+    fn notice(&mut self, shell: &mut Shell<'_>, notice: FamilyNotice) {
+        if let Some(plen2::Plen2Notice::Widened(widened)) = notice.get() {
+            // Not an error: the upload goes on, more carefully.
+            shell.report(shell.language.pacing_widened(widened), false);
+        }
     }
 
     fn demo_connected(&self, words: &Strings) -> &'static str {
@@ -546,23 +560,5 @@ impl FamilyUi for Plen2Ui {
         let (_, outcome) = RunningOperation::finished::<Plen2Kind, Plen2Outcome, Plen2Item>(shell.operation, wait)?;
         self.finish(outcome);
         self.summary(shell.language)
-    }
-}
-
-/// The connected plen2 through the shell (the shell itself knows no family).
-pub(crate) trait Plen2Link {
-    /// The connected PLEN2.
-    fn plen2(&self) -> Option<&plen2::Plen2Handle>;
-    /// The connected PLEN2, mutably.
-    fn plen2_mut(&mut self) -> Option<&mut plen2::Plen2Handle>;
-}
-
-impl Plen2Link for Shell<'_> {
-    fn plen2(&self) -> Option<&plen2::Plen2Handle> {
-        self.link.as_ref().and_then(BoardLink::plen2)
-    }
-
-    fn plen2_mut(&mut self) -> Option<&mut plen2::Plen2Handle> {
-        self.link.as_mut().and_then(BoardLink::plen2_mut)
     }
 }

@@ -3,6 +3,7 @@
 //! left↔right, move, remove, play from here), the selected frame's 18 values
 //! relative to home, a timeline and an angle plot.
 
+use super::Plen2BoardLink;
 use super::preview::Preview;
 use crate::authoring::bake::{self, Baked, DEFAULT_TOLERANCE_TENTHS};
 use crate::project::plen2::{Frame, Joint, LoopRange, Motion, Plen2Project, Pose};

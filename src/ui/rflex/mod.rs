@@ -5,19 +5,23 @@
 
 mod captions;
 mod drive;
+mod link;
 mod pad;
 mod telemetry;
 mod world;
 
 pub use drive::{DrivePanel, DriveView};
+pub use link::RflexBoardLink;
+pub(crate) use link::RflexLink;
 pub use world::WorldView;
 
+use crate::device::rflex::RflexNotice;
 use crate::gamepad::puppet::Cue;
 use crate::project::gamepad::Fire;
 use crate::project::rflex::Robot;
 use crate::project::{Family, Project};
 use crate::ui::action::{Action, RflexAction, Tab};
-use crate::ui::board_link::{BoardLink, LinkNotice};
+use crate::ui::board_link::{BoardLink, FamilyNotice, LinkStarter, StartError};
 use crate::ui::family::{FamilyUi, Panel};
 use crate::ui::i18n::Strings;
 use crate::ui::layout::{self, Layout, Pane};
@@ -153,6 +157,14 @@ impl FamilyUi for RflexUi {
         volts.map(|volts| format!("{} {volts:.2} V", words.battery)).into_iter().collect()
     }
 
+    fn link_starter(&self, _baud: u32) -> LinkStarter {
+        link::starter()
+    }
+
+    fn demo_link(&self, project: &Project, waker: crate::link::Waker) -> Result<BoardLink, StartError> {
+        link::demo_link(project, waker)
+    }
+
     fn demo_connected(&self, words: &Strings) -> &'static str {
         words.rflex().msg_connected_demo_rflex
     }
@@ -178,8 +190,8 @@ impl FamilyUi for RflexUi {
         self.drive = DrivePanel::default();
     }
 
-    fn notice(&mut self, shell: &mut Shell<'_>, notice: LinkNotice) {
-        if notice == LinkNotice::BaseSilent {
+    fn notice(&mut self, shell: &mut Shell<'_>, notice: FamilyNotice) {
+        if notice.get::<RflexNotice>() == Some(&RflexNotice::Silent) {
             self.disconnected();
             shell.report(shell.words().rflex().msg_base_silent, true);
         }
@@ -263,17 +275,5 @@ fn robot_name(robot: Robot) -> &'static str {
         Robot::AtrvJr => "ATRV-Jr",
         Robot::Magellan => "Magellan",
         Robot::Custom { .. } => "custom",
-    }
-}
-
-/// The connected rflex through the shell (the shell itself knows no family).
-pub(crate) trait RflexLink {
-    /// The connected base, mutably.
-    fn rflex_mut(&mut self) -> Option<&mut crate::device::rflex::RflexBase>;
-}
-
-impl RflexLink for Shell<'_> {
-    fn rflex_mut(&mut self) -> Option<&mut crate::device::rflex::RflexBase> {
-        self.link.as_mut().and_then(BoardLink::rflex_mut)
     }
 }

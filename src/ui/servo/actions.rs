@@ -3,6 +3,7 @@
 //! together), and as a plot of each servo's angle over time; play it on the
 //! board, or preview it on the sliders without one.
 
+use super::ServoBoardLink;
 use super::played::Budget;
 use super::preview::{Preview, Timed};
 use crate::project::{

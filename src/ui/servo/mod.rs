@@ -7,6 +7,7 @@ mod actions;
 mod board;
 mod captions;
 mod joystick;
+mod link;
 mod live;
 mod macros;
 mod operations;
@@ -22,12 +23,15 @@ use std::time::Instant;
 use crossbeam_channel::Receiver;
 
 pub use actions::timeline_bars;
+pub(crate) use link::ServoLink;
+pub use link::{ServoBoardLink, demo_link};
 pub use operations::{BoardResult, PendingConfirm, ServoFailure, ServoKind, ServoOperation, ServoOutcome};
 
-use crate::device::servo::{ButtonEvent, ServoImage};
+use crate::device::servo::{ButtonEvent, ServoImage, ServoNotice};
 use crate::project::{Family, Project, ServoProject};
+use crate::sim::SimConfig;
 use crate::ui::action::{Action, ServoAction, Tab};
-use crate::ui::board_link::{BoardLink, LinkNotice};
+use crate::ui::board_link::{BoardLink, FamilyNotice, LinkStarter, StartError};
 use crate::ui::derive::Derived;
 use crate::ui::family::{FamilyUi, Panel};
 use crate::ui::i18n::{Language, Strings};
@@ -355,6 +359,14 @@ impl FamilyUi for ServoUi {
         parts
     }
 
+    fn link_starter(&self, baud: u32) -> LinkStarter {
+        link::starter(baud)
+    }
+
+    fn demo_link(&self, project: &Project, waker: crate::link::Waker) -> Result<BoardLink, StartError> {
+        demo_link(project, SimConfig::default(), waker)
+    }
+
     fn demo_connected(&self, words: &Strings) -> &'static str {
         words.servo().msg_connected_demo
     }
@@ -365,8 +377,8 @@ impl FamilyUi for ServoUi {
         self.playing.clear();
         let Some(link) = shell.link.as_mut() else { return };
         match link.stop() {
-            Ok(()) => shell.report(shell.words().servo().msg_stopped_all, false),
-            Err(error) => shell.report(shell.language.request_error(&error), true),
+            None => shell.report(shell.words().servo().msg_stopped_all, false),
+            Some(failed) => self.notice(shell, failed),
         }
     }
 
@@ -403,9 +415,15 @@ impl FamilyUi for ServoUi {
         self.summary(shell.language)
     }
 
-    fn notice(&mut self, shell: &mut Shell<'_>, notice: LinkNotice) {
-        if let LinkNotice::Button { button_id, event } = notice {
-            self.button(shell, button_id, event);
+    fn notice(&mut self, shell: &mut Shell<'_>, notice: FamilyNotice) {
+        let Ok(notice) = notice.take::<ServoNotice>() else { return };
+        match notice {
+            ServoNotice::Button { button_id, event } => self.button(shell, button_id, event),
+            ServoNotice::SendFailed(error) => shell.report(shell.language.send_failed(&error), true),
+            ServoNotice::RequestFailed(error) => shell.report(shell.language.request_error(&error), true),
+            ServoNotice::MacroRefused => shell.report(shell.words().msg_macro_refused, true),
+            // The link takes these itself.
+            ServoNotice::Log(_) | ServoNotice::Disconnected(_) => {}
         }
     }
 
@@ -416,22 +434,4 @@ impl FamilyUi for ServoUi {
 
 fn homes(project: &ServoProject) -> BTreeMap<u8, i16> {
     project.servos.iter().map(|servo| (servo.id, servo.home_deg)).collect()
-}
-
-/// The connected servo through the shell (the shell itself knows no family).
-pub(crate) trait ServoLink {
-    /// The connected servo board.
-    fn servo(&self) -> Option<&crate::device::servo::ServoHandle>;
-    /// The connected servo board, mutably.
-    fn servo_mut(&mut self) -> Option<&mut crate::device::servo::ServoHandle>;
-}
-
-impl ServoLink for Shell<'_> {
-    fn servo(&self) -> Option<&crate::device::servo::ServoHandle> {
-        self.link.as_ref().and_then(BoardLink::servo)
-    }
-
-    fn servo_mut(&mut self) -> Option<&mut crate::device::servo::ServoHandle> {
-        self.link.as_mut().and_then(BoardLink::servo_mut)
-    }
 }
