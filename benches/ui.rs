@@ -498,7 +498,7 @@ fn slider_latency() {
                 std::thread::sleep(Duration::from_millis(16));
             }
             let degree = (-target) + (2 * target * step / 30);
-            app.apply(UiAction::Servo(servo_studio::ui::ServoAction::SetPose { servo_id: 1, degree: degree as i16 }));
+            app.apply(UiAction::family(servo_studio::ui::ServoAction::SetPose { servo_id: 1, degree: degree as i16 }));
             last_change = Instant::now();
         }
         // The board holds the angle once it has handled the move that carries it.

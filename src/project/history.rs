@@ -19,6 +19,16 @@ pub enum LivePose {
     Servo(BTreeMap<u8, i16>),
 }
 
+impl LivePose {
+    /// The family whose pose it is.
+    pub fn family(&self) -> super::Family {
+        match self {
+            Self::Plen2(_) => super::Family::Plen2,
+            Self::Servo(_) => super::Family::Servo,
+        }
+    }
+}
+
 /// What one undo step brings back.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Step {

@@ -2,6 +2,7 @@
 //! actions, and the app shell applies them in one place — the shell's own,
 //! and each family's, which it hands to the family that owns them.
 
+use std::any::Any;
 use std::path::PathBuf;
 
 use crate::project::{Edit, Family};
@@ -247,192 +248,69 @@ pub enum Action {
     Terminate,
     /// What the import window asks for.
     Import(ImportAction),
-    /// What the servo board's panels ask for.
-    Servo(ServoAction),
-    /// What the PLEN2's panels ask for.
-    Plen2(Plen2Action),
-    /// What the rFLEX base's panels ask for.
-    Rflex(RflexAction),
+    /// What a family's panels ask for (its own action type, which only that
+    /// family's ui takes back).
+    Family(Box<dyn FamilyAction>),
 }
 
-/// What happens after a board comparison is confirmed.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub enum BoardIntent {
-    /// Write the project onto the board.
-    Upload,
-    /// Write the project onto the board although validation found errors
-    /// (restoring a backup of content Servo Studio would not author).
-    UploadAnyway,
-    /// Replace the project with the board's contents.
-    ReadIntoProject,
-    /// Save the board's contents to a file.
-    ExportToFile(PathBuf),
+impl Action {
+    /// A family's own action.
+    pub fn family(action: impl FamilyAction) -> Self {
+        Self::Family(Box::new(action))
+    }
+
+    /// The family action this is, if it is a `T`.
+    pub fn family_action<T: Any>(&self) -> Option<&T> {
+        let Self::Family(action) = self else { return None };
+        let action: &dyn Any = &**action;
+        action.downcast_ref()
+    }
 }
 
-/// A servo board panel's request.
-#[derive(Clone, Debug, PartialEq)]
-pub enum ServoAction {
-    /// A slider moved: set the pose of one servo (sent live when connected).
-    SetPose {
-        /// The servo.
-        servo_id: u8,
-        /// The angle asked for (clamped to the servo's limits).
-        degree: i16,
-    },
-    /// Select a servo (its slider row and its link in the 3D view), or none.
-    SelectServo(Option<u8>),
-    /// A servo turned in the 3D view: to where it was when the drag began, plus this (live).
-    TurnServo {
-        /// The servo.
-        servo_id: u8,
-        /// Degrees from where the drag began.
-        by_deg: i32,
-    },
-    /// The drag turning a servo let go: the turn is one undo step.
-    TurnDone,
-    /// Hold or release one servo's torque.
-    SetHold {
-        /// The servo.
-        servo_id: u8,
-        /// Hold (true) or release (false).
-        hold: bool,
-    },
-    /// Let servos move again after a STOP.
-    Resume,
-    /// Start recording the sliders (after a count-in), to be fitted into
-    /// actions and a macro running them.
-    Record,
-    /// Stop recording: fit what was recorded and add it (one undo step).
-    StopRecording,
-    /// Turn the current pose into a new action.
-    CapturePose {
-        /// Use the angles read back from the board instead of the sliders.
-        from_board: bool,
-    },
-    /// Read servo angles from the board continuously.
-    SetPolling(bool),
-    /// Read the board and show what differs, before doing `intent`.
-    BoardCompare(BoardIntent),
-    /// Go ahead with the compared intent.
-    BoardConfirm,
-    /// Drop the compared intent.
-    BoardDismiss,
-    /// Run a stored macro on the board.
-    RunMacro(i32),
-    /// Move the servos through an action of the project now (live).
-    PlayAction(i32),
-    /// Play a macro of the project live from one of its commands (its actions
-    /// sent one after another, curves as their sub-steps).
-    PlayMacroFrom {
-        /// The macro.
-        macro_id: i32,
-        /// The first command played, from 0.
-        command: usize,
-    },
-    /// Play an action on the sliders, without a board.
-    PreviewAction(i32),
-    /// Start (with the table to pick into) or stop picking a button by pressing it on the remote.
-    PickButton {
-        /// The table a pressed button is selected in (or added to); `None` stops picking.
-        table_index: Option<usize>,
-    },
+/// A family's own action type names its family.
+pub trait ActionOf {
+    /// The family whose ui applies it.
+    const FAMILY: Family;
 }
 
-/// A PLEN2 robot operation.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub enum Plen2Intent {
-    /// Read every slot, the joint settings and the version.
-    Read,
-    /// Upload the project's motions (backup of the overwritten slots first, then verify).
-    Upload,
-    /// Replace the project's PLEN2 section with what was read.
-    ReadIntoProject,
-    /// Save what was read to a file.
-    ExportToFile(PathBuf),
-    /// Write the project's joint settings where they differ.
-    WriteJoints,
-    /// Factory joint settings (`>JS`).
-    FactoryReset,
+/// A family's action as the shell carries it, whatever its type.
+pub trait FamilyAction: Any + std::fmt::Debug {
+    /// The family whose ui applies it.
+    fn owner(&self) -> Family;
+    /// A copy.
+    fn boxed_clone(&self) -> Box<dyn FamilyAction>;
+    /// Whether it is the same action as `other`.
+    fn same_as(&self, other: &dyn FamilyAction) -> bool;
+    /// Itself, for its family to take back.
+    fn into_any(self: Box<Self>) -> Box<dyn Any>;
 }
 
-/// A PLEN2 panel's request.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Plen2Action {
-    /// A joint to an absolute angle (tenths of a degree), live.
-    SetJoint {
-        /// The joint.
-        joint: crate::project::plen2::Joint,
-        /// Tenths of a degree.
-        tenths: i16,
-    },
-    /// Select a joint (its slider row and its link in the 3D view), or none.
-    SelectJoint(Option<crate::project::plen2::Joint>),
-    /// A joint turned in the 3D view: to where it was when the drag began, plus this (live).
-    TurnJoint {
-        /// The joint.
-        joint: crate::project::plen2::Joint,
-        /// Tenths of a degree from where the drag began.
-        by_tenths: i32,
-    },
-    /// The drag turning a joint let go: the turn is one undo step.
-    TurnDone,
-    /// Every joint to home.
-    Home,
-    /// Play a motion stored on the robot (`$PM`).
-    PlayMotion(u8),
-    /// Play the project's motion from a frame by streaming its poses live.
-    PlayFrom {
-        /// The motion's slot.
-        slot: u8,
-        /// The first frame, from 0.
-        frame: usize,
-    },
-    /// Play a play list of the project on the robot.
-    PlayList(usize),
-    /// Start recording the live pose into a motion (after a count-in), to be
-    /// fitted into frames inserted after the motion's selected frame.
-    Record {
-        /// The motion's slot.
-        slot: u8,
-    },
-    /// Stop recording: fit what was recorded and insert it (one undo step).
-    StopRecording,
-    /// Append the current joint pose to a motion as a frame.
-    CaptureFrame {
-        /// The motion's slot.
-        slot: u8,
-    },
-    /// A robot operation.
-    Robot(Plen2Intent),
-    /// Save a motion of the project as the official editor's motion.json.
-    SaveMotionJson {
-        /// The motion's slot.
-        slot: u8,
-        /// Where.
-        path: PathBuf,
-    },
-    /// How the robot is paced from the next connection on.
-    SetPacing(crate::device::plen2::PacingMode),
+impl<T: ActionOf + Any + Clone + PartialEq + std::fmt::Debug> FamilyAction for T {
+    fn owner(&self) -> Family {
+        T::FAMILY
+    }
+    fn boxed_clone(&self) -> Box<dyn FamilyAction> {
+        Box::new(self.clone())
+    }
+    fn same_as(&self, other: &dyn FamilyAction) -> bool {
+        let other: &dyn Any = other;
+        other.downcast_ref::<T>() == Some(self)
+    }
+    fn into_any(self: Box<Self>) -> Box<dyn Any> {
+        self
+    }
 }
 
-/// An rFLEX panel's request.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum RflexAction {
-    /// Drive the base at this velocity (held until changed; 0, 0 stops).
-    Drive {
-        /// m/s, forward positive.
-        speed_m_per_s: f64,
-        /// rad/s, left positive.
-        turn_rad_per_s: f64,
-    },
-    /// Choose the robot preset.
-    SetRobot(crate::project::rflex::Robot),
-    /// Set or release the brake.
-    SetBrake(bool),
-    /// Turn the sonar ring on or off.
-    SetSonar(bool),
-    /// Forget the echoes heard so far.
-    ClearMap,
+impl Clone for Box<dyn FamilyAction> {
+    fn clone(&self) -> Self {
+        self.boxed_clone()
+    }
+}
+
+impl PartialEq for Box<dyn FamilyAction> {
+    fn eq(&self, other: &Self) -> bool {
+        self.same_as(&**other)
+    }
 }
 
 /// What was asked for when the document had unsaved changes.

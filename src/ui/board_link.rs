@@ -10,6 +10,7 @@ use std::time::{Duration, Instant};
 
 use crate::link::{Connection, DisconnectReason, Waker};
 use crate::project::{Family, Project};
+use crate::ui::i18n::{Language, Worded};
 use crate::ui::packet_log::PacketLog;
 
 /// Something a link reports to the shell.
@@ -96,6 +97,17 @@ impl std::fmt::Debug for BoardLink {
 pub enum StartError {
     /// The I/O thread (or the demo board) could not start.
     Thread(String),
+}
+
+impl Worded for StartError {
+    fn worded(&self, language: Language) -> String {
+        match (language, self) {
+            (Language::English, Self::Thread(text)) => format!("cannot start the connection: {text}"),
+            (Language::TraditionalChinese, Self::Thread(_)) => {
+                "無法啟動連線：系統無法再建立執行緒，請關閉一些程式後重試".into()
+            }
+        }
+    }
 }
 
 impl From<std::io::Error> for StartError {

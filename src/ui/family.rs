@@ -10,13 +10,15 @@ use std::time::{Duration, Instant};
 use crate::gamepad::PadUpdate;
 use crate::gamepad::puppet::Cue;
 use crate::link::Waker;
+use crate::project::LivePose;
 use crate::project::gamepad::Fire;
 use crate::project::{Family, Project};
-use crate::ui::action::{Action, Tab};
+use crate::ui::action::{Action, FamilyAction, Tab};
 use crate::ui::board_link::{BoardLink, FamilyNotice, LinkStarter, StartError};
 use crate::ui::gamepad::PadTarget;
 use crate::ui::i18n::Strings;
 use crate::ui::layout::Layout;
+use crate::ui::remembered::Remembered;
 use crate::ui::shell::{Shell, ShellView};
 
 /// One of a family's tabs.
@@ -31,7 +33,7 @@ pub struct Panel {
 }
 
 /// A board family's side of the editor.
-pub trait FamilyUi {
+pub trait FamilyUi: std::any::Any {
     /// The family it edits.
     fn family(&self) -> Family;
 
@@ -112,6 +114,23 @@ pub trait FamilyUi {
     fn finish_operation(&mut self, _shell: &mut Shell<'_>, _wait: Option<Duration>) -> Option<(String, bool)> {
         None
     }
+
+    /// Applies one of its own actions (see [`Action::family`]).
+    fn act(&mut self, shell: &mut Shell<'_>, action: Box<dyn FamilyAction>);
+
+    /// Its live pose, as an undo step records it (None: it has none).
+    fn live_pose(&self) -> Option<LivePose> {
+        None
+    }
+
+    /// Moves its live pose back to `pose` (an undo or redo of a turn in the 3D view).
+    fn restore_pose(&mut self, _shell: &mut Shell<'_>, _pose: LivePose) {}
+
+    /// Writes its own settings into what is remembered between runs.
+    fn remember(&self, _remembered: &mut Remembered) {}
+
+    /// Takes its own settings back from what was remembered.
+    fn recall(&mut self, _remembered: &Remembered) {}
 
     /// A notice from its own link (or from STOP that could not be sent).
     fn notice(&mut self, _shell: &mut Shell<'_>, _notice: FamilyNotice) {}

@@ -7,6 +7,7 @@ mod board_link;
 mod connection_bar;
 mod derive;
 mod document;
+mod families;
 mod family;
 pub mod files;
 pub mod fonts;
@@ -18,6 +19,7 @@ mod operation;
 pub mod packet_log;
 mod plen2;
 mod plot;
+mod remembered;
 mod rflex;
 mod rows;
 mod servo;
@@ -26,22 +28,25 @@ pub mod speed;
 mod transport;
 pub mod view3d;
 
-pub use action::{
-    Action, AfterUnsaved, BoardIntent, FileRequest, Pick, Plen2Action, Plen2Intent, RflexAction, ServoAction, Tab,
-};
+pub use action::{Action, ActionOf, AfterUnsaved, FamilyAction, FileRequest, Pick, Tab};
 pub use app::{Connecting, Picker, PortLister, REMEMBERED_KEY, Remembered, StudioApp, system_lister};
 pub use board_link::{BoardLink, FamilyLink, FamilyNotice, LinkNotice, LinkStarter, StartError};
 pub use derive::Costing;
 pub use document::Document;
+pub use families::Families;
 pub use family::FamilyUi;
 pub use i18n::{Language, Strings};
 pub use layout::Layout;
 pub use operation::{Operation, Step};
-pub use plen2::{Plen2BoardLink, Plen2Failure, Plen2Kind, Plen2Operation, Plen2Outcome, Plen2Result};
-pub use rflex::{DrivePanel, DriveView, RflexBoardLink, WorldView};
+pub use plen2::{
+    Plen2Action, Plen2BoardLink, Plen2Failure, Plen2Intent, Plen2Kind, Plen2Operation, Plen2Outcome, Plen2Result,
+    Plen2Ui,
+};
+pub use rflex::{DrivePanel, DriveView, RflexAction, RflexBoardLink, RflexUi, WorldView};
 pub use servo::{
-    BoardResult, CAPTURED_STEP_INTERVAL_10MS, LIVE_MOVE_INTERVAL_10MS, PendingConfirm, ServoBoardLink, ServoFailure,
-    ServoKind, ServoOperation, ServoOutcome, demo_link as servo_demo_link, timeline_bars,
+    BoardIntent, BoardResult, CAPTURED_STEP_INTERVAL_10MS, LIVE_MOVE_INTERVAL_10MS, PendingConfirm, ServoAction,
+    ServoBoardLink, ServoFailure, ServoKind, ServoOperation, ServoOutcome, ServoUi, demo_link as servo_demo_link,
+    timeline_bars,
 };
 pub use shell::{RunningOperation, StatusLine};
 

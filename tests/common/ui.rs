@@ -9,7 +9,7 @@ use egui_kittest::{Harness, HarnessBuilder};
 use servo_studio::device::servo::ServoHandle;
 use servo_studio::link::no_waker;
 use servo_studio::project::Project;
-use servo_studio::ui::{Action, BoardLink, ServoBoardLink as _, StudioApp, Tab};
+use servo_studio::ui::{Action, BoardLink, Plen2Ui, RflexUi, ServoBoardLink as _, ServoUi, StudioApp, Tab};
 
 /// A test window of `size` (the shipped fonts installed), to build with a
 /// state. What panels derive from the document (validation, timing, plots)
@@ -87,4 +87,24 @@ pub fn servos_until(
         assert!(Instant::now() < deadline, "timed out waiting for {what}: {servos:?}");
         let _ = pace.recv();
     }
+}
+
+/// The servo board's side of the editor.
+pub fn servo_ui(app: &StudioApp) -> &ServoUi {
+    app.families.of().expect("the editor has the servo family")
+}
+
+/// The servo board's side of the editor, to change.
+pub fn servo_ui_mut(app: &mut StudioApp) -> &mut ServoUi {
+    app.families.of_mut().expect("the editor has the servo family")
+}
+
+/// The PLEN2's side of the editor.
+pub fn plen2_ui(app: &StudioApp) -> &Plen2Ui {
+    app.families.of().expect("the editor has the PLEN2 family")
+}
+
+/// The rFLEX base's side of the editor.
+pub fn rflex_ui(app: &StudioApp) -> &RflexUi {
+    app.families.of().expect("the editor has the rFLEX family")
 }

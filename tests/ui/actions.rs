@@ -38,14 +38,14 @@ fn preview_moves_the_sliders_along_the_action_without_a_board() {
     let mut harness = harness(fixture());
     harness.get_by_label("Preview").click();
     harness.run_steps(1);
-    let (_, started) = harness.state().servo.preview.unwrap();
+    let (_, started) = common::ui::servo_ui(harness.state()).preview.unwrap();
     // Half-way through servo 1's 500 ms move from home 0° to -90°.
     harness.state_mut().advance(started + Duration::from_millis(250));
-    assert_eq!(harness.state().servo.pose.get(&1), Some(&-45));
+    assert_eq!(common::ui::servo_ui(harness.state()).pose.get(&1), Some(&-45));
     harness.state_mut().advance(started + Duration::from_millis(1000));
-    assert_eq!(harness.state().servo.pose.get(&1), Some(&-90));
-    assert_eq!(harness.state().servo.pose.get(&2), Some(&45));
-    assert!(harness.state().servo.preview.is_none(), "the preview ends after the last step");
+    assert_eq!(common::ui::servo_ui(harness.state()).pose.get(&1), Some(&-90));
+    assert_eq!(common::ui::servo_ui(harness.state()).pose.get(&2), Some(&45));
+    assert!(common::ui::servo_ui(harness.state()).preview.is_none(), "the preview ends after the last step");
 }
 
 #[test]

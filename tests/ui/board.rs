@@ -27,13 +27,13 @@ fn frames(harness: &mut Harness<'static, StudioApp>) {
 
 /// The last result's failure or problems, as the panel words them.
 fn shown_error(app: &StudioApp) -> String {
-    let result = app.servo.board_result.as_ref().expect("a result");
+    let result = common::ui::servo_ui(app).board_result.as_ref().expect("a result");
     result.error_text(app.language).unwrap_or_else(|| panic!("expected a failure, got {result:?}"))
 }
 
 /// The pending comparison's differences, as the panel words them.
 fn shown_differences(app: &StudioApp) -> Vec<String> {
-    let pending = app.servo.pending.as_ref().expect("a comparison");
+    let pending = common::ui::servo_ui(app).pending.as_ref().expect("a comparison");
     let differences = pending.differences.as_ref().expect("the project fits in board records");
     differences.iter().map(|difference| app.language.difference(difference)).collect()
 }
@@ -54,10 +54,10 @@ fn composed(board: &ServoProject, config: SimConfig, data_dir: &std::path::Path)
     let mut harness = harness(app);
     frames(&mut harness);
     // Compose through the UI: two poses.
-    harness.state_mut().apply(Action::Servo(ServoAction::SetPose { servo_id: 1, degree: -40 }));
+    harness.state_mut().apply(Action::family(ServoAction::SetPose { servo_id: 1, degree: -40 }));
     harness.get_by_label("Capture pose").click();
     frames(&mut harness);
-    harness.state_mut().apply(Action::Servo(ServoAction::SetPose { servo_id: 2, degree: 25 }));
+    harness.state_mut().apply(Action::family(ServoAction::SetPose { servo_id: 2, degree: 25 }));
     harness.get_by_label("Capture pose").click();
     frames(&mut harness);
     assert_eq!(harness.state().document.project.servo.actions.len(), 2);
@@ -75,13 +75,13 @@ fn upload_then_read_back_round_trips_and_keeps_a_backup() {
 
     harness.get_by_label("Upload to board").click();
     frames(&mut harness);
-    run_until(&mut harness, "the comparison", |app| app.servo.pending.is_some());
+    run_until(&mut harness, "the comparison", |app| common::ui::servo_ui(app).pending.is_some());
     let differences = shown_differences(harness.state());
     assert!(differences.iter().any(|d| d.contains("project id")), "{differences:?}");
     harness.get_by_label("Back up the board, then overwrite it").click();
     frames(&mut harness);
-    run_until(&mut harness, "the upload", |app| app.servo.board_result.is_some());
-    match harness.state().servo.board_result.clone().unwrap() {
+    run_until(&mut harness, "the upload", |app| common::ui::servo_ui(app).board_result.is_some());
+    match common::ui::servo_ui(harness.state()).board_result.clone().unwrap() {
         BoardResult::Uploaded { items, backup, .. } => {
             // clear, project id, servo parameters, 2 actions
             assert_eq!(items.len(), 5, "{items:?}");
@@ -100,7 +100,7 @@ fn upload_then_read_back_round_trips_and_keeps_a_backup() {
     // Read it back: identical, and the project is replaced by what the board holds.
     harness.get_by_label("Read board into project").click();
     frames(&mut harness);
-    run_until(&mut harness, "the comparison", |app| app.servo.pending.is_some());
+    run_until(&mut harness, "the comparison", |app| common::ui::servo_ui(app).pending.is_some());
     assert_eq!(shown_differences(harness.state()), Vec::<String>::new());
     assert!(harness.query_by_label("The board already holds exactly this project.").is_some());
     harness.get_by_label("Replace the project with the board").click();
@@ -119,13 +119,13 @@ fn an_upload_with_a_refused_item_shows_that_items_error() {
     let mut harness = composed(&ServoProject::default(), config, data.path());
     harness.get_by_label("Upload to board").click();
     frames(&mut harness);
-    run_until(&mut harness, "the comparison", |app| app.servo.pending.is_some());
+    run_until(&mut harness, "the comparison", |app| common::ui::servo_ui(app).pending.is_some());
     harness.get_by_label("Back up the board, then overwrite it").click();
     frames(&mut harness);
-    run_until(&mut harness, "the upload", |app| app.servo.board_result.is_some());
+    run_until(&mut harness, "the upload", |app| common::ui::servo_ui(app).board_result.is_some());
     let error = shown_error(harness.state());
     assert!(error.contains("action 2 \"Pose 2\": the board refused it"), "{error}");
-    match harness.state().servo.board_result.clone().unwrap() {
+    match common::ui::servo_ui(harness.state()).board_result.clone().unwrap() {
         BoardResult::Failed { items, .. } => {
             assert!(
                 items.iter().any(|item| item.to_string().starts_with("action 1")),
@@ -152,7 +152,7 @@ fn an_invalid_project_is_not_uploaded() {
     harness.get_by_label("Upload to board").click();
     frames(&mut harness);
     assert!(harness.state().operation.is_none(), "no board operation starts");
-    assert!(matches!(harness.state().servo.board_result, Some(BoardResult::Invalid { .. })));
+    assert!(matches!(common::ui::servo_ui(harness.state()).board_result, Some(BoardResult::Invalid { .. })));
     let error = shown_error(harness.state());
     assert!(error.contains("servo 77 does not exist"), "{error}");
     assert!(harness.query_all_by_label_contains("servo 77 does not exist").count() >= 1, "the panel shows it");
@@ -179,16 +179,16 @@ fn a_refused_item_is_named_in_traditional_chinese() {
     frames(&mut harness);
     harness.get_by_label("上傳至控制板").click();
     frames(&mut harness);
-    run_until(&mut harness, "the comparison", |app| app.servo.pending.is_some());
+    run_until(&mut harness, "the comparison", |app| common::ui::servo_ui(app).pending.is_some());
     let differences = shown_differences(harness.state());
     assert!(differences.iter().any(|d| d == "動作 1：控制板上沒有"), "{differences:?}");
     harness.get_by_label("備份控制板後覆寫").click();
     frames(&mut harness);
-    run_until(&mut harness, "the upload", |app| app.servo.board_result.is_some());
+    run_until(&mut harness, "the upload", |app| common::ui::servo_ui(app).board_result.is_some());
     let error = shown_error(harness.state());
     assert!(error.starts_with("動作 2 \"Pose 2\"：控制板拒絕了"), "{error}");
     assert!(harness.query_all_by_label_contains("控制板拒絕了").count() >= 2, "the panel and the status line");
-    match harness.state().servo.board_result.clone().unwrap() {
+    match common::ui::servo_ui(harness.state()).board_result.clone().unwrap() {
         BoardResult::Failed { items, .. } => {
             let language = servo_studio::ui::Language::TraditionalChinese;
             assert!(items.iter().any(|item| language.item(item).starts_with("動作 1")), "{items:?}");
@@ -207,8 +207,8 @@ fn an_invalid_project_is_explained_in_traditional_chinese() {
         .state_mut()
         .apply(Action::Edit { edit: servo_studio::project::Edit::ReplaceAll(Box::new(broken)), coalesce: None });
     harness.state_mut().apply(Action::SetLanguage(servo_studio::ui::Language::TraditionalChinese));
-    harness.state_mut().apply(Action::Servo(ServoAction::BoardCompare(servo_studio::ui::BoardIntent::Upload)));
-    assert!(matches!(harness.state().servo.board_result, Some(BoardResult::Invalid { .. })));
+    harness.state_mut().apply(Action::family(ServoAction::BoardCompare(servo_studio::ui::BoardIntent::Upload)));
+    assert!(matches!(common::ui::servo_ui(harness.state()).board_result, Some(BoardResult::Invalid { .. })));
     let error = shown_error(harness.state());
     assert!(error.contains("動作 1 \"Pose 1\"，步驟 1：舵機 77 不存在"), "{error}");
     assert!(error.starts_with("專案有 1 個錯誤"), "{error}");
@@ -229,21 +229,23 @@ fn upload_anyway_restores_a_board_image_with_authoring_problems_exactly() {
     });
     harness.get_by_label("Upload to board").click();
     frames(&mut harness);
-    assert!(matches!(harness.state().servo.board_result, Some(BoardResult::Invalid { .. })));
+    assert!(matches!(common::ui::servo_ui(harness.state()).board_result, Some(BoardResult::Invalid { .. })));
     let error = shown_error(harness.state());
     assert!(error.contains("servo 1 already has a step in this action"), "{error}");
     assert!(error.contains("macro 999 does not exist"), "{error}");
     assert!(harness.state().operation.is_none(), "nothing starts until the user says so");
     harness.get_by_label("Upload anyway").click();
     frames(&mut harness);
-    run_until(&mut harness, "the comparison", |app| app.servo.pending.is_some());
+    run_until(&mut harness, "the comparison", |app| common::ui::servo_ui(app).pending.is_some());
     harness.get_by_label("Back up the board, then overwrite it").click();
     frames(&mut harness);
-    run_until(&mut harness, "the upload", |app| app.servo.board_result.is_some() && app.operation.is_none());
+    run_until(&mut harness, "the upload", |app| {
+        common::ui::servo_ui(app).board_result.is_some() && app.operation.is_none()
+    });
     assert!(
-        matches!(harness.state().servo.board_result, Some(BoardResult::Uploaded { .. })),
+        matches!(common::ui::servo_ui(harness.state()).board_result, Some(BoardResult::Uploaded { .. })),
         "{:?}",
-        harness.state().servo.board_result
+        common::ui::servo_ui(harness.state()).board_result
     );
     let requester = common::ui::servo_board(harness.state()).unwrap().requester();
     let board =
@@ -265,7 +267,7 @@ fn ending_the_editor_mid_upload_stops_it_at_a_safe_point_and_says_what_it_left()
     harness.state_mut().terminate_on(terminated);
     harness.get_by_label("Upload to board").click();
     frames(&mut harness);
-    run_until(&mut harness, "the comparison", |app| app.servo.pending.is_some());
+    run_until(&mut harness, "the comparison", |app| common::ui::servo_ui(app).pending.is_some());
     harness.get_by_label("Back up the board, then overwrite it").click();
     run_until(&mut harness, "the first write", |app| {
         let running = app.operation.as_ref().and_then(|running| running.get::<servo_studio::ui::ServoOperation>());
@@ -278,7 +280,11 @@ fn ending_the_editor_mid_upload_stops_it_at_a_safe_point_and_says_what_it_left()
     let app = harness.state();
     assert!(app.operation.is_none(), "the upload ended before the window");
     assert!(app.link.is_none(), "the link is closed");
-    let text = app.servo.board_result.as_ref().and_then(|result| result.error_text(app.language)).expect("a failure");
+    let text = common::ui::servo_ui(app)
+        .board_result
+        .as_ref()
+        .and_then(|result| result.error_text(app.language))
+        .expect("a failure");
     assert!(text.contains("cancelled") && text.contains("reached"), "what reached the board is said: {text}");
     assert!(text.contains(&data.path().join("backups").display().to_string()), "the backup is named: {text}");
 }

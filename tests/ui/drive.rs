@@ -66,7 +66,7 @@ fn an_arrow_key_drives_the_base_and_letting_go_stops_it_within_one_frame() {
 
     harness.key_down(egui::Key::ArrowUp);
     harness.step();
-    assert_eq!(harness.state().rflex.drive_asked(), (0.5, 0.0), "the top speed from the project");
+    assert_eq!(common::ui::rflex_ui(harness.state()).drive_asked(), (0.5, 0.0), "the top speed from the project");
     wait_for_motion(&harness, "a forward command", |speed, direction| speed == 51_500 && direction == 1);
     // While the key is held the driver keeps re-sending at 10 Hz; the base gets going.
     let base = harness.state().link.as_ref().unwrap().rflex().unwrap();
@@ -76,7 +76,7 @@ fn an_arrow_key_drives_the_base_and_letting_go_stops_it_within_one_frame() {
     // Let go: the stop is issued in that very frame.
     harness.key_up(egui::Key::ArrowUp);
     harness.step();
-    assert_eq!(harness.state().rflex.drive_asked(), (0.0, 0.0));
+    assert_eq!(common::ui::rflex_ui(harness.state()).drive_asked(), (0.0, 0.0));
     assert_eq!(harness.state().link.as_ref().unwrap().rflex().unwrap().commanded, (0.0, 0.0));
     wait_for_motion(&harness, "the stop", |speed, _| speed == 0);
     assert_eq!(inspect(&harness).target_speed_m_per_s, 0.0);
@@ -112,7 +112,7 @@ fn a_lost_link_is_reported_and_the_pad_stops_sending() {
     assert!(status.is_error && status.text.starts_with("The board link ended"), "{status:?}");
     // Still holding the key: nothing is asked for any more.
     harness.step();
-    assert_eq!(harness.state().rflex.drive_asked(), (0.0, 0.0));
+    assert_eq!(common::ui::rflex_ui(harness.state()).drive_asked(), (0.0, 0.0));
     assert!(harness.query_all_by_label("Not connected").next().is_some(), "the panels say the base is gone");
     harness.key_up(egui::Key::ArrowLeft);
 }
@@ -129,7 +129,7 @@ fn losing_window_focus_while_driving_stops_the_base() {
     // eframe goes on saying so in every frame's input until the focus is back.
     harness.input_mut().focused = false;
     harness.step();
-    assert_eq!(harness.state().rflex.drive_asked(), (0.0, 0.0));
+    assert_eq!(common::ui::rflex_ui(harness.state()).drive_asked(), (0.0, 0.0));
     wait_for_motion(&harness, "the stop", |speed, _| speed == 0);
     // The pad says why the keys do nothing now.
     harness.step();
@@ -155,7 +155,7 @@ fn a_signal_to_end_the_editor_drops_the_base_link_and_keeps_the_work() {
         .apply(Action::Edit { edit: servo_studio::project::Edit::SetRflexDrive(settings), coalesce: None });
     harness.key_down(egui::Key::ArrowUp);
     harness.step();
-    assert_eq!(harness.state().rflex.drive_asked(), (0.3, 0.0));
+    assert_eq!(common::ui::rflex_ui(harness.state()).drive_asked(), (0.3, 0.0));
     terminate.send(()).unwrap();
     harness.step();
     // Dropping the link is what stops and brakes a base (tested with the handle itself).

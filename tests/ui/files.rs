@@ -38,7 +38,7 @@ fn harness(app: StudioApp) -> Harness<'static, StudioApp> {
 fn autosave_then_recovery_after_a_crash() {
     let data = tempfile::tempdir().unwrap();
     let mut first = app(data.path());
-    first.apply(Action::Servo(servo_studio::ui::ServoAction::CapturePose { from_board: false }));
+    first.apply(Action::family(servo_studio::ui::ServoAction::CapturePose { from_board: false }));
     assert!(first.document.dirty);
     first.autosave_if_due(Instant::now() + Duration::from_secs(1));
     first.finish_file_work(WAIT);
@@ -70,7 +70,7 @@ fn autosave_then_recovery_after_a_crash() {
 fn declining_recovery_removes_it() {
     let data = tempfile::tempdir().unwrap();
     let mut first = app(data.path());
-    first.apply(Action::Servo(servo_studio::ui::ServoAction::CapturePose { from_board: false }));
+    first.apply(Action::family(servo_studio::ui::ServoAction::CapturePose { from_board: false }));
     first.apply(Action::Autosave);
     first.finish_file_work(WAIT);
     let mut harness = harness(app(data.path()));
@@ -87,7 +87,7 @@ fn declining_recovery_removes_it() {
 fn opening_with_unsaved_changes_asks_first() {
     let data = tempfile::tempdir().unwrap();
     let mut start = app(data.path());
-    start.apply(Action::Servo(servo_studio::ui::ServoAction::CapturePose { from_board: false }));
+    start.apply(Action::family(servo_studio::ui::ServoAction::CapturePose { from_board: false }));
     let mut harness = harness(start);
     harness.run();
     harness.state_mut().apply(Action::Open(fixture()));
@@ -116,7 +116,7 @@ fn save_in_the_question_saves_then_goes_on() {
     let mut start = app(data.path());
     start.apply(Action::SaveAs(path.clone()));
     start.finish_file_work(WAIT);
-    start.apply(Action::Servo(servo_studio::ui::ServoAction::CapturePose { from_board: false }));
+    start.apply(Action::family(servo_studio::ui::ServoAction::CapturePose { from_board: false }));
     let edited = start.document.project.servo.clone();
     let mut harness = harness(start);
     harness.run();

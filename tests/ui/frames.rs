@@ -86,7 +86,7 @@ fn a_stuck_port_scan_and_a_slow_save_leave_the_window_drawing_and_stop_working()
     assert!(app.link.as_ref().is_some_and(servo_studio::ui::BoardLink::stopped), "STOP reached the board");
     assert_eq!(app.status.as_ref().unwrap().text, "STOP: every servo stopped where it is, holding torque");
     // An edit made while the file is written stays unsaved.
-    harness.state_mut().apply(Action::Servo(ServoAction::CapturePose { from_board: false }));
+    harness.state_mut().apply(Action::family(ServoAction::CapturePose { from_board: false }));
     assert!(harness.state().document.dirty);
 
     drop(write_key);
@@ -119,7 +119,7 @@ fn an_open_waiting_behind_a_stuck_autosave_arrives_after_it() {
     let mut app = StudioApp::new(servo_studio::ui::sample_project(), None, servo_studio::link::no_waker())
         .with_data_dir(data.path().to_path_buf())
         .with_file_writer(writer);
-    app.apply(Action::Servo(ServoAction::CapturePose { from_board: false }));
+    app.apply(Action::family(ServoAction::CapturePose { from_board: false }));
     assert!(app.document.dirty);
     app.apply(Action::Autosave);
     assert_eq!(writing.recv_timeout(WAIT).unwrap(), data.path().join("recovery.json"));

@@ -57,7 +57,9 @@ impl Rig {
 
     /// Once the window has read the pad into the state `read` describes, the base is still not driven.
     fn stays_stopped(&mut self, what: &str, read: impl Fn(&PadState) -> bool) {
-        common::ui::run_until(&mut self.harness, what, |app| app.rflex.pad.state.as_ref().is_some_and(&read));
+        common::ui::run_until(&mut self.harness, what, |app| {
+            common::ui::rflex_ui(app).pad.state.as_ref().is_some_and(&read)
+        });
         self.harness.run_steps(2);
         assert_eq!(Self::commanded(self.harness.state()), (0.0, 0.0), "{what}");
     }

@@ -84,7 +84,7 @@ fn a_button_pressed_on_the_remote_is_picked_or_added() {
     harness.run_steps(2);
     harness.get_by_label("Press a button to pick it").click();
     harness.run_steps(2);
-    assert!(harness.state().servo.picking.is_some());
+    assert!(common::ui::servo_ui(harness.state()).picking.is_some());
     // The subscription must reach the board before the press; wait for the board to have handled it.
     let press = |harness: &Harness<'static, StudioApp>, button_id| {
         let link = harness.state().link.as_ref().unwrap();
@@ -98,7 +98,7 @@ fn a_button_pressed_on_the_remote_is_picked_or_added() {
             .is_ok()
     });
     press(&harness, 0x8000_0001);
-    run_until(&mut harness, "the picked button", |app| app.servo.picked_button == Some(0x8000_0001));
+    run_until(&mut harness, "the picked button", |app| common::ui::servo_ui(app).picked_button == Some(0x8000_0001));
     harness.run_steps(2);
     assert_eq!(
         harness.state().document.project.servo.joystick_tables[0].buttons.len(),
@@ -112,7 +112,7 @@ fn a_button_pressed_on_the_remote_is_picked_or_added() {
     harness.get_by_label("Press a button to pick it").click();
     harness.run_steps(2);
     press(&harness, 0x0000_0042);
-    run_until(&mut harness, "the new button", |app| app.servo.picked_button == Some(0x42));
+    run_until(&mut harness, "the new button", |app| common::ui::servo_ui(app).picked_button == Some(0x42));
     let buttons = &harness.state().document.project.servo.joystick_tables[0].buttons;
     assert_eq!(buttons.len(), 3);
     assert_eq!(buttons[2].id, 0x42);
@@ -192,6 +192,6 @@ fn play_from_here_sends_the_macro_from_that_command_and_moves_the_preview_there(
     }
     // Nod: servo 3 to 30° over 200 ms, at half speed 400 ms, three times; nothing of action 1.
     assert_eq!(sent, [(3, 30, 40); 3]);
-    let t = harness.state().servo.figure.transport.t_ms;
+    let t = common::ui::servo_ui(harness.state()).figure.transport.t_ms;
     assert!((1500.0..1510.0).contains(&t), "the preview's cursor at the command's start: {t}");
 }

@@ -87,10 +87,10 @@ fn a_joint_moves_live_within_its_limits_and_stop_sends_ri_then_hp() {
     assert!(harness.query_all_by_label_contains("left_knee_pitch #6").next().is_some());
     harness
         .state_mut()
-        .apply(Action::Plen2(servo_studio::ui::Plen2Action::SetJoint { joint: Joint::LeftKneePitch, tenths: 2000 }));
+        .apply(Action::family(servo_studio::ui::Plen2Action::SetJoint { joint: Joint::LeftKneePitch, tenths: 2000 }));
     harness.step();
     // Clamped to the factory max of 90.0°.
-    assert_eq!(harness.state().plen2.pose[Joint::LeftKneePitch.index()], 900);
+    assert_eq!(common::ui::plen2_ui(harness.state()).pose[Joint::LeftKneePitch.index()], 900);
     // Walked there from home (50.0°) at the live speed limit, 180°/s: a step per
     // firmware cycle at most, the first at once, never the whole 40° in one go.
     let events = harness.state().link.as_ref().unwrap().demo_plen2().unwrap().events().clone();
@@ -123,7 +123,7 @@ fn a_captured_pose_becomes_a_frame_relative_to_home() {
     let mut harness = harness(Tab::Joints);
     harness
         .state_mut()
-        .apply(Action::Plen2(servo_studio::ui::Plen2Action::SetJoint { joint: Joint::RightKneePitch, tenths: -400 }));
+        .apply(Action::family(servo_studio::ui::Plen2Action::SetJoint { joint: Joint::RightKneePitch, tenths: -400 }));
     harness.get_by_label_contains("Capture into frame").click();
     harness.step();
     let motion = &harness.state().document.project.plen2.motions[0];
@@ -134,7 +134,7 @@ fn a_captured_pose_becomes_a_frame_relative_to_home() {
 
 /// The robot panel's last result, as it words it.
 fn shown_result(app: &StudioApp) -> String {
-    app.plen2.result.as_ref().expect("a result").words(app.language).0
+    common::ui::plen2_ui(app).result.as_ref().expect("a result").words(app.language).0
 }
 
 #[test]
@@ -142,7 +142,7 @@ fn the_robot_panel_uploads_verifies_and_a_play_list_queues_its_motions() {
     let mut harness = harness(Tab::Board);
     harness.get_by_label("Upload motions").click();
     let deadline = Instant::now() + Duration::from_secs(20);
-    while harness.state().operation.is_some() || harness.state().plen2.result.is_none() {
+    while harness.state().operation.is_some() || common::ui::plen2_ui(harness.state()).result.is_none() {
         assert!(Instant::now() < deadline, "the upload never ended");
         harness.step();
     }
@@ -158,20 +158,20 @@ fn the_robot_panel_uploads_verifies_and_a_play_list_queues_its_motions() {
     assert!(result.contains("plen2-backup-"), "{result}");
     assert_eq!(inspect(&harness).written_slots, [3]);
 
-    harness.state_mut().apply(Action::Plen2(servo_studio::ui::Plen2Action::PlayList(0)));
+    harness.state_mut().apply(Action::family(servo_studio::ui::Plen2Action::PlayList(0)));
     executed(&harness, "#PU slot 3, two plays", |c| *c == Command::Push { slot: 3, plays: 2 });
     executed(&harness, "#PO", |c| *c == Command::Pop);
     harness.state_mut().apply(Action::ShowTab(Tab::PlayLists));
     harness.run_steps(2);
     assert!(harness.query_by_label("Play on robot").is_some(), "the play list is shown");
 
-    harness.state_mut().apply(Action::Plen2(servo_studio::ui::Plen2Action::Robot(Plen2Intent::Read)));
+    harness.state_mut().apply(Action::family(servo_studio::ui::Plen2Action::Robot(Plen2Intent::Read)));
     let deadline = Instant::now() + Duration::from_secs(60);
     while harness.state().operation.is_some() {
         assert!(Instant::now() < deadline, "the read never ended");
         harness.step();
     }
-    let robot = harness.state().plen2.robot.clone().unwrap();
+    let robot = common::ui::plen2_ui(harness.state()).robot.clone().unwrap();
     assert_eq!(robot.motions, harness.state().document.project.plen2.motions);
     let result = shown_result(harness.state());
     assert_eq!(result, "Read the robot; motions it holds: 1", "reading does not replace the project");
@@ -181,26 +181,26 @@ fn the_robot_panel_uploads_verifies_and_a_play_list_queues_its_motions() {
 fn keyboard_nudges_the_focused_joint_by_1_and_10_degrees_within_its_limits() {
     let mut harness = harness(Tab::Joints);
     let knee = Joint::LeftKneePitch;
-    let before = harness.state().plen2.pose;
+    let before = common::ui::plen2_ui(harness.state()).pose;
     let start = before[knee.index()];
     harness.get_all_by_role(Role::Slider).nth(knee.index()).unwrap().focus();
     harness.run_steps(2);
     harness.key_press(egui::Key::ArrowRight);
     harness.run_steps(2);
-    assert_eq!(harness.state().plen2.pose[knee.index()], start + 10, "1° is 10 tenths");
+    assert_eq!(common::ui::plen2_ui(harness.state()).pose[knee.index()], start + 10, "1° is 10 tenths");
     harness.key_press_modifiers(egui::Modifiers::SHIFT, egui::Key::ArrowLeft);
     harness.run_steps(2);
-    assert_eq!(harness.state().plen2.pose[knee.index()], start - 90);
+    assert_eq!(common::ui::plen2_ui(harness.state()).pose[knee.index()], start - 90);
     walked(&mut harness, "$AN for the nudged knee", |c| *c == Command::SetAngle { device: 6, angle: start - 90 });
     for _ in 0..200 {
         harness.key_press(egui::Key::PageUp);
         harness.step();
     }
     harness.run_steps(2);
-    assert_eq!(harness.state().plen2.pose[knee.index()], 900, "the factory max holds");
+    assert_eq!(common::ui::plen2_ui(harness.state()).pose[knee.index()], 900, "the factory max holds");
     let others = Joint::ALL.into_iter().filter(|&j| j != knee);
     assert!(
-        others.into_iter().all(|j| harness.state().plen2.pose[j.index()] == before[j.index()]),
+        others.into_iter().all(|j| common::ui::plen2_ui(harness.state()).pose[j.index()] == before[j.index()]),
         "no other joint moved"
     );
 }
@@ -237,12 +237,12 @@ fn the_pacing_is_chosen_in_the_connection_settings_and_used_at_the_next_connecti
     let app = StudioApp::new(project(), None, no_waker()).with_data_dir(data.path().to_path_buf());
     let mut harness = common::ui::window(app, (1200.0, 800.0));
     harness.run();
-    assert_eq!(harness.state().plen2.pacing, PacingMode::Adaptive, "adaptive by default");
+    assert_eq!(common::ui::plen2_ui(harness.state()).pacing, PacingMode::Adaptive, "adaptive by default");
     harness.get_by_label("Pacing").click();
     harness.run();
     harness.get_by_label("Safe (official)").click();
     harness.run();
-    assert_eq!(harness.state().plen2.pacing, PacingMode::Safe);
+    assert_eq!(common::ui::plen2_ui(harness.state()).pacing, PacingMode::Safe);
     harness.get_by_label("Demo board").click();
     harness.run();
     let link = harness.state().link.as_ref().expect("connected");
@@ -369,9 +369,9 @@ fn recording_joint_moves_fits_them_into_frames_after_the_selected_one() {
     let app = common::ui::editor(project());
     let mut harness = common::ui::showing(app, Tab::Joints, (1200.0, 800.0));
     let knee = Joint::LeftKneePitch;
-    let home = harness.state().plen2.pose[knee.index()];
+    let home = common::ui::plen2_ui(harness.state()).pose[knee.index()];
     let set = |harness: &mut Harness<'static, StudioApp>, relative: i16| {
-        harness.state_mut().apply(Action::Plen2(Plen2Action::SetJoint { joint: knee, tenths: home + relative }));
+        harness.state_mut().apply(Action::family(Plen2Action::SetJoint { joint: knee, tenths: home + relative }));
     };
     common::ui::record_through_count_in(&mut harness);
     for k in 0..=8 {
@@ -425,14 +425,18 @@ fn after_a_motion_played_on_the_robot_a_joint_is_walked_from_where_the_motion_le
     app.apply(Action::ConnectDemo);
     let mut harness = common::ui::showing(app, Tab::Joints, (1200.0, 800.0));
     let knee = Joint::LeftKneePitch;
-    let home = harness.state().plen2.pose[knee.index()];
-    harness.state_mut().apply(Action::Plen2(servo_studio::ui::Plen2Action::PlayMotion(4)));
+    let home = common::ui::plen2_ui(harness.state()).pose[knee.index()];
+    harness.state_mut().apply(Action::family(servo_studio::ui::Plen2Action::PlayMotion(4)));
     harness.step();
-    assert_eq!(harness.state().plen2.pose[knee.index()], home - 300, "the sliders show where the motion ends");
+    assert_eq!(
+        common::ui::plen2_ui(harness.state()).pose[knee.index()],
+        home - 300,
+        "the sliders show where the motion ends"
+    );
     // A nudge up from there: the robot gets 1° above the crouch, not 1° above home.
     harness
         .state_mut()
-        .apply(Action::Plen2(servo_studio::ui::Plen2Action::SetJoint { joint: knee, tenths: home - 290 }));
+        .apply(Action::family(servo_studio::ui::Plen2Action::SetJoint { joint: knee, tenths: home - 290 }));
     let device = knee.device_id();
     let first = std::cell::Cell::new(None);
     walked(&mut harness, "$AN for the knee", |c| match c {

@@ -55,7 +55,7 @@ fn plen2_harness() -> (Harness<'static, StudioApp>, (i16, i16)) {
 }
 
 fn grip(harness: &Harness<'static, StudioApp>) -> Pos2 {
-    harness.state().plen2.preview.joint_on_screen(ROLL).expect("the shoulder is drawn")
+    common::ui::plen2_ui(harness.state()).preview.joint_on_screen(ROLL).expect("the shoulder is drawn")
 }
 
 /// Runs frames until the robot has executed `$AN` putting the joint at `angle`.
@@ -80,7 +80,7 @@ fn robot_reaches(harness: &mut Harness<'static, StudioApp>, angle: i16) {
 #[test]
 fn a_plen2_joint_is_named_selected_and_turned_by_touching_it_clamped_and_undone_in_one_step() {
     let (mut harness, (low, high)) = plen2_harness();
-    let home = harness.state().plen2.pose;
+    let home = common::ui::plen2_ui(harness.state()).pose;
     let at = grip(&harness);
     harness.hover_at(at);
     harness.run_steps(8);
@@ -93,17 +93,21 @@ fn a_plen2_joint_is_named_selected_and_turned_by_touching_it_clamped_and_undone_
     harness.step();
     harness.drop_at(at);
     harness.run_steps(3);
-    assert_eq!(harness.state().plen2.selected_joint, Some(ROLL));
+    assert_eq!(common::ui::plen2_ui(harness.state()).selected_joint, Some(ROLL));
     harness.key_press(egui::Key::ArrowRight);
     harness.run_steps(2);
-    assert_eq!(harness.state().plen2.pose[ROLL.index()], home[ROLL.index()] + 10, "the selected slider has the keys");
-    let before = harness.state().plen2.pose;
+    assert_eq!(
+        common::ui::plen2_ui(harness.state()).pose[ROLL.index()],
+        home[ROLL.index()] + 10,
+        "the selected slider has the keys"
+    );
+    let before = common::ui::plen2_ui(harness.state()).pose;
     assert!(!harness.state().document.can_undo(), "slider moves are live, not edits");
 
     // A long drag one way: that joint alone turns, as far as its limit.
     let at = grip(&harness);
     drag(&mut harness, at, egui::vec2(320.0, 0.0));
-    let first = harness.state().plen2.pose;
+    let first = common::ui::plen2_ui(harness.state()).pose;
     let end = first[ROLL.index()];
     assert!(end == low || end == high, "clamped to a limit ({low}, {high}): {end}");
     for joint in Joint::ALL.into_iter().filter(|&joint| joint != ROLL) {
@@ -113,19 +117,19 @@ fn a_plen2_joint_is_named_selected_and_turned_by_touching_it_clamped_and_undone_
 
     // One undo step brings the whole drag back, to the robot too.
     undo(&mut harness);
-    assert_eq!(harness.state().plen2.pose, before);
+    assert_eq!(common::ui::plen2_ui(harness.state()).pose, before);
     assert!(!harness.state().document.can_undo(), "the drag was one step");
     robot_reaches(&mut harness, before[ROLL.index()]);
     // Redo turns it again.
     harness.key_press_modifiers(egui::Modifiers::COMMAND | egui::Modifiers::SHIFT, egui::Key::Z);
     harness.run_steps(2);
-    assert_eq!(harness.state().plen2.pose, first);
+    assert_eq!(common::ui::plen2_ui(harness.state()).pose, first);
     undo(&mut harness);
 
     // The other way: the other limit.
     let at = grip(&harness);
     drag(&mut harness, at, egui::vec2(-320.0, 0.0));
-    let other = harness.state().plen2.pose[ROLL.index()];
+    let other = common::ui::plen2_ui(harness.state()).pose[ROLL.index()];
     assert_eq!([end.min(other), end.max(other)], [low, high], "each way reaches its own limit");
 
     // The other way round: a slider's name selects its joint in the view.
@@ -135,7 +139,7 @@ fn a_plen2_joint_is_named_selected_and_turned_by_touching_it_clamped_and_undone_
         .find(|node| node.accesskit_node().role() == Role::Button);
     name.expect("the knee's name").click();
     harness.run_steps(2);
-    assert_eq!(harness.state().plen2.selected_joint, Some(Joint::LeftKneePitch));
+    assert_eq!(common::ui::plen2_ui(harness.state()).selected_joint, Some(Joint::LeftKneePitch));
 }
 
 #[test]
@@ -149,12 +153,12 @@ fn a_turn_in_the_3d_view_is_recorded_like_a_slider() {
         jump_slot: None,
     });
     let mut harness = common::ui::showing(common::ui::editor(project), Tab::Joints, (1200.0, 800.0));
-    let home = harness.state().plen2.pose[ROLL.index()];
+    let home = common::ui::plen2_ui(harness.state()).pose[ROLL.index()];
     common::ui::record_through_count_in(&mut harness);
     let at = grip(&harness);
     drag(&mut harness, at, egui::vec2(120.0, 0.0));
     harness.run_steps(4);
-    let turned = harness.state().plen2.pose[ROLL.index()];
+    let turned = common::ui::plen2_ui(harness.state()).pose[ROLL.index()];
     assert_ne!(turned, home);
     harness.get_by_label("■ Stop recording").click();
     harness.run_steps(2);
@@ -173,16 +177,16 @@ fn a_servo_of_the_rig_is_turned_by_touching_it_clamped_and_undone_in_one_step() 
     let mut app = common::ui::editor(servo);
     app.apply(Action::ConnectDemo);
     let mut harness = common::ui::showing(app, Tab::Servos, (1200.0, 800.0));
-    let before = harness.state().servo.pose.clone();
-    let at = harness.state().servo.figure.servo_on_screen(ELBOW_ROLL).expect("the shoulder is drawn");
+    let before = common::ui::servo_ui(harness.state()).pose.clone();
+    let at = common::ui::servo_ui(harness.state()).figure.servo_on_screen(ELBOW_ROLL).expect("the shoulder is drawn");
     harness.hover_at(at);
     harness.run_steps(8);
     assert!(harness.query_by_label_contains("L shoulder roll 左肩側擺 #2  0°").is_some(), "hovering names it");
     drag(&mut harness, at, egui::vec2(300.0, 0.0));
-    let after = harness.state().servo.pose.clone();
+    let after = common::ui::servo_ui(harness.state()).pose.clone();
     let end = after[&ELBOW_ROLL];
     assert!(end == -20 || end == 35, "clamped to a limit: {end}");
-    assert_eq!(harness.state().servo.selected_servo, Some(ELBOW_ROLL));
+    assert_eq!(common::ui::servo_ui(harness.state()).selected_servo, Some(ELBOW_ROLL));
     for (id, degree) in &before {
         if *id != ELBOW_ROLL {
             assert_eq!(after[id], *degree, "servo {id} did not move");
@@ -200,6 +204,6 @@ fn a_servo_of_the_rig_is_turned_by_touching_it_clamped_and_undone_in_one_step() 
         }
     }
     undo(&mut harness);
-    assert_eq!(harness.state().servo.pose, before);
+    assert_eq!(common::ui::servo_ui(harness.state()).pose, before);
     assert!(!harness.state().document.can_undo(), "the drag was one step");
 }

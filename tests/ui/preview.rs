@@ -53,7 +53,7 @@ fn plen2_project() -> Project {
 }
 
 fn shoulder(harness: &Harness<'static, StudioApp>) -> i16 {
-    let shown = harness.state().plen2.preview.shown.expect("the view shows a pose");
+    let shown = common::ui::plen2_ui(harness.state()).preview.shown.expect("the view shows a pose");
     shown[usize::from(Joint::LeftShoulderPitch.device_id())]
 }
 
@@ -65,13 +65,13 @@ fn scrubbing_a_plen2_motion_shows_the_firmwares_cycle_at_that_time() {
     // adding 300 / 6 = 50; then 300 / 32 = 9 cycles back. 15 cycles = 491.52 ms.
     // A quarter of the way is 122.9 ms: cycle 3, the fourth step, 200.
     scrub(&mut harness, 0.25);
-    let t = harness.state().plen2.preview.transport.t_ms;
+    let t = common::ui::plen2_ui(harness.state()).preview.transport.t_ms;
     let cycle = (t / 32.768).floor();
     assert_eq!(cycle, 3.0, "t = {t} ms");
     assert_eq!(shoulder(&harness), 200);
     // The sixth cycle (t in 163.8–196.6 ms) reaches the frame: 300.
     scrub(&mut harness, 0.37);
-    let t = harness.state().plen2.preview.transport.t_ms;
+    let t = common::ui::plen2_ui(harness.state()).preview.transport.t_ms;
     assert_eq!((t / 32.768).floor(), 5.0, "t = {t} ms");
     assert_eq!(shoulder(&harness), 300);
     // Past the end the last cycle holds: home again.
@@ -83,29 +83,29 @@ fn scrubbing_a_plen2_motion_shows_the_firmwares_cycle_at_that_time() {
 fn space_plays_the_preview_at_real_speed_and_stops_it() {
     let mut harness = harness(plen2_project(), Tab::Motions);
     scrub(&mut harness, 0.0);
-    let start = harness.state().plen2.preview.transport.t_ms;
-    assert!(!harness.state().plen2.preview.transport.is_playing());
+    let start = common::ui::plen2_ui(harness.state()).preview.transport.t_ms;
+    assert!(!common::ui::plen2_ui(harness.state()).preview.transport.is_playing());
     harness.key_press(egui::Key::Space);
     harness.step();
-    assert!(harness.state().plen2.preview.transport.is_playing(), "Space plays");
+    assert!(common::ui::plen2_ui(harness.state()).preview.transport.is_playing(), "Space plays");
     // The harness's clock moves 250 ms a frame: the cursor follows, looping over 491.52 ms.
-    let before = harness.state().plen2.preview.transport.t_ms;
+    let before = common::ui::plen2_ui(harness.state()).preview.transport.t_ms;
     harness.step();
-    let after = harness.state().plen2.preview.transport.t_ms;
+    let after = common::ui::plen2_ui(harness.state()).preview.transport.t_ms;
     let moved = (after - before).rem_euclid(491.52);
     assert!((moved - 250.0).abs() < 1e-6, "moved {moved} ms (from {start})");
     harness.get_by_label("Pause").click();
     harness.step();
-    assert!(!harness.state().plen2.preview.transport.is_playing(), "the button pauses");
+    assert!(!common::ui::plen2_ui(harness.state()).preview.transport.is_playing(), "the button pauses");
     harness.key_press(egui::Key::Space);
     harness.step();
-    assert!(harness.state().plen2.preview.transport.is_playing(), "Space plays again");
+    assert!(common::ui::plen2_ui(harness.state()).preview.transport.is_playing(), "Space plays again");
     harness.key_press(egui::Key::Space);
     harness.step();
-    let stopped = harness.state().plen2.preview.transport.t_ms;
+    let stopped = common::ui::plen2_ui(harness.state()).preview.transport.t_ms;
     harness.run_steps(3);
-    assert!(!harness.state().plen2.preview.transport.is_playing(), "Space stops");
-    assert_eq!(harness.state().plen2.preview.transport.t_ms, stopped, "stopped where it was");
+    assert!(!common::ui::plen2_ui(harness.state()).preview.transport.is_playing(), "Space stops");
+    assert_eq!(common::ui::plen2_ui(harness.state()).preview.transport.t_ms, stopped, "stopped where it was");
 }
 
 #[test]
@@ -118,7 +118,7 @@ fn the_plen2_joints_tab_shows_the_live_pose_clamped_as_the_firmware_outputs_it()
     let mut harness = harness(project, Tab::Joints);
     assert!(harness.query_by_role_and_label(Role::Image, "Robot preview").is_some());
     let elbow_shown = |harness: &Harness<'static, StudioApp>| {
-        harness.state().plen2.preview.shown.expect("the view shows a pose")
+        common::ui::plen2_ui(harness.state()).preview.shown.expect("the view shows a pose")
             [usize::from(Joint::LeftElbowRoll.device_id())]
     };
     // At home: nothing bent.
@@ -126,7 +126,7 @@ fn the_plen2_joints_tab_shows_the_live_pose_clamped_as_the_firmware_outputs_it()
     let set = |harness: &mut Harness<'static, StudioApp>, tenths: i16| {
         harness
             .state_mut()
-            .apply(Action::Plen2(servo_studio::ui::Plen2Action::SetJoint { joint: Joint::LeftElbowRoll, tenths }));
+            .apply(Action::family(servo_studio::ui::Plen2Action::SetJoint { joint: Joint::LeftElbowRoll, tenths }));
         harness.run_steps(2);
     };
     set(&mut harness, 250);
@@ -144,9 +144,9 @@ fn scrubbing_a_servo_action_shows_the_boards_linear_step_at_that_time() {
     // "Wave up": every servo moves to its angle in 40 × 10 ms; the right
     // shoulder pitch (servo 4) from 0° to −80°, so −40° at 200 ms.
     scrub(&mut harness, 0.5);
-    let t = harness.state().servo.figure.transport.t_ms;
+    let t = common::ui::servo_ui(harness.state()).figure.transport.t_ms;
     assert!((t - 200.0).abs() < 5.0, "t = {t}");
-    let shown = harness.state().servo.figure.shown.clone().expect("the view shows a pose");
+    let shown = common::ui::servo_ui(harness.state()).figure.shown.clone().expect("the view shows a pose");
     assert!((shown[&4] + 40.0).abs() <= 1.0, "servo 4 at {}", shown[&4]);
     assert!((shown[&5] - 30.0).abs() <= 1.0, "servo 5 at {}", shown[&5]);
     // And exactly the trajectory the plot draws, at the board's 10 ms step.
@@ -162,8 +162,8 @@ fn scrubbing_a_servo_action_shows_the_boards_linear_step_at_that_time() {
     // A step's number puts the cursor where its servo arrives: step 4, 40 × 10 ms.
     harness.get_by_role_and_label(Role::Button, "4").click();
     harness.run_steps(2);
-    assert_eq!(harness.state().servo.figure.transport.t_ms, 400.0);
-    assert_eq!(harness.state().servo.figure.shown.as_ref().unwrap()[&4], -80.0);
+    assert_eq!(common::ui::servo_ui(harness.state()).figure.transport.t_ms, 400.0);
+    assert_eq!(common::ui::servo_ui(harness.state()).figure.shown.as_ref().unwrap()[&4], -80.0);
 }
 
 #[test]
@@ -176,7 +176,7 @@ fn the_view_toggle_hides_and_shows_the_preview() {
     harness.get_by_label("3D view").click();
     harness.run_steps(2);
     assert_eq!(previews(&harness), 0);
-    assert!(!harness.state().servo.layout.view_open);
+    assert!(!common::ui::servo_ui(harness.state()).layout.view_open);
     harness.get_by_label("3D view").click();
     harness.run_steps(2);
     assert_eq!(previews(&harness), 1);
@@ -254,7 +254,7 @@ fn the_world_view_maps_the_rooms_walls_as_the_base_drives() {
 #[test]
 fn the_rig_is_edited_in_servo_settings_and_the_preview_follows() {
     let mut harness = harness(servo_studio::ui::sample_project(), Tab::Servos);
-    harness.state_mut().servo.layout.settings_open = true;
+    common::ui::servo_ui_mut(harness.state_mut()).layout.settings_open = true;
     harness.run_steps(2);
     harness.get_by_label("Rig").click();
     harness.run_steps(2);
@@ -293,7 +293,7 @@ fn a_motion_played_after_another_starts_from_its_last_frame_and_the_snap_is_said
     harness.run_steps(2);
     harness.get_by_label("4 Hold 舉高").click();
     harness.run_steps(2);
-    assert_eq!(harness.state().plen2.preview.after, Some(4));
+    assert_eq!(common::ui::plen2_ui(harness.state()).preview.after, Some(4));
     assert!(harness.query_by_label(snap).is_some(), "the sliders stand at home, the motion starts at 50°");
     scrub(&mut harness, 0.0);
     // By hand: cycle 0 steps from 500 towards 300 over 6 cycles: (−200 << 16) / 6 truncated,
@@ -306,7 +306,7 @@ fn the_world_view_pans_zooms_and_goes_back_to_following_the_base() {
     let mut harness = harness(Project::empty(Family::Rflex), Tab::Drive);
     harness.state_mut().apply(Action::ConnectDemo);
     harness.run_steps(2);
-    assert!(harness.state().rflex.world.follow);
+    assert!(common::ui::rflex_ui(harness.state()).world.follow);
     let rect = harness.get_by_role_and_label(Role::Image, "World view").rect();
     harness.drag_at(rect.center());
     harness.step();
@@ -314,7 +314,7 @@ fn the_world_view_pans_zooms_and_goes_back_to_following_the_base() {
     harness.step();
     harness.drop_at(rect.center() + egui::vec2(100.0, 50.0));
     harness.run_steps(2);
-    let world = harness.state().rflex.world;
+    let world = common::ui::rflex_ui(harness.state()).world;
     assert!(!world.follow, "panning lets go of the base");
     // Dragged right and down: the view's centre moved left and up (north) in the world.
     assert!(world.center[0] < -0.5 && world.center[1] > 0.2, "{:?}", world.center);
@@ -328,7 +328,10 @@ fn the_world_view_pans_zooms_and_goes_back_to_following_the_base() {
         modifiers: egui::Modifiers::NONE,
     });
     harness.run_steps(4);
-    assert!(harness.state().rflex.world.metres_per_point > world.metres_per_point, "the wheel zooms out");
+    assert!(
+        common::ui::rflex_ui(harness.state()).world.metres_per_point > world.metres_per_point,
+        "the wheel zooms out"
+    );
     // A double-click: two presses and releases within one frame.
     let at = rect.center();
     for pressed in [true, false, true, false] {
@@ -341,7 +344,7 @@ fn the_world_view_pans_zooms_and_goes_back_to_following_the_base() {
         harness.input_mut().events.push(button);
     }
     harness.run_steps(2);
-    assert!(harness.state().rflex.world.follow, "a double-click centres on the base again");
+    assert!(common::ui::rflex_ui(harness.state()).world.follow, "a double-click centres on the base again");
 }
 
 /// A frame with a curve is stored as several: selecting the authored frame
@@ -357,17 +360,17 @@ fn a_curve_shows_in_the_preview_and_selecting_a_frame_after_it_finds_its_cycle()
     // 640 ms is 20 cycles eased in to 30°, then 9 cycles back: 29 cycles.
     harness.get_by_label("#1").click();
     harness.run();
-    let t = harness.state().plen2.preview.transport.t_ms;
+    let t = common::ui::plen2_ui(harness.state()).preview.transport.t_ms;
     assert_eq!((t / 32.768).floor(), 28.0, "the last cycle of frame #1: t = {t} ms");
     assert_eq!(shoulder(&harness), 0);
     harness.get_by_label("#0").click();
     harness.run();
-    let t = harness.state().plen2.preview.transport.t_ms;
+    let t = common::ui::plen2_ui(harness.state()).preview.transport.t_ms;
     assert_eq!((t / 32.768).floor(), 19.0, "the last cycle of frame #0: t = {t} ms");
     assert_eq!(shoulder(&harness), 300);
     // Halfway through the curve (cycle 9 of 20) an ease-in is a quarter of the way: within 1° of 7.5°.
     scrub(&mut harness, 9.5 / 29.0);
-    let t = harness.state().plen2.preview.transport.t_ms;
+    let t = common::ui::plen2_ui(harness.state()).preview.transport.t_ms;
     assert_eq!((t / 32.768).floor(), 9.0, "t = {t} ms");
     let eased = 300.0 * (10.0_f64 / 20.0).powi(2);
     assert!((f64::from(shoulder(&harness)) - eased).abs() <= 10.0, "{} for {eased}", shoulder(&harness));

@@ -81,7 +81,7 @@ fn a_drag_sends_coalesced_live_moves_and_the_last_value_arrives() {
     }
     harness.drop_at(egui::pos2(slider.right() + 50.0, y));
     harness.run();
-    let last = *harness.state().servo.pose.get(&1).unwrap();
+    let last = *common::ui::servo_ui(harness.state()).pose.get(&1).unwrap();
     assert_eq!(last, 90, "dragged past the end: clamped to the servo's max");
     let moves = moves_until(&mut harness, 1, last);
     assert!(!moves.is_empty());
@@ -101,26 +101,26 @@ fn keyboard_nudges_the_focused_servo_by_1_and_10() {
     harness.run();
     harness.key_press(egui::Key::ArrowRight);
     harness.run();
-    assert_eq!(harness.state().servo.pose.get(&3), Some(&1));
+    assert_eq!(common::ui::servo_ui(harness.state()).pose.get(&3), Some(&1));
     harness.key_press_modifiers(egui::Modifiers::SHIFT, egui::Key::ArrowRight);
     harness.run();
-    assert_eq!(harness.state().servo.pose.get(&3), Some(&11));
+    assert_eq!(common::ui::servo_ui(harness.state()).pose.get(&3), Some(&11));
     harness.key_press(egui::Key::PageDown);
     harness.run();
-    assert_eq!(harness.state().servo.pose.get(&3), Some(&1));
+    assert_eq!(common::ui::servo_ui(harness.state()).pose.get(&3), Some(&1));
     for _ in 0..10 {
         harness.key_press(egui::Key::PageUp);
         harness.run();
     }
-    assert_eq!(harness.state().servo.pose.get(&3), Some(&45), "the limit holds");
-    assert_eq!(harness.state().servo.pose.get(&1), Some(&0), "the other servo did not move");
+    assert_eq!(common::ui::servo_ui(harness.state()).pose.get(&3), Some(&45), "the limit holds");
+    assert_eq!(common::ui::servo_ui(harness.state()).pose.get(&1), Some(&0), "the other servo did not move");
 }
 
 #[test]
 fn capture_pose_creates_an_action_and_undo_redo_restore_exact_states() {
     let mut app = new_app(project());
-    app.apply(Action::Servo(servo_studio::ui::ServoAction::SetPose { servo_id: 1, degree: -30 }));
-    app.apply(Action::Servo(servo_studio::ui::ServoAction::SetPose { servo_id: 3, degree: 200 }));
+    app.apply(Action::family(servo_studio::ui::ServoAction::SetPose { servo_id: 1, degree: -30 }));
+    app.apply(Action::family(servo_studio::ui::ServoAction::SetPose { servo_id: 3, degree: 200 }));
     let mut harness = harness(app);
     harness.run();
     let before = harness.state().document.project.servo.clone();
@@ -154,7 +154,7 @@ fn escape_stops_every_servo_holding_torque_and_blocks_moves_until_resume() {
     // The STOP frame is written ahead of this query, so the query sees it applied.
     let servos = requester.query_servos(1).unwrap();
     assert!(!servos[0].is_start && servos[0].is_hold, "{servos:?}");
-    harness.state_mut().apply(Action::Servo(servo_studio::ui::ServoAction::SetPose { servo_id: 1, degree: 40 }));
+    harness.state_mut().apply(Action::family(servo_studio::ui::ServoAction::SetPose { servo_id: 1, degree: 40 }));
     assert!(harness.state().status.as_ref().unwrap().is_error, "moving while stopped is refused");
     harness.get_by_label("Resume").click();
     harness.run();
@@ -259,7 +259,7 @@ fn a_far_slider_click_reaches_its_angle_at_the_live_speed_limit() {
     let mut harness = demo_harness();
     // A click at the far end: 0° → 90° at the default 180°/s takes 0.5 s, 50 units of 10 ms.
     click_far_end(&mut harness, true);
-    assert_eq!(harness.state().servo.pose.get(&1), Some(&90));
+    assert_eq!(common::ui::servo_ui(harness.state()).pose.get(&1), Some(&90));
     assert_eq!(next_move(&harness, 1), (90, 50));
     arrived(&harness, 90);
     // The Settings menu shows the limit; at 45°/s, 90° → −90° takes 4 s.
@@ -272,7 +272,7 @@ fn a_far_slider_click_reaches_its_angle_at_the_live_speed_limit() {
     harness.state_mut().apply(Action::SetLiveSpeed(45.0));
     let sent_away = Instant::now();
     click_far_end(&mut harness, false);
-    assert_eq!(harness.state().servo.pose.get(&1), Some(&-90));
+    assert_eq!(common::ui::servo_ui(harness.state()).pose.get(&1), Some(&-90));
     // The board reads 90° once within half a degree of it: 179.5°–180° at 45°/s.
     let (degree, interval_10ms) = next_move(&harness, 1);
     assert_eq!(degree, -90);
@@ -326,16 +326,16 @@ fn after_a_macro_ran_on_the_board_a_click_is_timed_from_where_the_servo_could_be
     };
     read_after(&mut harness, Instant::now() - Duration::from_secs(3600));
     // The board raises servo 1 to 60° on its own; at once a click asks for 0°.
-    harness.state_mut().apply(Action::Servo(ServoAction::RunMacro(1)));
-    harness.state_mut().apply(Action::Servo(ServoAction::SetPose { servo_id: 1, degree: 0 }));
+    harness.state_mut().apply(Action::family(ServoAction::RunMacro(1)));
+    harness.state_mut().apply(Action::family(ServoAction::SetPose { servo_id: 1, degree: 0 }));
     // It could be at either end (±90°): 90° at 180°/s, 0.5 s, not the 20 ms a slider move takes.
     assert_eq!(next_move(&harness, 1), (0, 50));
     arrived(&harness, 0);
     // Run again, and read once the macro is over: the next click counts from the reading.
-    harness.state_mut().apply(Action::Servo(ServoAction::RunMacro(1)));
+    harness.state_mut().apply(Action::family(ServoAction::RunMacro(1)));
     arrived(&harness, 60);
     read_after(&mut harness, Instant::now());
-    harness.state_mut().apply(Action::Servo(ServoAction::SetPose { servo_id: 1, degree: 30 }));
+    harness.state_mut().apply(Action::family(ServoAction::SetPose { servo_id: 1, degree: 30 }));
     // 60° → 30° at 180°/s: 1/6 s, 17 units.
     assert_eq!(next_move(&harness, 1), (30, 17));
 }
@@ -351,7 +351,7 @@ fn recording_slider_moves_fits_them_into_actions_and_a_macro() {
     let actions_before = harness.state().document.project.servo.actions.len();
     common::ui::record_through_count_in(&mut harness);
     for k in 0..=8 {
-        harness.state_mut().apply(Action::Servo(ServoAction::SetPose { servo_id: 1, degree: 15 * k / 2 }));
+        harness.state_mut().apply(Action::family(ServoAction::SetPose { servo_id: 1, degree: 15 * k / 2 }));
         harness.step();
     }
     for _ in 0..4 {

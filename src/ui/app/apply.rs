@@ -66,17 +66,9 @@ impl StudioApp {
             | Action::DeclineRecovery
             | Action::Autosave
             | Action::Terminate => self.apply_file(action),
-            Action::Servo(action) => {
+            Action::Family(action) => {
                 let (mut shell, families) = self.split();
-                families.servo.apply(&mut shell, action);
-            }
-            Action::Plen2(action) => {
-                let (mut shell, families) = self.split();
-                families.plen2.apply(&mut shell, action);
-            }
-            Action::Rflex(action) => {
-                let (mut shell, families) = self.split();
-                families.rflex.apply(&mut shell, action);
+                families.get_mut(action.owner()).act(&mut shell, action);
             }
         }
     }
@@ -134,15 +126,10 @@ impl StudioApp {
     fn undo_redo(&mut self, undo: bool) {
         let (mut shell, families) = self.split();
         // A turn in the 3D view is undone by moving the live pose back.
-        let now = |pose: &LivePose| match pose {
-            LivePose::Plen2(_) => LivePose::Plen2(families.plen2.pose),
-            LivePose::Servo(_) => LivePose::Servo(families.servo.pose.clone()),
-        };
+        let now = |pose: &LivePose| families.get(pose.family()).live_pose().unwrap_or_else(|| pose.clone());
         let pose = if undo { shell.document.undo(now) } else { shell.document.redo(now) };
-        match pose {
-            Some(LivePose::Plen2(pose)) => families.plen2.restore_pose(&mut shell, pose),
-            Some(LivePose::Servo(pose)) => families.servo.restore_pose(&mut shell, pose),
-            None => {}
+        if let Some(pose) = pose {
+            families.get_mut(pose.family()).restore_pose(&mut shell, pose);
         }
     }
 

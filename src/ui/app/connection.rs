@@ -7,6 +7,7 @@ use crate::link::PortName;
 use crate::project::Edit;
 use crate::ui::board_link::LinkNotice;
 use crate::ui::connection_bar::LinkStatus;
+use crate::ui::i18n::Worded;
 
 impl StudioApp {
     /// Picks up what the board and the running operation sent since the last frame.
@@ -99,7 +100,7 @@ impl StudioApp {
                 let text = self.family_ui(family).demo_connected(self.words());
                 self.report(text, false);
             }
-            Err(error) => self.report(self.language.start_error(&error), true),
+            Err(error) => self.report(error.worded(self.language), true),
         }
     }
 
@@ -122,7 +123,7 @@ impl StudioApp {
                     self.link_made(&label, baud, family);
                     self.connected();
                 }
-                Err(error) => self.report(self.language.start_error(&error), true),
+                Err(error) => self.report(error.worded(self.language), true),
             },
             // Still gone: tried again at the next turn.
             Err(_) if quiet => {}

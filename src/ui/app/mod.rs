@@ -29,13 +29,12 @@ use crate::ui::action::{Action, AfterUnsaved, FileRequest, Tab};
 use crate::ui::board_link::BoardLink;
 use crate::ui::connection_bar::ConnectionBar;
 use crate::ui::document::Document;
+use crate::ui::families::Families;
 use crate::ui::family::FamilyUi;
 use crate::ui::files::{self, AUTOSAVE_EVERY, Recovery};
 use crate::ui::i18n::Language;
 use crate::ui::layout::Layout;
-use crate::ui::plen2::Plen2Ui;
-use crate::ui::rflex::RflexUi;
-use crate::ui::servo::ServoUi;
+pub use crate::ui::remembered::Remembered;
 use crate::ui::shell::{RunningOperation, Shell, ShellView, StatusLine};
 use crate::ui::speed::LiveSpeed;
 
@@ -88,12 +87,8 @@ pub struct StudioApp {
     pub unsaved_prompt: Option<AfterUnsaved>,
     /// Work autosaved by a session that did not end cleanly, offered at start.
     pub recovery_offer: Option<Recovery>,
-    /// The servo board's state and panels.
-    pub servo: ServoUi,
-    /// The PLEN2's state and panels.
-    pub plen2: Plen2Ui,
-    /// The rFLEX base's state and panels.
-    pub rflex: RflexUi,
+    /// Each family's state and panels.
+    pub families: Families,
     /// The serial ports seen at the last scan.
     pub ports: Vec<PortInfo>,
     lister: PortLister,
@@ -132,9 +127,7 @@ impl StudioApp {
     pub fn new(project: impl Into<Project>, path: Option<PathBuf>, waker: Waker) -> Self {
         let project = project.into();
         let mut app = Self {
-            servo: ServoUi::default(),
-            plen2: Plen2Ui::default(),
-            rflex: RflexUi::default(),
+            families: Families::default(),
             document: Document::new(project, path),
             link: None,
             connecting: None,
@@ -201,22 +194,9 @@ impl StudioApp {
     }
 
     /// The shell as a family's ui changes it, and the families' uis (borrowed apart).
-    fn split(&mut self) -> (Shell<'_>, Families<'_>) {
-        let Self {
-            document,
-            link,
-            status,
-            operation,
-            language,
-            live_speed,
-            data_dir,
-            waker,
-            files,
-            servo,
-            plen2,
-            rflex,
-            ..
-        } = self;
+    fn split(&mut self) -> (Shell<'_>, &mut Families) {
+        let Self { document, link, status, operation, language, live_speed, data_dir, waker, files, families, .. } =
+            self;
         let shell = Shell {
             document,
             link,
@@ -228,35 +208,31 @@ impl StudioApp {
             waker,
             files,
         };
-        (shell, Families { servo, plen2, rflex })
+        (shell, families)
     }
 
     /// The shell as a family's ui changes it, and that family's ui.
     fn parts(&mut self, family: Family) -> (Shell<'_>, &mut dyn FamilyUi) {
         let (shell, families) = self.split();
-        (shell, families.get(family))
+        (shell, families.get_mut(family))
     }
 
     /// A family's side of the editor.
     pub fn family_ui(&self, family: Family) -> &dyn FamilyUi {
-        match family {
-            Family::Servo => &self.servo,
-            Family::Plen2 => &self.plen2,
-            Family::Rflex => &self.rflex,
-        }
+        self.families.get(family)
     }
 
     /// Runs `change` on every family's side of the editor, with the shell.
     fn each_family(&mut self, mut change: impl FnMut(&mut dyn FamilyUi, &mut Shell<'_>)) {
-        for family in Family::ALL {
-            let (mut shell, family_ui) = self.parts(family);
+        let (mut shell, families) = self.split();
+        for family_ui in families.iter_mut() {
             change(family_ui, &mut shell);
         }
     }
 
     /// What a family's panels draw from, and that family's ui.
     fn drawing(&mut self, family: Family) -> (ShellView<'_>, &mut dyn FamilyUi, Tab) {
-        let Self { document, link, operation, language, servo, plen2, rflex, tab, waker, .. } = self;
+        let Self { document, link, operation, language, families, tab, waker, .. } = self;
         let view = ShellView {
             project: &document.project,
             revision: document.revision(),
@@ -265,7 +241,7 @@ impl StudioApp {
             language: *language,
             waker,
         };
-        (view, Families { servo, plen2, rflex }.get(family), *tab)
+        (view, families.get_mut(family), *tab)
     }
 
     /// Shows `family`'s first tab when the tab shown is not one of its own.
@@ -454,48 +430,6 @@ impl StudioApp {
     }
 }
 
-/// Each family's side of the editor, borrowed apart from the shell.
-struct Families<'a> {
-    servo: &'a mut ServoUi,
-    plen2: &'a mut Plen2Ui,
-    rflex: &'a mut RflexUi,
-}
-
-impl<'a> Families<'a> {
-    /// The one of `family`.
-    fn get(self, family: Family) -> &'a mut dyn FamilyUi {
-        match family {
-            Family::Servo => self.servo,
-            Family::Plen2 => self.plen2,
-            Family::Rflex => self.rflex,
-        }
-    }
-}
-
-/// What is remembered between runs (the window's size and place are
-/// remembered by eframe itself).
-#[derive(Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
-pub struct Remembered {
-    /// Recent files, newest first.
-    pub recent: Vec<PathBuf>,
-    /// The interface language.
-    pub language: Language,
-    /// The tab shown, by name.
-    pub tab: String,
-    /// The board family last used.
-    #[serde(default)]
-    pub family: Family,
-    /// How a PLEN2 is paced.
-    #[serde(default)]
-    pub plen2_pacing: crate::device::plen2::PacingMode,
-    /// The live speed limit.
-    #[serde(default)]
-    pub live_speed: LiveSpeed,
-    /// How each family's panels were laid out: servo, PLEN2, rFLEX.
-    #[serde(default)]
-    pub layouts: Vec<Layout>,
-}
-
 /// How long the editor, ending on a signal, waits for a board operation to
 /// reach its next safe point: a request's timeout and its retries.
 pub const TERMINATE_WAIT: Duration = Duration::from_secs(10);
@@ -506,26 +440,32 @@ pub const REMEMBERED_KEY: &str = "servo-studio";
 impl StudioApp {
     /// What to remember between runs.
     pub fn remembered(&self) -> Remembered {
-        Remembered {
+        let mut remembered = Remembered {
             recent: self.recent.clone(),
             language: self.language,
             tab: self.tab.name().to_string(),
             family: self.document.project.family,
-            plen2_pacing: self.plen2.pacing,
             live_speed: self.live_speed,
             layouts: Family::ALL.iter().map(|family| self.layout(*family)).collect(),
+            ..Remembered::default()
+        };
+        for family in Family::ALL {
+            self.family_ui(family).remember(&mut remembered);
         }
+        remembered
     }
 
     /// Restores what was remembered: the family too, unless `keep_family`
     /// (a project opened from a file, or the demo, brings its own).
     pub fn restore(&mut self, remembered: Remembered, keep_family: bool) {
+        for family_ui in self.families.iter_mut() {
+            family_ui.recall(&remembered);
+        }
         self.recent = remembered.recent;
         self.language = remembered.language;
-        self.plen2.pacing = remembered.plen2_pacing;
         self.live_speed = remembered.live_speed;
         for (family, layout) in Family::ALL.into_iter().zip(remembered.layouts) {
-            *self.parts(family).1.layout_mut() = layout;
+            *self.families.get_mut(family).layout_mut() = layout;
         }
         if !keep_family {
             self.document.project.family = remembered.family;

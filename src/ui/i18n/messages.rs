@@ -350,17 +350,6 @@ impl Language {
         }
     }
 
-    /// Why a connection could not start.
-    pub fn start_error(self, error: &crate::ui::board_link::StartError) -> String {
-        use crate::ui::board_link::StartError as S;
-        match (self, error) {
-            (Self::English, S::Thread(text)) => format!("cannot start the connection: {text}"),
-            (Self::TraditionalChinese, S::Thread(_)) => {
-                "無法啟動連線：系統無法再建立執行緒，請關閉一些程式後重試".into()
-            }
-        }
-    }
-
     /// Something could not be sent.
     pub fn send_failed(self, error: &crate::device::servo::EncodeError) -> String {
         match self {

@@ -61,6 +61,13 @@ impl Language {
     }
 }
 
+/// What words itself in the interface's language: an error or a notice,
+/// worded next to the type that owns it (its family's or its layer's), not here.
+pub trait Worded {
+    /// It, in `language`.
+    fn worded(&self, language: Language) -> String;
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -5,8 +5,9 @@
 use super::Plen2Result;
 use crate::device::Phase;
 use crate::project::plen2::{Motion, Plen2Project, SLOTS};
-use crate::ui::action::{Action, Export, FileRequest, PROJECT_FILE, Plen2Action, Plen2Intent};
+use crate::ui::action::{Action, Export, FileRequest, PROJECT_FILE};
 use crate::ui::i18n::{Language, Strings};
+use crate::ui::plen2::action::{Plen2Action, Plen2Intent};
 use crate::ui::plen2::captions::Plen2Words;
 use crate::ui::rows;
 
@@ -129,18 +130,18 @@ pub fn robot_panel(ui: &mut egui::Ui, view: &RobotView<'_>, language: Language, 
         let idle = view.operation.is_none();
         ui.add_enabled_ui(view.connected && idle, |ui| {
             if ui.button(words.plen2().read_robot).clicked() {
-                actions.push(Action::Plen2(Plen2Action::Robot(Plen2Intent::Read)));
+                actions.push(Action::family(Plen2Action::Robot(Plen2Intent::Read)));
             }
             if ui.button(words.plen2().upload_motions).on_hover_text(words.upload_hint).clicked() {
-                actions.push(Action::Plen2(Plen2Action::Robot(Plen2Intent::Upload)));
+                actions.push(Action::family(Plen2Action::Robot(Plen2Intent::Upload)));
             }
             if ui.add_enabled(view.robot_read, egui::Button::new(words.confirm_read)).clicked() {
-                actions.push(Action::Plen2(Plen2Action::Robot(Plen2Intent::ReadIntoProject)));
+                actions.push(Action::family(Plen2Action::Robot(Plen2Intent::ReadIntoProject)));
             }
             // The shell asks where, off the frame.
             if ui.add_enabled(view.robot_read, egui::Button::new(words.export_board)).clicked() {
                 actions.push(Action::AskFile(FileRequest::Export(Export::json("plen2.json", PROJECT_FILE, |path| {
-                    Action::Plen2(Plen2Action::Robot(Plen2Intent::ExportToFile(path)))
+                    Action::family(Plen2Action::Robot(Plen2Intent::ExportToFile(path)))
                 }))));
             }
         });

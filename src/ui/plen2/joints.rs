@@ -7,9 +7,10 @@
 
 use crate::project::Edit;
 use crate::project::plen2::{FACTORY_LIMIT_TENTHS_DEG, Joint, JointSetting, Plen2Project};
-use crate::ui::action::{Action, Plen2Action, Plen2Intent};
+use crate::ui::action::Action;
 use crate::ui::i18n::Strings;
 use crate::ui::layout::{self, Layout, Pane};
+use crate::ui::plen2::action::{Plen2Action, Plen2Intent};
 use crate::ui::plen2::captions::Plen2Words;
 use crate::ui::rows;
 
@@ -46,21 +47,21 @@ pub fn ui(ui: &mut egui::Ui, view: &JointsView<'_>, layout: &mut Layout, words: 
     ui.horizontal(|ui| {
         ui.heading(words.joints);
         if ui.add_enabled(view.connected, egui::Button::new(words.home)).clicked() {
-            actions.push(Action::Plen2(Plen2Action::Home));
+            actions.push(Action::family(Plen2Action::Home));
         }
         if let Some(slot) = view.capture_slot
             && ui.button(format!("{} ({} {slot})", words.plen2().capture_frame, words.slot)).clicked()
         {
-            actions.push(Action::Plen2(Plen2Action::CaptureFrame { slot }));
+            actions.push(Action::family(Plen2Action::CaptureFrame { slot }));
         }
         if view.capture_slot.is_some() || view.recording.is_some() {
             match rows::record(ui, words, view.recording, words.plen2().record_hint) {
                 Some(true) => {
                     if let Some(slot) = view.capture_slot {
-                        actions.push(Action::Plen2(Plen2Action::Record { slot }));
+                        actions.push(Action::family(Plen2Action::Record { slot }));
                     }
                 }
-                Some(false) => actions.push(Action::Plen2(Plen2Action::StopRecording)),
+                Some(false) => actions.push(Action::family(Plen2Action::StopRecording)),
                 None => {}
             }
         }
@@ -107,13 +108,13 @@ fn sliders(ui: &mut egui::Ui, view: &JointsView<'_>, actions: &mut Vec<Action>) 
             response.request_focus();
         }
         if !selected && (label.clicked() || response.gained_focus() || response.drag_started()) {
-            actions.push(Action::Plen2(Plen2Action::SelectJoint(Some(joint))));
+            actions.push(Action::family(Plen2Action::SelectJoint(Some(joint))));
         }
         if focused == Some(joint) && nudge != 0 {
             value = value.saturating_add(nudge).clamp(low, high);
         }
         if response.changed() || (focused == Some(joint) && nudge != 0) {
-            actions.push(Action::Plen2(Plen2Action::SetJoint { joint, tenths: value }));
+            actions.push(Action::family(Plen2Action::SetJoint { joint, tenths: value }));
         }
         ui.weak(format!("home {:.1}°", f64::from(setting.home_tenths_deg) / 10.0));
     });
@@ -172,10 +173,10 @@ fn settings_editor(ui: &mut egui::Ui, view: &JointsView<'_>, words: &Strings, ac
             )
             .clicked()
         {
-            actions.push(Action::Plen2(Plen2Action::Robot(Plen2Intent::WriteJoints)));
+            actions.push(Action::family(Plen2Action::Robot(Plen2Intent::WriteJoints)));
         }
         if ui.add_enabled(view.connected, egui::Button::new(words.factory_reset)).clicked() {
-            actions.push(Action::Plen2(Plen2Action::Robot(Plen2Intent::FactoryReset)));
+            actions.push(Action::family(Plen2Action::Robot(Plen2Intent::FactoryReset)));
         }
     });
 }
@@ -215,8 +216,8 @@ mod tests {
     fn set(actions: &[Action]) -> Vec<(Joint, i16)> {
         actions
             .iter()
-            .filter_map(|action| match action {
-                Action::Plen2(Plen2Action::SetJoint { joint, tenths }) => Some((*joint, *tenths)),
+            .filter_map(|action| match action.family_action() {
+                Some(Plen2Action::SetJoint { joint, tenths }) => Some((*joint, *tenths)),
                 _ => None,
             })
             .collect()
@@ -254,6 +255,6 @@ mod tests {
         harness.get_by_label("Home").click();
         harness.get_by_label_contains("Capture into frame").click();
         harness.run();
-        assert_eq!(harness.state().1, [Action::Plen2(Plen2Action::CaptureFrame { slot: 3 })]);
+        assert_eq!(harness.state().1, [Action::family(Plen2Action::CaptureFrame { slot: 3 })]);
     }
 }

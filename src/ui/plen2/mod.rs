@@ -3,6 +3,7 @@
 //! outcome), its panels (joints, motions, play lists, robot), and what it
 //! does with the actions its panels push.
 
+mod action;
 mod board;
 mod captions;
 mod joints;
@@ -15,6 +16,7 @@ mod preview;
 mod words;
 
 use crate::authoring::recording::Recorder;
+pub use action::{Plen2Action, Plen2Intent};
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -27,7 +29,7 @@ use crate::device::plen2::{self, Command, Plen2ImportFailure, Plen2ImportOptions
 use crate::device::plen2::{PacingMode, Plen2Item, ReplyError};
 use crate::project::plen2::{Joint, Plen2Project, SLOTS};
 use crate::project::{Edit, Family, LivePose, Project};
-use crate::ui::action::{Action, Plen2Action, Plen2Intent, Tab};
+use crate::ui::action::{Action, Tab};
 use crate::ui::board_link::{BoardLink, FamilyNotice, LinkStarter, StartError};
 use crate::ui::family::{FamilyUi, Panel};
 use crate::ui::i18n::{Language, Strings};
@@ -397,6 +399,30 @@ impl Plen2Ui {
 }
 
 impl FamilyUi for Plen2Ui {
+    fn act(&mut self, shell: &mut Shell<'_>, action: Box<dyn crate::ui::action::FamilyAction>) {
+        if let Ok(action) = action.into_any().downcast::<Plen2Action>() {
+            self.apply(shell, *action);
+        }
+    }
+
+    fn live_pose(&self) -> Option<LivePose> {
+        Some(LivePose::Plen2(self.pose))
+    }
+
+    fn restore_pose(&mut self, shell: &mut Shell<'_>, pose: LivePose) {
+        if let LivePose::Plen2(pose) = pose {
+            Plen2Ui::restore_pose(self, shell, pose);
+        }
+    }
+
+    fn remember(&self, remembered: &mut crate::ui::remembered::Remembered) {
+        remembered.plen2_pacing = self.pacing;
+    }
+
+    fn recall(&mut self, remembered: &crate::ui::remembered::Remembered) {
+        self.pacing = remembered.plen2_pacing;
+    }
+
     fn family(&self) -> Family {
         Family::Plen2
     }
@@ -504,7 +530,7 @@ impl FamilyUi for Plen2Ui {
             });
         picked.response.labelled_by(pacing_label.id).on_hover_text(words.plen2().pacing_hint);
         if pacing != self.pacing {
-            actions.push(Action::Plen2(Plen2Action::SetPacing(pacing)));
+            actions.push(Action::family(Plen2Action::SetPacing(pacing)));
         }
     }
 

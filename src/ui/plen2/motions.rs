@@ -9,9 +9,10 @@ use crate::authoring::bake::{self, Baked, DEFAULT_TOLERANCE_TENTHS};
 use crate::project::plen2::{Frame, Joint, LoopRange, Motion, Plen2Project, Pose};
 use crate::project::plen2::{MAX_TRANSITION_MS, MIN_TRANSITION_MS, SLOTS};
 use crate::project::{Edit, Location, Problem};
-use crate::ui::action::{Action, Export, FileRequest, Plen2Action};
+use crate::ui::action::{Action, Export, FileRequest};
 use crate::ui::i18n::Strings;
 use crate::ui::layout::{self, Layout, Pane, Part};
+use crate::ui::plen2::action::Plen2Action;
 use crate::ui::plen2::captions::Plen2Words;
 use crate::ui::shell::ShellView;
 use crate::ui::{plot, rows};
@@ -280,7 +281,7 @@ impl MotionsPanel {
                 ));
             }
             if ui.add_enabled(connected, egui::Button::new(words.plen2().play_from_here).small()).clicked() {
-                actions.push(Action::Plen2(Plen2Action::PlayFrom { slot: motion.slot, frame: f }));
+                actions.push(Action::family(Plen2Action::PlayFrom { slot: motion.slot, frame: f }));
             }
         });
         self.frame = selected;
@@ -445,14 +446,14 @@ fn motion_row(
         actions.push(edit(project, |p| p.motions[index].name = name, key("name")));
     }
     if ui.add_enabled(connected, egui::Button::new(words.plen2().play_on_robot)).on_hover_text("$PM").clicked() {
-        actions.push(Action::Plen2(Plen2Action::PlayMotion(motion.slot)));
+        actions.push(Action::family(Plen2Action::PlayMotion(motion.slot)));
     }
     // The shell asks where, off the frame; the answer comes back as a save.
     if ui.button("motion.json…").on_hover_text(words.plen2().motion_json_hint).clicked() {
         let name = format!("{:02X}_{}.json", motion.slot, motion.name.replace(' ', "_"));
         let slot = motion.slot;
         let export =
-            Export::json(name, "PLEN motion", move |path| Action::Plen2(Plen2Action::SaveMotionJson { slot, path }));
+            Export::json(name, "PLEN motion", move |path| Action::family(Plen2Action::SaveMotionJson { slot, path }));
         actions.push(Action::AskFile(FileRequest::Export(export)));
     }
     if ui.button(words.remove).clicked() {

@@ -5,9 +5,10 @@
 use crate::gamepad::puppet::Cue;
 use crate::project::gamepad::{AxisTarget, Fire};
 use crate::project::plen2::{Joint, Plen2Project};
-use crate::ui::action::{Action, Plen2Action};
+use crate::ui::action::Action;
 use crate::ui::gamepad::PadTarget;
 use crate::ui::i18n::Strings;
+use crate::ui::plen2::action::Plen2Action;
 
 /// Every joint, where the sliders have it.
 pub fn targets(project: &Plen2Project, pose: &[i16; 18]) -> Vec<PadTarget> {
@@ -52,10 +53,10 @@ pub fn cue(cue: Cue) -> Option<Action> {
             // Within the joint's limits already (±90.0°): an i16 holds it in tenths.
             #[allow(clippy::cast_possible_truncation)]
             let tenths = (degrees * 10.0).round() as i16;
-            Some(Action::Plen2(Plen2Action::SetJoint { joint, tenths }))
+            Some(Action::family(Plen2Action::SetJoint { joint, tenths }))
         }
-        Cue::Fire(Fire::Motion(slot)) => Some(Action::Plen2(Plen2Action::PlayMotion(slot))),
-        Cue::Fire(Fire::PlayList(index)) => Some(Action::Plen2(Plen2Action::PlayList(index))),
+        Cue::Fire(Fire::Motion(slot)) => Some(Action::family(Plen2Action::PlayMotion(slot))),
+        Cue::Fire(Fire::PlayList(index)) => Some(Action::family(Plen2Action::PlayList(index))),
         Cue::Fire(Fire::Stop) => Some(Action::Stop),
         _ => None,
     }

@@ -4,9 +4,10 @@
 
 use crate::project::Edit;
 use crate::project::plen2::{PlayEntry, PlayList, Plen2Project};
-use crate::ui::action::{Action, Plen2Action};
+use crate::ui::action::Action;
 use crate::ui::i18n::Strings;
 use crate::ui::layout::{self, Layout, Pane};
+use crate::ui::plen2::action::Plen2Action;
 use crate::ui::plen2::captions::Plen2Words;
 use crate::ui::rows;
 
@@ -84,7 +85,7 @@ impl PlayListsPanel {
                 .on_hover_text("#RI, #PU…, #PO")
                 .clicked()
             {
-                actions.push(Action::Plen2(Plen2Action::PlayList(index)));
+                actions.push(Action::family(Plen2Action::PlayList(index)));
             }
             if ui.button(words.plen2().add_entry).clicked() {
                 let slot = project.motions.first().map_or(0, |m| m.slot);

@@ -8,8 +8,9 @@ use crate::authoring::bake;
 use crate::device::plen2::playback::{self, DEVICE_IDS, Playback, Settings, StoredMotions};
 use crate::figure::{self, Chain};
 use crate::project::plen2::{Joint, Plen2Project};
-use crate::ui::action::{Action, Plen2Action};
+use crate::ui::action::Action;
 use crate::ui::i18n::Strings;
+use crate::ui::plen2::action::Plen2Action;
 use crate::ui::plen2::captions::Plen2Words;
 use crate::ui::transport::Transport;
 use crate::ui::view3d::{Handle, Scene, Touch, View};
@@ -120,16 +121,16 @@ impl Preview {
     /// What touching the live figure asks for.
     fn touched(&mut self, touch: Touch, actions: &mut Vec<Action>) {
         if let Some(joint) = touch.clicked.and_then(|link| self.joint_of(link)) {
-            actions.push(Action::Plen2(Plen2Action::SelectJoint(Some(joint))));
+            actions.push(Action::family(Plen2Action::SelectJoint(Some(joint))));
         }
         // A joint's value turns its link by as many tenths of a degree, right-hand rule.
         if let Some((link, by_tenths)) = touch.new_turn(&mut self.turned, 10.0)
             && let Some(joint) = self.joint_of(link)
         {
-            actions.push(Action::Plen2(Plen2Action::TurnJoint { joint, by_tenths }));
+            actions.push(Action::family(Plen2Action::TurnJoint { joint, by_tenths }));
         }
         if touch.let_go.is_some() {
-            actions.push(Action::Plen2(Plen2Action::TurnDone));
+            actions.push(Action::family(Plen2Action::TurnDone));
         }
     }
 

@@ -9,8 +9,9 @@
 
 use crate::project::Edit;
 use crate::project::rflex::{DriveSettings, SpeedLimits};
-use crate::ui::action::{Action, RflexAction};
+use crate::ui::action::Action;
 use crate::ui::i18n::Strings;
+use crate::ui::rflex::action::RflexAction;
 use crate::ui::rflex::captions::RflexWords;
 
 /// Side of the drag pad, points.
@@ -68,7 +69,7 @@ impl DrivePanel {
         if wanted == (0.0, 0.0) {
             actions.push(Action::Stop);
         } else {
-            actions.push(Action::Rflex(RflexAction::Drive { speed_m_per_s: wanted.0, turn_rad_per_s: wanted.1 }));
+            actions.push(Action::family(RflexAction::Drive { speed_m_per_s: wanted.0, turn_rad_per_s: wanted.1 }));
         }
     }
 
@@ -147,10 +148,10 @@ impl DrivePanel {
         let brake = ui.add_enabled(view.connected, egui::Button::new(words.brake).selected(braked));
         if brake.clicked() {
             self.asked = (0.0, 0.0);
-            actions.push(Action::Rflex(RflexAction::SetBrake(!braked)));
+            actions.push(Action::family(RflexAction::SetBrake(!braked)));
         }
         if ui.add_enabled(view.connected, egui::Button::new(words.rflex().sonar).selected(view.sonar_on)).clicked() {
-            actions.push(Action::Rflex(RflexAction::SetSonar(!view.sonar_on)));
+            actions.push(Action::family(RflexAction::SetSonar(!view.sonar_on)));
         }
     }
 }
@@ -210,10 +211,8 @@ mod tests {
     fn drove(actions: &[Action]) -> Vec<(f64, f64)> {
         actions
             .iter()
-            .filter_map(|action| match action {
-                Action::Rflex(RflexAction::Drive { speed_m_per_s, turn_rad_per_s }) => {
-                    Some((*speed_m_per_s, *turn_rad_per_s))
-                }
+            .filter_map(|action| match action.family_action() {
+                Some(RflexAction::Drive { speed_m_per_s, turn_rad_per_s }) => Some((*speed_m_per_s, *turn_rad_per_s)),
                 _ => None,
             })
             .collect()

@@ -3,6 +3,7 @@
 //! actions its panels push. A base is never left driving: leaving the Drive
 //! tab, losing the window's focus, STOP and a closed link all stop it.
 
+mod action;
 mod captions;
 mod drive;
 mod link;
@@ -10,6 +11,7 @@ mod pad;
 mod telemetry;
 mod world;
 
+pub use action::RflexAction;
 pub use drive::{DrivePanel, DriveView};
 pub use link::RflexBoardLink;
 pub(crate) use link::RflexLink;
@@ -20,7 +22,7 @@ use crate::gamepad::puppet::Cue;
 use crate::project::gamepad::Fire;
 use crate::project::rflex::Robot;
 use crate::project::{Family, Project};
-use crate::ui::action::{Action, RflexAction, Tab};
+use crate::ui::action::{Action, Tab};
 use crate::ui::board_link::{BoardLink, FamilyNotice, LinkStarter, StartError};
 use crate::ui::family::{FamilyUi, Panel};
 use crate::ui::i18n::Strings;
@@ -112,6 +114,12 @@ impl RflexUi {
 }
 
 impl FamilyUi for RflexUi {
+    fn act(&mut self, shell: &mut Shell<'_>, action: Box<dyn crate::ui::action::FamilyAction>) {
+        if let Ok(action) = action.into_any().downcast::<RflexAction>() {
+            self.apply(shell, *action);
+        }
+    }
+
     fn family(&self) -> Family {
         Family::Rflex
     }
@@ -148,7 +156,7 @@ impl FamilyUi for RflexUi {
             });
         picked.response.labelled_by(robot_label.id);
         if robot != current {
-            actions.push(Action::Rflex(RflexAction::SetRobot(robot)));
+            actions.push(Action::family(RflexAction::SetRobot(robot)));
         }
     }
 
@@ -224,7 +232,7 @@ impl FamilyUi for RflexUi {
     fn pad_cue(&self, cue: Cue) -> Option<Action> {
         match cue {
             Cue::Fire(Fire::Stop) => Some(Action::Stop),
-            Cue::Fire(Fire::Brake) => Some(Action::Rflex(RflexAction::SetBrake(true))),
+            Cue::Fire(Fire::Brake) => Some(Action::family(RflexAction::SetBrake(true))),
             _ => None,
         }
     }

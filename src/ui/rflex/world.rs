@@ -12,9 +12,10 @@ use egui::{Color32, Pos2, Rect, Sense, Shape, Stroke, pos2, vec2};
 use crate::device::rflex::{
     Bumps, ECHO_CELL_M, EchoMap, FORGET_AFTER_S, Layout, Odometry, SONAR_REACH_M, Telemetry, echo_point, mount_point,
 };
-use crate::ui::action::{Action, RflexAction};
+use crate::ui::action::Action;
 use crate::ui::i18n::Strings;
 use crate::ui::plot;
+use crate::ui::rflex::action::RflexAction;
 use crate::ui::rflex::captions::RflexWords;
 
 /// Metres a point stands for at the start (6 m across a 600-point view).
@@ -136,7 +137,7 @@ pub fn panel(
         ui.heading(words.rflex().world_view);
         ui.checkbox(&mut view.follow, words.rflex().follow);
         if ui.add_enabled(telemetry.is_some(), egui::Button::new(words.rflex().clear_map)).clicked() {
-            actions.push(Action::Rflex(RflexAction::ClearMap));
+            actions.push(Action::family(RflexAction::ClearMap));
         }
     });
     ui.label(egui::RichText::new(words.rflex().world_hint).small().weak());

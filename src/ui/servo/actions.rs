@@ -9,10 +9,11 @@ use super::preview::{Preview, Timed};
 use crate::project::{
     Action as ProjectAction, Edit, Location, Problem, Run, ServoProject, Step, next_free_id, validate_servo,
 };
-use crate::ui::action::{Action, ServoAction};
+use crate::ui::action::Action;
 use crate::ui::derive::Derived;
 use crate::ui::i18n::Strings;
 use crate::ui::layout::{self, Layout, Part};
+use crate::ui::servo::action::ServoAction;
 use crate::ui::servo::captions::ServoWords;
 use crate::ui::shell::ShellView;
 use crate::ui::{plot, rows};
@@ -214,10 +215,10 @@ fn header(
             ));
         }
         if ui.add_enabled(connected, egui::Button::new(words.servo().play_on_board)).clicked() {
-            actions.push(Action::Servo(ServoAction::PlayAction(action.id)));
+            actions.push(Action::family(ServoAction::PlayAction(action.id)));
         }
         if ui.button(words.preview).clicked() {
-            actions.push(Action::Servo(ServoAction::PreviewAction(action.id)));
+            actions.push(Action::family(ServoAction::PreviewAction(action.id)));
         }
         let twins = action.steps.iter().any(|step| project.twin(step.servo_id).is_some());
         if ui

@@ -4,9 +4,10 @@
 
 use super::operations::{BoardResult, PendingConfirm, ServoKind};
 use crate::device::servo::Item;
-use crate::ui::action::{Action, BoardIntent, Export, FileRequest, PROJECT_FILE, ServoAction};
+use crate::ui::action::{Action, Export, FileRequest, PROJECT_FILE};
 use crate::ui::i18n::Language;
 use crate::ui::rows;
+use crate::ui::servo::action::{BoardIntent, ServoAction};
 use crate::ui::servo::captions::ServoWords;
 
 /// The differences of a comparison in `language`.
@@ -60,15 +61,15 @@ pub fn ui(ui: &mut egui::Ui, view: &BoardView<'_>, language: Language, actions: 
     ui.horizontal(|ui| {
         ui.add_enabled_ui(view.connected && idle, |ui| {
             if ui.button(words.servo().upload_to_board).on_hover_text(words.upload_hint).clicked() {
-                actions.push(Action::Servo(ServoAction::BoardCompare(BoardIntent::Upload)));
+                actions.push(Action::family(ServoAction::BoardCompare(BoardIntent::Upload)));
             }
             if ui.button(words.servo().read_board).on_hover_text(words.servo().read_hint).clicked() {
-                actions.push(Action::Servo(ServoAction::BoardCompare(BoardIntent::ReadIntoProject)));
+                actions.push(Action::family(ServoAction::BoardCompare(BoardIntent::ReadIntoProject)));
             }
             // The shell asks where, off the frame; the answer comes back as a comparison.
             if ui.button(words.export_board).clicked() {
                 actions.push(Action::AskFile(FileRequest::Export(Export::json("board.json", PROJECT_FILE, |path| {
-                    Action::Servo(ServoAction::BoardCompare(BoardIntent::ExportToFile(path)))
+                    Action::family(ServoAction::BoardCompare(BoardIntent::ExportToFile(path)))
                 }))));
             }
         });
@@ -137,10 +138,10 @@ fn confirming(ui: &mut egui::Ui, pending: &PendingConfirm, language: Language, a
             BoardIntent::ExportToFile(_) => words.servo().confirm_export,
         };
         if ui.button(confirm).clicked() {
-            actions.push(Action::Servo(ServoAction::BoardConfirm));
+            actions.push(Action::family(ServoAction::BoardConfirm));
         }
         if ui.button(words.cancel).clicked() {
-            actions.push(Action::Servo(ServoAction::BoardDismiss));
+            actions.push(Action::family(ServoAction::BoardDismiss));
         }
     });
 }
@@ -180,7 +181,7 @@ fn outcome(
         BoardResult::Invalid { .. } => {
             let anyway = ui.add_enabled(can_upload, egui::Button::new(words.servo().upload_anyway));
             if anyway.on_hover_text(words.servo().upload_anyway_hint).clicked() {
-                actions.push(Action::Servo(ServoAction::BoardCompare(BoardIntent::UploadAnyway)));
+                actions.push(Action::family(ServoAction::BoardCompare(BoardIntent::UploadAnyway)));
             }
             &[]
         }

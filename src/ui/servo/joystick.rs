@@ -4,10 +4,11 @@
 
 use crate::device::servo::ButtonEvent;
 use crate::project::{Button, Edit, JoystickTable, ServoProject, next_free_id};
-use crate::ui::action::{Action, ServoAction};
+use crate::ui::action::Action;
 use crate::ui::i18n::Strings;
 use crate::ui::layout::{self, Layout, Pane};
 use crate::ui::rows;
+use crate::ui::servo::action::ServoAction;
 use crate::ui::servo::captions::ServoWords;
 
 /// What the panel draws besides the project.
@@ -150,7 +151,7 @@ impl JoystickPanel {
         ui.horizontal(|ui| {
             let pick_text = if view.picking { words.servo().waiting_for_button } else { words.servo().pick_button };
             if ui.add_enabled(view.connected, egui::Button::new(pick_text).selected(view.picking)).clicked() {
-                actions.push(Action::Servo(ServoAction::PickButton { table_index: (!view.picking).then_some(index) }));
+                actions.push(Action::family(ServoAction::PickButton { table_index: (!view.picking).then_some(index) }));
             }
             if ui.button(words.servo().add_button).clicked() {
                 let used: Vec<i32> = table.buttons.iter().filter_map(|b| i32::try_from(b.id).ok()).collect();

@@ -8,10 +8,11 @@ use crate::project::{
     Command, Edit, Location, Macro, Problem, Run, ServoProject, Severity, Timing, TimingError, next_free_id,
     validate_servo,
 };
-use crate::ui::action::{Action, ServoAction};
+use crate::ui::action::Action;
 use crate::ui::derive::Derived;
 use crate::ui::i18n::Strings;
 use crate::ui::layout::{self, Layout, Part};
+use crate::ui::servo::action::ServoAction;
 use crate::ui::servo::captions::ServoWords;
 use crate::ui::shell::ShellView;
 use crate::ui::{plot, rows};
@@ -187,7 +188,7 @@ impl MacroPanel {
             let total = derived.command_totals_ms.get(position).copied().unwrap_or(Err(TimingError::ZeroRatio));
             if ui.small_button(words.servo().play_here).on_hover_text(words.servo().play_from_here_hint).clicked() {
                 played_from = Some(position);
-                actions.push(Action::Servo(ServoAction::PlayMacroFrom { macro_id: item.id, command: position }));
+                actions.push(Action::family(ServoAction::PlayMacroFrom { macro_id: item.id, command: position }));
             }
             Self::command_row(ui, project, total, item, index, position, command, words, actions);
             if let Some(problem) = derived.command_problems.get(&(position + 1)) {
@@ -301,7 +302,7 @@ fn macro_header(
         None => ui.label(format!("{} …", words.total)),
     };
     if ui.add_enabled(connected, egui::Button::new(words.servo().run_on_board)).clicked() {
-        actions.push(Action::Servo(ServoAction::RunMacro(item.id)));
+        actions.push(Action::family(ServoAction::RunMacro(item.id)));
     }
     if ui.button(words.remove).clicked() {
         actions.push(Action::Edit { edit: Edit::RemoveMacro { index }, coalesce: None });

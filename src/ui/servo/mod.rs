@@ -3,6 +3,7 @@
 //! its panels (sliders, actions, macros, joystick, board), and what it does
 //! with the actions its panels push.
 
+mod action;
 mod actions;
 mod board;
 mod captions;
@@ -17,6 +18,7 @@ mod preview;
 mod rig;
 mod sliders;
 
+pub use action::{BoardIntent, ServoAction};
 use std::collections::BTreeMap;
 use std::time::Instant;
 
@@ -30,7 +32,7 @@ pub use operations::{BoardResult, PendingConfirm, ServoFailure, ServoKind, Servo
 use crate::device::servo::{ButtonEvent, ServoImage, ServoNotice};
 use crate::project::{Family, Project, ServoProject};
 use crate::sim::SimConfig;
-use crate::ui::action::{Action, ServoAction, Tab};
+use crate::ui::action::{Action, Tab};
 use crate::ui::board_link::{BoardLink, FamilyNotice, LinkStarter, StartError};
 use crate::ui::derive::Derived;
 use crate::ui::family::{FamilyUi, Panel};
@@ -94,7 +96,7 @@ pub struct ServoUi {
     pub pending: Option<PendingConfirm>,
     /// The outcome of the last board operation.
     pub board_result: Option<BoardResult>,
-    compare_intent: Option<crate::ui::action::BoardIntent>,
+    compare_intent: Option<BoardIntent>,
     /// The board's contents being written to a file (off the frame).
     exporting: Option<(std::path::PathBuf, Receiver<Result<(), crate::project::SaveError>>)>,
     compared_board: Option<ServoProject>,
@@ -248,6 +250,22 @@ impl ServoUi {
 }
 
 impl FamilyUi for ServoUi {
+    fn act(&mut self, shell: &mut Shell<'_>, action: Box<dyn crate::ui::action::FamilyAction>) {
+        if let Ok(action) = action.into_any().downcast::<ServoAction>() {
+            self.apply(shell, *action);
+        }
+    }
+
+    fn live_pose(&self) -> Option<crate::project::LivePose> {
+        Some(crate::project::LivePose::Servo(self.pose.clone()))
+    }
+
+    fn restore_pose(&mut self, shell: &mut Shell<'_>, pose: crate::project::LivePose) {
+        if let crate::project::LivePose::Servo(pose) = pose {
+            ServoUi::restore_pose(self, shell, pose);
+        }
+    }
+
     fn family(&self) -> Family {
         Family::Servo
     }
@@ -337,7 +355,7 @@ impl FamilyUi for ServoUi {
     fn toolbar(&mut self, ui: &mut egui::Ui, view: &ShellView<'_>, actions: &mut Vec<Action>) {
         // A board stopped by STOP holds every servo until told to go on.
         if view.link.is_some_and(BoardLink::stopped) && ui.button(view.language.strings().servo().resume).clicked() {
-            actions.push(Action::Servo(ServoAction::Resume));
+            actions.push(Action::family(ServoAction::Resume));
         }
     }
 

@@ -12,9 +12,9 @@ use crate::device::servo::{
     Difference, ImageError, ImportFailure, ImportOptions, ImportReport, Item, OpError, ServoImage, import, read_image,
 };
 use crate::project::{Edit, Project, ServoProject, has_errors, validate_servo};
-use crate::ui::action::BoardIntent;
 use crate::ui::i18n::Language;
 use crate::ui::operation::{Operation, Step};
+use crate::ui::servo::action::BoardIntent;
 use crate::ui::shell::{RunningOperation, Shell};
 
 /// A servo board operation as it runs.

@@ -7,9 +7,10 @@ use std::collections::BTreeMap;
 use crate::gamepad::puppet::Cue;
 use crate::project::ServoProject;
 use crate::project::gamepad::{AxisTarget, Fire};
-use crate::ui::action::{Action, ServoAction};
+use crate::ui::action::Action;
 use crate::ui::gamepad::PadTarget;
 use crate::ui::i18n::Strings;
+use crate::ui::servo::action::ServoAction;
 use crate::ui::servo::captions::ServoWords;
 
 /// Every servo of the project, where the sliders have it.
@@ -51,10 +52,10 @@ pub fn cue(cue: Cue) -> Option<Action> {
             // Within the servo's limits already; an i16 holds any servo angle.
             #[allow(clippy::cast_possible_truncation)]
             let degree = degrees.round() as i16;
-            Some(Action::Servo(ServoAction::SetPose { servo_id, degree }))
+            Some(Action::family(ServoAction::SetPose { servo_id, degree }))
         }
-        Cue::Fire(Fire::Action(id)) => Some(Action::Servo(ServoAction::PlayAction(id))),
-        Cue::Fire(Fire::Macro(id)) => Some(Action::Servo(ServoAction::RunMacro(id))),
+        Cue::Fire(Fire::Action(id)) => Some(Action::family(ServoAction::PlayAction(id))),
+        Cue::Fire(Fire::Macro(id)) => Some(Action::family(ServoAction::RunMacro(id))),
         Cue::Fire(Fire::Stop) => Some(Action::Stop),
         _ => None,
     }

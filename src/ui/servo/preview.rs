@@ -8,10 +8,11 @@ use std::collections::BTreeMap;
 
 use crate::figure::{self, Chain, Shape};
 use crate::project::{self, ServoProject};
-use crate::ui::action::{Action, ServoAction};
+use crate::ui::action::Action;
 use crate::ui::i18n::Strings;
 use crate::ui::layout;
 use crate::ui::rows;
+use crate::ui::servo::action::ServoAction;
 use crate::ui::servo::captions::ServoWords;
 use crate::ui::transport::Transport;
 use crate::ui::view3d::{Handle, Scene, Touch, View};
@@ -178,16 +179,16 @@ impl Preview {
         let touch = self.draw(ui, project, &scene, true, words);
         self.live_scene = scene;
         if let Some(servo_id) = touch.clicked.and_then(|link| self.servo_of(link)) {
-            actions.push(Action::Servo(ServoAction::SelectServo(Some(servo_id))));
+            actions.push(Action::family(ServoAction::SelectServo(Some(servo_id))));
         }
         // A servo's angle turns its link by as many degrees (its axis carries `reversed`).
         if let Some((link, by_deg)) = touch.new_turn(&mut self.turned, 1.0)
             && let Some(servo_id) = self.servo_of(link)
         {
-            actions.push(Action::Servo(ServoAction::TurnServo { servo_id, by_deg }));
+            actions.push(Action::family(ServoAction::TurnServo { servo_id, by_deg }));
         }
         if touch.let_go.is_some() {
-            actions.push(Action::Servo(ServoAction::TurnDone));
+            actions.push(Action::family(ServoAction::TurnDone));
         }
     }
 

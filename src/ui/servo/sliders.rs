@@ -6,10 +6,11 @@ use std::collections::{BTreeMap, HashMap};
 
 use crate::device::servo::ServoStatus;
 use crate::project::{Edit, Servo, ServoProject};
-use crate::ui::action::{Action, ServoAction};
+use crate::ui::action::Action;
 use crate::ui::i18n::Strings;
 use crate::ui::layout::{self, Layout, Pane};
 use crate::ui::rows;
+use crate::ui::servo::action::ServoAction;
 use crate::ui::servo::captions::ServoWords;
 
 /// What the panel draws.
@@ -51,20 +52,20 @@ impl ServoPanel {
         ui.horizontal(|ui| {
             ui.heading(words.servos);
             if ui.button(words.servo().capture_pose).clicked() {
-                actions.push(Action::Servo(ServoAction::CapturePose { from_board: false }));
+                actions.push(Action::family(ServoAction::CapturePose { from_board: false }));
             }
             match rows::record(ui, words, view.recording, words.servo().record_hint) {
-                Some(true) => actions.push(Action::Servo(ServoAction::Record)),
-                Some(false) => actions.push(Action::Servo(ServoAction::StopRecording)),
+                Some(true) => actions.push(Action::family(ServoAction::Record)),
+                Some(false) => actions.push(Action::family(ServoAction::StopRecording)),
                 None => {}
             }
             if view.readback.is_some() {
                 if ui.button(words.servo().capture_from_board).clicked() {
-                    actions.push(Action::Servo(ServoAction::CapturePose { from_board: true }));
+                    actions.push(Action::family(ServoAction::CapturePose { from_board: true }));
                 }
                 let mut polling = view.polling;
                 if ui.checkbox(&mut polling, words.servo().read_angles).changed() {
-                    actions.push(Action::Servo(ServoAction::SetPolling(polling)));
+                    actions.push(Action::family(ServoAction::SetPolling(polling)));
                 }
             }
         });
@@ -111,7 +112,7 @@ impl ServoPanel {
                 response.request_focus();
             }
             if !selected && (label.clicked() || response.gained_focus() || response.drag_started()) {
-                actions.push(Action::Servo(ServoAction::SelectServo(Some(servo.id))));
+                actions.push(Action::family(ServoAction::SelectServo(Some(servo.id))));
             }
             if response.gained_focus() {
                 // Tabbing onto a half-shown slider brings it into view.
@@ -123,12 +124,12 @@ impl ServoPanel {
             }
             if value != i32::from(current) {
                 let degree = i16::try_from(value).unwrap_or(current);
-                actions.push(Action::Servo(ServoAction::SetPose { servo_id: servo.id, degree: servo.clamp(degree) }));
+                actions.push(Action::family(ServoAction::SetPose { servo_id: servo.id, degree: servo.clamp(degree) }));
             }
             if let Some(state) = view.readback.and_then(|servos| servos.get(&servo.id)) {
                 let mut hold = state.is_hold;
                 if ui.checkbox(&mut hold, words.hold).changed() {
-                    actions.push(Action::Servo(ServoAction::SetHold { servo_id: servo.id, hold }));
+                    actions.push(Action::family(ServoAction::SetHold { servo_id: servo.id, hold }));
                 }
                 if view.polling {
                     ui.monospace(format!("{:>5}°", state.angle));
