@@ -73,11 +73,11 @@ fn a_slow_port_keeps_frames_coming_shows_connecting_and_can_be_cancelled() {
     for _ in 0..5 {
         harness.step();
     }
-    assert!(harness.state().connecting.is_some());
+    assert!(harness.state().links.connecting.is_some());
     assert!(harness.query_all_by_label_contains("connecting to /dev/ttyUSB-slow…").next().is_some());
     harness.get_by_label("Cancel").click();
     harness.run_steps(2);
-    assert!(harness.state().connecting.is_none());
+    assert!(harness.state().links.connecting.is_none());
     assert_eq!(harness.state().status.as_ref().unwrap().text, "stopped connecting to /dev/ttyUSB-slow");
     // When the port opens after all, the cancelled connection is closed at once.
     release.send(()).unwrap();
@@ -95,7 +95,7 @@ fn a_slow_port_that_opens_connects_and_talks_to_the_board() {
     let (waker, woken) = waker();
     let mut app = app(opener, waker.clone());
     app.apply(Action::Connect { port: "/dev/ttyUSB-slow".into(), baud: 115_200 });
-    assert!(app.link.is_none() && app.connecting.is_some());
+    assert!(app.link.is_none() && app.links.connecting.is_some());
     release.send(()).unwrap();
     let board_end = peers.recv_timeout(Duration::from_secs(10)).unwrap();
     let image = ServoImage { project_id: 77, ..ServoImage::default() };
@@ -103,7 +103,7 @@ fn a_slow_port_that_opens_connects_and_talks_to_the_board() {
     wait_for(&mut app, &woken, "the project id", |app| {
         common::ui::servo_board(app).is_some_and(|servo| servo.project_id == Some(77))
     });
-    assert!(app.connecting.is_none());
+    assert!(app.links.connecting.is_none());
     assert_eq!(app.status.as_ref().unwrap().text, "connected to /dev/ttyUSB-slow");
 }
 
@@ -138,7 +138,7 @@ fn a_tcp_connect_that_times_out_says_so_and_the_window_keeps_drawing() {
     harness.step();
     assert!(harness.query_all_by_label_contains("connecting to tcp://").next().is_some());
     let deadline = Instant::now() + Duration::from_secs(10);
-    while harness.state().connecting.is_some() {
+    while harness.state().links.connecting.is_some() {
         assert!(woken.recv_deadline(deadline).is_ok(), "the connect never ended");
         harness.step();
     }
@@ -156,14 +156,14 @@ fn a_bad_port_is_one_readable_sentence_in_either_language() {
     let (waker, woken) = waker();
     let mut app = app(servo_studio::link::system_opener(), waker);
     app.apply(Action::Connect { port: "/dev/ttyNOPE-servo".into(), baud: 115_200 });
-    wait_for(&mut app, &woken, "the open to fail", |app| app.connecting.is_none());
+    wait_for(&mut app, &woken, "the open to fail", |app| app.links.connecting.is_none());
     let status = app.status.clone().unwrap();
     assert!(status.is_error && status.text.contains("servo-studio ports"), "{}", status.text);
     assert!(app.link.is_none());
 
     app.apply(Action::SetLanguage(Language::TraditionalChinese));
     app.apply(Action::Connect { port: "/dev/ttyNOPE-servo".into(), baud: 115_200 });
-    wait_for(&mut app, &woken, "the open to fail", |app| app.connecting.is_none());
+    wait_for(&mut app, &woken, "the open to fail", |app| app.links.connecting.is_none());
     let status = app.status.clone().unwrap();
     assert!(status.is_error && status.text.starts_with("/dev/ttyNOPE-servo：找不到此連接埠"), "{}", status.text);
 }
@@ -187,7 +187,7 @@ fn the_family_chooser_hides_the_panels_that_do_not_apply() {
     for tab in ["Drive", "Telemetry", "Packet log"] {
         assert!(harness.query_all_by_label(tab).next().is_some(), "{tab} is offered for an rFLEX base");
     }
-    assert_eq!(harness.state().tab, Tab::Drive, "the first panel of the family");
+    assert_eq!(harness.state().window.tab, Tab::Drive, "the first panel of the family");
     assert!(harness.query_all_by_label("Robot").next().is_some(), "the robot preset sits beside the family");
     // PLEN2: its own panels, the joystick tables still hidden.
     harness.state_mut().apply(Action::SetFamily(Family::Plen2));

@@ -85,7 +85,7 @@ fn find_board_names_the_plen2_and_connects_to_it_as_one() {
     }]));
     // A servo-board document: the doctor finds a PLEN2 all the same.
     let mut harness = app(ServoProject::default(), &listed);
-    run_until(&mut harness, "the port list", |app| !app.ports.is_empty());
+    run_until(&mut harness, "the port list", |app| !app.links.ports.is_empty());
     harness.get_by_label("Find board").click();
     harness.step();
     assert!(harness.state().finding_board(), "asked off the frame");
@@ -133,7 +133,7 @@ fn a_pulled_cable_reconnects_when_the_same_device_comes_back_and_not_to_another(
     let listed: Listed = Arc::new(Mutex::new(listed_as(&path, "USB 2341:8037 PLEN2 serial 42")));
     let plen2 = Project { family: Family::Plen2, ..Project::default() };
     let mut harness = app(plen2, &listed);
-    run_until(&mut harness, "the port list", |app| !app.ports.is_empty());
+    run_until(&mut harness, "the port list", |app| !app.links.ports.is_empty());
     harness.state_mut().apply(Action::Connect { port: port.clone(), baud: 2_000_000 });
     run_until(&mut harness, "the link", |app| app.link.is_some());
 
@@ -196,7 +196,7 @@ fn every_port_is_asked_and_each_answer_is_offered() {
         PortInfo { name: silent.port.clone(), description: "PCI".into() },
     ]));
     let mut harness = app(ServoProject::default(), &listed);
-    run_until(&mut harness, "the port list", |app| app.ports.len() == 3);
+    run_until(&mut harness, "the port list", |app| app.links.ports.len() == 3);
     harness.state_mut().apply(Action::FindEveryBoard);
     assert!(harness.state().finding_board());
     run_until(&mut harness, "every port's answer", |app| !app.finding_board());

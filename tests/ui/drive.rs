@@ -160,8 +160,8 @@ fn a_signal_to_end_the_editor_drops_the_base_link_and_keeps_the_work() {
     harness.step();
     // Dropping the link is what stops and brakes a base (tested with the handle itself).
     assert!(harness.state().link.is_none(), "the base's link is closed: it was told to stop and brake");
-    let recovery = harness.state().data_dir.join("recovery.json");
-    let kept = servo_studio::ui::files::read_recovery(&harness.state().data_dir).expect("the work is kept");
+    let recovery = harness.state().files.data_dir.join("recovery.json");
+    let kept = servo_studio::ui::files::read_recovery(&harness.state().files.data_dir).expect("the work is kept");
     assert!(recovery.exists());
     assert_eq!(kept.project.rflex.drive.max_speed_m_per_s, 0.3);
     harness.key_up(egui::Key::ArrowUp);

@@ -63,7 +63,7 @@ fn autosave_then_recovery_after_a_crash() {
     harness.state_mut().finish_file_work(WAIT);
     assert!(!data.path().join("recovery.json").exists());
     assert_eq!(project::load(&saved).unwrap().servo, unsaved);
-    assert!(app(data.path()).recovery_offer.is_none());
+    assert!(app(data.path()).files.recovery_offer.is_none());
 }
 
 #[test]
@@ -77,7 +77,7 @@ fn declining_recovery_removes_it() {
     harness.run();
     harness.get_by_label("Discard").click();
     harness.run();
-    assert!(harness.state().recovery_offer.is_none());
+    assert!(harness.state().files.recovery_offer.is_none());
     harness.state_mut().finish_file_work(WAIT);
     assert!(!data.path().join("recovery.json").exists());
     assert!(harness.state().document.project.servo.actions.is_empty());
@@ -92,7 +92,7 @@ fn opening_with_unsaved_changes_asks_first() {
     harness.run();
     harness.state_mut().apply(Action::Open(fixture()));
     harness.run();
-    assert_eq!(harness.state().unsaved_prompt, Some(AfterUnsaved::Open(fixture())));
+    assert_eq!(harness.state().files.unsaved_prompt, Some(AfterUnsaved::Open(fixture())));
     assert!(harness.query_by_label("Unsaved changes").is_some());
     harness.get_by_label("Cancel").click();
     harness.run();
@@ -106,7 +106,7 @@ fn opening_with_unsaved_changes_asks_first() {
     assert_eq!(harness.state().document.project.servo, project::load(&fixture()).unwrap().servo);
     assert_eq!(harness.state().document.path, Some(fixture()));
     assert!(!harness.state().document.dirty);
-    assert_eq!(harness.state().recent, vec![fixture()]);
+    assert_eq!(harness.state().files.recent, vec![fixture()]);
 }
 
 #[test]
@@ -200,7 +200,7 @@ fn remembered_settings_round_trip() {
     let mut second = app(data.path());
     second.restore(serde_json::from_str(&text).unwrap(), false);
     assert_eq!(second.remembered(), remembered);
-    assert_eq!(second.recent, vec![fixture()]);
+    assert_eq!(second.files.recent, vec![fixture()]);
 }
 
 /// The family used last comes back with the tab, unless the project opened
@@ -214,17 +214,17 @@ fn the_remembered_family_and_tab_are_restored() {
     let remembered: Remembered = serde_json::from_str(stored).unwrap();
     let app = Start::default().into_app(no_waker(), Some(remembered.clone()));
     assert_eq!(app.document.project.family, Family::Plen2, "the family used last");
-    assert_eq!(app.tab, Tab::Motions);
+    assert_eq!(app.window.tab, Tab::Motions);
     assert_eq!(app.remembered().plen2_pacing, servo_studio::device::plen2::PacingMode::Safe);
 
     let from_file = Start { project: Some(project::Project::default()), ..Start::default() };
     let app = from_file.into_app(no_waker(), Some(remembered.clone()));
     assert_eq!(app.document.project.family, Family::Servo, "the file's family wins");
-    assert_eq!(app.tab, Tab::Servos, "Motions is not a servo tab: the family's first");
+    assert_eq!(app.window.tab, Tab::Servos, "Motions is not a servo tab: the family's first");
 
     let mut app = StudioApp::new(project::Project::default(), None, no_waker());
     app.restore(Remembered { tab: "Log".into(), ..remembered }, false);
-    assert_eq!((app.document.project.family, app.tab), (Family::Plen2, Tab::Log));
+    assert_eq!((app.document.project.family, app.window.tab), (Family::Plen2, Tab::Log));
 }
 
 #[test]
@@ -236,7 +236,7 @@ fn a_recovery_file_that_is_a_named_pipe_neither_blocks_the_start_nor_is_read() {
     let (started, start) = crossbeam_channel::bounded(1);
     let dir = data.path().to_path_buf();
     std::thread::spawn(move || {
-        let offer = app(&dir).recovery_offer;
+        let offer = app(&dir).files.recovery_offer;
         let _ = started.send(offer.is_some());
     });
     let offered = start.recv_timeout(Duration::from_secs(10)).expect("the editor starts, the pipe refused at once");

@@ -97,11 +97,11 @@ fn a_stuck_port_scan_and_a_slow_save_leave_the_window_drawing_and_stop_working()
     assert!(harness.state().document.dirty, "the edit made during the save is not saved");
 
     drop(scan_key);
-    while harness.state().ports.is_empty() {
+    while harness.state().links.ports.is_empty() {
         woken.recv_timeout(WAIT).expect("the port list arrives");
         harness.step();
     }
-    assert_eq!(harness.state().ports[0].name, "/dev/ttyTEST0");
+    assert_eq!(harness.state().links.ports[0].name, "/dev/ttyTEST0");
 }
 
 /// Opening and autosaving go through the same worker: a stuck disk does not

@@ -23,7 +23,7 @@ impl StudioApp {
             }
             Action::CancelConnect => {
                 self.forget_link();
-                if let Some(connecting) = self.connecting.take() {
+                if let Some(connecting) = self.links.connecting.take() {
                     self.report(self.language.connect_cancelled(&connecting.opening.port.to_string()), false);
                 }
             }
@@ -35,10 +35,10 @@ impl StudioApp {
                 self.report(self.words().msg_disconnected, false);
             }
             Action::Stop => self.stop(),
-            Action::Import(action) => self.import.apply(action, &self.files, &self.document.project),
+            Action::Import(action) => self.import.apply(action, &self.files.work, &self.document.project),
             Action::SetLanguage(language) => self.language = language,
             Action::SetLiveSpeed(deg_per_s) => self.live_speed = LiveSpeed { deg_per_s }.clamped(),
-            Action::ShowTab(tab) => self.tab = tab,
+            Action::ShowTab(tab) => self.window.tab = tab,
             Action::UseGamepad(path) => self.use_gamepad(path),
             Action::PadTestMode(on) => self.pad.test_mode = on,
             Action::BindPad(bind) => self.bind_pad(bind),
@@ -47,8 +47,8 @@ impl StudioApp {
                 family_ui.layout_mut().view_open = open;
             }
             Action::AskFile(request) => {
-                let answer = (self.picker)(&request, self.waker.clone());
-                self.dialog = Some((request, answer));
+                let answer = (self.files.picker)(&request, self.window.waker.clone());
+                self.files.dialog = Some((request, answer));
             }
             Action::CancelOperation => {
                 if let Some(operation) = &self.operation {
@@ -85,8 +85,8 @@ impl StudioApp {
             Action::SaveAs(path) => self.save_to(path, None),
             Action::UnsavedSave => {
                 // Goes on once saved: after the Save as… just asked for, or a save to the file's own path.
-                if let Some(next) = self.unsaved_prompt.clone() {
-                    match self.continue_after_save(next) {
+                if let Some(next) = self.files.unsaved_prompt.clone() {
+                    match self.files.continue_after_save(next) {
                         Ok(()) => {}
                         Err(next) => {
                             if let Some(path) = self.document.path.clone() {
@@ -97,13 +97,13 @@ impl StudioApp {
                 }
             }
             Action::UnsavedDiscard => {
-                if let Some(next) = self.unsaved_prompt.take() {
+                if let Some(next) = self.files.unsaved_prompt.take() {
                     self.after_unsaved(next);
                 }
             }
-            Action::UnsavedCancel => self.unsaved_prompt = None,
+            Action::UnsavedCancel => self.files.unsaved_prompt = None,
             Action::Recover => {
-                if let Some(recovery) = self.recovery_offer.take() {
+                if let Some(recovery) = self.files.recovery_offer.take() {
                     self.replace_document(recovery.project, recovery.path);
                     // Recovered work is unsaved until the user saves it.
                     self.document.dirty = true;
@@ -111,8 +111,8 @@ impl StudioApp {
                 }
             }
             Action::DeclineRecovery => {
-                self.recovery_offer = None;
-                self.clear_recovery_later();
+                self.files.recovery_offer = None;
+                self.files.clear_recovery_later();
             }
             // Nothing unsaved: nothing to keep.
             Action::Autosave if self.document.dirty => self.autosave_later(),
@@ -155,6 +155,6 @@ impl StudioApp {
         self.apply(Action::Autosave);
         // The work must be on disk before the process goes.
         self.finish_file_work(Some(TERMINATE_WAIT));
-        self.quit_allowed = true;
+        self.window.quit_allowed = true;
     }
 }

@@ -3,7 +3,7 @@
 //! the board reports into status lines and family events.
 
 use super::*;
-use crate::link::PortName;
+use crate::link::{Opening, PortName};
 use crate::project::Edit;
 use crate::ui::board_link::LinkNotice;
 use crate::ui::connection_bar::LinkStatus;
@@ -82,9 +82,9 @@ impl StudioApp {
         if !quiet {
             self.report(self.language.connecting_to(&name.to_string()), false);
         }
-        let opening = Opening::start(name, settings, self.opener.clone(), self.waker.clone());
+        let opening = Opening::start(name, settings, self.links.opener.clone(), self.window.waker.clone());
         let starter = self.family_ui(family).link_starter(baud);
-        self.connecting = Some(Connecting { opening, family, baud, starter, quiet });
+        self.links.connecting = Some(Connecting { opening, family, baud, starter, quiet });
     }
 
     /// Starts the built-in emulated board of the document's family.
@@ -93,7 +93,7 @@ impl StudioApp {
             return;
         }
         let family = self.document.project.family;
-        match self.family_ui(family).demo_link(&self.document.project, self.waker.clone()) {
+        match self.family_ui(family).demo_link(&self.document.project, self.window.waker.clone()) {
             Ok(link) => {
                 self.link = Some(link);
                 self.connected();
@@ -111,11 +111,11 @@ impl StudioApp {
 
     /// Starts the driver once the port is open, or reports why it did not open.
     pub(super) fn poll_connecting(&mut self) {
-        let Some(connecting) = &self.connecting else { return };
+        let Some(connecting) = &self.links.connecting else { return };
         let Some(result) = connecting.opening.poll() else { return };
-        let Some(Connecting { opening, family, baud, starter, quiet }) = self.connecting.take() else { return };
+        let Some(Connecting { opening, family, baud, starter, quiet }) = self.links.connecting.take() else { return };
         match result {
-            Ok(connection) => match starter(&self.document.project, connection, self.waker.clone()) {
+            Ok(connection) => match starter(&self.document.project, connection, self.window.waker.clone()) {
                 Ok(device) => {
                     let label = opening.port.to_string();
                     self.report(format!("{} {label}", self.words().msg_connected_to), false);
@@ -133,7 +133,7 @@ impl StudioApp {
 
     /// Switches the document's family (one undo step); the tabs follow.
     pub(super) fn set_family(&mut self, family: Family) {
-        if self.link.is_some() || self.connecting.is_some() {
+        if self.link.is_some() || self.links.connecting.is_some() {
             return;
         }
         self.document.apply(Edit::SetFamily(family), None);
@@ -142,14 +142,14 @@ impl StudioApp {
 
     /// Opens ports with `opener` instead of the system's (tests use a double).
     pub fn with_opener(mut self, opener: Opener) -> Self {
-        self.opener = opener;
+        self.links.opener = opener;
         self
     }
 
     pub(super) fn link_status(&self) -> LinkStatus {
         let family = self.document.project.family;
-        let connecting = self.connecting.as_ref().map(|connecting| connecting.opening.port.to_string());
-        let busy = self.connecting.is_some() || self.link.is_some() || self.finding_board();
+        let connecting = self.links.connecting.as_ref().map(|connecting| connecting.opening.port.to_string());
+        let busy = self.links.connecting.is_some() || self.link.is_some() || self.finding_board();
         let doctor = self.doctor_lines();
         match &self.link {
             None => LinkStatus {

@@ -64,7 +64,7 @@ impl StudioApp {
 
     /// Asks every port the computer lists which board is on it.
     pub(super) fn find_every_board(&mut self) {
-        let ports: Vec<String> = self.ports.iter().map(|info| info.name.clone()).collect();
+        let ports: Vec<String> = self.links.ports.iter().map(|info| info.name.clone()).collect();
         if ports.is_empty() {
             self.report(self.words().msg_no_ports, true);
             return;
@@ -73,12 +73,12 @@ impl StudioApp {
     }
 
     fn ask(&mut self, ports: &[String], connect: bool) {
-        if self.link.is_some() || self.connecting.is_some() || self.doctor.probing.is_some() {
+        if self.link.is_some() || self.links.connecting.is_some() || self.links.doctor.probing.is_some() {
             return;
         }
-        self.doctor.lost = None;
+        self.links.doctor.lost = None;
         let (sender, done) = crossbeam_channel::unbounded();
-        let (opener, waker, asked) = (self.opener.clone(), self.waker.clone(), ports.to_vec());
+        let (opener, waker, asked) = (self.links.opener.clone(), self.window.waker.clone(), ports.to_vec());
         let spawned = std::thread::Builder::new().name("probe".into()).spawn(move || {
             for port in asked {
                 let result =
@@ -95,31 +95,31 @@ impl StudioApp {
         }
         let text = self.language.probing(&ports.join(", "));
         self.report(text, false);
-        self.doctor.lines = ports
+        self.links.doctor.lines = ports
             .iter()
             .map(|port| DoctorLine { port: port.clone(), text: self.language.probing(port), offer: None, busy: true })
             .collect();
-        self.doctor.probing = Some(Probing { connect, done, left: ports.len() });
+        self.links.doctor.probing = Some(Probing { connect, done, left: ports.len() });
     }
 
     /// Whether a port is being asked which board it is.
     pub fn finding_board(&self) -> bool {
-        self.doctor.probing.is_some()
+        self.links.doctor.probing.is_some()
     }
 
     /// Whether a lost link waits for its device to come back.
     pub fn waiting_to_reconnect(&self) -> bool {
-        self.doctor.lost.is_some()
+        self.links.doctor.lost.is_some()
     }
 
     /// What the doctor says under the bar, a line per port.
     pub(super) fn doctor_lines(&self) -> Vec<DoctorLine> {
-        self.doctor.lines.clone()
+        self.links.doctor.lines.clone()
     }
 
     /// Takes the probes' answers: says each, and (Hardware = Auto) connects as the family that answered.
     pub(super) fn poll_probe(&mut self) {
-        let Some(probing) = &self.doctor.probing else { return };
+        let Some(probing) = &self.links.doctor.probing else { return };
         let answers: Vec<_> = probing.done.try_iter().collect();
         let connect = probing.connect;
         for (port, outcome) in answers {
@@ -131,11 +131,11 @@ impl StudioApp {
                 Err(error) => (self.language.link_error(error), None),
             };
             let line = DoctorLine { port: port.clone(), text: text.clone(), offer, busy: false };
-            match self.doctor.lines.iter_mut().find(|shown| shown.busy && shown.port == port) {
+            match self.links.doctor.lines.iter_mut().find(|shown| shown.busy && shown.port == port) {
                 Some(shown) => *shown = line,
-                None => self.doctor.lines.push(line),
+                None => self.links.doctor.lines.push(line),
             }
-            if let Some(probing) = &mut self.doctor.probing {
+            if let Some(probing) = &mut self.links.doctor.probing {
                 probing.left = probing.left.saturating_sub(1);
             }
             match (connect, offer, &outcome) {
@@ -144,14 +144,14 @@ impl StudioApp {
                 (_, offer, _) => self.report(text, offer.is_none()),
             }
         }
-        if self.doctor.probing.as_ref().is_some_and(|probing| probing.left == 0) {
-            self.doctor.probing = None;
+        if self.links.doctor.probing.as_ref().is_some_and(|probing| probing.left == 0) {
+            self.links.doctor.probing = None;
         }
     }
 
     /// Connects to `port` as `family` (the document's family becomes it, one undo step) at `baud`.
     pub(super) fn connect_found(&mut self, port: &str, family: Family, baud: u32) {
-        if self.link.is_some() || self.connecting.is_some() {
+        if self.link.is_some() || self.links.connecting.is_some() {
             return;
         }
         if family != self.document.project.family {
@@ -162,10 +162,10 @@ impl StudioApp {
 
     /// A link was made to `port` at `baud`: remembered, so that it can be made again if lost.
     pub(super) fn link_made(&mut self, port: &str, baud: u32, family: Family) {
-        let description = self.ports.iter().find(|info| info.name == port).map(|info| info.description.clone());
-        let again = self.doctor.lost.take().is_some_and(|lost| lost.link.port == port);
-        self.doctor.current = Some(Current { port: port.to_string(), baud, family, description });
-        self.doctor.lines.clear();
+        let description = self.links.ports.iter().find(|info| info.name == port).map(|info| info.description.clone());
+        let again = self.links.doctor.lost.take().is_some_and(|lost| lost.link.port == port);
+        self.links.doctor.current = Some(Current { port: port.to_string(), baud, family, description });
+        self.links.doctor.lines.clear();
         if again {
             self.report(self.language.reconnected(port), false);
         }
@@ -174,7 +174,7 @@ impl StudioApp {
     /// The link ended. A pulled cable or a board that lost power (not the
     /// user, not the demo board) is waited for, to be made again.
     pub(super) fn link_ended(&mut self, reason: &DisconnectReason) {
-        let current = self.doctor.current.take();
+        let current = self.links.doctor.current.take();
         let physical = matches!(
             reason,
             DisconnectReason::ClosedByPeer | DisconnectReason::ReadFailed(_) | DisconnectReason::WriteFailed(_)
@@ -182,7 +182,7 @@ impl StudioApp {
         match current.filter(|_| physical) {
             Some(link) => {
                 self.report(self.language.lost_waiting(reason, &link.port), true);
-                self.doctor.lost = Some(Lost { link, next_try: Instant::now() + RETRY_EVERY, other_said: false });
+                self.links.doctor.lost = Some(Lost { link, next_try: Instant::now() + RETRY_EVERY, other_said: false });
             }
             None => self.report(self.language.link_ended(reason), true),
         }
@@ -190,23 +190,23 @@ impl StudioApp {
 
     /// The user closed the link or chose another: nothing is made again by itself.
     pub(super) fn forget_link(&mut self) {
-        self.doctor.current = None;
-        self.doctor.lost = None;
+        self.links.doctor.current = None;
+        self.links.doctor.lost = None;
     }
 
     /// A lost link's device, back on its port (and the same device, when the
     /// port list names it): connected to again, as it was.
     pub(super) fn reconnect_when_back(&mut self, now: Instant) {
-        if self.link.is_some() || self.connecting.is_some() {
+        if self.link.is_some() || self.links.connecting.is_some() {
             return;
         }
-        let Some(lost) = &mut self.doctor.lost else { return };
+        let Some(lost) = &mut self.links.doctor.lost else { return };
         if now < lost.next_try {
             return;
         }
         lost.next_try = now + RETRY_EVERY;
         let link = lost.link.clone();
-        let listed = self.ports.iter().find(|info| info.name == link.port);
+        let listed = self.links.ports.iter().find(|info| info.name == link.port);
         let back = match (listed, &link.description) {
             (Some(info), Some(was)) if &info.description != was => {
                 if !lost.other_said {

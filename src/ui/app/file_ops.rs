@@ -28,7 +28,7 @@ impl StudioApp {
                 }
                 match opened.kind {
                     InputKind::ProjectFile => {
-                        files::remember(&mut self.recent, &path);
+                        files::remember(&mut self.files.recent, &path);
                         self.replace_document(loaded.project, Some(path));
                     }
                     // The PLEN community's motion.json (one file, or a folder of them) opens
@@ -49,10 +49,10 @@ impl StudioApp {
                 self.replace_document(Project::empty(self.document.project.family), None);
                 self.report(self.words().msg_new_project, false);
             }
-            AfterUnsaved::Open(path) => self.open_later(path),
+            AfterUnsaved::Open(path) => self.files.open_later(path),
             AfterUnsaved::Quit => {
-                self.clear_recovery_later();
-                self.quit_allowed = true;
+                self.files.clear_recovery_later();
+                self.window.quit_allowed = true;
             }
         }
     }
@@ -60,7 +60,7 @@ impl StudioApp {
     /// Asks about unsaved changes before `next`, or does it at once.
     pub(super) fn guard_unsaved(&mut self, next: AfterUnsaved) {
         if self.document.dirty {
-            self.unsaved_prompt = Some(next);
+            self.files.unsaved_prompt = Some(next);
         } else {
             self.after_unsaved(next);
         }
@@ -68,9 +68,9 @@ impl StudioApp {
 
     /// Writes the recovery file if there are unsaved changes and it is due.
     pub fn autosave_if_due(&mut self, now: Instant) {
-        if self.document.dirty && now.saturating_duration_since(self.last_autosave) >= AUTOSAVE_EVERY {
+        if self.document.dirty && now.saturating_duration_since(self.files.last_autosave) >= AUTOSAVE_EVERY {
             self.apply(Action::Autosave);
-            self.last_autosave = now;
+            self.files.last_autosave = now;
         }
     }
 
@@ -88,9 +88,12 @@ impl StudioApp {
         if let Some(path) = dropped.into_iter().next() {
             actions.push(Action::Open(path));
         }
-        if ui.ctx().input(|input| input.viewport().close_requested()) && self.document.dirty && !self.quit_allowed {
+        if ui.ctx().input(|input| input.viewport().close_requested())
+            && self.document.dirty
+            && !self.window.quit_allowed
+        {
             ui.ctx().send_viewport_cmd(egui::ViewportCommand::CancelClose);
-            self.unsaved_prompt = Some(AfterUnsaved::Quit);
+            self.files.unsaved_prompt = Some(AfterUnsaved::Quit);
         }
         self.autosave_if_due(now);
     }
@@ -103,7 +106,7 @@ impl StudioApp {
             }
             // Dialogs open off the frame: the window keeps drawing (and a base keeps
             // being watched) while the user looks for a file.
-            let asking = self.dialog.is_some();
+            let asking = self.files.dialog.is_some();
             if ui.add_enabled(!asking, egui::Button::new(words.open)).clicked() {
                 actions.push(Action::AskFile(FileRequest::Open));
             }
@@ -122,10 +125,10 @@ impl StudioApp {
             if ui.button(export).clicked() {
                 actions.push(Action::Import(crate::ui::action::ImportAction::OpenExport));
             }
-            if !self.recent.is_empty() {
+            if !self.files.recent.is_empty() {
                 ui.separator();
                 ui.label(words.recent);
-                for path in &self.recent {
+                for path in &self.files.recent {
                     if ui.button(path.display().to_string()).clicked() {
                         actions.push(Action::Open(path.clone()));
                     }
@@ -156,7 +159,7 @@ impl StudioApp {
     /// The "unsaved changes" question and the recovery offer.
     pub(super) fn dialogs(&self, ui: &egui::Ui, actions: &mut Vec<Action>) {
         let words = self.language.strings();
-        if let Some(recovery) = &self.recovery_offer {
+        if let Some(recovery) = &self.files.recovery_offer {
             egui::Window::new(words.recover_title).collapsible(false).resizable(false).show(ui.ctx(), |ui| {
                 let file = recovery.path.as_ref().map_or_else(|| "—".to_string(), |p| p.display().to_string());
                 ui.label(format!("{} {} ({file})", words.recover_body, recovery.saved_at));
@@ -170,7 +173,7 @@ impl StudioApp {
                 });
             });
         }
-        if self.unsaved_prompt.is_some() {
+        if self.files.unsaved_prompt.is_some() {
             egui::Window::new(words.unsaved_title).collapsible(false).resizable(false).show(ui.ctx(), |ui| {
                 ui.label(words.unsaved_question);
                 ui.horizontal(|ui| {
@@ -178,7 +181,7 @@ impl StudioApp {
                         if ui.button(words.save).clicked() {
                             actions.push(Action::UnsavedSave);
                         }
-                    } else if ui.add_enabled(self.dialog.is_none(), egui::Button::new(words.save_as)).clicked() {
+                    } else if ui.add_enabled(self.files.dialog.is_none(), egui::Button::new(words.save_as)).clicked() {
                         actions.push(Action::AskFile(FileRequest::SaveAsThenContinue));
                     }
                     if ui.button(words.discard).clicked() {
@@ -210,14 +213,14 @@ impl StudioApp {
 
     /// Takes the answer of an open file dialog: the actions that waited for it.
     pub(super) fn poll_dialog(&mut self, actions: &mut Vec<Action>) {
-        let Some((_, answer)) = &self.dialog else { return };
+        let Some((_, answer)) = &self.files.dialog else { return };
         let chosen = match answer.try_recv() {
             Ok(chosen) => chosen,
             Err(crossbeam_channel::TryRecvError::Empty) => return,
             // The dialog's thread ended without an answer: nothing was chosen.
             Err(crossbeam_channel::TryRecvError::Disconnected) => None,
         };
-        let Some((request, _)) = self.dialog.take() else { return };
+        let Some((request, _)) = self.files.dialog.take() else { return };
         if let Some(path) = chosen {
             actions.extend(dialogs::answered(&request, path));
         }
@@ -225,6 +228,6 @@ impl StudioApp {
 
     /// Whether a file dialog is open.
     pub fn asking_for_file(&self) -> bool {
-        self.dialog.is_some()
+        self.files.dialog.is_some()
     }
 }

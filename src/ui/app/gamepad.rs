@@ -15,11 +15,11 @@ impl StudioApp {
             let now = Instant::now();
             let gone = [(now, PadUpdate::Gone(Gone::Ended))];
             let family = self.document.project.family;
-            let tab = self.tab;
+            let tab = self.window.tab;
             let (mut shell, family_ui) = self.parts(family);
             family_ui.pad_drive(&mut shell, now, &gone, false, tab);
         }
-        if let Err(error) = self.pad.choose(path, &self.waker) {
+        if let Err(error) = self.pad.choose(path, &self.window.waker) {
             self.report(error, true);
         }
     }
@@ -40,7 +40,7 @@ impl StudioApp {
         }
         let family = self.document.project.family;
         let armed = focused && !self.pad.test_mode && self.pad.binding.is_none();
-        let tab = self.tab;
+        let tab = self.window.tab;
         let mapping = self.document.project.gamepad.of(family).clone();
         let mut actions = Vec::new();
         let (targets, fires) = {
@@ -86,7 +86,7 @@ impl StudioApp {
             targets: &targets,
             fires: &fires,
             reserved: family_ui.pad_reserved(),
-            waker: &self.waker,
+            waker: &self.window.waker,
         };
         crate::ui::gamepad::panel(ui, &mut self.pad, &view, words, actions);
     }

@@ -9,9 +9,11 @@ mod background;
 mod connection;
 mod dialogs;
 mod doctor;
+mod file_desk;
 mod file_ops;
 mod gamepad;
 mod import;
+mod link_desk;
 mod tabs;
 
 use std::io::Write;
@@ -22,46 +24,26 @@ use crossbeam_channel::Receiver;
 
 pub use background::{PortLister, system_lister};
 pub use dialogs::{Picker, system_picker};
+pub use file_desk::FileDesk;
+pub use link_desk::{Connecting, LinkDesk};
 
-use crate::link::{Opener, Opening, PortInfo, Waker, system_opener};
+use crate::link::{Opener, PortInfo, Waker};
 use crate::project::{Family, Project};
 use crate::ui::action::{Action, AfterUnsaved, FileRequest, Tab};
 use crate::ui::board_link::BoardLink;
-use crate::ui::connection_bar::ConnectionBar;
 use crate::ui::document::Document;
 use crate::ui::families::Families;
 use crate::ui::family::FamilyUi;
-use crate::ui::files::{self, AUTOSAVE_EVERY, Recovery};
+use crate::ui::files::{self, AUTOSAVE_EVERY};
 use crate::ui::i18n::Language;
 use crate::ui::layout::Layout;
 pub use crate::ui::remembered::Remembered;
 use crate::ui::shell::{RunningOperation, Shell, ShellView, StatusLine};
 use crate::ui::speed::LiveSpeed;
 
-/// A port being opened.
-pub struct Connecting {
-    /// The opening, on its own thread.
-    pub opening: Opening,
-    /// The family whose driver starts once it is open.
-    pub family: Family,
-    /// The line rate asked for.
-    pub baud: u32,
-    /// How its driver is started.
-    pub starter: crate::ui::board_link::LinkStarter,
-    /// A lost link being made again: a port not there yet is not an error.
-    pub quiet: bool,
-}
-
-impl std::fmt::Debug for Connecting {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("Connecting")
-            .field("opening", &self.opening)
-            .field("family", &self.family)
-            .finish_non_exhaustive()
-    }
-}
-
-/// The whole editor.
+/// The whole editor: the document, the link and what runs on it, each
+/// family's side, and the desks that do the rest (files, connecting, the
+/// window's own state). Only [`StudioApp::apply`] changes it.
 pub struct StudioApp {
     /// The open document.
     pub document: Document,
@@ -73,46 +55,32 @@ pub struct StudioApp {
     pub live_speed: LiveSpeed,
     /// The latest message for the user.
     pub status: Option<StatusLine>,
-    /// A port being opened (off the UI thread), with the family and line rate to start.
-    pub connecting: Option<Connecting>,
-    /// The tab shown.
-    pub tab: Tab,
     /// The running board operation, of whichever family.
     pub operation: Option<RunningOperation>,
-    /// Folder for backups and the recovery file.
-    pub data_dir: PathBuf,
-    /// Recently opened or saved files, newest first.
-    pub recent: Vec<PathBuf>,
-    /// What waits on the "unsaved changes" question.
-    pub unsaved_prompt: Option<AfterUnsaved>,
-    /// Work autosaved by a session that did not end cleanly, offered at start.
-    pub recovery_offer: Option<Recovery>,
     /// Each family's state and panels.
     pub families: Families,
-    /// The serial ports seen at the last scan.
-    pub ports: Vec<PortInfo>,
-    lister: PortLister,
-    scanner: Option<background::PortScanner>,
-    /// Opening, saving, autosaving and exporting, off the frame.
-    files: files::FileWork,
-    file_jobs: Vec<background::FileJob>,
-    /// Links being closed on their own threads.
-    closing: Vec<std::thread::JoinHandle<()>>,
-    /// A file dialog open, and the request it answers.
-    dialog: Option<(FileRequest, Receiver<Option<PathBuf>>)>,
-    last_autosave: Instant,
-    quit_allowed: bool,
-    waker: Waker,
-    opener: Opener,
-    picker: Picker,
-    connection_bar: ConnectionBar,
-    doctor: doctor::Doctor,
+    /// Files: opening, saving, autosave and recovery, recent files, dialogs.
+    pub files: FileDesk,
+    /// Connecting: the port list, a port being opened, the connection doctor, closing links.
+    pub links: LinkDesk,
+    /// The window: the tab shown, how it ends, what wakes it.
+    pub window: Window,
     /// The gamepad, its live state and the binding being made.
     pub pad: crate::ui::gamepad::PadInput,
     /// File → Import from another tool…: its window and work.
     pub import: crate::ui::import::ImportDesk,
+}
+
+/// The window's own state.
+pub struct Window {
+    /// The tab shown.
+    pub tab: Tab,
+    /// The window may close now (the board is stopped and the work kept).
+    quit_allowed: bool,
     /// Told when the process is asked to end.
     terminate: Option<Receiver<()>>,
+    /// Wakes the window from other threads.
+    waker: Waker,
 }
 
 impl std::fmt::Debug for StudioApp {
@@ -130,59 +98,41 @@ impl StudioApp {
             families: Families::default(),
             document: Document::new(project, path),
             link: None,
-            connecting: None,
-            opener: system_opener(),
-            picker: system_picker(),
             language: Language::detect(),
             live_speed: LiveSpeed::default(),
             status: None,
-            tab: Tab::Log,
             operation: None,
-            data_dir: eframe::storage_dir("Servo Studio").unwrap_or_else(|| std::env::temp_dir().join("servo-studio")),
-            recent: Vec::new(),
-            unsaved_prompt: None,
-            recovery_offer: None,
-            ports: Vec::new(),
-            lister: system_lister(),
-            scanner: None,
-            files: files::FileWork::start(files::system_writer(), waker.clone()),
-            file_jobs: Vec::new(),
-            closing: Vec::new(),
-            dialog: None,
-            last_autosave: Instant::now(),
-            quit_allowed: false,
-            waker,
-            connection_bar: ConnectionBar::default(),
-            doctor: doctor::Doctor::default(),
+            files: FileDesk::new(waker.clone()),
+            links: LinkDesk::new(waker.clone()),
+            window: Window { tab: Tab::Log, quit_allowed: false, terminate: None, waker },
             pad: crate::ui::gamepad::PadInput::default(),
             import: crate::ui::import::ImportDesk::default(),
-            terminate: None,
         };
-        app.read_recovery_later();
+        app.files.read_recovery_later();
         app.each_family(|family_ui, shell| family_ui.document_replaced(&shell.document.project));
         let family = app.document.project.family;
-        app.tab = app.family_ui(family).tabs()[0];
+        app.window.tab = app.family_ui(family).tabs()[0];
         app
     }
 
     /// Keeps backups and the recovery file in `data_dir` instead of the
     /// platform's data folder.
     pub fn with_data_dir(mut self, data_dir: PathBuf) -> Self {
-        self.data_dir = data_dir;
-        self.recovery_offer = None;
-        self.read_recovery_later();
+        self.files.data_dir = data_dir;
+        self.files.recovery_offer = None;
+        self.files.read_recovery_later();
         self
     }
 
     /// Opens file dialogs with `picker` instead of the system's (tests answer them).
     pub fn with_picker(mut self, picker: Picker) -> Self {
-        self.picker = picker;
+        self.files.picker = picker;
         self
     }
 
     /// Ends the editor (board stopped, work kept) when `terminated` says so.
     pub fn terminate_on(&mut self, terminated: Receiver<()>) {
-        self.terminate = Some(terminated);
+        self.window.terminate = Some(terminated);
     }
 
     fn words(&self) -> &'static crate::ui::i18n::Strings {
@@ -195,8 +145,7 @@ impl StudioApp {
 
     /// The shell as a family's ui changes it, and the families' uis (borrowed apart).
     fn split(&mut self) -> (Shell<'_>, &mut Families) {
-        let Self { document, link, status, operation, language, live_speed, data_dir, waker, files, families, .. } =
-            self;
+        let Self { document, link, status, operation, language, live_speed, files, window, families, .. } = self;
         let shell = Shell {
             document,
             link,
@@ -204,9 +153,9 @@ impl StudioApp {
             operation,
             language: *language,
             speed: *live_speed,
-            data_dir,
-            waker,
-            files,
+            data_dir: &files.data_dir,
+            waker: &window.waker,
+            files: &files.work,
         };
         (shell, families)
     }
@@ -232,7 +181,8 @@ impl StudioApp {
 
     /// What a family's panels draw from, and that family's ui.
     fn drawing(&mut self, family: Family) -> (ShellView<'_>, &mut dyn FamilyUi, Tab) {
-        let Self { document, link, operation, language, families, tab, waker, .. } = self;
+        let Self { document, link, operation, language, families, window, .. } = self;
+        let Window { tab, waker, .. } = window;
         let view = ShellView {
             project: &document.project,
             revision: document.revision(),
@@ -246,8 +196,8 @@ impl StudioApp {
 
     /// Shows `family`'s first tab when the tab shown is not one of its own.
     fn show_family_tab(&mut self, family: Family) {
-        if !self.tabs(family).contains(&self.tab) {
-            self.tab = self.family_ui(family).tabs()[0];
+        if !self.tabs(family).contains(&self.window.tab) {
+            self.window.tab = self.family_ui(family).tabs()[0];
         }
     }
 
@@ -326,16 +276,16 @@ impl StudioApp {
         });
         let status = self.link_status();
         let family = self.document.project.family;
-        let (ports, language) = (std::mem::take(&mut self.ports), self.language);
-        let mut bar = std::mem::take(&mut self.connection_bar);
+        let (ports, language) = (std::mem::take(&mut self.links.ports), self.language);
+        let mut bar = std::mem::take(&mut self.links.bar);
         let (view, family_ui, _) = self.drawing(family);
         bar.ui(ui, (&status, &ports, language), actions, |ui, actions| {
             family_ui.connection_extras(ui, &view, actions);
         });
-        (self.ports, self.connection_bar) = (ports, bar);
+        (self.links.ports, self.links.bar) = (ports, bar);
         ui.horizontal(|ui| {
             let family_ui = self.family_ui(family);
-            let mut tab = self.tab;
+            let mut tab = self.window.tab;
             // Only the panels that apply to the document's family are offered.
             for option in self.tabs(family) {
                 let title = match option {
@@ -345,10 +295,10 @@ impl StudioApp {
                 };
                 ui.selectable_value(&mut tab, option, title);
             }
-            if tab != self.tab {
+            if tab != self.window.tab {
                 actions.push(Action::ShowTab(tab));
             }
-            if ![Tab::Log, Tab::Gamepad].contains(&self.tab) && family_ui.has_view(self.tab) {
+            if ![Tab::Log, Tab::Gamepad].contains(&self.window.tab) && family_ui.has_view(self.window.tab) {
                 ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
                     let mut open = family_ui.layout().view_open;
                     if ui.checkbox(&mut open, family_ui.view_caption(words)).changed() {
@@ -376,12 +326,12 @@ impl StudioApp {
 
     /// Draws the editor and applies what its panels asked for.
     pub fn show(&mut self, ui: &mut egui::Ui) {
-        if self.terminate.as_ref().is_some_and(|terminated| terminated.try_recv().is_ok()) {
+        if self.window.terminate.as_ref().is_some_and(|terminated| terminated.try_recv().is_ok()) {
             self.apply(Action::Terminate);
         }
         let now = Instant::now();
         self.pump(now);
-        self.scan_ports();
+        self.links.scan_ports();
         self.poll_probe();
         self.reconnect_when_back(now);
         self.finish_file_work(None);
@@ -400,7 +350,7 @@ impl StudioApp {
         egui::Panel::bottom("status").show(ui, |ui| self.status_line(ui));
 
         let family = self.document.project.family;
-        actions.extend(self.family_ui(family).while_showing(self.tab));
+        actions.extend(self.family_ui(family).while_showing(self.window.tab));
         self.show_family_tab(family);
         egui::CentralPanel::default().show(ui, |ui| self.tab_panel(ui, &mut actions));
 
@@ -416,7 +366,7 @@ impl StudioApp {
         if !ui.input(|input| input.pointer.any_down()) && ui.memory(|memory| memory.focused().is_none()) {
             self.document.seal();
         }
-        if self.quit_allowed {
+        if self.window.quit_allowed {
             ui.ctx().send_viewport_cmd(egui::ViewportCommand::Close);
         }
         if self.document.dirty {
@@ -441,9 +391,9 @@ impl StudioApp {
     /// What to remember between runs.
     pub fn remembered(&self) -> Remembered {
         let mut remembered = Remembered {
-            recent: self.recent.clone(),
+            recent: self.files.recent.clone(),
             language: self.language,
-            tab: self.tab.name().to_string(),
+            tab: self.window.tab.name().to_string(),
             family: self.document.project.family,
             live_speed: self.live_speed,
             layouts: Family::ALL.iter().map(|family| self.layout(*family)).collect(),
@@ -461,7 +411,7 @@ impl StudioApp {
         for family_ui in self.families.iter_mut() {
             family_ui.recall(&remembered);
         }
-        self.recent = remembered.recent;
+        self.files.recent = remembered.recent;
         self.language = remembered.language;
         self.live_speed = remembered.live_speed;
         for (family, layout) in Family::ALL.into_iter().zip(remembered.layouts) {
@@ -471,7 +421,8 @@ impl StudioApp {
             self.document.project.family = remembered.family;
         }
         let family = self.document.project.family;
-        self.tab = self.tabs(family).into_iter().find(|tab| tab.name() == remembered.tab).unwrap_or(self.tab);
+        self.window.tab =
+            self.tabs(family).into_iter().find(|tab| tab.name() == remembered.tab).unwrap_or(self.window.tab);
         self.show_family_tab(family);
     }
 }
@@ -485,7 +436,7 @@ impl eframe::App for StudioApp {
         // The link stops a base and shuts it down (brake on), and a save in
         // flight reaches the disk, before the window goes.
         self.drop_link();
-        self.wait_for_closing_links();
+        self.links.wait_for_closing();
         self.finish_file_work(Some(TERMINATE_WAIT));
     }
 

@@ -9,11 +9,11 @@ impl StudioApp {
     pub(super) fn tab_panel(&mut self, ui: &mut egui::Ui, actions: &mut Vec<Action>) {
         let family = self.document.project.family;
         let words = self.language.strings();
-        if self.tab == Tab::Gamepad {
+        if self.window.tab == Tab::Gamepad {
             self.gamepad_panel(ui, actions);
             return;
         }
-        if self.tab == Tab::Log {
+        if self.window.tab == Tab::Log {
             match &mut self.link {
                 Some(link) => link.log.ui(ui, words),
                 None => {
