@@ -222,7 +222,8 @@ fn scenarios(family: Family) -> [Scenario; 2] {
                 log_entries: MAX_ENTRIES,
             },
         ],
-        Family::Rflex => {
+        // The base, and any other family: an empty project of its own.
+        _ => {
             let project = Project { family, ..Project::default() };
             [
                 // Ten minutes fill the telemetry's bounded history (its recent points

@@ -89,7 +89,7 @@ impl PortArgs {
     pub fn timeout_ms(&self, family: Family) -> u64 {
         self.timeout_ms.unwrap_or(match family {
             Family::Plen2 => 600,
-            Family::Servo | Family::Rflex => 1000,
+            _ => 1000,
         })
     }
 
@@ -291,6 +291,7 @@ fn servo_only(family: Family, what: &str) -> anyhow::Result<()> {
             "{what} does not apply to rFLEX bases (they store no project); use `servo-studio rflex status` to read one and `servo-studio rflex drive` to drive it"
         ),
         Family::Plen2 => anyhow::bail!("{what} for PLEN2 is not in this build of Servo Studio yet"),
+        other => anyhow::bail!("{what} does not apply to the {} (it has no command-line tools)", other.name()),
     }
 }
 

@@ -57,6 +57,9 @@ pub fn run(request: &FitRequest) -> anyhow::Result<Fitted> {
         Family::Plen2 => plen2(&recording, request, &name),
         Family::Servo => servo(&recording, request, &name),
         Family::Rflex => anyhow::bail!("--protocol rflex: a base stores no motions to fit; give plen2 or servo"),
+        other => {
+            anyhow::bail!("--protocol {other}: the {} stores no motions to fit; give plen2 or servo", other.name())
+        }
     }?;
     let (written, fitted) = project;
     project::atomic_write(&request.out, |file| std::io::Write::write_all(file, written.as_bytes()))

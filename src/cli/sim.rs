@@ -91,6 +91,8 @@ impl SimArgs {
             Family::Servo => 0,
             Family::Plen2 => 1,
             Family::Rflex => 2,
+            // A family without an emulator here takes none of them.
+            _ => return given.into_iter().filter(|(_, given, _)| *given).map(|(name, _, _)| name).collect(),
         };
         given.into_iter().filter(|(_, given, takes)| *given && !takes[column]).map(|(name, _, _)| name).collect()
     }
@@ -104,6 +106,7 @@ fn takes(family: Family) -> &'static str {
         Family::Rflex => {
             "--robot, --room, --start, --stuffed, --noise, --body-panels-only (a base stores nothing to preload)"
         }
+        _ => "nothing",
     }
 }
 
@@ -121,6 +124,7 @@ pub fn run(args: &SimArgs, family: Family) -> anyhow::Result<()> {
         Family::Servo => servo(args),
         Family::Plen2 => plen2(args),
         Family::Rflex => serve(args, RflexSim::new(rflex_config(args)?)),
+        other => bail!("the {} has no emulated board to serve; give servo, plen2 or rflex", other.name()),
     }
 }
 

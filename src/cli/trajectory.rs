@@ -193,6 +193,9 @@ pub fn run(input: &Path, subject: Subject, seconds: f64, out: &Path, force: bool
         (Family::Rflex, _) => {
             anyhow::bail!("{} is an rFLEX project: a base has no stored motions to play", input.display())
         }
+        (other, _) => {
+            anyhow::bail!("{} is a project for the {}: it has no stored motions to play", input.display(), other.name())
+        }
     };
     let mut count = 0;
     project::atomic_write(out, |file| {

@@ -28,6 +28,8 @@ pub fn line_settings(family: Family) -> LineSettings {
         Family::Plen2 => LineSettings::new(2_000_000),
         // rflex.md §1: 115200 baud; the drivers pause about 1 ms after each write.
         Family::Rflex => LineSettings { min_write_gap: Duration::from_millis(1), ..LineSettings::new(115_200) },
+        // Any other family: a plain line at the usual rate (its link may ask for more).
+        _ => LineSettings::new(115_200),
     }
 }
 

@@ -244,7 +244,8 @@ fn guess(format: Format, channel: &Channel, index: usize, family: Family) -> Opt
             let name = BIOLOID.get(id.checked_sub(1)?)?;
             Target::from_word(name)
         }),
-        Family::Rflex => None,
+        // A base, or any other family: nothing of another tool's file drives it.
+        _ => None,
     }
 }
 

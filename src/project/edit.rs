@@ -122,7 +122,8 @@ impl Edit {
                 return true;
             }
             Self::SetGamepad(family, mapping) => {
-                *project.gamepad.of_mut(family) = *mapping;
+                let Some(bindings) = project.gamepad.of_mut(family) else { return false };
+                *bindings = *mapping;
                 return true;
             }
             _ => {}

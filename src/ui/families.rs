@@ -11,21 +11,23 @@ use crate::ui::plen2::Plen2Ui;
 use crate::ui::rflex::RflexUi;
 use crate::ui::servo::ServoUi;
 
-/// Each family's side of the editor, one per [`Family::ALL`], in its order.
-pub struct Families([Box<dyn FamilyUi>; Family::ALL.len()]);
+/// Each family's side of the editor, in menu order.
+pub struct Families(Vec<Box<dyn FamilyUi>>);
 
-/// The side of the editor of `family`, as it starts.
-fn new_ui(family: Family) -> Box<dyn FamilyUi> {
-    match family {
-        Family::Servo => Box::<ServoUi>::default(),
-        Family::Plen2 => Box::<Plen2Ui>::default(),
-        Family::Rflex => Box::<RflexUi>::default(),
-    }
+/// Each family's side of the editor as it starts: the one list of them.
+fn uis() -> Vec<Box<dyn FamilyUi>> {
+    vec![
+        Box::<ServoUi>::default(),
+        Box::<Plen2Ui>::default(),
+        Box::<RflexUi>::default(),
+        #[cfg(test)]
+        Box::<crate::ui::echo::EchoUi>::default(),
+    ]
 }
 
 impl Default for Families {
     fn default() -> Self {
-        Self(Family::ALL.map(new_ui))
+        Self(uis())
     }
 }
 
@@ -36,15 +38,21 @@ impl std::fmt::Debug for Families {
 }
 
 impl Families {
+    /// Where `family` is in the list (every family of [`Family::ALL`] has a
+    /// side: a test holds it; any other falls back to the first, the servo board's).
+    fn place(&self, family: Family) -> usize {
+        self.0.iter().position(|family_ui| family_ui.family() == family).unwrap_or_default()
+    }
+
     /// The side of the editor of `family`.
     pub fn get(&self, family: Family) -> &dyn FamilyUi {
-        // `ALL` lists every family in declaration order: the discriminant is its place.
-        &*self.0[family as usize]
+        &*self.0[self.place(family)]
     }
 
     /// The side of the editor of `family`, to change.
     pub fn get_mut(&mut self, family: Family) -> &mut dyn FamilyUi {
-        &mut *self.0[family as usize]
+        let place = self.place(family);
+        &mut *self.0[place]
     }
 
     /// Every family's side of the editor, to change, in menu order.
@@ -74,10 +82,11 @@ mod tests {
     use super::*;
 
     #[test]
-    fn each_family_has_its_own_side_in_its_place() {
+    fn each_family_has_its_own_side_in_menu_order() {
         let families = Families::default();
-        for (place, family) in Family::ALL.into_iter().enumerate() {
-            assert_eq!(family as usize, place, "ALL is in declaration order");
+        let listed: Vec<Family> = families.0.iter().map(|family_ui| family_ui.family()).collect();
+        assert_eq!(listed, Family::ALL, "one side per family, in menu order");
+        for family in Family::ALL {
             assert_eq!(families.get(family).family(), family);
         }
         assert!(families.of::<ServoUi>().is_some() && families.of::<RflexUi>().is_some());

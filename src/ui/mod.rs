@@ -7,6 +7,8 @@ mod board_link;
 mod connection_bar;
 mod derive;
 mod document;
+#[cfg(test)]
+mod echo;
 mod families;
 mod family;
 pub mod files;

@@ -112,6 +112,7 @@ pub fn build(source: &Source, map: &JointMap, options: &Options) -> Result<Built
             project
         }
         Family::Rflex => return Err(BuildError::Unmapped { family: "rFLEX base (it stores no motions)" }),
+        other => return Err(BuildError::Unmapped { family: other.name() }),
     };
     Ok(Built { project, report })
 }

@@ -1,6 +1,6 @@
 //! Validation of a project's gamepad bindings (its own family's).
 
-use super::super::document::{Family, Project};
+use super::super::document::Project;
 use super::super::gamepad::{AxisTarget, Conflict, Fire};
 use super::{Location, Problem, ProblemKind, Severity};
 
@@ -8,11 +8,7 @@ use super::{Location, Problem, ProblemKind, Severity};
 /// is bound twice (warnings: the bindings are the editor's, not the robot's;
 /// a PLEN2 motion may be on the robot without being in the project).
 pub(super) fn gamepad(project: &Project) -> Vec<Problem> {
-    let mapping = match project.family {
-        Family::Servo => &project.gamepad.servo,
-        Family::Plen2 => &project.gamepad.plen2,
-        Family::Rflex => &project.gamepad.rflex,
-    };
+    let mapping = project.gamepad.of(project.family);
     let warning = |location, kind| Problem { severity: Severity::Warning, location, kind };
     let mut problems = Vec::new();
     for binding in &mapping.buttons {

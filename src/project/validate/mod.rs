@@ -437,6 +437,8 @@ pub fn validate(project: &Project) -> Problems {
         Family::Servo => validate_servo(&project.servo),
         Family::Plen2 => validate_plen2(&project.plen2),
         Family::Rflex => rflex::validate_rflex(&project.rflex),
+        // A family whose project has no section of its own has nothing to check.
+        _ => Problems::default(),
     };
     problems.extend(gamepad::gamepad(project));
     problems

@@ -52,7 +52,8 @@ impl StudioApp {
                 }
                 Err(error) => return self.report(error, true),
             },
-            Family::Rflex => return,
+            // A base, or any other family: the import window offers nothing to create.
+            _ => return,
         };
         self.document.apply(edit, None);
         self.document.seal();

@@ -331,6 +331,8 @@ impl Language {
             (_, F::Plen2) => "PLEN2",
             (Self::English, F::Rflex) => "rFLEX base",
             (Self::TraditionalChinese, F::Rflex) => "rFLEX 移動底盤",
+            // Any other family by its own name.
+            (_, family) => family.name(),
         }
     }
 

@@ -44,7 +44,8 @@ fn subjects(project: &Project) -> Vec<(i32, String)> {
         Family::Plen2 => {
             project.plen2.motions.iter().map(|m| (i32::from(m.slot), format!("{} {}", m.slot, m.name))).collect()
         }
-        Family::Rflex => Vec::new(),
+        // A base, or any other family: nothing to export.
+        _ => Vec::new(),
     }
 }
 

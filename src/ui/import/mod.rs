@@ -461,7 +461,8 @@ impl ImportDesk {
                     ..Scene::default()
                 })
             }
-            Family::Rflex => None,
+            // A base, or any other family: no figure to play it on.
+            _ => None,
         }
     }
 }

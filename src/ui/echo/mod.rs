@@ -1,0 +1,128 @@
+//! A fourth family, for the tests only: the "echo" board — one servo, moved
+//! live, that answers every move, with its own emulator. It proves the seam:
+//! it plugs in by touching the four shared files `docs/ARCHITECTURE.md`
+//! names (`tests::the_echo_family_touches_only_the_shared_files_named`).
+
+mod board;
+mod link;
+
+use std::time::Instant;
+
+use crate::project::{Family, Project};
+use crate::ui::action::{Action, ActionOf, FamilyAction, Tab};
+use crate::ui::board_link::{BoardLink, FamilyNotice, LinkStarter, StartError};
+use crate::ui::family::{FamilyUi, Panel};
+use crate::ui::i18n::Strings;
+use crate::ui::layout::Layout;
+use crate::ui::shell::{Shell, ShellView};
+use link::{EchoHandle, Echoed, EmulatedEcho};
+
+#[allow(non_upper_case_globals)]
+impl Tab {
+    /// The echo board's one panel.
+    pub const Echo: Self = Self::named("Echo");
+}
+
+/// The echo board's panels' requests.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EchoAction {
+    /// The servo to this angle (sent live when connected).
+    Move(i16),
+}
+
+impl ActionOf for EchoAction {
+    const FAMILY: Family = Family::Echo;
+}
+
+/// The echo board's side of the editor.
+#[derive(Debug, Default)]
+pub struct EchoUi {
+    /// Where the slider puts the servo.
+    pub pose: i16,
+    /// Where the board last said its servo is.
+    pub echoed: Option<i16>,
+    layout: Layout,
+}
+
+const PANELS: &[Panel] = &[Panel { tab: Tab::Echo, title: |_| "Echo", has_view: false }];
+
+impl EchoUi {
+    fn apply(&mut self, shell: &mut Shell<'_>, EchoAction::Move(deg): EchoAction) {
+        self.pose = deg.clamp(-90, 90);
+        if let Some(board) = shell.link.as_ref().and_then(BoardLink::device::<EchoHandle>) {
+            board.move_to(self.pose);
+        }
+    }
+}
+
+impl FamilyUi for EchoUi {
+    fn family(&self) -> Family {
+        Family::Echo
+    }
+
+    fn panels(&self) -> &'static [Panel] {
+        PANELS
+    }
+
+    fn layout(&self) -> Layout {
+        self.layout
+    }
+
+    fn layout_mut(&mut self) -> &mut Layout {
+        &mut self.layout
+    }
+
+    fn ui(&mut self, ui: &mut egui::Ui, _tab: Tab, _view: &ShellView<'_>, actions: &mut Vec<Action>) {
+        ui.horizontal(|ui| {
+            ui.label(format!("servo at {}°", self.pose));
+            if ui.button("+10°").clicked() {
+                actions.push(Action::family(EchoAction::Move(self.pose + 10)));
+            }
+            if let Some(deg) = self.echoed {
+                ui.label(format!("the board says {deg}°"));
+            }
+        });
+    }
+
+    fn act(&mut self, shell: &mut Shell<'_>, action: Box<dyn FamilyAction>) {
+        if let Ok(action) = action.into_any().downcast::<EchoAction>() {
+            self.apply(shell, *action);
+        }
+    }
+
+    fn link_starter(&self, _baud: u32) -> LinkStarter {
+        link::starter()
+    }
+
+    fn demo_link(&self, _project: &Project, waker: crate::link::Waker) -> Result<BoardLink, StartError> {
+        link::demo_link(waker)
+    }
+
+    fn demo_connected(&self, _words: &Strings) -> &'static str {
+        "connected to the demo echo board"
+    }
+
+    fn stop(&mut self, shell: &mut Shell<'_>) {
+        if let Some(link) = shell.link.as_mut() {
+            link.stop();
+        }
+        shell.report("the echo board stopped", false);
+    }
+
+    fn disconnected(&mut self) {
+        self.echoed = None;
+    }
+
+    fn tick(&mut self, _shell: &mut Shell<'_>, _now: Instant) -> bool {
+        false
+    }
+
+    fn notice(&mut self, _shell: &mut Shell<'_>, notice: FamilyNotice) {
+        if let Some(Echoed(deg)) = notice.get() {
+            self.echoed = Some(*deg);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests;
