@@ -77,7 +77,8 @@ impl PlayListsPanel {
         let list = &project.play_lists[index];
         ui.horizontal(|ui| {
             let mut name = list.name.clone();
-            if ui.text_edit_singleline(&mut name).changed() {
+            let name_label = ui.label(words.name);
+            if ui.text_edit_singleline(&mut name).labelled_by(name_label.id).changed() {
                 actions.push(edit(project, |p| p.play_lists[index].name = name));
             }
             if ui
@@ -101,16 +102,17 @@ impl PlayListsPanel {
         rows::grid(ui, "play-list-entries", list.entries.len(), height, |ui, position| {
             let entry = &list.entries[position];
             let mut changed = *entry;
-            ui.label(format!("{}", position + 1));
+            let place = ui.label(format!("{}", position + 1));
             let name = project.motions.iter().find(|m| m.slot == entry.slot).map_or("—", |m| m.name.as_str());
             let motions = &project.motions;
             let shown = format!("{} {name}", entry.slot);
             rows::combo(ui, ("plen2-entry", index, position), shown, &mut changed.slot, motions.len(), |i| {
                 (motions[i].slot, format!("{} {}", motions[i].slot, motions[i].name))
-            });
+            })
+            .labelled_by(place.id);
             ui.horizontal(|ui| {
-                ui.label(words.plen2().plays);
-                ui.add(egui::DragValue::new(&mut changed.plays));
+                let plays = ui.label(words.plen2().plays);
+                ui.add(egui::DragValue::new(&mut changed.plays)).labelled_by(plays.id);
             });
             if changed != *entry {
                 actions.push(edit(project, |p| p.play_lists[index].entries[position] = changed));
@@ -121,5 +123,86 @@ impl PlayListsPanel {
                 }));
             }
         });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use egui_kittest::Harness;
+    use egui_kittest::kittest::Queryable;
+
+    use super::*;
+    use crate::project::plen2::Motion;
+    use crate::ui::i18n::Language;
+
+    struct Panel {
+        panel: PlayListsPanel,
+        project: Plen2Project,
+        connected: bool,
+        actions: Vec<Action>,
+    }
+
+    fn panel(project: Plen2Project, connected: bool) -> Harness<'static, Panel> {
+        let state = Panel { panel: PlayListsPanel::default(), project, connected, actions: Vec::new() };
+        Harness::builder()
+            .with_size(egui::vec2(900.0, 500.0))
+            .with_context_setup(crate::ui::fonts::install)
+            .build_ui_state(
+                |ui, state: &mut Panel| {
+                    let mut layout = Layout::default();
+                    let words = Language::English.strings();
+                    state.panel.ui(ui, &state.project, state.connected, &mut layout, words, &mut state.actions);
+                },
+                state,
+            )
+    }
+
+    fn robot() -> Plen2Project {
+        let wave = Motion { slot: 7, name: "wave".into(), frames: Vec::new(), loop_range: None, jump_slot: None };
+        let list = PlayList { name: "show".into(), entries: vec![PlayEntry { slot: 7, plays: 2 }] };
+        Plen2Project { motions: vec![wave], play_lists: vec![list], ..Plen2Project::default() }
+    }
+
+    /// The project the last edit asked for.
+    fn edited(harness: &Harness<'static, Panel>) -> Plen2Project {
+        match harness.state().actions.last() {
+            Some(Action::Edit { edit: Edit::SetPlen2(project), coalesce }) => {
+                assert_eq!(coalesce.as_deref(), Some("plen2 play lists"));
+                (**project).clone()
+            }
+            other => panic!("an edit of the play lists, not {other:?}"),
+        }
+    }
+
+    #[test]
+    fn a_list_shows_its_motions_by_slot_and_name_and_grows_by_the_first_motion() {
+        let mut harness = panel(robot(), false);
+        harness.run();
+        assert!(harness.query_by_label("show (1)").is_some(), "the list with its length");
+        assert!(harness.query(egui_kittest::kittest::By::new().value("7 wave")).is_some(), "an entry names its motion");
+        harness.get_by_label("Add motion").click();
+        harness.run();
+        assert_eq!(
+            edited(&harness).play_lists[0].entries,
+            [PlayEntry { slot: 7, plays: 2 }, PlayEntry { slot: 7, plays: 1 }]
+        );
+    }
+
+    #[test]
+    fn play_on_robot_needs_a_robot_and_a_new_list_is_added_empty() {
+        let mut harness = panel(robot(), false);
+        harness.run();
+        harness.get_by_label("Play on robot").click();
+        harness.run();
+        assert!(harness.state().actions.is_empty(), "not connected: nothing to play on");
+        harness.state_mut().connected = true;
+        harness.run();
+        harness.get_by_label("Play on robot").click();
+        harness.run();
+        assert_eq!(harness.state().actions, [Action::family(Plen2Action::PlayList(0))]);
+        harness.get_by_label("Add play list").click();
+        harness.run();
+        let added = &edited(&harness).play_lists[1];
+        assert_eq!((added.name.as_str(), added.entries.len()), ("Play lists 2", 0));
     }
 }

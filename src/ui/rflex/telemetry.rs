@@ -51,3 +51,50 @@ pub fn ui(ui: &mut egui::Ui, telemetry: &Telemetry, words: &Strings) {
     ui.label(format!("{}: {echoing}/{of}{unknown}", words.rflex().sonar))
         .on_hover_text(words.rflex().sonar_unknown_hint);
 }
+
+#[cfg(test)]
+mod tests {
+    use egui_kittest::Harness;
+    use egui_kittest::kittest::Queryable;
+
+    use super::*;
+    use crate::ui::i18n::Language;
+
+    fn panel(telemetry: Telemetry, language: Language) -> Harness<'static, Telemetry> {
+        Harness::builder()
+            .with_size(egui::vec2(900.0, 500.0))
+            .with_context_setup(crate::ui::fonts::install)
+            .build_ui_state(
+                move |ui, telemetry: &mut Telemetry| super::ui(ui, telemetry, language.strings()),
+                telemetry,
+            )
+    }
+
+    #[test]
+    fn the_numbers_of_a_base_are_shown_and_the_unknown_as_dashes() {
+        let mut telemetry = Telemetry::default();
+        let harness = panel(telemetry.clone(), Language::English);
+        assert!(harness.query_by_label_contains("Battery —").is_some(), "no battery read yet");
+        assert!(harness.query_by_label_contains("x +0.000 m").is_some());
+
+        telemetry.battery_volts = Some(24.376);
+        telemetry.joystick = Some((12, -3, 0b101));
+        telemetry.checksum_failures = 2;
+        telemetry.sonar_m.insert(0, Some(1.5));
+        telemetry.sonar_m.insert(1, None);
+        telemetry.unknown_sonar.insert(40, 700);
+        let harness = panel(telemetry, Language::English);
+        assert!(harness.query_by_label_contains("24.38 V").is_some(), "volts to the hundredth");
+        assert!(harness.query_by_label_contains("x 12  y -3  buttons 00000101").is_some());
+        assert!(harness.query_by_label_contains(": 2").is_some(), "checksum failures counted");
+        assert!(harness.query_by_label_contains("1/2 (+1 ?)").is_some(), "echoing of known, unknown ids apart");
+    }
+
+    #[test]
+    fn the_panel_speaks_traditional_chinese() {
+        let harness = panel(Telemetry::default(), Language::TraditionalChinese);
+        let words = Language::TraditionalChinese.strings();
+        assert!(harness.query_by_label_contains(words.battery).is_some());
+        assert!(harness.query_by_label(words.telemetry).is_some());
+    }
+}

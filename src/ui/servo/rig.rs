@@ -141,3 +141,70 @@ fn other_servo(
         })
         .response
 }
+
+#[cfg(test)]
+mod tests {
+    use egui::accesskit::Role;
+    use egui_kittest::Harness;
+    use egui_kittest::kittest::Queryable;
+
+    use super::*;
+    use crate::ui::i18n::Language;
+
+    fn rig_table(project: ServoProject) -> Harness<'static, (ServoProject, Vec<Action>)> {
+        Harness::builder()
+            .with_size(egui::vec2(1200.0, 400.0))
+            .with_context_setup(crate::ui::fonts::install)
+            .build_ui_state(
+                |ui, (project, actions): &mut (ServoProject, Vec<Action>)| {
+                    table(ui, project, 300.0, Language::English.strings(), actions);
+                },
+                (project, Vec::new()),
+            )
+    }
+
+    fn robot() -> ServoProject {
+        let hip = Servo::new(1, "hip");
+        let knee = Servo { rig: Some(RigJoint { parent: Some(1), ..placed() }), ..Servo::new(2, "knee") };
+        ServoProject { servos: vec![hip, knee], ..ServoProject::default() }
+    }
+
+    /// The servo the last action set, and its undo key.
+    fn set(harness: &Harness<'static, (ServoProject, Vec<Action>)>) -> (usize, Servo, String) {
+        match harness.state().1.last() {
+            Some(Action::Edit { edit: Edit::SetServo { index, servo }, coalesce: Some(key) }) => {
+                (*index, servo.clone(), key.clone())
+            }
+            other => panic!("a servo set, not {other:?}"),
+        }
+    }
+
+    #[test]
+    fn a_servo_joins_the_rig_on_the_body_turning_about_y() {
+        let mut harness = rig_table(robot());
+        harness.run();
+        let hip = harness.get_all_by_role_and_label(Role::CheckBox, "1 hip").count();
+        assert_eq!(hip, 1, "a servo out of the rig has only its in-the-rig box");
+        harness.get_by_role_and_label(Role::CheckBox, "1 hip").click();
+        harness.run();
+        let (index, servo, key) = set(&harness);
+        assert_eq!((index, servo.rig, key.as_str()), (0, Some(placed()), "servo 1 rig in"));
+    }
+
+    #[test]
+    fn a_rigged_servo_names_its_parent_and_is_reversed_in_one_step_of_its_own() {
+        let mut harness = rig_table(robot());
+        harness.run();
+        assert!(
+            harness.query(egui_kittest::kittest::By::new().role(Role::ComboBox).value("1 hip")).is_some(),
+            "mounted on the hip"
+        );
+        let boxes: Vec<_> = harness.get_all_by_role_and_label(Role::CheckBox, "2 knee").collect();
+        assert_eq!(boxes.len(), 2, "in the rig, reversed");
+        boxes[1].click();
+        harness.run();
+        let (index, servo, key) = set(&harness);
+        let reversed = RigJoint { parent: Some(1), reversed: true, ..placed() };
+        assert_eq!((index, servo.rig, key.as_str()), (1, Some(reversed), "servo 2 rig reversed"));
+    }
+}
