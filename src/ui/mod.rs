@@ -37,7 +37,7 @@ pub use derive::Costing;
 pub use document::Document;
 pub use families::Families;
 pub use family::FamilyUi;
-pub use i18n::{Language, Strings};
+pub use i18n::{Language, Strings, Worded};
 pub use layout::Layout;
 pub use operation::{Operation, Step};
 pub use plen2::{

@@ -12,7 +12,7 @@ use servo_studio::device::servo::ServoImage;
 use servo_studio::link::no_waker;
 use servo_studio::project::{Project, Servo, ServoProject};
 use servo_studio::sim::{Faults, SimConfig};
-use servo_studio::ui::{Action, BoardResult, ServoAction, StudioApp, servo_demo_link};
+use servo_studio::ui::{Action, BoardResult, ServoAction, StudioApp, Worded, servo_demo_link};
 
 fn harness(app: StudioApp) -> Harness<'static, StudioApp> {
     common::ui::window(app, (1200.0, 800.0))
@@ -35,7 +35,7 @@ fn shown_error(app: &StudioApp) -> String {
 fn shown_differences(app: &StudioApp) -> Vec<String> {
     let pending = common::ui::servo_ui(app).pending.as_ref().expect("a comparison");
     let differences = pending.differences.as_ref().expect("the project fits in board records");
-    differences.iter().map(|difference| app.language.difference(difference)).collect()
+    differences.iter().map(|difference| difference.worded(app.language)).collect()
 }
 
 fn servos_only() -> ServoProject {
@@ -191,7 +191,7 @@ fn a_refused_item_is_named_in_traditional_chinese() {
     match common::ui::servo_ui(harness.state()).board_result.clone().unwrap() {
         BoardResult::Failed { items, .. } => {
             let language = servo_studio::ui::Language::TraditionalChinese;
-            assert!(items.iter().any(|item| language.item(item).starts_with("動作 1")), "{items:?}");
+            assert!(items.iter().any(|item| item.worded(language).starts_with("動作 1")), "{items:?}");
         }
         other => panic!("expected a failure, got {other:?}"),
     }

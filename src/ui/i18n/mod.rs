@@ -97,24 +97,14 @@ mod tests {
         assert!(!text.contains("os error"), "no English detail glued in");
         let english = Language::English.link_ended(&reason);
         assert_eq!(english.matches("cable").count(), 1, "the reason is said once: {english}");
-        let lost = crate::device::servo::RequestError::Disconnected { reason: "the link is closed".into() };
-        assert_eq!(zh.request_error(&lost), "與控制板的連線已中斷");
     }
 
     /// Errors that used to reach the Chinese interface in English (or without
-    /// their detail): a message that cannot be encoded, a folder of motions
-    /// that cannot be opened.
+    /// their detail): a folder of motions that cannot be opened (a message
+    /// that cannot be encoded: `ui::servo::words`).
     #[test]
-    fn send_and_open_errors_keep_their_detail_in_chinese() {
+    fn open_errors_keep_their_detail_in_chinese() {
         let zh = Language::TraditionalChinese;
-        let error = crate::device::servo::EncodeError::TooMany {
-            message: "ExecuteActionRequest",
-            field: "servoCount",
-            max: 255,
-            actual: 300,
-        };
-        assert_eq!(zh.send_failed(&error), "無法傳送：ExecuteActionRequest 的 `servoCount` 最多 255 筆，但有 300 筆");
-        assert!(Language::English.send_failed(&error).contains("at most 255 entries, but 300"));
         let folder = std::path::Path::new("/tmp/動作");
         let empty = crate::project::input::OpenError::Motion(crate::project::motion_json::MotionJsonError::Empty {
             path: folder.to_path_buf(),

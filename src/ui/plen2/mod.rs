@@ -16,6 +16,7 @@ mod preview;
 mod words;
 
 use crate::authoring::recording::Recorder;
+use crate::ui::i18n::Worded;
 pub use action::{Plen2Action, Plen2Intent};
 use std::path::PathBuf;
 use std::time::Instant;
@@ -522,10 +523,11 @@ impl FamilyUi for Plen2Ui {
         let words = language.strings();
         let pacing_label = ui.label(words.pacing);
         let mut pacing = self.pacing;
-        let picked =
-            egui::ComboBox::from_id_salt("pacing-picker").selected_text(language.pacing(pacing)).show_ui(ui, |ui| {
+        let picked = egui::ComboBox::from_id_salt("pacing-picker")
+            .selected_text(words::pacing_name(language, pacing))
+            .show_ui(ui, |ui| {
                 for option in PacingMode::ALL {
-                    ui.selectable_value(&mut pacing, option, language.pacing(option));
+                    ui.selectable_value(&mut pacing, option, words::pacing_name(language, option));
                 }
             });
         picked.response.labelled_by(pacing_label.id).on_hover_text(words.plen2().pacing_hint);
@@ -545,7 +547,7 @@ impl FamilyUi for Plen2Ui {
     fn notice(&mut self, shell: &mut Shell<'_>, notice: FamilyNotice) {
         if let Some(plen2::Plen2Notice::Widened(widened)) = notice.get() {
             // Not an error: the upload goes on, more carefully.
-            shell.report(shell.language.pacing_widened(widened), false);
+            shell.report(widened.worded(shell.language), false);
         }
     }
 

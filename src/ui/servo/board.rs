@@ -6,6 +6,7 @@ use super::operations::{BoardResult, PendingConfirm, ServoKind};
 use crate::device::servo::Item;
 use crate::ui::action::{Action, Export, FileRequest, PROJECT_FILE};
 use crate::ui::i18n::Language;
+use crate::ui::i18n::Worded;
 use crate::ui::rows;
 use crate::ui::servo::action::{BoardIntent, ServoAction};
 use crate::ui::servo::captions::ServoWords;
@@ -13,8 +14,8 @@ use crate::ui::servo::captions::ServoWords;
 /// The differences of a comparison in `language`.
 pub fn difference_lines(pending: &PendingConfirm, language: Language) -> Vec<String> {
     match &pending.differences {
-        Ok(differences) => differences.iter().map(|d| language.difference(d)).collect(),
-        Err(error) => vec![language.op_error(&crate::device::servo::OpError::Image(error.clone()))],
+        Ok(differences) => differences.iter().map(|d| d.worded(language)).collect(),
+        Err(error) => vec![crate::device::servo::OpError::Image(error.clone()).worded(language)],
     }
 }
 
@@ -104,7 +105,7 @@ fn running(
     };
     ui.label(what);
     if let Some(progress) = &operation.progress {
-        let item = language.item(&progress.item);
+        let item = progress.item.worded(language);
         ui.add(
             egui::ProgressBar::new(operation.fraction())
                 .show_percentage()
@@ -204,7 +205,7 @@ fn outcome(
         // The rest of the panel's height: the list fills it.
         let row_height = ui.text_style_height(&egui::TextStyle::Body);
         rows::list(ui, "items", row_height, items.len(), ui.available_height(), |ui, index| {
-            ui.label(format!("√ {}", language.item(&items[index])));
+            ui.label(format!("√ {}", items[index].worded(language)));
         });
     }
 }

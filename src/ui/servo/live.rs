@@ -10,6 +10,7 @@ use crate::authoring::fit::{self, Board, ServoBoard};
 use crate::authoring::fitted::{self, SERVO_UPDATE_MS};
 use crate::device::servo::ServoMove;
 use crate::project::{Action as ProjectAction, Edit, Run, ServoProject, Step, next_free_id};
+use crate::ui::i18n::Worded;
 use crate::ui::servo::captions::ServoWords;
 use crate::ui::shell::Shell;
 use crate::ui::speed::LiveSpeed;
@@ -165,7 +166,7 @@ impl ServoUi {
             let from = (before, reading, link.servos_read_at);
             let servo_move = self.limited_move(speed, (servo, degree), from, LIVE_MOVE_INTERVAL_10MS);
             if let Err(error) = link.live_move(vec![servo_move]) {
-                shell.report(shell.language.request_error(&error), true);
+                shell.report(error.worded(shell.language), true);
             }
         }
     }
@@ -338,7 +339,7 @@ impl ServoUi {
             && let Err(error) = link.move_now(moves.clone())
         {
             self.playing.clear();
-            shell.report(shell.language.op_error(&error), true);
+            shell.report(error.worded(shell.language), true);
             return;
         }
         let longest = moves.iter().map(|m| u64::from(m.interval_10ms.max(0).unsigned_abs()) * 10).max().unwrap_or(0);

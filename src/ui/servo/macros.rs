@@ -11,6 +11,7 @@ use crate::project::{
 use crate::ui::action::Action;
 use crate::ui::derive::Derived;
 use crate::ui::i18n::Strings;
+use crate::ui::i18n::Worded;
 use crate::ui::layout::{self, Layout, Part};
 use crate::ui::servo::action::ServoAction;
 use crate::ui::servo::captions::ServoWords;
@@ -298,7 +299,7 @@ fn macro_header(
     }
     match derived.macro_total_ms {
         Some(Ok(total)) => ui.label(format!("{} {}", words.total, seconds(total))),
-        Some(Err(error)) => ui.colored_label(ui.visuals().warn_fg_color, words.lang.timing_error(&error)),
+        Some(Err(error)) => ui.colored_label(ui.visuals().warn_fg_color, error.worded(words.lang)),
         None => ui.label(format!("{} …", words.total)),
     };
     if ui.add_enabled(connected, egui::Button::new(words.servo().run_on_board)).clicked() {

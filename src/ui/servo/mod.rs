@@ -17,6 +17,7 @@ mod played;
 mod preview;
 mod rig;
 mod sliders;
+mod words;
 
 pub use action::{BoardIntent, ServoAction};
 use std::collections::BTreeMap;
@@ -36,6 +37,7 @@ use crate::ui::action::{Action, Tab};
 use crate::ui::board_link::{BoardLink, FamilyNotice, LinkStarter, StartError};
 use crate::ui::derive::Derived;
 use crate::ui::family::{FamilyUi, Panel};
+use crate::ui::i18n::Worded;
 use crate::ui::i18n::{Language, Strings};
 use crate::ui::layout::Layout;
 use crate::ui::servo::captions::ServoWords;
@@ -210,8 +212,8 @@ impl ServoUi {
             let project = view.project.servo.clone();
             move || {
                 ServoImage::from_project(&project)
-                    .map_err(|error| language.op_error(&crate::device::servo::OpError::Image(error)))
-                    .and_then(|image| image.footprint_bytes().map_err(|error| language.encode_error(&error)))
+                    .map_err(|error| crate::device::servo::OpError::Image(error).worded(language))
+                    .and_then(|image| image.footprint_bytes().map_err(|error| error.worded(language)))
             }
         });
         let project_bytes = footprint.map_or(Ok(0), |(_, bytes)| bytes.clone());
@@ -437,8 +439,8 @@ impl FamilyUi for ServoUi {
         let Ok(notice) = notice.take::<ServoNotice>() else { return };
         match notice {
             ServoNotice::Button { button_id, event } => self.button(shell, button_id, event),
-            ServoNotice::SendFailed(error) => shell.report(shell.language.send_failed(&error), true),
-            ServoNotice::RequestFailed(error) => shell.report(shell.language.request_error(&error), true),
+            ServoNotice::SendFailed(error) => shell.report(words::send_failed(shell.language, &error), true),
+            ServoNotice::RequestFailed(error) => shell.report(error.worded(shell.language), true),
             ServoNotice::MacroRefused => shell.report(shell.words().msg_macro_refused, true),
             // The link takes these itself.
             ServoNotice::Log(_) | ServoNotice::Disconnected(_) => {}

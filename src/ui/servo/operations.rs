@@ -13,6 +13,7 @@ use crate::device::servo::{
 };
 use crate::project::{Edit, Project, ServoProject, has_errors, validate_servo};
 use crate::ui::i18n::Language;
+use crate::ui::i18n::Worded;
 use crate::ui::operation::{Operation, Step};
 use crate::ui::servo::action::BoardIntent;
 use crate::ui::shell::{RunningOperation, Shell};
@@ -68,7 +69,7 @@ impl BoardResult {
     /// The failure or problems in `language`, if this is one.
     pub fn error_text(&self, language: Language) -> Option<String> {
         match self {
-            Self::Invalid { problems } => Some(language.op_error(&OpError::Invalid { problems: problems.clone() })),
+            Self::Invalid { problems } => Some(OpError::Invalid { problems: problems.clone() }.worded(language)),
             Self::Failed { failure, .. } => Some(failure.words(language)),
             Self::ExportFailed(text) => Some(text.clone()),
             _ => None,
@@ -111,9 +112,9 @@ impl ServoFailure {
     /// Why it failed, in `language`.
     pub fn words(&self, language: Language) -> String {
         match self {
-            Self::Op(error) => language.op_error(error),
+            Self::Op(error) => error.worded(language),
             Self::Upload(failure) => {
-                language.upload_failure(failure, |error| language.op_error(error), |item| language.item(item))
+                language.upload_failure(failure, |error| error.worded(language), |item| item.worded(language))
             }
             Self::BackupFolder { folder, error } => language.backup_folder_failed(folder, error),
             Self::Thread(error) => language.no_worker(error),
