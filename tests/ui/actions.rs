@@ -170,7 +170,10 @@ fn a_curve_picked_for_a_step_shows_its_cost_and_plays_on_the_board_as_sub_steps(
     use servo_studio::sim::SimEvent;
     let mut harness = harness(fixture());
     harness.state_mut().apply(Action::ConnectDemo);
-    harness.run_steps(2);
+    // The meter says the board's memory once the board has told it (its reply comes on its own thread).
+    common::ui::run_until(&mut harness, "the board's memory", |app| {
+        common::ui::servo_board(app).is_some_and(|board| board.memory.is_some())
+    });
     assert!(harness.query_by_label_contains("On the board:").is_none(), "no curves, no meter");
     let curve = harness.query_all(egui_kittest::kittest::by().value("Linear")).next().expect("step 1's curve");
     curve.click();
