@@ -305,7 +305,17 @@ pub enum ProblemKind {
 
 impl fmt::Display for ProblemKind {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
+        match self.board_fmt(f) {
+            Some(written) => written,
+            None => self.other_fmt(f),
+        }
+    }
+}
+
+impl ProblemKind {
+    /// A servo board's problem (captions, ids, limits, steps, commands, tables), written; None: another's.
+    fn board_fmt(&self, f: &mut fmt::Formatter<'_>) -> Option<fmt::Result> {
+        Some(match self {
             Self::CaptionTooLong { bytes } => {
                 write!(f, "caption is {bytes} UTF-8 bytes; the board stores at most {STR32_LEN}")
             }
@@ -341,6 +351,13 @@ impl fmt::Display for ProblemKind {
                 let names: Vec<String> = path.iter().map(ToString::to_string).collect();
                 write!(f, "macro cycle {}: a macro must not reach itself", names.join(" → "))
             }
+            _ => return None,
+        })
+    }
+
+    /// A rig's, a gamepad binding's, a PLEN2's or any section's problem, written.
+    fn other_fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
             Self::RigUnknownParent { parent } => {
                 write!(
                     f,
@@ -404,6 +421,8 @@ impl fmt::Display for ProblemKind {
             ),
             Self::NotPositive { field } => write!(f, "{field} must be a positive number"),
             Self::UnknownKey => write!(f, "unknown key, ignored (is it misspelt?)"),
+            // Written by `board_fmt`.
+            _ => Ok(()),
         }
     }
 }

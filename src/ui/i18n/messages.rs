@@ -46,17 +46,22 @@ impl Language {
 
     /// A validation problem in this language.
     pub fn problem(self, kind: &crate::project::ProblemKind) -> String {
-        use crate::project::{ButtonSlot, ItemKind, ProblemKind as P};
         if self == Self::English {
             return kind.to_string();
         }
+        Self::board_problem(kind).or_else(|| Self::other_problem(kind)).unwrap_or_else(|| kind.to_string())
+    }
+
+    /// A servo board's problem (captions, ids, limits, steps, commands, tables), in Chinese.
+    fn board_problem(kind: &crate::project::ProblemKind) -> Option<String> {
+        use crate::project::{ItemKind, ProblemKind as P};
         let item = |kind: &ItemKind| match kind {
             ItemKind::Servo => "舵機",
             ItemKind::Action => "動作",
             ItemKind::Macro => "巨集",
             ItemKind::Table => "遙控對應表",
         };
-        match kind {
+        let text = match kind {
             P::CaptionTooLong { bytes } => format!("標題有 {bytes} 個 UTF-8 位元組；控制板最多儲存 32 個"),
             P::IdNotPositive { kind, id } => {
                 format!("{}編號必須大於或等於 1（0 在控制板上表示「無」），目前為 {id}", item(kind))
@@ -86,6 +91,15 @@ impl Language {
                 let names: Vec<String> = path.iter().map(ToString::to_string).collect();
                 format!("巨集循環 {}：巨集不可呼叫到自己", names.join(" → "))
             }
+            _ => return None,
+        };
+        Some(text)
+    }
+
+    /// A rig's, a gamepad binding's, a PLEN2's or any section's problem, in Chinese.
+    fn other_problem(kind: &crate::project::ProblemKind) -> Option<String> {
+        use crate::project::{ButtonSlot, ProblemKind as P};
+        let text = match kind {
             P::RigUnknownParent { parent } => {
                 format!("骨架中它裝在舵機 {parent} 上，但該舵機不在骨架中：請為該舵機設定骨架，或改選其他上層")
             }
@@ -139,7 +153,9 @@ impl Language {
             ),
             P::NotPositive { field } => format!("{field} 必須是正數"),
             P::UnknownKey => "不認得的欄位，已略過（是否拼錯？）".to_string(),
-        }
+            _ => return None,
+        };
+        Some(text)
     }
 
     /// Where a problem is, in this language.

@@ -113,6 +113,26 @@ mod tests {
         assert_eq!(Language::English.open_error(folder, &empty), "/tmp/動作 holds no motion.json (*.json) files");
     }
 
+    /// The wording tables are split in two halves (a servo board's problems,
+    /// and the rest): a problem of either half is worded in both languages.
+    #[test]
+    fn problems_of_both_halves_are_worded_in_both_languages() {
+        use crate::project::ProblemKind as P;
+        let kinds = [
+            P::CaptionTooLong { bytes: 40 },
+            P::StoredTotalDiffers { stored_ms: 10, derived_ms: 20 },
+            P::RigCycle { path: vec![1, 2, 1] },
+            P::UnknownKey,
+        ];
+        for kind in &kinds {
+            let english = Language::English.problem(kind);
+            let chinese = Language::TraditionalChinese.problem(kind);
+            assert!(!english.is_empty() && english == kind.to_string(), "{kind:?}");
+            assert!(!chinese.is_empty() && chinese != english, "{kind:?}: {chinese}");
+        }
+        assert!(Language::TraditionalChinese.problem(&kinds[2]).contains("1 → 2 → 1"));
+    }
+
     #[test]
     fn locales_choose_the_language() {
         assert_eq!(Language::from_locale("zh_TW.UTF-8"), Language::TraditionalChinese);

@@ -19,12 +19,6 @@ pub struct Strings {
     pub slot: &'static str,
     /// "Name".
     pub name: &'static str,
-    /// "Frames".
-    pub frames: &'static str,
-    /// "Transition (ms)".
-    pub transition_ms: &'static str,
-    /// "Factory joint settings".
-    pub factory_reset: &'static str,
     /// "Drive".
     pub drive: &'static str,
     /// "Telemetry".
@@ -35,14 +29,8 @@ pub struct Strings {
     pub pacing: &'static str,
     /// "Brake".
     pub brake: &'static str,
-    /// "Acceleration (m/s²)".
-    pub acceleration: &'static str,
     /// "Commanded".
     pub commanded: &'static str,
-    /// "Measured".
-    pub measured: &'static str,
-    /// "Odometry".
-    pub odometry: &'static str,
     /// "Bump panels".
     pub bumpers: &'static str,
     /// "Reports dropped (bad checksum)".
@@ -123,8 +111,6 @@ pub struct Strings {
     pub stop: &'static str,
     /// "Servos".
     pub servos: &'static str,
-    /// "Hold".
-    pub hold: &'static str,
     /// "Undo".
     pub undo: &'static str,
     /// "Redo".
@@ -137,8 +123,6 @@ pub struct Strings {
     pub board: &'static str,
     /// "Packet log".
     pub packet_log: &'static str,
-    /// "the board refused to run the macro: upload the project first".
-    pub msg_macro_refused: &'static str,
     /// "opened".
     pub msg_opened: &'static str,
     /// "saved".
@@ -175,8 +159,6 @@ pub struct Strings {
     pub export_board: &'static str,
     /// "Connect a board (or the demo board) to upload or read.".
     pub connect_to_transfer: &'static str,
-    /// "difference(s) between the project and the board:".
-    pub differences: &'static str,
     /// "Replace the project with the board".
     pub confirm_read: &'static str,
     /// "Uploaded and verified, items:".
@@ -265,8 +247,6 @@ pub struct Strings {
     pub remove: &'static str,
     /// "Joystick".
     pub joystick: &'static str,
-    /// "Table".
-    pub table: &'static str,
     /// "Button".
     pub button: &'static str,
     /// "Caption".
@@ -299,8 +279,6 @@ pub struct Strings {
     pub axis: &'static str,
     /// A rig joint's sign.
     pub reversed: &'static str,
-    /// A rig joint's offset.
-    pub offset_mm: &'static str,
     /// What a click on a plot's legend entry does.
     pub plot_toggle_hint: &'static str,
 }

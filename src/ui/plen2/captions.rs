@@ -7,6 +7,10 @@ use crate::ui::i18n::{Language, Strings};
 /// The PLEN2's own captions.
 #[derive(Debug)]
 pub struct Plen2Captions {
+    /// "Factory joint settings".
+    pub factory_reset: &'static str,
+    /// "Frames".
+    pub frames: &'static str,
     /// "Capture into frame".
     pub capture_frame: &'static str,
     /// "Add motion".
@@ -94,6 +98,8 @@ pub struct Plen2Captions {
 }
 
 const ENGLISH: Plen2Captions = Plen2Captions {
+    factory_reset: "Factory joint settings",
+    frames: "Frames",
     capture_frame: "Capture into frame",
     add_motion: "Add motion",
     loop_frames: "Loop frames",
@@ -139,6 +145,8 @@ const ENGLISH: Plen2Captions = Plen2Captions {
 };
 
 const TRADITIONAL_CHINESE: Plen2Captions = Plen2Captions {
+    factory_reset: "恢復出廠關節設定",
+    frames: "影格",
     capture_frame: "擷取為影格",
     add_motion: "新增動作",
     loop_frames: "循環影格",

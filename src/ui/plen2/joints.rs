@@ -175,7 +175,7 @@ fn settings_editor(ui: &mut egui::Ui, view: &JointsView<'_>, words: &Strings, ac
         {
             actions.push(Action::family(Plen2Action::Robot(Plen2Intent::WriteJoints)));
         }
-        if ui.add_enabled(view.connected, egui::Button::new(words.factory_reset)).clicked() {
+        if ui.add_enabled(view.connected, egui::Button::new(words.plen2().factory_reset)).clicked() {
             actions.push(Action::family(Plen2Action::Robot(Plen2Intent::FactoryReset)));
         }
     });

@@ -219,7 +219,7 @@ impl MotionsPanel {
         let index = self.selected;
         let motion = &project.motions[index];
         self.frame = self.frame.min(motion.frames.len().saturating_sub(1));
-        ui.label(format!("{} ({})", words.frames, motion.frames.len()));
+        ui.label(format!("{} ({})", words.plen2().frames, motion.frames.len()));
         self.retime_row(ui, project, words, actions);
         let mut selected = self.frame;
         let clipboard = &mut self.clipboard;
@@ -296,7 +296,7 @@ impl MotionsPanel {
         first = first.min(end);
         let mut factor = None;
         ui.horizontal_wrapped(|ui| {
-            let label = ui.label(words.frames);
+            let label = ui.label(words.plen2().frames);
             ui.add(egui::DragValue::new(&mut first).range(0..=end).prefix("#")).labelled_by(label.id);
             let label = ui.label(words.plen2().to_frame);
             ui.add(egui::DragValue::new(&mut end).range(first..=last).prefix("#")).labelled_by(label.id);

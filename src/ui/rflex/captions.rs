@@ -7,6 +7,12 @@ use crate::ui::i18n::{Language, Strings};
 /// The rFLEX base's own captions.
 #[derive(Debug)]
 pub struct RflexCaptions {
+    /// "Odometry".
+    pub odometry: &'static str,
+    /// "Measured".
+    pub measured: &'static str,
+    /// "Acceleration (m/s²)".
+    pub acceleration: &'static str,
     /// "Sonar".
     pub sonar: &'static str,
     /// "Drag in the pad, or hold the arrow keys; release to stop. Space or Esc: STOP.".
@@ -54,6 +60,9 @@ pub struct RflexCaptions {
 }
 
 const ENGLISH: RflexCaptions = RflexCaptions {
+    odometry: "Odometry",
+    measured: "Measured",
+    acceleration: "Acceleration (m/s²)",
     sonar: "Sonar",
     pad_hint: "Drag in the pad, or hold the arrow keys; release to stop. Space or Esc: STOP.",
     max_speed: "Top speed (m/s)",
@@ -79,6 +88,9 @@ const ENGLISH: RflexCaptions = RflexCaptions {
 };
 
 const TRADITIONAL_CHINESE: RflexCaptions = RflexCaptions {
+    odometry: "里程",
+    measured: "實測",
+    acceleration: "加速度（m/s²）",
     sonar: "聲納",
     pad_hint: "在方塊中拖曳，或按住方向鍵；放開即停止。空白鍵或 Esc：停止。",
     max_speed: "最高速度（m/s）",

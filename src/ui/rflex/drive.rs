@@ -163,7 +163,7 @@ fn readings(ui: &mut egui::Ui, view: &DriveView, words: &Strings, actions: &mut 
         ui.monospace(format!("{label:<10} {speed:+.2} m/s  {turn:+.2} rad/s"));
     };
     row(ui, words.commanded, view.commanded);
-    row(ui, words.measured, view.measured);
+    row(ui, words.rflex().measured, view.measured);
     ui.separator();
     let mut changed = settings;
     let limits = view.limits;
@@ -172,7 +172,7 @@ fn readings(ui: &mut egui::Ui, view: &DriveView, words: &Strings, actions: &mut 
     let turn = 0.1..=limits.max_turn_rad_per_s;
     ui.add(egui::Slider::new(&mut changed.max_turn_rad_per_s, turn).text(words.rflex().max_turn));
     let accel = 0.1..=limits.max_accel_m_per_s2;
-    ui.add(egui::Slider::new(&mut changed.accel_m_per_s2, accel).text(words.acceleration));
+    ui.add(egui::Slider::new(&mut changed.accel_m_per_s2, accel).text(words.rflex().acceleration));
     if changed != settings {
         actions.push(Action::Edit { edit: Edit::SetRflexDrive(changed), coalesce: Some("rflex drive".into()) });
     }

@@ -18,7 +18,10 @@ pub fn ui(ui: &mut egui::Ui, telemetry: &Telemetry, words: &Strings) {
         let pose = &telemetry.pose;
         ui.monospace(format!(
             "{}: x {:+.3} m  y {:+.3} m  θ {:+.3} rad",
-            words.odometry, pose.x_m, pose.y_m, pose.theta_rad
+            words.rflex().odometry,
+            pose.x_m,
+            pose.y_m,
+            pose.theta_rad
         ));
     });
     Plot::new("battery-trend").height(160.0).x_axis_label("s").y_axis_label("V").allow_scroll(false).show(ui, |plot| {

@@ -125,7 +125,7 @@ fn confirming(ui: &mut egui::Ui, pending: &PendingConfirm, language: Language, a
     if differences.is_empty() {
         ui.label(words.servo().already_identical);
     } else {
-        ui.label(format!("{} {}", differences.len(), words.differences));
+        ui.label(format!("{} {}", differences.len(), words.servo().differences));
         let row_height = ui.text_style_height(&egui::TextStyle::Monospace);
         let height = (ui.available_height() * 0.5).max(row_height * 4.0);
         rows::list(ui, "differences", row_height, differences.len(), height, |ui, index| {

@@ -7,6 +7,16 @@ use crate::ui::i18n::{Language, Strings};
 /// The servo board's own captions.
 #[derive(Debug)]
 pub struct ServoCaptions {
+    /// A rig joint's offset.
+    pub offset_mm: &'static str,
+    /// "Table".
+    pub table: &'static str,
+    /// "difference(s) between the project and the board:".
+    pub differences: &'static str,
+    /// "the board refused to run the macro: upload the project first".
+    pub msg_macro_refused: &'static str,
+    /// "Hold".
+    pub hold: &'static str,
     /// "Upload anyway".
     pub upload_anyway: &'static str,
     /// Hover text of "Upload anyway".
@@ -184,6 +194,11 @@ pub struct ServoCaptions {
 }
 
 const ENGLISH: ServoCaptions = ServoCaptions {
+    offset_mm: "Offset x, y, z (mm)",
+    table: "Table",
+    differences: "difference(s) between the project and the board:",
+    msg_macro_refused: "the board refused to run the macro: upload the project first",
+    hold: "Hold",
     upload_anyway: "Upload anyway",
     upload_anyway_hint: "Restore it exactly as it is (e.g. a backup of a board another tool wrote). The board is still compared first, backed up, and verified after writing.",
     free_memory: "Free memory",
@@ -274,6 +289,11 @@ const ENGLISH: ServoCaptions = ServoCaptions {
 };
 
 const TRADITIONAL_CHINESE: ServoCaptions = ServoCaptions {
+    offset_mm: "位移 x, y, z（mm）",
+    table: "對應表",
+    differences: "項專案與控制板的差異：",
+    msg_macro_refused: "控制板拒絕執行巨集：請先上傳專案",
+    hold: "鎖定",
     upload_anyway: "仍要上傳",
     upload_anyway_hint: "照原樣還原（例如其他工具寫入的控制板備份）。仍會先比較、備份控制板，寫入後再驗證。",
     free_memory: "可用記憶體",

@@ -61,7 +61,7 @@ impl JoystickPanel {
             ui.heading(words.joystick);
             if ui.button(words.servo().add_table).clicked() {
                 let id = next_free_id(project.joystick_tables.iter().map(|t| t.id));
-                let table = JoystickTable { id, caption: format!("{} {id}", words.table), buttons: Vec::new() };
+                let table = JoystickTable { id, caption: format!("{} {id}", words.servo().table), buttons: Vec::new() };
                 actions.push(Action::Edit { edit: Edit::AddTable(table), coalesce: None });
                 self.selected = project.joystick_tables.len();
             }
@@ -134,7 +134,7 @@ impl JoystickPanel {
         let table = &project.joystick_tables[index];
         let set = |table: JoystickTable, key: Option<String>| set_table(index, table, key);
         ui.horizontal(|ui| {
-            let label = ui.label(format!("{} {}", words.table, table.id));
+            let label = ui.label(format!("{} {}", words.servo().table, table.id));
             let mut caption = table.caption.clone();
             if ui.text_edit_singleline(&mut caption).labelled_by(label.id).changed() {
                 actions

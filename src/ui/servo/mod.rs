@@ -441,7 +441,7 @@ impl FamilyUi for ServoUi {
             ServoNotice::Button { button_id, event } => self.button(shell, button_id, event),
             ServoNotice::SendFailed(error) => shell.report(words::send_failed(shell.language, &error), true),
             ServoNotice::RequestFailed(error) => shell.report(error.worded(shell.language), true),
-            ServoNotice::MacroRefused => shell.report(shell.words().msg_macro_refused, true),
+            ServoNotice::MacroRefused => shell.report(shell.words().servo().msg_macro_refused, true),
             // The link takes these itself.
             ServoNotice::Log(_) | ServoNotice::Disconnected(_) => {}
         }

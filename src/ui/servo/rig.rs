@@ -28,7 +28,7 @@ pub fn table(ui: &mut egui::Ui, project: &ServoProject, height: f32, words: &Str
         words.servo_id,
         words.servo().in_rig,
         words.servo().mounted_on,
-        words.offset_mm,
+        words.servo().offset_mm,
         words.axis,
         words.reversed,
         words.servo().straight_at,

@@ -128,7 +128,7 @@ impl ServoPanel {
             }
             if let Some(state) = view.readback.and_then(|servos| servos.get(&servo.id)) {
                 let mut hold = state.is_hold;
-                if ui.checkbox(&mut hold, words.hold).changed() {
+                if ui.checkbox(&mut hold, words.servo().hold).changed() {
                     actions.push(Action::family(ServoAction::SetHold { servo_id: servo.id, hold }));
                 }
                 if view.polling {
