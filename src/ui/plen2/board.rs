@@ -6,6 +6,7 @@ use super::Plen2Result;
 use crate::device::Phase;
 use crate::project::plen2::{Motion, Plen2Project, SLOTS};
 use crate::ui::action::{Action, Export, FileRequest, PROJECT_FILE};
+use crate::ui::i18n::Worded;
 use crate::ui::i18n::{Language, Strings};
 use crate::ui::plen2::action::{Plen2Action, Plen2Intent};
 use crate::ui::plen2::captions::Plen2Words;
@@ -151,7 +152,7 @@ pub fn robot_panel(ui: &mut egui::Ui, view: &RobotView<'_>, language: Language, 
     }
     if let Some(operation) = view.operation {
         if let Some(progress) = &operation.progress {
-            let item = language.plen2_item(&progress.item);
+            let item = progress.item.worded(language);
             ui.add(egui::ProgressBar::new(operation.fraction()).show_percentage().text(format!(
                 "{} {}/{} {item}",
                 phase_word(progress.phase, words),

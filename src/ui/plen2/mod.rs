@@ -395,7 +395,7 @@ impl Plen2Ui {
 
     /// The item a step works on, in words.
     pub fn item_words(language: Language, item: &Plen2Item) -> String {
-        language.plen2_item(item)
+        item.worded(language)
     }
 }
 

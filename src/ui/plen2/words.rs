@@ -1,7 +1,7 @@
 //! The PLEN2's operations in words: why one failed, what the robot panel
 //! says after one — in the interface's language.
 
-use crate::device::plen2::{Plen2OpError, SlotResult};
+use crate::device::plen2::{Plen2Item, Plen2OpError, ReplyError, SlotResult};
 use crate::ui::i18n::{Language, Worded};
 
 use super::{Plen2Failure, Plen2Result};
@@ -11,13 +11,11 @@ impl Plen2Failure {
     /// Why a PLEN2 operation failed, in `language`.
     pub fn words(&self, language: Language) -> String {
         match self {
-            Self::Op(error) => language.plen2_op_error(error),
-            Self::Upload(failure) => language.upload_failure(
-                failure,
-                |error| language.plen2_op_error(error),
-                |item| language.plen2_item(item),
-            ),
-            Self::Reply(error) => language.reply_error(error),
+            Self::Op(error) => error.worded(language),
+            Self::Upload(failure) => {
+                language.upload_failure(failure, |error| error.worded(language), |item| item.worded(language))
+            }
+            Self::Reply(error) => error.worded(language),
             Self::BackupFolder { folder, error } => language.backup_folder_failed(folder, error),
             Self::Thread(error) => language.no_worker(error),
         }
@@ -49,7 +47,7 @@ impl Plen2Result {
             }
             Plen2Result::JointsWritten(count) => (format!("{}: {count}", words.plen2().write_joints), false),
             Plen2Result::Invalid(problems) => {
-                (language.plen2_op_error(&Plen2OpError::Invalid { problems: problems.clone() }), true)
+                (Plen2OpError::Invalid { problems: problems.clone() }.worded(language), true)
             }
             Plen2Result::ReadIntoProject => (words.read_done.to_string(), false),
             Plen2Result::Exported(path) => (format!("{} {}", words.saved_board_to, path.display()), false),
@@ -99,5 +97,92 @@ pub(crate) fn pacing_name(language: Language, mode: crate::device::plen2::Pacing
         (Language::TraditionalChinese, P::Fast) => "快速",
         (Language::TraditionalChinese, P::Adaptive) => "自動調整",
         (Language::TraditionalChinese, P::Safe) => "安全（官方）",
+    }
+}
+
+/// What a PLEN2 operation step works on, in this language.
+impl Worded for Plen2Item {
+    fn worded(&self, language: Language) -> String {
+        let item = self;
+        if language == Language::English {
+            return item.to_string();
+        }
+        match item {
+            Plen2Item::Version => "韌體版本".into(),
+            Plen2Item::JointSettings => "關節設定".into(),
+            Plen2Item::Joint(joint) => format!("關節 {}", joint.name()),
+            Plen2Item::Slot { slot, name } if name.is_empty() => format!("槽位 {slot}"),
+            Plen2Item::Slot { slot, name } => format!("槽位 {slot} {name:?}"),
+            Plen2Item::Link => "連線".into(),
+            Plen2Item::Erased { slot, remaining } => {
+                let mut text = format!(
+                    "槽位 {slot} 從未寫入：機器人會先送出整個未寫入的記憶體（約 300 KB），之後才讀取下一個指令"
+                );
+                if let Some(left) = remaining {
+                    text.push_str(&format!("；在這條連線上約還需 {} 秒", left.as_secs().max(1)));
+                }
+                text
+            }
+            Plen2Item::Pacing => "傳送節奏".into(),
+            Plen2Item::FactoryReset => "出廠關節設定".into(),
+            Plen2Item::Done => "完成".into(),
+        }
+    }
+}
+
+/// Why a PLEN2 did not answer, in this language, with what to try.
+impl Worded for ReplyError {
+    fn worded(&self, language: Language) -> String {
+        let error = self;
+        match (language, error) {
+            (Language::English, _) => error.to_string(),
+            (_, ReplyError::Timeout { timeout_ms }) => {
+                format!("{timeout_ms} 毫秒內沒有回應。機器人是否已開機、鮑率 2,000,000、DTR 已啟用？")
+            }
+            (_, ReplyError::NotThisProtocol { bytes }) => {
+                format!("裝置有回應（{bytes} 位元組），但不是 PLEN2 的協定。它是 PLEN2 嗎？")
+            }
+            (_, ReplyError::Garbage { bytes }) => format!("回應是 {bytes} 位元組的無效資料"),
+            (_, ReplyError::Disconnected) => "與機器人的連線已中斷".into(),
+        }
+    }
+}
+
+/// Why a PLEN2 operation step failed, in this language.
+impl Worded for Plen2OpError {
+    fn worded(&self, language: Language) -> String {
+        let error = self;
+        if language == Language::English {
+            return error.to_string();
+        }
+        match error {
+            Plen2OpError::Reply { item, source } => format!("{}：{}", item.worded(language), source.worded(language)),
+            Plen2OpError::Unreadable { item } => {
+                format!("{}：裝置有回應，但不是 PLEN2 的協定。它是韌體 1.4.x 的 PLEN2 嗎？", item.worded(language))
+            }
+            Plen2OpError::Invalid { problems } => {
+                let mut list: Vec<String> = problems
+                    .iter()
+                    .take(20)
+                    .map(|p| format!("{}：{}", language.location(&p.location), language.problem(&p.kind)))
+                    .collect();
+                let more = problems.errors() + problems.warnings() - list.len();
+                if more > 0 {
+                    list.push(format!("……還有 {more} 個（servo-studio check 會全部列出）"));
+                }
+                format!("專案有 {} 個錯誤，沒有寫入任何資料：\n{}", problems.errors(), list.join("\n"))
+            }
+            Plen2OpError::Backup(error) => format!("備份失敗，因此沒有寫入任何資料：{}", language.save_error(error)),
+            Plen2OpError::Unstorable(error) => {
+                use crate::device::plen2::NotStorable;
+                let why = match error.why {
+                    NotStorable::Frames(count) => format!("它有 {count} 個影格，PLEN2 的動作只能有 1 到 20 個"),
+                    NotStorable::Slot => "PLEN2 只有 0 到 89 號槽位".to_string(),
+                    NotStorable::Name => "名稱最多 20 個可列印的 ASCII 字元".to_string(),
+                };
+                format!("動作 {} {:?} 無法存進 PLEN2，沒有寫入任何資料：{why}", error.slot, error.name)
+            }
+            Plen2OpError::Cancelled => "已取消".into(),
+        }
     }
 }
