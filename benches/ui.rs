@@ -608,7 +608,7 @@ fn view_costs() {
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     if let Some(at) = args.iter().position(|arg| arg == "--cold-start") {
-        let family = Family::ALL.into_iter().find(|f| f.tag() == args[at + 1]).unwrap();
+        let family = Family::all().iter().copied().find(|f| f.tag() == args[at + 1]).unwrap();
         cold_start_child(family, Path::new(&args[at + 2]));
         return;
     }

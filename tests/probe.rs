@@ -53,7 +53,7 @@ fn settle<D: Driver>(sim: &mut D, until: Instant) {
 /// Every family's probe, to a sim, as the doctor sends them (each family's in turn).
 fn send_every_probe<D: Driver>(sim: &mut D, t0: Instant) -> Instant {
     let mut now = t0;
-    for family in Family::ALL {
+    for &family in Family::all() {
         for request in requests(family) {
             sim.handle_input(now, &request);
             now += Duration::from_millis(200);

@@ -388,7 +388,7 @@ impl Default for ProbeOptions {
 /// (`device::line_settings`), or every family at the one given.
 pub fn plan(baud: Option<u32>) -> Vec<(u32, Vec<Family>)> {
     if let Some(baud) = baud {
-        return vec![(baud, Family::ALL.to_vec())];
+        return vec![(baud, Family::all().to_vec())];
     }
     let mut groups: Vec<(u32, Vec<Family>)> = Vec::new();
     // The PLEN2 first: USB CDC answers at any rate, and it answers fastest.

@@ -1,7 +1,8 @@
 //! Typed edits of a project: everything the editor changes goes through one of
 //! these, so that undo, autosave and validation see every change in one place.
 
-use super::document::{Family, Project};
+use super::document::Project;
+use super::family::Family;
 use super::servo::{Action, JoystickTable, Macro, Servo, ServoProject};
 
 /// One change to a project.

@@ -7,7 +7,8 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use super::document::{Family, Project};
+use super::document::Project;
+use super::family::Family;
 use super::plen2::Plen2Project;
 use super::rflex::RflexProject;
 use super::servo::ServoProject;

@@ -6,7 +6,8 @@
 
 use std::path::{Path, PathBuf};
 
-use super::document::{Family, Project};
+use super::document::Project;
+use super::family::Family;
 use super::file::{LoadError, Loaded, parse};
 use super::motion_json::{self, MotionJsonError};
 use super::plen2::Plen2Project;

@@ -6,6 +6,7 @@ mod bounded;
 mod document;
 mod easing;
 mod edit;
+mod family;
 mod file;
 pub mod gamepad;
 mod history;
@@ -20,9 +21,10 @@ mod trajectory;
 mod validate;
 
 pub use bounded::MAX_LIST_LEN;
-pub use document::{Family, Project};
+pub use document::Project;
 pub use easing::Easing;
 pub use edit::{Edit, next_free_id};
+pub use family::{Family, Registered};
 pub use file::{
     CURRENT_VERSION, FORMAT_TAG, LoadError, Loaded, MAX_UNKNOWN_KEYS_KEPT, SaveError, atomic_write, from_json, load,
     output_path, parse, read, save, to_json,

@@ -174,3 +174,8 @@ pub struct PlayEntry {
     /// Total plays, 1..=255; 0 = forever.
     pub plays: u8,
 }
+
+// The registry of families: the PLEN2, where their section of the project lives.
+inventory::submit! {
+    super::family::Registered { family: super::family::Family::Plen2, rank: 1 }
+}

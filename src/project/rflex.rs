@@ -106,3 +106,8 @@ impl Default for DriveSettings {
         Self { max_speed_m_per_s: 0.5, max_turn_rad_per_s: 1.0, accel_m_per_s2: 0.5, sonar_on_connect: true }
     }
 }
+
+// The registry of families: rFLEX bases, where their section of the project lives.
+inventory::submit! {
+    super::family::Registered { family: super::family::Family::Rflex, rank: 2 }
+}

@@ -317,3 +317,8 @@ impl ServoProject {
         self.joystick_tables.iter().find(|table| table.id == table_id)
     }
 }
+
+// The registry of families: servo controller boards, where their section of the project lives.
+inventory::submit! {
+    super::family::Registered { family: super::family::Family::Servo, rank: 0 }
+}

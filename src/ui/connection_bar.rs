@@ -123,7 +123,7 @@ impl ConnectionBar {
         };
         let picked = egui::ComboBox::from_id_salt("family-picker").selected_text(shown).show_ui(ui, |ui| {
             ui.selectable_value(&mut family, None, words.auto_family);
-            for option in Family::ALL {
+            for &option in Family::all() {
                 ui.selectable_value(&mut family, Some(option), language.family(option));
             }
         });

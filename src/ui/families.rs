@@ -1,33 +1,33 @@
 //! The families the editor knows, each with its side of the editor
-//! ([`FamilyUi`]): the one place in the ui that lists them. The shell reaches
-//! a family through this list only; tests and a family's own code reach their
+//! ([`FamilyUi`]), gathered from the registry each family adds itself to in
+//! its own folder ([`Registered`]): no file lists them. The shell reaches a
+//! family through this list only; tests and a family's own code reach their
 //! concrete type with [`Families::of`].
 
 use std::any::Any;
 
 use crate::project::Family;
 use crate::ui::family::FamilyUi;
-use crate::ui::plen2::Plen2Ui;
-use crate::ui::rflex::RflexUi;
-use crate::ui::servo::ServoUi;
 
 /// Each family's side of the editor, in menu order.
 pub struct Families(Vec<Box<dyn FamilyUi>>);
 
-/// Each family's side of the editor as it starts: the one list of them.
-fn uis() -> Vec<Box<dyn FamilyUi>> {
-    vec![
-        Box::<ServoUi>::default(),
-        Box::<Plen2Ui>::default(),
-        Box::<RflexUi>::default(),
-        #[cfg(test)]
-        Box::<crate::ui::echo::EchoUi>::default(),
-    ]
+/// A family's side of the editor in the registry: each family adds itself
+/// (`inventory::submit!`) in its own folder, so that no file lists them all.
+pub struct Registered {
+    /// Its side of the editor as it starts.
+    pub make: fn() -> Box<dyn FamilyUi>,
 }
+
+inventory::collect!(Registered);
 
 impl Default for Families {
     fn default() -> Self {
-        Self(uis())
+        let mut uis: Vec<Box<dyn FamilyUi>> =
+            inventory::iter::<Registered>.into_iter().map(|entry| (entry.make)()).collect();
+        // In menu order, as the families are ranked.
+        uis.sort_by_key(|family_ui| Family::all().iter().position(|family| *family == family_ui.family()));
+        Self(uis)
     }
 }
 
@@ -38,7 +38,7 @@ impl std::fmt::Debug for Families {
 }
 
 impl Families {
-    /// Where `family` is in the list (every family of [`Family::ALL`] has a
+    /// Where `family` is in the list (every family of [`Family::all`] has a
     /// side: a test holds it; any other falls back to the first, the servo board's).
     fn place(&self, family: Family) -> usize {
         self.0.iter().position(|family_ui| family_ui.family() == family).unwrap_or_default()
@@ -85,10 +85,11 @@ mod tests {
     fn each_family_has_its_own_side_in_menu_order() {
         let families = Families::default();
         let listed: Vec<Family> = families.0.iter().map(|family_ui| family_ui.family()).collect();
-        assert_eq!(listed, Family::ALL, "one side per family, in menu order");
-        for family in Family::ALL {
+        assert_eq!(listed, Family::all(), "one side per family, in menu order");
+        for &family in Family::all() {
             assert_eq!(families.get(family).family(), family);
         }
-        assert!(families.of::<ServoUi>().is_some() && families.of::<RflexUi>().is_some());
+        let servo = families.of::<crate::ui::servo::ServoUi>();
+        assert!(servo.is_some() && families.of::<crate::ui::rflex::RflexUi>().is_some());
     }
 }

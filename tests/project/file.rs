@@ -185,7 +185,7 @@ fn validation_follows_the_documents_family() {
 
 #[test]
 fn a_family_section_is_written_for_an_empty_project_of_that_family() {
-    for family in Family::ALL {
+    for &family in Family::all() {
         let text = project::to_json(&Project::empty(family));
         assert!(text.contains(&format!("\"family\": \"{}\"", family.tag())), "{text}");
         assert!(text.contains(&format!("\"{}\": {{", family.tag())), "{text}");

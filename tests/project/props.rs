@@ -186,7 +186,7 @@ fn mapping() -> impl Strategy<Value = Mapping> {
 }
 
 fn project_strategy() -> impl Strategy<Value = Project> {
-    let family = prop::sample::select(Family::ALL.to_vec());
+    let family = prop::sample::select(Family::all().to_vec());
     let gamepad =
         (mapping(), mapping(), mapping()).prop_map(|(servo, plen2, rflex)| GamepadMappings { servo, plen2, rflex });
     (family, servo_section(), plen2_section(), rflex_section(), gamepad)

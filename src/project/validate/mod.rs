@@ -4,7 +4,8 @@ use std::fmt;
 
 pub use location::Location;
 
-use super::document::{Family, Project};
+use super::document::Project;
+use super::family::Family;
 use crate::protocol::servo::STR32_LEN;
 
 mod gamepad;

@@ -396,10 +396,10 @@ impl StudioApp {
             tab: self.window.tab.name().to_string(),
             family: self.document.project.family,
             live_speed: self.live_speed,
-            layouts: Family::ALL.iter().map(|family| self.layout(*family)).collect(),
+            layouts: Family::all().iter().map(|family| self.layout(*family)).collect(),
             ..Remembered::default()
         };
-        for family in Family::ALL {
+        for &family in Family::all() {
             self.family_ui(family).remember(&mut remembered);
         }
         remembered
@@ -414,7 +414,7 @@ impl StudioApp {
         self.files.recent = remembered.recent;
         self.language = remembered.language;
         self.live_speed = remembered.live_speed;
-        for (family, layout) in Family::ALL.into_iter().zip(remembered.layouts) {
+        for (&family, layout) in Family::all().iter().zip(remembered.layouts) {
             *self.families.get_mut(family).layout_mut() = layout;
         }
         if !keep_family {

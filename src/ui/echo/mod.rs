@@ -1,7 +1,8 @@
 //! A fourth family, for the tests only: the "echo" board — one servo, moved
 //! live, that answers every move, with its own emulator. It proves the seam:
-//! it plugs in by touching the four shared files `docs/ARCHITECTURE.md`
-//! names (`tests::the_echo_family_touches_only_the_shared_files_named`).
+//! it plugs in by touching only the shared files `docs/ARCHITECTURE.md`
+//! names (`tests::the_echo_family_touches_only_the_shared_files_named`): it
+//! declares its `Family` constant and adds itself to the registries here.
 
 mod board;
 mod link;
@@ -16,6 +17,20 @@ use crate::ui::i18n::Strings;
 use crate::ui::layout::Layout;
 use crate::ui::shell::{Shell, ShellView};
 use link::{EchoHandle, Echoed, EmulatedEcho};
+
+#[allow(non_upper_case_globals)]
+impl Family {
+    /// The test-only echo board: one servo, moved live, that answers every move.
+    pub const Echo: Self = Self::named("echo", "Echo board");
+}
+
+// The registries: the family, after the three real ones, and its side of the editor.
+inventory::submit! {
+    crate::project::Registered { family: Family::Echo, rank: 3 }
+}
+inventory::submit! {
+    crate::ui::families::Registered { make: || Box::<EchoUi>::default() }
+}
 
 #[allow(non_upper_case_globals)]
 impl Tab {

@@ -590,3 +590,8 @@ impl FamilyUi for Plen2Ui {
         self.summary(shell.language)
     }
 }
+
+// The registry of the families' sides of the editor.
+inventory::submit! {
+    crate::ui::families::Registered { make: || Box::<Plen2Ui>::default() }
+}

@@ -285,3 +285,8 @@ fn robot_name(robot: Robot) -> &'static str {
         Robot::Custom { .. } => "custom",
     }
 }
+
+// The registry of the families' sides of the editor.
+inventory::submit! {
+    crate::ui::families::Registered { make: || Box::<RflexUi>::default() }
+}

@@ -455,3 +455,8 @@ impl FamilyUi for ServoUi {
 fn homes(project: &ServoProject) -> BTreeMap<u8, i16> {
     project.servos.iter().map(|servo| (servo.id, servo.home_deg)).collect()
 }
+
+// The registry of the families' sides of the editor.
+inventory::submit! {
+    crate::ui::families::Registered { make: || Box::<ServoUi>::default() }
+}
