@@ -158,6 +158,24 @@ impl Language {
         Some(text)
     }
 
+    /// A project's problems as lines ("where：what", in this language): the
+    /// first twenty, then how many more there are (an upload refused says them).
+    pub fn problem_lines(self, problems: &crate::project::Problems) -> Vec<String> {
+        let mut list: Vec<String> = problems
+            .iter()
+            .take(20)
+            .map(|p| format!("{}：{}", self.location(&p.location), self.problem(&p.kind)))
+            .collect();
+        let more = problems.errors() + problems.warnings() - list.len();
+        if more > 0 {
+            list.push(match self {
+                Self::English => format!("… and {more} more (servo-studio check lists them all)"),
+                Self::TraditionalChinese => format!("……還有 {more} 個（servo-studio check 會全部列出）"),
+            });
+        }
+        list
+    }
+
     /// Where a problem is, in this language.
     pub fn location(self, location: &crate::project::Location) -> String {
         use crate::project::Location as L;

@@ -161,15 +161,7 @@ impl Worded for Plen2OpError {
                 format!("{}：裝置有回應，但不是 PLEN2 的協定。它是韌體 1.4.x 的 PLEN2 嗎？", item.worded(language))
             }
             Plen2OpError::Invalid { problems } => {
-                let mut list: Vec<String> = problems
-                    .iter()
-                    .take(20)
-                    .map(|p| format!("{}：{}", language.location(&p.location), language.problem(&p.kind)))
-                    .collect();
-                let more = problems.errors() + problems.warnings() - list.len();
-                if more > 0 {
-                    list.push(format!("……還有 {more} 個（servo-studio check 會全部列出）"));
-                }
+                let list = language.problem_lines(problems);
                 format!("專案有 {} 個錯誤，沒有寫入任何資料：\n{}", problems.errors(), list.join("\n"))
             }
             Plen2OpError::Backup(error) => format!("備份失敗，因此沒有寫入任何資料：{}", language.save_error(error)),

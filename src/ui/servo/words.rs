@@ -107,15 +107,7 @@ impl Worded for crate::device::servo::OpError {
             }
             O::ReadFailed { item } => format!("{}：控制板回報讀取失敗", item.worded(language)),
             O::Invalid { problems } => {
-                let mut list: Vec<String> = problems
-                    .iter()
-                    .take(20)
-                    .map(|p| format!("{}：{}", language.location(&p.location), language.problem(&p.kind)))
-                    .collect();
-                let more = problems.errors() + problems.warnings() - list.len();
-                if more > 0 {
-                    list.push(format!("……還有 {more} 個（servo-studio check 會全部列出）"));
-                }
+                let list = language.problem_lines(problems);
                 format!(
                     "專案有 {} 個錯誤，沒有寫入任何資料：\n{}\n請修正，或用「仍要上傳」（命令列 `import --force`）照原樣還原",
                     problems.errors(),
