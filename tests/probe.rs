@@ -9,6 +9,7 @@ use std::time::{Duration, Instant};
 
 use crate::common::{self, Chatter, peer, sim};
 use servo_studio::device::probe::{Identity, ProbeDriver, ProbeOptions, plan, probe_port, requests};
+use servo_studio::device::{plen2, rflex, servo};
 use servo_studio::link::{Driver, PortName, system_opener};
 use servo_studio::project::Family;
 use servo_studio::sim::{Plen2Sim, Plen2Timing, RflexSim, RflexSimConfig, ServoSim, SimConfig};
@@ -108,18 +109,19 @@ fn no_probe_request_changes_any_emulators_state() {
 fn each_emulator_is_found_as_its_own_family() {
     let servo = sim(&["--protocol", "servo"]);
     let found = probe(&servo.port).found.expect("the servo board answers");
-    assert!(matches!(found.identity, Identity::Servo { project_id: Some(_), memory: Some((_, Some(_))) }), "{found:?}");
+    let said = found.identity.said::<servo::Said>().expect("a servo board's identity");
+    assert!(matches!(said, servo::Said { project_id: Some(_), memory: Some((_, Some(_))) }), "{found:?}");
     assert_eq!(found.baud, 115_200);
 
     let plen2 = sim(&["--protocol", "plen2"]);
     let found = probe(&plen2.port).found.expect("the PLEN2 answers");
-    assert_eq!(found.identity, Identity::Plen2 { version: "PLEN2 Cytisus 1.4.2".into() });
+    assert_eq!(found.identity, Identity::new(plen2::Said { version: "PLEN2 Cytisus 1.4.2".into() }));
     assert_eq!(found.baud, 2_000_000);
     assert!(found.link.latency.is_some() && found.link.replies == 2, "{:?}", found.link);
 
     let rflex = sim(&["--protocol", "rflex"]);
     let found = probe(&rflex.port).found.expect("the base answers");
-    assert!(matches!(found.identity, Identity::Rflex { braked: true, .. }), "{found:?}");
+    assert!(matches!(found.identity.said::<rflex::Said>(), Some(rflex::Said { braked: true, .. })), "{found:?}");
     assert_eq!(found.baud, 115_200);
     assert!(plan(None).iter().map(|(_, families)| families.len()).sum::<usize>() == 3);
 }
@@ -188,6 +190,6 @@ fn a_late_answer_to_an_earlier_probe_still_names_its_family() {
     let reply = servo_studio::protocol::servo::Message::QueryProjectIdResponse { project_id: 7 }.encode().unwrap();
     driver.handle_input(t0 + Duration::from_millis(150), &reply);
     let result = driver.poll_event().unwrap();
-    assert_eq!(result.found.unwrap().identity, Identity::Servo { project_id: Some(7), memory: None });
+    assert_eq!(result.found.unwrap().identity, Identity::new(servo::Said { project_id: Some(7), memory: None }));
     assert!(driver.wants_close());
 }

@@ -6,32 +6,15 @@
 //! needs, the family-neutral packet-log entry, and what long operations share
 //! (cancel, backups, what a failed upload left).
 
+pub mod family;
 mod operation;
 pub mod plen2;
 pub mod probe;
 pub mod rflex;
 pub mod servo;
 
+pub use family::line_settings;
 pub use operation::{Cancel, Left, Phase, Progress, Stage, UploadFailure, UploadSteps, backup_path, upload};
-
-use std::time::Duration;
-
-use crate::link::LineSettings;
-use crate::project::Family;
-
-/// How the line to a board of `family` is set up: the family's default line
-/// rate, DTR and RTS asserted on open, and the gap its firmware needs between writes.
-pub fn line_settings(family: Family) -> LineSettings {
-    match family {
-        Family::Servo => LineSettings::new(servo::DEFAULT_BAUD),
-        // plen2.md §1: USB CDC at 2,000,000 baud; DTR must be asserted.
-        Family::Plen2 => LineSettings::new(2_000_000),
-        // rflex.md §1: 115200 baud; the drivers pause about 1 ms after each write.
-        Family::Rflex => LineSettings { min_write_gap: Duration::from_millis(1), ..LineSettings::new(115_200) },
-        // Any other family: a plain line at the usual rate (its link may ask for more).
-        _ => LineSettings::new(115_200),
-    }
-}
 
 /// Which way a logged packet went.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

@@ -1,6 +1,7 @@
 //! The connection doctor: which family answers on a port, at which baud,
 //! what it says of itself, and how its link delivers.
 //!
+//! Each family registers its side ([`Recogniser`], in `device/<family>/doctor.rs`).
 //! Only requests that change nothing on any of the three families go out: a
 //! servo board's project-id and memory queries, a PLEN2's `<VI` and `<JS`,
 //! an rFLEX base's system-status request. Each is harmless to the other two:
@@ -10,96 +11,119 @@
 //! ([`requests`] is tested for it, and against the three emulators).
 //!
 //! [`ProbeDriver`] is sans-IO (a [`crate::link::Driver`]): every byte that
-//! comes is offered to all three families' readers, so a slow answer to an
+//! comes is offered to every family's reader, so a slow answer to an
 //! earlier probe is still recognised. The same measuring the PLEN2's adaptive
 //! pacing does ([`super::plen2::Pacer`]) gives the link's latency, clumps and
 //! rate. [`probe_port`] runs it over a real port, at each family's line rate.
 
+use std::any::Any;
 use std::collections::VecDeque;
+use std::fmt;
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
+use super::family::doctored;
 use super::plen2::{LinkReport, Pacer, Pacing, PacingMode};
 use crate::link::{self, Connection, LineSettings, LinkError, LinkEvent, Opener, PortName, no_waker};
 use crate::project::Family;
-use crate::protocol::plen2::{Command as Plen2Command, ReplyEvent, ReplyKind, ReplyReader, decode_version};
-use crate::protocol::{rflex, servo};
 
-/// The requests that ask `family` who it is, in the order they go out.
+/// The requests that ask `family` who it is, in the order they go out (none
+/// for a family the doctor does not ask).
 pub fn requests(family: Family) -> Vec<Vec<u8>> {
-    match family {
-        Family::Servo => [servo::Message::QueryProjectIdRequest, servo::Message::QueryMemorySizeRequest]
-            .iter()
-            .filter_map(|message| message.encode().ok())
-            .collect(),
-        Family::Plen2 => [Plen2Command::GetVersion, Plen2Command::GetJointSettings]
-            .iter()
-            .map(|command| command.to_ascii().into_bytes())
-            .collect(),
-        Family::Rflex => rflex::Command::SystemStatus.to_frame().to_bytes().into_iter().collect(),
-        // The doctor knows how to ask these three only.
-        _ => Vec::new(),
+    doctored()
+        .into_iter()
+        .find(|(asked, _)| *asked == family)
+        .map(|(_, doctor)| (doctor.recogniser)().requests())
+        .unwrap_or_default()
+}
+
+/// One family's side of the doctor, registered by the family
+/// ([`super::family::Doctor`]): the requests that ask it who it is, and a
+/// reader that recognises its replies in every byte that comes.
+pub trait Recogniser: Send + fmt::Debug {
+    /// The requests, in the order they go out; none changes anything on any family.
+    fn requests(&self) -> Vec<Vec<u8>>;
+    /// One of its requests goes out (for a reader that must know what it asked).
+    fn asking(&mut self, _request: &[u8]) {}
+    /// Bytes came (they may be any family's, or noise): what they said.
+    fn read(&mut self, bytes: &[u8]) -> Vec<Heard>;
+    /// The request was given up: forget a reply it began.
+    fn abandon(&mut self) {}
+}
+
+/// What a family's reader heard.
+#[derive(Debug)]
+pub enum Heard {
+    /// The device said who it is.
+    Said(Identity),
+    /// A request was answered with nothing more to tell (read for its timing).
+    Answered,
+}
+
+/// What a device said of itself, in its family's own terms: each family
+/// defines what its devices say (`device::servo::Said`, …) and words it.
+pub trait Said: Any + Send + Sync + fmt::Debug + fmt::Display + SameSaid {
+    /// The family it belongs to.
+    fn family(&self) -> Family;
+    /// What it says now merged with what it said before (a servo board
+    /// answers two questions); `None`: the later answer stands alone.
+    fn merged(&self, _earlier: &dyn Any) -> Option<Arc<dyn Said>> {
+        None
+    }
+}
+
+/// Equality of what was said, across the families' types.
+pub trait SameSaid {
+    /// Whether `other` is the same type and value.
+    fn same(&self, other: &dyn Any) -> bool;
+}
+
+impl<T: PartialEq + 'static> SameSaid for T {
+    fn same(&self, other: &dyn Any) -> bool {
+        other.downcast_ref::<T>().is_some_and(|other| other == self)
     }
 }
 
 /// What a device said of itself.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub enum Identity {
-    /// A servo board: its project id (0 = none) and memory, when it said.
-    Servo {
-        /// The stored project's id.
-        project_id: Option<i32>,
-        /// Free and total memory, bytes.
-        memory: Option<(i32, Option<i32>)>,
-    },
-    /// A PLEN2: "PLEN2 Cytisus 1.4.2".
-    Plen2 {
-        /// Device, codename and version.
-        version: String,
-    },
-    /// An rFLEX base: its battery (raw, before the robot's offset) and brake.
-    Rflex {
-        /// Volts × 100, raw.
-        voltage_raw: u32,
-        /// Whether the brake is set.
-        braked: bool,
-    },
-}
+#[derive(Clone, Debug)]
+pub struct Identity(Arc<dyn Said>);
 
 impl Identity {
+    /// What a device of the family that defines `said` said.
+    pub fn new(said: impl Said) -> Self {
+        Self(Arc::new(said))
+    }
+
     /// The family it belongs to.
     pub fn family(&self) -> Family {
-        match self {
-            Self::Servo { .. } => Family::Servo,
-            Self::Plen2 { .. } => Family::Plen2,
-            Self::Rflex { .. } => Family::Rflex,
-        }
+        self.0.family()
+    }
+
+    /// What it said, as its family's type (`None` for another family's).
+    pub fn said<T: Said>(&self) -> Option<&T> {
+        let said: &dyn Any = &*self.0;
+        said.downcast_ref()
+    }
+
+    /// This, merged with what the same device said `earlier`.
+    fn after(self, earlier: &Self) -> Self {
+        let earlier: &dyn Any = &*earlier.0;
+        self.0.merged(earlier).map_or(self, Self)
     }
 }
 
-impl std::fmt::Display for Identity {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            Self::Servo { project_id, memory } => {
-                write!(f, "servo board")?;
-                match project_id {
-                    Some(0) => write!(f, ", no project")?,
-                    Some(id) => write!(f, ", project {id}")?,
-                    None => {}
-                }
-                match memory {
-                    Some((free, Some(total))) => write!(f, ", {free} of {total} bytes free"),
-                    Some((free, None)) => write!(f, ", {free} bytes free"),
-                    None => Ok(()),
-                }
-            }
-            Self::Plen2 { version } => write!(f, "{version}"),
-            Self::Rflex { voltage_raw, braked } => write!(
-                f,
-                "rFLEX base, battery {:.2} V raw, brake {}",
-                f64::from(*voltage_raw) / 100.0,
-                if *braked { "set" } else { "released" }
-            ),
-        }
+impl PartialEq for Identity {
+    fn eq(&self, other: &Self) -> bool {
+        let other: &dyn Any = &*other.0;
+        self.0.same(other)
+    }
+}
+
+impl Eq for Identity {}
+
+impl fmt::Display for Identity {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.0.fmt(f)
     }
 }
 
@@ -141,9 +165,8 @@ pub struct ProbeDriver {
     plan: VecDeque<Family>,
     asking: Option<Asking>,
     timeout: Duration,
-    servo: servo::FrameDecoder,
-    rflex: rflex::FrameDecoder,
-    plen2: ReplyReader,
+    /// Every asked family's reader: each reads every byte that comes.
+    readers: Vec<(Family, Box<dyn Recogniser>)>,
     meter: Pacer,
     identity: Option<Identity>,
     heard: usize,
@@ -160,14 +183,13 @@ impl ProbeDriver {
     /// Tries `families` in order at `baud`; each request is given `timeout`
     /// to begin its reply, and as long between two of its bytes.
     pub fn new(baud: u32, families: &[Family], timeout: Duration) -> Self {
+        let readers = doctored().into_iter().map(|(family, doctor)| (family, (doctor.recogniser)())).collect();
         let mut driver = Self {
             baud,
             plan: families.iter().copied().collect(),
             asking: None,
             timeout,
-            servo: servo::FrameDecoder::new(),
-            rflex: rflex::FrameDecoder::new(),
-            plen2: ReplyReader::new(),
+            readers,
             meter: Pacer::new(PacingMode::Adaptive, Pacing::default(), baud),
             identity: None,
             heard: 0,
@@ -194,13 +216,8 @@ impl ProbeDriver {
     }
 
     fn send(&mut self, family: Family, bytes: Vec<u8>) {
-        if family == Family::Plen2 {
-            let kind = if bytes == Plen2Command::GetVersion.to_ascii().as_bytes() {
-                ReplyKind::Version
-            } else {
-                ReplyKind::JointSettings
-            };
-            self.plen2.expect(kind);
+        if let Some((_, reader)) = self.readers.iter_mut().find(|(reader, _)| *reader == family) {
+            reader.asking(&bytes);
         }
         self.output.push_back(bytes);
     }
@@ -234,13 +251,10 @@ impl ProbeDriver {
     /// A reply of `family` was recognised as `identity` (merged with what it said before).
     fn recognised(&mut self, identity: Identity) {
         let family = identity.family();
-        let merged = match (self.identity.take(), identity) {
-            (
-                Some(Identity::Servo { project_id, memory }),
-                Identity::Servo { project_id: new_id, memory: new_memory },
-            ) => Identity::Servo { project_id: new_id.or(project_id), memory: new_memory.or(memory) },
-            (Some(earlier), _) if earlier.family() != family => earlier,
-            (_, identity) => identity,
+        let merged = match self.identity.take() {
+            Some(earlier) if earlier.family() != family => earlier,
+            Some(earlier) => identity.after(&earlier),
+            None => identity,
         };
         let asked = self.asking.as_ref().map(|asking| asking.family);
         self.identity = Some(merged);
@@ -252,50 +266,23 @@ impl ProbeDriver {
         }
     }
 
-    fn read_servo(&mut self, bytes: &[u8]) {
-        self.servo.push(bytes);
-        while let Some(event) = self.servo.poll() {
-            let servo::DecoderEvent::Frame(frame) = event else { continue };
-            match servo::Message::from_frame(&frame) {
-                Ok(servo::Message::QueryProjectIdResponse { project_id }) => {
-                    self.recognised(Identity::Servo { project_id: Some(project_id), memory: None });
-                }
-                Ok(servo::Message::QueryMemorySizeResponse { free_bytes, total_bytes }) => {
-                    self.recognised(Identity::Servo { project_id: None, memory: Some((free_bytes, total_bytes)) });
-                }
-                // Any whole frame with a right checksum is a servo board talking.
-                _ => self.recognised(Identity::Servo { project_id: None, memory: None }),
-            }
+    /// Every family's reader reads `bytes`; what they heard moves the probe on.
+    fn read(&mut self, bytes: &[u8]) {
+        let mut heard = Vec::new();
+        for (family, reader) in &mut self.readers {
+            heard.extend(reader.read(bytes).into_iter().map(|said| (*family, said)));
         }
-    }
-
-    fn read_rflex(&mut self, bytes: &[u8]) {
-        self.rflex.push(bytes);
-        while let Some(event) = self.rflex.poll() {
-            let rflex::DecoderEvent::Frame { frame, .. } = event else { continue };
-            if let Ok(rflex::Report::Status { voltage_raw, brake, .. }) = rflex::Report::from_frame(&frame) {
-                self.recognised(Identity::Rflex { voltage_raw, braked: brake != 0 });
+        for (family, said) in heard {
+            if self.result.is_some() {
+                return;
             }
-        }
-    }
-
-    fn read_plen2(&mut self, bytes: &[u8]) {
-        self.plen2.push(bytes);
-        while let Some(event) = self.plen2.poll() {
-            match event {
-                ReplyEvent::Complete { kind: ReplyKind::Version, bytes } => {
-                    if let Some(version) = decode_version(&bytes) {
-                        let version = format!("{} {} {}", version.device, version.codename, version.version);
-                        self.recognised(Identity::Plen2 { version });
-                    }
-                }
-                // The joint settings were read for their timing only.
-                ReplyEvent::Complete { kind: ReplyKind::JointSettings, .. }
-                    if matches!(self.identity, Some(Identity::Plen2 { .. })) =>
-                {
+            match said {
+                Heard::Said(identity) => self.recognised(identity),
+                // Read for its timing only, once the family has said who it is.
+                Heard::Answered if self.identity.as_ref().is_some_and(|identity| identity.family() == family) => {
                     self.next_request();
                 }
-                _ => {}
+                Heard::Answered => {}
             }
         }
     }
@@ -317,9 +304,7 @@ impl link::Driver for ProbeDriver {
             let began = *asking.began.get_or_insert(now);
             asking.deadline = Some((now + self.timeout).min(began + LONGEST_REPLY));
         }
-        self.read_servo(bytes);
-        self.read_rflex(bytes);
-        self.read_plen2(bytes);
+        self.read(bytes);
     }
 
     fn handle_timeout(&mut self, now: Instant) {
@@ -330,7 +315,9 @@ impl link::Driver for ProbeDriver {
         // The family did not answer (or stopped answering): forget what it
         // began and go on with the next — or end, if it had already said who it is.
         self.meter.reset();
-        self.plen2.abandon();
+        for (_, reader) in &mut self.readers {
+            reader.abandon();
+        }
         if self.identity.is_some() { self.finish() } else { self.next_family() }
     }
 
@@ -391,8 +378,8 @@ pub fn plan(baud: Option<u32>) -> Vec<(u32, Vec<Family>)> {
         return vec![(baud, Family::all().to_vec())];
     }
     let mut groups: Vec<(u32, Vec<Family>)> = Vec::new();
-    // The PLEN2 first: USB CDC answers at any rate, and it answers fastest.
-    for family in [Family::Plen2, Family::Servo, Family::Rflex] {
+    // In the doctor's order (the PLEN2 first: USB CDC answers at any rate, and fastest).
+    for (family, _) in doctored() {
         let baud = super::line_settings(family).baud;
         match groups.iter_mut().find(|(rate, _)| *rate == baud) {
             Some((_, families)) => families.push(family),

@@ -4,6 +4,7 @@
 //! verification, joint settings).
 
 mod convert;
+mod doctor;
 mod driver;
 mod link_report;
 mod messages;
@@ -18,6 +19,7 @@ use crossbeam_channel::Sender;
 pub use convert::{
     NotStorable, Unstorable, frames_of, motion_commands, motion_from_reply, storable, store_commands, stored_motion,
 };
+pub use doctor::Said;
 pub use driver::{
     ERASED_REPLY_BYTES, Pacing, Plen2Command, Plen2Driver, Plen2Event, Plen2Options, REPLY_IDLE, RESYNC, ReplyError,
     ReplyNews, ReplySender,
@@ -32,6 +34,16 @@ pub use pacer::{
 };
 
 use crate::device::LogEntry;
+
+inventory::submit! {
+    crate::device::family::Registered {
+        family: crate::project::Family::Plen2,
+        // plen2.md §1: USB CDC at 2,000,000 baud; DTR must be asserted.
+        line: || link::LineSettings::new(2_000_000),
+        // First: USB CDC answers at any rate, and it answers fastest.
+        doctor: Some(crate::device::family::Doctor { rank: 0, recogniser: doctor::recogniser }),
+    }
+}
 use crate::link::{self, Connection, DisconnectReason, LinkEvent, LinkHandle, Waker};
 pub use crate::protocol::plen2::Command;
 

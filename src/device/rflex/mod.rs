@@ -5,6 +5,7 @@
 //! (a dropped handle stops the base and shuts it down), and counts reports
 //! that failed their checksum without ever using them.
 
+mod doctor;
 mod driver;
 mod echoes;
 mod trace;
@@ -17,6 +18,7 @@ use crossbeam_channel::Receiver;
 
 pub use crate::protocol::rflex::Odometry;
 pub use crate::protocol::rflex::layout::{Bump, Bumps, Layout, Ring, Transducer};
+pub use doctor::Said;
 pub use driver::{POLL_EVERY, REPORT_PERIOD_US, RESEND_EVERY, RflexCommand, RflexDriver, RflexEvent, SILENCE_LIMIT};
 pub use echoes::{CELL_M as ECHO_CELL_M, EchoMap, FORGET_AFTER_S, echo_point, mount_point};
 
@@ -30,6 +32,15 @@ use crate::protocol::rflex::{Axis, Conversion, Report, SkipReason};
 
 /// The least gap between two writes: the base ignores commands sent too rapidly.
 pub const WRITE_GAP: Duration = Duration::from_millis(1);
+inventory::submit! {
+    crate::device::family::Registered {
+        family: crate::project::Family::Rflex,
+        // rflex.md §1: 115200 baud; the drivers pause about 1 ms after each write.
+        line: || link::LineSettings { min_write_gap: WRITE_GAP, ..link::LineSettings::new(115_200) },
+        doctor: Some(crate::device::family::Doctor { rank: 2, recogniser: doctor::recogniser }),
+    }
+}
+
 /// How long a dropped handle waits for its shutdown to be written.
 pub const SHUTDOWN_WAIT: Duration = Duration::from_millis(500);
 

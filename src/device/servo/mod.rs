@@ -3,6 +3,7 @@
 //! built on it (export, import, verify).
 
 mod client;
+mod doctor;
 mod handle;
 mod image;
 mod item;
@@ -14,6 +15,14 @@ mod session;
 /// Default line rate of the servo board.
 pub const DEFAULT_BAUD: u32 = 115_200;
 
+inventory::submit! {
+    crate::device::family::Registered {
+        family: crate::project::Family::Servo,
+        line: || crate::link::LineSettings::new(DEFAULT_BAUD),
+        doctor: Some(crate::device::family::Doctor { rank: 1, recogniser: doctor::recogniser }),
+    }
+}
+
 /// Battery ‰ as a person reads it: `81.5 %`.
 pub fn battery_text(permil: i16) -> String {
     format!("{:.1} %", f64::from(permil) / 10.0)
@@ -24,6 +33,7 @@ pub fn battery_text(permil: i16) -> String {
 pub use crate::protocol::servo::{ALL_SERVOS, ButtonEvent, EncodeError, ServoMove, ServoStatus};
 
 pub use client::{Reply, Requester, ServoBoard, ServoCommand, ServoDriver, ServoEvent};
+pub use doctor::Said;
 pub use handle::{ServoHandle, ServoNotice};
 pub use image::{Difference, ImageError, RecordKind, ServoImage};
 pub use item::Item;

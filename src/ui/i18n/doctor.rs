@@ -4,7 +4,7 @@
 
 use std::time::Duration;
 
-use super::Language;
+use super::{Language, Worded};
 use crate::device::plen2::LinkReport;
 use crate::device::probe::{Identity, ProbeResult};
 
@@ -24,7 +24,7 @@ impl Language {
         }
         let text = match &result.found {
             Some(found) => {
-                format!("{}，鮑率 {}；連線：{}", identity_zh(&found.identity), found.baud, link_zh(&found.link))
+                format!("{}，鮑率 {}；連線：{}", found.identity.worded(self), found.baud, link_zh(&found.link))
             }
             None if result.unrecognised > 0 => {
                 format!("收到 {} 位元組，但不屬於任何一種控制板的協定：可能是其他裝置，或鮑率不同", result.unrecognised)
@@ -101,28 +101,20 @@ impl Language {
     }
 }
 
-fn identity_zh(identity: &Identity) -> String {
-    match identity {
-        Identity::Servo { project_id, memory } => {
-            let mut text = "伺服控制板".to_string();
-            match project_id {
-                Some(0) => text.push_str("，沒有專案"),
-                Some(id) => text.push_str(&format!("，專案 {id}")),
-                None => {}
-            }
-            match memory {
-                Some((free, Some(total))) => text.push_str(&format!("，{total} 位元組中 {free} 可用")),
-                Some((free, None)) => text.push_str(&format!("，{free} 位元組可用")),
-                None => {}
-            }
-            text
-        }
-        Identity::Plen2 { version } => version.clone(),
-        Identity::Rflex { voltage_raw, braked } => format!(
-            "rFLEX 底盤，電池 {:.2} V（原始值），煞車{}",
-            f64::from(*voltage_raw) / 100.0,
-            if *braked { "已鎖定" } else { "已放開" }
-        ),
+/// How a family words what its devices say of themselves: each family's
+/// `words.rs` submits one (`inventory::submit!`), for its own `Said`.
+pub struct SaidWords(pub fn(&Identity, Language) -> Option<String>);
+
+inventory::collect!(SaidWords);
+
+/// What a device said, worded by its family (in English as the device layer says it
+/// when the family words nothing).
+impl Worded for Identity {
+    fn worded(&self, language: Language) -> String {
+        inventory::iter::<SaidWords>
+            .into_iter()
+            .find_map(|words| (words.0)(self, language))
+            .unwrap_or_else(|| self.to_string())
     }
 }
 

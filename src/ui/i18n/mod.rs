@@ -8,7 +8,7 @@ mod messages;
 mod operations;
 mod strings;
 
-pub use doctor::PadConflict;
+pub use doctor::{PadConflict, SaidWords};
 pub use strings::Strings;
 use strings::{ENGLISH, TRADITIONAL_CHINESE};
 

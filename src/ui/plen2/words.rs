@@ -178,3 +178,8 @@ impl Worded for Plen2OpError {
         }
     }
 }
+
+// A PLEN2 says its version; it reads the same in every language.
+inventory::submit! {
+    crate::ui::i18n::SaidWords(|identity, _| identity.said::<crate::device::plen2::Said>().map(ToString::to_string))
+}

@@ -9,6 +9,7 @@ mod drive;
 mod link;
 mod pad;
 mod telemetry;
+mod words;
 mod world;
 
 pub use action::RflexAction;

@@ -195,3 +195,30 @@ mod tests {
         assert_eq!(lost.worded(zh), "與控制板的連線已中斷");
     }
 }
+
+/// What a servo board said of itself, in this language.
+impl Worded for crate::device::servo::Said {
+    fn worded(&self, language: Language) -> String {
+        if language == Language::English {
+            return self.to_string();
+        }
+        let mut text = "伺服控制板".to_string();
+        match self.project_id {
+            Some(0) => text.push_str("，沒有專案"),
+            Some(id) => text.push_str(&format!("，專案 {id}")),
+            None => {}
+        }
+        match self.memory {
+            Some((free, Some(total))) => text.push_str(&format!("，{total} 位元組中 {free} 可用")),
+            Some((free, None)) => text.push_str(&format!("，{free} 位元組可用")),
+            None => {}
+        }
+        text
+    }
+}
+
+inventory::submit! {
+    crate::ui::i18n::SaidWords(|identity, language| {
+        identity.said::<crate::device::servo::Said>().map(|said| said.worded(language))
+    })
+}
