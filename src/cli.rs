@@ -12,6 +12,7 @@
 mod bounds;
 mod check;
 mod convert;
+mod family;
 mod fit;
 mod gui;
 mod out;
@@ -87,10 +88,7 @@ impl PortArgs {
 
     /// The timeout asked for, or the family's default, ms.
     pub fn timeout_ms(&self, family: Family) -> u64 {
-        self.timeout_ms.unwrap_or(match family {
-            Family::Plen2 => 600,
-            _ => 1000,
-        })
+        self.timeout_ms.unwrap_or_else(|| family::registered(family).map_or(1000, |entry| entry.timeout_ms))
     }
 
     /// The PLEN2 pacing asked for, or adaptive.
@@ -100,7 +98,7 @@ impl PortArgs {
 
     /// Refuses what was given that does not apply to `family`.
     pub fn applies_to(&self, family: Family) -> anyhow::Result<()> {
-        if self.pacing.is_some() && family != Family::Plen2 {
+        if self.pacing.is_some() && !family::registered(family).is_some_and(|entry| entry.paced) {
             anyhow::bail!("--pacing is for PLEN2 uploads; it does not apply to a {family} board. Nothing was done");
         }
         Ok(())
@@ -151,8 +149,8 @@ pub enum CliCommand {
         #[arg(long)]
         out: PathBuf,
         /// PLEN2: the slots to read, e.g. 0-19,70 (default: all 90).
-        #[arg(long, value_parser = plen2::parse_slots)]
-        slots: Option<plen2::Slots>,
+        #[arg(long, value_parser = bounds::parse_slots)]
+        slots: Option<bounds::Slots>,
         /// Replace the output file even when it is read-only.
         #[arg(long)]
         force: bool,
@@ -283,18 +281,6 @@ pub enum BoardCommand {
     },
 }
 
-/// Refuses a family for which `what` does not exist.
-fn servo_only(family: Family, what: &str) -> anyhow::Result<()> {
-    match family {
-        Family::Servo => Ok(()),
-        Family::Rflex => anyhow::bail!(
-            "{what} does not apply to rFLEX bases (they store no project); use `servo-studio rflex status` to read one and `servo-studio rflex drive` to drive it"
-        ),
-        Family::Plen2 => anyhow::bail!("{what} for PLEN2 is not in this build of Servo Studio yet"),
-        other => anyhow::bail!("{what} does not apply to the {} (it has no command-line tools)", other.name()),
-    }
-}
-
 /// An error with advice after it (how to restore the device), keeping the
 /// error's causes for whoever reads the chain.
 #[derive(Debug)]
@@ -385,16 +371,15 @@ pub fn run(command: CliCommand) -> ExitCode {
         CliCommand::Probe { port, baud, timeout_ms } => probe::run(port.as_deref(), baud, timeout_ms),
         CliCommand::Sim { args, protocol } => sim::run(&args, protocol),
         CliCommand::Rflex { command } => rflex::run(&command),
-        CliCommand::Export { port, out, slots, force } => export(&port, &out, slots, force),
+        CliCommand::Export { port, out, slots, force } => export(&port, &out, slots.as_ref(), force),
         CliCommand::Import { port, input, yes, force, no_backup, backup_dir } => {
-            import(&port, &input, servo::ImportChoices { yes, force, backup_dir: (!no_backup).then_some(backup_dir) })
+            import(&port, &input, family::ImportChoices { yes, force, backup_dir: (!no_backup).then_some(backup_dir) })
         }
         CliCommand::Board { command: BoardCommand::Info { port } } => {
             let family = port.protocol.unwrap_or_default();
-            port.applies_to(family).and_then(|()| match family {
-                Family::Plen2 => plen2::info(&port),
-                family => servo_only(family, "board info").and_then(|()| servo::info(&port)),
-            })
+            port.applies_to(family)
+                .and_then(|()| family::board(family, "board info"))
+                .and_then(|board| (board.info)(&port))
         }
         CliCommand::Gui { file, demo, protocol, import } => gui::run(file.as_deref(), demo, protocol, import),
         CliCommand::Convert(args) => convert::run_args(args),
@@ -425,21 +410,13 @@ pub fn run(command: CliCommand) -> ExitCode {
     finish(result)
 }
 
-fn export(port: &PortArgs, out: &std::path::Path, slots: Option<plen2::Slots>, force: bool) -> anyhow::Result<()> {
+fn export(port: &PortArgs, out: &std::path::Path, slots: Option<&bounds::Slots>, force: bool) -> anyhow::Result<()> {
     let family = port.protocol.unwrap_or_default();
     port.applies_to(family)?;
     // Refused before the board is read: a FIFO, a device, a folder or (without
     // --force) a read-only file is never replaced.
     writable_output(out, force)?;
-    match family {
-        Family::Plen2 => plen2::export(port, out, &slots.map_or_else(|| (0..90).collect(), |slots| slots.0)),
-        family => {
-            if slots.is_some() {
-                anyhow::bail!("--slots is for PLEN2 motions; a {family} board has no slots. Nothing was read");
-            }
-            servo_only(family, "export").and_then(|()| servo::export(port, out))
-        }
-    }
+    (family::board(family, "export")?.export)(port, out, slots)
 }
 
 /// Refuses an output path that must not be replaced: anything but a regular
@@ -513,7 +490,7 @@ fn finish(result: anyhow::Result<()>) -> ExitCode {
     }
 }
 
-fn import(port: &PortArgs, input: &std::path::Path, choices: servo::ImportChoices) -> anyhow::Result<()> {
+fn import(port: &PortArgs, input: &std::path::Path, choices: family::ImportChoices) -> anyhow::Result<()> {
     let loaded = open_input(input)?.loaded;
     warn_unknown(input, &loaded);
     let loaded = loaded.project;
@@ -526,11 +503,7 @@ fn import(port: &PortArgs, input: &std::path::Path, choices: servo::ImportChoice
             loaded.family
         );
     }
-    if family == Family::Plen2 {
-        return plen2::import(port, input, &loaded, choices);
-    }
-    servo_only(family, "import")?;
-    servo::import(port, input, &loaded, choices)
+    (family::board(family, "import")?.import)(port, input, &loaded, choices)
 }
 
 /// Opens what a command is given: a project file, a motion.json or a folder

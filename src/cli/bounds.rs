@@ -187,3 +187,36 @@ mod tests {
         assert!(start("1,2").unwrap_err().contains("X,Y,THETA_DEG"));
     }
 }
+
+/// Slots as given on the command line.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Slots(pub Vec<u8>);
+
+/// Parses `0-19,70` into slots.
+pub fn parse_slots(text: &str) -> Result<Slots, String> {
+    const FORMS: &str = "a slot (0..89), a range (0-19) or a list of them separated by commas, e.g. 0-19,70";
+    if text.trim().is_empty() {
+        return Err(format!("no slots given: name {FORMS}"));
+    }
+    let mut slots = Vec::new();
+    for part in text.split(',').map(str::trim) {
+        if part.is_empty() {
+            return Err(format!("{text:?} has an empty item between commas: name {FORMS}"));
+        }
+        let bad = || format!("{part:?} is not {FORMS}");
+        let (first, last) = match part.split_once('-') {
+            Some((a, b)) => (a.trim().parse::<u8>().map_err(|_| bad())?, b.trim().parse::<u8>().map_err(|_| bad())?),
+            None => {
+                let slot = part.parse::<u8>().map_err(|_| bad())?;
+                (slot, slot)
+            }
+        };
+        if first > last || last >= crate::protocol::plen2::SLOTS {
+            return Err(bad());
+        }
+        slots.extend(first..=last);
+    }
+    slots.sort_unstable();
+    slots.dedup();
+    Ok(Slots(slots))
+}

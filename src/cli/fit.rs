@@ -53,22 +53,42 @@ pub fn run(request: &FitRequest) -> anyhow::Result<Fitted> {
     let name = request.name.clone().unwrap_or_else(|| {
         request.recording.file_stem().map(|stem| stem.to_string_lossy().into_owned()).unwrap_or_default()
     });
-    let project = match request.family {
-        Family::Plen2 => plen2(&recording, request, &name),
-        Family::Servo => servo(&recording, request, &name),
-        Family::Rflex => anyhow::bail!("--protocol rflex: a base stores no motions to fit; give plen2 or servo"),
-        other => {
-            anyhow::bail!("--protocol {other}: the {} stores no motions to fit; give plen2 or servo", other.name())
-        }
-    }?;
-    let (written, fitted) = project;
+    let family = request.family;
+    let Some(fitter) = fitter(family) else {
+        let fitting: Vec<&str> =
+            Family::all().iter().filter(|other| fitter(**other).is_some()).map(|other| other.tag()).collect();
+        anyhow::bail!(
+            "--protocol {family}: the {} stores no motions to fit; give {}",
+            family.name(),
+            fitting.join(" or ")
+        )
+    };
+    let (written, fitted) = (fitter.fit)(&recording, request, &name)?;
     project::atomic_write(&request.out, |file| std::io::Write::write_all(file, written.as_bytes()))
         .with_context(|| format!("cannot write {}", request.out.display()))?;
     Ok(fitted)
 }
 
-/// The recording's joints in `Joint::ALL` order (a joint it lacks stays at 0, home).
-fn plen2(recording: &Recording, request: &FitRequest, name: &str) -> anyhow::Result<(String, Fitted)> {
+/// How a family fits a recording, registered by the family
+/// (`inventory::submit!` in `cli/<family>.rs`).
+#[derive(Debug)]
+pub struct Fitter {
+    /// The family whose board plays the fit.
+    pub family: Family,
+    /// Fits: the file it writes, and what was fitted.
+    pub fit: fn(&Recording, &FitRequest, &str) -> anyhow::Result<(String, Fitted)>,
+    /// What its fitted moves are called ("frames").
+    pub moves: &'static str,
+}
+
+inventory::collect!(Fitter);
+
+fn fitter(family: Family) -> Option<&'static Fitter> {
+    inventory::iter::<Fitter>.into_iter().find(|fitter| fitter.family == family)
+}
+
+/// A PLEN2 motion.json: the recording's joints in `Joint::ALL` order (a joint it lacks stays at 0, home).
+pub fn plen2(recording: &Recording, request: &FitRequest, name: &str) -> anyhow::Result<(String, Fitted)> {
     let mut columns = Vec::new();
     for column in &recording.names {
         let Some(joint) = Joint::ALL.into_iter().find(|joint| joint.name() == column) else {
@@ -118,7 +138,8 @@ fn servo_column(column: &str) -> Option<(u8, String)> {
     Some((id, caption))
 }
 
-fn servo(recording: &Recording, request: &FitRequest, name: &str) -> anyhow::Result<(String, Fitted)> {
+/// A servo project: one action per step, macro 1 running them in order.
+pub fn servo(recording: &Recording, request: &FitRequest, name: &str) -> anyhow::Result<(String, Fitted)> {
     let mut servos: Vec<Servo> = Vec::new();
     for column in &recording.names {
         let Some((id, caption)) = servo_column(column) else {
@@ -176,7 +197,7 @@ fn summary(fit: &Fit, per_degree: f64, updates: usize, update_ms: f64) -> Fitted
 
 /// The line `fit` prints.
 pub fn said(fitted: &Fitted, family: Family, out: &Path) -> String {
-    let what = if family == Family::Plen2 { "frames" } else { "steps (one action each, run in order by macro 1)" };
+    let what = fitter(family).map_or("moves", |fitter| fitter.moves);
     format!(
         "{} {what} for {:.3} s, largest error {:.2}°: wrote {}",
         fitted.moves,

@@ -6,14 +6,17 @@ use std::time::Instant;
 use anyhow::{Context, bail};
 
 use super::PortArgs;
+use super::bounds::Slots;
+use super::family::ImportChoices;
 use super::out::say;
-use super::servo::ImportChoices;
+use super::sim::SimArgs;
 use crate::device;
 use crate::device::plen2::{
     self as plen2, Plen2Handle, Plen2ImportOptions, Plen2Options, Plen2Phase, Plen2Progress, SlotResult,
 };
 use crate::link::{self, LineSettings, PortName, no_waker};
 use crate::project::{self, Family, Project};
+use crate::sim::{LinkKind, Plen2Sim, Plen2Timing};
 
 fn connect(port: &PortArgs) -> anyhow::Result<Plen2Handle> {
     let name = PortName::parse(&port.port)?;
@@ -26,39 +29,6 @@ fn connect(port: &PortArgs) -> anyhow::Result<Plen2Handle> {
         ..Plen2Options::default()
     };
     Plen2Handle::over(connection, options, no_waker()).with_context(|| format!("cannot start talking to {name}"))
-}
-
-/// Slots as given on the command line.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Slots(pub Vec<u8>);
-
-/// Parses `0-19,70` into slots.
-pub fn parse_slots(text: &str) -> Result<Slots, String> {
-    const FORMS: &str = "a slot (0..89), a range (0-19) or a list of them separated by commas, e.g. 0-19,70";
-    if text.trim().is_empty() {
-        return Err(format!("no slots given: name {FORMS}"));
-    }
-    let mut slots = Vec::new();
-    for part in text.split(',').map(str::trim) {
-        if part.is_empty() {
-            return Err(format!("{text:?} has an empty item between commas: name {FORMS}"));
-        }
-        let bad = || format!("{part:?} is not {FORMS}");
-        let (first, last) = match part.split_once('-') {
-            Some((a, b)) => (a.trim().parse::<u8>().map_err(|_| bad())?, b.trim().parse::<u8>().map_err(|_| bad())?),
-            None => {
-                let slot = part.parse::<u8>().map_err(|_| bad())?;
-                (slot, slot)
-            }
-        };
-        if first > last || last >= crate::protocol::plen2::SLOTS {
-            return Err(bad());
-        }
-        slots.extend(first..=last);
-    }
-    slots.sort_unstable();
-    slots.dedup();
-    Ok(Slots(slots))
 }
 
 /// A progress line per step on stderr, with what the pacing decided since the
@@ -104,13 +74,14 @@ pub fn info(port: &PortArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// `export --protocol plen2 [--slots …]`.
-pub fn export(port: &PortArgs, out: &Path, slots: &[u8]) -> anyhow::Result<()> {
+/// `export --protocol plen2 [--slots …]` (default: all 90 slots).
+pub fn export(port: &PortArgs, out: &Path, slots: Option<&Slots>) -> anyhow::Result<()> {
+    let slots: Vec<u8> = slots.map_or_else(|| (0..90).collect(), |slots| slots.0.clone());
     let mut handle = connect(port)?;
     let (cancel, caught) = super::signals::cancel_on_signal("the export")?;
     let requester = handle.requester();
     let mut progress = progress_line(&mut handle, port.pacing());
-    let exported = plen2::export(&requester, slots, &mut progress, &cancel);
+    let exported = plen2::export(&requester, &slots, &mut progress, &cancel);
     let interrupt = caught.get().filter(|_| matches!(exported, Err(plen2::Plen2OpError::Cancelled)));
     let exported = super::exported(exported, interrupt, &port.port, out)?;
     let count = exported.motions.len();
@@ -160,4 +131,59 @@ pub fn import(port: &PortArgs, input: &Path, loaded: &Project, choices: ImportCh
         bail!("some slots read back different from what was written; check the cable and run the import again");
     }
     Ok(())
+}
+
+/// Runs the emulated PLEN2; `--state` preloads its joint settings and slots
+/// from a project file, a motion.json or a folder of them.
+fn emulate(args: &SimArgs) -> anyhow::Result<()> {
+    let link = args.link.unwrap_or(LinkKind::Clean);
+    let mut robot = Plen2Sim::new(Plen2Timing::default()).with_link(link);
+    if link != LinkKind::Clean {
+        say!("the line to the robot: {link}");
+    }
+    if let Some(path) = &args.state {
+        let plen2 = super::open_input(path)?.loaded.project.plen2;
+        // A stand-in robot holds only what a robot can (check, import and trajectory refuse the same).
+        plen2::storable(&plen2)
+            .map_err(|error| {
+                anyhow::anyhow!(
+                    "cannot preload the robot from {}: {error}. Fix the motion (`servo-studio check` lists every problem) and start it again",
+                    path.display()
+                )
+            })?;
+        robot.preload(&plen2::store_commands(&plen2));
+        say!(
+            "preloaded {} motion(s) and {} joint setting(s) from {}",
+            plen2.motions.len(),
+            plen2.joints.len(),
+            path.display()
+        );
+    }
+    super::sim::serve(args, robot)
+}
+
+inventory::submit! {
+    super::family::Registered {
+        family: Family::Plen2,
+        timeout_ms: 600,
+        paced: true,
+        board: Ok(super::family::BoardCommands { info, export, import }),
+    }
+}
+
+inventory::submit! {
+    super::sim::Emulator {
+        family: Family::Plen2,
+        takes: &["--state", "--link"],
+        note: " (a slow line is --link slow=BAUD)",
+        serve: emulate,
+    }
+}
+
+inventory::submit! {
+    super::fit::Fitter { family: Family::Plen2, fit: super::fit::plen2, moves: "frames" }
+}
+
+inventory::submit! {
+    super::trajectory::Tracer { family: Family::Plen2, trace: super::trajectory::plen2 }
 }

@@ -12,10 +12,12 @@ use super::PortArgs;
 use super::bounds;
 use super::out::say;
 use super::signals::{self, Interrupt};
+use super::sim::SimArgs;
 use crate::device::{self, rflex::RflexBase};
 use crate::link::{self, LineSettings, PortName, Waker};
 use crate::project::Family;
 use crate::project::rflex::Robot;
+use crate::sim::{RflexSim, RflexSimConfig};
 
 mod teleop;
 
@@ -437,4 +439,55 @@ fn drive(args: &BaseArgs, speed: f64, turn: f64, accel: f64, seconds: f64) -> an
     }
     say!("{summary}; stopped, brake set");
     Ok(())
+}
+
+/// Runs the emulated base, in its room.
+fn emulate(args: &SimArgs) -> anyhow::Result<()> {
+    super::sim::serve(args, RflexSim::new(rflex_config(args)?))
+}
+
+/// The emulated base's config: its robot, its room and where it stands in it
+/// (refused when the robot would not fit there).
+fn rflex_config(args: &SimArgs) -> anyhow::Result<RflexSimConfig> {
+    let defaults = RflexSimConfig::default();
+    let conversion = args.robot.unwrap_or_default().conversion();
+    let room_m = args.room.unwrap_or(defaults.room_m);
+    let (x, y, theta_deg) = args.start.unwrap_or((0.0, 0.0, 0.0));
+    let radius = conversion.layout.body_radius_m;
+    if x.abs() > room_m.0 / 2.0 - radius || y.abs() > room_m.1 / 2.0 - radius {
+        bail!(
+            "--start {x},{y}: the base (a radius of {radius} m) does not fit there in a {} × {} m room; nothing was started",
+            room_m.0,
+            room_m.1
+        );
+    }
+    Ok(RflexSimConfig {
+        conversion,
+        stuffed: args.stuffed,
+        noise: args.noise.clone().unwrap_or_default(),
+        room_m,
+        start: (x, y, theta_deg.to_radians()),
+        body_panels_only: args.body_panels_only,
+        ..defaults
+    })
+}
+
+inventory::submit! {
+    super::family::Registered {
+        family: Family::Rflex,
+        timeout_ms: 1000,
+        paced: false,
+        board: Err(
+            "rFLEX bases (they store no project); use `servo-studio rflex status` to read one and `servo-studio rflex drive` to drive it",
+        ),
+    }
+}
+
+inventory::submit! {
+    super::sim::Emulator {
+        family: Family::Rflex,
+        takes: &["--robot", "--room", "--start", "--stuffed", "--noise", "--body-panels-only"],
+        note: " (a base stores nothing to preload)",
+        serve: emulate,
+    }
 }

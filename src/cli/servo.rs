@@ -1,17 +1,22 @@
 //! The commands that talk to a servo board.
 
 use std::io::{BufRead, IsTerminal};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::time::Duration;
 
 use anyhow::{Context, bail};
 use indicatif::{ProgressBar, ProgressStyle};
 
 use super::PortArgs;
+use super::bounds::Slots;
+use super::family::ImportChoices;
 use super::out::say;
+use super::sim::SimArgs;
+use crate::device::servo::ServoImage;
 use crate::device::servo::{self as device, ImportOptions, Phase, Progress, Requester, ServoBoard, SessionConfig};
 use crate::link::{self, PortName, no_waker};
 use crate::project::{self, Family, Project};
+use crate::sim::{ServoSim, SimConfig};
 
 fn session_config(port: &PortArgs) -> SessionConfig {
     SessionConfig {
@@ -58,7 +63,11 @@ pub fn ports() -> anyhow::Result<()> {
     Ok(())
 }
 
-pub fn export(port: &PortArgs, out: &Path) -> anyhow::Result<()> {
+/// `export` (a servo board has no slots: `--slots` is refused before it is read).
+pub fn export(port: &PortArgs, out: &Path, slots: Option<&Slots>) -> anyhow::Result<()> {
+    if slots.is_some() {
+        bail!("--slots is for PLEN2 motions; a servo board has no slots. Nothing was read");
+    }
     let board = connect(port)?;
     let (cancel, caught) = super::signals::cancel_on_signal("the export")?;
     let (bar, mut update) = progress_bar();
@@ -97,17 +106,6 @@ pub fn confirm(port: &str, input: &Path, backup: bool) -> anyhow::Result<()> {
         bail!("not confirmed; the board is unchanged");
     }
     Ok(())
-}
-
-/// How `import` runs.
-#[derive(Debug)]
-pub struct ImportChoices {
-    /// Do not ask.
-    pub yes: bool,
-    /// Write even when validation finds errors.
-    pub force: bool,
-    /// Where the backup goes; `None` = no backup.
-    pub backup_dir: Option<PathBuf>,
 }
 
 pub fn import(port: &PortArgs, input: &Path, loaded: &Project, choices: ImportChoices) -> anyhow::Result<()> {
@@ -173,4 +171,64 @@ pub fn info(port: &PortArgs) -> anyhow::Result<()> {
         ))?;
     }
     Ok(())
+}
+
+/// Runs the emulated servo board; `--state` preloads it from a servo project.
+fn emulate(args: &SimArgs) -> anyhow::Result<()> {
+    let image = match &args.state {
+        Some(path) => {
+            let loaded = project::read(path)
+                .with_context(|| format!("cannot preload the board from {}", path.display()))?
+                .project;
+            if loaded.family != Family::Servo {
+                bail!(
+                    "{} is a {} project; the emulated servo board takes a servo project",
+                    path.display(),
+                    loaded.family
+                );
+            }
+            ServoImage::from_project(&loaded.servo)
+                .with_context(|| format!("{} cannot be stored on a board", path.display()))?
+        }
+        None => ServoImage::default(),
+    };
+    let defaults = SimConfig::default();
+    let config = SimConfig {
+        total_memory_bytes: args.memory.unwrap_or(defaults.total_memory_bytes),
+        baud: args.baud,
+        turnaround: Duration::from_millis(args.turnaround_ms.unwrap_or(0)),
+        faults: args.faults.clone().unwrap_or_default(),
+        ..defaults
+    };
+    super::sim::serve(args, ServoSim::new(config, image))
+}
+
+inventory::submit! {
+    super::family::Registered {
+        family: Family::Servo,
+        timeout_ms: 1000,
+        paced: false,
+        board: Ok(super::family::BoardCommands { info, export, import }),
+    }
+}
+
+inventory::submit! {
+    super::sim::Emulator {
+        family: Family::Servo,
+        takes: &["--state", "--baud", "--turnaround-ms", "--memory", "--faults"],
+        note: "",
+        serve: emulate,
+    }
+}
+
+inventory::submit! {
+    super::fit::Fitter {
+        family: Family::Servo,
+        fit: super::fit::servo,
+        moves: "steps (one action each, run in order by macro 1)",
+    }
+}
+
+inventory::submit! {
+    super::trajectory::Tracer { family: Family::Servo, trace: super::trajectory::servo }
 }

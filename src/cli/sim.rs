@@ -4,20 +4,16 @@
 
 use std::net::SocketAddr;
 use std::path::PathBuf;
-use std::time::Duration;
 
-use anyhow::{Context, bail};
+use anyhow::bail;
 use clap::Args;
 
 use super::bounds;
 use super::out::say;
-use crate::device::servo::ServoImage;
 use crate::link::{Driver, LinkEvent, no_waker};
 use crate::project::Family;
 use crate::project::rflex::Robot;
-use crate::sim::{
-    self, Faults, LineNoise, LinkKind, Plen2Sim, Plen2Timing, RflexSim, RflexSimConfig, ServoSim, SimConfig,
-};
+use crate::sim::{self, Faults, LineNoise, LinkKind};
 
 /// `servo-studio sim` options.
 #[derive(Debug, Default, Args)]
@@ -71,145 +67,71 @@ pub struct SimArgs {
 }
 
 impl SimArgs {
-    /// The options given, by name, that `family`'s emulator does not take.
-    fn foreign(&self, family: Family) -> Vec<&'static str> {
-        let given = [
-            ("--state", self.state.is_some(), [true, true, false]),
-            ("--baud", self.baud.is_some(), [true, false, false]),
-            ("--turnaround-ms", self.turnaround_ms.is_some(), [true, false, false]),
-            ("--memory", self.memory.is_some(), [true, false, false]),
-            ("--faults", self.faults.is_some(), [true, false, false]),
-            ("--stuffed", self.stuffed, [false, false, true]),
-            ("--body-panels-only", self.body_panels_only, [false, false, true]),
-            ("--noise", self.noise.is_some(), [false, false, true]),
-            ("--robot", self.robot.is_some(), [false, false, true]),
-            ("--room", self.room.is_some(), [false, false, true]),
-            ("--start", self.start.is_some(), [false, false, true]),
-            ("--link", self.link.is_some(), [false, true, false]),
-        ];
-        let column = match family {
-            Family::Servo => 0,
-            Family::Plen2 => 1,
-            Family::Rflex => 2,
-            // A family without an emulator here takes none of them.
-            _ => return given.into_iter().filter(|(_, given, _)| *given).map(|(name, _, _)| name).collect(),
-        };
-        given.into_iter().filter(|(_, given, takes)| *given && !takes[column]).map(|(name, _, _)| name).collect()
+    /// Every option only some emulators take, by name, and whether it was given.
+    fn given(&self) -> [(&'static str, bool); 12] {
+        [
+            ("--state", self.state.is_some()),
+            ("--baud", self.baud.is_some()),
+            ("--turnaround-ms", self.turnaround_ms.is_some()),
+            ("--memory", self.memory.is_some()),
+            ("--faults", self.faults.is_some()),
+            ("--stuffed", self.stuffed),
+            ("--body-panels-only", self.body_panels_only),
+            ("--noise", self.noise.is_some()),
+            ("--robot", self.robot.is_some()),
+            ("--room", self.room.is_some()),
+            ("--start", self.start.is_some()),
+            ("--link", self.link.is_some()),
+        ]
+    }
+
+    /// The options given, by name, that `emulator` does not take.
+    fn foreign(&self, emulator: &Emulator) -> Vec<&'static str> {
+        self.given()
+            .into_iter()
+            .filter(|(name, given)| *given && !emulator.takes.contains(name))
+            .map(|(name, _)| name)
+            .collect()
     }
 }
 
-/// What each family's emulator takes, for the refusal.
-fn takes(family: Family) -> &'static str {
-    match family {
-        Family::Servo => "--state, --baud, --turnaround-ms, --memory, --faults",
-        Family::Plen2 => "--state, --link (a slow line is --link slow=BAUD)",
-        Family::Rflex => {
-            "--robot, --room, --start, --stuffed, --noise, --body-panels-only (a base stores nothing to preload)"
-        }
-        _ => "nothing",
-    }
+/// A family's emulated board, as `sim` serves it: each family registers its
+/// own (`inventory::submit!` in `cli/<family>.rs`).
+#[derive(Debug)]
+pub struct Emulator {
+    /// The family it emulates.
+    pub family: Family,
+    /// The `sim` options it takes (the others are refused, never ignored).
+    pub takes: &'static [&'static str],
+    /// What else to say of them (e.g. what a slow line is written as).
+    pub note: &'static str,
+    /// Serves it until the client goes (pty) or forever (TCP).
+    pub serve: fn(&SimArgs) -> anyhow::Result<()>,
 }
 
-/// Runs `sim --protocol FAMILY`.
+inventory::collect!(Emulator);
+
+fn emulator(family: Family) -> Option<&'static Emulator> {
+    inventory::iter::<Emulator>.into_iter().find(|emulator| emulator.family == family)
+}
+
+/// Runs `sim --protocol FAMILY`: the emulator the family registered.
 pub fn run(args: &SimArgs, family: Family) -> anyhow::Result<()> {
-    let foreign = args.foreign(family);
+    let Some(emulator) = emulator(family) else {
+        let served: Vec<&str> =
+            Family::all().iter().filter(|family| emulator(**family).is_some()).map(|family| family.tag()).collect();
+        bail!("the {} has no emulated board to serve; give {}", family.name(), served.join(", "));
+    };
+    let foreign = args.foreign(emulator);
     if !foreign.is_empty() {
         bail!(
-            "{} do(es) not apply to the emulated {family} board (it takes {}); nothing was started",
+            "{} do(es) not apply to the emulated {family} board (it takes {}{}); nothing was started",
             foreign.join(", "),
-            takes(family)
+            emulator.takes.join(", "),
+            emulator.note
         );
     }
-    match family {
-        Family::Servo => servo(args),
-        Family::Plen2 => plen2(args),
-        Family::Rflex => serve(args, RflexSim::new(rflex_config(args)?)),
-        other => bail!("the {} has no emulated board to serve; give servo, plen2 or rflex", other.name()),
-    }
-}
-
-/// The emulated base's config: its robot, its room and where it stands in it
-/// (refused when the robot would not fit there).
-fn rflex_config(args: &SimArgs) -> anyhow::Result<RflexSimConfig> {
-    let defaults = RflexSimConfig::default();
-    let conversion = args.robot.unwrap_or_default().conversion();
-    let room_m = args.room.unwrap_or(defaults.room_m);
-    let (x, y, theta_deg) = args.start.unwrap_or((0.0, 0.0, 0.0));
-    let radius = conversion.layout.body_radius_m;
-    if x.abs() > room_m.0 / 2.0 - radius || y.abs() > room_m.1 / 2.0 - radius {
-        bail!(
-            "--start {x},{y}: the base (a radius of {radius} m) does not fit there in a {} × {} m room; nothing was started",
-            room_m.0,
-            room_m.1
-        );
-    }
-    Ok(RflexSimConfig {
-        conversion,
-        stuffed: args.stuffed,
-        noise: args.noise.clone().unwrap_or_default(),
-        room_m,
-        start: (x, y, theta_deg.to_radians()),
-        body_panels_only: args.body_panels_only,
-        ..defaults
-    })
-}
-
-fn servo(args: &SimArgs) -> anyhow::Result<()> {
-    let image = match &args.state {
-        Some(path) => {
-            let loaded = crate::project::read(path)
-                .with_context(|| format!("cannot preload the board from {}", path.display()))?
-                .project;
-            if loaded.family != Family::Servo {
-                bail!(
-                    "{} is a {} project; the emulated servo board takes a servo project",
-                    path.display(),
-                    loaded.family
-                );
-            }
-            ServoImage::from_project(&loaded.servo)
-                .with_context(|| format!("{} cannot be stored on a board", path.display()))?
-        }
-        None => ServoImage::default(),
-    };
-    let defaults = SimConfig::default();
-    let config = SimConfig {
-        total_memory_bytes: args.memory.unwrap_or(defaults.total_memory_bytes),
-        baud: args.baud,
-        turnaround: Duration::from_millis(args.turnaround_ms.unwrap_or(0)),
-        faults: args.faults.clone().unwrap_or_default(),
-        ..defaults
-    };
-    serve(args, ServoSim::new(config, image))
-}
-
-/// Runs the emulated PLEN2; `--state` preloads its joint settings and slots
-/// from a project file, a motion.json or a folder of them.
-fn plen2(args: &SimArgs) -> anyhow::Result<()> {
-    let link = args.link.unwrap_or(LinkKind::Clean);
-    let mut robot = Plen2Sim::new(Plen2Timing::default()).with_link(link);
-    if link != LinkKind::Clean {
-        say!("the line to the robot: {link}");
-    }
-    if let Some(path) = &args.state {
-        let plen2 = super::open_input(path)?.loaded.project.plen2;
-        // A stand-in robot holds only what a robot can (check, import and trajectory refuse the same).
-        crate::device::plen2::storable(&plen2)
-            .map_err(|error| {
-                anyhow::anyhow!(
-                    "cannot preload the robot from {}: {error}. Fix the motion (`servo-studio check` lists every problem) and start it again",
-                    path.display()
-                )
-            })?;
-        robot.preload(&crate::device::plen2::store_commands(&plen2));
-        say!(
-            "preloaded {} motion(s) and {} joint setting(s) from {}",
-            plen2.motions.len(),
-            plen2.joints.len(),
-            path.display()
-        );
-    }
-    serve(args, robot)
+    (emulator.serve)(args)
 }
 
 /// Serves an emulator of any family on a pseudo-terminal or TCP; prints the port on
@@ -240,4 +162,23 @@ fn spawn_pty<D: Driver>(emulator: D) -> anyhow::Result<sim::SimHandle<D::Command
 #[cfg(not(unix))]
 fn spawn_pty<D: Driver>(_emulator: D) -> anyhow::Result<sim::SimHandle<D::Command, D::Event>> {
     bail!("pseudo-terminals exist only on Linux and macOS; use --tcp 127.0.0.1:5000")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sim_serves_what_a_family_registered_and_names_the_families_that_have_one() {
+        let none = Family::named("none", "None board");
+        let refused = run(&SimArgs::default(), none).unwrap_err().to_string();
+        assert!(refused.ends_with("has no emulated board to serve; give servo, plen2, rflex"), "{refused}");
+        let args = SimArgs { link: Some(LinkKind::Clean), stuffed: true, ..SimArgs::default() };
+        let refused = run(&args, Family::Servo).unwrap_err().to_string();
+        assert_eq!(
+            refused,
+            "--stuffed, --link do(es) not apply to the emulated servo board (it takes --state, --baud, \
+             --turnaround-ms, --memory, --faults); nothing was started"
+        );
+    }
 }

@@ -40,13 +40,14 @@ fn field(text: &str) -> String {
 pub const MAX_VALUES: usize = 50_000_000;
 
 /// Writes rows as they are made; counts them.
-struct Rows<'a> {
+pub struct Rows<'a> {
     writer: std::io::BufWriter<&'a mut std::fs::File>,
     count: usize,
 }
 
 impl Rows<'_> {
-    fn push(&mut self, row: &str) -> std::io::Result<()> {
+    /// Writes one row.
+    pub fn push(&mut self, row: &str) -> std::io::Result<()> {
         self.writer.write_all(row.as_bytes())?;
         self.writer.write_all(b"\n")?;
         self.count += 1;
@@ -169,6 +170,53 @@ fn write_servo(
     Ok(())
 }
 
+/// Writes a trajectory's rows.
+pub type WriteRows<'a> = Box<dyn FnOnce(&mut Rows<'_>) -> std::io::Result<()> + 'a>;
+
+/// A family's trajectory, traced and checked before anything is written: its
+/// rows, written when the output is opened, and the time between two of them.
+pub struct Traced<'a> {
+    /// Time between two rows, ms (one board update).
+    pub step_ms: f64,
+    /// Writes the header and the rows.
+    pub write: WriteRows<'a>,
+}
+
+/// How a family traces what a project plays, registered by the family
+/// (`inventory::submit!` in `cli/<family>.rs`).
+#[derive(Debug)]
+pub struct Tracer {
+    /// The family.
+    pub family: Family,
+    /// Traces `subject` up to a time, ms, checked before anything is written.
+    pub trace: for<'a> fn(&'a Project, &Path, Subject, f64) -> anyhow::Result<Traced<'a>>,
+}
+
+inventory::collect!(Tracer);
+
+/// A PLEN2 motion's playback (`--slot`), up to `max_ms`.
+pub fn plen2(project: &Project, input: &Path, subject: Subject, max_ms: f64) -> anyhow::Result<Traced<'static>> {
+    let Subject::Slot { slot, from_slot } = subject else {
+        anyhow::bail!("{} holds PLEN2 motions: give --slot N", input.display())
+    };
+    // Cycle counts from bounded seconds: small and non-negative.
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    let max_cycles = (max_ms / Playback::CYCLE_MS).floor() as usize + 1;
+    let lines = plen2_rows(project, slot, from_slot, max_cycles)?;
+    let write = move |rows: &mut Rows<'_>| lines.iter().try_for_each(|line| rows.push(line));
+    Ok(Traced { step_ms: Playback::CYCLE_MS, write: Box::new(write) })
+}
+
+/// A servo board action's or macro's playback, up to `max_ms`.
+pub fn servo<'a>(project: &'a Project, input: &Path, subject: Subject, max_ms: f64) -> anyhow::Result<Traced<'a>> {
+    if let Subject::Slot { .. } = subject {
+        anyhow::bail!("{} is a servo board project: give --action N or --macro N", input.display())
+    }
+    let (trajectories, end_ms) = servo_trace(project, subject, max_ms)?;
+    let write = move |rows: &mut Rows<'_>| write_servo(rows, project, &trajectories, end_ms);
+    Ok(Traced { step_ms: project::SAMPLE_MS, write: Box::new(write) })
+}
+
 /// Writes the trajectory of `subject` in `input` to `out`; `seconds` caps a
 /// motion that never ends. Returns the rows written and the time they cover.
 /// Everything is checked before the file is touched.
@@ -178,42 +226,20 @@ pub fn run(input: &Path, subject: Subject, seconds: f64, out: &Path, force: bool
     let project = loaded.project;
     super::writable_output(out, force)?;
     let max_ms = super::bounds::duration(seconds).as_secs_f64() * 1000.0;
-    let (plen2, servo) = match (project.family, subject) {
-        (Family::Plen2, Subject::Slot { slot, from_slot }) => {
-            // Cycle counts from bounded seconds: small and non-negative.
-            #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-            let max_cycles = (max_ms / Playback::CYCLE_MS).floor() as usize + 1;
-            (Some(plen2_rows(&project, slot, from_slot, max_cycles)?), None)
-        }
-        (Family::Plen2, _) => anyhow::bail!("{} holds PLEN2 motions: give --slot N", input.display()),
-        (Family::Servo, Subject::Slot { .. }) => {
-            anyhow::bail!("{} is a servo board project: give --action N or --macro N", input.display())
-        }
-        (Family::Servo, subject) => (None, Some(servo_trace(&project, subject, max_ms)?)),
-        (Family::Rflex, _) => {
-            anyhow::bail!("{} is an rFLEX project: a base has no stored motions to play", input.display())
-        }
-        (other, _) => {
-            anyhow::bail!("{} is a project for the {}: it has no stored motions to play", input.display(), other.name())
-        }
+    let family = project.family;
+    let Some(tracer) = inventory::iter::<Tracer>.into_iter().find(|tracer| tracer.family == family) else {
+        anyhow::bail!("{} is a project for the {}: it has no stored motions to play", input.display(), family.name())
     };
+    let Traced { step_ms, write } = (tracer.trace)(&project, input, subject, max_ms)?;
     let mut count = 0;
     project::atomic_write(out, |file| {
         let mut rows = Rows { writer: std::io::BufWriter::new(file), count: 0 };
-        if let Some(lines) = &plen2 {
-            for line in lines {
-                rows.push(line)?;
-            }
-        }
-        if let Some((trajectories, end_ms)) = &servo {
-            write_servo(&mut rows, &project, trajectories, *end_ms)?;
-        }
+        write(&mut rows)?;
         rows.writer.flush()?;
         count = rows.count.saturating_sub(1);
         Ok(())
     })
     .with_context(|| format!("cannot write {}", out.display()))?;
-    let step_ms = if project.family == Family::Plen2 { Playback::CYCLE_MS } else { project::SAMPLE_MS };
     // Row counts are far below 2^52.
     #[allow(clippy::cast_precision_loss)]
     let covered = count.saturating_sub(1) as f64 * step_ms / 1000.0;

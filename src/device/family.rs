@@ -1,8 +1,13 @@
 //! What the device layer knows of a family, registered by the family itself
 //! (`inventory::submit!` in `device/<family>/mod.rs`): how its line is set up
-//! and how the connection doctor asks it who it is. Nothing here lists them.
+//! and how the connection doctor ([`super::probe`]) asks it who it is — its
+//! [`Recogniser`], and what its devices say of themselves ([`Said`]). Nothing
+//! here lists the families.
 
-use super::probe::Recogniser;
+use std::any::Any;
+use std::fmt;
+use std::sync::Arc;
+
 use crate::link::LineSettings;
 use crate::project::Family;
 
@@ -47,4 +52,94 @@ pub fn doctored() -> Vec<(Family, &'static Doctor)> {
 /// or, for a family that registered none, a plain line at the usual rate.
 pub fn line_settings(family: Family) -> LineSettings {
     registered(family).map_or_else(|| LineSettings::new(115_200), |entry| (entry.line)())
+}
+
+/// One family's side of the doctor, registered by the family
+/// ([`super::family::Doctor`]): the requests that ask it who it is, and a
+/// reader that recognises its replies in every byte that comes.
+pub trait Recogniser: Send + fmt::Debug {
+    /// The requests, in the order they go out; none changes anything on any family.
+    fn requests(&self) -> Vec<Vec<u8>>;
+    /// One of its requests goes out (for a reader that must know what it asked).
+    fn asking(&mut self, _request: &[u8]) {}
+    /// Bytes came (they may be any family's, or noise): what they said.
+    fn read(&mut self, bytes: &[u8]) -> Vec<Heard>;
+    /// The request was given up: forget a reply it began.
+    fn abandon(&mut self) {}
+}
+
+/// What a family's reader heard.
+#[derive(Debug)]
+pub enum Heard {
+    /// The device said who it is.
+    Said(Identity),
+    /// A request was answered with nothing more to tell (read for its timing).
+    Answered,
+}
+
+/// What a device said of itself, in its family's own terms: each family
+/// defines what its devices say (`device::servo::Said`, …) and words it.
+pub trait Said: Any + Send + Sync + fmt::Debug + fmt::Display + SameSaid {
+    /// The family it belongs to.
+    fn family(&self) -> Family;
+    /// What it says now merged with what it said before (a servo board
+    /// answers two questions); `None`: the later answer stands alone.
+    fn merged(&self, _earlier: &dyn Any) -> Option<Arc<dyn Said>> {
+        None
+    }
+}
+
+/// Equality of what was said, across the families' types.
+pub trait SameSaid {
+    /// Whether `other` is the same type and value.
+    fn same(&self, other: &dyn Any) -> bool;
+}
+
+impl<T: PartialEq + 'static> SameSaid for T {
+    fn same(&self, other: &dyn Any) -> bool {
+        other.downcast_ref::<T>().is_some_and(|other| other == self)
+    }
+}
+
+/// What a device said of itself.
+#[derive(Clone, Debug)]
+pub struct Identity(Arc<dyn Said>);
+
+impl Identity {
+    /// What a device of the family that defines `said` said.
+    pub fn new(said: impl Said) -> Self {
+        Self(Arc::new(said))
+    }
+
+    /// The family it belongs to.
+    pub fn family(&self) -> Family {
+        self.0.family()
+    }
+
+    /// What it said, as its family's type (`None` for another family's).
+    pub fn said<T: Said>(&self) -> Option<&T> {
+        let said: &dyn Any = &*self.0;
+        said.downcast_ref()
+    }
+
+    /// This, merged with what the same device said `earlier`.
+    pub(super) fn after(self, earlier: &Self) -> Self {
+        let earlier: &dyn Any = &*earlier.0;
+        self.0.merged(earlier).map_or(self, Self)
+    }
+}
+
+impl PartialEq for Identity {
+    fn eq(&self, other: &Self) -> bool {
+        let other: &dyn Any = &*other.0;
+        self.0.same(other)
+    }
+}
+
+impl Eq for Identity {}
+
+impl fmt::Display for Identity {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.0.fmt(f)
+    }
 }

@@ -10,22 +10,42 @@ use super::document::Project;
 #[cfg(test)]
 use super::servo::ServoProject;
 
-/// The live pose (what the sliders hold).
+/// The live pose (what the sliders hold), in its family's terms: each axis's
+/// value by its number — a servo board's servos, degrees by id; a PLEN2's
+/// joints, tenths of a degree by device-map index. Any family keeps its own.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub enum LivePose {
-    /// A PLEN2's joints, tenths of a degree, device-map order.
-    Plen2([i16; 18]),
-    /// A servo board's servos, degrees by id.
-    Servo(BTreeMap<u8, i16>),
+pub struct LivePose {
+    /// The family whose pose it is.
+    pub family: super::Family,
+    /// Each axis's value, by its number.
+    pub values: BTreeMap<u8, i16>,
 }
 
 impl LivePose {
+    /// `family`'s pose, values by axis number.
+    pub fn new(family: super::Family, values: BTreeMap<u8, i16>) -> Self {
+        Self { family, values }
+    }
+
+    /// `family`'s pose from values in axis order (0, 1, …).
+    pub fn indexed(family: super::Family, values: &[i16]) -> Self {
+        Self { family, values: (0..=u8::MAX).zip(values.iter().copied()).collect() }
+    }
+
+    /// The values in axis order, `N` of them (an axis it lacks is 0).
+    pub fn to_array<const N: usize>(&self) -> [i16; N] {
+        let mut values = [0; N];
+        for (&axis, &value) in &self.values {
+            if let Some(slot) = values.get_mut(usize::from(axis)) {
+                *slot = value;
+            }
+        }
+        values
+    }
+
     /// The family whose pose it is.
     pub fn family(&self) -> super::Family {
-        match self {
-            Self::Plen2(_) => super::Family::Plen2,
-            Self::Servo(_) => super::Family::Servo,
-        }
+        self.family
     }
 }
 
@@ -131,6 +151,7 @@ impl History {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::project::Family;
 
     fn with_id(project_id: i32) -> Project {
         Project::servo(ServoProject { project_id, ..ServoProject::default() })
@@ -154,18 +175,21 @@ mod tests {
     fn a_pose_step_sits_between_edits_and_redo_brings_the_pose_it_replaced() {
         let mut history = History::default();
         history.record(&with_id(1), Some("drag"));
-        history.record_pose(LivePose::Plen2([5; 18]));
+        history.record_pose(LivePose::indexed(Family::Plen2, &[5; 18]));
         // The turn closed the drag's step: the next edit with the same key is its own step.
         history.record(&with_id(2), Some("drag"));
         let current = with_id(3);
         assert_eq!(undo(&mut history, &current), Some(with_id(2)));
-        let turned = LivePose::Plen2([7; 18]);
-        assert_eq!(history.undo(&with_id(2), |_| turned.clone()), Some(Step::Pose(LivePose::Plen2([5; 18]))));
+        let turned = LivePose::indexed(Family::Plen2, &[7; 18]);
+        assert_eq!(
+            history.undo(&with_id(2), |_| turned.clone()),
+            Some(Step::Pose(LivePose::indexed(Family::Plen2, &[5; 18])))
+        );
         assert_eq!(undo(&mut history, &with_id(2)), Some(with_id(1)));
         assert_eq!(redo(&mut history, &with_id(1)), Some(with_id(2)));
-        assert_eq!(history.redo(&with_id(2), |_| LivePose::Plen2([5; 18])), Some(Step::Pose(turned)));
+        assert_eq!(history.redo(&with_id(2), |_| LivePose::indexed(Family::Plen2, &[5; 18])), Some(Step::Pose(turned)));
         // A new turn drops what could be redone.
-        history.record_pose(LivePose::Servo(BTreeMap::from([(1, 90)])));
+        history.record_pose(LivePose::new(Family::Servo, BTreeMap::from([(1, 90)])));
         assert!(!history.can_redo());
     }
 

@@ -3,7 +3,7 @@
 
 use std::fmt;
 
-use crate::device::probe::{Heard, Identity, Recogniser, Said as SaidTrait};
+use crate::device::family::{Heard, Identity, Recogniser, Said as SaidTrait};
 use crate::project::Family;
 use crate::protocol::rflex::{Command, DecoderEvent, FrameDecoder, Report};
 

@@ -5,7 +5,7 @@ use std::any::Any;
 use std::fmt;
 use std::sync::Arc;
 
-use crate::device::probe::{Heard, Identity, Recogniser, Said as SaidTrait};
+use crate::device::family::{Heard, Identity, Recogniser, Said as SaidTrait};
 use crate::project::Family;
 use crate::protocol::servo::{DecoderEvent, FrameDecoder, Message};
 

@@ -262,7 +262,7 @@ impl Plen2Ui {
                 if let Some(before) = self.turning.take()
                     && before != self.pose
                 {
-                    shell.document.record_pose(LivePose::Plen2(before));
+                    shell.document.record_pose(LivePose::indexed(Family::Plen2, &before));
                 }
             }
             Plen2Action::Home => self.home(shell),
@@ -407,12 +407,12 @@ impl FamilyUi for Plen2Ui {
     }
 
     fn live_pose(&self) -> Option<LivePose> {
-        Some(LivePose::Plen2(self.pose))
+        Some(LivePose::indexed(Family::Plen2, &self.pose))
     }
 
     fn restore_pose(&mut self, shell: &mut Shell<'_>, pose: LivePose) {
-        if let LivePose::Plen2(pose) = pose {
-            Plen2Ui::restore_pose(self, shell, pose);
+        if pose.family == Family::Plen2 {
+            Plen2Ui::restore_pose(self, shell, pose.to_array());
         }
     }
 

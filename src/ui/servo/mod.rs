@@ -149,7 +149,7 @@ impl ServoUi {
                 if let Some(before) = self.turning.take()
                     && before != self.pose
                 {
-                    shell.document.record_pose(crate::project::LivePose::Servo(before));
+                    shell.document.record_pose(crate::project::LivePose::new(Family::Servo, before));
                 }
             }
             ServoAction::SetHold { servo_id, hold } => {
@@ -259,12 +259,12 @@ impl FamilyUi for ServoUi {
     }
 
     fn live_pose(&self) -> Option<crate::project::LivePose> {
-        Some(crate::project::LivePose::Servo(self.pose.clone()))
+        Some(crate::project::LivePose::new(Family::Servo, self.pose.clone()))
     }
 
     fn restore_pose(&mut self, shell: &mut Shell<'_>, pose: crate::project::LivePose) {
-        if let crate::project::LivePose::Servo(pose) = pose {
-            ServoUi::restore_pose(self, shell, pose);
+        if pose.family == Family::Servo {
+            ServoUi::restore_pose(self, shell, pose.values);
         }
     }
 
