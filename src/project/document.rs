@@ -1,6 +1,8 @@
 //! The document a project file holds: which family of hardware it is for, and
 //! one section per family (format v2, field by field in `docs/project-format.md`).
 
+use std::collections::BTreeMap;
+
 use super::family::Family;
 use super::plen2::Plen2Project;
 use super::rflex::RflexProject;
@@ -20,6 +22,41 @@ pub struct Project {
     pub rflex: RflexProject,
     /// Gamepad bindings, per family.
     pub gamepad: super::gamepad::GamepadMappings,
+    /// The sections of the families added since the first three, by tag.
+    pub sections: Sections,
+}
+
+/// The project sections of families the document does not name by field (the
+/// first three — servo, PLEN2, rFLEX — are typed fields, read everywhere by
+/// type): each is kept under its family's tag as the JSON its family reads and
+/// writes, and registers how it is checked ([`super::section::Section`]).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Sections(BTreeMap<String, serde_json::Value>);
+
+impl Sections {
+    /// `family`'s section, as kept.
+    pub fn get(&self, family: Family) -> Option<&serde_json::Value> {
+        self.0.get(family.tag())
+    }
+
+    /// `family`'s section read as `T` (`None` when it has none).
+    pub fn read<T: serde::de::DeserializeOwned>(&self, family: Family) -> Result<Option<T>, serde_json::Error> {
+        self.get(family).map(|value| T::deserialize(value)).transpose()
+    }
+
+    /// Keeps `section` as `family`'s (`null`: it has none).
+    pub fn set(&mut self, family: Family, section: serde_json::Value) {
+        if section.is_null() {
+            self.0.remove(family.tag());
+        } else {
+            self.0.insert(family.tag().to_string(), section);
+        }
+    }
+
+    /// Every section kept, by tag.
+    pub fn iter(&self) -> impl Iterator<Item = (&str, &serde_json::Value)> {
+        self.0.iter().map(|(tag, section)| (tag.as_str(), section))
+    }
 }
 
 impl From<ServoProject> for Project {

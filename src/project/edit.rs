@@ -80,6 +80,8 @@ pub enum Edit {
     SetGamepad(Family, Box<super::gamepad::Mapping>),
     /// Replace the PLEN2 section (motions, play lists, joint settings).
     SetPlen2(Box<super::plen2::Plen2Project>),
+    /// Replace the section a family added since the first three keeps (`null`: none).
+    SetSection(Family, serde_json::Value),
 }
 
 fn set<T>(items: &mut [T], index: usize, value: T) -> bool {
@@ -122,6 +124,10 @@ impl Edit {
                 project.plen2 = *plen2;
                 return true;
             }
+            Self::SetSection(family, section) => {
+                project.sections.set(family, section);
+                return true;
+            }
             Self::SetGamepad(family, mapping) => {
                 let Some(bindings) = project.gamepad.of_mut(family) else { return false };
                 *bindings = *mapping;
@@ -135,6 +141,7 @@ impl Edit {
             | Self::SetRflexRobot(_)
             | Self::SetRflexDrive(_)
             | Self::SetPlen2(_)
+            | Self::SetSection(..)
             | Self::SetGamepad(..) => false,
             Self::SetServo { index, servo } => set(&mut project.servos, index, servo),
             Self::AddServo(servo) => {

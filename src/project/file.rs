@@ -91,6 +91,9 @@ struct Envelope<'a> {
     rflex: Option<&'a RflexProject>,
     #[serde(skip_serializing_if = "Option::is_none")]
     gamepad: Option<&'a super::gamepad::GamepadMappings>,
+    /// The sections of families added since the first three, each under its tag.
+    #[serde(flatten)]
+    sections: std::collections::BTreeMap<&'a str, &'a serde_json::Value>,
 }
 
 #[derive(Deserialize)]
@@ -179,6 +182,56 @@ fn deserialize_noting<T: serde::de::DeserializeOwned>(
     Ok((value, unknown, not_kept))
 }
 
+/// The sections under `tags` in a project file's text (each family added
+/// since the first three keeps its own); read only when such a family exists.
+fn kept_sections(text: &str, tags: &[&'static str]) -> Result<super::document::Sections, LoadError> {
+    let mut sections = super::document::Sections::default();
+    if tags.is_empty() {
+        return Ok(sections);
+    }
+    let mut deserializer = serde_json::Deserializer::from_str(text);
+    let found =
+        serde::de::DeserializeSeed::deserialize(Tagged(tags), &mut deserializer).map_err(|error| syntax(&error))?;
+    for (tag, section) in found {
+        if let Some(family) = Family::from_tag(tag) {
+            sections.set(family, section);
+        }
+    }
+    Ok(sections)
+}
+
+/// Reads a JSON object's members named by one of its tags, skipping the others.
+struct Tagged<'t>(&'t [&'static str]);
+
+impl<'de> serde::de::DeserializeSeed<'de> for Tagged<'_> {
+    type Value = Vec<(&'static str, serde_json::Value)>;
+
+    fn deserialize<D: serde::Deserializer<'de>>(self, deserializer: D) -> Result<Self::Value, D::Error> {
+        deserializer.deserialize_map(self)
+    }
+}
+
+impl<'de> serde::de::Visitor<'de> for Tagged<'_> {
+    type Value = Vec<(&'static str, serde_json::Value)>;
+
+    fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("a project object")
+    }
+
+    fn visit_map<A: serde::de::MapAccess<'de>>(self, mut map: A) -> Result<Self::Value, A::Error> {
+        let mut found = Vec::new();
+        while let Some(key) = map.next_key::<std::borrow::Cow<'de, str>>()? {
+            match self.0.iter().find(|tag| **tag == key) {
+                Some(tag) => found.push((*tag, map.next_value()?)),
+                None => {
+                    map.next_value::<serde::de::IgnoredAny>()?;
+                }
+            }
+        }
+        Ok(found)
+    }
+}
+
 /// What a JSON text holds at its top level when it is not an object.
 fn top_level(text: &str) -> Option<&'static str> {
     match text.trim_start().as_bytes().first()? {
@@ -225,13 +278,15 @@ pub fn parse(text: &str) -> Result<Loaded, LoadError> {
             Ok(Loaded { project: Project::servo(servo), unknown_keys, unknown_keys_not_kept })
         }
         Some(2) => {
-            let (sections, unknown_keys, unknown_keys_not_kept): (Sections, _, _) = deserialize_noting(text, &[])?;
+            let tags = super::section::tags();
+            let (sections, unknown_keys, unknown_keys_not_kept): (Sections, _, _) = deserialize_noting(text, &tags)?;
             let project = Project {
                 family: sections.family,
                 servo: sections.servo,
                 plen2: sections.plen2,
                 rflex: sections.rflex,
                 gamepad: sections.gamepad,
+                sections: kept_sections(text, &tags)?,
             };
             Ok(Loaded { project, unknown_keys, unknown_keys_not_kept })
         }
@@ -252,6 +307,7 @@ pub fn to_json(project: &Project) -> String {
         plen2: wanted(Family::Plen2, project.plen2 == Plen2Project::default()).then_some(&project.plen2),
         rflex: wanted(Family::Rflex, project.rflex == RflexProject::default()).then_some(&project.rflex),
         gamepad: (!project.gamepad.is_empty()).then_some(&project.gamepad),
+        sections: project.sections.iter().filter(|(tag, _)| super::section::tags().contains(tag)).collect(),
     };
     // Serializing plain structs of strings and integers to a String cannot fail.
     let mut text = serde_json::to_string_pretty(&envelope).unwrap_or_default();

@@ -15,13 +15,14 @@ pub mod motion_json;
 pub mod plen2;
 mod read;
 pub mod rflex;
+mod section;
 mod servo;
 mod timing;
 mod trajectory;
 mod validate;
 
 pub use bounded::MAX_LIST_LEN;
-pub use document::Project;
+pub use document::{Project, Sections};
 pub use easing::Easing;
 pub use edit::{Edit, next_free_id};
 pub use family::{Family, Registered};
@@ -30,6 +31,7 @@ pub use file::{
     output_path, parse, read, save, to_json,
 };
 pub use history::{History, LivePose, MAX_UNDO_STEPS, Step as UndoStep};
+pub use section::{Section, validate};
 pub use servo::{Action, Button, Command, JoystickTable, Macro, RigAxis, RigJoint, Run, Servo, ServoProject, Step};
 pub use timing::{Timing, TimingError, action_duration_ms};
 pub use trajectory::{
@@ -37,6 +39,6 @@ pub use trajectory::{
     macro_trajectories, pose_at, sample, sample_count, trace,
 };
 pub use validate::{
-    ButtonSlot, ItemKind, Location, Problem, ProblemKind, Problems, Severity, has_errors, validate, validate_plen2,
+    ButtonSlot, ItemKind, Location, Problem, ProblemKind, Problems, Severity, has_errors, validate_plen2,
     validate_servo,
 };

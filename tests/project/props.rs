@@ -189,8 +189,9 @@ fn project_strategy() -> impl Strategy<Value = Project> {
     let family = prop::sample::select(Family::all().to_vec());
     let gamepad =
         (mapping(), mapping(), mapping()).prop_map(|(servo, plen2, rflex)| GamepadMappings { servo, plen2, rflex });
-    (family, servo_section(), plen2_section(), rflex_section(), gamepad)
-        .prop_map(|(family, servo, plen2, rflex, gamepad)| Project { family, servo, plen2, rflex, gamepad })
+    (family, servo_section(), plen2_section(), rflex_section(), gamepad).prop_map(
+        |(family, servo, plen2, rflex, gamepad)| Project { family, servo, plen2, rflex, gamepad, ..Project::default() },
+    )
 }
 
 proptest! {

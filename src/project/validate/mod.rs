@@ -302,6 +302,11 @@ pub enum ProblemKind {
     },
     /// A key Servo Studio does not know: ignored (a misspelt name?).
     UnknownKey,
+    /// What a family that keeps its own section says is wrong with it, in its words.
+    Section {
+        /// The family's words.
+        message: String,
+    },
 }
 
 impl fmt::Display for ProblemKind {
@@ -422,6 +427,7 @@ impl ProblemKind {
             ),
             Self::NotPositive { field } => write!(f, "{field} must be a positive number"),
             Self::UnknownKey => write!(f, "unknown key, ignored (is it misspelt?)"),
+            Self::Section { message } => write!(f, "{message}"),
             // Written by `board_fmt`.
             _ => Ok(()),
         }
@@ -449,7 +455,7 @@ impl fmt::Display for Problem {
     }
 }
 
-/// Every problem of the document's own family's section, in document order
+/// Every problem of the document's own family's typed section, in document order
 /// (the first thousand of each severity kept, all counted), then of its
 /// gamepad bindings.
 pub fn validate(project: &Project) -> Problems {

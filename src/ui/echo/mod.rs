@@ -9,7 +9,9 @@ mod link;
 
 use std::time::Instant;
 
-use crate::project::{Family, Project};
+use serde::Deserialize;
+
+use crate::project::{Edit, Family, Project};
 use crate::ui::action::{Action, ActionOf, FamilyAction, Tab};
 use crate::ui::board_link::{BoardLink, FamilyNotice, LinkStarter, StartError};
 use crate::ui::family::{FamilyUi, Panel};
@@ -24,9 +26,13 @@ impl Family {
     pub const Echo: Self = Self::named("echo", "Echo board");
 }
 
-// The registries: the family, after the three real ones, and its side of the editor.
+// The registries: the family, after the three real ones, its project section,
+// and its side of the editor.
 inventory::submit! {
     crate::project::Registered { family: Family::Echo, rank: 3 }
+}
+inventory::submit! {
+    crate::project::Section { family: Family::Echo, check: EchoSection::check }
 }
 inventory::submit! {
     crate::ui::families::Registered { make: || Box::<EchoUi>::default() }
@@ -38,11 +44,36 @@ impl Tab {
     pub const Echo: Self = Self::named("Echo");
 }
 
+/// What an echo project keeps (its section of the project file, `"echo"`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub struct EchoSection {
+    /// Where the servo rests, degrees (−90..=90).
+    pub home_deg: i16,
+}
+
+impl EchoSection {
+    /// What is wrong with a kept section, in the family's words.
+    fn check(kept: &serde_json::Value) -> Vec<String> {
+        match Self::deserialize(kept) {
+            Ok(section) if (-90..=90).contains(&section.home_deg) => Vec::new(),
+            Ok(section) => vec![format!("the echo servo's home {}° is outside −90..=90°", section.home_deg)],
+            Err(error) => vec![format!("the echo section cannot be read: {error}")],
+        }
+    }
+
+    /// The project's, or the default.
+    fn of(project: &Project) -> Self {
+        project.sections.read(Family::Echo).ok().flatten().unwrap_or_default()
+    }
+}
+
 /// The echo board's panels' requests.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum EchoAction {
     /// The servo to this angle (sent live when connected).
     Move(i16),
+    /// Where the servo is becomes its home, kept in the project (one undo step).
+    SetHome,
 }
 
 impl ActionOf for EchoAction {
@@ -62,10 +93,19 @@ pub struct EchoUi {
 const PANELS: &[Panel] = &[Panel { tab: Tab::Echo, title: |_| "Echo", has_view: false }];
 
 impl EchoUi {
-    fn apply(&mut self, shell: &mut Shell<'_>, EchoAction::Move(deg): EchoAction) {
-        self.pose = deg.clamp(-90, 90);
-        if let Some(board) = shell.link.as_ref().and_then(BoardLink::device::<EchoHandle>) {
-            board.move_to(self.pose);
+    fn apply(&mut self, shell: &mut Shell<'_>, action: EchoAction) {
+        match action {
+            EchoAction::Move(deg) => {
+                self.pose = deg.clamp(-90, 90);
+                if let Some(board) = shell.link.as_ref().and_then(BoardLink::device::<EchoHandle>) {
+                    board.move_to(self.pose);
+                }
+            }
+            EchoAction::SetHome => {
+                let section = EchoSection { home_deg: self.pose };
+                let kept = serde_json::to_value(section).unwrap_or_default();
+                shell.document.apply(Edit::SetSection(Family::Echo, kept), None);
+            }
         }
     }
 }
@@ -87,11 +127,15 @@ impl FamilyUi for EchoUi {
         &mut self.layout
     }
 
-    fn ui(&mut self, ui: &mut egui::Ui, _tab: Tab, _view: &ShellView<'_>, actions: &mut Vec<Action>) {
+    fn ui(&mut self, ui: &mut egui::Ui, _tab: Tab, view: &ShellView<'_>, actions: &mut Vec<Action>) {
         ui.horizontal(|ui| {
             ui.label(format!("servo at {}°", self.pose));
             if ui.button("+10°").clicked() {
                 actions.push(Action::family(EchoAction::Move(self.pose + 10)));
+            }
+            ui.label(format!("home {}°", EchoSection::of(view.project).home_deg));
+            if ui.button("Set home").clicked() {
+                actions.push(Action::family(EchoAction::SetHome));
             }
             if let Some(deg) = self.echoed {
                 ui.label(format!("the board says {deg}°"));

@@ -110,3 +110,37 @@ fn the_echo_family_touches_only_the_shared_files_named() {
     assert!(touched.len() <= 4, "at most four shared files: {touched:?}");
     assert_eq!(touched, named_in_architecture(), "the shared edits are the ones ARCHITECTURE.md names");
 }
+
+/// The echo keeps a section of its own in the project: set in its panel as
+/// one undo step, written under its tag, read back without an unknown key,
+/// and checked by the family.
+#[test]
+fn the_echo_keeps_its_own_project_section_written_read_and_checked() {
+    let mut harness = editor();
+    harness.run_steps(2);
+    harness.get_by_label("+10°").click();
+    harness.run_steps(2);
+    harness.get_by_label("Set home").click();
+    harness.run_steps(2);
+    let project = harness.state().document.project.clone();
+    assert_eq!(EchoSection::of(&project), EchoSection { home_deg: 10 });
+    assert!(harness.query_by_label("home 10°").is_some(), "the panel shows the kept home");
+
+    let text = crate::project::to_json(&project);
+    let file: serde_json::Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(file["family"], "echo");
+    assert_eq!(file["echo"], serde_json::json!({ "home_deg": 10 }));
+    let loaded = crate::project::parse(&text).unwrap();
+    assert_eq!(loaded.project, project, "read back as written");
+    assert!(loaded.unknown_keys.is_empty(), "{:?}", loaded.unknown_keys);
+    assert!(crate::project::validate(&project).is_empty());
+
+    let wrong = text.replace("\"home_deg\": 10", "\"home_deg\": 120");
+    let problems = crate::project::validate(&crate::project::parse(&wrong).unwrap().project);
+    let said: Vec<String> = problems.iter().map(ToString::to_string).collect();
+    assert_eq!(said, ["error: project: the echo servo's home 120° is outside −90..=90°"]);
+
+    // One undo step takes the section away again.
+    harness.state_mut().apply(Action::Undo);
+    assert_eq!(harness.state().document.project.sections.get(Family::Echo), None);
+}
