@@ -104,38 +104,35 @@ fn remove<T>(items: &mut Vec<T>, index: usize) -> bool {
 }
 
 impl Edit {
-    /// Applies the edit to the project's servo section; false (and no change)
-    /// when its index is out of range.
+    /// Applies the edit; false (and no change) when its index is out of range,
+    /// or its family keeps no such part.
     pub fn apply(self, project: &mut Project) -> bool {
-        match self {
-            Self::SetFamily(family) => {
-                project.family = family;
-                return true;
-            }
-            Self::SetRflexRobot(robot) => {
-                project.rflex.robot = robot;
-                return true;
-            }
-            Self::SetRflexDrive(drive) => {
-                project.rflex.drive = drive;
-                return true;
-            }
-            Self::SetPlen2(plen2) => {
-                project.plen2 = *plen2;
-                return true;
-            }
-            Self::SetSection(family, section) => {
-                project.sections.set(family, section);
-                return true;
-            }
-            Self::SetGamepad(family, mapping) => {
-                let Some(bindings) = project.gamepad.of_mut(family) else { return false };
-                *bindings = *mapping;
-                return true;
-            }
-            _ => {}
+        match self.apply_outside_servo(project) {
+            Ok(applied) => applied,
+            Err(edit) => edit.apply_servo(&mut project.servo),
         }
-        let project = &mut project.servo;
+    }
+
+    /// An edit of the project's family, another family's section or the
+    /// bindings: applied (`Ok`); any other is given back.
+    fn apply_outside_servo(self, project: &mut Project) -> Result<bool, Self> {
+        match self {
+            Self::SetFamily(family) => project.family = family,
+            Self::SetRflexRobot(robot) => project.rflex.robot = robot,
+            Self::SetRflexDrive(drive) => project.rflex.drive = drive,
+            Self::SetPlen2(plen2) => project.plen2 = *plen2,
+            Self::SetSection(family, section) => project.sections.set(family, section),
+            Self::SetGamepad(family, mapping) => {
+                let Some(bindings) = project.gamepad.of_mut(family) else { return Ok(false) };
+                *bindings = *mapping;
+            }
+            servo => return Err(servo),
+        }
+        Ok(true)
+    }
+
+    /// An edit of the servo section.
+    fn apply_servo(self, project: &mut ServoProject) -> bool {
         match self {
             Self::SetFamily(_)
             | Self::SetRflexRobot(_)
