@@ -7,6 +7,7 @@ mod common;
 
 mod architecture;
 mod cli;
+mod fit;
 mod interchange;
 mod plen2;
 mod probe;

@@ -127,7 +127,7 @@ pub fn eased_rows(from: &[i16; JOINTS], frame: &Frame, cycles: usize) -> Vec<Vec
 fn eased_frames(from: &[i16; JOINTS], frame: &Frame, cycles: usize, tolerance: f64) -> (Vec<Frame>, f64) {
     let rows = eased_rows(from, frame, cycles);
     let start: Vec<i32> = from.iter().map(|&value| i32::from(value)).collect();
-    let fitted = fit::fit(&Plen2Board, &start, &rows, tolerance);
+    let fitted = fit::fit_on_samples(&Plen2Board, &start, &rows, tolerance);
     (fitted::plen2_frames(&fitted), fitted.max_error)
 }
 

@@ -98,7 +98,7 @@ pub fn action_rows(action: &Action, from: &BTreeMap<u8, f64>) -> (Vec<i32>, Vec<
 /// `first_id` (for the caller to replace when it stores them), and the largest deviation from its curves, °.
 pub fn bake_action(action: &Action, from: &BTreeMap<u8, f64>, tolerance: f64, first_id: i32) -> (Vec<Action>, f64) {
     let (start, rows) = action_rows(action, from);
-    let fitted = fit::fit(&ServoBoard, &start, &rows, tolerance);
+    let fitted = fit::fit_on_samples(&ServoBoard, &start, &rows, tolerance);
     let ids: Vec<u8> = action.steps.iter().map(|step| step.servo_id).collect();
     let mut subs = fitted::servo_actions(&fitted, &ids, first_id, &format!("{} ~", action.caption));
     // A servo that stays where the last sub-action left it needs no step (every move of a

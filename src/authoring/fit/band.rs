@@ -1,0 +1,260 @@
+//! Per channel, the end values a move may take: as the samples of a move are
+//! added one by one, the range of end values whose playback keeps every one
+//! of them within the tolerance, in the board's own arithmetic — exact
+//! integer intervals for the PLEN2's 16.16 steps, slopes for the servo
+//! board's linear steps. Each sample costs O(1).
+
+/// A sample as a band reads it: the value wanted, and the whole values
+/// within the tolerance of it (worked out once per fit).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sample {
+    /// The value wanted.
+    pub wanted: f64,
+    /// The lowest whole value within the tolerance.
+    pub low: i64,
+    /// The highest whole value within the tolerance.
+    pub high: i64,
+}
+
+impl Sample {
+    /// `wanted`, within `tolerance`.
+    pub fn new(wanted: f64, tolerance: f64) -> Self {
+        let (low, high) = whole_within(wanted, tolerance);
+        Self { wanted, low, high }
+    }
+}
+
+/// Every sample of `rows`, within `tolerance`.
+pub fn samples_of(rows: &[Vec<f64>], tolerance: f64) -> Vec<Vec<Sample>> {
+    rows.iter().map(|row| row.iter().map(|&wanted| Sample::new(wanted, tolerance)).collect()).collect()
+}
+
+/// The end values a move from one anchor may take, sample by sample.
+pub trait Band {
+    /// Adds the next sample (update `k`, counted from 1); false once no move
+    /// of any length from this anchor can keep every sample so far.
+    fn push(&mut self, sample: &Sample) -> bool;
+    /// The lowest and highest end values of a move over exactly the samples
+    /// added whose playback keeps every one of them; `None` when none does.
+    fn ends(&self) -> Option<(i32, i32)>;
+}
+
+/// The smallest and the largest whole values within `tolerance` of `wanted`,
+/// as `(value − wanted).abs() <= tolerance` decides it (what the fit's check uses).
+fn whole_within(wanted: f64, tolerance: f64) -> (i64, i64) {
+    let within = |value: i64| {
+        // Values of an i16 range and a little beyond: exact in f64.
+        #[allow(clippy::cast_precision_loss)]
+        let value = value as f64;
+        (value - wanted).abs() <= tolerance
+    };
+    // Bounded to a little beyond an i16's range before converting.
+    #[allow(clippy::cast_possible_truncation)]
+    let (mut low, mut high) = (
+        (wanted - tolerance).ceil().clamp(-70_000.0, 70_000.0) as i64,
+        (wanted + tolerance).floor().clamp(-70_000.0, 70_000.0) as i64,
+    );
+    while low <= high && !within(low) {
+        low += 1;
+    }
+    while low > high.saturating_sub(1) && within(low - 1) {
+        low -= 1;
+    }
+    while high >= low && !within(high) {
+        high -= 1;
+    }
+    while within(high + 1) {
+        high += 1;
+    }
+    (low, high)
+}
+
+/// The PLEN2's moves: at cycle `k` a joint is at `from + ⌊d·k / 65536⌋`,
+/// where `d = trunc((to − from)·65536 / cycles)` (plen2.md §6). Each sample
+/// bounds `d` to an integer interval (independent of the move's length); a
+/// length then bounds `to`.
+#[derive(Clone, Debug)]
+pub struct StepBand {
+    from: i64,
+    cycles: i64,
+    low: i64,
+    high: i64,
+}
+
+/// 1.0 in 16.16.
+const ONE: i64 = 65_536;
+
+impl StepBand {
+    /// Moves from the frame value `from` (the tolerance is in each [`Sample`]'s whole values).
+    pub fn new(from: i32) -> Self {
+        Self { from: i64::from(from), cycles: 0, low: i64::MIN, high: i64::MAX }
+    }
+}
+
+impl Band for StepBand {
+    fn push(&mut self, sample: &Sample) -> bool {
+        self.cycles += 1;
+        let k = self.cycles;
+        let (low, high) = (sample.low, sample.high);
+        // ⌊d·k/ONE⌋ ≥ low − from  ⇔  d ≥ ⌈(low − from)·ONE / k⌉;
+        // ⌊d·k/ONE⌋ ≤ high − from ⇔  d·k < (high − from + 1)·ONE ⇔ d ≤ ⌊((high − from + 1)·ONE − 1) / k⌋.
+        self.low = self.low.max(-floor_div(-(low - self.from) * ONE, k));
+        self.high = self.high.min(floor_div((high - self.from + 1) * ONE - 1, k));
+        self.low <= self.high
+    }
+
+    fn ends(&self) -> Option<(i32, i32)> {
+        let cycles = self.cycles;
+        if cycles == 0 || cycles > 255 || self.low > self.high {
+            return None;
+        }
+        // The step d(Δ) = trunc(Δ·ONE / cycles) grows with Δ = to − from: the
+        // smallest Δ whose step is at least `low`, the largest whose step is at most `high`.
+        let first =
+            if self.low > 0 { div_ceil(self.low * cycles, ONE) } else { ((self.low - 1) * cycles).div_euclid(ONE) + 1 };
+        let last = if self.high < 0 {
+            (self.high * cycles).div_euclid(ONE)
+        } else {
+            div_ceil((self.high + 1) * cycles, ONE) - 1
+        };
+        let lowest = (self.from + first).max(i64::from(i16::MIN));
+        let highest = (self.from + last).min(i64::from(i16::MAX));
+        (lowest <= highest).then(|| (i32::try_from(lowest).unwrap_or(0), i32::try_from(highest).unwrap_or(0)))
+    }
+}
+
+/// ⌈a / b⌉ for b > 0.
+fn div_ceil(a: i64, b: i64) -> i64 {
+    a.div_euclid(b) + i64::from(a.rem_euclid(b) != 0)
+}
+
+/// ⌊a / k⌋ for a cycle count k (1..=255) and |a| far below 2^52: a float
+/// division, corrected to the exact integer (faster than an integer one).
+fn floor_div(a: i64, k: i64) -> i64 {
+    // |a| < 2^52 and k ≤ 255: exact in f64, and the quotient fits an i64.
+    #[allow(clippy::cast_precision_loss, clippy::cast_possible_truncation)]
+    let mut quotient = (a as f64 / k as f64).floor() as i64;
+    if quotient * k > a {
+        quotient -= 1;
+    } else if (quotient + 1) * k <= a {
+        quotient += 1;
+    }
+    quotient
+}
+
+/// The servo board's moves: at update `k` of `updates` a servo is at
+/// `from + (to − from)·k / updates`. Each sample bounds the slope `(to −
+/// from) / updates`; a length then bounds `to`. A hair inside the exact
+/// bounds, so that the check in floating point agrees.
+#[derive(Clone, Debug)]
+pub struct LinearBand {
+    from: f64,
+    tolerance: f64,
+    updates: u32,
+    low: f64,
+    high: f64,
+}
+
+/// How far inside its exact bounds an end value is taken (degrees × updates).
+const INSIDE: f64 = 1e-6;
+
+impl LinearBand {
+    /// Moves from the stored value `from`.
+    pub fn new(from: i32, tolerance: f64) -> Self {
+        Self { from: f64::from(from), tolerance, updates: 0, low: f64::NEG_INFINITY, high: f64::INFINITY }
+    }
+}
+
+impl Band for LinearBand {
+    fn push(&mut self, sample: &Sample) -> bool {
+        let wanted = sample.wanted;
+        self.updates += 1;
+        let per_update = f64::from(self.updates).recip();
+        self.low = self.low.max((wanted - self.tolerance - self.from) * per_update);
+        self.high = self.high.min((wanted + self.tolerance - self.from) * per_update);
+        self.low <= self.high
+    }
+
+    fn ends(&self) -> Option<(i32, i32)> {
+        let updates = f64::from(self.updates);
+        let lowest = (self.from + self.low * updates + INSIDE).ceil().max(f64::from(i16::MIN));
+        let highest = (self.from + self.high * updates - INSIDE).floor().min(f64::from(i16::MAX));
+        // Within an i16's range here.
+        #[allow(clippy::cast_possible_truncation)]
+        (self.updates > 0 && lowest <= highest).then_some((lowest as i32, highest as i32))
+    }
+}
+
+#[cfg(test)]
+use crate::protocol::plen2::playback::step_value;
+
+/// What the PLEN2 plays at cycle `k` of a move (for the tests here).
+#[cfg(test)]
+fn played(from: i32, to: i32, cycles: i64, k: i64) -> f64 {
+    let narrow = |value: i32| i16::try_from(value).unwrap_or(0);
+    f64::from(step_value(narrow(from), narrow(to), u8::try_from(cycles).unwrap_or(0), u16::try_from(k).unwrap_or(0)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every end value a brute-force search over the firmware's arithmetic
+    /// finds, and no other, for many anchors, samples and tolerances.
+    #[test]
+    fn the_plen2_band_holds_exactly_the_ends_the_firmware_keeps_within() {
+        let mut seed = 0x2545_f491_u64;
+        let mut next = |range: i64| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            i64::try_from(seed % u64::try_from(range).unwrap()).unwrap()
+        };
+        let mut kept = 0;
+        for _ in 0..400 {
+            let from = i32::try_from(next(1200) - 600).unwrap();
+            let cycles = next(40) + 1;
+            let slope = (next(2000) - 1000) as f64 / 100.0;
+            let tolerance = (next(40) as f64) / 4.0 + 0.5;
+            let samples: Vec<f64> =
+                (1..=cycles).map(|k| f64::from(from) + slope * k as f64 + (next(100) as f64 - 50.0) / 40.0).collect();
+            let mut band = StepBand::new(from);
+            let open = samples.iter().all(|&wanted| band.push(&Sample::new(wanted, tolerance)));
+            let keeps = |to: i32| {
+                (1..=cycles).all(|k| {
+                    (played(from, to, cycles, k) - samples[usize::try_from(k - 1).unwrap()]).abs() <= tolerance
+                })
+            };
+            let brute: Vec<i32> = (from - 2000..=from + 2000).filter(|&to| keeps(to)).collect();
+            match band.ends() {
+                Some((lowest, highest)) => {
+                    assert!(open);
+                    kept += 1;
+                    assert_eq!(brute, (lowest..=highest).collect::<Vec<_>>(), "from {from}, {cycles} cycles");
+                }
+                None => assert!(brute.is_empty(), "missed {brute:?} from {from}, {cycles} cycles"),
+            }
+        }
+        assert!(kept > 100, "most cases keep some end value: {kept} of 400");
+    }
+
+    #[test]
+    fn the_servo_band_holds_the_ends_whose_line_keeps_every_sample() {
+        // From 0, samples on the line to 30 over 10 updates, within 0.5°.
+        let mut band = LinearBand::new(0, 0.5);
+        for k in 1..=10 {
+            assert!(band.push(&Sample::new(3.0 * f64::from(k), 0.5)));
+        }
+        assert_eq!(band.ends(), Some((30, 30)));
+        // A wider tolerance takes the neighbours whose line stays within it
+        // (28 and 32 stray 2° at the last update).
+        let mut band = LinearBand::new(0, 2.05);
+        for k in 1..=10 {
+            band.push(&Sample::new(3.0 * f64::from(k), 2.05));
+        }
+        assert_eq!(band.ends(), Some((28, 32)));
+        // A sample off the line ends it.
+        assert!(!band.push(&Sample::new(60.0, 2.05)));
+        assert_eq!(band.ends(), None);
+    }
+}
