@@ -127,7 +127,14 @@ pub fn eased_rows(from: &[i16; JOINTS], frame: &Frame, cycles: usize) -> Vec<Vec
 fn eased_frames(from: &[i16; JOINTS], frame: &Frame, cycles: usize, tolerance: f64) -> (Vec<Frame>, f64) {
     let rows = eased_rows(from, frame, cycles);
     let start: Vec<i32> = from.iter().map(|&value| i32::from(value)).collect();
-    let fitted = fit::fit_on_samples(&Plen2Board, &start, &rows, tolerance);
+    // A curve shaped on the graph takes the fewest frames (ends chosen within
+    // the tolerance, the last on its key); a preset keeps its earlier frames,
+    // so a project written before stores the same bytes.
+    let fitted = if matches!(frame.easing, Easing::Shaped(_)) {
+        fit::fit_to_key(&Plen2Board, &start, &rows, tolerance)
+    } else {
+        fit::fit_on_samples(&Plen2Board, &start, &rows, tolerance)
+    };
     (fitted::plen2_frames(&fitted), fitted.max_error)
 }
 
@@ -186,5 +193,45 @@ mod tests {
         assert_eq!(baked.source[usize::from(range.begin_frame)], 2);
         assert_eq!(usize::from(range.begin_frame), baked.source.iter().position(|&s| s == 2).unwrap());
         assert_eq!(usize::from(range.end_frame), baked.motion.frames.len() - 1);
+    }
+
+    #[test]
+    fn a_shaped_frame_takes_no_more_frames_than_its_preset_and_lands_on_its_key() {
+        for preset in [Easing::EaseIn, Easing::EaseOut] {
+            let mut eased = Frame::new(2048, pose(900, -450));
+            eased.easing = preset;
+            let mut shaped = eased;
+            shaped.easing = Easing::Shaped(preset.handles());
+            let after = Frame::new(500, pose(0, 0));
+            let by_preset = bake_plen2(&motion(vec![eased, after]), DEFAULT_TOLERANCE_TENTHS);
+            let by_handles = bake_plen2(&motion(vec![shaped, after]), DEFAULT_TOLERANCE_TENTHS);
+            assert!(
+                by_handles.motion.frames.len() <= by_preset.motion.frames.len(),
+                "{preset:?}: {} vs {}",
+                by_handles.motion.frames.len(),
+                by_preset.motion.frames.len()
+            );
+            assert!(by_handles.max_error_tenths <= DEFAULT_TOLERANCE_TENTHS + 1e-9);
+            // The last piece of the curve ends on the key, so the next frame leaves from it.
+            let last_piece = by_handles.source.iter().rposition(|&s| s == 0).unwrap();
+            assert_eq!(by_handles.motion.frames[last_piece].values_tenths_deg, pose(900, -450));
+            // And the robot's own playback stays within 1° of the curve at every cycle.
+            let moves: Vec<fit::Move> = by_handles.motion.frames[..=last_piece]
+                .iter()
+                .map(|frame| fit::Move {
+                    updates: usize::from(cycles_for(frame.transition_ms)),
+                    values: frame.values_tenths_deg.0.iter().map(|&v| i32::from(v)).collect(),
+                })
+                .collect();
+            let played = fit::play(&Plen2Board, &[0; JOINTS], &moves);
+            let knee = Joint::LeftKneePitch.index();
+            let cycles = usize::from(cycles_for(2048));
+            assert_eq!(played.len(), cycles);
+            for (cycle, values) in played.iter().take(cycles).enumerate() {
+                #[allow(clippy::cast_precision_loss)]
+                let wanted = 900.0 * shaped.easing.at((cycle + 1) as f64 / cycles as f64);
+                assert!((values[knee] - wanted).abs() <= 10.0 + 1e-9, "cycle {cycle}: {} vs {wanted}", values[knee]);
+            }
+        }
     }
 }

@@ -23,7 +23,7 @@ mod validate;
 
 pub use bounded::MAX_LIST_LEN;
 pub use document::{Project, Sections};
-pub use easing::Easing;
+pub use easing::{Easing, Handles};
 pub use edit::{Edit, next_free_id};
 pub use family::{Family, Registered};
 pub use file::{

@@ -25,6 +25,10 @@ pub struct Layout {
     pub settings_share: f32,
     /// Whether the settings are open.
     pub settings_open: bool,
+    /// Share of the height the graph pane under a list and its editor takes, 0–1.
+    pub graph_share: f32,
+    /// Whether the graph pane is open.
+    pub graph_open: bool,
 }
 
 impl Default for Layout {
@@ -38,6 +42,8 @@ impl Default for Layout {
             view_open: true,
             settings_share: 0.45,
             settings_open: false,
+            graph_share: 0.38,
+            graph_open: true,
         }
     }
 }
@@ -183,28 +189,51 @@ pub enum Part {
     Lower,
     /// The robot's preview, on the right (while the layout has it open).
     View,
+    /// The graph pane, the whole width under everything else, collapsible.
+    Graph,
 }
 
 /// A list beside its editor, the editor over a collapsible lower pane
-/// titled `lower_title`, and the preview on the right while the layout has it
-/// open; the panel's sizes live in `layout`.
+/// titled `lower_title` (none: the editor takes the height), and the preview
+/// on the right while the layout has it open; the panel's sizes live in `layout`.
 pub fn list_and_editor(
     ui: &mut egui::Ui,
     id_salt: &str,
     layout: &mut Layout,
-    lower_title: &str,
+    lower_title: Option<&str>,
     mut add: impl FnMut(&mut egui::Ui, Part),
 ) {
     let Layout { list_width, lower_share, lower_open, side_width, view_open, .. } = layout;
     columns(ui, id_salt, list_width, 140.0, |ui, pane| match pane {
         Pane::First => add(ui, Part::List),
         Pane::Second => beside(ui, &format!("{id_salt}-view"), (&mut *side_width, *view_open), |ui, pane| match pane {
-            Pane::First => over(ui, id_salt, (&mut *lower_share, &mut *lower_open), lower_title, |ui, pane| {
-                add(ui, if pane == Pane::First { Part::Editor } else { Part::Lower });
-            }),
+            Pane::First => match lower_title {
+                Some(title) => over(ui, id_salt, (&mut *lower_share, &mut *lower_open), title, |ui, pane| {
+                    add(ui, if pane == Pane::First { Part::Editor } else { Part::Lower });
+                }),
+                None => add(ui, Part::Editor),
+            },
             Pane::Second => add(ui, Part::View),
         }),
     });
+}
+
+/// [`list_and_editor`] over the graph pane titled `graph_title`, which
+/// takes the whole width (its legend and its time axis need it) and
+/// `layout.graph_share` of the height; collapsed, the rest takes everything.
+pub fn list_editor_and_graph(
+    ui: &mut egui::Ui,
+    id_salt: &str,
+    layout: &mut Layout,
+    (lower_title, graph_title): (Option<&str>, &str),
+    mut add: impl FnMut(&mut egui::Ui, Part),
+) {
+    let (mut share, mut open) = (layout.graph_share, layout.graph_open);
+    over(ui, &format!("{id_salt}-graph"), (&mut share, &mut open), graph_title, |ui, pane| match pane {
+        Pane::First => list_and_editor(ui, id_salt, layout, lower_title, &mut add),
+        Pane::Second => add(ui, Part::Graph),
+    });
+    (layout.graph_share, layout.graph_open) = (share, open);
 }
 
 #[cfg(test)]

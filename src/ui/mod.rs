@@ -14,6 +14,7 @@ mod family;
 pub mod files;
 pub mod fonts;
 pub mod gamepad;
+mod graph;
 mod i18n;
 pub mod import;
 mod layout;

@@ -1,18 +1,10 @@
 //! Plots that draw no more points than they have pixels: time series are
 //! thinned to the first, lowest, highest and last point of each pixel column
-//! (peaks survive), paths to points at least a pixel apart. A legend sits
-//! beside its plot, never over the curves.
-
-use egui_plot::{Line, Plot, PlotPoints};
-
-use crate::ui::i18n::Strings;
+//! (peaks survive), paths to points at least a pixel apart. The curves an
+//! author shapes are drawn by the graph pane (`ui::graph`).
 
 /// Named series of (x, y) points, each sorted by x.
 pub type Series = Vec<(String, Vec<[f64; 2]>)>;
-
-/// Series shown at first: more would be an unreadable tangle (and cost a
-/// frame in proportion); the legend beside the plot shows the rest on a click.
-pub const SERIES_SHOWN_FIRST: usize = 8;
 
 /// The colour of the `index`th series (golden-ratio hues, as egui_plot's own).
 pub fn series_color(index: usize) -> egui::Color32 {
@@ -101,69 +93,6 @@ pub fn thin_path(points: impl IntoIterator<Item = [f64; 2]>, units_per_pixel: [f
     }
     out.extend(pending);
     out
-}
-
-/// Named x-sorted series as lines filling the space left, each thinned to
-/// the plot's width, with their legend beside the plot (never over the
-/// curves): a click on an entry shows or hides its series. The first
-/// [`SERIES_SHOWN_FIRST`] are shown at first. `cursor` (ms) draws the
-/// preview's time cursor across the plot.
-pub fn series(ui: &mut egui::Ui, id: &str, words: &Strings, series: &[(String, Vec<[f64; 2]>)], cursor: Option<f64>) {
-    let shown_id = ui.make_persistent_id((id, "shown"));
-    let mut shown: Vec<bool> = ui.data(|data| data.get_temp::<Vec<bool>>(shown_id)).unwrap_or_default();
-    if shown.len() != series.len() {
-        shown = (0..series.len()).map(|index| index < SERIES_SHOWN_FIRST).collect();
-    }
-    let area = ui.available_rect_before_wrap();
-    let legend_width = (area.width() * 0.3).clamp(120.0, 260.0);
-    let plot_rect = egui::Rect::from_min_max(area.min, egui::pos2(area.right() - legend_width, area.bottom()));
-    let legend_rect = egui::Rect::from_min_max(egui::pos2(plot_rect.right() + 4.0, area.top()), area.max);
-    let cursor_color = ui.visuals().strong_text_color();
-    crate::ui::layout::inside(ui, plot_rect, |ui| {
-        let plot = Plot::new(id)
-            .width(plot_rect.width())
-            .height(plot_rect.height())
-            .x_axis_label("ms")
-            .y_axis_label(format!("{} (°)", words.headings().angle))
-            .y_axis_min_width(36.0)
-            .allow_scroll(false);
-        plot.show(ui, |plot| {
-            let bounds = plot.plot_bounds();
-            #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-            let columns = plot.transform().frame().width().max(1.0) as usize;
-            for (index, (name, points)) in series.iter().enumerate().filter(|(index, _)| shown[*index]) {
-                let thinned = decimate(points, bounds.min()[0], bounds.max()[0], columns);
-                plot.line(Line::new(name.as_str(), PlotPoints::from(thinned)).color(series_color(index)));
-            }
-            if let Some(t) = cursor {
-                // The preview's time cursor, on the curves it plays.
-                plot.vline(egui_plot::VLine::new("", t).color(cursor_color).width(1.5));
-            }
-        });
-    });
-    crate::ui::layout::inside(ui, legend_rect, |ui| {
-        // One line per entry: a long name is cut (its whole text is in the hover).
-        ui.style_mut().wrap_mode = Some(egui::TextWrapMode::Truncate);
-        let row_height = crate::ui::rows::name_row_height(ui);
-        let height = ui.available_height();
-        crate::ui::rows::list(ui, &format!("{id}-legend"), row_height, series.len(), height, |ui, index| {
-            let on = shown[index];
-            let (swatch, text) = if on {
-                (series_color(index), ui.visuals().text_color())
-            } else {
-                (ui.visuals().weak_text_color(), ui.visuals().weak_text_color())
-            };
-            let font = egui::TextStyle::Body.resolve(ui.style());
-            let mut entry = egui::text::LayoutJob::default();
-            entry.append(if on { "● " } else { "○ " }, 0.0, egui::TextFormat::simple(font.clone(), swatch));
-            entry.append(&series[index].0, 0.0, egui::TextFormat::simple(font, text));
-            if ui.add(egui::Button::new(entry).frame(false)).on_hover_text(words.plot_toggle_hint).clicked() {
-                shown[index] = !on;
-            }
-        });
-    });
-    ui.data_mut(|data| data.insert_temp(shown_id, shown));
-    ui.allocate_rect(area, egui::Sense::hover());
 }
 
 #[cfg(test)]

@@ -236,16 +236,17 @@ fn solid_scroll_bar(ui: &mut egui::Ui) {
     ui.spacing_mut().scroll = egui::style::ScrollStyle::solid();
 }
 
-/// A move's curve picker: `names` in `Easing::ALL` order, `hint` on hover.
+/// A move's curve picker: `names` in `Easing::ALL` order then a shaped
+/// curve's (shaped on the graph; picking a preset replaces it), `hint` on hover.
 pub fn curve(
     ui: &mut egui::Ui,
     id_salt: impl egui::AsIdSalt,
     easing: &mut crate::project::Easing,
-    names: [&str; 5],
+    names: [&str; 6],
     hint: &str,
 ) -> egui::Response {
     use crate::project::Easing;
-    let shown = Easing::ALL.iter().position(|curve| curve == easing).map_or("?", |at| names[at]);
+    let shown = Easing::ALL.iter().position(|curve| curve == easing).map_or(names[5], |at| names[at]);
     egui::ComboBox::from_id_salt(id_salt)
         .selected_text(shown)
         .width(96.0)

@@ -8,6 +8,7 @@ mod drive;
 mod files;
 mod frames;
 mod gamepad;
+mod graph;
 mod import;
 mod joystick;
 mod log;

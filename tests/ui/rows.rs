@@ -123,7 +123,7 @@ fn the_action_list_and_its_steps_fill_the_window() {
     for size in SIZES {
         let project = ServoProject { servos: servos(255), actions: actions.clone(), ..ServoProject::default() };
         let harness = harness(Project::servo(project), Tab::Actions, false, size);
-        assert_fills((&harness, size), by().label_contains("動作"), None, "action list");
+        assert_fills((&harness, size), by().label_contains("動作"), Some(by().label("Graph")), "action list");
         // Each step row ends with its remove button.
         assert_fills((&harness, size), by().role(Role::Button).label("×"), Some(by().label("Add step")), "step table");
     }
@@ -145,7 +145,7 @@ fn the_macro_list_and_its_commands_fill_the_window() {
     for size in SIZES {
         let project = ServoProject { macros: macros.clone(), ..ServoProject::default() };
         let harness = harness(Project::servo(project), Tab::Macros, false, size);
-        assert_fills((&harness, size), by().label_contains("巨集"), None, "macro list");
+        assert_fills((&harness, size), by().label_contains("巨集"), Some(by().label("Graph")), "macro list");
         // Each command row starts with its drag handle "≡ n".
         assert_fills((&harness, size), by().label_contains("≡ "), Some(by().label("+ Action")), "command table");
     }
@@ -243,10 +243,10 @@ fn the_plen2_joints_fill_the_window() {
 fn the_plen2_motion_list_and_frames_fill_the_window() {
     for size in SIZES {
         let harness = harness(plen2(ITEMS, 2, 0, 0), Tab::Motions, false, size);
-        assert_fills((&harness, size), by().label_contains("Motion "), None, "motion list");
+        assert_fills((&harness, size), by().label_contains("Motion "), Some(by().label("Graph")), "motion list");
         // A motion of 500 frames (more than the robot takes, still drawn): each row has a mirror button.
         let harness = self::harness(plen2(1, ITEMS, 0, 0), Tab::Motions, false, size);
-        let lower = Some(by().label("Frame values and plot"));
+        let lower = Some(by().label("Frame values"));
         assert_fills((&harness, size), by().role(Role::Button).label("Mirror L/R"), lower, "frame table");
     }
 }

@@ -148,18 +148,34 @@ const LOOK_PAST: usize = 4;
 /// can keep (under half a unit) takes a one-update move to the sample there
 /// anyway, from as far as the tolerance reached.
 pub fn fit<B: Board>(board: &B, start: &[i32], rows: &[Vec<f64>], tolerance: f64) -> Fit {
+    fit_samples(board, start, rows, &samples_of(rows, tolerance), tolerance)
+}
+
+/// As [`fit`], with the last move ending exactly on the last row's values
+/// (each stored as the board stores it): a curve between two keys baked so
+/// that the next move leaves from its key, as the author placed it.
+pub fn fit_to_key<B: Board>(board: &B, start: &[i32], rows: &[Vec<f64>], tolerance: f64) -> Fit {
+    let mut samples = samples_of(rows, tolerance);
+    if let (Some(last), Some(row)) = (samples.last_mut(), rows.last()) {
+        for (sample, &wanted) in last.iter_mut().zip(row) {
+            let key = i64::from(board.store(wanted));
+            *sample = Sample { wanted, low: key, high: key };
+        }
+    }
+    fit_samples(board, start, rows, &samples, tolerance)
+}
+
+fn fit_samples<B: Board>(board: &B, start: &[i32], rows: &[Vec<f64>], samples: &[Vec<Sample>], tolerance: f64) -> Fit {
     let count = rows.len();
     let mut nodes: Vec<Option<Node>> = vec![None; count + 1];
     nodes[0] = Some(Node { moves: 0, begin: 0, ends: Ends::Chosen(start.to_vec()), off: 0.0 });
-    let samples = samples_of(rows, tolerance);
     let mut layer = vec![0];
     let mut moves = 0;
     while nodes[count].is_none() {
         moves += 1;
         let mut next = Vec::new();
         for &begin in &layer {
-            let mut reach =
-                Reach { board, rows, samples: &samples, tolerance, moves, nodes: &mut nodes, next: &mut next };
+            let mut reach = Reach { board, rows, samples, tolerance, moves, nodes: &mut nodes, next: &mut next };
             reach.from(begin);
         }
         if next.is_empty() {
@@ -190,7 +206,7 @@ pub fn fit<B: Board>(board: &B, start: &[i32], rows: &[Vec<f64>], tolerance: f64
         at = node.begin;
     }
     fitted.reverse();
-    settle::settle(board, start, &samples, tolerance, &mut fitted);
+    settle::settle(board, start, samples, tolerance, &mut fitted);
     let max_error = largest_error(&play(board, start, &fitted), rows);
     Fit { moves: fitted, max_error }
 }

@@ -279,8 +279,6 @@ pub struct Strings {
     pub axis: &'static str,
     /// A rig joint's sign.
     pub reversed: &'static str,
-    /// What a click on a plot's legend entry does.
-    pub plot_toggle_hint: &'static str,
 }
 
 impl Strings {

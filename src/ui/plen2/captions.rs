@@ -53,7 +53,7 @@ pub struct Plen2Captions {
     pub robot_read: &'static str,
     /// "Still different after writing again (check the cable and upload again), slots:".
     pub slots_differ: &'static str,
-    /// The lower pane of the motion editor: "Frame values and plot".
+    /// The lower pane of the motion editor: "Frame values".
     pub frame_and_plot: &'static str,
     /// What the motion.json button does.
     pub motion_json_hint: &'static str,
@@ -69,8 +69,8 @@ pub struct Plen2Captions {
     pub motion_never_ends: &'static str,
     /// The previewed motion's first frame lasts 0 cycles: the robot divides by zero.
     pub first_frame_undefined: &'static str,
-    /// Each curve's name, in `Easing::ALL` order.
-    pub curves: [&'static str; 5],
+    /// Each curve's name, in `Easing::ALL` order, then a shaped one's.
+    pub curves: [&'static str; 6],
     /// What a curve does to the frames the robot stores (hover text).
     pub curve_hint: &'static str,
     /// The budget meter: "On the robot".
@@ -91,10 +91,6 @@ pub struct Plen2Captions {
     pub frames_inserted_after: &'static str,
     /// The retimed span's last frame: "to frame".
     pub to_frame: &'static str,
-    /// A plot line's suffix for the intended curve: "meant".
-    pub meant: &'static str,
-    /// A plot line's suffix for what the robot plays: "robot".
-    pub robot: &'static str,
 }
 
 const ENGLISH: Plen2Captions = Plen2Captions {
@@ -121,7 +117,7 @@ const ENGLISH: Plen2Captions = Plen2Captions {
     msg_connected_demo_plen2: "connected to the demo PLEN2 (emulated, factory-fresh: its 90 slots are empty)",
     robot_read: "Read the robot; motions it holds:",
     slots_differ: "Still different after writing again (check the cable and upload again), slots:",
-    frame_and_plot: "Frame values and plot",
+    frame_and_plot: "Frame values",
     motion_json_hint: "Save this motion as the official PLEN Motion Editor's motion.json",
     played_after: "Played after",
     power_up: "power-up (home)",
@@ -129,7 +125,7 @@ const ENGLISH: Plen2Captions = Plen2Captions {
     snap_warning: "The joint sliders' pose is not where this motion starts: the robot will snap there at the first cycle.",
     motion_never_ends: "This motion never ends on the robot (a loop of count 0 or 255, or a jump to a slot it cannot play): the first 30 s are shown.",
     first_frame_undefined: "Its first frame lasts under 32 ms (0 cycles): the robot divides by zero there, so what it does is undefined. Give it 32 ms or more.",
-    curves: ["Linear", "Ease in", "Ease out", "Ease in-out", "Hold"],
+    curves: ["Linear", "Ease in", "Ease out", "Ease in-out", "Hold", "Shaped"],
     curve_hint: "How the move to this frame runs. The robot plays only straight moves: a curve is stored as several straight frames within 1° of it (widened when the motion's 20 frames are short). The project keeps the curve.",
     on_robot: "On the robot",
     frames_of_20: "frames of 20",
@@ -140,8 +136,6 @@ const ENGLISH: Plen2Captions = Plen2Captions {
     msg_recording_too_long: "Too long for the frames left in the motion, at any tolerance (each frame lasts at most 8.2 s): nothing was inserted. Record a shorter movement, or remove frames first",
     frames_inserted_after: "frames inserted after frame",
     to_frame: "to frame",
-    meant: "meant",
-    robot: "robot",
 };
 
 const TRADITIONAL_CHINESE: Plen2Captions = Plen2Captions {
@@ -168,7 +162,7 @@ const TRADITIONAL_CHINESE: Plen2Captions = Plen2Captions {
     msg_connected_demo_plen2: "已連線至示範 PLEN2（模擬，出廠狀態：90 個槽位皆為空）",
     robot_read: "已讀取機器人；其中的動作數：",
     slots_differ: "重寫後仍不一致（請檢查連接線後再上傳一次），槽位：",
-    frame_and_plot: "影格數值與曲線圖",
+    frame_and_plot: "影格數值",
     motion_json_hint: "將此動作存成官方 PLEN Motion Editor 的 motion.json",
     played_after: "接在此動作之後",
     power_up: "開機（原位）",
@@ -176,7 +170,7 @@ const TRADITIONAL_CHINESE: Plen2Captions = Plen2Captions {
     snap_warning: "關節滑桿的姿勢與此動作的起點不同：機器人會在第一個週期瞬間跳到起點。",
     motion_never_ends: "這個動作在機器人上永遠不會結束（循環次數 0 或 255，或跳到無法播放的位置）：只顯示前 30 秒。",
     first_frame_undefined: "它的第一個影格不到 32 毫秒（0 個週期）：機器人會在這裡除以零，行為無法預測。請設為 32 毫秒以上。",
-    curves: ["線性", "漸入", "漸出", "漸入漸出", "保持"],
+    curves: ["線性", "漸入", "漸出", "漸入漸出", "保持", "自訂曲線"],
     curve_hint: "移動到此影格的方式。機器人只播放直線移動：曲線會存成數個直線影格，與曲線相差不超過 1°（動作的 20 個影格不夠時會放寬）。專案保留原本的曲線。",
     on_robot: "機器人上",
     frames_of_20: "個影格（共 20）",
@@ -187,8 +181,6 @@ const TRADITIONAL_CHINESE: Plen2Captions = Plen2Captions {
     msg_recording_too_long: "對動作剩下的影格來說太長，任何容差都放不下（每個影格最長 8.2 秒）：沒有插入任何內容。請錄短一點，或先刪除一些影格",
     frames_inserted_after: "個影格，插入在影格之後：",
     to_frame: "到影格",
-    meant: "預期",
-    robot: "機器人",
 };
 
 /// The PLEN2's captions in the interface's language.

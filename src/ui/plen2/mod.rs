@@ -6,6 +6,7 @@
 mod action;
 mod board;
 mod captions;
+mod graph;
 mod joints;
 mod link;
 mod live;

@@ -10,12 +10,16 @@ use crate::project::plen2::{Frame, Joint, LoopRange, Motion, Plen2Project, Pose}
 use crate::project::plen2::{MAX_TRANSITION_MS, MIN_TRANSITION_MS, SLOTS};
 use crate::project::{Edit, Location, Problem};
 use crate::ui::action::{Action, Export, FileRequest};
+use crate::ui::graph::{Channel, Curves, Graph};
 use crate::ui::i18n::Strings;
-use crate::ui::layout::{self, Layout, Pane, Part};
+use crate::ui::layout::{self, Layout, Part};
 use crate::ui::plen2::action::Plen2Action;
 use crate::ui::plen2::captions::Plen2Words;
+use crate::ui::rows;
 use crate::ui::shell::ShellView;
-use crate::ui::{plot, rows};
+
+/// A motion's channels and its frames' lane, as the graph draws them.
+type GraphCurves = (Vec<Channel>, Vec<(f64, f64, String)>);
 
 /// The panel's own state: the selected motion and frame, the copied frame.
 #[derive(Debug, Default)]
@@ -26,8 +30,10 @@ pub struct MotionsPanel {
     /// Each slot's problems, for the document revision in `flagged_at`.
     flagged: std::collections::BTreeMap<u8, Vec<Problem>>,
     flagged_at: Option<u64>,
-    /// The selected motion's joint angles over time, for (revision, motion index).
-    series: Option<((u64, usize), plot::Series)>,
+    /// The selected motion's joints as the graph draws them, for (revision, motion index).
+    curves: Option<((u64, usize), GraphCurves)>,
+    /// The graph pane's own state.
+    graph: Graph,
     /// The selected motion as the robot stores it, for (revision, motion index).
     baked: Option<((u64, usize), Baked)>,
     /// The frames a retime applies to: first and last, from 0 (all, unless set).
@@ -95,9 +101,8 @@ impl MotionsPanel {
         let flagged: std::collections::BTreeSet<u8> = self.flagged.keys().copied().collect();
         let selected = self.selected;
         let mut picked = None;
-        // The frame values' width beside the plot, remembered with the rest.
-        let mut values_width = layout.values_width;
-        layout::list_and_editor(ui, "plen2-motions", layout, words.plen2().frame_and_plot, |ui, part| match part {
+        let titles = (Some(words.plen2().frame_and_plot), crate::ui::graph::words(words.lang).title);
+        layout::list_editor_and_graph(ui, "plen2-motions", layout, titles, |ui, part| match part {
             Part::List => rows::names(ui, "plen2-motion-list", project.motions.len(), |ui, index| {
                 let motion = &project.motions[index];
                 let mark = if flagged.contains(&motion.slot) { "! " } else { "" };
@@ -107,48 +112,49 @@ impl MotionsPanel {
                 }
             }),
             Part::Editor => self.editor(ui, project, connected, words, actions),
-            Part::Lower => self.lower(ui, project, &mut values_width, words, actions),
+            Part::Lower => self.lower(ui, project, words, actions),
+            Part::Graph => self.graph(ui, project, words, actions),
             Part::View => {
                 let motion = &project.motions[self.selected];
                 preview.motion(ui, (project, revision), (motion.slot, self.frame), pose, words);
             }
         });
-        layout.values_width = values_width;
         if let Some(index) = picked {
             self.selected = index;
             self.frame = 0;
         }
     }
 
-    /// The selected frame's values, the timeline and the angle plot.
-    fn lower(
-        &mut self,
-        ui: &mut egui::Ui,
-        project: &Plen2Project,
-        values_width: &mut f32,
-        words: &Strings,
-        actions: &mut Vec<Action>,
-    ) {
+    /// The selected frame's values under the frames' timeline.
+    fn lower(&mut self, ui: &mut egui::Ui, project: &Plen2Project, words: &Strings, actions: &mut Vec<Action>) {
+        let motion = &project.motions[self.selected];
+        timeline(ui, motion, self.frame);
+        egui::ScrollArea::vertical().id_salt("plen2-frame-values-scroll").show(ui, |ui| {
+            self.frame_values(ui, project, words, actions);
+        });
+    }
+
+    /// The graph pane: every joint's curve, its keys and handles, what the robot plays.
+    fn graph(&mut self, ui: &mut egui::Ui, project: &Plen2Project, words: &Strings, actions: &mut Vec<Action>) {
         let index = self.selected;
         let motion = &project.motions[index];
-        timeline(ui, motion, self.frame);
         let key = (self.flagged_at.unwrap_or_default(), index);
-        if self.series.as_ref().is_none_or(|(at, _)| *at != key) {
-            self.series = Some((key, joint_series(motion, words)));
+        if self.curves.as_ref().is_none_or(|(at, _)| *at != key) {
+            self.curves = Some((key, super::graph::curves(project, motion)));
         }
-        let series = self.series.take();
-        layout::columns(ui, "plen2-frame-values", values_width, 200.0, |ui, pane| match pane {
-            Pane::First => {
-                egui::ScrollArea::vertical().id_salt("plen2-frame-values-scroll").show(ui, |ui| {
-                    self.frame_values(ui, project, words, actions);
-                });
-            }
-            Pane::Second => {
-                let series = series.as_ref().map_or(&[][..], |(_, series)| series.as_slice());
-                plot::series(ui, "plen2-angles", words, series, None);
-            }
-        });
-        self.series = series;
+        let Some((_, (channels, lane))) = &self.curves else { return };
+        let curves = Curves {
+            channels,
+            lane,
+            update_ms: crate::authoring::fitted::PLEN2_UPDATE_MS,
+            onsets_ms: &[],
+            cursor_ms: None,
+            editable: true,
+        };
+        if let Some(done) = self.graph.show(ui, "plen2-graph", &curves, words.lang) {
+            let changed = super::graph::apply(project, motion, &done);
+            actions.push(edit(project, |p| p.motions[index] = changed, None));
+        }
     }
 
     fn editor(
@@ -343,64 +349,6 @@ impl MotionsPanel {
             ));
         }
     }
-}
-
-/// Every joint's angle (degrees) at the end of each frame, from 0 at time 0;
-/// for a motion with curves, each moving joint twice: the curve meant and
-/// what the robot plays (the baked frames through the firmware's playback),
-/// both on the robot's clock of 32.768 ms cycles.
-fn joint_series(motion: &Motion, words: &Strings) -> plot::Series {
-    if bake::has_curves(motion) {
-        return curve_series(motion, words);
-    }
-    Joint::ALL
-        .into_iter()
-        .map(|joint| {
-            let mut t = 0.0;
-            let mut points = vec![[0.0, 0.0]];
-            for frame in &motion.frames {
-                t += f64::from(frame.transition_ms);
-                points.push([t, f64::from(frame.values_tenths_deg.get(joint)) / 10.0]);
-            }
-            (joint.name().to_string(), points)
-        })
-        .collect()
-}
-
-fn curve_series(motion: &Motion, words: &Strings) -> plot::Series {
-    use crate::device::plen2::playback::{self, StoredMotions, cycles_for};
-    let cycle_ms = crate::authoring::fitted::PLEN2_UPDATE_MS;
-    // The curve meant, cycle by cycle, from power-up (as the bake and `trajectory` start).
-    let mut meant: Vec<Vec<f64>> = vec![vec![0.0; Joint::ALL.len()]];
-    let mut from = [0i16; Joint::ALL.len()];
-    for frame in &motion.frames {
-        let cycles = usize::from(cycles_for(frame.transition_ms));
-        meant.extend(bake::eased_rows(&from, frame, cycles));
-        from = frame.values_tenths_deg.0;
-    }
-    // One pass of the frames: a loop or a jump would run for ever.
-    let once = Motion { loop_range: None, jump_slot: None, ..motion.clone() };
-    let project = Plen2Project { motions: vec![once], ..Plen2Project::default() };
-    let played = playback::play(&StoredMotions::new(&project), motion.slot, [0; playback::DEVICE_IDS], 20 * 256).cycles;
-    let captions = words.plen2();
-    let mut series = Vec::new();
-    for joint in Joint::ALL {
-        let column = joint.index();
-        if meant.iter().all(|row| row[column].abs() < f64::EPSILON) {
-            continue;
-        }
-        // Cycle counts of at most 20 × 255: exact.
-        #[allow(clippy::cast_precision_loss)]
-        let at = |cycle: usize| cycle as f64 * cycle_ms;
-        let points = meant.iter().enumerate().map(|(cycle, row)| [at(cycle), row[column] / 10.0]).collect();
-        series.push((format!("{}: {}", captions.meant, joint.name()), points));
-        let device = usize::from(joint.device_id());
-        let robot = std::iter::once([0.0, 0.0])
-            .chain(played.iter().enumerate().map(|(cycle, values)| [at(cycle + 1), f64::from(values[device]) / 10.0]))
-            .collect();
-        series.push((format!("{}: {}", captions.robot, joint.name()), robot));
-    }
-    series
 }
 
 /// A bar per frame, as long as its transition.

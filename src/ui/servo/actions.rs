@@ -11,12 +11,13 @@ use crate::project::{
 };
 use crate::ui::action::Action;
 use crate::ui::derive::Derived;
+use crate::ui::graph::{Channel, Curves, Graph};
 use crate::ui::i18n::Strings;
 use crate::ui::layout::{self, Layout, Part};
+use crate::ui::rows;
 use crate::ui::servo::action::ServoAction;
 use crate::ui::servo::captions::ServoWords;
 use crate::ui::shell::ShellView;
-use crate::ui::{plot, rows};
 
 /// Validation and the plot's series, for a document revision and a selected
 /// action (computed off the frame path for a large project, `ui::derive`).
@@ -28,7 +29,8 @@ struct Facts {
     step_problems: std::collections::BTreeMap<usize, Problem>,
     /// The selected action's longest step, ms (the timeline's scale).
     longest_ms: f32,
-    series: plot::Series,
+    /// The selected action's steps as the graph draws them.
+    channels: Vec<Channel>,
     /// What the preview plays.
     timed: Timed,
 }
@@ -52,7 +54,8 @@ impl Facts {
         }
         let bars = timeline_bars(selected_action);
         let longest_ms = bars.iter().map(|(_, _, end)| *end).fold(0.0, f32::max).max(10.0);
-        Self { action_problems, step_problems, longest_ms, series, timed }
+        let channels = super::graph::action_curves(project, selected_action, &series, board);
+        Self { action_problems, step_problems, longest_ms, channels, timed }
     }
 }
 
@@ -63,6 +66,8 @@ pub struct ActionPanel {
     facts: Derived<(u64, usize), Facts>,
     /// What the project's curves cost on the board, for (revision, the board's memory).
     budget: Derived<(u64, Option<i64>), Option<Budget>>,
+    /// The graph pane's own state.
+    graph: Graph,
 }
 
 fn set(index: usize, action: ProjectAction, key: Option<String>) -> Action {
@@ -122,7 +127,9 @@ impl ActionPanel {
         // The preview's time cursor, drawn on the plot too (while the preview is open).
         let cursor = layout.view_open.then_some(preview.transport.t_ms);
         let mut seek = None;
-        layout::list_and_editor(ui, "actions", layout, words.servo().timeline_and_plot, |ui, part| match part {
+        let graph = &mut self.graph;
+        let titles = (Some(words.servo().timeline_and_plot), crate::ui::graph::words(words.lang).title);
+        layout::list_editor_and_graph(ui, "actions", layout, titles, |ui, part| match part {
             Part::List => rows::names(ui, "action-list", project.actions.len(), |ui, index| {
                 let action = &project.actions[index];
                 if ui.selectable_label(index == *selected, format!("{} {}", action.id, action.caption)).clicked() {
@@ -133,26 +140,12 @@ impl ActionPanel {
                 budget_meter(ui, budget, words);
                 seek = Self::editor(ui, project, index, facts, connected, words, actions);
             }
-            Part::Lower => Self::lower(ui, project, index, (facts, cursor), words),
+            Part::Lower => timeline(ui, project, &project.actions[index], (facts.longest_ms, cursor)),
             Part::View => preview.timed(ui, project, &facts.timed, words),
+            Part::Graph => graph_pane(ui, graph, (project, index), (&facts.channels, cursor), words.lang, actions),
         });
         if let Some(t_ms) = seek {
             preview.transport.seek(t_ms, ui.input(|input| input.time));
-        }
-    }
-
-    /// The selected action's timeline and angle plot.
-    fn lower(
-        ui: &mut egui::Ui,
-        project: &ServoProject,
-        index: usize,
-        (derived, cursor): (&Facts, Option<f64>),
-        words: &Strings,
-    ) {
-        let action = &project.actions[index];
-        timeline(ui, project, action, (derived.longest_ms, cursor));
-        if !derived.series.is_empty() {
-            plot::series(ui, "action-plot", words, &derived.series, cursor);
         }
     }
 
@@ -190,6 +183,23 @@ impl ActionPanel {
             actions.push(set(index, more, None));
         }
         seek
+    }
+}
+
+/// The graph pane of the selected action: a drag or a shape is one edit of it.
+fn graph_pane(
+    ui: &mut egui::Ui,
+    graph: &mut Graph,
+    (project, index): (&ServoProject, usize),
+    (channels, cursor_ms): (&[Channel], Option<f64>),
+    language: crate::ui::i18n::Language,
+    actions: &mut Vec<Action>,
+) {
+    let curves =
+        Curves { channels, lane: &[], update_ms: super::graph::UPDATE_MS, onsets_ms: &[], cursor_ms, editable: true };
+    if let Some(done) = graph.show(ui, "action-graph", &curves, language) {
+        let changed = super::graph::apply(project, &project.actions[index], &done);
+        actions.push(set(index, changed, None));
     }
 }
 

@@ -139,10 +139,8 @@ pub struct ServoCaptions {
     pub on_long_press: &'static str,
     /// "Release".
     pub on_release: &'static str,
-    /// The lower pane of the action editor: "Timeline and plot".
+    /// The lower pane of the action editor: "Timeline".
     pub timeline_and_plot: &'static str,
-    /// The lower pane of the macro composer: "Plot".
-    pub plot: &'static str,
     /// The status after a board was read for comparison.
     pub msg_board_compared: &'static str,
     /// Hover text of a step's number (a click moves the preview's cursor to its end).
@@ -165,8 +163,8 @@ pub struct ServoCaptions {
     pub in_rig: &'static str,
     /// The steps table's heading for a step's curve: "Curve".
     pub curve: &'static str,
-    /// Each curve's name, in `Easing::ALL` order.
-    pub curves: [&'static str; 5],
+    /// Each curve's name, in `Easing::ALL` order, then a shaped one's.
+    pub curves: [&'static str; 6],
     /// What a curve does to what the board stores (hover text).
     pub curve_hint: &'static str,
     /// The budget meter's start: "On the board".
@@ -260,8 +258,7 @@ const ENGLISH: ServoCaptions = ServoCaptions {
     on_press: "Press",
     on_long_press: "Long press",
     on_release: "Release",
-    timeline_and_plot: "Timeline and plot",
-    plot: "Plot",
+    timeline_and_plot: "Timeline",
     msg_board_compared: "Board read: check what differs on the Board tab, then confirm",
     step_seek_hint: "Show in the preview where this step's servo arrives",
     not_rigged: "Not in the rig",
@@ -273,7 +270,7 @@ const ENGLISH: ServoCaptions = ServoCaptions {
     mirror_hint: "Each step moves the servo's twin instead (the rig's Twin column), its angle reflected about their homes: a left-arm wave becomes a right-arm wave. A servo without a twin keeps its step.",
     in_rig: "In rig",
     curve: "Curve",
-    curves: ["Linear", "Ease in", "Ease out", "Ease in-out", "Hold"],
+    curves: ["Linear", "Ease in", "Ease out", "Ease in-out", "Hold", "Shaped"],
     curve_hint: "How the step's move runs. The board moves only in straight lines: a curve is stored as straight sub-steps within 1° of it (widened when the board's memory is short), run by a macro of their own, eased from where the macro has put the servo. The project keeps the curve.",
     on_board: "On the board",
     steps_word: "steps",
@@ -355,8 +352,7 @@ const TRADITIONAL_CHINESE: ServoCaptions = ServoCaptions {
     on_press: "按下",
     on_long_press: "長按",
     on_release: "放開",
-    timeline_and_plot: "時間軸與曲線圖",
-    plot: "曲線圖",
+    timeline_and_plot: "時間軸",
     msg_board_compared: "已讀取控制板：請在「控制板」分頁檢查差異後再確認",
     step_seek_hint: "在預覽中顯示此步驟的伺服機到達的位置",
     not_rigged: "不在骨架中",
@@ -368,7 +364,7 @@ const TRADITIONAL_CHINESE: ServoCaptions = ServoCaptions {
     mirror_hint: "每個步驟改由該伺服機的對側伺服機執行（骨架表的「對側」欄），角度以原點對稱反轉：左手揮手變成右手揮手。沒有對側的伺服機保留原步驟。",
     in_rig: "在骨架中",
     curve: "曲線",
-    curves: ["線性", "漸入", "漸出", "漸入漸出", "保持"],
+    curves: ["線性", "漸入", "漸出", "漸入漸出", "保持", "自訂曲線"],
     curve_hint: "此步驟的移動方式。控制板只會直線移動：曲線會存成數個誤差 1° 以內的直線子步驟（控制板記憶體不足時放寬），由專屬巨集依序執行，從巨集讓伺服機到達的角度開始漸變。專案保留曲線本身。",
     on_board: "控制板上",
     steps_word: "個步驟",

@@ -10,13 +10,14 @@ use crate::project::{
 };
 use crate::ui::action::Action;
 use crate::ui::derive::Derived;
+use crate::ui::graph::{Channel, Curves, Graph};
 use crate::ui::i18n::Strings;
 use crate::ui::i18n::Worded;
 use crate::ui::layout::{self, Layout, Part};
+use crate::ui::rows;
 use crate::ui::servo::action::ServoAction;
 use crate::ui::servo::captions::ServoWords;
 use crate::ui::shell::ShellView;
-use crate::ui::{plot, rows};
 
 /// What the composer derives from the project, for a document revision and a
 /// selected macro (validation and timing of a large project take milliseconds:
@@ -32,7 +33,10 @@ struct Facts {
     command_totals_ms: Vec<Result<i64, TimingError>>,
     /// The macro's total (`None` until computed).
     macro_total_ms: Option<Result<i64, TimingError>>,
-    series: plot::Series,
+    /// Each servo as the macro moves it, for the graph.
+    channels: Vec<Channel>,
+    /// The commands' lane: each one's start, end and number.
+    lane: Vec<(f64, f64, String)>,
     /// What the preview plays.
     timed: Timed,
 }
@@ -63,13 +67,25 @@ impl Facts {
                 _ => {}
             }
         }
+        let command_totals_ms: Vec<Result<i64, TimingError>> =
+            item.commands.iter().map(|command| timing.command_total_ms(command)).collect();
+        let mut lane = Vec::new();
+        let mut at = 0_i64;
+        for (number, total) in command_totals_ms.iter().enumerate() {
+            let Ok(total) = total else { break };
+            // Times of a few hours at most: exact.
+            #[allow(clippy::cast_precision_loss)]
+            lane.push((at as f64, (at + total) as f64, format!("#{}", number + 1)));
+            at += total;
+        }
         Self {
             macro_problems,
             flagged,
             command_problems,
-            command_totals_ms: item.commands.iter().map(|command| timing.command_total_ms(command)).collect(),
+            command_totals_ms,
             macro_total_ms: Some(timing.macro_total_ms(item.id)),
-            series,
+            channels: super::graph::played_curves(&series, board),
+            lane,
             timed,
         }
     }
@@ -80,6 +96,8 @@ impl Facts {
 pub struct MacroPanel {
     selected: usize,
     facts: Derived<(u64, usize), Facts>,
+    /// The graph pane's own state.
+    graph: Graph,
 }
 
 fn seconds(ms: i64) -> String {
@@ -135,7 +153,9 @@ impl MacroPanel {
         // The preview's time cursor, drawn on the plot too (while the preview is open).
         let cursor = layout.view_open.then_some(preview.transport.t_ms);
         let mut played_from = None;
-        layout::list_and_editor(ui, "macros", layout, words.servo().plot, |ui, part| match part {
+        let graph = &mut self.graph;
+        let titles = (None, crate::ui::graph::words(words.lang).title);
+        layout::list_editor_and_graph(ui, "macros", layout, titles, |ui, part| match part {
             Part::List => rows::names(ui, "macro-list", project.macros.len(), |ui, index| {
                 let item = &project.macros[index];
                 let flagged = derived.flagged.contains(&item.id);
@@ -145,10 +165,17 @@ impl MacroPanel {
                 }
             }),
             Part::Editor => played_from = Self::editor(ui, project, index, derived, connected, words, actions),
-            Part::Lower => {
-                if !derived.series.is_empty() {
-                    plot::series(ui, "macro-plot", words, &derived.series, cursor);
-                }
+            Part::Lower => {}
+            Part::Graph => {
+                let curves = Curves {
+                    channels: &derived.channels,
+                    lane: &derived.lane,
+                    update_ms: super::graph::UPDATE_MS,
+                    onsets_ms: &[],
+                    cursor_ms: cursor,
+                    editable: false,
+                };
+                graph.show(ui, "macro-graph", &curves, words.lang);
             }
             Part::View => preview.timed(ui, project, &derived.timed, words),
         });

@@ -7,6 +7,7 @@ mod action;
 mod actions;
 mod board;
 mod captions;
+mod graph;
 mod joystick;
 mod link;
 mod live;

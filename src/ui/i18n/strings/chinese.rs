@@ -127,7 +127,6 @@ pub(in crate::ui::i18n) const TRADITIONAL_CHINESE: Strings = Strings {
     button: "按鍵",
     caption: "標題",
     uninterruptible: "不可中斷",
-    plot_toggle_hint: "按一下以顯示或隱藏這條曲線",
     robot_preview: "機器人預覽",
     preview_hint: "拖曳可旋轉，滾輪縮放，按兩下重設視角",
     show_preview: "3D 預覽",

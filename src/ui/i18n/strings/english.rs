@@ -127,7 +127,6 @@ pub(in crate::ui::i18n) const ENGLISH: Strings = Strings {
     button: "Button",
     caption: "Caption",
     uninterruptible: "Uninterruptible",
-    plot_toggle_hint: "Click to show or hide this curve",
     robot_preview: "Robot preview",
     preview_hint: "Drag to turn it, wheel to zoom, double-click to reset the view",
     show_preview: "3D view",
