@@ -96,6 +96,13 @@ fn dragging_a_key_up_changes_its_value_within_the_joints_limits() {
     drag(&mut harness, key, vec2(0.0, -5000.0));
     let value = motion(&harness).frames[0].values_tenths_deg.get(Joint::LeftShoulderPitch);
     assert_eq!(value, 900 - Joint::LeftShoulderPitch.factory_home_tenths_deg(), "stopped at the limit");
+    // The lowest key dragged up: the view holds still under the pointer (it fitted the curves).
+    let key = center(&harness, "key left_thigh_yaw #0");
+    drag(&mut harness, key, vec2(0.0, -60.0));
+    let value = motion(&harness).frames[0].values_tenths_deg.get(Joint::LeftThighYaw);
+    assert!(value > -200, "up: {value}");
+    let moved = center(&harness, "key left_thigh_yaw #0");
+    assert!((moved.y - (key.y - 60.0)).abs() < 30.0, "{key:?} → {moved:?}");
 }
 
 #[test]

@@ -122,7 +122,9 @@ impl OnGraph<'_, '_> {
         for (c, channel) in self.curves.channels.iter().enumerate().filter(|(c, _)| self.visible[*c]) {
             for (k, key) in channel.keys.iter().enumerate() {
                 let at = self.screen([key.t_ms, key.value]);
-                if !frame.expand(KEY_SIZE / 2.0).contains(at) {
+                let grabbed = matches!(self.graph.drag, Some(Drag::Keys { grabbed, .. }) if grabbed == (c, k));
+                // Out of view, a key is not drawn, except the one held (its drag goes on).
+                if !grabbed && !frame.expand(KEY_SIZE / 2.0).contains(at) {
                     continue;
                 }
                 let selected = self.graph.selected.contains(&(c, k));

@@ -116,6 +116,9 @@ pub struct Graph {
     drag: Option<Drag>,
     /// A key drag's offset (ms, °) as the last frame worked it out.
     offset: (f64, f64),
+    /// While a drag is under way, whether the view fitted the curves before
+    /// it: the view holds still under the pointer, then fits again as it did.
+    held_view: Option<egui::Vec2b>,
     legend_width: f32,
 }
 
@@ -128,6 +131,7 @@ impl Default for Graph {
             clipboard: None,
             drag: None,
             offset: (0.0, 0.0),
+            held_view: None,
             legend_width: 0.0,
         }
     }
@@ -225,6 +229,8 @@ impl Graph {
         let plot_rect = egui::Rect::from_min_max(egui::pos2(area.left(), lane_rect.bottom()), area.max);
         let visible = self.visible();
         let shift = ui.input(|input| input.modifiers.shift);
+        let dragging = self.drag.is_some();
+        let mut held_view = self.held_view.take();
         let preview = keys::Preview::of(self);
         let cursor_color = ui.visuals().strong_text_color();
         let response = layout::inside(ui, plot_rect, |ui| {
@@ -233,13 +239,25 @@ impl Graph {
                 .height(plot_rect.height())
                 .x_axis_label("ms")
                 .y_axis_label(words.angle_axis)
-                .grid_spacing(egui::Rangef::new(12.0, 120.0))
+                .y_grid_spacer(egui_plot::uniform_grid_spacer(degree_steps))
                 .y_axis_min_width(36.0)
                 .allow_scroll(false)
                 // Room around the curves: a key at the top or the bottom stays clear of the axes.
                 .set_margin_fraction(egui::vec2(0.03, 0.12))
                 .allow_drag(!shift && self.drag.is_none())
                 .show(ui, |plot| {
+                    // A key dragged past the curves' extent would move the view under the pointer.
+                    match (dragging, held_view) {
+                        (true, None) => held_view = Some(plot.auto_bounds()),
+                        (false, Some(fitted)) => {
+                            plot.set_auto_bounds(fitted);
+                            held_view = None;
+                        }
+                        _ => {}
+                    }
+                    if dragging {
+                        plot.set_auto_bounds(false);
+                    }
                     let bounds = plot.plot_bounds();
                     #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
                     let columns = plot.transform().frame().width().max(1.0) as usize;
@@ -258,6 +276,7 @@ impl Graph {
                     }
                 })
         });
+        self.held_view = held_view;
         keys::lane(ui, lane_rect, &response.transform, curves.lane);
         if !curves.editable {
             return None;
@@ -265,6 +284,19 @@ impl Graph {
         let mut on_graph = keys::OnGraph { graph: self, curves, transform: &response.transform, visible: &visible };
         on_graph.interact(ui, &response.response, id, words)
     }
+}
+
+/// The value axis's three grid steps for the range in view, in degrees a
+/// servo is thought of in (5°, 10°, 30°, 90°…), about a quarter, an eighth
+/// and a twenty-fourth of it: the axis is labelled even over a few degrees.
+// egui_plot hands the spacer its input by value.
+#[allow(clippy::needless_pass_by_value)]
+fn degree_steps(input: egui_plot::GridInput) -> [f64; 3] {
+    // Each a multiple of the one before: the three steps' marks fall on one another.
+    const STEPS: [f64; 9] = [0.1, 0.5, 1.0, 5.0, 10.0, 30.0, 90.0, 180.0, 360.0];
+    let range = (input.bounds.1 - input.bounds.0).abs().max(1e-3);
+    let at_least = |part: f64| STEPS.iter().copied().find(|step| *step >= range / part).unwrap_or(720.0);
+    [at_least(24.0), at_least(8.0), at_least(4.0)]
 }
 
 fn preset_name(easing: Easing, words: &GraphWords) -> &'static str {
