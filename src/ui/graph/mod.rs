@@ -106,8 +106,8 @@ enum Drag {
 }
 
 /// The pane's own state: what is shown, selected and copied, the drag under
-/// way, the legend's width.
-#[derive(Debug)]
+/// way, the legend's width (0 until it is first measured).
+#[derive(Debug, Default)]
 pub struct Graph {
     shown: Vec<bool>,
     solo: Option<usize>,
@@ -120,21 +120,6 @@ pub struct Graph {
     /// it: the view holds still under the pointer, then fits again as it did.
     held_view: Option<egui::Vec2b>,
     legend_width: f32,
-}
-
-impl Default for Graph {
-    fn default() -> Self {
-        Self {
-            shown: Vec::new(),
-            solo: None,
-            selected: BTreeSet::new(),
-            clipboard: None,
-            drag: None,
-            offset: (0.0, 0.0),
-            held_view: None,
-            legend_width: 0.0,
-        }
-    }
 }
 
 /// Channels shown at first: more would be an unreadable tangle; the legend

@@ -8,8 +8,8 @@
 
 use crate::authoring::bake;
 use crate::authoring::fitted::{PLEN2_UPDATE_MS, transition_ms};
+use crate::device::plen2::playback::cycles_for;
 use crate::project::plen2::{Joint, MAX_TRANSITION_MS, MIN_TRANSITION_MS, Motion, Plen2Project};
-use crate::protocol::plen2::playback::cycles_for;
 use crate::ui::graph::{Channel, GraphEdit, Key};
 
 /// Each frame's end on the robot's clock, in whole cycles from the start.
