@@ -102,6 +102,7 @@ impl MotionsPanel {
         let selected = self.selected;
         let mut picked = None;
         let titles = (Some(words.plen2().frame_and_plot), crate::ui::graph::words(words.lang).title);
+        let view_open = layout.view_open;
         layout::list_editor_and_graph(ui, "plen2-motions", layout, titles, |ui, part| match part {
             Part::List => rows::names(ui, "plen2-motion-list", project.motions.len(), |ui, index| {
                 let motion = &project.motions[index];
@@ -113,7 +114,11 @@ impl MotionsPanel {
             }),
             Part::Editor => self.editor(ui, project, connected, words, actions),
             Part::Lower => self.lower(ui, project, words, actions),
-            Part::Graph => self.graph(ui, project, words, actions),
+            // The preview's time cursor, drawn on the graph too (while the preview is open).
+            Part::Graph => {
+                let cursor = view_open.then_some(preview.transport.t_ms);
+                self.graph(ui, (project, cursor), words, actions);
+            }
             Part::View => {
                 let motion = &project.motions[self.selected];
                 preview.motion(ui, (project, revision), (motion.slot, self.frame), pose, words);
@@ -135,7 +140,13 @@ impl MotionsPanel {
     }
 
     /// The graph pane: every joint's curve, its keys and handles, what the robot plays.
-    fn graph(&mut self, ui: &mut egui::Ui, project: &Plen2Project, words: &Strings, actions: &mut Vec<Action>) {
+    fn graph(
+        &mut self,
+        ui: &mut egui::Ui,
+        (project, cursor_ms): (&Plen2Project, Option<f64>),
+        words: &Strings,
+        actions: &mut Vec<Action>,
+    ) {
         let index = self.selected;
         let motion = &project.motions[index];
         let key = (self.flagged_at.unwrap_or_default(), index);
@@ -148,7 +159,7 @@ impl MotionsPanel {
             lane,
             update_ms: crate::authoring::fitted::PLEN2_UPDATE_MS,
             onsets_ms: &[],
-            cursor_ms: None,
+            cursor_ms,
             editable: true,
         };
         if let Some(done) = self.graph.show(ui, "plen2-graph", &curves, words.lang) {
