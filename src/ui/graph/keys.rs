@@ -133,10 +133,13 @@ impl OnGraph<'_, '_> {
                     ui.scope_id().with((id, "key", c, k)),
                     Sense::click_and_drag(),
                 );
-                let name = format!("{} {} #{k}", words.key, channel.name);
-                response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Button, true, &name));
-                let response =
-                    response.on_hover_text(format!("{} #{k}: {:.0} ms, {:.1}°", channel.name, key.t_ms, key.value));
+                // Worded only when asked (accessibility, a test): not for every key every frame.
+                response.widget_info(|| {
+                    egui::WidgetInfo::labeled(egui::Role::Button, true, format!("{} {} #{k}", words.key, channel.name))
+                });
+                let response = response.on_hover_ui(|ui| {
+                    ui.label(format!("{} #{k}: {:.0} ms, {:.1}°", channel.name, key.t_ms, key.value));
+                });
                 if response.clicked() || response.drag_started() {
                     if shift && response.clicked() {
                         if !self.graph.selected.remove(&(c, k)) {
@@ -218,8 +221,13 @@ impl OnGraph<'_, '_> {
                     Sense::drag(),
                 );
                 let side = if which == Which::Out { "out" } else { "in" };
-                let name = format!("{} {side} {} #{k}", words.handle, channel.name);
-                response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Button, true, &name));
+                response.widget_info(|| {
+                    egui::WidgetInfo::labeled(
+                        egui::Role::Button,
+                        true,
+                        format!("{} {side} {} #{k}", words.handle, channel.name),
+                    )
+                });
                 if response.drag_started() {
                     self.graph.drag = Some(Drag::Handle { key: (c, k), which, handles });
                 }
