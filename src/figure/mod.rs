@@ -5,6 +5,7 @@
 //! ([`rig`]). Pure geometry: the editor draws what [`Chain::dress`] returns,
 //! tests compare its points. Frames: x forward, y left, z up.
 
+pub mod ik;
 pub mod plen2;
 pub mod rig;
 
@@ -91,13 +92,35 @@ pub struct Chain {
     pub links: Vec<Link>,
 }
 
+impl Placed {
+    /// At the origin, turned as the world.
+    pub const ORIGIN: Self = Self { position: Vec3::ZERO, rotation: Mat3::IDENTITY };
+
+    /// This frame seen from `frame` (`frame` ∘ result = self).
+    pub fn relative_to(&self, frame: &Self) -> Self {
+        let back = frame.rotation.transpose();
+        Self { position: back * (self.position - frame.position), rotation: back * self.rotation }
+    }
+
+    /// A frame given in this one, in the world.
+    pub fn then(&self, inner: &Self) -> Self {
+        Self { position: self.position + self.rotation * inner.position, rotation: self.rotation * inner.rotation }
+    }
+}
+
 impl Chain {
     /// Every link placed for `angles` (radians, one per link, missing ones 0).
     pub fn pose(&self, angles: &[f32]) -> Vec<Placed> {
+        self.pose_from(Placed::ORIGIN, angles)
+    }
+
+    /// Every link placed for `angles`, the root's parent frame at `base` (a
+    /// figure standing on a planted foot, a pelvis dragged).
+    pub fn pose_from(&self, base: Placed, angles: &[f32]) -> Vec<Placed> {
         let mut placed: Vec<Placed> = Vec::with_capacity(self.links.len());
         for (index, link) in self.links.iter().enumerate() {
             let parent = link.parent.and_then(|parent| placed.get(parent)).copied();
-            let base = parent.unwrap_or(Placed { position: Vec3::ZERO, rotation: Mat3::IDENTITY });
+            let base = parent.unwrap_or(base);
             let angle = angles.get(index).copied().unwrap_or(0.0);
             let turn = if link.axis == Vec3::ZERO || angle == 0.0 {
                 Mat3::IDENTITY

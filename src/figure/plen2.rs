@@ -9,15 +9,24 @@
 //! (y negated): the model's two sides agree to 0.1 unit, and so the figure of
 //! a mirrored frame is exactly the mirror image.
 
+use super::ik::Limb;
 use super::{Chain, Link, Shape, Solid, Vec3};
 use crate::protocol::plen2::{DEVICE_IDS, Joint};
 
 /// The body's height above the ground at home: its feet's soles at z = 0.
 pub const BODY_HEIGHT: f32 = 369.0;
 
+/// Millimetres per unit of the model (540 units; the robot 24 cm tall).
+pub const MM_PER_UNIT: f32 = 240.0 / 540.0;
+
+/// A sole's middle, in its foot-roll link's frame (the left; the right's y negated).
+const SOLE: Vec3 = Vec3::new(11.6, 24.7, -37.8);
+/// A hand's tip, in its elbow link's frame.
+const HAND: Vec3 = Vec3::new(0.0, 0.0, -123.8);
+
 const SHELL: [u8; 3] = [236, 236, 230];
 const FRAME: [u8; 3] = [170, 172, 178];
-const SOLE: [u8; 3] = [70, 72, 78];
+const SOLE_COLOR: [u8; 3] = [70, 72, 78];
 const EYE: [u8; 3] = [40, 170, 235];
 
 /// A left joint: its parent (a left joint, or the body), its offset there, its axis.
@@ -110,7 +119,7 @@ const LEFT: [Left; 9] = [
         parent: Some(Joint::LeftFootPitch),
         offset: [-5.9, -14.8, -29.4],
         axis: [1.0, 0.0, 0.0],
-        boxes: &[([11.6, 24.7, -33.6], [101.2, 54.6, 4.2], SOLE)],
+        boxes: &[([11.6, 24.7, -33.6], [101.2, 54.6, 4.2], SOLE_COLOR)],
     },
 ];
 
@@ -166,6 +175,59 @@ pub fn chain() -> Chain {
         }
     }
     Chain { links }
+}
+
+/// The four limbs posed by their ends: left foot, right foot, left hand, right hand.
+pub fn limbs(chain: &Chain) -> Vec<Limb> {
+    let links = |joints: &[Joint]| joints.iter().filter_map(|joint| chain.link(joint.name())).collect::<Vec<_>>();
+    let leg = [
+        Joint::LeftThighYaw,
+        Joint::LeftThighRoll,
+        Joint::LeftThighPitch,
+        Joint::LeftKneePitch,
+        Joint::LeftFootPitch,
+        Joint::LeftFootRoll,
+    ];
+    let arm = [Joint::LeftShoulderPitch, Joint::LeftShoulderRoll, Joint::LeftElbowRoll];
+    let right = |joints: &[Joint]| joints.iter().map(|joint| twin(*joint)).collect::<Vec<_>>();
+    let flip = |p: Vec3| Vec3::new(p.x, -p.y, p.z);
+    vec![
+        Limb { name: "left foot".into(), joints: links(&leg), tip: SOLE },
+        Limb { name: "right foot".into(), joints: links(&right(&leg)), tip: flip(SOLE) },
+        Limb { name: "left hand".into(), joints: links(&arm), tip: HAND },
+        Limb { name: "right hand".into(), joints: links(&right(&arm)), tip: flip(HAND) },
+    ]
+}
+
+/// Each link's limits (radians, relative to home) from the joint settings
+/// (home, min, max in tenths of a degree, by device id); the body's none.
+pub fn limits(chain: &Chain, settings: &[(i16, i16, i16); DEVICE_IDS]) -> Vec<(f32, f32)> {
+    chain
+        .links
+        .iter()
+        .map(|link| {
+            Joint::ALL.iter().find(|joint| joint.name() == link.name).map_or((0.0, 0.0), |joint| {
+                let (home, min, max) = settings[usize::from(joint.device_id())];
+                let radians = |tenths: i16| (f32::from(tenths) / 10.0).to_radians();
+                (radians(min.saturating_sub(home)), radians(max.saturating_sub(home)))
+            })
+        })
+        .collect()
+}
+
+/// Joint values relative to home (tenths of a degree, by device id) for
+/// each link's angle: [`angles`] the other way round.
+pub fn values(chain: &Chain, angles: &[f32]) -> [i16; DEVICE_IDS] {
+    let mut out = [0; DEVICE_IDS];
+    for (link, angle) in chain.links.iter().zip(angles) {
+        if let Some(joint) = Joint::ALL.iter().find(|joint| joint.name() == link.name) {
+            // Within a turn: a few thousand tenths.
+            #[allow(clippy::cast_possible_truncation)]
+            let tenths = (angle.to_degrees() * 10.0).round() as i16;
+            out[usize::from(joint.device_id())] = tenths;
+        }
+    }
+    out
 }
 
 /// The joint on the other side.
@@ -288,5 +350,150 @@ mod tests {
         let foot = |placed: &[Placed]| joint_position(&chain, placed, Joint::LeftFootPitch);
         assert!(foot(&flexed).x < foot(&home).x - 30.0, "{} vs {}", foot(&flexed), foot(&home));
         assert!(foot(&flexed).z > foot(&home).z, "the foot rises");
+    }
+
+    /// A fixed pseudo-random walk (xorshift): the same targets every run.
+    struct Walk(u64);
+
+    impl Walk {
+        fn unit(&mut self) -> f32 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 7;
+            self.0 ^= self.0 << 17;
+            // 24 bits of it, as a fraction.
+            #[allow(clippy::cast_precision_loss)]
+            let fraction = (self.0 >> 40) as f32 / (1u64 << 24) as f32;
+            fraction
+        }
+    }
+
+    fn factory() -> [(i16, i16, i16); DEVICE_IDS] {
+        let mut settings = [(0, -900, 900); DEVICE_IDS];
+        for joint in Joint::ALL {
+            settings[usize::from(joint.device_id())].0 = joint.factory_home_tenths_deg();
+        }
+        settings
+    }
+
+    /// Where a limb's end is for joint values (tenths, as the robot gets them), in mm and radians apart.
+    fn apart(chain: &Chain, limb: &Limb, values: &[i16; DEVICE_IDS], goal: &Placed) -> (f32, f32) {
+        let reach = limb.reach(&chain.pose(&angles(chain, values))).unwrap();
+        let turn = goal.rotation * reach.rotation.transpose();
+        let (_, angle) = glam::Quat::from_mat3(&turn).normalize().to_axis_angle();
+        let angle = if angle > std::f32::consts::PI { std::f32::consts::TAU - angle } else { angle };
+        ((reach.position - goal.position).length() * MM_PER_UNIT, angle)
+    }
+
+    #[test]
+    fn two_hundred_reachable_foot_targets_are_reached_within_a_millimetre_and_half_a_degree() {
+        use crate::figure::ik::{Goal, solve};
+        let chain = chain();
+        let limits = limits(&chain, &factory());
+        let limbs = limbs(&chain);
+        let mut walk = Walk(0x9e37_79b9_7f4a_7c15);
+        let mut worst = (0.0_f32, 0.0_f32);
+        for target in 0..200 {
+            let limb = &limbs[target % 2];
+            // A pose within the limits, its foot by forward kinematics: the target.
+            let mut random = vec![0.0; chain.links.len()];
+            for &link in &limb.joints {
+                let (low, high) = limits[link];
+                random[link] = low + (high - low) * walk.unit();
+            }
+            let goal = limb.reach(&chain.pose(&random)).unwrap();
+            let solved = solve(&chain, Placed::ORIGIN, &[0.0; 19], limb, Goal::Hold(goal), &limits);
+            // What the robot gets: whole tenths, within each joint's settings.
+            let sent = values(&chain, &solved.angles);
+            for &link in &limb.joints {
+                let angle = solved.angles[link];
+                assert!(angle >= limits[link].0 - 1e-6 && angle <= limits[link].1 + 1e-6, "a joint past its limit");
+            }
+            let (mm, radians) = apart(&chain, limb, &sent, &goal);
+            assert!(
+                mm < 1.0 && radians.to_degrees() < 0.5,
+                "target {target} ({}): {mm} mm, {}° apart",
+                limb.name,
+                radians.to_degrees()
+            );
+            worst = (worst.0.max(mm), worst.1.max(radians.to_degrees()));
+        }
+        println!("200 foot targets: worst {:.3} mm, {:.3}°", worst.0, worst.1);
+    }
+
+    #[test]
+    fn a_target_out_of_reach_stops_at_the_nearest_pose_and_says_how_far() {
+        use crate::figure::ik::{Goal, solve};
+        let chain = chain();
+        let limits = limits(&chain, &factory());
+        let foot = &limbs(&chain)[0];
+        let home = foot.reach(&chain.pose(&[0.0; 19])).unwrap().position;
+        // A metre below: the leg stretches straight down as far as it goes.
+        let far = home - Vec3::new(0.0, 0.0, 1000.0 / MM_PER_UNIT);
+        let solved = solve(&chain, Placed::ORIGIN, &[0.0; 19], foot, Goal::Reach(far), &limits);
+        let reached = foot.reach(&chain.pose(&solved.angles)).unwrap().position;
+        assert!(!solved.reached(1.0, 0.01));
+        assert!((solved.gap - (far - reached).length()).abs() < 1e-2, "the gap is the distance left");
+        assert!(reached.z < home.z, "it went toward the target");
+        assert!(solved.gap * MM_PER_UNIT > 990.0 && solved.gap * MM_PER_UNIT < 1000.0, "{}", solved.gap);
+    }
+
+    #[test]
+    fn dragging_the_pelvis_three_centimetres_keeps_the_planted_feet_within_a_millimetre() {
+        use crate::figure::ik::{keep_planted, plant};
+        let chain = chain();
+        let limits = limits(&chain, &factory());
+        let limbs = limbs(&chain);
+        let feet = |angles: &[f32], base: Placed| {
+            let placed = chain.pose_from(base, angles);
+            [limbs[0].reach(&placed).unwrap(), limbs[1].reach(&placed).unwrap()]
+        };
+        // As a drag does it: a millimetre a frame, toward the pelvis's goal.
+        let drag = |angles: &mut Vec<f32>, base: &mut Placed, by: Vec3, planted: &[(&Limb, Placed)]| {
+            for _ in 0..30 {
+                let next = Placed { position: base.position + by / 30.0 / MM_PER_UNIT, ..*base };
+                let kept = keep_planted(&chain, next, angles, planted, &limits);
+                assert!(kept.reached(0.2, 0.002), "the feet held: {kept:?}");
+                (*angles, *base) = (kept.angles, next);
+            }
+        };
+        let home = vec![0.0; chain.links.len()];
+        let held = plant(&chain, Placed::ORIGIN, &home, &[&limbs[0], &limbs[1]]);
+        let planted: Vec<(&Limb, Placed)> = vec![(&limbs[0], held[0]), (&limbs[1], held[1])];
+        // The legs straighten at home: first a crouch, the pelvis 3 cm down.
+        let (mut crouched, mut base) = (home.clone(), Placed::ORIGIN);
+        drag(&mut crouched, &mut base, Vec3::new(0.0, 0.0, -30.0), &planted);
+        let crouch = base;
+        for direction in [Vec3::X, -Vec3::X, Vec3::Y, Vec3::new(0.6, -0.6, 0.0), Vec3::new(0.0, 0.6, -0.8)] {
+            let (mut angles, mut base) = (crouched.clone(), crouch);
+            drag(&mut angles, &mut base, direction.normalize() * 30.0, &planted);
+            let sent = super::angles(&chain, &values(&chain, &angles));
+            let after = feet(&sent, base);
+            assert!(((base.position - crouch.position).length() * MM_PER_UNIT - 30.0).abs() < 1e-2);
+            for ((_, a), b) in planted.iter().zip(&after) {
+                let mm = (a.position - b.position).length() * MM_PER_UNIT;
+                let (_, turn) = glam::Quat::from_mat3(&(a.rotation * b.rotation.transpose())).to_axis_angle();
+                assert!(mm < 1.0, "{direction}: a planted foot moved {mm} mm");
+                assert!(
+                    turn.min(std::f32::consts::TAU - turn).to_degrees() < 0.5,
+                    "{direction}: a planted foot turned"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn the_twin_of_a_mirrored_goal_reaches_the_mirror_image() {
+        use crate::figure::ik::{Goal, mirrored, solve};
+        let chain = chain();
+        let limits = limits(&chain, &factory());
+        let limbs = limbs(&chain);
+        let home = chain.pose(&[0.0; 19]);
+        let goal = limbs[2].reach(&home).unwrap().position + Vec3::new(60.0, 30.0, 80.0);
+        let left = solve(&chain, Placed::ORIGIN, &[0.0; 19], &limbs[2], Goal::Reach(goal), &limits);
+        let both = solve(&chain, Placed::ORIGIN, &left.angles, &limbs[3], mirrored(Goal::Reach(goal)), &limits);
+        let placed = chain.pose(&both.angles);
+        let (l, r) = (limbs[2].reach(&placed).unwrap().position, limbs[3].reach(&placed).unwrap().position);
+        assert!((l - goal).length() * MM_PER_UNIT < 0.1, "{l} vs {goal}");
+        assert!((l - Vec3::new(r.x, -r.y, r.z)).length() * MM_PER_UNIT < 0.1, "{l} vs {r}");
     }
 }
