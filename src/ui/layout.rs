@@ -37,7 +37,7 @@ impl Default for Layout {
             list_width: 180.0,
             lower_share: 0.4,
             lower_open: true,
-            side_width: 380.0,
+            side_width: 460.0,
             values_width: 500.0,
             view_open: true,
             settings_share: 0.45,

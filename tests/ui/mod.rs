@@ -9,6 +9,7 @@ mod files;
 mod frames;
 mod gamepad;
 mod graph;
+mod ik;
 mod import;
 mod joystick;
 mod log;

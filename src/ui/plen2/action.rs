@@ -41,7 +41,10 @@ pub enum Plen2Action {
         /// Tenths of a degree from where the drag began.
         by_tenths: i32,
     },
-    /// The drag turning a joint let go: the turn is one undo step.
+    /// Every joint to an absolute angle at once (tenths of a degree, by joint
+    /// index), live: a limb posed by its end in the 3D view.
+    Pose([i16; 18]),
+    /// The drag turning a joint (or posing a limb) let go: the turn is one undo step.
     TurnDone,
     /// Every joint to home.
     Home,

@@ -90,7 +90,8 @@ fn sliders(ui: &mut egui::Ui, view: &JointsView<'_>, actions: &mut Vec<Action>) 
     let nudge = if focused.is_some() { i16::try_from(rows::keyboard_nudge(ui) * 10).unwrap_or(0) } else { 0 };
     let newly_selected = rows::selection_changed(ui, "plen2-joint-selection", view.selected.as_ref());
     let mut ids = Vec::with_capacity(Joint::ALL.len());
-    ui.spacing_mut().slider_width = (ui.available_width() - 340.0).clamp(160.0, 420.0);
+    // The sliders take the width the panel has: no empty band beside the preview.
+    ui.spacing_mut().slider_width = (ui.available_width() - 340.0).max(160.0);
     let height = ui.available_height();
     rows::grid(ui, "plen2-joint-sliders", Joint::ALL.len(), height, |ui, index| {
         let joint = Joint::ALL[index];

@@ -65,6 +65,20 @@ impl Plen2Ui {
         self.walk_to_pose(shell, before, Instant::now());
     }
 
+    /// Every joint to `pose` (absolute tenths, by joint index), each clamped
+    /// to its limits, walked at the live speed limit.
+    pub(super) fn set_pose(&mut self, shell: &mut Shell<'_>, pose: [i16; 18]) {
+        let before = self.pose;
+        for joint in Joint::ALL {
+            let setting = limits(&shell.document.project.plen2, joint);
+            let low = setting.min_tenths_deg.min(setting.max_tenths_deg);
+            let high = setting.max_tenths_deg.max(setting.min_tenths_deg);
+            self.pose[joint.index()] = pose[joint.index()].clamp(low, high);
+        }
+        self.stream = None;
+        self.walk_to_pose(shell, before, Instant::now());
+    }
+
     /// Back to `pose` (an undone turn in the 3D view), walked at the live speed limit.
     pub fn restore_pose(&mut self, shell: &mut Shell<'_>, pose: [i16; 18]) {
         let before = self.pose;

@@ -259,6 +259,10 @@ impl Plen2Ui {
                 let tenths = i16::try_from(tenths.clamp(i32::from(i16::MIN), i32::from(i16::MAX))).unwrap_or(0);
                 self.set_joint(shell, joint, tenths);
             }
+            Plen2Action::Pose(pose) => {
+                self.turning.get_or_insert(self.pose);
+                self.set_pose(shell, pose);
+            }
             Plen2Action::TurnDone => {
                 if let Some(before) = self.turning.take()
                     && before != self.pose

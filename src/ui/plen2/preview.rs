@@ -6,14 +6,19 @@
 
 use crate::authoring::bake;
 use crate::device::plen2::playback::{self, DEVICE_IDS, Playback, Settings, StoredMotions};
-use crate::figure::{self, Chain};
+use crate::figure::ik::Limb;
+use crate::figure::{self, Chain, Placed};
 use crate::project::plen2::{Joint, Plen2Project};
 use crate::ui::action::Action;
 use crate::ui::i18n::Strings;
 use crate::ui::plen2::action::Plen2Action;
 use crate::ui::plen2::captions::Plen2Words;
 use crate::ui::transport::Transport;
+use crate::ui::view3d::posing::{Posing, Rig};
 use crate::ui::view3d::{Handle, Scene, Touch, View};
+
+/// Each limb's twin: the feet, then the hands (as `figure::plen2::limbs` lists them).
+const TWINS: [Option<usize>; 4] = [Some(1), Some(0), Some(3), Some(2)];
 
 /// At most this long is played out for the preview (a loop forever stops here).
 const MAX_CYCLES: usize = 916;
@@ -41,12 +46,19 @@ pub struct Preview {
     turned: Option<i32>,
     /// What the live view drew last.
     live_scene: Scene,
+    /// The hands and feet the live figure is posed by.
+    limbs: Vec<Limb>,
+    /// How they are posed.
+    pub posing: Posing,
 }
 
 impl Default for Preview {
     fn default() -> Self {
+        let chain = figure::plen2::chain();
         Self {
-            chain: figure::plen2::chain(),
+            limbs: figure::plen2::limbs(&chain),
+            posing: Posing::default(),
+            chain,
             joints_view: View::default(),
             motion_view: View::default(),
             transport: Transport::default(),
@@ -62,13 +74,13 @@ impl Default for Preview {
 
 impl Preview {
     /// The figure for `values` (and a ghost for `ghost`), both relative to home and clamped.
-    fn scene(&self, values: &[i16; DEVICE_IDS], ghost: Option<&[i16; DEVICE_IDS]>) -> Scene {
+    fn scene(&self, values: &[i16; DEVICE_IDS], ghost: Option<&[i16; DEVICE_IDS]>, base: Placed) -> Scene {
         let mut solids = Vec::new();
         if let Some(ghost) = ghost {
-            let placed = self.chain.pose(&figure::plen2::angles(&self.chain, ghost));
+            let placed = self.chain.pose_from(base, &figure::plen2::angles(&self.chain, ghost));
             solids.extend(self.chain.dress(&placed, true));
         }
-        let placed = self.chain.pose(&figure::plen2::angles(&self.chain, values));
+        let placed = self.chain.pose_from(base, &figure::plen2::angles(&self.chain, values));
         solids.extend(self.chain.dress(&placed, false));
         Scene { solids, ground_z: 0.0, ..Scene::default() }
     }
@@ -98,8 +110,21 @@ impl Preview {
         }
         let values = playback::clamped(&values, &settings);
         self.shown = Some(values);
-        let mut scene = self.scene(&values, None);
-        let placed = self.chain.pose(&figure::plen2::angles(&self.chain, &values));
+        let angles = figure::plen2::angles(&self.chain, &values);
+        let limits = figure::plen2::limits(&self.chain, &settings);
+        let rig = Rig {
+            chain: &self.chain,
+            limbs: &self.limbs,
+            twins: &TWINS,
+            limits: &limits,
+            mm_per_unit: figure::plen2::MM_PER_UNIT,
+        };
+        self.posing.toolbar(ui, &self.limbs, &mut self.joints_view, words.lang);
+        let base = self.posing.base(&rig, &angles);
+        let mut scene = self.scene(&values, None, base);
+        let placed = self.chain.pose_from(base, &angles);
+        scene.ends = self.posing.ends(&rig, &placed, words.lang);
+        scene.gap = self.posing.gap();
         scene.handles = (0..self.chain.links.len())
             .map(|link| {
                 let joint = self.joint_of(link)?;
@@ -111,11 +136,29 @@ impl Preview {
         scene.selected = selected.and_then(|joint| self.chain.link(joint.name()));
         let rect = ui.available_rect_before_wrap();
         let (response, touch) = self.joints_view.show(ui, rect, &scene, words.robot_preview);
-        if touch.hovered.is_none() {
+        if touch.hovered.is_none() && touch.hovered_end.is_none() {
             response.on_hover_text(words.preview_hint);
+        }
+        let posed = self.posing.reach(&rig, &angles, base, &touch, words.lang);
+        if let Some(solved) = posed.angles {
+            let values = figure::plen2::values(&self.chain, &solved);
+            let pose: [i16; 18] = std::array::from_fn(|index| {
+                let device = usize::from(Joint::ALL[index].device_id());
+                settings[device].0.saturating_add(values[device])
+            });
+            actions.push(Action::family(Plen2Action::Pose(pose)));
+        }
+        if posed.done {
+            actions.push(Action::family(Plen2Action::TurnDone));
         }
         self.live_scene = scene;
         self.touched(touch, actions);
+    }
+
+    /// Where on the screen an end (a limb's, by `figure::plen2::limbs`'
+    /// order; then the pelvis) was last drawn in the live view.
+    pub fn end_on_screen(&self, end: usize) -> Option<egui::Pos2> {
+        self.joints_view.on_screen(self.live_scene.ends.get(end)?.at)
     }
 
     /// What touching the live figure asks for.
@@ -218,7 +261,7 @@ impl Preview {
                 playback::clamped(&out, settings)
             });
         self.shown = Some(values);
-        let scene = self.scene(&values, ghost.as_ref());
+        let scene = self.scene(&values, ghost.as_ref(), Placed::ORIGIN);
         let rect = ui.available_rect_before_wrap();
         self.motion_view.show(ui, rect, &scene, words.robot_preview).0.on_hover_text(words.preview_hint);
     }

@@ -95,7 +95,8 @@ impl ServoPanel {
         let nudge = if focused.is_some() { rows::keyboard_nudge(ui) } else { 0 };
         self.slider_ids.clear();
         let newly_selected = rows::selection_changed(ui, "servo-selection", view.selected.as_ref());
-        ui.spacing_mut().slider_width = (ui.available_width() - 320.0).clamp(160.0, 420.0);
+        // The sliders take the width the panel has: no empty band beside the preview.
+        ui.spacing_mut().slider_width = (ui.available_width() - 320.0).max(160.0);
         // Every slider the height holds; only those in view are laid out.
         let height = ui.available_height();
         rows::grid(ui, "servo-grid", view.project.servos.len(), height, |ui, index| {

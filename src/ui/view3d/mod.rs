@@ -5,12 +5,20 @@
 //! ghost (another pose, drawn faint) can share the scene. A scene whose links
 //! have handles can be posed: hovering a link names it, a click selects it,
 //! and a drag that starts on a joint turns that joint (the `touch` module).
+//! A scene with ends (a hand, a foot) can be posed by them: a drag that starts
+//! on an end's ring carries its goal (the `ends` module), and the family
+//! solves the limb. The camera frames the whole figure at every size: "frame
+//! all" (the F key over the view, or [`View::frame_all`]) and a resize fit it
+//! again, keeping the way it looks from.
 
+mod ends;
+pub mod posing;
 mod touch;
 
 use egui::{Color32, Pos2, Rect, Sense, Shape as Paint, Stroke, pos2};
 
 use crate::figure::{Shape, Vec3, WorldSolid};
+pub use ends::{End, Gap};
 pub use touch::{Handle, Touch};
 
 /// What the view draws: solids over a ground at `ground_z`.
@@ -25,9 +33,36 @@ pub struct Scene {
     pub handles: Vec<Option<Handle>>,
     /// The link drawn as selected.
     pub selected: Option<usize>,
+    /// Ends to pose the figure by (empty: none).
+    pub ends: Vec<End>,
+    /// The goal an end did not reach.
+    pub gap: Option<Gap>,
 }
 
 impl Scene {
+    /// Points around everything solid the scene holds (the corners of boxes,
+    /// the extremes of balls and rods): what the camera frames.
+    fn outline(&self) -> Vec<Vec3> {
+        let mut points = Vec::with_capacity(self.solids.len() * 8);
+        let around = |points: &mut Vec<Vec3>, at: Vec3, radius: f32| {
+            for axis in [Vec3::X, Vec3::Y, Vec3::Z] {
+                points.push(at + axis * radius);
+                points.push(at - axis * radius);
+            }
+        };
+        for solid in self.solids.iter().filter(|solid| !solid.faint) {
+            match solid.shape {
+                Shape::Box { half } => points.extend(corners(solid, half)),
+                Shape::Ball { radius } => around(&mut points, solid.at, radius),
+                Shape::Capsule { to, radius } => {
+                    around(&mut points, solid.at, radius);
+                    around(&mut points, to, radius);
+                }
+            }
+        }
+        points
+    }
+
     /// The centre and radius of what the scene holds (for the camera).
     fn bounds(&self) -> (Vec3, f32) {
         let mut low = Vec3::splat(f32::MAX);
@@ -88,9 +123,33 @@ const FOV: f32 = 0.6;
 const LIGHT: Vec3 = Vec3::new(0.45, 0.35, 0.82);
 
 impl Camera {
-    /// The camera that shows a scene whole, from the front-left, a little above.
-    fn fit(center: Vec3, radius: f32) -> Self {
-        Self { yaw: 0.6, pitch: 0.25, distance: radius / (FOV / 2.0).tan() * 1.15, target: center }
+    /// The camera that shows a scene whole in `rect`, from the front-left, a little above.
+    fn fit(points: &[Vec3], rect: Rect) -> Self {
+        Self { yaw: 0.6, pitch: 0.25, distance: 1000.0, target: Vec3::ZERO }.framing(points, rect)
+    }
+
+    /// This camera looking from where it looks, moved to show `points` whole
+    /// in `rect` with a margin: aimed at the middle of their box and as near
+    /// as the farthest-out point allows, across and up.
+    fn framing(self, points: &[Vec3], rect: Rect) -> Self {
+        if points.is_empty() {
+            return self;
+        }
+        let (low, high) =
+            points.iter().fold((Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)), |(l, h), p| (l.min(*p), h.max(*p)));
+        let target = (low + high) / 2.0;
+        let (_, right, up, forward) = Self { target, ..self }.frame();
+        let tan_up = (FOV / 2.0).tan() * 0.85;
+        let tan_across = tan_up * (rect.width() / rect.height().max(1.0)).clamp(0.05, 20.0);
+        let distance = points
+            .iter()
+            .map(|p| {
+                let d = *p - target;
+                let toward = d.dot(forward);
+                (d.dot(right).abs() / tan_across - toward).max(d.dot(up).abs() / tan_up - toward)
+            })
+            .fold(1.0_f32, f32::max);
+        Self { distance, target, ..self }
     }
 
     fn eye(&self) -> Vec3 {
@@ -316,7 +375,10 @@ fn nice_step(raw: f32) -> f32 {
 pub struct View {
     camera: Option<Camera>,
     grab: Option<touch::Grab>,
+    reach: Option<ends::Reach>,
     drawn: Option<(Camera, Rect)>,
+    /// Frame the figure on the next draw.
+    reframe: bool,
 }
 
 impl View {
@@ -326,13 +388,50 @@ impl View {
         Projector::new(&camera, rect).point(point).map(|(at, _)| at)
     }
 
+    /// Frames the whole figure on the next draw, keeping the way the camera looks from.
+    pub fn frame_all(&mut self) {
+        self.reframe = true;
+    }
+
+    /// Where the view was drawn last (its camera and rectangle).
+    pub fn drawn(&self) -> Option<(Camera, Rect)> {
+        self.drawn
+    }
+
+    /// A drag that starts on an end's ring carries its goal (ends come before links).
+    fn touch_ends(&mut self, ui: &egui::Ui, response: &egui::Response, scene: &Scene, projector: &Projector) -> Touch {
+        let mut touch = Touch::default();
+        if scene.ends.is_empty() {
+            self.reach = None;
+            return touch;
+        }
+        touch.hovered_end = response.hover_pos().and_then(|at| ends::nearest(scene, projector, at));
+        if response.drag_started()
+            && let Some(origin) = ui.input(|input| input.pointer.press_origin())
+            && let Some(end) = ends::nearest(scene, projector, origin).filter(|&end| !scene.ends[end].held)
+        {
+            self.reach = Some(ends::Reach::new(end, scene.ends[end].at, origin));
+        }
+        if let Some(reach) = self.reach {
+            if let Some(pointer) = ui.input(|input| input.pointer.latest_pos()) {
+                touch.reached = Some((reach.end, reach.goal(projector, pointer)));
+            }
+            touch.hovered_end = Some(reach.end);
+            if !response.dragged() {
+                touch.released = Some(reach.end);
+                self.reach = None;
+            }
+        }
+        touch
+    }
+
     /// What the pointer does to a posable scene: hover, click, and a drag
     /// that started on a joint turns it (any other drag orbits).
     fn touch(&mut self, ui: &egui::Ui, response: &egui::Response, scene: &Scene, projector: &Projector) -> Touch {
         let handle = |link: usize| scene.handles.get(link).and_then(Option::as_ref);
         let under = |at: Pos2| touch::pick(scene, projector, at).filter(|(link, _)| handle(*link).is_some());
-        let mut touch = Touch::default();
-        if scene.handles.is_empty() {
+        let mut touch = self.touch_ends(ui, response, scene, projector);
+        if scene.handles.is_empty() || touch.hovered_end.is_some() {
             self.grab = None;
             return touch;
         }
@@ -368,12 +467,17 @@ impl View {
         let response = ui.allocate_rect(rect, Sense::click_and_drag());
         response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Image, true, label));
         let (center, radius) = scene.bounds();
-        let mut camera = self.camera.unwrap_or_else(|| Camera::fit(center, radius));
+        let mut camera = self.camera.unwrap_or_else(|| Camera::fit(&scene.outline(), rect));
+        let resized = self.drawn.is_some_and(|(_, drawn)| drawn.size() != rect.size());
+        let frame_key = response.hovered() && ui.input(|input| input.key_pressed(egui::Key::F));
         if response.double_clicked() {
-            camera = Camera::fit(center, radius);
+            camera = Camera::fit(&scene.outline(), rect);
+        } else if self.reframe || resized || frame_key {
+            camera = camera.framing(&scene.outline(), rect);
         }
+        self.reframe = false;
         let touch = self.touch(ui, &response, scene, &Projector::new(&camera, rect));
-        if response.dragged() && touch.turned.is_none() {
+        if response.dragged() && touch.turned.is_none() && touch.reached.is_none() {
             let delta = response.drag_delta();
             camera.yaw -= delta.x * 0.01;
             camera.pitch = (camera.pitch + delta.y * 0.01).clamp(-1.2, 1.45);
@@ -418,7 +522,23 @@ impl View {
         // Far first: the near ones cover them (the painter's algorithm).
         pieces.sort_by(|a, b| b.depth.total_cmp(&a.depth));
         painter.extend(pieces.into_iter().map(|piece| piece.paint));
-        let reading = touch.hovered.and_then(|link| scene.handles.get(link)?.as_ref()).map(|h| h.reading.clone());
+        painter.extend(ends::paint(scene, &projector, touch.hovered_end));
+        if let Some(gap) = &scene.gap
+            && let Some((at, _)) = projector.point(gap.to)
+        {
+            let color = Color32::from_rgb(225, 50, 50);
+            painter.text(
+                at + egui::vec2(10.0, -10.0),
+                egui::Align2::LEFT_BOTTOM,
+                &gap.words,
+                egui::FontId::proportional(13.0),
+                color,
+            );
+        }
+        let reading = match touch.hovered_end {
+            Some(end) => scene.ends.get(end).map(|end| end.reading.clone()),
+            None => touch.hovered.and_then(|link| scene.handles.get(link)?.as_ref()).map(|h| h.reading.clone()),
+        };
         let response = match reading {
             Some(reading) => response.on_hover_text_at_pointer(reading),
             None => response,

@@ -30,6 +30,12 @@ pub struct Touch {
     pub turned: Option<(usize, f32)>,
     /// The drag turning this link let go.
     pub let_go: Option<usize>,
+    /// The end under the pointer (or held by a drag).
+    pub hovered_end: Option<usize>,
+    /// An end dragged: which, and its goal (world).
+    pub reached: Option<(usize, Vec3)>,
+    /// The drag holding this end let go.
+    pub released: Option<usize>,
 }
 
 impl Touch {
