@@ -99,6 +99,7 @@ fn servo_project(
         })
         .collect();
     ServoProject {
+        meshes: Vec::new(),
         project_id: 1,
         servos: servo_list,
         actions: action_list,

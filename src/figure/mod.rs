@@ -6,6 +6,7 @@
 //! tests compare its points. Frames: x forward, y left, z up.
 
 pub mod ik;
+pub mod mesh;
 pub mod plen2;
 pub mod rig;
 

@@ -32,7 +32,9 @@ pub use file::{
 };
 pub use history::{History, LivePose, MAX_UNDO_STEPS, Step as UndoStep};
 pub use section::{Section, validate};
-pub use servo::{Action, Button, Command, JoystickTable, Macro, RigAxis, RigJoint, Run, Servo, ServoProject, Step};
+pub use servo::{
+    Action, Button, Command, JoystickTable, LinkMesh, Macro, RigAxis, RigEnd, RigJoint, Run, Servo, ServoProject, Step,
+};
 pub use timing::{Timing, TimingError, action_duration_ms};
 pub use trajectory::{
     Follower, MAX_TRACE_WORK, SAMPLE_MS, Samples, TraceError, Trajectories, action_trajectories, angle_at, macro_cycle,

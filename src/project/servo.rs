@@ -25,6 +25,35 @@ pub struct ServoProject {
     /// The table the board uses, if any.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub active_table: Option<i32>,
+    /// What the figure's links look like: a mesh file each (client-side only).
+    #[serde(default, skip_serializing_if = "Vec::is_empty", deserialize_with = "super::bounded::list")]
+    pub meshes: Vec<LinkMesh>,
+}
+
+/// A mesh (STL or OBJ) a link of the figure is drawn with, placed in the
+/// link's frame (client-side only: the board never sees it).
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct LinkMesh {
+    /// The servo whose link carries it; none: the robot's body.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub servo_id: Option<u8>,
+    /// The file, relative to the project file's folder ('/' between folders).
+    pub path: String,
+    /// Where the file's origin sits in the link's frame, mm.
+    #[serde(default)]
+    pub offset_mm: [i16; 3],
+    /// How the file is turned in the link's frame: about x, then y, then z, °.
+    #[serde(default)]
+    pub rotation_deg: [i16; 3],
+    /// Millimetres per unit of the file, in thousandths (1000: the file is in mm).
+    #[serde(default = "LinkMesh::default_scale")]
+    pub scale_milli: u32,
+}
+
+impl LinkMesh {
+    fn default_scale() -> u32 {
+        1000
+    }
 }
 
 /// One servo: its board parameters and its client-side limits.
@@ -77,6 +106,21 @@ pub struct RigJoint {
     /// reflected about their homes); either twin may name the other.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub mirror: Option<u8>,
+    /// Its link is a hand or a foot: posed by dragging its end in the 3D view.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub end: Option<RigEnd>,
+}
+
+/// A link posed by its end: the chain that moves it runs from `root` down to it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct RigEnd {
+    /// The first servo of the chain (an ancestor, or itself); none: every
+    /// servo from the body down.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub root: Option<u8>,
+    /// The point held, in its link's frame, mm (a sole's middle, a fingertip).
+    #[serde(default)]
+    pub tip_mm: [i16; 3],
 }
 
 /// An axis of a link's frame.

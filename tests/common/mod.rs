@@ -99,6 +99,7 @@ pub fn rich_project() -> ServoProject {
     ServoProject {
         project_id: i32::MAX,
         servos,
+        meshes: Vec::new(),
         actions: vec![
             Action { id: 1, caption: "六十步的大動作".into(), steps: (0..60).map(big_step).collect() },
             Action { id: 42, caption: "揮手".into(), steps: vec![Step::new(3, -90, 50), Step::new(4, 45, 100)] },

@@ -20,6 +20,7 @@ fn rich_project() -> ServoProject {
     servos[0].max_deg = 120;
     servos[0].home_deg = -5;
     ServoProject {
+        meshes: Vec::new(),
         project_id: i32::MAX,
         servos,
         actions: vec![

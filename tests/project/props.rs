@@ -30,6 +30,7 @@ fn rig() -> impl Strategy<Value = Option<RigJoint>> {
                 reversed,
                 straight_deg,
                 mirror: None,
+                end: None,
             },
         ),
     )
@@ -97,6 +98,7 @@ fn servo_section() -> impl Strategy<Value = ServoProject> {
             macros,
             joystick_tables,
             active_table,
+            meshes: Vec::new(),
         })
 }
 

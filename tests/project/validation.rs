@@ -15,6 +15,7 @@ fn step(servo_id: u8, degree: i16) -> Step {
 /// A small valid project: two servos, two actions, two macros, one table.
 fn valid() -> ServoProject {
     ServoProject {
+        meshes: Vec::new(),
         project_id: 1,
         servos: vec![Servo::new(1, "左肩"), Servo::new(2, "右肩")],
         actions: vec![
@@ -155,7 +156,15 @@ fn macro_cycles_direct_and_indirect() {
 }
 
 fn rig(parent: Option<u8>) -> Option<RigJoint> {
-    Some(RigJoint { parent, offset_mm: [0, 30, 0], axis: RigAxis::Y, reversed: false, straight_deg: 0, mirror: None })
+    Some(RigJoint {
+        parent,
+        offset_mm: [0, 30, 0],
+        axis: RigAxis::Y,
+        reversed: false,
+        straight_deg: 0,
+        mirror: None,
+        end: None,
+    })
 }
 
 #[test]

@@ -155,6 +155,7 @@ impl ServoImage {
         ServoProject {
             project_id: self.project_id,
             servos,
+            meshes: Vec::new(),
             actions: self
                 .actions
                 .iter()

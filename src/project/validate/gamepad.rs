@@ -65,6 +65,7 @@ mod tests {
             reversed: false,
             straight_deg: 0,
             mirror,
+            end: None,
         };
         let mut servos = vec![Servo::new(1, "L"), Servo::new(2, "R"), Servo::new(3, "head")];
         servos[0].rig = Some(rig(Some(2)));

@@ -38,7 +38,9 @@ pub enum ServoAction {
         /// Degrees from where the drag began.
         by_deg: i32,
     },
-    /// The drag turning a servo let go: the turn is one undo step.
+    /// Several servos to these angles at once (°), live: a limb posed by its end in the 3D view.
+    Pose(std::collections::BTreeMap<u8, i16>),
+    /// The drag turning a servo (or posing a limb) let go: the turn is one undo step.
     TurnDone,
     /// Hold or release one servo's torque.
     SetHold {

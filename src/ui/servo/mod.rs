@@ -146,6 +146,14 @@ impl ServoUi {
                 self.selected_servo = Some(servo_id);
                 self.set_pose(shell, servo_id, degree);
             }
+            ServoAction::Pose(degrees) => {
+                self.turning.get_or_insert_with(|| self.pose.clone());
+                for (servo_id, degree) in degrees {
+                    if self.pose.get(&servo_id) != Some(&degree) {
+                        self.set_pose(shell, servo_id, degree);
+                    }
+                }
+            }
             ServoAction::TurnDone => {
                 if let Some(before) = self.turning.take()
                     && before != self.pose

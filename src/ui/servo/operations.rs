@@ -222,7 +222,7 @@ impl ServoUi {
             BoardIntent::UploadAnyway => self.start(shell, ServoKind::Upload { force: true }),
             BoardIntent::ReadIntoProject => {
                 // The board does not store the client-side safety limits and the
-                // rig: keep the project's for servos it already knows.
+                // rig: keep the project's for servos it already knows (and its meshes).
                 let mut board = board;
                 for servo in &mut board.servos {
                     if let Some(known) = shell.document.project.servo.servo(servo.id) {
@@ -232,6 +232,7 @@ impl ServoUi {
                         servo.rig = known.rig;
                     }
                 }
+                board.meshes.clone_from(&shell.document.project.servo.meshes);
                 self.pose = super::homes(&board);
                 shell.document.apply(Edit::ReplaceAll(Box::new(board)), None);
                 self.board_result = Some(BoardResult::ReadIntoProject);

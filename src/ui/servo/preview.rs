@@ -6,7 +6,8 @@
 
 use std::collections::BTreeMap;
 
-use crate::figure::{self, Chain, Shape};
+use crate::figure::ik::Limb;
+use crate::figure::{self, Chain, Placed, Shape};
 use crate::project::{self, ServoProject};
 use crate::ui::action::Action;
 use crate::ui::i18n::Strings;
@@ -15,6 +16,7 @@ use crate::ui::rows;
 use crate::ui::servo::action::ServoAction;
 use crate::ui::servo::captions::ServoWords;
 use crate::ui::transport::Transport;
+use crate::ui::view3d::posing::{self, Posing};
 use crate::ui::view3d::{Handle, Scene, Touch, View};
 
 /// What a timed preview plays: an action's or a macro's trajectories (the
@@ -43,6 +45,9 @@ impl Timed {
 /// link, the ground's height.
 type Rig = (Vec<project::Servo>, Chain, BTreeMap<u8, usize>, f32);
 
+/// The rig's limbs posed by their ends: the limbs, their twins, every link's limits.
+type Limbs = (Vec<Limb>, Vec<Option<usize>>, Vec<(f32, f32)>);
+
 /// The preview's state.
 #[derive(Debug, Default)]
 pub struct Preview {
@@ -59,6 +64,10 @@ pub struct Preview {
     turned: Option<i32>,
     /// What the live view drew last.
     live_scene: Scene,
+    /// The rig's limbs (built with the rig).
+    limbs: Limbs,
+    /// How they are posed.
+    pub posing: Posing,
 }
 
 /// The lowest point of a scene's solids.
@@ -80,19 +89,26 @@ impl Preview {
             let homes = project.servos.iter().map(|s| (s.id, f64::from(s.home_deg))).collect();
             let placed = chain.pose(&figure::rig::angles(project, &links, &homes, chain.links.len()));
             let ground = lowest(&chain.dress(&placed, false));
+            let (limbs, twins) = figure::rig::limbs(project, &chain, &links);
+            self.limbs = (limbs, twins, figure::rig::limits(project, &links, chain.links.len()));
             self.rig = Some((project.servos.clone(), chain, links, ground));
         }
     }
 
     /// The figure for `degrees` (and a ghost).
-    fn scene(&self, project: &ServoProject, degrees: &BTreeMap<u8, f64>, ghost: Option<&BTreeMap<u8, f64>>) -> Scene {
+    fn scene(
+        &self,
+        project: &ServoProject,
+        (degrees, ghost): (&BTreeMap<u8, f64>, Option<&BTreeMap<u8, f64>>),
+        base: Placed,
+    ) -> Scene {
         let Some((_, chain, links, ground)) = &self.rig else { return Scene::default() };
         let mut solids = Vec::new();
         if let Some(ghost) = ghost {
-            let placed = chain.pose(&figure::rig::angles(project, links, ghost, chain.links.len()));
+            let placed = chain.pose_from(base, &figure::rig::angles(project, links, ghost, chain.links.len()));
             solids.extend(chain.dress(&placed, true));
         }
-        let placed = chain.pose(&figure::rig::angles(project, links, degrees, chain.links.len()));
+        let placed = chain.pose_from(base, &figure::rig::angles(project, links, degrees, chain.links.len()));
         solids.extend(chain.dress(&placed, false));
         Scene { solids, ground_z: *ground, ..Scene::default() }
     }
@@ -162,22 +178,31 @@ impl Preview {
     ) {
         self.rig(project);
         let degrees: BTreeMap<u8, f64> = pose.iter().map(|(id, degree)| (*id, f64::from(*degree))).collect();
-        let mut scene = self.scene(project, &degrees, None);
-        if let Some((_, chain, links, _)) = &self.rig {
-            let placed = chain.pose(&figure::rig::angles(project, links, &degrees, chain.links.len()));
-            scene.handles = (0..chain.links.len())
-                .map(|link| {
-                    let servo = project.servo(self.servo_of(link)?)?;
-                    let angle = pose.get(&servo.id).copied().unwrap_or(servo.home_deg);
-                    let reading = format!("{} #{}  {angle}°", servo.caption, servo.id);
-                    Some(Handle { reading, joint: chain.joint(&placed, link) })
-                })
-                .collect();
-            scene.selected = selected.and_then(|id| links.get(&id).copied());
+        let Some((_, chain, links, _)) = &self.rig else { return };
+        let angles = figure::rig::angles(project, links, &degrees, chain.links.len());
+        let (limbs, twins, limits) = &self.limbs;
+        let rig = posing::Rig { chain, limbs, twins, limits, mm_per_unit: 1.0 };
+        if !limbs.is_empty() {
+            self.posing.toolbar(ui, limbs, &mut self.live_view, words.lang);
         }
+        let base = self.posing.base(&rig, &angles);
+        let mut scene = self.scene(project, (&degrees, None), base);
+        let placed = chain.pose_from(base, &angles);
+        scene.ends = self.posing.ends(&rig, &placed, words.lang);
+        scene.gap = self.posing.gap();
+        scene.handles = (0..chain.links.len())
+            .map(|link| {
+                let servo = project.servo(self.servo_of(link)?)?;
+                let angle = pose.get(&servo.id).copied().unwrap_or(servo.home_deg);
+                let reading = format!("{} #{}  {angle}°", servo.caption, servo.id);
+                Some(Handle { reading, joint: chain.joint(&placed, link) })
+            })
+            .collect();
+        scene.selected = selected.and_then(|id| links.get(&id).copied());
         self.shown = Some(degrees);
         let touch = self.draw(ui, project, &scene, true, words);
         self.live_scene = scene;
+        self.posed(project, (&angles, base), &touch, words, actions);
         if let Some(servo_id) = touch.clicked.and_then(|link| self.servo_of(link)) {
             actions.push(Action::family(ServoAction::SelectServo(Some(servo_id))));
         }
@@ -190,6 +215,33 @@ impl Preview {
         if touch.let_go.is_some() {
             actions.push(Action::family(ServoAction::TurnDone));
         }
+    }
+
+    /// What a drag on a hand's or a foot's ring asks for: the servos that reach it.
+    fn posed(
+        &mut self,
+        project: &ServoProject,
+        (angles, base): (&[f32], Placed),
+        touch: &Touch,
+        words: &Strings,
+        actions: &mut Vec<Action>,
+    ) {
+        let Some((_, chain, links, _)) = &self.rig else { return };
+        let (limbs, twins, limits) = &self.limbs;
+        let rig = posing::Rig { chain, limbs, twins, limits, mm_per_unit: 1.0 };
+        let posed = self.posing.reach(&rig, angles, base, touch, words.lang);
+        if let Some(solved) = posed.angles {
+            actions.push(Action::family(ServoAction::Pose(figure::rig::degrees(project, links, &solved))));
+        }
+        if posed.done {
+            actions.push(Action::family(ServoAction::TurnDone));
+        }
+    }
+
+    /// Where on the screen an end (a limb's, in the rig's order; then the
+    /// pelvis) was last drawn in the live view.
+    pub fn end_on_screen(&self, end: usize) -> Option<egui::Pos2> {
+        self.live_view.on_screen(self.live_scene.ends.get(end)?.at)
     }
 
     /// Where on the screen a point of `servo_id`'s link was last drawn in the
@@ -215,7 +267,7 @@ impl Preview {
         let degrees = at(t);
         let next = timed.marks.iter().find(|mark| **mark > t + 1.0).copied();
         let ghost = next.map(at);
-        let scene = self.scene(project, &degrees, ghost.as_ref());
+        let scene = self.scene(project, (&degrees, ghost.as_ref()), Placed::ORIGIN);
         self.shown = Some(degrees);
         self.draw(ui, project, &scene, false, words);
     }

@@ -11,7 +11,15 @@ use crate::ui::servo::captions::ServoWords;
 
 /// A new servo in the rig: on the body, turning about y (a pitch).
 fn placed() -> RigJoint {
-    RigJoint { parent: None, offset_mm: [0, 0, 0], axis: RigAxis::Y, reversed: false, straight_deg: 0, mirror: None }
+    RigJoint {
+        parent: None,
+        offset_mm: [0, 0, 0],
+        axis: RigAxis::Y,
+        reversed: false,
+        straight_deg: 0,
+        mirror: None,
+        end: None,
+    }
 }
 
 fn axis_name(axis: RigAxis) -> &'static str {

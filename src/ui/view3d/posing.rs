@@ -197,8 +197,8 @@ fn limb(
     (keep_turn, symmetric): (bool, bool),
 ) -> (Option<Vec<f32>>, Option<(Vec3, Vec3)>) {
     let Some(limb) = rig.limbs.get(drag.end) else { return (None, None) };
-    // A limb of fewer than six joints cannot hold a turn as well as a place.
-    let goal = if keep_turn && limb.joints.len() >= 6 {
+    // A limb of fewer than five joints (an arm) cannot hold a turn as well as a place.
+    let goal = if keep_turn && limb.joints.len() >= 5 {
         Goal::Hold(Placed { position: goal, rotation: drag.start.rotation })
     } else {
         Goal::Reach(goal)
