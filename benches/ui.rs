@@ -594,6 +594,26 @@ fn view_costs() {
         view.show(ui, rect, &Scene { solids, ground_z: -400.0, ..Scene::default() }, "biped");
     });
 
+    // The same biped dressed in meshes of 100k triangles in all (a body and a
+    // rod per link, as a user's CAD parts would be): the card draws them, so the
+    // frame's cost is the figure's solids, the rings and one paint callback.
+    let meshes = biped_meshes(&chain, 100_000);
+    let triangles: usize = meshes.iter().map(|m| m.mesh.triangles.len()).sum();
+    let mut view = View::default();
+    let meshed = view_median(|ui, rect| {
+        let links_len = chain.links.len();
+        let placed = chain.pose(&figure::rig::angles(&project, &links, &now, links_len));
+        let solids = chain.dress(&placed, false);
+        let meshes =
+            meshes.iter().map(|m| servo_studio::ui::view3d::SceneMesh { place: placed[m.link], ..m.clone() }).collect();
+        view.show(ui, rect, &Scene { solids, ground_z: -400.0, meshes, ..Scene::default() }, "biped");
+    });
+    println!(
+        "view servo with meshes ({triangles} triangles on {} links) @600x600: median {meshed:.3} ms a frame (over the empty frame: {:.3} ms; the figure's draw, target ≤ 0.5 ms)",
+        meshes.len(),
+        meshed - empty
+    );
+
     // The base after ten minutes of driving circles: path and echo map full.
     let telemetry = telemetry(600);
     let mut world = servo_studio::ui::WorldView::default();
@@ -604,6 +624,48 @@ fn view_costs() {
     for (family, ms) in [("servo", servo), ("plen2", plen2), ("rflex", rflex)] {
         println!("view {family} @600x600: median {ms:.3} ms a frame (over the empty frame: {:.3} ms)", ms - empty);
     }
+}
+
+/// A mesh on every link of `chain` but the body, `total` triangles in all:
+/// each a tube of as many rings as it takes.
+fn biped_meshes(chain: &servo_studio::figure::Chain, total: usize) -> Vec<servo_studio::ui::view3d::SceneMesh> {
+    use servo_studio::figure::mesh::Mesh;
+    use servo_studio::figure::{Placed, Vec3};
+    let links: Vec<usize> = (1..chain.links.len()).collect();
+    let per = total.div_ceil(links.len());
+    let segments = 64usize;
+    let rings = per.div_ceil(segments * 2);
+    let mut mesh = Mesh::default();
+    for ring in 0..=rings {
+        let z = -(ring as f32) / rings as f32 * 80.0;
+        for segment in 0..segments {
+            let angle = segment as f32 / segments as f32 * std::f32::consts::TAU;
+            mesh.positions.push(Vec3::new(12.0 * angle.cos(), 12.0 * angle.sin(), z));
+        }
+    }
+    for ring in 0..rings as u32 {
+        for segment in 0..segments as u32 {
+            let at = |r: u32, s: u32| r * segments as u32 + s % segments as u32;
+            let (a, b, c, d) =
+                (at(ring, segment), at(ring, segment + 1), at(ring + 1, segment + 1), at(ring + 1, segment));
+            for triangle in [[a, d, c], [a, c, b]] {
+                let [p, q, r] = triangle.map(|i| mesh.positions[i as usize]);
+                mesh.normals.push((q - p).cross(r - p).normalize_or_zero());
+                mesh.triangles.push(triangle);
+            }
+        }
+    }
+    let mesh = std::sync::Arc::new(mesh);
+    links
+        .into_iter()
+        .map(|link| servo_studio::ui::view3d::SceneMesh {
+            link,
+            mesh: std::sync::Arc::clone(&mesh),
+            place: Placed::ORIGIN,
+            scale: 1.0,
+            color: [200, 200, 200],
+        })
+        .collect()
 }
 
 fn main() {

@@ -110,6 +110,8 @@ impl Start {
 pub fn run(mut start: Start) -> eframe::Result {
     let options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default().with_title("Servo Studio").with_inner_size([1100.0, 720.0]),
+        // The 3D view draws meshes with a depth buffer.
+        depth_buffer: 24,
         ..Default::default()
     };
     eframe::run_native(

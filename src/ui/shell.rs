@@ -156,6 +156,8 @@ pub struct ShellView<'a> {
     pub language: Language,
     /// Wakes the window from other threads (a family's own readers: a gamepad).
     pub waker: &'a Waker,
+    /// The folder of the project's file (files it names are relative to it), once saved or opened.
+    pub folder: Option<&'a Path>,
 }
 
 impl<'a> ShellView<'a> {

@@ -17,5 +17,6 @@ mod macros;
 mod plen2;
 mod pose3d;
 mod preview;
+mod rig3d;
 mod rows;
 mod sliders;

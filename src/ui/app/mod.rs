@@ -190,6 +190,7 @@ impl StudioApp {
             operation: operation.as_ref(),
             language: *language,
             waker,
+            folder: document.path.as_deref().and_then(std::path::Path::parent),
         };
         (view, families.get_mut(family), *tab)
     }

@@ -38,6 +38,13 @@ pub enum ServoAction {
         /// Degrees from where the drag began.
         by_deg: i32,
     },
+    /// Draw a servo's link with the mesh in this file (picked in the rig table).
+    SetMesh {
+        /// The servo.
+        servo_id: u8,
+        /// The file chosen.
+        path: PathBuf,
+    },
     /// Several servos to these angles at once (°), live: a limb posed by its end in the 3D view.
     Pose(std::collections::BTreeMap<u8, i16>),
     /// The drag turning a servo (or posing a limb) let go: the turn is one undo step.

@@ -155,10 +155,24 @@ pub struct ServoCaptions {
     pub straight_at: &'static str,
     /// The rig table's twin column: "Twin (Mirror L/R)".
     pub twin: &'static str,
+    /// The rig's column of ends: "Hand/foot (chain from)".
+    pub end_column: &'static str,
+    /// Its hover.
+    pub end_hint: &'static str,
+    /// The rig's column of meshes: "Mesh".
+    pub mesh_column: &'static str,
+    /// A mesh button with none chosen: "Mesh…".
+    pub choose_mesh: &'static str,
+    /// Its hover.
+    pub mesh_hint: &'static str,
+    /// The file dialog's filter name.
+    pub mesh_kind: &'static str,
     /// "Mirror L/R".
     pub mirror: &'static str,
     /// What Mirror L/R does (hover text).
     pub mirror_hint: &'static str,
+    /// After a mesh file's error: what to do.
+    pub mesh_error_hint: &'static str,
     /// Whether a servo is in the rig.
     pub in_rig: &'static str,
     /// The steps table's heading for a step's curve: "Curve".
@@ -266,7 +280,14 @@ const ENGLISH: ServoCaptions = ServoCaptions {
     mounted_on: "Mounted on",
     straight_at: "Straight at (°)",
     twin: "Twin (Mirror L/R)",
+    end_column: "Hand/foot (chain from)",
+    end_hint: "Mark the link as a hand or a foot: the 3D view gets a ring at its tip (x y z mm) to pose it by, the servos from the one chosen down to it solving",
+    mesh_column: "Mesh",
+    choose_mesh: "Mesh…",
+    mesh_hint: "Draw the link with an STL or OBJ file (stored relative to the project); offset (mm), turn (° about x, y, z) and mm per unit beside it; × removes it",
+    mesh_kind: "STL or OBJ mesh",
     mirror: "Mirror L/R",
+    mesh_error_hint: "the link is drawn without it; fix the file or change it in the rig settings' Mesh column",
     mirror_hint: "Each step moves the servo's twin instead (the rig's Twin column), its angle reflected about their homes: a left-arm wave becomes a right-arm wave. A servo without a twin keeps its step.",
     in_rig: "In rig",
     curve: "Curve",
@@ -360,7 +381,14 @@ const TRADITIONAL_CHINESE: ServoCaptions = ServoCaptions {
     mounted_on: "裝在",
     straight_at: "伸直角度（°）",
     twin: "對側伺服機（左右鏡像）",
+    end_column: "手／腳（鏈起點）",
+    end_hint: "將此連桿標為手或腳：3D 視圖會在其末端（x y z 公釐）顯示圓圈，拖曳即可擺姿勢，由所選伺服機到此連桿之間求解",
+    mesh_column: "外形",
+    choose_mesh: "外形…",
+    mesh_hint: "以 STL 或 OBJ 檔繪製此連桿（以相對於專案的路徑儲存）；旁邊可設位移（公釐）、旋轉（繞 x、y、z 的角度）與每單位公釐數；× 移除",
+    mesh_kind: "STL 或 OBJ 外形",
     mirror: "左右鏡像",
+    mesh_error_hint: "此連桿以預設外形顯示；請修正檔案，或在骨架設定的「外形」欄更換",
     mirror_hint: "每個步驟改由該伺服機的對側伺服機執行（骨架表的「對側」欄），角度以原點對稱反轉：左手揮手變成右手揮手。沒有對側的伺服機保留原步驟。",
     in_rig: "在骨架中",
     curve: "曲線",

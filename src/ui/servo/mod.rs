@@ -146,6 +146,11 @@ impl ServoUi {
                 self.selected_servo = Some(servo_id);
                 self.set_pose(shell, servo_id, degree);
             }
+            ServoAction::SetMesh { servo_id, path } => {
+                let folder = shell.document.path.as_deref().and_then(std::path::Path::parent);
+                let changed = rig::with_mesh(&shell.document.project.servo, servo_id, &path, folder);
+                shell.document.apply(crate::project::Edit::ReplaceAll(Box::new(changed)), None);
+            }
             ServoAction::Pose(degrees) => {
                 self.turning.get_or_insert_with(|| self.pose.clone());
                 for (servo_id, degree) in degrees {
@@ -314,6 +319,7 @@ impl FamilyUi for ServoUi {
     fn ui(&mut self, ui: &mut egui::Ui, tab: Tab, view: &ShellView<'_>, actions: &mut Vec<Action>) {
         let project = &view.project.servo;
         let words = view.language.strings();
+        self.figure.set_folder(view.folder);
         let connected = view.link.is_some();
         // Recording samples the sliders every frame, whichever tab shows, on the window's clock.
         let now_s = ui.input(|input| input.time);

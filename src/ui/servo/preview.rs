@@ -5,6 +5,7 @@
 //! the rig are bars beside the figure.
 
 use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
 
 use crate::figure::ik::Limb;
 use crate::figure::{self, Chain, Placed, Shape};
@@ -17,7 +18,7 @@ use crate::ui::servo::action::ServoAction;
 use crate::ui::servo::captions::ServoWords;
 use crate::ui::transport::Transport;
 use crate::ui::view3d::posing::{self, Posing};
-use crate::ui::view3d::{Handle, Scene, Touch, View};
+use crate::ui::view3d::{Handle, MeshFiles, Scene, SceneMesh, Touch, View};
 
 /// What a timed preview plays: an action's or a macro's trajectories (the
 /// ones its plot draws), when it ends, and the times where a move starts or
@@ -68,6 +69,10 @@ pub struct Preview {
     limbs: Limbs,
     /// How they are posed.
     pub posing: Posing,
+    /// The folder mesh files are relative to (the project file's).
+    folder: Option<PathBuf>,
+    /// The mesh files read so far.
+    pub mesh_files: MeshFiles,
 }
 
 /// The lowest point of a scene's solids.
@@ -82,7 +87,60 @@ fn lowest(solids: &[figure::WorldSolid]) -> f32 {
         .fold(0.0, f32::min)
 }
 
+/// The colour of a link drawn by its mesh.
+const MESH_COLOR: [u8; 3] = [205, 208, 214];
+
 impl Preview {
+    /// The folder the project's mesh files are relative to (files read again when it changes).
+    pub fn set_folder(&mut self, folder: Option<&Path>) {
+        if self.folder.as_deref() != folder {
+            self.folder = folder.map(Path::to_path_buf);
+            self.mesh_files.clear();
+        }
+    }
+
+    /// Where a mesh file of the project is.
+    fn mesh_path(&self, path: &str) -> PathBuf {
+        let path = Path::new(path);
+        match &self.folder {
+            Some(folder) if path.is_relative() => folder.join(path),
+            _ => path.to_path_buf(),
+        }
+    }
+
+    /// The project's meshes, on their links as `placed` puts them (those read so far).
+    fn meshes(&mut self, project: &ServoProject, placed: &[Placed], ctx: &egui::Context) -> Vec<SceneMesh> {
+        let Some((_, _, links, _)) = &self.rig else { return Vec::new() };
+        let mut meshes = Vec::new();
+        for link_mesh in &project.meshes {
+            let link = match link_mesh.servo_id {
+                None => 0,
+                Some(id) => match links.get(&id) {
+                    Some(link) => *link,
+                    None => continue,
+                },
+            };
+            let Some(on) = placed.get(link) else { continue };
+            let path = self.mesh_path(&link_mesh.path);
+            let Some(mesh) = self.mesh_files.get(&path, ctx) else { continue };
+            let [x, y, z] = link_mesh.offset_mm.map(f32::from);
+            let [rx, ry, rz] = link_mesh.rotation_deg.map(|d| f32::from(d).to_radians());
+            let turn = figure::Mat3::from_euler(glam::EulerRot::ZYX, rz, ry, rx);
+            let place = on.then(&Placed { position: figure::Vec3::new(x, y, z), rotation: turn });
+            // Thousandths of a millimetre per unit: small whole numbers.
+            #[allow(clippy::cast_precision_loss)]
+            let scale = link_mesh.scale_milli as f32 / 1000.0;
+            meshes.push(SceneMesh { link, mesh, place, scale, color: MESH_COLOR });
+        }
+        meshes
+    }
+
+    /// What could not be read of the project's mesh files.
+    pub fn mesh_errors(&self, project: &ServoProject) -> Vec<String> {
+        let paths: Vec<PathBuf> = project.meshes.iter().map(|mesh| self.mesh_path(&mesh.path)).collect();
+        self.mesh_files.errors(paths.iter().map(PathBuf::as_path)).into_iter().map(str::to_string).collect()
+    }
+
     fn rig(&mut self, project: &ServoProject) {
         if self.rig.as_ref().is_none_or(|(servos, ..)| *servos != project.servos) {
             let (chain, links) = figure::rig::chain(project);
@@ -97,10 +155,10 @@ impl Preview {
 
     /// The figure for `degrees` (and a ghost).
     fn scene(
-        &self,
+        &mut self,
         project: &ServoProject,
         (degrees, ghost): (&BTreeMap<u8, f64>, Option<&BTreeMap<u8, f64>>),
-        base: Placed,
+        (base, ctx): (Placed, &egui::Context),
     ) -> Scene {
         let Some((_, chain, links, ground)) = &self.rig else { return Scene::default() };
         let mut solids = Vec::new();
@@ -110,7 +168,9 @@ impl Preview {
         }
         let placed = chain.pose_from(base, &figure::rig::angles(project, links, degrees, chain.links.len()));
         solids.extend(chain.dress(&placed, false));
-        Scene { solids, ground_z: *ground, ..Scene::default() }
+        let ground_z = *ground;
+        let meshes = self.meshes(project, &placed, ctx);
+        Scene { solids, ground_z, meshes, ..Scene::default() }
     }
 
     /// The servo a link of the figure is.
@@ -123,7 +183,6 @@ impl Preview {
     fn draw(&mut self, ui: &mut egui::Ui, project: &ServoProject, scene: &Scene, live: bool, words: &Strings) -> Touch {
         let degrees = self.shown.clone().unwrap_or_default();
         let outside: Vec<&project::Servo> = project.servos.iter().filter(|servo| servo.rig.is_none()).collect();
-        let view = if live { &mut self.live_view } else { &mut self.timed_view };
         let rigged = self.rig.as_ref().is_some_and(|(_, chain, ..)| chain.links.len() > 1);
         let bars = |ui: &mut egui::Ui| {
             ui.label(words.servo().not_rigged).on_hover_text(words.servo().rig_hint);
@@ -146,6 +205,10 @@ impl Preview {
             return Touch::default();
         }
         let mut touch = Touch::default();
+        for error in self.mesh_errors(project) {
+            ui.colored_label(ui.visuals().error_fg_color, format!("{error} — {}", words.servo().mesh_error_hint));
+        }
+        let view = if live { &mut self.live_view } else { &mut self.timed_view };
         let mut figure = |ui: &mut egui::Ui| {
             let rect = ui.available_rect_before_wrap();
             let (response, touched) = view.show(ui, rect, scene, words.robot_preview);
@@ -180,13 +243,18 @@ impl Preview {
         let degrees: BTreeMap<u8, f64> = pose.iter().map(|(id, degree)| (*id, f64::from(*degree))).collect();
         let Some((_, chain, links, _)) = &self.rig else { return };
         let angles = figure::rig::angles(project, links, &degrees, chain.links.len());
+        let base = {
+            let (limbs, twins, limits) = &self.limbs;
+            let rig = posing::Rig { chain, limbs, twins, limits, mm_per_unit: 1.0 };
+            if !limbs.is_empty() {
+                self.posing.toolbar(ui, limbs, &mut self.live_view, words.lang);
+            }
+            self.posing.base(&rig, &angles)
+        };
+        let mut scene = self.scene(project, (&degrees, None), (base, &ui.ctx().clone()));
+        let Some((_, chain, links, _)) = &self.rig else { return };
         let (limbs, twins, limits) = &self.limbs;
         let rig = posing::Rig { chain, limbs, twins, limits, mm_per_unit: 1.0 };
-        if !limbs.is_empty() {
-            self.posing.toolbar(ui, limbs, &mut self.live_view, words.lang);
-        }
-        let base = self.posing.base(&rig, &angles);
-        let mut scene = self.scene(project, (&degrees, None), base);
         let placed = chain.pose_from(base, &angles);
         scene.ends = self.posing.ends(&rig, &placed, words.lang);
         scene.gap = self.posing.gap();
@@ -238,6 +306,11 @@ impl Preview {
         }
     }
 
+    /// How many meshes the live view drew last.
+    pub fn meshes_drawn(&self) -> usize {
+        self.live_scene.meshes.len()
+    }
+
     /// Where on the screen an end (a limb's, in the rig's order; then the
     /// pelvis) was last drawn in the live view.
     pub fn end_on_screen(&self, end: usize) -> Option<egui::Pos2> {
@@ -267,7 +340,7 @@ impl Preview {
         let degrees = at(t);
         let next = timed.marks.iter().find(|mark| **mark > t + 1.0).copied();
         let ghost = next.map(at);
-        let scene = self.scene(project, (&degrees, ghost.as_ref()), Placed::ORIGIN);
+        let scene = self.scene(project, (&degrees, ghost.as_ref()), (Placed::ORIGIN, &ui.ctx().clone()));
         self.shown = Some(degrees);
         self.draw(ui, project, &scene, false, words);
     }

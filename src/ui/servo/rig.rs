@@ -3,10 +3,13 @@
 //! there in mm, the axis it turns about, its sign, and the angle at which its
 //! link is straight. The 3D preview is built from it; `check` validates it.
 
-use crate::project::{Edit, RigAxis, RigJoint, Servo, ServoProject};
-use crate::ui::action::Action;
+use std::sync::Arc;
+
+use crate::project::{Edit, LinkMesh, RigAxis, RigJoint, Servo, ServoProject};
+use crate::ui::action::{Action, FileRequest, Pick};
 use crate::ui::i18n::Strings;
 use crate::ui::rows;
+use crate::ui::servo::action::ServoAction;
 use crate::ui::servo::captions::ServoWords;
 
 /// A new servo in the rig: on the body, turning about y (a pitch).
@@ -41,6 +44,8 @@ pub fn table(ui: &mut egui::Ui, project: &ServoProject, height: f32, words: &Str
         words.reversed,
         words.servo().straight_at,
         words.servo().twin,
+        words.servo().end_column,
+        words.servo().mesh_column,
     ];
     // Wider than a narrow pane: it scrolls sideways rather than hide its last columns.
     egui::ScrollArea::horizontal().id_salt("servo-rig-sideways").show(ui, |ui| {
@@ -124,6 +129,87 @@ fn rig_row(
             actions.push(set(Some(RigJoint { mirror, ..rig }), "mirror"));
         }
     });
+    row.col(|ui| {
+        let mut end = rig.end.is_some();
+        ui.checkbox(&mut end, "").labelled_by(row_id).on_hover_text(words.servo().end_hint);
+        let mut now = if end { Some(rig.end.unwrap_or_default()) } else { None };
+        if let Some(chain) = &mut now {
+            other_servo(ui, ("rig-root", servo.id), (project, servo.id), &mut chain.root, words.body)
+                .labelled_by(row_id);
+            for value in &mut chain.tip_mm {
+                ui.add(egui::DragValue::new(value).range(-2000..=2000)).labelled_by(row_id);
+            }
+        }
+        if now != rig.end {
+            actions.push(set(Some(RigJoint { end: now, ..rig }), "end"));
+        }
+    });
+    row.col(|ui| mesh_cell(ui, project, servo.id, words, actions));
+}
+
+/// A link's mesh: the file (a button that picks another), its placing, and ×.
+fn mesh_cell(ui: &mut egui::Ui, project: &ServoProject, servo_id: u8, words: &Strings, actions: &mut Vec<Action>) {
+    let index = project.meshes.iter().position(|mesh| mesh.servo_id == Some(servo_id));
+    let name = index.map_or(words.servo().choose_mesh.to_string(), |i| project.meshes[i].path.clone());
+    if ui.button(name).on_hover_text(words.servo().mesh_hint).clicked() {
+        actions.push(Action::AskFile(FileRequest::Pick(Pick {
+            kind: words.servo().mesh_kind,
+            extensions: &["stl", "obj", "STL", "OBJ"],
+            then: Arc::new(move |path| Action::family(ServoAction::SetMesh { servo_id, path })),
+        })));
+    }
+    let Some(index) = index else { return };
+    let mut mesh = project.meshes[index].clone();
+    for value in mesh.offset_mm.iter_mut() {
+        ui.add(egui::DragValue::new(value).range(-2000..=2000).suffix(" mm"));
+    }
+    for value in mesh.rotation_deg.iter_mut() {
+        ui.add(egui::DragValue::new(value).range(-180..=180).suffix("°"));
+    }
+    ui.add(
+        egui::DragValue::new(&mut mesh.scale_milli)
+            .range(1..=1_000_000)
+            .prefix("×")
+            .custom_formatter(|v, _| format!("{:.3}", v / 1000.0))
+            .custom_parser(|text| text.trim_start_matches('×').parse::<f64>().ok().map(|v| v * 1000.0)),
+    );
+    let removed = ui.small_button("×").clicked();
+    if removed || mesh != project.meshes[index] {
+        let mut changed = project.clone();
+        if removed {
+            changed.meshes.remove(index);
+        } else {
+            changed.meshes[index] = mesh;
+        }
+        let coalesce = (!removed).then(|| format!("servo {servo_id} mesh"));
+        actions.push(Action::Edit { edit: Edit::ReplaceAll(Box::new(changed)), coalesce });
+    }
+}
+
+/// The project with `servo_id`'s link drawn by the mesh in `path` (kept as
+/// given when no folder is known, else relative to `folder` where it can be).
+pub fn with_mesh(
+    project: &ServoProject,
+    servo_id: u8,
+    path: &std::path::Path,
+    folder: Option<&std::path::Path>,
+) -> ServoProject {
+    let relative = folder.and_then(|folder| path.strip_prefix(folder).ok()).unwrap_or(path);
+    let written = relative.components().map(|part| part.as_os_str().to_string_lossy()).collect::<Vec<_>>().join("/");
+    let written = if relative.is_absolute() { path.to_string_lossy().into_owned() } else { written };
+    let mut changed = project.clone();
+    let mesh = LinkMesh {
+        servo_id: Some(servo_id),
+        path: written,
+        offset_mm: [0; 3],
+        rotation_deg: [0; 3],
+        scale_milli: 1000,
+    };
+    match changed.meshes.iter_mut().find(|m| m.servo_id == Some(servo_id)) {
+        Some(existing) => existing.path = mesh.path,
+        None => changed.meshes.push(mesh),
+    }
+    changed
 }
 
 /// A choice of another servo of the project than `own` (or `none`).
@@ -208,11 +294,24 @@ mod tests {
             "mounted on the hip"
         );
         let boxes: Vec<_> = harness.get_all_by_role_and_label(Role::CheckBox, "2 knee").collect();
-        assert_eq!(boxes.len(), 2, "in the rig, reversed");
+        assert_eq!(boxes.len(), 3, "in the rig, reversed, hand or foot");
         boxes[1].click();
         harness.run();
         let (index, servo, key) = set(&harness);
         let reversed = RigJoint { parent: Some(1), reversed: true, ..placed() };
         assert_eq!((index, servo.rig, key.as_str()), (1, Some(reversed), "servo 2 rig reversed"));
+    }
+
+    #[test]
+    fn a_picked_mesh_is_stored_relative_to_the_project_and_replaces_the_links_old_one() {
+        let folder = std::path::Path::new("/home/me/robot");
+        let project = with_mesh(&robot(), 2, &folder.join("parts").join("shin.stl"), Some(folder));
+        assert_eq!(project.meshes.len(), 1);
+        assert_eq!((project.meshes[0].servo_id, project.meshes[0].path.as_str()), (Some(2), "parts/shin.stl"));
+        let again = with_mesh(&project, 2, std::path::Path::new("/elsewhere/knee.obj"), Some(folder));
+        assert_eq!(again.meshes.len(), 1, "one mesh a link");
+        assert_eq!(again.meshes[0].path, "/elsewhere/knee.obj", "outside the folder: kept whole");
+        let unsaved = with_mesh(&robot(), 1, std::path::Path::new("/tmp/hip.stl"), None);
+        assert_eq!(unsaved.meshes[0].path, "/tmp/hip.stl");
     }
 }

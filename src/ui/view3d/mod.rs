@@ -12,13 +12,19 @@
 //! again, keeping the way it looks from.
 
 mod ends;
+mod gpu;
+mod mesh_files;
 pub mod posing;
 mod touch;
 
 use egui::{Color32, Pos2, Rect, Sense, Shape as Paint, Stroke, pos2};
 
-use crate::figure::{Shape, Vec3, WorldSolid};
+use std::sync::{Arc, Mutex};
+
+use crate::figure::mesh::Mesh;
+use crate::figure::{Placed, Shape, Vec3, WorldSolid};
 pub use ends::{End, Gap};
+pub use mesh_files::MeshFiles;
 pub use touch::{Handle, Touch};
 
 /// What the view draws: solids over a ground at `ground_z`.
@@ -37,20 +43,59 @@ pub struct Scene {
     pub ends: Vec<End>,
     /// The goal an end did not reach.
     pub gap: Option<Gap>,
+    /// Meshes the links are drawn with (a link with one shows it instead of its solids).
+    pub meshes: Vec<SceneMesh>,
+}
+
+/// A mesh placed in the world on a link.
+#[derive(Clone, Debug)]
+pub struct SceneMesh {
+    /// The link it is fixed to.
+    pub link: usize,
+    /// Its triangles, in its own units.
+    pub mesh: Arc<Mesh>,
+    /// Where its origin is and how it is turned, in the world.
+    pub place: Placed,
+    /// World units per unit of the mesh.
+    pub scale: f32,
+    /// Its colour.
+    pub color: [u8; 3],
+}
+
+impl SceneMesh {
+    /// From the mesh's units to the world.
+    fn model(&self) -> glam::Mat4 {
+        glam::Mat4::from_translation(self.place.position)
+            * glam::Mat4::from_mat3(self.place.rotation)
+            * glam::Mat4::from_scale(Vec3::splat(self.scale))
+    }
+
+    /// The corners of its box, in the world.
+    fn corners(&self) -> [Vec3; 8] {
+        let (low, high) = self.mesh.bounds();
+        std::array::from_fn(|corner| {
+            let pick = |bit: usize, l: f32, h: f32| if corner & (1 << bit) == 0 { l } else { h };
+            let local = Vec3::new(pick(0, low.x, high.x), pick(1, low.y, high.y), pick(2, low.z, high.z));
+            self.place.position + self.place.rotation * (local * self.scale)
+        })
+    }
 }
 
 impl Scene {
     /// Points around everything solid the scene holds (the corners of boxes,
     /// the extremes of balls and rods): what the camera frames.
     fn outline(&self) -> Vec<Vec3> {
-        let mut points = Vec::with_capacity(self.solids.len() * 8);
+        let mut points = Vec::with_capacity(self.solids.len() * 8 + self.meshes.len() * 8);
+        for mesh in self.meshes.iter().filter(|mesh| !mesh.mesh.positions.is_empty()) {
+            points.extend(mesh.corners());
+        }
         let around = |points: &mut Vec<Vec3>, at: Vec3, radius: f32| {
             for axis in [Vec3::X, Vec3::Y, Vec3::Z] {
                 points.push(at + axis * radius);
                 points.push(at - axis * radius);
             }
         };
-        for solid in self.solids.iter().filter(|solid| !solid.faint) {
+        for solid in self.solids.iter().filter(|solid| !solid.faint && !self.meshed(solid.link)) {
             match solid.shape {
                 Shape::Box { half } => points.extend(corners(solid, half)),
                 Shape::Ball { radius } => around(&mut points, solid.at, radius),
@@ -61,6 +106,11 @@ impl Scene {
             }
         }
         points
+    }
+
+    /// Whether a link is drawn by its mesh (its solids are only touched, not drawn).
+    fn meshed(&self, link: usize) -> bool {
+        self.meshes.iter().any(|mesh| mesh.link == link)
     }
 
     /// The centre and radius of what the scene holds (for the camera).
@@ -258,6 +308,28 @@ fn hull(mut points: Vec<Pos2>) -> Vec<Pos2> {
     lower
 }
 
+/// The projector's own camera as OpenGL matrices: the same eye, axes and field of view.
+fn view_projection(camera: &Camera, rect: Rect) -> glam::Mat4 {
+    use glam::{Mat4, Vec4};
+    let (eye, right, up, forward) = camera.frame();
+    let view = Mat4::from_cols(
+        Vec4::new(right.x, up.x, -forward.x, 0.0),
+        Vec4::new(right.y, up.y, -forward.y, 0.0),
+        Vec4::new(right.z, up.z, -forward.z, 0.0),
+        Vec4::new(-right.dot(eye), -up.dot(eye), forward.dot(eye), 1.0),
+    );
+    let aspect = rect.width() / rect.height().max(1.0);
+    let (near, far) = (1.0, (camera.distance * 20.0).max(1000.0));
+    let f = 1.0 / (FOV / 2.0).tan();
+    let projection = Mat4::from_cols(
+        Vec4::new(f / aspect, 0.0, 0.0, 0.0),
+        Vec4::new(0.0, f, 0.0, 0.0),
+        Vec4::new(0.0, 0.0, (far + near) / (near - far), -1.0),
+        Vec4::new(0.0, 0.0, 2.0 * far * near / (near - far), 0.0),
+    );
+    projection * view
+}
+
 /// The colour of a selected (or hovered, `strength` less) link: toward amber.
 fn tinted(color: [u8; 3], strength: f32) -> [u8; 3] {
     const AMBER: [f32; 3] = [255.0, 170.0, 40.0];
@@ -370,8 +442,8 @@ fn nice_step(raw: f32) -> f32 {
 }
 
 /// The view's own state: its camera (none until it has seen a scene), the
-/// joint a drag holds, and where it drew last.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+/// joint a drag holds, where it drew last, and the meshes on the card.
+#[derive(Clone, Debug, Default)]
 pub struct View {
     camera: Option<Camera>,
     grab: Option<touch::Grab>,
@@ -379,6 +451,8 @@ pub struct View {
     drawn: Option<(Camera, Rect)>,
     /// Frame the figure on the next draw.
     reframe: bool,
+    /// The meshes uploaded to the graphics card (shared with the paint callback).
+    card: Arc<Mutex<gpu::Card>>,
 }
 
 impl View {
@@ -386,6 +460,26 @@ impl View {
     pub fn on_screen(&self, point: Vec3) -> Option<Pos2> {
         let (camera, rect) = self.drawn?;
         Projector::new(&camera, rect).point(point).map(|(at, _)| at)
+    }
+
+    /// The meshes, drawn by the card with a depth buffer (tinted as solids are when selected or hovered).
+    fn meshes(&self, scene: &Scene, (camera, rect): (&Camera, Rect), touch: &Touch) -> egui::PaintCallback {
+        let view_projection = view_projection(camera, rect);
+
+        let items = scene
+            .meshes
+            .iter()
+            .map(|mesh| {
+                let strength = match Some(mesh.link) {
+                    link if link == scene.selected => 0.55,
+                    link if link == touch.hovered => 0.3,
+                    _ => 0.0,
+                };
+                let color = tinted(mesh.color, strength).map(|c| f32::from(c) / 255.0);
+                gpu::Item { mesh: Arc::clone(&mesh.mesh), model: mesh.model(), color }
+            })
+            .collect();
+        gpu::callback(rect, view_projection, LIGHT, items, Arc::clone(&self.card))
     }
 
     /// Frames the whole figure on the next draw, keeping the way the camera looks from.
@@ -502,10 +596,14 @@ impl View {
             visuals.widgets.noninteractive.bg_stroke.color,
         ));
         painter.extend(
-            scene.solids.iter().filter(|solid| !solid.faint).filter_map(|s| shadow(s, scene.ground_z, &projector)),
+            scene
+                .solids
+                .iter()
+                .filter(|solid| !solid.faint && !scene.meshed(solid.link))
+                .filter_map(|s| shadow(s, scene.ground_z, &projector)),
         );
         let mut pieces = Vec::with_capacity(scene.solids.len() * 3);
-        for solid in &scene.solids {
+        for solid in scene.solids.iter().filter(|solid| solid.faint || !scene.meshed(solid.link)) {
             let strength = match Some(solid.link) {
                 _ if solid.faint => 0.0,
                 link if link == scene.selected => 0.55,
@@ -522,6 +620,9 @@ impl View {
         // Far first: the near ones cover them (the painter's algorithm).
         pieces.sort_by(|a, b| b.depth.total_cmp(&a.depth));
         painter.extend(pieces.into_iter().map(|piece| piece.paint));
+        if !scene.meshes.is_empty() {
+            painter.add(self.meshes(scene, (&camera, rect), &touch));
+        }
         painter.extend(ends::paint(scene, &projector, touch.hovered_end));
         if let Some(gap) = &scene.gap
             && let Some((at, _)) = projector.point(gap.to)
@@ -591,5 +692,36 @@ mod tests {
         assert!((4..=6).contains(&outline.len()), "{}", outline.len());
         assert_eq!(nice_step(37.0), 50.0);
         assert_eq!(nice_step(0.18), 0.2);
+    }
+
+    #[test]
+    fn the_card_sees_a_mesh_where_the_painter_draws_the_solids() {
+        // The matrices handed to OpenGL put a point on the same pixel as the projector does.
+        let camera = Camera { yaw: 0.8, pitch: 0.35, distance: 700.0, target: Vec3::new(10.0, -20.0, 150.0) };
+        let rect = Rect::from_min_size(pos2(40.0, 30.0), egui::vec2(500.0, 320.0));
+        let projector = Projector::new(&camera, rect);
+        let view = View::default();
+        let scene = Scene {
+            meshes: vec![SceneMesh {
+                link: 0,
+                mesh: Arc::new(Mesh::default()),
+                place: Placed::ORIGIN,
+                scale: 1.0,
+                color: [0; 3],
+            }],
+            ..Scene::default()
+        };
+        let callback = view.meshes(&scene, (&camera, rect), &Touch::default());
+        assert_eq!(callback.rect, rect);
+        let view_projection = view_projection(&camera, rect);
+        for point in [Vec3::ZERO, Vec3::new(100.0, 50.0, 300.0), Vec3::new(-80.0, 120.0, 20.0)] {
+            let clip = view_projection * point.extend(1.0);
+            let ndc = clip.truncate() / clip.w;
+            let pixel =
+                pos2(rect.center().x + ndc.x * rect.width() / 2.0, rect.center().y - ndc.y * rect.height() / 2.0);
+            let (drawn, depth) = projector.point(point).unwrap();
+            assert!(pixel.distance(drawn) < 0.05, "{point}: {pixel:?} vs {drawn:?}");
+            assert!(ndc.z > -1.0 && ndc.z < 1.0 && (clip.w - depth).abs() < 1e-2);
+        }
     }
 }
