@@ -129,22 +129,35 @@ fn rig_row(
             actions.push(set(Some(RigJoint { mirror, ..rig }), "mirror"));
         }
     });
-    row.col(|ui| {
-        let mut end = rig.end.is_some();
-        ui.checkbox(&mut end, "").labelled_by(row_id).on_hover_text(words.servo().end_hint);
-        let mut now = if end { Some(rig.end.unwrap_or_default()) } else { None };
-        if let Some(chain) = &mut now {
-            other_servo(ui, ("rig-root", servo.id), (project, servo.id), &mut chain.root, words.body)
-                .labelled_by(row_id);
-            for value in &mut chain.tip_mm {
-                ui.add(egui::DragValue::new(value).range(-2000..=2000)).labelled_by(row_id);
-            }
-        }
-        if now != rig.end {
-            actions.push(set(Some(RigJoint { end: now, ..rig }), "end"));
-        }
-    });
+    row.col(|ui| end_cell(ui, project, (servo, rig), (row_id, words), actions));
     row.col(|ui| mesh_cell(ui, project, servo.id, words, actions));
+}
+
+/// Whether a link is a hand or a foot: the box, and when it is, the servo
+/// its chain starts at and its tip (mm).
+fn end_cell(
+    ui: &mut egui::Ui,
+    project: &ServoProject,
+    (servo, rig): (&Servo, RigJoint),
+    (row_id, words): (egui::Id, &Strings),
+    actions: &mut Vec<Action>,
+) {
+    let mut end = rig.end.is_some();
+    ui.checkbox(&mut end, "").labelled_by(row_id).on_hover_text(words.servo().end_hint);
+    let mut now = if end { Some(rig.end.unwrap_or_default()) } else { None };
+    if let Some(chain) = &mut now {
+        other_servo(ui, ("rig-root", servo.id), (project, servo.id), &mut chain.root, words.body).labelled_by(row_id);
+        for value in &mut chain.tip_mm {
+            ui.add(egui::DragValue::new(value).range(-2000..=2000)).labelled_by(row_id);
+        }
+    }
+    if now != rig.end {
+        let index = project.servos.iter().position(|s| s.id == servo.id).unwrap_or(0);
+        actions.push(Action::Edit {
+            edit: Edit::SetServo { index, servo: Servo { rig: Some(RigJoint { end: now, ..rig }), ..servo.clone() } },
+            coalesce: Some(format!("servo {} rig end", servo.id)),
+        });
+    }
 }
 
 /// A link's mesh: the file (a button that picks another), its placing, and ×.

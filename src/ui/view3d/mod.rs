@@ -11,20 +11,25 @@
 //! all" (the F key over the view, or [`View::frame_all`]) and a resize fit it
 //! again, keeping the way it looks from.
 
+mod camera;
 mod ends;
 mod gpu;
 mod mesh_files;
+mod paint;
 pub mod posing;
 mod touch;
 
-use egui::{Color32, Pos2, Rect, Sense, Shape as Paint, Stroke, pos2};
+use egui::{Color32, Pos2, Rect, Sense};
 
 use std::sync::{Arc, Mutex};
 
 use crate::figure::mesh::Mesh;
 use crate::figure::{Placed, Shape, Vec3, WorldSolid};
+pub use camera::Camera;
+use camera::{LIGHT, Projector, view_projection};
 pub use ends::{End, Gap};
 pub use mesh_files::MeshFiles;
+use paint::{corners, grid, hull, shadow, solid_pieces, tinted};
 pub use touch::{Handle, Touch};
 
 /// What the view draws: solids over a ground at `ground_z`.
@@ -153,294 +158,6 @@ pub fn grip(scene: &Scene, link: usize) -> Option<Vec3> {
         .max_by(|a, b| (*a - pivot).cross(axis).length().total_cmp(&(*b - pivot).cross(axis).length()))
 }
 
-/// An orbit camera: it looks at `target` from `distance` away, turned `yaw`
-/// about the vertical and raised `pitch` (radians).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Camera {
-    /// Turn about the vertical: 0 looks at the figure's front from ahead.
-    pub yaw: f32,
-    /// Height angle: positive looks down.
-    pub pitch: f32,
-    /// From the target.
-    pub distance: f32,
-    /// What it looks at.
-    pub target: Vec3,
-}
-
-/// The vertical field of view.
-const FOV: f32 = 0.6;
-/// Where the light comes from (up, front, left).
-const LIGHT: Vec3 = Vec3::new(0.45, 0.35, 0.82);
-
-impl Camera {
-    /// The camera that shows a scene whole in `rect`, from the front-left, a little above.
-    fn fit(points: &[Vec3], rect: Rect) -> Self {
-        Self { yaw: 0.6, pitch: 0.25, distance: 1000.0, target: Vec3::ZERO }.framing(points, rect)
-    }
-
-    /// This camera looking from where it looks, moved to show `points` whole
-    /// in `rect` with a margin: aimed at the middle of their box and as near
-    /// as the farthest-out point allows, across and up.
-    fn framing(self, points: &[Vec3], rect: Rect) -> Self {
-        if points.is_empty() {
-            return self;
-        }
-        let (low, high) =
-            points.iter().fold((Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)), |(l, h), p| (l.min(*p), h.max(*p)));
-        let target = (low + high) / 2.0;
-        let (_, right, up, forward) = Self { target, ..self }.frame();
-        let tan_up = (FOV / 2.0).tan() * 0.85;
-        let tan_across = tan_up * (rect.width() / rect.height().max(1.0)).clamp(0.05, 20.0);
-        let distance = points
-            .iter()
-            .map(|p| {
-                let d = *p - target;
-                let toward = d.dot(forward);
-                (d.dot(right).abs() / tan_across - toward).max(d.dot(up).abs() / tan_up - toward)
-            })
-            .fold(1.0_f32, f32::max);
-        Self { distance, target, ..self }
-    }
-
-    fn eye(&self) -> Vec3 {
-        let (sy, cy) = self.yaw.sin_cos();
-        let (sp, cp) = self.pitch.sin_cos();
-        self.target + Vec3::new(cp * cy, cp * sy, sp) * self.distance
-    }
-
-    /// The camera's frame: eye, right, up, forward.
-    fn frame(&self) -> (Vec3, Vec3, Vec3, Vec3) {
-        let eye = self.eye();
-        let forward = (self.target - eye).normalize_or(Vec3::X);
-        let right = forward.cross(Vec3::Z).normalize_or(Vec3::Y);
-        let up = right.cross(forward);
-        (eye, right, up, forward)
-    }
-}
-
-/// Points of the world on the screen, for one frame.
-struct Projector {
-    eye: Vec3,
-    right: Vec3,
-    up: Vec3,
-    forward: Vec3,
-    focal: f32,
-    center: Pos2,
-}
-
-impl Projector {
-    fn new(camera: &Camera, rect: Rect) -> Self {
-        let (eye, right, up, forward) = camera.frame();
-        Self { eye, right, up, forward, focal: rect.height() / 2.0 / (FOV / 2.0).tan(), center: rect.center() }
-    }
-
-    /// A point on the screen and its depth; none behind the camera.
-    fn point(&self, p: Vec3) -> Option<(Pos2, f32)> {
-        let d = p - self.eye;
-        let depth = d.dot(self.forward);
-        if depth < 1.0 {
-            return None;
-        }
-        let scale = self.focal / depth;
-        Some((pos2(self.center.x + d.dot(self.right) * scale, self.center.y - d.dot(self.up) * scale), depth))
-    }
-
-    /// A length at a depth, on the screen.
-    fn size(&self, length: f32, depth: f32) -> f32 {
-        length * self.focal / depth
-    }
-}
-
-fn shade(color: [u8; 3], normal: Vec3, faint: bool) -> Color32 {
-    let light = 0.35 + 0.65 * normal.dot(LIGHT.normalize()).max(0.0);
-    // Channels stay within 0..=255.
-    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-    let channel = |c: u8| (f32::from(c) * light).round().clamp(0.0, 255.0) as u8;
-    let [r, g, b] = color.map(channel);
-    if faint { Color32::from_rgba_unmultiplied(r, g, b, 70) } else { Color32::from_rgb(r, g, b) }
-}
-
-/// A shape to paint, and how far it is.
-struct Piece {
-    depth: f32,
-    paint: Paint,
-}
-
-/// The corners of a box solid.
-fn corners(solid: &WorldSolid, half: Vec3) -> [Vec3; 8] {
-    std::array::from_fn(|corner| {
-        let sign = |bit: usize| if corner & (1 << bit) == 0 { -1.0 } else { 1.0 };
-        solid.at + solid.rotation * Vec3::new(sign(0) * half.x, sign(1) * half.y, sign(2) * half.z)
-    })
-}
-
-/// The box's faces: corner indices (counter-clockwise seen from outside) and the local normal.
-const FACES: [([usize; 4], Vec3); 6] = [
-    ([0, 2, 6, 4], Vec3::NEG_X),
-    ([1, 5, 7, 3], Vec3::X),
-    ([0, 4, 5, 1], Vec3::NEG_Y),
-    ([2, 3, 7, 6], Vec3::Y),
-    ([0, 1, 3, 2], Vec3::NEG_Z),
-    ([4, 6, 7, 5], Vec3::Z),
-];
-
-/// The convex hull of screen points (Andrew's monotone chain), counter-clockwise.
-fn hull(mut points: Vec<Pos2>) -> Vec<Pos2> {
-    points.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
-    let cross = |o: Pos2, a: Pos2, b: Pos2| (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
-    let mut lower: Vec<Pos2> = Vec::new();
-    for &p in &points {
-        while lower.len() >= 2 && cross(lower[lower.len() - 2], lower[lower.len() - 1], p) <= 0.0 {
-            lower.pop();
-        }
-        lower.push(p);
-    }
-    let mut upper: Vec<Pos2> = Vec::new();
-    for &p in points.iter().rev() {
-        while upper.len() >= 2 && cross(upper[upper.len() - 2], upper[upper.len() - 1], p) <= 0.0 {
-            upper.pop();
-        }
-        upper.push(p);
-    }
-    lower.pop();
-    upper.pop();
-    lower.extend(upper);
-    lower
-}
-
-/// The projector's own camera as OpenGL matrices: the same eye, axes and field of view.
-fn view_projection(camera: &Camera, rect: Rect) -> glam::Mat4 {
-    use glam::{Mat4, Vec4};
-    let (eye, right, up, forward) = camera.frame();
-    let view = Mat4::from_cols(
-        Vec4::new(right.x, up.x, -forward.x, 0.0),
-        Vec4::new(right.y, up.y, -forward.y, 0.0),
-        Vec4::new(right.z, up.z, -forward.z, 0.0),
-        Vec4::new(-right.dot(eye), -up.dot(eye), forward.dot(eye), 1.0),
-    );
-    let aspect = rect.width() / rect.height().max(1.0);
-    let (near, far) = (1.0, (camera.distance * 20.0).max(1000.0));
-    let f = 1.0 / (FOV / 2.0).tan();
-    let projection = Mat4::from_cols(
-        Vec4::new(f / aspect, 0.0, 0.0, 0.0),
-        Vec4::new(0.0, f, 0.0, 0.0),
-        Vec4::new(0.0, 0.0, (far + near) / (near - far), -1.0),
-        Vec4::new(0.0, 0.0, 2.0 * far * near / (near - far), 0.0),
-    );
-    projection * view
-}
-
-/// The colour of a selected (or hovered, `strength` less) link: toward amber.
-fn tinted(color: [u8; 3], strength: f32) -> [u8; 3] {
-    const AMBER: [f32; 3] = [255.0, 170.0, 40.0];
-    // Channels stay within 0..=255.
-    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-    let mix = |index: usize| (f32::from(color[index]) * (1.0 - strength) + AMBER[index] * strength).round() as u8;
-    [mix(0), mix(1), mix(2)]
-}
-
-fn solid_pieces(solid: &WorldSolid, projector: &Projector, pieces: &mut Vec<Piece>) {
-    match solid.shape {
-        Shape::Box { half } => {
-            let corners = corners(solid, half);
-            for (indices, local_normal) in FACES {
-                let normal = solid.rotation * local_normal;
-                let center = indices.iter().map(|&i| corners[i]).fold(Vec3::ZERO, |s, p| s + p) / 4.0;
-                if normal.dot(projector.eye - center) <= 0.0 {
-                    continue;
-                }
-                let points: Option<Vec<Pos2>> =
-                    indices.iter().map(|&i| projector.point(corners[i]).map(|(p, _)| p)).collect();
-                let (Some(points), Some((_, depth))) = (points, projector.point(center)) else { continue };
-                let fill = shade(solid.color, normal, solid.faint);
-                pieces.push(Piece { depth, paint: Paint::convex_polygon(points, fill, Stroke::NONE) });
-            }
-        }
-        Shape::Ball { radius } => {
-            if let Some((center, depth)) = projector.point(solid.at) {
-                let r = projector.size(radius, depth);
-                let fill = shade(solid.color, (projector.eye - solid.at).normalize_or(Vec3::Z), solid.faint);
-                pieces.push(Piece { depth, paint: Paint::circle_filled(center, r, fill) });
-            }
-        }
-        Shape::Capsule { to, radius } => {
-            let (Some((a, da)), Some((b, db))) = (projector.point(solid.at), projector.point(to)) else { return };
-            let depth = (da + db) / 2.0;
-            let width = projector.size(radius, depth) * 2.0;
-            // Lit by how much its side faces the light.
-            let along = (to - solid.at).normalize_or(Vec3::Z);
-            let side = (LIGHT - along * along.dot(LIGHT)).normalize_or(Vec3::Z);
-            let fill = shade(solid.color, side, solid.faint);
-            pieces.push(Piece {
-                depth,
-                paint: Paint::Vec(vec![
-                    Paint::line_segment([a, b], Stroke::new(width, fill)),
-                    Paint::circle_filled(a, width / 2.0, fill),
-                    Paint::circle_filled(b, width / 2.0, fill),
-                ]),
-            });
-        }
-    }
-}
-
-/// The solid's shadow on the ground (light from straight above), on the screen.
-fn shadow(solid: &WorldSolid, ground: f32, projector: &Projector) -> Option<Paint> {
-    let color = Color32::from_black_alpha(70);
-    let flat = |p: Vec3| projector.point(Vec3::new(p.x, p.y, ground)).map(|(p, _)| p);
-    match solid.shape {
-        Shape::Box { half } => {
-            let points: Option<Vec<Pos2>> = corners(solid, half).iter().map(|&p| flat(p)).collect();
-            Some(Paint::convex_polygon(hull(points?), color, Stroke::NONE))
-        }
-        Shape::Ball { radius } => {
-            let (center, depth) = projector.point(Vec3::new(solid.at.x, solid.at.y, ground))?;
-            Some(Paint::circle_filled(center, projector.size(radius, depth), color))
-        }
-        Shape::Capsule { to, radius } => {
-            let (a, da) = projector.point(Vec3::new(solid.at.x, solid.at.y, ground))?;
-            let b = flat(to)?;
-            Some(Paint::line_segment([a, b], Stroke::new(projector.size(radius, da) * 2.0, color)))
-        }
-    }
-}
-
-/// Ground grid lines around `center`, `radius` out, a line every `step`.
-fn grid(center: Vec3, radius: f32, ground: f32, projector: &Projector, color: Color32) -> Vec<Paint> {
-    let step = nice_step(radius / 4.0);
-    let reach = (radius * 1.5 / step).ceil() * step;
-    let (cx, cy) = ((center.x / step).round() * step, (center.y / step).round() * step);
-    let mut lines = Vec::new();
-    let mut offset = -reach;
-    while offset <= reach + step / 2.0 {
-        for (a, b) in [
-            (Vec3::new(cx + offset, cy - reach, ground), Vec3::new(cx + offset, cy + reach, ground)),
-            (Vec3::new(cx - reach, cy + offset, ground), Vec3::new(cx + reach, cy + offset, ground)),
-        ] {
-            if let (Some((a, _)), Some((b, _))) = (projector.point(a), projector.point(b)) {
-                lines.push(Paint::line_segment([a, b], Stroke::new(1.0, color)));
-            }
-        }
-        offset += step;
-    }
-    lines
-}
-
-/// 1, 2 or 5 times a power of ten, near `raw`.
-fn nice_step(raw: f32) -> f32 {
-    let power = 10f32.powf(raw.max(1e-3).log10().floor());
-    let fraction = raw / power;
-    let nice = if fraction < 1.5 {
-        1.0
-    } else if fraction < 3.5 {
-        2.0
-    } else if fraction < 7.5 {
-        5.0
-    } else {
-        10.0
-    };
-    nice * power
-}
-
 /// The view's own state: its camera (none until it has seen a scene), the
 /// joint a drag holds, where it drew last, and the meshes on the card.
 #[derive(Clone, Debug, Default)]
@@ -480,6 +197,42 @@ impl View {
             })
             .collect();
         gpu::callback(rect, view_projection, LIGHT, items, Arc::clone(&self.card))
+    }
+
+    /// This frame's camera: framed when first drawn, asked to (F, the button)
+    /// or resized, put back by a double-click; turned by a drag that holds no
+    /// joint or end, zoomed by the wheel. What the pointer did to the figure too.
+    fn camera(
+        &mut self,
+        ui: &egui::Ui,
+        (response, rect): (&egui::Response, Rect),
+        scene: &Scene,
+        radius: f32,
+    ) -> (Camera, Touch) {
+        let mut camera = self.camera.unwrap_or_else(|| Camera::fit(&scene.outline(), rect));
+        let resized = self.drawn.is_some_and(|(_, drawn)| drawn.size() != rect.size());
+        let frame_key = response.hovered() && ui.input(|input| input.key_pressed(egui::Key::F));
+        if response.double_clicked() {
+            camera = Camera::fit(&scene.outline(), rect);
+        } else if self.reframe || resized || frame_key {
+            camera = camera.framing(&scene.outline(), rect);
+        }
+        self.reframe = false;
+        let touch = self.touch(ui, response, scene, &Projector::new(&camera, rect));
+        if response.dragged() && touch.turned.is_none() && touch.reached.is_none() {
+            let delta = response.drag_delta();
+            camera.yaw -= delta.x * 0.01;
+            camera.pitch = (camera.pitch + delta.y * 0.01).clamp(-1.2, 1.45);
+        }
+        if response.hovered() {
+            let scroll = ui.input(|input| input.smooth_scroll_delta.y);
+            if scroll != 0.0 {
+                camera.distance = (camera.distance * (-scroll * 0.002).exp()).clamp(radius * 0.3, radius * 40.0);
+            }
+        }
+        self.camera = Some(camera);
+        self.drawn = Some((camera, rect));
+        (camera, touch)
     }
 
     /// Frames the whole figure on the next draw, keeping the way the camera looks from.
@@ -561,29 +314,7 @@ impl View {
         let response = ui.allocate_rect(rect, Sense::click_and_drag());
         response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Image, true, label));
         let (center, radius) = scene.bounds();
-        let mut camera = self.camera.unwrap_or_else(|| Camera::fit(&scene.outline(), rect));
-        let resized = self.drawn.is_some_and(|(_, drawn)| drawn.size() != rect.size());
-        let frame_key = response.hovered() && ui.input(|input| input.key_pressed(egui::Key::F));
-        if response.double_clicked() {
-            camera = Camera::fit(&scene.outline(), rect);
-        } else if self.reframe || resized || frame_key {
-            camera = camera.framing(&scene.outline(), rect);
-        }
-        self.reframe = false;
-        let touch = self.touch(ui, &response, scene, &Projector::new(&camera, rect));
-        if response.dragged() && touch.turned.is_none() && touch.reached.is_none() {
-            let delta = response.drag_delta();
-            camera.yaw -= delta.x * 0.01;
-            camera.pitch = (camera.pitch + delta.y * 0.01).clamp(-1.2, 1.45);
-        }
-        if response.hovered() {
-            let scroll = ui.input(|input| input.smooth_scroll_delta.y);
-            if scroll != 0.0 {
-                camera.distance = (camera.distance * (-scroll * 0.002).exp()).clamp(radius * 0.3, radius * 40.0);
-            }
-        }
-        self.camera = Some(camera);
-        self.drawn = Some((camera, rect));
+        let (camera, touch) = self.camera(ui, (&response, rect), scene, radius);
         let painter = ui.painter_at(rect);
         let visuals = ui.visuals();
         painter.rect_filled(rect, 4.0, visuals.extreme_bg_color);
@@ -650,6 +381,9 @@ impl View {
 
 #[cfg(test)]
 mod tests {
+    use egui::pos2;
+
+    use super::paint::nice_step;
     use super::*;
     use crate::figure::Mat3;
 

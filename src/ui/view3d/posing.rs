@@ -94,7 +94,7 @@ impl Posing {
                     limb.joints.iter().filter_map(|&link| Some(rig.chain.links.get(link)?.name.as_str())).collect();
                 let held = self.stand_on == Some(index);
                 let how = if held { words.planted } else { words.drag_end };
-                let reading = format!("{}: {}\n{how}", limb.name, names.join(" → "));
+                let reading = format!("{}: {}\n{how}", shown(&limb.name, language), names.join(" → "));
                 Some(End { at: limb.reach(placed)?.position, reading, held })
             })
             .collect();
@@ -146,7 +146,7 @@ impl Posing {
             ui.checkbox(&mut self.symmetric, words.symmetric).on_hover_text(words.symmetric_hint);
             let label = ui.label(words.stand_on);
             let name = |stand: Option<usize>| {
-                stand.and_then(|index| limbs.get(index)).map_or(words.body_fixed, |limb| limb.name.as_str())
+                stand.and_then(|index| limbs.get(index)).map_or(words.body_fixed, |limb| shown(&limb.name, language))
             };
             egui::ComboBox::from_id_salt("stand-on")
                 .selected_text(name(self.stand_on))
@@ -318,6 +318,19 @@ const TRADITIONAL_CHINESE: PosingWords = PosingWords {
     pelvis: "骨盆：拖曳可移動重心，雙腳保持固定",
     out_of_reach: "無法到達",
 };
+
+/// A limb's name as shown: the PLEN2's own four in the interface's
+/// language; a rig's (its servo's caption) as the user wrote it.
+pub fn shown(name: &str, language: Language) -> &str {
+    const CHINESE: [(&str, &str); 4] =
+        [("left foot", "左腳"), ("right foot", "右腳"), ("left hand", "左手"), ("right hand", "右手")];
+    match language {
+        Language::TraditionalChinese => {
+            CHINESE.iter().find(|(english, _)| *english == name).map_or(name, |(_, chinese)| chinese)
+        }
+        Language::English => name,
+    }
+}
 
 /// The posing row's words in `language`.
 pub fn words(language: Language) -> &'static PosingWords {
