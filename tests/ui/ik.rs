@@ -205,3 +205,29 @@ fn a_foot_pulled_out_of_reach_stops_short_and_shows_the_gap_until_let_go() {
     harness.run_steps(2);
     assert!(common::ui::plen2_ui(harness.state()).preview.posing.gap().is_none(), "let go, the gap goes");
 }
+
+#[test]
+fn the_sliders_and_the_view_share_the_width_without_an_empty_band() {
+    use egui::accesskit::Role;
+    use egui_kittest::kittest::NodeT as _;
+    for (family, tab) in [(Family::Plen2, Tab::Joints), (Family::Servo, Tab::Servos)] {
+        for size in [(1600.0, 1000.0), (1100.0, 720.0)] {
+            let project = if family == Family::Servo {
+                servo_studio::ui::sample_project()
+            } else {
+                Project { family, ..Project::default() }
+            };
+            let harness = common::ui::showing(common::ui::editor(project), tab, size);
+            let slider = harness.get_all_by_role(Role::Slider).next().unwrap().rect();
+            let view = harness
+                .get_all_by_role(Role::Image)
+                .find(|node| node.accesskit_node().label().is_some_and(|l| l.contains("Robot preview")))
+                .expect("the 3D view")
+                .rect();
+            let band = view.min.x - slider.max.x;
+            // Between them: the row's value and home (PLEN2) or hold (servo) columns, ~140 px;
+            // sliders capped at 420 px left a band of ~480 px at 1600 wide.
+            assert!(band < 200.0, "{family:?} at {size:?}: {band} px between the sliders' end and the view");
+        }
+    }
+}

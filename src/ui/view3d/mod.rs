@@ -458,4 +458,30 @@ mod tests {
             assert!(ndc.z > -1.0 && ndc.z < 1.0 && (clip.w - depth).abs() < 1e-2);
         }
     }
+
+    #[test]
+    fn frame_all_fits_every_corner_of_the_figure_in_the_view_at_any_shape_keeping_the_orbit() {
+        let chain = crate::figure::plen2::chain();
+        let solids = chain.dress(&chain.pose(&[0.0; 19]), false);
+        let scene = Scene { solids, ..Scene::default() };
+        let outline = scene.outline();
+        for (w, h) in [(380.0, 640.0), (900.0, 300.0), (300.0, 300.0), (1200.0, 900.0)] {
+            let rect = Rect::from_min_size(pos2(10.0, 20.0), egui::vec2(w, h));
+            let turned = Camera { yaw: -2.1, pitch: 0.7, distance: 5.0, target: Vec3::ZERO };
+            for camera in [Camera::fit(&outline, rect), turned.framing(&outline, rect)] {
+                let projector = Projector::new(&camera, rect);
+                let mut touches = 0;
+                for point in &outline {
+                    let (at, _) = projector.point(*point).expect("in front of the camera");
+                    assert!(rect.contains(at), "{w}x{h}: {point} at {at:?} outside {rect:?}");
+                    let near_edge = (at.x - rect.left()).min(rect.right() - at.x) < 0.1 * w
+                        || (at.y - rect.top()).min(rect.bottom() - at.y) < 0.1 * h;
+                    touches += usize::from(near_edge);
+                }
+                assert!(touches > 0, "{w}x{h}: framed, not lost in the middle");
+            }
+            let framed = turned.framing(&outline, rect);
+            assert_eq!((framed.yaw, framed.pitch), (turned.yaw, turned.pitch), "the orbit is kept");
+        }
+    }
 }
