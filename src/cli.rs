@@ -116,6 +116,16 @@ pub enum CliCommand {
     },
     /// List the serial ports this computer sees.
     Ports,
+    /// Read a sound (WAV, FLAC, MP3, OGG/Vorbis) and print one JSON object:
+    /// `duration_s`, `sample_rate`, `channels`, `onsets_s` (seconds). Exits 1
+    /// when it cannot be read.
+    AudioInfo {
+        /// The sound file.
+        sound: PathBuf,
+        /// How readily a rise counts as an onset, 0 (only the strongest) to 1 (every rise).
+        #[arg(long, default_value_t = 0.5, value_parser = bounds::unit)]
+        sensitivity: f32,
+    },
     /// The connection doctor: which family answers on a port (or on every
     /// port), at which baud, what it says of itself, and how its link delivers.
     /// Sends only requests that change nothing on a servo board, a PLEN2 or an
@@ -368,6 +378,7 @@ pub fn run(command: CliCommand) -> ExitCode {
     let result = match command {
         CliCommand::Check { file } => return check::run(&file),
         CliCommand::Ports => servo::ports(),
+        CliCommand::AudioInfo { sound, sensitivity } => audio_info(&sound, sensitivity),
         CliCommand::Probe { port, baud, timeout_ms } => probe::run(port.as_deref(), baud, timeout_ms),
         CliCommand::Sim { args, protocol } => sim::run(&args, protocol),
         CliCommand::Rflex { command } => rflex::run(&command),
@@ -454,6 +465,21 @@ fn describe(error: &anyhow::Error) -> String {
 }
 
 /// The exit status of a command, with its error printed once.
+/// `audio-info`: the sound's shape and onsets as one JSON object.
+fn audio_info(sound: &std::path::Path, sensitivity: f32) -> anyhow::Result<()> {
+    let analysis = crate::audio::analyse(sound, sensitivity, |_| {})?;
+    let info = serde_json::json!({
+        "duration_s": analysis.duration_s(),
+        "sample_rate": analysis.sample_rate,
+        "channels": analysis.channels,
+        "onsets_s": analysis.onsets_s,
+    });
+    match out::line(&info.to_string()) {
+        Ok(()) | Err(out::Unwritten::Closed) => Ok(()),
+        Err(error) => Err(error.into()),
+    }
+}
+
 fn finish(result: anyhow::Result<()>) -> ExitCode {
     let Err(error) = result else { return ExitCode::SUCCESS };
     if let Some(out::Unwritten::Closed) = error.chain().find_map(|cause| cause.downcast_ref::<out::Unwritten>()) {

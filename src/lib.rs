@@ -5,6 +5,7 @@
 //! `link` / [`protocol`]; [`project`] stands alone; [`figure`] (the robot as
 //! a posed 3D figure) uses the project and the PLEN2's device map.
 
+pub mod audio;
 pub mod authoring;
 pub mod cli;
 pub mod device;

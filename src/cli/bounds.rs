@@ -48,6 +48,13 @@ fn integer<T: std::str::FromStr + PartialOrd + std::fmt::Display + Copy>(
     }
 }
 
+/// `audio-info --sensitivity`: 0 to 1.
+pub fn unit(text: &str) -> Result<f32, String> {
+    // Within 0..=1: f32 holds it.
+    #[allow(clippy::cast_possible_truncation)]
+    within_f64(text, 0.0, 1.0, "").map(|value| value as f32)
+}
+
 /// `rflex drive --seconds`: 0 to an hour.
 pub fn drive_seconds(text: &str) -> Result<f64, String> {
     within_f64(text, 0.0, MAX_SECONDS, "s")

@@ -1,5 +1,6 @@
 //! The command line, run as a user runs it.
 
+mod audio;
 mod commands;
 mod honest;
 mod hostile;

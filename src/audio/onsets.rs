@@ -1,0 +1,149 @@
+//! Onsets (beats, syllables, clicks) by spectral flux: every 5 ms a window
+//! of about 12 ms is Hann-weighted and transformed (`rustfft`); the flux is
+//! how much the log magnitudes rose from the window before, summed over the
+//! bins. A flux that is the highest within ±15 ms and stands above its
+//! neighbourhood's mean by more than `λ` of its spread is an onset, where λ
+//! falls as the sensitivity (0–1) rises. The onset's time is then refined on
+//! a 1 ms energy envelope: the steepest rise near the flux's peak. Both the
+//! flux and the envelope are kept (a few bytes per 5 ms and per ms); the
+//! samples are not.
+
+use std::sync::Arc;
+
+use rustfft::num_complex::Complex;
+use rustfft::{Fft, FftPlanner};
+
+/// Between two onsets at least this long, seconds.
+const LEAST_GAP_S: f64 = 0.030;
+
+/// The detector, fed as the sound is read.
+pub struct Onsets {
+    rate: u32,
+    sensitivity: f32,
+    hop: usize,
+    window: Vec<f32>,
+    fft: Arc<dyn Fft<f32>>,
+    /// Samples not yet framed; `start` is the first one's index in the sound.
+    pending: Vec<f32>,
+    start: usize,
+    previous: Vec<f32>,
+    flux: Vec<f32>,
+    /// Sum of squares per millisecond, and the one being filled.
+    energy_ms: Vec<f32>,
+    open_ms: (f32, usize),
+    per_ms: usize,
+    scratch: Vec<Complex<f32>>,
+}
+
+impl std::fmt::Debug for Onsets {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Onsets").field("rate", &self.rate).field("frames", &self.flux.len()).finish_non_exhaustive()
+    }
+}
+
+impl Onsets {
+    /// A detector for sound at `rate`, as sensitive as `sensitivity` (0: only the strongest, 1: every rise).
+    pub fn new(rate: u32, sensitivity: f32) -> Self {
+        let rate_samples = rate as usize;
+        let size = (rate_samples * 12 / 1000).next_power_of_two().max(64);
+        // A Hann window.
+        #[allow(clippy::cast_precision_loss)]
+        let window = (0..size).map(|i| 0.5 - 0.5 * (std::f32::consts::TAU * i as f32 / size as f32).cos()).collect();
+        Self {
+            rate,
+            sensitivity: sensitivity.clamp(0.0, 1.0),
+            hop: (rate_samples / 200).max(1),
+            window,
+            fft: FftPlanner::new().plan_fft_forward(size),
+            pending: Vec::new(),
+            start: 0,
+            previous: vec![0.0; size / 2],
+            flux: Vec::new(),
+            energy_ms: Vec::new(),
+            open_ms: (0.0, 0),
+            per_ms: (rate_samples / 1000).max(1),
+            scratch: vec![Complex::default(); size],
+        }
+    }
+
+    /// More samples (mono).
+    pub fn push(&mut self, samples: &[f32]) {
+        for &sample in samples {
+            self.open_ms = (self.open_ms.0 + sample * sample, self.open_ms.1 + 1);
+            if self.open_ms.1 == self.per_ms {
+                self.energy_ms.push(self.open_ms.0);
+                self.open_ms = (0.0, 0);
+            }
+        }
+        self.pending.extend_from_slice(samples);
+        let size = self.window.len();
+        let mut at = 0;
+        while at + size <= self.pending.len() {
+            for (slot, (sample, weight)) in
+                self.scratch.iter_mut().zip(self.pending[at..at + size].iter().zip(&self.window))
+            {
+                *slot = Complex::new(sample * weight, 0.0);
+            }
+            self.fft.process(&mut self.scratch);
+            let mut flux = 0.0;
+            for (bin, previous) in self.scratch[..size / 2].iter().zip(self.previous.iter_mut()) {
+                let magnitude = (1.0 + 100.0 * bin.norm()).ln();
+                flux += (magnitude - *previous).max(0.0);
+                *previous = magnitude;
+            }
+            self.flux.push(flux);
+            at += self.hop;
+        }
+        self.pending.drain(..at.min(self.pending.len()));
+        self.start += at;
+    }
+
+    /// The onsets found, seconds from the start.
+    pub fn finish(self) -> Vec<f64> {
+        let flux = &self.flux;
+        let lambda = 1.0 + 4.0 * (1.0 - self.sensitivity);
+        let most = flux.iter().copied().fold(0.0_f32, f32::max);
+        let floor = most * 0.3 * (1.0 - self.sensitivity);
+        let around = 3; // frames: ±15 ms
+        let neighbourhood = 40; // frames: ±200 ms
+        let mut onsets: Vec<f64> = Vec::new();
+        for k in 1..flux.len() {
+            let (from, to) = (k.saturating_sub(around), (k + around + 1).min(flux.len()));
+            if flux[from..to].iter().any(|&other| other > flux[k]) || flux[k] <= flux[k - 1] {
+                continue;
+            }
+            let (from, to) = (k.saturating_sub(neighbourhood), (k + neighbourhood + 1).min(flux.len()));
+            let near = &flux[from..to];
+            // Frame counts are small.
+            #[allow(clippy::cast_precision_loss)]
+            let count = near.len() as f32;
+            let mean = near.iter().sum::<f32>() / count;
+            let spread = (near.iter().map(|f| (f - mean).powi(2)).sum::<f32>() / count).sqrt();
+            if flux[k] <= mean + lambda * spread || flux[k] <= floor {
+                continue;
+            }
+            let at = self.refine(k);
+            if onsets.last().is_none_or(|last| at - last >= LEAST_GAP_S) {
+                onsets.push(at);
+            }
+        }
+        onsets
+    }
+
+    /// The steepest rise of the 1 ms energy around frame `k`'s window, seconds.
+    fn refine(&self, k: usize) -> f64 {
+        let ms_per = |samples: usize| samples / self.per_ms;
+        let first = ms_per((k * self.hop).saturating_sub(self.hop));
+        let last = ms_per(k * self.hop + self.window.len() + self.hop).min(self.energy_ms.len());
+        let best = (first.max(1)..last)
+            .max_by(|&a, &b| {
+                let rise = |i: usize| self.energy_ms[i] - self.energy_ms[i - 1];
+                rise(a).total_cmp(&rise(b))
+            })
+            .unwrap_or(first);
+        // Milliseconds: an index.
+        #[allow(clippy::cast_precision_loss)]
+        let seconds = (best * self.per_ms) as f64 / f64::from(self.rate);
+        seconds
+    }
+}
