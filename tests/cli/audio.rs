@@ -14,21 +14,27 @@ use std::process::Command;
 
 const EXE: &str = env!("CARGO_BIN_EXE_servo-studio");
 
+/// `seconds` of silence at `rate` with a short ringing click (louder first,
+/// `length` samples) at each of `clicks_s`.
+fn click_track(rate: u32, seconds: f64, clicks_s: &[f64], length: usize) -> Vec<f32> {
+    let mut samples = vec![0.0f32; (seconds * f64::from(rate)) as usize];
+    for at in clicks_s {
+        let start = (at * f64::from(rate)) as usize;
+        let ring = length as f32 / 5.0;
+        for (i, sample) in samples[start..start + length].iter_mut().enumerate() {
+            *sample = (i as f32 * 0.8).sin() * (-(i as f32) / ring).exp() * 0.9;
+        }
+    }
+    samples
+}
+
 #[test]
 fn audio_info_prints_the_length_rate_channels_and_every_click_within_10_ms() {
     let dir = tempfile::tempdir().unwrap();
     let rate = 22_050u32;
     let clicks_s = [0.4, 1.15, 1.3, 2.72];
-    let mut samples = vec![0.0f32; (3.0 * f64::from(rate)) as usize];
-    for at in clicks_s {
-        let start = (at * f64::from(rate)) as usize;
-        for (i, sample) in samples[start..start + 200].iter_mut().enumerate() {
-            // A short ringing click, louder first.
-            *sample = (i as f32 * 0.9).sin() * (-(i as f32) / 40.0).exp() * 0.9;
-        }
-    }
     let path = dir.path().join("clicks.wav");
-    std::fs::write(&path, servo_studio::audio::pcm16_wav(&samples, rate, 2)).unwrap();
+    std::fs::write(&path, servo_studio::audio::pcm16_wav(&click_track(rate, 3.0, &clicks_s, 200), rate, 2)).unwrap();
     let output = Command::new(EXE).arg("audio-info").arg(&path).output().unwrap();
     assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
     let info: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
@@ -65,15 +71,8 @@ fn every_format_decodes_to_the_same_sound_and_clicks() {
     let dir = tempfile::tempdir().unwrap();
     let rate = 44_100u32;
     let clicks_s = [0.3, 0.95, 1.6, 2.2, 3.05];
-    let mut samples = vec![0.0f32; (4.0 * f64::from(rate)) as usize];
-    for at in clicks_s {
-        let start = (at * f64::from(rate)) as usize;
-        for (i, sample) in samples[start..start + 400].iter_mut().enumerate() {
-            *sample = (i as f32 * 0.7).sin() * (-(i as f32) / 80.0).exp() * 0.9;
-        }
-    }
     let wav = dir.path().join("clicks.wav");
-    std::fs::write(&wav, servo_studio::audio::pcm16_wav(&samples, rate, 2)).unwrap();
+    std::fs::write(&wav, servo_studio::audio::pcm16_wav(&click_track(rate, 4.0, &clicks_s, 400), rate, 2)).unwrap();
     for extension in ["wav", "flac", "mp3", "ogg"] {
         let path = dir.path().join(format!("clicks.{extension}"));
         if extension != "wav" {
