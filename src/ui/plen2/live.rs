@@ -65,6 +65,15 @@ impl Plen2Ui {
         self.walk_to_pose(shell, before, Instant::now());
     }
 
+    /// A joint turned in the 3D view: to where it was when the drag began, plus `by_tenths`.
+    pub(super) fn turn_joint(&mut self, shell: &mut Shell<'_>, joint: Joint, by_tenths: i32) {
+        let before = *self.turning.get_or_insert(self.pose);
+        self.selected_joint = Some(joint);
+        let tenths = i32::from(before[joint.index()]).saturating_add(by_tenths);
+        let tenths = i16::try_from(tenths.clamp(i32::from(i16::MIN), i32::from(i16::MAX))).unwrap_or(0);
+        self.set_joint(shell, joint, tenths);
+    }
+
     /// Every joint to `pose` (absolute tenths, by joint index), each clamped
     /// to its limits, walked at the live speed limit.
     pub(super) fn set_pose(&mut self, shell: &mut Shell<'_>, pose: [i16; 18]) {

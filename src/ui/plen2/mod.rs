@@ -252,13 +252,7 @@ impl Plen2Ui {
         match action {
             Plen2Action::SetJoint { joint, tenths } => self.set_joint(shell, joint, tenths),
             Plen2Action::SelectJoint(joint) => self.selected_joint = joint,
-            Plen2Action::TurnJoint { joint, by_tenths } => {
-                let before = *self.turning.get_or_insert(self.pose);
-                self.selected_joint = Some(joint);
-                let tenths = i32::from(before[joint.index()]).saturating_add(by_tenths);
-                let tenths = i16::try_from(tenths.clamp(i32::from(i16::MIN), i32::from(i16::MAX))).unwrap_or(0);
-                self.set_joint(shell, joint, tenths);
-            }
+            Plen2Action::TurnJoint { joint, by_tenths } => self.turn_joint(shell, joint, by_tenths),
             Plen2Action::Pose(pose) => {
                 self.turning.get_or_insert(self.pose);
                 self.set_pose(shell, pose);
