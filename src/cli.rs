@@ -14,6 +14,7 @@ mod check;
 mod convert;
 mod family;
 mod fit;
+mod follow_audio;
 mod gui;
 mod out;
 mod plen2;
@@ -126,6 +127,12 @@ pub enum CliCommand {
         #[arg(long, default_value_t = 0.5, value_parser = bounds::unit)]
         sensitivity: f32,
     },
+    /// Follow a sound's loudness with one servo (--servo N) or PLEN2 joint
+    /// (--joint NAME): closed in silence, open at the loudest, fitted into
+    /// the board's steps or frames within the tolerance. Servo board: writes
+    /// a project with one action per step and macro 1 running them; PLEN2: a
+    /// motion.json.
+    FollowAudio(follow_audio::FollowArgs),
     /// The connection doctor: which family answers on a port (or on every
     /// port), at which baud, what it says of itself, and how its link delivers.
     /// Sends only requests that change nothing on a servo board, a PLEN2 or an
@@ -394,6 +401,12 @@ pub fn run(command: CliCommand) -> ExitCode {
         }
         CliCommand::Gui { file, demo, protocol, import } => gui::run(file.as_deref(), demo, protocol, import),
         CliCommand::Convert(args) => convert::run_args(args),
+        CliCommand::FollowAudio(args) => {
+            follow_audio::run(&args).and_then(|fitted| match out::line(&follow_audio::said(&fitted, &args)) {
+                Ok(()) | Err(out::Unwritten::Closed) => Ok(()),
+                Err(error) => Err(error.into()),
+            })
+        }
         CliCommand::Fit { recording, protocol, tolerance_deg, max_frames, name, out, force } => {
             let request = fit::FitRequest { recording, family: protocol, tolerance_deg, max_frames, name, out, force };
             fit::run(&request).and_then(|fitted| match out::line(&fit::said(&fitted, protocol, &request.out)) {

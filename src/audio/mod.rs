@@ -5,6 +5,7 @@
 //! ([`onsets`]) — and then dropped: the decoded samples are never held
 //! whole, so an hour of 48 kHz stereo costs the pyramid's few megabytes.
 
+pub mod follow;
 pub mod onsets;
 pub mod peaks;
 
@@ -18,7 +19,7 @@ use symphonia::core::io::MediaSourceStream;
 use symphonia::core::meta::MetadataOptions;
 use symphonia::core::probe::Hint;
 
-pub use onsets::Onsets;
+pub use onsets::{Found, Onsets};
 pub use peaks::Peaks;
 
 /// Samples an MP3 without a gapless note is taken to start late by (LAME's
@@ -63,8 +64,11 @@ pub struct Analysis {
     pub frames: u64,
     /// The waveform's peaks, for drawing.
     pub peaks: Peaks,
-    /// The onsets found, seconds from the start.
+    /// The onsets found at the sensitivity asked, seconds from the start.
     pub onsets_s: Vec<f64>,
+    /// The onset flux and the loudness, to pick onsets at another sensitivity
+    /// or follow the loudness without reading the sound again.
+    pub found: Found,
 }
 
 impl Analysis {
@@ -112,7 +116,7 @@ pub fn analyse(path: &Path, sensitivity: f32, mut progress: impl FnMut(f32)) -> 
         symphonia::default::get_codecs().make(&params, &DecoderOptions::default()).map_err(format_error)?;
     let mut channels = params.channels.map_or(0, |c| u16::try_from(c.count()).unwrap_or(u16::MAX));
     let mut peaks = Peaks::new();
-    let mut onsets = Onsets::new(sample_rate, sensitivity);
+    let mut onsets = Onsets::new(sample_rate);
     let mut frames = 0u64;
     let mut mono = Vec::new();
     // An MP3 without the encoder's gapless note starts with the encoder's and
@@ -162,7 +166,8 @@ pub fn analyse(path: &Path, sensitivity: f32, mut progress: impl FnMut(f32)) -> 
             progress(share);
         }
     }
-    Ok(Analysis { sample_rate, channels, frames, peaks, onsets_s: onsets.finish() })
+    let found = onsets.finish();
+    Ok(Analysis { sample_rate, channels, frames, peaks, onsets_s: found.onsets(sensitivity), found })
 }
 
 /// A 16-bit PCM WAV file of `channels` channels at `rate`, from mono samples

@@ -19,7 +19,6 @@ const LEAST_GAP_S: f64 = 0.030;
 /// The detector, fed as the sound is read.
 pub struct Onsets {
     rate: u32,
-    sensitivity: f32,
     hop: usize,
     window: Vec<f32>,
     fft: Arc<dyn Fft<f32>>,
@@ -42,8 +41,8 @@ impl std::fmt::Debug for Onsets {
 }
 
 impl Onsets {
-    /// A detector for sound at `rate`, as sensitive as `sensitivity` (0: only the strongest, 1: every rise).
-    pub fn new(rate: u32, sensitivity: f32) -> Self {
+    /// A detector for sound at `rate`.
+    pub fn new(rate: u32) -> Self {
         let rate_samples = rate as usize;
         let size = (rate_samples * 12 / 1000).next_power_of_two().max(64);
         // A Hann window.
@@ -51,7 +50,6 @@ impl Onsets {
         let window = (0..size).map(|i| 0.5 - 0.5 * (std::f32::consts::TAU * i as f32 / size as f32).cos()).collect();
         Self {
             rate,
-            sensitivity: sensitivity.clamp(0.0, 1.0),
             hop: (rate_samples / 200).max(1),
             window,
             fft: FftPlanner::new().plan_fft_forward(size),
@@ -98,12 +96,45 @@ impl Onsets {
         self.start += at;
     }
 
-    /// The onsets found, seconds from the start.
-    pub fn finish(self) -> Vec<f64> {
+    /// What was found: the flux and the envelope, from which onsets are
+    /// picked at any sensitivity without reading the sound again.
+    pub fn finish(mut self) -> Found {
+        // The last, partial millisecond, scaled to a whole one (sample counts are small).
+        #[allow(clippy::cast_precision_loss)]
+        if self.open_ms.1 > 0 {
+            self.energy_ms.push(self.open_ms.0 * self.per_ms as f32 / self.open_ms.1 as f32);
+        }
+        Found {
+            rate: self.rate,
+            hop: self.hop,
+            window: self.window.len(),
+            per_ms: self.per_ms,
+            flux: self.flux,
+            energy_ms: self.energy_ms,
+        }
+    }
+}
+
+/// A sound's onset flux and 1 ms energy envelope, kept after reading: a few
+/// bytes per 5 ms and per ms.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Found {
+    rate: u32,
+    hop: usize,
+    window: usize,
+    per_ms: usize,
+    flux: Vec<f32>,
+    energy_ms: Vec<f32>,
+}
+
+impl Found {
+    /// The onsets at `sensitivity` (0: only the strongest, 1: every rise), seconds from the start.
+    pub fn onsets(&self, sensitivity: f32) -> Vec<f64> {
+        let sensitivity = sensitivity.clamp(0.0, 1.0);
         let flux = &self.flux;
-        let lambda = 1.0 + 4.0 * (1.0 - self.sensitivity);
+        let lambda = 1.0 + 4.0 * (1.0 - sensitivity);
         let most = flux.iter().copied().fold(0.0_f32, f32::max);
-        let floor = most * 0.3 * (1.0 - self.sensitivity);
+        let floor = most * 0.3 * (1.0 - sensitivity);
         let around = 3; // frames: ±15 ms
         let neighbourhood = 40; // frames: ±200 ms
         let mut onsets: Vec<f64> = Vec::new();
@@ -130,11 +161,19 @@ impl Onsets {
         onsets
     }
 
+    /// The loudness of each millisecond, dB of full scale (a full-scale sine is −3 dB); silence is −120.
+    pub fn loudness_db(&self) -> Vec<f32> {
+        // Samples per millisecond: small.
+        #[allow(clippy::cast_precision_loss)]
+        let per_ms = self.per_ms as f32;
+        self.energy_ms.iter().map(|energy| (10.0 * (energy / per_ms).log10()).max(-120.0)).collect()
+    }
+
     /// The steepest rise of the 1 ms energy around frame `k`'s window, seconds.
     fn refine(&self, k: usize) -> f64 {
         let ms_per = |samples: usize| samples / self.per_ms;
         let first = ms_per((k * self.hop).saturating_sub(self.hop));
-        let last = ms_per(k * self.hop + self.window.len() + self.hop).min(self.energy_ms.len());
+        let last = ms_per(k * self.hop + self.window + self.hop).min(self.energy_ms.len());
         let best = (first.max(1)..last)
             .max_by(|&a, &b| {
                 let rise = |i: usize| self.energy_ms[i] - self.energy_ms[i - 1];

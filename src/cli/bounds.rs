@@ -55,6 +55,21 @@ pub fn unit(text: &str) -> Result<f32, String> {
     within_f64(text, 0.0, 1.0, "").map(|value| value as f32)
 }
 
+/// `follow-audio --attack-ms / --release-ms`: 0.1 ms to 10 s.
+pub fn positive_ms(text: &str) -> Result<f64, String> {
+    within_f64(text, 0.1, 10_000.0, "ms")
+}
+
+/// `follow-audio --threshold-db`: −120 to 0 dB of full scale.
+pub fn threshold_db(text: &str) -> Result<f64, String> {
+    within_f64(text, -120.0, 0.0, "dB")
+}
+
+/// `follow-audio --closed / --open`: −360 to 360 degrees.
+pub fn angle_deg(text: &str) -> Result<f64, String> {
+    within_f64(text, -360.0, 360.0, "°")
+}
+
 /// `rflex drive --seconds`: 0 to an hour.
 pub fn drive_seconds(text: &str) -> Result<f64, String> {
     within_f64(text, 0.0, MAX_SECONDS, "s")

@@ -53,6 +53,11 @@ pub fn run(request: &FitRequest) -> anyhow::Result<Fitted> {
     let name = request.name.clone().unwrap_or_else(|| {
         request.recording.file_stem().map(|stem| stem.to_string_lossy().into_owned()).unwrap_or_default()
     });
+    write(&recording, request, &name)
+}
+
+/// Fits a recording however it was made (a CSV, a sound's loudness) and writes the result to `request.out`.
+pub fn write(recording: &Recording, request: &FitRequest, name: &str) -> anyhow::Result<Fitted> {
     let family = request.family;
     let Some(fitter) = fitter(family) else {
         let fitting: Vec<&str> =
@@ -63,7 +68,7 @@ pub fn run(request: &FitRequest) -> anyhow::Result<Fitted> {
             fitting.join(" or ")
         )
     };
-    let (written, fitted) = (fitter.fit)(&recording, request, &name)?;
+    let (written, fitted) = (fitter.fit)(recording, request, name)?;
     project::atomic_write(&request.out, |file| std::io::Write::write_all(file, written.as_bytes()))
         .with_context(|| format!("cannot write {}", request.out.display()))?;
     Ok(fitted)
