@@ -7,24 +7,16 @@
 
 pub mod follow;
 pub mod onsets;
+pub mod output;
 pub mod peaks;
+mod stream;
+pub mod together;
 
 use std::path::{Path, PathBuf};
 
-use symphonia::core::audio::SampleBuffer;
-use symphonia::core::codecs::{CODEC_TYPE_MP3, CODEC_TYPE_NULL, CodecParameters, DecoderOptions};
-use symphonia::core::errors::Error as DecodeError;
-use symphonia::core::formats::{FormatOptions, FormatReader};
-use symphonia::core::io::MediaSourceStream;
-use symphonia::core::meta::MetadataOptions;
-use symphonia::core::probe::Hint;
-
 pub use onsets::{Found, Onsets};
 pub use peaks::Peaks;
-
-/// Samples an MP3 without a gapless note is taken to start late by (LAME's
-/// encoder delay, 576, and the decoder's, 529).
-const MP3_DELAY: usize = 1105;
+pub use stream::Reader;
 
 /// Why a sound file could not be read.
 #[derive(Debug, thiserror::Error)]
@@ -81,81 +73,21 @@ impl Analysis {
     }
 }
 
-/// The sound's container, opened: its reader, its audio track and what that track holds.
-fn open(path: &Path) -> Result<(Box<dyn FormatReader>, u32, CodecParameters), AudioError> {
-    let file = std::fs::File::open(path).map_err(|source| AudioError::Open { path: path.to_path_buf(), source })?;
-    let format_error = |error: DecodeError| AudioError::Format { path: path.to_path_buf(), reason: error.to_string() };
-    let stream = MediaSourceStream::new(Box::new(file), Default::default());
-    let mut hint = Hint::new();
-    if let Some(extension) = path.extension().and_then(|e| e.to_str()) {
-        hint.with_extension(extension);
-    }
-    // Gapless: an MP3's encoder delay and padding are cut, so times are the sound's own.
-    let options = FormatOptions { enable_gapless: true, ..FormatOptions::default() };
-    let probed = symphonia::default::get_probe()
-        .format(&hint, stream, &options, &MetadataOptions::default())
-        .map_err(format_error)?;
-    let format = probed.format;
-    let track = format
-        .tracks()
-        .iter()
-        .find(|track| track.codec_params.codec != CODEC_TYPE_NULL && track.codec_params.sample_rate.is_some())
-        .ok_or_else(|| AudioError::NoTrack { path: path.to_path_buf() })?;
-    let (track_id, params) = (track.id, track.codec_params.clone());
-    Ok((format, track_id, params))
-}
-
 /// Reads and analyses the sound in `path`; `progress` hears the share read
 /// so far (0–1) as it goes, when the file says how long it is.
 pub fn analyse(path: &Path, sensitivity: f32, mut progress: impl FnMut(f32)) -> Result<Analysis, AudioError> {
-    let format_error = |error: DecodeError| AudioError::Format { path: path.to_path_buf(), reason: error.to_string() };
-    let (mut format, track_id, params) = open(path)?;
-    let sample_rate = params.sample_rate.unwrap_or(44_100);
-    let expected = params.n_frames;
-    let mut decoder =
-        symphonia::default::get_codecs().make(&params, &DecoderOptions::default()).map_err(format_error)?;
-    let mut channels = params.channels.map_or(0, |c| u16::try_from(c.count()).unwrap_or(u16::MAX));
+    let mut reader = Reader::open(path)?;
+    let (sample_rate, expected) = (reader.rate(), reader.expected_frames());
     let mut peaks = Peaks::new();
     let mut onsets = Onsets::new(sample_rate);
     let mut frames = 0u64;
     let mut mono = Vec::new();
-    // An MP3 without the encoder's gapless note starts with the encoder's and
-    // the decoder's delay: LAME's 576 + 529 samples, which nearly every MP3 has.
-    let mut skip = if params.codec == CODEC_TYPE_MP3 && params.delay.is_none() { MP3_DELAY } else { 0 };
-    let mut buffer: Option<SampleBuffer<f32>> = None;
-    loop {
-        let packet = match format.next_packet() {
-            Ok(packet) => packet,
-            // The end of the stream.
-            Err(DecodeError::IoError(error)) if error.kind() == std::io::ErrorKind::UnexpectedEof => break,
-            Err(DecodeError::ResetRequired) => break,
-            Err(error) => return Err(format_error(error)),
-        };
-        if packet.track_id() != track_id {
-            continue;
-        }
-        let decoded = match decoder.decode(&packet) {
-            Ok(decoded) => decoded,
-            // A damaged packet is skipped, as players do.
-            Err(DecodeError::DecodeError(_)) => continue,
-            Err(error) => return Err(format_error(error)),
-        };
-        let spec = *decoded.spec();
-        let count = spec.channels.count().max(1);
-        channels = u16::try_from(count).unwrap_or(u16::MAX);
-        let samples = buffer.get_or_insert_with(|| SampleBuffer::new(decoded.capacity() as u64, spec));
-        if samples.capacity() < decoded.capacity() * count {
-            *samples = SampleBuffer::new(decoded.capacity() as u64, spec);
-        }
-        samples.copy_interleaved_ref(decoded);
+    while let Some((chunk, count)) = reader.next_chunk()? {
         mono.clear();
         // Channel counts are small.
         #[allow(clippy::cast_precision_loss)]
         let scale = 1.0 / count as f32;
-        mono.extend(samples.samples().chunks_exact(count).map(|frame| frame.iter().sum::<f32>() * scale));
-        let skipped = skip.min(mono.len());
-        mono.drain(..skipped);
-        skip -= skipped;
+        mono.extend(chunk.chunks_exact(count).map(|frame| frame.iter().sum::<f32>() * scale));
         peaks.push(&mono);
         onsets.push(&mono);
         frames += mono.len() as u64;
@@ -167,6 +99,7 @@ pub fn analyse(path: &Path, sensitivity: f32, mut progress: impl FnMut(f32)) -> 
         }
     }
     let found = onsets.finish();
+    let channels = reader.channels();
     Ok(Analysis { sample_rate, channels, frames, peaks, onsets_s: found.onsets(sensitivity), found })
 }
 

@@ -70,6 +70,14 @@ pub enum SimCommand {
 pub enum SimEvent {
     /// A request was handled (after any fault).
     Handled(Message),
+    /// A macro began: when each of its steps starts on the board's clock (a
+    /// show's sound is measured against these).
+    MacroSteps {
+        /// The macro.
+        macro_id: i32,
+        /// Each step's start, in order.
+        steps: Vec<Instant>,
+    },
 }
 
 /// One servo's live state: a linear move from `from` to `to` over `start..end`.
@@ -367,7 +375,10 @@ impl ServoSim {
             M::ExecuteMacroRequest { macro_id } => {
                 let exists = image.macros.iter().any(|m| m.macro_id == *macro_id);
                 if exists {
+                    let before = self.schedule.len();
                     self.schedule_macro(now, *macro_id, 100, 0);
+                    let steps = self.schedule[before..].iter().map(|(at, _)| *at).collect();
+                    self.events.push_back(SimEvent::MacroSteps { macro_id: *macro_id, steps });
                     self.apply_schedule(now);
                 }
                 Some(M::ExecuteMacroResponse { ok: exists })

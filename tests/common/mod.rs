@@ -5,6 +5,7 @@ use std::io::{BufRead, BufReader, Read, Write};
 use std::process::{Child, Stdio};
 use std::time::Duration;
 
+pub mod pulse;
 pub mod ui;
 
 use servo_studio::project::{Action, Button, Command, JoystickTable, Macro, Run, Servo, ServoProject, Step};

@@ -5,3 +5,4 @@ mod codec_props;
 mod link;
 mod link_gap;
 mod live;
+mod sound_sync;

@@ -1,0 +1,336 @@
+//! A real PulseAudio server with a null sink standing in for speakers
+//! (Debian's `pulseaudio`, which `.ci/run` installs), started and stopped
+//! here, and a recorder of the null sink's monitor that says when each
+//! sample came out. Shared by the sync test and the sync bench.
+
+#![allow(
+    dead_code,
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::cast_possible_truncation,
+    clippy::cast_sign_loss,
+    clippy::cast_precision_loss
+)]
+
+use std::io::{BufRead, BufReader};
+use std::path::PathBuf;
+use std::process::{Child, Command, Stdio};
+use std::sync::{Arc, Condvar, Mutex};
+use std::time::{Duration, Instant};
+
+use servo_studio::audio::output::Speakers;
+use servo_studio::audio::together;
+use servo_studio::device::servo::{DEFAULT_BAUD, ServoBoard, ServoImage, SessionConfig};
+use servo_studio::link::{LinkEvent, PortName, no_waker};
+use servo_studio::project::{Action, Macro, Servo, ServoProject, Step};
+use servo_studio::protocol::servo::Message;
+use servo_studio::sim::{ServoSim, SimConfig, SimEvent, spawn_pty};
+
+use pulseaudio::protocol;
+
+/// The null sink's name.
+pub const SINK: &str = "show";
+/// The null sink's rate.
+pub const RATE: u32 = 48_000;
+
+/// A running server in a folder of its own; stopped when dropped.
+pub struct Pulse {
+    child: Child,
+    _dir: tempfile::TempDir,
+    /// Its socket.
+    pub socket: PathBuf,
+}
+
+impl Pulse {
+    /// Starts a server, waiting for it to say it is up. `None` (the caller
+    /// skips, saying so) when `pulseaudio` is not installed, except under
+    /// `CI=true`, where `.ci/run` installs it and its absence fails.
+    pub fn start() -> Option<Pulse> {
+        let dir = tempfile::tempdir().unwrap();
+        let socket = dir.path().join("native");
+        let spawned = Command::new("pulseaudio")
+            .args([
+                "-n",
+                "--daemonize=no",
+                "--exit-idle-time=-1",
+                "--use-pid-file=no",
+                "--disable-shm=yes",
+                "--log-target=stderr",
+                "-v",
+            ])
+            .arg(format!("--load=module-native-protocol-unix socket={} auth-anonymous=1", socket.display()))
+            .arg(format!("--load=module-null-sink sink_name={SINK} rate={RATE}"))
+            .env("HOME", dir.path())
+            .env("XDG_RUNTIME_DIR", dir.path())
+            .env("XDG_CONFIG_HOME", dir.path())
+            .stdin(Stdio::null())
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn();
+        let mut child = match spawned {
+            Ok(child) => child,
+            Err(error) if std::env::var("CI").as_deref() != Ok("true") => {
+                eprintln!("skipped: pulseaudio cannot be started ({error}); .ci/run installs it");
+                return None;
+            }
+            Err(error) => panic!("pulseaudio cannot be started under CI ({error}): .ci/run installs it"),
+        };
+        // Its log, line by line, until it is up (or ends).
+        let stderr = child.stderr.take().unwrap();
+        let (up_tx, up_rx) = crossbeam_channel::bounded(1);
+        std::thread::spawn(move || {
+            let mut said = Vec::new();
+            for line in BufReader::new(stderr).lines().map_while(Result::ok) {
+                if line.contains("Daemon startup complete") {
+                    let _ = up_tx.send(Ok(()));
+                }
+                said.push(line);
+            }
+            let _ = up_tx.send(Err(said.join("\n")));
+        });
+        match up_rx.recv_timeout(Duration::from_secs(30)) {
+            Ok(Ok(())) => Some(Pulse { child, _dir: dir, socket }),
+            Ok(Err(log)) => panic!("pulseaudio ended before it was up:\n{log}"),
+            Err(_) => panic!("pulseaudio was not up within 30 s"),
+        }
+    }
+
+    /// A client of this server.
+    pub fn client(&self) -> pulseaudio::Client {
+        let stream = std::os::unix::net::UnixStream::connect(&self.socket).unwrap();
+        // Anonymous access: the server still wants a cookie's 256 bytes.
+        pulseaudio::Client::new_unix(c"servo-studio tests", stream, Some(vec![0u8; 256])).unwrap()
+    }
+}
+
+impl Drop for Pulse {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+/// What the monitor heard, and when each packet of it arrived.
+#[derive(Default)]
+struct Heard {
+    samples: Vec<f32>,
+    /// Each packet's arrival and the samples held after it.
+    arrivals: Vec<(Instant, usize)>,
+    /// When sample 0 was played, by each of the server's timing answers.
+    zeros: Vec<Instant>,
+}
+
+/// Records the null sink's monitor (mono, f32) in packets of about 2 ms.
+pub struct Recorder {
+    _client: pulseaudio::Client,
+    heard: Arc<(Mutex<Heard>, Condvar)>,
+    /// Dropping it ends the timing thread, which holds the stream.
+    _stop: crossbeam_channel::Sender<()>,
+}
+
+impl Recorder {
+    /// Starts recording.
+    pub fn start(pulse: &Pulse) -> Recorder {
+        let client = pulse.client();
+        let heard = Arc::new((Mutex::new(Heard::default()), Condvar::new()));
+        let into = Arc::clone(&heard);
+        let sink = move |data: &[u8]| {
+            let now = Instant::now();
+            let mut heard = into.0.lock().unwrap();
+            heard.samples.extend(data.chunks_exact(4).map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]])));
+            let held = heard.samples.len();
+            heard.arrivals.push((now, held));
+            into.1.notify_all();
+        };
+        let fragment = u32::try_from(RATE as usize * 4 * 2 / 1000).unwrap();
+        let params = protocol::RecordStreamParams {
+            sample_spec: protocol::SampleSpec {
+                format: protocol::SampleFormat::Float32Le,
+                channels: 1,
+                sample_rate: RATE,
+            },
+            channel_map: protocol::ChannelMap::mono(),
+            source_name: Some(std::ffi::CString::new(format!("{SINK}.monitor")).unwrap()),
+            buffer_attr: protocol::stream::BufferAttr { fragment_size: fragment, ..Default::default() },
+            flags: protocol::stream::StreamFlags { adjust_latency: true, ..Default::default() },
+            ..Default::default()
+        };
+        let stream = pollster::block_on(client.create_record_stream(params, sink)).unwrap();
+        // The server's timing, every 100 ms: where the stream is at each answer,
+        // as PulseAudio's own library reckons a monitor's time (what has come
+        // in, plus what the source still holds, less what the monitored sink
+        // has yet to play).
+        let (stop, stopped) = crossbeam_channel::bounded::<()>(0);
+        let timing = Arc::clone(&heard);
+        std::thread::spawn(move || {
+            while let Err(crossbeam_channel::RecvTimeoutError::Timeout) =
+                stopped.recv_timeout(Duration::from_millis(100))
+            {
+                let asked = Instant::now();
+                let Ok(answer) = pollster::block_on(stream.timing_info()) else { return };
+                let answered = Instant::now();
+                let midpoint = asked + (answered - asked) / 2;
+                let written = answer.write_offset.max(0) as f64 / 4.0 / f64::from(RATE);
+                let position = written + answer.source_usec as f64 / 1e6 - answer.sink_usec as f64 / 1e6;
+                if position > 0.0
+                    && let Some(zero) = midpoint.checked_sub(Duration::from_secs_f64(position))
+                {
+                    timing.0.lock().unwrap().zeros.push(zero);
+                }
+            }
+        });
+        Recorder { _client: client, heard, _stop: stop }
+    }
+
+    /// When each sound that rises past `level` after `quiet_s` of quiet was
+    /// played, on this process's clock: sample 0's time by the server's
+    /// timing answers (their median), and one sample every 1/48,000 s after.
+    pub fn rises(&self, level: f32, quiet_s: f64) -> Vec<Instant> {
+        let heard = self.heard.0.lock().unwrap();
+        // A sample's offset from sample 0 (not a rounded duration per sample, times a count: that drifts 16 µs a second).
+        let after = |samples: usize| Duration::from_secs_f64(samples as f64 / f64::from(RATE));
+        let mut zeros = heard.zeros.clone();
+        zeros.sort();
+        let zero = *zeros.get(zeros.len() / 2).expect("the server's timing was read");
+        let arrived = heard.arrivals.iter().filter_map(|(at, held)| at.checked_sub(after(*held))).min().unwrap();
+        eprintln!(
+            "sample 0 by the server's timing ({} answers, spread {:.2} ms) is {:.2} ms after the earliest arrival",
+            zeros.len(),
+            (zeros[zeros.len() - 1] - zeros[0]).as_secs_f64() * 1e3,
+            if zero >= arrived { (zero - arrived).as_secs_f64() * 1e3 } else { -(arrived - zero).as_secs_f64() * 1e3 }
+        );
+        let quiet = (quiet_s * f64::from(RATE)) as usize;
+        let mut last_loud: Option<usize> = None;
+        let mut rises = Vec::new();
+        for (index, sample) in heard.samples.iter().enumerate() {
+            if sample.abs() >= level {
+                if last_loud.is_none_or(|last| index - last > quiet) {
+                    rises.push(zero + after(index));
+                }
+                last_loud = Some(index);
+            }
+        }
+        rises
+    }
+
+    /// Waits until `seconds` have been recorded; panics after `within`.
+    pub fn wait_for(&self, seconds: f64, within: Duration) {
+        let wanted = (seconds * f64::from(RATE)) as usize;
+        let (heard, more) = &*self.heard;
+        let (heard, waited) =
+            more.wait_timeout_while(heard.lock().unwrap(), within, |heard| heard.samples.len() < wanted).unwrap();
+        assert!(
+            !waited.timed_out(),
+            "the monitor recorded only {:.2} s of {seconds} s",
+            heard.samples.len() as f64 / f64::from(RATE)
+        );
+    }
+}
+
+/// A click track at the null sink's rate: a 1 ms full-scale burst at each of `at_s`, silence between.
+pub fn clicks(at_s: &[f64], seconds: f64) -> Vec<f32> {
+    let mut samples = vec![0.0f32; (seconds * f64::from(RATE)) as usize];
+    for at in at_s {
+        let start = (at * f64::from(RATE)).round() as usize;
+        for (i, sample) in samples.iter_mut().skip(start).take(RATE as usize / 1000).enumerate() {
+            *sample = if i % 2 == 0 { 0.9 } else { -0.9 };
+        }
+    }
+    samples
+}
+
+/// What one minute's run measured.
+pub struct Measured {
+    /// Each click's offset from its step's start, ms (positive: the sound late).
+    pub offsets_ms: Vec<f64>,
+}
+
+/// Plays `steps` one-second steps with a click on each, and measures.
+pub fn measure_servo(pulse: &Pulse, steps: usize) -> Measured {
+    let dir = tempfile::tempdir().unwrap();
+    let sound = dir.path().join("clicks.wav");
+    let at: Vec<f64> = (0..steps).map(|step| step as f64).collect();
+    let samples = clicks(&at, steps as f64 + 0.5);
+    std::fs::write(&sound, servo_studio::audio::pcm16_wav(&samples, RATE, 1)).unwrap();
+
+    // Servo 1 swings every second, one action a step, macro 1 running them.
+    let actions: Vec<Action> = (0..steps)
+        .map(|step| Action {
+            id: i32::try_from(step).unwrap() + 1,
+            caption: format!("swing {step}"),
+            steps: vec![Step::new(1, if step % 2 == 0 { 30 } else { -30 }, 100)],
+        })
+        .collect();
+    let macros = vec![Macro {
+        id: 1,
+        caption: "show".into(),
+        commands: actions
+            .iter()
+            .map(|action| {
+                servo_studio::project::Command::once(servo_studio::project::Run::Action { action_id: action.id })
+            })
+            .collect(),
+    }];
+    let project = ServoProject { servos: vec![Servo::new(1, "arm")], actions, macros, ..ServoProject::default() };
+    let board = ServoSim::new(SimConfig::default(), ServoImage::from_project(&project).unwrap());
+    let sim = spawn_pty(board, no_waker()).unwrap();
+    let client = ServoBoard::connect(
+        &PortName::parse(&sim.port_name).unwrap(),
+        DEFAULT_BAUD,
+        SessionConfig::default(),
+        no_waker(),
+    )
+    .unwrap();
+    let requester = client.requester();
+
+    let recorder = Recorder::start(pulse);
+    let speakers = Speakers::connect_to(&pulse.socket).unwrap();
+    let command = Message::ExecuteMacroRequest { macro_id: 1 }.encode().unwrap();
+    let delay = together::link_delay(command.len(), DEFAULT_BAUD, Duration::ZERO);
+    let mut reply = None;
+    let started = together::start(&speakers, &sound, 0.0, delay, || {
+        reply = Some(requester.request_async(Message::ExecuteMacroRequest { macro_id: 1 }).unwrap());
+    })
+    .unwrap();
+
+    // The board's steps, on its own clock.
+    let deadline = Instant::now() + Duration::from_secs(10);
+    let board_steps = loop {
+        match sim.events().recv_deadline(deadline) {
+            Ok(LinkEvent::Driver(SimEvent::MacroSteps { steps, .. })) => break steps,
+            Ok(_) => {}
+            Err(error) => panic!("the board never started the macro: {error}"),
+        }
+    };
+    assert_eq!(board_steps.len(), steps);
+    let answered = reply.expect("the start was sent").recv_timeout(Duration::from_secs(5)).unwrap().unwrap();
+    assert_eq!(answered, Message::ExecuteMacroResponse { ok: true });
+    let since = |later: Instant, earlier: Instant| {
+        if later >= earlier { (later - earlier).as_secs_f64() * 1e3 } else { -(earlier - later).as_secs_f64() * 1e3 }
+    };
+    eprintln!(
+        "sent {:.2} ms before it was due; the board started {:.2} ms after it was sent",
+        since(started.moving_at, started.sent_at),
+        since(board_steps[0], started.sent_at)
+    );
+    let moving_at = started.moving_at;
+    // Until the sound has played out (the recorder's own count of what it heard).
+    let end = steps as f64 + 0.8;
+    recorder.wait_for(end + together::PREROLL.as_secs_f64(), Duration::from_secs_f64(end + 30.0));
+    drop(started);
+    let clicks = recorder.rises(0.5, 0.2);
+    assert_eq!(clicks.len(), steps, "every click heard once");
+    eprintln!("the first click came {:.2} ms after the sound said it would", since(clicks[0], moving_at));
+    let offsets_ms = clicks
+        .iter()
+        .zip(&board_steps)
+        .map(|(click, step)| {
+            if click >= step {
+                (*click - *step).as_secs_f64() * 1000.0
+            } else {
+                -((*step - *click).as_secs_f64() * 1000.0)
+            }
+        })
+        .collect();
+    Measured { offsets_ms }
+}
