@@ -44,7 +44,8 @@ type Client = pulseaudio::Client;
 #[cfg(not(unix))]
 type Client = ();
 
-/// A connection to the sound server.
+/// A connection to the sound server (a copy shares it).
+#[derive(Clone)]
 pub struct Speakers {
     client: Client,
 }
@@ -233,9 +234,10 @@ impl Speakers {
             ..Default::default()
         };
         let failed = |error: pulseaudio::ClientError| OutputError::Stream(error.to_string());
-        let stream =
-            pollster::block_on(self.client.create_playback_stream(params, filler(chunks, Arc::clone(&ended)).as_playback_source()))
-                .map_err(failed)?;
+        let stream = pollster::block_on(
+            self.client.create_playback_stream(params, filler(chunks, Arc::clone(&ended)).as_playback_source()),
+        )
+        .map_err(failed)?;
         pollster::block_on(stream.uncork()).map_err(failed)?;
         Ok(Playing { stream: Some(stream), stop, ended, rate, frame_bytes, from_s })
     }

@@ -24,6 +24,8 @@ pub struct Project {
     pub gamepad: super::gamepad::GamepadMappings,
     /// The sections of the families added since the first three, by tag.
     pub sections: Sections,
+    /// The sound the show is timed to, if any (every family's).
+    pub sound: Option<super::SoundTrack>,
 }
 
 /// The project sections of families the document does not name by field (the

@@ -82,6 +82,8 @@ pub enum Edit {
     SetPlen2(Box<super::plen2::Plen2Project>),
     /// Replace the section a family added since the first three keeps (`null`: none).
     SetSection(Family, serde_json::Value),
+    /// Set or remove the project's sound track.
+    SetSound(Option<super::SoundTrack>),
 }
 
 fn set<T>(items: &mut [T], index: usize, value: T) -> bool {
@@ -122,6 +124,7 @@ impl Edit {
             Self::SetRflexDrive(drive) => project.rflex.drive = drive,
             Self::SetPlen2(plen2) => project.plen2 = *plen2,
             Self::SetSection(family, section) => project.sections.set(family, section),
+            Self::SetSound(sound) => project.sound = sound,
             Self::SetGamepad(family, mapping) => {
                 let Some(bindings) = project.gamepad.of_mut(family) else { return Ok(false) };
                 *bindings = *mapping;
@@ -139,6 +142,7 @@ impl Edit {
             | Self::SetRflexDrive(_)
             | Self::SetPlen2(_)
             | Self::SetSection(..)
+            | Self::SetSound(_)
             | Self::SetGamepad(..) => false,
             Self::SetServo { index, servo } => set(&mut project.servos, index, servo),
             Self::AddServo(servo) => {

@@ -91,6 +91,8 @@ struct Envelope<'a> {
     rflex: Option<&'a RflexProject>,
     #[serde(skip_serializing_if = "Option::is_none")]
     gamepad: Option<&'a super::gamepad::GamepadMappings>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    sound: Option<&'a super::SoundTrack>,
     /// The sections of families added since the first three, each under its tag.
     #[serde(flatten)]
     sections: std::collections::BTreeMap<&'a str, &'a serde_json::Value>,
@@ -108,6 +110,8 @@ struct Sections {
     rflex: RflexProject,
     #[serde(default)]
     gamepad: super::gamepad::GamepadMappings,
+    #[serde(default)]
+    sound: Option<super::SoundTrack>,
 }
 
 fn syntax(error: &serde_json::Error) -> LoadError {
@@ -286,6 +290,7 @@ pub fn parse(text: &str) -> Result<Loaded, LoadError> {
                 plen2: sections.plen2,
                 rflex: sections.rflex,
                 gamepad: sections.gamepad,
+                sound: sections.sound,
                 sections: kept_sections(text, &tags)?,
             };
             Ok(Loaded { project, unknown_keys, unknown_keys_not_kept })
@@ -307,6 +312,7 @@ pub fn to_json(project: &Project) -> String {
         plen2: wanted(Family::Plen2, project.plen2 == Plen2Project::default()).then_some(&project.plen2),
         rflex: wanted(Family::Rflex, project.rflex == RflexProject::default()).then_some(&project.rflex),
         gamepad: (!project.gamepad.is_empty()).then_some(&project.gamepad),
+        sound: project.sound.as_ref(),
         sections: project.sections.iter().filter(|(tag, _)| super::section::tags().contains(tag)).collect(),
     };
     // Serializing plain structs of strings and integers to a String cannot fail.

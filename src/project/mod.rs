@@ -17,6 +17,7 @@ mod read;
 pub mod rflex;
 mod section;
 mod servo;
+mod sound;
 mod timing;
 mod trajectory;
 mod validate;
@@ -35,6 +36,7 @@ pub use section::{Section, validate};
 pub use servo::{
     Action, Button, Command, JoystickTable, LinkMesh, Macro, RigAxis, RigEnd, RigJoint, Run, Servo, ServoProject, Step,
 };
+pub use sound::SoundTrack;
 pub use timing::{Timing, TimingError, action_duration_ms};
 pub use trajectory::{
     Follower, MAX_TRACE_WORK, SAMPLE_MS, Samples, TraceError, Trajectories, action_trajectories, angle_at, macro_cycle,

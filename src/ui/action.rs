@@ -248,6 +248,8 @@ pub enum Action {
     Terminate,
     /// What the import window asks for.
     Import(ImportAction),
+    /// The project's sound track: add, locate, offset, play in step with a preview.
+    Sound(crate::ui::sound::SoundAction),
     /// What a family's panels ask for (its own action type, which only that
     /// family's ui takes back).
     Family(Box<dyn FamilyAction>),

@@ -27,6 +27,7 @@ mod rflex;
 mod rows;
 mod servo;
 mod shell;
+pub mod sound;
 pub mod speed;
 mod transport;
 pub mod view3d;
@@ -52,6 +53,7 @@ pub use servo::{
     timeline_bars,
 };
 pub use shell::{RunningOperation, StatusLine};
+pub use sound::{SoundAction, SoundDesk};
 
 /// The sample robot `gui --demo` opens when no file is given: a 16-servo
 /// biped with captions in English and Traditional Chinese, a few actions, a

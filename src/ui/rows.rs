@@ -326,9 +326,14 @@ pub struct Retime {
     pub dragging: bool,
 }
 
+/// How near a sound's onset a dragged total must come to snap to it, ms.
+pub const SNAP_MS: f64 = 30.0;
+
 /// A span's times scaled: "Retime ×0.5 ×2 total [ms]", the span lasting
-/// `total_ms` now; the total can be typed or dragged.
-pub fn retime(ui: &mut egui::Ui, words: &crate::ui::i18n::Strings, total_ms: f64) -> Option<Retime> {
+/// `total_ms` now; the total can be typed or dragged. A dragged total that
+/// comes within [`SNAP_MS`] of one of `onsets_ms` (the sound's onsets, from
+/// the span's start) snaps to it, so the span ends on the beat.
+pub fn retime(ui: &mut egui::Ui, words: &crate::ui::i18n::Strings, total_ms: f64, onsets_ms: &[f64]) -> Option<Retime> {
     let mut asked = None;
     ui.label(words.retime);
     if ui.small_button("×0.5").clicked() {
@@ -341,6 +346,9 @@ pub fn retime(ui: &mut egui::Ui, words: &crate::ui::i18n::Strings, total_ms: f64
     let mut total = total_ms.round();
     let drag = egui::DragValue::new(&mut total).range(10.0..=3_600_000.0).speed(10.0).suffix(" ms");
     let response = ui.add(drag).labelled_by(label.id);
+    if response.dragged() {
+        total = crate::ui::graph::shape::snap(total, 0.0, onsets_ms, SNAP_MS).max(10.0);
+    }
     if response.changed() && (total - total_ms.round()).abs() >= 1.0 {
         let factor = crate::authoring::retime::factor_to_total(total_ms, total);
         asked = Some(Retime { factor, dragging: response.dragged() });

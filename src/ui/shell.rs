@@ -127,6 +127,8 @@ pub struct Shell<'a> {
     pub waker: &'a Waker,
     /// Writes files off the frame (exports).
     pub files: &'a FileWork,
+    /// The project's sound: played together with the board.
+    pub sound: &'a mut crate::ui::sound::SoundDesk,
 }
 
 impl Shell<'_> {
@@ -158,6 +160,8 @@ pub struct ShellView<'a> {
     pub waker: &'a Waker,
     /// The folder of the project's file (files it names are relative to it), once saved or opened.
     pub folder: Option<&'a Path>,
+    /// The project's sound, as read.
+    pub sound: crate::ui::sound::SoundView<'a>,
 }
 
 impl<'a> ShellView<'a> {

@@ -30,6 +30,11 @@ impl Transport {
         self.playing.is_some()
     }
 
+    /// While it plays: since when (the window's time, s) and from where (ms).
+    pub fn playing_from(&self) -> Option<(f64, f64)> {
+        self.playing
+    }
+
     /// Plays from the cursor, or stops where it is.
     pub fn toggle(&mut self, now_s: f64) {
         self.playing = match self.playing {

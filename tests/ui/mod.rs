@@ -20,3 +20,4 @@ mod preview;
 mod rig3d;
 mod rows;
 mod sliders;
+mod sound;

@@ -23,6 +23,14 @@ inventory::submit! {
     }
 }
 
+/// How long the board takes to receive the command that runs `macro_id` at
+/// `baud` after the link's `latency`: what a sound started with it waits for.
+pub fn run_macro_delay(macro_id: i32, baud: u32, latency: std::time::Duration) -> std::time::Duration {
+    let bytes =
+        crate::protocol::servo::Message::ExecuteMacroRequest { macro_id }.encode().map_or(0, |bytes| bytes.len());
+    crate::audio::together::link_delay(bytes, baud, latency)
+}
+
 /// Battery ‰ as a person reads it: `81.5 %`.
 pub fn battery_text(permil: i16) -> String {
     format!("{:.1} %", f64::from(permil) / 10.0)

@@ -36,6 +36,7 @@ impl StudioApp {
             }
             Action::Stop => self.stop(),
             Action::Import(action) => self.import.apply(action, &self.files.work, &self.document.project),
+            Action::Sound(action) => self.apply_sound(action),
             Action::SetLanguage(language) => self.language = language,
             Action::SetLiveSpeed(deg_per_s) => self.live_speed = LiveSpeed { deg_per_s }.clamped(),
             Action::ShowTab(tab) => self.window.tab = tab,

@@ -14,6 +14,7 @@ mod file_ops;
 mod gamepad;
 mod import;
 mod link_desk;
+mod sound;
 mod tabs;
 
 use std::io::Write;
@@ -69,6 +70,8 @@ pub struct StudioApp {
     pub pad: crate::ui::gamepad::PadInput,
     /// File → Import from another tool…: its window and work.
     pub import: crate::ui::import::ImportDesk,
+    /// The project's sound track: read, checked, played.
+    pub sound: crate::ui::sound::SoundDesk,
 }
 
 /// The window's own state.
@@ -107,6 +110,7 @@ impl StudioApp {
             window: Window { tab: Tab::Log, quit_allowed: false, terminate: None, waker },
             pad: crate::ui::gamepad::PadInput::default(),
             import: crate::ui::import::ImportDesk::default(),
+            sound: crate::ui::sound::SoundDesk::default(),
         };
         app.files.read_recovery_later();
         app.each_family(|family_ui, shell| family_ui.document_replaced(&shell.document.project));
@@ -145,7 +149,7 @@ impl StudioApp {
 
     /// The shell as a family's ui changes it, and the families' uis (borrowed apart).
     fn split(&mut self) -> (Shell<'_>, &mut Families) {
-        let Self { document, link, status, operation, language, live_speed, files, window, families, .. } = self;
+        let Self { document, link, status, operation, language, live_speed, files, window, families, sound, .. } = self;
         let shell = Shell {
             document,
             link,
@@ -156,6 +160,7 @@ impl StudioApp {
             data_dir: &files.data_dir,
             waker: &window.waker,
             files: &files.work,
+            sound,
         };
         (shell, families)
     }
@@ -181,7 +186,7 @@ impl StudioApp {
 
     /// What a family's panels draw from, and that family's ui.
     fn drawing(&mut self, family: Family) -> (ShellView<'_>, &mut dyn FamilyUi, Tab) {
-        let Self { document, link, operation, language, families, window, .. } = self;
+        let Self { document, link, operation, language, families, window, sound, .. } = self;
         let Window { tab, waker, .. } = window;
         let view = ShellView {
             project: &document.project,
@@ -191,6 +196,7 @@ impl StudioApp {
             language: *language,
             waker,
             folder: document.path.as_deref().and_then(std::path::Path::parent),
+            sound: sound.view(&document.project),
         };
         (view, families.get_mut(family), *tab)
     }
@@ -337,6 +343,7 @@ impl StudioApp {
         self.reconnect_when_back(now);
         self.finish_file_work(None);
         self.poll_import(ui.ctx());
+        self.keep_sound();
         let mut actions = Vec::new();
         Self::shortcuts(ui, &mut actions);
         self.poll_dialog(&mut actions);

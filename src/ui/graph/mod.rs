@@ -256,6 +256,11 @@ impl Graph {
                         let points = shape::curve_points(channel, |k, key| preview.key(curves, (c, k), key));
                         plot.line(Line::new(channel.name.as_str(), PlotPoints::from(points)).color(color).width(2.0));
                     }
+                    // The sound's onsets: keys dragged near one snap to it.
+                    let onset = crate::ui::sound::lane::ONSET.gamma_multiply(0.6);
+                    for t in curves.onsets_ms.iter().filter(|t| (bounds.min()[0]..=bounds.max()[0]).contains(*t)) {
+                        plot.vline(egui_plot::VLine::new("", *t).color(onset).width(1.0));
+                    }
                     if let Some(t) = curves.cursor_ms {
                         plot.vline(egui_plot::VLine::new("", t).color(cursor_color).width(1.5));
                     }

@@ -38,6 +38,8 @@ pub struct MotionsPanel {
     baked: Option<((u64, usize), Baked)>,
     /// The frames a retime applies to: first and last, from 0 (all, unless set).
     retime_span: Option<(usize, usize)>,
+    /// The sound's onsets on the motion's time, ms (a dragged retime snaps to them).
+    onsets_ms: Vec<f64>,
 }
 
 fn edit(project: &Plen2Project, change: impl FnOnce(&mut Plen2Project), key: Option<String>) -> Action {
@@ -68,6 +70,7 @@ impl MotionsPanel {
     ) {
         let (project, revision, words) = (&view.project.plen2, view.revision, view.language.strings());
         let connected = view.link.is_some_and(|link| link.plen2().is_some());
+        self.onsets_ms = view.sound.onsets_ms();
         if self.flagged_at != Some(revision) {
             self.flagged.clear();
             for problem in problems {
@@ -117,11 +120,13 @@ impl MotionsPanel {
             // The preview's time cursor, drawn on the graph too (while the preview is open).
             Part::Graph => {
                 let cursor = view_open.then_some(preview.transport.t_ms);
-                self.graph(ui, (project, cursor), words, actions);
+                let onsets = std::mem::take(&mut self.onsets_ms);
+                self.graph(ui, (project, cursor, &onsets), words, actions);
+                self.onsets_ms = onsets;
             }
             Part::View => {
                 let motion = &project.motions[self.selected];
-                preview.motion(ui, (project, revision), (motion.slot, self.frame), pose, words);
+                preview.motion(ui, (project, revision), (motion.slot, self.frame), pose, (view, actions));
             }
         });
         if let Some(index) = picked {
@@ -143,7 +148,7 @@ impl MotionsPanel {
     fn graph(
         &mut self,
         ui: &mut egui::Ui,
-        (project, cursor_ms): (&Plen2Project, Option<f64>),
+        (project, cursor_ms, onsets_ms): (&Plen2Project, Option<f64>, &[f64]),
         words: &Strings,
         actions: &mut Vec<Action>,
     ) {
@@ -158,7 +163,7 @@ impl MotionsPanel {
             channels,
             lane,
             update_ms: crate::authoring::fitted::PLEN2_UPDATE_MS,
-            onsets_ms: &[],
+            onsets_ms,
             cursor_ms,
             editable: true,
         };
@@ -306,6 +311,7 @@ impl MotionsPanel {
 
     /// Retimes frames `#first–#last` (all unless set): ×0.5, ×2 or to a total.
     fn retime_row(&mut self, ui: &mut egui::Ui, project: &Plen2Project, words: &Strings, actions: &mut Vec<Action>) {
+        let onsets_ms = &self.onsets_ms;
         let index = self.selected;
         let last = project.motions[index].frames.len().saturating_sub(1);
         let (mut first, mut end) = self.retime_span.unwrap_or((0, last));
@@ -319,7 +325,11 @@ impl MotionsPanel {
             ui.add(egui::DragValue::new(&mut end).range(first..=last).prefix("#")).labelled_by(label.id);
             let total_ms: f64 =
                 project.motions[index].frames[first..=end].iter().map(|frame| f64::from(frame.transition_ms)).sum();
-            factor = rows::retime(ui, words, total_ms);
+            // The span starts where its first frame does (the motion from 0, as the preview plays it).
+            let start_ms: f64 =
+                project.motions[index].frames[..first].iter().map(|frame| f64::from(frame.transition_ms)).sum();
+            let from_start: Vec<f64> = onsets_ms.iter().map(|t| t - start_ms).filter(|t| *t > 0.0).collect();
+            factor = rows::retime(ui, words, total_ms, &from_start);
         });
         self.retime_span = Some((first, end)).filter(|span| *span != (0, last));
         if let Some(asked) = factor {

@@ -34,6 +34,8 @@ pub struct Preview {
     motion_view: View,
     /// The motion editor's time cursor.
     pub transport: Transport,
+    /// The sound lane under it.
+    pub lane: crate::ui::sound::SoundLane,
     /// The motion played before the previewed one (none: power-up).
     pub after: Option<u8>,
     /// The playback, for (document revision, slot, played after).
@@ -62,6 +64,7 @@ impl Default for Preview {
             joints_view: View::default(),
             motion_view: View::default(),
             transport: Transport::default(),
+            lane: crate::ui::sound::SoundLane::default(),
             after: None,
             playback: None,
             selected: None,
@@ -205,8 +208,9 @@ impl Preview {
         (project, revision): (&Plen2Project, u64),
         (slot, frame): (u8, usize),
         pose: &[i16; 18],
-        words: &Strings,
+        (view, actions): (&crate::ui::shell::ShellView<'_>, &mut Vec<Action>),
     ) {
+        let words = view.language.strings();
         let now = ui.input(|input| input.time);
         ui.horizontal(|ui| self.played_after_ui(ui, project, words));
         self.refresh(project, revision, slot);
@@ -241,6 +245,7 @@ impl Preview {
             })
             .collect();
         self.transport.ui(ui, played.duration_ms(), &marks, words);
+        self.lane.ui(ui, view.sound, (&mut self.transport, played.duration_ms(), &marks), view.language, actions);
         warnings(ui, (project, slot), played, (settings, pose), words);
         let Some(cycle) = played.cycle_at(self.transport.t_ms) else {
             self.shown = None;

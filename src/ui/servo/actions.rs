@@ -138,11 +138,15 @@ impl ActionPanel {
             }),
             Part::Editor => {
                 budget_meter(ui, budget, words);
-                seek = Self::editor(ui, project, index, facts, connected, words, actions);
+                let onsets = view.sound.onsets_ms();
+                seek = Self::editor(ui, project, index, (facts, &onsets), connected, words, actions);
             }
             Part::Lower => timeline(ui, project, &project.actions[index], (facts.longest_ms, cursor)),
-            Part::View => preview.timed(ui, project, &facts.timed, words),
-            Part::Graph => graph_pane(ui, graph, (project, index), (&facts.channels, cursor), words.lang, actions),
+            Part::View => preview.timed(ui, project, &facts.timed, (view, actions)),
+            Part::Graph => {
+                let onsets = view.sound.onsets_ms();
+                graph_pane(ui, graph, (project, index), (&facts.channels, cursor, &onsets), words.lang, actions);
+            }
         });
         if let Some(t_ms) = seek {
             preview.transport.seek(t_ms, ui.input(|input| input.time));
@@ -153,7 +157,7 @@ impl ActionPanel {
         ui: &mut egui::Ui,
         project: &ServoProject,
         index: usize,
-        derived: &Facts,
+        (derived, onsets_ms): (&Facts, &[f64]),
         connected: bool,
         words: &Strings,
         actions: &mut Vec<Action>,
@@ -164,7 +168,7 @@ impl ActionPanel {
             // Every step: they all start together, so the action keeps its shape.
             #[allow(clippy::cast_precision_loss)]
             let total_ms = crate::project::action_duration_ms(action) as f64;
-            if let Some(asked) = rows::retime(ui, words, total_ms) {
+            if let Some(asked) = rows::retime(ui, words, total_ms, onsets_ms) {
                 let mut retimed = action.clone();
                 crate::authoring::retime::scale_steps(&mut retimed.steps, asked.factor);
                 actions.push(set(index, retimed, asked.dragging.then(|| format!("action {} retime", action.id))));
@@ -191,12 +195,12 @@ fn graph_pane(
     ui: &mut egui::Ui,
     graph: &mut Graph,
     (project, index): (&ServoProject, usize),
-    (channels, cursor_ms): (&[Channel], Option<f64>),
+    (channels, cursor_ms, onsets_ms): (&[Channel], Option<f64>, &[f64]),
     language: crate::ui::i18n::Language,
     actions: &mut Vec<Action>,
 ) {
-    let curves =
-        Curves { channels, lane: &[], update_ms: super::graph::UPDATE_MS, onsets_ms: &[], cursor_ms, editable: true };
+    let update_ms = super::graph::UPDATE_MS;
+    let curves = Curves { channels, lane: &[], update_ms, onsets_ms, cursor_ms, editable: true };
     if let Some(done) = graph.show(ui, "action-graph", &curves, language) {
         let changed = super::graph::apply(project, &project.actions[index], &done);
         actions.push(set(index, changed, None));

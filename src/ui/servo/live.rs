@@ -149,6 +149,33 @@ impl ServoUi {
         }
     }
 
+    /// Runs a stored macro on the board; with a sound track, the sound starts
+    /// with it (its point for the motion's start heard as the board starts
+    /// moving, the command sent the line's time early).
+    pub(super) fn run_macro(&mut self, shell: &mut Shell<'_>, macro_id: i32) {
+        let Some(servo) = shell.servo_mut() else {
+            shell.report(shell.words().servo().msg_connect_for_macro, true);
+            return;
+        };
+        let requester = servo.requester();
+        let baud = crate::device::servo::DEFAULT_BAUD;
+        let delay = crate::device::servo::run_macro_delay(macro_id, baud, Duration::ZERO);
+        let start = move || {
+            // The reply is the board's to give; a lost one is the link's to report.
+            let _ = requester.run_macro(macro_id);
+        };
+        let waker = shell.waker.clone();
+        if !shell.sound.play_with_board(&shell.document.project, 0.0, (delay, waker), start)
+            && let Some(servo) = shell.servo_mut()
+        {
+            servo.run_macro(macro_id);
+        }
+        let project = &shell.document.project.servo;
+        let running = crate::project::Timing::new(project).macro_total_ms(macro_id).unwrap_or(0);
+        let running = Duration::from_millis(u64::try_from(running).unwrap_or(0));
+        self.board_moved_them(project, Instant::now(), running);
+    }
+
     pub(super) fn set_pose(&mut self, shell: &mut Shell<'_>, servo_id: u8, degree: i16) {
         let Some(servo) = shell.document.project.servo.servo(servo_id) else {
             return;

@@ -167,17 +167,18 @@ impl MacroPanel {
             Part::Editor => played_from = Self::editor(ui, project, index, derived, connected, words, actions),
             Part::Lower => {}
             Part::Graph => {
+                let onsets = view.sound.onsets_ms();
                 let curves = Curves {
                     channels: &derived.channels,
                     lane: &derived.lane,
                     update_ms: super::graph::UPDATE_MS,
-                    onsets_ms: &[],
+                    onsets_ms: &onsets,
                     cursor_ms: cursor,
                     editable: false,
                 };
                 graph.show(ui, "macro-graph", &curves, words.lang);
             }
-            Part::View => preview.timed(ui, project, &derived.timed, words),
+            Part::View => preview.timed(ui, project, &derived.timed, (view, actions)),
         });
         // Played from a command: the preview's cursor goes where it starts.
         if let Some(position) = played_from {

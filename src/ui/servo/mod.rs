@@ -188,16 +188,7 @@ impl ServoUi {
             ServoAction::PlayAction(action_id) => self.play_action(shell, action_id),
             ServoAction::PlayMacroFrom { macro_id, command } => self.play_macro_from(shell, macro_id, command),
             ServoAction::PreviewAction(action_id) => self.preview = Some((action_id, Instant::now())),
-            ServoAction::RunMacro(macro_id) => match shell.servo_mut() {
-                Some(servo) => {
-                    servo.run_macro(macro_id);
-                    let project = &shell.document.project.servo;
-                    let running = crate::project::Timing::new(project).macro_total_ms(macro_id).unwrap_or(0);
-                    let running = std::time::Duration::from_millis(u64::try_from(running).unwrap_or(0));
-                    self.board_moved_them(project, Instant::now(), running);
-                }
-                None => shell.report(shell.words().servo().msg_connect_for_macro, true),
-            },
+            ServoAction::RunMacro(macro_id) => self.run_macro(shell, macro_id),
             ServoAction::PickButton { table_index } => match shell.servo_mut() {
                 Some(servo) => {
                     servo.subscribe_buttons(true);

@@ -16,6 +16,7 @@ use crate::ui::layout;
 use crate::ui::rows;
 use crate::ui::servo::action::ServoAction;
 use crate::ui::servo::captions::ServoWords;
+use crate::ui::shell::ShellView;
 use crate::ui::transport::Transport;
 use crate::ui::view3d::posing::{self, Posing};
 use crate::ui::view3d::{Handle, MeshFiles, Scene, SceneMesh, Touch, View};
@@ -73,6 +74,8 @@ pub struct Preview {
     folder: Option<PathBuf>,
     /// The mesh files read so far.
     pub mesh_files: MeshFiles,
+    /// The sound lane under the time cursor.
+    pub lane: crate::ui::sound::SoundLane,
 }
 
 /// The lowest point of a scene's solids.
@@ -327,9 +330,18 @@ impl Preview {
 
     /// An action's or a macro's trajectory at the time cursor, with the pose
     /// at its next mark as a ghost.
-    pub fn timed(&mut self, ui: &mut egui::Ui, project: &ServoProject, timed: &Timed, words: &Strings) {
+    pub fn timed(
+        &mut self,
+        ui: &mut egui::Ui,
+        project: &ServoProject,
+        timed: &Timed,
+        (view, actions): (&ShellView<'_>, &mut Vec<Action>),
+    ) {
+        let words = view.language.strings();
         self.rig(project);
         self.transport.ui(ui, timed.end_ms, &timed.marks, words);
+        let cursor = (&mut self.transport, timed.end_ms, &timed.marks[..]);
+        self.lane.ui(ui, view.sound, cursor, view.language, actions);
         let at = |t: f64| -> BTreeMap<u8, f64> {
             // The board updates its servos every 10 ms: the nearest update.
             let step = (t / project::SAMPLE_MS).round().clamp(0.0, (timed.end_ms / project::SAMPLE_MS).ceil());

@@ -1,0 +1,34 @@
+//! The shell's side of the sound track: kept in step with the project
+//! every frame, and its actions applied.
+
+use super::*;
+use crate::ui::sound::SoundAction;
+
+impl StudioApp {
+    /// Reads the project's sound when it names another file, takes in a
+    /// finished reading, and says what the sound has to say (once).
+    pub(super) fn keep_sound(&mut self) {
+        let folder = self.document.path.as_deref().and_then(std::path::Path::parent).map(std::path::Path::to_path_buf);
+        let edit = self.sound.sync(&self.document.project, folder.as_deref(), &self.window.waker);
+        if let Some((edit, coalesce)) = edit {
+            self.document.apply(edit, Some(coalesce));
+            self.document.seal();
+        }
+        self.say_sound();
+    }
+
+    /// Applies a sound action.
+    pub(super) fn apply_sound(&mut self, action: SoundAction) {
+        let folder = self.document.path.as_deref().and_then(std::path::Path::parent).map(std::path::Path::to_path_buf);
+        if let Some((edit, coalesce)) = self.sound.apply(action, &self.document.project, folder.as_deref()) {
+            self.document.apply(edit, Some(coalesce));
+        }
+        self.say_sound();
+    }
+
+    fn say_sound(&mut self) {
+        if let Some(said) = self.sound.take_said() {
+            self.report(said, false);
+        }
+    }
+}

@@ -1,0 +1,393 @@
+//! The project's sound track in the editor: read off the frame with
+//! progress (hashed and analysed in one pass each), checked against what the
+//! project recorded of it (a missing or changed file is said, with what to
+//! do), played in step with a preview's time cursor, scrubbed in short
+//! grains, and started together with the board. The lane under each
+//! preview's cursor is [`lane`].
+
+pub mod lane;
+mod reading;
+
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+use crate::audio::output::{Playing, Speakers};
+use crate::link::Waker;
+use crate::project::{Edit, Project, SoundTrack};
+use reading::{Read, Reading};
+
+pub use lane::SoundLane;
+pub use reading::sha256 as sha256_of;
+
+/// A grain played while scrubbing, s.
+pub const GRAIN_S: f64 = 0.06;
+
+/// What is wrong with the project's sound file.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Problem {
+    /// The file is not where the project says.
+    Missing(PathBuf),
+    /// It is there but cannot be read as a sound.
+    Unreadable(String),
+    /// It reads, but is not the file the project was timed to (its content changed).
+    Changed(PathBuf),
+}
+
+/// What a sound action asks.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SoundAction {
+    /// Add this file as the project's sound track (replacing any).
+    Add(PathBuf),
+    /// The project's sound is now this file (keeping the offset and sensitivity).
+    Locate(PathBuf),
+    /// Keep the changed file, as it is now.
+    AcceptChanged,
+    /// No sound track.
+    Remove,
+    /// Where the sound starts on the motion's time, ms.
+    SetOffset(i64),
+    /// Onset sensitivity, percent.
+    SetSensitivity(u8),
+    /// Play the sound from the motion's `from_ms` (the preview started, or went on from elsewhere).
+    Play {
+        /// The motion's time, ms.
+        from_ms: f64,
+    },
+    /// Stop the sound.
+    Silence,
+    /// A short grain at the motion's `at_ms` (scrubbing).
+    Grain {
+        /// The motion's time, ms.
+        at_ms: f64,
+    },
+}
+
+/// Whether sound can be played.
+enum Output {
+    /// Not asked yet (the server is asked the first time sound plays).
+    Unasked,
+    /// Connected.
+    Ready(Speakers),
+    /// No sound output: said once, then the motion plays on without it.
+    None,
+}
+
+/// The editor's sound: the file read, the speakers, what plays.
+pub struct SoundDesk {
+    reading: Option<Reading>,
+    read: Option<Read>,
+    problem: Option<Problem>,
+    /// The file the reading or the read is of.
+    file: Option<PathBuf>,
+    output: Output,
+    playing: Option<Playing>,
+    /// Where the sound server is, when not the environment's (tests).
+    server: Option<PathBuf>,
+    /// Onsets at the track's sensitivity, s (and that sensitivity).
+    onsets: (u8, Vec<f64>),
+    /// A line for the status bar, once.
+    said: Option<String>,
+    /// An edit the project needs (a sound added or located, once read).
+    edit: Option<(Edit, &'static str)>,
+    /// The file being added or located, and the track it becomes.
+    adding: Option<SoundTrack>,
+    /// A sound being started together with the board, off the frame.
+    joining: Option<crossbeam_channel::Receiver<Result<Playing, crate::audio::output::OutputError>>>,
+}
+
+impl std::fmt::Debug for SoundDesk {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("SoundDesk").field("file", &self.file).field("problem", &self.problem).finish_non_exhaustive()
+    }
+}
+
+impl Default for SoundDesk {
+    fn default() -> Self {
+        Self {
+            reading: None,
+            read: None,
+            problem: None,
+            file: None,
+            output: Output::Unasked,
+            playing: None,
+            server: None,
+            onsets: (u8::MAX, Vec::new()),
+            said: None,
+            edit: None,
+            adding: None,
+            joining: None,
+        }
+    }
+}
+
+/// Where a project's sound file is: relative to the project's folder.
+pub fn resolve(track: &str, folder: Option<&Path>) -> PathBuf {
+    let path = Path::new(track);
+    match folder {
+        Some(folder) if path.is_relative() => folder.join(path),
+        _ => path.to_path_buf(),
+    }
+}
+
+/// How a project names a file: relative to its folder, `/` between folders (absolute outside it).
+pub fn stored(file: &Path, folder: Option<&Path>) -> String {
+    match folder.and_then(|folder| file.strip_prefix(folder).ok()) {
+        Some(relative) => relative.iter().map(|part| part.to_string_lossy()).collect::<Vec<_>>().join("/"),
+        None => file.to_string_lossy().into_owned(),
+    }
+}
+
+impl SoundDesk {
+    /// A desk that plays through the sound server at `socket` (tests run their own).
+    pub fn with_server(socket: PathBuf) -> Self {
+        Self { server: Some(socket), ..Self::default() }
+    }
+
+    /// Keeps up with the project: reads its sound when it names another file;
+    /// takes in a finished reading. Returns an edit the project needs.
+    pub fn sync(&mut self, project: &Project, folder: Option<&Path>, waker: &Waker) -> Option<(Edit, &'static str)> {
+        let wanted = match (&self.adding, &project.sound) {
+            (Some(adding), _) => Some(resolve(&adding.path, folder)),
+            (None, Some(track)) => Some(resolve(&track.path, folder)),
+            (None, None) => None,
+        };
+        if wanted != self.file {
+            self.silence();
+            self.read = None;
+            self.problem = None;
+            self.onsets = (u8::MAX, Vec::new());
+            self.reading = wanted.as_ref().map(|file| Reading::start(file.clone(), waker.clone()));
+            self.file = wanted;
+        }
+        if let Some(done) = self.reading.as_mut().and_then(Reading::done) {
+            self.reading = None;
+            self.took(done, project);
+        }
+        if let Some(joined) = self.joining.as_ref().and_then(|joining| joining.try_recv().ok()) {
+            self.joining = None;
+            match joined {
+                Ok(playing) => self.playing = Some(playing),
+                Err(error) => self.said = Some(error.to_string()),
+            }
+        }
+        if let (Some(track), Some(read)) = (&project.sound, &self.read) {
+            let sensitivity = track.sensitivity_percent.min(100);
+            if self.onsets.0 != sensitivity {
+                self.onsets = (sensitivity, read.analysis.found.onsets(track.sensitivity()));
+            }
+        }
+        self.edit.take()
+    }
+
+    /// A reading has ended: the sound, or what is wrong.
+    fn took(&mut self, done: Result<Read, Problem>, project: &Project) {
+        match (done, self.adding.take()) {
+            (Ok(read), Some(mut track)) => {
+                track.duration_ms = read.duration_ms();
+                track.sha256.clone_from(&read.sha256);
+                self.edit = Some((Edit::SetSound(Some(track)), "sound"));
+                self.read = Some(read);
+            }
+            (Ok(read), None) => {
+                let changed = project.sound.as_ref().is_some_and(|track| track.sha256 != read.sha256);
+                self.problem = changed.then(|| Problem::Changed(self.file.clone().unwrap_or_default()));
+                self.read = Some(read);
+            }
+            (Err(problem), adding) => {
+                if adding.is_some() {
+                    // The file picked is no sound: the project keeps what it had.
+                    self.said = Some(match &problem {
+                        Problem::Unreadable(why) => why.clone(),
+                        Problem::Missing(file) | Problem::Changed(file) => file.display().to_string(),
+                    });
+                    self.file = None;
+                } else {
+                    self.problem = Some(problem);
+                }
+            }
+        }
+    }
+
+    /// Applies a sound action; returns an edit of the project it makes.
+    pub fn apply(
+        &mut self,
+        action: SoundAction,
+        project: &Project,
+        folder: Option<&Path>,
+    ) -> Option<(Edit, &'static str)> {
+        let track = project.sound.clone();
+        let set = |track: SoundTrack| Some((Edit::SetSound(Some(track)), "sound"));
+        match action {
+            SoundAction::Add(file) => {
+                self.adding = Some(SoundTrack {
+                    path: stored(&file, folder),
+                    duration_ms: 0,
+                    sha256: String::new(),
+                    offset_ms: 0,
+                    sensitivity_percent: 50,
+                });
+                None
+            }
+            SoundAction::Locate(file) => {
+                let (offset_ms, sensitivity_percent) =
+                    track.map_or((0, 50), |track| (track.offset_ms, track.sensitivity_percent));
+                let path = stored(&file, folder);
+                self.adding =
+                    Some(SoundTrack { path, duration_ms: 0, sha256: String::new(), offset_ms, sensitivity_percent });
+                None
+            }
+            SoundAction::AcceptChanged => {
+                let (mut track, read) = (track?, self.read.as_ref()?);
+                track.duration_ms = read.duration_ms();
+                track.sha256.clone_from(&read.sha256);
+                self.problem = None;
+                set(track)
+            }
+            SoundAction::Remove => Some((Edit::SetSound(None), "sound")),
+            SoundAction::SetOffset(offset_ms) => set(SoundTrack { offset_ms, ..track? }),
+            SoundAction::SetSensitivity(percent) => set(SoundTrack { sensitivity_percent: percent.min(100), ..track? }),
+            SoundAction::Play { from_ms } => {
+                self.play(&track?, from_ms, None);
+                None
+            }
+            SoundAction::Silence => {
+                self.silence();
+                None
+            }
+            SoundAction::Grain { at_ms } => {
+                self.play(&track?, at_ms, Some(Duration::from_secs_f64(GRAIN_S)));
+                None
+            }
+        }
+    }
+
+    /// Plays from the motion's `from_ms` (for `only` at most).
+    fn play(&mut self, track: &SoundTrack, from_ms: f64, only: Option<Duration>) {
+        self.silence();
+        let (Some(file), Some(read)) = (&self.file, &self.read) else { return };
+        // Offsets and times within an hour: exact in f64.
+        #[allow(clippy::cast_precision_loss)]
+        let sound_s = (from_ms - track.offset_ms as f64) / 1000.0;
+        if sound_s >= read.analysis.duration_s() {
+            return;
+        }
+        let file = file.clone();
+        let Some(speakers) = self.speakers() else { return };
+        match speakers.play_for(&file, sound_s, only) {
+            Ok(playing) => self.playing = Some(playing),
+            Err(error) => self.said = Some(error.to_string()),
+        }
+    }
+
+    /// The speakers, connecting the first time; None (said once) when there is no sound output.
+    fn speakers(&mut self) -> Option<&Speakers> {
+        if matches!(self.output, Output::Unasked) {
+            let connected = match &self.server {
+                Some(socket) => Speakers::connect_to(socket),
+                None => Speakers::connect(),
+            };
+            self.output = match connected {
+                Ok(speakers) => Output::Ready(speakers),
+                Err(error) => {
+                    self.said = Some(error.to_string());
+                    Output::None
+                }
+            };
+        }
+        match &self.output {
+            Output::Ready(speakers) => Some(speakers),
+            Output::Unasked | Output::None => None,
+        }
+    }
+
+    /// Stops the sound.
+    pub fn silence(&mut self) {
+        if let Some(playing) = self.playing.take() {
+            playing.stop();
+        }
+    }
+
+    /// Starts the board and the sound together: the sound's point for the
+    /// motion's `from_ms` is heard as the board starts moving; `start_board`
+    /// sends the start command `link_delay` before. Off the frame. False when
+    /// there is no sound to play (the caller starts the board alone).
+    pub fn play_with_board(
+        &mut self,
+        project: &Project,
+        from_ms: f64,
+        (link_delay, waker): (Duration, Waker),
+        start_board: impl FnOnce() + Send + 'static,
+    ) -> bool {
+        let (Some(track), Some(file), Some(_)) = (&project.sound, self.file.clone(), &self.read) else { return false };
+        // Offsets within an hour: exact in f64.
+        #[allow(clippy::cast_precision_loss)]
+        let sound_s = (from_ms - track.offset_ms as f64) / 1000.0;
+        self.silence();
+        let Some(speakers) = self.speakers().cloned() else { return false };
+        let (sender, joining) = crossbeam_channel::bounded(1);
+        let spawned = std::thread::Builder::new().name("sound and board".into()).spawn(move || {
+            let started = crate::audio::together::start(&speakers, &file, sound_s, link_delay, start_board);
+            let _ = sender.send(started.map(|together| together.playing));
+            waker();
+        });
+        if spawned.is_err() {
+            return false;
+        }
+        self.joining = Some(joining);
+        true
+    }
+
+    /// A line for the status bar, once ("no sound output", a file that is no sound).
+    pub fn take_said(&mut self) -> Option<String> {
+        self.said.take()
+    }
+
+    /// What the lane draws from.
+    pub fn view<'a>(&'a self, project: &'a Project) -> SoundView<'a> {
+        SoundView {
+            track: project.sound.as_ref(),
+            read: self.read.as_ref().map(|read| &read.analysis),
+            onsets_s: &self.onsets.1,
+            progress: self.reading.as_ref().map(Reading::progress),
+            problem: self.problem.as_ref(),
+            file: self.file.as_deref(),
+        }
+    }
+
+    /// Whether sound plays now.
+    pub fn is_playing(&self) -> bool {
+        self.playing.as_ref().is_some_and(Playing::is_playing)
+    }
+}
+
+/// The sound as the lane and the panels see it.
+#[derive(Clone, Copy, Debug)]
+pub struct SoundView<'a> {
+    /// The project's record of it.
+    pub track: Option<&'a SoundTrack>,
+    /// The sound read, once read.
+    pub read: Option<&'a crate::audio::Analysis>,
+    /// Its onsets at the track's sensitivity, s from the sound's start.
+    pub onsets_s: &'a [f64],
+    /// While reading: how far (0–1).
+    pub progress: Option<f32>,
+    /// What is wrong with it.
+    pub problem: Option<&'a Problem>,
+    /// The file.
+    pub file: Option<&'a Path>,
+}
+
+impl SoundView<'_> {
+    /// No sound at all.
+    pub const NONE: SoundView<'static> =
+        SoundView { track: None, read: None, onsets_s: &[], progress: None, problem: None, file: None };
+
+    /// The onsets on the motion's time, ms (what frames, steps and retimes snap to).
+    pub fn onsets_ms(&self) -> Vec<f64> {
+        let Some(track) = self.track else { return Vec::new() };
+        // Offsets within an hour: exact in f64.
+        #[allow(clippy::cast_precision_loss)]
+        let offset = track.offset_ms as f64;
+        self.onsets_s.iter().map(|s| s * 1000.0 + offset).filter(|t| *t >= 0.0).collect()
+    }
+}

@@ -1,0 +1,222 @@
+//! The sound track in the editor: a click track added through the file
+//! dialog is stored relative to the project with its length and hash, drawn
+//! as a lane under the preview's cursor with its onsets, moved by dragging
+//! the lane (one undo step); a missing or changed file opens the project and
+//! says which, with Locate and Remove; Play plays the sound through a real
+//! PulseAudio server (null sink) and Pause stops it; without a sound server
+//! "no sound output" is said once and the motion plays on; Run on the board
+//! starts the sound with the macro.
+
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+
+use crate::common;
+use crate::common::pulse::Pulse;
+
+use std::path::{Path, PathBuf};
+
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use servo_studio::link::{LinkEvent, Waker, no_waker};
+use servo_studio::project::{Project, SoundTrack};
+use servo_studio::sim::SimEvent;
+use servo_studio::ui::{Action, FileRequest, Picker, ServoBoardLink as _, SoundAction, SoundDesk, StudioApp, Tab};
+
+/// Clicks at these times (s) in a 3 s track.
+const CLICKS: [f64; 4] = [0.3, 0.9, 1.6, 2.2];
+
+fn click_track(path: &Path) {
+    let rate = 22_050u32;
+    let mut samples = vec![0.0f32; 3 * rate as usize];
+    for at in CLICKS {
+        let start = (at * f64::from(rate)) as usize;
+        for (i, sample) in samples[start..start + 300].iter_mut().enumerate() {
+            *sample = (i as f32 * 0.9).sin() * (-(i as f32) / 60.0).exp() * 0.9;
+        }
+    }
+    std::fs::write(path, servo_studio::audio::pcm16_wav(&samples, rate, 1)).unwrap();
+}
+
+/// A file dialog that answers each request with the next of `answers`.
+fn picker(answers: Vec<PathBuf>) -> Picker {
+    let answers = std::sync::Mutex::new(answers.into_iter());
+    std::sync::Arc::new(move |_: &FileRequest, waker: Waker| {
+        let (tx, rx) = crossbeam_channel::bounded(1);
+        tx.send(answers.lock().unwrap().next()).unwrap();
+        waker();
+        rx
+    })
+}
+
+/// The sample robot saved in `dir`, opened from there in the Actions tab.
+fn saved_editor(dir: &Path, project: Project, answers: Vec<PathBuf>) -> Harness<'static, StudioApp> {
+    let path = dir.join("show.json");
+    servo_studio::project::save(&path, &project).unwrap();
+    let data = tempfile::tempdir().unwrap().keep();
+    let app = StudioApp::new(project, Some(path), no_waker()).with_data_dir(data).with_picker(picker(answers));
+    common::ui::showing(app, Tab::Actions, (1300.0, 900.0))
+}
+
+fn track(harness: &Harness<'static, StudioApp>) -> Option<SoundTrack> {
+    harness.state().document.project.sound.clone()
+}
+
+#[test]
+fn an_added_sound_is_kept_relative_with_its_hash_drawn_with_its_onsets_and_moved_by_dragging_the_lane() {
+    let dir = tempfile::tempdir().unwrap();
+    let sound = dir.path().join("clicks.wav");
+    click_track(&sound);
+    let mut harness = saved_editor(dir.path(), servo_studio::ui::sample_project(), vec![sound.clone()]);
+    harness.get_by_label_contains("Add a sound…").click();
+    common::ui::run_until(&mut harness, "the sound read", |app| {
+        app.document.project.sound.as_ref().is_some_and(|track| !track.sha256.is_empty())
+    });
+    let added = track(&harness).unwrap();
+    assert_eq!(added.path, "clicks.wav", "relative to the project's folder");
+    assert_eq!(added.duration_ms, 3000);
+    let hash = servo_studio::ui::sound::sha256_of(&sound).unwrap();
+    assert_eq!(added.sha256, hash);
+    assert!(harness.query_by_label_contains("Sound: clicks.wav").is_some(), "the lane names the file");
+    // The onsets, on the motion's time: every click within 10 ms.
+    let view = harness.state().sound.view(&harness.state().document.project);
+    let onsets = view.onsets_ms();
+    assert_eq!(onsets.len(), CLICKS.len(), "{onsets:?}");
+    for (onset, click) in onsets.iter().zip(CLICKS) {
+        assert!((onset - click * 1000.0).abs() <= 10.0, "{onset} ms for a click at {click} s");
+    }
+    // Dragging the waveform to the right moves the sound later; one undo puts it back.
+    let lane = harness.get_by_label_contains("Click: cursor here").rect();
+    let from = lane.center();
+    harness.drag_at(from);
+    harness.step();
+    for part in 1..=6 {
+        harness.hover_at(from + egui::vec2(10.0 * part as f32, 0.0));
+        harness.step();
+    }
+    harness.drop_at(from + egui::vec2(60.0, 0.0));
+    harness.run_steps(3);
+    let moved = track(&harness).unwrap().offset_ms;
+    assert!(moved > 50, "the sound starts later: {moved} ms");
+    let onsets = harness.state().sound.view(&harness.state().document.project).onsets_ms();
+    assert!((onsets[0] - (300.0 + moved as f64)).abs() <= 10.0, "the onsets move with it");
+    harness.state_mut().apply(Action::Undo);
+    harness.run_steps(2);
+    assert_eq!(track(&harness).unwrap().offset_ms, 0, "one drag, one undo step");
+}
+
+#[test]
+fn a_missing_or_changed_sound_opens_the_project_and_says_what_to_do() {
+    let dir = tempfile::tempdir().unwrap();
+    let here = dir.path().join("found.wav");
+    click_track(&here);
+    let mut project = servo_studio::ui::sample_project();
+    let gone = SoundTrack {
+        path: "songs/gone.wav".into(),
+        duration_ms: 3000,
+        sha256: "00".repeat(32),
+        offset_ms: 120,
+        sensitivity_percent: 70,
+    };
+    project.sound = Some(gone);
+    let mut harness = saved_editor(dir.path(), project.clone(), vec![here.clone()]);
+    common::ui::run_until(&mut harness, "the missing file said", |app| {
+        app.sound.view(&app.document.project).problem.is_some()
+    });
+    assert!(harness.query_by_label_contains("gone.wav is missing").is_some(), "names the file and what to do");
+    assert_eq!(harness.state().document.project.servo, project.servo, "the project opened whole");
+    harness.get_by_label("Locate…").click();
+    common::ui::run_until(&mut harness, "the located file read", |app| {
+        app.document.project.sound.as_ref().is_some_and(|track| track.path == "found.wav")
+    });
+    let located = track(&harness).unwrap();
+    assert_eq!((located.offset_ms, located.sensitivity_percent), (120, 70), "the timing is kept");
+    assert!(harness.query_by_label_contains("is missing").is_none());
+
+    // The file changes under the project: said, and kept as it is now when asked.
+    let shorter: Vec<f32> = vec![0.0; 22_050];
+    std::fs::write(&here, servo_studio::audio::pcm16_wav(&shorter, 22_050, 1)).unwrap();
+    let project = harness.state().document.project.clone();
+    let mut harness = saved_editor(dir.path(), project, Vec::new());
+    common::ui::run_until(&mut harness, "the change said", |app| {
+        app.sound.view(&app.document.project).problem.is_some()
+    });
+    assert!(harness.query_by_label_contains("has changed since the show was timed to it").is_some());
+    harness.get_by_label("Keep it as it is now").click();
+    harness.run_steps(3);
+    assert_eq!(track(&harness).unwrap().duration_ms, 1000);
+    assert!(harness.query_by_label_contains("has changed").is_none());
+}
+
+/// The sample robot with `clicks.wav` as its sound, in `dir`.
+fn with_sound(dir: &Path) -> Project {
+    let sound = dir.join("clicks.wav");
+    click_track(&sound);
+    let mut project = servo_studio::ui::sample_project();
+    project.sound = Some(SoundTrack {
+        path: "clicks.wav".into(),
+        duration_ms: 3000,
+        sha256: servo_studio::ui::sound::sha256_of(&sound).unwrap(),
+        offset_ms: 0,
+        sensitivity_percent: 50,
+    });
+    project
+}
+
+#[test]
+fn play_plays_the_sound_through_the_sound_server_and_pause_stops_it() {
+    let Some(pulse) = Pulse::start() else { return };
+    let dir = tempfile::tempdir().unwrap();
+    let mut harness = saved_editor(dir.path(), with_sound(dir.path()), Vec::new());
+    harness.state_mut().sound = SoundDesk::with_server(pulse.socket.clone());
+    common::ui::run_until(&mut harness, "the sound read", |app| app.sound.view(&app.document.project).read.is_some());
+    harness.get_by_label("Play").click();
+    common::ui::run_until(&mut harness, "the sound playing", |app| app.sound.is_playing());
+    harness.get_by_label("Pause").click();
+    common::ui::run_until(&mut harness, "the sound stopped", |app| !app.sound.is_playing());
+    assert!(harness.state().status.as_ref().is_none_or(|status| !status.text.contains("no sound output")));
+}
+
+#[test]
+fn without_a_sound_server_no_sound_output_is_said_once_and_the_motion_plays_on() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut harness = saved_editor(dir.path(), with_sound(dir.path()), Vec::new());
+    harness.state_mut().sound = SoundDesk::with_server(dir.path().join("no-server"));
+    common::ui::run_until(&mut harness, "the sound read", |app| app.sound.view(&app.document.project).read.is_some());
+    harness.get_by_label("Play").click();
+    harness.run_steps(3);
+    let said = harness.state().status.clone().expect("said");
+    assert!(said.text.starts_with("no sound output"), "{}", said.text);
+    harness.state_mut().status = None;
+    harness.get_by_label("Pause").click();
+    harness.run_steps(2);
+    harness.get_by_label("Play").click();
+    harness.run_steps(3);
+    assert!(harness.state().status.is_none(), "said once");
+    assert!(common::ui::servo_ui(harness.state()).figure.transport.is_playing(), "the motion plays on");
+}
+
+#[test]
+fn running_a_macro_on_the_board_starts_the_sound_with_it() {
+    let Some(pulse) = Pulse::start() else { return };
+    let dir = tempfile::tempdir().unwrap();
+    let project = with_sound(dir.path());
+    let macro_id = project.servo.macros[0].id;
+    let mut harness = saved_editor(dir.path(), project, Vec::new());
+    harness.state_mut().sound = SoundDesk::with_server(pulse.socket.clone());
+    harness.state_mut().apply(Action::ConnectDemo);
+    common::ui::run_until(&mut harness, "the sound read", |app| app.sound.view(&app.document.project).read.is_some());
+    common::ui::run_until(&mut harness, "the demo board", |app| {
+        app.link.as_ref().is_some_and(|link| link.demo_board().is_some())
+    });
+    let events = harness.state().link.as_ref().unwrap().demo_board().unwrap().events().clone();
+    harness.state_mut().apply(Action::family(servo_studio::ui::ServoAction::RunMacro(macro_id)));
+    common::ui::run_until(&mut harness, "the sound playing", |app| app.sound.is_playing());
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(10);
+    loop {
+        match events.recv_deadline(deadline) {
+            Ok(LinkEvent::Driver(SimEvent::MacroSteps { macro_id: ran, .. })) if ran == macro_id => break,
+            Ok(_) => {}
+            Err(error) => panic!("the board never ran the macro: {error}"),
+        }
+    }
+    harness.state_mut().apply(Action::Sound(SoundAction::Silence));
+}
