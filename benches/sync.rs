@@ -1,6 +1,7 @@
 //! Sound and board together: a one-minute click track played through a real
 //! PulseAudio server (null sink) while the emulated servo board, over a
-//! pseudo-terminal, runs a macro with a step on each click. Prints how far
+//! pseudo-terminal, runs a macro with a step on each click; then the same
+//! with the emulated PLEN2 playing a motion with a click on each frame. Prints how far
 //! each click was from its step (the test holds every one within 10 ms, one
 //! board update). Needs Debian's `pulseaudio` (`.ci/run` installs it).
 //!
@@ -17,15 +18,20 @@ fn main() {
         return;
     };
     let steps = 60;
-    let measured = pulse::measure_servo(&server, steps);
-    let offsets = &measured.offsets_ms;
+    let servo = pulse::measure_servo(&server, steps);
+    say(&format!("servo board over a pty, {steps} clicks over {steps} s"), &servo.offsets_ms, 10.0);
+    let plen2 = pulse::measure_plen2(&server, 20, 3000);
+    say("PLEN2 over a pty, a motion of 20 frames of 3 s (a click on each frame)", &plen2.offsets_ms, 32.768);
+}
+
+fn say(what: &str, offsets: &[f64], update_ms: f64) {
     let worst = offsets.iter().fold(0.0f64, |worst, offset| worst.max(offset.abs()));
     let mean = offsets.iter().sum::<f64>() / offsets.len() as f64;
     let (low, high) =
         offsets.iter().fold((f64::MAX, f64::MIN), |(low, high), offset| (low.min(*offset), high.max(*offset)));
     println!(
-        "sync, servo board over a pty, {steps} clicks over {steps} s: worst {worst:.2} ms, mean {mean:+.2} ms, \
-         from {low:+.2} to {high:+.2} ms (drift over the minute {:+.3} ms); one board update is 10 ms",
+        "sync, {what}: worst {worst:.2} ms, mean {mean:+.2} ms, from {low:+.2} to {high:+.2} ms \
+         (drift over the minute {:+.3} ms); one board update is {update_ms} ms",
         offsets[offsets.len() - 1] - offsets[0]
     );
 }

@@ -78,8 +78,47 @@ impl std::fmt::Debug for Playing {
 /// Interleaved samples from a decoding thread: at most this many chunks ahead (about a second or two).
 const AHEAD_CHUNKS: usize = 48;
 
-/// Decodes `path` from `from_s` on a thread of its own (silence first for a
-/// start before 0), each chunk in at most two channels.
+/// The decoded sound on its way to the server: at most two channels a chunk, at most `left` samples.
+struct Feed {
+    reader: Reader,
+    sender: crossbeam_channel::Sender<Vec<f32>>,
+    left: usize,
+    queued_frames: usize,
+}
+
+impl Feed {
+    /// Sends `samples` (interleaved, `count` channels); false when nothing more is to go.
+    fn send(&mut self, samples: &[f32], count: usize) -> bool {
+        let mut shaped = if count <= 2 {
+            samples.to_vec()
+        } else {
+            // Channel counts are small.
+            #[allow(clippy::cast_precision_loss)]
+            let scale = 1.0 / count as f32;
+            samples.chunks_exact(count).map(|frame| frame.iter().sum::<f32>() * scale).collect()
+        };
+        shaped.truncate(self.left);
+        self.left -= shaped.len();
+        self.queued_frames += shaped.len() / count.clamp(1, 2);
+        !shaped.is_empty() && self.sender.send(shaped).is_ok()
+    }
+
+    /// Decodes and sends the next packet; false at the end.
+    fn next(&mut self) -> bool {
+        match self.reader.next_chunk() {
+            Ok(Some((chunk, count))) => {
+                let chunk = chunk.to_vec();
+                self.send(&chunk, count)
+            }
+            Ok(None) | Err(_) => false,
+        }
+    }
+}
+
+/// Decodes `path` from `from_s` (silence first for a start before 0), each
+/// chunk in at most two channels: the first half second before it returns
+/// (so the server never asks before there is sound to give), the rest on a
+/// thread of its own, a second or two ahead.
 fn decoding(
     path: &Path,
     from_s: f64,
@@ -93,51 +132,26 @@ fn decoding(
     }
     // Whole frames of silence before 0: a start a little before the sound.
     #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-    let lead_frames = ((-from_s).max(0.0) * f64::from(rate)).round() as u64;
+    let lead_frames = ((-from_s).max(0.0) * f64::from(rate)).round() as usize;
     let first = reader.next_chunk()?.map(|(chunk, count)| (chunk.to_vec(), count));
     let channels = first.as_ref().map_or(1, |(_, count)| (*count).min(2));
     // At most this many samples (interleaved), for a grain.
     #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-    let mut left = only.map_or(usize::MAX, |only| (only.as_secs_f64() * f64::from(rate)) as usize * channels);
+    let left = only.map_or(usize::MAX, |only| (only.as_secs_f64() * f64::from(rate)) as usize * channels);
     let (sender, receiver) = crossbeam_channel::bounded(AHEAD_CHUNKS);
-    std::thread::Builder::new()
-        .name("sound decoding".into())
-        .spawn(move || {
-            let shape = |chunk: &[f32], count: usize| -> Vec<f32> {
-                if count <= 2 {
-                    return chunk.to_vec();
-                }
-                // Channel counts are small.
-                #[allow(clippy::cast_precision_loss)]
-                let scale = 1.0 / count as f32;
-                chunk.chunks_exact(count).map(|frame| frame.iter().sum::<f32>() * scale).collect()
-            };
-            let mut send = |mut samples: Vec<f32>| {
-                samples.truncate(left);
-                left -= samples.len();
-                !samples.is_empty() && sender.send(samples).is_ok()
-            };
-            let silence = usize::try_from(lead_frames).unwrap_or(0) * channels;
-            if silence > 0 && !send(vec![0.0; silence]) {
-                return;
-            }
-            if let Some((chunk, count)) = first
-                && !send(shape(&chunk, count))
-            {
-                return;
-            }
-            while !stop.load(Ordering::Relaxed) {
-                match reader.next_chunk() {
-                    Ok(Some((chunk, count))) => {
-                        if !send(shape(chunk, count)) {
-                            return;
-                        }
-                    }
-                    Ok(None) | Err(_) => return,
-                }
-            }
-        })
-        .map_err(|source| AudioError::Open { path: path.to_path_buf(), source })?;
+    let mut feed = Feed { reader, sender, left, queued_frames: 0 };
+    let mut going = (lead_frames == 0 || feed.send(&vec![0.0; lead_frames * channels], channels))
+        && first.is_none_or(|(chunk, count)| feed.send(&chunk, count));
+    let half_second = rate as usize / 2;
+    while going && feed.queued_frames < half_second && receiver.len() + 1 < AHEAD_CHUNKS {
+        going = feed.next();
+    }
+    if going {
+        std::thread::Builder::new()
+            .name("sound decoding".into())
+            .spawn(move || while !stop.load(Ordering::Relaxed) && feed.next() {})
+            .map_err(|source| AudioError::Open { path: path.to_path_buf(), source })?;
+    }
     Ok((receiver, rate, channels))
 }
 
@@ -155,8 +169,13 @@ fn filler(chunks: Receiver<Vec<f32>>, ended: Arc<AtomicBool>) -> impl FnMut(&mut
                         at = 0;
                     }
                     // The decoder is behind (it seldom is: it runs far faster than
-                    // the sound): what was written goes now, the rest at the next request.
-                    Err(TryRecvError::Empty) => break,
+                    // the sound, and the first half second was decoded before the
+                    // stream began): silence, rather than an end the server would
+                    // take for the sound's.
+                    Err(TryRecvError::Empty) => {
+                        buffer[written..].fill(0);
+                        return buffer.len();
+                    }
                     Err(TryRecvError::Disconnected) => {
                         ended.store(written == 0, Ordering::Relaxed);
                         break;
@@ -346,6 +365,20 @@ mod tests {
         let socket = dir.path().join("native");
         let said = Speakers::connect_to(&socket).unwrap_err().to_string();
         assert!(said.starts_with("no sound output") && said.contains("native"), "{said}");
+    }
+
+    #[test]
+    fn half_a_second_is_decoded_before_the_server_can_ask_so_a_stream_never_starts_empty() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("tone.wav");
+        let tone: Vec<f32> = (0..16_000).map(|i| (f32::from(u16::try_from(i % 100).unwrap()) / 100.0) - 0.5).collect();
+        std::fs::write(&path, crate::audio::pcm16_wav(&tone, 8_000, 2)).unwrap();
+        let stop = Arc::new(AtomicBool::new(true));
+        // Stopped at once: only what was decoded before `decoding` returned is there.
+        let (chunks, rate, channels) = decoding(&path, -0.25, None, stop).unwrap();
+        assert_eq!((rate, channels), (8_000, 2));
+        let queued: usize = chunks.try_iter().map(|chunk| chunk.len() / 2).sum();
+        assert!(queued >= 4_000, "{queued} frames (a quarter second of silence, then the sound)");
     }
 
     #[test]

@@ -7,5 +7,6 @@ pub mod bake;
 pub mod bake_servo;
 pub mod fit;
 pub mod fitted;
+pub mod follow;
 pub mod recording;
 pub mod retime;

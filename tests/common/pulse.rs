@@ -199,6 +199,8 @@ impl Recorder {
             (zeros[zeros.len() - 1] - zeros[0]).as_secs_f64() * 1e3,
             if zero >= arrived { (zero - arrived).as_secs_f64() * 1e3 } else { -(arrived - zero).as_secs_f64() * 1e3 }
         );
+        let loudest = heard.samples.iter().fold(0.0f32, |loudest, sample| loudest.max(sample.abs()));
+        eprintln!("recorded {:.2} s, loudest {loudest:.3}", heard.samples.len() as f64 / f64::from(RATE));
         let quiet = (quiet_s * f64::from(RATE)) as usize;
         let mut last_loud: Option<usize> = None;
         let mut rises = Vec::new();
@@ -237,6 +239,82 @@ pub fn clicks(at_s: &[f64], seconds: f64) -> Vec<f32> {
         }
     }
     samples
+}
+
+/// A PLEN2 motion of `frames` frames of `transition_ms` each (the left
+/// shoulder swinging), a click where each frame starts (as the firmware's
+/// playback places it, in whole 32.768 ms cycles), played on the emulated
+/// PLEN2 over a pty with the sound started together; measured.
+pub fn measure_plen2(pulse: &Pulse, frames: usize, transition_ms: u16) -> Measured {
+    use servo_studio::device::plen2::playback::{self, DEVICE_IDS, StoredMotions};
+    use servo_studio::device::plen2::{Command, Plen2Handle, Plen2Options, play_motion_delay, store_commands};
+    use servo_studio::project::plen2::{Frame, Joint, Motion, Plen2Project, Pose};
+    use servo_studio::sim::{Plen2Sim, Plen2SimEvent, Plen2Timing};
+
+    let frames: Vec<Frame> = (0..frames)
+        .map(|k| {
+            let mut pose = Pose::default();
+            pose.set(Joint::ALL[0], if k % 2 == 0 { 300 } else { -300 });
+            Frame::new(transition_ms, pose)
+        })
+        .collect();
+    let motion = Motion { slot: 0, name: "show".into(), frames, loop_range: None, jump_slot: None };
+    let plen2 = Plen2Project { motions: vec![motion], ..Plen2Project::default() };
+    let played = playback::play(&StoredMotions::new(&plen2), 0, [0; DEVICE_IDS], 100_000);
+    let starts: Vec<usize> = (0..played.frames.len())
+        .filter(|&cycle| cycle == 0 || played.frames[cycle] != played.frames[cycle - 1])
+        .collect();
+    let cycle_s = playback::Playback::CYCLE_MS / 1000.0;
+    let at: Vec<f64> = starts.iter().map(|cycle| *cycle as f64 * cycle_s).collect();
+    let dir = tempfile::tempdir().unwrap();
+    let sound = dir.path().join("clicks.wav");
+    let seconds = played.frames.len() as f64 * cycle_s + 0.5;
+    std::fs::write(&sound, servo_studio::audio::pcm16_wav(&clicks(&at, seconds), RATE, 1)).unwrap();
+
+    let mut robot = Plen2Sim::new(Plen2Timing::default());
+    robot.preload(&store_commands(&plen2));
+    let sim = spawn_pty(robot, no_waker()).unwrap();
+    let port = PortName::parse(&sim.port_name).unwrap();
+    let settings = servo_studio::device::line_settings(servo_studio::project::Family::Plen2);
+    let handle =
+        Plen2Handle::over(servo_studio::link::open(&port, &settings).unwrap(), Plen2Options::default(), no_waker())
+            .unwrap();
+    let requester = handle.requester();
+    let recorder = Recorder::start(pulse);
+    let speakers = Speakers::connect_to(&pulse.socket).unwrap();
+    let started = together::start(&speakers, &sound, 0.0, play_motion_delay(0, Duration::ZERO), || {
+        requester.send(Command::PlayMotion { slot: 0 }).unwrap();
+    })
+    .unwrap();
+    let deadline = Instant::now() + Duration::from_secs(10);
+    let first_cycle = loop {
+        match sim.events().recv_deadline(deadline) {
+            Ok(LinkEvent::Driver(Plen2SimEvent::MotionStarted { first_cycle, .. })) => break first_cycle,
+            Ok(_) => {}
+            Err(error) => panic!("the robot never started the motion: {error}"),
+        }
+    };
+    let steps: Vec<Instant> = at.iter().map(|s| first_cycle + Duration::from_secs_f64(*s)).collect();
+    recorder.wait_for(seconds + together::PREROLL.as_secs_f64(), Duration::from_secs_f64(seconds + 30.0));
+    drop(started);
+    offsets(&recorder.rises(0.5, 0.2), &steps)
+}
+
+/// Each click's offset from its step, ms (positive: the sound late).
+fn offsets(clicks: &[Instant], steps: &[Instant]) -> Measured {
+    assert_eq!(clicks.len(), steps.len(), "every click heard once: {clicks:?}");
+    let offsets_ms = clicks
+        .iter()
+        .zip(steps)
+        .map(|(click, step)| {
+            if click >= step {
+                (*click - *step).as_secs_f64() * 1000.0
+            } else {
+                -((*step - *click).as_secs_f64() * 1000.0)
+            }
+        })
+        .collect();
+    Measured { offsets_ms }
 }
 
 /// What one minute's run measured.
@@ -319,18 +397,6 @@ pub fn measure_servo(pulse: &Pulse, steps: usize) -> Measured {
     recorder.wait_for(end + together::PREROLL.as_secs_f64(), Duration::from_secs_f64(end + 30.0));
     drop(started);
     let clicks = recorder.rises(0.5, 0.2);
-    assert_eq!(clicks.len(), steps, "every click heard once");
     eprintln!("the first click came {:.2} ms after the sound said it would", since(clicks[0], moving_at));
-    let offsets_ms = clicks
-        .iter()
-        .zip(&board_steps)
-        .map(|(click, step)| {
-            if click >= step {
-                (*click - *step).as_secs_f64() * 1000.0
-            } else {
-                -((*step - *click).as_secs_f64() * 1000.0)
-            }
-        })
-        .collect();
-    Measured { offsets_ms }
+    offsets(&clicks, &board_steps)
 }

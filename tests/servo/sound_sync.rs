@@ -7,7 +7,7 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::cast_precision_loss)]
 
-use crate::common::pulse::{Pulse, measure_servo};
+use crate::common::pulse::{Pulse, measure_plen2, measure_servo};
 
 #[test]
 fn a_click_track_and_the_boards_steps_stay_within_one_board_update_over_a_minute() {
@@ -22,4 +22,21 @@ fn a_click_track_and_the_boards_steps_stay_within_one_board_update_over_a_minute
         );
     }
     eprintln!("sync over 60 s: worst {worst:.2} ms");
+}
+
+#[test]
+fn a_click_track_and_a_plen2_motions_frames_stay_within_one_robot_update_over_a_minute() {
+    let Some(pulse) = Pulse::start() else { return };
+    // 20 frames of 3 s: a motion's most, a minute.
+    let measured = measure_plen2(&pulse, 20, 3000);
+    let update_ms = servo_studio::device::plen2::playback::Playback::CYCLE_MS;
+    for (frame, offset) in measured.offsets_ms.iter().enumerate() {
+        assert!(
+            offset.abs() <= update_ms,
+            "frame {frame}: the click is {offset:.2} ms from the robot's frame (all: {:?})",
+            measured.offsets_ms
+        );
+    }
+    let worst = measured.offsets_ms.iter().fold(0.0f64, |worst, offset| worst.max(offset.abs()));
+    eprintln!("PLEN2 sync over 60 s: worst {worst:.2} ms");
 }

@@ -184,7 +184,7 @@ fn without_a_sound_server_no_sound_output_is_said_once_and_the_motion_plays_on()
     harness.get_by_label("Play").click();
     harness.run_steps(3);
     let said = harness.state().status.clone().expect("said");
-    assert!(said.text.starts_with("no sound output"), "{}", said.text);
+    assert!(said.text.starts_with("no sound output: the motion plays without sound"), "{}", said.text);
     harness.state_mut().status = None;
     harness.get_by_label("Pause").click();
     harness.run_steps(2);
@@ -219,4 +219,32 @@ fn running_a_macro_on_the_board_starts_the_sound_with_it() {
         }
     }
     harness.state_mut().apply(Action::Sound(SoundAction::Silence));
+}
+
+#[test]
+fn follow_the_sound_adds_a_servos_steps_and_a_macro_timed_to_it_in_one_undo_step() {
+    let dir = tempfile::tempdir().unwrap();
+    let project = with_sound(dir.path());
+    let before = project.servo.clone();
+    let mut harness = saved_editor(dir.path(), project, Vec::new());
+    common::ui::run_until(&mut harness, "the sound read", |app| app.sound.view(&app.document.project).read.is_some());
+    harness.get_by_label("Follow the sound…").click();
+    harness.run_steps(3);
+    harness.get_by_label("Make the motion").click();
+    harness.run_steps(3);
+    let after = harness.state().document.project.servo.clone();
+    assert_eq!(after.macros.len(), before.macros.len() + 1, "a macro running the steps");
+    let made = after.macros.last().unwrap();
+    let added = &after.actions[before.actions.len()..];
+    assert_eq!(made.commands.len(), added.len());
+    assert!(added.len() >= 2, "the clicks open and close: {} steps", added.len());
+    let servo_id = before.servos[0].id;
+    assert!(added.iter().all(|action| action.steps.iter().all(|step| step.servo_id == servo_id)));
+    // Steps run end to end from the macro's start: they last as long as the sound.
+    let total_ms: i64 = added.iter().map(|action| i64::from(action.steps[0].interval_10ms) * 10).sum();
+    assert!((total_ms - 3000).abs() <= 20, "{total_ms} ms of steps for 3 s of sound");
+    assert!(harness.query_by_label_contains("steps, run by macro").is_some(), "it says what it made");
+    harness.state_mut().apply(Action::Undo);
+    harness.run_steps(2);
+    assert_eq!(harness.state().document.project.servo, before, "one undo step");
 }

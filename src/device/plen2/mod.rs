@@ -39,13 +39,27 @@ inventory::submit! {
     crate::device::family::Registered {
         family: crate::project::Family::Plen2,
         // plen2.md §1: USB CDC at 2,000,000 baud; DTR must be asserted.
-        line: || link::LineSettings::new(2_000_000),
+        line: || link::LineSettings::new(BAUD),
         // First: USB CDC answers at any rate, and it answers fastest.
         doctor: Some(crate::device::family::Doctor { rank: 0, recogniser: doctor::recogniser }),
     }
 }
 use crate::link::{self, Connection, DisconnectReason, LinkEvent, LinkHandle, Waker};
 pub use crate::protocol::plen2::Command;
+
+/// The PLEN2's line rate (USB CDC; plen2.md §1).
+pub const BAUD: u32 = 2_000_000;
+
+/// How long after `$PM` for `slot` is sent the robot's joints first move,
+/// as best it can be known: the command's time on the line after the link's
+/// `latency`, then the wait for the firmware's next 32.768 ms update ("cycle 0
+/// is the first update after `$PM` is read", plen2.md §6). That update's timer
+/// runs free, so the wait is anything up to a cycle: half a cycle is counted,
+/// which keeps a sound started with the motion within half an update of it.
+pub fn play_motion_delay(slot: u8, latency: std::time::Duration) -> std::time::Duration {
+    let on_line = crate::audio::together::link_delay(Command::PlayMotion { slot }.to_ascii().len(), BAUD, latency);
+    on_line + std::time::Duration::from_micros(playback::CYCLE_US / 2)
+}
 
 /// Blocking calls to a PLEN2 from a worker thread.
 #[derive(Clone, Debug)]

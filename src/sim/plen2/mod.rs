@@ -136,6 +136,14 @@ pub enum Plen2SimEvent {
     Lost(u64),
     /// A playback cycle set every joint (device ids 0..=23), tenths of a degree.
     Cycle([i16; DEVICE_IDS]),
+    /// A motion began: its first cycle runs at `first_cycle` on the robot's
+    /// clock, each next one 32.768 ms later (a show's sound is measured against these).
+    MotionStarted {
+        /// The motion.
+        slot: u8,
+        /// When its first cycle runs.
+        first_cycle: Instant,
+    },
 }
 
 /// The emulated robot.
@@ -400,8 +408,9 @@ impl Plen2Sim {
 
     /// Starts a motion: its cycles run from the next tick (plen2.md §6).
     fn start(&mut self, at: Instant, slot: u8, start: Start) {
-        if self.player.start(&Eeprom(&self.slots), slot, start) && self.next_tick.is_none() {
-            self.next_tick = Some(at + TICK);
+        if self.player.start(&Eeprom(&self.slots), slot, start) {
+            let first_cycle = *self.next_tick.get_or_insert(at + TICK);
+            self.events.push_back(Plen2SimEvent::MotionStarted { slot, first_cycle });
         }
     }
 

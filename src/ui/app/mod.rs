@@ -364,6 +364,7 @@ impl StudioApp {
 
         self.dialogs(ui, &mut actions);
         self.import.window(ui.ctx(), &self.document.project, self.language, &mut actions);
+        self.sound.follow_window(ui.ctx(), &self.document.project, self.language, &mut actions);
         let document = (&self.document.project, self.document.path.as_ref());
         self.import.export_window(ui.ctx(), document, self.language, &mut actions);
         for action in actions {

@@ -28,6 +28,11 @@ impl StudioApp {
 
     fn say_sound(&mut self) {
         if let Some(said) = self.sound.take_said() {
+            let words = crate::ui::sound::lane::words(self.language);
+            let said = match said.strip_prefix(crate::ui::sound::NO_OUTPUT) {
+                Some(why) => format!("{} ({why})", words.no_output),
+                None => said,
+            };
             self.report(said, false);
         }
     }

@@ -240,11 +240,25 @@ impl Plen2Ui {
     }
 
     /// Plays a motion stored on the robot (`$PM`).
+    /// With a sound track, the sound starts with it: its point for the
+    /// motion's start is heard as the command reaches the robot.
     pub(super) fn play_motion(&mut self, shell: &mut Shell<'_>, slot: u8) {
-        if let Some(robot) = shell.plen2_mut() {
+        let Some(robot) = shell.plen2_mut() else { return };
+        let requester = robot.requester();
+        let delay = crate::device::plen2::play_motion_delay(slot, std::time::Duration::ZERO);
+        let start = move || {
+            // A lost command is the link's to report.
+            let _ = requester.send(crate::device::plen2::Command::PlayMotion { slot });
+        };
+        let waker = shell.waker.clone();
+        if shell.sound.play_with_board(&shell.document.project, 0.0, (delay, waker), start) {
+            if let Some(robot) = shell.plen2_mut() {
+                robot.stopped = false;
+            }
+        } else if let Some(robot) = shell.plen2_mut() {
             robot.play(slot);
-            self.after_playing(shell, slot);
         }
+        self.after_playing(shell, slot);
     }
 
     /// The sliders to where `slot` leaves the robot (the project's motion

@@ -55,6 +55,8 @@ pub struct LaneWords {
     pub sensitivity_hint: &'static str,
     /// "Remove".
     pub remove: &'static str,
+    /// "Follow the sound…".
+    pub follow: &'static str,
     /// "Locate…".
     pub locate: &'static str,
     /// "Keep it as it is now".
@@ -71,6 +73,8 @@ pub struct LaneWords {
     pub lane_hint: &'static str,
     /// The kind of file, in the dialog.
     pub kind: &'static str,
+    /// "no sound output" (no sound server): the motion plays on alone.
+    pub no_output: &'static str,
 }
 
 const ENGLISH: LaneWords = LaneWords {
@@ -81,6 +85,7 @@ const ENGLISH: LaneWords = LaneWords {
     sensitivity: "onsets",
     sensitivity_hint: "How readily a rise counts as an onset (beats, syllables): frames, steps and keys snap to them",
     remove: "Remove",
+    follow: "Follow the sound…",
     locate: "Locate…",
     accept: "Keep it as it is now",
     missing: "is missing: locate it, or remove the sound from the project",
@@ -89,6 +94,7 @@ const ENGLISH: LaneWords = LaneWords {
     reading: "Reading the sound",
     lane_hint: "Click: cursor here · drag sideways: move the sound · Ctrl + wheel: zoom · wheel: scroll",
     kind: "Sound (WAV, FLAC, MP3, OGG)",
+    no_output: "no sound output: the motion plays without sound",
 };
 
 const TRADITIONAL_CHINESE: LaneWords = LaneWords {
@@ -99,6 +105,7 @@ const TRADITIONAL_CHINESE: LaneWords = LaneWords {
     sensitivity: "起音",
     sensitivity_hint: "上升多容易算作起音（節拍、音節）：影格、步驟與關鍵點會吸附到起音",
     remove: "移除",
+    follow: "跟隨聲音…",
     locate: "尋找檔案…",
     accept: "保留現在的檔案",
     missing: "不存在：請尋找檔案，或從專案移除聲音",
@@ -107,6 +114,7 @@ const TRADITIONAL_CHINESE: LaneWords = LaneWords {
     reading: "正在讀取聲音",
     lane_hint: "點擊：游標移到此處 · 左右拖曳：移動聲音 · Ctrl + 滾輪：縮放 · 滾輪：捲動",
     kind: "聲音（WAV、FLAC、MP3、OGG）",
+    no_output: "沒有聲音輸出：動作將不帶聲音播放",
 };
 
 /// The lane's words in `language`.
@@ -195,11 +203,17 @@ impl SoundLane {
             if field.on_hover_text(words.offset_hint).changed() {
                 actions.push(Action::Sound(SoundAction::SetOffset(offset)));
             }
+        });
+        ui.horizontal_wrapped(|ui| {
             let label = ui.label(words.sensitivity);
+            ui.spacing_mut().slider_width = 90.0;
             let mut percent = track.sensitivity_percent;
             let slider = ui.add(egui::Slider::new(&mut percent, 0..=100).suffix(" %")).labelled_by(label.id);
             if slider.on_hover_text(words.sensitivity_hint).changed() {
                 actions.push(Action::Sound(SoundAction::SetSensitivity(percent)));
+            }
+            if sound.read.is_some() && ui.small_button(words.follow).clicked() {
+                actions.push(Action::Sound(SoundAction::OpenFollow));
             }
             if ui.small_button(words.remove).clicked() {
                 actions.push(Action::Sound(SoundAction::Remove));

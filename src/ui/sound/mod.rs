@@ -5,6 +5,8 @@
 //! grains, and started together with the board. The lane under each
 //! preview's cursor is [`lane`].
 
+mod action;
+mod follow;
 pub mod lane;
 mod reading;
 
@@ -16,8 +18,12 @@ use crate::link::Waker;
 use crate::project::{Edit, Project, SoundTrack};
 use reading::{Read, Reading};
 
+pub use action::SoundAction;
 pub use lane::SoundLane;
 pub use reading::sha256 as sha256_of;
+
+/// How a "no sound output" line starts (the shell words it in the interface's language).
+pub const NO_OUTPUT: &str = "no sound output: ";
 
 /// A grain played while scrubbing, s.
 pub const GRAIN_S: f64 = 0.06;
@@ -31,35 +37,6 @@ pub enum Problem {
     Unreadable(String),
     /// It reads, but is not the file the project was timed to (its content changed).
     Changed(PathBuf),
-}
-
-/// What a sound action asks.
-#[derive(Clone, Debug, PartialEq)]
-pub enum SoundAction {
-    /// Add this file as the project's sound track (replacing any).
-    Add(PathBuf),
-    /// The project's sound is now this file (keeping the offset and sensitivity).
-    Locate(PathBuf),
-    /// Keep the changed file, as it is now.
-    AcceptChanged,
-    /// No sound track.
-    Remove,
-    /// Where the sound starts on the motion's time, ms.
-    SetOffset(i64),
-    /// Onset sensitivity, percent.
-    SetSensitivity(u8),
-    /// Play the sound from the motion's `from_ms` (the preview started, or went on from elsewhere).
-    Play {
-        /// The motion's time, ms.
-        from_ms: f64,
-    },
-    /// Stop the sound.
-    Silence,
-    /// A short grain at the motion's `at_ms` (scrubbing).
-    Grain {
-        /// The motion's time, ms.
-        at_ms: f64,
-    },
 }
 
 /// Whether sound can be played.
@@ -91,6 +68,8 @@ pub struct SoundDesk {
     edit: Option<(Edit, &'static str)>,
     /// The file being added or located, and the track it becomes.
     adding: Option<SoundTrack>,
+    /// The follow-the-sound dialog, while open.
+    follow: Option<follow::FollowForm>,
     /// A sound being started together with the board, off the frame.
     joining: Option<crossbeam_channel::Receiver<Result<Playing, crate::audio::output::OutputError>>>,
 }
@@ -115,6 +94,7 @@ impl Default for SoundDesk {
             said: None,
             edit: None,
             adding: None,
+            follow: None,
             joining: None,
         }
     }
@@ -246,6 +226,10 @@ impl SoundDesk {
             SoundAction::Remove => Some((Edit::SetSound(None), "sound")),
             SoundAction::SetOffset(offset_ms) => set(SoundTrack { offset_ms, ..track? }),
             SoundAction::SetSensitivity(percent) => set(SoundTrack { sensitivity_percent: percent.min(100), ..track? }),
+            SoundAction::OpenFollow => {
+                self.follow.get_or_insert_with(follow::FollowForm::default);
+                None
+            }
             SoundAction::Play { from_ms } => {
                 self.play(&track?, from_ms, None);
                 None
@@ -289,7 +273,11 @@ impl SoundDesk {
             self.output = match connected {
                 Ok(speakers) => Output::Ready(speakers),
                 Err(error) => {
-                    self.said = Some(error.to_string());
+                    // Said in the interface's language by the shell ("no sound output" and why).
+                    self.said = Some(match error {
+                        crate::audio::output::OutputError::NoServer(why) => format!("{NO_OUTPUT}{why}"),
+                        other => other.to_string(),
+                    });
                     Output::None
                 }
             };
@@ -335,6 +323,23 @@ impl SoundDesk {
         }
         self.joining = Some(joining);
         true
+    }
+
+    /// The follow-the-sound dialog, while open (and the sound read).
+    pub fn follow_window(
+        &mut self,
+        ctx: &egui::Context,
+        project: &Project,
+        language: crate::ui::i18n::Language,
+        actions: &mut Vec<crate::ui::action::Action>,
+    ) {
+        let (Some(form), Some(read), Some(track)) = (&mut self.follow, &self.read, &project.sound) else { return };
+        let loudness = read.analysis.found.loudness_db();
+        let mut open = true;
+        form.window(ctx, (project, &loudness, track.offset_ms), language, &mut open, actions);
+        if !open {
+            self.follow = None;
+        }
     }
 
     /// A line for the status bar, once ("no sound output", a file that is no sound).

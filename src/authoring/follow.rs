@@ -1,0 +1,110 @@
+//! A curve that follows a sound (how open, 0–1, each millisecond, from
+//! `audio::follow`) fitted into what a board stores: a servo's steps (one
+//! action each, and a macro running them) or a PLEN2 motion's frames. The
+//! editor's follow-sound dialog builds on this; the command line's
+//! `follow-audio` fits the same curve through `fit`.
+
+use super::fit::{self, Board as _, Budget, Fit, FitError, Plen2Board, ServoBoard};
+use super::fitted::{self, PLEN2_UPDATE_MS, SERVO_UPDATE_MS};
+use crate::project::plen2::{Frame, JOINTS, Joint, MAX_FRAMES};
+use crate::project::{Action, MAX_LIST_LEN, Macro};
+
+/// What follows, between which angles, within which tolerance.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Follower {
+    /// The angle in silence, degrees (PLEN2: from home).
+    pub closed_deg: f64,
+    /// The angle at the loudest, degrees.
+    pub open_deg: f64,
+    /// How far the board may stray from the curve, degrees.
+    pub tolerance_deg: f64,
+}
+
+/// The curve at every `update_ms` (the board's update), from one value a millisecond.
+fn at_updates(open: &[f64], update_ms: f64, closed: f64, opened: f64) -> Vec<f64> {
+    // Milliseconds of at most an hour: exact.
+    #[allow(clippy::cast_precision_loss)]
+    let last = open.len().saturating_sub(1) as f64;
+    let mut values = Vec::new();
+    let mut t = 0.0;
+    while t <= last {
+        // Within the curve: a whole millisecond index below its length.
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        let (below, along) = (t.floor() as usize, t.fract());
+        let a = open[below];
+        let b = open.get(below + 1).copied().unwrap_or(a);
+        values.push(closed + (opened - closed) * (a + (b - a) * along));
+        t += update_ms;
+    }
+    values
+}
+
+/// A servo following the curve: one action per fitted step (ids from
+/// `first_action_id`), and a macro `macro_id` running them; the servo's
+/// angle at the start (where the macro begins).
+pub fn servo(
+    open: &[f64],
+    servo_id: u8,
+    follower: Follower,
+    (first_action_id, macro_id, name): (i32, i32, &str),
+) -> Result<(Vec<Action>, Macro, i32), FitError> {
+    let values = at_updates(open, SERVO_UPDATE_MS, follower.closed_deg, follower.open_deg);
+    let start = ServoBoard.store(values.first().copied().unwrap_or(follower.closed_deg));
+    let rows: Vec<Vec<f64>> = values.iter().skip(1).map(|value| vec![*value]).collect();
+    let budget = Budget { tolerance: follower.tolerance_deg, allowed: MAX_LIST_LEN, resolution: 0.1 };
+    let fit: Fit = fit::fit_within(&ServoBoard, &[start], &rows, budget)?;
+    let actions = fitted::servo_actions(&fit, &[servo_id], first_action_id, name);
+    let running = fitted::macro_running(macro_id, name, &actions);
+    Ok((actions, running, start))
+}
+
+/// A PLEN2 joint following the curve (every other joint at home): the frames, at most a motion's 20.
+pub fn plen2(open: &[f64], joint: Joint, follower: Follower) -> Result<Vec<Frame>, FitError> {
+    let values = at_updates(open, PLEN2_UPDATE_MS, follower.closed_deg * 10.0, follower.open_deg * 10.0);
+    let rows: Vec<Vec<f64>> = values
+        .iter()
+        .map(|value| {
+            let mut row = vec![0.0; JOINTS];
+            row[joint.index()] = *value;
+            row
+        })
+        .collect();
+    // `$PM` from power-up: every joint's frame buffer at 0 (plen2.md §6).
+    let budget = Budget { tolerance: follower.tolerance_deg * 10.0, allowed: MAX_FRAMES, resolution: 1.0 };
+    let fit = fit::fit_within(&Plen2Board, &[0; JOINTS], &rows, budget)?;
+    Ok(fitted::plen2_frames(&fit))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Open from 200 to 500 ms of a second, closed otherwise.
+    fn burst() -> Vec<f64> {
+        (0..1000).map(|ms| if (200..500).contains(&ms) { 1.0 } else { 0.0 }).collect()
+    }
+
+    #[test]
+    fn a_servo_follows_a_burst_in_a_few_steps_within_the_tolerance() {
+        let follower = Follower { closed_deg: 0.0, open_deg: 40.0, tolerance_deg: 1.0 };
+        let (actions, running, start) = servo(&burst(), 7, follower, (10, 3, "jaw")).unwrap();
+        assert_eq!(start, 0);
+        assert!((2..=8).contains(&actions.len()), "{} steps", actions.len());
+        assert_eq!(actions[0].id, 10);
+        assert_eq!(running.id, 3);
+        assert_eq!(running.commands.len(), actions.len());
+        assert!(actions.iter().any(|action| action.steps[0].degree == 40), "it opens");
+        assert_eq!(actions.last().unwrap().steps[0].degree, 0, "and closes");
+    }
+
+    #[test]
+    fn a_plen2_joint_follows_a_burst_in_frames_of_that_joint_alone() {
+        let follower = Follower { closed_deg: 0.0, open_deg: -20.0, tolerance_deg: 1.0 };
+        let frames = plen2(&burst(), Joint::ALL[3], follower).unwrap();
+        assert!((2..=MAX_FRAMES).contains(&frames.len()), "{} frames", frames.len());
+        assert!(frames.iter().any(|frame| frame.values_tenths_deg.0[3] == -200), "it opens");
+        assert!(
+            frames.iter().all(|frame| frame.values_tenths_deg.0.iter().enumerate().all(|(j, v)| j == 3 || *v == 0))
+        );
+    }
+}
