@@ -70,6 +70,41 @@ pub fn lane(ui: &egui::Ui, rect: Rect, transform: &PlotTransform, spans: &[(f64,
     }
 }
 
+/// The sound's waveform under the curves, on their time axis (it zooms and
+/// scrolls with them): one min/max pair per pixel column from the peak
+/// pyramid, the onsets over it.
+pub fn waveform(ui: &egui::Ui, rect: Rect, transform: &PlotTransform, sound: super::SoundStrip<'_>, onsets_ms: &[f64]) {
+    let frame = transform.frame();
+    let strip = Rect::from_x_y_ranges(frame.x_range(), rect.top() + 4.0..=rect.bottom() - 2.0);
+    let painter = ui.painter_at(strip);
+    let visuals = ui.visuals();
+    painter.rect_filled(strip, 2.0, visuals.extreme_bg_color);
+    let at = |x: f32| transform.value_from_position(pos2(x, strip.center().y)).x;
+    let (from_s, to_s) =
+        ((at(strip.left()) - sound.offset_ms) / 1000.0, (at(strip.right()) - sound.offset_ms) / 1000.0);
+    // A strip's width in points: small and positive.
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    let columns = strip.width().max(1.0) as usize;
+    let (low, high) = sound.peaks.range(from_s, to_s, sound.rate, columns);
+    let (middle, half) = (strip.center().y, strip.height() / 2.0 - 1.0);
+    let stroke = Stroke::new(1.0, visuals.widgets.inactive.fg_stroke.color);
+    for (column, (low, high)) in low.iter().zip(&high).enumerate() {
+        // Column indices: small.
+        #[allow(clippy::cast_precision_loss)]
+        let x = strip.left() + column as f32 + 0.5;
+        if high > low {
+            painter.vline(x, (middle - high * half)..=(middle - low * half), stroke);
+        }
+    }
+    let onset = Stroke::new(1.0, super::ONSET);
+    for t in onsets_ms {
+        let x = transform.position_from_point_x(*t);
+        if strip.x_range().contains(x) {
+            painter.vline(x, strip.y_range(), onset);
+        }
+    }
+}
+
 /// The graph's keys and handles over one frame's plot.
 pub struct OnGraph<'a, 'b> {
     pub graph: &'a mut Graph,

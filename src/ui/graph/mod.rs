@@ -69,6 +69,25 @@ pub struct Curves<'a> {
     /// Whether the keys can be moved and shaped here (a macro's lines are
     /// its actions' steps, edited there: drawn only).
     pub editable: bool,
+    /// The sound's waveform, drawn under the curves on their time axis.
+    pub sound: Option<SoundStrip<'a>>,
+}
+
+/// The colour of a sound's onsets, on the graphs and on the sound lane.
+pub const ONSET: egui::Color32 = egui::Color32::from_rgb(240, 150, 40);
+
+/// A sound's onsets (ms, on the motion's time) and waveform, as a pane hands them to the graph.
+pub type SoundMarks<'a> = (&'a [f64], Option<SoundStrip<'a>>);
+
+/// A sound as the graph draws it under its curves.
+#[derive(Clone, Copy, Debug)]
+pub struct SoundStrip<'a> {
+    /// Its peak pyramid.
+    pub peaks: &'a crate::audio::Peaks,
+    /// Its samples a second.
+    pub rate: u32,
+    /// Where it starts on the motion's time, ms.
+    pub offset_ms: f64,
 }
 
 /// What the user did on the graph, for the family to apply as one edit.
@@ -211,7 +230,12 @@ impl Graph {
         let area = ui.available_rect_before_wrap();
         let lane_height = if curves.lane.is_empty() { 0.0 } else { 20.0 };
         let lane_rect = egui::Rect::from_min_size(area.min, egui::vec2(area.width(), lane_height));
-        let plot_rect = egui::Rect::from_min_max(egui::pos2(area.left(), lane_rect.bottom()), area.max);
+        let strip_height = if curves.sound.is_some() { 36.0 } else { 0.0 };
+        let strip_rect = egui::Rect::from_min_max(egui::pos2(area.left(), area.bottom() - strip_height), area.max);
+        let plot_rect = egui::Rect::from_min_max(
+            egui::pos2(area.left(), lane_rect.bottom()),
+            egui::pos2(area.right(), strip_rect.top()),
+        );
         let visible = self.visible();
         let shift = ui.input(|input| input.modifiers.shift);
         let dragging = self.drag.is_some();
@@ -257,7 +281,7 @@ impl Graph {
                         plot.line(Line::new(channel.name.as_str(), PlotPoints::from(points)).color(color).width(2.0));
                     }
                     // The sound's onsets: keys dragged near one snap to it.
-                    let onset = crate::ui::sound::lane::ONSET.gamma_multiply(0.6);
+                    let onset = ONSET.gamma_multiply(0.6);
                     for t in curves.onsets_ms.iter().filter(|t| (bounds.min()[0]..=bounds.max()[0]).contains(*t)) {
                         plot.vline(egui_plot::VLine::new("", *t).color(onset).width(1.0));
                     }
@@ -268,6 +292,9 @@ impl Graph {
         });
         self.held_view = held_view;
         keys::lane(ui, lane_rect, &response.transform, curves.lane);
+        if let Some(sound) = curves.sound {
+            keys::waveform(ui, strip_rect, &response.transform, sound, curves.onsets_ms);
+        }
         if !curves.editable {
             return None;
         }

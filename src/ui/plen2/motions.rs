@@ -10,7 +10,7 @@ use crate::project::plen2::{Frame, Joint, LoopRange, Motion, Plen2Project, Pose}
 use crate::project::plen2::{MAX_TRANSITION_MS, MIN_TRANSITION_MS, SLOTS};
 use crate::project::{Edit, Location, Problem};
 use crate::ui::action::{Action, Export, FileRequest};
-use crate::ui::graph::{Channel, Curves, Graph};
+use crate::ui::graph::{Channel, Curves, Graph, SoundMarks};
 use crate::ui::i18n::Strings;
 use crate::ui::layout::{self, Layout, Part};
 use crate::ui::plen2::action::Plen2Action;
@@ -121,7 +121,7 @@ impl MotionsPanel {
             Part::Graph => {
                 let cursor = view_open.then_some(preview.transport.t_ms);
                 let onsets = std::mem::take(&mut self.onsets_ms);
-                self.graph(ui, (project, cursor, &onsets), words, actions);
+                self.graph(ui, (project, cursor, (&onsets, view.sound.strip())), words, actions);
                 self.onsets_ms = onsets;
             }
             Part::View => {
@@ -148,7 +148,7 @@ impl MotionsPanel {
     fn graph(
         &mut self,
         ui: &mut egui::Ui,
-        (project, cursor_ms, onsets_ms): (&Plen2Project, Option<f64>, &[f64]),
+        (project, cursor_ms, (onsets_ms, sound)): (&Plen2Project, Option<f64>, SoundMarks<'_>),
         words: &Strings,
         actions: &mut Vec<Action>,
     ) {
@@ -164,6 +164,7 @@ impl MotionsPanel {
             lane,
             update_ms: crate::authoring::fitted::PLEN2_UPDATE_MS,
             onsets_ms,
+            sound,
             cursor_ms,
             editable: true,
         };

@@ -11,7 +11,7 @@ use crate::project::{
 };
 use crate::ui::action::Action;
 use crate::ui::derive::Derived;
-use crate::ui::graph::{Channel, Curves, Graph};
+use crate::ui::graph::{Channel, Curves, Graph, SoundMarks};
 use crate::ui::i18n::Strings;
 use crate::ui::layout::{self, Layout, Part};
 use crate::ui::rows;
@@ -145,7 +145,8 @@ impl ActionPanel {
             Part::View => preview.timed(ui, project, &facts.timed, (view, actions)),
             Part::Graph => {
                 let onsets = view.sound.onsets_ms();
-                graph_pane(ui, graph, (project, index), (&facts.channels, cursor, &onsets), words.lang, actions);
+                let sound = (&onsets[..], view.sound.strip());
+                graph_pane(ui, graph, (project, index), (&facts.channels, cursor, sound), words.lang, actions);
             }
         });
         if let Some(t_ms) = seek {
@@ -195,12 +196,12 @@ fn graph_pane(
     ui: &mut egui::Ui,
     graph: &mut Graph,
     (project, index): (&ServoProject, usize),
-    (channels, cursor_ms, onsets_ms): (&[Channel], Option<f64>, &[f64]),
+    (channels, cursor_ms, (onsets_ms, sound)): (&[Channel], Option<f64>, SoundMarks<'_>),
     language: crate::ui::i18n::Language,
     actions: &mut Vec<Action>,
 ) {
     let update_ms = super::graph::UPDATE_MS;
-    let curves = Curves { channels, lane: &[], update_ms, onsets_ms, cursor_ms, editable: true };
+    let curves = Curves { channels, lane: &[], update_ms, onsets_ms, cursor_ms, editable: true, sound };
     if let Some(done) = graph.show(ui, "action-graph", &curves, language) {
         let changed = super::graph::apply(project, &project.actions[index], &done);
         actions.push(set(index, changed, None));

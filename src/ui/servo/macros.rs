@@ -173,6 +173,7 @@ impl MacroPanel {
                     lane: &derived.lane,
                     update_ms: super::graph::UPDATE_MS,
                     onsets_ms: &onsets,
+                    sound: view.sound.strip(),
                     cursor_ms: cursor,
                     editable: false,
                 };

@@ -7,7 +7,7 @@
 //! with the cursor: Play plays the sound from the cursor, a drag of the
 //! stopped cursor plays short grains.
 
-use egui::{Color32, Stroke, vec2};
+use egui::{Stroke, vec2};
 
 use super::{Problem, SoundAction, SoundView};
 use crate::ui::action::{Action, FileRequest, Pick};
@@ -19,8 +19,8 @@ const HEIGHT: f32 = 64.0;
 /// A grain no closer to the last than this, ms of motion time.
 const GRAIN_STEP_MS: f64 = 40.0;
 
-/// The onsets' colour.
-pub const ONSET: Color32 = Color32::from_rgb(240, 150, 40);
+/// The onsets' colour (the graphs' too).
+pub use crate::ui::graph::ONSET;
 
 /// The transport as last seen: where it plays from (if it plays), its speed, its cursor.
 type Seen = (Option<(f64, f64)>, f64, f64);

@@ -387,6 +387,15 @@ impl SoundView<'_> {
     pub const NONE: SoundView<'static> =
         SoundView { track: None, read: None, onsets_s: &[], progress: None, problem: None, file: None };
 
+    /// The waveform as the graphs draw it under their curves.
+    pub fn strip(&self) -> Option<crate::ui::graph::SoundStrip<'_>> {
+        let (track, read) = (self.track?, self.read?);
+        // Offsets within an hour: exact in f64.
+        #[allow(clippy::cast_precision_loss)]
+        let offset_ms = track.offset_ms as f64;
+        Some(crate::ui::graph::SoundStrip { peaks: &read.peaks, rate: read.sample_rate, offset_ms })
+    }
+
     /// The onsets on the motion's time, ms (what frames, steps and retimes snap to).
     pub fn onsets_ms(&self) -> Vec<f64> {
         let Some(track) = self.track else { return Vec::new() };
