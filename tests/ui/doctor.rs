@@ -97,6 +97,9 @@ fn find_board_names_the_plen2_and_connects_to_it_as_one() {
     run_until(&mut harness, "the link", |app| app.link.is_some());
     assert_eq!(harness.state().document.project.family, Family::Plen2, "the document became a PLEN2 project");
     assert_eq!(harness.state().link.as_ref().unwrap().family(), Family::Plen2);
+    harness.run_steps(2);
+    // Play on board with a sound waits the latency the doctor measured on this port.
+    assert!(harness.state().sound.link_latency().is_some(), "the doctor's measured latency reaches the sound");
     // One undo step puts the family back (once disconnected).
     harness.state_mut().apply(Action::Disconnect);
     harness.state_mut().apply(Action::Undo);

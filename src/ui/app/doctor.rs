@@ -20,6 +20,8 @@ pub(super) struct Doctor {
     /// The port and line rate of the link now open (what a lost link is made again with).
     current: Option<Current>,
     lost: Option<Lost>,
+    /// Each port's first-byte latency, as the last probe of it measured.
+    latency: std::collections::BTreeMap<String, Duration>,
 }
 
 /// Ports being asked, one after another, on a helper thread.
@@ -123,6 +125,9 @@ impl StudioApp {
         let answers: Vec<_> = probing.done.try_iter().collect();
         let connect = probing.connect;
         for (port, outcome) in answers {
+            if let Some(latency) = outcome.as_ref().ok().and_then(|result| result.found.as_ref()?.link.latency) {
+                self.links.doctor.latency.insert(port.clone(), latency);
+            }
             let (text, offer) = match &outcome {
                 Ok(result) => (
                     self.language.probe_result(&port, result),
@@ -147,6 +152,12 @@ impl StudioApp {
         if self.links.doctor.probing.as_ref().is_some_and(|probing| probing.left == 0) {
             self.links.doctor.probing = None;
         }
+    }
+
+    /// The first-byte latency the doctor measured on the port now open, if it asked it.
+    pub(super) fn measured_latency(&self) -> Option<Duration> {
+        let current = self.links.doctor.current.as_ref()?;
+        self.links.doctor.latency.get(&current.port).copied()
     }
 
     /// Connects to `port` as `family` (the document's family becomes it, one undo step) at `baud`.

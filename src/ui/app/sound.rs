@@ -9,6 +9,8 @@ impl StudioApp {
     /// finished reading, and says what the sound has to say (once).
     pub(super) fn keep_sound(&mut self) {
         let folder = self.document.path.as_deref().and_then(std::path::Path::parent).map(std::path::Path::to_path_buf);
+        // Play on board waits the link's delay: its time on the line, and the latency the doctor measured.
+        self.sound.set_link_latency(self.measured_latency());
         let edit = self.sound.sync(&self.document.project, folder.as_deref(), &self.window.waker);
         if let Some((edit, coalesce)) = edit {
             self.document.apply(edit, Some(coalesce));

@@ -70,6 +70,8 @@ pub struct SoundDesk {
     adding: Option<SoundTrack>,
     /// The follow-the-sound dialog, while open.
     follow: Option<follow::FollowForm>,
+    /// The link's first-byte latency, as the connection doctor measured it (none: not asked).
+    link_latency: Option<Duration>,
     /// A sound being started together with the board, off the frame.
     joining: Option<crossbeam_channel::Receiver<Result<Playing, crate::audio::output::OutputError>>>,
 }
@@ -95,6 +97,7 @@ impl Default for SoundDesk {
             edit: None,
             adding: None,
             follow: None,
+            link_latency: None,
             joining: None,
         }
     }
@@ -297,7 +300,8 @@ impl SoundDesk {
 
     /// Starts the board and the sound together: the sound's point for the
     /// motion's `from_ms` is heard as the board starts moving; `start_board`
-    /// sends the start command `link_delay` before. Off the frame. False when
+    /// sends the start command `link_delay` (the command's time on the line)
+    /// plus the doctor's measured latency before. Off the frame. False when
     /// there is no sound to play (the caller starts the board alone).
     pub fn play_with_board(
         &mut self,
@@ -306,6 +310,7 @@ impl SoundDesk {
         (link_delay, waker): (Duration, Waker),
         start_board: impl FnOnce() + Send + 'static,
     ) -> bool {
+        let link_delay = link_delay + self.link_latency.unwrap_or_default();
         let (Some(track), Some(file), Some(_)) = (&project.sound, self.file.clone(), &self.read) else { return false };
         // Offsets within an hour: exact in f64.
         #[allow(clippy::cast_precision_loss)]
@@ -340,6 +345,16 @@ impl SoundDesk {
         if !open {
             self.follow = None;
         }
+    }
+
+    /// The link's first-byte latency as the connection doctor measured it (added to every Play on board's delay).
+    pub fn set_link_latency(&mut self, latency: Option<Duration>) {
+        self.link_latency = latency;
+    }
+
+    /// The link's measured latency, as Play on board counts it.
+    pub fn link_latency(&self) -> Option<Duration> {
+        self.link_latency
     }
 
     /// A line for the status bar, once ("no sound output", a file that is no sound).
