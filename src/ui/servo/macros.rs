@@ -153,7 +153,7 @@ impl MacroPanel {
         // The preview's time cursor, drawn on the plot too (while the preview is open).
         let cursor = layout.view_open.then_some(preview.transport.t_ms);
         let mut played_from = None;
-        let graph = &mut self.graph;
+        let (graph, onsets) = (&mut self.graph, view.sound.onsets_ms());
         let titles = (None, crate::ui::graph::words(words.lang).title);
         layout::list_editor_and_graph(ui, "macros", layout, titles, |ui, part| match part {
             Part::List => rows::names(ui, "macro-list", project.macros.len(), |ui, index| {
@@ -167,7 +167,6 @@ impl MacroPanel {
             Part::Editor => played_from = Self::editor(ui, project, index, derived, connected, words, actions),
             Part::Lower => {}
             Part::Graph => {
-                let onsets = view.sound.onsets_ms();
                 let curves = Curves {
                     channels: &derived.channels,
                     lane: &derived.lane,
