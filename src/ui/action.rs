@@ -249,7 +249,7 @@ pub enum Action {
     /// What the import window asks for.
     Import(ImportAction),
     /// The project's sound track: add, locate, offset, play in step with a preview.
-    Sound(crate::ui::sound::SoundAction),
+    Sound(crate::ui::sound::action::SoundAction),
     /// What a family's panels ask for (its own action type, which only that
     /// family's ui takes back).
     Family(Box<dyn FamilyAction>),

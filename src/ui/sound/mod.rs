@@ -5,7 +5,7 @@
 //! grains, and started together with the board. The lane under each
 //! preview's cursor is [`lane`].
 
-mod action;
+pub mod action;
 mod follow;
 pub mod lane;
 mod reading;
