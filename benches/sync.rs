@@ -3,7 +3,11 @@
 //! pseudo-terminal, runs a macro with a step on each click; then the same
 //! with the emulated PLEN2 playing a motion with a click on each frame. Prints how far
 //! each click was from its step (the test holds every one within 10 ms, one
-//! board update). Needs Debian's `pulseaudio` (`.ci/run` installs it).
+//! board update). The servo minute is played twice: through the sound
+//! server's own protocol (Linux), and through cpal (the output Windows and
+//! macOS use), here into ALSA's default device, which ALSA's PulseAudio
+//! plugin sends to the same server. Needs Debian's `pulseaudio` and
+//! `libasound2-plugins`, and `libasound2-dev` to build (`.ci/run` installs them).
 //!
 //! `cargo bench --bench sync`
 
@@ -12,7 +16,18 @@
 #[path = "../tests/common/pulse.rs"]
 mod pulse;
 
+/// This bench run again to play through cpal (see `main`).
+const THROUGH_CPAL: &str = "through-cpal";
+
 fn main() {
+    if std::env::args().any(|arg| arg == THROUGH_CPAL) {
+        // In a process of its own, whose environment names the server for ALSA's PulseAudio plugin.
+        let server = pulse::Pulse::of_parent();
+        let speakers = servo_studio::audio::output::Speakers::connect_device().unwrap();
+        let servo = pulse::measure_servo_through(&server, 60, &speakers);
+        say("servo board over a pty, 60 clicks over 60 s, through cpal (ALSA)", &servo.offsets_ms, 10.0);
+        return;
+    }
     let Some(server) = pulse::Pulse::start() else {
         println!("sync: skipped (no pulseaudio)");
         return;
@@ -20,6 +35,8 @@ fn main() {
     let steps = 60;
     let servo = pulse::measure_servo(&server, steps);
     say(&format!("servo board over a pty, {steps} clicks over {steps} s"), &servo.offsets_ms, 10.0);
+    // The output Windows and macOS use, here into ALSA's PulseAudio plugin.
+    print!("{}", server.in_own_process(&[THROUGH_CPAL]));
     let plen2 = pulse::measure_plen2(&server, 20, 3000);
     say("PLEN2 over a pty, a motion of 20 frames of 3 s (a click on each frame)", &plen2.offsets_ms, 32.768);
 }

@@ -32,11 +32,14 @@ use pulseaudio::protocol;
 pub const SINK: &str = "show";
 /// The null sink's rate.
 pub const RATE: u32 = 48_000;
+/// Names the server's socket to a test run in its own process.
+const SOCKET_VAR: &str = "SERVO_STUDIO_TEST_PULSE_SOCKET";
 
 /// A running server in a folder of its own; stopped when dropped.
 pub struct Pulse {
-    child: Child,
-    _dir: tempfile::TempDir,
+    /// The server, when this process started it.
+    child: Option<Child>,
+    _dir: Option<tempfile::TempDir>,
     /// Its socket.
     pub socket: PathBuf,
 }
@@ -89,10 +92,37 @@ impl Pulse {
             let _ = up_tx.send(Err(said.join("\n")));
         });
         match up_rx.recv_timeout(Duration::from_secs(30)) {
-            Ok(Ok(())) => Some(Pulse { child, _dir: dir, socket }),
+            Ok(Ok(())) => Some(Pulse { child: Some(child), _dir: Some(dir), socket }),
             Ok(Err(log)) => panic!("pulseaudio ended before it was up:\n{log}"),
             Err(_) => panic!("pulseaudio was not up within 30 s"),
         }
+    }
+
+    /// The server of the process that ran this one (`in_own_process`).
+    pub fn of_parent() -> Pulse {
+        let socket = std::env::var_os(SOCKET_VAR).expect("run by `in_own_process`, which names the server");
+        Pulse { child: None, _dir: None, socket: PathBuf::from(socket) }
+    }
+
+    /// Runs this program again with `args`, in a process whose environment
+    /// names this server, as a user's does (`PULSE_SERVER`), for what finds
+    /// the server only there (ALSA's PulseAudio plugin). Fails with what it
+    /// said when it fails; returns what it said.
+    pub fn in_own_process(&self, args: &[&str]) -> String {
+        let folder = self.socket.parent().unwrap();
+        let output = Command::new(std::env::current_exe().unwrap())
+            .args(args)
+            .env("PULSE_SERVER", format!("unix:{}", self.socket.display()))
+            .env(SOCKET_VAR, &self.socket)
+            .env("HOME", folder)
+            .env("XDG_RUNTIME_DIR", folder)
+            .env("XDG_CONFIG_HOME", folder)
+            .stdin(Stdio::null())
+            .output()
+            .unwrap();
+        let said = format!("{}{}", String::from_utf8_lossy(&output.stdout), String::from_utf8_lossy(&output.stderr));
+        assert!(output.status.success(), "{args:?} failed in its own process:\n{said}");
+        said
     }
 
     /// A client of this server.
@@ -105,8 +135,10 @@ impl Pulse {
 
 impl Drop for Pulse {
     fn drop(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
+        if let Some(child) = &mut self.child {
+            let _ = child.kill();
+            let _ = child.wait();
+        }
     }
 }
 
@@ -295,7 +327,7 @@ pub fn measure_plen2(pulse: &Pulse, frames: usize, transition_ms: u16) -> Measur
         }
     };
     let steps: Vec<Instant> = at.iter().map(|s| first_cycle + Duration::from_secs_f64(*s)).collect();
-    recorder.wait_for(seconds + together::PREROLL.as_secs_f64(), Duration::from_secs_f64(seconds + 30.0));
+    recorder.wait_for(seconds + started.preroll.as_secs_f64(), Duration::from_secs_f64(seconds + 30.0));
     drop(started);
     offsets(&recorder.rises(0.5, 0.2), &steps)
 }
@@ -325,6 +357,12 @@ pub struct Measured {
 
 /// Plays `steps` one-second steps with a click on each, and measures.
 pub fn measure_servo(pulse: &Pulse, steps: usize) -> Measured {
+    measure_servo_through(pulse, steps, &Speakers::connect_to(&pulse.socket).unwrap())
+}
+
+/// Plays `steps` one-second steps with a click on each through `speakers`
+/// (which must play into `pulse`), and measures.
+pub fn measure_servo_through(pulse: &Pulse, steps: usize, speakers: &Speakers) -> Measured {
     let dir = tempfile::tempdir().unwrap();
     let sound = dir.path().join("clicks.wav");
     let at: Vec<f64> = (0..steps).map(|step| step as f64).collect();
@@ -362,11 +400,10 @@ pub fn measure_servo(pulse: &Pulse, steps: usize) -> Measured {
     let requester = client.requester();
 
     let recorder = Recorder::start(pulse);
-    let speakers = Speakers::connect_to(&pulse.socket).unwrap();
     let command = Message::ExecuteMacroRequest { macro_id: 1 }.encode().unwrap();
     let delay = together::link_delay(command.len(), DEFAULT_BAUD, Duration::ZERO);
     let mut reply = None;
-    let started = together::start(&speakers, &sound, 0.0, delay, || {
+    let started = together::start(speakers, &sound, 0.0, delay, || {
         reply = Some(requester.request_async(Message::ExecuteMacroRequest { macro_id: 1 }).unwrap());
     })
     .unwrap();
@@ -394,7 +431,7 @@ pub fn measure_servo(pulse: &Pulse, steps: usize) -> Measured {
     let moving_at = started.moving_at;
     // Until the sound has played out (the recorder's own count of what it heard).
     let end = steps as f64 + 0.8;
-    recorder.wait_for(end + together::PREROLL.as_secs_f64(), Duration::from_secs_f64(end + 30.0));
+    recorder.wait_for(end + started.preroll.as_secs_f64(), Duration::from_secs_f64(end + 30.0));
     drop(started);
     let clicks = recorder.rises(0.5, 0.2);
     eprintln!("the first click came {:.2} ms after the sound said it would", since(clicks[0], moving_at));
