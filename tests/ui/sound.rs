@@ -13,13 +13,16 @@ use crate::common;
 use crate::common::pulse::Pulse;
 
 use std::path::{Path, PathBuf};
+use std::time::Duration;
 
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use servo_studio::link::{LinkEvent, Waker, no_waker};
 use servo_studio::project::{Project, SoundTrack};
 use servo_studio::sim::SimEvent;
-use servo_studio::ui::{Action, FileRequest, Picker, ServoBoardLink as _, SoundAction, SoundDesk, StudioApp, Tab};
+use servo_studio::ui::{
+    Action, FileRequest, Picker, Plen2BoardLink as _, ServoBoardLink as _, SoundAction, SoundDesk, StudioApp, Tab,
+};
 
 /// Clicks at these times (s) in a 3 s track.
 const CLICKS: [f64; 4] = [0.3, 0.9, 1.6, 2.2];
@@ -210,7 +213,7 @@ fn running_a_macro_on_the_board_starts_the_sound_with_it() {
     let events = harness.state().link.as_ref().unwrap().demo_board().unwrap().events().clone();
     harness.state_mut().apply(Action::family(servo_studio::ui::ServoAction::RunMacro(macro_id)));
     common::ui::run_until(&mut harness, "the sound playing", |app| app.sound.is_playing());
-    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(10);
+    let deadline = std::time::Instant::now() + Duration::from_secs(10);
     loop {
         match events.recv_deadline(deadline) {
             Ok(LinkEvent::Driver(SimEvent::MacroSteps { macro_id: ran, .. })) if ran == macro_id => break,
@@ -247,4 +250,70 @@ fn follow_the_sound_adds_a_servos_steps_and_a_macro_timed_to_it_in_one_undo_step
     harness.state_mut().apply(Action::Undo);
     harness.run_steps(2);
     assert_eq!(harness.state().document.project.servo, before, "one undo step");
+}
+
+#[test]
+fn stop_before_the_boards_start_goes_out_stops_the_sound_and_the_start_never_goes_out() {
+    let Some(pulse) = Pulse::start() else { return };
+    let dir = tempfile::tempdir().unwrap();
+    let project = with_sound(dir.path());
+    let mut harness = saved_editor(dir.path(), project.clone(), Vec::new());
+    harness.state_mut().sound = SoundDesk::with_server(pulse.socket.clone());
+    common::ui::run_until(&mut harness, "the sound read", |app| app.sound.view(&app.document.project).read.is_some());
+    let (sent, went_out) = crossbeam_channel::bounded(1);
+    let start = move || sent.send(()).unwrap();
+    let waiting = harness.state_mut().sound.play_with_board(&project, 0.0, (Duration::ZERO, no_waker()), start);
+    assert!(waiting, "the board's start waits for the sound");
+    // STOP at once: the start is due only once the sound has played its 300 ms lead.
+    harness.state_mut().apply(Action::Stop);
+    // The start is dropped unsent when the sound-and-board thread ends: its channel closes.
+    assert_eq!(
+        went_out.recv_timeout(Duration::from_secs(30)),
+        Err(crossbeam_channel::RecvTimeoutError::Disconnected),
+        "the board's start never went out"
+    );
+    harness.run_steps(2);
+    assert!(!harness.state().sound.is_playing(), "the sound stopped with the board");
+}
+
+#[test]
+fn playing_a_play_list_on_the_robot_queues_it_then_starts_it_with_the_sound() {
+    use servo_studio::project::Family;
+    use servo_studio::project::plen2::{PlayEntry, PlayList};
+    use servo_studio::protocol::plen2::Command;
+    use servo_studio::sim::Plen2SimEvent;
+    let Some(pulse) = Pulse::start() else { return };
+    let dir = tempfile::tempdir().unwrap();
+    let mut project = Project::empty(Family::Plen2);
+    project.sound = with_sound(dir.path()).sound;
+    let entries = vec![PlayEntry { slot: 3, plays: 2 }, PlayEntry { slot: 5, plays: 1 }];
+    project.plen2.play_lists = vec![PlayList { name: "show".into(), entries }];
+    let path = dir.path().join("show.json");
+    servo_studio::project::save(&path, &project).unwrap();
+    let data = tempfile::tempdir().unwrap().keep();
+    let app = StudioApp::new(project, Some(path), no_waker()).with_data_dir(data);
+    let mut harness = common::ui::showing(app, Tab::PlayLists, (1300.0, 900.0));
+    harness.state_mut().sound = SoundDesk::with_server(pulse.socket.clone());
+    harness.state_mut().apply(Action::ConnectDemo);
+    common::ui::run_until(&mut harness, "the sound read", |app| app.sound.view(&app.document.project).read.is_some());
+    common::ui::run_until(&mut harness, "the demo robot", |app| {
+        app.link.as_ref().is_some_and(|link| link.demo_plen2().is_some())
+    });
+    let events = harness.state().link.as_ref().unwrap().demo_plen2().unwrap().events().clone();
+    harness.state_mut().apply(Action::family(servo_studio::ui::Plen2Action::PlayList(0)));
+    // The sound plays once the thread starting both has sent `#PO`.
+    common::ui::run_until(&mut harness, "the sound playing", |app| app.sound.is_playing());
+    let deadline = std::time::Instant::now() + Duration::from_secs(10);
+    let mut executed = Vec::new();
+    while executed.last() != Some(&Command::Pop) {
+        match events.recv_deadline(deadline) {
+            Ok(LinkEvent::Driver(Plen2SimEvent::Executed(command))) => executed.push(command),
+            Ok(_) => {}
+            Err(error) => panic!("the robot never started the list ({executed:?}): {error}"),
+        }
+    }
+    let queued = [Command::Push { slot: 3, plays: 2 }, Command::Push { slot: 5, plays: 1 }, Command::Pop];
+    assert!(executed.ends_with(&queued), "the list queued, then started: {executed:?}");
+    assert_eq!(executed.iter().filter(|command| **command == Command::Pop).count(), 1, "{executed:?}");
+    harness.state_mut().apply(Action::Sound(SoundAction::Silence));
 }

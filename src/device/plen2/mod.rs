@@ -57,7 +57,13 @@ pub const BAUD: u32 = 2_000_000;
 /// runs free, so the wait is anything up to a cycle: half a cycle is counted,
 /// which keeps a sound started with the motion within half an update of it.
 pub fn play_motion_delay(slot: u8, latency: std::time::Duration) -> std::time::Duration {
-    let on_line = crate::audio::together::link_delay(Command::PlayMotion { slot }.to_ascii().len(), BAUD, latency);
+    start_delay(&Command::PlayMotion { slot }, latency)
+}
+
+/// The same for `command`, which starts a motion: `$PM`, or `#PO` starting
+/// the queued ones (a popped `#PU` plays as `$PM` does, plen2.md §6).
+pub fn start_delay(command: &Command, latency: std::time::Duration) -> std::time::Duration {
+    let on_line = crate::audio::together::link_delay(command.to_ascii().len(), BAUD, latency);
     on_line + std::time::Duration::from_micros(playback::CYCLE_US / 2)
 }
 
@@ -208,14 +214,14 @@ impl Plen2Handle {
         self.send(Command::StopMotion);
     }
 
-    /// Plays motions one after another: `#RI`, a `#PU` each, `#PO`.
-    pub fn play_list(&mut self, entries: &[(u8, u8)]) {
+    /// Queues motions to be played one after another (`#RI`, a `#PU` each):
+    /// `#PO` starts them.
+    pub fn queue_list(&mut self, entries: &[(u8, u8)]) {
         self.stopped = false;
         self.send(Command::ResetInterpreter);
         for &(slot, plays) in entries {
             self.send(Command::Push { slot, plays });
         }
-        self.send(Command::Pop);
     }
 
     /// STOP: `#RI` (clear the queue, stop at once) then `$HP`, ahead of everything queued.

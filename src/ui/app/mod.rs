@@ -222,6 +222,8 @@ impl StudioApp {
 
     /// STOP, the family's way (always visible, Esc too).
     fn stop(&mut self) {
+        // The show's sound stops too, and a board's start still waiting for it never goes out.
+        self.sound.silence();
         let Some(link) = &self.link else {
             self.report(self.words().msg_stop_no_board, false);
             return;

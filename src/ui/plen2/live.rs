@@ -226,38 +226,25 @@ impl Plen2Ui {
         shell.report(said, false);
     }
 
+    /// Plays a play list: `#RI` and a `#PU` each at once, then `#PO`, which
+    /// starts the first motion, with the sound as `start_with_sound` sends it.
     pub(super) fn play_list(&mut self, shell: &mut Shell<'_>, index: usize) {
         let Some(list) = shell.document.project.plen2.play_lists.get(index) else { return };
         let entries: Vec<(u8, u8)> = list.entries.iter().map(|e| (e.slot, e.plays)).collect();
         let last = entries.last().copied();
-        if let Some(robot) = shell.plen2_mut() {
-            robot.play_list(&entries);
-            // Where the last motion leaves the robot (one played forever never ends).
-            if let Some((slot, _)) = last.filter(|&(_, plays)| plays > 0) {
-                self.after_playing(shell, slot);
-            }
+        let Some(robot) = shell.plen2_mut() else { return };
+        robot.queue_list(&entries);
+        start_with_sound(shell, crate::device::plen2::Command::Pop);
+        // Where the last motion leaves the robot (one played forever never ends).
+        if let Some((slot, _)) = last.filter(|&(_, plays)| plays > 0) {
+            self.after_playing(shell, slot);
         }
     }
 
-    /// Plays a motion stored on the robot (`$PM`).
-    /// With a sound track, the sound starts with it: its point for the
-    /// motion's start is heard as the command reaches the robot.
+    /// Plays a motion stored on the robot (`$PM`), with the sound as
+    /// `start_with_sound` sends it.
     pub(super) fn play_motion(&mut self, shell: &mut Shell<'_>, slot: u8) {
-        let Some(robot) = shell.plen2_mut() else { return };
-        let requester = robot.requester();
-        let delay = crate::device::plen2::play_motion_delay(slot, std::time::Duration::ZERO);
-        let start = move || {
-            // A lost command is the link's to report.
-            let _ = requester.send(crate::device::plen2::Command::PlayMotion { slot });
-        };
-        let waker = shell.waker.clone();
-        if shell.sound.play_with_board(&shell.document.project, 0.0, (delay, waker), start) {
-            if let Some(robot) = shell.plen2_mut() {
-                robot.stopped = false;
-            }
-        } else if let Some(robot) = shell.plen2_mut() {
-            robot.play(slot);
-        }
+        start_with_sound(shell, crate::device::plen2::Command::PlayMotion { slot });
         self.after_playing(shell, slot);
     }
 
@@ -319,5 +306,25 @@ impl Plen2Ui {
         }
         self.send_pose(shell);
         self.stream.is_some()
+    }
+}
+
+/// Sends `start`, a command that starts a motion (`$PM`, `#PO`). With a
+/// sound track, the sound starts with it: its point for the show's start is
+/// heard as the joints first move (the command goes out its time on the line
+/// and half the firmware's update before, plen2.md §6). STOP before then
+/// stops the sound and the command never goes out.
+fn start_with_sound(shell: &mut Shell<'_>, start: crate::device::plen2::Command) {
+    let Some(robot) = shell.plen2_mut() else { return };
+    robot.stopped = false;
+    let requester = robot.requester();
+    let delay = crate::device::plen2::start_delay(&start, std::time::Duration::ZERO);
+    let waker = shell.waker.clone();
+    let on_time = requester.clone();
+    let command = start.clone();
+    // A lost command is the link's to report.
+    let send = move || drop(on_time.send(command));
+    if !shell.sound.play_with_board(&shell.document.project, 0.0, (delay, waker), send) {
+        let _ = requester.send(start);
     }
 }

@@ -11,6 +11,8 @@ pub mod lane;
 mod reading;
 
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
 use crate::audio::output::{Playing, Speakers};
@@ -73,7 +75,15 @@ pub struct SoundDesk {
     /// The link's first-byte latency, as the connection doctor measured it (none: not asked).
     link_latency: Option<Duration>,
     /// A sound being started together with the board, off the frame.
-    joining: Option<crossbeam_channel::Receiver<Result<Playing, crate::audio::output::OutputError>>>,
+    joining: Option<Joining>,
+}
+
+/// A sound and a board being started together, off the frame.
+struct Joining {
+    /// The sound, once it plays (or why it does not).
+    started: crossbeam_channel::Receiver<Result<Playing, crate::audio::output::OutputError>>,
+    /// Set by STOP (or any other sound) before the board's start goes out: it never does.
+    cancelled: Arc<AtomicBool>,
 }
 
 impl std::fmt::Debug for SoundDesk {
@@ -146,7 +156,7 @@ impl SoundDesk {
             self.reading = None;
             self.took(done, project);
         }
-        if let Some(joined) = self.joining.as_ref().and_then(|joining| joining.try_recv().ok()) {
+        if let Some(joined) = self.joining.as_ref().and_then(|joining| joining.started.try_recv().ok()) {
             self.joining = None;
             match joined {
                 Ok(playing) => self.playing = Some(playing),
@@ -291,8 +301,11 @@ impl SoundDesk {
         }
     }
 
-    /// Stops the sound.
+    /// Stops the sound, and a board's start still waiting for it (which then never goes out).
     pub fn silence(&mut self) {
+        if let Some(joining) = self.joining.take() {
+            joining.cancelled.store(true, Ordering::SeqCst);
+        }
         if let Some(playing) = self.playing.take() {
             playing.stop();
         }
@@ -317,16 +330,26 @@ impl SoundDesk {
         let sound_s = (from_ms - track.offset_ms as f64) / 1000.0;
         self.silence();
         let Some(speakers) = self.speakers().cloned() else { return false };
-        let (sender, joining) = crossbeam_channel::bounded(1);
+        let (sender, started) = crossbeam_channel::bounded(1);
+        let cancelled = Arc::new(AtomicBool::new(false));
+        let start_unless_cancelled = {
+            let cancelled = Arc::clone(&cancelled);
+            move || {
+                if !cancelled.load(Ordering::SeqCst) {
+                    start_board();
+                }
+            }
+        };
         let spawned = std::thread::Builder::new().name("sound and board".into()).spawn(move || {
-            let started = crate::audio::together::start(&speakers, &file, sound_s, link_delay, start_board);
+            let started = crate::audio::together::start(&speakers, &file, sound_s, link_delay, start_unless_cancelled);
+            // Cancelled: nobody listens, and the sound stops as it is dropped.
             let _ = sender.send(started.map(|together| together.playing));
             waker();
         });
         if spawned.is_err() {
             return false;
         }
-        self.joining = Some(joining);
+        self.joining = Some(Joining { started, cancelled });
         true
     }
 
