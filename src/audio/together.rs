@@ -26,8 +26,6 @@ pub struct Together {
     pub moving_at: Instant,
     /// When the start command went out.
     pub sent_at: Instant,
-    /// How long before its point the sound started.
-    pub preroll: Duration,
 }
 
 /// Plays `sound` so that `sound_s` (seconds from its start) is heard as the
@@ -56,7 +54,7 @@ pub fn start(
         wait_until(send_at);
         let sent_at = Instant::now();
         start_board();
-        return Ok(Together { playing, moving_at, sent_at, preroll });
+        return Ok(Together { playing, moving_at, sent_at });
     }
 }
 

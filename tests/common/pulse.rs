@@ -247,17 +247,16 @@ impl Recorder {
         rises
     }
 
-    /// Waits until `seconds` have been recorded; panics after `within`.
-    pub fn wait_for(&self, seconds: f64, within: Duration) {
-        let wanted = (seconds * f64::from(RATE)) as usize;
+    /// Waits until what was played at `at` has been recorded (a packet came
+    /// in after it); panics after `within`.
+    pub fn wait_past(&self, at: Instant, within: Duration) {
         let (heard, more) = &*self.heard;
-        let (heard, waited) =
-            more.wait_timeout_while(heard.lock().unwrap(), within, |heard| heard.samples.len() < wanted).unwrap();
-        assert!(
-            !waited.timed_out(),
-            "the monitor recorded only {:.2} s of {seconds} s",
-            heard.samples.len() as f64 / f64::from(RATE)
-        );
+        let (heard, waited) = more
+            .wait_timeout_while(heard.lock().unwrap(), within, |heard| {
+                heard.arrivals.last().is_none_or(|(arrived, _)| *arrived < at)
+            })
+            .unwrap();
+        assert!(!waited.timed_out(), "the monitor recorded only {:.2} s", heard.samples.len() as f64 / f64::from(RATE));
     }
 }
 
@@ -327,13 +326,18 @@ pub fn measure_plen2(pulse: &Pulse, frames: usize, transition_ms: u16) -> Measur
         }
     };
     let steps: Vec<Instant> = at.iter().map(|s| first_cycle + Duration::from_secs_f64(*s)).collect();
-    recorder.wait_for(seconds + started.preroll.as_secs_f64(), Duration::from_secs_f64(seconds + 30.0));
+    recorder.wait_past(started.moving_at + Duration::from_secs_f64(seconds), Duration::from_secs_f64(seconds + 30.0));
     drop(started);
     offsets(&recorder.rises(0.5, 0.2), &steps)
 }
 
-/// Each click's offset from its step, ms (positive: the sound late).
+/// Each click's offset from its step, ms (positive: the sound late). A
+/// click well before the first step (100 ms: ten servo updates) is not the
+/// show's: an output slower to start than the sound's lead is started again
+/// with a longer one, and what it played the first time is left out.
 fn offsets(clicks: &[Instant], steps: &[Instant]) -> Measured {
+    let earliest = steps[0].checked_sub(Duration::from_millis(100)).unwrap();
+    let clicks: Vec<Instant> = clicks.iter().copied().filter(|click| *click >= earliest).collect();
     assert_eq!(clicks.len(), steps.len(), "every click heard once: {clicks:?}");
     let offsets_ms = clicks
         .iter()
@@ -431,7 +435,7 @@ pub fn measure_servo_through(pulse: &Pulse, steps: usize, speakers: &Speakers) -
     let moving_at = started.moving_at;
     // Until the sound has played out (the recorder's own count of what it heard).
     let end = steps as f64 + 0.8;
-    recorder.wait_for(end + started.preroll.as_secs_f64(), Duration::from_secs_f64(end + 30.0));
+    recorder.wait_past(moving_at + Duration::from_secs_f64(end), Duration::from_secs_f64(end + 30.0));
     drop(started);
     let clicks = recorder.rises(0.5, 0.2);
     eprintln!("the first click came {:.2} ms after the sound said it would", since(clicks[0], moving_at));
