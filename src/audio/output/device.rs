@@ -117,12 +117,23 @@ impl Device {
             }
             handed_out += (out.len() / channels) as u64;
         };
-        // The device went away (unplugged): the sound is over.
-        let gone = move |_: cpal::Error| ended.store(true, Ordering::Relaxed);
+        let gone = move |error: cpal::Error| {
+            if ends_the_sound(error.kind()) {
+                ended.store(true, Ordering::Relaxed);
+            }
+        };
         self.device
             .build_output_stream::<T, _, _>(config, data, gone, Some(Duration::from_secs(2)))
             .map_err(|error| OutputError::Stream(error.to_string()))
     }
+}
+
+/// Whether a stream's error ends the sound: the device went away (unplugged)
+/// or failed. A glitch, a new route for the default device or a refused
+/// real-time priority leave it playing.
+fn ends_the_sound(kind: cpal::ErrorKind) -> bool {
+    use cpal::ErrorKind as K;
+    !matches!(kind, K::Xrun | K::DeviceChanged | K::RealtimeDenied)
 }
 
 impl Clock {
@@ -280,6 +291,17 @@ mod tests {
         let samples: Vec<f32> = (0..8).flat_map(|i| [i as f32, i as f32]).collect();
         let mut convert = Convert::new(decoded(samples, 96_000, 2), 48_000);
         assert_eq!(converted(&mut convert, 4, 2), [0.0, 0.0, 2.0, 2.0, 4.0, 4.0, 6.0, 6.0]);
+    }
+
+    #[test]
+    fn an_unplugged_device_ends_the_sound_a_glitch_or_a_new_route_does_not() {
+        use cpal::ErrorKind as K;
+        assert!(ends_the_sound(K::DeviceNotAvailable));
+        assert!(ends_the_sound(K::StreamInvalidated));
+        assert!(ends_the_sound(K::BackendError));
+        assert!(!ends_the_sound(K::Xrun));
+        assert!(!ends_the_sound(K::DeviceChanged));
+        assert!(!ends_the_sound(K::RealtimeDenied));
     }
 
     #[test]
