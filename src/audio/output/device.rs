@@ -20,6 +20,8 @@ use super::{BUFFER, OutputError};
 const SETTLED_CALLBACKS: usize = 8;
 /// Within this of each other.
 const AGREE: Duration = Duration::from_millis(3);
+/// What to do when the device will not play.
+const TO_DO: &str = "plug in speakers or headphones, or choose another default output in the system's sound settings";
 /// How long a device may take to settle.
 const SETTLE_WITHIN: Duration = Duration::from_secs(5);
 
@@ -56,10 +58,10 @@ impl Device {
         let host = cpal::default_host();
         let device = host
             .default_output_device()
-            .ok_or_else(|| OutputError::NoServer(format!("{} has no output device", host.id().name())))?;
+            .ok_or_else(|| OutputError::NoServer(format!("{} has no output device: {TO_DO}", host.id().name())))?;
         let config = device
             .default_output_config()
-            .map_err(|error| OutputError::NoServer(format!("{}: {error}", host.id().name())))?;
+            .map_err(|error| OutputError::NoServer(format!("{}: {error}: {TO_DO}", host.id().name())))?;
         Ok(Self { device, config })
     }
 
@@ -73,7 +75,7 @@ impl Device {
             F::I32 => self.build::<i32>(decoded, Arc::clone(&clock), ended),
             F::U16 => self.build::<u16>(decoded, Arc::clone(&clock), ended),
             F::F64 => self.build::<f64>(decoded, Arc::clone(&clock), ended),
-            other => Err(OutputError::Stream(format!("the output device wants {other} samples"))),
+            other => Err(OutputError::Stream(format!("the output device wants {other} samples: {TO_DO}"))),
         }?;
         stream.play().map_err(|error| OutputError::Stream(error.to_string()))?;
         Ok(Stream { _stream: stream, clock })
@@ -176,7 +178,7 @@ impl Stream {
             if now >= deadline {
                 return clock
                     .latest()
-                    .ok_or_else(|| OutputError::Stream("the output device never began playing".into()));
+                    .ok_or_else(|| OutputError::Stream(format!("the output device never began playing: {TO_DO}")));
             }
             clock = self.clock.rung.wait_timeout(clock, deadline - now).map_err(|_| stopped())?.0;
         }

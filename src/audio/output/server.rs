@@ -44,8 +44,12 @@ impl Server {
     /// Connects to the sound server the environment names (`PULSE_SERVER`,
     /// or the user's runtime folder), as every PulseAudio client does.
     pub fn connect() -> Result<Self, OutputError> {
-        let socket = pulseaudio::socket_path_from_env()
-            .ok_or_else(|| OutputError::NoServer("no sound server is running for this user".into()))?;
+        let socket = pulseaudio::socket_path_from_env().ok_or_else(|| {
+            OutputError::NoServer(
+                "no sound server is running for this user: start PulseAudio or PipeWire (with its pulse service)"
+                    .into(),
+            )
+        })?;
         Self::connect_to(&socket)
     }
 
