@@ -197,6 +197,13 @@ fn without_a_sound_server_no_sound_output_is_said_once_and_the_motion_plays_on()
     assert!(common::ui::servo_ui(harness.state()).figure.transport.is_playing(), "the motion plays on");
 }
 
+/// Plays through `pulse`, connects the demo board of the project's family, and waits for the sound to be read.
+fn on_the_demo_with_sound(harness: &mut Harness<'static, StudioApp>, pulse: &Pulse) {
+    harness.state_mut().sound = SoundDesk::with_server(pulse.socket.clone());
+    harness.state_mut().apply(Action::ConnectDemo);
+    common::ui::run_until(harness, "the sound read", |app| app.sound.view(&app.document.project).read.is_some());
+}
+
 #[test]
 fn running_a_macro_on_the_board_starts_the_sound_with_it() {
     let Some(pulse) = Pulse::start() else { return };
@@ -204,9 +211,7 @@ fn running_a_macro_on_the_board_starts_the_sound_with_it() {
     let project = with_sound(dir.path());
     let macro_id = project.servo.macros[0].id;
     let mut harness = saved_editor(dir.path(), project, Vec::new());
-    harness.state_mut().sound = SoundDesk::with_server(pulse.socket.clone());
-    harness.state_mut().apply(Action::ConnectDemo);
-    common::ui::run_until(&mut harness, "the sound read", |app| app.sound.view(&app.document.project).read.is_some());
+    on_the_demo_with_sound(&mut harness, &pulse);
     common::ui::run_until(&mut harness, "the demo board", |app| {
         app.link.as_ref().is_some_and(|link| link.demo_board().is_some())
     });
@@ -293,9 +298,7 @@ fn playing_a_play_list_on_the_robot_queues_it_then_starts_it_with_the_sound() {
     let data = tempfile::tempdir().unwrap().keep();
     let app = StudioApp::new(project, Some(path), no_waker()).with_data_dir(data);
     let mut harness = common::ui::showing(app, Tab::PlayLists, (1300.0, 900.0));
-    harness.state_mut().sound = SoundDesk::with_server(pulse.socket.clone());
-    harness.state_mut().apply(Action::ConnectDemo);
-    common::ui::run_until(&mut harness, "the sound read", |app| app.sound.view(&app.document.project).read.is_some());
+    on_the_demo_with_sound(&mut harness, &pulse);
     common::ui::run_until(&mut harness, "the demo robot", |app| {
         app.link.as_ref().is_some_and(|link| link.demo_plen2().is_some())
     });
