@@ -6,20 +6,28 @@
 //! board update). The servo minute is played twice: through the sound
 //! server's own protocol (Linux), and through cpal (the output Windows and
 //! macOS use), here into ALSA's default device, which ALSA's PulseAudio
-//! plugin sends to the same server. Needs Debian's `pulseaudio` and
-//! `libasound2-plugins`, and `libasound2-dev` to build (`.ci/run` installs them).
+//! plugin sends to the same server. Needs Debian's `pulseaudio`; the cpal
+//! minute is played only when the bench is built with the `cpal` feature,
+//! which needs `libasound2-dev` to build and `libasound2-plugins` to play
+//! (`.ci/run` installs them).
 //!
-//! `cargo bench --bench sync`
+//! `cargo bench --bench sync [--features cpal]`
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::cast_precision_loss, missing_docs)]
 
 #[path = "../tests/common/pulse.rs"]
 mod pulse;
 
+/// What `pulse` calls when its server cannot be started: the bench says so and skips.
+fn without_service(what: &str, install: &str) {
+    println!("sync: skipped: {what}; to run it: {install}");
+}
+
 /// This bench run again to play through cpal (see `main`).
 const THROUGH_CPAL: &str = "through-cpal";
 
 fn main() {
+    #[cfg(feature = "cpal")]
     if std::env::args().any(|arg| arg == THROUGH_CPAL) {
         // In a process of its own, whose environment names the server for ALSA's PulseAudio plugin.
         let server = pulse::Pulse::of_parent();
@@ -28,15 +36,16 @@ fn main() {
         say("servo board over a pty, 60 clicks over 60 s, through cpal (ALSA)", &servo.offsets_ms, 10.0);
         return;
     }
-    let Some(server) = pulse::Pulse::start() else {
-        println!("sync: skipped (no pulseaudio)");
-        return;
-    };
+    let Some(server) = pulse::Pulse::start() else { return };
     let steps = 60;
     let servo = pulse::measure_servo(&server, steps);
     say(&format!("servo board over a pty, {steps} clicks over {steps} s"), &servo.offsets_ms, 10.0);
     // The output Windows and macOS use, here into ALSA's PulseAudio plugin.
-    print!("{}", server.in_own_process(&[THROUGH_CPAL]));
+    if cfg!(feature = "cpal") {
+        print!("{}", server.in_own_process(&[THROUGH_CPAL]));
+    } else {
+        println!("sync through cpal: not built (cargo bench --bench sync --features cpal; needs libasound2-dev)");
+    }
     let plen2 = pulse::measure_plen2(&server, 20, 3000);
     say("PLEN2 over a pty, a motion of 20 frames of 3 s (a click on each frame)", &plen2.offsets_ms, 32.768);
 }

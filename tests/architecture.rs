@@ -336,3 +336,45 @@ fn a_missing_shared_folder_skips_only_where_it_is_not_required() {
     let here = Path::new(env!("CARGO_MANIFEST_DIR"));
     assert_eq!(crate::common::shared_in(here, "tests", true), Some(here.join("tests")), "present: found");
 }
+
+/// The packages of the build graph that declare a native library they link
+/// (`links` in their manifest), for this machine, with `features`: the
+/// resolver's graph from `cargo metadata`, normal, build and dev
+/// dependencies alike (the graph `cargo test` builds).
+fn linking_packages(features: &[&str]) -> Vec<String> {
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+    let rustc = std::env::var("RUSTC").unwrap_or_else(|_| "rustc".into());
+    let version = std::process::Command::new(rustc).arg("-vV").output().unwrap();
+    let version = String::from_utf8(version.stdout).unwrap();
+    let host = version.lines().find_map(|line| line.strip_prefix("host: ")).unwrap().to_string();
+    let mut command = std::process::Command::new(cargo);
+    command
+        .args(["metadata", "--format-version", "1", "--locked", "--offline", "--filter-platform", &host])
+        .current_dir(env!("CARGO_MANIFEST_DIR"));
+    for feature in features {
+        command.args(["--features", feature]);
+    }
+    let output = command.output().unwrap();
+    assert!(output.status.success(), "cargo metadata: {}", String::from_utf8_lossy(&output.stderr));
+    let metadata: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    let packages = metadata["packages"].as_array().unwrap();
+    let resolved: BTreeSet<&str> =
+        metadata["resolve"]["nodes"].as_array().unwrap().iter().map(|node| node["id"].as_str().unwrap()).collect();
+    packages
+        .iter()
+        .filter(|package| resolved.contains(package["id"].as_str().unwrap()) && !package["links"].is_null())
+        .map(|package| format!("{} (links {})", package["name"].as_str().unwrap(), package["links"]))
+        .collect()
+}
+
+/// A fresh machine with only the Rust toolchain builds the tests: nothing in
+/// the default graph links a system library at build time (no `-dev`
+/// package needed). The `cpal` feature, which `.ci/run` turns on for the
+/// sound tests through ALSA, is the one place that does — found here, so the
+/// check would see one in the default graph.
+#[test]
+fn the_default_build_links_no_system_library() {
+    assert_eq!(linking_packages(&[]), Vec::<String>::new(), "the default graph links a system library");
+    let with_cpal = linking_packages(&["cpal"]);
+    assert!(with_cpal.iter().any(|package| package.starts_with("alsa-sys")), "{with_cpal:?}");
+}

@@ -13,5 +13,6 @@ mod plen2;
 mod probe;
 mod project;
 mod rflex;
+mod services;
 mod servo;
 mod ui;

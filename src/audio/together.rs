@@ -24,7 +24,9 @@ pub struct Together {
     pub playing: Playing,
     /// When the sound's point is heard, and the board is meant to start moving.
     pub moving_at: Instant,
-    /// When the start command went out.
+    /// When the start command was due: the link's delay before `moving_at`.
+    pub due_at: Instant,
+    /// When the start command went out (never before `due_at`).
     pub sent_at: Instant,
 }
 
@@ -54,7 +56,7 @@ pub fn start(
         wait_until(send_at);
         let sent_at = Instant::now();
         start_board();
-        return Ok(Together { playing, moving_at, sent_at });
+        return Ok(Together { playing, moving_at, due_at: send_at, sent_at });
     }
 }
 

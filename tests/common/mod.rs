@@ -25,11 +25,29 @@ impl Drop for Sim {
     }
 }
 
+/// Whether the environment variable `name` is set to something other than empty, `0` or `false`.
+fn set(name: &str) -> bool {
+    std::env::var(name).is_ok_and(|value| !value.is_empty() && value != "0" && value != "false")
+}
+
 /// Whether a test that needs `../shared` must fail without it: in CI (`CI`
 /// set, as CI sets it) or when `SERVO_STUDIO_REQUIRE_SHARED=1`.
 pub fn shared_required() -> bool {
-    let set = |name: &str| std::env::var(name).is_ok_and(|value| !value.is_empty() && value != "0" && value != "false");
     set("CI") || set("SERVO_STUDIO_REQUIRE_SHARED")
+}
+
+/// Whether a test that needs a system service or program (a PulseAudio
+/// server, espeak-ng) must fail without it: in CI or when
+/// `SERVO_STUDIO_REQUIRE_SERVICES=1`.
+pub fn services_required() -> bool {
+    set("CI") || set("SERVO_STUDIO_REQUIRE_SERVICES")
+}
+
+/// A test cannot have `what` here: it skips with a one-line notice saying
+/// what to install, or fails saying so where services are required.
+pub fn without_service(what: &str, install: &str) {
+    assert!(!services_required(), "{what} (CI / SERVO_STUDIO_REQUIRE_SERVICES require it): {install}");
+    eprintln!("skipped: {what}; to run it: {install}");
 }
 
 /// `../shared/<relative>` (the workplace's shared folder beside the clone):

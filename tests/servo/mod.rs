@@ -5,4 +5,3 @@ mod codec_props;
 mod link;
 mod link_gap;
 mod live;
-mod sound_sync;
