@@ -101,6 +101,62 @@ fn measure(link: LinkKind, rounds: u8) -> Figures {
     }
 }
 
+/// The first ten official motions (`../shared/plen2/motions`, 00 to 09: 1 to
+/// 20 frames each), a user's real upload.
+fn official_ten() -> Option<Plen2Project> {
+    let folder = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/plen2/motions");
+    let mut files: Vec<_> = std::fs::read_dir(folder).ok()?.map(|entry| entry.unwrap().path()).collect();
+    files.sort();
+    let motions = files
+        .iter()
+        .take(10)
+        .map(|file| servo_studio::project::motion_json::read_motion_file(file).unwrap().0)
+        .collect();
+    Some(Plen2Project { motions, ..Plen2Project::default() })
+}
+
+/// What one upload in a fresh session took and showed.
+struct Run {
+    took: Duration,
+    /// Until the last motion was written (the rest: verification).
+    written: Duration,
+    lost: u64,
+    rewritten: usize,
+    widened: Vec<String>,
+}
+
+/// One upload + verify of `project` in a fresh session (the pacing learns
+/// the link anew, as at each of a user's connections).
+fn upload_in_a_fresh_session(link: LinkKind, project: &Plen2Project) -> Run {
+    let robot = spawn_pty(Plen2Sim::new(Plen2Timing::default()).with_link(link), no_waker()).unwrap();
+    let port = PortName::parse(&robot.port_name).unwrap();
+    let connection = servo_studio::link::open(&port, &servo_studio::device::line_settings(Family::Plen2)).unwrap();
+    let mut handle = Plen2Handle::over(connection, Plen2Options::default(), no_waker()).unwrap();
+    let options = Plen2ImportOptions { backup_dir: None, verify: true, force: false };
+    let began = Instant::now();
+    let mut written = Duration::ZERO;
+    let mut progress = |progress: &servo_studio::device::plen2::Plen2Progress| {
+        if progress.phase == servo_studio::device::plen2::Plen2Phase::Write && progress.done == progress.total {
+            written = began.elapsed();
+        }
+    };
+    let report = import(&handle.requester(), project, &options, &mut progress, &Cancel::never()).unwrap();
+    let took = began.elapsed();
+    assert!(report.slots.iter().all(|(_, r)| *r == SlotResult::Verified), "{report:?}");
+    let widened = handle
+        .pump(Instant::now())
+        .into_iter()
+        .filter_map(|notice| match notice {
+            Plen2Notice::Widened(widened) => Some(widened.to_string()),
+            _ => None,
+        })
+        .collect();
+    let (reply, state) = crossbeam_channel::bounded(1);
+    robot.command(Plen2SimCommand::Inspect(reply));
+    let state = state.recv_timeout(Duration::from_secs(5)).unwrap();
+    Run { took, written, lost: state.lost_bytes, rewritten: report.rewritten, widened }
+}
+
 /// Import of one motion into a factory-fresh robot with a backup first: the
 /// backup drains the slot's erased memory (plen2.md §3), then the motion is
 /// written and verified. Returns the time, bytes lost, slots written again,
@@ -127,12 +183,70 @@ fn backup_of_a_fresh_robot(link: LinkKind) -> (Duration, u64, usize, bool) {
     (took, state.lost_bytes, report.rewritten, said)
 }
 
+/// Runs of a user's upload — the first ten official motions, written and
+/// verified, each run a fresh connection — behind a Bluetooth LE bridge,
+/// against the official tool's pacing for the same bytes: the spread between
+/// runs is what a user feels from one upload to the next.
+fn spread() {
+    const RUNS: usize = 5;
+    let Some(project) = official_ten() else {
+        println!("spread: skipped (../shared/plen2/motions is absent)");
+        return;
+    };
+    let bytes: u32 = project
+        .motions
+        .iter()
+        .flat_map(motion_commands)
+        .map(|command| u32::try_from(command.to_ascii().len()).unwrap())
+        .sum();
+    // The official tool writes motion by motion: 32 bytes, then 50 ms.
+    let official: Duration = project
+        .motions
+        .iter()
+        .map(|motion| {
+            let bytes: u32 = motion_commands(motion).iter().map(|c| u32::try_from(c.to_ascii().len()).unwrap()).sum();
+            Duration::from_millis(50) * bytes.div_ceil(32)
+        })
+        .sum();
+    println!(
+        "the first ten official motions ({bytes} bytes), upload + verify in a fresh session, {RUNS} runs each; the official pacing writes them in {:.1} s:",
+        official.as_secs_f64()
+    );
+    for (link, target) in [
+        (LinkKind::Bursty { interval: Duration::from_millis(15), whole: false }, 2.5),
+        (LinkKind::Bursty { interval: Duration::from_millis(30), whole: false }, 1.5),
+        (LinkKind::Bursty { interval: Duration::from_millis(15), whole: true }, 2.5),
+        (LinkKind::Bursty { interval: Duration::from_millis(30), whole: true }, 1.5),
+    ] {
+        let runs: Vec<Run> = (0..RUNS).map(|_| upload_in_a_fresh_session(link, &project)).collect();
+        let faster: Vec<f64> = runs.iter().map(|run| official.as_secs_f64() / run.took.as_secs_f64()).collect();
+        let slowest = faster.iter().copied().fold(f64::MAX, f64::min);
+        println!(
+            "  {link:<16} runs {} s (written by {} s) — {} × the official; slowest {slowest:.2}× (target ≥ {target}× in every run: {}); bytes lost {}, slots written again {}",
+            runs.iter().map(|run| format!("{:.2}", run.took.as_secs_f64())).collect::<Vec<_>>().join(", "),
+            runs.iter().map(|run| format!("{:.2}", run.written.as_secs_f64())).collect::<Vec<_>>().join(", "),
+            faster.iter().map(|f| format!("{f:.2}")).collect::<Vec<_>>().join(", "),
+            if slowest >= target { "met" } else { "NOT met" },
+            runs.iter().map(|run| run.lost).sum::<u64>(),
+            runs.iter().map(|run| run.rewritten).sum::<usize>(),
+        );
+        for (number, run) in runs.iter().enumerate() {
+            println!("               run {}: {}", number + 1, run.widened.last().map_or("not widened", String::as_str));
+        }
+    }
+}
+
 fn main() {
     let timing = Plen2Timing::default();
     let bytes: u32 = motion_commands(&motion(0)).iter().map(|c| u32::try_from(c.to_ascii().len()).unwrap()).sum();
     let official = Duration::from_millis(50) * bytes.div_ceil(32);
     let eeprom = timing.header_write + timing.frame_write * 20;
     let ms = |d: Duration| d.as_secs_f64() * 1e3;
+    // `cargo bench --bench plen2 -- spread`: only the runs of a user's upload.
+    if std::env::args().any(|arg| arg == "spread") {
+        spread();
+        return;
+    }
     println!(
         "20-frame motion: {bytes} bytes written; official pacing (32 bytes, then 50 ms; no verification): {:.0} ms",
         ms(official)
@@ -146,6 +260,7 @@ fn main() {
         (LinkKind::Late { max_hold: Duration::from_millis(20) }, Some(3.0), 5),
         (LinkKind::Slow { baud: 115_200 }, Some(1.2), 5),
     ];
+    spread();
     for (link, faster_target, rounds) in links {
         let figures = measure(link, rounds);
         // The robot reads every byte and writes every page; the line carries both ways.

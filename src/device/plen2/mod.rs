@@ -67,6 +67,17 @@ pub fn start_delay(command: &Command, latency: std::time::Duration) -> std::time
     on_line + std::time::Duration::from_micros(playback::CYCLE_US / 2)
 }
 
+/// A sent command the robot is still predicted to be working on.
+#[derive(Debug)]
+pub struct Finished(crossbeam_channel::Receiver<()>);
+
+impl Finished {
+    /// Waits until the robot should have finished it.
+    pub fn wait(self) -> Result<(), ReplyError> {
+        self.0.recv().map_err(|_| ReplyError::Disconnected)
+    }
+}
+
 /// Blocking calls to a PLEN2 from a worker thread.
 #[derive(Clone, Debug)]
 pub struct Plen2Requester {
@@ -81,9 +92,15 @@ impl Plen2Requester {
 
     /// Sends a command and waits until the robot should have finished it (EEPROM included).
     pub fn send_and_wait(&self, command: Command) -> Result<(), ReplyError> {
+        self.send_then_finished(command)?.wait()
+    }
+
+    /// Sends a command; the answer says when the robot should have finished
+    /// it (EEPROM included), so more can be queued behind it meanwhile.
+    pub fn send_then_finished(&self, command: Command) -> Result<Finished, ReplyError> {
         let (done, finished) = crossbeam_channel::bounded(1);
         self.commands.send(Plen2Command::Send { command, done: Some(done) }).map_err(|_| ReplyError::Disconnected)?;
-        finished.recv().map_err(|_| ReplyError::Disconnected)
+        Ok(Finished(finished))
     }
 
     /// Sends a getter and waits for its reply. If none comes, the firmware's

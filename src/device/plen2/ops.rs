@@ -436,14 +436,41 @@ fn write_all(
         joint_writes = write_joint_settings(requester, &project.joints, current_joints)?;
         reached.push(Plen2Item::JointSettings);
     }
+    // Each motion is queued while the robot still writes the one before (no
+    // gap between them on the line); it counts as reached once the robot
+    // should have finished it. A cancel stops after the motion under way.
     let total = project.motions.len();
+    let mut under_way: Option<(usize, super::Finished)> = None;
     for (index, motion) in project.motions.iter().enumerate() {
-        check(cancel)?;
-        write_motion(requester, motion, index, total, progress)?;
-        reached.push(slot_item(motion.slot, &motion.name));
-        results.push((motion.slot, SlotResult::Written));
+        if let Err(cancelled) = check(cancel) {
+            motion_reached(project, under_way.take(), reached, results, progress)?;
+            return Err(cancelled);
+        }
+        let finished = queue_motion(requester, motion, index, total, progress)?;
+        motion_reached(project, under_way.replace((index, finished)), reached, results, progress)?;
     }
+    motion_reached(project, under_way, reached, results, progress)?;
     Ok(joint_writes)
+}
+
+/// Waits until the robot should have finished writing `under_way` (a motion's
+/// index and its last command), then counts it reached and written.
+fn motion_reached(
+    project: &Plen2Project,
+    under_way: Option<(usize, super::Finished)>,
+    reached: &mut Vec<Plen2Item>,
+    results: &mut Vec<(u8, SlotResult)>,
+    progress: &mut dyn FnMut(&Plen2Progress),
+) -> Result<(), Plen2OpError> {
+    let Some((index, finished)) = under_way else { return Ok(()) };
+    let motion = &project.motions[index];
+    let item = slot_item(motion.slot, &motion.name);
+    finished.wait().map_err(|source| Plen2OpError::Reply { item: item.clone(), source })?;
+    reached.push(item.clone());
+    results.push((motion.slot, SlotResult::Written));
+    let total = project.motions.len();
+    progress(&Plen2Progress { phase: Plen2Phase::Write, done: index + 1, total, item });
+    Ok(())
 }
 
 /// A slot that reads back different is written again (a byte lost on a busy
@@ -477,6 +504,7 @@ fn rewrite(
     Ok(())
 }
 
+/// Writes one motion and waits until the robot should have finished it.
 fn write_motion(
     requester: &Plen2Requester,
     motion: &Motion,
@@ -485,15 +513,30 @@ fn write_motion(
     progress: &mut dyn FnMut(&Plen2Progress),
 ) -> Result<(), Plen2OpError> {
     let item = slot_item(motion.slot, &motion.name);
-    progress(&Plen2Progress { phase: Plen2Phase::Write, done: index, total, item: item.clone() });
-    let commands = motion_commands(motion);
-    let last = commands.len().saturating_sub(1);
-    for (position, command) in commands.into_iter().enumerate() {
-        let sent = if position == last { requester.send_and_wait(command) } else { requester.send(command) };
-        sent.map_err(|source| Plen2OpError::Reply { item: item.clone(), source })?;
-    }
+    let finished = queue_motion(requester, motion, index, total, progress)?;
+    finished.wait().map_err(|source| Plen2OpError::Reply { item: item.clone(), source })?;
     progress(&Plen2Progress { phase: Plen2Phase::Write, done: index + 1, total, item });
     Ok(())
+}
+
+/// Queues one motion's commands; the answer tells when the robot should have
+/// finished its last.
+fn queue_motion(
+    requester: &Plen2Requester,
+    motion: &Motion,
+    index: usize,
+    total: usize,
+    progress: &mut dyn FnMut(&Plen2Progress),
+) -> Result<super::Finished, Plen2OpError> {
+    let item = slot_item(motion.slot, &motion.name);
+    progress(&Plen2Progress { phase: Plen2Phase::Write, done: index, total, item: item.clone() });
+    let failed = |source| Plen2OpError::Reply { item: item.clone(), source };
+    let mut commands = motion_commands(motion);
+    let Some(last) = commands.pop() else { return Err(Plen2OpError::Unreadable { item }) };
+    for command in commands {
+        requester.send(command).map_err(failed)?;
+    }
+    requester.send_then_finished(last).map_err(failed)
 }
 
 fn verify(
