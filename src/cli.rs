@@ -459,6 +459,38 @@ pub fn writable_output(out: &std::path::Path, force: bool) -> anyhow::Result<()>
     Ok(())
 }
 
+/// Refuses to write `out` when it is one of `inputs` — by the same name,
+/// through a symbolic link, or as another name of the same file (a hard
+/// link): checked before anything is read, so an input is never replaced by
+/// what was made of it.
+pub fn output_not_an_input(out: &std::path::Path, inputs: &[&std::path::Path]) -> anyhow::Result<()> {
+    let Ok(written) = std::fs::metadata(out) else { return Ok(()) };
+    for input in inputs {
+        let Ok(read) = std::fs::metadata(input) else { continue };
+        if same_file(&written, &read) {
+            anyhow::bail!(
+                "{} is {}, which this command reads: write to another file (nothing was read or written)",
+                out.display(),
+                if out == *input { "an input".to_string() } else { format!("the input {}", input.display()) }
+            );
+        }
+    }
+    Ok(())
+}
+
+/// Whether two files' metadata are of one file.
+#[cfg(unix)]
+fn same_file(a: &std::fs::Metadata, b: &std::fs::Metadata) -> bool {
+    use std::os::unix::fs::MetadataExt;
+    (a.dev(), a.ino()) == (b.dev(), b.ino())
+}
+
+/// Whether two files' metadata are of one file (by what can be compared off Unix).
+#[cfg(not(unix))]
+fn same_file(a: &std::fs::Metadata, b: &std::fs::Metadata) -> bool {
+    a.len() == b.len() && a.modified().ok() == b.modified().ok() && a.created().ok() == b.created().ok()
+}
+
 /// An error and its causes, each said once: a cause whose words its
 /// wrapper already carries (`action 3: no response` over `no response`) is
 /// not repeated.

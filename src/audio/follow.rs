@@ -84,6 +84,52 @@ mod tests {
         assert!(open[400 + LEVEL_WINDOW_MS + 250] < 0.01, "{}", open[660]);
     }
 
+    /// An hour of sound at every common rate, 8 to 192 kHz (those that a
+    /// millisecond does not divide among them), and at 500 Hz (a sample
+    /// spans two milliseconds): a tone burst every 61.7 s.
+    /// The axis opens within one servo-board update (10 ms) of every burst,
+    /// the last as the first — the envelope keeps the sound's own time.
+    #[test]
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, clippy::cast_precision_loss)]
+    fn the_axis_opens_within_one_board_update_of_every_burst_of_an_hour_at_any_rate() {
+        for rate in [500u32, 8_000, 11_025, 22_050, 44_100, 48_000, 88_200, 96_000, 176_400, 192_000] {
+            let mut envelope = super::super::onsets::Envelope::new(rate);
+            let per_s = rate as usize;
+            let bursts_s: Vec<f64> = (0..58).map(|k| 1.5 + 61.7 * f64::from(k)).collect();
+            let burst: Vec<f32> =
+                (0..per_s / 5).map(|i| (i as f32 * std::f32::consts::TAU * 440.0 / rate as f32).sin() * 0.9).collect();
+            let silence = vec![0.0f32; per_s];
+            let mut at = 0usize;
+            let to = |envelope: &mut super::super::onsets::Envelope, at: &mut usize, until: usize| {
+                while *at < until {
+                    let take = (until - *at).min(silence.len());
+                    envelope.push(&silence[..take]);
+                    *at += take;
+                }
+            };
+            for start_s in &bursts_s {
+                // A burst's first sample: the first at or after its time.
+                let start = (start_s * f64::from(rate)).ceil() as usize;
+                to(&mut envelope, &mut at, start);
+                envelope.push(&burst);
+                at += burst.len();
+            }
+            to(&mut envelope, &mut at, 3600 * per_s);
+            let energy = envelope.finish();
+            assert_eq!(energy.len(), 3_600_000, "{rate} Hz: an hour of milliseconds");
+            let loudness: Vec<f32> = energy.iter().map(|e| (10.0 * e.log10()).max(-120.0)).collect();
+            let open = openness(&loudness, &Follow::default());
+            for start_s in &bursts_s {
+                let start_ms = (start_s * 1000.0).floor() as usize;
+                let opened = (start_ms.saturating_sub(50)..open.len()).find(|&ms| open[ms] > 0.01).unwrap();
+                assert!(
+                    (start_ms..=start_ms + 10).contains(&opened),
+                    "{rate} Hz: a burst at {start_s} s opens the axis at {opened} ms"
+                );
+            }
+        }
+    }
+
     #[test]
     fn below_the_threshold_stays_closed() {
         let quiet: Vec<f32> = vec![-45.0; 500];

@@ -18,9 +18,57 @@ pub use onsets::{Found, Onsets};
 pub use peaks::Peaks;
 pub use stream::Reader;
 
+/// The largest sound file read, bytes: three hours of CD-quality WAV.
+pub const MAX_SOUND_BYTES: u64 = 2 << 30;
+/// The sample rates read, samples a second: what WAV, FLAC, MP3 and Vorbis
+/// files are written at, from telephone-grade to studio masters.
+pub const SAMPLE_RATES: std::ops::RangeInclusive<u32> = 100..=768_000;
+/// The most channels read (what the decoders know: 7.1 and more).
+pub const MAX_CHANNELS: usize = 32;
+/// The longest sound read, seconds (four hours: a show, not a recording of a day).
+pub const MAX_SOUND_SECONDS: u64 = 4 * 3600;
+
 /// Why a sound file could not be read.
 #[derive(Debug, thiserror::Error)]
 pub enum AudioError {
+    /// Not a regular file within [`MAX_SOUND_BYTES`] (a named pipe, a
+    /// device, a link to one), or not readable: refused before reading.
+    #[error(transparent)]
+    Input(#[from] crate::project::input::ReadError),
+    /// The file says a sample rate outside [`SAMPLE_RATES`].
+    #[error(
+        "{path} says it is sampled at {rate} Hz: Servo Studio reads sounds sampled at 100 Hz to 768 kHz (is the file damaged?)"
+    )]
+    Rate {
+        /// The file.
+        path: PathBuf,
+        /// What it says.
+        rate: u64,
+    },
+    /// The file says more channels than [`MAX_CHANNELS`].
+    #[error("{path} says it has {channels} channels: Servo Studio reads up to 32")]
+    Channels {
+        /// The file.
+        path: PathBuf,
+        /// What it says.
+        channels: usize,
+    },
+    /// The sound plays longer than [`MAX_SOUND_SECONDS`].
+    #[error("{path} plays {} min or more: Servo Studio reads sounds of up to 4 hours (cut it to the show's length)", .seconds / 60)]
+    TooLong {
+        /// The file.
+        path: PathBuf,
+        /// How long it says it is (or has been found to be so far), seconds.
+        seconds: u64,
+    },
+    /// The decoder stopped on data it could not make sense of.
+    #[error("{path} is damaged: the decoder stopped on it ({what}); export it again from the program that made it")]
+    Damaged {
+        /// The file.
+        path: PathBuf,
+        /// What the decoder was doing.
+        what: String,
+    },
     /// The file could not be opened.
     #[error("cannot open the sound {path}: {source}")]
     Open {
@@ -91,6 +139,12 @@ pub fn analyse(path: &Path, sensitivity: f32, mut progress: impl FnMut(f32)) -> 
         peaks.push(&mono);
         onsets.push(&mono);
         frames += mono.len() as u64;
+        if frames > MAX_SOUND_SECONDS.saturating_mul(u64::from(sample_rate)) {
+            return Err(AudioError::TooLong {
+                path: path.to_path_buf(),
+                seconds: frames / u64::from(sample_rate.max(1)),
+            });
+        }
         if let Some(total) = expected.filter(|total| *total > 0) {
             // A share for a progress bar.
             #[allow(clippy::cast_precision_loss, clippy::cast_possible_truncation)]

@@ -7,6 +7,12 @@
 //! a 1 ms energy envelope: the steepest rise near the flux's peak. Both the
 //! flux and the envelope are kept (a few bytes per 5 ms and per ms); the
 //! samples are not.
+//!
+//! Times are the sound's own, exactly: the envelope's millisecond `m` holds
+//! the samples whose time falls in it (`i · 1000 / rate` rounded down), so
+//! at 44.1 kHz some hold 44 samples and some 45, and below 1 kHz a sample
+//! spans several (each holds its level); a flux frame is `hop` samples
+//! after the one before, its time counted in samples.
 
 use std::sync::Arc;
 
@@ -27,11 +33,81 @@ pub struct Onsets {
     start: usize,
     previous: Vec<f32>,
     flux: Vec<f32>,
-    /// Sum of squares per millisecond, and the one being filled.
-    energy_ms: Vec<f32>,
-    open_ms: (f32, usize),
-    per_ms: usize,
+    envelope: Envelope,
     scratch: Vec<Complex<f32>>,
+}
+
+/// The mean energy (square) of each millisecond of a sound, built as it streams.
+#[derive(Clone, Debug)]
+pub struct Envelope {
+    rate: u64,
+    /// Samples so far.
+    samples: u64,
+    /// Each finished millisecond's mean energy.
+    energy_ms: Vec<f32>,
+    /// The millisecond being filled: its sum of squares and its samples.
+    open: (f64, u32),
+}
+
+impl Envelope {
+    /// An envelope of a sound at `rate` (above 0).
+    pub fn new(rate: u32) -> Self {
+        Self { rate: u64::from(rate.max(1)), samples: 0, energy_ms: Vec::new(), open: (0.0, 0) }
+    }
+
+    /// The millisecond sample `index` falls in.
+    fn ms_of(&self, index: u64) -> usize {
+        // An index's millisecond: below 2^64 / 1000 samples (centuries at any rate).
+        usize::try_from(index.saturating_mul(1000) / self.rate).unwrap_or(usize::MAX)
+    }
+
+    /// Closes the open millisecond and every one before `ms` (a sound below
+    /// 1 kHz: a sample spans several, each holding its level).
+    fn close_until(&mut self, ms: usize) {
+        while self.energy_ms.len() < ms {
+            let level = match self.open {
+                (sum, count) if count > 0 => {
+                    // Mean energy of the millisecond's samples.
+                    #[allow(clippy::cast_possible_truncation)]
+                    let mean = (sum / f64::from(count)) as f32;
+                    mean
+                }
+                _ => self.energy_ms.last().copied().unwrap_or(0.0),
+            };
+            self.energy_ms.push(level);
+            self.open = (0.0, 0);
+        }
+    }
+
+    /// More samples (mono).
+    pub fn push(&mut self, mut samples: &[f32]) {
+        while !samples.is_empty() {
+            let ms = self.ms_of(self.samples);
+            if ms > self.energy_ms.len() {
+                self.close_until(ms);
+            }
+            // The samples left in this millisecond: up to the first whose time is in the next.
+            let next =
+                (u64::try_from(ms).unwrap_or(u64::MAX).saturating_add(1)).saturating_mul(self.rate).div_ceil(1000);
+            let left = next.saturating_sub(self.samples).max(1);
+            let (now, rest) = samples.split_at(usize::try_from(left).unwrap_or(usize::MAX).min(samples.len()));
+            let sum: f64 = now.iter().map(|sample| f64::from(sample * sample)).sum();
+            // A millisecond's samples: at most 768.
+            #[allow(clippy::cast_possible_truncation)]
+            let count = now.len() as u32;
+            self.open = (self.open.0 + sum, self.open.1 + count);
+            self.samples += u64::try_from(now.len()).unwrap_or(u64::MAX);
+            samples = rest;
+        }
+    }
+
+    /// Every millisecond's mean energy, to the sound's end (a last partial
+    /// millisecond counts as a whole one).
+    pub fn finish(mut self) -> Vec<f32> {
+        let end = usize::try_from((self.samples.saturating_mul(1000)).div_ceil(self.rate)).unwrap_or(usize::MAX);
+        self.close_until(end);
+        self.energy_ms
+    }
 }
 
 impl std::fmt::Debug for Onsets {
@@ -57,22 +133,14 @@ impl Onsets {
             start: 0,
             previous: vec![0.0; size / 2],
             flux: Vec::new(),
-            energy_ms: Vec::new(),
-            open_ms: (0.0, 0),
-            per_ms: (rate_samples / 1000).max(1),
+            envelope: Envelope::new(rate),
             scratch: vec![Complex::default(); size],
         }
     }
 
     /// More samples (mono).
     pub fn push(&mut self, samples: &[f32]) {
-        for &sample in samples {
-            self.open_ms = (self.open_ms.0 + sample * sample, self.open_ms.1 + 1);
-            if self.open_ms.1 == self.per_ms {
-                self.energy_ms.push(self.open_ms.0);
-                self.open_ms = (0.0, 0);
-            }
-        }
+        self.envelope.push(samples);
         self.pending.extend_from_slice(samples);
         let size = self.window.len();
         let mut at = 0;
@@ -98,19 +166,13 @@ impl Onsets {
 
     /// What was found: the flux and the envelope, from which onsets are
     /// picked at any sensitivity without reading the sound again.
-    pub fn finish(mut self) -> Found {
-        // The last, partial millisecond, scaled to a whole one (sample counts are small).
-        #[allow(clippy::cast_precision_loss)]
-        if self.open_ms.1 > 0 {
-            self.energy_ms.push(self.open_ms.0 * self.per_ms as f32 / self.open_ms.1 as f32);
-        }
+    pub fn finish(self) -> Found {
         Found {
             rate: self.rate,
             hop: self.hop,
             window: self.window.len(),
-            per_ms: self.per_ms,
             flux: self.flux,
-            energy_ms: self.energy_ms,
+            energy_ms: self.envelope.finish(),
         }
     }
 }
@@ -122,8 +184,8 @@ pub struct Found {
     rate: u32,
     hop: usize,
     window: usize,
-    per_ms: usize,
     flux: Vec<f32>,
+    /// Each millisecond's mean energy.
     energy_ms: Vec<f32>,
 }
 
@@ -163,17 +225,18 @@ impl Found {
 
     /// The loudness of each millisecond, dB of full scale (a full-scale sine is −3 dB); silence is −120.
     pub fn loudness_db(&self) -> Vec<f32> {
-        // Samples per millisecond: small.
-        #[allow(clippy::cast_precision_loss)]
-        let per_ms = self.per_ms as f32;
-        self.energy_ms.iter().map(|energy| (10.0 * (energy / per_ms).log10()).max(-120.0)).collect()
+        self.energy_ms.iter().map(|energy| (10.0 * energy.log10()).max(-120.0)).collect()
     }
 
     /// The steepest rise of the 1 ms energy around frame `k`'s window, seconds.
     fn refine(&self, k: usize) -> f64 {
-        let ms_per = |samples: usize| samples / self.per_ms;
-        let first = ms_per((k * self.hop).saturating_sub(self.hop));
-        let last = ms_per(k * self.hop + self.window + self.hop).min(self.energy_ms.len());
+        let rate = u64::from(self.rate.max(1));
+        let ms_of = |samples: usize| {
+            let samples = u64::try_from(samples).unwrap_or(u64::MAX);
+            usize::try_from(samples.saturating_mul(1000) / rate).unwrap_or(usize::MAX)
+        };
+        let first = ms_of((k * self.hop).saturating_sub(self.hop));
+        let last = ms_of(k * self.hop + self.window + self.hop).min(self.energy_ms.len());
         let best = (first.max(1)..last)
             .max_by(|&a, &b| {
                 let rise = |i: usize| self.energy_ms[i] - self.energy_ms[i - 1];
@@ -182,7 +245,7 @@ impl Found {
             .unwrap_or(first);
         // Milliseconds: an index.
         #[allow(clippy::cast_precision_loss)]
-        let seconds = (best * self.per_ms) as f64 / f64::from(self.rate);
+        let seconds = best as f64 / 1000.0;
         seconds
     }
 }

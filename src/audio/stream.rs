@@ -13,7 +13,38 @@ use symphonia::core::meta::MetadataOptions;
 use symphonia::core::probe::Hint;
 use symphonia::core::units::Time;
 
-use super::AudioError;
+use super::{AudioError, MAX_CHANNELS, MAX_SOUND_BYTES, MAX_SOUND_SECONDS, SAMPLE_RATES};
+
+/// Runs a call into the decoders, which can still panic on a file damaged
+/// in a way they do not check (everything this module can check is checked
+/// before): a panic is the file's damage, named, never the program's end.
+fn contained<T>(path: &Path, what: &str, call: impl FnOnce() -> T) -> Result<T, AudioError> {
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(call))
+        .map_err(|_| AudioError::Damaged { path: path.to_path_buf(), what: what.to_string() })
+}
+
+/// The sample rate a WAV's `fmt ` chunk or a FLAC's STREAMINFO says, from the
+/// file's first bytes; `None` for other files (or one too short to say).
+fn header_rate(head: &[u8]) -> Option<u64> {
+    let u32_at = |at: usize| head.get(at..at + 4).map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]));
+    if head.starts_with(b"RIFF") && head.get(8..12) == Some(b"WAVE") {
+        // Chunks after the 12-byte header: id, size, body (padded to even).
+        let mut at = 12usize;
+        while let (Some(id), Some(size)) = (head.get(at..at + 4), u32_at(at + 4)) {
+            if id == b"fmt " {
+                return u32_at(at + 12).map(u64::from);
+            }
+            at = at.checked_add(8)?.checked_add(usize::try_from(size).ok()?.next_multiple_of(2))?;
+        }
+        return None;
+    }
+    if head.starts_with(b"fLaC") {
+        // The first metadata block is STREAMINFO: its rate is 20 bits at byte 10 of the block.
+        let b = head.get(18..21)?;
+        return Some((u64::from(b[0]) << 12) | (u64::from(b[1]) << 4) | (u64::from(b[2]) >> 4));
+    }
+    None
+}
 
 /// Samples an MP3 without a gapless note is taken to start late by (LAME's
 /// encoder delay, 576, and the decoder's, 529).
@@ -43,8 +74,19 @@ impl std::fmt::Debug for Reader {
 
 impl Reader {
     /// Opens the sound in `path`, at its start.
+    /// Only a regular file within [`MAX_SOUND_BYTES`] is read; a sample
+    /// rate, channel count or length outside what is read is refused before
+    /// anything is decoded.
     pub fn open(path: &Path) -> Result<Self, AudioError> {
-        let file = std::fs::File::open(path).map_err(|source| AudioError::Open { path: path.to_path_buf(), source })?;
+        let (mut file, _) = crate::project::input::open_regular(path, MAX_SOUND_BYTES)?;
+        let io = |source| AudioError::Open { path: path.to_path_buf(), source };
+        let mut head = Vec::new();
+        std::io::Read::read_to_end(&mut std::io::Read::take(&mut file, 64 * 1024), &mut head).map_err(io)?;
+        if let Some(rate) = header_rate(&head).filter(|rate| !SAMPLE_RATES.contains(&u32::try_from(*rate).unwrap_or(0)))
+        {
+            return Err(AudioError::Rate { path: path.to_path_buf(), rate });
+        }
+        std::io::Seek::rewind(&mut file).map_err(io)?;
         let format_error =
             |error: DecodeError| AudioError::Format { path: path.to_path_buf(), reason: error.to_string() };
         let stream = MediaSourceStream::new(Box::new(file), Default::default());
@@ -54,9 +96,10 @@ impl Reader {
         }
         // Gapless: an MP3's encoder delay and padding are cut, so times are the sound's own.
         let options = FormatOptions { enable_gapless: true, ..FormatOptions::default() };
-        let probed = symphonia::default::get_probe()
-            .format(&hint, stream, &options, &MetadataOptions::default())
-            .map_err(format_error)?;
+        let probed = contained(path, "reading its header", || {
+            symphonia::default::get_probe().format(&hint, stream, &options, &MetadataOptions::default())
+        })?
+        .map_err(format_error)?;
         let format = probed.format;
         let track = format
             .tracks()
@@ -64,8 +107,21 @@ impl Reader {
             .find(|track| track.codec_params.codec != CODEC_TYPE_NULL && track.codec_params.sample_rate.is_some())
             .ok_or_else(|| AudioError::NoTrack { path: path.to_path_buf() })?;
         let (track_id, params) = (track.id, track.codec_params.clone());
-        let decoder =
-            symphonia::default::get_codecs().make(&params, &DecoderOptions::default()).map_err(format_error)?;
+        let rate = params.sample_rate.unwrap_or(0);
+        if !SAMPLE_RATES.contains(&rate) {
+            return Err(AudioError::Rate { path: path.to_path_buf(), rate: u64::from(rate) });
+        }
+        if let Some(channels) = params.channels.map(|c| c.count()).filter(|count| *count > MAX_CHANNELS) {
+            return Err(AudioError::Channels { path: path.to_path_buf(), channels });
+        }
+        if let Some(seconds) = params.n_frames.map(|frames| frames / u64::from(rate)).filter(|s| *s > MAX_SOUND_SECONDS)
+        {
+            return Err(AudioError::TooLong { path: path.to_path_buf(), seconds });
+        }
+        let decoder = contained(path, "starting its decoder", || {
+            symphonia::default::get_codecs().make(&params, &DecoderOptions::default())
+        })?
+        .map_err(format_error)?;
         // An MP3 without the encoder's gapless note starts with the encoder's and
         // the decoder's delay: LAME's 576 + 529 samples, which nearly every MP3 has.
         let late_mp3 = params.codec == CODEC_TYPE_MP3 && params.delay.is_none();
@@ -74,7 +130,7 @@ impl Reader {
             format,
             decoder,
             track_id,
-            rate: params.sample_rate.unwrap_or(44_100),
+            rate,
             channels: params.channels.map_or(0, |c| u16::try_from(c.count()).unwrap_or(u16::MAX)),
             expected: params.n_frames,
             skip: if late_mp3 { MP3_DELAY } else { 0 },
@@ -106,10 +162,11 @@ impl Reader {
         // Whole seconds and a fraction, as symphonia takes a time.
         #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
         let time = Time::new(target.trunc() as u64, target.fract());
-        let seeked = self
-            .format
-            .seek(SeekMode::Accurate, SeekTo::Time { time, track_id: Some(self.track_id) })
-            .map_err(|error| AudioError::Format { path: self.path.clone(), reason: error.to_string() })?;
+        let (format, track_id) = (&mut self.format, self.track_id);
+        let seeked = contained(&self.path, "seeking", || {
+            format.seek(SeekMode::Accurate, SeekTo::Time { time, track_id: Some(track_id) })
+        })?
+        .map_err(|error| AudioError::Format { path: self.path.clone(), reason: error.to_string() })?;
         self.decoder.reset();
         self.skip = usize::try_from(seeked.required_ts.saturating_sub(seeked.actual_ts)).unwrap_or(0);
         Ok(())
@@ -128,7 +185,8 @@ impl Reader {
         let path = self.path.clone();
         let format_error = |error: DecodeError| AudioError::Format { path: path.clone(), reason: error.to_string() };
         loop {
-            let packet = match self.format.next_packet() {
+            let format = &mut self.format;
+            let packet = match contained(&path, "reading a packet", || format.next_packet())? {
                 Ok(packet) => packet,
                 // The end of the stream.
                 Err(DecodeError::IoError(error)) if error.kind() == std::io::ErrorKind::UnexpectedEof => {
@@ -140,7 +198,8 @@ impl Reader {
             if packet.track_id() != self.track_id {
                 continue;
             }
-            let decoded = match self.decoder.decode(&packet) {
+            let decoder = &mut self.decoder;
+            let decoded = match contained(&path, "decoding a packet", || decoder.decode(&packet))? {
                 Ok(decoded) => decoded,
                 // A damaged packet is skipped, as players do.
                 Err(DecodeError::DecodeError(_)) => continue,

@@ -140,6 +140,14 @@ fn read_input(request: &ConvertRequest) -> anyhow::Result<Input> {
 
 /// Converts and writes; returns the report's lines.
 pub fn run(request: &ConvertRequest) -> anyhow::Result<Vec<String>> {
+    let mut inputs = vec![request.input.as_path()];
+    inputs.extend(request.map.as_deref());
+    super::output_not_an_input(&request.out, &inputs)?;
+    if let Some(save_map) = &request.save_map {
+        inputs.push(&request.out);
+        super::output_not_an_input(save_map, &inputs)?;
+        super::writable_output(save_map, request.force)?;
+    }
     super::writable_output(&request.out, request.force)?;
     let map = match &request.map {
         Some(path) => {
@@ -151,13 +159,27 @@ pub fn run(request: &ConvertRequest) -> anyhow::Result<Vec<String>> {
         }
         None => None,
     };
-    let (written, report) = match read_input(request)? {
+    let (written, report, used_map) = match read_input(request)? {
         Input::Foreign(source) => foreign(request, &source, map.as_ref())?,
-        Input::Ours(project) => ours(request, &project, map.as_ref())?,
+        Input::Ours(project) => {
+            let (written, report) = ours(request, &project, map.as_ref())?;
+            (written, report, None)
+        }
     };
-    project::atomic_write(&request.out, |file| std::io::Write::write_all(file, written.as_bytes()))
-        .with_context(|| format!("cannot write {}", request.out.display()))?;
+    // The output and the map used, both or neither.
+    let map_json = used_map.map(|map: JointMap| map.to_json());
+    let mut files = vec![(request.out.as_path(), written.as_bytes())];
+    if let (Some(path), Some(json)) = (&request.save_map, &map_json) {
+        files.push((path.as_path(), json.as_bytes()));
+    }
+    project::atomic_write_all(&files).with_context(|| {
+        let names: Vec<String> = files.iter().map(|(path, _)| path.display().to_string()).collect();
+        format!("cannot write {}: nothing was written", names.join(" and "))
+    })?;
     let mut lines = report.lines();
+    if let (Some(path), Some(_)) = (&request.save_map, &map_json) {
+        lines.push(format!("wrote the joint map to {}", path.display()));
+    }
     lines.push(format!("wrote {}", request.out.display()));
     Ok(lines)
 }
@@ -170,11 +192,12 @@ fn selection(request: &ConvertRequest) -> Selection {
     }
 }
 
+/// A foreign file converted: what is written, the report, and the joint map used.
 fn foreign(
     request: &ConvertRequest,
     source: &interchange::Source,
     given: Option<&JointMap>,
-) -> anyhow::Result<(String, Report)> {
+) -> anyhow::Result<(String, Report, Option<JointMap>)> {
     let family = match request.to {
         To::Plen2 => Family::Plen2,
         To::Servo | To::Maestro => Family::Servo,
@@ -186,10 +209,6 @@ fn foreign(
         }
     };
     let map = JointMap::for_source(source, family, given);
-    if let Some(path) = &request.save_map {
-        project::atomic_write(path, |file| std::io::Write::write_all(file, map.to_json().as_bytes()))
-            .with_context(|| format!("cannot write {}", path.display()))?;
-    }
     let options = Options { family, selection: selection(request), tolerance_deg: request.tolerance_deg };
     let built = build::build(source, &map, &options).context("nothing was written")?;
     let problems = project::validate(&built.project);
@@ -211,7 +230,7 @@ fn foreign(
             merge(&mut report, blender(&request, &built.project, Some(&map))?)
         }
     };
-    Ok((written, report))
+    Ok((written, report, Some(map)))
 }
 
 fn merge(report: &mut Report, (text, more): (String, Report)) -> String {

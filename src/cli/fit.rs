@@ -45,9 +45,9 @@ pub struct Fitted {
 
 /// Fits and writes; everything is checked before the output is touched.
 pub fn run(request: &FitRequest) -> anyhow::Result<Fitted> {
+    super::output_not_an_input(&request.out, &[&request.recording])?;
     super::writable_output(&request.out, request.force)?;
-    let text = std::fs::read_to_string(&request.recording)
-        .with_context(|| format!("cannot read {}", request.recording.display()))?;
+    let text = project::input::read_text(&request.recording, project::input::MAX_PROJECT_BYTES)?;
     let recording =
         Recording::parse(&text).with_context(|| format!("{} is not a recording", request.recording.display()))?;
     let name = request.name.clone().unwrap_or_else(|| {

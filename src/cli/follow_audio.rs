@@ -65,6 +65,7 @@ pub struct FollowArgs {
 
 /// Follows, fits and writes; everything is checked before the output is touched.
 pub fn run(args: &FollowArgs) -> anyhow::Result<Fitted> {
+    super::output_not_an_input(&args.out, &[&args.sound])?;
     super::writable_output(&args.out, args.force)?;
     let column = column(args)?;
     let analysis = audio::analyse(&args.sound, 0.5, |_| {})?;

@@ -30,40 +30,18 @@ impl Unwritten {
 }
 
 /// Prints one line on standard output.
+///
+/// Into /dev/null, opened for writing or for reading and writing (Python's
+/// `subprocess.DEVNULL`, a service manager), that is a success: where the
+/// output goes is the user's choice. A standard output closed before the
+/// command started (`>&-`) is not told apart from that: the runtime opens
+/// /dev/null, read-write, in its place before the program's code runs.
 pub fn line(text: &str) -> Result<(), Unwritten> {
-    if closed_at_start() {
-        return Err(Unwritten::Failed(std::io::Error::other(
-            "standard output is closed (`>&-`): what was to be printed would go nowhere; send it to a file or a pipe",
-        )));
-    }
     let mut stdout = std::io::stdout().lock();
     writeln!(stdout, "{text}").and_then(|()| stdout.flush()).map_err(|error| match error.kind() {
         std::io::ErrorKind::BrokenPipe => Unwritten::Closed,
         _ => Unwritten::Failed(error),
     })
-}
-
-/// Whether standard output was closed when the command started (`>&-`). The
-/// Rust runtime then opens `/dev/null` in its place, for reading and writing,
-/// so that every write "succeeds" into nothing; a shell's `> /dev/null` (or a
-/// parent's null device for output) opens it for writing only. Read once from
-/// `/proc` (Linux); elsewhere a closed stdout is not told apart.
-fn closed_at_start() -> bool {
-    static CLOSED: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
-    *CLOSED.get_or_init(|| {
-        let null =
-            std::fs::read_link("/proc/self/fd/1").is_ok_and(|target| target == std::path::Path::new("/dev/null"));
-        null && std::fs::read_to_string("/proc/self/fdinfo/1").is_ok_and(|info| read_write(&info))
-    })
-}
-
-/// Whether an fdinfo text's `flags:` (octal) open the file for reading and writing (`O_RDWR`).
-fn read_write(fdinfo: &str) -> bool {
-    fdinfo
-        .lines()
-        .find_map(|line| line.strip_prefix("flags:"))
-        .and_then(|flags| u32::from_str_radix(flags.trim(), 8).ok())
-        .is_some_and(|flags| flags & 0o3 == 0o2)
 }
 
 /// Writes a message on standard error. Nothing is done when stderr cannot be
@@ -86,14 +64,3 @@ macro_rules! say {
     };
 }
 pub(crate) use say;
-
-#[cfg(test)]
-mod tests {
-    #[test]
-    fn the_access_mode_is_read_from_fdinfo() {
-        assert!(super::read_write("pos:\t0\nflags:\t0100002\nmnt_id:\t27\n"), "O_RDWR | O_LARGEFILE");
-        assert!(!super::read_write("pos:\t0\nflags:\t0100001\n"), "O_WRONLY");
-        assert!(!super::read_write("flags:\t02000000\n"), "O_RDONLY");
-        assert!(!super::read_write("pos:\t0\n"), "no flags line");
-    }
-}

@@ -221,6 +221,7 @@ pub fn servo<'a>(project: &'a Project, input: &Path, subject: Subject, max_ms: f
 /// motion that never ends. Returns the rows written and the time they cover.
 /// Everything is checked before the file is touched.
 pub fn run(input: &Path, subject: Subject, seconds: f64, out: &Path, force: bool) -> anyhow::Result<(usize, f64)> {
+    super::output_not_an_input(out, &[input])?;
     let loaded = super::open_input(input)?.loaded;
     super::warn_unknown(input, &loaded);
     let project = loaded.project;

@@ -43,6 +43,15 @@ pub enum MeshError {
         /// What the reader found.
         reason: String,
     },
+    /// Not a regular file within [`MAX_MESH_BYTES`] (a named pipe, a device,
+    /// a link to one): refused before reading.
+    #[error("{why}")]
+    Refused {
+        /// The file.
+        path: PathBuf,
+        /// Why, naming it.
+        why: String,
+    },
     /// It holds no triangles.
     #[error("{path} holds no triangles")]
     Empty {
@@ -57,6 +66,25 @@ pub enum MeshError {
     },
 }
 
+/// The largest mesh file read, bytes (2.6 million binary STL triangles: far
+/// more than a servo robot's link needs).
+pub const MAX_MESH_BYTES: u64 = 128 * 1024 * 1024;
+
+/// The bytes of the mesh file `path`: a regular file within [`MAX_MESH_BYTES`]
+/// only (never a pipe, a device or a link to one: refused before reading).
+fn read_mesh_file(path: &Path) -> Result<Vec<u8>, MeshError> {
+    use std::io::Read as _;
+    let (file, length) = crate::project::input::open_regular(path, MAX_MESH_BYTES).map_err(|error| match error {
+        crate::project::input::ReadError::Io { source, .. } => MeshError::Read { path: path.to_path_buf(), source },
+        refused => MeshError::Refused { path: path.to_path_buf(), why: refused.to_string() },
+    })?;
+    let mut bytes = Vec::with_capacity(usize::try_from(length).unwrap_or(0));
+    file.take(MAX_MESH_BYTES)
+        .read_to_end(&mut bytes)
+        .map_err(|source| MeshError::Read { path: path.to_path_buf(), source })?;
+    Ok(bytes)
+}
+
 impl Mesh {
     /// Reads an `.stl` or `.obj` file.
     pub fn load(path: &Path) -> Result<Self, MeshError> {
@@ -66,7 +94,7 @@ impl Mesh {
             Some("obj") => Self::from_obj,
             _ => return Err(MeshError::Kind { path: path.to_path_buf() }),
         };
-        let bytes = std::fs::read(path).map_err(|source| MeshError::Read { path: path.to_path_buf(), source })?;
+        let bytes = read_mesh_file(path)?;
         let mesh = read(&bytes);
         let mesh = mesh.map_err(|(kind, reason)| MeshError::Malformed { path: path.to_path_buf(), kind, reason })?;
         if mesh.triangles.is_empty() {
@@ -77,6 +105,16 @@ impl Mesh {
 
     /// An STL file's triangles (binary or ASCII).
     pub fn from_stl(bytes: &[u8]) -> Parsed {
+        // A binary STL says how many triangles follow (50 bytes each): a
+        // count the file cannot hold is refused before anything is made of it.
+        let text = bytes.starts_with(b"solid") && bytes[..bytes.len().min(512)].iter().all(|b| b.is_ascii() && *b != 0);
+        if !text && bytes.len() >= 84 {
+            let count = u64::from(u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]));
+            let room = (bytes.len() as u64 - 84) / 50;
+            if count > room {
+                return Err(("STL", format!("its header says {count} triangles, but the file holds only {room}")));
+            }
+        }
         let read = stl_io::read_stl(&mut std::io::Cursor::new(bytes)).map_err(|error| ("STL", error.to_string()))?;
         let positions: Vec<Vec3> = read.vertices.iter().map(|v| Vec3::from(v.0)).collect();
         let mut mesh = Self { positions, ..Self::default() };

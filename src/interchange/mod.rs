@@ -10,6 +10,7 @@
 //! the rules are in docs/import-export.md.
 
 mod blender;
+pub mod bounds;
 pub mod build;
 pub mod export;
 mod format;

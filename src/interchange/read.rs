@@ -4,12 +4,15 @@ use super::format::{Format, ReadError};
 use super::source::Source;
 use super::{blender, maestro, robotis};
 
-/// Reads `text` as `format`.
+/// Reads `text` as `format`; what it asks for is then checked against what
+/// a board can mean ([`super::bounds`]) before anything is made of it.
 pub fn read(format: Format, text: &str) -> Result<Source, ReadError> {
-    match format {
+    let source = match format {
         Format::Maestro => maestro::read(text),
         Format::Mtn => robotis::read_mtn(text),
         Format::Mtnx => robotis::read_mtnx(text),
         Format::Blender => blender::read(text),
-    }
+    }?;
+    super::bounds::check(&source)?;
+    Ok(source)
 }

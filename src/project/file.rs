@@ -399,33 +399,72 @@ fn not_a_file(_kind: &std::fs::FileType) -> &'static str {
 /// followed (the file it names is replaced, beside itself, keeping its
 /// permissions); anything but a regular file is refused ([`output_path`]).
 pub fn atomic_write(path: &Path, write: impl FnOnce(&mut File) -> io::Result<()>) -> io::Result<()> {
-    let path = &output_path(path)?;
-    let permissions = std::fs::metadata(path).ok().map(|metadata| metadata.permissions());
-    let folder = match path.parent() {
-        Some(parent) if !parent.as_os_str().is_empty() => parent.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
-    let name = path.file_name().ok_or_else(|| io::Error::new(io::ErrorKind::InvalidInput, "path has no file name"))?;
-    let mut temp_name = std::ffi::OsString::from(".");
-    temp_name.push(name);
-    temp_name.push(format!(".{}.tmp", std::process::id()));
-    let temp_path = folder.join(temp_name);
+    let staged = Staged::write(path, write)?;
+    staged.commit()
+}
 
-    let result = (|| {
-        let mut file = File::create(&temp_path)?;
+/// Writes every file of `files` or none: each is written whole beside
+/// itself first (as [`atomic_write`] does), and only when all were written
+/// are they renamed into place; if any fails, no file is touched and no
+/// temporary file is left.
+pub fn atomic_write_all(files: &[(&Path, &[u8])]) -> io::Result<()> {
+    let mut staged = Vec::with_capacity(files.len());
+    for (path, bytes) in files {
+        staged.push(Staged::write(path, |file| Write::write_all(file, bytes))?);
+    }
+    for file in staged {
+        file.commit()?;
+    }
+    Ok(())
+}
+
+/// A file written whole beside the file it will replace, not yet in place;
+/// dropped uncommitted, it is removed.
+struct Staged {
+    temp: PathBuf,
+    path: PathBuf,
+    committed: bool,
+}
+
+impl Staged {
+    fn write(path: &Path, write: impl FnOnce(&mut File) -> io::Result<()>) -> io::Result<Self> {
+        let path = output_path(path)?;
+        let permissions = std::fs::metadata(&path).ok().map(|metadata| metadata.permissions());
+        let folder = match path.parent() {
+            Some(parent) if !parent.as_os_str().is_empty() => parent.to_path_buf(),
+            _ => PathBuf::from("."),
+        };
+        let name =
+            path.file_name().ok_or_else(|| io::Error::new(io::ErrorKind::InvalidInput, "path has no file name"))?;
+        let mut temp_name = std::ffi::OsString::from(".");
+        temp_name.push(name);
+        temp_name.push(format!(".{}.tmp", std::process::id()));
+        let temp = folder.join(temp_name);
+        let mut file = File::create(&temp)?;
+        // From here the temporary file is removed if anything fails.
+        let staged = Self { temp, path, committed: false };
         write(&mut file)?;
         if let Some(permissions) = permissions {
             file.set_permissions(permissions)?;
         }
         file.sync_all()?;
-        drop(file);
-        std::fs::rename(&temp_path, path)
-    })();
-    if result.is_err() {
-        // Best effort: the temporary file may not exist if creating it failed.
-        let _ = std::fs::remove_file(&temp_path);
+        Ok(staged)
     }
-    result
+
+    fn commit(mut self) -> io::Result<()> {
+        std::fs::rename(&self.temp, &self.path)?;
+        self.committed = true;
+        Ok(())
+    }
+}
+
+impl Drop for Staged {
+    fn drop(&mut self) {
+        if !self.committed {
+            // Best effort: nothing else can be done about a temporary file that will not go.
+            let _ = std::fs::remove_file(&self.temp);
+        }
+    }
 }
 
 #[cfg(test)]

@@ -28,13 +28,14 @@ pub use easing::{Easing, Handles};
 pub use edit::{Edit, next_free_id};
 pub use family::{Family, Registered};
 pub use file::{
-    CURRENT_VERSION, FORMAT_TAG, LoadError, Loaded, MAX_UNKNOWN_KEYS_KEPT, SaveError, atomic_write, from_json, load,
-    output_path, parse, read, save, to_json,
+    CURRENT_VERSION, FORMAT_TAG, LoadError, Loaded, MAX_UNKNOWN_KEYS_KEPT, SaveError, atomic_write, atomic_write_all,
+    from_json, load, output_path, parse, read, save, to_json,
 };
 pub use history::{History, LivePose, MAX_UNDO_STEPS, Step as UndoStep};
 pub use section::{Section, validate};
 pub use servo::{
-    Action, Button, Command, JoystickTable, LinkMesh, Macro, RigAxis, RigEnd, RigJoint, Run, Servo, ServoProject, Step,
+    Action, Button, Command, JoystickTable, LinkMesh, Macro, RigAxis, RigEnd, RigJoint, Run, Servo, ServoIndex,
+    ServoProject, Step,
 };
 pub use sound::SoundTrack;
 pub use timing::{Timing, TimingError, action_duration_ms};

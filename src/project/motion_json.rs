@@ -199,12 +199,14 @@ pub fn load_motions(path: &Path) -> Result<Vec<Motion>, MotionJsonError> {
 /// without building the document: a 200 MB project costs no memory here).
 /// Its top-level keys decide, as far as they can be read: a motion.json cut
 /// short after its `"frames"` key is still a motion.json (and is told so, with
-/// where it breaks), not "a project file with no format".
+/// where it breaks), not "a project file with no format". A Blender
+/// servo-animation export has `"frames"` too, but also its `"fps"` or
+/// `"servos"`, which no motion.json has: it is not taken for one.
 pub fn looks_like_motion(text: &str) -> bool {
     use serde::Deserializer as _;
 
-    /// The top-level keys seen: (`format`, `frames`).
-    struct Keys<'a>(&'a std::cell::Cell<(bool, bool)>);
+    /// The top-level keys seen: (`format`, `frames`, a Blender export's own: `fps`, `servos`).
+    struct Keys<'a>(&'a std::cell::Cell<(bool, bool, bool)>);
 
     impl<'de> serde::de::Visitor<'de> for Keys<'_> {
         type Value = ();
@@ -215,8 +217,12 @@ pub fn looks_like_motion(text: &str) -> bool {
 
         fn visit_map<A: serde::de::MapAccess<'de>>(self, mut map: A) -> Result<(), A::Error> {
             while let Some(key) = map.next_key::<std::borrow::Cow<'de, str>>()? {
-                let (format, frames) = self.0.get();
-                self.0.set((format || key == "format", frames || key == "frames"));
+                let (format, frames, blender) = self.0.get();
+                self.0.set((
+                    format || key == "format",
+                    frames || key == "frames",
+                    blender || key == "fps" || key == "servos",
+                ));
                 map.next_value::<serde::de::IgnoredAny>()?;
             }
             Ok(())
@@ -224,9 +230,9 @@ pub fn looks_like_motion(text: &str) -> bool {
     }
 
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    let seen = std::cell::Cell::new((false, false));
+    let seen = std::cell::Cell::new((false, false, false));
     // An error (a file cut short) leaves the keys read before it.
     let _ = serde_json::Deserializer::from_str(text).deserialize_map(Keys(&seen));
-    let (format, frames) = seen.get();
-    frames && !format
+    let (format, frames, blender) = seen.get();
+    frames && !format && !blender
 }

@@ -86,20 +86,50 @@ pub fn not_a_file(kind: &std::fs::FileType) -> Option<&'static str> {
     Some("not a regular file")
 }
 
+/// Opens the regular file `path` (symbolic links followed) for reading,
+/// refusing anything else — a named pipe, a device, a socket, a folder, or a
+/// link to one — before reading a byte, and any file over `max_bytes`.
+/// Checked twice: by its name before it is opened, and again on what was
+/// opened (a pipe put in its place meanwhile is opened without waiting for a
+/// writer, and refused). Returns the file and its size.
+pub fn open_regular(path: &Path, max_bytes: u64) -> Result<(std::fs::File, u64), ReadError> {
+    let io = |source| ReadError::Io { path: path.to_path_buf(), source };
+    let checked = |metadata: &std::fs::Metadata| {
+        if let Some(what) = not_a_file(&metadata.file_type()) {
+            return Err(ReadError::NotAFile { path: path.to_path_buf(), what });
+        }
+        if metadata.len() > max_bytes {
+            return Err(ReadError::TooLarge { path: path.to_path_buf(), bytes: metadata.len(), max: max_bytes });
+        }
+        Ok(metadata.len())
+    };
+    checked(&std::fs::metadata(path).map_err(io)?)?;
+    let mut options = std::fs::OpenOptions::new();
+    options.read(true);
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::OpenOptionsExt;
+        options.custom_flags(O_NONBLOCK);
+    }
+    let file = options.open(path).map_err(io)?;
+    let bytes = checked(&file.metadata().map_err(io)?)?;
+    Ok((file, bytes))
+}
+
+/// Opening without waiting: a named pipe opens at once instead of blocking
+/// until a writer comes (it is then refused); no effect on a regular file.
+#[cfg(any(target_os = "linux", target_os = "android"))]
+const O_NONBLOCK: i32 = 0o4000;
+#[cfg(all(unix, not(any(target_os = "linux", target_os = "android"))))]
+const O_NONBLOCK: i32 = 0x0004;
+
 /// The text of the regular file `path` (symbolic links followed), refusing
 /// anything else before opening it, and any file over `max_bytes`.
 pub fn read_text(path: &Path, max_bytes: u64) -> Result<String, ReadError> {
     let io = |source| ReadError::Io { path: path.to_path_buf(), source };
-    let metadata = std::fs::metadata(path).map_err(io)?;
-    if let Some(what) = not_a_file(&metadata.file_type()) {
-        return Err(ReadError::NotAFile { path: path.to_path_buf(), what });
-    }
     let too_large = |bytes| ReadError::TooLarge { path: path.to_path_buf(), bytes, max: max_bytes };
-    if metadata.len() > max_bytes {
-        return Err(too_large(metadata.len()));
-    }
-    let file = std::fs::File::open(path).map_err(io)?;
-    let mut bytes = Vec::with_capacity(usize::try_from(metadata.len()).unwrap_or(0));
+    let (file, length) = open_regular(path, max_bytes)?;
+    let mut bytes = Vec::with_capacity(usize::try_from(length).unwrap_or(0));
     // A file that grows while it is read stops at the cap all the same.
     file.take(max_bytes.saturating_add(1)).read_to_end(&mut bytes).map_err(io)?;
     if u64::try_from(bytes.len()).unwrap_or(u64::MAX) > max_bytes {

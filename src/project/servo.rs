@@ -346,6 +346,20 @@ impl ServoProject {
             .collect()
     }
 
+    /// The actions and macros by id, for looking many up (validation,
+    /// timing, traces): each lookup then costs the same however many there are.
+    pub fn index(&self) -> ServoIndex<'_> {
+        let mut index = ServoIndex::default();
+        // The first of a duplicated id wins, as `action` and `macro_by_id` find it.
+        for action in &self.actions {
+            index.actions.entry(action.id).or_insert(action);
+        }
+        for item in &self.macros {
+            index.macros.entry(item.id).or_insert(item);
+        }
+        index
+    }
+
     /// The action with this id.
     pub fn action(&self, action_id: i32) -> Option<&Action> {
         self.actions.iter().find(|action| action.id == action_id)
@@ -365,4 +379,23 @@ impl ServoProject {
 // The registry of families: servo controller boards, where their section of the project lives.
 inventory::submit! {
     super::family::Registered { family: super::family::Family::Servo, rank: 0 }
+}
+
+/// A servo project's actions and macros by id ([`ServoProject::index`]).
+#[derive(Clone, Debug, Default)]
+pub struct ServoIndex<'a> {
+    actions: std::collections::HashMap<i32, &'a Action>,
+    macros: std::collections::HashMap<i32, &'a Macro>,
+}
+
+impl<'a> ServoIndex<'a> {
+    /// The action with this id.
+    pub fn action(&self, action_id: i32) -> Option<&'a Action> {
+        self.actions.get(&action_id).copied()
+    }
+
+    /// The macro with this id.
+    pub fn macro_by_id(&self, macro_id: i32) -> Option<&'a Macro> {
+        self.macros.get(&macro_id).copied()
+    }
 }

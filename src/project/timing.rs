@@ -11,7 +11,7 @@
 
 use std::collections::HashMap;
 
-use super::servo::{Action, Command, Run, ServoProject};
+use super::servo::{Action, Command, Run, ServoIndex, ServoProject};
 
 /// Why a run time cannot be computed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
@@ -38,19 +38,24 @@ pub fn action_duration_ms(action: &Action) -> i64 {
 /// Run times of every macro of a project, computed once.
 #[derive(Debug)]
 pub struct Timing<'a> {
-    project: &'a ServoProject,
+    index: ServoIndex<'a>,
     macro_totals_ms: HashMap<i32, Result<i64, TimingError>>,
 }
 
 impl<'a> Timing<'a> {
     /// Computes the totals of all macros of `project`.
     pub fn new(project: &'a ServoProject) -> Self {
-        let mut timing = Self { project, macro_totals_ms: HashMap::new() };
+        let mut timing = Self { index: project.index(), macro_totals_ms: HashMap::new() };
         let mut visiting = Vec::new();
         for item in &project.macros {
             let _ = timing.compute_macro(item.id, &mut visiting);
         }
         timing
+    }
+
+    /// The project's actions and macros by id.
+    pub fn index(&self) -> &ServoIndex<'a> {
+        &self.index
     }
 
     /// The total run time of a macro in ms.
@@ -65,7 +70,7 @@ impl<'a> Timing<'a> {
                 return Ok(i64::from(delay_ms).saturating_mul(i64::from(command.loop_count)));
             }
             Run::Action { action_id } => {
-                action_duration_ms(self.project.action(action_id).ok_or(TimingError::MissingAction(action_id))?)
+                action_duration_ms(self.index.action(action_id).ok_or(TimingError::MissingAction(action_id))?)
             }
             Run::Macro { macro_id } => self.macro_total_ms(macro_id)?,
         };
@@ -79,7 +84,7 @@ impl<'a> Timing<'a> {
         if visiting.contains(&macro_id) {
             return Err(TimingError::Cycle(macro_id));
         }
-        let Some(item) = self.project.macro_by_id(macro_id) else {
+        let Some(item) = self.index.macro_by_id(macro_id) else {
             return Err(TimingError::MissingMacro(macro_id));
         };
         visiting.push(macro_id);

@@ -6,7 +6,7 @@
 
 use std::collections::BTreeMap;
 
-use super::servo::{Run, ServoProject};
+use super::servo::{Run, ServoIndex, ServoProject};
 
 /// Points per servo: (time in ms, angle), in time order.
 pub type Trajectories = BTreeMap<u8, Vec<(f64, f64)>>;
@@ -35,7 +35,7 @@ fn cycle_text(path: &[i32]) -> String {
 }
 
 struct Tracer<'a> {
-    project: &'a ServoProject,
+    project: ServoIndex<'a>,
     angles: BTreeMap<u8, f64>,
     points: Trajectories,
     /// Nothing starting after this is traced, ms.
@@ -112,7 +112,7 @@ impl Tracer<'_> {
 
 fn tracer(project: &ServoProject, until_ms: f64) -> Tracer<'_> {
     let angles = project.servos.iter().map(|servo| (servo.id, f64::from(servo.home_deg))).collect();
-    Tracer { project, angles, points: Trajectories::new(), until_ms, running: Vec::new(), work: 0 }
+    Tracer { project: project.index(), angles, points: Trajectories::new(), until_ms, running: Vec::new(), work: 0 }
 }
 
 /// The trajectories of one action, starting from each servo's home angle.
@@ -135,6 +135,7 @@ pub fn macro_trajectories(project: &ServoProject, macro_id: i32) -> (Trajectorie
 /// starting and ending with the same one; `None` when the macro ends.
 pub fn macro_cycle(project: &ServoProject, macro_id: i32) -> Option<Vec<i32>> {
     // Depth-first without recursion (a chain of 32767 macros must not overflow the stack).
+    let project = project.index();
     let mut path: Vec<(i32, usize)> = vec![(macro_id, 0)];
     let mut done = std::collections::HashSet::new();
     while let Some((id, next)) = path.last().copied() {

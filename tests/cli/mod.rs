@@ -5,6 +5,7 @@ mod commands;
 mod follow_audio;
 mod honest;
 mod hostile;
+mod inputs;
 mod robust;
 mod servo;
 mod trajectory;

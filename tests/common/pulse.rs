@@ -260,32 +260,36 @@ impl Recorder {
         Recorder { _client: client, heard, _stop: stop }
     }
 
-    /// Waits until `count` clicks have been heard at or after `earliest`
-    /// and what was played until 0.3 s after the last of them (and after
-    /// `last`) has been recorded, then says when each was played, on this
-    /// process's clock: sample 0's time by the server's timing answers, and
-    /// one sample every 1/48,000 s after. A click is a sound rising past
-    /// half of full scale after 0.2 s of quiet. Waits by what was recorded,
-    /// never by the clock alone, so a loaded machine that delays the sound
-    /// or its recording is waited for; panics after `within`, saying what
-    /// was heard.
-    pub fn clicks(&self, count: usize, earliest: Instant, last: Instant, within: Duration) -> Vec<Instant> {
+    /// Waits until `count` clicks have been heard and what was played until
+    /// 0.3 s after the last of them (and after `last`) has been recorded,
+    /// then says when the last `count` were played, on this process's clock:
+    /// sample 0's time by the server's timing answers, and one sample every
+    /// 1/48,000 s after. A click is a sound rising past half of full scale
+    /// after 0.2 s of quiet; the clicks before the last `count` are not the
+    /// show's (an output slower to start than the sound's lead is started
+    /// again with a longer one: what it played the first time). Waits by
+    /// what was recorded, never by the clock alone, so a loaded machine that
+    /// delays the sound, the board or the recording is waited for; panics
+    /// after `within`, saying what was heard.
+    pub fn clicks(&self, count: usize, last: Instant, within: Duration) -> Vec<Instant> {
         let deadline = Instant::now() + within;
         let (heard, more) = &*self.heard;
         let mut heard = heard.lock().unwrap();
         loop {
             heard.scan();
-            if let Some(zero) = heard.zero() {
+            if let Some(zero) = heard.zero()
+                && heard.rises.len() >= count
+            {
                 let clicks: Vec<Instant> =
-                    heard.rises.iter().map(|rise| zero + after(*rise)).filter(|click| *click >= earliest).collect();
+                    heard.rises[heard.rises.len() - count..].iter().map(|rise| zero + after(*rise)).collect();
                 let recorded = zero + after(heard.samples.len());
-                let tail = clicks.last().map_or(last, |click| (*click).max(last)) + Duration::from_millis(300);
-                if clicks.len() >= count && recorded >= tail {
+                if recorded >= clicks[count - 1].max(last) + Duration::from_millis(300) {
                     let loudest = heard.samples.iter().fold(0.0f32, |loudest, sample| loudest.max(sample.abs()));
                     eprintln!(
-                        "recorded {:.2} s, loudest {loudest:.3}, {} timing answers",
+                        "recorded {:.2} s, loudest {loudest:.3}, {} timing answers, {} rises",
                         heard.samples.len() as f64 / f64::from(RATE),
-                        heard.zeros.len()
+                        heard.zeros.len(),
+                        heard.rises.len()
                     );
                     return clicks;
                 }
@@ -373,42 +377,41 @@ pub fn measure_plen2(pulse: &Pulse, frames: usize, transition_ms: u16) -> Measur
 }
 
 /// The clicks `recorder` heard, each beside its step, once every step's
-/// click has been heard (waiting the show's `seconds` and a generous minute
-/// more). A click well before the first step (100 ms: ten servo updates) is
-/// not the show's: an output slower to start than the sound's lead is
-/// started again with a longer one, and what it played the first time is
-/// left out.
+/// click has been heard (waiting the show's `seconds` and a generous minute more).
 fn heard(recorder: &Recorder, steps: &[Instant], started: &together::Together, seconds: f64) -> Measured {
-    let earliest = steps[0].checked_sub(Duration::from_millis(100)).unwrap();
     let last = steps[steps.len() - 1];
-    let clicks = recorder.clicks(steps.len(), earliest, last, Duration::from_secs_f64(seconds + 60.0));
+    let clicks = recorder.clicks(steps.len(), last, Duration::from_secs_f64(seconds + 60.0));
     let mut measured = offsets(&clicks, steps);
     measured.lead = started.moving_at - started.due_at;
     measured.sent_late = started.sent_at - started.due_at;
     measured
 }
 
-/// Each click's offset from its step, ms (positive: the sound late).
+/// `later` − `earlier`, ms (negative when `later` is earlier).
+fn since_ms(later: Instant, earlier: Instant) -> f64 {
+    if later >= earlier { (later - earlier).as_secs_f64() * 1e3 } else { -((earlier - later).as_secs_f64() * 1e3) }
+}
+
+/// Each click's offset from its step, ms (positive: the sound late), and
+/// from its place in the show (as far from the first click as its step is
+/// from the first step).
 fn offsets(clicks: &[Instant], steps: &[Instant]) -> Measured {
     assert_eq!(clicks.len(), steps.len(), "every click heard once: {clicks:?}");
-    let offsets_ms = clicks
-        .iter()
-        .zip(steps)
-        .map(|(click, step)| {
-            if click >= step {
-                (*click - *step).as_secs_f64() * 1000.0
-            } else {
-                -((*step - *click).as_secs_f64() * 1000.0)
-            }
-        })
-        .collect();
-    Measured { offsets_ms, lead: Duration::ZERO, sent_late: Duration::ZERO }
+    let offsets_ms = clicks.iter().zip(steps).map(|(click, step)| since_ms(*click, *step)).collect();
+    let placed_ms =
+        clicks.iter().zip(steps).map(|(click, step)| since_ms(*click, clicks[0]) - since_ms(*step, steps[0])).collect();
+    Measured { offsets_ms, placed_ms, lead: Duration::ZERO, sent_late: Duration::ZERO }
 }
 
 /// What one run measured.
 pub struct Measured {
     /// Each click's offset from its step's start, ms (positive: the sound late).
     pub offsets_ms: Vec<f64>,
+    /// Each click's offset from its place in the show: its time from the
+    /// first click less its step's from the first step, ms. An emulator
+    /// starved by a loaded machine starts late, but plays its steps on
+    /// their own schedule from there.
+    pub placed_ms: Vec<f64>,
     /// How long before the sound's point the board's start was due (the link's delay).
     pub lead: Duration,
     /// How long after it was due the start went out.
@@ -481,9 +484,7 @@ pub fn measure_servo_through(pulse: &Pulse, steps: usize, speakers: &Speakers) -
     assert_eq!(board_steps.len(), steps);
     let answered = reply.expect("the start was sent").recv_timeout(Duration::from_secs(30)).unwrap().unwrap();
     assert_eq!(answered, Message::ExecuteMacroResponse { ok: true });
-    let since = |later: Instant, earlier: Instant| {
-        if later >= earlier { (later - earlier).as_secs_f64() * 1e3 } else { -(earlier - later).as_secs_f64() * 1e3 }
-    };
+    let since = since_ms;
     eprintln!(
         "sent {:.2} ms before the sound's point; the board started {:.2} ms after it was sent",
         since(started.moving_at, started.sent_at),

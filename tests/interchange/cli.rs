@@ -34,7 +34,7 @@ fn a_maestro_file_goes_to_a_project_and_back_through_the_map_it_saved() {
     assert!(ok, "{err}");
     assert!(said.starts_with("converted: 3 servos, 5 actions, 2 macros\n"), "{said}");
     assert_eq!(said.matches("a target of 0").count(), 1, "each note once: {said}");
-    assert!(said.ends_with("wrote skull.json\n"), "{said}");
+    assert!(said.ends_with("wrote the joint map to map.json\nwrote skull.json\n"), "{said}");
     checked(dir.path(), "skull.json");
     let (ok, said, err) =
         convert(dir.path(), &["skull.json", "--to", "maestro", "--map", "map.json", "--out", "back.xml"]);

@@ -7,6 +7,7 @@
 
 mod blender;
 mod cli;
+mod damaged;
 pub mod maestro;
 pub mod robotis;
 

@@ -184,13 +184,13 @@ impl Checker {
             }
             for (index, command) in item.commands.iter().enumerate() {
                 let at = Location::Command { macro_id: item.id, caption: item.caption.clone(), command: index + 1 };
-                self.command(project, &timing, &at, command);
+                self.command(&timing, &at, command);
             }
         }
         self.cycles(project);
     }
 
-    fn command(&mut self, project: &ServoProject, timing: &Timing<'_>, at: &Location, command: &Command) {
+    fn command(&mut self, timing: &Timing<'_>, at: &Location, command: &Command) {
         if !(1..=100).contains(&command.ratio_percent) {
             self.error(at, ProblemKind::RatioOutOfRange { ratio_percent: command.ratio_percent });
         }
@@ -198,10 +198,10 @@ impl Checker {
             self.error(at, ProblemKind::LoopBelowOne { loop_count: command.loop_count });
         }
         match command.run {
-            Run::Action { action_id } if project.action(action_id).is_none() => {
+            Run::Action { action_id } if timing.index().action(action_id).is_none() => {
                 self.error(at, ProblemKind::MissingAction { action_id });
             }
-            Run::Macro { macro_id } if project.macro_by_id(macro_id).is_none() => {
+            Run::Macro { macro_id } if timing.index().macro_by_id(macro_id).is_none() => {
                 self.error(at, ProblemKind::MissingMacro { macro_id });
             }
             Run::Delay { delay_ms } if delay_ms < 0 => {

@@ -41,9 +41,12 @@ pub struct Reading {
     done: Receiver<Result<Read, Problem>>,
 }
 
-/// The file's SHA-256, hex, read in 64 KiB pieces.
+/// The file's SHA-256, hex, read in 64 KiB pieces; only a regular file
+/// within the sounds' size cap is read (never a pipe or a device).
 pub fn sha256(file: &std::path::Path) -> std::io::Result<String> {
-    let mut reader = std::fs::File::open(file)?;
+    let (reader, _) = crate::project::input::open_regular(file, crate::audio::MAX_SOUND_BYTES)
+        .map_err(|error| std::io::Error::new(std::io::ErrorKind::InvalidInput, error.to_string()))?;
+    let mut reader = reader.take(crate::audio::MAX_SOUND_BYTES);
     let mut hasher = Sha256::new();
     let mut buffer = vec![0u8; 1 << 16];
     loop {
