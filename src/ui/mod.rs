@@ -33,7 +33,7 @@ mod transport;
 pub mod view3d;
 
 pub use action::{Action, ActionOf, AfterUnsaved, FamilyAction, FileRequest, Pick, Tab};
-pub use app::{Connecting, Picker, PortLister, REMEMBERED_KEY, Remembered, StudioApp, system_lister};
+pub use app::{Connecting, EXIT_WITHIN, Picker, PortLister, REMEMBERED_KEY, Remembered, StudioApp, system_lister};
 pub use board_link::{BoardLink, FamilyLink, FamilyNotice, LinkNotice, LinkStarter, StartError};
 pub use derive::Costing;
 pub use document::Document;

@@ -185,7 +185,8 @@ fn without_a_sound_server_no_sound_output_is_said_once_and_the_motion_plays_on()
     harness.state_mut().sound = SoundDesk::with_server(dir.path().join("no-server"));
     common::ui::run_until(&mut harness, "the sound read", |app| app.sound.view(&app.document.project).read.is_some());
     harness.get_by_label("Play").click();
-    harness.run_steps(3);
+    // The output is asked off the frame: its answer comes when it comes.
+    common::ui::run_until(&mut harness, "no sound output said", |app| app.status.is_some());
     let said = harness.state().status.clone().expect("said");
     assert!(said.text.starts_with("no sound output: the motion plays without sound"), "{}", said.text);
     harness.state_mut().status = None;
@@ -195,6 +196,91 @@ fn without_a_sound_server_no_sound_output_is_said_once_and_the_motion_plays_on()
     harness.run_steps(3);
     assert!(harness.state().status.is_none(), "said once");
     assert!(common::ui::servo_ui(harness.state()).figure.transport.is_playing(), "the motion plays on");
+}
+
+/// A sound server that accepts every connection and never answers (a hung
+/// PipeWire, a stale socket): Play and Run on board go on; the editor keeps
+/// drawing every frame, STOP works at once, and within 2 s more "no sound
+/// output (the server at … did not answer in 2 s)" is said and the board's
+/// start goes out without the sound.
+#[test]
+fn a_sound_server_that_never_answers_freezes_nothing_and_stop_works() {
+    let dir = tempfile::tempdir().unwrap();
+    let socket = dir.path().join("hung");
+    let listener = std::os::unix::net::UnixListener::bind(&socket).unwrap();
+    // Accepted and held, never read or answered.
+    let held = std::thread::spawn(move || listener.incoming().take(4).filter_map(Result::ok).collect::<Vec<_>>());
+    let project = with_sound(dir.path());
+    let macro_id = project.servo.macros[0].id;
+    let (drawn, frames) = crossbeam_channel::unbounded::<&'static str>();
+    let root = dir.path().to_path_buf();
+    // The editor runs on a thread of its own: should a frame block, this test fails instead of hanging.
+    std::thread::spawn(move || {
+        let mut harness = saved_editor(&root, project, Vec::new());
+        harness.state_mut().sound = SoundDesk::with_server(socket);
+        harness.state_mut().apply(Action::ConnectDemo);
+        common::ui::run_until(&mut harness, "the sound read", |app| {
+            app.sound.view(&app.document.project).read.is_some()
+        });
+        common::ui::run_until(&mut harness, "the demo board", |app| {
+            app.link.as_ref().is_some_and(|link| link.demo_board().is_some())
+        });
+        let events = harness.state().link.as_ref().unwrap().demo_board().unwrap().events().clone();
+        harness.get_by_label("Play").click();
+        harness.step();
+        drawn.send("played").unwrap();
+        harness.state_mut().apply(Action::Stop);
+        harness.step();
+        assert!(!harness.state().sound.is_playing(), "STOP stopped the sound at once");
+        drawn.send("stopped").unwrap();
+        // STOP holds the servos until Resume; the preview (which plays on its
+        // own) is paused, so its end does not silence the next sound.
+        harness.state_mut().apply(Action::family(servo_studio::ui::ServoAction::Resume));
+        if let Some(pause) = harness.query_by_label("Pause") {
+            pause.click();
+        }
+        harness.run_steps(3);
+        harness.state_mut().apply(Action::family(servo_studio::ui::ServoAction::RunMacro(macro_id)));
+        let deadline = std::time::Instant::now() + Duration::from_secs(30);
+        let said = loop {
+            harness.step();
+            drawn.send("frame").unwrap();
+            assert!(
+                harness.state().status.as_ref().is_none_or(|s| !s.text.contains("did not answer"))
+                    || std::time::Instant::now() < deadline,
+                "said in time"
+            );
+            if let Some(status) = harness.state().status.as_ref().filter(|s| s.text.contains("did not answer in 2 s")) {
+                break status.text.clone();
+            }
+            assert!(std::time::Instant::now() < deadline, "never said the server did not answer");
+        };
+        assert!(said.starts_with("no sound output") && said.contains("hung"), "{said}");
+        // The board's start, held for the sound, went out when the output was given up.
+        let ran = loop {
+            harness.step();
+            drawn.send("frame").unwrap();
+            match events.recv_timeout(Duration::from_millis(100)) {
+                Ok(LinkEvent::Driver(SimEvent::MacroSteps { macro_id: ran, .. })) => break ran,
+                _ => assert!(std::time::Instant::now() < deadline, "the board never ran the macro"),
+            }
+        };
+        assert_eq!(ran, macro_id);
+        // The window's end does not wait on the sound output either.
+        let closing = std::time::Instant::now();
+        harness.state_mut().close_within(servo_studio::ui::EXIT_WITHIN);
+        assert!(closing.elapsed() < Duration::from_secs(20), "closed ({:?})", closing.elapsed());
+        drawn.send("done").unwrap();
+    });
+    // Every frame comes within a second, however long the server keeps silent.
+    loop {
+        match frames.recv_timeout(Duration::from_secs(5)) {
+            Ok("done") => break,
+            Ok(_) => {}
+            Err(error) => panic!("the editor stopped drawing ({error}): a frame waits on the sound server"),
+        }
+    }
+    drop(held);
 }
 
 /// Plays through `pulse`, connects the demo board of the project's family, and waits for the sound to be read.

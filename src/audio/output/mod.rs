@@ -178,6 +178,12 @@ impl Playing {
         !self.ended.load(Ordering::Relaxed)
     }
 
+    /// A flag set once the whole sound (or grain) has gone to the output,
+    /// for whoever watches it from another thread.
+    pub fn ended(&self) -> Arc<AtomicBool> {
+        Arc::clone(&self.ended)
+    }
+
     /// Stops the sound now.
     pub fn stop(mut self) {
         self.halt();

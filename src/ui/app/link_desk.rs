@@ -2,7 +2,7 @@
 //! list (read on its own thread), a port being opened, the connection
 //! doctor, the connection bar's own state, and links being closed.
 
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 use crossbeam_channel::{Receiver, RecvTimeoutError, Sender};
 
@@ -133,10 +133,18 @@ impl LinkDesk {
         self.closing.retain(|closing| !closing.is_finished());
     }
 
-    /// Waits for every link being closed (the window is going: the base must have stopped).
-    pub(super) fn wait_for_closing(&mut self) {
+    /// Waits for every link being closed (the window is going: the base must
+    /// have stopped), until `deadline` at the latest.
+    pub(super) fn wait_for_closing(&mut self, deadline: Instant) {
+        // Not joined blindly: a link stuck in a write (a pulled USB adapter
+        // the kernel has not let go of yet) must not keep the window open.
+        while self.closing.iter().any(|closing| !closing.is_finished()) && Instant::now() < deadline {
+            std::thread::sleep(Duration::from_millis(5));
+        }
         for closing in self.closing.drain(..) {
-            let _ = closing.join();
+            if closing.is_finished() {
+                let _ = closing.join();
+            }
         }
     }
 }
@@ -175,6 +183,23 @@ mod tests {
         }
     }
 
+    /// A link whose closing never ends (a write the kernel holds) is waited
+    /// for until the deadline, not for ever: the window's end is bounded.
+    #[test]
+    fn a_link_that_never_finishes_closing_is_waited_for_until_the_deadline_only() {
+        let mut desk = LinkDesk::new(crate::link::no_waker());
+        let (_never, held) = crossbeam_channel::bounded::<()>(0);
+        desk.closing.push(std::thread::spawn(move || {
+            let _ = held.recv();
+        }));
+        let (done, finished) = crossbeam_channel::bounded(1);
+        std::thread::spawn(move || {
+            desk.wait_for_closing(Instant::now() + Duration::from_millis(200));
+            let _ = done.send(desk.closing.len());
+        });
+        assert_eq!(finished.recv_timeout(Duration::from_secs(30)), Ok(0), "it returned, the stuck closing let go");
+    }
+
     #[test]
     fn a_closed_link_is_waited_for_only_at_the_end() {
         let mut desk = LinkDesk::new(crate::link::no_waker());
@@ -183,10 +208,10 @@ mod tests {
             .expect("the demo board starts");
         let heard = link.demo_board().expect("the emulated board").events().clone();
         desk.close(link);
-        desk.wait_for_closing();
+        desk.wait_for_closing(Instant::now() + Duration::from_secs(60));
         assert!(desk.closing.is_empty());
         // The link and its emulated board are gone once waited for: the board's events end.
-        let deadline = std::time::Instant::now() + Duration::from_secs(10);
+        let deadline = Instant::now() + Duration::from_secs(10);
         loop {
             match heard.recv_deadline(deadline) {
                 Ok(_) => {}

@@ -388,12 +388,34 @@ impl StudioApp {
             let wait = link.next_refresh(polling).saturating_duration_since(Instant::now());
             ui.ctx().request_repaint_after(wait);
         }
+        // An answer the sound output owes: looked at again when it is due.
+        if let Some(deadline) = self.sound.next_deadline() {
+            ui.ctx().request_repaint_after(deadline.saturating_duration_since(Instant::now()));
+        }
     }
 }
 
 /// How long the editor, ending on a signal, waits for a board operation to
 /// reach its next safe point: a request's timeout and its retries.
 pub const TERMINATE_WAIT: Duration = Duration::from_secs(10);
+
+/// How long the window's end may take, whatever a thread is doing: the link
+/// stopping a base and shutting it down, a save in flight reaching the disk.
+pub const EXIT_WITHIN: Duration = Duration::from_secs(2);
+
+impl StudioApp {
+    /// The window is going: the link stops a base and shuts it down (brake
+    /// on), and a save in flight reaches the disk — waited for `within` at
+    /// most. The sound output is not waited for (it is dropped; a sound
+    /// server that does not answer keeps nothing open).
+    pub fn close_within(&mut self, within: Duration) {
+        let deadline = Instant::now() + within;
+        self.sound.silence();
+        self.drop_link();
+        self.links.wait_for_closing(deadline);
+        self.finish_file_work(Some(deadline.saturating_duration_since(Instant::now())));
+    }
+}
 
 /// The key under which [`Remembered`] is stored.
 pub const REMEMBERED_KEY: &str = "servo-studio";
@@ -444,11 +466,7 @@ impl eframe::App for StudioApp {
     }
 
     fn on_exit(&mut self, _gl: Option<&eframe::glow::Context>) {
-        // The link stops a base and shuts it down (brake on), and a save in
-        // flight reaches the disk, before the window goes.
-        self.drop_link();
-        self.links.wait_for_closing();
-        self.finish_file_work(Some(TERMINATE_WAIT));
+        self.close_within(EXIT_WITHIN);
     }
 
     fn save(&mut self, storage: &mut dyn eframe::Storage) {

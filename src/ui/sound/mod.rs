@@ -8,20 +8,21 @@
 pub mod action;
 mod follow;
 pub mod lane;
+mod out;
 mod reading;
 
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::time::Duration;
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
 
-use crate::audio::output::{Playing, Speakers};
 use crate::link::Waker;
 use crate::project::{Edit, Project, SoundTrack};
 use reading::{Read, Reading};
 
 pub use action::SoundAction;
 pub use lane::SoundLane;
+pub use out::ANSWER_WITHIN;
 pub use reading::sha256 as sha256_of;
 
 /// How a "no sound output" line starts (the shell words it in the interface's language).
@@ -41,16 +42,6 @@ pub enum Problem {
     Changed(PathBuf),
 }
 
-/// Whether sound can be played.
-enum Output {
-    /// Not asked yet (the server is asked the first time sound plays).
-    Unasked,
-    /// Connected.
-    Ready(Speakers),
-    /// No sound output: said once, then the motion plays on without it.
-    None,
-}
-
 /// The editor's sound: the file read, the speakers, what plays.
 pub struct SoundDesk {
     reading: Option<Reading>,
@@ -58,8 +49,8 @@ pub struct SoundDesk {
     problem: Option<Problem>,
     /// The file the reading or the read is of.
     file: Option<PathBuf>,
-    output: Output,
-    playing: Option<Playing>,
+    /// The sound output, off the frame (made on the first frame).
+    out: Option<out::SoundOut>,
     /// Where the sound server is, when not the environment's (tests).
     server: Option<PathBuf>,
     /// Onsets at the track's sensitivity, s (and that sensitivity).
@@ -74,16 +65,9 @@ pub struct SoundDesk {
     follow: Option<follow::FollowForm>,
     /// The link's first-byte latency, as the connection doctor measured it (none: not asked).
     link_latency: Option<Duration>,
-    /// A sound being started together with the board, off the frame.
-    joining: Option<Joining>,
-}
-
-/// A sound and a board being started together, off the frame.
-struct Joining {
-    /// The sound, once it plays (or why it does not).
-    started: crossbeam_channel::Receiver<Result<Playing, crate::audio::output::OutputError>>,
-    /// Set by STOP (or any other sound) before the board's start goes out: it never does.
-    cancelled: Arc<AtomicBool>,
+    /// A board's start waiting for the sound: set by STOP (or any other
+    /// sound) before it goes out, and it never does.
+    joining: Option<Arc<AtomicBool>>,
 }
 
 impl std::fmt::Debug for SoundDesk {
@@ -99,8 +83,7 @@ impl Default for SoundDesk {
             read: None,
             problem: None,
             file: None,
-            output: Output::Unasked,
-            playing: None,
+            out: None,
             server: None,
             onsets: (u8::MAX, Vec::new()),
             said: None,
@@ -139,6 +122,10 @@ impl SoundDesk {
     /// Keeps up with the project: reads its sound when it names another file;
     /// takes in a finished reading. Returns an edit the project needs.
     pub fn sync(&mut self, project: &Project, folder: Option<&Path>, waker: &Waker) -> Option<(Edit, &'static str)> {
+        let out = self.out.get_or_insert_with(|| out::SoundOut::new(self.server.clone(), waker.clone()));
+        if let Some(said) = out.poll(Instant::now()) {
+            self.said = Some(said);
+        }
         let wanted = match (&self.adding, &project.sound) {
             (Some(adding), _) => Some(resolve(&adding.path, folder)),
             (None, Some(track)) => Some(resolve(&track.path, folder)),
@@ -155,13 +142,6 @@ impl SoundDesk {
         if let Some(done) = self.reading.as_mut().and_then(Reading::done) {
             self.reading = None;
             self.took(done, project);
-        }
-        if let Some(joined) = self.joining.as_ref().and_then(|joining| joining.started.try_recv().ok()) {
-            self.joining = None;
-            match joined {
-                Ok(playing) => self.playing = Some(playing),
-                Err(error) => self.said = Some(error.to_string()),
-            }
         }
         if let (Some(track), Some(read)) = (&project.sound, &self.read) {
             let sensitivity = track.sensitivity_percent.min(100);
@@ -258,7 +238,7 @@ impl SoundDesk {
         }
     }
 
-    /// Plays from the motion's `from_ms` (for `only` at most).
+    /// Plays from the motion's `from_ms` (for `only` at most), off the frame.
     fn play(&mut self, track: &SoundTrack, from_ms: f64, only: Option<Duration>) {
         self.silence();
         let (Some(file), Some(read)) = (&self.file, &self.read) else { return };
@@ -269,58 +249,34 @@ impl SoundDesk {
             return;
         }
         let file = file.clone();
-        let Some(speakers) = self.speakers() else { return };
-        match speakers.play_for(&file, sound_s, only) {
-            Ok(playing) => self.playing = Some(playing),
-            Err(error) => self.said = Some(error.to_string()),
+        if let Some(out) = &mut self.out {
+            out.play(file, sound_s, only);
         }
     }
 
-    /// The speakers, connecting the first time; None (said once) when there is no sound output.
-    fn speakers(&mut self) -> Option<&Speakers> {
-        if matches!(self.output, Output::Unasked) {
-            let connected = match &self.server {
-                Some(socket) => Speakers::connect_to(socket),
-                None => Speakers::connect(),
-            };
-            self.output = match connected {
-                Ok(speakers) => Output::Ready(speakers),
-                Err(error) => {
-                    // Said in the interface's language by the shell ("no sound output" and why).
-                    self.said = Some(match error {
-                        crate::audio::output::OutputError::NoServer(why) => format!("{NO_OUTPUT}{why}"),
-                        other => other.to_string(),
-                    });
-                    Output::None
-                }
-            };
-        }
-        match &self.output {
-            Output::Ready(speakers) => Some(speakers),
-            Output::Unasked | Output::None => None,
-        }
-    }
-
-    /// Stops the sound, and a board's start still waiting for it (which then never goes out).
+    /// Stops the sound, and a board's start still waiting for it (which then
+    /// never goes out). Never waits on the output.
     pub fn silence(&mut self) {
-        if let Some(joining) = self.joining.take() {
-            joining.cancelled.store(true, Ordering::SeqCst);
+        if let Some(cancelled) = self.joining.take() {
+            cancelled.store(true, Ordering::SeqCst);
         }
-        if let Some(playing) = self.playing.take() {
-            playing.stop();
+        if let Some(out) = &mut self.out {
+            out.silence();
         }
     }
 
     /// Starts the board and the sound together: the sound's point for the
     /// motion's `from_ms` is heard as the board starts moving; `start_board`
     /// sends the start command `link_delay` (the command's time on the line)
-    /// plus the doctor's measured latency before. Off the frame. False when
-    /// there is no sound to play (the caller starts the board alone).
+    /// plus the doctor's measured latency before. Off the frame: should the
+    /// output turn out to be none, or stop answering, the board starts then,
+    /// on its own. False when there is no sound to play (the caller starts
+    /// the board alone).
     pub fn play_with_board(
         &mut self,
         project: &Project,
         from_ms: f64,
-        (link_delay, waker): (Duration, Waker),
+        (link_delay, _waker): (Duration, Waker),
         start_board: impl FnOnce() + Send + 'static,
     ) -> bool {
         let link_delay = link_delay + self.link_latency.unwrap_or_default();
@@ -329,27 +285,13 @@ impl SoundDesk {
         #[allow(clippy::cast_precision_loss)]
         let sound_s = (from_ms - track.offset_ms as f64) / 1000.0;
         self.silence();
-        let Some(speakers) = self.speakers().cloned() else { return false };
-        let (sender, started) = crossbeam_channel::bounded(1);
+        let Some(out) = self.out.as_mut().filter(|out| out.available()) else { return false };
+        let start: out::BoardStart = Arc::new(Mutex::new(Some(Box::new(start_board))));
         let cancelled = Arc::new(AtomicBool::new(false));
-        let start_unless_cancelled = {
-            let cancelled = Arc::clone(&cancelled);
-            move || {
-                if !cancelled.load(Ordering::SeqCst) {
-                    start_board();
-                }
-            }
-        };
-        let spawned = std::thread::Builder::new().name("sound and board".into()).spawn(move || {
-            let started = crate::audio::together::start(&speakers, &file, sound_s, link_delay, start_unless_cancelled);
-            // Cancelled: nobody listens, and the sound stops as it is dropped.
-            let _ = sender.send(started.map(|together| together.playing));
-            waker();
-        });
-        if spawned.is_err() {
+        if !out.with_board(file, (sound_s, link_delay), start, Arc::clone(&cancelled)) {
             return false;
         }
-        self.joining = Some(Joining { started, cancelled });
+        self.joining = Some(cancelled);
         true
     }
 
@@ -397,9 +339,15 @@ impl SoundDesk {
         }
     }
 
-    /// Whether sound plays now.
+    /// Whether sound plays now (or has been asked to and not refused).
     pub fn is_playing(&self) -> bool {
-        self.playing.as_ref().is_some_and(Playing::is_playing)
+        self.out.as_ref().is_some_and(out::SoundOut::is_playing)
+    }
+
+    /// When the sound output must be looked at again, without anything else
+    /// happening (an answer it owes, which wakes the window when it comes).
+    pub fn next_deadline(&self) -> Option<Instant> {
+        self.out.as_ref().and_then(out::SoundOut::next_deadline)
     }
 }
 
