@@ -291,3 +291,54 @@ fn export_says_why_an_erased_slot_is_slow() {
     assert!(said.iter().any(|line| line.contains("s more on this link")), "{stderr}");
     assert!(servo_studio::project::load(&out).unwrap().plen2.motions.is_empty());
 }
+
+/// STOP behind a slow, bursty link (a Bluetooth bridge with 30 ms events):
+/// a play queued a moment before STOP — behind a reply still crossing the
+/// bridge — never reaches the robot. STOP's `#RI` and `$HP` do, and the
+/// robot plays nothing.
+#[test]
+fn stop_behind_a_bursty_link_drops_a_play_queued_before_it() {
+    use servo_studio::device::plen2::{Command, store_commands};
+    use servo_studio::link::LinkEvent;
+    use servo_studio::sim::LinkKind;
+
+    let mut sim = Plen2Sim::new(Plen2Timing::default())
+        .with_link(LinkKind::Bursty { interval: Duration::from_millis(30), whole: false });
+    let stored = Plen2Project { motions: project().motions, ..Plen2Project::default() };
+    sim.preload(&store_commands(&stored));
+    let robot = spawn_pty(sim, no_waker()).unwrap();
+    let (mut handle, requester) = connect(&robot);
+    let slot = stored.motions[0].slot;
+    // A long reply (a stored motion, tens of kilobytes) holds the queue while it crosses the bridge.
+    let reading = std::thread::spawn(move || requester.get(Command::GetMotion { slot }));
+    let deadline = std::time::Instant::now() + Duration::from_secs(30);
+    let executed = |until: &dyn Fn(&Command) -> bool| {
+        let mut seen = Vec::new();
+        loop {
+            match robot.events().recv_deadline(deadline) {
+                Ok(LinkEvent::Driver(Plen2SimEvent::Executed(command))) => {
+                    let done = until(&command);
+                    seen.push(command);
+                    if done {
+                        return seen;
+                    }
+                }
+                Ok(_) => {}
+                Err(error) => panic!("the robot never got there ({seen:?}): {error}"),
+            }
+        }
+    };
+    executed(&|command| matches!(command, Command::GetMotion { .. }));
+    handle.play(slot);
+    handle.stop();
+    reading.join().unwrap().unwrap();
+    let mut after = executed(&|command| *command == Command::HomePosition);
+    // Whatever was queued before STOP would be read before this getter's answer.
+    let check = handle.requester();
+    let asked = std::thread::spawn(move || check.get(Command::GetVersion));
+    after.extend(executed(&|command| *command == Command::GetVersion));
+    asked.join().unwrap().unwrap();
+    assert!(!after.iter().any(|command| matches!(command, Command::PlayMotion { .. })), "{after:?}");
+    assert!(after.contains(&Command::ResetInterpreter), "{after:?}");
+    assert_eq!(inspect(&robot).playing, None, "the robot plays nothing");
+}

@@ -11,7 +11,8 @@ use std::time::{Duration, Instant};
 use crossbeam_channel::Sender;
 
 pub use super::messages::{
-    ERASED_REPLY_BYTES, Plen2Command, Plen2Event, Plen2Options, REPLY_IDLE, RESYNC, ReplyError, ReplyNews, ReplySender,
+    DoneSender, ERASED_REPLY_BYTES, Plen2Command, Plen2Event, Plen2Options, REPLY_IDLE, RESYNC, ReplyError, ReplyNews,
+    ReplySender,
 };
 pub use super::pacer::Pacing;
 use super::pacer::{Pacer, PacingMode};
@@ -62,7 +63,7 @@ struct Queued {
     /// `None` for the resync bytes.
     command: Option<Command>,
     bytes: Vec<u8>,
-    done: Option<Sender<()>>,
+    done: Option<DoneSender>,
     reply: Option<ReplySender>,
     news: Option<Sender<ReplyNews>>,
     /// Part of a probe: its reply goes to the probe's callers.
@@ -81,7 +82,7 @@ pub struct Plen2Driver {
     /// STOP's commands waiting for the command on the wire to end.
     urgent: VecDeque<Queued>,
     live: BTreeMap<u8, i16>,
-    waiting: Vec<(Instant, Sender<()>)>,
+    waiting: Vec<(Instant, DoneSender)>,
     reader: ReplyReader,
     reply: Option<Awaited>,
     /// Who waits for the probe under way (`<VI`, then `<JS` if that answered).
@@ -146,7 +147,7 @@ impl Plen2Driver {
         self.events.push_back(Plen2Event::Log(LogEntry { seconds, direction, name, fields, hex }));
     }
 
-    fn enqueue(&mut self, command: Command, done: Option<Sender<()>>, reply: Option<ReplySender>) {
+    fn enqueue(&mut self, command: Command, done: Option<DoneSender>, reply: Option<ReplySender>) {
         let bytes = command.to_ascii().into_bytes();
         self.queue.push_back(Queued { command: Some(command), bytes, done, reply, news: None, probe: false });
     }
@@ -304,6 +305,26 @@ impl Driver for Plen2Driver {
             Plen2Command::LiveAngles(moves) => self.live.extend(moves),
             Plen2Command::Stop => {
                 self.live.clear();
+                // Nothing still queued goes out after STOP: a play, a play
+                // list's start or a pose queued a moment before would move the
+                // robot after it (behind a slow or bursty link, long after).
+                // Whoever waits for what is dropped is told it was not sent.
+                for queued in self.queue.drain(..) {
+                    if let Some(done) = queued.done {
+                        let _ = done.send(Err(ReplyError::Stopped));
+                    }
+                    match (queued.reply, queued.probe) {
+                        (Some(reply), false) => {
+                            let _ = reply.send(Err(ReplyError::Stopped));
+                        }
+                        (_, true) => {
+                            for reply in self.probing.drain(..) {
+                                let _ = reply.send(Err(ReplyError::Stopped));
+                            }
+                        }
+                        (None, false) => {}
+                    }
+                }
                 // Ahead of everything queued, after the command on the wire (cutting
                 // it would make its tail read as garbage arguments), under every pacing.
                 self.urgent.clear();
@@ -417,7 +438,7 @@ impl Driver for Plen2Driver {
             std::mem::take(&mut self.waiting).into_iter().partition(|(at, _)| *at <= now);
         self.waiting = later;
         for (_, done) in due {
-            let _ = done.send(());
+            let _ = done.send(Ok(()));
         }
         self.pace(now);
     }
@@ -591,5 +612,42 @@ mod tests {
                 assert!(parsed[..parsed.len() - 1].iter().all(Result::is_err), "{ascii} cut at {cut}: {parsed:?}");
             }
         }
+    }
+
+    /// A play, a play list's start and a pose queued a moment before STOP
+    /// (here behind a getter whose reply is still coming, as behind a slow
+    /// or bursty link) never go out after it: STOP drops them, tells their
+    /// waiters they were not sent, and what reaches the robot after the
+    /// command on the wire is STOP's own `#RI` and `$HP` only.
+    #[test]
+    fn stop_drops_every_command_still_queued_and_nothing_that_moves_the_robot_goes_out_after_it() {
+        let t0 = Instant::now();
+        let mut driver = Plen2Driver::new(Plen2Options::default());
+        let waiting = getter(&mut driver, t0);
+        let (done, played) = crossbeam_channel::bounded(1);
+        driver.handle_command(t0, Plen2Command::Send { command: Command::PlayMotion { slot: 3 }, done: Some(done) });
+        driver.handle_command(t0, Plen2Command::Send { command: Command::Pop, done: None });
+        let (reply, asked) = crossbeam_channel::bounded(1);
+        driver.handle_command(t0, Plen2Command::Get { command: Command::GetMotion { slot: 1 }, reply, news: None });
+        driver.handle_command(t0, Plen2Command::LiveAngles(vec![(2, 300)]));
+        driver.handle_command(t0, Plen2Command::Stop);
+        // Everything the driver hands to the port from now on, for a long while.
+        let mut sent = Vec::new();
+        let mut at = t0;
+        for _ in 0..200 {
+            while let Some(bytes) = driver.poll_transmit(at) {
+                sent.extend(bytes);
+            }
+            at += Duration::from_millis(5);
+            if let Some(due) = driver.poll_timeout().filter(|due| *due <= at) {
+                driver.handle_timeout(due);
+            }
+        }
+        let commands: Vec<Command> = parse_commands(&sent).into_iter().filter_map(Result::ok).collect();
+        assert_eq!(commands, [Command::ResetInterpreter, Command::HomePosition], "{}", String::from_utf8_lossy(&sent));
+        assert_eq!(played.try_recv(), Ok(Err(ReplyError::Stopped)), "the play's waiter is told");
+        assert_eq!(asked.try_recv(), Ok(Err(ReplyError::Stopped)), "the getter's too");
+        // The getter already on the wire is STOP's to let end, not to drop.
+        assert!(!matches!(waiting.try_recv(), Ok(Err(ReplyError::Stopped))));
     }
 }

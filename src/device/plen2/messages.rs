@@ -59,7 +59,13 @@ pub enum ReplyError {
     /// The link ended.
     #[error("the link to the robot was lost")]
     Disconnected,
+    /// STOP was pressed while it still waited to be sent: it was not.
+    #[error("STOP was pressed before it was sent: it was not sent")]
+    Stopped,
 }
+
+/// Told when the robot should have finished a command (or that it was not sent).
+pub type DoneSender = Sender<Result<(), ReplyError>>;
 
 /// Where a reply goes.
 pub type ReplySender = Sender<Result<Vec<u8>, ReplyError>>;
@@ -71,8 +77,8 @@ pub enum Plen2Command {
     Send {
         /// The command.
         command: Command,
-        /// Told when the firmware is predicted idle again.
-        done: Option<Sender<()>>,
+        /// Told when the firmware is predicted idle again (or that STOP dropped it).
+        done: Option<DoneSender>,
     },
     /// Send a getter and deliver its reply.
     Get {

@@ -69,12 +69,12 @@ pub fn start_delay(command: &Command, latency: std::time::Duration) -> std::time
 
 /// A sent command the robot is still predicted to be working on.
 #[derive(Debug)]
-pub struct Finished(crossbeam_channel::Receiver<()>);
+pub struct Finished(crossbeam_channel::Receiver<Result<(), ReplyError>>);
 
 impl Finished {
-    /// Waits until the robot should have finished it.
+    /// Waits until the robot should have finished it (or STOP dropped it).
     pub fn wait(self) -> Result<(), ReplyError> {
-        self.0.recv().map_err(|_| ReplyError::Disconnected)
+        self.0.recv().unwrap_or(Err(ReplyError::Disconnected))
     }
 }
 

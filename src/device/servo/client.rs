@@ -117,7 +117,7 @@ impl Driver for ServoDriver {
             }
             ServoCommand::LiveMove { moves } => self.session.set_live_moves(now, &moves),
             ServoCommand::Stop { message } => {
-                self.session.cancel_live_moves();
+                self.session.cancel_queued();
                 if let Err(error) = self.session.send(now, message) {
                     self.events.push_back(ServoEvent::SendFailed(error));
                 }

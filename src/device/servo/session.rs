@@ -107,6 +107,12 @@ pub enum RequestError {
         /// Why the link ended.
         reason: String,
     },
+    /// STOP was pressed while it still waited to be sent: it was not.
+    #[error("{request}: STOP was pressed before it was sent: it was not sent")]
+    Stopped {
+        /// The request's name.
+        request: &'static str,
+    },
 }
 
 /// One entry of the packet log.
@@ -255,6 +261,23 @@ impl Session {
     /// Drops live move targets not sent yet (STOP: nothing queued may follow).
     pub fn cancel_live_moves(&mut self) {
         self.live.clear();
+    }
+
+    /// STOP: drops every live move target and every request still queued
+    /// (a macro or an action queued behind a slow answer would move the
+    /// servos after it); each dropped request is answered "stopped". The
+    /// request on the wire is the board's to answer.
+    pub fn cancel_queued(&mut self) {
+        self.live.clear();
+        let stopped: Vec<SessionEvent> = self
+            .queue
+            .drain(..)
+            .map(|request| SessionEvent::Response {
+                id: request.id,
+                result: Err(RequestError::Stopped { request: request.message.name() }),
+            })
+            .collect();
+        self.events.extend(stopped);
     }
 
     fn flush_live(&mut self, now: Instant) {

@@ -144,6 +144,7 @@ impl Worded for ReplyError {
             }
             (_, ReplyError::Garbage { bytes }) => format!("回應是 {bytes} 位元組的無效資料"),
             (_, ReplyError::Disconnected) => "與機器人的連線已中斷".into(),
+            (_, ReplyError::Stopped) => "傳送前已按下停止：沒有傳送".into(),
         }
     }
 }

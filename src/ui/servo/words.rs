@@ -88,6 +88,7 @@ impl Worded for crate::device::servo::RequestError {
             }
             (_, R::Encode(_)) => "無法編碼此訊息：內容超出協定欄位的範圍".to_string(),
             (_, R::Disconnected { .. }) => "與控制板的連線已中斷".to_string(),
+            (_, R::Stopped { request }) => format!("{request}：傳送前已按下停止：沒有傳送"),
         }
     }
 }

@@ -371,3 +371,37 @@ fn live_moves_are_coalesced_while_the_line_is_busy() {
     assert_eq!(sent(&mut session), []);
     assert_eq!(session.poll_timeout(), None);
 }
+
+/// STOP: a macro queued behind a query still waiting for its answer (a slow
+/// board, a bursty bridge) never goes out after the stop; its caller is told
+/// it was not sent, and the only frame sent after is the stop itself.
+#[test]
+fn stop_drops_every_queued_request_and_only_the_stop_goes_out() {
+    let t0 = Instant::now();
+    let mut session = Session::new(config());
+    let asked = session.submit(t0, Message::QueryProjectIdRequest).unwrap();
+    let macro_run = session.submit(t0, Message::ExecuteMacroRequest { macro_id: 4 }).unwrap();
+    assert_eq!(sent(&mut session), [Message::QueryProjectIdRequest]);
+    let stop = Message::SetServoParameterRequest(crate::protocol::servo::ServoSwitches {
+        servo_id: 255,
+        is_start: false,
+        is_hold: true,
+    });
+    session.cancel_queued();
+    session.send(t0, stop.clone()).unwrap();
+    assert_eq!(
+        events(&mut session),
+        [SessionEvent::Response {
+            id: macro_run,
+            result: Err(RequestError::Stopped { request: "ExecuteMacroRequest" })
+        }]
+    );
+    // The query's answer comes: nothing queued follows it.
+    session.handle_input(t0, &bytes(&Message::QueryProjectIdResponse { project_id: 7 }));
+    assert_eq!(
+        events(&mut session),
+        [SessionEvent::Response { id: asked, result: Ok(Message::QueryProjectIdResponse { project_id: 7 }) }]
+    );
+    assert_eq!(sent(&mut session), [stop]);
+    assert_eq!(session.pending_requests(), 0);
+}
