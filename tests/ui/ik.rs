@@ -231,3 +231,37 @@ fn the_sliders_and_the_view_share_the_width_without_an_empty_band() {
         }
     }
 }
+
+/// A drag that starts on a link and passes over a ring (the right thigh
+/// dragged up and left, across the right hand's ring): the joint turns for
+/// the whole drag — the camera does not take over — and the drag is one
+/// undo step; Ctrl+Z takes back exactly it, not the edit before.
+#[test]
+fn a_drag_on_a_link_across_a_ring_is_one_undo_step() {
+    let mut harness = harness();
+    // An edit before the drag (a sound track, as a user saw it), which one undo must leave alone.
+    let track = servo_studio::project::SoundTrack {
+        path: "song.wav".into(),
+        duration_ms: 3000,
+        sha256: String::new(),
+        offset_ms: 0,
+        sensitivity_percent: 50,
+    };
+    harness.state_mut().document.apply(servo_studio::project::Edit::SetSound(Some(track)), None);
+    harness.state_mut().document.seal();
+    harness.run_steps(3);
+    let with_motion = harness.state().document.project.clone();
+    let before = pose(&harness);
+    let camera = common::ui::plen2_ui(harness.state()).preview.joints_camera();
+    let thigh = common::ui::plen2_ui(harness.state()).preview.joint_on_screen(Joint::RightThighPitch).unwrap();
+    let hand = ring(&harness, RIGHT_HAND);
+    // Through the ring and on past it.
+    drag(&mut harness, thigh, (hand - thigh) * 1.5, true);
+    let after = pose(&harness);
+    assert_ne!(after[Joint::RightThighPitch.index()], before[Joint::RightThighPitch.index()], "the thigh turned");
+    assert_eq!(common::ui::plen2_ui(harness.state()).preview.joints_camera(), camera, "the camera did not orbit");
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Z);
+    harness.run_steps(2);
+    assert_eq!(pose(&harness), before, "one undo takes the whole drag back");
+    assert_eq!(harness.state().document.project, with_motion, "and only the drag");
+}

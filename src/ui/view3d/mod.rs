@@ -278,8 +278,16 @@ impl View {
         let handle = |link: usize| scene.handles.get(link).and_then(Option::as_ref);
         let under = |at: Pos2| touch::pick(scene, projector, at).filter(|(link, _)| handle(*link).is_some());
         let mut touch = self.touch_ends(ui, response, scene, projector);
-        if scene.handles.is_empty() || touch.hovered_end.is_some() {
+        if scene.handles.is_empty() {
             self.grab = None;
+            return touch;
+        }
+        if self.grab.is_some() {
+            // A drag that holds a joint holds it to the end, whatever it
+            // passes over (a ring, another link, the empty view): one drag,
+            // one turn, one undo step.
+            touch.hovered_end = None;
+        } else if touch.hovered_end.is_some() {
             return touch;
         }
         touch.hovered = response.hover_pos().and_then(under).map(|(link, _)| link);
