@@ -16,11 +16,13 @@ pub struct Transport {
     playing: Option<(f64, f64)>,
     /// Real speed ×1, ×0.5 or ×0.25.
     pub speed: f64,
+    /// The bar as last drawn: its left edge, its width and the span it shows, ms.
+    drawn: Option<(f32, f32, f64)>,
 }
 
 impl Default for Transport {
     fn default() -> Self {
-        Self { t_ms: 0.0, playing: None, speed: 1.0 }
+        Self { t_ms: 0.0, playing: None, speed: 1.0, drawn: None }
     }
 }
 
@@ -61,9 +63,27 @@ impl Transport {
         }
     }
 
+    /// The span the bar last showed, ms.
+    pub fn span_ms(&self) -> Option<f64> {
+        self.drawn.map(|(_, _, span)| span)
+    }
+
+    /// Where on the screen the bar last drew time `t_ms` (the same x as the
+    /// sound lane's and the graph's for the same time: one axis).
+    pub fn x_of(&self, t_ms: f64) -> Option<f32> {
+        let (left, width, span) = self.drawn?;
+        // Positions on a bar of a few hundred points: f32 is plenty.
+        #[allow(clippy::cast_possible_truncation)]
+        let along = (t_ms / span.max(1e-9)).clamp(0.0, 1.0) as f32;
+        Some(left + width * along)
+    }
+
     /// The row: play / pause, the speed, and the cursor over `0..end_ms` with
-    /// a tick at each of `marks` (frames, steps). Space plays and pauses while
-    /// no field has the keyboard. Keeps the window repainting while it plays.
+    /// a tick at each of `marks` (frames, steps). `end_ms` is the show's span:
+    /// the longer of the motion and its sound (`SoundView::span_ms`), so the
+    /// bar, the sound lane and the graph share one time axis. Space plays and
+    /// pauses while no field has the keyboard. Keeps the window repainting
+    /// while it plays.
     pub fn ui(&mut self, ui: &mut egui::Ui, end_ms: f64, marks: &[f64], words: &Strings) {
         let now = ui.input(|input| input.time);
         let keys_free = ui.memory(|memory| memory.focused().is_none());
@@ -106,6 +126,7 @@ impl Transport {
         let painter = ui.painter_at(rect);
         let visuals = ui.visuals();
         let bar = rect.shrink2(egui::vec2(0.0, 6.0));
+        self.drawn = Some((bar.left(), bar.width(), end_ms));
         painter.rect_filled(bar, 3.0, visuals.extreme_bg_color);
         // Positions on a bar of a few hundred points: f32 is plenty.
         #[allow(clippy::cast_possible_truncation)]

@@ -406,3 +406,21 @@ fn playing_a_play_list_on_the_robot_queues_it_then_starts_it_with_the_sound() {
     assert_eq!(executed.iter().filter(|command| **command == Command::Pop).count(), 1, "{executed:?}");
     harness.state_mut().apply(Action::Sound(SoundAction::Silence));
 }
+
+/// A sound longer than the motion: the play bar, the sound lane and the
+/// graph share one time axis — the longer of the two — so at any time the
+/// bar's cursor and the lane's are at the same x (they were ~180 px apart
+/// at 0.92 s when the bar spanned the motion and the lane the sound).
+#[test]
+fn the_play_bar_and_the_sound_lane_share_one_time_axis() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut harness = saved_editor(dir.path(), with_sound(dir.path()), Vec::new());
+    common::ui::run_until(&mut harness, "the sound read", |app| app.sound.view(&app.document.project).read.is_some());
+    let span = common::ui::servo_ui(harness.state()).figure.transport.span_ms().unwrap();
+    assert!((span - 3000.0).abs() < 1.0, "the span is the sound's 3 s, longer than the action: {span}");
+    for t_ms in [0.0, 920.0, 2200.0, 3000.0] {
+        let figure = &common::ui::servo_ui(harness.state()).figure;
+        let (bar, lane) = (figure.transport.x_of(t_ms).unwrap(), figure.lane.x_of(t_ms).unwrap());
+        assert!((bar - lane).abs() < 1.0, "at {t_ms} ms: the bar's x {bar}, the lane's {lane}");
+    }
+}

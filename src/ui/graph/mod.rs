@@ -88,6 +88,8 @@ pub struct SoundStrip<'a> {
     pub rate: u32,
     /// Where it starts on the motion's time, ms.
     pub offset_ms: f64,
+    /// Where it ends on the motion's time, ms.
+    pub end_ms: f64,
 }
 
 /// What the user did on the graph, for the family to apply as one edit.
@@ -251,6 +253,9 @@ impl Graph {
                 .y_grid_spacer(egui_plot::uniform_grid_spacer(degree_steps))
                 .y_axis_min_width(36.0)
                 .allow_scroll(false)
+                // One time axis with the play bar and the sound lane: from 0 to the longer of motion and sound.
+                .include_x(0.0)
+                .include_x(curves.sound.map_or(0.0, |sound| sound.end_ms))
                 // Room around the curves: a key at the top or the bottom stays clear of the axes.
                 .set_margin_fraction(egui::vec2(0.03, 0.12))
                 .allow_drag(!shift && self.drag.is_none())

@@ -249,7 +249,7 @@ impl Preview {
                 t
             })
             .collect();
-        self.transport.ui(ui, played.duration_ms(), &marks, words);
+        self.transport.ui(ui, view.sound.span_ms(played.duration_ms()), &marks, words);
         self.lane.ui(ui, view.sound, (&mut self.transport, played.duration_ms(), &marks), view.language, actions);
         warnings(ui, (project, slot), played, (settings, pose), words);
         let Some(cycle) = played.cycle_at(self.transport.t_ms) else {

@@ -339,7 +339,7 @@ impl Preview {
     ) {
         let words = view.language.strings();
         self.rig(project);
-        self.transport.ui(ui, timed.end_ms, &timed.marks, words);
+        self.transport.ui(ui, view.sound.span_ms(timed.end_ms), &timed.marks, words);
         let cursor = (&mut self.transport, timed.end_ms, &timed.marks[..]);
         self.lane.ui(ui, view.sound, cursor, view.language, actions);
         let at = |t: f64| -> BTreeMap<u8, f64> {

@@ -36,6 +36,8 @@ pub struct SoundLane {
     grain_at: Option<f64>,
     /// The offset when a drag of the waveform began.
     dragged_from: Option<i64>,
+    /// As last drawn: the lane's left edge, and the time there and per point.
+    drawn: Option<(f32, f64, f64)>,
 }
 
 /// The lane's words.
@@ -138,6 +140,15 @@ fn pick(words: &LaneWords, then: fn(std::path::PathBuf) -> SoundAction) -> Actio
 }
 
 impl SoundLane {
+    /// Where on the screen the lane last drew time `t_ms`.
+    pub fn x_of(&self, t_ms: f64) -> Option<f32> {
+        let (left, start, per_point) = self.drawn?;
+        // Points on a screen: f32 is plenty.
+        #[allow(clippy::cast_possible_truncation)]
+        let x = left + ((t_ms - start) / per_point) as f32;
+        Some(x)
+    }
+
     /// The lane, under the transport's row: keeps the sound in step with the
     /// cursor, and draws the sound on the motion's time (`0..end_ms`, ticks at `marks`).
     pub fn ui(
@@ -174,10 +185,11 @@ impl SoundLane {
         self.zoom_and_scroll(ui, &response, rect, (start, per_point), whole);
         let (start, per_point) = self.window.unwrap_or((start, per_point));
         let t_of = |x: f32| start + f64::from(x - rect.left()) * per_point;
+        self.drawn = Some((rect.left(), start, per_point));
         if response.clicked()
             && let Some(pointer) = response.interact_pointer_pos()
         {
-            transport.seek(t_of(pointer.x).clamp(0.0, end_ms), ui.input(|input| input.time));
+            transport.seek(t_of(pointer.x).clamp(0.0, whole), ui.input(|input| input.time));
         }
         self.drag_offset(&response, per_point, track.offset_ms, actions);
         paint(ui, rect, (sound, read, offset), (start, per_point), (transport.t_ms, end_ms, marks));

@@ -379,7 +379,15 @@ impl SoundView<'_> {
         // Offsets within an hour: exact in f64.
         #[allow(clippy::cast_precision_loss)]
         let offset_ms = track.offset_ms as f64;
-        Some(crate::ui::graph::SoundStrip { peaks: &read.peaks, rate: read.sample_rate, offset_ms })
+        let end_ms = offset_ms + read.duration_s() * 1000.0;
+        Some(crate::ui::graph::SoundStrip { peaks: &read.peaks, rate: read.sample_rate, offset_ms, end_ms })
+    }
+
+    /// The show's span on the motion's time, ms: the longer of the motion
+    /// (`motion_end_ms`) and the sound, where it ends. The play bar, the
+    /// sound lane and the graph all show this one axis.
+    pub fn span_ms(&self, motion_end_ms: f64) -> f64 {
+        self.strip().map_or(motion_end_ms, |strip| motion_end_ms.max(strip.end_ms))
     }
 
     /// The onsets on the motion's time, ms (what frames, steps and retimes snap to).
