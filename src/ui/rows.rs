@@ -101,13 +101,13 @@ impl Reorder {
 /// row, ↓ on the last).
 pub fn reorder_buttons(ui: &mut egui::Ui, position: usize, count: usize, remove_hint: &str) -> Option<Reorder> {
     let mut asked = None;
-    if ui.add_enabled(position > 0, egui::Button::new("↑")).clicked() {
+    if ui.add_enabled(position > 0, egui::Button::new("↑").small()).clicked() {
         asked = Some(Reorder::Up);
     }
-    if ui.add_enabled(position + 1 < count, egui::Button::new("↓")).clicked() {
+    if ui.add_enabled(position + 1 < count, egui::Button::new("↓").small()).clicked() {
         asked = Some(Reorder::Down);
     }
-    if ui.button("×").on_hover_text(remove_hint).clicked() {
+    if ui.small_button("×").on_hover_text(remove_hint).clicked() {
         asked = Some(Reorder::Remove);
     }
     asked
@@ -125,7 +125,11 @@ pub fn grid(
 ) {
     let row_height = widget_row_height(ui);
     scrolled(ui, id_salt, row_height, count, max_height, None, |ui, rows| {
-        egui::Grid::new(id_salt).striped(true).min_row_height(row_height).show(ui, |ui| {
+        // Cells closer together than loose widgets: a row's buttons read as one row.
+        ui.spacing_mut().item_spacing.x = 3.0;
+        // Columns as narrow as their widgets (↑ ↓ × need no interact-sized cell):
+        // a row of a dozen buttons fits a pane at 1280×800.
+        egui::Grid::new(id_salt).striped(true).min_row_height(row_height).min_col_width(0.0).show(ui, |ui| {
             for index in rows {
                 add_row(ui, index);
                 ui.end_row();
@@ -167,6 +171,20 @@ pub fn table(
     heading: &[&str],
     count: usize,
     max_height: f32,
+    add_row: impl FnMut(&mut egui_extras::TableRow<'_, '_>, usize),
+) {
+    table_with_id(ui, id_salt, heading, f32::INFINITY, count, max_height, add_row);
+}
+
+/// A [`table`] whose first column (a row's name: it labels the row's
+/// fields) is at most `first_width` wide, its text cut to it.
+pub fn table_with_id(
+    ui: &mut egui::Ui,
+    id_salt: &str,
+    heading: &[&str],
+    first_width: f32,
+    count: usize,
+    max_height: f32,
     mut add_row: impl FnMut(&mut egui_extras::TableRow<'_, '_>, usize),
 ) {
     let row_height = widget_row_height(ui) + 2.0;
@@ -175,7 +193,8 @@ pub fn table(
         egui_extras::TableBuilder::new(ui)
             .id_salt(id_salt)
             .striped(true)
-            .columns(egui_extras::Column::auto(), heading.len())
+            .column(egui_extras::Column::auto().at_most(first_width).clip(true))
+            .columns(egui_extras::Column::auto(), heading.len().saturating_sub(1))
             .cell_layout(egui::Layout::left_to_right(egui::Align::Center))
             .min_scrolled_height(0.0)
             .max_scroll_height(max_height - row_height)

@@ -21,3 +21,4 @@ mod rig3d;
 mod rows;
 mod sliders;
 mod sound;
+mod uncut;

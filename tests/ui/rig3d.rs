@@ -114,6 +114,6 @@ fn a_mesh_that_reads_is_drawn_and_one_that_does_not_is_named_with_what_to_do() {
     assert_eq!(common::ui::servo_ui(harness.state()).figure.meshes_drawn(), 1, "the shin is drawn by its mesh");
     let error = harness.query_by_label_contains("bad.stl").expect("the failed file is named");
     let text = format!("{error:?}");
-    assert!(text.contains("STL") && text.contains("rig settings"), "what went wrong and what to do: {text}");
+    assert!(text.contains("STL") && text.contains("Servo settings → Meshes"), "what went wrong and what to do: {text}");
     assert_eq!(harness.state().document.project.servo.servos.len(), 16, "the project opened");
 }

@@ -155,12 +155,8 @@ pub struct ServoCaptions {
     pub straight_at: &'static str,
     /// The rig table's twin column: "Twin (Mirror L/R)".
     pub twin: &'static str,
-    /// The rig's column of ends: "Hand/foot (chain from)".
-    pub end_column: &'static str,
     /// Its hover.
     pub end_hint: &'static str,
-    /// The rig's column of meshes: "Mesh".
-    pub mesh_column: &'static str,
     /// A mesh button with none chosen: "Mesh…".
     pub choose_mesh: &'static str,
     /// Its hover.
@@ -175,6 +171,14 @@ pub struct ServoCaptions {
     pub mesh_error_hint: &'static str,
     /// Whether a servo is in the rig.
     pub in_rig: &'static str,
+    /// The servo settings' part for hands and feet: "Hands & feet".
+    pub ends_tab: &'static str,
+    /// The servo settings' part for meshes: "Meshes".
+    pub meshes_tab: &'static str,
+    /// The hands-and-feet table's columns: hand or foot, the chain's first servo, the tip.
+    pub end_columns: [&'static str; 3],
+    /// The meshes table's columns: the file, its offset, its turn, its scale.
+    pub mesh_columns: [&'static str; 4],
     /// The steps table's heading for a step's curve: "Curve".
     pub curve: &'static str,
     /// Each curve's name, in `Easing::ALL` order, then a shaped one's.
@@ -280,16 +284,18 @@ const ENGLISH: ServoCaptions = ServoCaptions {
     mounted_on: "Mounted on",
     straight_at: "Straight at (°)",
     twin: "Twin (Mirror L/R)",
-    end_column: "Hand/foot (chain from)",
     end_hint: "Mark the link as a hand or a foot: the 3D view gets a ring at its tip (x y z mm) to pose it by, the servos from the one chosen down to it solving",
-    mesh_column: "Mesh",
     choose_mesh: "Mesh…",
     mesh_hint: "Draw the link with an STL or OBJ file (stored relative to the project); offset (mm), turn (° about x, y, z) and mm per unit beside it; × removes it",
     mesh_kind: "STL or OBJ mesh",
     mirror: "Mirror L/R",
-    mesh_error_hint: "the link is drawn without it; fix the file or change it in the rig settings' Mesh column",
+    mesh_error_hint: "the link is drawn without it; fix the file or change it in Servo settings → Meshes",
     mirror_hint: "Each step moves the servo's twin instead (the rig's Twin column), its angle reflected about their homes: a left-arm wave becomes a right-arm wave. A servo without a twin keeps its step.",
     in_rig: "In rig",
+    ends_tab: "Hands & feet",
+    meshes_tab: "Meshes",
+    end_columns: ["Hand or foot", "Chain from", "Tip x, y, z (mm)"],
+    mesh_columns: ["Mesh file", "Offset x, y, z (mm)", "Turn about x, y, z (°)", "Scale (mm per unit)"],
     curve: "Curve",
     curves: ["Linear", "Ease in", "Ease out", "Ease in-out", "Hold", "Shaped"],
     curve_hint: "How the step's move runs. The board moves only in straight lines: a curve is stored as straight sub-steps within 1° of it (widened when the board's memory is short), run by a macro of their own, eased from where the macro has put the servo. The project keeps the curve.",
@@ -381,16 +387,18 @@ const TRADITIONAL_CHINESE: ServoCaptions = ServoCaptions {
     mounted_on: "裝在",
     straight_at: "伸直角度（°）",
     twin: "對側伺服機（左右鏡像）",
-    end_column: "手／腳（鏈起點）",
     end_hint: "將此連桿標為手或腳：3D 視圖會在其末端（x y z 公釐）顯示圓圈，拖曳即可擺姿勢，由所選伺服機到此連桿之間求解",
-    mesh_column: "外形",
     choose_mesh: "外形…",
     mesh_hint: "以 STL 或 OBJ 檔繪製此連桿（以相對於專案的路徑儲存）；旁邊可設位移（公釐）、旋轉（繞 x、y、z 的角度）與每單位公釐數；× 移除",
     mesh_kind: "STL 或 OBJ 外形",
     mirror: "左右鏡像",
-    mesh_error_hint: "此連桿以預設外形顯示；請修正檔案，或在骨架設定的「外形」欄更換",
+    mesh_error_hint: "此連桿以預設外形顯示；請修正檔案，或在「舵機設定 → 外形」更換",
     mirror_hint: "每個步驟改由該伺服機的對側伺服機執行（骨架表的「對側」欄），角度以原點對稱反轉：左手揮手變成右手揮手。沒有對側的伺服機保留原步驟。",
     in_rig: "在骨架中",
+    ends_tab: "手與腳",
+    meshes_tab: "外形",
+    end_columns: ["手或腳", "鏈起點", "末端 x、y、z（公釐）"],
+    mesh_columns: ["外形檔", "位移 x、y、z（公釐）", "繞 x、y、z 旋轉（°）", "比例（每單位公釐）"],
     curve: "曲線",
     curves: ["線性", "漸入", "漸出", "漸入漸出", "保持", "自訂曲線"],
     curve_hint: "此步驟的移動方式。控制板只會直線移動：曲線會存成數個誤差 1° 以內的直線子步驟（控制板記憶體不足時放寬），由專屬巨集依序執行，從巨集讓伺服機到達的角度開始漸變。專案保留曲線本身。",

@@ -33,6 +33,24 @@ fn axis_name(axis: RigAxis) -> &'static str {
     }
 }
 
+/// The parts of the servo settings: each a table with the servo's id first
+/// and a heading over every field, narrow enough for the pane at 1280×800.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Part {
+    /// Calibration, limits, home.
+    #[default]
+    Limits,
+    /// Where each servo sits in the skeleton.
+    Rig,
+    /// Which links are hands and feet.
+    Ends,
+    /// The meshes links are drawn with.
+    Meshes,
+}
+
+/// The widest the id column gets (a long caption is cut, its whole in a hover).
+const ID_COLUMN: f32 = 120.0;
+
 /// The rig table, `height` points high at most. A drag of one value is one undo step.
 pub fn table(ui: &mut egui::Ui, project: &ServoProject, height: f32, words: &Strings, actions: &mut Vec<Action>) {
     let heading = [
@@ -44,15 +62,56 @@ pub fn table(ui: &mut egui::Ui, project: &ServoProject, height: f32, words: &Str
         words.reversed,
         words.servo().straight_at,
         words.servo().twin,
-        words.servo().end_column,
-        words.servo().mesh_column,
     ];
-    // Wider than a narrow pane: it scrolls sideways rather than hide its last columns.
-    egui::ScrollArea::horizontal().id_salt("servo-rig-sideways").show(ui, |ui| {
-        rows::table(ui, "servo-rig", &heading, project.servos.len(), height, |row, index| {
-            rig_row(row, project, index, words, actions);
-        });
+    rows::table_with_id(ui, "servo-rig", &heading, ID_COLUMN, project.servos.len(), height, |row, index| {
+        rig_row(row, project, index, words, actions);
     });
+}
+
+/// The hands-and-feet table: for each rigged servo, whether its link is a
+/// hand or a foot, the servo its chain starts at, and its tip (mm).
+pub fn ends_table(ui: &mut egui::Ui, project: &ServoProject, height: f32, words: &Strings, actions: &mut Vec<Action>) {
+    let [end, from, tip] = words.servo().end_columns;
+    let heading = [words.servo_id, end, from, tip];
+    rows::table_with_id(ui, "servo-ends", &heading, ID_COLUMN, project.servos.len(), height, |row, index| {
+        let servo = &project.servos[index];
+        let row_id = id_cell(row, servo);
+        let Some(rig) = servo.rig else {
+            row.col(|ui| {
+                ui.weak(words.servo().not_rigged);
+            });
+            return;
+        };
+        end_cells(row, project, (servo, rig), (row_id, words), actions);
+    });
+}
+
+/// The meshes table: for each servo, the mesh its link is drawn with, and its placing.
+pub fn meshes_table(
+    ui: &mut egui::Ui,
+    project: &ServoProject,
+    height: f32,
+    words: &Strings,
+    actions: &mut Vec<Action>,
+) {
+    let [file, offset, turn, scale] = words.servo().mesh_columns;
+    let heading = [words.servo_id, file, offset, turn, scale, ""];
+    rows::table_with_id(ui, "servo-meshes", &heading, ID_COLUMN, project.servos.len(), height, |row, index| {
+        let servo = &project.servos[index];
+        let row_id = id_cell(row, servo);
+        mesh_cells(row, project, (servo.id, row_id), words, actions);
+    });
+}
+
+/// The row's first cell: the servo's id and caption (cut to the column, whole
+/// in a hover); its id labels every field of the row.
+fn id_cell(row: &mut egui_extras::TableRow<'_, '_>, servo: &Servo) -> egui::Id {
+    let mut row_id = egui::Id::NULL;
+    row.col(|ui| {
+        let text = format!("{} {}", servo.id, servo.caption);
+        row_id = ui.add(egui::Label::new(&text).truncate()).on_hover_text(&text).id;
+    });
+    row_id
 }
 
 /// One servo's row of the rig: in the rig, mounted on, offset, axis, reversed, straight at, twin.
@@ -68,8 +127,7 @@ fn rig_row(
         edit: Edit::SetServo { index, servo: Servo { rig, ..servo.clone() } },
         coalesce: Some(format!("servo {} rig {field}", servo.id)),
     };
-    let mut row_id = egui::Id::NULL;
-    row.col(|ui| row_id = ui.label(format!("{} {}", servo.id, servo.caption)).id);
+    let row_id = id_cell(row, servo);
     row.col(|ui| {
         let mut rigged = servo.rig.is_some();
         if ui.checkbox(&mut rigged, "").labelled_by(row_id).changed() {
@@ -129,27 +187,32 @@ fn rig_row(
             actions.push(set(Some(RigJoint { mirror, ..rig }), "mirror"));
         }
     });
-    row.col(|ui| end_cell(ui, project, (servo, rig), (row_id, words), actions));
-    row.col(|ui| mesh_cell(ui, project, servo.id, words, actions));
 }
 
-/// Whether a link is a hand or a foot: the box, and when it is, the servo
-/// its chain starts at and its tip (mm).
-fn end_cell(
-    ui: &mut egui::Ui,
+/// Whether a link is a hand or a foot (a box), and when it is, the servo its
+/// chain starts at and its tip (mm), a cell each.
+fn end_cells(
+    row: &mut egui_extras::TableRow<'_, '_>,
     project: &ServoProject,
     (servo, rig): (&Servo, RigJoint),
     (row_id, words): (egui::Id, &Strings),
     actions: &mut Vec<Action>,
 ) {
     let mut end = rig.end.is_some();
-    ui.checkbox(&mut end, "").labelled_by(row_id).on_hover_text(words.servo().end_hint);
+    row.col(|ui| {
+        ui.checkbox(&mut end, "").labelled_by(row_id).on_hover_text(words.servo().end_hint);
+    });
     let mut now = if end { Some(rig.end.unwrap_or_default()) } else { None };
     if let Some(chain) = &mut now {
-        other_servo(ui, ("rig-root", servo.id), (project, servo.id), &mut chain.root, words.body).labelled_by(row_id);
-        for value in &mut chain.tip_mm {
-            ui.add(egui::DragValue::new(value).range(-2000..=2000)).labelled_by(row_id);
-        }
+        row.col(|ui| {
+            other_servo(ui, ("rig-root", servo.id), (project, servo.id), &mut chain.root, words.body)
+                .labelled_by(row_id);
+        });
+        row.col(|ui| {
+            for value in &mut chain.tip_mm {
+                ui.add(egui::DragValue::new(value).range(-2000..=2000)).labelled_by(row_id);
+            }
+        });
     }
     if now != rig.end {
         let index = project.servos.iter().position(|s| s.id == servo.id).unwrap_or(0);
@@ -160,33 +223,51 @@ fn end_cell(
     }
 }
 
-/// A link's mesh: the file (a button that picks another), its placing, and ×.
-fn mesh_cell(ui: &mut egui::Ui, project: &ServoProject, servo_id: u8, words: &Strings, actions: &mut Vec<Action>) {
+/// A link's mesh, a cell each: the file (a button that picks another), its
+/// offset (mm), its turn (°), its scale, and × — each field under its heading.
+fn mesh_cells(
+    row: &mut egui_extras::TableRow<'_, '_>,
+    project: &ServoProject,
+    (servo_id, row_id): (u8, egui::Id),
+    words: &Strings,
+    actions: &mut Vec<Action>,
+) {
     let index = project.meshes.iter().position(|mesh| mesh.servo_id == Some(servo_id));
     let name = index.map_or(words.servo().choose_mesh.to_string(), |i| project.meshes[i].path.clone());
-    if ui.button(name).on_hover_text(words.servo().mesh_hint).clicked() {
-        actions.push(Action::AskFile(FileRequest::Pick(Pick {
-            kind: words.servo().mesh_kind,
-            extensions: &["stl", "obj", "STL", "OBJ"],
-            then: Arc::new(move |path| Action::family(ServoAction::SetMesh { servo_id, path })),
-        })));
-    }
+    row.col(|ui| {
+        let button = egui::Button::new(&name).truncate();
+        if ui.add(button).labelled_by(row_id).on_hover_text(format!("{name}\n{}", words.servo().mesh_hint)).clicked() {
+            actions.push(Action::AskFile(FileRequest::Pick(Pick {
+                kind: words.servo().mesh_kind,
+                extensions: &["stl", "obj", "STL", "OBJ"],
+                then: Arc::new(move |path| Action::family(ServoAction::SetMesh { servo_id, path })),
+            })));
+        }
+    });
     let Some(index) = index else { return };
     let mut mesh = project.meshes[index].clone();
-    for value in mesh.offset_mm.iter_mut() {
-        ui.add(egui::DragValue::new(value).range(-2000..=2000).suffix(" mm"));
-    }
-    for value in mesh.rotation_deg.iter_mut() {
-        ui.add(egui::DragValue::new(value).range(-180..=180).suffix("°"));
-    }
-    ui.add(
-        egui::DragValue::new(&mut mesh.scale_milli)
-            .range(1..=1_000_000)
-            .prefix("×")
-            .custom_formatter(|v, _| format!("{:.3}", v / 1000.0))
-            .custom_parser(|text| text.trim_start_matches('×').parse::<f64>().ok().map(|v| v * 1000.0)),
-    );
-    let removed = ui.small_button("×").clicked();
+    row.col(|ui| {
+        for value in mesh.offset_mm.iter_mut() {
+            ui.add(egui::DragValue::new(value).range(-2000..=2000)).labelled_by(row_id);
+        }
+    });
+    row.col(|ui| {
+        for value in mesh.rotation_deg.iter_mut() {
+            ui.add(egui::DragValue::new(value).range(-180..=180).suffix("°")).labelled_by(row_id);
+        }
+    });
+    row.col(|ui| {
+        ui.add(
+            egui::DragValue::new(&mut mesh.scale_milli)
+                .range(1..=1_000_000)
+                .prefix("×")
+                .custom_formatter(|v, _| format!("{:.3}", v / 1000.0))
+                .custom_parser(|text| text.trim_start_matches('×').parse::<f64>().ok().map(|v| v * 1000.0)),
+        )
+        .labelled_by(row_id);
+    });
+    let mut removed = false;
+    row.col(|ui| removed = ui.small_button("×").on_hover_text(words.remove).clicked());
     if removed || mesh != project.meshes[index] {
         let mut changed = project.clone();
         if removed {
@@ -239,7 +320,8 @@ fn other_servo(
     };
     egui::ComboBox::from_id_salt(id_salt)
         .selected_text(name(*value))
-        .width(150.0)
+        .width(110.0)
+        .truncate()
         .show_ui(ui, |ui| {
             ui.selectable_value(value, None, none);
             for other in project.servos.iter().filter(|other| other.id != own) {
@@ -307,7 +389,7 @@ mod tests {
             "mounted on the hip"
         );
         let boxes: Vec<_> = harness.get_all_by_role_and_label(Role::CheckBox, "2 knee").collect();
-        assert_eq!(boxes.len(), 3, "in the rig, reversed, hand or foot");
+        assert_eq!(boxes.len(), 2, "in the rig, reversed (hand or foot has a table of its own)");
         boxes[1].click();
         harness.run();
         let (index, servo, key) = set(&harness);

@@ -35,7 +35,8 @@ pub struct ServoView<'a> {
 pub struct ServoPanel {
     slider_ids: HashMap<egui::Id, u8>,
     /// The settings show the rig (else the limits).
-    rig_shown: bool,
+    /// Which part of the servo settings is shown.
+    part: super::rig::Part,
 }
 
 impl ServoPanel {
@@ -76,15 +77,19 @@ impl ServoPanel {
         layout::over(ui, "servo-settings", settings, words.servo().servo_settings, |ui, pane| match pane {
             Pane::First => self.sliders(ui, view, words, actions),
             Pane::Second => {
+                use super::rig::Part;
                 ui.horizontal(|ui| {
-                    ui.selectable_value(&mut self.rig_shown, false, words.limits);
-                    ui.selectable_value(&mut self.rig_shown, true, words.rig);
+                    ui.selectable_value(&mut self.part, Part::Limits, words.limits);
+                    ui.selectable_value(&mut self.part, Part::Rig, words.rig);
+                    ui.selectable_value(&mut self.part, Part::Ends, words.servo().ends_tab);
+                    ui.selectable_value(&mut self.part, Part::Meshes, words.servo().meshes_tab);
                 });
-                if self.rig_shown {
-                    let height = ui.available_height();
-                    super::rig::table(ui, view.project, height, words, actions);
-                } else {
-                    settings_ui(ui, view.project, words, actions);
+                let height = ui.available_height();
+                match self.part {
+                    Part::Limits => settings_ui(ui, view.project, words, actions),
+                    Part::Rig => super::rig::table(ui, view.project, height, words, actions),
+                    Part::Ends => super::rig::ends_table(ui, view.project, height, words, actions),
+                    Part::Meshes => super::rig::meshes_table(ui, view.project, height, words, actions),
                 }
             }
         });
@@ -157,7 +162,7 @@ pub fn settings_ui(ui: &mut egui::Ui, project: &ServoProject, words: &Strings, a
             row.col(|ui| row_id = ui.label(format!("{}", servo.id)).id);
             row.col(|ui| {
                 let mut caption = servo.caption.clone();
-                if ui.add(egui::TextEdit::singleline(&mut caption).desired_width(140.0)).labelled_by(row_id).changed() {
+                if ui.add(egui::TextEdit::singleline(&mut caption).desired_width(200.0)).labelled_by(row_id).changed() {
                     actions.push(set(Servo { caption, ..servo.clone() }, "caption"));
                 }
             });
