@@ -9,6 +9,7 @@ pub mod follow;
 pub mod onsets;
 pub mod output;
 pub mod peaks;
+mod rises;
 mod stream;
 pub mod together;
 

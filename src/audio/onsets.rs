@@ -1,4 +1,5 @@
-//! Onsets (beats, syllables, clicks) by spectral flux: every 5 ms a window
+//! Onsets (beats, syllables, clicks): spectral-flux peaks and loudness
+//! rises, gated by what is heard (docs/audio.md). For the flux, every 5 ms a window
 //! of about 12 ms is Hann-weighted and transformed (`rustfft`); the flux is
 //! how much the log magnitudes rose from the window before, summed over the
 //! bins. A flux that is the highest within ±15 ms and stands above its
@@ -19,8 +20,13 @@ use std::sync::Arc;
 use rustfft::num_complex::Complex;
 use rustfft::{Fft, FftPlanner};
 
-/// Between two onsets at least this long, seconds.
-const LEAST_GAP_S: f64 = 0.030;
+use super::rises::Loudness;
+
+/// Between two onsets at least this long, ms.
+const LEAST_GAP_MS: usize = 30;
+
+/// How far ahead of an attack an encoder's pre-echo reaches, ms.
+const PRE_ECHO_MS: usize = 50;
 
 /// The detector, fed as the sound is read.
 pub struct Onsets {
@@ -191,18 +197,85 @@ pub struct Found {
 
 impl Found {
     /// The onsets at `sensitivity` (0: only the strongest, 1: every rise), seconds from the start.
+    ///
+    /// Two kinds of rise are heard, then gated:
+    /// - a **flux** peak (a new sound's spectrum: a beat, a click, a plosive,
+    ///   a vowel after a consonant), timed at the steepest rise of the 1 ms
+    ///   energy near it;
+    /// - a **loudness** rise (the energy of the next 25 ms over that of the
+    ///   25 ms before, in dB: a soft start — a nasal, an `r`, a vowel out of
+    ///   silence — that brings little flux), timed where that ratio peaks, at
+    ///   the start of the rise. The sound's first millisecond counts as a
+    ///   rise out of silence: a voice at the first sample has its onset.
+    ///
+    /// Every onset must be *heard*: the sound after it reaches within 40 dB
+    /// of the sound's loud level and is louder than the sound just before it.
+    /// So a noise floor, a gap's silence and a fade-out have none. Of
+    /// candidates closer than 30 ms one onset is kept: a flux peak's time
+    /// when there is one, else the rise's.
     pub fn onsets(&self, sensitivity: f32) -> Vec<f64> {
         let sensitivity = sensitivity.clamp(0.0, 1.0);
+        let loudness = Loudness::new(&self.energy_ms);
+        // (ms, whether a rise): flux peaks sort first at the same ms.
+        let mut candidates: Vec<(usize, bool)> =
+            self.flux_peaks(sensitivity).into_iter().map(|k| (self.refine(k), false)).collect();
+        candidates.extend(loudness.rises(sensitivity).into_iter().map(|ms| (ms, true)));
+        candidates.retain(|&(ms, _)| loudness.heard(ms));
+        candidates.sort_unstable();
+        // A rise 20 dB under an attack that follows within 50 ms is the
+        // attack's pre-echo (an MP3's or a Vorbis block's noise smeared ahead
+        // of it), not a sound of its own.
+        let attacks: Vec<usize> = candidates.iter().filter(|(_, rise)| !rise).map(|&(ms, _)| ms).collect();
+        candidates.retain(|&(ms, rise)| {
+            let next = attacks.partition_point(|&attack| attack <= ms);
+            !rise
+                || !attacks[next..]
+                    .iter()
+                    .take_while(|&&attack| attack <= ms + PRE_ECHO_MS)
+                    .any(|&attack| loudness.level(attack) >= loudness.level(ms) * 100.0)
+        });
+        // Runs of candidates each under 30 ms from the one before are one onset: the
+        // first flux peak's time (a sharp attack, timed at its steepest rise,
+        // not where an encoder's pre-echo begins), else the first rise's.
+        let mut chosen: Vec<usize> = Vec::new();
+        let mut run: Vec<(usize, bool)> = Vec::new();
+        let close = |run: &mut Vec<(usize, bool)>, chosen: &mut Vec<usize>| {
+            let pick = run.iter().find(|(_, rise)| !rise).or(run.first()).map(|&(ms, _)| ms);
+            if let Some(ms) = pick
+                && chosen.last().is_none_or(|&last| ms >= last + LEAST_GAP_MS)
+            {
+                chosen.push(ms);
+            }
+            run.clear();
+        };
+        for candidate in candidates {
+            if run.last().is_some_and(|&(last, _)| candidate.0 >= last + LEAST_GAP_MS) {
+                close(&mut run, &mut chosen);
+            }
+            run.push(candidate);
+        }
+        close(&mut run, &mut chosen);
+        // Milliseconds: indices.
+        #[allow(clippy::cast_precision_loss)]
+        let onsets = chosen.into_iter().map(|ms| ms as f64 / 1000.0).collect();
+        onsets
+    }
+
+    /// The flux frames that stand out: the highest within ±15 ms, above
+    /// their ±200 ms neighbourhood's mean by `λ` of its spread. The frame
+    /// before the first is silence.
+    fn flux_peaks(&self, sensitivity: f32) -> Vec<usize> {
         let flux = &self.flux;
         let lambda = 1.0 + 4.0 * (1.0 - sensitivity);
         let most = flux.iter().copied().fold(0.0_f32, f32::max);
         let floor = most * 0.3 * (1.0 - sensitivity);
         let around = 3; // frames: ±15 ms
         let neighbourhood = 40; // frames: ±200 ms
-        let mut onsets: Vec<f64> = Vec::new();
-        for k in 1..flux.len() {
+        let mut peaks = vec![];
+        for k in 0..flux.len() {
             let (from, to) = (k.saturating_sub(around), (k + around + 1).min(flux.len()));
-            if flux[from..to].iter().any(|&other| other > flux[k]) || flux[k] <= flux[k - 1] {
+            let before = if k == 0 { 0.0 } else { flux[k - 1] };
+            if flux[from..to].iter().any(|&other| other > flux[k]) || flux[k] <= before {
                 continue;
             }
             let (from, to) = (k.saturating_sub(neighbourhood), (k + neighbourhood + 1).min(flux.len()));
@@ -212,15 +285,11 @@ impl Found {
             let count = near.len() as f32;
             let mean = near.iter().sum::<f32>() / count;
             let spread = (near.iter().map(|f| (f - mean).powi(2)).sum::<f32>() / count).sqrt();
-            if flux[k] <= mean + lambda * spread || flux[k] <= floor {
-                continue;
-            }
-            let at = self.refine(k);
-            if onsets.last().is_none_or(|last| at - last >= LEAST_GAP_S) {
-                onsets.push(at);
+            if flux[k] > mean + lambda * spread && flux[k] > floor {
+                peaks.push(k);
             }
         }
-        onsets
+        peaks
     }
 
     /// The loudness of each millisecond, dB of full scale (a full-scale sine is −3 dB); silence is −120.
@@ -228,8 +297,8 @@ impl Found {
         self.energy_ms.iter().map(|energy| (10.0 * energy.log10()).max(-120.0)).collect()
     }
 
-    /// The steepest rise of the 1 ms energy around frame `k`'s window, seconds.
-    fn refine(&self, k: usize) -> f64 {
+    /// The millisecond of the steepest rise of the 1 ms energy around frame `k`'s window.
+    fn refine(&self, k: usize) -> usize {
         let rate = u64::from(self.rate.max(1));
         let ms_of = |samples: usize| {
             let samples = u64::try_from(samples).unwrap_or(u64::MAX);
@@ -237,15 +306,77 @@ impl Found {
         };
         let first = ms_of((k * self.hop).saturating_sub(self.hop));
         let last = ms_of(k * self.hop + self.window + self.hop).min(self.energy_ms.len());
-        let best = (first.max(1)..last)
+        if k == 0 {
+            // The first frame rises out of the silence before the sound.
+            return 0;
+        }
+        (first.max(1)..last)
             .max_by(|&a, &b| {
                 let rise = |i: usize| self.energy_ms[i] - self.energy_ms[i - 1];
                 rise(a).total_cmp(&rise(b))
             })
-            .unwrap_or(first);
-        // Milliseconds: an index.
-        #[allow(clippy::cast_precision_loss)]
-        let seconds = best as f64 / 1000.0;
-        seconds
+            .unwrap_or(first)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A vowel-like sound: a 140 Hz buzz (its first ten harmonics) at `level`.
+    fn buzz(rate: u32, seconds: f64, level: impl Fn(f64) -> f32) -> Vec<f32> {
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        let length = (seconds * f64::from(rate)) as usize;
+        (0..length)
+            .map(|i| {
+                #[allow(clippy::cast_precision_loss)]
+                let t = i as f64 / f64::from(rate);
+                let wave: f64 =
+                    (1..=10).map(|h| (std::f64::consts::TAU * 140.0 * f64::from(h) * t).sin() / f64::from(h)).sum();
+                #[allow(clippy::cast_possible_truncation)]
+                let sample = (wave * 0.3) as f32 * level(t);
+                sample
+            })
+            .collect()
+    }
+
+    fn onsets(samples: &[f32], rate: u32) -> Vec<f64> {
+        let mut onsets = Onsets::new(rate);
+        onsets.push(samples);
+        onsets.finish().onsets(0.5)
+    }
+
+    #[test]
+    fn a_voice_at_the_first_sample_has_its_onset() {
+        let rate = 22_050;
+        let found = onsets(&buzz(rate, 0.5, |_| 1.0), rate);
+        assert_eq!(found, vec![0.0]);
+    }
+
+    #[test]
+    fn a_slow_fade_out_and_the_silence_after_it_have_no_onset() {
+        let rate = 44_100;
+        // 0.3 s of silence, a vowel from 0.3 s held to 0.8 s, faded out over 2 s, then silence.
+        let level = |t: f64| match t {
+            t if t < 0.3 => 0.0,
+            t if t < 0.8 => 1.0,
+            #[allow(clippy::cast_possible_truncation)]
+            t => (1.0 - (t - 0.8) / 2.0).max(0.0) as f32,
+        };
+        let found = onsets(&buzz(rate, 3.5, level), rate);
+        assert_eq!(found.len(), 1, "{found:?}");
+        assert!((found[0] - 0.3).abs() <= 0.005, "{found:?}");
+    }
+
+    #[test]
+    fn a_soft_start_is_found_where_it_starts() {
+        // A nasal-like start: the buzz rising over 80 ms from silence at 0.4 s, whose
+        // flux is spread thin; the onset is at its start, not where it is loudest.
+        let rate = 16_000;
+        #[allow(clippy::cast_possible_truncation)]
+        let level = |t: f64| if t < 0.4 { 0.0 } else { ((t - 0.4) / 0.08).min(1.0) as f32 };
+        let found = onsets(&buzz(rate, 1.0, level), rate);
+        assert_eq!(found.len(), 1, "{found:?}");
+        assert!((found[0] - 0.4).abs() <= 0.030, "{found:?}");
     }
 }

@@ -7,3 +7,4 @@
 //! tests skip the same way) on their own, with the `cpal` feature.
 
 mod sound_sync;
+mod speech;
