@@ -58,8 +58,13 @@ pub fn servo(
     Ok((actions, running, start))
 }
 
-/// A PLEN2 joint following the curve (every other joint at home): the frames, at most a motion's 20.
-pub fn plen2(open: &[f64], joint: Joint, follower: Follower) -> Result<Vec<Frame>, FitError> {
+/// A PLEN2 joint following the curve (every other joint at home), in at
+/// most `motions` motions of at most 20 frames each: the frames of each, in
+/// order. Played as a chain — each motion jumping to the next — the robot
+/// plays them as one (plen2.md §6: a jump loads the next slot's frame 0 as
+/// it would load the next frame, its steps from the last frame's exact
+/// values), so the whole is fitted at once and cut every 20 frames.
+pub fn plen2(open: &[f64], joint: Joint, follower: Follower, motions: usize) -> Result<Vec<Vec<Frame>>, FitError> {
     let values = at_updates(open, PLEN2_UPDATE_MS, follower.closed_deg * 10.0, follower.open_deg * 10.0);
     let rows: Vec<Vec<f64>> = values
         .iter()
@@ -70,9 +75,10 @@ pub fn plen2(open: &[f64], joint: Joint, follower: Follower) -> Result<Vec<Frame
         })
         .collect();
     // `$PM` from power-up: every joint's frame buffer at 0 (plen2.md §6).
-    let budget = Budget { tolerance: follower.tolerance_deg * 10.0, allowed: MAX_FRAMES, resolution: 1.0 };
+    let allowed = MAX_FRAMES.saturating_mul(motions);
+    let budget = Budget { tolerance: follower.tolerance_deg * 10.0, allowed, resolution: 1.0 };
     let fit = fit::fit_within(&Plen2Board, &[0; JOINTS], &rows, budget)?;
-    Ok(fitted::plen2_frames(&fit))
+    Ok(fitted::plen2_frames(&fit).chunks(MAX_FRAMES).map(<[Frame]>::to_vec).collect())
 }
 
 #[cfg(test)]
@@ -100,11 +106,68 @@ mod tests {
     #[test]
     fn a_plen2_joint_follows_a_burst_in_frames_of_that_joint_alone() {
         let follower = Follower { closed_deg: 0.0, open_deg: -20.0, tolerance_deg: 1.0 };
-        let frames = plen2(&burst(), Joint::ALL[3], follower).unwrap();
+        let motions = plen2(&burst(), Joint::ALL[3], follower, 1).unwrap();
+        assert_eq!(motions.len(), 1, "a second fits one motion");
+        let frames = &motions[0];
         assert!((2..=MAX_FRAMES).contains(&frames.len()), "{} frames", frames.len());
         assert!(frames.iter().any(|frame| frame.values_tenths_deg.0[3] == -200), "it opens");
         assert!(
             frames.iter().all(|frame| frame.values_tenths_deg.0.iter().enumerate().all(|(j, v)| j == 3 || *v == 0))
         );
+    }
+
+    /// 20 s of a talker: bursts of 150–400 ms, 80–300 ms apart.
+    fn talk() -> Vec<f64> {
+        let mut open = Vec::new();
+        let mut walk = 7_u32;
+        while open.len() < 20_000 {
+            walk = walk.wrapping_mul(1_103_515_245).wrapping_add(12_345);
+            let (on, off) = (150 + (walk >> 8) % 250, 80 + (walk >> 20) % 220);
+            open.extend((0..on).map(|ms| (f64::from(ms) / 30.0).min(1.0)));
+            open.extend((0..off).map(|ms| (1.0 - f64::from(ms) / 60.0).max(0.0)));
+        }
+        open
+    }
+
+    #[test]
+    fn a_long_sound_is_followed_by_a_chain_of_motions_the_robot_plays_as_one_within_the_tolerance() {
+        use crate::device::plen2::playback::{self, StoredMotions};
+        use crate::project::plen2::{Motion, Plen2Project};
+        let follower = Follower { closed_deg: 0.0, open_deg: 30.0, tolerance_deg: 1.5 };
+        let joint = Joint::ALL[2];
+        let open = talk();
+        // One motion cannot hold it, and says so in frames (the editor words it in degrees).
+        assert!(plen2(&open, joint, follower, 1).is_err(), "20 s of talk in 20 frames");
+        let chain = plen2(&open, joint, follower, 90).unwrap();
+        assert!(chain.len() >= 3, "{} motions", chain.len());
+        assert!(chain.iter().all(|frames| !frames.is_empty() && frames.len() <= MAX_FRAMES));
+        // In slots 40, 41, …, each jumping to the next.
+        let mut project = Plen2Project::default();
+        for (part, frames) in chain.iter().enumerate() {
+            let slot = 40 + u8::try_from(part).unwrap();
+            let jump_slot = (part + 1 < chain.len()).then_some(slot + 1);
+            project.motions.push(Motion {
+                slot,
+                name: "follow".into(),
+                frames: frames.clone(),
+                loop_range: None,
+                jump_slot,
+            });
+        }
+        // The robot's playback from slot 40, cycle by cycle, against the curve at each cycle.
+        let played = playback::play(&StoredMotions::new(&project), 40, [0; playback::DEVICE_IDS], 20 * 256 * 90);
+        assert!(played.ended, "the chain ends");
+        let wanted = at_updates(&open, PLEN2_UPDATE_MS, 0.0, 300.0);
+        let device = usize::from(joint.device_id());
+        let total_ms = played.cycles.len() as f64 * PLEN2_UPDATE_MS;
+        assert!((total_ms - open.len() as f64).abs() <= 2.0 * PLEN2_UPDATE_MS, "{total_ms} ms for {} ms", open.len());
+        let worst = played
+            .cycles
+            .iter()
+            .zip(&wanted)
+            .map(|(values, wanted)| (f64::from(values[device]) - wanted).abs())
+            .fold(0.0, f64::max);
+        // Within the tolerance (tenths), and the board's whole-tenth rounding.
+        assert!(worst <= 15.0 + 1.0, "off the curve by {worst} tenths at worst");
     }
 }

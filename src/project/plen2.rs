@@ -24,6 +24,28 @@ pub struct Plen2Project {
     pub play_lists: Vec<PlayList>,
 }
 
+impl Plen2Project {
+    /// The motions `motion` plays on into, each jumping to the next
+    /// (plen2.md §6): none when it loops for ever first; ending at a slot
+    /// with no motion or at one already played (a chain that comes back
+    /// replays for ever), or after a motion that loops for ever.
+    pub fn chained(&self, motion: &Motion) -> Vec<&Motion> {
+        let forever = |m: &Motion| m.loop_range.is_some_and(|range| matches!(range.count, 0 | 255));
+        let mut chain: Vec<&Motion> = Vec::new();
+        let mut seen = vec![motion.slot];
+        let mut at = motion;
+        while !forever(at)
+            && let Some(next) = at.jump_slot.and_then(|slot| self.motions.iter().find(|m| m.slot == slot))
+            && !seen.contains(&next.slot)
+        {
+            seen.push(next.slot);
+            chain.push(next);
+            at = next;
+        }
+        chain
+    }
+}
+
 /// One joint's limits and home, in tenths of a degree (`>MI` / `>MA` / `>HO`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub struct JointSetting {
@@ -178,4 +200,52 @@ pub struct PlayEntry {
 // The registry of families: the PLEN2, where their section of the project lives.
 inventory::submit! {
     super::family::Registered { family: super::family::Family::Plen2, rank: 1 }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn motion(slot: u8, jump_slot: Option<u8>, loop_count: Option<u8>) -> Motion {
+        Motion {
+            slot,
+            name: format!("m{slot}"),
+            frames: vec![],
+            loop_range: loop_count.map(|count| LoopRange { begin_frame: 0, end_frame: 0, count }),
+            jump_slot,
+        }
+    }
+
+    fn slots(project: &Plen2Project, slot: u8) -> Vec<u8> {
+        let first = project.motions.iter().find(|m| m.slot == slot).unwrap();
+        project.chained(first).iter().map(|m| m.slot).collect()
+    }
+
+    #[test]
+    fn a_chain_runs_through_its_jumps_and_stops_where_the_robot_would_not_go_on() {
+        let project = Plen2Project {
+            motions: vec![
+                motion(1, Some(2), None),
+                motion(2, Some(7), Some(3)),
+                motion(7, None, None),
+                // Back to where it came from: replays for ever.
+                motion(10, Some(11), None),
+                motion(11, Some(10), None),
+                // On to an empty slot.
+                motion(20, Some(21), None),
+                // A loop for ever (stored 0 wraps to 255) never reaches its jump.
+                motion(30, Some(31), Some(0)),
+                motion(31, None, None),
+                motion(40, Some(41), None),
+                motion(41, Some(42), Some(255)),
+                motion(42, None, None),
+            ],
+            ..Plen2Project::default()
+        };
+        assert_eq!(slots(&project, 1), vec![2, 7], "a finite loop plays on");
+        assert_eq!(slots(&project, 10), vec![11]);
+        assert_eq!(slots(&project, 20), Vec::<u8>::new());
+        assert_eq!(slots(&project, 30), Vec::<u8>::new());
+        assert_eq!(slots(&project, 40), vec![41], "it reaches the motion that loops for ever, not past it");
+    }
 }

@@ -6,6 +6,7 @@ mod connect;
 mod doctor;
 mod drive;
 mod files;
+mod follow_chain;
 mod frames;
 mod gamepad;
 mod graph;

@@ -19,6 +19,8 @@ pub struct Plen2Captions {
     pub loop_frames: &'static str,
     /// "Then jump to slot".
     pub jump_to: &'static str,
+    /// What a motion that jumps on plays into: `{slots}` and `{total}`.
+    pub plays_on: &'static str,
     /// "Paste after".
     pub paste: &'static str,
     /// "Mirror L/R".
@@ -100,6 +102,7 @@ const ENGLISH: Plen2Captions = Plen2Captions {
     add_motion: "Add motion",
     loop_frames: "Loop frames",
     jump_to: "Then jump to slot",
+    plays_on: "plays on into slot {slots} (each jumps to the next): {total} in all",
     paste: "Paste after",
     mirror: "Mirror L/R",
     play_from_here: "Play from here",
@@ -145,6 +148,7 @@ const TRADITIONAL_CHINESE: Plen2Captions = Plen2Captions {
     add_motion: "新增動作",
     loop_frames: "循環影格",
     jump_to: "接著跳到位置",
+    plays_on: "接著播放位置 {slots}（每個動作接著跳到下一個）：共 {total}",
     paste: "貼在後面",
     mirror: "左右鏡像",
     play_from_here: "從這裡播放",

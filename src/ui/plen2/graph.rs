@@ -33,7 +33,10 @@ fn ms(cycles: i64) -> f64 {
 /// The motion's joints as the graph draws them, and its frames' lane.
 pub fn curves(project: &Plen2Project, motion: &Motion) -> (Vec<Channel>, Vec<(f64, f64, String)>) {
     let ends = ends_in_cycles(motion);
-    let played = bake::has_curves(motion).then(|| played(motion));
+    // What the robot plays, drawn when it is not the keys' straight lines: a
+    // shaped frame, or the motions a chain plays on into.
+    let chained = !project.chained(motion).is_empty();
+    let played = (bake::has_curves(motion) || chained).then(|| played(project, motion));
     let channels = Joint::ALL
         .into_iter()
         .map(|joint| {
@@ -74,12 +77,23 @@ pub fn curves(project: &Plen2Project, motion: &Motion) -> (Vec<Channel>, Vec<(f6
 }
 
 /// What the robot plays of one pass of the motion's frames, cycle by cycle
-/// (values by device id, tenths): a loop or a jump would run for ever.
-fn played(motion: &Motion) -> Vec<[i16; crate::device::plen2::playback::DEVICE_IDS]> {
+/// (values by device id, tenths) — on through the motions it jumps to, as
+/// one, when they end (a chain, as a followed sound is written); else this
+/// motion alone, once (a loop or a jump back would run for ever).
+fn played(project: &Plen2Project, motion: &Motion) -> Vec<[i16; crate::device::plen2::playback::DEVICE_IDS]> {
     use crate::device::plen2::playback::{self, StoredMotions};
-    let once = Motion { loop_range: None, jump_slot: None, ..motion.clone() };
-    let project = Plen2Project { motions: vec![once], ..Plen2Project::default() };
-    playback::play(&StoredMotions::new(&project), motion.slot, [0; playback::DEVICE_IDS], 20 * 256).cycles
+    let chain = project.chained(motion);
+    let ends = chain.last().is_some_and(|last| last.jump_slot.is_none() && last.loop_range.is_none())
+        && chain.iter().all(|m| m.loop_range.is_none())
+        && motion.loop_range.is_none();
+    let motions: Vec<Motion> = if ends {
+        std::iter::once(motion.clone()).chain(chain.into_iter().cloned()).collect()
+    } else {
+        vec![Motion { loop_range: None, jump_slot: None, ..motion.clone() }]
+    };
+    let cycles = 20 * 256 * motions.len();
+    let stored = Plen2Project { motions, ..Plen2Project::default() };
+    playback::play(&StoredMotions::new(&stored), motion.slot, [0; playback::DEVICE_IDS], cycles).cycles
 }
 
 /// `motion` with the graph's edit applied: keys moved in time retime their

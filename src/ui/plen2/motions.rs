@@ -137,8 +137,7 @@ impl MotionsPanel {
 
     /// The selected frame's values under the frames' timeline.
     fn lower(&mut self, ui: &mut egui::Ui, project: &Plen2Project, words: &Strings, actions: &mut Vec<Action>) {
-        let motion = &project.motions[self.selected];
-        timeline(ui, motion, self.frame);
+        timeline(ui, (project, self.selected), self.frame, words);
         egui::ScrollArea::vertical().id_salt("plen2-frame-values-scroll").show(ui, |ui| {
             self.frame_values(ui, project, words, actions);
         });
@@ -373,20 +372,44 @@ impl MotionsPanel {
     }
 }
 
-/// A bar per frame, as long as its transition.
-fn timeline(ui: &mut egui::Ui, motion: &Motion, selected: usize) {
-    let total: f64 = motion.frames.iter().map(|f| f64::from(f.transition_ms)).sum();
+/// A bar per frame, as long as its transition; when the motion jumps on,
+/// the motions it plays into follow on the same strip (fainter, each from a
+/// mark), so a chain reads as the one movement the robot plays.
+fn timeline(ui: &mut egui::Ui, (project, index): (&Plen2Project, usize), selected: usize, words: &Strings) {
+    let motion = &project.motions[index];
+    let chain = project.chained(motion);
+    let length = |m: &Motion| m.frames.iter().map(|f| f64::from(f.transition_ms)).sum::<f64>();
+    let total: f64 = length(motion) + chain.iter().map(|m| length(m)).sum::<f64>();
     let width = ui.available_width().max(100.0);
-    let (rect, _) = ui.allocate_exact_size(egui::vec2(width, 18.0), egui::Sense::hover());
+    let (rect, response) = ui.allocate_exact_size(egui::vec2(width, 18.0), egui::Sense::hover());
     let painter = ui.painter_at(rect);
     let mut x = rect.left();
-    for (f, frame) in motion.frames.iter().enumerate() {
-        #[allow(clippy::cast_possible_truncation)]
-        let w = (f64::from(frame.transition_ms) / total.max(1.0) * f64::from(width)) as f32;
-        let bar = egui::Rect::from_min_size(egui::pos2(x, rect.top()), egui::vec2((w - 1.0).max(1.0), 16.0));
-        let fill = if f == selected { ui.visuals().selection.bg_fill } else { ui.visuals().widgets.inactive.bg_fill };
-        painter.rect_filled(bar, 2.0, fill);
-        x += w;
+    for (part, shown) in std::iter::once(motion).chain(chain.iter().copied()).enumerate() {
+        if part > 0 {
+            painter.vline(x, rect.y_range(), ui.visuals().widgets.active.fg_stroke);
+        }
+        for (f, frame) in shown.frames.iter().enumerate() {
+            #[allow(clippy::cast_possible_truncation)]
+            let w = (f64::from(frame.transition_ms) / total.max(1.0) * f64::from(width)) as f32;
+            let bar = egui::Rect::from_min_size(egui::pos2(x, rect.top()), egui::vec2((w - 1.0).max(1.0), 16.0));
+            let fill = match (part, f == selected) {
+                (0, true) => ui.visuals().selection.bg_fill,
+                (0, false) => ui.visuals().widgets.inactive.bg_fill,
+                _ => ui.visuals().widgets.inactive.bg_fill.gamma_multiply(0.45),
+            };
+            painter.rect_filled(bar, 2.0, fill);
+            x += w;
+        }
+    }
+    if !chain.is_empty() {
+        let slots: Vec<String> = chain.iter().map(|m| m.slot.to_string()).collect();
+        let said = words
+            .plen2()
+            .plays_on
+            .replace("{slots}", &slots.join(" → "))
+            .replace("{total}", &format!("{:.2} s", total / 1000.0));
+        response.on_hover_text(&said);
+        ui.label(egui::RichText::new(said).small().weak());
     }
 }
 

@@ -4,14 +4,21 @@
 //! (a talking skull's jaw, a PLEN2 nodding to a beat). The motion is timed
 //! to the sound as the lane places it (its offset), and added to the
 //! project in one undo step: a servo's actions and a macro running them, or
-//! a PLEN2 motion in the first free slot.
+//! a PLEN2 chain of motions — each up to 20 frames, jumping to the next, so
+//! a sentence fits — in the free slots or from a slot the user picks
+//! (replacing what it holds).
 
 use crate::audio::follow::{self as loudness, Follow};
+use crate::authoring::fit::FitError;
+use crate::authoring::fitted::{PLEN2_UPDATE_MS, SERVO_UPDATE_MS};
 use crate::authoring::follow::{self, Follower};
-use crate::project::plen2::{Joint, Motion, SLOTS};
+use crate::project::plen2::{Joint, Motion, Plen2Project, SLOTS};
 use crate::project::{Edit, Family, Project, next_free_id};
 use crate::ui::action::Action;
 use crate::ui::i18n::Language;
+
+/// The dialog's widest, points.
+const DIALOG_WIDTH: f32 = 560.0;
 
 /// The dialog's fields.
 #[derive(Clone, Debug, PartialEq)]
@@ -24,8 +31,21 @@ pub struct FollowForm {
     release_ms: f64,
     threshold_db: f64,
     tolerance_deg: f64,
+    /// Where a PLEN2's motions are written.
+    target: Target,
     /// What the last try said.
     said: Option<String>,
+}
+
+/// Where a PLEN2's follow is written: a chain of motions (each up to 20
+/// frames, jumping to the next) when the sound is longer than one holds.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Target {
+    /// The free slots, in order.
+    #[default]
+    FreeSlots,
+    /// This slot and the ones after it, replacing what they hold.
+    From(u8),
 }
 
 impl Default for FollowForm {
@@ -40,6 +60,7 @@ impl Default for FollowForm {
             release_ms: follow.release_ms,
             threshold_db: follow.threshold_db,
             tolerance_deg: 1.0,
+            target: Target::FreeSlots,
             said: None,
         }
     }
@@ -60,8 +81,17 @@ struct Words {
     close: &'static str,
     no_servo: &'static str,
     made_steps: &'static str,
-    made_frames: &'static str,
+    write_to: &'static str,
+    free_slots: &'static str,
+    from_slot: &'static str,
+    replaces: &'static str,
+    made_chain: &'static str,
+    replaced: &'static str,
     no_slot: &'static str,
+    frames: &'static str,
+    steps: &'static str,
+    tolerance_error: &'static str,
+    too_long: &'static str,
 }
 
 const ENGLISH: Words = Words {
@@ -78,8 +108,17 @@ const ENGLISH: Words = Words {
     close: "Close",
     no_servo: "Add a servo first",
     made_steps: "steps, run by macro",
-    made_frames: "frames, in slot",
-    no_slot: "every PLEN2 slot is taken",
+    write_to: "Write to",
+    free_slots: "the free slots",
+    from_slot: "from slot",
+    replaces: "replaces",
+    made_chain: "{frames} frames in {motions} motions, slots {slots}, played as one (each jumps to the next)",
+    replaced: "; replaced: ",
+    no_slot: "every PLEN2 slot is taken: pick the slot to write to under Write to (what it holds is replaced; Undo brings it back)",
+    frames: "frames",
+    steps: "steps",
+    tolerance_error: "{needed} {moves} are needed within {tolerance} and at most {allowed} fit; the smallest tolerance that fits is {smallest}",
+    too_long: "the sound is too long: it needs at least {needed} {moves} of at most {longest} each, and at most {allowed} fit",
 };
 
 const TRADITIONAL_CHINESE: Words = Words {
@@ -96,8 +135,17 @@ const TRADITIONAL_CHINESE: Words = Words {
     close: "關閉",
     no_servo: "請先加入伺服機",
     made_steps: "個步驟，由巨集執行：",
-    made_frames: "個影格，位於槽位",
-    no_slot: "PLEN2 的槽位都已使用",
+    write_to: "寫入",
+    free_slots: "空的位置",
+    from_slot: "從位置",
+    replaces: "取代",
+    made_chain: "{frames} 個影格，共 {motions} 個動作，位於位置 {slots}，連續播放（每個動作接著跳到下一個）",
+    replaced: "；已取代：",
+    no_slot: "PLEN2 的位置都已使用：請在「寫入」選擇要寫入的位置（原有內容會被取代；可用復原找回）",
+    frames: "影格",
+    steps: "步驟",
+    tolerance_error: "在 {tolerance} 內需要 {needed} 個{moves}，最多只能放 {allowed} 個；可行的最小容許誤差為 {smallest}",
+    too_long: "聲音太長：至少需要 {needed} 個{moves}（每個最長 {longest}），最多只能放 {allowed} 個",
 };
 
 fn words(language: Language) -> &'static Words {
@@ -123,7 +171,12 @@ impl FollowForm {
         let middle = ctx.content_rect().center();
         let window = egui::Window::new(words.title).collapsible(false).resizable(false);
         window.pivot(egui::Align2::CENTER_CENTER).default_pos(middle).show(ctx, |ui| {
+            // What it says wraps: a long message does not widen the dialog.
+            ui.set_max_width(DIALOG_WIDTH);
             self.axis(ui, project, words);
+            if project.family == Family::Plen2 {
+                self.target_row(ui, project, words);
+            }
             egui::Grid::new("follow-sound").num_columns(2).show(ui, |ui| {
                 let row = |ui: &mut egui::Ui, label: &str, value: &mut f64, range, suffix: &str| {
                     let label = ui.label(label);
@@ -156,12 +209,15 @@ impl FollowForm {
             if project.family == Family::Plen2 {
                 let label = ui.label(words.joint);
                 let names: Vec<&str> = Joint::ALL.iter().map(|joint| joint.name()).collect();
-                egui::ComboBox::from_id_salt("follow-joint").selected_text(names[self.joint]).show_ui(ui, |ui| {
-                    for (index, name) in names.iter().enumerate() {
-                        ui.selectable_value(&mut self.joint, index, *name);
-                    }
-                });
-                let _ = label;
+                egui::ComboBox::from_id_salt("follow-joint")
+                    .selected_text(names[self.joint])
+                    .show_ui(ui, |ui| {
+                        for (index, name) in names.iter().enumerate() {
+                            ui.selectable_value(&mut self.joint, index, *name);
+                        }
+                    })
+                    .response
+                    .labelled_by(label.id);
                 return;
             }
             let servos = &project.servo.servos;
@@ -207,26 +263,13 @@ impl FollowForm {
         let key = Some("follow the sound".to_string());
         let edit = |edit: Edit| Action::Edit { edit, coalesce: key.clone() };
         if project.family == Family::Plen2 {
-            let Some(slot) = (0..SLOTS).find(|slot| !project.plen2.motions.iter().any(|m| m.slot == *slot)) else {
-                self.said = Some(words.no_slot.to_string());
-                return;
-            };
-            match follow::plen2(&open, Joint::ALL[self.joint], follower) {
-                Ok(frames) => {
-                    self.said = Some(format!("{} {} {slot}", frames.len(), words.made_frames));
-                    let mut plen2 = project.plen2.clone();
-                    plen2.motions.push(Motion {
-                        slot,
-                        name: "follow".into(),
-                        frames,
-                        loop_range: None,
-                        jump_slot: None,
-                    });
-                    plen2.motions.sort_by_key(|motion| motion.slot);
+            self.said = Some(match self.follow_plen2(&project.plen2, &open, follower, words) {
+                Ok((plen2, said)) => {
                     actions.push(edit(Edit::SetPlen2(Box::new(plen2))));
+                    said
                 }
-                Err(error) => self.said = Some(error.to_string()),
-            }
+                Err(said) => said,
+            });
             return;
         }
         let Some(servo_id) = self.servo_id else { return };
@@ -240,7 +283,117 @@ impl FollowForm {
                 actions.extend(made.into_iter().map(|action| edit(Edit::AddAction(action))));
                 actions.push(edit(Edit::AddMacro(running)));
             }
-            Err(error) => self.said = Some(error.to_string()),
+            Err(error) => self.said = Some(fit_error(&error, (1.0, SERVO_UPDATE_MS), words.steps, words)),
+        }
+    }
+
+    /// Which slots a PLEN2's follow may take, in the order its chain takes them.
+    fn slots(&self, plen2: &Plen2Project) -> Vec<u8> {
+        match self.target {
+            Target::FreeSlots => (0..SLOTS).filter(|slot| !plen2.motions.iter().any(|m| m.slot == *slot)).collect(),
+            Target::From(first) => (first..SLOTS).collect(),
+        }
+    }
+
+    /// "Write to": the free slots, or a slot and those after it (saying
+    /// what it holds: that is what is replaced first).
+    fn target_row(&mut self, ui: &mut egui::Ui, project: &Project, words: &Words) {
+        let before = self.target;
+        ui.horizontal(|ui| {
+            ui.label(words.write_to);
+            ui.radio_value(&mut self.target, Target::FreeSlots, words.free_slots);
+            let first = match self.target {
+                Target::From(slot) => slot,
+                Target::FreeSlots => 0,
+            };
+            let from = ui.radio_value(&mut self.target, Target::From(first), words.from_slot);
+            let mut slot = first;
+            let field = ui.add_enabled(
+                matches!(self.target, Target::From(_)),
+                egui::DragValue::new(&mut slot).range(0..=SLOTS - 1),
+            );
+            if field.labelled_by(from.id).changed() {
+                self.target = Target::From(slot);
+            }
+            if let Target::From(slot) = self.target
+                && let Some(held) = project.plen2.motions.iter().find(|m| m.slot == slot)
+            {
+                ui.weak(format!("{} {slot} {}", words.replaces, held.name));
+            }
+        });
+        if self.target != before {
+            // What the last try said was of the slots before.
+            self.said = None;
+        }
+    }
+
+    /// The project with a PLEN2 joint following the sound — a chain of
+    /// motions in the slots [`Self::slots`] gives, each jumping to the next —
+    /// and what to say; or why not, in the interface's words.
+    fn follow_plen2(
+        &self,
+        plen2: &Plen2Project,
+        open: &[f64],
+        follower: Follower,
+        words: &Words,
+    ) -> Result<(Plen2Project, String), String> {
+        let slots = self.slots(plen2);
+        if slots.is_empty() {
+            return Err(words.no_slot.to_string());
+        }
+        let chain = follow::plen2(open, Joint::ALL[self.joint], follower, slots.len())
+            .map_err(|error| fit_error(&error, (0.1, PLEN2_UPDATE_MS), words.frames, words))?;
+        let used = &slots[..chain.len()];
+        let mut made = plen2.clone();
+        let replaced: Vec<String> = made
+            .motions
+            .iter()
+            .filter(|motion| used.contains(&motion.slot))
+            .map(|motion| format!("{} {}", motion.slot, motion.name))
+            .collect();
+        made.motions.retain(|motion| !used.contains(&motion.slot));
+        let frames: usize = chain.iter().map(Vec::len).sum();
+        for (part, (frames, &slot)) in chain.into_iter().zip(used).enumerate() {
+            let jump_slot = used.get(part + 1).copied();
+            made.motions.push(Motion { slot, name: "follow".into(), frames, loop_range: None, jump_slot });
+        }
+        made.motions.sort_by_key(|motion| motion.slot);
+        let listed: Vec<String> = used.iter().map(u8::to_string).collect();
+        let mut said = words
+            .made_chain
+            .replace("{frames}", &frames.to_string())
+            .replace("{motions}", &used.len().to_string())
+            .replace("{slots}", &listed.join(", "));
+        if !replaced.is_empty() {
+            said = format!("{said}{}{}", words.replaced, replaced.join(", "));
+        }
+        Ok((made, said))
+    }
+}
+
+/// A fit that failed, in the interface's words: tolerances in degrees
+/// (`degrees` a board unit: a PLEN2's tenth, a servo's degree), lengths in
+/// ms (`update_ms` a board update), `moves` the board's frames or steps.
+fn fit_error(error: &FitError, (degrees, update_ms): (f64, f64), moves: &str, words: &Words) -> String {
+    let deg = |units: f64| format!("{:.1}°", units * degrees);
+    match *error {
+        FitError::Tolerance { needed, allowed, tolerance, smallest } => words
+            .tolerance_error
+            .replace("{needed}", &needed.to_string())
+            .replace("{moves}", moves)
+            .replace("{tolerance}", &deg(tolerance))
+            .replace("{allowed}", &allowed.to_string())
+            .replace("{smallest}", &deg(smallest)),
+        FitError::TooLong { needed, longest, allowed, .. } => {
+            // Updates in one move: at most a few hundred.
+            #[allow(clippy::cast_precision_loss)]
+            let longest_ms = format!("{:.0} ms", longest as f64 * update_ms);
+            words
+                .too_long
+                .replace("{needed}", &needed.to_string())
+                .replace("{moves}", moves)
+                .replace("{longest}", &longest_ms)
+                .replace("{allowed}", &allowed.to_string())
         }
     }
 }
