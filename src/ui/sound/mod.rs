@@ -9,6 +9,7 @@ pub mod action;
 mod follow;
 pub mod lane;
 mod out;
+mod picking;
 mod reading;
 
 use std::path::{Path, PathBuf};
@@ -30,6 +31,9 @@ pub const NO_OUTPUT: &str = "no sound output: ";
 
 /// A grain played while scrubbing, s.
 pub const GRAIN_S: f64 = 0.06;
+
+/// The sensitivity a sound is read at (percent): its onsets come with it.
+const READ_AT_PERCENT: u8 = 50;
 
 /// What is wrong with the project's sound file.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -53,8 +57,11 @@ pub struct SoundDesk {
     out: Option<out::SoundOut>,
     /// Where the sound server is, when not the environment's (tests).
     server: Option<PathBuf>,
-    /// Onsets at the track's sensitivity, s (and that sensitivity).
+    /// Onsets at the track's sensitivity, s (and that sensitivity): the
+    /// newest the picker answered.
     onsets: (u8, Vec<f64>),
+    /// Picks the read sound's onsets again, off the frame, as the sensitivity changes.
+    picking: Option<picking::Picking>,
     /// A line for the status bar, once.
     said: Option<String>,
     /// An edit the project needs (a sound added or located, once read).
@@ -86,6 +93,7 @@ impl Default for SoundDesk {
             out: None,
             server: None,
             onsets: (u8::MAX, Vec::new()),
+            picking: None,
             said: None,
             edit: None,
             adding: None,
@@ -136,6 +144,7 @@ impl SoundDesk {
             self.read = None;
             self.problem = None;
             self.onsets = (u8::MAX, Vec::new());
+            self.picking = None;
             self.reading = wanted.as_ref().map(|file| Reading::start(file.clone(), waker.clone()));
             self.file = wanted;
         }
@@ -144,9 +153,14 @@ impl SoundDesk {
             self.took(done, project);
         }
         if let (Some(track), Some(read)) = (&project.sound, &self.read) {
-            let sensitivity = track.sensitivity_percent.min(100);
-            if self.onsets.0 != sensitivity {
-                self.onsets = (sensitivity, read.analysis.found.onsets(track.sensitivity()));
+            let picking = self.picking.get_or_insert_with(|| {
+                // The reading picked at 50 %: the lane has those at once.
+                self.onsets = (READ_AT_PERCENT, read.analysis.onsets_s.clone());
+                picking::Picking::start(Arc::new(read.analysis.found.clone()), waker.clone()).holding(READ_AT_PERCENT)
+            });
+            picking.ask(track.sensitivity_percent.min(100));
+            if let Some(picked) = picking.answer() {
+                self.onsets = picked;
             }
         }
         self.edit.take()

@@ -98,7 +98,7 @@ fn read(file: &std::path::Path, progress: &AtomicU32, waker: &Waker) -> Result<R
     let sha256 = sha256(file).map_err(|error| Problem::Unreadable(format!("{}: {error}", file.display())))?;
     progress.store(100, Ordering::Relaxed);
     let mut last = 100;
-    let analysis = crate::audio::analyse(file, 0.5, |share| {
+    let analysis = crate::audio::analyse(file, f32::from(super::READ_AT_PERCENT) / 100.0, |share| {
         // A share in thousandths.
         #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
         let now = 100 + (share * 900.0) as u32;
