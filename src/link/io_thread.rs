@@ -49,7 +49,18 @@ pub trait Driver: Send + 'static {
     fn wants_close(&self) -> bool {
         false
     }
+    /// Whether `command`, still queued when the owner closes the link, is
+    /// carried out and written before the link ends (a mobile base's stop
+    /// and brake: the owner sent them on its way out). Others are dropped.
+    fn is_last_word(&self, command: &Self::Command) -> bool {
+        let _ = command;
+        false
+    }
 }
+
+/// How long the owner's last words (see [`Driver::is_last_word`]) may take
+/// to go out once it has closed the link.
+pub const LAST_WORDS: std::time::Duration = std::time::Duration::from_millis(500);
 
 /// Why a link ended, as data (an interface words it in its own language);
 /// `Display` gives English.
@@ -409,6 +420,10 @@ fn drive<D: Driver>(
             },
             index if index == close_index => {
                 let _ = operation.recv(&owner.close);
+                // A close and a command sent just before it can be ready at
+                // once, and either may be picked first: a stop sent on the
+                // way out still goes out (on a loaded machine it did not).
+                last_words(driver, output, owner);
                 return DisconnectReason::Closed;
             }
             index if index == input_index => match operation.recv(input) {
@@ -422,6 +437,39 @@ fn drive<D: Driver>(
         }
     }
 }
+
+/// The owner has closed the link: the last words still queued (a base's
+/// stop and brake) are carried out and written, within [`LAST_WORDS`];
+/// every other command is dropped.
+fn last_words<D: Driver>(driver: &mut D, output: &mut Output<'_>, owner: &Owner<D::Command>) {
+    let mut said = false;
+    for command in owner.commands.try_iter() {
+        if driver.is_last_word(&command) {
+            driver.handle_command(Instant::now(), command);
+            said = true;
+        }
+    }
+    if !said {
+        return;
+    }
+    let deadline = Instant::now() + LAST_WORDS;
+    loop {
+        let now = Instant::now();
+        if output.flush_from(driver, now).is_err() {
+            return;
+        }
+        match output.ready_at() {
+            // Every byte the driver had went out.
+            None => return,
+            Some(_) if now >= deadline => return,
+            // The write gap or a full port: the owner waits for this thread, so wait here.
+            Some(at) => std::thread::sleep(at.min(deadline).saturating_duration_since(now).max(WAIT_STEP)),
+        }
+    }
+}
+
+/// The shortest wait between tries to write last words.
+const WAIT_STEP: std::time::Duration = std::time::Duration::from_millis(1);
 
 fn read_loop(mut reader: Box<dyn Read + Send>, input: &Sender<Input>, stop: &Receiver<()>) {
     let mut buffer = vec![0u8; 4096];
@@ -528,6 +576,78 @@ mod tests {
         assert_eq!(driver.left, [16, 3], "each chunk told whole");
         drop(output);
         assert_eq!(port.took, b"0123456789abcdefXYZ");
+    }
+
+    /// A driver that writes what it is told, some of it as last words.
+    struct Told {
+        out: VecDeque<Vec<u8>>,
+    }
+
+    impl Driver for Told {
+        /// Whether a last word, and its bytes.
+        type Command = (bool, Vec<u8>);
+        type Event = ();
+        fn handle_command(&mut self, _: Instant, (_, bytes): (bool, Vec<u8>)) {
+            self.out.push_back(bytes);
+        }
+        fn handle_input(&mut self, _: Instant, _: &[u8]) {}
+        fn handle_timeout(&mut self, _: Instant) {}
+        fn handle_disconnect(&mut self, _: &str) {}
+        fn poll_transmit(&mut self, _: Instant) -> Option<Vec<u8>> {
+            self.out.pop_front()
+        }
+        fn poll_event(&mut self) -> Option<()> {
+            None
+        }
+        fn poll_timeout(&self) -> Option<Instant> {
+            None
+        }
+        fn is_last_word(&self, (last, _): &(bool, Vec<u8>)) -> bool {
+            *last
+        }
+    }
+
+    /// The owner sends a stop and closes at once; the thread finds both
+    /// ready, and a select picks either first. Whichever it picks, the stop
+    /// goes out before the link ends; a command that is no last word, found
+    /// queued at the close, does not. (Each pick is a coin toss: twenty runs
+    /// would all pass without the last words with a chance of one in a million.)
+    #[test]
+    fn a_last_word_sent_just_before_the_close_goes_out_whichever_the_thread_sees_first() {
+        for _ in 0..20 {
+            let (commands, command_rx) = crossbeam_channel::unbounded();
+            let (close, close_rx) = crossbeam_channel::bounded::<()>(0);
+            let (_input, input_rx) = crossbeam_channel::unbounded();
+            let (events, _events) = crossbeam_channel::unbounded();
+            commands.send((true, b"STOP".to_vec())).unwrap();
+            drop(close);
+            let owner = Owner { commands: command_rx, close: close_rx };
+            let mut port: Vec<u8> = Vec::new();
+            let mut output = Output {
+                writer: &mut port,
+                min_gap: Duration::ZERO,
+                last_write: None,
+                held: None,
+                stalled_since: None,
+            };
+            let mut driver = Told { out: VecDeque::new() };
+            let reason = drive(&mut driver, &mut output, &owner, &input_rx, &events, &no_waker());
+            assert_eq!(reason, DisconnectReason::Closed);
+            drop(output);
+            assert_eq!(port, b"STOP", "the stop went out");
+        }
+        // Found queued at the close, a command that is no last word is dropped.
+        let (commands, command_rx) = crossbeam_channel::unbounded();
+        commands.send((false, b"MOVE".to_vec())).unwrap();
+        let (close, close_rx) = crossbeam_channel::bounded::<()>(0);
+        drop(close);
+        let owner = Owner { commands: command_rx, close: close_rx };
+        let mut port: Vec<u8> = Vec::new();
+        let mut output =
+            Output { writer: &mut port, min_gap: Duration::ZERO, last_write: None, held: None, stalled_since: None };
+        last_words(&mut Told { out: VecDeque::new() }, &mut output, &owner);
+        drop(output);
+        assert!(port.is_empty(), "nothing but last words at the close");
     }
 
     /// A port that takes nothing for [`WRITE_STALL`] is lost.

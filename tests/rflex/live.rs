@@ -97,7 +97,16 @@ fn dropping_the_handle_stops_the_base_and_sets_its_brake() {
     base.drive(0.3, 0.2, 0.5);
     until(&mut base, &woken, "motion", |base| base.telemetry.speed_m_per_s > 0.05);
     drop(base); // the window closed, or the program ended
-    let state = inspect(&sim);
+    // Every byte of the stop and the brake was written before the drop
+    // returned; the emulated base reads them on its own thread, whenever a
+    // loaded machine runs it: asked again at each of its wakes (or every
+    // 50 ms), for up to 10 s.
+    let deadline = Instant::now() + Duration::from_secs(10);
+    let mut state = inspect(&sim);
+    while !state.braked && Instant::now() < deadline {
+        let _ = woken.recv_timeout(Duration::from_millis(50));
+        state = inspect(&sim);
+    }
     assert!(state.braked, "{state:?}");
     assert_eq!(state.target_speed_m_per_s, 0.0);
     assert_eq!(state.speed_m_per_s, 0.0, "braked: not moving");

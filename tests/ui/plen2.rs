@@ -149,10 +149,16 @@ fn the_robot_panel_uploads_verifies_and_a_play_list_queues_its_motions() {
     let result = shown_result(harness.state());
     assert!(result.contains("Uploaded and verified, items: 1/1"), "{result}");
     // The status line follows: the robot is no longer the factory-fresh one it connected to.
+    // (A reply that came late on this machine's clock may have widened the pacing just
+    // after; its note is the newest line then, and the result stays in the panel.)
     let status = harness.state().status.clone().unwrap();
-    assert!(status.text.starts_with("Uploaded and verified, items: 1/1") && !status.is_error, "{status:?}");
+    let widened = status.text.starts_with("pacing widened: ");
     assert!(
-        harness.query_all_by_label_contains("Uploaded and verified, items: 1/1").count() >= 2,
+        (status.text.starts_with("Uploaded and verified, items: 1/1") || widened) && !status.is_error,
+        "{status:?}"
+    );
+    assert!(
+        harness.query_all_by_label_contains("Uploaded and verified, items: 1/1").count() >= if widened { 1 } else { 2 },
         "the panel and the status line"
     );
     assert!(result.contains("plen2-backup-"), "{result}");

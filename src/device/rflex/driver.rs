@@ -142,6 +142,12 @@ impl Driver for RflexDriver {
     type Command = RflexCommand;
     type Event = RflexEvent;
 
+    /// A stop, a brake set and the shutdown sequence go out even when the
+    /// owner closes right after sending them: a base never keeps driving.
+    fn is_last_word(&self, command: &RflexCommand) -> bool {
+        matches!(command, RflexCommand::Stop | RflexCommand::Brake(true) | RflexCommand::Shutdown { .. })
+    }
+
     fn handle_command(&mut self, now: Instant, command: RflexCommand) {
         match command {
             RflexCommand::Start { sonar } => {
