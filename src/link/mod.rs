@@ -4,6 +4,7 @@
 mod connection;
 mod io_thread;
 mod opening;
+mod output;
 mod port;
 
 pub use connection::Connection;
