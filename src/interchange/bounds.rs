@@ -62,27 +62,20 @@ pub fn check(source: &Source) -> Result<(), ReadError> {
     Ok(())
 }
 
-fn check_clip(source: &Source, clip: &Clip) -> Result<(), ReadError> {
-    if !SPEED_RATES.contains(&clip.speed) {
-        return Err(in_clip(
-            clip,
-            &format!("a speed rate of {} is not one a board plays (0.01 to 100)", shown(clip.speed)),
-        ));
-    }
-    if clip.repeat > MAX_PLAYS {
-        return Err(in_clip(
-            clip,
-            &format!("played {} times: a board plays a motion at most {MAX_PLAYS} times", clip.repeat),
-        ));
-    }
-    let hour = |ms: f64| !(0.0..=MAX_CLIP_MS).contains(&ms);
+/// Whether a time in ms is outside 0 to an hour.
+fn beyond_an_hour(ms: f64) -> bool {
+    !(0.0..=MAX_CLIP_MS).contains(&ms)
+}
+
+/// A clip's keys, samples or chain, each within what a board can mean.
+fn check_body(source: &Source, clip: &Clip) -> Result<(), ReadError> {
     match &clip.body {
         Body::Keys(keys) => {
             for (index, key) in keys.iter().enumerate() {
                 let (what, ms) = match key.timing {
-                    Timing::Move { move_ms, .. } if hour(move_ms) => ("a move", move_ms),
-                    Timing::Move { hold_ms, .. } if hour(hold_ms) => ("a hold", hold_ms),
-                    Timing::Frame { duration_ms } if hour(duration_ms) => ("a frame", duration_ms),
+                    Timing::Move { move_ms, .. } if beyond_an_hour(move_ms) => ("a move", move_ms),
+                    Timing::Move { hold_ms, .. } if beyond_an_hour(hold_ms) => ("a hold", hold_ms),
+                    Timing::Frame { duration_ms } if beyond_an_hour(duration_ms) => ("a frame", duration_ms),
                     _ => continue,
                 };
                 return Err(in_clip(
@@ -120,8 +113,25 @@ fn check_clip(source: &Source, clip: &Clip) -> Result<(), ReadError> {
             }
         }
     }
+    Ok(())
+}
+
+fn check_clip(source: &Source, clip: &Clip) -> Result<(), ReadError> {
+    if !SPEED_RATES.contains(&clip.speed) {
+        return Err(in_clip(
+            clip,
+            &format!("a speed rate of {} is not one a board plays (0.01 to 100)", shown(clip.speed)),
+        ));
+    }
+    if clip.repeat > MAX_PLAYS {
+        return Err(in_clip(
+            clip,
+            &format!("played {} times: a board plays a motion at most {MAX_PLAYS} times", clip.repeat),
+        ));
+    }
+    check_body(source, clip)?;
     let pass_ms = clip.duration_ms();
-    if hour(pass_ms) {
+    if beyond_an_hour(pass_ms) {
         return Err(in_clip(
             clip,
             &format!("one pass lasts {:.0} s at its speed: a motion lasts at most an hour", pass_ms / 1000.0),
