@@ -92,6 +92,8 @@ struct Words {
     steps: &'static str,
     tolerance_error: &'static str,
     too_long: &'static str,
+    /// What to do when a PLEN2's slots are too few for the sound.
+    more_slots: &'static str,
 }
 
 const ENGLISH: Words = Words {
@@ -119,6 +121,7 @@ const ENGLISH: Words = Words {
     steps: "steps",
     tolerance_error: "{needed} {moves} are needed within {tolerance} and at most {allowed} fit; the smallest tolerance that fits is {smallest}",
     too_long: "the sound is too long: it needs at least {needed} {moves} of at most {longest} each, and at most {allowed} fit",
+    more_slots: ": write from an earlier slot (its chain may take the slots after it), or use a shorter sound",
 };
 
 const TRADITIONAL_CHINESE: Words = Words {
@@ -146,6 +149,7 @@ const TRADITIONAL_CHINESE: Words = Words {
     steps: "步驟",
     tolerance_error: "在 {tolerance} 內需要 {needed} 個{moves}，最多只能放 {allowed} 個；可行的最小容許誤差為 {smallest}",
     too_long: "聲音太長：至少需要 {needed} 個{moves}（每個最長 {longest}），最多只能放 {allowed} 個",
+    more_slots: "：請從較前面的位置寫入（動作串可使用其後的位置），或改用較短的聲音",
 };
 
 fn words(language: Language) -> &'static Words {
@@ -341,8 +345,11 @@ impl FollowForm {
         if slots.is_empty() {
             return Err(words.no_slot.to_string());
         }
-        let chain = follow::plen2(open, Joint::ALL[self.joint], follower, slots.len())
-            .map_err(|error| fit_error(&error, (0.1, PLEN2_UPDATE_MS), words.frames, words))?;
+        let chain = follow::plen2(open, Joint::ALL[self.joint], follower, slots.len()).map_err(|error| {
+            let said = fit_error(&error, (0.1, PLEN2_UPDATE_MS), words.frames, words);
+            // Too long for the slots it may take: more slots hold more.
+            if matches!(error, FitError::TooLong { .. }) { format!("{said}{}", words.more_slots) } else { said }
+        })?;
         let used = &slots[..chain.len()];
         let mut made = plen2.clone();
         let replaced: Vec<String> = made
@@ -395,5 +402,27 @@ fn fit_error(error: &FitError, (degrees, update_ms): (f64, f64), moves: &str, wo
                 .replace("{longest}", &longest_ms)
                 .replace("{allowed}", &allowed.to_string())
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_fit_that_cannot_be_made_is_said_in_degrees_and_ms_and_a_short_chain_says_what_to_do() {
+        let tolerance = FitError::Tolerance { needed: 36, allowed: 20, tolerance: 10.0, smallest: 29.0 };
+        let said = fit_error(&tolerance, (0.1, PLEN2_UPDATE_MS), ENGLISH.frames, &ENGLISH);
+        assert_eq!(
+            said,
+            "36 frames are needed within 1.0° and at most 20 fit; the smallest tolerance that fits is 2.9°"
+        );
+        // 200 s of sound from slot 89: one motion of 20 frames of at most 255 cycles cannot hold it.
+        let form = FollowForm { target: Target::From(89), ..FollowForm::default() };
+        let open = vec![0.5; 200_000];
+        let follower = Follower { closed_deg: 0.0, open_deg: 30.0, tolerance_deg: 1.0 };
+        let said = form.follow_plen2(&Plen2Project::default(), &open, follower, &TRADITIONAL_CHINESE).unwrap_err();
+        assert!(said.starts_with("聲音太長") && said.contains("8356 ms"), "{said}");
+        assert!(said.ends_with(TRADITIONAL_CHINESE.more_slots), "says what to do: {said}");
     }
 }
