@@ -4,7 +4,7 @@
 use std::io::{self, Write};
 use std::time::Instant;
 
-use super::io_thread::Driver;
+use super::driver::Driver;
 
 /// How long the port may take no byte at all before the link is called lost
 /// (a port whose reader is slow — a busy machine, a board busy elsewhere —
