@@ -13,7 +13,7 @@ use super::{bounds, out};
 
 use crate::interchange::build::{self, Options, Selection};
 use crate::interchange::{self, Format, JointMap, Report, export};
-use crate::project::input::{MAX_PROJECT_BYTES, read_text};
+use crate::project::input::{MAX_PROJECT_BYTES, read_bytes, read_text};
 use crate::project::{self, Family, Project, motion_json};
 
 /// `servo-studio convert`'s arguments.
@@ -117,24 +117,29 @@ enum Input {
 }
 
 fn read_input(request: &ConvertRequest) -> anyhow::Result<Input> {
-    let text = read_text(&request.input, MAX_PROJECT_BYTES)?;
+    let bytes = read_bytes(&request.input, MAX_PROJECT_BYTES)?;
     let name = request.input.display();
-    let format = match request.from {
-        Some(format) => Some(format),
-        None if project::parse(&text).is_ok() => return Ok(Input::Ours(Box::new(project::from_json(&text)?))),
-        None if motion_json::looks_like_motion(&text) => {
-            let (motion, _) = motion_json::read_motion(&text).map_err(|error| anyhow::anyhow!("{name}: {error}"))?;
+    let decoded = interchange::text::decode(&bytes).with_context(|| format!("{name} cannot be read as text"))?;
+    let text = &decoded.text;
+    if request.from.is_none() {
+        if project::parse(text).is_ok() {
+            return Ok(Input::Ours(Box::new(project::from_json(text)?)));
+        }
+        if motion_json::looks_like_motion(text) {
+            let (motion, _) = motion_json::read_motion(text).map_err(|error| anyhow::anyhow!("{name}: {error}"))?;
             let mut project = Project::empty(Family::Plen2);
             project.plen2.motions.push(motion);
             return Ok(Input::Ours(Box::new(project)));
         }
-        None => Format::guess(&text),
+    }
+    let Some(format) = request.from.or_else(|| Format::guess(text)) else {
+        anyhow::bail!(
+            "cannot tell what {name} is (not a Maestro settings file, RoboPlus .mtn, R+ .mtnx or Blender servo-animation JSON by its content): give --from maestro, mtn, mtnx or blender"
+        );
     };
-    let Some(format) = format else {
-        anyhow::bail!("cannot tell what {name} is: give --from maestro, mtn, mtnx or blender");
-    };
-    let source = interchange::read(format, &text)
-        .with_context(|| format!("{name} is not a {} ({})", format.name(), format.tag()))?;
+    let source = interchange::read_decoded(Some(format), &decoded)
+        .with_context(|| format!("{name} is not a {} ({}); nothing was written", format.name(), format.tag()))?
+        .ok_or_else(|| anyhow::anyhow!("{name}: no format"))?;
     Ok(Input::Foreign(source))
 }
 

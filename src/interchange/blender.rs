@@ -1,7 +1,9 @@
-//! The Blender servo-animation add-on's JSON export: `fps`, `frames`, and per
-//! servo (`servos`: id → `name`, `positions`; older versions: `positions`:
-//! bone name → list) one position per animation frame, in whatever unit the
-//! bone's servo settings map to (the add-on's default: 150..600 over 180°).
+//! The Blender servo-animation add-on's JSON export, in every layout its
+//! releases wrote: `fps`, `frames`, and one position per animation frame —
+//! per frame (`positions`: [{id: value}], since 2024), per servo (`servos`:
+//! id → `name`, `positions`, 2022–2023), or per bone (`positions`, or in
+//! 1.0 `pulses`: bone → list, values as strings until mid-2022) — in
+//! whatever unit the bone's servo settings map to (default 150..600 over 180°).
 
 use serde_json::{Map, Value, json};
 
@@ -33,28 +35,13 @@ pub fn read(text: &str) -> Result<Source, ReadError> {
         return Err(at("fps", format!("{fps} frames per second is not a frame rate")));
     }
     let hint = root.get(UNIT_KEY).and_then(unit_hint);
-    let mut channels = Vec::new();
-    let mut columns: Vec<Vec<f64>> = Vec::new();
-    if let Some(servos) = root.get("servos") {
-        let servos = servos.as_object().ok_or_else(|| at("servos", "not an object of servos by id"))?;
-        for (id, servo) in servos {
-            let where_ = format!("servos.{id}");
-            let positions = servo.get("positions").ok_or_else(|| at(&where_, "no positions"))?;
-            let mut channel = Channel::new(id.clone(), ADDON_DEFAULT);
-            channel.name = servo.get("name").and_then(Value::as_str).unwrap_or_default().to_string();
-            columns.push(positions_of(positions, &format!("{where_}.positions"))?);
-            channels.push(channel);
-        }
-    } else if let Some(Value::Object(bones)) = root.get("positions") {
-        for (bone, positions) in bones {
-            let mut channel = Channel::new(bone.clone(), ADDON_DEFAULT);
-            channel.name.clone_from(bone);
-            columns.push(positions_of(positions, &format!("positions.{bone}"))?);
-            channels.push(channel);
-        }
-    } else {
-        return Err(at("", "no servos and no positions: is this the add-on's JSON export?"));
-    }
+    let (mut channels, columns) = match (root.get("servos"), root.get("positions"), root.get("pulses")) {
+        (Some(servos), ..) => by_servo(servos)?,
+        (None, Some(Value::Array(frames)), _) => by_frame(frames)?,
+        (None, Some(Value::Object(bones)), _) => by_bone(bones, "positions")?,
+        (None, None, Some(Value::Object(bones))) => by_bone(bones, "pulses")?,
+        _ => return Err(at("", "no servos, positions or pulses: is this the add-on's JSON export?")),
+    };
     let frames = columns.first().map_or(0, Vec::len);
     if let Some((channel, column)) = channels.iter().zip(&columns).find(|(_, column)| column.len() != frames) {
         return Err(at(&channel.key, format!("{} positions where the first servo has {frames}", column.len())));
@@ -72,7 +59,68 @@ pub fn read(text: &str) -> Result<Source, ReadError> {
         channels,
         clips: vec![Clip::new(name, Body::Samples { fps, rows })],
         dropped: Vec::new(),
+        notes: Vec::new(),
     })
+}
+
+/// Positions per servo id (the add-on's 1.x–2.x releases: `servos`: id → `name`, `positions`).
+fn by_servo(servos: &Value) -> Result<(Vec<Channel>, Vec<Vec<f64>>), ReadError> {
+    let servos = servos.as_object().ok_or_else(|| at("servos", "not an object of servos by id"))?;
+    let mut channels = Vec::new();
+    let mut columns = Vec::new();
+    for (id, servo) in servos {
+        let where_ = format!("servos.{id}");
+        let positions = servo.get("positions").ok_or_else(|| at(&where_, "no positions"))?;
+        let mut channel = Channel::new(id.clone(), ADDON_DEFAULT);
+        channel.name = servo.get("name").and_then(Value::as_str).unwrap_or_default().to_string();
+        columns.push(positions_of(positions, &format!("{where_}.positions"))?);
+        channels.push(channel);
+    }
+    Ok((channels, columns))
+}
+
+/// Positions per bone (the add-on's first releases: `positions` or, in 1.0,
+/// `pulses`: bone name → list, values as numbers or as strings).
+fn by_bone(bones: &Map<String, Value>, key: &str) -> Result<(Vec<Channel>, Vec<Vec<f64>>), ReadError> {
+    let mut channels = Vec::new();
+    let mut columns = Vec::new();
+    for (bone, positions) in bones {
+        let mut channel = Channel::new(bone.clone(), ADDON_DEFAULT);
+        channel.name.clone_from(bone);
+        columns.push(positions_of(positions, &format!("{key}.{bone}"))?);
+        channels.push(channel);
+    }
+    Ok((channels, columns))
+}
+
+/// One object per frame, servo id → position (the add-on's current releases,
+/// since January 2024: `positions`: [{"0": 1472, "1": 375}, {"1": 376}, …]);
+/// a servo a frame leaves out holds where it was (the add-on writes only
+/// what changed), and one first named later held its first position before.
+fn by_frame(frames: &[Value]) -> Result<(Vec<Channel>, Vec<Vec<f64>>), ReadError> {
+    let mut channels: Vec<Channel> = Vec::new();
+    let mut columns: Vec<Vec<f64>> = Vec::new();
+    for (frame, servos) in frames.iter().enumerate() {
+        let where_ = format!("positions[{frame}]");
+        let servos = servos.as_object().ok_or_else(|| at(&where_, "not an object of positions by servo id"))?;
+        for (id, position) in servos {
+            let value = one_position(position, &format!("{where_}.{id}"))?;
+            let column = if let Some(column) = channels.iter().position(|channel| &channel.key == id) {
+                column
+            } else {
+                channels.push(Channel::new(id.clone(), ADDON_DEFAULT));
+                columns.push(vec![value; frame]);
+                columns.len() - 1
+            };
+            columns[column].push(value);
+        }
+        for column in &mut columns {
+            if let Some(&held) = column.last().filter(|_| column.len() == frame) {
+                column.push(held);
+            }
+        }
+    }
+    Ok((channels, columns))
 }
 
 fn at(element: &str, message: impl Into<String>) -> ReadError {
@@ -81,15 +129,16 @@ fn at(element: &str, message: impl Into<String>) -> ReadError {
 
 fn positions_of(value: &Value, where_: &str) -> Result<Vec<f64>, ReadError> {
     let list = value.as_array().ok_or_else(|| at(where_, "not a list of positions"))?;
-    list.iter()
-        .enumerate()
-        .map(|(frame, position)| {
-            position
-                .as_f64()
-                .filter(|v| v.is_finite())
-                .ok_or_else(|| at(&format!("{where_}[{frame}]"), format!("{position} is not a number")))
-        })
-        .collect()
+    list.iter().enumerate().map(|(frame, position)| one_position(position, &format!("{where_}[{frame}]"))).collect()
+}
+
+/// A position: a number, or a number written as a string (the add-on's first releases).
+fn one_position(position: &Value, where_: &str) -> Result<f64, ReadError> {
+    let value = match position {
+        Value::String(text) => text.trim().parse::<f64>().ok(),
+        other => other.as_f64(),
+    };
+    value.filter(|v| v.is_finite()).ok_or_else(|| at(where_, format!("{position} is not a number")))
 }
 
 fn unit_hint(value: &Value) -> Option<Unit> {

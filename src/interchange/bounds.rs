@@ -169,6 +169,7 @@ mod tests {
             channels: vec![Channel::new("1", Unit::DEGREES)],
             clips: vec![clip],
             dropped: Vec::new(),
+            notes: Vec::new(),
         }
     }
 

@@ -47,18 +47,35 @@ impl Format {
     pub fn guess(text: &str) -> Option<Self> {
         let start = text.trim_start_matches('\u{feff}').trim_start();
         if start.starts_with('{') {
-            return Some(Self::Blender);
+            return blender_keys(start).then_some(Self::Blender);
         }
         if start.starts_with('<') {
             if text.contains("<UscSettings") {
                 return Some(Self::Maestro);
             }
             let lower = text.to_ascii_lowercase();
-            return (lower.contains("<pageroot") || lower.contains("<page ") || lower.contains("<step "))
-                .then_some(Self::Mtnx);
+            // R+ Motion names itself in its root; a file cut short still has that line.
+            let marks = ["r+motion", "<designroot", "<flowroot", "<pageroot", "<page ", "<step "];
+            return marks.iter().any(|mark| lower.contains(mark)).then_some(Self::Mtnx);
         }
         text.lines().any(|line| matches!(line.trim(), "page_begin" | "type=motion")).then_some(Self::Mtn)
     }
+}
+
+/// Whether a JSON object's top-level keys are the servo-animation add-on's
+/// (`fps` with `servos`, `positions` or `pulses`), read even from a file cut short.
+fn blender_keys(text: &str) -> bool {
+    let keys: Vec<String> = match serde_json::from_str::<serde_json::Map<String, serde_json::Value>>(text) {
+        Ok(object) => object.keys().cloned().collect(),
+        // Cut short or damaged: the keys named at the top level's indentation or anywhere.
+        Err(_) => ["fps", "servos", "positions", "pulses"]
+            .iter()
+            .filter(|key| text.contains(&format!("\"{key}\"")))
+            .map(ToString::to_string)
+            .collect(),
+    };
+    let has = |key: &str| keys.iter().any(|k| k == key);
+    has("fps") && (has("servos") || has("positions") || has("pulses"))
 }
 
 /// A file that cannot be read as its format, and where.
@@ -87,8 +104,13 @@ impl From<super::xml::XmlError> for ReadError {
 }
 
 /// A number in a file, or an error naming what it should have been.
+/// A decimal comma ("1,5", as tools save on a decimal-comma locale) is read as a point.
 pub(super) fn number(text: &str, line: usize, element: &str, what: &str) -> Result<f64, ReadError> {
-    text.trim()
+    let trimmed = text.trim();
+    let pointed = if trimmed.contains('.') { None } else { Some(trimmed.replacen(',', ".", 1)) };
+    pointed
+        .as_deref()
+        .unwrap_or(trimmed)
         .parse::<f64>()
         .ok()
         .filter(|value| value.is_finite())
@@ -104,8 +126,23 @@ mod tests {
         assert_eq!(Format::guess("<!--Pololu-->\n<UscSettings version=\"1\">"), Some(Format::Maestro));
         assert_eq!(Format::guess("<?xml version=\"1.0\"?><Root><PageRoot>"), Some(Format::Mtnx));
         assert_eq!(Format::guess("type=motion\nversion=1.01\npage_begin"), Some(Format::Mtn));
-        assert_eq!(Format::guess("\u{feff} {\"fps\": 30}"), Some(Format::Blender));
+        assert_eq!(Format::guess("\u{feff} {\"fps\": 30, \"positions\": [{\"0\": 1472}]}"), Some(Format::Blender));
+        assert_eq!(Format::guess("{\"fps\": 30, \"pulses\": {\"Bone\": [\"3"), Some(Format::Blender));
+        assert_eq!(Format::guess("{\"frames\": [{\"transition_time_ms\": 100}]}"), None);
+        assert_eq!(
+            Format::guess("<?xml version=\"1.0\"?>\n<Root name=\"R+Motion\" version=\"2.0.0\">\n  <Desi"),
+            Some(Format::Mtnx)
+        );
         assert_eq!(Format::guess("t_ms,a\n0,1"), None);
         assert_eq!(Format::from_tag("MTNX"), Some(Format::Mtnx));
+    }
+
+    #[test]
+    fn decimal_commas_are_points_and_garbage_is_refused() {
+        assert_eq!(number("1,5", 1, "step", "time"), Ok(1.5));
+        assert_eq!(number(" 0,096", 1, "step", "time"), Ok(0.096));
+        assert_eq!(number("1.5", 1, "step", "time"), Ok(1.5));
+        assert!(number("1,5,0", 1, "step", "time").is_err());
+        assert!(number("1.000,5", 1, "step", "time").is_err());
     }
 }

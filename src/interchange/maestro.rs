@@ -23,7 +23,13 @@ pub fn read(text: &str) -> Result<Source, ReadError> {
     let channels_element = root.child("Channels").ok_or_else(|| {
         ReadError::at(root.line, "UscSettings", "no <Channels>: the file is cut short or not a settings file")
     })?;
-    let mut source = Source { format: Format::Maestro, channels: Vec::new(), clips: Vec::new(), dropped: Vec::new() };
+    let mut source = Source {
+        format: Format::Maestro,
+        channels: Vec::new(),
+        clips: Vec::new(),
+        dropped: Vec::new(),
+        notes: Vec::new(),
+    };
     // Position in the file → index into `source.channels` (None: not a servo).
     let mut servos: Vec<Option<usize>> = Vec::new();
     for (index, element) in channels_element.children_named("Channel").enumerate() {

@@ -227,6 +227,12 @@ const BIOLOID: [&str; 18] = [
     "left_foot_roll",
 ];
 
+/// The PLEN2 joint a Bioloid humanoid's Dynamixel id drives.
+pub(super) fn bioloid_joint(id: &str) -> Option<&'static str> {
+    let id: usize = id.parse().ok()?;
+    BIOLOID.get(id.checked_sub(1)?).copied()
+}
+
 fn guess(format: Format, channel: &Channel, index: usize, family: Family) -> Option<Target> {
     match family {
         Family::Servo => channel
@@ -236,13 +242,13 @@ fn guess(format: Format, channel: &Channel, index: usize, family: Family) -> Opt
             .filter(|id| *id != 255)
             .or_else(|| u8::try_from(index + 1).ok())
             .map(Target::Servo),
+        // An R+ file's reader names the joints of a robot it declares as a
+        // Bioloid humanoid; a RoboPlus file's ids are a Bioloid's.
         Family::Plen2 => joint_by_name(&channel.name).map(Target::Joint).or_else(|| {
-            if !matches!(format, Format::Mtn | Format::Mtnx) {
+            if format != Format::Mtn {
                 return None;
             }
-            let id: usize = channel.key.parse().ok()?;
-            let name = BIOLOID.get(id.checked_sub(1)?)?;
-            Target::from_word(name)
+            Target::from_word(bioloid_joint(&channel.key)?)
         }),
         // A base, or any other family: nothing of another tool's file drives it.
         _ => None,
@@ -308,6 +314,7 @@ mod tests {
             channels: vec![Channel::new("13", Unit::DEGREES), Channel::new("30", Unit::DEGREES)],
             clips: Vec::new(),
             dropped: Vec::new(),
+            notes: Vec::new(),
         };
         let map = JointMap::for_source(&source, Family::Plen2, None);
         assert_eq!(map.entries[0].target, Some(Target::Joint(Joint::RightKneePitch)));
@@ -323,6 +330,7 @@ mod tests {
             channels: vec![Channel::new("0", Unit { zero: 6000.0, per_degree: 40.0, label: "" })],
             clips: Vec::new(),
             dropped: Vec::new(),
+            notes: Vec::new(),
         };
         let mut map = JointMap::for_source(&source, Family::Servo, None);
         assert_eq!(map.entries[0].target, Some(Target::Servo(0)));

@@ -22,10 +22,11 @@ mod read;
 mod report;
 mod robotis;
 mod source;
+pub mod text;
 mod xml;
 
 pub use format::{Format, ReadError};
 pub use map::{JointMap, MapEntry, Target};
-pub use read::read;
+pub use read::{read, read_decoded};
 pub use report::Report;
 pub use source::{Body, Channel, Clip, Key, Link, Source, Timing, Unit};

@@ -147,6 +147,7 @@ mod tests {
             channels: vec![Channel::new("1", Unit::DEGREES)],
             clips: vec![wave, chain],
             dropped: Vec::new(),
+            notes: Vec::new(),
         }
     }
 

@@ -10,6 +10,8 @@ pub struct Report {
     pub approximated: Vec<String>,
     /// What the source held that nothing here plays.
     pub dropped: Vec<String>,
+    /// What reading the file found that is neither (a checksum, the robot it declares).
+    pub notes: Vec<String>,
 }
 
 impl Report {
@@ -34,12 +36,21 @@ impl Report {
         }
     }
 
+    /// Notes what reading the file found, once.
+    pub fn noted(&mut self, note: impl Into<String>) {
+        let note = note.into();
+        if !self.notes.contains(&note) {
+            self.notes.push(note);
+        }
+    }
+
     /// The report as lines for a terminal: what was converted, then
     /// "approximated: …" and "dropped: …" lines.
     pub fn lines(&self) -> Vec<String> {
         let mut lines: Vec<String> = self.converted.iter().map(|note| format!("converted: {note}")).collect();
         lines.extend(self.approximated.iter().map(|note| format!("approximated: {note}")));
         lines.extend(self.dropped.iter().map(|note| format!("dropped: {note}")));
+        lines.extend(self.notes.iter().map(|note| format!("note: {note}")));
         lines
     }
 }

@@ -34,6 +34,8 @@ pub fn read_mtn(text: &str) -> Result<Source, ReadError> {
     let mut pages: Vec<Page> = Vec::new();
     let mut open: Option<Page> = None;
     let mut saw_motion = false;
+    let mut commas = false;
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     for (index, raw) in text.lines().enumerate() {
         let line = index + 1;
         let trimmed = raw.trim();
@@ -58,6 +60,7 @@ pub fn read_mtn(text: &str) -> Result<Source, ReadError> {
             ("compliance", Some(_)) => {}
             ("play_param", Some(page)) => page.play = play_param(value, line)?,
             ("step", Some(page)) => {
+                commas |= value.contains(',');
                 let values = numbers(value, line, key)?;
                 let [.., pause, time] = values[..] else {
                     return Err(ReadError::at(line, key, "a step needs positions, a pause and a play time"));
@@ -87,7 +90,11 @@ pub fn read_mtn(text: &str) -> Result<Source, ReadError> {
             message: "no page and no type=motion: is this a RoboPlus .mtn file?".into(),
         });
     }
-    Ok(mtn_source(&pages, enabled.as_deref()))
+    let mut source = mtn_source(&pages, enabled.as_deref());
+    if commas {
+        source.notes.push("saved on a decimal-comma locale: \"0,096\" read as 0.096 s".into());
+    }
+    Ok(source)
 }
 
 fn play_param(value: &str, line: usize) -> Result<(u32, u32, u32, f64), ReadError> {
@@ -123,6 +130,7 @@ fn mtn_source(pages: &[Page], enabled: Option<&[bool]>) -> Source {
         channels: ids.iter().map(|id| Channel::new(id.to_string(), unit)).collect(),
         clips: Vec::new(),
         dropped: Vec::new(),
+        notes: Vec::new(),
     };
     let kept: Vec<&Page> = pages.iter().filter(|page| !page.steps.is_empty()).collect();
     let index_of = |number: u32| kept.iter().position(|page| page.number == number);
@@ -183,7 +191,8 @@ pub fn read_mtnx(text: &str) -> Result<Source, ReadError> {
         }
         poses.push(steps);
     }
-    let channels: Vec<Channel> = (1..=width).map(|id| Channel::new(id.to_string(), Unit::DEGREES)).collect();
+    let robot = Robot::declared(&root);
+    let (channels, driven) = robot.channels(width);
     for (page, steps) in pages.iter().zip(&poses) {
         let mut at = 0.0;
         let keys = steps
@@ -192,7 +201,7 @@ pub fn read_mtnx(text: &str) -> Result<Source, ReadError> {
                 let move_ms = (frame - at) * 1000.0 / MTNX_TICKS_PER_S;
                 at = *frame;
                 Key {
-                    values: (0..width).map(|index| pose.get(index).copied()).collect(),
+                    values: (0..width).filter(|index| driven[*index]).map(|index| pose.get(index).copied()).collect(),
                     timing: Timing::Move { move_ms, hold_ms: 0.0 },
                     name: String::new(),
                 }
@@ -200,12 +209,129 @@ pub fn read_mtnx(text: &str) -> Result<Source, ReadError> {
             .collect();
         clips.push(Clip::new(page.attr("name").unwrap_or("page"), Body::Keys(keys)));
     }
-    let mut source = Source { format: Format::Mtnx, channels, clips, dropped: Vec::new() };
+    let mut source = Source { format: Format::Mtnx, channels, clips, dropped: Vec::new(), notes: Vec::new() };
+    source.notes.extend(robot.note());
+    if driven.iter().any(|on| !on) {
+        source.drop_note("joints the file's robot has switched off (enable=\"False\")");
+    }
     for flow in root.descendants_named("Flow") {
         let chain = flow_links(flow, &source.clips)?;
-        source.clips.push(Clip::new(flow.attr("name").unwrap_or("flow"), Body::Chain(chain)));
+        let name = flow.attr("name").unwrap_or("flow");
+        if chain.is_empty() {
+            // R+ Motion's new file holds empty flows (and people use them as headings).
+            source.drop_note(format!("flow {name:?}: no units, nothing to play"));
+            continue;
+        }
+        source.clips.push(Clip::new(name, Body::Chain(chain)));
+    }
+    if root.descendants_named("Bucket").iter().any(|bucket| !bucket.children.is_empty()) {
+        source.drop_note("buckets (a controller's list of flows to call by number): convert each flow");
     }
     Ok(source)
+}
+
+/// The robot an R+ Motion file declares (`<DesignRoot>`: its name,
+/// controller and `<skeleton>` of joints, each a motor, an id and whether it is on).
+struct Robot {
+    name: String,
+    controller: String,
+    /// `(id, motor, enabled)` in pose order.
+    joints: Vec<(String, String, bool)>,
+}
+
+impl Robot {
+    fn declared(root: &xml::Element) -> Self {
+        let design = root.descendants_named("DesignRoot");
+        let design = design.first();
+        let attr = |name: &str| design.and_then(|d| d.attr(name)).unwrap_or_default().trim().to_string();
+        let joints = design
+            .map(|d| d.descendants_named("joint"))
+            .unwrap_or_default()
+            .into_iter()
+            .map(|joint| {
+                (
+                    joint.attr("id").unwrap_or_default().trim().to_string(),
+                    joint.attr("motor").unwrap_or_default().trim().to_string(),
+                    !joint.attr("enable").is_some_and(|on| on.eq_ignore_ascii_case("false")),
+                )
+            })
+            .collect();
+        Self { name: attr("name"), controller: attr("controller"), joints }
+    }
+
+    /// The channels for poses of `width` values (by the declared ids when
+    /// the skeleton has one joint per value), and which values are driven.
+    fn channels(&self, width: usize) -> (Vec<Channel>, Vec<bool>) {
+        let declared = self.joints.len() == width && self.joints.iter().all(|(id, ..)| id.parse::<u8>().is_ok());
+        let mut channels = Vec::new();
+        let mut driven = Vec::new();
+        for index in 0..width {
+            let (key, motor, on) = match self.joints.get(index).filter(|_| declared) {
+                Some((id, motor, on)) => (id.clone(), motor.as_str(), *on),
+                None => ((index + 1).to_string(), "", true),
+            };
+            driven.push(on);
+            if !on {
+                continue;
+            }
+            let mut channel = Channel::new(key, Unit::DEGREES);
+            channel.limits = motor_range(motor).map(|half| (-half, half));
+            if self.is_bioloid() {
+                channel.name = super::map::bioloid_joint(&channel.key).unwrap_or_default().replace('_', " ");
+            }
+            channels.push(channel);
+        }
+        (channels, driven)
+    }
+
+    /// A Bioloid-class humanoid (ids 1..=18 of AX or MX servos, at least 16),
+    /// or no declaration at all (R+ Motion's first files): its ids name PLEN2 joints.
+    fn is_bioloid(&self) -> bool {
+        let ids = self.joints.iter().filter_map(|(id, ..)| id.parse::<u8>().ok()).filter(|id| (1..=18).contains(id));
+        self.joints.is_empty()
+            || (ids.count() == self.joints.len()
+                && self.joints.len() >= 16
+                && self.joints.iter().all(|(_, motor, _)| {
+                    let upper = motor.to_ascii_uppercase();
+                    upper.starts_with("AX-") || upper.starts_with("MX-")
+                }))
+    }
+
+    /// What the file says it is for, in words.
+    fn note(&self) -> Option<String> {
+        if self.joints.is_empty() {
+            return None;
+        }
+        let mut motors: Vec<(String, usize)> = Vec::new();
+        for (_, motor, _) in &self.joints {
+            match motors.iter_mut().find(|(name, _)| name == motor) {
+                Some((_, count)) => *count += 1,
+                None => motors.push((motor.clone(), 1)),
+            }
+        }
+        let motors: Vec<String> = motors.iter().map(|(motor, count)| format!("{count} × {motor}")).collect();
+        let name = if self.name.is_empty() { "a robot".to_string() } else { format!("{:?}", self.name) };
+        let on = if self.controller.is_empty() { String::new() } else { format!(" (controller {})", self.controller) };
+        let guess = if self.is_bioloid() {
+            "its ids are a Bioloid humanoid's, so PLEN2 joints are guessed from them"
+        } else {
+            "not a Bioloid humanoid, so no PLEN2 joint is guessed: map them in the table or with --map"
+        };
+        Some(format!("made for {name}{on}: {}; ids and ranges are taken from it; {guess}", motors.join(", ")))
+    }
+}
+
+/// Half the range of a Dynamixel model, degrees from its centre (R+ poses are degrees from centre).
+fn motor_range(motor: &str) -> Option<f64> {
+    let upper = motor.to_ascii_uppercase();
+    if ["AX-", "XL-320", "XL320", "DX-", "RX-"].iter().any(|prefix| upper.starts_with(prefix)) {
+        Some(150.0)
+    } else if ["MX-", "XL-430", "XL430", "XM", "XH", "XC", "2XL", "2XC"].iter().any(|prefix| upper.starts_with(prefix))
+    {
+        Some(180.0)
+    } else {
+        None
+    }
 }
 
 fn flow_links(flow: &xml::Element, pages: &[Clip]) -> Result<Vec<Link>, ReadError> {

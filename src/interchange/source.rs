@@ -152,6 +152,8 @@ pub struct Source {
     pub clips: Vec<Clip>,
     /// What the file held that no board plays, said once each (scripts, compliance…).
     pub dropped: Vec<String>,
+    /// What reading it took or found that the user should know (a checksum, a robot declared).
+    pub notes: Vec<String>,
 }
 
 impl Source {

@@ -11,7 +11,9 @@ use super::family::Family;
 use super::file::{LoadError, Loaded, parse};
 use super::motion_json::{self, MotionJsonError};
 use super::plen2::Plen2Project;
-pub use super::read::{MAX_MOTION_BYTES, MAX_PROJECT_BYTES, ReadError, not_a_file, open_regular, read_text};
+pub use super::read::{
+    MAX_MOTION_BYTES, MAX_PROJECT_BYTES, ReadError, not_a_file, open_regular, read_bytes, read_text,
+};
 
 /// "Too many levels of symbolic links".
 #[cfg(target_os = "linux")]

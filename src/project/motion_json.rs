@@ -221,7 +221,7 @@ pub fn looks_like_motion(text: &str) -> bool {
                 self.0.set((
                     format || key == "format",
                     frames || key == "frames",
-                    blender || key == "fps" || key == "servos",
+                    blender || matches!(key.as_ref(), "fps" | "servos" | "positions" | "pulses" | "armature"),
                 ));
                 map.next_value::<serde::de::IgnoredAny>()?;
             }

@@ -123,9 +123,9 @@ const O_NONBLOCK: i32 = 0o4000;
 #[cfg(all(unix, not(any(target_os = "linux", target_os = "android"))))]
 const O_NONBLOCK: i32 = 0x0004;
 
-/// The text of the regular file `path` (symbolic links followed), refusing
+/// The bytes of the regular file `path` (symbolic links followed), refusing
 /// anything else before opening it, and any file over `max_bytes`.
-pub fn read_text(path: &Path, max_bytes: u64) -> Result<String, ReadError> {
+pub fn read_bytes(path: &Path, max_bytes: u64) -> Result<Vec<u8>, ReadError> {
     let io = |source| ReadError::Io { path: path.to_path_buf(), source };
     let too_large = |bytes| ReadError::TooLarge { path: path.to_path_buf(), bytes, max: max_bytes };
     let (file, length) = open_regular(path, max_bytes)?;
@@ -135,6 +135,11 @@ pub fn read_text(path: &Path, max_bytes: u64) -> Result<String, ReadError> {
     if u64::try_from(bytes.len()).unwrap_or(u64::MAX) > max_bytes {
         return Err(too_large(u64::try_from(bytes.len()).unwrap_or(u64::MAX)));
     }
-    String::from_utf8(bytes)
+    Ok(bytes)
+}
+
+/// The text of the regular file `path`, as [`read_bytes`] reads it, when it is UTF-8.
+pub fn read_text(path: &Path, max_bytes: u64) -> Result<String, ReadError> {
+    String::from_utf8(read_bytes(path, max_bytes)?)
         .map_err(|error| ReadError::NotText { path: path.to_path_buf(), valid_up_to: error.utf8_error().valid_up_to() })
 }

@@ -97,6 +97,9 @@ pub fn build(source: &Source, map: &JointMap, options: &Options) -> Result<Built
     for note in &source.dropped {
         report.dropped(note.clone());
     }
+    for note in &source.notes {
+        report.noted(note.clone());
+    }
     for (channel, entry) in source.channels.iter().zip(&mapped) {
         if entry.is_none() {
             let name = if channel.name.is_empty() { String::new() } else { format!(" ({})", channel.name) };

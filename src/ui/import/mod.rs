@@ -19,7 +19,7 @@ use crate::figure::{self, Chain};
 use crate::interchange::build::{self, Built, Options, Selection};
 use crate::interchange::map::{JointMap, Target};
 use crate::interchange::{Body, Format, Source, preview};
-use crate::project::input::{MAX_PROJECT_BYTES, read_text};
+use crate::project::input::{MAX_PROJECT_BYTES, read_bytes, read_text};
 use crate::project::{Family, Project};
 pub use crate::ui::action::ImportAction;
 use crate::ui::action::{Action, Export, FileRequest, Pick};
@@ -97,11 +97,14 @@ pub fn ask_file() -> Action {
 }
 
 fn read_source(path: &std::path::Path) -> Result<Source, String> {
-    let text = read_text(path, MAX_PROJECT_BYTES).map_err(|error| error.to_string())?;
-    let format = Format::guess(&text).ok_or_else(|| {
+    let bytes = read_bytes(path, MAX_PROJECT_BYTES).map_err(|error| error.to_string())?;
+    let decoded = crate::interchange::text::decode(&bytes).map_err(|error| format!("{}: {error}", path.display()))?;
+    let format = Format::guess(&decoded.text).ok_or_else(|| {
         format!("{} is not a file Servo Studio can import (a Maestro settings file, RoboPlus .mtn, R+ Motion .mtnx or Blender servo-animation JSON)", path.display())
     })?;
-    crate::interchange::read(format, &text).map_err(|error| format!("{} ({}): {error}", path.display(), format.name()))
+    crate::interchange::read_decoded(Some(format), &decoded)
+        .map_err(|error| format!("{} ({}): {error}", path.display(), format.name()))?
+        .ok_or_else(|| path.display().to_string())
 }
 
 impl ImportDesk {
