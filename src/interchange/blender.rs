@@ -21,10 +21,14 @@ const UNIT_KEY: &str = "servo_studio_unit";
 
 /// Reads an add-on export.
 pub fn read(text: &str) -> Result<Source, ReadError> {
-    let value: Value = serde_json::from_str(text).map_err(|error| ReadError {
+    let value: Value = serde_json::from_str(text.trim_start_matches('\u{feff}')).map_err(|error| ReadError {
         line: Some(error.line()),
         element: None,
-        message: format!("not JSON: {error}"),
+        message: if error.is_eof() {
+            format!("not JSON: {error} — {}", super::format::CUT_SHORT)
+        } else {
+            format!("not JSON: {error}")
+        },
     })?;
     let root = value.as_object().ok_or_else(|| at("", "the file is not a JSON object"))?;
     let fps = root

@@ -97,9 +97,16 @@ impl ReadError {
     }
 }
 
+/// What to try when a file ends before its tool's last word.
+pub(super) const CUT_SHORT: &str = "the file ends early: it was cut short (a copy or download broken off); take it again from where it came, or save it again from its tool";
+
 impl From<super::xml::XmlError> for ReadError {
     fn from(error: super::xml::XmlError) -> Self {
-        Self { line: Some(error.line), element: None, message: format!("not well-formed XML: {}", error.message) }
+        let cut = ["end of input", "never closed", "unexpected end", "eof"]
+            .iter()
+            .any(|mark| error.message.to_ascii_lowercase().contains(mark));
+        let hint = if cut { format!(" — {CUT_SHORT}") } else { String::new() };
+        Self { line: Some(error.line), element: None, message: format!("not well-formed XML: {}{hint}", error.message) }
     }
 }
 

@@ -80,7 +80,11 @@ fn bad_input_is_said_with_where_and_nothing_is_written() {
     assert_eq!(std::fs::read_to_string(dir.path().join("kept.json")).unwrap(), "what was here", "nothing half-written");
     std::fs::write(dir.path().join("notes.txt"), "shopping list\n").unwrap();
     let (ok, _, err) = convert(dir.path(), &["notes.txt", "--to", "servo", "--out", "x.json"]);
-    assert!(!ok && err.contains("cannot tell what notes.txt is") && err.contains(": give --from maestro, mtn, mtnx or blender"), "{err}");
+    assert!(
+        !ok && err.contains("cannot tell what notes.txt is")
+            && err.contains(": give --from maestro, mtn, mtnx or blender"),
+        "{err}"
+    );
     assert!(!dir.path().join("x.json").exists());
     std::fs::write(dir.path().join("skull.xml"), super::maestro::SETTINGS).unwrap();
     let (ok, _, err) = convert(dir.path(), &["skull.xml", "--from", "mtnx", "--to", "servo", "--out", "x.json"]);

@@ -9,6 +9,7 @@ mod blender;
 mod cli;
 mod damaged;
 pub mod maestro;
+mod real;
 pub mod robotis;
 
 use servo_studio::interchange::build::{self, Built, Options};

@@ -37,17 +37,37 @@ pub(super) fn build(input: &Input<'_>, report: &mut Report) -> Result<Plen2Proje
             _ => None,
         })
         .collect();
-    // Each clip's frames first, then slots for them.
+    // Each clip's frames first, then slots for them. A clip another jumps
+    // to plays on from where that one ended, on the same cycle clock (plen2.md §6).
     let mut framed: Vec<(usize, Vec<Frame>)> = Vec::new();
+    let mut clock = Clock::default();
+    let mut ends: Vec<(usize, End)> = Vec::new();
     for &index in &input.clips {
         let clip = input.clip(index);
+        let before = input.clips.iter().copied().find(|&other| other != index && input.clip(other).next == Some(index));
+        let start = before.map(|other| match ends.iter().find(|(clip, _)| *clip == other) {
+            // Played once: on the same clock, rounding carried over.
+            Some((_, end)) if input.clip(other).repeat <= 1 => *end,
+            // Repeated, or made later: from its end, on a clock of its own.
+            found => End {
+                pose: found.map_or([0.0; JOINTS], |(_, end)| end.pose),
+                source_ms: 0.0,
+                cycles: 0,
+                first_cycle: 0,
+            },
+        });
         let frames = match &clip.body {
-            Body::Keys(keys) => keyed(input, &joints, clip, keys, report),
+            Body::Keys(keys) => {
+                let (frames, end) = keyed(input, &joints, (clip, keys, start), &mut clock, report);
+                ends.push((index, end));
+                frames
+            }
             Body::Samples { fps, rows } => sampled(input, &joints, clip, *fps, rows, report)?,
             Body::Chain(_) => Vec::new(),
         };
         framed.push((index, frames));
     }
+    clock.said(report);
     let needed: usize = framed.iter().map(|(_, frames)| frames.len().div_ceil(MAX_FRAMES)).sum();
     if needed > usize::from(SLOTS) {
         return Err(BuildError::TooBig(format!(
@@ -105,6 +125,9 @@ fn link(input: &Input<'_>, first_slot: &[(usize, u8, u8)], project: &mut Plen2Pr
                 let count = u8::try_from((clip.repeat - 1).min(254)).unwrap_or(254);
                 let end_frame = u8::try_from(motion.frames.len() - 1).unwrap_or(0);
                 motion.loop_range = Some(LoopRange { begin_frame: 0, end_frame, count });
+                report.approximated(format!(
+                    "a repeated motion loops its frames: each pass after the first ends one {CYCLE_MS} ms cycle later than the file's (the first pass's first cycle is output as it starts, a loop's is not)"
+                ));
             } else {
                 report.approximated(
                     "a repeated motion over 20 frames: a play list repeats it (a loop stays within one motion)",
@@ -171,6 +194,39 @@ fn tenths(degrees: f64, report: &mut Report) -> i16 {
     value
 }
 
+/// How far the cycles kept from the file's time, over every clip.
+#[derive(Default)]
+struct Clock {
+    /// The farthest a key's end was from the file's time, ms.
+    worst_ms: f64,
+    /// The latest a step shorter than a cycle made its key, ms.
+    short_ms: f64,
+    /// Clips played on from a jump.
+    jumps: usize,
+}
+
+impl Clock {
+    fn said(&self, report: &mut Report) {
+        if self.short_ms > 0.0 {
+            report.approximated(format!(
+                "steps shorter than a {CYCLE_MS} ms cycle take a whole cycle (a PLEN2 does no less): the key after one is up to {:.1} ms late, the keys after it keep their time",
+                self.short_ms
+            ));
+        }
+        if self.worst_ms >= 0.5 {
+            let jumps = if self.jumps > 0 {
+                ", across next-page jumps too (the jumped-to motion plays on the same cycles)"
+            } else {
+                ""
+            };
+            report.approximated(format!(
+                "times kept on the PLEN2's {CYCLE_MS} ms cycles: every key within {:.1} ms of the file's time{jumps}, rounding never adding up",
+                self.worst_ms
+            ));
+        }
+    }
+}
+
 /// Frames timed in cycles: `cycles` to reach `pose` (split when over 255).
 struct Timeline<'r> {
     frames: Vec<Frame>,
@@ -178,7 +234,11 @@ struct Timeline<'r> {
     source_ms: f64,
     /// Cycles played.
     cycles: i64,
+    /// 1 from `$PM` (cycle 0 is output as it starts), 0 played on from a jump
+    /// (the jumped-to frame's first cycle follows the last one's).
+    first_cycle: i64,
     pose: [f64; JOINTS],
+    clock: &'r mut Clock,
     report: &'r mut Report,
 }
 
@@ -188,12 +248,19 @@ impl Timeline<'_> {
         self.source_ms += after_ms;
         // Cycle k is output at k × 32.768 ms (cycle 0 as `$PM` starts, as
         // `trajectory` and the fitter count): a frame ending at source time T
-        // ends with cycle round(T / cycle), the cycle count so far one more.
+        // ends with cycle round(T / cycle), the cycle count so far one more
+        // (played on from a jump: the count so far is round(T / cycle)).
         // Cycle counts of any real file are far below 2^52.
         #[allow(clippy::cast_possible_truncation)]
-        let end = (self.source_ms / CYCLE_MS).round() as i64 + 1;
+        let end = (self.source_ms / CYCLE_MS).round() as i64 + self.first_cycle;
         let mut cycles = end - self.cycles;
         if cycles < least {
+            if least == 1 {
+                // Counts of a few hundred cycles.
+                #[allow(clippy::cast_precision_loss)]
+                let late = (least - cycles) as f64 * CYCLE_MS;
+                self.clock.short_ms = self.clock.short_ms.max(late);
+            }
             cycles = least;
         }
         if cycles < 1 {
@@ -216,12 +283,52 @@ impl Timeline<'_> {
         }
         self.cycles += cycles;
         self.pose = to;
+        if least <= 1 {
+            // Counts of a few thousand cycles.
+            #[allow(clippy::cast_precision_loss)]
+            let board_ms = (self.cycles - self.first_cycle) as f64 * CYCLE_MS;
+            self.clock.worst_ms = self.clock.worst_ms.max((board_ms - self.source_ms).abs());
+        }
     }
 }
 
-fn keyed(input: &Input<'_>, joints: &[Option<Joint>], clip: &Clip, keys: &[Key], report: &mut Report) -> Vec<Frame> {
+/// Where a clip of keys ended: its pose, and its clock (source time, cycles).
+#[derive(Clone, Copy)]
+struct End {
+    pose: [f64; JOINTS],
+    source_ms: f64,
+    cycles: i64,
+    first_cycle: i64,
+}
+
+/// A clip of keys as frames, from power-up (`start` None) or played on from
+/// a jump where the motion before ended.
+fn keyed(
+    input: &Input<'_>,
+    joints: &[Option<Joint>],
+    (clip, keys, start): (&Clip, &[Key], Option<End>),
+    clock: &mut Clock,
+    report: &mut Report,
+) -> (Vec<Frame>, End) {
     let mut at: Vec<Option<f64>> = vec![Some(0.0); joints.len()];
-    let mut timeline = Timeline { frames: Vec::new(), source_ms: 0.0, cycles: 0, pose: [0.0; JOINTS], report };
+    clock.jumps += usize::from(start.is_some());
+    let from = start.unwrap_or(End { pose: [0.0; JOINTS], source_ms: 0.0, cycles: 0, first_cycle: 1 });
+    let mut timeline = Timeline {
+        frames: Vec::new(),
+        source_ms: from.source_ms,
+        cycles: from.cycles,
+        first_cycle: from.first_cycle,
+        pose: from.pose,
+        clock,
+        report,
+    };
+    if start.is_some() {
+        for (channel, joint) in joints.iter().enumerate() {
+            if let Some(joint) = joint {
+                at[channel] = Some(from.pose[joint.index()]);
+            }
+        }
+    }
     for key in keys {
         let (move_ms, hold_ms, is_frame) = timing(clip, key.timing);
         let (end, move_ms, hold_ms) = if is_frame {
@@ -259,7 +366,13 @@ fn keyed(input: &Input<'_>, joints: &[Option<Joint>], clip: &Clip, keys: &[Key],
         }
         at = end;
     }
-    timeline.frames
+    let end = End {
+        pose: timeline.pose,
+        source_ms: timeline.source_ms,
+        cycles: timeline.cycles,
+        first_cycle: timeline.first_cycle,
+    };
+    (timeline.frames, end)
 }
 
 fn sampled(

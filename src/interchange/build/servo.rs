@@ -195,9 +195,14 @@ impl Made {
         self.actions.last().map_or(1, |action| action.id + 1)
     }
 
+    /// A clip's keys as actions and delays. Times are kept on the board's
+    /// clock, not rounded key by key: each move takes the whole updates that
+    /// end it nearest the file's time since the clip began, each hold the
+    /// milliseconds that end it at the file's time, so rounding never adds up.
     fn keys(&mut self, input: &Input<'_>, clip: &Clip, keys: &[Key], report: &mut Report) -> Vec<Command> {
         let mut at = self.homes(input);
         let mut commands = Vec::new();
+        let mut clock = Clock::default();
         for key in keys {
             let (move_ms, hold_ms, is_frame) = timing(clip, key.timing);
             let (end, updates) = if is_frame {
@@ -208,20 +213,17 @@ impl Made {
                 (moved.end, moved.updates)
             } else {
                 let wanted = input.degrees(&key.values);
-                let mut updates = (move_ms / 10.0).round();
-                if updates < 1.0 {
-                    let farthest = wanted
-                        .iter()
-                        .zip(&at)
-                        .filter_map(|(w, a)| Some((w.as_ref()? - a.unwrap_or(*w.as_ref()?)).abs()))
-                        .fold(0.0, f64::max);
-                    if farthest > 0.0 {
-                        report.approximated(JUMP);
-                    }
-                    updates = (farthest / LIVE_DEG_PER_S * 100.0).ceil().max(1.0);
-                } else if (updates * 10.0 - move_ms).abs() > 0.5 {
-                    report.approximated("times rounded to the board's 10 ms updates");
-                }
+                let farthest = wanted
+                    .iter()
+                    .zip(&at)
+                    .filter_map(|(w, a)| Some((w.as_ref()? - a.unwrap_or(*w.as_ref()?)).abs()))
+                    .fold(0.0, f64::max);
+                let updates = if move_ms < SERVO_UPDATE_MS / 2.0 && farthest > 0.0 {
+                    report.approximated(JUMP);
+                    (farthest / LIVE_DEG_PER_S * 100.0).ceil().max(1.0)
+                } else {
+                    clock.updates_to(move_ms)
+                };
                 // Small and non-negative.
                 #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
                 let updates = updates.min(f64::from(u32::MAX)) as u32;
@@ -236,14 +238,18 @@ impl Made {
                 self.actions.push(Action { id, caption, steps });
                 commands.push(Command::once(Run::Action { action_id: id }));
             }
-            let wait = if is_frame { move_ms - moved_ms } else { hold_ms };
-            if wait.round() >= 1.0 {
-                // Under i32::MAX ms of any real file: clamped first.
-                #[allow(clippy::cast_possible_truncation)]
-                let delay_ms = wait.round().min(f64::from(i32::MAX)) as i32;
+            let (arrive_ms, wait_ms) = if is_frame { (0.0, move_ms) } else { (move_ms, hold_ms) };
+            clock.moved(arrive_ms, moved_ms);
+            if let Some(delay_ms) = clock.hold(wait_ms) {
                 commands.push(Command::once(Run::Delay { delay_ms }));
             }
             at = end;
+        }
+        if clock.worst_ms >= 0.5 {
+            report.approximated(format!(
+                "times kept on the board's {SERVO_UPDATE_MS} ms updates: every key within {:.1} ms of the file's time, rounding never adding up",
+                clock.worst_ms
+            ));
         }
         commands
     }
@@ -326,6 +332,57 @@ impl Made {
         let commands = actions.iter().map(|action| Command::once(Run::Action { action_id: action.id })).collect();
         self.actions.extend(actions);
         Ok(commands)
+    }
+}
+
+/// The file's time and the board's, through one clip, ms from its start.
+#[derive(Default)]
+struct Clock {
+    /// Where the file says the clip is.
+    file_ms: f64,
+    /// Where the board is (whole updates and whole-ms delays).
+    board_ms: f64,
+    /// The farthest the board has been from the file at a key's end.
+    worst_ms: f64,
+}
+
+impl Clock {
+    /// The whole updates (at least 1) that end a move of `move_ms` nearest the file's time.
+    fn updates_to(&self, move_ms: f64) -> f64 {
+        ((self.file_ms + move_ms - self.board_ms) / SERVO_UPDATE_MS).round().max(1.0)
+    }
+
+    /// The file moves on `file_ms` (0: a Maestro frame's move, or a jump, which keep no time of their own), the board `board_ms`.
+    fn moved(&mut self, file_ms: f64, board_ms: f64) {
+        self.file_ms += file_ms;
+        self.board_ms += board_ms;
+        if file_ms > 0.0 {
+            self.key_ends();
+        }
+    }
+
+    /// The delay (whole ms) that ends a wait of `wait_ms` at the file's time, if any.
+    fn hold(&mut self, wait_ms: f64) -> Option<i32> {
+        if wait_ms <= 0.0 {
+            return None;
+        }
+        self.file_ms += wait_ms;
+        let delay = (self.file_ms - self.board_ms).round();
+        let delay_ms = if delay >= 1.0 {
+            // Under i32::MAX ms of any real file: clamped first.
+            #[allow(clippy::cast_possible_truncation)]
+            let delay_ms = delay.min(f64::from(i32::MAX)) as i32;
+            self.board_ms += f64::from(delay_ms);
+            Some(delay_ms)
+        } else {
+            None
+        };
+        self.key_ends();
+        delay_ms
+    }
+
+    fn key_ends(&mut self) {
+        self.worst_ms = self.worst_ms.max((self.board_ms - self.file_ms).abs());
     }
 }
 
