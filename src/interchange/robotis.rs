@@ -298,9 +298,9 @@ impl Robot {
     }
 
     /// What the file says it is for, in words.
-    fn note(&self) -> Option<String> {
+    fn note(&self) -> Vec<String> {
         if self.joints.is_empty() {
-            return None;
+            return Vec::new();
         }
         let mut motors: Vec<(String, usize)> = Vec::new();
         for (_, motor, _) in &self.joints {
@@ -310,14 +310,20 @@ impl Robot {
             }
         }
         let motors: Vec<String> = motors.iter().map(|(motor, count)| format!("{count} × {motor}")).collect();
-        let name = if self.name.is_empty() { "a robot".to_string() } else { format!("{:?}", self.name) };
-        let on = if self.controller.is_empty() { String::new() } else { format!(" (controller {})", self.controller) };
-        let guess = if self.is_bioloid() {
-            "its ids are a Bioloid humanoid's, so PLEN2 joints are guessed from them"
+        let mut notes = vec![if self.name.is_empty() {
+            format!("made for a robot of {}: ids and ranges are taken from it", motors.join(", "))
         } else {
-            "not a Bioloid humanoid, so no PLEN2 joint is guessed: map them in the table or with --map"
-        };
-        Some(format!("made for {name}{on}: {}; ids and ranges are taken from it; {guess}", motors.join(", ")))
+            format!("made for {:?}, a robot of {}: ids and ranges are taken from it", self.name, motors.join(", "))
+        }];
+        if !self.controller.is_empty() {
+            notes.push(format!("its controller: {}", self.controller));
+        }
+        notes.push(if self.is_bioloid() {
+            "its ids are a Bioloid humanoid's, so PLEN2 joints are guessed from them".into()
+        } else {
+            "not a Bioloid humanoid, so no PLEN2 joint is guessed: map them in the table or with --map".into()
+        });
+        notes
     }
 }
 

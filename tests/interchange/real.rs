@@ -275,7 +275,8 @@ fn an_r_plus_file_is_read_for_the_robot_it_declares() {
     assert!(source.channels.iter().all(|c| c.limits == Some((-150.0, 150.0))), "an XL-320 turns ±150°");
     assert!(source.dropped.iter().any(|d| d.contains("switched off")));
     assert!(source.dropped.iter().any(|d| d.contains("\"==== START ====\": no units")), "{:?}", source.dropped);
-    assert!(source.notes.iter().any(|n| n.contains("4 × XL-320") && n.contains("no PLEN2 joint is guessed")));
+    assert!(source.notes.iter().any(|n| n.contains("a robot of 4 × XL-320")), "{:?}", source.notes);
+    assert!(source.notes.iter().any(|n| n.contains("no PLEN2 joint is guessed")), "{:?}", source.notes);
     let flow = source.clips.iter().find(|c| c.name == "Greet").unwrap();
     let Body::Chain(links) = &flow.body else { panic!() };
     let named: Vec<(&str, u32, f64)> =

@@ -12,6 +12,7 @@ mod gamepad;
 mod graph;
 mod ik;
 mod import;
+mod import_board;
 mod joystick;
 mod log;
 mod macros;

@@ -78,6 +78,19 @@ pub struct Built {
     pub project: Project,
     /// What was converted, approximated and dropped.
     pub report: Report,
+    /// Where each converted clip (by index in the source) starts playing.
+    pub starts: Vec<(usize, Start)>,
+}
+
+/// What plays a converted clip on the board.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Start {
+    /// A servo board's macro, by id.
+    Macro(i32),
+    /// A PLEN2 motion, by slot.
+    Slot(u8),
+    /// A PLEN2 play list, by index.
+    PlayList(usize),
 }
 
 /// Converts `source` through `map` for `options.family`.
@@ -107,17 +120,18 @@ pub fn build(source: &Source, map: &JointMap, options: &Options) -> Result<Built
         }
     }
     let input = Input { source, mapped, clips, tolerance_deg: options.tolerance_deg };
+    let mut starts = Vec::new();
     let project = match options.family {
-        Family::Servo => Project::servo(servo::build(&input, &mut report)?),
+        Family::Servo => Project::servo(servo::build(&input, &mut report, &mut starts)?),
         Family::Plen2 => {
             let mut project = Project::empty(Family::Plen2);
-            project.plen2 = plen2::build(&input, &mut report)?;
+            project.plen2 = plen2::build(&input, &mut report, &mut starts)?;
             project
         }
         Family::Rflex => return Err(BuildError::Unmapped { family: "rFLEX base (it stores no motions)" }),
         other => return Err(BuildError::Unmapped { family: other.name() }),
     };
-    Ok(Built { project, report })
+    Ok(Built { project, report, starts })
 }
 
 /// What both families' builders read.

@@ -5,7 +5,7 @@
 //! and exit pages play lists.
 
 use super::servo::fit_said;
-use super::{BuildError, CUT_SHORT, Input, JUMP, LIVE_DEG_PER_S, frame_move, timing};
+use super::{BuildError, CUT_SHORT, Input, JUMP, LIVE_DEG_PER_S, Start, frame_move, timing};
 use crate::authoring::fit::{self, Budget, Plen2Board};
 use crate::authoring::fitted::{self, PLEN2_UPDATE_MS};
 use crate::authoring::recording::Recording;
@@ -28,7 +28,11 @@ const MAX_QUEUE: usize = 31;
 /// A motion name's longest.
 const NAME_CHARS: usize = 20;
 
-pub(super) fn build(input: &Input<'_>, report: &mut Report) -> Result<Plen2Project, BuildError> {
+pub(super) fn build(
+    input: &Input<'_>,
+    report: &mut Report,
+    starts: &mut Vec<(usize, Start)>,
+) -> Result<Plen2Project, BuildError> {
     let joints: Vec<Option<Joint>> = input
         .mapped
         .iter()
@@ -78,7 +82,8 @@ pub(super) fn build(input: &Input<'_>, report: &mut Report) -> Result<Plen2Proje
     let first_slot = place(input, &framed, &mut project, report);
     let slot_of = |clip: usize| first_slot.iter().find(|(index, ..)| *index == clip).map(|(_, slot, _)| *slot);
     link(input, &first_slot, &mut project, report);
-    flows(input, &slot_of, &mut project, report);
+    starts.extend(first_slot.iter().map(|&(clip, slot, _)| (clip, Start::Slot(slot))));
+    flows(input, &slot_of, &mut project, report, starts);
     Ok(project)
 }
 
@@ -150,7 +155,13 @@ fn link(input: &Input<'_>, first_slot: &[(usize, u8, u8)], project: &mut Plen2Pr
 }
 
 /// Flows as play lists.
-fn flows(input: &Input<'_>, slot_of: &dyn Fn(usize) -> Option<u8>, project: &mut Plen2Project, report: &mut Report) {
+fn flows(
+    input: &Input<'_>,
+    slot_of: &dyn Fn(usize) -> Option<u8>,
+    project: &mut Plen2Project,
+    report: &mut Report,
+    starts: &mut Vec<(usize, Start)>,
+) {
     for &index in &input.clips {
         let clip = input.clip(index);
         let Body::Chain(links) = &clip.body else { continue };
@@ -167,6 +178,7 @@ fn flows(input: &Input<'_>, slot_of: &dyn Fn(usize) -> Option<u8>, project: &mut
             report.approximated(format!("a flow of over {MAX_QUEUE} units: its play list keeps the first {MAX_QUEUE}"));
             entries.truncate(MAX_QUEUE);
         }
+        starts.push((index, Start::PlayList(project.play_lists.len())));
         project.play_lists.push(PlayList { name: clip.name.clone(), entries });
     }
 }
@@ -214,15 +226,15 @@ impl Clock {
             ));
         }
         if self.worst_ms >= 0.5 {
-            let jumps = if self.jumps > 0 {
-                ", across next-page jumps too (the jumped-to motion plays on the same cycles)"
-            } else {
-                ""
-            };
             report.approximated(format!(
-                "times kept on the PLEN2's {CYCLE_MS} ms cycles: every key within {:.1} ms of the file's time{jumps}, rounding never adding up",
+                "times kept on the PLEN2's {CYCLE_MS} ms cycles: every key within {:.1} ms of the file's time, rounding never adding up",
                 self.worst_ms
             ));
+        }
+        if self.jumps > 0 {
+            report.converted(
+                "next pages: the jumped-to motion plays on the same cycles as the one before, so the robot plays the chain as one",
+            );
         }
     }
 }

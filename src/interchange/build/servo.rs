@@ -2,7 +2,7 @@
 //! servo in one step) and, when it holds, a delay; a clip is a macro running
 //! them; repeats, next pages and flows are macros running macros.
 
-use super::{BuildError, CUT_SHORT, Input, JUMP, LIVE_DEG_PER_S, frame_move, timing};
+use super::{BuildError, CUT_SHORT, Input, JUMP, LIVE_DEG_PER_S, Start, frame_move, timing};
 use crate::authoring::fit::{self, Board, Budget, FitError, ServoBoard};
 use crate::authoring::fitted::{self, SERVO_UPDATE_MS, caption_within};
 use crate::authoring::recording::Recording;
@@ -13,7 +13,11 @@ use crate::project::{Action, Command, MAX_LIST_LEN, Macro, Run, Servo, ServoProj
 
 const CAPTION_BYTES: usize = 32;
 
-pub(super) fn build(input: &Input<'_>, report: &mut Report) -> Result<ServoProject, BuildError> {
+pub(super) fn build(
+    input: &Input<'_>,
+    report: &mut Report,
+    starts: &mut Vec<(usize, Start)>,
+) -> Result<ServoProject, BuildError> {
     let servos = servos(input, report);
     let mut made = Made { servos, actions: Vec::new(), macros: Vec::new() };
     // Macro ids: each clip's body, then (when it repeats or leads on) the macro that plays it.
@@ -58,6 +62,7 @@ pub(super) fn build(input: &Input<'_>, report: &mut Report) -> Result<ServoProje
         let caption = caption_within(&format!("{} then exit", clip.name), CAPTION_BYTES);
         made.macros.push(Macro { id: ids.take(), caption, commands });
     }
+    starts.extend(ids.clips.iter().map(|&(clip, _, play)| (clip, Start::Macro(play))));
     made.macros.sort_by_key(|m| m.id);
     report.converted(format!(
         "{} servos, {} actions, {} macros",

@@ -11,7 +11,10 @@ impl StudioApp {
     pub(super) fn poll_import(&mut self, ctx: &egui::Context) {
         for finished in self.import.poll(self.document.project.family) {
             match finished {
-                Finished::Failed(error) => self.report(error, true),
+                Finished::Failed(error) => {
+                    let said = crate::ui::import::note(&error, crate::ui::import::words(self.language));
+                    self.report(said, true);
+                }
                 Finished::MapSaved(path) => {
                     self.report(format!("{} {}", self.words().msg_saved, path.display()), false);
                 }

@@ -365,7 +365,7 @@ impl StudioApp {
         egui::CentralPanel::default().show(ui, |ui| self.tab_panel(ui, &mut actions));
 
         self.dialogs(ui, &mut actions);
-        self.import.window(ui.ctx(), &self.document.project, self.language, &mut actions);
+        self.import.window(ui.ctx(), (&self.document.project, &self.files.work), self.language, &mut actions);
         self.sound.follow_window(ui.ctx(), &self.document.project, self.language, &mut actions);
         let document = (&self.document.project, self.document.path.as_ref());
         self.import.export_window(ui.ctx(), document, self.language, &mut actions);

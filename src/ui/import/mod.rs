@@ -5,7 +5,10 @@
 //! open project as one undo step. The desk keeps its own state; the shell
 //! hands it its actions and takes back what it finished (`poll`).
 
+mod check;
+use check::{Checked, landings};
 mod export;
+mod played;
 mod table;
 mod words;
 
@@ -27,7 +30,7 @@ use crate::ui::files::FileWork;
 use crate::ui::i18n::Language;
 use crate::ui::view3d::{Scene, View};
 pub use export::{ExportSession, ExportTo};
-pub use words::{ImportWords, words};
+pub use words::{ImportWords, note, words};
 
 /// What the desk finished, for the shell.
 #[derive(Debug)]
@@ -79,6 +82,10 @@ pub struct ImportDesk {
     pub session: Option<Session>,
     view: View,
     plen2_chain: Option<Chain>,
+    /// What the board will play of the session as it stands: worked out off the frame.
+    checking: Option<(u64, Receiver<Checked>)>,
+    /// The last of it, for the choices it was worked out for (their hash).
+    checked: Option<(u64, Checked)>,
 }
 
 impl std::fmt::Debug for ImportDesk {
@@ -223,6 +230,12 @@ impl ImportDesk {
             self.writing_export = None;
             finished.push(result.map_or_else(Finished::Failed, |report| Finished::Exported(path, report)));
         }
+        if let Some((key, done)) = &self.checking
+            && let Some(result) = taken(done)
+        {
+            self.checked = Some((*key, result));
+            self.checking = None;
+        }
         if let Some(done) = &self.building
             && let Some(result) = taken(done)
         {
@@ -259,7 +272,13 @@ impl ImportDesk {
     }
 
     /// The window, when a file is open.
-    pub fn window(&mut self, ctx: &egui::Context, project: &Project, language: Language, actions: &mut Vec<Action>) {
+    pub fn window(
+        &mut self,
+        ctx: &egui::Context,
+        (project, files): (&Project, &FileWork),
+        language: Language,
+        actions: &mut Vec<Action>,
+    ) {
         let words = words(language);
         if let Some((path, _)) = &self.reading {
             egui::Window::new(words.title).collapsible(false).show(ctx, |ui| {
@@ -270,6 +289,9 @@ impl ImportDesk {
             });
         }
         let Some(mut session) = self.session.take() else { return };
+        if session.done.is_none() && project.family != Family::Rflex {
+            self.check(&session, project, files);
+        }
         let mut open = true;
         let room = ctx.content_rect().size() - egui::vec2(40.0, 60.0);
         egui::Window::new(words.title)
@@ -315,14 +337,26 @@ impl ImportDesk {
             session.family = project.family;
             session.map = JointMap::for_source(&session.source, project.family, None);
         }
+        for warning in landings(session, project, words) {
+            ui.colored_label(ui.visuals().warn_fg_color, warning);
+        }
         let clip = session.clip.unwrap_or(0);
-        let length = session.source.clips.get(clip).map_or(0.0, |c| preview::length_ms(&session.source, c));
-        let now = session
-            .source
-            .clips
-            .get(clip)
-            .map(|c| preview::degrees_at(&session.source, c, &session.map, session.time_ms))
-            .unwrap_or_default();
+        let file_length = session.source.clips.get(clip).map_or(0.0, |c| preview::length_ms(&session.source, c));
+        // What the board plays, once worked out; the file's own motion until then.
+        let board = match self.board(session) {
+            Some(Ok((_, Some(played)))) => Some(played),
+            _ => None,
+        };
+        let length = board.map_or(file_length, |played| played.length_ms.max(file_length));
+        let now = match board {
+            Some(played) => played.degrees_at(&session.source, &session.map, session.time_ms),
+            None => session
+                .source
+                .clips
+                .get(clip)
+                .map(|c| preview::degrees_at(&session.source, c, &session.map, session.time_ms))
+                .unwrap_or_default(),
+        };
         ui.separator();
         let height = (ui.available_height() - 34.0).max(160.0);
         let width = ui.available_width();
@@ -413,11 +447,18 @@ impl ImportDesk {
                 session.time_ms = seconds * 1000.0;
             }
         });
-        if !session.source.dropped.is_empty() {
-            ui.label(egui::RichText::new(words.left_out).small().strong());
+        let approximated = self.board_ui(ui, session, words);
+        if !session.source.dropped.is_empty() || !approximated.is_empty() {
             egui::ScrollArea::vertical().id_salt("import-left-out").show(ui, |ui| {
-                for note in &session.source.dropped {
-                    ui.label(egui::RichText::new(format!("• {note}")).small());
+                for (head, notes) in [(words.report_heads[1], &approximated), (words.left_out, &session.source.dropped)]
+                {
+                    if notes.is_empty() {
+                        continue;
+                    }
+                    ui.label(egui::RichText::new(head).small().strong());
+                    for line in notes {
+                        ui.label(egui::RichText::new(format!("• {}", note(line, words))).small());
+                    }
                 }
             });
         }
@@ -485,7 +526,7 @@ fn header_ui(ui: &mut egui::Ui, session: &mut Session, family: Family, words: &I
         .path
         .file_name()
         .map_or_else(|| session.path.display().to_string(), |n| n.to_string_lossy().into_owned());
-    ui.label(egui::RichText::new(format!("{name} — {}", session.source.format.name())).strong());
+    ui.label(egui::RichText::new(format!("{name} — {}", words::format(session.source.format, words))).strong());
     ui.horizontal(|ui| {
         let label = ui.label(words.motion);
         let shown = session.clip.map_or_else(
@@ -503,7 +544,7 @@ fn header_ui(ui: &mut egui::Ui, session: &mut Session, family: Family, words: &I
             .response
             .labelled_by(label.id);
         ui.separator();
-        ui.label(format!("{} {}", words.for_board, family.name()));
+        ui.label(format!("{} {}", words.for_board, words::family(family, words)));
         if session.source.clips.iter().any(|clip| matches!(clip.body, Body::Samples { .. })) {
             ui.separator();
             let label = ui.label(words.tolerance);
@@ -521,13 +562,14 @@ fn clip_name(source: &Source, clip: usize) -> String {
 fn report_ui(ui: &mut egui::Ui, report: &crate::interchange::Report, words: &ImportWords, actions: &mut Vec<Action>) {
     ui.heading(words.imported);
     egui::ScrollArea::vertical().max_height(420.0).show(ui, |ui| {
-        for (head, notes) in words.report_heads.iter().zip([&report.converted, &report.approximated, &report.dropped]) {
+        let all = [&report.converted, &report.approximated, &report.dropped, &report.notes];
+        for (head, notes) in words.report_heads.iter().zip(all) {
             if notes.is_empty() {
                 continue;
             }
             ui.strong(*head);
-            for note in notes {
-                ui.label(format!("• {note}"));
+            for line in notes {
+                ui.label(format!("• {}", note(line, words)));
             }
         }
     });

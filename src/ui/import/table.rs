@@ -85,19 +85,19 @@ fn target_picker(
     (family, key, named): (Family, &str, egui::Id),
     words: &ImportWords,
 ) {
-    let shown = target.map_or_else(|| words.not_imported.to_string(), Target::word);
+    let shown = target.map_or_else(|| words.not_imported.to_string(), |t| super::words::target(t, words));
     let picked =
         egui::ComboBox::from_id_salt(("import-target", key)).selected_text(shown).width(160.0).show_ui(ui, |ui| {
             ui.selectable_value(target, None, words.not_imported);
             match family {
                 Family::Plen2 => {
                     for joint in Joint::ALL {
-                        ui.selectable_value(target, Some(Target::Joint(joint)), joint.name());
+                        ui.selectable_value(target, Some(Target::Joint(joint)), (words.joint)(joint));
                     }
                 }
                 _ => {
                     for id in 0..=254u8 {
-                        ui.selectable_value(target, Some(Target::Servo(id)), format!("servo {id}"));
+                        ui.selectable_value(target, Some(Target::Servo(id)), (words.servo)(id));
                     }
                 }
             }
