@@ -138,7 +138,14 @@ fn read_input(request: &ConvertRequest) -> anyhow::Result<Input> {
         );
     };
     let source = interchange::read_decoded(Some(format), &decoded)
-        .with_context(|| format!("{name} is not a {} ({}); nothing was written", format.name(), format.tag()))?
+        .map_err(|error| {
+            let try_ = error.what_to_try(format);
+            anyhow::Error::new(error).context(format!(
+                "{name} is not a {} ({}); nothing was written ({try_})",
+                format.name(),
+                format.tag()
+            ))
+        })?
         .ok_or_else(|| anyhow::anyhow!("{name}: no format"))?;
     Ok(Input::Foreign(source))
 }

@@ -91,6 +91,23 @@ pub struct ReadError {
 }
 
 impl ReadError {
+    /// What to try about it: the line to fix, or taking the file again.
+    pub fn what_to_try(&self, format: Format) -> String {
+        let tool = match format {
+            Format::Maestro => "Maestro Control Center",
+            Format::Mtn => "RoboPlus Motion",
+            Format::Mtnx => "R+ Motion",
+            Format::Blender => "Blender",
+        };
+        if self.message.contains("cut short") {
+            format!("take the whole file again, or save it again from {tool}")
+        } else if let Some(line) = self.line {
+            format!("correct line {line} in a text editor, or save the file again from {tool}")
+        } else {
+            format!("save the file again from {tool}")
+        }
+    }
+
     /// An error at `line` in `element`.
     pub fn at(line: usize, element: &str, message: impl Into<String>) -> Self {
         Self { line: Some(line), element: (!element.is_empty()).then(|| element.to_string()), message: message.into() }
@@ -98,7 +115,7 @@ impl ReadError {
 }
 
 /// What to try when a file ends before its tool's last word.
-pub(super) const CUT_SHORT: &str = "the file ends early: it was cut short (a copy or download broken off); take it again from where it came, or save it again from its tool";
+pub(super) const CUT_SHORT: &str = "the file ends early: it was cut short (a copy or download broken off)";
 
 impl From<super::xml::XmlError> for ReadError {
     fn from(error: super::xml::XmlError) -> Self {

@@ -73,7 +73,7 @@ fn bad_input_is_said_with_where_and_nothing_is_written() {
     assert!(!ok);
     assert!(
         err.contains(
-            "broken.xml is not a Maestro settings file (maestro); nothing was written: line 16: <Frame>: duration \"soon\" is not a number"
+            "broken.xml is not a Maestro settings file (maestro); nothing was written (correct line 16 in a text editor, or save the file again from Maestro Control Center): line 16: <Frame>: duration \"soon\" is not a number"
         ),
         "{err}"
     );

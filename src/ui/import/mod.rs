@@ -110,7 +110,7 @@ fn read_source(path: &std::path::Path) -> Result<Source, String> {
         format!("{} is not a file Servo Studio can import (a Maestro settings file, RoboPlus .mtn, R+ Motion .mtnx or Blender servo-animation JSON)", path.display())
     })?;
     crate::interchange::read_decoded(Some(format), &decoded)
-        .map_err(|error| format!("{} ({}): {error}", path.display(), format.name()))?
+        .map_err(|error| format!("{} ({}): {error} — {}", path.display(), format.name(), error.what_to_try(format)))?
         .ok_or_else(|| path.display().to_string())
 }
 
