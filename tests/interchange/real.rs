@@ -402,3 +402,40 @@ fn files_cut_short_name_their_line_and_say_what_to_try() {
     assert_eq!(error.line, Some(cut.lines().count()), "{error}");
     assert!(error.message.contains("cut short"), "{error}");
 }
+
+/// Each add-on export goes into a servo project and back out as add-on JSON
+/// at its own frame rate: every frame of every servo reads back within the
+/// fit's tolerance (1°) of the file, in the file's own unit.
+#[test]
+fn every_blender_export_goes_to_a_board_and_back_within_the_tolerance() {
+    let mut files = Vec::new();
+    tool_files(&fixture("blender"), &mut files);
+    for path in &files {
+        let source = read(path);
+        let map = JointMap::for_source(&source, Family::Servo, None);
+        let built = build::build(&source, &map, &Options::new(Family::Servo)).unwrap();
+        let servo = &built.project.servo;
+        let Body::Samples { fps, rows } = &source.clips[0].body else { panic!() };
+        let (out, _) =
+            servo_studio::interchange::export::blender_servo(servo, servo.macros[0].id, *fps, Some(&map)).unwrap();
+        let again = servo_studio::interchange::read(Format::Blender, &out).unwrap();
+        let Body::Samples { rows: back, .. } = &again.clips[0].body else { panic!() };
+        assert!(back.len() + 1 >= rows.len(), "{}: {} frames back of {}", path.display(), back.len(), rows.len());
+        for (channel, original) in source.channels.iter().enumerate() {
+            let entry = map.entry(&original.key).unwrap();
+            // Written under the file's own key, in its own unit (the map given to the export says them).
+            let column = again.channels.iter().position(|c| c.key == original.key).unwrap();
+            let back_map = JointMap::for_source(&again, Family::Servo, None);
+            let back_entry = back_map.entry(&again.channels[column].key).unwrap();
+            for (frame, (want, got)) in rows.iter().zip(back).enumerate() {
+                let (want, got) = (entry.degrees(want[channel]), back_entry.degrees(got[column]));
+                assert!(
+                    (want - got).abs() <= 1.0 + 0.05,
+                    "{} servo {} frame {frame}: {want:.2}° back as {got:.2}°",
+                    path.display(),
+                    original.key
+                );
+            }
+        }
+    }
+}
