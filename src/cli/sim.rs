@@ -64,6 +64,10 @@ pub struct SimArgs {
     /// (writes held back up to MS ms) or slow=BAUD.
     #[arg(long)]
     pub link: Option<LinkKind>,
+    /// Write every command the board receives to FILE, a line each: the system's monotonic
+    /// clock in nanoseconds when the board took it in, then the command (any family).
+    #[arg(long, value_name = "FILE")]
+    pub log: Option<PathBuf>,
 }
 
 impl SimArgs {
@@ -136,7 +140,21 @@ pub fn run(args: &SimArgs, family: Family) -> anyhow::Result<()> {
 
 /// Serves an emulator of any family on a pseudo-terminal or TCP; prints the port on
 /// the first line of stdout, then runs until killed.
-pub fn serve<D: Driver>(args: &SimArgs, emulator: D) -> anyhow::Result<()> {
+pub fn serve<D: Driver>(args: &SimArgs, emulator: D) -> anyhow::Result<()>
+where
+    D::Event: sim::Received,
+{
+    match &args.log {
+        Some(path) => {
+            let log = std::fs::File::create(path)
+                .map_err(|error| anyhow::anyhow!("cannot write the log {}: {error}", path.display()))?;
+            served(args, sim::Logged::new(emulator, log))
+        }
+        None => served(args, emulator),
+    }
+}
+
+fn served<D: Driver>(args: &SimArgs, emulator: D) -> anyhow::Result<()> {
     let handle = match args.tcp {
         Some(address) => sim::spawn_tcp(emulator, address, no_waker())?,
         None => spawn_pty(emulator)?,

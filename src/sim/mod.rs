@@ -3,12 +3,14 @@
 //! and the rFLEX base.
 
 mod faults;
+mod log;
 mod plen2;
 mod rflex;
 mod runner;
 mod servo;
 
 pub use faults::{Faults, FaultsError, LineNoise, LineNoiseError};
+pub use log::{Logged, MonotonicClock, Received};
 pub use plen2::{JointLimits, LinkKind, Plen2Sim, Plen2SimCommand, Plen2SimEvent, Plen2State, Plen2Timing};
 pub use rflex::{BaseState, RflexSim, RflexSimCommand, RflexSimConfig, RflexSimEvent};
 pub use runner::{InMemory, SimHandle, spawn_in_memory, spawn_pty, spawn_tcp};

@@ -8,4 +8,5 @@ mod hostile;
 mod inputs;
 mod robust;
 mod servo;
+mod sim_log;
 mod trajectory;
