@@ -17,6 +17,7 @@ mod fit;
 mod follow_audio;
 mod gui;
 mod out;
+mod play;
 mod plen2;
 mod probe;
 mod rflex;
@@ -157,6 +158,11 @@ pub enum CliCommand {
         #[arg(long, value_parser = parse_family, default_value = "servo")]
         protocol: Family,
     },
+    /// Play a show with no window: connect every device (saying which answered), play the
+    /// show with its sound (or silent, said) on every board together, each run's start, skew
+    /// and end logged; Ctrl-C / SIGTERM stop every device (bases brake) and exit 130 / 143.
+    /// The boards must hold the show's content (servo-studio import). docs/show.md
+    Play(play::PlayArgs),
     /// Read everything from a board into a project file.
     Export {
         /// The board.
@@ -388,6 +394,7 @@ pub fn run(command: CliCommand) -> ExitCode {
         CliCommand::AudioInfo { sound, sensitivity } => audio_info(&sound, sensitivity),
         CliCommand::Probe { port, baud, timeout_ms } => probe::run(port.as_deref(), baud, timeout_ms),
         CliCommand::Sim { args, protocol } => sim::run(&args, protocol),
+        CliCommand::Play(args) => play::run(&args),
         CliCommand::Rflex { command } => rflex::run(&command),
         CliCommand::Export { port, out, slots, force } => export(&port, &out, slots.as_ref(), force),
         CliCommand::Import { port, input, yes, force, no_backup, backup_dir } => {

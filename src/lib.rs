@@ -15,5 +15,6 @@ pub mod interchange;
 pub mod link;
 pub mod project;
 pub mod protocol;
+pub mod show;
 pub mod sim;
 pub mod ui;

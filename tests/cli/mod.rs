@@ -6,6 +6,7 @@ mod follow_audio;
 mod honest;
 mod hostile;
 mod inputs;
+mod play;
 mod robust;
 mod servo;
 mod sim_log;

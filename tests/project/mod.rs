@@ -2,4 +2,5 @@
 
 mod file;
 mod props;
+mod show;
 mod validation;

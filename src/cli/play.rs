@@ -1,0 +1,373 @@
+//! `servo-studio play SHOW.json`: a show played with no window — every
+//! device connected (saying which answered), the show's sound through the
+//! system's sound server (or silent, said), each run's start, skew and end
+//! logged; Ctrl-C and SIGTERM stop every device (bases brake) and exit 130
+//! and 143. The boards must hold the show's content (`servo-studio import`).
+
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+use anyhow::{Context, bail};
+use clap::Args;
+
+use super::out::{line, say};
+use super::signals;
+use crate::audio::together::link_delay;
+use crate::device::plen2::{
+    Command as Plen2Command, Plen2Handle, Plen2Notice, Plen2Options, Plen2Requester, start_delay,
+};
+use crate::device::rflex::{RflexBase, RflexNotice};
+use crate::device::servo::{DEFAULT_BAUD, Requester, ServoBoard, SessionConfig};
+use crate::device::{self};
+use crate::link::{self, LineSettings, LinkEvent, PortName, no_waker};
+use crate::project::Family;
+use crate::protocol::servo::{ALL_SERVOS, Message, ServoSwitches};
+use crate::show::play::{Player, Ran, Sent, Stage, Stopped};
+use crate::show::{Cue, Show, Start};
+use crate::sim::MonotonicClock;
+
+/// `servo-studio play` options.
+#[derive(Debug, Args)]
+pub struct PlayArgs {
+    /// The show (or a project file: a show of one device).
+    pub show: PathBuf,
+    /// Where a device is connected, NAME=PORT (overrides the show's port; repeat for each).
+    #[arg(long = "device", value_name = "NAME=PORT")]
+    pub devices: Vec<String>,
+    /// Plays the show this many times (with --at: at most this many runs; default 1, or every --at time forever).
+    #[arg(long = "loop", value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
+    pub runs: Option<u32>,
+    /// Starts a run at this local time, HH:MM (repeat for several; each day).
+    #[arg(long = "at", value_name = "HH:MM", value_parser = parse_at)]
+    pub at: Vec<(u32, u32)>,
+}
+
+fn parse_at(text: &str) -> Result<(u32, u32), String> {
+    let (hours, minutes) = text.split_once(':').ok_or_else(|| format!("{text:?}: give a time as HH:MM"))?;
+    match (hours.parse::<u32>(), minutes.parse::<u32>()) {
+        (Ok(hours), Ok(minutes)) if hours < 24 && minutes < 60 => Ok((hours, minutes)),
+        _ => Err(format!("{text:?} is not a time of day (00:00..23:59)")),
+    }
+}
+
+/// Plays the show; `Ok` after the last run.
+pub fn run(args: &PlayArgs) -> anyhow::Result<()> {
+    let mut show = Show::open(&args.show).with_context(|| format!("cannot play {}", args.show.display()))?;
+    default_cue(&mut show)?;
+    let ports = ports(&show, &args.devices)?;
+    let interrupts = signals::listen().context("cannot listen for Ctrl-C")?;
+    let mut stages: Vec<Box<dyn Stage>> = Vec::new();
+    for (device, port) in show.devices.iter().zip(&ports) {
+        let (stage, delay) = connect(device.project.family, port, device).with_context(|| {
+            format!("{} ({}) did not answer on {port}; nothing was played", device.name, device.project.family.name())
+        })?;
+        say!(
+            "{} ({}) answered on {port}; its start takes {:.1} ms to reach it",
+            device.name,
+            device.project.family.name(),
+            delay.as_secs_f64() * 1000.0
+        );
+        stages.push(stage);
+    }
+    let sound = sound(&show, &args.show);
+    let (stop, stopped) = crossbeam_channel::unbounded();
+    let exit_code = std::sync::Arc::new(std::sync::atomic::AtomicU8::new(0));
+    let code = std::sync::Arc::clone(&exit_code);
+    std::thread::spawn(move || {
+        for interrupt in interrupts {
+            code.store(interrupt.exit_code, std::sync::atomic::Ordering::SeqCst);
+            if stop.send(interrupt.name.to_string()).is_err() {
+                return;
+            }
+        }
+    });
+    let mut player = Player { show: &show, stages, sound, stop: stopped.clone() };
+    let runs = args.runs.unwrap_or(if args.at.is_empty() { 1 } else { u32::MAX });
+    let clock = MonotonicClock::now();
+    for run in 1..=runs {
+        if let Some(at) = next_time(&args.at, run)
+            && let Ok(what) = stopped.recv_deadline(at)
+        {
+            return Err(interrupted(&exit_code, &what));
+        }
+        match player.run() {
+            Ok(ran) => log_run(run, &ran, &clock)?,
+            Err(Stopped::Asked(what)) => return Err(interrupted(&exit_code, &what)),
+            Err(stopped) => bail!("run {run}: {stopped}"),
+        }
+    }
+    Ok(())
+}
+
+fn interrupted(exit_code: &std::sync::atomic::AtomicU8, what: &str) -> anyhow::Error {
+    let code = exit_code.load(std::sync::atomic::Ordering::SeqCst);
+    super::interrupted(
+        signals::Interrupt { name: signal_name(what), exit_code: code.max(1) },
+        "every device was stopped",
+    )
+}
+
+fn signal_name(what: &str) -> &'static str {
+    match what {
+        "SIGINT" => "SIGINT",
+        "SIGTERM" => "SIGTERM",
+        "SIGHUP" => "SIGHUP",
+        _ => "Ctrl-C",
+    }
+}
+
+/// A show of one device with no cue (a project file) starts its first macro or motion at 0, said.
+fn default_cue(show: &mut Show) -> anyhow::Result<()> {
+    if !show.cues.is_empty() {
+        return Ok(());
+    }
+    let [device] = show.devices.as_slice() else { bail!("the show has no cue: nothing to play") };
+    let start = match device.project.family {
+        family if family == Family::Servo => device.project.servo.macros.iter().map(|m| m.id).min().map(Start::Macro),
+        family if family == Family::Plen2 => device.project.plen2.motions.iter().map(|m| m.slot).min().map(Start::Slot),
+        _ => None,
+    };
+    let Some(start) = start else { bail!("{} has no cue and no macro or motion to play", device.name) };
+    say!("{} has no cue: playing {start:?} from the start", device.name);
+    show.cues.push(Cue { device: device.name.clone(), at_ms: 0, start });
+    Ok(())
+}
+
+/// Each device's port: `--device NAME=PORT`, else the show's.
+fn ports(show: &Show, given: &[String]) -> anyhow::Result<Vec<String>> {
+    let mut named: Vec<(String, String)> = Vec::new();
+    for pair in given {
+        let Some((name, port)) = pair.split_once('=') else { bail!("--device {pair:?}: give NAME=PORT") };
+        if show.device(name).is_none() {
+            let names: Vec<&str> = show.devices.iter().map(|d| d.name.as_str()).collect();
+            bail!("--device {name}: the show has no device {name:?} (it has {})", names.join(", "));
+        }
+        named.push((name.to_string(), port.to_string()));
+    }
+    show.devices
+        .iter()
+        .map(|device| {
+            named
+                .iter()
+                .find(|(name, _)| *name == device.name)
+                .map(|(_, port)| port.clone())
+                .or_else(|| device.port.clone())
+                .ok_or_else(|| anyhow::anyhow!("{} has no port: give --device {}=PORT", device.name, device.name))
+        })
+        .collect()
+}
+
+/// The next of the day's `--at` times for run `run`, as an instant (`None`: start now).
+fn next_time(at: &[(u32, u32)], run: u32) -> Option<Instant> {
+    if at.is_empty() {
+        return None;
+    }
+    let now = chrono::Local::now();
+    let (hours, minutes) = at[usize::try_from(run - 1).unwrap_or(0) % at.len()];
+    let today = now.date_naive().and_hms_opt(hours, minutes, 0)?;
+    let mut when = today.and_local_timezone(chrono::Local).earliest()?;
+    if when <= now {
+        when += chrono::Duration::days(1);
+    }
+    let wait = (when - now).to_std().unwrap_or_default();
+    say!("run {run} waits for {when}");
+    Some(Instant::now() + wait)
+}
+
+/// The show's sound through the system's sound server, or silent (said).
+fn sound(show: &Show, show_path: &Path) -> Option<(crate::audio::output::Speakers, PathBuf)> {
+    let track = show.sound.as_ref()?;
+    let path = show_path.parent().unwrap_or(Path::new(".")).join(&track.path);
+    match crate::audio::output::Speakers::connect() {
+        Ok(speakers) => Some((speakers, path)),
+        Err(error) => {
+            say!("no sound output ({error}): playing silent");
+            None
+        }
+    }
+}
+
+fn log_run(run: u32, ran: &Ran, clock: &MonotonicClock) -> anyhow::Result<()> {
+    line(&format!(
+        "run {run}: show's 0 at {} ns (monotonic){}",
+        clock.ns(ran.zero),
+        if ran.with_sound { ", with its sound" } else { ", silent" }
+    ))?;
+    for sent in &ran.sent {
+        line(&format!(
+            "run {run}: {} {:?} due at {} ns, written {:.2} ms late, moving at {} ns",
+            sent.device,
+            sent.start,
+            clock.ns(sent.due_at),
+            sent.late_ms(),
+            clock.ns(sent.moving_at)
+        ))?;
+    }
+    let worst = ran.sent.iter().map(Sent::late_ms).fold(0.0, f64::max);
+    line(&format!(
+        "run {run}: ended after {:.2} s; largest skew {worst:.2} ms",
+        ran.ended.saturating_duration_since(ran.zero).as_secs_f64()
+    ))?;
+    Ok(())
+}
+
+/// Connects `device` on `port`: its stage and the delay of its first cue's start.
+fn connect(family: Family, port: &str, device: &crate::show::Device) -> anyhow::Result<(Box<dyn Stage>, Duration)> {
+    let name = PortName::parse(port)?;
+    let settings = device::line_settings(family);
+    if family == Family::Servo {
+        let board = ServoBoard::connect(&name, DEFAULT_BAUD, SessionConfig::default(), no_waker())?;
+        let latency = round_trip(|| {
+            board.requester().request(Message::QueryMemorySizeRequest).map(|_| ()).map_err(|e| e.to_string())
+        })?;
+        let stage = ServoStage { requester: board.requester(), latency, board, lost: None };
+        let delay = stage.start_delay(&Start::Macro(0));
+        return Ok((Box::new(stage), delay));
+    }
+    if family == Family::Plen2 {
+        let connection = link::open(&name, &LineSettings { ..settings })?;
+        let mut handle = Plen2Handle::over(connection, Plen2Options::default(), no_waker())?;
+        let requester = handle.requester();
+        let latency = round_trip(|| requester.probe().map_err(|e| e.to_string()))?;
+        let lost = handle.pump(Instant::now()).into_iter().find_map(|notice| match notice {
+            Plen2Notice::Disconnected(reason) => Some(reason.to_string()),
+            _ => None,
+        });
+        let stage = Plen2Stage { handle, requester, latency, lost };
+        let delay = stage.start_delay(&Start::Slot(0));
+        return Ok((Box::new(stage), delay));
+    }
+    if family == Family::Rflex {
+        let connection = link::open(&name, &settings)?;
+        let base = RflexBase::over(connection, device.project.rflex.robot.conversion(), no_waker())?;
+        base.start(false);
+        let stage =
+            RflexStage { base, accel: device.project.rflex.drive.accel_m_per_s2, baud: settings.baud, lost: None };
+        let delay = stage.start_delay(&Start::Drive { speed_m_s: 0.0, turn_deg_s: 0.0, for_ms: 0 });
+        return Ok((Box::new(stage), delay));
+    }
+    bail!("a {} cannot play in a show", family.name())
+}
+
+/// Half the shortest of three round trips: the link's one-way latency, as well as it can be known.
+fn round_trip(mut ask: impl FnMut() -> Result<(), String>) -> anyhow::Result<Duration> {
+    let mut shortest = Duration::MAX;
+    for _ in 0..3 {
+        let asked = Instant::now();
+        ask().map_err(|error| anyhow::anyhow!(error))?;
+        shortest = shortest.min(asked.elapsed());
+    }
+    Ok(shortest / 2)
+}
+
+struct ServoStage {
+    board: ServoBoard,
+    requester: Requester,
+    latency: Duration,
+    lost: Option<String>,
+}
+
+impl Stage for ServoStage {
+    fn start_delay(&self, start: &Start) -> Duration {
+        let Start::Macro(macro_id) = *start else { return Duration::ZERO };
+        let bytes = Message::ExecuteMacroRequest { macro_id }.encode().map_or(16, |bytes| bytes.len());
+        link_delay(bytes, DEFAULT_BAUD, self.latency)
+    }
+
+    fn start(&mut self, start: &Start) -> Result<(), String> {
+        let Start::Macro(macro_id) = *start else { return Err(format!("a servo board cannot start {start:?}")) };
+        self.requester.send(Message::ExecuteMacroRequest { macro_id }).map_err(|error| error.to_string())
+    }
+
+    fn stop(&mut self) {
+        let all = ServoSwitches { servo_id: ALL_SERVOS, is_start: false, is_hold: true };
+        let _ = self.requester.stop(Message::SetServoParameterRequest(all));
+    }
+
+    fn tick(&mut self, _now: Instant) {
+        for event in self.board.events().try_iter() {
+            if let LinkEvent::Disconnected { reason } = event {
+                self.lost = Some(reason.to_string());
+            }
+        }
+    }
+
+    fn lost(&self) -> Option<String> {
+        self.lost.clone()
+    }
+}
+
+struct Plen2Stage {
+    handle: Plen2Handle,
+    requester: Plen2Requester,
+    latency: Duration,
+    lost: Option<String>,
+}
+
+impl Stage for Plen2Stage {
+    fn start_delay(&self, start: &Start) -> Duration {
+        let Start::Slot(slot) = *start else { return Duration::ZERO };
+        start_delay(&Plen2Command::PlayMotion { slot }, self.latency)
+    }
+
+    fn start(&mut self, start: &Start) -> Result<(), String> {
+        let Start::Slot(slot) = *start else { return Err(format!("a PLEN2 cannot start {start:?}")) };
+        self.requester.send(Plen2Command::PlayMotion { slot }).map_err(|error| error.to_string())
+    }
+
+    fn stop(&mut self) {
+        self.handle.stop();
+    }
+
+    fn tick(&mut self, now: Instant) {
+        for notice in self.handle.pump(now) {
+            if let Plen2Notice::Disconnected(reason) = notice {
+                self.lost = Some(reason.to_string());
+            }
+        }
+    }
+
+    fn lost(&self) -> Option<String> {
+        self.lost.clone()
+    }
+}
+
+struct RflexStage {
+    base: RflexBase,
+    accel: f64,
+    baud: u32,
+    lost: Option<String>,
+}
+
+impl Stage for RflexStage {
+    fn start_delay(&self, _start: &Start) -> Duration {
+        // A velocity command's frame: under 40 bytes.
+        link_delay(40, self.baud, Duration::ZERO)
+    }
+
+    fn start(&mut self, start: &Start) -> Result<(), String> {
+        let Start::Drive { speed_m_s, turn_deg_s, .. } = *start else {
+            return Err(format!("an rFLEX base cannot start {start:?}"));
+        };
+        self.base.set_brake(false);
+        self.base.drive(speed_m_s, turn_deg_s.to_radians(), self.accel);
+        Ok(())
+    }
+
+    fn stop(&mut self) {
+        self.base.stop();
+        self.base.set_brake(true);
+    }
+
+    fn tick(&mut self, now: Instant) {
+        for notice in self.base.pump(now) {
+            if let RflexNotice::Disconnected(reason) = notice {
+                self.lost = Some(reason.to_string());
+            }
+        }
+    }
+
+    fn lost(&self) -> Option<String> {
+        self.lost.clone().or_else(|| self.base.is_lost().then(|| "the link ended".to_string()))
+    }
+}

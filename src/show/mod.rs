@@ -1,0 +1,262 @@
+//! A show: several devices — servo boards, PLEN2s, rFLEX bases in any mix,
+//! each a name, a port, a place on the floor and its own project — on one
+//! timeline with one sound, and cues saying what each device starts when.
+//! Saved as project format version 3 (`docs/show.md`); a version 1 or 2
+//! project file opens as a show of one device whose project is that file,
+//! byte for byte ([`Show::open`]).
+
+pub mod play;
+
+use std::path::Path;
+
+use serde::{Deserialize, Serialize};
+
+use crate::project::{self, Family, Project, SoundTrack};
+
+/// The `format` tag a show file carries.
+pub const FORMAT_TAG: &str = "servo-studio-show";
+/// The version a show file is (a project file is 1 or 2).
+pub const VERSION: u32 = 3;
+
+/// Several devices on one timeline with one sound.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Show {
+    /// The devices, in the order they are connected and listed.
+    pub devices: Vec<Device>,
+    /// The sound the show is timed to.
+    pub sound: Option<SoundTrack>,
+    /// What each device starts when.
+    pub cues: Vec<Cue>,
+}
+
+/// One device of a show.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Device {
+    /// Its name, unique in the show ("skull", "arms", "plen").
+    pub name: String,
+    /// Where it is connected (`/dev/ttyUSB0`, `tcp://…`); `None`: given when played (`--device NAME=PORT`).
+    pub port: Option<String>,
+    /// Where it stands on the floor: x and y in metres, heading in degrees.
+    pub place: Place,
+    /// Its family and what it holds (motions, macros, settings).
+    pub project: Project,
+}
+
+/// Where a device stands on the floor.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Place {
+    /// Metres along the floor's x.
+    #[serde(default)]
+    pub x_m: f64,
+    /// Metres along the floor's y.
+    #[serde(default)]
+    pub y_m: f64,
+    /// Heading, degrees from +x.
+    #[serde(default)]
+    pub heading_deg: f64,
+}
+
+/// What a device starts, and when.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Cue {
+    /// The device, by name.
+    pub device: String,
+    /// When, ms from the show's start (the sound's start plus its offset).
+    pub at_ms: u64,
+    /// What it starts.
+    #[serde(flatten)]
+    pub start: Start,
+}
+
+/// What a cue starts on its device.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Start {
+    /// A servo board's macro, by id.
+    Macro(i32),
+    /// A PLEN2's motion, by slot.
+    Slot(u8),
+    /// An rFLEX base drives straight at `speed_m_s` turning `turn_deg_s`, for `for_ms`, then stops.
+    Drive {
+        /// Forward speed, m/s (negative: backwards).
+        speed_m_s: f64,
+        /// Turn rate, degrees a second (positive: left).
+        turn_deg_s: f64,
+        /// How long, ms.
+        for_ms: u64,
+    },
+}
+
+/// A show file that cannot be read, or a show that cannot be played.
+#[derive(Debug, thiserror::Error)]
+pub enum ShowError {
+    /// Not readable, or not a show or a project.
+    #[error(transparent)]
+    Load(#[from] project::LoadError),
+    /// JSON that is not a show.
+    #[error("not a show: {0}")]
+    Json(String),
+    /// What the show says does not hold together.
+    #[error("{0}")]
+    Invalid(String),
+}
+
+/// A device as the file holds it: its project as a whole project file's JSON.
+#[derive(Serialize, Deserialize)]
+struct DeviceFile {
+    name: String,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    port: Option<String>,
+    #[serde(default)]
+    place: Place,
+    project: serde_json::Value,
+}
+
+#[derive(Serialize, Deserialize)]
+struct ShowFile {
+    format: String,
+    version: u32,
+    devices: Vec<DeviceFile>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    sound: Option<SoundTrack>,
+    #[serde(default)]
+    cues: Vec<Cue>,
+}
+
+impl Show {
+    /// A show of one device, `name`, holding `project` (its sound becomes the show's).
+    pub fn of_one(name: &str, mut project: Project) -> Self {
+        let sound = project.sound.take();
+        let device = Device { name: name.to_string(), port: None, place: Place::default(), project };
+        Self { devices: vec![device], sound, cues: Vec::new() }
+    }
+
+    /// A show file (version 3), or a project file (version 1 or 2) as a show of one device named after the file.
+    pub fn open(path: &Path) -> Result<Self, ShowError> {
+        let text = project::input::read_text(path, project::input::MAX_PROJECT_BYTES)
+            .map_err(|error| ShowError::Load(error.into()))?;
+        let name = path.file_stem().map_or_else(|| "board".to_string(), |stem| stem.to_string_lossy().into_owned());
+        Self::from_text(&text, &name)
+    }
+
+    /// `text` as a show, or as a project of one device named `name`.
+    pub fn from_text(text: &str, name: &str) -> Result<Self, ShowError> {
+        let value: serde_json::Value =
+            serde_json::from_str(text).map_err(|error| ShowError::Json(format!("line {}: {error}", error.line())))?;
+        if value.get("format").and_then(serde_json::Value::as_str) != Some(FORMAT_TAG) {
+            return Ok(Self::of_one(name, project::from_json(text)?));
+        }
+        let file: ShowFile = serde_json::from_value(value).map_err(|error| ShowError::Json(error.to_string()))?;
+        if file.version > VERSION {
+            return Err(ShowError::Invalid(format!(
+                "show file version {} is newer than this Servo Studio understands (up to {VERSION}); update Servo Studio to open it",
+                file.version
+            )));
+        }
+        let mut devices = Vec::new();
+        for device in file.devices {
+            let project = project::from_json(&device.project.to_string())
+                .map_err(|error| ShowError::Invalid(format!("device {:?}: {error}", device.name)))?;
+            devices.push(Device { name: device.name, port: device.port, place: device.place, project });
+        }
+        let show = Self { devices, sound: file.sound, cues: file.cues };
+        show.check()?;
+        Ok(show)
+    }
+
+    /// The show as a version 3 file.
+    pub fn to_json(&self) -> String {
+        let devices = self
+            .devices
+            .iter()
+            .map(|device| DeviceFile {
+                name: device.name.clone(),
+                port: device.port.clone(),
+                place: device.place,
+                project: serde_json::from_str(&project::to_json(&device.project)).unwrap_or_default(),
+            })
+            .collect();
+        let file = ShowFile {
+            format: FORMAT_TAG.into(),
+            version: VERSION,
+            devices,
+            sound: self.sound.clone(),
+            cues: self.cues.clone(),
+        };
+        serde_json::to_string_pretty(&file).unwrap_or_default()
+    }
+
+    /// The device called `name`.
+    pub fn device(&self, name: &str) -> Option<&Device> {
+        self.devices.iter().find(|device| device.name == name)
+    }
+
+    /// Whether names are unique, every cue names a device and starts what it holds.
+    pub fn check(&self) -> Result<(), ShowError> {
+        for (index, device) in self.devices.iter().enumerate() {
+            if device.name.trim().is_empty() {
+                return Err(ShowError::Invalid(format!("device {} has no name", index + 1)));
+            }
+            if self.devices[..index].iter().any(|other| other.name == device.name) {
+                return Err(ShowError::Invalid(format!("two devices are called {:?}: names must differ", device.name)));
+            }
+        }
+        for cue in &self.cues {
+            let device = self.device(&cue.device).ok_or_else(|| {
+                ShowError::Invalid(format!(
+                    "a cue at {} ms starts {:?}, which is not a device of the show",
+                    cue.at_ms, cue.device
+                ))
+            })?;
+            let family = device.project.family;
+            let holds = match cue.start {
+                Start::Macro(id) => family == Family::Servo && device.project.servo.macro_by_id(id).is_some(),
+                Start::Slot(slot) => {
+                    family == Family::Plen2 && device.project.plen2.motions.iter().any(|m| m.slot == slot)
+                }
+                Start::Drive { speed_m_s, turn_deg_s, .. } => {
+                    family == Family::Rflex && speed_m_s.is_finite() && turn_deg_s.is_finite()
+                }
+            };
+            if !holds {
+                return Err(ShowError::Invalid(format!(
+                    "the cue at {} ms asks {:?} ({}) to start {:?}, which it does not hold",
+                    cue.at_ms,
+                    cue.device,
+                    family.name(),
+                    cue.start
+                )));
+            }
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used)]
+    use super::*;
+
+    #[test]
+    fn a_project_is_a_show_of_one_device_and_a_show_reads_back_as_written() {
+        let project = Project::servo(project::ServoProject::default());
+        let text = project::to_json(&project);
+        let show = Show::from_text(&text, "skull").unwrap();
+        assert_eq!(show.devices.len(), 1);
+        assert_eq!((show.devices[0].name.as_str(), &show.devices[0].project), ("skull", &project));
+        let again = Show::from_text(&show.to_json(), "other").unwrap();
+        assert_eq!(again, show);
+    }
+
+    #[test]
+    fn cues_must_name_devices_and_what_they_hold() {
+        let mut show = Show::of_one("skull", Project::servo(project::ServoProject::default()));
+        show.cues.push(Cue { device: "arms".into(), at_ms: 0, start: Start::Macro(1) });
+        assert!(show.check().unwrap_err().to_string().contains("\"arms\", which is not a device"));
+        show.cues[0].device = "skull".into();
+        assert!(show.check().unwrap_err().to_string().contains("which it does not hold"));
+        show.devices.push(show.devices[0].clone());
+        show.cues.clear();
+        assert!(show.check().unwrap_err().to_string().contains("two devices are called \"skull\""));
+    }
+}

@@ -1,0 +1,253 @@
+//! Playing a show on its boards together: each cue's start command goes out
+//! its device's own delay (the command's time on the line, the link's
+//! latency, the board's wait for its next update) before the moment it is
+//! due on the show's clock — the sound's, when there is one — so every device
+//! starts moving on time. STOP, a signal or a lost link stops every device
+//! (bases brake). Devices are [`Stage`]s, so the player is tested in process
+//! against the emulators and used by `servo-studio play`.
+
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+use crossbeam_channel::Receiver;
+
+use super::{Show, Start};
+use crate::audio::output::{Playing, Speakers};
+use crate::audio::together::PREROLL;
+use crate::device::plen2::playback::{self, StoredMotions};
+use crate::project::{Family, Run};
+
+/// How far ahead of its first cue a show without sound starts its clock.
+pub const LEAD: Duration = Duration::from_millis(300);
+/// How often the player looks at its devices' links (and keeps bases' commands fresh) while it waits.
+const LOOK_EVERY: Duration = Duration::from_millis(20);
+/// The longest a PLEN2 motion is counted for (one that never ends).
+const LONGEST_MOTION_MS: f64 = 600_000.0;
+
+/// A connected device the player drives.
+pub trait Stage: Send {
+    /// How long after a start command is written the device starts moving.
+    fn start_delay(&self, start: &Start) -> Duration;
+    /// Writes the start of a cue.
+    fn start(&mut self, start: &Start) -> Result<(), String>;
+    /// Stops the device where it is (a base stops and brakes).
+    fn stop(&mut self);
+    /// Called while the player waits: keep the link's commands fresh.
+    fn tick(&mut self, now: Instant) {
+        let _ = now;
+    }
+    /// Why its link is gone, if it is.
+    fn lost(&self) -> Option<String>;
+}
+
+/// Why a run ended early.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum Stopped {
+    /// A signal or STOP: every device was stopped.
+    #[error("stopped by {0}: every device was stopped")]
+    Asked(String),
+    /// A device's link was lost: every device was stopped.
+    #[error("the link to {device} was lost ({why}): every device was stopped")]
+    Lost {
+        /// The device.
+        device: String,
+        /// What the link said.
+        why: String,
+    },
+    /// A start could not be written: every device was stopped.
+    #[error("{device} could not be started ({why}): every device was stopped")]
+    Failed {
+        /// The device.
+        device: String,
+        /// Why.
+        why: String,
+    },
+}
+
+/// One cue sent: whose, when it was due to be written, when it was.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Sent {
+    /// The device.
+    pub device: String,
+    /// What it started.
+    pub start: Start,
+    /// When the device was due to start moving.
+    pub moving_at: Instant,
+    /// When the command was due to be written (its delay before `moving_at`).
+    pub due_at: Instant,
+    /// When it was written (never before `due_at`).
+    pub sent_at: Instant,
+}
+
+impl Sent {
+    /// How late it was written, ms (the skew it adds).
+    pub fn late_ms(&self) -> f64 {
+        self.sent_at.saturating_duration_since(self.due_at).as_secs_f64() * 1000.0
+    }
+}
+
+/// What one run did.
+#[derive(Debug)]
+pub struct Ran {
+    /// When the show's 0 was (the sound's point heard, or the clock's start).
+    pub zero: Instant,
+    /// Each cue, as sent.
+    pub sent: Vec<Sent>,
+    /// When it ended.
+    pub ended: Instant,
+    /// Whether the sound played.
+    pub with_sound: bool,
+}
+
+/// The show, its devices (in the show's order) and what it plays through.
+pub struct Player<'a> {
+    /// The show.
+    pub show: &'a Show,
+    /// A stage per device, in the show's order.
+    pub stages: Vec<Box<dyn Stage>>,
+    /// Where the sound plays, when it does; and the sound's file.
+    pub sound: Option<(Speakers, PathBuf)>,
+    /// STOP and signals: anything arriving ends the run, named by what arrived.
+    pub stop: Receiver<String>,
+}
+
+impl Player<'_> {
+    /// Plays the show once through.
+    pub fn run(&mut self) -> Result<Ran, Stopped> {
+        let offset_ms = self.show.sound.as_ref().map_or(0, |sound| sound.offset_ms);
+        let (zero, playing) = self.zero(offset_ms);
+        let mut plan: Vec<(Instant, usize, Start, Instant)> = Vec::new();
+        for cue in &self.show.cues {
+            let Some(index) = self.show.devices.iter().position(|device| device.name == cue.device) else { continue };
+            let moving_at = zero + Duration::from_millis(cue.at_ms);
+            let due = moving_at.checked_sub(self.stages[index].start_delay(&cue.start)).unwrap_or(moving_at);
+            plan.push((due, index, cue.start, moving_at));
+        }
+        plan.sort_by_key(|(due, ..)| *due);
+        let end = zero + Duration::from_millis(self.length_ms());
+        let mut sent = Vec::new();
+        let mut drives: Vec<(Instant, usize)> = Vec::new();
+        for (due, index, start, moving_at) in plan {
+            self.wait_until(due, &mut drives)?;
+            let sent_at = Instant::now();
+            let device = self.show.devices[index].name.clone();
+            if let Err(why) = self.stages[index].start(&start) {
+                self.stop_all();
+                return Err(Stopped::Failed { device, why });
+            }
+            if let Start::Drive { for_ms, .. } = start {
+                drives.push((moving_at + Duration::from_millis(for_ms), index));
+            }
+            sent.push(Sent { device, start, moving_at, due_at: due, sent_at });
+        }
+        self.wait_until(end, &mut drives)?;
+        drop(playing);
+        Ok(Ran { zero, sent, ended: Instant::now(), with_sound: self.sound.is_some() })
+    }
+
+    /// The show's 0: when the sound's point (its start plus the offset) is heard, or a lead from now.
+    fn zero(&self, offset_ms: i64) -> (Instant, Option<Playing>) {
+        let lead = LEAD.max(self.longest_delay());
+        if let Some((speakers, path)) = &self.sound {
+            // The sound's time at the show's 0 (a negative offset: the sound started before).
+            #[allow(clippy::cast_precision_loss)]
+            let point_s = (-offset_ms).max(0) as f64 / 1000.0;
+            let preroll = PREROLL.max(lead).as_secs_f64();
+            if let Ok(playing) = speakers.play(path, point_s - preroll)
+                && let Ok(heard) = playing.heard_at(point_s)
+            {
+                return (heard, Some(playing));
+            }
+        }
+        (Instant::now() + lead, None)
+    }
+
+    fn longest_delay(&self) -> Duration {
+        self.show
+            .cues
+            .iter()
+            .filter_map(|cue| {
+                let index = self.show.devices.iter().position(|device| device.name == cue.device)?;
+                Some(self.stages[index].start_delay(&cue.start))
+            })
+            .max()
+            .unwrap_or_default()
+    }
+
+    /// How long the show lasts, ms: its last cue's end, or the sound's.
+    pub fn length_ms(&self) -> u64 {
+        let sound = self.show.sound.as_ref().map_or(0, |sound| {
+            u64::try_from(i64::try_from(sound.duration_ms).unwrap_or(i64::MAX).saturating_add(sound.offset_ms))
+                .unwrap_or(0)
+        });
+        self.show
+            .cues
+            .iter()
+            .filter_map(|cue| Some(cue.at_ms + cue_length_ms(self.show.device(&cue.device)?, &cue.start)))
+            .chain([sound])
+            .max()
+            .unwrap_or(0)
+    }
+
+    /// Waits until `until`, keeping links fresh, stopping drives that are done,
+    /// and ending the run on STOP, a signal or a lost link.
+    fn wait_until(&mut self, until: Instant, drives: &mut Vec<(Instant, usize)>) -> Result<(), Stopped> {
+        loop {
+            let now = Instant::now();
+            drives.retain(|&(done, index)| {
+                if done <= now {
+                    self.stages[index].stop();
+                }
+                done > now
+            });
+            for (stage, device) in self.stages.iter_mut().zip(&self.show.devices) {
+                stage.tick(now);
+                if let Some(why) = stage.lost() {
+                    let device = device.name.clone();
+                    self.stop_all();
+                    return Err(Stopped::Lost { device, why });
+                }
+            }
+            if now >= until {
+                return Ok(());
+            }
+            let next = drives.iter().map(|(done, _)| *done).min().unwrap_or(until).min(until).min(now + LOOK_EVERY);
+            if let Ok(what) = self.stop.recv_deadline(next) {
+                self.stop_all();
+                return Err(Stopped::Asked(what));
+            }
+        }
+    }
+
+    /// Stops every device (bases stop and brake).
+    pub fn stop_all(&mut self) {
+        for stage in &mut self.stages {
+            stage.stop();
+        }
+    }
+}
+
+/// How long a cue keeps its device busy, ms, from the device's project.
+pub fn cue_length_ms(device: &super::Device, start: &Start) -> u64 {
+    let ms = match (*start, device.project.family) {
+        (Start::Macro(macro_id), family) if family == Family::Servo => {
+            crate::project::trace(&device.project.servo, Run::Macro { macro_id }, 3_600_000.0)
+                .map_or(0.0, |(_, end)| end)
+        }
+        (Start::Slot(slot), family) if family == Family::Plen2 => {
+            let stored = StoredMotions::new(&device.project.plen2);
+            // Cycle counts from a bounded time.
+            #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+            let cycles = (LONGEST_MOTION_MS / playback::Playback::CYCLE_MS) as usize;
+            playback::play(&stored, slot, [0; playback::DEVICE_IDS], cycles).duration_ms()
+        }
+        // Whole ms of a bounded time.
+        #[allow(clippy::cast_precision_loss)]
+        (Start::Drive { for_ms, .. }, _) => for_ms as f64,
+        _ => 0.0,
+    };
+    // Non-negative, under an hour.
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    let whole = ms.max(0.0).ceil() as u64;
+    whole
+}
