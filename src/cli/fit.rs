@@ -119,7 +119,7 @@ pub fn plen2(recording: &Recording, request: &FitRequest, name: &str) -> anyhow:
     }
     // `$PM` from power-up: every joint's frame buffer at 0 (plen2.md §6), as `trajectory` plays.
     let budget = Budget { tolerance: request.tolerance_deg * 10.0, allowed, resolution: 1.0 };
-    let fit = fitted_within(&Plen2Board, &[0; JOINTS], &rows, budget, 10.0)?;
+    let fit = fitted_within(&Plen2Board, &[0; JOINTS], &rows, budget, (10.0, "frames"))?;
     if !name.is_ascii() || name.len() > 20 {
         anyhow::bail!("--name {name:?}: a PLEN2 motion's name is at most 20 ASCII characters");
     }
@@ -163,7 +163,7 @@ pub fn servo(recording: &Recording, request: &FitRequest, name: &str) -> anyhow:
     }
     let allowed = request.max_frames.unwrap_or(project::MAX_LIST_LEN);
     let budget = Budget { tolerance: request.tolerance_deg, allowed, resolution: 0.1 };
-    let fit = fitted_within(&ServoBoard, &start, rest, budget, 1.0)?;
+    let fit = fitted_within(&ServoBoard, &start, rest, budget, (1.0, "steps"))?;
     let ids: Vec<u8> = servos.iter().map(|servo| servo.id).collect();
     let actions = fitted::servo_actions(&fit, &ids, 1, name);
     let macros = vec![fitted::macro_running(1, name, &actions)];
@@ -172,25 +172,32 @@ pub fn servo(recording: &Recording, request: &FitRequest, name: &str) -> anyhow:
     Ok((project::to_json(&project), summary))
 }
 
-/// [`fit::fit_within`], its error said in degrees and frames.
+/// [`fit::fit_within`], its error said in degrees (to 0.1°) and in the
+/// board's own word for a move (`frames` on a PLEN2, `steps` on a servo board).
 fn fitted_within(
     board: &impl Board,
     start: &[i32],
     rows: &[Vec<f64>],
     budget: Budget,
-    per_degree: f64,
+    (per_degree, moves): (f64, &str),
 ) -> anyhow::Result<Fit> {
     let tolerance = budget.tolerance;
     fit::fit_within(board, start, rows, budget).map_err(|error| match error {
         FitError::Tolerance { needed, allowed, smallest, .. } => anyhow::anyhow!(
-            "{needed} frames are needed to stay within {}° and at most {allowed} are allowed: the smallest tolerance that fits is --tolerance-deg {}. Nothing was written",
-            tolerance / per_degree,
-            smallest / per_degree
+            "{needed} {moves} are needed to stay within {}° and at most {allowed} are allowed: the smallest tolerance that fits is --tolerance-deg {}. Nothing was written",
+            tenths(tolerance / per_degree),
+            tenths(smallest / per_degree)
         ),
         FitError::TooLong { updates, needed, allowed, .. } => anyhow::anyhow!(
-            "the recording lasts {updates} board updates: that takes at least {needed} frames at any tolerance, and at most {allowed} are allowed. Nothing was written"
+            "the recording lasts {updates} board updates: that takes at least {needed} {moves} at any tolerance, and at most {allowed} are allowed. Nothing was written"
         ),
     })
+}
+
+/// Degrees to a tenth, as a person writes them ("6.1", "2").
+pub fn tenths(degrees: f64) -> String {
+    let rounded = (degrees * 10.0).round() / 10.0;
+    format!("{rounded}")
 }
 
 fn summary(fit: &Fit, per_degree: f64, updates: usize, update_ms: f64) -> Fitted {

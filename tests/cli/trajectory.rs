@@ -348,3 +348,23 @@ fn fitting_the_official_motions_gives_them_back_within_the_tolerance_in_no_more_
     }
     eprintln!("90 official motions: {original_frames} frames, fitted within 1° in {fitted_frames}");
 }
+
+#[test]
+fn a_servo_fit_that_needs_more_steps_says_steps_and_a_tolerance_to_a_tenth() {
+    let dir = tempfile::tempdir().unwrap();
+    // Two servos over 4 s at 10 ms: sines that 4 steps cannot hold within 1°.
+    let rows = (0..=400).map(|i| {
+        let t = f64::from(i) / 100.0;
+        (f64::from(i) * 10.0, vec![40.0 * (1.3 * t).sin(), 25.0 * (2.1 * t + 0.4).sin()])
+    });
+    let recording = write(dir.path(), "sines.csv", &csv("1,2", rows));
+    let out = dir.path().join("sines.json");
+    let error = fit(&recording, &out, &["--protocol", "servo", "--max-frames", "4"]).unwrap_err();
+    assert!(error.contains(" steps are needed to stay within 1°"), "a servo board's word is steps: {error}");
+    let smallest = error.split("--tolerance-deg ").nth(1).unwrap().split(". ").next().unwrap().to_string();
+    let decimals = smallest.split_once('.').map_or(0, |(_, tail)| tail.len());
+    assert!(decimals <= 1, "a tolerance to 0.1°, not {smallest}");
+    fit(&recording, &out, &["--protocol", "servo", "--max-frames", "4", "--tolerance-deg", &smallest]).unwrap();
+    let tighter = format!("{:.1}", smallest.parse::<f64>().unwrap() - 0.1);
+    assert!(fit(&recording, &out, &["--protocol", "servo", "--max-frames", "4", "--tolerance-deg", &tighter]).is_err());
+}

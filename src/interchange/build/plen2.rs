@@ -416,7 +416,7 @@ fn sampled(
         Budget { tolerance: input.tolerance_deg * 10.0, allowed: MAX_FRAMES * usize::from(SLOTS), resolution: 1.0 };
     // `$PM` from power-up: every joint's frame buffer at 0 (plen2.md §6).
     let fitted = fit::fit_within(&Plen2Board, &[0; JOINTS], &resampled, budget)
-        .map_err(|error| BuildError::Fit(fit_said(&error, 10.0)))?;
+        .map_err(|error| BuildError::Fit(fit_said(&error, 10.0, "frames")))?;
     report.converted(format!(
         "{:?}: {} samples at {fps} fps fitted into {} frames within {:.2}° (asked {}°)",
         clip.name,

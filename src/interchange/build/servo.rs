@@ -322,7 +322,7 @@ impl Made {
         }
         let budget = Budget { tolerance: input.tolerance_deg, allowed: MAX_LIST_LEN, resolution: 0.1 };
         let fitted = fit::fit_within(&ServoBoard, &start, rest, budget)
-            .map_err(|error| BuildError::Fit(fit_said(&error, 1.0)))?;
+            .map_err(|error| BuildError::Fit(fit_said(&error, 1.0, "steps")))?;
         report.converted(format!(
             "{:?}: {} samples at {fps} fps fitted into {} steps within {:.2}° (asked {}°)",
             clip.name,
@@ -391,16 +391,18 @@ impl Clock {
     }
 }
 
-/// A fit's failure in degrees (`per_degree` board units a degree).
-pub(super) fn fit_said(error: &FitError, per_degree: f64) -> String {
+/// A fit's failure in degrees, to 0.1° (`per_degree` board units a
+/// degree), in the board's word for a move (`steps`, `frames`).
+pub(super) fn fit_said(error: &FitError, per_degree: f64, moves: &str) -> String {
+    let tenths = |value: f64| format!("{}", (value / per_degree * 10.0).round() / 10.0);
     match error {
         FitError::Tolerance { needed, allowed, tolerance, smallest } => format!(
-            "{needed} moves are needed to stay within {}° and at most {allowed} fit: the smallest tolerance that fits is --tolerance-deg {}. Nothing was written",
-            tolerance / per_degree,
-            smallest / per_degree
+            "{needed} {moves} are needed to stay within {}° and at most {allowed} fit: the smallest tolerance that fits is --tolerance-deg {}. Nothing was written",
+            tenths(*tolerance),
+            tenths(*smallest)
         ),
         FitError::TooLong { updates, needed, allowed, .. } => format!(
-            "the animation lasts {updates} board updates: that takes at least {needed} moves at any tolerance, and at most {allowed} fit. Nothing was written"
+            "the animation lasts {updates} board updates: that takes at least {needed} {moves} at any tolerance, and at most {allowed} fit. Nothing was written"
         ),
     }
 }

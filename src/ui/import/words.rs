@@ -443,12 +443,20 @@ const CHINESE_NOTES: &[(&str, &str)] = &[
         "這些動作需要 {} 格，PLEN2 只有 {} 格：請一次轉換較少（選擇單一動作）",
     ),
     (
-        "{} moves are needed to stay within {}° and at most {} fit: the smallest tolerance that fits is --tolerance-deg {}. Nothing was written",
-        "需要 {} 步才能維持在 {}° 以內，最多只能放 {} 步：可行的最小容許誤差為 --tolerance-deg {}。未寫入任何內容",
+        "{} steps are needed to stay within {}° and at most {} fit: the smallest tolerance that fits is --tolerance-deg {}. Nothing was written",
+        "需要 {} 個步驟才能維持在 {}° 以內，最多只能放 {} 個：可行的最小容許誤差為 {}°。未寫入任何內容",
     ),
     (
-        "the animation lasts {} board updates: that takes at least {} moves at any tolerance, and at most {} fit. Nothing was written",
-        "動畫長達 {} 次開發板更新：任何容許誤差下至少需要 {} 步，最多只能放 {} 步。未寫入任何內容",
+        "{} frames are needed to stay within {}° and at most {} fit: the smallest tolerance that fits is --tolerance-deg {}. Nothing was written",
+        "需要 {} 個影格才能維持在 {}° 以內，最多只能放 {} 個：可行的最小容許誤差為 {}°。未寫入任何內容",
+    ),
+    (
+        "the animation lasts {} board updates: that takes at least {} steps at any tolerance, and at most {} fit. Nothing was written",
+        "動畫長達 {} 次開發板更新：任何容許誤差下至少需要 {} 個步驟，最多只能放 {} 個。未寫入任何內容",
+    ),
+    (
+        "the animation lasts {} board updates: that takes at least {} frames at any tolerance, and at most {} fit. Nothing was written",
+        "動畫長達 {} 次開發板更新：任何容許誤差下至少需要 {} 個影格，最多只能放 {} 個。未寫入任何內容",
     ),
 ];
 
