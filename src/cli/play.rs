@@ -34,12 +34,52 @@ pub struct PlayArgs {
     /// Where a device is connected, NAME=PORT (overrides the show's port; repeat for each).
     #[arg(long = "device", value_name = "NAME=PORT")]
     pub devices: Vec<String>,
-    /// Plays the show this many times (with --at: at most this many runs; default 1, or every --at time forever).
+    /// Plays the show this many times (default 1; with --at or --wait-gamepad, run after run until stopped).
     #[arg(long = "loop", value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
     pub runs: Option<u32>,
     /// Starts a run at this local time, HH:MM (repeat for several; each day).
     #[arg(long = "at", value_name = "HH:MM", value_parser = parse_at)]
     pub at: Vec<(u32, u32)>,
+    /// Before each run, waits for a press of this button on this gamepad (an event device,
+    /// e.g. /dev/input/event5:BTN_SOUTH): a visitor starts the show.
+    #[arg(long = "wait-gamepad", value_name = "PATH:BUTTON", value_parser = parse_pad)]
+    pub wait_gamepad: Option<(PathBuf, u16)>,
+}
+
+fn parse_pad(text: &str) -> Result<(PathBuf, u16), String> {
+    let (path, button) =
+        text.rsplit_once(':').ok_or_else(|| format!("{text:?}: give PATH:BUTTON, e.g. /dev/input/event5:BTN_SOUTH"))?;
+    let code = crate::gamepad::code_by_name(button)
+        .filter(|code| *code >= 0x100)
+        .ok_or_else(|| format!("{button:?} is not a gamepad button (BTN_SOUTH, BTN_EAST, BTN_NORTH, BTN_WEST, BTN_TL, BTN_TR, BTN_SELECT, BTN_START)"))?;
+    Ok((PathBuf::from(path), code))
+}
+
+/// Waits for a press (not a hold) of `button`; `Err` when STOP came first or the gamepad went.
+fn wait_for_press(
+    pad: &crate::gamepad::Gamepad,
+    button: u16,
+    held: &mut bool,
+    stopped: &crossbeam_channel::Receiver<String>,
+) -> anyhow::Result<Result<(), String>> {
+    loop {
+        crossbeam_channel::select! {
+            recv(stopped) -> what => return Ok(Err(what.unwrap_or_default())),
+            recv(pad.updates()) -> update => match update.map(|(_, update)| update) {
+                Ok(crate::gamepad::PadUpdate::State(state)) => {
+                    let now = state.pressed(button);
+                    let pressed = now && !*held;
+                    *held = now;
+                    if pressed {
+                        return Ok(Ok(()));
+                    }
+                }
+                Ok(crate::gamepad::PadUpdate::Dropped) => {}
+                Ok(crate::gamepad::PadUpdate::Gone(gone)) => bail!("the gamepad {} is gone: {gone}", pad.path.display()),
+                Err(_) => bail!("the gamepad {} is gone", pad.path.display()),
+            },
+        }
+    }
 }
 
 fn parse_at(text: &str) -> Result<(u32, u32), String> {
@@ -81,14 +121,34 @@ pub fn run(args: &PlayArgs) -> anyhow::Result<()> {
             }
         }
     });
+    let pad = match &args.wait_gamepad {
+        Some((path, _)) => Some(
+            crate::gamepad::Gamepad::open(path, None, no_waker())
+                .with_context(|| format!("cannot read the gamepad {}", path.display()))?,
+        ),
+        None => None,
+    };
+    let mut held = false;
     let mut player = Player { show: &show, stages, sound, stop: stopped.clone() };
-    let runs = args.runs.unwrap_or(if args.at.is_empty() { 1 } else { u32::MAX });
+    // Unattended (by the clock or a visitor's button): run after run until stopped, unless --loop says.
+    let unattended = !args.at.is_empty() || args.wait_gamepad.is_some();
+    let runs = args.runs.unwrap_or(if unattended { u32::MAX } else { 1 });
     let clock = MonotonicClock::now();
     for run in 1..=runs {
         if let Some(at) = next_time(&args.at, run)
             && let Ok(what) = stopped.recv_deadline(at)
         {
             return Err(interrupted(&exit_code, &what));
+        }
+        if let (Some(pad), Some((path, button))) = (&pad, &args.wait_gamepad) {
+            say!(
+                "run {run} waits for {} on {}",
+                crate::gamepad::code_name(crate::gamepad::EV_KEY, *button),
+                path.display()
+            );
+            if let Err(what) = wait_for_press(pad, *button, &mut held, &stopped)? {
+                return Err(interrupted(&exit_code, &what));
+            }
         }
         match player.run() {
             Ok(ran) => log_run(run, &ran, &clock)?,

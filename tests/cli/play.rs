@@ -255,3 +255,44 @@ fn a_project_file_plays_as_a_show_of_one_device() {
     let starts = logged_until(&log, "ExecuteMacroRequest", Duration::from_secs(10));
     assert_eq!(starts.iter().filter(|(_, s)| s.contains("ExecuteMacroRequest")).count(), 2, "two runs: {starts:?}");
 }
+
+#[test]
+fn a_visitor_starts_each_run_with_a_gamepad_button() {
+    use servo_studio::gamepad::{BTN_SOUTH, RawEvent};
+    use std::io::Write as _;
+    let show = Show {
+        devices: vec![device("skull", swinging(1))],
+        sound: None,
+        cues: vec![Cue { device: "skull".into(), at_ms: 0, start: Start::Macro(1) }],
+    };
+    let stage = Stage::new(&show, &[]);
+    let fifo = stage.dir.path().join("pad");
+    assert!(Process::new("mkfifo").arg(&fifo).status().unwrap().success());
+    let mut child = stage.play(&["--wait-gamepad", &format!("{}:BTN_SOUTH", fifo.display()), "--loop", "2"]);
+    // Opening for writing waits for the player to open it for reading.
+    let mut pad = std::fs::OpenOptions::new().write(true).open(&fifo).unwrap();
+    let mut stderr = BufReader::new(child.stderr.take().unwrap());
+    let mut waits_for = |run: u32| loop {
+        let mut line = String::new();
+        assert!(stderr.read_line(&mut line).unwrap() > 0, "the player ended before run {run} waited");
+        if line.contains(&format!("run {run} waits for BTN_SOUTH")) {
+            return;
+        }
+    };
+    let press = |pad: &mut std::fs::File, down: bool| {
+        let mut bytes = RawEvent::key(BTN_SOUTH, down).to_bytes(0).to_vec();
+        bytes.extend(RawEvent::report().to_bytes(0));
+        pad.write_all(&bytes).unwrap();
+    };
+    for run in 1..=2 {
+        waits_for(run);
+        let started =
+            std::fs::read_to_string(stage.log("skull")).unwrap_or_default().matches("ExecuteMacroRequest").count();
+        assert_eq!(started, usize::try_from(run - 1).unwrap(), "run {run} has not started before the press");
+        press(&mut pad, true);
+        logged_more(stage.log("skull"), "ExecuteMacroRequest", started, Duration::from_secs(30));
+        press(&mut pad, false);
+    }
+    let status = child.wait().unwrap();
+    assert_eq!(status.code(), Some(0));
+}
