@@ -6,7 +6,7 @@ mod follow_audio;
 mod honest;
 mod hostile;
 mod inputs;
-mod play;
+pub mod play;
 mod robust;
 mod servo;
 mod sim_log;

@@ -23,7 +23,7 @@ use crate::common;
 const EXE: &str = env!("CARGO_BIN_EXE_servo-studio");
 
 /// Servo 1 swinging `swings` times, 0.5 s each, macro 1 running them.
-fn swinging(swings: i32) -> Project {
+pub fn swinging(swings: i32) -> Project {
     let actions: Vec<Action> = (1..=swings)
         .map(|id| Action {
             id,
@@ -37,7 +37,7 @@ fn swinging(swings: i32) -> Project {
 }
 
 /// A PLEN2 holding a five-frame wave in slot 2.
-fn waving() -> Project {
+pub fn waving() -> Project {
     let motion = Motion {
         slot: 2,
         name: "wave".into(),
@@ -50,12 +50,12 @@ fn waving() -> Project {
     project
 }
 
-fn device(name: &str, project: Project) -> Device {
+pub fn device(name: &str, project: Project) -> Device {
     Device { name: name.into(), port: None, place: Place::default(), project }
 }
 
 /// The log's lines (ns, command) once one contains `wanted`, waiting on the file itself.
-fn logged_until(path: &Path, wanted: &str, within: Duration) -> Vec<(u128, String)> {
+pub fn logged_until(path: &Path, wanted: &str, within: Duration) -> Vec<(u128, String)> {
     logged_more(path, wanted, 0, within)
 }
 
@@ -79,18 +79,18 @@ fn logged_more(path: &Path, wanted: &str, seen: usize, within: Duration) -> Vec<
     }
 }
 
-fn first(lines: &[(u128, String)], wanted: &str) -> u128 {
+pub fn first(lines: &[(u128, String)], wanted: &str) -> u128 {
     lines.iter().find(|(_, said)| said.contains(wanted)).map(|(ns, _)| *ns).unwrap()
 }
 
-struct Stage {
-    dir: tempfile::TempDir,
+pub struct Stage {
+    pub dir: tempfile::TempDir,
     sims: Vec<(String, common::Sim, PathBuf)>,
 }
 
 impl Stage {
     /// An emulator per device, preloaded with its project, logging.
-    fn new(show: &Show, extra: &[(&str, &[&str])]) -> Self {
+    pub fn new(show: &Show, extra: &[(&str, &[&str])]) -> Self {
         let dir = tempfile::tempdir().unwrap();
         let mut sims = Vec::new();
         for device in &show.devices {
@@ -111,12 +111,14 @@ impl Stage {
         Self { dir, sims }
     }
 
-    fn play(&self, more: &[&str]) -> Child {
+    /// `--device NAME=PORT` for every emulator.
+    pub fn device_args(&self) -> Vec<String> {
+        self.sims.iter().flat_map(|(name, sim, _)| ["--device".to_string(), format!("{name}={}", sim.port)]).collect()
+    }
+
+    pub fn play(&self, more: &[&str]) -> Child {
         let mut args = vec!["play".to_string(), self.dir.path().join("show.json").to_str().unwrap().to_string()];
-        for (name, sim, _) in &self.sims {
-            args.push("--device".into());
-            args.push(format!("{name}={}", sim.port));
-        }
+        args.extend(self.device_args());
         args.extend(more.iter().map(ToString::to_string));
         Process::new(EXE)
             .args(&args)
@@ -127,7 +129,7 @@ impl Stage {
             .unwrap()
     }
 
-    fn log(&self, name: &str) -> &Path {
+    pub fn log(&self, name: &str) -> &Path {
         &self.sims.iter().find(|(n, ..)| n == name).unwrap().2
     }
 }

@@ -6,5 +6,6 @@
 //! installs them and runs this module (and `ui::sound::`, whose sound-server
 //! tests skip the same way) on their own, with the `cpal` feature.
 
+mod show_sync;
 mod sound_sync;
 mod speech;
