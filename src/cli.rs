@@ -214,6 +214,9 @@ pub enum CliCommand {
         /// Open another tool's file (Maestro settings, .mtn, .mtnx, Blender JSON) in the import window.
         #[arg(long)]
         import: Option<PathBuf>,
+        /// Open a show (or a project as a show of one device) in the show window.
+        #[arg(long)]
+        show: Option<PathBuf>,
     },
     /// Drive an rFLEX mobile base, or read its sensors.
     Rflex {
@@ -406,7 +409,9 @@ pub fn run(command: CliCommand) -> ExitCode {
                 .and_then(|()| family::board(family, "board info"))
                 .and_then(|board| (board.info)(&port))
         }
-        CliCommand::Gui { file, demo, protocol, import } => gui::run(file.as_deref(), demo, protocol, import),
+        CliCommand::Gui { file, demo, protocol, import, show } => {
+            gui::run(file.as_deref(), demo, protocol, (import, show))
+        }
         CliCommand::Convert(args) => convert::run_args(args),
         CliCommand::FollowAudio(args) => {
             follow_audio::run(&args).and_then(|fitted| match out::line(&follow_audio::said(&fitted, &args)) {

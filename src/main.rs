@@ -10,6 +10,6 @@ fn main() -> ExitCode {
     let args = Cli::parse();
     match args.command {
         Some(command) => cli::run(command),
-        None => cli::run(cli::CliCommand::Gui { file: None, demo: false, protocol: None, import: None }),
+        None => cli::run(cli::CliCommand::Gui { file: None, demo: false, protocol: None, import: None, show: None }),
     }
 }

@@ -8,7 +8,12 @@ use std::path::{Path, PathBuf};
 use crate::project::{self, Family};
 
 /// Opens the editor, with `file` if given; with `demo` and no file, on the sample robot.
-pub fn run(file: Option<&Path>, demo: bool, protocol: Option<Family>, import: Option<PathBuf>) -> anyhow::Result<()> {
+pub fn run(
+    file: Option<&Path>,
+    demo: bool,
+    protocol: Option<Family>,
+    (import, show): (Option<PathBuf>, Option<PathBuf>),
+) -> anyhow::Result<()> {
     let (project, path) = match file {
         // A project file, or the PLEN community's motion.json (one file or a folder):
         // a motion.json or a folder of them is saved as a new project.
@@ -36,7 +41,7 @@ pub fn run(file: Option<&Path>, demo: bool, protocol: Option<Family>, import: Op
         });
         forwarded
     });
-    let start = crate::ui::Start { project, path, demo, family: protocol, interrupts, import };
+    let start = crate::ui::Start { project, path, demo, family: protocol, interrupts, import, show };
     let ended = crate::ui::run(start);
     if let Some(interrupt) = caught.get() {
         // Ended by a signal: the shell stopped the board and kept the work; the status says so.

@@ -6,6 +6,7 @@
 //! byte for byte ([`Show::open`]).
 
 pub mod play;
+pub mod stages;
 
 use std::path::Path;
 

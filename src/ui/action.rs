@@ -248,6 +248,8 @@ pub enum Action {
     Terminate,
     /// What the import window asks for.
     Import(ImportAction),
+    /// What the show window asks for.
+    Show(ShowAction),
     /// The project's sound track: add, locate, offset, play in step with a preview.
     Sound(crate::ui::sound::action::SoundAction),
     /// What a family's panels ask for (its own action type, which only that
@@ -324,4 +326,19 @@ pub enum AfterUnsaved {
     Open(PathBuf),
     /// Close the window.
     Quit,
+}
+
+/// What the show window asks for.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum ShowAction {
+    /// Open this show (or project) file.
+    Open(PathBuf),
+    /// The open project as a show of one device.
+    OpenProject,
+    /// Connect every device and play the show.
+    Play,
+    /// Stop every device.
+    StopAll,
+    /// Close the window (stopping a show that plays).
+    Close,
 }

@@ -27,6 +27,7 @@ mod rflex;
 mod rows;
 mod servo;
 mod shell;
+pub mod show;
 pub mod sound;
 pub mod speed;
 mod transport;
@@ -79,6 +80,8 @@ pub struct Start {
     pub interrupts: Option<crossbeam_channel::Receiver<()>>,
     /// Another tool's file to open in the import window at once.
     pub import: Option<std::path::PathBuf>,
+    /// A show to open in the show window at once.
+    pub show: Option<std::path::PathBuf>,
 }
 
 impl Start {
@@ -103,6 +106,9 @@ impl Start {
         }
         if let Some(path) = self.import {
             app.apply(Action::Import(import::ImportAction::Read(path)));
+        }
+        if let Some(path) = self.show {
+            app.apply(Action::Show(show::ShowAction::Open(path)));
         }
         app
     }

@@ -21,6 +21,7 @@ mod pose3d;
 mod preview;
 mod rig3d;
 mod rows;
+mod show;
 mod sliders;
 mod sound;
 mod uncut;

@@ -36,6 +36,11 @@ impl StudioApp {
             }
             Action::Stop => self.stop(),
             Action::Import(action) => self.import.apply(action, &self.files.work, &self.document.project),
+            Action::Show(action) => {
+                if let Some(error) = self.show.apply(action, &self.document.project, &self.window.waker) {
+                    self.report(error, true);
+                }
+            }
             Action::Sound(action) => self.apply_sound(action),
             Action::SetLanguage(language) => self.language = language,
             Action::SetLiveSpeed(deg_per_s) => self.live_speed = LiveSpeed { deg_per_s }.clamped(),

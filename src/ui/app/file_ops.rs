@@ -125,6 +125,15 @@ impl StudioApp {
             if ui.button(export).clicked() {
                 actions.push(Action::Import(crate::ui::action::ImportAction::OpenExport));
             }
+            ui.separator();
+            let show = crate::ui::show::words(self.language).title;
+            if ui.add_enabled(!asking, egui::Button::new(show)).clicked() {
+                actions.push(Action::AskFile(FileRequest::Pick(crate::ui::action::Pick {
+                    kind: "Servo Studio show or project",
+                    extensions: &["json"],
+                    then: std::sync::Arc::new(|path| Action::Show(crate::ui::show::ShowAction::Open(path))),
+                })));
+            }
             if !self.files.recent.is_empty() {
                 ui.separator();
                 ui.label(words.recent);

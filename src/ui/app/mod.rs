@@ -72,6 +72,8 @@ pub struct StudioApp {
     pub import: crate::ui::import::ImportDesk,
     /// The project's sound track: read, checked, played.
     pub sound: crate::ui::sound::SoundDesk,
+    /// File → Show…: a show's devices and cues, played on every board.
+    pub show: crate::ui::show::ShowDesk,
 }
 
 /// The window's own state.
@@ -111,6 +113,7 @@ impl StudioApp {
             pad: crate::ui::gamepad::PadInput::default(),
             import: crate::ui::import::ImportDesk::default(),
             sound: crate::ui::sound::SoundDesk::default(),
+            show: crate::ui::show::ShowDesk::default(),
         };
         app.files.read_recovery_later();
         app.each_family(|family_ui, shell| family_ui.document_replaced(&shell.document.project));
@@ -224,6 +227,11 @@ impl StudioApp {
     fn stop(&mut self) {
         // The show's sound stops too, and a board's start still waiting for it never goes out.
         self.sound.silence();
+        // A show playing on several boards: every one of them.
+        if self.show.playing() {
+            self.show.stop();
+            return;
+        }
         let Some(link) = &self.link else {
             self.report(self.words().msg_stop_no_board, false);
             return;
@@ -366,6 +374,7 @@ impl StudioApp {
 
         self.dialogs(ui, &mut actions);
         self.import.window(ui.ctx(), (&self.document.project, &self.files.work), self.language, &mut actions);
+        self.show.window(ui.ctx(), self.language, &mut actions);
         self.sound.follow_window(ui.ctx(), &self.document.project, self.language, &mut actions);
         let document = (&self.document.project, self.document.path.as_ref());
         self.import.export_window(ui.ctx(), document, self.language, &mut actions);

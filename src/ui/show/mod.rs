@@ -1,0 +1,421 @@
+//! File → Open show…: a show's devices and their ports, its cues on one
+//! timeline (a lane per device under the sound's), and Play on the boards —
+//! every device connected and started together by the same player as
+//! `servo-studio play`, off the frame; Stop all (and the window's STOP)
+//! stops every device, bases braking.
+
+use std::path::PathBuf;
+
+use crossbeam_channel::{Receiver, Sender};
+
+use crate::link::Waker;
+use crate::project::{Family, Project};
+use crate::show::play::{Player, Stage, cue_length_ms};
+use crate::show::{Show, Start};
+pub use crate::ui::action::ShowAction;
+use crate::ui::i18n::Language;
+
+/// An open show.
+#[derive(Debug)]
+pub struct ShowSession {
+    /// Where it came from (its sound is beside it).
+    pub path: Option<PathBuf>,
+    /// The show.
+    pub show: Show,
+    /// Each device's port, as typed.
+    pub ports: Vec<String>,
+    /// What playing it said, line by line.
+    pub said: Vec<String>,
+}
+
+struct Running {
+    stop: Sender<String>,
+    said: Receiver<String>,
+}
+
+/// The show window and a show playing.
+#[derive(Default)]
+pub struct ShowDesk {
+    /// The open show.
+    pub session: Option<ShowSession>,
+    running: Option<Running>,
+}
+
+impl std::fmt::Debug for ShowDesk {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("ShowDesk").field("session", &self.session).field("playing", &self.running.is_some()).finish()
+    }
+}
+
+impl ShowDesk {
+    /// Takes an action of the window; `project` is the open one, `waker` repaints when a show says something.
+    pub fn apply(&mut self, action: ShowAction, project: &Project, waker: &Waker) -> Option<String> {
+        match action {
+            ShowAction::Open(path) => match Show::open(&path) {
+                Ok(show) => self.opened(Some(path), show),
+                Err(error) => return Some(format!("{}: {error}", path.display())),
+            },
+            ShowAction::OpenProject => self.opened(None, Show::of_one("board", project.clone())),
+            ShowAction::Play => self.play(waker.clone()),
+            ShowAction::StopAll => self.stop(),
+            ShowAction::Close => {
+                self.stop();
+                self.session = None;
+            }
+        }
+        None
+    }
+
+    fn opened(&mut self, path: Option<PathBuf>, show: Show) {
+        self.stop();
+        let ports = show.devices.iter().map(|device| device.port.clone().unwrap_or_default()).collect();
+        self.session = Some(ShowSession { path, show, ports, said: Vec::new() });
+    }
+
+    /// Whether a show is playing.
+    pub fn playing(&self) -> bool {
+        self.running.is_some()
+    }
+
+    /// Stops every device of a show that plays.
+    pub fn stop(&mut self) {
+        if let Some(running) = &self.running {
+            let _ = running.stop.send("STOP".into());
+        }
+    }
+
+    fn play(&mut self, waker: Waker) {
+        let Some(session) = &mut self.session else { return };
+        if self.running.is_some() {
+            return;
+        }
+        let mut show = session.show.clone();
+        for (device, port) in show.devices.iter_mut().zip(&session.ports) {
+            device.port = (!port.trim().is_empty()).then(|| port.trim().to_string());
+        }
+        let folder = session.path.as_ref().and_then(|path| path.parent().map(PathBuf::from));
+        let (stop, stopped) = crossbeam_channel::unbounded();
+        let (say, said) = crossbeam_channel::unbounded();
+        session.said.clear();
+        let spawned = std::thread::Builder::new().name("show".into()).spawn(move || {
+            let tell = |line: String| {
+                let _ = say.send(line);
+                waker();
+            };
+            played(&show, folder, stopped, &tell);
+        });
+        if spawned.is_ok() {
+            self.running = Some(Running { stop, said });
+        }
+    }
+
+    /// Takes in what a playing show said; ends it when it is done.
+    pub fn poll(&mut self) {
+        let Some(running) = &self.running else { return };
+        let mut ended = false;
+        let lines: Vec<String> = running.said.try_iter().collect();
+        if let Err(crossbeam_channel::TryRecvError::Disconnected) = running.said.try_recv() {
+            ended = true;
+        }
+        if let Some(session) = &mut self.session {
+            session.said.extend(lines);
+        }
+        if ended {
+            self.running = None;
+        }
+    }
+
+    /// The window, when a show is open.
+    pub fn window(&mut self, ctx: &egui::Context, language: Language, actions: &mut Vec<crate::ui::Action>) {
+        self.poll();
+        let words = words(language);
+        let playing = self.running.is_some();
+        let Some(session) = &mut self.session else { return };
+        let mut open = true;
+        let room = ctx.content_rect().size() - egui::vec2(40.0, 60.0);
+        egui::Window::new(words.title)
+            .open(&mut open)
+            .resizable(true)
+            .default_size(egui::vec2(1000.0, 520.0).min(room))
+            .max_size(room)
+            .show(ctx, |ui| session_ui(ui, session, playing, words, actions));
+        if playing {
+            ctx.request_repaint_after(std::time::Duration::from_millis(100));
+        }
+        if !open {
+            actions.push(crate::ui::Action::Show(ShowAction::Close));
+        }
+    }
+}
+
+/// Connects every device of `show` and plays it once, saying what happens.
+fn played(show: &Show, folder: Option<PathBuf>, stop: Receiver<String>, tell: &dyn Fn(String)) {
+    let mut stages: Vec<Box<dyn Stage>> = Vec::new();
+    for device in &show.devices {
+        let Some(port) = &device.port else {
+            tell(format!("{}: no port — type where it is connected", device.name));
+            return;
+        };
+        match crate::show::stages::connect(port, device) {
+            Ok((stage, delay)) => {
+                tell(format!(
+                    "{} answered on {port} ({:.1} ms to reach it)",
+                    device.name,
+                    delay.as_secs_f64() * 1000.0
+                ));
+                stages.push(stage);
+            }
+            Err(error) => {
+                tell(format!("{} did not answer on {port}: {error:#}; nothing was played", device.name));
+                return;
+            }
+        }
+    }
+    let sound = show.sound.as_ref().and_then(|track| {
+        let path = folder.unwrap_or_default().join(&track.path);
+        match crate::audio::output::Speakers::connect() {
+            Ok(speakers) => Some((speakers, path)),
+            Err(error) => {
+                tell(format!("no sound output ({error}): playing silent"));
+                None
+            }
+        }
+    });
+    let mut player = Player { show, stages, sound, stop };
+    match player.run() {
+        Ok(ran) => {
+            for sent in &ran.sent {
+                tell(format!("{} started {:?}, {:.2} ms late", sent.device, sent.start, sent.late_ms()));
+            }
+            tell(format!("ended after {:.2} s", ran.ended.saturating_duration_since(ran.zero).as_secs_f64()));
+        }
+        Err(stopped) => tell(stopped.to_string()),
+    }
+}
+
+fn session_ui(
+    ui: &mut egui::Ui,
+    session: &mut ShowSession,
+    playing: bool,
+    words: &ShowWords,
+    actions: &mut Vec<crate::ui::Action>,
+) {
+    let name = session
+        .path
+        .as_ref()
+        .and_then(|p| p.file_name())
+        .map_or_else(|| words.this_project.to_string(), |n| n.to_string_lossy().into_owned());
+    ui.label(egui::RichText::new(format!("{name} — {} {}", session.show.devices.len(), words.devices)).strong());
+    egui::Grid::new("show-devices").striped(true).show(ui, |ui| {
+        for head in [words.device, words.family, words.port] {
+            ui.strong(head);
+        }
+        ui.end_row();
+        for (device, port) in session.show.devices.iter().zip(&mut session.ports) {
+            let label = ui.label(&device.name);
+            ui.label(family_name(device.project.family, words));
+            ui.add_enabled_ui(!playing, |ui| {
+                ui.add_sized([240.0, 20.0], egui::TextEdit::singleline(port).hint_text("/dev/ttyUSB0"))
+                    .labelled_by(label.id);
+            });
+            ui.end_row();
+        }
+    });
+    ui.separator();
+    lanes(ui, &session.show, words);
+    ui.separator();
+    ui.horizontal(|ui| {
+        if ui.add_enabled(!playing && !session.show.cues.is_empty(), egui::Button::new(words.play)).clicked() {
+            actions.push(crate::ui::Action::Show(ShowAction::Play));
+        }
+        if ui.add_enabled(playing, egui::Button::new(words.stop_all)).clicked() {
+            actions.push(crate::ui::Action::Show(ShowAction::StopAll));
+        }
+        if playing {
+            ui.spinner();
+        }
+    });
+    egui::ScrollArea::vertical().id_salt("show-said").max_height(120.0).show(ui, |ui| {
+        for line in &session.said {
+            ui.label(egui::RichText::new(line).small());
+        }
+    });
+}
+
+/// A cue on the timeline: its device's row, when it starts and for how long (ms), and its caption.
+type Block = (usize, u64, u64, String);
+
+/// Every cue as a block, and the span the timeline shows (ms, at least a second).
+fn blocks(show: &Show, words: &ShowWords) -> (Vec<Block>, u64) {
+    let blocks: Vec<Block> = show
+        .cues
+        .iter()
+        .filter_map(|cue| {
+            let index = show.devices.iter().position(|d| d.name == cue.device)?;
+            let length = cue_length_ms(&show.devices[index], &cue.start);
+            Some((index, cue.at_ms, length, cue_caption(&cue.start, words)))
+        })
+        .collect();
+    let sound = show.sound.as_ref().map(|s| s.offset_ms.max(0).unsigned_abs() + s.duration_ms);
+    let span = blocks.iter().map(|(_, at, length, _)| at + length).chain(sound).max().unwrap_or(0).max(1000);
+    (blocks, span)
+}
+
+/// The timeline: the sound's lane, then a lane per device with its cues, on one time axis.
+fn lanes(ui: &mut egui::Ui, show: &Show, words: &ShowWords) {
+    const LANE: f32 = 26.0;
+    const NAMES: f32 = 130.0;
+    let (blocks, span) = blocks(show, words);
+    let rows = u16::try_from(show.devices.len() + 1).unwrap_or(u16::MAX);
+    let (rect, _) =
+        ui.allocate_exact_size(egui::vec2(ui.available_width(), LANE * f32::from(rows) + 18.0), egui::Sense::hover());
+    let painter = ui.painter_at(rect);
+    let visuals = ui.visuals();
+    let width = (rect.width() - NAMES).max(1.0);
+    // Spans of a show: far below f32's exact integers.
+    #[allow(clippy::cast_precision_loss)]
+    let x = |ms: u64| rect.left() + NAMES + width * (ms as f32 / span as f32);
+    let font = egui::FontId::proportional(13.0);
+    let top = |row: u16| rect.top() + LANE * f32::from(row);
+    let lane = |row: u16, name: &str, spans: &[(u64, u64, &str)], fill: egui::Color32| {
+        painter.text(
+            egui::pos2(rect.left(), top(row) + LANE / 2.0),
+            egui::Align2::LEFT_CENTER,
+            name,
+            font.clone(),
+            visuals.text_color(),
+        );
+        painter.hline(rect.left() + NAMES..=rect.right(), top(row), visuals.widgets.noninteractive.bg_stroke);
+        for &(at, length, caption) in spans {
+            let block = egui::Rect::from_min_max(
+                egui::pos2(x(at), top(row) + 4.0),
+                egui::pos2(x(at + length).max(x(at) + 6.0), top(row) + LANE - 4.0),
+            );
+            painter.rect_filled(block, 3.0, fill);
+            painter.text(
+                block.left_center() + egui::vec2(4.0, 0.0),
+                egui::Align2::LEFT_CENTER,
+                caption,
+                font.clone(),
+                visuals.strong_text_color(),
+            );
+        }
+    };
+    let sound: Vec<(u64, u64, &str)> =
+        show.sound.iter().map(|s| (s.offset_ms.max(0).unsigned_abs(), s.duration_ms, "")).collect();
+    lane(0, words.sound, &sound, visuals.selection.bg_fill.gamma_multiply(0.5));
+    for (row, device) in show.devices.iter().enumerate() {
+        let spans: Vec<(u64, u64, &str)> = blocks
+            .iter()
+            .filter(|(index, ..)| *index == row)
+            .map(|(_, at, length, c)| (*at, *length, c.as_str()))
+            .collect();
+        lane(u16::try_from(row + 1).unwrap_or(u16::MAX), &device.name, &spans, visuals.selection.bg_fill);
+    }
+    for second in 0..=span / 1000 {
+        painter.text(
+            egui::pos2(x(second * 1000), top(rows) + 12.0),
+            egui::Align2::CENTER_CENTER,
+            format!("{second} s"),
+            egui::FontId::proportional(11.0),
+            visuals.weak_text_color(),
+        );
+    }
+    // Each cue said as text too (screen readers, tests).
+    for (index, at, length, caption) in &blocks {
+        // Whole ms of a show: exact in f64.
+        #[allow(clippy::cast_precision_loss)]
+        let said = format!(
+            "{} {caption} {:.2}–{:.2} s",
+            show.devices[*index].name,
+            *at as f64 / 1000.0,
+            (at + length) as f64 / 1000.0
+        );
+        ui.label(egui::RichText::new(said).small().weak());
+    }
+}
+
+fn cue_caption(start: &Start, words: &ShowWords) -> String {
+    match *start {
+        Start::Macro(id) => format!("{} {id}", words.macro_word),
+        Start::Slot(slot) => format!("{} {slot}", words.motion_word),
+        Start::Drive { speed_m_s, turn_deg_s, .. } => {
+            format!("{} {speed_m_s:.2} m/s {turn_deg_s:.0}°/s", words.drive_word)
+        }
+    }
+}
+
+fn family_name(family: Family, words: &ShowWords) -> &'static str {
+    words.families.iter().find(|(tag, _)| *tag == family.tag()).map_or_else(|| family.name(), |(_, name)| name)
+}
+
+/// The show window's words.
+#[derive(Debug)]
+pub struct ShowWords {
+    /// The window's title and the File menu's entry.
+    pub title: &'static str,
+    /// "Show the open project as a show".
+    pub this_project: &'static str,
+    /// "devices".
+    pub devices: &'static str,
+    /// Column heads.
+    pub device: &'static str,
+    /// "Family".
+    pub family: &'static str,
+    /// "Port".
+    pub port: &'static str,
+    /// "Sound".
+    pub sound: &'static str,
+    /// "Play on the boards".
+    pub play: &'static str,
+    /// "Stop all".
+    pub stop_all: &'static str,
+    /// "macro", "motion", "drive".
+    pub macro_word: &'static str,
+    /// "motion".
+    pub motion_word: &'static str,
+    /// "drive".
+    pub drive_word: &'static str,
+    /// Family names by tag.
+    pub families: [(&'static str, &'static str); 3],
+}
+
+const ENGLISH: ShowWords = ShowWords {
+    title: "Show…",
+    this_project: "this project",
+    devices: "devices",
+    device: "Device",
+    family: "Family",
+    port: "Port",
+    sound: "Sound",
+    play: "Play on the boards",
+    stop_all: "Stop all",
+    macro_word: "macro",
+    motion_word: "motion",
+    drive_word: "drive",
+    families: [("servo", "servo board"), ("plen2", "PLEN2"), ("rflex", "rFLEX base")],
+};
+
+const CHINESE: ShowWords = ShowWords {
+    title: "演出…",
+    this_project: "此專案",
+    devices: "個裝置",
+    device: "裝置",
+    family: "種類",
+    port: "連接埠",
+    sound: "聲音",
+    play: "在開發板上播放",
+    stop_all: "全部停止",
+    macro_word: "巨集",
+    motion_word: "動作",
+    drive_word: "行駛",
+    families: [("servo", "伺服板"), ("plen2", "PLEN2"), ("rflex", "rFLEX 底盤")],
+};
+
+/// The words in `language`.
+pub fn words(language: Language) -> &'static ShowWords {
+    match language {
+        Language::English => &ENGLISH,
+        Language::TraditionalChinese => &CHINESE,
+    }
+}

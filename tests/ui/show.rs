@@ -1,0 +1,72 @@
+//! File → Show…: a show's devices with their ports, its cues in a lane per
+//! device under the sound's, Play on the boards (every emulated board is
+//! started on its cue by the same player as `servo-studio play`), and the
+//! window's STOP stopping every board of a show that plays.
+
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use std::time::Duration;
+
+use egui_kittest::kittest::Queryable;
+use servo_studio::show::{Cue, Show, Start};
+use servo_studio::ui::show::ShowAction;
+use servo_studio::ui::{Action, Tab};
+
+use crate::cli::play::{Stage, device, logged_until, swinging};
+use crate::common;
+
+fn two_boards(swings: i32) -> Show {
+    Show {
+        devices: vec![device("skull", swinging(swings)), device("arms", swinging(swings))],
+        sound: None,
+        cues: vec![
+            Cue { device: "skull".into(), at_ms: 0, start: Start::Macro(1) },
+            Cue { device: "arms".into(), at_ms: 500, start: Start::Macro(1) },
+        ],
+    }
+}
+
+fn opened(stage: &Stage) -> egui_kittest::Harness<'static, servo_studio::ui::StudioApp> {
+    let mut app = common::ui::editor(servo_studio::project::Project::servo(common::sample_biped()));
+    app.apply(Action::Show(ShowAction::Open(stage.dir.path().join("show.json"))));
+    let session = app.show.session.as_mut().expect("the show opened");
+    let ports: Vec<String> =
+        stage.device_args().chunks(2).map(|pair| pair[1].split_once('=').unwrap().1.to_string()).collect();
+    session.ports = ports;
+    common::ui::showing(app, Tab::Servos, (1280.0, 800.0))
+}
+
+#[test]
+fn the_show_window_lays_out_each_device_s_cues_and_plays_them_on_the_boards() {
+    let stage = Stage::new(&two_boards(2), &[]);
+    let mut harness = opened(&stage);
+    // A lane per device, each cue said with its time.
+    assert!(harness.query_by_label("skull").is_some() && harness.query_by_label("arms").is_some());
+    assert!(harness.query_by_label("skull macro 1 0.00–1.00 s").is_some());
+    assert!(harness.query_by_label("arms macro 1 0.50–1.50 s").is_some());
+    harness.get_by_label("Play on the boards").click();
+    common::ui::run_until(&mut harness, "the show ended", |app| {
+        !app.show.playing() && app.show.session.as_ref().unwrap().said.iter().any(|l| l.starts_with("ended after"))
+    });
+    let said = harness.state().show.session.as_ref().unwrap().said.join("\n");
+    assert!(said.contains("skull answered on") && said.contains("arms answered on"), "{said}");
+    logged_until(stage.log("skull"), "ExecuteMacroRequest", Duration::from_secs(10));
+    logged_until(stage.log("arms"), "ExecuteMacroRequest", Duration::from_secs(10));
+}
+
+#[test]
+fn stop_stops_every_board_of_a_show_that_plays() {
+    let stage = Stage::new(&two_boards(200), &[]);
+    let mut harness = opened(&stage);
+    harness.get_by_label("Play on the boards").click();
+    harness.run_steps(2);
+    logged_until(stage.log("arms"), "ExecuteMacroRequest", Duration::from_secs(30));
+    harness.get_by_label("■ STOP").click();
+    common::ui::run_until(&mut harness, "the show stopped", |app| !app.show.playing());
+    let said = harness.state().show.session.as_ref().unwrap().said.join("\n");
+    assert!(said.contains("stopped by STOP: every device was stopped"), "{said}");
+    for name in ["skull", "arms"] {
+        let log = logged_until(stage.log(name), "SetServoParameterRequest", Duration::from_secs(10));
+        assert!(log.iter().any(|(_, line)| line.contains("is_start: false")), "{name}: {log:?}");
+    }
+}
