@@ -61,10 +61,8 @@ impl ImportDesk {
         let warn = ui.visuals().warn_fg_color;
         match self.board(session) {
             None => {
-                ui.horizontal(|ui| {
-                    ui.spinner();
-                    ui.label(words.checking);
-                });
+                // Still: the worker wakes the window when it is done (no spinner repainting every frame).
+                ui.label(words.checking);
                 Vec::new()
             }
             Some(Err(error)) => {
