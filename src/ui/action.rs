@@ -339,6 +339,8 @@ pub enum ShowAction {
     Play,
     /// Stop every device.
     StopAll,
+    /// Write the show (version 3) to this file.
+    Save(PathBuf),
     /// Close the window (stopping a show that plays).
     Close,
 }

@@ -70,3 +70,44 @@ fn stop_stops_every_board_of_a_show_that_plays() {
         assert!(log.iter().any(|(_, line)| line.contains("is_start: false")), "{name}: {log:?}");
     }
 }
+
+#[test]
+fn a_cue_is_added_changed_and_the_show_saved_as_version_3() {
+    use egui::accesskit::Role;
+    use egui_kittest::kittest::by;
+    let stage = Stage::new(&two_boards(2), &[]);
+    let saved = stage.dir.path().join("saved.json");
+    let answer = saved.clone();
+    let picker: servo_studio::ui::Picker =
+        std::sync::Arc::new(move |_: &servo_studio::ui::FileRequest, waker: servo_studio::link::Waker| {
+            let (tx, rx) = crossbeam_channel::bounded(1);
+            tx.send(Some(answer.clone())).unwrap();
+            waker();
+            rx
+        });
+    let mut app = common::ui::editor(servo_studio::project::Project::servo(common::sample_biped())).with_picker(picker);
+    app.apply(Action::Show(ShowAction::Open(stage.dir.path().join("show.json"))));
+    let mut harness = common::ui::showing(app, Tab::Servos, (1280.0, 800.0));
+    harness.get_by_label("+ Cue").click();
+    harness.run();
+    // The new cue: the first device's first macro, at 0; moved to the other board in its row.
+    assert_eq!(harness.state().show.session.as_ref().unwrap().show.cues.len(), 3);
+    assert_eq!(harness.query_all(by().label("skull macro 1 0.00–1.00 s")).count(), 2, "the first cue and the new one");
+    let rows: Vec<_> = harness.query_all(by().role(Role::ComboBox).value("skull")).collect();
+    rows.last().unwrap().click();
+    harness.run();
+    harness.query_all(by().label("arms")).last().unwrap().click();
+    harness.run();
+    assert_eq!(harness.state().show.session.as_ref().unwrap().show.cues[2].device, "arms");
+    // A cue at a time the show cannot hold is said, and Play waits for it to be right.
+    harness.state_mut().show.session.as_mut().unwrap().show.cues[2].device = "nobody".into();
+    harness.run();
+    assert!(harness.query_by_label_contains("\"nobody\", which is not a device").is_some());
+    harness.state_mut().show.session.as_mut().unwrap().show.cues[2].device = "arms".into();
+    harness.run();
+    harness.get_by_label("Save show…").click();
+    common::ui::run_until(&mut harness, "the show saved", |_| saved.exists());
+    let again = Show::open(&saved).unwrap();
+    assert_eq!(again.cues.len(), 3);
+    assert_eq!((again.cues[2].device.as_str(), again.cues[2].at_ms, again.cues[2].start), ("arms", 0, Start::Macro(1)));
+}

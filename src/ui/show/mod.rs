@@ -4,6 +4,8 @@
 //! `servo-studio play`, off the frame; Stop all (and the window's STOP)
 //! stops every device, bases braking.
 
+mod cues;
+
 use std::path::PathBuf;
 
 use crossbeam_channel::{Receiver, Sender};
@@ -58,6 +60,14 @@ impl ShowDesk {
             ShowAction::OpenProject => self.opened(None, Show::of_one("board", project.clone())),
             ShowAction::Play => self.play(waker.clone()),
             ShowAction::StopAll => self.stop(),
+            ShowAction::Save(path) => {
+                let Some(session) = &mut self.session else { return None };
+                let text = session.show.to_json();
+                if let Err(error) = crate::project::atomic_write_all(&[(path.as_path(), text.as_bytes())]) {
+                    return Some(format!("cannot save {}: {error}; the previous file is unchanged", path.display()));
+                }
+                session.path = Some(path);
+            }
             ShowAction::Close => {
                 self.stop();
                 self.session = None;
@@ -224,9 +234,27 @@ fn session_ui(
     ui.separator();
     lanes(ui, &session.show, words);
     ui.separator();
+    let problem = cues::cues_ui(ui, &mut session.show, !playing, words);
+    if let Some(problem) = &problem {
+        ui.colored_label(ui.visuals().warn_fg_color, problem);
+    }
+    ui.separator();
     ui.horizontal(|ui| {
-        if ui.add_enabled(!playing && !session.show.cues.is_empty(), egui::Button::new(words.play)).clicked() {
+        let can = !playing && !session.show.cues.is_empty() && problem.is_none();
+        if ui.add_enabled(can, egui::Button::new(words.play)).clicked() {
             actions.push(crate::ui::Action::Show(ShowAction::Play));
+        }
+        if ui.add_enabled(problem.is_none(), egui::Button::new(words.save)).clicked() {
+            let offered = session
+                .path
+                .as_ref()
+                .and_then(|p| p.file_name())
+                .map_or_else(|| "show.json".into(), |n| n.to_string_lossy().into_owned());
+            actions.push(crate::ui::Action::AskFile(crate::ui::FileRequest::Export(crate::ui::action::Export::json(
+                offered,
+                "Servo Studio show",
+                |path| crate::ui::Action::Show(ShowAction::Save(path)),
+            ))));
         }
         if ui.add_enabled(playing, egui::Button::new(words.stop_all)).clicked() {
             actions.push(crate::ui::Action::Show(ShowAction::StopAll));
@@ -378,6 +406,18 @@ pub struct ShowWords {
     pub drive_word: &'static str,
     /// Family names by tag.
     pub families: [(&'static str, &'static str); 3],
+    /// "At".
+    pub at: &'static str,
+    /// "Cue" (a row's name).
+    pub cue: &'static str,
+    /// "Starts".
+    pub starts: &'static str,
+    /// "Remove".
+    pub remove: &'static str,
+    /// "+ Cue".
+    pub add_cue: &'static str,
+    /// "Save show…".
+    pub save: &'static str,
 }
 
 const ENGLISH: ShowWords = ShowWords {
@@ -394,6 +434,12 @@ const ENGLISH: ShowWords = ShowWords {
     motion_word: "motion",
     drive_word: "drive",
     families: [("servo", "servo board"), ("plen2", "PLEN2"), ("rflex", "rFLEX base")],
+    at: "At",
+    cue: "Cue",
+    starts: "Starts",
+    remove: "Remove",
+    add_cue: "+ Cue",
+    save: "Save show…",
 };
 
 const CHINESE: ShowWords = ShowWords {
@@ -410,6 +456,12 @@ const CHINESE: ShowWords = ShowWords {
     motion_word: "動作",
     drive_word: "行駛",
     families: [("servo", "伺服板"), ("plen2", "PLEN2"), ("rflex", "rFLEX 底盤")],
+    at: "時間",
+    cue: "提示點",
+    starts: "開始",
+    remove: "移除",
+    add_cue: "+ 提示點",
+    save: "儲存演出…",
 };
 
 /// The words in `language`.

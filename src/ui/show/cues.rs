@@ -1,0 +1,147 @@
+//! The show window's cues, a row each: which device, when (seconds), and
+//! what it starts — one of its macros (servo board) or motions (PLEN2), or
+//! a drive (rFLEX: speed, turn, how long); added, changed and removed, the
+//! show checked as it is edited.
+
+use super::ShowWords;
+use crate::project::Family;
+use crate::show::{Cue, Show, Start};
+
+/// The cues' table; `editable` while no show plays. Returns what the show's check says, if it fails.
+pub(super) fn cues_ui(ui: &mut egui::Ui, show: &mut Show, editable: bool, words: &ShowWords) -> Option<String> {
+    let mut remove = None;
+    egui::Grid::new("show-cues").striped(true).show(ui, |ui| {
+        for head in ["#", words.device, words.at, words.starts, ""] {
+            ui.strong(head);
+        }
+        ui.end_row();
+        let names: Vec<String> = show.devices.iter().map(|d| d.name.clone()).collect();
+        for (index, cue) in show.cues.iter_mut().enumerate() {
+            // Each row's widgets are named by the cue's number (screen readers, tests).
+            let named = ui.label(format!("{} {}", words.cue, index + 1)).id;
+            ui.add_enabled_ui(editable, |ui| {
+                egui::ComboBox::from_id_salt(("cue-device", index))
+                    .selected_text(cue.device.clone())
+                    .show_ui(ui, |ui| {
+                        for name in &names {
+                            ui.selectable_value(&mut cue.device, name.clone(), name);
+                        }
+                    })
+                    .response
+                    .labelled_by(named);
+            });
+            let mut seconds = cue.at_ms as f64 / 1000.0;
+            let time = ui
+                .add_enabled(editable, egui::DragValue::new(&mut seconds).range(0.0..=3600.0).speed(0.01).suffix(" s"))
+                .labelled_by(named);
+            if time.changed() {
+                // Seconds within an hour: whole ms.
+                #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+                let ms = (seconds * 1000.0).round().max(0.0) as u64;
+                cue.at_ms = ms;
+            }
+            let device = show.devices.iter().find(|d| d.name == cue.device);
+            ui.add_enabled_ui(editable, |ui| start_ui(ui, (index, named, &mut cue.start), device, words));
+            if ui.add_enabled(editable, egui::Button::new(words.remove)).clicked() {
+                remove = Some(index);
+            }
+            ui.end_row();
+        }
+    });
+    if let Some(index) = remove {
+        show.cues.remove(index);
+    }
+    if ui.add_enabled(editable && !show.devices.is_empty(), egui::Button::new(words.add_cue)).clicked() {
+        let device = &show.devices[0];
+        if let Some(start) = first_start(device) {
+            show.cues.push(Cue { device: device.name.clone(), at_ms: 0, start });
+        }
+    }
+    show.check().err().map(|error| error.to_string())
+}
+
+/// What a device starts first: its lowest macro or motion, or a still drive.
+fn first_start(device: &crate::show::Device) -> Option<Start> {
+    match device.project.family {
+        family if family == Family::Servo => device.project.servo.macros.iter().map(|m| m.id).min().map(Start::Macro),
+        family if family == Family::Plen2 => device.project.plen2.motions.iter().map(|m| m.slot).min().map(Start::Slot),
+        family if family == Family::Rflex => Some(Start::Drive { speed_m_s: 0.2, turn_deg_s: 0.0, for_ms: 1000 }),
+        _ => None,
+    }
+}
+
+/// What a cue starts, chosen among what its device holds.
+fn start_ui(
+    ui: &mut egui::Ui,
+    (index, named, start): (usize, egui::Id, &mut Start),
+    device: Option<&crate::show::Device>,
+    words: &ShowWords,
+) {
+    let Some(device) = device else { return };
+    let family = device.project.family;
+    // A cue moved to a device of another family starts what that one holds first.
+    let fits = matches!(
+        (*start, family),
+        (Start::Macro(_), f) if f == Family::Servo
+    ) || matches!((*start, family), (Start::Slot(_), f) if f == Family::Plen2)
+        || matches!((*start, family), (Start::Drive { .. }, f) if f == Family::Rflex);
+    if !fits && let Some(first) = first_start(device) {
+        *start = first;
+    }
+    match start {
+        Start::Macro(id) => {
+            let shown = device.project.servo.macro_by_id(*id).map_or_else(
+                || format!("{} {id}", words.macro_word),
+                |m| format!("{} {id} {}", words.macro_word, m.caption),
+            );
+            egui::ComboBox::from_id_salt(("cue-start", index))
+                .selected_text(shown)
+                .width(200.0)
+                .show_ui(ui, |ui| {
+                    for item in &device.project.servo.macros {
+                        ui.selectable_value(id, item.id, format!("{} {} {}", words.macro_word, item.id, item.caption));
+                    }
+                })
+                .response
+                .labelled_by(named);
+        }
+        Start::Slot(slot) => {
+            let shown = device.project.plen2.motions.iter().find(|m| m.slot == *slot).map_or_else(
+                || format!("{} {slot}", words.motion_word),
+                |m| format!("{} {slot} {}", words.motion_word, m.name),
+            );
+            egui::ComboBox::from_id_salt(("cue-start", index))
+                .selected_text(shown)
+                .width(200.0)
+                .show_ui(ui, |ui| {
+                    for motion in &device.project.plen2.motions {
+                        ui.selectable_value(
+                            slot,
+                            motion.slot,
+                            format!("{} {} {}", words.motion_word, motion.slot, motion.name),
+                        );
+                    }
+                })
+                .response
+                .labelled_by(named);
+        }
+        Start::Drive { speed_m_s, turn_deg_s, for_ms } => {
+            ui.horizontal(|ui| {
+                ui.add(egui::DragValue::new(speed_m_s).range(-1.5..=1.5).speed(0.01).suffix(" m/s")).labelled_by(named);
+                ui.add(egui::DragValue::new(turn_deg_s).range(-180.0..=180.0).speed(1.0).suffix(" °/s"))
+                    .labelled_by(named);
+                let mut seconds = *for_ms as f64 / 1000.0;
+                if ui
+                    .add(egui::DragValue::new(&mut seconds).range(0.0..=600.0).speed(0.05).suffix(" s"))
+                    .labelled_by(named)
+                    .changed()
+                {
+                    // Seconds within ten minutes: whole ms.
+                    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+                    let ms = (seconds * 1000.0).round().max(0.0) as u64;
+                    *for_ms = ms;
+                }
+            });
+        }
+    }
+}
