@@ -255,6 +255,9 @@ fn log_run(run: u32, ran: &Ran, clock: &MonotonicClock) -> anyhow::Result<()> {
             clock.ns(sent.moving_at)
         ))?;
     }
+    for (device, why) in &ran.lost {
+        line(&format!("run {run}: the link to {device} was lost ({why}): the show played on without it"))?;
+    }
     let worst = ran.sent.iter().map(Sent::late_ms).fold(0.0, f64::max);
     line(&format!(
         "run {run}: ended after {:.2} s; largest skew {worst:.2} ms",

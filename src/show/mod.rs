@@ -41,6 +41,8 @@ pub struct Device {
     pub place: Place,
     /// Its family and what it holds (motions, macros, settings).
     pub project: Project,
+    /// When its link is lost mid-show, the others play on without it (else every device stops).
+    pub play_on_without: bool,
 }
 
 /// Where a device stands on the floor.
@@ -110,6 +112,8 @@ struct DeviceFile {
     port: Option<String>,
     #[serde(default)]
     place: Place,
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    play_on_without: bool,
     project: serde_json::Value,
 }
 
@@ -128,7 +132,8 @@ impl Show {
     /// A show of one device, `name`, holding `project` (its sound becomes the show's).
     pub fn of_one(name: &str, mut project: Project) -> Self {
         let sound = project.sound.take();
-        let device = Device { name: name.to_string(), port: None, place: Place::default(), project };
+        let device =
+            Device { name: name.to_string(), port: None, place: Place::default(), project, play_on_without: false };
         Self { devices: vec![device], sound, cues: Vec::new() }
     }
 
@@ -158,7 +163,13 @@ impl Show {
         for device in file.devices {
             let project = project::from_json(&device.project.to_string())
                 .map_err(|error| ShowError::Invalid(format!("device {:?}: {error}", device.name)))?;
-            devices.push(Device { name: device.name, port: device.port, place: device.place, project });
+            devices.push(Device {
+                name: device.name,
+                port: device.port,
+                place: device.place,
+                project,
+                play_on_without: device.play_on_without,
+            });
         }
         let show = Self { devices, sound: file.sound, cues: file.cues };
         show.check()?;
@@ -174,6 +185,7 @@ impl Show {
                 name: device.name.clone(),
                 port: device.port.clone(),
                 place: device.place,
+                play_on_without: device.play_on_without,
                 project: serde_json::from_str(&project::to_json(&device.project)).unwrap_or_default(),
             })
             .collect();

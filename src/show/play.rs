@@ -97,6 +97,8 @@ pub struct Ran {
     pub ended: Instant,
     /// Whether the sound played.
     pub with_sound: bool,
+    /// Devices whose link was lost and that the show played on without: name, why.
+    pub lost: Vec<(String, String)>,
 }
 
 /// The show, its devices (in the show's order) and what it plays through.
@@ -109,6 +111,15 @@ pub struct Player<'a> {
     pub sound: Option<(Speakers, PathBuf)>,
     /// STOP and signals: anything arriving ends the run, named by what arrived.
     pub stop: Receiver<String>,
+}
+
+/// What a run keeps of the devices while it plays.
+#[derive(Default)]
+struct Going {
+    /// Drives that end at an instant, by device.
+    drives: Vec<(Instant, usize)>,
+    /// Devices lost and played on without: their index, name and why.
+    lost: Vec<(usize, String, String)>,
 }
 
 impl Player<'_> {
@@ -126,9 +137,12 @@ impl Player<'_> {
         plan.sort_by_key(|(due, ..)| *due);
         let end = zero + Duration::from_millis(self.length_ms());
         let mut sent = Vec::new();
-        let mut drives: Vec<(Instant, usize)> = Vec::new();
+        let mut going = Going::default();
         for (due, index, start, moving_at) in plan {
-            self.wait_until(due, &mut drives)?;
+            self.wait_until(due, &mut going)?;
+            if going.lost.iter().any(|(gone, ..)| *gone == index) {
+                continue;
+            }
             let sent_at = Instant::now();
             let device = self.show.devices[index].name.clone();
             if let Err(why) = self.stages[index].start(&start) {
@@ -136,13 +150,14 @@ impl Player<'_> {
                 return Err(Stopped::Failed { device, why });
             }
             if let Start::Drive { for_ms, .. } = start {
-                drives.push((moving_at + Duration::from_millis(for_ms), index));
+                going.drives.push((moving_at + Duration::from_millis(for_ms), index));
             }
             sent.push(Sent { device, start, moving_at, due_at: due, sent_at });
         }
-        self.wait_until(end, &mut drives)?;
+        self.wait_until(end, &mut going)?;
         drop(playing);
-        Ok(Ran { zero, sent, ended: Instant::now(), with_sound: self.sound.is_some() })
+        let lost = going.lost.into_iter().map(|(_, name, why)| (name, why)).collect();
+        Ok(Ran { zero, sent, ended: Instant::now(), with_sound: self.sound.is_some(), lost })
     }
 
     /// The show's 0: when the sound's point (its start plus the offset) is heard, or a lead from now.
@@ -190,28 +205,37 @@ impl Player<'_> {
     }
 
     /// Waits until `until`, keeping links fresh, stopping drives that are done,
-    /// and ending the run on STOP, a signal or a lost link.
-    fn wait_until(&mut self, until: Instant, drives: &mut Vec<(Instant, usize)>) -> Result<(), Stopped> {
+    /// and ending the run on STOP, a signal or a lost link (unless its device
+    /// plays on without it: then the others go on).
+    fn wait_until(&mut self, until: Instant, going: &mut Going) -> Result<(), Stopped> {
         loop {
             let now = Instant::now();
-            drives.retain(|&(done, index)| {
+            going.drives.retain(|&(done, index)| {
                 if done <= now {
                     self.stages[index].stop();
                 }
                 done > now
             });
-            for (stage, device) in self.stages.iter_mut().zip(&self.show.devices) {
-                stage.tick(now);
-                if let Some(why) = stage.lost() {
-                    let device = device.name.clone();
-                    self.stop_all();
-                    return Err(Stopped::Lost { device, why });
+            for (index, (stage, device)) in self.stages.iter_mut().zip(&self.show.devices).enumerate() {
+                if going.lost.iter().any(|(gone, ..)| *gone == index) {
+                    continue;
                 }
+                stage.tick(now);
+                let Some(why) = stage.lost() else { continue };
+                if device.play_on_without {
+                    going.lost.push((index, device.name.clone(), why));
+                    going.drives.retain(|&(_, driving)| driving != index);
+                    continue;
+                }
+                let device = device.name.clone();
+                self.stop_all();
+                return Err(Stopped::Lost { device, why });
             }
             if now >= until {
                 return Ok(());
             }
-            let next = drives.iter().map(|(done, _)| *done).min().unwrap_or(until).min(until).min(now + LOOK_EVERY);
+            let next =
+                going.drives.iter().map(|(done, _)| *done).min().unwrap_or(until).min(until).min(now + LOOK_EVERY);
             if let Ok(what) = self.stop.recv_deadline(next) {
                 self.stop_all();
                 return Err(Stopped::Asked(what));

@@ -51,7 +51,7 @@ pub fn waving() -> Project {
 }
 
 pub fn device(name: &str, project: Project) -> Device {
-    Device { name: name.into(), port: None, place: Place::default(), project }
+    Device { name: name.into(), port: None, place: Place::default(), project, play_on_without: false }
 }
 
 /// The log's lines (ns, command) once one contains `wanted`, waiting on the file itself.
@@ -297,4 +297,31 @@ fn a_visitor_starts_each_run_with_a_gamepad_button() {
     }
     let status = child.wait().unwrap();
     assert_eq!(status.code(), Some(0));
+}
+
+#[test]
+fn a_device_marked_play_on_without_it_is_left_behind_and_the_show_goes_on() {
+    let mut other = device("other", swinging(6));
+    other.play_on_without = true;
+    let show = Show {
+        devices: vec![device("arm", swinging(6)), other],
+        sound: None,
+        cues: vec![
+            Cue { device: "arm".into(), at_ms: 0, start: Start::Macro(1) },
+            Cue { device: "other".into(), at_ms: 0, start: Start::Macro(1) },
+        ],
+    };
+    let mut stage = Stage::new(&show, &[]);
+    let mut child = stage.play(&[]);
+    logged_until(stage.log("other"), "ExecuteMacroRequest", Duration::from_secs(30));
+    let (_, mut gone, _) = stage.sims.remove(1);
+    gone.child.kill().unwrap();
+    gone.child.wait().unwrap();
+    let stdout =
+        BufReader::new(child.stdout.take().unwrap()).lines().map(Result::unwrap).collect::<Vec<_>>().join("\n");
+    let (code, stderr) = common::ended(child, Duration::from_secs(60));
+    assert_eq!(code, Some(0), "{stderr}");
+    assert!(stdout.contains("the link to other was lost") && stdout.contains("played on without it"), "{stdout}");
+    let arm = std::fs::read_to_string(stage.log("arm")).unwrap();
+    assert!(!arm.contains("is_start: false"), "the arm was not stopped: {arm}");
 }

@@ -111,3 +111,16 @@ fn a_cue_is_added_changed_and_the_show_saved_as_version_3() {
     assert_eq!(again.cues.len(), 3);
     assert_eq!((again.cues[2].device.as_str(), again.cues[2].at_ms, again.cues[2].start), ("arms", 0, Start::Macro(1)));
 }
+
+#[test]
+fn each_device_says_whether_the_show_plays_on_without_it() {
+    let stage = Stage::new(&two_boards(2), &[]);
+    let mut harness = opened(&stage);
+    let boxes: Vec<_> = harness.query_all_by_label("play on without it").collect();
+    assert_eq!(boxes.len(), 2, "a box per device");
+    boxes[1].click();
+    harness.run();
+    let show = &harness.state().show.session.as_ref().unwrap().show;
+    assert_eq!(show.devices.iter().map(|d| d.play_on_without).collect::<Vec<_>>(), [false, true]);
+    assert!(show.to_json().contains("\"play_on_without\": true"), "saved with the show");
+}

@@ -197,6 +197,9 @@ fn played(show: &Show, folder: Option<PathBuf>, stop: Receiver<String>, tell: &d
             for sent in &ran.sent {
                 tell(format!("{} started {:?}, {:.2} ms late", sent.device, sent.start, sent.late_ms()));
             }
+            for (device, why) in &ran.lost {
+                tell(format!("the link to {device} was lost ({why}): the show played on without it"));
+            }
             tell(format!("ended after {:.2} s", ran.ended.saturating_duration_since(ran.zero).as_secs_f64()));
         }
         Err(stopped) => tell(stopped.to_string()),
@@ -217,17 +220,18 @@ fn session_ui(
         .map_or_else(|| words.this_project.to_string(), |n| n.to_string_lossy().into_owned());
     ui.label(egui::RichText::new(format!("{name} — {} {}", session.show.devices.len(), words.devices)).strong());
     egui::Grid::new("show-devices").striped(true).show(ui, |ui| {
-        for head in [words.device, words.family, words.port] {
+        for head in [words.device, words.family, words.port, words.if_lost] {
             ui.strong(head);
         }
         ui.end_row();
-        for (device, port) in session.show.devices.iter().zip(&mut session.ports) {
+        for (device, port) in session.show.devices.iter_mut().zip(&mut session.ports) {
             let label = ui.label(&device.name);
             ui.label(family_name(device.project.family, words));
             ui.add_enabled_ui(!playing, |ui| {
                 ui.add_sized([240.0, 20.0], egui::TextEdit::singleline(port).hint_text("/dev/ttyUSB0"))
                     .labelled_by(label.id);
             });
+            ui.add_enabled(!playing, egui::Checkbox::new(&mut device.play_on_without, words.play_on));
             ui.end_row();
         }
     });
@@ -406,6 +410,10 @@ pub struct ShowWords {
     pub drive_word: &'static str,
     /// Family names by tag.
     pub families: [(&'static str, &'static str); 3],
+    /// "If its link is lost".
+    pub if_lost: &'static str,
+    /// "play on without it".
+    pub play_on: &'static str,
     /// "At".
     pub at: &'static str,
     /// "Cue" (a row's name).
@@ -434,6 +442,8 @@ const ENGLISH: ShowWords = ShowWords {
     motion_word: "motion",
     drive_word: "drive",
     families: [("servo", "servo board"), ("plen2", "PLEN2"), ("rflex", "rFLEX base")],
+    if_lost: "If its link is lost",
+    play_on: "play on without it",
     at: "At",
     cue: "Cue",
     starts: "Starts",
@@ -456,6 +466,8 @@ const CHINESE: ShowWords = ShowWords {
     motion_word: "動作",
     drive_word: "行駛",
     families: [("servo", "伺服板"), ("plen2", "PLEN2"), ("rflex", "rFLEX 底盤")],
+    if_lost: "連線中斷時",
+    play_on: "其他裝置繼續演出",
     at: "時間",
     cue: "提示點",
     starts: "開始",
