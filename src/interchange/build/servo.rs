@@ -19,7 +19,7 @@ pub(super) fn build(
     starts: &mut Vec<(usize, Start)>,
 ) -> Result<ServoProject, BuildError> {
     let servos = servos(input, report);
-    let mut made = Made { servos, actions: Vec::new(), macros: Vec::new() };
+    let mut made = Made { servos, actions: Vec::new(), macros: Vec::new(), worst_ms: 0.0 };
     // Macro ids: each clip's body, then (when it repeats or leads on) the macro that plays it.
     let next = acyclic_next(input, report);
     let mut ids = Ids::default();
@@ -61,6 +61,12 @@ pub(super) fn build(
         let commands = vec![Command::once(Run::Macro { macro_id: play }), Command::once(Run::Macro { macro_id: exit })];
         let caption = caption_within(&format!("{} then exit", clip.name), CAPTION_BYTES);
         made.macros.push(Macro { id: ids.take(), caption, commands });
+    }
+    if made.worst_ms >= 0.5 {
+        report.approximated(format!(
+            "times kept on the board's {SERVO_UPDATE_MS} ms updates: every key within {:.1} ms of the file's time, rounding never adding up",
+            made.worst_ms
+        ));
     }
     starts.extend(ids.clips.iter().map(|&(clip, _, play)| (clip, Start::Macro(play))));
     made.macros.sort_by_key(|m| m.id);
@@ -176,6 +182,8 @@ struct Made {
     servos: Vec<Servo>,
     actions: Vec<Action>,
     macros: Vec<Macro>,
+    /// The farthest any clip's key was from the file's time, ms (said once, for all of them).
+    worst_ms: f64,
 }
 
 impl Made {
@@ -250,12 +258,7 @@ impl Made {
             }
             at = end;
         }
-        if clock.worst_ms >= 0.5 {
-            report.approximated(format!(
-                "times kept on the board's {SERVO_UPDATE_MS} ms updates: every key within {:.1} ms of the file's time, rounding never adding up",
-                clock.worst_ms
-            ));
-        }
+        self.worst_ms = self.worst_ms.max(clock.worst_ms);
         commands
     }
 
