@@ -13,9 +13,8 @@ use clap::Args;
 use super::out::{line, say};
 use super::signals;
 use crate::link::no_waker;
-use crate::project::Family;
 use crate::show::play::{Player, Ran, Sent, Stage, Stopped};
-use crate::show::{Cue, Show, Start};
+use crate::show::{Cue, Show};
 use crate::sim::MonotonicClock;
 
 /// `servo-studio play` options.
@@ -174,12 +173,7 @@ fn default_cue(show: &mut Show) -> anyhow::Result<()> {
         return Ok(());
     }
     let [device] = show.devices.as_slice() else { bail!("the show has no cue: nothing to play") };
-    let start = match device.project.family {
-        family if family == Family::Servo => device.project.servo.macros.iter().map(|m| m.id).min().map(Start::Macro),
-        family if family == Family::Plen2 => device.project.plen2.motions.iter().map(|m| m.slot).min().map(Start::Slot),
-        _ => None,
-    };
-    let Some(start) = start else { bail!("{} has no cue and no macro or motion to play", device.name) };
+    let Some(start) = device.first_stored() else { bail!("{} has no cue and no macro or motion to play", device.name) };
     say!("{} has no cue: playing {start:?} from the start", device.name);
     show.cues.push(Cue { device: device.name.clone(), at_ms: 0, start });
     Ok(())

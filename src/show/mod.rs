@@ -45,6 +45,19 @@ pub struct Device {
     pub play_on_without: bool,
 }
 
+impl Device {
+    /// The first thing it stores to start: its lowest macro (servo board) or motion slot (PLEN2).
+    pub fn first_stored(&self) -> Option<Start> {
+        match self.project.family {
+            family if family == Family::Servo => self.project.servo.macros.iter().map(|m| m.id).min().map(Start::Macro),
+            family if family == Family::Plen2 => {
+                self.project.plen2.motions.iter().map(|m| m.slot).min().map(Start::Slot)
+            }
+            _ => None,
+        }
+    }
+}
+
 /// Where a device stands on the floor.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Place {

@@ -60,14 +60,15 @@ pub(super) fn cues_ui(ui: &mut egui::Ui, show: &mut Show, editable: bool, words:
     show.check().err().map(|error| error.to_string())
 }
 
-/// What a device starts first: its lowest macro or motion, or a still drive.
+/// What a new cue of a device starts: its lowest macro or motion, or a slow drive of a second.
 fn first_start(device: &crate::show::Device) -> Option<Start> {
-    match device.project.family {
-        family if family == Family::Servo => device.project.servo.macros.iter().map(|m| m.id).min().map(Start::Macro),
-        family if family == Family::Plen2 => device.project.plen2.motions.iter().map(|m| m.slot).min().map(Start::Slot),
-        family if family == Family::Rflex => Some(Start::Drive { speed_m_s: 0.2, turn_deg_s: 0.0, for_ms: 1000 }),
-        _ => None,
-    }
+    device.first_stored().or_else(|| {
+        (device.project.family == Family::Rflex).then_some(Start::Drive {
+            speed_m_s: 0.2,
+            turn_deg_s: 0.0,
+            for_ms: 1000,
+        })
+    })
 }
 
 /// What a cue starts, chosen among what its device holds.
