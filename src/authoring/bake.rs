@@ -218,9 +218,11 @@ mod tests {
             // And the robot's own playback stays within 1° of the curve at every cycle.
             let moves: Vec<fit::Move> = by_handles.motion.frames[..=last_piece]
                 .iter()
-                .map(|frame| fit::Move {
-                    updates: usize::from(cycles_for(frame.transition_ms)),
-                    values: frame.values_tenths_deg.0.iter().map(|&v| i32::from(v)).collect(),
+                .map(|frame| {
+                    fit::Move::straight(
+                        usize::from(cycles_for(frame.transition_ms)),
+                        frame.values_tenths_deg.0.iter().map(|&v| i32::from(v)).collect(),
+                    )
                 })
                 .collect();
             let played = fit::play(&Plen2Board, &[0; JOINTS], &moves);

@@ -35,7 +35,8 @@ pub fn plen2_frames(fit: &Fit) -> Vec<Frame> {
 }
 
 /// Servo-board actions from a fit whose channels are `servo_ids` (one action
-/// per move, every servo in it, so each lasts its move's interval), ids from
+/// per move, every servo in it with its own interval: the move's, or
+/// shorter for a servo that arrives early and holds), ids from
 /// `first_id`, captioned `caption` and their number (cut to 32 bytes).
 pub fn servo_actions(fit: &Fit, servo_ids: &[u8], first_id: i32, caption: &str) -> Vec<Action> {
     fit.moves
@@ -47,13 +48,9 @@ pub fn servo_actions(fit: &Fit, servo_ids: &[u8], first_id: i32, caption: &str) 
             caption: caption_within(&format!("{caption} {}", index + 1), 32),
             steps: servo_ids
                 .iter()
-                .zip(&step.values)
-                .map(|(&servo_id, &degree)| {
-                    Step::new(
-                        servo_id,
-                        i16::try_from(degree).unwrap_or(0),
-                        i16::try_from(step.updates).unwrap_or(i16::MAX),
-                    )
+                .zip(step.values.iter().zip(&step.arrivals))
+                .map(|(&servo_id, (&degree, &arrival))| {
+                    Step::new(servo_id, i16::try_from(degree).unwrap_or(0), i16::try_from(arrival).unwrap_or(i16::MAX))
                 })
                 .collect(),
         })

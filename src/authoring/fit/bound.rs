@@ -8,7 +8,10 @@
 //! path of so many moves reaches (per channel, the whole values between the
 //! lowest and the highest: more than the board can, so never more moves than
 //! the board needs). Moves are otherwise real lines: no board's arithmetic
-//! is needed to trust it.
+//! is needed to trust it. On a board whose channels may arrive early and
+//! hold (a servo board), a channel's move may also be a line to a whole
+//! value at an earlier update, then that value: the values such holds keep
+//! are carried along, so the bound counts those moves too.
 
 use super::Board;
 
@@ -36,18 +39,32 @@ pub fn lower_bound(board: &impl Board, start: &[i32], rows: &[Vec<f64>], toleran
         for begin in (0..count).filter(|&update| changed[update]) {
             let Some(from) = corners[begin].clone() else { continue };
             let mut lines: Vec<Lines> = from.iter().map(|&(low, high)| Lines::starting(low, high)).collect();
+            // Per channel, the whole values an earlier arrival may hold (boards that allow it).
+            let mut held: Vec<Option<(f64, f64)>> = vec![None; channels];
             let longest = board.max_updates().min(count - begin);
             for updates in 1..=longest {
                 let k = f64::from(u32::try_from(updates).unwrap_or(u32::MAX));
                 let row = &rows[begin + updates - 1];
-                let open = lines
-                    .iter_mut()
-                    .zip(row)
-                    .all(|(line, &wanted)| line.keep(k, wanted + band.low, wanted + band.high));
-                if !open {
+                if board.arrives_early() && updates > 1 {
+                    for ((held, line), &wanted) in held.iter_mut().zip(&lines).zip(row) {
+                        *held = hold(hull(*held, line.whole_ends(k - 1.0, near)), wanted, tolerance);
+                    }
+                }
+                let mut open = true;
+                for ((line, held), &wanted) in lines.iter_mut().zip(&held).zip(row) {
+                    open &= line.keep(k, wanted + band.low, wanted + band.high) || held.is_some();
+                }
+                if !open || lines.iter().all(|line| line.corners.is_empty()) {
                     break;
                 }
-                let ends: Option<Vec<(f64, f64)>> = lines.iter().map(|line| line.whole_ends(k, near)).collect();
+                // A step lasts as long as its latest channel: one must end its line here.
+                let paced = !board.arrives_early() || lines.iter().any(|line| line.whole_ends(k, near).is_some());
+                let ends: Option<Vec<(f64, f64)>> = lines
+                    .iter()
+                    .zip(&held)
+                    .map(|(line, &held)| hull(held, line.whole_ends(k, near)))
+                    .collect::<Option<_>>()
+                    .filter(|_| paced);
                 if let Some(ends) = ends {
                     let end = begin + updates;
                     let merged = match &next[end] {
@@ -70,6 +87,22 @@ pub fn lower_bound(board: &impl Board, start: &[i32], rows: &[Vec<f64>], toleran
         changed = next_changed;
     }
     moves
+}
+
+/// The smallest range holding both (either may be empty).
+fn hull(a: Option<(f64, f64)>, b: Option<(f64, f64)>) -> Option<(f64, f64)> {
+    match (a, b) {
+        (Some(a), Some(b)) => Some((a.0.min(b.0), a.1.max(b.1))),
+        (one, None) | (None, one) => one,
+    }
+}
+
+/// The whole values of `range` that hold within `tolerance` of `wanted`.
+fn hold(range: Option<(f64, f64)>, wanted: f64, tolerance: f64) -> Option<(f64, f64)> {
+    let (low, high) = range?;
+    let low = low.max((wanted - tolerance - 1e-9).ceil());
+    let high = high.min((wanted + tolerance + 1e-9).floor());
+    (low <= high).then_some((low, high))
 }
 
 /// A sample's band, relative to it.

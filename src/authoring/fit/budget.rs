@@ -8,7 +8,7 @@ use super::{Board, Fit, fit, lower_bound};
 pub enum FitError {
     /// More moves are needed at this tolerance; a wider one fits.
     #[error(
-        "{needed} frames are needed within {tolerance} and at most {allowed} are allowed; the smallest tolerance that fits is {smallest}"
+        "{needed} moves (PLEN2 frames, servo-board steps) are needed within {tolerance} and at most {allowed} are allowed; the smallest tolerance that fits is {smallest}"
     )]
     Tolerance {
         /// Moves the fit needs at the tolerance asked for.

@@ -16,13 +16,14 @@
 //! end on samples: baking a project's curves keeps it, so that a project
 //! written before uploads byte for byte as it did.
 
+mod arrive;
 mod band;
 mod bound;
 mod budget;
 pub mod samples;
 mod settle;
 
-pub use band::{Band, LinearBand, Sample, StepBand, samples_of};
+pub use band::{Band, HoldBand, LinearBand, Sample, StepBand, samples_of};
 pub use bound::lower_bound;
 pub use budget::{Budget, FitError, fit_within, widest_needed};
 
@@ -44,6 +45,11 @@ pub trait Board {
     /// How far below the straight line through its move its output may be
     /// (the PLEN2 floors its 16.16 value: less than one unit); for [`lower_bound`].
     fn below_line(&self) -> f64;
+    /// Whether a channel may reach its end value before the move ends and
+    /// hold it there (a servo board's servo, on its own interval).
+    fn arrives_early(&self) -> bool {
+        false
+    }
 }
 
 /// A PLEN2: 32.768 ms cycles, frames of 1..=255 cycles, values in tenths of
@@ -78,7 +84,8 @@ impl Board for Plen2Board {
 }
 
 /// A servo board: 10 ms updates, a step of 1..=32767 updates, whole degrees,
-/// each servo moving linearly over its step.
+/// each servo moving linearly over its own interval, then holding until the
+/// step's longest ends.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct ServoBoard;
 
@@ -98,14 +105,18 @@ impl Board for ServoBoard {
         f64::from(from) + f64::from(to - from) * done
     }
 
-    type Band = LinearBand;
+    type Band = HoldBand;
 
-    fn band(&self, from: i32, tolerance: f64) -> LinearBand {
-        LinearBand::new(from, tolerance)
+    fn band(&self, from: i32, tolerance: f64) -> HoldBand {
+        HoldBand::new(from, tolerance)
     }
 
     fn below_line(&self) -> f64 {
         0.0
+    }
+
+    fn arrives_early(&self) -> bool {
+        true
     }
 }
 
@@ -127,6 +138,25 @@ pub struct Move {
     pub updates: usize,
     /// Each channel's stored value at the end.
     pub values: Vec<i32>,
+    /// The update each channel reaches its value at, then holds it (a
+    /// servo-board step's own interval per servo); `updates` for every
+    /// channel of a board whose channels all move for the whole move.
+    pub arrivals: Vec<usize>,
+}
+
+impl Move {
+    /// A move in which every channel moves for all of its `updates`.
+    pub fn straight(updates: usize, values: Vec<i32>) -> Self {
+        let arrivals = vec![updates; values.len()];
+        Self { updates, values, arrivals }
+    }
+
+    /// What `channel` outputs at update `k` (1..=`updates`) from `from`.
+    pub fn output(&self, board: &impl Board, channel: usize, from: i32, k: usize) -> f64 {
+        let to = self.values[channel];
+        let arrival = self.arrivals.get(channel).copied().unwrap_or(self.updates).clamp(1, self.updates.max(1));
+        if k > arrival { f64::from(to) } else { board.output(from, to, arrival, k) }
+    }
 }
 
 /// Moves that play a sampled movement back, and how close they come.
@@ -175,7 +205,7 @@ pub fn fit_to_key<B: Board>(board: &B, start: &[i32], rows: &[Vec<f64>], toleran
 fn fit_samples<B: Board>(board: &B, start: &[i32], rows: &[Vec<f64>], samples: &[Vec<Sample>], tolerance: f64) -> Fit {
     let count = rows.len();
     let mut nodes: Vec<Option<Node>> = vec![None; count + 1];
-    nodes[0] = Some(Node { moves: 0, begin: 0, ends: Ends::Chosen(start.to_vec()), off: 0.0 });
+    nodes[0] = Some(Node { moves: 0, begin: 0, ends: Ends::Chosen(start.to_vec()), off: 0.0, pacer: 0 });
     let mut layer = vec![0];
     let mut moves = 0;
     while nodes[count].is_none() {
@@ -189,7 +219,8 @@ fn fit_samples<B: Board>(board: &B, start: &[i32], rows: &[Vec<f64>], samples: &
             // No whole value keeps the tolerance: one update, to the sample there.
             let farthest = (0..count).rev().find(|&update| nodes[update].is_some()).unwrap_or(0);
             let values = stored_row(board, &rows[farthest]);
-            nodes[farthest + 1] = Some(Node { moves, begin: farthest, ends: Ends::Chosen(values), off: f64::INFINITY });
+            nodes[farthest + 1] =
+                Some(Node { moves, begin: farthest, ends: Ends::Chosen(values), off: f64::INFINITY, pacer: 0 });
             next.push(farthest + 1);
         }
         // Latest first: between equals, an update two places reach keeps the
@@ -200,6 +231,7 @@ fn fit_samples<B: Board>(board: &B, start: &[i32], rows: &[Vec<f64>], samples: &
         layer = next;
     }
     let mut fitted = Vec::new();
+    let mut pacers = Vec::new();
     let mut at = count;
     while at > 0 {
         let Some(node) = nodes[at].take() else { break };
@@ -210,11 +242,16 @@ fn fit_samples<B: Board>(board: &B, start: &[i32], rows: &[Vec<f64>], samples: &
                 ranges.iter().zip(&rows[at - 1]).map(|(&(low, high), &w)| board.store(w).clamp(low, high)).collect()
             }
         };
-        fitted.push(Move { updates: at - node.begin, values });
+        fitted.push(Move::straight(at - node.begin, values));
+        pacers.push(node.pacer);
         at = node.begin;
     }
     fitted.reverse();
-    settle::settle(board, start, samples, tolerance, &mut fitted);
+    pacers.reverse();
+    settle::settle(board, start, samples, tolerance, &mut fitted, &pacers);
+    if board.arrives_early() {
+        arrive::arrive(board, start, rows, tolerance, &mut fitted);
+    }
     let max_error = largest_error(&play(board, start, &fitted), rows);
     Fit { moves: fitted, max_error }
 }
@@ -228,6 +265,10 @@ struct Node {
     begin: usize,
     ends: Ends,
     off: f64,
+    /// The channel that moves for the whole move (its line ends at it, not
+    /// an earlier arrival held): a servo-board step lasts as long as its
+    /// latest servo, so one must.
+    pacer: usize,
 }
 
 /// Where a move ends: each channel's range until the next move leaves from
@@ -277,7 +318,8 @@ impl<B: Board> Reach<'_, B> {
             for (band, sample) in bands.iter_mut().zip(&self.samples[begin + updates - 1]) {
                 open &= band.push(sample);
             }
-            if !open {
+            // No longer move can end once every line has closed (each channel only holds).
+            if !open || !bands.iter().any(Band::line_open) {
                 return;
             }
             let end = begin + updates;
@@ -287,15 +329,17 @@ impl<B: Board> Reach<'_, B> {
                 continue;
             }
             let last = end == self.rows.len();
-            let range_of = |(band, sample): (&B::Band, &Sample)| {
+            let Some(pacer) = pacer(&bands, &self.samples[end - 1], row, self.board, last) else { continue };
+            let range_of = |(channel, (band, sample)): (usize, (&B::Band, &Sample))| {
+                let ends = if channel == pacer { band.line_ends() } else { band.ends() };
                 // The board holds the last frame's values: they keep the last samples too.
-                if last { held(band.ends()?, sample) } else { band.ends() }
+                if last { held(ends?, sample) } else { ends }
             };
             // How far from their samples the ends must be, before anything is kept (most are not).
             let mut forced = 0.0;
             let mut open = true;
-            for ((band, sample), &wanted) in bands.iter().zip(&self.samples[end - 1]).zip(row) {
-                let Some((low, high)) = range_of((band, sample)) else {
+            for (pair, &wanted) in bands.iter().zip(&self.samples[end - 1]).enumerate().zip(row) {
+                let Some((low, high)) = range_of(pair) else {
                     open = false;
                     break;
                 };
@@ -306,13 +350,31 @@ impl<B: Board> Reach<'_, B> {
             if !open || known.is_some_and(|(_, known)| known <= total) {
                 continue;
             }
-            let ranges: Vec<(i32, i32)> = bands.iter().zip(&self.samples[end - 1]).filter_map(range_of).collect();
+            let ranges: Vec<(i32, i32)> =
+                bands.iter().zip(&self.samples[end - 1]).enumerate().filter_map(range_of).collect();
             if known.is_none() {
                 self.next.push(end);
             }
-            self.nodes[end] = Some(Node { moves: self.moves, begin, ends: Ends::Within(ranges), off: total });
+            self.nodes[end] = Some(Node { moves: self.moves, begin, ends: Ends::Within(ranges), off: total, pacer });
         }
     }
+}
+
+/// The channel to pace a move ending here: one whose line over the whole
+/// move ends here (on a board whose channels all do, the first), the one
+/// whose own sample that line may end on if any does; `None` when no
+/// channel's line reaches this far (each only holds an earlier arrival).
+fn pacer<B: Band>(bands: &[B], samples: &[Sample], row: &[f64], board: &impl Board, last: bool) -> Option<usize> {
+    let mut first = None;
+    for (channel, (band, sample)) in bands.iter().zip(samples).enumerate() {
+        let ends = band.line_ends();
+        let Some((low, high)) = (if last { ends.and_then(|ends| held(ends, sample)) } else { ends }) else { continue };
+        if !board.arrives_early() || (low..=high).contains(&board.store(row[channel])) {
+            return Some(channel);
+        }
+        first.get_or_insert(channel);
+    }
+    first
 }
 
 /// The part of `range` within the tolerance of `sample` itself.
@@ -425,7 +487,7 @@ pub fn fit_on_samples(board: &impl Board, start: &[i32], rows: &[Vec<f64>], tole
         let Some((updates, end, error)) = best else { break };
         max_error = max_error.max(error);
         anchor.clone_from(&end);
-        moves.push(Move { updates, values: end });
+        moves.push(Move::straight(updates, end));
         at += updates;
     }
     Fit { moves, max_error }
@@ -458,7 +520,7 @@ pub fn play(board: &impl Board, start: &[i32], moves: &[Move]) -> Vec<Vec<f64>> 
     let mut from = start.to_vec();
     for step in moves {
         for k in 1..=step.updates {
-            rows.push(from.iter().zip(&step.values).map(|(&a, &b)| board.output(a, b, step.updates, k)).collect());
+            rows.push(from.iter().enumerate().map(|(channel, &a)| step.output(board, channel, a, k)).collect());
         }
         from.clone_from(&step.values);
     }
@@ -478,12 +540,12 @@ mod tests {
         // 0 → 600 tenths over 100 cycles, sampled as the robot would play it.
         let rows: Vec<Vec<f64>> = (1..=100).map(|k| vec![Plen2Board.output(0, 600, 100, k)]).collect();
         let fitted = fit(&Plen2Board, &[0], &rows, 10.0);
-        assert_eq!(fitted.moves, vec![Move { updates: 100, values: vec![600] }]);
+        assert_eq!(fitted.moves, vec![Move::straight(100, vec![600])]);
         assert!(fitted.max_error < 1e-9);
         // The servo board's line, in degrees.
         let rows: Vec<Vec<f64>> = (1..=300).map(|k| vec![f64::from(k) * 0.3]).collect();
         let fitted = fit(&ServoBoard, &[0], &rows, 1.0);
-        assert_eq!(fitted.moves, vec![Move { updates: 300, values: vec![90] }]);
+        assert_eq!(fitted.moves, vec![Move::straight(300, vec![90])]);
     }
 
     #[test]
@@ -492,7 +554,7 @@ mod tests {
         let values: Vec<f64> =
             (1..=50).map(|k| f64::from(k) * 4.0).chain((1..=60).map(|k| 200.0 - f64::from(k) * 2.0)).collect();
         let fitted = fit(&ServoBoard, &[0], &rows_of(&values), 0.5);
-        assert_eq!(fitted.moves, vec![Move { updates: 50, values: vec![200] }, Move { updates: 60, values: vec![80] }]);
+        assert_eq!(fitted.moves, vec![Move::straight(50, vec![200]), Move::straight(60, vec![80])]);
         assert_eq!(lower_bound(&ServoBoard, &[0], &rows_of(&values), 0.5), 2);
     }
 
@@ -521,7 +583,7 @@ mod tests {
     fn a_hold_then_a_jump() {
         let values: Vec<f64> = std::iter::repeat_n(0.0, 40).chain(std::iter::once(300.0)).collect();
         let fitted = fit(&Plen2Board, &[0], &rows_of(&values), 10.0);
-        assert_eq!(fitted.moves, vec![Move { updates: 40, values: vec![0] }, Move { updates: 1, values: vec![300] }]);
+        assert_eq!(fitted.moves, vec![Move::straight(40, vec![0]), Move::straight(1, vec![300])]);
     }
 
     #[test]

@@ -6,10 +6,19 @@
 
 use super::{Band, Board, Move, Sample};
 
-/// Settles `moves` (a fit of `rows` from `start` within `tolerance`).
-pub(super) fn settle<B: Board>(board: &B, start: &[i32], rows: &[Vec<Sample>], tolerance: f64, moves: &mut [Move]) {
+/// Settles `moves` (a fit of `rows` from `start` within `tolerance`), each
+/// move's pacer (`pacers`, per move) kept on a line to the move's end.
+pub(super) fn settle<B: Board>(
+    board: &B,
+    start: &[i32],
+    rows: &[Vec<Sample>],
+    tolerance: f64,
+    moves: &mut [Move],
+    pacers: &[usize],
+) {
     for (channel, &from) in start.iter().enumerate() {
-        if let Some(values) = nearest_path(board, from, rows, tolerance, moves, channel) {
+        let paced: Vec<bool> = pacers.iter().map(|&pacer| pacer == channel).collect();
+        if let Some(values) = nearest_path(board, from, rows, tolerance, moves, (channel, &paced)) {
             for (step, value) in moves.iter_mut().zip(values) {
                 step.values[channel] = value;
             }
@@ -32,18 +41,18 @@ fn nearest_path<B: Board>(
     rows: &[Vec<Sample>],
     tolerance: f64,
     moves: &[Move],
-    channel: usize,
+    (channel, paced): (usize, &[bool]),
 ) -> Option<Vec<i32>> {
     let mut layers: Vec<Layer> = Vec::with_capacity(moves.len());
     let mut begin = 0;
-    for step in moves {
+    for (step, &paces) in moves.iter().zip(paced) {
         let samples = &rows[begin..begin + step.updates];
         let wanted = samples.last()?.get(channel)?.wanted;
         let previous: Vec<(i32, f64)> = match layers.last() {
             Some(layer) => layer.iter().map(|&(value, cost, _)| (value, cost)).collect(),
             None => vec![(from, 0.0)],
         };
-        let mut layer = cheapest_ends(board, &previous, samples, channel, tolerance, wanted);
+        let mut layer = cheapest_ends(board, &previous, samples, (channel, paces), tolerance, wanted);
         if begin + step.updates == rows.len() {
             // The board holds the last values: kept within the tolerance of the last samples.
             let sample = samples.last()?.get(channel)?;
@@ -90,7 +99,7 @@ fn cheapest_ends<B: Board>(
     board: &B,
     previous: &[(i32, f64)],
     samples: &[Vec<Sample>],
-    channel: usize,
+    (channel, paces): (usize, bool),
     tolerance: f64,
     wanted: f64,
 ) -> Layer {
@@ -101,7 +110,8 @@ fn cheapest_ends<B: Board>(
             if !samples.iter().all(|row| band.push(&row[channel])) {
                 return None;
             }
-            band.ends().map(|(low, high)| (anchor, cost, low, high))
+            let ends = if paces { band.line_ends() } else { band.ends() };
+            ends.map(|(low, high)| (anchor, cost, low, high))
         })
         .collect();
     let lowest = reached.iter().map(|entry| entry.2).min().unwrap_or(0);
