@@ -89,9 +89,12 @@ pub fn run(args: &PlayArgs) -> anyhow::Result<()> {
     let interrupts = signals::listen().context("cannot listen for Ctrl-C")?;
     let mut stages: Vec<Box<dyn Stage>> = Vec::new();
     for (device, port) in show.devices.iter().zip(&ports) {
-        let (stage, delay) = crate::show::stages::connect(port, device).with_context(|| {
+        let not_played = || {
             format!("{} ({}) did not answer on {port}; nothing was played", device.name, device.project.family.name())
-        })?;
+        };
+        let opened = crate::link::by_id::resolve(port).with_context(not_played)?;
+        let (stage, delay) = crate::show::stages::connect(&opened, device).with_context(not_played)?;
+        let port = if opened == port.trim() { opened } else { format!("{port} ({opened})") };
         say!(
             "{} ({}) answered on {port}; its start takes {:.1} ms to reach it",
             device.name,

@@ -1,6 +1,7 @@
 //! Transports and the one I/O thread. A link moves bytes; it does not know
 //! which protocol reads them (the [`Driver`] it runs does).
 
+pub mod by_id;
 mod connection;
 mod driver;
 mod io_thread;

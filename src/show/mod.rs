@@ -212,6 +212,40 @@ impl Show {
         serde_json::to_string_pretty(&file).unwrap_or_default()
     }
 
+    /// Adds a device holding `project`, named `name` or, when a device has
+    /// that name, `name 2`, `name 3`…; the project's sound becomes the show's
+    /// when the show has none. Returns the name given.
+    pub fn add_device(&mut self, name: &str, mut project: Project) -> String {
+        let name = if name.trim().is_empty() { "device" } else { name.trim() };
+        let unique = std::iter::once(name.to_string())
+            .chain((2..).map(|n| format!("{name} {n}")))
+            .find(|candidate| self.device(candidate).is_none())
+            .unwrap_or_default();
+        let sound = project.sound.take();
+        if self.sound.is_none() {
+            self.sound = sound;
+        }
+        self.devices.push(Device {
+            name: unique.clone(),
+            port: None,
+            place: Place { x_m: 0.6 * f64::from(u32::try_from(self.devices.len()).unwrap_or(0)), ..Place::default() },
+            project,
+            play_on_without: false,
+        });
+        unique
+    }
+
+    /// Removes the device at `index` and every cue of it; how many cues went with it.
+    pub fn remove_device(&mut self, index: usize) -> usize {
+        if index >= self.devices.len() {
+            return 0;
+        }
+        let device = self.devices.remove(index);
+        let before = self.cues.len();
+        self.cues.retain(|cue| cue.device != device.name);
+        before - self.cues.len()
+    }
+
     /// The device called `name`.
     pub fn device(&self, name: &str) -> Option<&Device> {
         self.devices.iter().find(|device| device.name == name)
@@ -272,6 +306,40 @@ mod tests {
         assert_eq!((show.devices[0].name.as_str(), &show.devices[0].project), ("skull", &project));
         let again = Show::from_text(&show.to_json(), "other").unwrap();
         assert_eq!(again, show);
+    }
+
+    #[test]
+    fn devices_are_added_under_names_of_their_own_and_removed_with_their_cues() {
+        let mut show = Show::of_one("arms", Project::servo(project::ServoProject::default()));
+        let mut plen = Project::empty(Family::Plen2);
+        plen.sound = Some(SoundTrack {
+            path: "song.wav".into(),
+            duration_ms: 1000,
+            sha256: String::new(),
+            offset_ms: 0,
+            sensitivity_percent: 50,
+        });
+        assert_eq!(show.add_device("arms", plen), "arms 2");
+        assert_eq!(
+            show.sound.as_ref().map(|s| s.path.as_str()),
+            Some("song.wav"),
+            "the show had none: it takes the device's"
+        );
+        assert_eq!(show.add_device(" ", Project::empty(Family::Rflex)), "device");
+        assert!(show.devices.iter().all(|d| d.project.sound.is_none()));
+        show.cues = vec![
+            Cue { device: "arms 2".into(), at_ms: 0, start: Start::Slot(1) },
+            Cue {
+                device: "device".into(),
+                at_ms: 10,
+                start: Start::Drive { speed_m_s: 0.1, turn_deg_s: 0.0, for_ms: 100 },
+            },
+            Cue { device: "arms 2".into(), at_ms: 20, start: Start::Slot(2) },
+        ];
+        assert_eq!(show.remove_device(1), 2);
+        assert_eq!(show.devices.iter().map(|d| d.name.as_str()).collect::<Vec<_>>(), ["arms", "device"]);
+        assert_eq!(show.cues.len(), 1);
+        assert_eq!(show.remove_device(7), 0, "no such device: nothing removed");
     }
 
     #[test]

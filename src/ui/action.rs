@@ -335,6 +335,10 @@ pub enum ShowAction {
     Open(PathBuf),
     /// The open project as a show of one device.
     OpenProject,
+    /// Add the open project to the show as a device.
+    AddOpenProject,
+    /// Add a project file (one device) or a show file's devices to the show.
+    AddFromFile(PathBuf),
     /// Connect every device and play the show.
     Play,
     /// Stop every device.

@@ -325,3 +325,37 @@ fn a_device_marked_play_on_without_it_is_left_behind_and_the_show_goes_on() {
     let arm = std::fs::read_to_string(stage.log("arm")).unwrap();
     assert!(!arm.contains("is_start: false"), "the arm was not stopped: {arm}");
 }
+
+/// A device named by the USB id of its adapter is looked for among the USB
+/// serial devices attached; one that is not attached ends the run before
+/// anything moves, naming the id and what is attached.
+#[test]
+fn a_device_found_by_usb_id_that_is_not_attached_is_said_before_anything_moves() {
+    let stage = Stage::new(&two_boards_for_ids(), &[]);
+    let skull = stage.device_args()[1].clone();
+    let show = stage.dir.path().join("show.json");
+    let output = Process::new(EXE)
+        .args(["play", show.to_str().unwrap(), "--device", &skull, "--device", "arms=usb:0403:6001:NOT-HERE"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("arms (Servo board) did not answer on usb:0403:6001:NOT-HERE"), "{stderr}");
+    assert!(stderr.contains("no USB serial device usb:0403:6001:NOT-HERE is attached"), "{stderr}");
+    let started = std::fs::read_to_string(stage.log("skull")).unwrap_or_default();
+    assert!(!started.contains("ExecuteMacroRequest"), "nothing moved: {started}");
+    let malformed = Process::new(EXE)
+        .args(["play", show.to_str().unwrap(), "--device", &skull, "--device", "arms=usb:ftdi"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&malformed.stderr);
+    assert!(stderr.contains("\"usb:ftdi\" is not a USB id: write usb:VID:PID"), "{stderr}");
+}
+
+fn two_boards_for_ids() -> Show {
+    Show {
+        devices: vec![device("skull", swinging(2)), device("arms", swinging(2))],
+        sound: None,
+        cues: vec![Cue { device: "skull".into(), at_ms: 0, start: Start::Macro(1) }],
+    }
+}

@@ -124,3 +124,38 @@ fn each_device_says_whether_the_show_plays_on_without_it() {
     assert_eq!(show.devices.iter().map(|d| d.play_on_without).collect::<Vec<_>>(), [false, true]);
     assert!(show.to_json().contains("\"play_on_without\": true"), "saved with the show");
 }
+
+/// "+ Device" adds a new PLEN2 under a name of its own; a device's Remove
+/// takes it away with its cues (said); Find by id lists the USB serial
+/// devices attached (none on this machine: it says so).
+#[test]
+fn devices_are_added_and_removed_and_a_port_is_found_by_id() {
+    let stage = Stage::new(&two_boards(2), &[]);
+    let mut harness = opened(&stage);
+    harness.get_by_label("+ Device").click();
+    harness.run();
+    harness.get_by_label("New PLEN2").click();
+    harness.run();
+    let names = |harness: &egui_kittest::Harness<'static, servo_studio::ui::StudioApp>| -> Vec<String> {
+        let session = harness.state().show.session.as_ref().unwrap();
+        assert_eq!(session.ports.len(), session.show.devices.len(), "a port per device");
+        session.show.devices.iter().map(|d| d.name.clone()).collect()
+    };
+    assert_eq!(names(&harness), ["skull", "arms", "plen2"]);
+    assert!(harness.query_all_by_label("play on without it").count() == 3, "its row is shown");
+    // The devices' Remove buttons come first, then the cues'.
+    harness.query_all_by_label("Remove").next().unwrap().click();
+    harness.run();
+    assert_eq!(names(&harness), ["arms", "plen2"]);
+    let session = harness.state().show.session.as_ref().unwrap();
+    assert_eq!(session.show.cues.iter().map(|c| c.device.as_str()).collect::<Vec<_>>(), ["arms"]);
+    assert!(session.said.iter().any(|line| line == "skull: 1 cues went with it"), "{:?}", session.said);
+    harness.query_all_by_label("Find by id").next().unwrap().click();
+    harness.run();
+    let attached = servo_studio::link::by_id::attached();
+    if attached.is_empty() {
+        harness.get_by_label("No USB serial device is attached: plug it in, or type its port");
+    } else {
+        assert!(harness.query_all_by_label_contains(&attached[0].id.to_string()).next().is_some());
+    }
+}

@@ -5,17 +5,21 @@
 //! stops every device, bases braking.
 
 mod cues;
+mod devices;
+mod words;
 
 use std::path::PathBuf;
 
 use crossbeam_channel::{Receiver, Sender};
 
 use crate::link::Waker;
-use crate::project::{Family, Project};
+use crate::link::by_id::Attached;
+use crate::project::Project;
 use crate::show::play::{Player, Stage, cue_length_ms};
 use crate::show::{Show, Start};
 pub use crate::ui::action::ShowAction;
 use crate::ui::i18n::Language;
+pub use words::{ShowWords, words};
 
 /// An open show.
 #[derive(Debug)]
@@ -35,12 +39,23 @@ struct Running {
     said: Receiver<String>,
 }
 
+impl ShowSession {
+    /// Adds a device holding `project` (named `name`, or made unique), with no port yet.
+    pub fn add(&mut self, name: &str, project: Project) -> String {
+        let name = self.show.add_device(name, project);
+        self.ports.push(String::new());
+        name
+    }
+}
+
 /// The show window and a show playing.
 #[derive(Default)]
 pub struct ShowDesk {
     /// The open show.
     pub session: Option<ShowSession>,
     running: Option<Running>,
+    /// The USB serial devices attached, and when they were last listed (for "find by id").
+    attached: (Vec<Attached>, Option<std::time::Instant>),
 }
 
 impl std::fmt::Debug for ShowDesk {
@@ -58,6 +73,12 @@ impl ShowDesk {
                 Err(error) => return Some(format!("{}: {error}", path.display())),
             },
             ShowAction::OpenProject => self.opened(None, Show::of_one("board", project.clone())),
+            ShowAction::AddOpenProject => {
+                if let Some(session) = &mut self.session {
+                    session.add("board", project.clone());
+                }
+            }
+            ShowAction::AddFromFile(path) => return self.add_from(&path),
             ShowAction::Play => self.play(waker.clone()),
             ShowAction::StopAll => self.stop(),
             ShowAction::Save(path) => {
@@ -74,6 +95,20 @@ impl ShowDesk {
             }
         }
         None
+    }
+
+    /// Adds every device of a show file, or a project file as one device named after it.
+    fn add_from(&mut self, path: &std::path::Path) -> Option<String> {
+        let session = self.session.as_mut()?;
+        match Show::open(path) {
+            Ok(show) => {
+                for device in show.devices {
+                    session.add(&device.name, device.project);
+                }
+                None
+            }
+            Err(error) => Some(format!("{}: {error}", path.display())),
+        }
     }
 
     fn opened(&mut self, path: Option<PathBuf>, show: Show) {
@@ -141,6 +176,12 @@ impl ShowDesk {
         let words = words(language);
         let playing = self.running.is_some();
         let Some(session) = &mut self.session else { return };
+        // Listed again every few seconds while the window is open (an adapter plugged in meanwhile).
+        let (attached, listed) = &mut self.attached;
+        if listed.is_none_or(|at| at.elapsed() > std::time::Duration::from_secs(3)) {
+            *attached = crate::link::by_id::attached();
+            *listed = Some(std::time::Instant::now());
+        }
         let mut open = true;
         let room = ctx.content_rect().size() - egui::vec2(40.0, 60.0);
         egui::Window::new(words.title)
@@ -148,7 +189,7 @@ impl ShowDesk {
             .resizable(true)
             .default_size(egui::vec2(1000.0, 520.0).min(room))
             .max_size(room)
-            .show(ctx, |ui| session_ui(ui, session, playing, words, actions));
+            .show(ctx, |ui| session_ui(ui, session, attached, playing, words, actions));
         if playing {
             ctx.request_repaint_after(std::time::Duration::from_millis(100));
         }
@@ -166,7 +207,18 @@ fn played(show: &Show, folder: Option<PathBuf>, stop: Receiver<String>, tell: &d
             tell(format!("{}: no port — type where it is connected", device.name));
             return;
         };
-        match crate::show::stages::connect(port, device) {
+        let opened = match crate::link::by_id::resolve(port) {
+            Ok(opened) if opened == port.trim() => opened,
+            Ok(opened) => {
+                tell(format!("{}: {port} is {opened} now", device.name));
+                opened
+            }
+            Err(error) => {
+                tell(format!("{} did not answer on {port}: {error}; nothing was played", device.name));
+                return;
+            }
+        };
+        match crate::show::stages::connect(&opened, device) {
             Ok((stage, delay)) => {
                 tell(format!(
                     "{} answered on {port} ({:.1} ms to reach it)",
@@ -209,6 +261,7 @@ fn played(show: &Show, folder: Option<PathBuf>, stop: Receiver<String>, tell: &d
 fn session_ui(
     ui: &mut egui::Ui,
     session: &mut ShowSession,
+    attached: &[Attached],
     playing: bool,
     words: &ShowWords,
     actions: &mut Vec<crate::ui::Action>,
@@ -219,22 +272,7 @@ fn session_ui(
         .and_then(|p| p.file_name())
         .map_or_else(|| words.this_project.to_string(), |n| n.to_string_lossy().into_owned());
     ui.label(egui::RichText::new(format!("{name} — {} {}", session.show.devices.len(), words.devices)).strong());
-    egui::Grid::new("show-devices").striped(true).show(ui, |ui| {
-        for head in [words.device, words.family, words.port, words.if_lost] {
-            ui.strong(head);
-        }
-        ui.end_row();
-        for (device, port) in session.show.devices.iter_mut().zip(&mut session.ports) {
-            let label = ui.label(&device.name);
-            ui.label(family_name(device.project.family, words));
-            ui.add_enabled_ui(!playing, |ui| {
-                ui.add_sized([240.0, 20.0], egui::TextEdit::singleline(port).hint_text("/dev/ttyUSB0"))
-                    .labelled_by(label.id);
-            });
-            ui.add_enabled(!playing, egui::Checkbox::new(&mut device.play_on_without, words.play_on));
-            ui.end_row();
-        }
-    });
+    devices::devices_ui(ui, session, attached, !playing, words, actions);
     ui.separator();
     lanes(ui, &session.show, words);
     ui.separator();
@@ -374,112 +412,5 @@ fn cue_caption(start: &Start, words: &ShowWords) -> String {
         Start::Drive { speed_m_s, turn_deg_s, .. } => {
             format!("{} {speed_m_s:.2} m/s {turn_deg_s:.0}°/s", words.drive_word)
         }
-    }
-}
-
-fn family_name(family: Family, words: &ShowWords) -> &'static str {
-    words.families.iter().find(|(tag, _)| *tag == family.tag()).map_or_else(|| family.name(), |(_, name)| name)
-}
-
-/// The show window's words.
-#[derive(Debug)]
-pub struct ShowWords {
-    /// The window's title and the File menu's entry.
-    pub title: &'static str,
-    /// "Show the open project as a show".
-    pub this_project: &'static str,
-    /// "devices".
-    pub devices: &'static str,
-    /// Column heads.
-    pub device: &'static str,
-    /// "Family".
-    pub family: &'static str,
-    /// "Port".
-    pub port: &'static str,
-    /// "Sound".
-    pub sound: &'static str,
-    /// "Play on the boards".
-    pub play: &'static str,
-    /// "Stop all".
-    pub stop_all: &'static str,
-    /// "macro", "motion", "drive".
-    pub macro_word: &'static str,
-    /// "motion".
-    pub motion_word: &'static str,
-    /// "drive".
-    pub drive_word: &'static str,
-    /// Family names by tag.
-    pub families: [(&'static str, &'static str); 3],
-    /// "If its link is lost".
-    pub if_lost: &'static str,
-    /// "play on without it".
-    pub play_on: &'static str,
-    /// "At".
-    pub at: &'static str,
-    /// "Cue" (a row's name).
-    pub cue: &'static str,
-    /// "Starts".
-    pub starts: &'static str,
-    /// "Remove".
-    pub remove: &'static str,
-    /// "+ Cue".
-    pub add_cue: &'static str,
-    /// "Save show…".
-    pub save: &'static str,
-}
-
-const ENGLISH: ShowWords = ShowWords {
-    title: "Show…",
-    this_project: "this project",
-    devices: "devices",
-    device: "Device",
-    family: "Family",
-    port: "Port",
-    sound: "Sound",
-    play: "Play on the boards",
-    stop_all: "Stop all",
-    macro_word: "macro",
-    motion_word: "motion",
-    drive_word: "drive",
-    families: [("servo", "servo board"), ("plen2", "PLEN2"), ("rflex", "rFLEX base")],
-    if_lost: "If its link is lost",
-    play_on: "play on without it",
-    at: "At",
-    cue: "Cue",
-    starts: "Starts",
-    remove: "Remove",
-    add_cue: "+ Cue",
-    save: "Save show…",
-};
-
-const CHINESE: ShowWords = ShowWords {
-    title: "演出…",
-    this_project: "此專案",
-    devices: "個裝置",
-    device: "裝置",
-    family: "種類",
-    port: "連接埠",
-    sound: "聲音",
-    play: "在開發板上播放",
-    stop_all: "全部停止",
-    macro_word: "巨集",
-    motion_word: "動作",
-    drive_word: "行駛",
-    families: [("servo", "伺服板"), ("plen2", "PLEN2"), ("rflex", "rFLEX 底盤")],
-    if_lost: "連線中斷時",
-    play_on: "其他裝置繼續演出",
-    at: "時間",
-    cue: "提示點",
-    starts: "開始",
-    remove: "移除",
-    add_cue: "+ 提示點",
-    save: "儲存演出…",
-};
-
-/// The words in `language`.
-pub fn words(language: Language) -> &'static ShowWords {
-    match language {
-        Language::English => &ENGLISH,
-        Language::TraditionalChinese => &CHINESE,
     }
 }

@@ -1,0 +1,91 @@
+//! The show window's devices, a row each: its name, family, port (typed, or
+//! found by the USB id of the adapter behind it), what a lost link does, and
+//! Remove (its cues go with it); **+ Device** adds the open project, a
+//! project file, or a new servo board, PLEN2 or base.
+
+use super::{ShowAction, ShowSession, ShowWords, words::family_name};
+use crate::link::by_id::Attached;
+use crate::project::{Family, Project};
+use crate::ui::Action;
+
+/// The devices' table; `editable` while no show plays.
+pub(super) fn devices_ui(
+    ui: &mut egui::Ui,
+    session: &mut ShowSession,
+    attached: &[Attached],
+    editable: bool,
+    words: &ShowWords,
+    actions: &mut Vec<Action>,
+) {
+    let mut remove = None;
+    egui::Grid::new("show-devices").striped(true).show(ui, |ui| {
+        for head in [words.device, words.family, words.port, "", words.if_lost, ""] {
+            ui.strong(head);
+        }
+        ui.end_row();
+        for (index, (device, port)) in session.show.devices.iter_mut().zip(&mut session.ports).enumerate() {
+            let label = ui.label(&device.name);
+            ui.label(family_name(device.project.family, words));
+            ui.add_enabled_ui(editable, |ui| {
+                ui.add_sized([240.0, 20.0], egui::TextEdit::singleline(port).hint_text("/dev/ttyUSB0"))
+                    .labelled_by(label.id);
+            });
+            ui.add_enabled_ui(editable, |ui| {
+                ui.menu_button(words.find, |ui| find_menu(ui, port, attached, words));
+            });
+            ui.add_enabled(editable, egui::Checkbox::new(&mut device.play_on_without, words.play_on));
+            if ui.add_enabled(editable, egui::Button::new(words.remove)).clicked() {
+                remove = Some(index);
+            }
+            ui.end_row();
+        }
+    });
+    if let Some(index) = remove {
+        let name = session.show.devices.get(index).map(|device| device.name.clone()).unwrap_or_default();
+        let cues = session.show.remove_device(index);
+        if index < session.ports.len() {
+            session.ports.remove(index);
+        }
+        if cues > 0 {
+            session.said.push(format!("{name}: {cues} {}", words.cues_removed));
+        }
+    }
+    ui.add_enabled_ui(editable, |ui| ui.menu_button(words.add_device, |ui| add_menu(ui, session, words, actions)));
+}
+
+/// The USB serial devices attached now, each to pick as the port's id.
+fn find_menu(ui: &mut egui::Ui, port: &mut String, attached: &[Attached], words: &ShowWords) {
+    if attached.is_empty() {
+        ui.label(words.none_attached);
+    }
+    for device in attached {
+        let id = device.id.to_string();
+        if ui.button(format!("{id} — {} ({})", device.description, device.port)).clicked() {
+            *port = id;
+            ui.close();
+        }
+    }
+}
+
+/// What a new device may hold: the open project, a project file, or a new one of a family.
+fn add_menu(ui: &mut egui::Ui, session: &mut ShowSession, words: &ShowWords, actions: &mut Vec<Action>) {
+    if ui.button(words.from_open).clicked() {
+        actions.push(Action::Show(ShowAction::AddOpenProject));
+        ui.close();
+    }
+    if ui.button(words.from_file).clicked() {
+        actions.push(Action::AskFile(crate::ui::FileRequest::Pick(crate::ui::action::Pick {
+            kind: "Servo Studio project",
+            extensions: &["json"],
+            then: std::sync::Arc::new(|path| Action::Show(ShowAction::AddFromFile(path))),
+        })));
+        ui.close();
+    }
+    ui.separator();
+    for &family in Family::all() {
+        if ui.button(format!("{} {}", words.new, family_name(family, words))).clicked() {
+            session.add(family.tag(), Project::empty(family));
+            ui.close();
+        }
+    }
+}

@@ -1,0 +1,139 @@
+//! The show window's words, in each language.
+
+use crate::project::Family;
+use crate::ui::i18n::Language;
+
+pub(super) fn family_name(family: Family, words: &ShowWords) -> &'static str {
+    words.families.iter().find(|(tag, _)| *tag == family.tag()).map_or_else(|| family.name(), |(_, name)| name)
+}
+
+/// The show window's words.
+#[derive(Debug)]
+pub struct ShowWords {
+    /// The window's title and the File menu's entry.
+    pub title: &'static str,
+    /// "Show the open project as a show".
+    pub this_project: &'static str,
+    /// "devices".
+    pub devices: &'static str,
+    /// Column heads.
+    pub device: &'static str,
+    /// "Family".
+    pub family: &'static str,
+    /// "Port".
+    pub port: &'static str,
+    /// "Sound".
+    pub sound: &'static str,
+    /// "Play on the boards".
+    pub play: &'static str,
+    /// "Stop all".
+    pub stop_all: &'static str,
+    /// "macro", "motion", "drive".
+    pub macro_word: &'static str,
+    /// "motion".
+    pub motion_word: &'static str,
+    /// "drive".
+    pub drive_word: &'static str,
+    /// Family names by tag.
+    pub families: [(&'static str, &'static str); 3],
+    /// "If its link is lost".
+    pub if_lost: &'static str,
+    /// "play on without it".
+    pub play_on: &'static str,
+    /// "At".
+    pub at: &'static str,
+    /// "Cue" (a row's name).
+    pub cue: &'static str,
+    /// "Starts".
+    pub starts: &'static str,
+    /// "Remove".
+    pub remove: &'static str,
+    /// "+ Cue".
+    pub add_cue: &'static str,
+    /// "Save show…".
+    pub save: &'static str,
+    /// "+ Device".
+    pub add_device: &'static str,
+    /// "The open project".
+    pub from_open: &'static str,
+    /// "A project file…".
+    pub from_file: &'static str,
+    /// "New" (before a family's name).
+    pub new: &'static str,
+    /// "Find by id".
+    pub find: &'static str,
+    /// Said when no USB serial device is attached.
+    pub none_attached: &'static str,
+    /// "its cues went with it" (after a count).
+    pub cues_removed: &'static str,
+}
+
+const ENGLISH: ShowWords = ShowWords {
+    title: "Show…",
+    this_project: "this project",
+    devices: "devices",
+    device: "Device",
+    family: "Family",
+    port: "Port",
+    sound: "Sound",
+    play: "Play on the boards",
+    stop_all: "Stop all",
+    macro_word: "macro",
+    motion_word: "motion",
+    drive_word: "drive",
+    families: [("servo", "servo board"), ("plen2", "PLEN2"), ("rflex", "rFLEX base")],
+    if_lost: "If its link is lost",
+    play_on: "play on without it",
+    at: "At",
+    cue: "Cue",
+    starts: "Starts",
+    remove: "Remove",
+    add_cue: "+ Cue",
+    save: "Save show…",
+    add_device: "+ Device",
+    from_open: "The open project",
+    from_file: "A project file…",
+    new: "New",
+    find: "Find by id",
+    none_attached: "No USB serial device is attached: plug it in, or type its port",
+    cues_removed: "cues went with it",
+};
+
+const CHINESE: ShowWords = ShowWords {
+    title: "演出…",
+    this_project: "此專案",
+    devices: "個裝置",
+    device: "裝置",
+    family: "種類",
+    port: "連接埠",
+    sound: "聲音",
+    play: "在開發板上播放",
+    stop_all: "全部停止",
+    macro_word: "巨集",
+    motion_word: "動作",
+    drive_word: "行駛",
+    families: [("servo", "伺服板"), ("plen2", "PLEN2"), ("rflex", "rFLEX 底盤")],
+    if_lost: "連線中斷時",
+    play_on: "其他裝置繼續演出",
+    at: "時間",
+    cue: "提示點",
+    starts: "開始",
+    remove: "移除",
+    add_cue: "+ 提示點",
+    save: "儲存演出…",
+    add_device: "+ 裝置",
+    from_open: "目前開啟的專案",
+    from_file: "專案檔…",
+    new: "新增",
+    find: "依 ID 尋找",
+    none_attached: "沒有接上任何 USB 序列裝置：請接上，或輸入它的連接埠",
+    cues_removed: "個提示點一併移除",
+};
+
+/// The words in `language`.
+pub fn words(language: Language) -> &'static ShowWords {
+    match language {
+        Language::English => &ENGLISH,
+        Language::TraditionalChinese => &CHINESE,
+    }
+}
