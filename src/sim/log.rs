@@ -54,9 +54,22 @@ pub struct MonotonicClock {
 }
 
 impl MonotonicClock {
-    /// The clock read now, beside [`Instant::now`].
+    /// The clock read now, beside [`Instant::now`]: read on both sides of it,
+    /// the tightest of a few tries kept and its middle taken, so that a
+    /// thread preempted between two reads (a busy machine) does not shift
+    /// every time it converts.
     pub fn now() -> Self {
-        Self { at: Instant::now(), ns: monotonic_ns() }
+        let mut best: Option<(u128, Self)> = None;
+        for _ in 0..5 {
+            let before = monotonic_ns();
+            let at = Instant::now();
+            let after = monotonic_ns();
+            let gap = after.saturating_sub(before);
+            if best.as_ref().is_none_or(|(known, _)| gap < *known) {
+                best = Some((gap, Self { at, ns: before + gap / 2 }));
+            }
+        }
+        best.map_or_else(|| Self { at: Instant::now(), ns: monotonic_ns() }, |(_, clock)| clock)
     }
 
     /// `instant` on the system's monotonic clock, ns.

@@ -46,6 +46,16 @@ impl FamilyNotice {
     pub fn get<T: Any>(&self) -> Option<&T> {
         self.0.downcast_ref()
     }
+
+    /// The notice `family` was handed, which must be its own `T`: any other
+    /// type is a routing bug, loud in tests ([`misrouted`]).
+    pub fn of<T: Any>(&self, family: Family) -> Option<&T> {
+        let notice = self.get();
+        if notice.is_none() {
+            misrouted(family, "a notice", &format!("not a {}", std::any::type_name::<T>()));
+        }
+        notice
+    }
 }
 
 /// One family's connection, as the shell holds it: the family's handle on its
@@ -177,4 +187,19 @@ impl BoardLink {
     pub fn next_refresh(&self, polling: bool) -> Instant {
         self.device.next_refresh(polling)
     }
+}
+
+/// A family was handed an action or a notice of another family's type: the
+/// shell routed it wrong. A panic in debug builds (every test), so that it
+/// is never silently dropped; said on standard error in a release build,
+/// where the user's work goes on.
+pub fn misrouted(family: Family, what: &str, type_name: &str) {
+    let said = format!(
+        "the {} family was handed {what} that is not its own ({type_name}): the shell routed it wrong",
+        family.name()
+    );
+    if cfg!(debug_assertions) {
+        panic!("{said}");
+    }
+    eprintln!("servo-studio: error: {said}");
 }

@@ -1,8 +1,10 @@
 //! The families the editor knows, each with its side of the editor
-//! ([`FamilyUi`]), gathered from the registry each family adds itself to in
-//! its own folder ([`Registered`]): no file lists them. The shell reaches a
-//! family through this list only; tests and a family's own code reach their
-//! concrete type with [`Families::of`].
+//! ([`FamilyUi`]): **this file lists them** ([`every_family`]), so a reader
+//! finds them in one place (as rerun lists its views); adding a family is a
+//! folder of its own and a line here. The shell reaches a family through
+//! this list only; tests and a family's own code reach their concrete type
+//! with [`Families::of`]. A family handed an action or a notice of another
+//! family's type says so loudly (`board_link::misrouted`).
 
 use std::any::Any;
 
@@ -12,19 +14,23 @@ use crate::ui::family::FamilyUi;
 /// Each family's side of the editor, in menu order.
 pub struct Families(Vec<Box<dyn FamilyUi>>);
 
-/// A family's side of the editor in the registry: each family adds itself
-/// (`inventory::submit!`) in its own folder, so that no file lists them all.
-pub struct Registered {
-    /// Its side of the editor as it starts.
-    pub make: fn() -> Box<dyn FamilyUi>,
+/// Every family's side of the editor as it starts: the one list of them
+/// (the test-only echo board last).
+fn every_family() -> Vec<Box<dyn FamilyUi>> {
+    #[cfg_attr(not(test), allow(unused_mut))]
+    let mut families: Vec<Box<dyn FamilyUi>> = vec![
+        Box::<crate::ui::servo::ServoUi>::default(),
+        Box::<crate::ui::plen2::Plen2Ui>::default(),
+        Box::<crate::ui::rflex::RflexUi>::default(),
+    ];
+    #[cfg(test)]
+    families.push(Box::<crate::ui::echo::EchoUi>::default());
+    families
 }
-
-inventory::collect!(Registered);
 
 impl Default for Families {
     fn default() -> Self {
-        let mut uis: Vec<Box<dyn FamilyUi>> =
-            inventory::iter::<Registered>.into_iter().map(|entry| (entry.make)()).collect();
+        let mut uis = every_family();
         // In menu order, as the families are ranked.
         uis.sort_by_key(|family_ui| Family::all().iter().position(|family| *family == family_ui.family()));
         Self(uis)
@@ -91,5 +97,17 @@ mod tests {
         }
         let servo = families.of::<crate::ui::servo::ServoUi>();
         assert!(servo.is_some() && families.of::<crate::ui::rflex::RflexUi>().is_some());
+    }
+
+    /// The shell routes an action to its owner; one that reached another
+    /// family (a routing bug) is a panic in tests, never dropped in silence.
+    #[test]
+    #[should_panic(expected = "the PLEN2 family was handed an action that is not its own")]
+    fn an_action_of_another_family_is_a_loud_error() {
+        let mut app =
+            crate::ui::StudioApp::new(crate::project::Project::empty(Family::Plen2), None, crate::link::no_waker());
+        let (mut shell, families) = app.split();
+        let action = crate::ui::servo::ServoAction::SetPose { servo_id: 1, degree: 0 };
+        families.get_mut(Family::Plen2).act(&mut shell, Box::new(action));
     }
 }

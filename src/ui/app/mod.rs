@@ -151,7 +151,7 @@ impl StudioApp {
     }
 
     /// The shell as a family's ui changes it, and the families' uis (borrowed apart).
-    fn split(&mut self) -> (Shell<'_>, &mut Families) {
+    pub(crate) fn split(&mut self) -> (Shell<'_>, &mut Families) {
         let Self { document, link, status, operation, language, live_speed, files, window, families, sound, .. } = self;
         let shell = Shell {
             document,

@@ -34,9 +34,6 @@ inventory::submit! {
 inventory::submit! {
     crate::project::Section { family: Family::Echo, check: EchoSection::check }
 }
-inventory::submit! {
-    crate::ui::families::Registered { make: || Box::<EchoUi>::default() }
-}
 
 #[allow(non_upper_case_globals)]
 impl Tab {
@@ -144,8 +141,9 @@ impl FamilyUi for EchoUi {
     }
 
     fn act(&mut self, shell: &mut Shell<'_>, action: Box<dyn FamilyAction>) {
-        if let Ok(action) = action.into_any().downcast::<EchoAction>() {
-            self.apply(shell, *action);
+        match action.into_any().downcast::<EchoAction>() {
+            Ok(action) => self.apply(shell, *action),
+            Err(_) => crate::ui::board_link::misrouted(Family::Echo, "an action", std::any::type_name::<EchoAction>()),
         }
     }
 
@@ -177,7 +175,7 @@ impl FamilyUi for EchoUi {
     }
 
     fn notice(&mut self, _shell: &mut Shell<'_>, notice: FamilyNotice) {
-        if let Some(Echoed(deg)) = notice.get() {
+        if let Some(Echoed(deg)) = notice.of(Family::Echo) {
             self.echoed = Some(*deg);
         }
     }

@@ -400,8 +400,11 @@ impl Plen2Ui {
 
 impl FamilyUi for Plen2Ui {
     fn act(&mut self, shell: &mut Shell<'_>, action: Box<dyn crate::ui::action::FamilyAction>) {
-        if let Ok(action) = action.into_any().downcast::<Plen2Action>() {
-            self.apply(shell, *action);
+        match action.into_any().downcast::<Plen2Action>() {
+            Ok(action) => self.apply(shell, *action),
+            Err(_) => {
+                crate::ui::board_link::misrouted(Family::Plen2, "an action", std::any::type_name::<Plen2Action>());
+            }
         }
     }
 
@@ -544,7 +547,7 @@ impl FamilyUi for Plen2Ui {
     }
 
     fn notice(&mut self, shell: &mut Shell<'_>, notice: FamilyNotice) {
-        if let Some(plen2::Plen2Notice::Widened(widened)) = notice.get() {
+        if let Some(plen2::Plen2Notice::Widened(widened)) = notice.of(Family::Plen2) {
             // Not an error: the upload goes on, more carefully.
             shell.report(widened.worded(shell.language), false);
         }
@@ -588,9 +591,4 @@ impl FamilyUi for Plen2Ui {
         self.finish(outcome);
         self.summary(shell.language)
     }
-}
-
-// The registry of the families' sides of the editor.
-inventory::submit! {
-    crate::ui::families::Registered { make: || Box::<Plen2Ui>::default() }
 }

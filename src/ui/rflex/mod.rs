@@ -116,8 +116,11 @@ impl RflexUi {
 
 impl FamilyUi for RflexUi {
     fn act(&mut self, shell: &mut Shell<'_>, action: Box<dyn crate::ui::action::FamilyAction>) {
-        if let Ok(action) = action.into_any().downcast::<RflexAction>() {
-            self.apply(shell, *action);
+        match action.into_any().downcast::<RflexAction>() {
+            Ok(action) => self.apply(shell, *action),
+            Err(_) => {
+                crate::ui::board_link::misrouted(Family::Rflex, "an action", std::any::type_name::<RflexAction>());
+            }
         }
     }
 
@@ -200,7 +203,7 @@ impl FamilyUi for RflexUi {
     }
 
     fn notice(&mut self, shell: &mut Shell<'_>, notice: FamilyNotice) {
-        if notice.get::<RflexNotice>() == Some(&RflexNotice::Silent) {
+        if notice.of::<RflexNotice>(Family::Rflex) == Some(&RflexNotice::Silent) {
             self.disconnected();
             shell.report(shell.words().rflex().msg_base_silent, true);
         }
@@ -285,9 +288,4 @@ fn robot_name(robot: Robot) -> &'static str {
         Robot::Magellan => "Magellan",
         Robot::Custom { .. } => "custom",
     }
-}
-
-// The registry of the families' sides of the editor.
-inventory::submit! {
-    crate::ui::families::Registered { make: || Box::<RflexUi>::default() }
 }

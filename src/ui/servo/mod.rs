@@ -258,8 +258,11 @@ impl ServoUi {
 
 impl FamilyUi for ServoUi {
     fn act(&mut self, shell: &mut Shell<'_>, action: Box<dyn crate::ui::action::FamilyAction>) {
-        if let Ok(action) = action.into_any().downcast::<ServoAction>() {
-            self.apply(shell, *action);
+        match action.into_any().downcast::<ServoAction>() {
+            Ok(action) => self.apply(shell, *action),
+            Err(_) => {
+                crate::ui::board_link::misrouted(Family::Servo, "an action", std::any::type_name::<ServoAction>());
+            }
         }
     }
 
@@ -442,7 +445,7 @@ impl FamilyUi for ServoUi {
     }
 
     fn notice(&mut self, shell: &mut Shell<'_>, notice: FamilyNotice) {
-        let Ok(notice) = notice.take::<ServoNotice>() else { return };
+        let Some(notice) = notice.of::<ServoNotice>(Family::Servo).cloned() else { return };
         match notice {
             ServoNotice::Button { button_id, event } => self.button(shell, button_id, event),
             ServoNotice::SendFailed(error) => shell.report(words::send_failed(shell.language, &error), true),
@@ -460,9 +463,4 @@ impl FamilyUi for ServoUi {
 
 fn homes(project: &ServoProject) -> BTreeMap<u8, i16> {
     project.servos.iter().map(|servo| (servo.id, servo.home_deg)).collect()
-}
-
-// The registry of the families' sides of the editor.
-inventory::submit! {
-    crate::ui::families::Registered { make: || Box::<ServoUi>::default() }
 }
