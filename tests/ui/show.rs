@@ -33,7 +33,7 @@ fn opened(stage: &Stage) -> egui_kittest::Harness<'static, servo_studio::ui::Stu
     let ports: Vec<String> =
         stage.device_args().chunks(2).map(|pair| pair[1].split_once('=').unwrap().1.to_string()).collect();
     session.ports = ports;
-    common::ui::showing(app, Tab::Servos, (1280.0, 800.0))
+    common::ui::showing(app, Tab::Servos, (1280.0, 1400.0))
 }
 
 #[test]
@@ -41,7 +41,9 @@ fn the_show_window_lays_out_each_device_s_cues_and_plays_them_on_the_boards() {
     let stage = Stage::new(&two_boards(2), &[]);
     let mut harness = opened(&stage);
     // A lane per device, each cue said with its time.
-    assert!(harness.query_by_label("skull").is_some() && harness.query_by_label("arms").is_some());
+    assert!(
+        harness.query_all_by_label("skull").next().is_some() && harness.query_all_by_label("arms").next().is_some()
+    );
     assert!(harness.query_by_label("skull macro 1 0.00–1.00 s").is_some());
     assert!(harness.query_by_label("arms macro 1 0.50–1.50 s").is_some());
     harness.get_by_label("Play on the boards").click();
@@ -87,7 +89,8 @@ fn a_cue_is_added_changed_and_the_show_saved_as_version_3() {
         });
     let mut app = common::ui::editor(servo_studio::project::Project::servo(common::sample_biped())).with_picker(picker);
     app.apply(Action::Show(ShowAction::Open(stage.dir.path().join("show.json"))));
-    let mut harness = common::ui::showing(app, Tab::Servos, (1280.0, 800.0));
+    // Tall enough that the cues are not scrolled out of the show window (it scrolls at 800).
+    let mut harness = common::ui::showing(app, Tab::Servos, (1280.0, 1400.0));
     harness.get_by_label("+ Cue").click();
     harness.run();
     // The new cue: the first device's first macro, at 0; moved to the other board in its row.
@@ -143,6 +146,13 @@ fn devices_are_added_and_removed_and_a_port_is_found_by_id() {
     };
     assert_eq!(names(&harness), ["skull", "arms", "plen2"]);
     assert!(harness.query_all_by_label("play on without it").count() == 3, "its row is shown");
+    // The stage shows every device; a click on the timeline shows that time there.
+    harness.get_by_label("Stage: every device at the time shown");
+    assert_eq!(harness.state().show.stage.scrub_ms, 0);
+    harness.get_by_label("Timeline: click to show that time").click();
+    harness.run();
+    let scrub = harness.state().show.stage.scrub_ms;
+    assert!((100..1500).contains(&scrub), "a click mid-timeline (1.5 s shown) shows its middle: {scrub} ms");
     // The devices' Remove buttons come first, then the cues'.
     harness.query_all_by_label("Remove").next().unwrap().click();
     harness.run();

@@ -6,6 +6,7 @@
 
 mod cues;
 mod devices;
+mod stage;
 mod words;
 
 use std::path::PathBuf;
@@ -56,6 +57,8 @@ pub struct ShowDesk {
     running: Option<Running>,
     /// The USB serial devices attached, and when they were last listed (for "find by id").
     attached: (Vec<Attached>, Option<std::time::Instant>),
+    /// The stage: every device in 3D at the scrub's time.
+    pub stage: stage::Stage,
 }
 
 impl std::fmt::Debug for ShowDesk {
@@ -187,9 +190,14 @@ impl ShowDesk {
         egui::Window::new(words.title)
             .open(&mut open)
             .resizable(true)
-            .default_size(egui::vec2(1000.0, 520.0).min(room))
+            .default_size(egui::vec2(1000.0, room.y).min(room))
             .max_size(room)
-            .show(ctx, |ui| session_ui(ui, session, attached, playing, words, actions));
+            .show(ctx, |ui| {
+                // A show of many devices is taller than the window: it scrolls.
+                egui::ScrollArea::vertical().id_salt("show-window").show(ui, |ui| {
+                    session_ui(ui, (session, &mut self.stage), attached, playing, words, actions);
+                });
+            });
         if playing {
             ctx.request_repaint_after(std::time::Duration::from_millis(100));
         }
@@ -260,7 +268,7 @@ fn played(show: &Show, folder: Option<PathBuf>, stop: Receiver<String>, tell: &d
 
 fn session_ui(
     ui: &mut egui::Ui,
-    session: &mut ShowSession,
+    (session, stage): (&mut ShowSession, &mut stage::Stage),
     attached: &[Attached],
     playing: bool,
     words: &ShowWords,
@@ -272,21 +280,43 @@ fn session_ui(
         .and_then(|p| p.file_name())
         .map_or_else(|| words.this_project.to_string(), |n| n.to_string_lossy().into_owned());
     ui.label(egui::RichText::new(format!("{name} — {} {}", session.show.devices.len(), words.devices)).strong());
+    // Play, Save and Stop all first, where a tall show does not scroll them away.
+    let problem = session.show.check().err().map(|error| error.to_string());
+    buttons(ui, session, playing, problem.is_none(), words, actions);
+    egui::ScrollArea::vertical().id_salt("show-said").max_height(90.0).show(ui, |ui| {
+        for line in &session.said {
+            ui.label(egui::RichText::new(line).small());
+        }
+    });
+    ui.separator();
     devices::devices_ui(ui, session, attached, !playing, words, actions);
     ui.separator();
-    lanes(ui, &session.show, words);
+    if let Some(clicked) = lanes(ui, &session.show, stage.scrub_ms, words) {
+        stage.scrub_ms = clicked;
+    }
+    let span = blocks(&session.show, words).1;
+    stage.ui(ui, &mut session.show, span, !playing, words);
     ui.separator();
-    let problem = cues::cues_ui(ui, &mut session.show, !playing, words);
-    if let Some(problem) = &problem {
+    if let Some(problem) = cues::cues_ui(ui, &mut session.show, !playing, words) {
         ui.colored_label(ui.visuals().warn_fg_color, problem);
     }
-    ui.separator();
+}
+
+/// Play on the boards, Save show… (both only when the show `holds` together), Stop all.
+fn buttons(
+    ui: &mut egui::Ui,
+    session: &ShowSession,
+    playing: bool,
+    holds: bool,
+    words: &ShowWords,
+    actions: &mut Vec<crate::ui::Action>,
+) {
     ui.horizontal(|ui| {
-        let can = !playing && !session.show.cues.is_empty() && problem.is_none();
+        let can = !playing && !session.show.cues.is_empty() && holds;
         if ui.add_enabled(can, egui::Button::new(words.play)).clicked() {
             actions.push(crate::ui::Action::Show(ShowAction::Play));
         }
-        if ui.add_enabled(problem.is_none(), egui::Button::new(words.save)).clicked() {
+        if ui.add_enabled(holds, egui::Button::new(words.save)).clicked() {
             let offered = session
                 .path
                 .as_ref()
@@ -303,11 +333,6 @@ fn session_ui(
         }
         if playing {
             ui.spinner();
-        }
-    });
-    egui::ScrollArea::vertical().id_salt("show-said").max_height(120.0).show(ui, |ui| {
-        for line in &session.said {
-            ui.label(egui::RichText::new(line).small());
         }
     });
 }
@@ -331,14 +356,19 @@ fn blocks(show: &Show, words: &ShowWords) -> (Vec<Block>, u64) {
     (blocks, span)
 }
 
-/// The timeline: the sound's lane, then a lane per device with its cues, on one time axis.
-fn lanes(ui: &mut egui::Ui, show: &Show, words: &ShowWords) {
+/// The timeline: the sound's lane, then a lane per device with its cues, on
+/// one time axis, and the scrub's time as a line; where a click or a drag on
+/// it puts the scrub (ms).
+fn lanes(ui: &mut egui::Ui, show: &Show, scrub_ms: u64, words: &ShowWords) -> Option<u64> {
     const LANE: f32 = 26.0;
     const NAMES: f32 = 130.0;
     let (blocks, span) = blocks(show, words);
     let rows = u16::try_from(show.devices.len() + 1).unwrap_or(u16::MAX);
-    let (rect, _) =
-        ui.allocate_exact_size(egui::vec2(ui.available_width(), LANE * f32::from(rows) + 18.0), egui::Sense::hover());
+    let (rect, response) = ui.allocate_exact_size(
+        egui::vec2(ui.available_width(), LANE * f32::from(rows) + 18.0),
+        egui::Sense::click_and_drag(),
+    );
+    response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Canvas, true, words.timeline));
     let painter = ui.painter_at(rect);
     let visuals = ui.visuals();
     let width = (rect.width() - NAMES).max(1.0);
@@ -391,8 +421,20 @@ fn lanes(ui: &mut egui::Ui, show: &Show, words: &ShowWords) {
             visuals.weak_text_color(),
         );
     }
-    // Each cue said as text too (screen readers, tests).
-    for (index, at, length, caption) in &blocks {
+    painter.vline(x(scrub_ms.min(span)), rect.top()..=top(rows), egui::Stroke::new(2.0, visuals.warn_fg_color));
+    let scrubbed = response.interact_pointer_pos().filter(|_| response.clicked() || response.dragged()).map(|pos| {
+        // A fraction of the span: whole ms of a show.
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, clippy::cast_precision_loss)]
+        let ms = (((pos.x - rect.left() - NAMES) / width).clamp(0.0, 1.0) * span as f32).round() as u64;
+        ms
+    });
+    said_cues(ui, show, &blocks);
+    scrubbed
+}
+
+/// Each cue said as text too (screen readers, tests).
+fn said_cues(ui: &mut egui::Ui, show: &Show, blocks: &[Block]) {
+    for (index, at, length, caption) in blocks {
         // Whole ms of a show: exact in f64.
         #[allow(clippy::cast_precision_loss)]
         let said = format!(

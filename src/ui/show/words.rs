@@ -66,6 +66,14 @@ pub struct ShowWords {
     pub none_attached: &'static str,
     /// "its cues went with it" (after a count).
     pub cues_removed: &'static str,
+    /// "Time shown" (the scrub's caption).
+    pub scrub: &'static str,
+    /// The stage view's name.
+    pub stage: &'static str,
+    /// "Heading".
+    pub heading: &'static str,
+    /// The timeline's name (a click shows that time).
+    pub timeline: &'static str,
 }
 
 const ENGLISH: ShowWords = ShowWords {
@@ -97,6 +105,10 @@ const ENGLISH: ShowWords = ShowWords {
     find: "Find by id",
     none_attached: "No USB serial device is attached: plug it in, or type its port",
     cues_removed: "cues went with it",
+    scrub: "Time shown",
+    stage: "Stage: every device at the time shown",
+    heading: "Heading",
+    timeline: "Timeline: click to show that time",
 };
 
 const CHINESE: ShowWords = ShowWords {
@@ -128,6 +140,10 @@ const CHINESE: ShowWords = ShowWords {
     find: "依 ID 尋找",
     none_attached: "沒有接上任何 USB 序列裝置：請接上，或輸入它的連接埠",
     cues_removed: "個提示點一併移除",
+    scrub: "顯示時間",
+    stage: "舞台：各裝置在顯示時間的姿勢",
+    heading: "朝向",
+    timeline: "時間軸：點一下顯示該時間",
 };
 
 /// The words in `language`.
