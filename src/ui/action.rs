@@ -343,6 +343,8 @@ pub enum ShowAction {
     Play,
     /// Stop every device.
     StopAll,
+    /// Play the show on the stage from the time shown, with its sound (`true`), or stop that.
+    Preview(bool),
     /// Write the show (version 3) to this file.
     Save(PathBuf),
     /// Close the window (stopping a show that plays).

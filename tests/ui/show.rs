@@ -169,3 +169,32 @@ fn devices_are_added_and_removed_and_a_port_is_found_by_id() {
         assert!(harness.query_all_by_label_contains(&attached[0].id.to_string()).next().is_some());
     }
 }
+
+/// Preview runs the time shown with the clock (every figure on the stage
+/// moving with it) until the show's end; Stop preview and the window's
+/// STOP stop it where it is.
+#[test]
+fn the_stage_previews_the_show_and_stop_stops_it() {
+    let stage = Stage::new(&two_boards(2), &[]);
+    let mut harness = opened(&stage);
+    harness.get_by_label("Preview").click();
+    common::ui::run_until(&mut harness, "the preview moving", |app| app.show.stage.scrub_ms > 0);
+    assert!(harness.state().show.stage.previewing());
+    harness.get_by_label("Stop preview").click();
+    harness.run();
+    let stopped_at = harness.state().show.stage.scrub_ms;
+    assert!(!harness.state().show.stage.previewing());
+    harness.run();
+    assert_eq!(harness.state().show.stage.scrub_ms, stopped_at, "it stays where it was stopped");
+    harness.get_by_label("Preview").click();
+    common::ui::run_until(&mut harness, "the preview again", |app| app.show.stage.scrub_ms > stopped_at);
+    harness.get_by_label("■ STOP").click();
+    harness.run();
+    assert!(!harness.state().show.stage.previewing(), "the window's STOP stops the preview");
+    // To its end: it stops there by itself.
+    harness.get_by_label("Preview").click();
+    harness.step();
+    assert!(harness.state().show.stage.previewing());
+    common::ui::run_until(&mut harness, "the preview's end", |app| !app.show.stage.previewing());
+    assert_eq!(harness.state().show.stage.scrub_ms, 1500, "the show's span: the last cue's end");
+}

@@ -227,6 +227,8 @@ impl StudioApp {
     fn stop(&mut self) {
         // The show's sound stops too, and a board's start still waiting for it never goes out.
         self.sound.silence();
+        // A show previewed on its stage stops where it is (its sound too).
+        self.show.stage.stop_preview();
         // A show playing on several boards: every one of them.
         if self.show.playing() {
             self.show.stop();

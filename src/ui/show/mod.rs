@@ -84,6 +84,17 @@ impl ShowDesk {
             ShowAction::AddFromFile(path) => return self.add_from(&path),
             ShowAction::Play => self.play(waker.clone()),
             ShowAction::StopAll => self.stop(),
+            ShowAction::Preview(true) => {
+                let Some(session) = &self.session else { return None };
+                let folder = session.path.as_ref().and_then(|path| path.parent());
+                let sound = session
+                    .show
+                    .sound
+                    .as_ref()
+                    .map(|track| (crate::ui::sound::resolve(&track.path, folder), track.offset_ms));
+                self.stage.start_preview(sound, waker);
+            }
+            ShowAction::Preview(false) => self.stage.stop_preview(),
             ShowAction::Save(path) => {
                 let Some(session) = &mut self.session else { return None };
                 let text = session.show.to_json();
@@ -127,6 +138,7 @@ impl ShowDesk {
 
     /// Stops every device of a show that plays.
     pub fn stop(&mut self) {
+        self.stage.stop_preview();
         if let Some(running) = &self.running {
             let _ = running.stop.send("STOP".into());
         }
@@ -200,6 +212,11 @@ impl ShowDesk {
             });
         if playing {
             ctx.request_repaint_after(std::time::Duration::from_millis(100));
+        }
+        if let Some(session) = &self.session
+            && self.stage.advance(blocks(&session.show, words).1)
+        {
+            ctx.request_repaint();
         }
         if !open {
             actions.push(crate::ui::Action::Show(ShowAction::Close));
@@ -295,7 +312,7 @@ fn session_ui(
         stage.scrub_ms = clicked;
     }
     let span = blocks(&session.show, words).1;
-    stage.ui(ui, &mut session.show, span, !playing, words);
+    stage.ui(ui, (&mut session.show, span), !playing, words, actions);
     ui.separator();
     if let Some(problem) = cues::cues_ui(ui, &mut session.show, !playing, words) {
         ui.colored_label(ui.visuals().warn_fg_color, problem);

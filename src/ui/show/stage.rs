@@ -10,7 +10,7 @@ use crate::show::at::{Posed, posed_at};
 use crate::show::{Device, Show};
 use crate::ui::view3d::{Scene, View};
 
-use super::ShowWords;
+use super::{ShowAction, ShowWords};
 
 /// The stage's view and where the scrub is.
 #[derive(Debug, Default)]
@@ -19,6 +19,10 @@ pub struct Stage {
     pub scrub_ms: u64,
     view: View,
     plen2: Option<figure::Chain>,
+    /// Previewing: when it began and the time shown then.
+    preview: Option<(std::time::Instant, u64)>,
+    /// The show's sound for the preview (its own worker: a stalled sound server waits there, not here).
+    sound: Option<crate::ui::sound::SoundOut>,
 }
 
 /// mm in a metre (the figures are in mm).
@@ -26,7 +30,14 @@ const MM: f32 = 1000.0;
 
 impl Stage {
     /// The scrub, each device's place, and the 3D view of them all.
-    pub fn ui(&mut self, ui: &mut egui::Ui, show: &mut Show, span_ms: u64, editable: bool, words: &ShowWords) {
+    pub fn ui(
+        &mut self,
+        ui: &mut egui::Ui,
+        (show, span_ms): (&mut Show, u64),
+        editable: bool,
+        words: &ShowWords,
+        actions: &mut Vec<crate::ui::Action>,
+    ) {
         ui.horizontal(|ui| {
             let label = ui.label(words.scrub);
             // Whole ms of a show: exact in f64.
@@ -36,6 +47,15 @@ impl Stage {
             let end = span_ms as f64 / 1000.0;
             ui.spacing_mut().slider_width = (ui.available_width() - 120.0).clamp(200.0, 700.0);
             let slider = egui::Slider::new(&mut seconds, 0.0..=end).suffix(" s").fixed_decimals(2);
+            let running = self.preview.is_some();
+            let (caption, action) = if running {
+                (words.stop_preview, ShowAction::Preview(false))
+            } else {
+                (words.preview, ShowAction::Preview(true))
+            };
+            if ui.button(caption).clicked() {
+                actions.push(crate::ui::Action::Show(action));
+            }
             if ui.add(slider).labelled_by(label.id).changed() {
                 // Within the show's span: whole ms.
                 #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
@@ -50,6 +70,51 @@ impl Stage {
             let scene = self.scene(show);
             self.view.show(ui, rect, &scene, words.stage);
         });
+    }
+
+    /// Whether the stage plays the show on its own (the scrub running with the clock).
+    pub fn previewing(&self) -> bool {
+        self.preview.is_some()
+    }
+
+    /// Plays the show on the stage from the time shown, with its sound
+    /// (`sound`: its file and where it starts on the show's time, ms).
+    pub fn start_preview(&mut self, sound: Option<(std::path::PathBuf, i64)>, waker: &crate::link::Waker) {
+        self.stop_preview();
+        if let Some((file, offset_ms)) = sound {
+            // Whole ms of a show: exact in f64.
+            #[allow(clippy::cast_precision_loss)]
+            let into_sound_s = (i128::from(self.scrub_ms) - i128::from(offset_ms)) as f64 / 1000.0;
+            let out = self.sound.get_or_insert_with(|| crate::ui::sound::SoundOut::new(None, waker.clone()));
+            if into_sound_s >= 0.0 {
+                out.play(file, into_sound_s, None);
+            }
+        }
+        self.preview = Some((std::time::Instant::now(), self.scrub_ms));
+    }
+
+    /// Stops a preview (and its sound) where it is.
+    pub fn stop_preview(&mut self) {
+        self.preview = None;
+        if let Some(sound) = &mut self.sound {
+            sound.silence();
+        }
+    }
+
+    /// Moves a preview's scrub on with the clock, ending it at `span_ms`; whether it still runs.
+    pub fn advance(&mut self, span_ms: u64) -> bool {
+        if let Some(sound) = &mut self.sound {
+            sound.poll(std::time::Instant::now());
+        }
+        let Some((began, from)) = self.preview else { return false };
+        // Milliseconds of a show: far within u64.
+        #[allow(clippy::cast_possible_truncation)]
+        let now = from + began.elapsed().as_millis() as u64;
+        self.scrub_ms = now.min(span_ms);
+        if now >= span_ms {
+            self.stop_preview();
+        }
+        self.preview.is_some()
     }
 
     /// Every device at the scrub's time, each at its place.

@@ -74,6 +74,10 @@ pub struct ShowWords {
     pub heading: &'static str,
     /// The timeline's name (a click shows that time).
     pub timeline: &'static str,
+    /// "Preview".
+    pub preview: &'static str,
+    /// "Stop preview".
+    pub stop_preview: &'static str,
 }
 
 const ENGLISH: ShowWords = ShowWords {
@@ -109,6 +113,8 @@ const ENGLISH: ShowWords = ShowWords {
     stage: "Stage: every device at the time shown",
     heading: "Heading",
     timeline: "Timeline: click to show that time",
+    preview: "Preview",
+    stop_preview: "Stop preview",
 };
 
 const CHINESE: ShowWords = ShowWords {
@@ -144,6 +150,8 @@ const CHINESE: ShowWords = ShowWords {
     stage: "舞台：各裝置在顯示時間的姿勢",
     heading: "朝向",
     timeline: "時間軸：點一下顯示該時間",
+    preview: "預覽",
+    stop_preview: "停止預覽",
 };
 
 /// The words in `language`.

@@ -9,6 +9,7 @@ pub mod action;
 mod follow;
 pub mod lane;
 mod out;
+pub use out::SoundOut;
 mod picking;
 mod reading;
 
@@ -54,7 +55,7 @@ pub struct SoundDesk {
     /// The file the reading or the read is of.
     file: Option<PathBuf>,
     /// The sound output, off the frame (made on the first frame).
-    out: Option<out::SoundOut>,
+    out: Option<SoundOut>,
     /// Where the sound server is, when not the environment's (tests).
     server: Option<PathBuf>,
     /// Onsets at the track's sensitivity, s (and that sensitivity): the
@@ -130,7 +131,7 @@ impl SoundDesk {
     /// Keeps up with the project: reads its sound when it names another file;
     /// takes in a finished reading. Returns an edit the project needs.
     pub fn sync(&mut self, project: &Project, folder: Option<&Path>, waker: &Waker) -> Option<(Edit, &'static str)> {
-        let out = self.out.get_or_insert_with(|| out::SoundOut::new(self.server.clone(), waker.clone()));
+        let out = self.out.get_or_insert_with(|| SoundOut::new(self.server.clone(), waker.clone()));
         if let Some(said) = out.poll(Instant::now()) {
             self.said = Some(said);
         }
@@ -355,13 +356,13 @@ impl SoundDesk {
 
     /// Whether sound plays now (or has been asked to and not refused).
     pub fn is_playing(&self) -> bool {
-        self.out.as_ref().is_some_and(out::SoundOut::is_playing)
+        self.out.as_ref().is_some_and(SoundOut::is_playing)
     }
 
     /// When the sound output must be looked at again, without anything else
     /// happening (an answer it owes, which wakes the window when it comes).
     pub fn next_deadline(&self) -> Option<Instant> {
-        self.out.as_ref().and_then(out::SoundOut::next_deadline)
+        self.out.as_ref().and_then(SoundOut::next_deadline)
     }
 }
 
