@@ -345,6 +345,10 @@ pub enum ShowAction {
     StopAll,
     /// Play the show on the stage from the time shown, with its sound (`true`), or stop that.
     Preview(bool),
+    /// Record a pass of the axis picked while the show previews (`true`), or end it and join it.
+    RecordPass(bool),
+    /// Take the last pass back.
+    UndoPass,
     /// Write the show (version 3) to this file.
     Save(PathBuf),
     /// Close the window (stopping a show that plays).

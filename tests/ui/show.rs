@@ -198,3 +198,40 @@ fn the_stage_previews_the_show_and_stop_stops_it() {
     common::ui::run_until(&mut harness, "the preview's end", |app| !app.show.stage.previewing());
     assert_eq!(harness.state().show.stage.scrub_ms, 1500, "the show's span: the last cue's end");
 }
+
+/// A record pass: servo 1 of the skull picked, ● Record pass previews the
+/// show from 0 while its slider is moved (here, set each frame as a hand
+/// would), the figure following it; at the show's end the pass is joined
+/// into one macro cued at its start, said with its steps; Undo pass takes it
+/// back.
+#[test]
+fn a_record_pass_joins_into_the_show_and_is_undone_on_its_own() {
+    use servo_studio::show::passes::Axis;
+    let stage = Stage::new(&two_boards(2), &[]);
+    let mut harness = opened(&stage);
+    let macros_before = harness.state().show.session.as_ref().unwrap().show.devices[0].project.servo.macros.len();
+    harness.state_mut().show.passes.pick("skull", Axis::Servo(1));
+    harness.run();
+    harness.get_by_label("● Record pass").click();
+    harness.step();
+    assert!(harness.state().show.passes.recording.is_some() && harness.state().show.stage.previewing());
+    while harness.state().show.passes.recording.is_some() {
+        let t = harness.state().show.stage.scrub_ms as f64 / 1000.0;
+        harness.state_mut().show.passes.value = 40.0 * t;
+        harness.step();
+    }
+    harness.run();
+    let show = &harness.state().show.session.as_ref().unwrap().show;
+    let skull = &show.devices[0].project.servo;
+    assert_eq!(skull.macros.len(), macros_before + 1, "the pass became a macro");
+    let made = skull.macros.last().unwrap();
+    assert_eq!(made.caption, "Recorded passes");
+    assert!(show.cues.iter().any(|cue| cue.device == "skull" && cue.start == Start::Macro(made.id)), "cued");
+    let said = harness.state().show.session.as_ref().unwrap().said.join("\n");
+    assert!(said.contains("skull: 1 passes joined →") && said.contains("steps"), "{said}");
+    harness.get_by_label("Undo pass").click();
+    harness.run();
+    let show = &harness.state().show.session.as_ref().unwrap().show;
+    assert_eq!(show.devices[0].project.servo.macros.len(), macros_before, "undone");
+    assert_eq!(show.cues.len(), 2, "the show's own cues are back");
+}

@@ -37,7 +37,9 @@ impl StudioApp {
             Action::Stop => self.stop(),
             Action::Import(action) => self.import.apply(action, &self.files.work, &self.document.project),
             Action::Show(action) => {
-                if let Some(error) = self.show.apply(action, &self.document.project, &self.window.waker) {
+                if let Some(error) =
+                    self.show.apply(action, (&self.document.project, self.language), &self.window.waker)
+                {
                     self.report(error, true);
                 }
             }

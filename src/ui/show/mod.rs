@@ -6,6 +6,7 @@
 
 mod cues;
 mod devices;
+mod record;
 mod stage;
 mod words;
 
@@ -59,6 +60,8 @@ pub struct ShowDesk {
     attached: (Vec<Attached>, Option<std::time::Instant>),
     /// The stage: every device in 3D at the scrub's time.
     pub stage: stage::Stage,
+    /// Record passes: the passes kept and the one being recorded.
+    pub passes: record::Passes,
 }
 
 impl std::fmt::Debug for ShowDesk {
@@ -69,7 +72,12 @@ impl std::fmt::Debug for ShowDesk {
 
 impl ShowDesk {
     /// Takes an action of the window; `project` is the open one, `waker` repaints when a show says something.
-    pub fn apply(&mut self, action: ShowAction, project: &Project, waker: &Waker) -> Option<String> {
+    pub fn apply(
+        &mut self,
+        action: ShowAction,
+        (project, language): (&Project, Language),
+        waker: &Waker,
+    ) -> Option<String> {
         match action {
             ShowAction::Open(path) => match Show::open(&path) {
                 Ok(show) => self.opened(Some(path), show),
@@ -95,6 +103,18 @@ impl ShowDesk {
                 self.stage.start_preview(sound, waker);
             }
             ShowAction::Preview(false) => self.stage.stop_preview(),
+            ShowAction::RecordPass(true) => {
+                if self.passes.begin() {
+                    return self.apply(ShowAction::Preview(true), (project, language), waker);
+                }
+            }
+            ShowAction::RecordPass(false) => self.end_pass(words(language)),
+            ShowAction::UndoPass => {
+                if let Some(session) = &mut self.session {
+                    self.passes.undo(&mut session.show);
+                    self.stage.held = None;
+                }
+            }
             ShowAction::Save(path) => {
                 let Some(session) = &mut self.session else { return None };
                 let text = session.show.to_json();
@@ -109,6 +129,27 @@ impl ShowDesk {
             }
         }
         None
+    }
+
+    /// A pass being recorded takes the axis's value at the time shown, and
+    /// shows it on the figure; it ends with the show's end.
+    fn follow_pass(&mut self, actions: &mut Vec<crate::ui::Action>) {
+        let Some(pass) = &self.passes.recording else { return };
+        self.stage.held = Some((pass.device.clone(), pass.axis, self.passes.value));
+        self.passes.sample(self.stage.scrub_ms);
+        if !self.stage.previewing() {
+            actions.push(crate::ui::Action::Show(ShowAction::RecordPass(false)));
+        }
+    }
+
+    /// Ends the pass being recorded (and the preview under it) and joins it, saying how.
+    fn end_pass(&mut self, words: &ShowWords) {
+        self.stage.stop_preview();
+        self.stage.held = None;
+        let Some(session) = &mut self.session else { return };
+        if let Some(said) = self.passes.end(&mut session.show, words) {
+            session.said.push(said);
+        }
     }
 
     /// Adds every device of a show file, or a project file as one device named after it.
@@ -172,11 +213,15 @@ impl ShowDesk {
     /// Takes in what a playing show said; ends it when it is done.
     pub fn poll(&mut self) {
         let Some(running) = &self.running else { return };
-        let mut ended = false;
-        let lines: Vec<String> = running.said.try_iter().collect();
-        if let Err(crossbeam_channel::TryRecvError::Disconnected) = running.said.try_recv() {
-            ended = true;
-        }
+        // Every line said so far; the player is done once its end of the channel is gone.
+        let mut lines = Vec::new();
+        let ended = loop {
+            match running.said.try_recv() {
+                Ok(line) => lines.push(line),
+                Err(crossbeam_channel::TryRecvError::Empty) => break false,
+                Err(crossbeam_channel::TryRecvError::Disconnected) => break true,
+            }
+        };
         if let Some(session) = &mut self.session {
             session.said.extend(lines);
         }
@@ -207,7 +252,7 @@ impl ShowDesk {
             .show(ctx, |ui| {
                 // A show of many devices is taller than the window: it scrolls.
                 egui::ScrollArea::vertical().id_salt("show-window").show(ui, |ui| {
-                    session_ui(ui, (session, &mut self.stage), attached, playing, words, actions);
+                    session_ui(ui, (session, &mut self.stage, &mut self.passes), attached, playing, words, actions);
                 });
             });
         if playing {
@@ -218,6 +263,7 @@ impl ShowDesk {
         {
             ctx.request_repaint();
         }
+        self.follow_pass(actions);
         if !open {
             actions.push(crate::ui::Action::Show(ShowAction::Close));
         }
@@ -285,7 +331,7 @@ fn played(show: &Show, folder: Option<PathBuf>, stop: Receiver<String>, tell: &d
 
 fn session_ui(
     ui: &mut egui::Ui,
-    (session, stage): (&mut ShowSession, &mut stage::Stage),
+    (session, stage, passes): (&mut ShowSession, &mut stage::Stage, &mut record::Passes),
     attached: &[Attached],
     playing: bool,
     words: &ShowWords,
@@ -313,6 +359,7 @@ fn session_ui(
     }
     let span = blocks(&session.show, words).1;
     stage.ui(ui, (&mut session.show, span), !playing, words, actions);
+    record::passes_ui(ui, &session.show, passes, !playing, words, actions);
     ui.separator();
     if let Some(problem) = cues::cues_ui(ui, &mut session.show, !playing, words) {
         ui.colored_label(ui.visuals().warn_fg_color, problem);

@@ -7,6 +7,7 @@
 
 use crate::figure::{self, Mat3, Placed, Shape, Vec3, WorldSolid};
 use crate::show::at::{Posed, posed_at};
+use crate::show::passes::Axis;
 use crate::show::{Device, Show};
 use crate::ui::view3d::{Scene, View};
 
@@ -17,6 +18,9 @@ use super::{ShowAction, ShowWords};
 pub struct Stage {
     /// The show's time shown, ms.
     pub scrub_ms: u64,
+    /// An axis being recorded: the device's name, the axis and its value now
+    /// (degrees), shown on the figure instead of what the show has there.
+    pub held: Option<(String, Axis, f64)>,
     view: View,
     plen2: Option<figure::Chain>,
     /// Previewing: when it began and the time shown then.
@@ -121,7 +125,12 @@ impl Stage {
     pub fn scene(&mut self, show: &Show) -> Scene {
         let mut solids = Vec::new();
         for (index, device) in show.devices.iter().enumerate() {
-            let Some(posed) = posed_at(show, index, self.scrub_ms) else { continue };
+            let Some(mut posed) = posed_at(show, index, self.scrub_ms) else { continue };
+            if let Some((name, axis, value)) = &self.held
+                && *name == device.name
+            {
+                hold(&mut posed, *axis, *value);
+            }
             let base = placed(device.place.x_m, device.place.y_m, device.place.heading_deg);
             match posed {
                 Posed::Joints(values) => {
@@ -134,6 +143,24 @@ impl Stage {
             }
         }
         Scene { solids, ground_z: 0.0, ..Scene::default() }
+    }
+}
+
+/// `posed` with `axis` at `value` degrees (the pass being recorded).
+fn hold(posed: &mut Posed, axis: Axis, value: f64) {
+    match (posed, axis) {
+        (Posed::Servos(degrees), Axis::Servo(id)) => {
+            degrees.insert(id, value);
+        }
+        (Posed::Joints(values), Axis::Joint(joint)) => {
+            if let Some(slot) = values.get_mut(usize::from(joint)) {
+                // Tenths of a degree within ±180°.
+                #[allow(clippy::cast_possible_truncation)]
+                let tenths = (value * 10.0).round().clamp(-1800.0, 1800.0) as i16;
+                *slot = tenths;
+            }
+        }
+        _ => {}
     }
 }
 

@@ -78,6 +78,26 @@ pub struct ShowWords {
     pub preview: &'static str,
     /// "Stop preview".
     pub stop_preview: &'static str,
+    /// "Record a pass of".
+    pub record_pass_of: &'static str,
+    /// "● Record pass".
+    pub record_pass: &'static str,
+    /// "■ Stop pass".
+    pub stop_pass: &'static str,
+    /// "Undo pass".
+    pub undo_pass: &'static str,
+    /// "passes joined".
+    pub passes_joined: &'static str,
+    /// "steps" (a servo board's).
+    pub steps: &'static str,
+    /// "frames" (a PLEN2's).
+    pub frames: &'static str,
+    /// "largest error".
+    pub largest_error: &'static str,
+    /// "tolerance".
+    pub tolerance: &'static str,
+    /// "its own cue cuts the passes short at" (a board plays one at a time).
+    pub cut_short_at: &'static str,
 }
 
 const ENGLISH: ShowWords = ShowWords {
@@ -115,6 +135,16 @@ const ENGLISH: ShowWords = ShowWords {
     timeline: "Timeline: click to show that time",
     preview: "Preview",
     stop_preview: "Stop preview",
+    record_pass_of: "Record a pass of",
+    record_pass: "● Record pass",
+    stop_pass: "■ Stop pass",
+    undo_pass: "Undo pass",
+    passes_joined: "passes joined",
+    steps: "steps",
+    frames: "frames",
+    largest_error: "largest error",
+    tolerance: "tolerance",
+    cut_short_at: "another cue of it cuts them short (a board plays one at a time) at",
 };
 
 const CHINESE: ShowWords = ShowWords {
@@ -152,6 +182,16 @@ const CHINESE: ShowWords = ShowWords {
     timeline: "時間軸：點一下顯示該時間",
     preview: "預覽",
     stop_preview: "停止預覽",
+    record_pass_of: "錄製一軌：",
+    record_pass: "● 錄製這一軌",
+    stop_pass: "■ 停止這一軌",
+    undo_pass: "復原上一軌",
+    passes_joined: "軌已合併",
+    steps: "個步驟",
+    frames: "個影格",
+    largest_error: "最大誤差",
+    tolerance: "容許誤差",
+    cut_short_at: "它的另一個提示點會中斷這些軌（控制板一次只播放一個），於",
 };
 
 /// The words in `language`.

@@ -1,0 +1,220 @@
+//! Record passes in the show window: pick a device (a servo board or a
+//! PLEN2) and one of its axes, press **● Record pass**: the show previews on
+//! the stage with its sound from the time shown while the axis's slider (or
+//! its arrow keys) is recorded, the figure following it; **■ Stop pass**
+//! joins it with the device's earlier passes into one macro or motion
+//! (`show::passes`), cued at the first pass's start. **Undo pass** takes the
+//! last pass back, the show as it was before it.
+
+use std::collections::BTreeMap;
+
+use super::{ShowAction, ShowWords};
+use crate::project::Family;
+use crate::project::plen2::Joint;
+use crate::show::Show;
+use crate::show::passes::{self, Axis, Made, Pass};
+use crate::ui::Action;
+
+/// The passes recorded, the one being recorded, and the steps to undo.
+#[derive(Debug, Default)]
+pub struct Passes {
+    /// Every pass kept, in the order recorded.
+    pub recorded: Vec<Pass>,
+    /// The pass being recorded.
+    pub recording: Option<Pass>,
+    /// What each device's passes made in its project.
+    made: BTreeMap<String, Made>,
+    /// Before each pass: the show, the passes and what they made.
+    undo: Vec<(Show, Vec<Pass>, BTreeMap<String, Made>)>,
+    /// The device picked, and its axis.
+    device: Option<String>,
+    axis: Option<Axis>,
+    /// The axis's value now, degrees.
+    pub value: f64,
+}
+
+impl Passes {
+    /// Picks the device and axis the next pass records (as the row's boxes do).
+    pub fn pick(&mut self, device: &str, axis: Axis) {
+        (self.device, self.axis) = (Some(device.to_string()), Some(axis));
+    }
+
+    /// The device and axis picked, when both are.
+    fn picked(&self) -> Option<(String, Axis)> {
+        self.device.clone().zip(self.axis)
+    }
+
+    /// Begins a pass of the picked axis (none picked: nothing).
+    pub fn begin(&mut self) -> bool {
+        let Some((device, axis)) = self.picked() else { return false };
+        self.recording = Some(Pass { device, axis, samples: Vec::new() });
+        true
+    }
+
+    /// Takes the axis's value at show time `t_ms` (once per time).
+    pub fn sample(&mut self, t_ms: u64) {
+        let value = self.value;
+        if let Some(pass) = &mut self.recording
+            && pass.samples.last().is_none_or(|&(at, _)| at < t_ms)
+        {
+            pass.samples.push((t_ms, value));
+        }
+    }
+
+    /// Ends the pass and joins it into the show; what to say.
+    pub fn end(&mut self, show: &mut Show, words: &ShowWords) -> Option<String> {
+        let pass = self.recording.take()?;
+        let device = pass.device.clone();
+        let before = (show.clone(), self.recorded.clone(), self.made.clone());
+        let mut recorded = self.recorded.clone();
+        recorded.push(pass);
+        match passes::join(show, &recorded, &device, self.made.get(&device)) {
+            Ok(joined) => {
+                let cut = cut_short(show, &device, &joined.made, words);
+                self.undo.push(before);
+                self.recorded = recorded;
+                self.made.insert(device.clone(), joined.made.clone());
+                let unit = if matches!(joined.made, Made::Servo { .. }) { words.steps } else { words.frames };
+                Some(format!(
+                    "{device}: {} {} → {} {unit} · {} {:.1}° ({} {:.1}°){cut}",
+                    self.recorded.iter().filter(|p| p.device == device).count(),
+                    words.passes_joined,
+                    joined.moves,
+                    words.largest_error,
+                    joined.max_error_deg,
+                    words.tolerance,
+                    joined.tolerance_deg
+                ))
+            }
+            Err(error) => Some(format!("{device}: {error}")),
+        }
+    }
+
+    /// Takes the last pass back.
+    pub fn undo(&mut self, show: &mut Show) -> bool {
+        let Some((before, recorded, made)) = self.undo.pop() else { return false };
+        *show = before;
+        self.recorded = recorded;
+        self.made = made;
+        true
+    }
+}
+
+/// What the device's other cues do to what its passes made: a board plays
+/// one macro or motion at a time, so a later cue of it cuts the passes short.
+fn cut_short(show: &Show, device: &str, made: &Made, words: &ShowWords) -> String {
+    use crate::show::Start;
+    let mine = match *made {
+        Made::Servo { macro_id, .. } => Start::Macro(macro_id),
+        Made::Plen2 { slot } => Start::Slot(slot),
+    };
+    let cue = show.cues.iter().find(|c| c.device == device && c.start == mine).map(|c| c.at_ms);
+    let (Some(start), Some(joined)) = (cue, show.device(device)) else { return String::new() };
+    let end = start + crate::show::play::cue_length_ms(joined, &mine);
+    match show
+        .cues
+        .iter()
+        .filter(|c| c.device == device && c.start != mine && c.at_ms > start && c.at_ms < end)
+        .map(|c| c.at_ms)
+        .min()
+    {
+        // Whole ms of a show: exact in f64.
+        #[allow(clippy::cast_precision_loss)]
+        Some(at) => format!(" — {} {:.2} s", words.cut_short_at, at as f64 / 1000.0),
+        None => String::new(),
+    }
+}
+
+/// The axes a device's passes may record, with their captions.
+fn axes(show: &Show, device: &str) -> Vec<(Axis, String)> {
+    let Some(device) = show.device(device) else { return Vec::new() };
+    if device.project.family == Family::Servo {
+        return device
+            .project
+            .servo
+            .servos
+            .iter()
+            .map(|s| (Axis::Servo(s.id), format!("{} {}", s.id, s.caption)))
+            .collect();
+    }
+    if device.project.family == Family::Plen2 {
+        return Joint::ALL.iter().map(|joint| (Axis::Joint(joint.device_id()), joint.name().to_string())).collect();
+    }
+    Vec::new()
+}
+
+/// The range an axis moves in, degrees.
+fn range(show: &Show, device: &str, axis: Axis) -> std::ops::RangeInclusive<f64> {
+    let servo = show.device(device).and_then(|d| {
+        if let Axis::Servo(id) = axis { d.project.servo.servos.iter().find(|s| s.id == id) } else { None }
+    });
+    servo.map_or(-90.0..=90.0, |s| f64::from(s.min_deg)..=f64::from(s.max_deg))
+}
+
+/// The pass row: device, axis, Record / Stop, the axis's slider, Undo pass.
+pub(super) fn passes_ui(
+    ui: &mut egui::Ui,
+    show: &Show,
+    passes: &mut Passes,
+    editable: bool,
+    words: &ShowWords,
+    actions: &mut Vec<Action>,
+) {
+    let recording = passes.recording.is_some();
+    ui.horizontal(|ui| {
+        let label = ui.label(words.record_pass_of);
+        let recordable: Vec<String> = show
+            .devices
+            .iter()
+            .filter(|d| d.project.family == Family::Servo || d.project.family == Family::Plen2)
+            .map(|d| d.name.clone())
+            .collect();
+        let (mut device, mut axis) = (passes.device.clone(), passes.axis);
+        ui.add_enabled_ui(editable && !recording, |ui| {
+            egui::ComboBox::from_id_salt("pass-device")
+                .selected_text(device.clone().unwrap_or_default())
+                .show_ui(ui, |ui| {
+                    for name in &recordable {
+                        ui.selectable_value(&mut device, Some(name.clone()), name);
+                    }
+                })
+                .response
+                .labelled_by(label.id);
+            let choices = device.as_deref().map(|d| axes(show, d)).unwrap_or_default();
+            let shown = choices.iter().find(|(a, _)| Some(*a) == axis).map(|(_, c)| c.clone()).unwrap_or_default();
+            egui::ComboBox::from_id_salt("pass-axis")
+                .selected_text(shown)
+                .show_ui(ui, |ui| {
+                    for (choice, caption) in &choices {
+                        ui.selectable_value(&mut axis, Some(*choice), caption);
+                    }
+                })
+                .response
+                .labelled_by(label.id);
+        });
+        if device != passes.device {
+            // Another device: its own axes.
+            (passes.device, passes.axis) = (device, None);
+        } else {
+            passes.axis = axis;
+        }
+        if let Some((device, axis)) = passes.picked() {
+            // Wide enough for a hand to draw with (its arrow keys nudge it too).
+            ui.spacing_mut().slider_width = 320.0;
+            let value =
+                ui.add(egui::Slider::new(&mut passes.value, range(show, &device, axis)).suffix("°").fixed_decimals(1));
+            value.labelled_by(label.id);
+        }
+        let (caption, action) = if recording {
+            (words.stop_pass, ShowAction::RecordPass(false))
+        } else {
+            (words.record_pass, ShowAction::RecordPass(true))
+        };
+        if ui.add_enabled(editable && passes.picked().is_some(), egui::Button::new(caption)).clicked() {
+            actions.push(Action::Show(action));
+        }
+        if ui.add_enabled(!recording && !passes.undo.is_empty(), egui::Button::new(words.undo_pass)).clicked() {
+            actions.push(Action::Show(ShowAction::UndoPass));
+        }
+    });
+}
