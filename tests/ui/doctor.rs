@@ -99,7 +99,7 @@ fn find_board_names_the_plen2_and_connects_to_it_as_one() {
     assert_eq!(harness.state().link.as_ref().unwrap().family(), Family::Plen2);
     harness.run_steps(2);
     // Play on board with a sound waits the latency the doctor measured on this port.
-    assert!(harness.state().sound.link_latency().is_some(), "the doctor's measured latency reaches the sound");
+    assert!(harness.state().desks.sound.link_latency().is_some(), "the doctor's measured latency reaches the sound");
     // One undo step puts the family back (once disconnected).
     harness.state_mut().apply(Action::Disconnect);
     harness.state_mut().apply(Action::Undo);

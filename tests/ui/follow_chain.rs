@@ -64,7 +64,9 @@ fn full_robot(dir: &Path, language: Language) -> Option<Harness<'static, StudioA
     let mut app = StudioApp::new(project, Some(path), no_waker()).with_data_dir(data);
     app.apply(Action::SetLanguage(language));
     let mut harness = common::ui::showing(app, Tab::Motions, (1300.0, 900.0));
-    common::ui::run_until(&mut harness, "the sound read", |app| app.sound.view(&app.document.project).read.is_some());
+    common::ui::run_until(&mut harness, "the sound read", |app| {
+        app.desks.sound.view(&app.document.project).read.is_some()
+    });
     harness.run_steps(2);
     Some(harness)
 }

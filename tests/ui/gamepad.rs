@@ -107,7 +107,7 @@ fn the_gamepad_drives_while_the_dead_man_is_held_and_the_window_has_the_focus() 
     // The pipe ends: stopped, and said.
     rig.pipe = None;
     rig.until("the end to stop", |commanded| commanded == (0.0, 0.0));
-    common::ui::run_until(&mut rig.harness, "the gamepad to be let go", |app| !app.pad.in_use());
+    common::ui::run_until(&mut rig.harness, "the gamepad to be let go", |app| !app.desks.pad.in_use());
     let status = rig.harness.state().status.clone().unwrap();
     assert!(status.is_error && status.text.starts_with("The gamepad is gone"), "{status:?}");
 }
@@ -252,7 +252,7 @@ mod bindings {
         // Test mode: buttons light up, nothing fires.
         robot.frame(&[RawEvent::key(BTN_SOUTH, false)]);
         let seen = |pressed: bool| {
-            move |app: &StudioApp| app.pad.state.as_ref().is_some_and(|pad| pad.pressed(BTN_SOUTH) == pressed)
+            move |app: &StudioApp| app.desks.pad.state.as_ref().is_some_and(|pad| pad.pressed(BTN_SOUTH) == pressed)
         };
         common::ui::run_until(&mut robot.harness, "the release seen", seen(false));
         robot.harness.state_mut().apply(Action::PadTestMode(true));

@@ -45,14 +45,14 @@ fn a_maestro_file_is_mapped_previewed_and_created_as_one_undo_step() {
     harness.get_by_label("File").click();
     harness.run();
     harness.get_by_label("Import from another tool…").click();
-    common::ui::run_until(&mut harness, "the file read", |app| app.import.session.is_some());
+    common::ui::run_until(&mut harness, "the file read", |app| app.desks.import.session.is_some());
     // The guessed map: channel 0 "jaw 下巴" drives servo 0, the output channel is not there.
     harness.get_by_label("jaw 下巴");
     assert!(harness.query_all(by().role(Role::ComboBox).value("servo 0")).next().is_some());
-    let session = harness.state().import.session.as_ref().unwrap();
+    let session = harness.state().desks.import.session.as_ref().unwrap();
     assert_eq!(session.map.entries.len(), 3);
     // The preview at 1.05 s: the jaw half way to +30° (15.0°) in the Now column.
-    harness.state_mut().import.session.as_mut().unwrap().time_ms = 1050.0;
+    harness.state_mut().desks.import.session.as_mut().unwrap().time_ms = 1050.0;
     harness.run();
     assert!(harness.query_by_label("15.0").is_some(), "the jaw's angle at the preview's time");
     // The eye is not imported: picked in its row's Drives list.
@@ -60,17 +60,17 @@ fn a_maestro_file_is_mapped_previewed_and_created_as_one_undo_step() {
     harness.run();
     harness.get_by_label("— not imported").click();
     harness.run();
-    assert_eq!(harness.state().import.session.as_ref().unwrap().map.entries[2].target, None);
+    assert_eq!(harness.state().desks.import.session.as_ref().unwrap().map.entries[2].target, None);
     // Saved, then loaded again (the picker answers the same file).
     harness.get_by_label("Save map…").click();
     common::ui::run_until(&mut harness, "the map saved", |_| map_file.exists());
     let saved = servo_studio::interchange::JointMap::from_json(&std::fs::read_to_string(&map_file).unwrap()).unwrap();
     assert_eq!(saved.entries[2].target, None);
     // A change made after saving is undone by loading the saved map.
-    harness.state_mut().import.session.as_mut().unwrap().map.entries[0].offset_deg = 5.0;
+    harness.state_mut().desks.import.session.as_mut().unwrap().map.entries[0].offset_deg = 5.0;
     harness.get_by_label("Load map…").click();
     common::ui::run_until(&mut harness, "the map loaded", |app| {
-        !app.import.busy() && app.import.session.as_ref().unwrap().map.entries[0].offset_deg == 0.0
+        !app.desks.import.busy() && app.desks.import.session.as_ref().unwrap().map.entries[0].offset_deg == 0.0
     });
     let before = harness.state().document.project.clone();
     harness.get_by_label("Create").click();
@@ -84,7 +84,7 @@ fn a_maestro_file_is_mapped_previewed_and_created_as_one_undo_step() {
     assert!(harness.state().status.as_ref().unwrap().text.starts_with("Imported: "));
     harness.get_by_label("Close").click();
     harness.run();
-    assert!(harness.state().import.session.is_none());
+    assert!(harness.state().desks.import.session.is_none());
     harness.state_mut().apply(Action::Undo);
     assert_eq!(harness.state().document.project, before, "one undo step takes the whole import back");
 }
@@ -105,10 +105,10 @@ fn a_roboplus_page_previews_on_the_plen2_figure_and_lands_in_free_slots() {
     let mut app = common::ui::editor(project);
     app.apply(Action::Import(servo_studio::ui::import::ImportAction::Read(file)));
     let mut harness = common::ui::showing(app, Tab::Motions, (1280.0, 800.0));
-    common::ui::run_until(&mut harness, "the file read", |app| app.import.session.is_some());
+    common::ui::run_until(&mut harness, "the file read", |app| app.desks.import.session.is_some());
     // Id 1 shows as the right shoulder (the table's first row); id 13 is guessed as the right knee.
     assert!(harness.query_all(by().role(Role::ComboBox).value("right_shoulder_pitch")).next().is_some());
-    let map = &harness.state().import.session.as_ref().unwrap().map;
+    let map = &harness.state().desks.import.session.as_ref().unwrap().map;
     let knee = servo_studio::interchange::Target::Joint(servo_studio::project::plen2::Joint::RightKneePitch);
     assert_eq!(map.entry("13").unwrap().target, Some(knee));
     harness.get_by_label("Create").click();
@@ -146,7 +146,7 @@ fn a_servo_project_is_exported_for_a_maestro_and_a_plen2_motion_for_blender() {
     harness.run();
     assert!(harness.query_all(by().role(Role::ComboBox).value("Maestro settings file (sequences)")).next().is_some());
     harness.get_by_label("Export…").click();
-    common::ui::run_until(&mut harness, "the file written", |app| !app.import.busy() && out.exists());
+    common::ui::run_until(&mut harness, "the file written", |app| !app.desks.import.busy() && out.exists());
     let written = servo_studio::interchange::read(
         servo_studio::interchange::Format::Maestro,
         &std::fs::read_to_string(&out).unwrap(),
@@ -179,7 +179,7 @@ fn a_servo_project_is_exported_for_a_maestro_and_a_plen2_motion_for_blender() {
     let mut harness = common::ui::showing(app, Tab::Motions, (1280.0, 800.0));
     assert!(harness.query_all(by().role(Role::ComboBox).value("4 kneel")).next().is_some(), "the motion offered");
     harness.get_by_label("Export…").click();
-    common::ui::run_until(&mut harness, "the file written", |app| !app.import.busy() && out.exists());
+    common::ui::run_until(&mut harness, "the file written", |app| !app.desks.import.busy() && out.exists());
     let written = servo_studio::interchange::read(
         servo_studio::interchange::Format::Blender,
         &std::fs::read_to_string(&out).unwrap(),

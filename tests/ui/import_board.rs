@@ -42,7 +42,7 @@ fn open(language: Language, project: Project) -> egui_kittest::Harness<'static, 
     app.apply(Action::SetLanguage(language));
     app.apply(Action::Import(ImportAction::Read(file)));
     let mut harness = common::ui::showing(app, Tab::Servos, (1280.0, 800.0));
-    common::ui::run_until(&mut harness, "the board's playback worked out", |app| app.import.board_known());
+    common::ui::run_until(&mut harness, "the board's playback worked out", |app| app.desks.import.board_known());
     // The tempdir may go: the file was read.
     drop(dir);
     harness
@@ -57,7 +57,7 @@ fn a_project_with_servo_0() -> Project {
 #[test]
 fn the_preview_plays_the_move_the_speed_limit_cuts_short_and_says_by_how_much() {
     let mut harness = open(Language::English, Project::servo(ServoProject::default()));
-    harness.state_mut().import.session.as_mut().unwrap().time_ms = 500.0;
+    harness.state_mut().desks.import.session.as_mut().unwrap().time_ms = 500.0;
     harness.run();
     assert!(harness.query_by_label("20.0").is_some(), "the board has the arm at +20° when the frame ends");
     assert!(harness.query_by_label("30.0").is_none(), "not the file's +30°");
@@ -89,7 +89,7 @@ fn the_window_and_its_notes_are_in_traditional_chinese() {
     assert!(harness.query_by_label_contains("開發板播放的通道 0（伺服機 0）與檔案最多相差").is_some());
     assert!(harness.query_by_label_contains("Maestro 影格短於通道速度限制所需").is_some());
     assert!(harness.query_by_label_contains("通道 1（Output）：不是伺服機").is_some());
-    harness.state_mut().import.session.as_mut().unwrap().time_ms = 0.0;
+    harness.state_mut().desks.import.session.as_mut().unwrap().time_ms = 0.0;
     harness.run();
     assert!(harness.query_by_label_contains("Channel").is_none(), "no English caption left");
 }

@@ -29,7 +29,7 @@ fn two_boards(swings: i32) -> Show {
 fn opened(stage: &Stage) -> egui_kittest::Harness<'static, servo_studio::ui::StudioApp> {
     let mut app = common::ui::editor(servo_studio::project::Project::servo(common::sample_biped()));
     app.apply(Action::Show(ShowAction::Open(stage.dir.path().join("show.json"))));
-    let session = app.show.session.as_mut().expect("the show opened");
+    let session = app.desks.show.session.as_mut().expect("the show opened");
     let ports: Vec<String> =
         stage.device_args().chunks(2).map(|pair| pair[1].split_once('=').unwrap().1.to_string()).collect();
     session.ports = ports;
@@ -48,9 +48,10 @@ fn the_show_window_lays_out_each_device_s_cues_and_plays_them_on_the_boards() {
     assert!(harness.query_by_label("arms macro 1 0.50–1.50 s").is_some());
     harness.get_by_label("Play on the boards").click();
     common::ui::run_until(&mut harness, "the show ended", |app| {
-        !app.show.playing() && app.show.session.as_ref().unwrap().said.iter().any(|l| l.starts_with("ended after"))
+        !app.desks.show.playing()
+            && app.desks.show.session.as_ref().unwrap().said.iter().any(|l| l.starts_with("ended after"))
     });
-    let said = harness.state().show.session.as_ref().unwrap().said.join("\n");
+    let said = harness.state().desks.show.session.as_ref().unwrap().said.join("\n");
     assert!(said.contains("skull answered on") && said.contains("arms answered on"), "{said}");
     logged_until(stage.log("skull"), "ExecuteMacroRequest", Duration::from_secs(10));
     logged_until(stage.log("arms"), "ExecuteMacroRequest", Duration::from_secs(10));
@@ -64,8 +65,8 @@ fn stop_stops_every_board_of_a_show_that_plays() {
     harness.run_steps(2);
     logged_until(stage.log("arms"), "ExecuteMacroRequest", Duration::from_secs(30));
     harness.get_by_label("■ STOP").click();
-    common::ui::run_until(&mut harness, "the show stopped", |app| !app.show.playing());
-    let said = harness.state().show.session.as_ref().unwrap().said.join("\n");
+    common::ui::run_until(&mut harness, "the show stopped", |app| !app.desks.show.playing());
+    let said = harness.state().desks.show.session.as_ref().unwrap().said.join("\n");
     assert!(said.contains("stopped by STOP: every device was stopped"), "{said}");
     for name in ["skull", "arms"] {
         let log = logged_until(stage.log(name), "SetServoParameterRequest", Duration::from_secs(10));
@@ -94,19 +95,19 @@ fn a_cue_is_added_changed_and_the_show_saved_as_version_3() {
     harness.get_by_label("+ Cue").click();
     harness.run();
     // The new cue: the first device's first macro, at 0; moved to the other board in its row.
-    assert_eq!(harness.state().show.session.as_ref().unwrap().show.cues.len(), 3);
+    assert_eq!(harness.state().desks.show.session.as_ref().unwrap().show.cues.len(), 3);
     assert_eq!(harness.query_all(by().label("skull macro 1 0.00–1.00 s")).count(), 2, "the first cue and the new one");
     let rows: Vec<_> = harness.query_all(by().role(Role::ComboBox).value("skull")).collect();
     rows.last().unwrap().click();
     harness.run();
     harness.query_all(by().label("arms")).last().unwrap().click();
     harness.run();
-    assert_eq!(harness.state().show.session.as_ref().unwrap().show.cues[2].device, "arms");
+    assert_eq!(harness.state().desks.show.session.as_ref().unwrap().show.cues[2].device, "arms");
     // A cue at a time the show cannot hold is said, and Play waits for it to be right.
-    harness.state_mut().show.session.as_mut().unwrap().show.cues[2].device = "nobody".into();
+    harness.state_mut().desks.show.session.as_mut().unwrap().show.cues[2].device = "nobody".into();
     harness.run();
     assert!(harness.query_by_label_contains("\"nobody\", which is not a device").is_some());
-    harness.state_mut().show.session.as_mut().unwrap().show.cues[2].device = "arms".into();
+    harness.state_mut().desks.show.session.as_mut().unwrap().show.cues[2].device = "arms".into();
     harness.run();
     harness.get_by_label("Save show…").click();
     common::ui::run_until(&mut harness, "the show saved", |_| saved.exists());
@@ -123,7 +124,7 @@ fn each_device_says_whether_the_show_plays_on_without_it() {
     assert_eq!(boxes.len(), 2, "a box per device");
     boxes[1].click();
     harness.run();
-    let show = &harness.state().show.session.as_ref().unwrap().show;
+    let show = &harness.state().desks.show.session.as_ref().unwrap().show;
     assert_eq!(show.devices.iter().map(|d| d.play_on_without).collect::<Vec<_>>(), [false, true]);
     assert!(show.to_json().contains("\"play_on_without\": true"), "saved with the show");
 }
@@ -140,7 +141,7 @@ fn devices_are_added_and_removed_and_a_port_is_found_by_id() {
     harness.get_by_label("New PLEN2").click();
     harness.run();
     let names = |harness: &egui_kittest::Harness<'static, servo_studio::ui::StudioApp>| -> Vec<String> {
-        let session = harness.state().show.session.as_ref().unwrap();
+        let session = harness.state().desks.show.session.as_ref().unwrap();
         assert_eq!(session.ports.len(), session.show.devices.len(), "a port per device");
         session.show.devices.iter().map(|d| d.name.clone()).collect()
     };
@@ -148,16 +149,16 @@ fn devices_are_added_and_removed_and_a_port_is_found_by_id() {
     assert!(harness.query_all_by_label("play on without it").count() == 3, "its row is shown");
     // The stage shows every device; a click on the timeline shows that time there.
     harness.get_by_label("Stage: every device at the time shown");
-    assert_eq!(harness.state().show.stage.scrub_ms, 0);
+    assert_eq!(harness.state().desks.show.stage.scrub_ms, 0);
     harness.get_by_label("Timeline: click to show that time").click();
     harness.run();
-    let scrub = harness.state().show.stage.scrub_ms;
+    let scrub = harness.state().desks.show.stage.scrub_ms;
     assert!((100..1500).contains(&scrub), "a click mid-timeline (1.5 s shown) shows its middle: {scrub} ms");
     // The devices' Remove buttons come first, then the cues'.
     harness.query_all_by_label("Remove").next().unwrap().click();
     harness.run();
     assert_eq!(names(&harness), ["arms", "plen2"]);
-    let session = harness.state().show.session.as_ref().unwrap();
+    let session = harness.state().desks.show.session.as_ref().unwrap();
     assert_eq!(session.show.cues.iter().map(|c| c.device.as_str()).collect::<Vec<_>>(), ["arms"]);
     assert!(session.said.iter().any(|line| line == "skull: 1 cues went with it"), "{:?}", session.said);
     harness.query_all_by_label("Find by id").next().unwrap().click();
@@ -178,25 +179,25 @@ fn the_stage_previews_the_show_and_stop_stops_it() {
     let stage = Stage::new(&two_boards(2), &[]);
     let mut harness = opened(&stage);
     harness.get_by_label("Preview").click();
-    common::ui::run_until(&mut harness, "the preview moving", |app| app.show.stage.scrub_ms > 0);
-    assert!(harness.state().show.stage.previewing());
+    common::ui::run_until(&mut harness, "the preview moving", |app| app.desks.show.stage.scrub_ms > 0);
+    assert!(harness.state().desks.show.stage.previewing());
     harness.get_by_label("Stop preview").click();
     harness.run();
-    let stopped_at = harness.state().show.stage.scrub_ms;
-    assert!(!harness.state().show.stage.previewing());
+    let stopped_at = harness.state().desks.show.stage.scrub_ms;
+    assert!(!harness.state().desks.show.stage.previewing());
     harness.run();
-    assert_eq!(harness.state().show.stage.scrub_ms, stopped_at, "it stays where it was stopped");
+    assert_eq!(harness.state().desks.show.stage.scrub_ms, stopped_at, "it stays where it was stopped");
     harness.get_by_label("Preview").click();
-    common::ui::run_until(&mut harness, "the preview again", |app| app.show.stage.scrub_ms > stopped_at);
+    common::ui::run_until(&mut harness, "the preview again", |app| app.desks.show.stage.scrub_ms > stopped_at);
     harness.get_by_label("■ STOP").click();
     harness.run();
-    assert!(!harness.state().show.stage.previewing(), "the window's STOP stops the preview");
+    assert!(!harness.state().desks.show.stage.previewing(), "the window's STOP stops the preview");
     // To its end: it stops there by itself.
     harness.get_by_label("Preview").click();
     harness.step();
-    assert!(harness.state().show.stage.previewing());
-    common::ui::run_until(&mut harness, "the preview's end", |app| !app.show.stage.previewing());
-    assert_eq!(harness.state().show.stage.scrub_ms, 1500, "the show's span: the last cue's end");
+    assert!(harness.state().desks.show.stage.previewing());
+    common::ui::run_until(&mut harness, "the preview's end", |app| !app.desks.show.stage.previewing());
+    assert_eq!(harness.state().desks.show.stage.scrub_ms, 1500, "the show's span: the last cue's end");
 }
 
 /// A record pass: servo 1 of the skull picked, ● Record pass previews the
@@ -209,29 +210,29 @@ fn a_record_pass_joins_into_the_show_and_is_undone_on_its_own() {
     use servo_studio::show::passes::Axis;
     let stage = Stage::new(&two_boards(2), &[]);
     let mut harness = opened(&stage);
-    let macros_before = harness.state().show.session.as_ref().unwrap().show.devices[0].project.servo.macros.len();
-    harness.state_mut().show.passes.pick("skull", Axis::Servo(1));
+    let macros_before = harness.state().desks.show.session.as_ref().unwrap().show.devices[0].project.servo.macros.len();
+    harness.state_mut().desks.show.passes.pick("skull", Axis::Servo(1));
     harness.run();
     harness.get_by_label("● Record pass").click();
     harness.step();
-    assert!(harness.state().show.passes.recording.is_some() && harness.state().show.stage.previewing());
-    while harness.state().show.passes.recording.is_some() {
-        let t = harness.state().show.stage.scrub_ms as f64 / 1000.0;
-        harness.state_mut().show.passes.value = 40.0 * t;
+    assert!(harness.state().desks.show.passes.recording.is_some() && harness.state().desks.show.stage.previewing());
+    while harness.state().desks.show.passes.recording.is_some() {
+        let t = harness.state().desks.show.stage.scrub_ms as f64 / 1000.0;
+        harness.state_mut().desks.show.passes.value = 40.0 * t;
         harness.step();
     }
     harness.run();
-    let show = &harness.state().show.session.as_ref().unwrap().show;
+    let show = &harness.state().desks.show.session.as_ref().unwrap().show;
     let skull = &show.devices[0].project.servo;
     assert_eq!(skull.macros.len(), macros_before + 1, "the pass became a macro");
     let made = skull.macros.last().unwrap();
     assert_eq!(made.caption, "Recorded passes");
     assert!(show.cues.iter().any(|cue| cue.device == "skull" && cue.start == Start::Macro(made.id)), "cued");
-    let said = harness.state().show.session.as_ref().unwrap().said.join("\n");
+    let said = harness.state().desks.show.session.as_ref().unwrap().said.join("\n");
     assert!(said.contains("skull: 1 passes joined →") && said.contains("steps"), "{said}");
     harness.get_by_label("Undo pass").click();
     harness.run();
-    let show = &harness.state().show.session.as_ref().unwrap().show;
+    let show = &harness.state().desks.show.session.as_ref().unwrap().show;
     assert_eq!(show.devices[0].project.servo.macros.len(), macros_before, "undone");
     assert_eq!(show.cues.len(), 2, "the show's own cues are back");
 }

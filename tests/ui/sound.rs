@@ -80,7 +80,7 @@ fn an_added_sound_is_kept_relative_with_its_hash_drawn_with_its_onsets_and_moved
     assert_eq!(added.sha256, hash);
     assert!(harness.query_by_label_contains("Sound: clicks.wav").is_some(), "the lane names the file");
     // The onsets, on the motion's time: every click within 10 ms.
-    let view = harness.state().sound.view(&harness.state().document.project);
+    let view = harness.state().desks.sound.view(&harness.state().document.project);
     let onsets = view.onsets_ms();
     assert_eq!(onsets.len(), CLICKS.len(), "{onsets:?}");
     for (onset, click) in onsets.iter().zip(CLICKS) {
@@ -99,7 +99,7 @@ fn an_added_sound_is_kept_relative_with_its_hash_drawn_with_its_onsets_and_moved
     harness.run_steps(3);
     let moved = track(&harness).unwrap().offset_ms;
     assert!(moved > 50, "the sound starts later: {moved} ms");
-    let onsets = harness.state().sound.view(&harness.state().document.project).onsets_ms();
+    let onsets = harness.state().desks.sound.view(&harness.state().document.project).onsets_ms();
     assert!((onsets[0] - (300.0 + moved as f64)).abs() <= 10.0, "the onsets move with it");
     harness.state_mut().apply(Action::Undo);
     harness.run_steps(2);
@@ -122,7 +122,7 @@ fn a_missing_or_changed_sound_opens_the_project_and_says_what_to_do() {
     project.sound = Some(gone);
     let mut harness = saved_editor(dir.path(), project.clone(), vec![here.clone()]);
     common::ui::run_until(&mut harness, "the missing file said", |app| {
-        app.sound.view(&app.document.project).problem.is_some()
+        app.desks.sound.view(&app.document.project).problem.is_some()
     });
     assert!(harness.query_by_label_contains("gone.wav is missing").is_some(), "names the file and what to do");
     assert_eq!(harness.state().document.project.servo, project.servo, "the project opened whole");
@@ -140,7 +140,7 @@ fn a_missing_or_changed_sound_opens_the_project_and_says_what_to_do() {
     let project = harness.state().document.project.clone();
     let mut harness = saved_editor(dir.path(), project, Vec::new());
     common::ui::run_until(&mut harness, "the change said", |app| {
-        app.sound.view(&app.document.project).problem.is_some()
+        app.desks.sound.view(&app.document.project).problem.is_some()
     });
     assert!(harness.query_by_label_contains("has changed since the show was timed to it").is_some());
     harness.get_by_label("Keep it as it is now").click();
@@ -169,12 +169,14 @@ fn play_plays_the_sound_through_the_sound_server_and_pause_stops_it() {
     let Some(pulse) = Pulse::start() else { return };
     let dir = tempfile::tempdir().unwrap();
     let mut harness = saved_editor(dir.path(), with_sound(dir.path()), Vec::new());
-    harness.state_mut().sound = SoundDesk::with_server(pulse.socket.clone());
-    common::ui::run_until(&mut harness, "the sound read", |app| app.sound.view(&app.document.project).read.is_some());
+    harness.state_mut().desks.sound = SoundDesk::with_server(pulse.socket.clone());
+    common::ui::run_until(&mut harness, "the sound read", |app| {
+        app.desks.sound.view(&app.document.project).read.is_some()
+    });
     harness.get_by_label("Play").click();
-    common::ui::run_until(&mut harness, "the sound playing", |app| app.sound.is_playing());
+    common::ui::run_until(&mut harness, "the sound playing", |app| app.desks.sound.is_playing());
     harness.get_by_label("Pause").click();
-    common::ui::run_until(&mut harness, "the sound stopped", |app| !app.sound.is_playing());
+    common::ui::run_until(&mut harness, "the sound stopped", |app| !app.desks.sound.is_playing());
     assert!(harness.state().status.as_ref().is_none_or(|status| !status.text.contains("no sound output")));
 }
 
@@ -182,8 +184,10 @@ fn play_plays_the_sound_through_the_sound_server_and_pause_stops_it() {
 fn without_a_sound_server_no_sound_output_is_said_once_and_the_motion_plays_on() {
     let dir = tempfile::tempdir().unwrap();
     let mut harness = saved_editor(dir.path(), with_sound(dir.path()), Vec::new());
-    harness.state_mut().sound = SoundDesk::with_server(dir.path().join("no-server"));
-    common::ui::run_until(&mut harness, "the sound read", |app| app.sound.view(&app.document.project).read.is_some());
+    harness.state_mut().desks.sound = SoundDesk::with_server(dir.path().join("no-server"));
+    common::ui::run_until(&mut harness, "the sound read", |app| {
+        app.desks.sound.view(&app.document.project).read.is_some()
+    });
     harness.get_by_label("Play").click();
     // The output is asked off the frame: its answer comes when it comes.
     common::ui::run_until(&mut harness, "no sound output said", |app| app.status.is_some());
@@ -217,10 +221,10 @@ fn a_sound_server_that_never_answers_freezes_nothing_and_stop_works() {
     // The editor runs on a thread of its own: should a frame block, this test fails instead of hanging.
     std::thread::spawn(move || {
         let mut harness = saved_editor(&root, project, Vec::new());
-        harness.state_mut().sound = SoundDesk::with_server(socket);
+        harness.state_mut().desks.sound = SoundDesk::with_server(socket);
         harness.state_mut().apply(Action::ConnectDemo);
         common::ui::run_until(&mut harness, "the sound read", |app| {
-            app.sound.view(&app.document.project).read.is_some()
+            app.desks.sound.view(&app.document.project).read.is_some()
         });
         common::ui::run_until(&mut harness, "the demo board", |app| {
             app.link.as_ref().is_some_and(|link| link.demo_board().is_some())
@@ -231,7 +235,7 @@ fn a_sound_server_that_never_answers_freezes_nothing_and_stop_works() {
         drawn.send("played").unwrap();
         harness.state_mut().apply(Action::Stop);
         harness.step();
-        assert!(!harness.state().sound.is_playing(), "STOP stopped the sound at once");
+        assert!(!harness.state().desks.sound.is_playing(), "STOP stopped the sound at once");
         drawn.send("stopped").unwrap();
         // STOP holds the servos until Resume; the preview (which plays on its
         // own) is paused, so its end does not silence the next sound.
@@ -285,9 +289,9 @@ fn a_sound_server_that_never_answers_freezes_nothing_and_stop_works() {
 
 /// Plays through `pulse`, connects the demo board of the project's family, and waits for the sound to be read.
 fn on_the_demo_with_sound(harness: &mut Harness<'static, StudioApp>, pulse: &Pulse) {
-    harness.state_mut().sound = SoundDesk::with_server(pulse.socket.clone());
+    harness.state_mut().desks.sound = SoundDesk::with_server(pulse.socket.clone());
     harness.state_mut().apply(Action::ConnectDemo);
-    common::ui::run_until(harness, "the sound read", |app| app.sound.view(&app.document.project).read.is_some());
+    common::ui::run_until(harness, "the sound read", |app| app.desks.sound.view(&app.document.project).read.is_some());
 }
 
 #[test]
@@ -303,7 +307,7 @@ fn running_a_macro_on_the_board_starts_the_sound_with_it() {
     });
     let events = harness.state().link.as_ref().unwrap().demo_board().unwrap().events().clone();
     harness.state_mut().apply(Action::family(servo_studio::ui::ServoAction::RunMacro(macro_id)));
-    common::ui::run_until(&mut harness, "the sound playing", |app| app.sound.is_playing());
+    common::ui::run_until(&mut harness, "the sound playing", |app| app.desks.sound.is_playing());
     let deadline = std::time::Instant::now() + Duration::from_secs(10);
     loop {
         match events.recv_deadline(deadline) {
@@ -321,7 +325,9 @@ fn follow_the_sound_adds_a_servos_steps_and_a_macro_timed_to_it_in_one_undo_step
     let project = with_sound(dir.path());
     let before = project.servo.clone();
     let mut harness = saved_editor(dir.path(), project, Vec::new());
-    common::ui::run_until(&mut harness, "the sound read", |app| app.sound.view(&app.document.project).read.is_some());
+    common::ui::run_until(&mut harness, "the sound read", |app| {
+        app.desks.sound.view(&app.document.project).read.is_some()
+    });
     harness.get_by_label("Follow the sound…").click();
     harness.run_steps(3);
     harness.get_by_label("Make the motion").click();
@@ -349,11 +355,13 @@ fn stop_before_the_boards_start_goes_out_stops_the_sound_and_the_start_never_goe
     let dir = tempfile::tempdir().unwrap();
     let project = with_sound(dir.path());
     let mut harness = saved_editor(dir.path(), project.clone(), Vec::new());
-    harness.state_mut().sound = SoundDesk::with_server(pulse.socket.clone());
-    common::ui::run_until(&mut harness, "the sound read", |app| app.sound.view(&app.document.project).read.is_some());
+    harness.state_mut().desks.sound = SoundDesk::with_server(pulse.socket.clone());
+    common::ui::run_until(&mut harness, "the sound read", |app| {
+        app.desks.sound.view(&app.document.project).read.is_some()
+    });
     let (sent, went_out) = crossbeam_channel::bounded(1);
     let start = move || sent.send(()).unwrap();
-    let waiting = harness.state_mut().sound.play_with_board(&project, 0.0, (Duration::ZERO, no_waker()), start);
+    let waiting = harness.state_mut().desks.sound.play_with_board(&project, 0.0, (Duration::ZERO, no_waker()), start);
     assert!(waiting, "the board's start waits for the sound");
     // STOP at once: the start is due only once the sound has played its 300 ms lead.
     harness.state_mut().apply(Action::Stop);
@@ -364,7 +372,7 @@ fn stop_before_the_boards_start_goes_out_stops_the_sound_and_the_start_never_goe
         "the board's start never went out"
     );
     harness.run_steps(2);
-    assert!(!harness.state().sound.is_playing(), "the sound stopped with the board");
+    assert!(!harness.state().desks.sound.is_playing(), "the sound stopped with the board");
 }
 
 #[test]
@@ -391,7 +399,7 @@ fn playing_a_play_list_on_the_robot_queues_it_then_starts_it_with_the_sound() {
     let events = harness.state().link.as_ref().unwrap().demo_plen2().unwrap().events().clone();
     harness.state_mut().apply(Action::family(servo_studio::ui::Plen2Action::PlayList(0)));
     // The sound plays once the thread starting both has sent `#PO`.
-    common::ui::run_until(&mut harness, "the sound playing", |app| app.sound.is_playing());
+    common::ui::run_until(&mut harness, "the sound playing", |app| app.desks.sound.is_playing());
     let deadline = std::time::Instant::now() + Duration::from_secs(10);
     let mut executed = Vec::new();
     while executed.last() != Some(&Command::Pop) {
@@ -415,7 +423,9 @@ fn playing_a_play_list_on_the_robot_queues_it_then_starts_it_with_the_sound() {
 fn the_play_bar_and_the_sound_lane_share_one_time_axis() {
     let dir = tempfile::tempdir().unwrap();
     let mut harness = saved_editor(dir.path(), with_sound(dir.path()), Vec::new());
-    common::ui::run_until(&mut harness, "the sound read", |app| app.sound.view(&app.document.project).read.is_some());
+    common::ui::run_until(&mut harness, "the sound read", |app| {
+        app.desks.sound.view(&app.document.project).read.is_some()
+    });
     let span = common::ui::servo_ui(harness.state()).figure.transport.span_ms().unwrap();
     assert!((span - 3000.0).abs() < 1.0, "the span is the sound's 3 s, longer than the action: {span}");
     for t_ms in [0.0, 920.0, 2200.0, 3000.0] {

@@ -35,10 +35,10 @@ impl StudioApp {
                 self.report(self.words().msg_disconnected, false);
             }
             Action::Stop => self.stop(),
-            Action::Import(action) => self.import.apply(action, &self.files.work, &self.document.project),
+            Action::Import(action) => self.desks.import.apply(action, &self.files.work, &self.document.project),
             Action::Show(action) => {
                 if let Some(error) =
-                    self.show.apply(action, (&self.document.project, self.language), &self.window.waker)
+                    self.desks.show.apply(action, (&self.document.project, self.language), &self.window.waker)
                 {
                     self.report(error, true);
                 }
@@ -48,7 +48,7 @@ impl StudioApp {
             Action::SetLiveSpeed(deg_per_s) => self.live_speed = LiveSpeed { deg_per_s }.clamped(),
             Action::ShowTab(tab) => self.window.tab = tab,
             Action::UseGamepad(path) => self.use_gamepad(path),
-            Action::PadTestMode(on) => self.pad.test_mode = on,
+            Action::PadTestMode(on) => self.desks.pad.test_mode = on,
             Action::BindPad(bind) => self.bind_pad(bind),
             Action::ShowView(open) => {
                 let (_, family_ui) = self.parts(self.document.project.family);

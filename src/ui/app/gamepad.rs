@@ -10,7 +10,7 @@ use crate::ui::gamepad::PadPanel;
 impl StudioApp {
     /// Reads `path` as the gamepad (None: lets it go, stopping what it drove).
     pub(super) fn use_gamepad(&mut self, path: Option<PathBuf>) {
-        if self.pad.in_use() {
+        if self.desks.pad.in_use() {
             // Letting go is the gamepad going away: whatever it drove stops.
             let now = Instant::now();
             let gone = [(now, PadUpdate::Gone(Gone::Ended))];
@@ -19,27 +19,28 @@ impl StudioApp {
             let (mut shell, family_ui) = self.parts(family);
             family_ui.pad_drive(&mut shell, now, &gone, false, tab);
         }
-        if let Err(error) = self.pad.choose(path, &self.window.waker) {
+        if let Err(error) = self.desks.pad.choose(path, &self.window.waker) {
             self.report(error, true);
         }
     }
 
     /// Starts (or stops) waiting for a button or an axis to bind.
     pub(super) fn bind_pad(&mut self, bind: Option<Bind>) {
-        self.pad.binding = bind.filter(|_| self.pad.in_use()).map(|bind| (bind, self.pad.state.clone()));
+        self.desks.pad.binding =
+            bind.filter(|_| self.desks.pad.in_use()).map(|bind| (bind, self.desks.pad.state.clone()));
     }
 
     /// Takes what the gamepad sent and lets it act; `focused`: whether the
     /// window has the focus (a gamepad acts only then). Whether the window
     /// should keep repainting.
     pub(super) fn feed_gamepad(&mut self, now: Instant, focused: bool) -> bool {
-        let (updates, gone) = self.pad.take();
-        if !self.pad.in_use() && updates.is_empty() {
+        let (updates, gone) = self.desks.pad.take();
+        if !self.desks.pad.in_use() && updates.is_empty() {
             // No gamepad: nothing to do (and nothing to work out) this frame.
             return false;
         }
         let family = self.document.project.family;
-        let armed = focused && !self.pad.test_mode && self.pad.binding.is_none();
+        let armed = focused && !self.desks.pad.test_mode && self.desks.pad.binding.is_none();
         let tab = self.window.tab;
         let mapping = self.document.project.gamepad.of(family).clone();
         let mut actions = Vec::new();
@@ -48,15 +49,15 @@ impl StudioApp {
             (family_ui.pad_targets(&self.document.project), family_ui.pad_fires(&self.document.project, self.words()))
         };
         if !updates.is_empty() {
-            actions.extend(self.pad.bound(family, &mapping, &targets, &fires));
+            actions.extend(self.desks.pad.bound(family, &mapping, &targets, &fires));
         }
-        let cues = self.pad.cues(&mapping, now, &updates, &targets);
+        let cues = self.desks.pad.cues(&mapping, now, &updates, &targets);
         let (mut shell, family_ui) = self.parts(family);
         let mut moving = family_ui.pad_drive(&mut shell, now, &updates, armed, tab);
         if armed {
             actions.extend(cues.into_iter().filter_map(|cue| family_ui.pad_cue(cue)));
         }
-        moving |= self.pad.moving(&mapping);
+        moving |= self.desks.pad.moving(&mapping);
         for action in actions {
             self.apply(action);
         }
@@ -75,7 +76,7 @@ impl StudioApp {
         let mapping = self.document.project.gamepad.of(family);
         // What a button can fire is listed only for the buttons bound or being bound (a
         // large project's thousand actions are not named every frame for nothing).
-        let fires = if mapping.buttons.is_empty() && self.pad.binding.is_none() {
+        let fires = if mapping.buttons.is_empty() && self.desks.pad.binding.is_none() {
             Vec::new()
         } else {
             family_ui.pad_fires(&self.document.project, words)
@@ -88,6 +89,6 @@ impl StudioApp {
             reserved: family_ui.pad_reserved(),
             waker: &self.window.waker,
         };
-        crate::ui::gamepad::panel(ui, &mut self.pad, &view, words, actions);
+        crate::ui::gamepad::panel(ui, &mut self.desks.pad, &view, words, actions);
     }
 }

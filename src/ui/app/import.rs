@@ -9,7 +9,7 @@ use crate::ui::import::Finished;
 impl StudioApp {
     /// Takes what the import desk finished off the frame.
     pub(super) fn poll_import(&mut self, ctx: &egui::Context) {
-        for finished in self.import.poll(self.document.project.family) {
+        for finished in self.desks.import.poll(self.document.project.family) {
             match finished {
                 Finished::Failed(error) => {
                     let said = crate::ui::import::note(&error, crate::ui::import::words(self.language));
@@ -33,7 +33,7 @@ impl StudioApp {
                 }
             }
         }
-        if self.import.busy() {
+        if self.desks.import.busy() {
             // The worker wakes the window when it is done; this keeps the spinner turning.
             ctx.request_repaint_after(Duration::from_millis(100));
         }
@@ -62,6 +62,6 @@ impl StudioApp {
         self.document.seal();
         let said = report.converted.join("; ");
         self.report(format!("{}: {said}", crate::ui::import::words(self.language).imported), false);
-        self.import.created(report);
+        self.desks.import.created(report);
     }
 }

@@ -66,6 +66,14 @@ pub struct StudioApp {
     pub links: LinkDesk,
     /// The window: the tab shown, how it ends, what wakes it.
     pub window: Window,
+    /// The editor's inputs and windows beside the document: the gamepad,
+    /// the import window, the sound track, the show window.
+    pub desks: Desks,
+}
+
+/// The editor's inputs and windows beside the document, each its own desk.
+#[derive(Default)]
+pub struct Desks {
     /// The gamepad, its live state and the binding being made.
     pub pad: crate::ui::gamepad::PadInput,
     /// File → Import from another tool…: its window and work.
@@ -110,10 +118,7 @@ impl StudioApp {
             files: FileDesk::new(waker.clone()),
             links: LinkDesk::new(waker.clone()),
             window: Window { tab: Tab::Log, quit_allowed: false, terminate: None, waker },
-            pad: crate::ui::gamepad::PadInput::default(),
-            import: crate::ui::import::ImportDesk::default(),
-            sound: crate::ui::sound::SoundDesk::default(),
-            show: crate::ui::show::ShowDesk::default(),
+            desks: Desks::default(),
         };
         app.files.read_recovery_later();
         app.each_family(|family_ui, shell| family_ui.document_replaced(&shell.document.project));
@@ -152,7 +157,8 @@ impl StudioApp {
 
     /// The shell as a family's ui changes it, and the families' uis (borrowed apart).
     pub(crate) fn split(&mut self) -> (Shell<'_>, &mut Families) {
-        let Self { document, link, status, operation, language, live_speed, files, window, families, sound, .. } = self;
+        let Self { document, link, status, operation, language, live_speed, files, window, families, desks, .. } = self;
+        let sound = &mut desks.sound;
         let shell = Shell {
             document,
             link,
@@ -189,7 +195,8 @@ impl StudioApp {
 
     /// What a family's panels draw from, and that family's ui.
     fn drawing(&mut self, family: Family) -> (ShellView<'_>, &mut dyn FamilyUi, Tab) {
-        let Self { document, link, operation, language, families, window, sound, .. } = self;
+        let Self { document, link, operation, language, families, window, desks, .. } = self;
+        let sound = &desks.sound;
         let Window { tab, waker, .. } = window;
         let view = ShellView {
             project: &document.project,
@@ -226,12 +233,12 @@ impl StudioApp {
     /// STOP, the family's way (always visible, Esc too).
     fn stop(&mut self) {
         // The show's sound stops too, and a board's start still waiting for it never goes out.
-        self.sound.silence();
+        self.desks.sound.silence();
         // A show previewed on its stage stops where it is (its sound too).
-        self.show.stage.stop_preview();
+        self.desks.show.stage.stop_preview();
         // A show playing on several boards: every one of them.
-        if self.show.playing() {
-            self.show.stop();
+        if self.desks.show.playing() {
+            self.desks.show.stop();
             return;
         }
         let Some(link) = &self.link else {
@@ -375,11 +382,11 @@ impl StudioApp {
         egui::CentralPanel::default().show(ui, |ui| self.tab_panel(ui, &mut actions));
 
         self.dialogs(ui, &mut actions);
-        self.import.window(ui.ctx(), (&self.document.project, &self.files.work), self.language, &mut actions);
-        self.show.window(ui.ctx(), self.language, &mut actions);
-        self.sound.follow_window(ui.ctx(), &self.document.project, self.language, &mut actions);
+        self.desks.import.window(ui.ctx(), (&self.document.project, &self.files.work), self.language, &mut actions);
+        self.desks.show.window(ui.ctx(), self.language, &mut actions);
+        self.desks.sound.follow_window(ui.ctx(), &self.document.project, self.language, &mut actions);
         let document = (&self.document.project, self.document.path.as_ref());
-        self.import.export_window(ui.ctx(), document, self.language, &mut actions);
+        self.desks.import.export_window(ui.ctx(), document, self.language, &mut actions);
         for action in actions {
             self.apply(action);
         }
@@ -400,7 +407,7 @@ impl StudioApp {
             ui.ctx().request_repaint_after(wait);
         }
         // An answer the sound output owes: looked at again when it is due.
-        if let Some(deadline) = self.sound.next_deadline() {
+        if let Some(deadline) = self.desks.sound.next_deadline() {
             ui.ctx().request_repaint_after(deadline.saturating_duration_since(Instant::now()));
         }
     }
@@ -421,7 +428,7 @@ impl StudioApp {
     /// server that does not answer keeps nothing open).
     pub fn close_within(&mut self, within: Duration) {
         let deadline = Instant::now() + within;
-        self.sound.silence();
+        self.desks.sound.silence();
         self.drop_link();
         self.links.wait_for_closing(deadline);
         self.finish_file_work(Some(deadline.saturating_duration_since(Instant::now())));

@@ -10,8 +10,8 @@ impl StudioApp {
     pub(super) fn keep_sound(&mut self) {
         let folder = self.document.path.as_deref().and_then(std::path::Path::parent).map(std::path::Path::to_path_buf);
         // Play on board waits the link's delay: its time on the line, and the latency the doctor measured.
-        self.sound.set_link_latency(self.measured_latency());
-        let edit = self.sound.sync(&self.document.project, folder.as_deref(), &self.window.waker);
+        self.desks.sound.set_link_latency(self.measured_latency());
+        let edit = self.desks.sound.sync(&self.document.project, folder.as_deref(), &self.window.waker);
         if let Some((edit, coalesce)) = edit {
             self.document.apply(edit, Some(coalesce));
             self.document.seal();
@@ -22,14 +22,14 @@ impl StudioApp {
     /// Applies a sound action.
     pub(super) fn apply_sound(&mut self, action: SoundAction) {
         let folder = self.document.path.as_deref().and_then(std::path::Path::parent).map(std::path::Path::to_path_buf);
-        if let Some((edit, coalesce)) = self.sound.apply(action, &self.document.project, folder.as_deref()) {
+        if let Some((edit, coalesce)) = self.desks.sound.apply(action, &self.document.project, folder.as_deref()) {
             self.document.apply(edit, Some(coalesce));
         }
         self.say_sound();
     }
 
     fn say_sound(&mut self) {
-        if let Some(said) = self.sound.take_said() {
+        if let Some(said) = self.desks.sound.take_said() {
             let words = crate::ui::sound::lane::words(self.language);
             let said = match said.strip_prefix(crate::ui::sound::NO_OUTPUT) {
                 Some(why) => format!("{} ({why})", words.no_output),
