@@ -236,3 +236,42 @@ fn a_record_pass_joins_into_the_show_and_is_undone_on_its_own() {
     assert_eq!(show.devices[0].project.servo.macros.len(), macros_before, "undone");
     assert_eq!(show.cues.len(), 2, "the show's own cues are back");
 }
+
+/// A pass moved by a gamepad axis: the stick's travel spans the servo's
+/// range, and what is recorded is where the stick was at each time shown.
+#[test]
+fn a_record_pass_follows_a_gamepad_axis() {
+    use servo_studio::gamepad::{ABS_X, EV_ABS, EV_SYN, PadState, RawEvent, SYN_REPORT};
+    use servo_studio::show::passes::Axis;
+    let stage = Stage::new(&two_boards(2), &[]);
+    let mut harness = opened(&stage);
+    let stick = |value: i32| {
+        let mut state = PadState::new((-100, 100));
+        state.apply(RawEvent { kind: EV_ABS, code: ABS_X, value });
+        state.apply(RawEvent { kind: EV_SYN, code: SYN_REPORT, value: 0 });
+        state
+    };
+    harness.state_mut().desks.pad.state = Some(stick(-100));
+    harness.state_mut().desks.show.passes.pick("arms", Axis::Servo(1));
+    harness.state_mut().desks.show.passes.pad_axis = Some(ABS_X);
+    harness.run();
+    harness.get_by_label("● Record pass").click();
+    harness.step();
+    while harness.state().desks.show.passes.recording.is_some() {
+        // The stick pushed from one end to the other over the show's 1.5 s.
+        let t = i32::try_from(harness.state().desks.show.stage.scrub_ms).unwrap();
+        harness.state_mut().desks.pad.state = Some(stick(-100 + t * 200 / 1500));
+        harness.step();
+    }
+    harness.run();
+    let pass = harness.state().desks.show.passes.recorded.last().expect("a pass kept").clone();
+    assert_eq!((pass.device.as_str(), pass.axis), ("arms", Axis::Servo(1)));
+    let servo = &harness.state().desks.show.session.as_ref().unwrap().show.devices[1].project.servo.servos[0];
+    let (low, high) = (f64::from(servo.min_deg), f64::from(servo.max_deg));
+    assert!(pass.samples.iter().all(|&(_, v)| (low..=high).contains(&v)), "{:?}", pass.samples);
+    let (first, last) = (pass.samples.first().unwrap().1, pass.samples.last().unwrap().1);
+    assert!(
+        first < low + (high - low) * 0.2 && last > low + (high - low) * 0.8,
+        "from near {low} to near {high}: {first} … {last}"
+    );
+}

@@ -383,7 +383,9 @@ impl StudioApp {
 
         self.dialogs(ui, &mut actions);
         self.desks.import.window(ui.ctx(), (&self.document.project, &self.files.work), self.language, &mut actions);
-        self.desks.show.window(ui.ctx(), self.language, &mut actions);
+        let pad: Vec<(u16, f64)> =
+            self.desks.pad.state.as_ref().map(|state| state.axes().collect()).unwrap_or_default();
+        self.desks.show.window(ui.ctx(), (self.language, &pad), &mut actions);
         self.desks.sound.follow_window(ui.ctx(), &self.document.project, self.language, &mut actions);
         let document = (&self.document.project, self.document.path.as_ref());
         self.desks.import.export_window(ui.ctx(), document, self.language, &mut actions);

@@ -231,7 +231,13 @@ impl ShowDesk {
     }
 
     /// The window, when a show is open.
-    pub fn window(&mut self, ctx: &egui::Context, language: Language, actions: &mut Vec<crate::ui::Action>) {
+    /// `pad`: each moved axis of the gamepad in use (by code, −1 … 1), for a pass to record.
+    pub fn window(
+        &mut self,
+        ctx: &egui::Context,
+        (language, pad): (Language, &[(u16, f64)]),
+        actions: &mut Vec<crate::ui::Action>,
+    ) {
         self.poll();
         let words = words(language);
         let playing = self.running.is_some();
@@ -252,7 +258,14 @@ impl ShowDesk {
             .show(ctx, |ui| {
                 // A show of many devices is taller than the window: it scrolls.
                 egui::ScrollArea::vertical().id_salt("show-window").show(ui, |ui| {
-                    session_ui(ui, (session, &mut self.stage, &mut self.passes), attached, playing, words, actions);
+                    session_ui(
+                        ui,
+                        (session, &mut self.stage, &mut self.passes),
+                        (attached, pad),
+                        playing,
+                        words,
+                        actions,
+                    );
                 });
             });
         if playing {
@@ -332,7 +345,7 @@ fn played(show: &Show, folder: Option<PathBuf>, stop: Receiver<String>, tell: &d
 fn session_ui(
     ui: &mut egui::Ui,
     (session, stage, passes): (&mut ShowSession, &mut stage::Stage, &mut record::Passes),
-    attached: &[Attached],
+    (attached, pad): (&[Attached], &[(u16, f64)]),
     playing: bool,
     words: &ShowWords,
     actions: &mut Vec<crate::ui::Action>,
@@ -359,7 +372,7 @@ fn session_ui(
     }
     let span = blocks(&session.show, words).1;
     stage.ui(ui, (&mut session.show, span), !playing, words, actions);
-    record::passes_ui(ui, &session.show, passes, !playing, words, actions);
+    record::passes_ui(ui, (&session.show, pad), passes, !playing, words, actions);
     ui.separator();
     if let Some(problem) = cues::cues_ui(ui, &mut session.show, !playing, words) {
         ui.colored_label(ui.visuals().warn_fg_color, problem);

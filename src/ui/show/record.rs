@@ -31,6 +31,8 @@ pub struct Passes {
     axis: Option<Axis>,
     /// The axis's value now, degrees.
     pub value: f64,
+    /// The gamepad axis that moves it (by code), instead of the slider.
+    pub pad_axis: Option<u16>,
 }
 
 impl Passes {
@@ -151,10 +153,18 @@ fn range(show: &Show, device: &str, axis: Axis) -> std::ops::RangeInclusive<f64>
     servo.map_or(-90.0..=90.0, |s| f64::from(s.min_deg)..=f64::from(s.max_deg))
 }
 
-/// The pass row: device, axis, Record / Stop, the axis's slider, Undo pass.
+/// Where a gamepad axis (−1 … 1) puts an axis moving in `range`: its low end to its high end.
+pub fn from_pad(value: f64, range: &std::ops::RangeInclusive<f64>) -> f64 {
+    let (low, high) = (*range.start(), *range.end());
+    low + (value.clamp(-1.0, 1.0) + 1.0) / 2.0 * (high - low)
+}
+
+/// The pass row: device, axis, what moves it (the slider or a gamepad
+/// axis, `pad`: each moved axis of the gamepad in use, by code), the
+/// axis's slider, Record / Stop, Undo pass.
 pub(super) fn passes_ui(
     ui: &mut egui::Ui,
-    show: &Show,
+    (show, pad): (&Show, &[(u16, f64)]),
     passes: &mut Passes,
     editable: bool,
     words: &ShowWords,
@@ -199,10 +209,14 @@ pub(super) fn passes_ui(
             passes.axis = axis;
         }
         if let Some((device, axis)) = passes.picked() {
+            input_ui(ui, passes, pad, (words, label.id));
+            let range = range(show, &device, axis);
+            if let Some(value) = passes.pad_axis.and_then(|code| pad.iter().find(|(c, _)| *c == code)) {
+                passes.value = from_pad(value.1, &range);
+            }
             // Wide enough for a hand to draw with (its arrow keys nudge it too).
             ui.spacing_mut().slider_width = 320.0;
-            let value =
-                ui.add(egui::Slider::new(&mut passes.value, range(show, &device, axis)).suffix("°").fixed_decimals(1));
+            let value = ui.add(egui::Slider::new(&mut passes.value, range).suffix("°").fixed_decimals(1));
             value.labelled_by(label.id);
         }
         let (caption, action) = if recording {
@@ -217,4 +231,35 @@ pub(super) fn passes_ui(
             actions.push(Action::Show(ShowAction::UndoPass));
         }
     });
+}
+
+/// What moves the axis: the slider, or one of the gamepad's axes.
+fn input_ui(ui: &mut egui::Ui, passes: &mut Passes, pad: &[(u16, f64)], (words, label): (&ShowWords, egui::Id)) {
+    let name = |code: u16| crate::gamepad::code_name(crate::gamepad::EV_ABS, code);
+    let shown = passes.pad_axis.map_or_else(|| words.by_slider.to_string(), name);
+    let _ = egui::ComboBox::from_id_salt("pass-input")
+        .selected_text(shown)
+        .show_ui(ui, |ui| {
+            ui.selectable_value(&mut passes.pad_axis, None, words.by_slider);
+            for &(code, _) in pad {
+                ui.selectable_value(&mut passes.pad_axis, Some(code), name(code));
+            }
+            if pad.is_empty() {
+                ui.label(words.no_pad_axis);
+            }
+        })
+        .response
+        .labelled_by(label);
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn a_gamepad_axis_spans_the_axis_range() {
+        let range = -30.0..=90.0;
+        assert!((super::from_pad(-1.0, &range) + 30.0).abs() < 1e-9);
+        assert!((super::from_pad(0.0, &range) - 30.0).abs() < 1e-9);
+        assert!((super::from_pad(1.0, &range) - 90.0).abs() < 1e-9);
+        assert!((super::from_pad(7.0, &range) - 90.0).abs() < 1e-9, "clamped");
+    }
 }

@@ -98,6 +98,10 @@ pub struct ShowWords {
     pub tolerance: &'static str,
     /// "its own cue cuts the passes short at" (a board plays one at a time).
     pub cut_short_at: &'static str,
+    /// "slider" (what moves a pass's axis).
+    pub by_slider: &'static str,
+    /// Said when no gamepad axis has moved yet.
+    pub no_pad_axis: &'static str,
 }
 
 const ENGLISH: ShowWords = ShowWords {
@@ -145,6 +149,8 @@ const ENGLISH: ShowWords = ShowWords {
     largest_error: "largest error",
     tolerance: "tolerance",
     cut_short_at: "another cue of it cuts them short (a board plays one at a time) at",
+    by_slider: "slider",
+    no_pad_axis: "No gamepad axis has moved: choose a gamepad (Gamepad tab) and move a stick",
 };
 
 const CHINESE: ShowWords = ShowWords {
@@ -192,6 +198,8 @@ const CHINESE: ShowWords = ShowWords {
     largest_error: "最大誤差",
     tolerance: "容許誤差",
     cut_short_at: "它的另一個提示點會中斷這些軌（控制板一次只播放一個），於",
+    by_slider: "滑桿",
+    no_pad_axis: "遊戲手把還沒有任何搖桿軸移動：請在遊戲手把分頁選擇手把並推動搖桿",
 };
 
 /// The words in `language`.
