@@ -202,9 +202,9 @@ fn the_stage_previews_the_show_and_stop_stops_it() {
 
 /// A record pass: servo 1 of the skull picked, ● Record pass previews the
 /// show from 0 while its slider is moved (here, set each frame as a hand
-/// would), the figure following it; at the show's end the pass is joined
-/// into one macro cued at its start, said with its steps; Undo pass takes it
-/// back.
+/// would), the figure following it; ■ Stop pass (a show with no sound
+/// records until stopped) joins it into one macro cued at its start, said
+/// with its steps; Undo pass takes it back.
 #[test]
 fn a_record_pass_joins_into_the_show_and_is_undone_on_its_own() {
     use servo_studio::show::passes::Axis;
@@ -216,12 +216,16 @@ fn a_record_pass_joins_into_the_show_and_is_undone_on_its_own() {
     harness.get_by_label("● Record pass").click();
     harness.step();
     assert!(harness.state().desks.show.passes.recording.is_some() && harness.state().desks.show.stage.previewing());
-    while harness.state().desks.show.passes.recording.is_some() {
+    // The show has no sound: the pass records until it is stopped, here after the last cue's end.
+    while harness.state().desks.show.stage.scrub_ms < 1800 {
         let t = harness.state().desks.show.stage.scrub_ms as f64 / 1000.0;
         harness.state_mut().desks.show.passes.value = 40.0 * t;
         harness.step();
     }
+    assert!(harness.state().desks.show.passes.recording.is_some(), "still recording past the show's 1.5 s");
+    harness.get_by_label("■ Stop pass").click();
     harness.run();
+    assert!(harness.state().desks.show.passes.recording.is_none());
     let show = &harness.state().desks.show.session.as_ref().unwrap().show;
     let skull = &show.devices[0].project.servo;
     assert_eq!(skull.macros.len(), macros_before + 1, "the pass became a macro");
@@ -257,12 +261,15 @@ fn a_record_pass_follows_a_gamepad_axis() {
     harness.run();
     harness.get_by_label("● Record pass").click();
     harness.step();
-    while harness.state().desks.show.passes.recording.is_some() {
-        // The stick pushed from one end to the other over the show's 1.5 s.
+    while harness.state().desks.show.stage.scrub_ms < 1500 {
+        // The stick pushed from one end to the other over 1.5 s.
         let t = i32::try_from(harness.state().desks.show.stage.scrub_ms).unwrap();
         harness.state_mut().desks.pad.state = Some(stick(-100 + t * 200 / 1500));
         harness.step();
     }
+    harness.state_mut().desks.pad.state = Some(stick(100));
+    harness.step();
+    harness.get_by_label("■ Stop pass").click();
     harness.run();
     let pass = harness.state().desks.show.passes.recorded.last().expect("a pass kept").clone();
     assert_eq!((pass.device.as_str(), pass.axis), ("arms", Axis::Servo(1)));

@@ -271,8 +271,10 @@ impl ShowDesk {
         if playing {
             ctx.request_repaint_after(std::time::Duration::from_millis(100));
         }
+        // A pass of a show with no sound records until it is stopped, not only to the last cue's end.
+        let open_ended = |show: &Show| self.passes.recording.is_some() && show.sound.is_none();
         if let Some(session) = &self.session
-            && self.stage.advance(blocks(&session.show, words).1)
+            && self.stage.advance(if open_ended(&session.show) { u64::MAX } else { blocks(&session.show, words).1 })
         {
             ctx.request_repaint();
         }
