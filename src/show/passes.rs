@@ -68,16 +68,16 @@ pub struct Joined {
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum JoinError {
     /// The show has no such device, or it is a base.
-    #[error("{0} is not a servo board or a PLEN2 of this show")]
+    #[error("{0} is not a servo board or a PLEN2 of this show: pick one of those to record a pass of")]
     NoDevice(String),
     /// Fewer than two samples.
     #[error("the pass is too short to fit: record for longer")]
     TooShort,
     /// Longer than a PLEN2 motion's 20 frames hold at any tolerance.
-    #[error("{0}'s passes last too long for one motion of 20 frames")]
+    #[error("{0}'s passes last too long for one motion of 20 frames: record shorter passes")]
     TooLong(String),
     /// No slot left on the PLEN2.
-    #[error("{0} has no free motion slot left")]
+    #[error("{0} has no free motion slot left: remove a motion it does not need from its project, then record again")]
     NoSlot(String),
 }
 

@@ -274,7 +274,7 @@ impl ShowDesk {
         // A pass of a show with no sound records until it is stopped, not only to the last cue's end.
         let open_ended = |show: &Show| self.passes.recording.is_some() && show.sound.is_none();
         if let Some(session) = &self.session
-            && self.stage.advance(if open_ended(&session.show) { u64::MAX } else { blocks(&session.show, words).1 })
+            && self.stage.advance(if open_ended(&session.show) { u64::MAX } else { self.stage.span_ms })
         {
             ctx.request_repaint();
         }
@@ -369,10 +369,12 @@ fn session_ui(
     ui.separator();
     devices::devices_ui(ui, session, attached, !playing, words, actions);
     ui.separator();
-    if let Some(clicked) = lanes(ui, &session.show, stage.scrub_ms, words) {
+    // The cues' blocks are worked out once a frame, by the lanes: their span serves the stage too.
+    let (clicked, span) = lanes(ui, &session.show, stage.scrub_ms, words);
+    if let Some(clicked) = clicked {
         stage.scrub_ms = clicked;
     }
-    let span = blocks(&session.show, words).1;
+    stage.span_ms = span;
     stage.ui(ui, (&mut session.show, span), !playing, words, actions);
     record::passes_ui(ui, (&session.show, pad), passes, !playing, words, actions);
     ui.separator();
@@ -437,8 +439,8 @@ fn blocks(show: &Show, words: &ShowWords) -> (Vec<Block>, u64) {
 
 /// The timeline: the sound's lane, then a lane per device with its cues, on
 /// one time axis, and the scrub's time as a line; where a click or a drag on
-/// it puts the scrub (ms).
-fn lanes(ui: &mut egui::Ui, show: &Show, scrub_ms: u64, words: &ShowWords) -> Option<u64> {
+/// it puts the scrub (ms), and the span it shows (ms).
+fn lanes(ui: &mut egui::Ui, show: &Show, scrub_ms: u64, words: &ShowWords) -> (Option<u64>, u64) {
     const LANE: f32 = 26.0;
     const NAMES: f32 = 130.0;
     let (blocks, span) = blocks(show, words);
@@ -508,7 +510,7 @@ fn lanes(ui: &mut egui::Ui, show: &Show, scrub_ms: u64, words: &ShowWords) -> Op
         ms
     });
     said_cues(ui, show, &blocks);
-    scrubbed
+    (scrubbed, span)
 }
 
 /// Each cue said as text too (screen readers, tests).

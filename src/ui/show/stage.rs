@@ -18,6 +18,8 @@ use super::{ShowAction, ShowWords};
 pub struct Stage {
     /// The show's time shown, ms.
     pub scrub_ms: u64,
+    /// The show's span as the lanes last showed it, ms (where a preview ends).
+    pub span_ms: u64,
     /// An axis being recorded: the device's name, the axis and its value now
     /// (degrees), shown on the figure instead of what the show has there.
     pub held: Option<(String, Axis, f64)>,
