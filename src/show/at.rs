@@ -5,6 +5,7 @@
 //! (plen2.md §6), a base where its drives have taken it from its place.
 //! Before a device's first cue it is at home (a base at its place).
 
+use super::passes::Axis;
 use super::{Cue, Device, Place, Show, Start};
 use crate::device::plen2::playback::{self, DEVICE_IDS, StoredMotions};
 use crate::project::{Family, Run};
@@ -83,6 +84,58 @@ fn driven(place: Place, cues: &[&Cue], t_ms: u64) -> Place {
         at = arc(at, speed_m_s, turn_deg_s, seconds);
     }
     at
+}
+
+/// What a device is doing at a moment of the show, as its board is told
+/// to follow it: where its servos or joints are, or the drive a base is on.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Now {
+    /// A servo board's servos or a PLEN2's joints, where they are.
+    Posed(Posed),
+    /// A base's drive now: speed (m/s) and turn rate (°/s); None: at rest.
+    Driving(Option<(f64, f64)>),
+}
+
+/// The device at `index` at `t_ms`, as its board follows it; `held`: an
+/// axis of it held at a value (degrees), the pass being recorded.
+pub fn now_at(show: &Show, index: usize, t_ms: u64, held: Option<(Axis, f64)>) -> Option<Now> {
+    let device = show.devices.get(index)?;
+    if device.project.family == Family::Rflex {
+        return Some(Now::Driving(driving_at(show, &device.name, t_ms)));
+    }
+    let mut posed = posed_at(show, index, t_ms)?;
+    if let Some((axis, value)) = held {
+        hold(&mut posed, axis, value);
+    }
+    Some(Now::Posed(posed))
+}
+
+/// The drive `device`'s cues have it on at `t_ms` (a later cue ends an earlier one); None: at rest.
+fn driving_at(show: &Show, device: &str, t_ms: u64) -> Option<(f64, f64)> {
+    let latest =
+        show.cues.iter().filter(|cue| cue.device == device && cue.at_ms <= t_ms).max_by_key(|cue| cue.at_ms)?;
+    match latest.start {
+        Start::Drive { speed_m_s, turn_deg_s, for_ms } if t_ms < latest.at_ms + for_ms => Some((speed_m_s, turn_deg_s)),
+        _ => None,
+    }
+}
+
+/// `posed` with `axis` at `value` degrees (the pass being recorded).
+pub fn hold(posed: &mut Posed, axis: Axis, value: f64) {
+    match (posed, axis) {
+        (Posed::Servos(degrees), Axis::Servo(id)) => {
+            degrees.insert(id, value);
+        }
+        (Posed::Joints(values), Axis::Joint(joint)) => {
+            if let Some(slot) = values.get_mut(usize::from(joint)) {
+                // Tenths of a degree within ±180°.
+                #[allow(clippy::cast_possible_truncation)]
+                let tenths = (value * 10.0).round().clamp(-1800.0, 1800.0) as i16;
+                *slot = tenths;
+            }
+        }
+        _ => {}
+    }
 }
 
 /// Where `seconds` at `speed_m_s` turning `turn_deg_s` take a base from `from`.

@@ -6,6 +6,7 @@
 //! byte for byte ([`Show::open`]).
 
 pub mod at;
+pub mod boards;
 pub mod passes;
 pub mod play;
 pub mod stages;

@@ -38,6 +38,16 @@ pub trait Stage: Send {
     }
     /// Why its link is gone, if it is.
     fn lost(&self) -> Option<String>;
+    /// Lets the device move again after [`Stage::stop`] (a servo board
+    /// stopped holds its servos until told to go on).
+    fn resume(&mut self) {}
+    /// Puts the device where the show has it now — the editor's preview and
+    /// record passes followed on the boards: servos and joints moved there
+    /// live within their limits, a base driven at its drive now.
+    fn follow(&mut self, now: &super::at::Now) -> Result<(), String> {
+        let _ = now;
+        Ok(())
+    }
 }
 
 /// Why a run ended early.
@@ -249,6 +259,21 @@ impl Player<'_> {
             stage.stop();
         }
     }
+}
+
+/// What a run did, a line each: every start and how late it was written,
+/// every device played on without, and when it ended.
+pub fn ran_words(ran: &Ran) -> String {
+    let mut lines: Vec<String> = ran
+        .sent
+        .iter()
+        .map(|sent| format!("{} started {:?}, {:.2} ms late", sent.device, sent.start, sent.late_ms()))
+        .collect();
+    for (device, why) in &ran.lost {
+        lines.push(format!("the link to {device} was lost ({why}): the show played on without it"));
+    }
+    lines.push(format!("ended after {:.2} s", ran.ended.saturating_duration_since(ran.zero).as_secs_f64()));
+    lines.join("\n")
 }
 
 /// How long a cue keeps its device busy, ms, from the device's project.

@@ -1,13 +1,16 @@
 //! The devices a show plays on, connected: a servo board, a PLEN2 or an
 //! rFLEX base behind its port, each a [`Stage`] the player starts and stops.
 
+use std::collections::BTreeMap;
 use std::time::{Duration, Instant};
 
 use anyhow::bail;
 
+use super::at::{Now, Posed};
 use super::play::Stage;
 use super::{Device, Start};
 use crate::audio::together::link_delay;
+use crate::device::plen2::playback::{DEVICE_IDS, Settings, joint_settings};
 use crate::device::plen2::{
     Command as Plen2Command, Plen2Handle, Plen2Notice, Plen2Options, Plen2Requester, start_delay,
 };
@@ -15,8 +18,9 @@ use crate::device::rflex::{RflexBase, RflexNotice};
 use crate::device::servo::{DEFAULT_BAUD, Requester, ServoBoard, SessionConfig};
 use crate::device::{self};
 use crate::link::{self, LineSettings, LinkEvent, PortName, no_waker};
-use crate::project::Family;
-use crate::protocol::servo::{ALL_SERVOS, Message, ServoSwitches};
+use crate::project::plen2::Joint;
+use crate::project::{Family, Servo};
+use crate::protocol::servo::{ALL_SERVOS, Message, ServoMove, ServoSwitches};
 
 /// Connects `device` on `port`: its stage and the delay of its first cue's start.
 pub fn connect(port: &str, device: &Device) -> anyhow::Result<(Box<dyn Stage>, Duration)> {
@@ -28,7 +32,9 @@ pub fn connect(port: &str, device: &Device) -> anyhow::Result<(Box<dyn Stage>, D
         let latency = round_trip(|| {
             board.requester().request(Message::QueryMemorySizeRequest).map(|_| ()).map_err(|e| e.to_string())
         })?;
-        let stage = ServoStage { requester: board.requester(), latency, board, lost: None };
+        let servos = device.project.servo.servos.clone();
+        let stage =
+            ServoStage { requester: board.requester(), latency, board, lost: None, servos, sent: BTreeMap::new() };
         let delay = stage.start_delay(&Start::Macro(0));
         return Ok((Box::new(stage), delay));
     }
@@ -41,7 +47,8 @@ pub fn connect(port: &str, device: &Device) -> anyhow::Result<(Box<dyn Stage>, D
             Plen2Notice::Disconnected(reason) => Some(reason.to_string()),
             _ => None,
         });
-        let stage = Plen2Stage { handle, requester, latency, lost };
+        let settings = joint_settings(&device.project.plen2);
+        let stage = Plen2Stage { handle, requester, latency, lost, settings, sent: None };
         let delay = stage.start_delay(&Start::Slot(0));
         return Ok((Box::new(stage), delay));
     }
@@ -49,12 +56,21 @@ pub fn connect(port: &str, device: &Device) -> anyhow::Result<(Box<dyn Stage>, D
         let connection = link::open(&name, &settings)?;
         let base = RflexBase::over(connection, device.project.rflex.robot.conversion(), no_waker())?;
         base.start(false);
-        let stage =
-            RflexStage { base, accel: device.project.rflex.drive.accel_m_per_s2, baud: settings.baud, lost: None };
+        let accel = device.project.rflex.drive.accel_m_per_s2;
+        let stage = RflexStage { base, accel, baud: settings.baud, lost: None, driving: None };
         let delay = stage.start_delay(&Start::Drive { speed_m_s: 0.0, turn_deg_s: 0.0, for_ms: 0 });
         return Ok((Box::new(stage), delay));
     }
     bail!("a {} cannot play in a show", family.name())
+}
+
+/// How long a servo not yet told where to be takes to get there while following, 10 ms units.
+const EASE_IN_10MS: i16 = 100;
+
+/// Whole 10 ms from `when` to `at` (at least one, at most the protocol's field).
+fn ten_ms_since(when: Instant, at: Instant) -> i16 {
+    let tens = at.saturating_duration_since(when).as_millis() / 10;
+    i16::try_from(tens.clamp(1, 1000)).unwrap_or(1000)
 }
 
 /// Half the shortest of three round trips: the link's one-way latency, as well as it can be known.
@@ -73,6 +89,10 @@ struct ServoStage {
     requester: Requester,
     latency: Duration,
     lost: Option<String>,
+    /// The servos, with their limits.
+    servos: Vec<Servo>,
+    /// What each servo was last told while following, and when.
+    sent: BTreeMap<u8, (i16, Instant)>,
 }
 
 impl Stage for ServoStage {
@@ -90,6 +110,38 @@ impl Stage for ServoStage {
     fn stop(&mut self) {
         let all = ServoSwitches { servo_id: ALL_SERVOS, is_start: false, is_hold: true };
         let _ = self.requester.stop(Message::SetServoParameterRequest(all));
+        // Where they stopped is not known: the next follow eases them in again.
+        self.sent.clear();
+    }
+
+    fn resume(&mut self) {
+        let all = ServoSwitches { servo_id: ALL_SERVOS, is_start: true, is_hold: true };
+        let _ = self.requester.send(Message::SetServoParameterRequest(all));
+    }
+
+    fn follow(&mut self, now: &Now) -> Result<(), String> {
+        let Now::Posed(Posed::Servos(degrees)) = now else { return Ok(()) };
+        let at = Instant::now();
+        let mut moves = Vec::new();
+        for servo in &self.servos {
+            let Some(&degree) = degrees.get(&servo.id) else { continue };
+            // Degrees of a servo: within ±180.
+            #[allow(clippy::cast_possible_truncation)]
+            let degree = servo.clamp(degree.round() as i16);
+            let interval_10ms = match self.sent.get(&servo.id) {
+                Some(&(told, _)) if told == degree => continue,
+                // Over the time since it was last told, as the show moved it.
+                Some(&(_, when)) => ten_ms_since(when, at),
+                // Where it is now is not known: eased in, not slammed.
+                None => EASE_IN_10MS,
+            };
+            self.sent.insert(servo.id, (degree, at));
+            moves.push(ServoMove { servo_id: servo.id, degree, interval_10ms });
+        }
+        if moves.is_empty() {
+            return Ok(());
+        }
+        self.requester.live_move(moves).map_err(|error| error.to_string())
     }
 
     fn tick(&mut self, _now: Instant) {
@@ -110,6 +162,10 @@ struct Plen2Stage {
     requester: Plen2Requester,
     latency: Duration,
     lost: Option<String>,
+    /// Each joint's home and limits, by device id.
+    settings: Settings,
+    /// The joints' values last told while following (from home).
+    sent: Option<[i16; DEVICE_IDS]>,
 }
 
 impl Stage for Plen2Stage {
@@ -125,6 +181,28 @@ impl Stage for Plen2Stage {
 
     fn stop(&mut self) {
         self.handle.stop();
+        // STOP sends the joints home (`$HP`).
+        self.sent = Some([0; DEVICE_IDS]);
+    }
+
+    fn follow(&mut self, now: &Now) -> Result<(), String> {
+        let Now::Posed(Posed::Joints(values)) = now else { return Ok(()) };
+        let before = self.sent.unwrap_or([i16::MIN; DEVICE_IDS]);
+        let moves: Vec<(u8, i16)> = Joint::ALL
+            .iter()
+            .map(|joint| (joint.device_id(), usize::from(joint.device_id())))
+            .filter(|&(_, device)| before[device] != values[device])
+            .map(|(id, device)| {
+                let (home, min, max) = self.settings[device];
+                (id, home.saturating_add(values[device]).clamp(min.min(max), max.max(min)))
+            })
+            .collect();
+        self.sent = Some(*values);
+        if !moves.is_empty() {
+            // Coalesced and paced by the driver, as the sliders are.
+            self.handle.move_joints(moves);
+        }
+        Ok(())
     }
 
     fn tick(&mut self, now: Instant) {
@@ -145,6 +223,8 @@ struct RflexStage {
     accel: f64,
     baud: u32,
     lost: Option<String>,
+    /// The drive last told while following (None: not yet).
+    driving: Option<Option<(f64, f64)>>,
 }
 
 impl Stage for RflexStage {
@@ -165,6 +245,26 @@ impl Stage for RflexStage {
     fn stop(&mut self) {
         self.base.stop();
         self.base.set_brake(true);
+        self.driving = Some(None);
+    }
+
+    fn follow(&mut self, now: &Now) -> Result<(), String> {
+        let Now::Driving(driving) = *now else { return Ok(()) };
+        if self.driving == Some(driving) {
+            return Ok(());
+        }
+        self.driving = Some(driving);
+        match driving {
+            Some((speed_m_s, turn_deg_s)) => {
+                self.base.set_brake(false);
+                self.base.drive(speed_m_s, turn_deg_s.to_radians(), self.accel);
+            }
+            None => {
+                self.base.stop();
+                self.base.set_brake(true);
+            }
+        }
+        Ok(())
     }
 
     fn tick(&mut self, now: Instant) {

@@ -339,6 +339,8 @@ pub enum ShowAction {
     AddOpenProject,
     /// Add a project file (one device) or a show file's devices to the show.
     AddFromFile(PathBuf),
+    /// Connect every device and hold the links while the window is open (`true`), or let them go.
+    Boards(bool),
     /// Connect every device and play the show.
     Play,
     /// Stop every device.

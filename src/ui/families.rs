@@ -86,6 +86,7 @@ impl Families {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::project::Project;
 
     #[test]
     fn each_family_has_its_own_side_in_menu_order() {
@@ -99,13 +100,38 @@ mod tests {
         assert!(servo.is_some() && families.of::<crate::ui::rflex::RflexUi>().is_some());
     }
 
+    /// The sound's follow asks the family for its axes and its motion: a
+    /// servo board's servos (a macro of steps), a PLEN2's joints (motions in
+    /// slots), and a base, which has none, offers no follower.
+    #[test]
+    fn the_sounds_follow_asks_the_family() {
+        use crate::project::Servo;
+        use crate::ui::sound::follow::{Follower, Target, words};
+        let families = Families::default();
+        assert!(families.get(Family::Rflex).sound_follower().is_none(), "a base has no axis to follow");
+        let joints = families.get(Family::Plen2).sound_follower().unwrap();
+        assert_eq!(joints.axes(&Project::empty(Family::Plen2)).len(), 18, "every PLEN2 joint");
+        let mut project = Project::empty(Family::Servo);
+        project.servo.servos.push(Servo::new(7, "jaw 下巴"));
+        let servos = families.get(Family::Servo).sound_follower().unwrap();
+        assert_eq!(servos.axes(&project), vec![(7, "7 jaw 下巴".to_string())]);
+        let open: Vec<f64> = (0..1_000).map(|ms| f64::from(ms / 200 % 2)).collect();
+        let follower = Follower { closed_deg: 0.0, open_deg: 30.0, tolerance_deg: 1.0 };
+        let words = words(crate::ui::i18n::Language::English);
+        let (edits, said) = servos.make(&project, 7, &open, (follower, Target::FreeSlots), words).unwrap();
+        assert!(matches!(edits.last(), Some(crate::project::Edit::AddMacro(_))), "a macro runs the steps");
+        assert!(said.contains("steps, run by macro"), "{said}");
+        let (edits, _) =
+            joints.make(&Project::empty(Family::Plen2), 0, &open, (follower, Target::FreeSlots), words).unwrap();
+        assert!(matches!(edits[..], [crate::project::Edit::SetPlen2(_)]), "the motions go into the PLEN2 section");
+    }
+
     /// The shell routes an action to its owner; one that reached another
     /// family (a routing bug) is a panic in tests, never dropped in silence.
     #[test]
     #[should_panic(expected = "the PLEN2 family was handed an action that is not its own")]
     fn an_action_of_another_family_is_a_loud_error() {
-        let mut app =
-            crate::ui::StudioApp::new(crate::project::Project::empty(Family::Plen2), None, crate::link::no_waker());
+        let mut app = crate::ui::StudioApp::new(Project::empty(Family::Plen2), None, crate::link::no_waker());
         let (mut shell, families) = app.split();
         let action = crate::ui::servo::ServoAction::SetPose { servo_id: 1, degree: 0 };
         families.get_mut(Family::Plen2).act(&mut shell, Box::new(action));

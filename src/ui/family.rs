@@ -20,6 +20,7 @@ use crate::ui::i18n::Strings;
 use crate::ui::layout::Layout;
 use crate::ui::remembered::Remembered;
 use crate::ui::shell::{Shell, ShellView};
+use crate::ui::sound::follow::SoundFollower;
 
 /// One of a family's tabs.
 #[derive(Clone, Copy, Debug)]
@@ -32,11 +33,28 @@ pub struct Panel {
     pub has_view: bool,
 }
 
-/// A board family's side of the editor.
-pub trait FamilyUi: std::any::Any {
+/// A board family's side of the editor: what it is and its own actions,
+/// with each capability the shell asks of it a trait of its own — its
+/// panels, its board, the gamepad, the live pose, what it remembers — and
+/// what cross-family panels ask of it (the sound's follow).
+pub trait FamilyUi: std::any::Any + FamilyPanels + FamilyBoard + FamilyPad + FamilyPose + FamilyMemory {
     /// The family it edits.
     fn family(&self) -> Family;
 
+    /// A new document was opened in the editor.
+    fn document_replaced(&mut self, _project: &Project) {}
+
+    /// Applies one of its own actions (see [`Action::family`]).
+    fn act(&mut self, shell: &mut Shell<'_>, action: Box<dyn FamilyAction>);
+
+    /// How the sound's loudness moves one of its axes (None: it has none, as a base).
+    fn sound_follower(&self) -> Option<&dyn SoundFollower> {
+        None
+    }
+}
+
+/// A family's panels: its tabs, how they are laid out and drawn, its toolbar buttons.
+pub trait FamilyPanels {
     /// Its own tabs, in order (the shell adds the packet log); the first is
     /// where a switch to the family lands.
     fn panels(&self) -> &'static [Panel];
@@ -73,6 +91,16 @@ pub trait FamilyUi: std::any::Any {
     /// Its own buttons in the toolbar, beside STOP.
     fn toolbar(&mut self, _ui: &mut egui::Ui, _view: &ShellView<'_>, _actions: &mut Vec<Action>) {}
 
+    /// What showing `tab` this frame asks for (a base's pad stops once its tab is left).
+    fn while_showing(&self, _tab: Tab) -> Option<Action> {
+        None
+    }
+}
+
+/// A family's board: how its link is started (a port, the built-in
+/// emulator), what is said of it, STOP, and what the family does as the
+/// link comes, goes, speaks, works and ends its operations.
+pub trait FamilyBoard {
     /// Its own pickers in the connection bar (enabled only while no link is open).
     fn connection_extras(&mut self, _ui: &mut egui::Ui, _view: &ShellView<'_>, _actions: &mut Vec<Action>) {}
 
@@ -101,9 +129,6 @@ pub trait FamilyUi: std::any::Any {
     /// The link is gone (disconnected, lost, the window closing).
     fn disconnected(&mut self) {}
 
-    /// A new document was opened in the editor.
-    fn document_replaced(&mut self, _project: &Project) {}
-
     /// Moves previews and streams on to `now`; whether the window should keep repainting.
     fn tick(&mut self, _shell: &mut Shell<'_>, _now: Instant) -> bool {
         false
@@ -115,23 +140,6 @@ pub trait FamilyUi: std::any::Any {
         None
     }
 
-    /// Applies one of its own actions (see [`Action::family`]).
-    fn act(&mut self, shell: &mut Shell<'_>, action: Box<dyn FamilyAction>);
-
-    /// Its live pose, as an undo step records it (None: it has none).
-    fn live_pose(&self) -> Option<LivePose> {
-        None
-    }
-
-    /// Moves its live pose back to `pose` (an undo or redo of a turn in the 3D view).
-    fn restore_pose(&mut self, _shell: &mut Shell<'_>, _pose: LivePose) {}
-
-    /// Writes its own settings into what is remembered between runs.
-    fn remember(&self, _remembered: &mut Remembered) {}
-
-    /// Takes its own settings back from what was remembered.
-    fn recall(&mut self, _remembered: &Remembered) {}
-
     /// A notice from its own link (or from STOP that could not be sent).
     fn notice(&mut self, _shell: &mut Shell<'_>, _notice: FamilyNotice) {}
 
@@ -139,12 +147,11 @@ pub trait FamilyUi: std::any::Any {
     fn polling(&self) -> bool {
         false
     }
+}
 
-    /// What showing `tab` this frame asks for (a base's pad stops once its tab is left).
-    fn while_showing(&self, _tab: Tab) -> Option<Action> {
-        None
-    }
-
+/// A family and the gamepad: what an axis can move, what a button can
+/// fire, and the updates it keeps for itself (a base's stick).
+pub trait FamilyPad {
     /// What a gamepad axis can move (its servos, its joints).
     fn pad_targets(&self, _project: &Project) -> Vec<PadTarget> {
         Vec::new()
@@ -178,4 +185,24 @@ pub trait FamilyUi: std::any::Any {
     ) -> bool {
         false
     }
+}
+
+/// A family's live pose (its sliders'), as undo records and restores it.
+pub trait FamilyPose {
+    /// Its live pose, as an undo step records it (None: it has none).
+    fn live_pose(&self) -> Option<LivePose> {
+        None
+    }
+
+    /// Moves its live pose back to `pose` (an undo or redo of a turn in the 3D view).
+    fn restore_pose(&mut self, _shell: &mut Shell<'_>, _pose: LivePose) {}
+}
+
+/// What a family remembers between runs.
+pub trait FamilyMemory {
+    /// Writes its own settings into what is remembered between runs.
+    fn remember(&self, _remembered: &mut Remembered) {}
+
+    /// Takes its own settings back from what was remembered.
+    fn recall(&mut self, _remembered: &Remembered) {}
 }

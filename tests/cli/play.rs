@@ -85,7 +85,7 @@ pub fn first(lines: &[(u128, String)], wanted: &str) -> u128 {
 
 pub struct Stage {
     pub dir: tempfile::TempDir,
-    sims: Vec<(String, common::Sim, PathBuf)>,
+    pub sims: Vec<(String, common::Sim, PathBuf)>,
 }
 
 impl Stage {

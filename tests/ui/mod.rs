@@ -22,6 +22,7 @@ mod preview;
 mod rig3d;
 mod rows;
 mod show;
+mod show_boards;
 mod sliders;
 mod sound;
 mod uncut;

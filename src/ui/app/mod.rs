@@ -236,13 +236,15 @@ impl StudioApp {
         self.desks.sound.silence();
         // A show previewed on its stage stops where it is (its sound too).
         self.desks.show.stage.stop_preview();
-        // A show playing on several boards: every one of them.
-        if self.desks.show.playing() {
+        // A show playing on several boards, or holding them: every one of them (and the editor's own).
+        let show_boards = self.desks.show.playing() || self.desks.show.linked.is_some();
+        if show_boards {
             self.desks.show.stop();
-            return;
         }
         let Some(link) = &self.link else {
-            self.report(self.words().msg_stop_no_board, false);
+            if !show_boards {
+                self.report(self.words().msg_stop_no_board, false);
+            }
             return;
         };
         let (mut shell, family_ui) = self.parts(link.family());
@@ -386,7 +388,9 @@ impl StudioApp {
         let pad: Vec<(u16, f64)> =
             self.desks.pad.state.as_ref().map(|state| state.axes().collect()).unwrap_or_default();
         self.desks.show.window(ui.ctx(), (self.language, &pad), &mut actions);
-        self.desks.sound.follow_window(ui.ctx(), &self.document.project, self.language, &mut actions);
+        let follower = self.families.get(self.document.project.family).sound_follower();
+        let document = (&self.document.project, follower);
+        self.desks.sound.follow_window(ui.ctx(), document, self.language, &mut actions);
         let document = (&self.document.project, self.document.path.as_ref());
         self.desks.import.export_window(ui.ctx(), document, self.language, &mut actions);
         for action in actions {
@@ -431,6 +435,9 @@ impl StudioApp {
     pub fn close_within(&mut self, within: Duration) {
         let deadline = Instant::now() + within;
         self.desks.sound.silence();
+        // A show's held boards: every device stopped (bases brake) and its link closed.
+        self.desks.show.stop();
+        self.desks.show.linked = None;
         self.drop_link();
         self.links.wait_for_closing(deadline);
         self.finish_file_work(Some(deadline.saturating_duration_since(Instant::now())));

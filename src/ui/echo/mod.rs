@@ -14,7 +14,7 @@ use serde::Deserialize;
 use crate::project::{Edit, Family, Project};
 use crate::ui::action::{Action, ActionOf, FamilyAction, Tab};
 use crate::ui::board_link::{BoardLink, FamilyNotice, LinkStarter, StartError};
-use crate::ui::family::{FamilyUi, Panel};
+use crate::ui::family::{FamilyBoard, FamilyMemory, FamilyPad, FamilyPanels, FamilyPose, FamilyUi, Panel};
 use crate::ui::i18n::Strings;
 use crate::ui::layout::Layout;
 use crate::ui::shell::{Shell, ShellView};
@@ -112,6 +112,15 @@ impl FamilyUi for EchoUi {
         Family::Echo
     }
 
+    fn act(&mut self, shell: &mut Shell<'_>, action: Box<dyn FamilyAction>) {
+        match action.into_any().downcast::<EchoAction>() {
+            Ok(action) => self.apply(shell, *action),
+            Err(_) => crate::ui::board_link::misrouted(Family::Echo, "an action", std::any::type_name::<EchoAction>()),
+        }
+    }
+}
+
+impl FamilyPanels for EchoUi {
     fn panels(&self) -> &'static [Panel] {
         PANELS
     }
@@ -139,14 +148,9 @@ impl FamilyUi for EchoUi {
             }
         });
     }
+}
 
-    fn act(&mut self, shell: &mut Shell<'_>, action: Box<dyn FamilyAction>) {
-        match action.into_any().downcast::<EchoAction>() {
-            Ok(action) => self.apply(shell, *action),
-            Err(_) => crate::ui::board_link::misrouted(Family::Echo, "an action", std::any::type_name::<EchoAction>()),
-        }
-    }
-
+impl FamilyBoard for EchoUi {
     fn link_starter(&self, _baud: u32) -> LinkStarter {
         link::starter()
     }
@@ -180,6 +184,12 @@ impl FamilyUi for EchoUi {
         }
     }
 }
+
+impl FamilyPad for EchoUi {}
+
+impl FamilyPose for EchoUi {}
+
+impl FamilyMemory for EchoUi {}
 
 #[cfg(test)]
 mod tests;

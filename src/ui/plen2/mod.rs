@@ -6,11 +6,13 @@
 mod action;
 mod board;
 mod captions;
+mod follow;
 mod graph;
 mod joints;
 mod link;
 mod live;
 mod motions;
+mod operations;
 mod pad;
 mod play_lists;
 mod preview;
@@ -26,17 +28,18 @@ pub use board::{SlotCell, slot_map};
 pub use link::Plen2BoardLink;
 pub(crate) use link::Plen2Link;
 pub use live::homes;
+pub use operations::{Plen2Failure, Plen2Kind, Plen2Operation, Plen2Outcome, Plen2Result};
 
-use crate::device::plen2::{self, Command, Plen2ImportFailure, Plen2ImportOptions, Plen2ImportReport, Plen2OpError};
-use crate::device::plen2::{PacingMode, Plen2Item, ReplyError};
-use crate::project::plen2::{Joint, Plen2Project, SLOTS};
+use crate::device::plen2;
+use crate::device::plen2::{PacingMode, Plen2Item};
+use crate::project::plen2::{Joint, Plen2Project};
 use crate::project::{Edit, Family, LivePose, Project};
 use crate::ui::action::{Action, Tab};
 use crate::ui::board_link::{BoardLink, FamilyNotice, LinkStarter, StartError};
-use crate::ui::family::{FamilyUi, Panel};
+use crate::ui::family::{FamilyBoard, FamilyMemory, FamilyPad, FamilyPanels, FamilyPose, FamilyUi, Panel};
 use crate::ui::i18n::{Language, Strings};
 use crate::ui::layout::{Layout, Pane};
-use crate::ui::operation::{Operation, Step};
+use crate::ui::operation::Operation;
 use crate::ui::plen2::captions::Plen2Words;
 use crate::ui::shell::{RunningOperation, Shell, ShellView};
 
@@ -48,80 +51,6 @@ impl Tab {
     pub const Motions: Self = Self::named("Motions");
     /// PLEN2 play lists.
     pub const PlayLists: Self = Self::named("PlayLists");
-}
-
-/// A PLEN2 operation as it runs.
-pub type Plen2Operation = Operation<Plen2Kind, Plen2Outcome, Plen2Item>;
-
-/// What a PLEN2 operation does.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub enum Plen2Kind {
-    /// Read the version, the joint settings and all 90 slots.
-    Read,
-    /// Upload motions (and joint settings the project holds), backing up first and verifying.
-    Upload,
-    /// Write the project's joint settings where they differ.
-    WriteJoints,
-    /// Factory joint settings.
-    FactoryReset,
-}
-
-/// Why a PLEN2 operation failed.
-#[derive(Debug)]
-pub enum Plen2Failure {
-    /// A step failed.
-    Op(Plen2OpError),
-    /// An upload failed, leaving what it says.
-    Upload(Box<Plen2ImportFailure>),
-    /// A command could not be sent.
-    Reply(ReplyError),
-    /// The backup folder could not be made; nothing was written.
-    BackupFolder {
-        /// The folder.
-        folder: PathBuf,
-        /// Why.
-        error: std::io::Error,
-    },
-    /// No worker thread could start.
-    Thread(std::io::Error),
-}
-
-/// How a PLEN2 operation ended.
-#[derive(Debug)]
-pub enum Plen2Outcome {
-    /// The robot was read.
-    Read(Box<Plen2Project>),
-    /// The upload's per-slot report.
-    Uploaded(Plen2ImportReport),
-    /// Joint settings written (how many commands).
-    JointsWritten(usize),
-    /// Failed.
-    Failed(Plen2Failure),
-    /// The user cancelled.
-    Cancelled,
-}
-
-/// What the robot panel says after an operation (worded when shown).
-#[derive(Debug)]
-pub enum Plen2Result {
-    /// The robot was read: how many motions it holds.
-    Read(usize),
-    /// The upload's report.
-    Uploaded(Plen2ImportReport),
-    /// Joint settings written.
-    JointsWritten(usize),
-    /// The project has errors; nothing was written.
-    Invalid(crate::project::Problems),
-    /// What the robot held replaced the project's PLEN2 section.
-    ReadIntoProject,
-    /// What the robot held was saved to this file.
-    Exported(PathBuf),
-    /// The file could not be written; why.
-    ExportFailed(String),
-    /// It failed.
-    Failed(Plen2Failure),
-    /// The user cancelled.
-    Cancelled,
 }
 
 /// The PLEN2's state in the editor.
@@ -193,59 +122,6 @@ impl Default for Plen2Ui {
     }
 }
 
-fn run(
-    kind: &Plen2Kind,
-    requester: &plen2::Plen2Requester,
-    project: &Plen2Project,
-    backups: PathBuf,
-    report: &mut dyn FnMut(Step<Plen2Item>),
-    cancel: &crate::device::Cancel,
-) -> Plen2Outcome {
-    let mut progress = |step: &plen2::Plen2Progress| report(step.clone());
-    let failed = |error: Plen2OpError| match error {
-        Plen2OpError::Cancelled => Plen2Outcome::Cancelled,
-        other => Plen2Outcome::Failed(Plen2Failure::Op(other)),
-    };
-    match kind {
-        Plen2Kind::Read => {
-            let slots: Vec<u8> = (0..SLOTS).collect();
-            match plen2::export(requester, &slots, &mut progress, cancel) {
-                Ok(project) => Plen2Outcome::Read(Box::new(project)),
-                Err(error) => failed(error),
-            }
-        }
-        Plen2Kind::Upload => {
-            if let Err(error) = std::fs::create_dir_all(&backups) {
-                return Plen2Outcome::Failed(Plen2Failure::BackupFolder { folder: backups, error });
-            }
-            let options = Plen2ImportOptions { backup_dir: Some(backups), verify: true, force: false };
-            match plen2::import(requester, project, &options, &mut progress, cancel) {
-                Ok(done) => Plen2Outcome::Uploaded(done),
-                // Cancelled before a byte was written: nothing to say but that; after, what it left.
-                Err(failure)
-                    if matches!(failure.error, Plen2OpError::Cancelled)
-                        && matches!(failure.left, crate::device::Left::Untouched) =>
-                {
-                    Plen2Outcome::Cancelled
-                }
-                Err(failure) => Plen2Outcome::Failed(Plen2Failure::Upload(failure)),
-            }
-        }
-        Plen2Kind::WriteJoints => {
-            let written = plen2::read_joint_settings(requester)
-                .and_then(|current| plen2::write_joint_settings(requester, &project.joints, &current));
-            match written {
-                Ok(count) => Plen2Outcome::JointsWritten(count),
-                Err(error) => failed(error),
-            }
-        }
-        Plen2Kind::FactoryReset => match requester.send_and_wait(Command::ResetJoints) {
-            Ok(()) => Plen2Outcome::JointsWritten(1),
-            Err(error) => Plen2Outcome::Failed(Plen2Failure::Reply(error)),
-        },
-    }
-}
-
 impl Plen2Ui {
     /// Applies one of the family's actions.
     pub fn apply(&mut self, shell: &mut Shell<'_>, action: Plen2Action) {
@@ -311,7 +187,7 @@ impl Plen2Ui {
         let operation = Operation::start(
             kind,
             shell.waker.clone(),
-            move |report, cancel| run(&job_kind, &requester, &project, backups, report, cancel),
+            move |report, cancel| operations::run(&job_kind, &requester, &project, backups, report, cancel),
             |error| Plen2Outcome::Failed(Plen2Failure::Thread(error)),
         );
         *shell.operation = Some(RunningOperation::new(operation));
@@ -399,6 +275,10 @@ impl Plen2Ui {
 }
 
 impl FamilyUi for Plen2Ui {
+    fn sound_follower(&self) -> Option<&dyn crate::ui::sound::follow::SoundFollower> {
+        Some(&follow::Plen2Follower)
+    }
+
     fn act(&mut self, shell: &mut Shell<'_>, action: Box<dyn crate::ui::action::FamilyAction>) {
         match action.into_any().downcast::<Plen2Action>() {
             Ok(action) => self.apply(shell, *action),
@@ -408,40 +288,20 @@ impl FamilyUi for Plen2Ui {
         }
     }
 
-    fn live_pose(&self) -> Option<LivePose> {
-        Some(LivePose::indexed(Family::Plen2, &self.pose))
-    }
-
-    fn restore_pose(&mut self, shell: &mut Shell<'_>, pose: LivePose) {
-        if pose.family == Family::Plen2 {
-            Plen2Ui::restore_pose(self, shell, pose.to_array());
-        }
-    }
-
-    fn remember(&self, remembered: &mut crate::ui::remembered::Remembered) {
-        remembered.plen2_pacing = self.pacing;
-    }
-
-    fn recall(&mut self, remembered: &crate::ui::remembered::Remembered) {
-        self.pacing = remembered.plen2_pacing;
-    }
-
     fn family(&self) -> Family {
         Family::Plen2
     }
 
-    fn pad_targets(&self, project: &Project) -> Vec<crate::ui::gamepad::PadTarget> {
-        pad::targets(&project.plen2, &self.pose)
+    /// A new document: the joints go home.
+    fn document_replaced(&mut self, project: &Project) {
+        self.pose = homes(&project.plen2);
+        self.stream = None;
+        self.slew = None;
+        self.recording = None;
     }
+}
 
-    fn pad_fires(&self, project: &Project, words: &Strings) -> Vec<(crate::project::gamepad::Fire, String)> {
-        pad::fires(&project.plen2, words)
-    }
-
-    fn pad_cue(&self, cue: crate::gamepad::puppet::Cue) -> Option<Action> {
-        pad::cue(cue)
-    }
-
+impl FamilyPanels for Plen2Ui {
     fn panels(&self) -> &'static [Panel] {
         &[
             Panel { tab: Tab::Joints, title: |words| words.joints, has_view: true },
@@ -519,7 +379,9 @@ impl FamilyUi for Plen2Ui {
             }
         }
     }
+}
 
+impl FamilyBoard for Plen2Ui {
     fn connection_extras(&mut self, ui: &mut egui::Ui, view: &ShellView<'_>, actions: &mut Vec<Action>) {
         let language = view.language;
         let words = language.strings();
@@ -572,14 +434,6 @@ impl FamilyUi for Plen2Ui {
         self.slew = None;
     }
 
-    /// A new document: the joints go home.
-    fn document_replaced(&mut self, project: &Project) {
-        self.pose = homes(&project.plen2);
-        self.stream = None;
-        self.slew = None;
-        self.recording = None;
-    }
-
     /// Moves a streamed motion on, and takes written files' answers; whether something still plays.
     fn tick(&mut self, shell: &mut Shell<'_>, now: Instant) -> bool {
         self.finish_writing(shell);
@@ -590,5 +444,41 @@ impl FamilyUi for Plen2Ui {
         let (_, outcome) = RunningOperation::finished::<Plen2Kind, Plen2Outcome, Plen2Item>(shell.operation, wait)?;
         self.finish(outcome);
         self.summary(shell.language)
+    }
+}
+
+impl FamilyPad for Plen2Ui {
+    fn pad_targets(&self, project: &Project) -> Vec<crate::ui::gamepad::PadTarget> {
+        pad::targets(&project.plen2, &self.pose)
+    }
+
+    fn pad_fires(&self, project: &Project, words: &Strings) -> Vec<(crate::project::gamepad::Fire, String)> {
+        pad::fires(&project.plen2, words)
+    }
+
+    fn pad_cue(&self, cue: crate::gamepad::puppet::Cue) -> Option<Action> {
+        pad::cue(cue)
+    }
+}
+
+impl FamilyPose for Plen2Ui {
+    fn live_pose(&self) -> Option<LivePose> {
+        Some(LivePose::indexed(Family::Plen2, &self.pose))
+    }
+
+    fn restore_pose(&mut self, shell: &mut Shell<'_>, pose: LivePose) {
+        if pose.family == Family::Plen2 {
+            Plen2Ui::restore_pose(self, shell, pose.to_array());
+        }
+    }
+}
+
+impl FamilyMemory for Plen2Ui {
+    fn remember(&self, remembered: &mut crate::ui::remembered::Remembered) {
+        remembered.plen2_pacing = self.pacing;
+    }
+
+    fn recall(&mut self, remembered: &crate::ui::remembered::Remembered) {
+        self.pacing = remembered.plen2_pacing;
     }
 }

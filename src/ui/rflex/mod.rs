@@ -25,7 +25,7 @@ use crate::project::rflex::Robot;
 use crate::project::{Family, Project};
 use crate::ui::action::{Action, Tab};
 use crate::ui::board_link::{BoardLink, FamilyNotice, LinkStarter, StartError};
-use crate::ui::family::{FamilyUi, Panel};
+use crate::ui::family::{FamilyBoard, FamilyMemory, FamilyPad, FamilyPanels, FamilyPose, FamilyUi, Panel};
 use crate::ui::i18n::Strings;
 use crate::ui::layout::{self, Layout, Pane};
 use crate::ui::rflex::captions::RflexWords;
@@ -127,7 +127,9 @@ impl FamilyUi for RflexUi {
     fn family(&self) -> Family {
         Family::Rflex
     }
+}
 
+impl FamilyPanels for RflexUi {
     fn panels(&self) -> &'static [Panel] {
         &[
             Panel { tab: Tab::Drive, title: |words| words.drive, has_view: true },
@@ -147,6 +149,48 @@ impl FamilyUi for RflexUi {
         &mut self.layout
     }
 
+    fn while_showing(&self, tab: Tab) -> Option<Action> {
+        // The pad, the keys and the gamepad live on the Drive tab: leaving it is letting go.
+        let driving = self.drive_asked() != (0.0, 0.0) || self.pad.driving();
+        (tab != Tab::Drive && driving).then_some(Action::Stop)
+    }
+
+    /// Draws the tab: the drive pad or the telemetry, with the world view beside it.
+    fn ui(&mut self, ui: &mut egui::Ui, tab: Tab, view: &ShellView<'_>, actions: &mut Vec<Action>) {
+        let words = view.language.strings();
+        let base = view.link.and_then(|link| link.rflex());
+        let telemetry = base.map(|base| &base.telemetry);
+        let Self { drive, world, layout, sonar_on, pad } = self;
+        let open = layout.view_open;
+        layout::beside(ui, "rflex-world", (&mut layout.side_width, open), |ui, pane| match (pane, tab) {
+            (Pane::Second, _) => world::panel(ui, world, telemetry, words, actions),
+            (Pane::First, Tab::Telemetry) => match telemetry {
+                Some(telemetry) => telemetry::ui(ui, telemetry, words),
+                None => {
+                    ui.label(words.not_connected);
+                }
+            },
+            (Pane::First, _) => {
+                let rflex = &view.project.rflex;
+                let shown = DriveView {
+                    connected: base.is_some_and(|base| !base.is_lost()),
+                    settings: rflex.drive,
+                    limits: rflex.robot.limits(),
+                    commanded: base.map_or((0.0, 0.0), |base| base.commanded),
+                    measured: base
+                        .map_or((0.0, 0.0), |base| (base.telemetry.speed_m_per_s, base.telemetry.turn_rad_per_s)),
+                    brake: base.and_then(|base| base.telemetry.brake),
+                    sonar_on: *sonar_on,
+                };
+                drive.ui(ui, &shown, words, actions);
+                ui.separator();
+                pad.ui(ui, words);
+            }
+        });
+    }
+}
+
+impl FamilyBoard for RflexUi {
     fn connection_extras(&mut self, ui: &mut egui::Ui, view: &ShellView<'_>, actions: &mut Vec<Action>) {
         let words = view.language.strings();
         let current = view.project.rflex.robot;
@@ -208,13 +252,9 @@ impl FamilyUi for RflexUi {
             shell.report(shell.words().rflex().msg_base_silent, true);
         }
     }
+}
 
-    fn while_showing(&self, tab: Tab) -> Option<Action> {
-        // The pad, the keys and the gamepad live on the Drive tab: leaving it is letting go.
-        let driving = self.drive_asked() != (0.0, 0.0) || self.pad.driving();
-        (tab != Tab::Drive && driving).then_some(Action::Stop)
-    }
-
+impl FamilyPad for RflexUi {
     /// Drives the base by the gamepad's stick while the Drive tab is shown.
     fn pad_drive(
         &mut self,
@@ -244,41 +284,11 @@ impl FamilyUi for RflexUi {
     fn pad_reserved(&self) -> &'static [u16] {
         &[crate::gamepad::BTN_TL]
     }
-
-    /// Draws the tab: the drive pad or the telemetry, with the world view beside it.
-    fn ui(&mut self, ui: &mut egui::Ui, tab: Tab, view: &ShellView<'_>, actions: &mut Vec<Action>) {
-        let words = view.language.strings();
-        let base = view.link.and_then(|link| link.rflex());
-        let telemetry = base.map(|base| &base.telemetry);
-        let Self { drive, world, layout, sonar_on, pad } = self;
-        let open = layout.view_open;
-        layout::beside(ui, "rflex-world", (&mut layout.side_width, open), |ui, pane| match (pane, tab) {
-            (Pane::Second, _) => world::panel(ui, world, telemetry, words, actions),
-            (Pane::First, Tab::Telemetry) => match telemetry {
-                Some(telemetry) => telemetry::ui(ui, telemetry, words),
-                None => {
-                    ui.label(words.not_connected);
-                }
-            },
-            (Pane::First, _) => {
-                let rflex = &view.project.rflex;
-                let shown = DriveView {
-                    connected: base.is_some_and(|base| !base.is_lost()),
-                    settings: rflex.drive,
-                    limits: rflex.robot.limits(),
-                    commanded: base.map_or((0.0, 0.0), |base| base.commanded),
-                    measured: base
-                        .map_or((0.0, 0.0), |base| (base.telemetry.speed_m_per_s, base.telemetry.turn_rad_per_s)),
-                    brake: base.and_then(|base| base.telemetry.brake),
-                    sonar_on: *sonar_on,
-                };
-                drive.ui(ui, &shown, words, actions);
-                ui.separator();
-                pad.ui(ui, words);
-            }
-        });
-    }
 }
+
+impl FamilyPose for RflexUi {}
+
+impl FamilyMemory for RflexUi {}
 
 /// A robot preset's name.
 fn robot_name(robot: Robot) -> &'static str {

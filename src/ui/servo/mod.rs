@@ -7,6 +7,7 @@ mod action;
 mod actions;
 mod board;
 mod captions;
+mod follow;
 mod graph;
 mod joystick;
 mod link;
@@ -37,7 +38,7 @@ use crate::sim::SimConfig;
 use crate::ui::action::{Action, Tab};
 use crate::ui::board_link::{BoardLink, FamilyNotice, LinkStarter, StartError};
 use crate::ui::derive::Derived;
-use crate::ui::family::{FamilyUi, Panel};
+use crate::ui::family::{FamilyBoard, FamilyMemory, FamilyPad, FamilyPanels, FamilyPose, FamilyUi, Panel};
 use crate::ui::i18n::Worded;
 use crate::ui::i18n::{Language, Strings};
 use crate::ui::layout::Layout;
@@ -257,6 +258,10 @@ impl ServoUi {
 }
 
 impl FamilyUi for ServoUi {
+    fn sound_follower(&self) -> Option<&dyn crate::ui::sound::follow::SoundFollower> {
+        Some(&follow::ServoFollower)
+    }
+
     fn act(&mut self, shell: &mut Shell<'_>, action: Box<dyn crate::ui::action::FamilyAction>) {
         match action.into_any().downcast::<ServoAction>() {
             Ok(action) => self.apply(shell, *action),
@@ -266,32 +271,18 @@ impl FamilyUi for ServoUi {
         }
     }
 
-    fn live_pose(&self) -> Option<crate::project::LivePose> {
-        Some(crate::project::LivePose::new(Family::Servo, self.pose.clone()))
-    }
-
-    fn restore_pose(&mut self, shell: &mut Shell<'_>, pose: crate::project::LivePose) {
-        if pose.family == Family::Servo {
-            ServoUi::restore_pose(self, shell, pose.values);
-        }
-    }
-
     fn family(&self) -> Family {
         Family::Servo
     }
 
-    fn pad_targets(&self, project: &Project) -> Vec<crate::ui::gamepad::PadTarget> {
-        pad::targets(&project.servo, &self.pose)
+    fn document_replaced(&mut self, project: &Project) {
+        self.recording = None;
+        self.playing.clear();
+        self.replace_document(&project.servo);
     }
+}
 
-    fn pad_fires(&self, project: &Project, words: &Strings) -> Vec<(crate::project::gamepad::Fire, String)> {
-        pad::fires(&project.servo, words)
-    }
-
-    fn pad_cue(&self, cue: crate::gamepad::puppet::Cue) -> Option<Action> {
-        pad::cue(cue)
-    }
-
+impl FamilyPanels for ServoUi {
     fn panels(&self) -> &'static [Panel] {
         &[
             Panel { tab: Tab::Servos, title: |words| words.servos, has_view: true },
@@ -369,7 +360,9 @@ impl FamilyUi for ServoUi {
             actions.push(Action::family(ServoAction::Resume));
         }
     }
+}
 
+impl FamilyBoard for ServoUi {
     fn link_details(&self, link: &BoardLink, words: &Strings) -> Vec<String> {
         let Some(servo) = link.servo() else { return Vec::new() };
         let mut parts = Vec::new();
@@ -424,12 +417,6 @@ impl FamilyUi for ServoUi {
         self.playing.clear();
     }
 
-    fn document_replaced(&mut self, project: &Project) {
-        self.recording = None;
-        self.playing.clear();
-        self.replace_document(&project.servo);
-    }
-
     /// Moves the previewed action on (the sliders follow it); whether it still plays.
     fn tick(&mut self, shell: &mut Shell<'_>, now: Instant) -> bool {
         self.finish_export(shell.language);
@@ -460,6 +447,34 @@ impl FamilyUi for ServoUi {
         self.polling
     }
 }
+
+impl FamilyPad for ServoUi {
+    fn pad_targets(&self, project: &Project) -> Vec<crate::ui::gamepad::PadTarget> {
+        pad::targets(&project.servo, &self.pose)
+    }
+
+    fn pad_fires(&self, project: &Project, words: &Strings) -> Vec<(crate::project::gamepad::Fire, String)> {
+        pad::fires(&project.servo, words)
+    }
+
+    fn pad_cue(&self, cue: crate::gamepad::puppet::Cue) -> Option<Action> {
+        pad::cue(cue)
+    }
+}
+
+impl FamilyPose for ServoUi {
+    fn live_pose(&self) -> Option<crate::project::LivePose> {
+        Some(crate::project::LivePose::new(Family::Servo, self.pose.clone()))
+    }
+
+    fn restore_pose(&mut self, shell: &mut Shell<'_>, pose: crate::project::LivePose) {
+        if pose.family == Family::Servo {
+            ServoUi::restore_pose(self, shell, pose.values);
+        }
+    }
+}
+
+impl FamilyMemory for ServoUi {}
 
 fn homes(project: &ServoProject) -> BTreeMap<u8, i16> {
     project.servos.iter().map(|servo| (servo.id, servo.home_deg)).collect()

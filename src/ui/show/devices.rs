@@ -3,23 +3,25 @@
 //! Remove (its cues go with it); **+ Device** adds the open project, a
 //! project file, or a new servo board, PLEN2 or base.
 
+use super::linked::{LinkState, state_words};
 use super::{ShowAction, ShowSession, ShowWords, words::family_name};
 use crate::link::by_id::Attached;
 use crate::project::{Family, Project};
 use crate::ui::Action;
 
-/// The devices' table; `editable` while no show plays.
+/// The devices' table, with each held link's state; `editable` while no
+/// show plays and the boards are not held.
 pub(super) fn devices_ui(
     ui: &mut egui::Ui,
     session: &mut ShowSession,
-    attached: &[Attached],
+    (attached, links): (&[Attached], Option<&[LinkState]>),
     editable: bool,
     words: &ShowWords,
     actions: &mut Vec<Action>,
 ) {
     let mut remove = None;
     egui::Grid::new("show-devices").striped(true).show(ui, |ui| {
-        for head in [words.device, words.family, words.port, "", words.if_lost, ""] {
+        for head in [words.device, words.family, words.port, "", words.if_lost, "", words.link] {
             ui.strong(head);
         }
         ui.end_row();
@@ -36,6 +38,14 @@ pub(super) fn devices_ui(
             ui.add_enabled(editable, egui::Checkbox::new(&mut device.play_on_without, words.play_on));
             if ui.add_enabled(editable, egui::Button::new(words.remove)).clicked() {
                 remove = Some(index);
+            }
+            if let Some(state) = links.and_then(|links| links.get(index)) {
+                let (said, well) = state_words(state, words);
+                if well {
+                    ui.label(said)
+                } else {
+                    ui.colored_label(ui.visuals().warn_fg_color, said)
+                };
             }
             ui.end_row();
         }

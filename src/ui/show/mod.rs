@@ -6,6 +6,7 @@
 
 mod cues;
 mod devices;
+pub mod linked;
 mod record;
 mod stage;
 mod words;
@@ -17,10 +18,12 @@ use crossbeam_channel::{Receiver, Sender};
 use crate::link::Waker;
 use crate::link::by_id::Attached;
 use crate::project::Project;
-use crate::show::play::{Player, Stage, cue_length_ms};
+use crate::show::play::cue_length_ms;
 use crate::show::{Show, Start};
 pub use crate::ui::action::ShowAction;
 use crate::ui::i18n::Language;
+use linked::LinkState;
+pub use linked::Linked;
 pub use words::{ShowWords, words};
 
 /// An open show.
@@ -42,6 +45,15 @@ struct Running {
 }
 
 impl ShowSession {
+    /// The show with each device's port as typed (none where the field is empty).
+    pub fn with_ports(&self) -> Show {
+        let mut show = self.show.clone();
+        for (device, port) in show.devices.iter_mut().zip(&self.ports) {
+            device.port = (!port.trim().is_empty()).then(|| port.trim().to_string());
+        }
+        show
+    }
+
     /// Adds a device holding `project` (named `name`, or made unique), with no port yet.
     pub fn add(&mut self, name: &str, project: Project) -> String {
         let name = self.show.add_device(name, project);
@@ -62,6 +74,8 @@ pub struct ShowDesk {
     pub stage: stage::Stage,
     /// Record passes: the passes kept and the one being recorded.
     pub passes: record::Passes,
+    /// The boards, held connected (Connect the boards).
+    pub linked: Option<Linked>,
 }
 
 impl std::fmt::Debug for ShowDesk {
@@ -90,6 +104,15 @@ impl ShowDesk {
                 }
             }
             ShowAction::AddFromFile(path) => return self.add_from(&path),
+            ShowAction::Boards(true) => {
+                let Some(session) = &self.session else { return None };
+                self.linked = None;
+                match Linked::connect(&session.with_ports(), waker.clone()) {
+                    Ok(linked) => self.linked = Some(linked),
+                    Err(error) => return Some(format!("cannot connect the boards: {error}")),
+                }
+            }
+            ShowAction::Boards(false) => self.linked = None,
             ShowAction::Play => self.play(waker.clone()),
             ShowAction::StopAll => self.stop(),
             ShowAction::Preview(true) => {
@@ -125,6 +148,7 @@ impl ShowDesk {
             }
             ShowAction::Close => {
                 self.stop();
+                self.linked = None;
                 self.session = None;
             }
         }
@@ -168,13 +192,14 @@ impl ShowDesk {
 
     fn opened(&mut self, path: Option<PathBuf>, show: Show) {
         self.stop();
+        self.linked = None;
         let ports = show.devices.iter().map(|device| device.port.clone().unwrap_or_default()).collect();
         self.session = Some(ShowSession { path, show, ports, said: Vec::new() });
     }
 
     /// Whether a show is playing.
     pub fn playing(&self) -> bool {
-        self.running.is_some()
+        self.running.is_some() || self.linked.as_ref().is_some_and(|linked| linked.playing)
     }
 
     /// Stops every device of a show that plays.
@@ -183,18 +208,24 @@ impl ShowDesk {
         if let Some(running) = &self.running {
             let _ = running.stop.send("STOP".into());
         }
+        if let Some(linked) = &mut self.linked {
+            linked.stop();
+        }
     }
 
     fn play(&mut self, waker: Waker) {
-        let Some(session) = &mut self.session else { return };
-        if self.running.is_some() {
+        if self.playing() {
             return;
         }
-        let mut show = session.show.clone();
-        for (device, port) in show.devices.iter_mut().zip(&session.ports) {
-            device.port = (!port.trim().is_empty()).then(|| port.trim().to_string());
-        }
+        let Some(session) = &mut self.session else { return };
+        let show = session.with_ports();
         let folder = session.path.as_ref().and_then(|path| path.parent().map(PathBuf::from));
+        if let Some(linked) = &mut self.linked {
+            session.said.clear();
+            let sound = show.sound.as_ref().map(|track| folder.unwrap_or_default().join(&track.path));
+            linked.play(&show, sound);
+            return;
+        }
         let (stop, stopped) = crossbeam_channel::unbounded();
         let (say, said) = crossbeam_channel::unbounded();
         session.said.clear();
@@ -203,7 +234,7 @@ impl ShowDesk {
                 let _ = say.send(line);
                 waker();
             };
-            played(&show, folder, stopped, &tell);
+            crate::show::boards::play_once(&show, folder, stopped, &tell);
         });
         if spawned.is_ok() {
             self.running = Some(Running { stop, said });
@@ -230,6 +261,26 @@ impl ShowDesk {
         }
     }
 
+    /// Takes in what the held boards said; a lost link the show needs stops the preview too.
+    fn poll_boards(&mut self, words: &ShowWords) {
+        let (Some(linked), Some(session)) = (&mut self.linked, &mut self.session) else { return };
+        let taken = linked.poll(&session.show, words);
+        session.said.extend(taken.said);
+        if taken.all_stopped {
+            self.stage.stop_preview();
+        }
+    }
+
+    /// The held boards follow the preview (and the pass's axis) at the time shown.
+    fn boards_follow(&mut self) {
+        let (Some(linked), Some(session)) = (&mut self.linked, &self.session) else { return };
+        let held = self.passes.recording.as_ref().and_then(|pass| {
+            let index = session.show.devices.iter().position(|device| device.name == pass.device)?;
+            Some((index, pass.axis, self.passes.value))
+        });
+        linked.follow(&session.show, self.stage.previewing(), self.stage.scrub_ms, held);
+    }
+
     /// The window, when a show is open.
     /// `pad`: each moved axis of the gamepad in use (by code, −1 … 1), for a pass to record.
     pub fn window(
@@ -240,7 +291,8 @@ impl ShowDesk {
     ) {
         self.poll();
         let words = words(language);
-        let playing = self.running.is_some();
+        self.poll_boards(words);
+        let playing = self.playing();
         let Some(session) = &mut self.session else { return };
         // Listed again every few seconds while the window is open (an adapter plugged in meanwhile).
         let (attached, listed) = &mut self.attached;
@@ -258,10 +310,11 @@ impl ShowDesk {
             .show(ctx, |ui| {
                 // A show of many devices is taller than the window: it scrolls.
                 egui::ScrollArea::vertical().id_salt("show-window").show(ui, |ui| {
+                    let links = self.linked.as_ref().map(|linked| linked.states.as_slice());
                     session_ui(
                         ui,
                         (session, &mut self.stage, &mut self.passes),
-                        (attached, pad),
+                        (attached, pad, links),
                         playing,
                         words,
                         actions,
@@ -279,75 +332,21 @@ impl ShowDesk {
             ctx.request_repaint();
         }
         self.follow_pass(actions);
+        self.boards_follow();
         if !open {
             actions.push(crate::ui::Action::Show(ShowAction::Close));
         }
     }
 }
 
-/// Connects every device of `show` and plays it once, saying what happens.
-fn played(show: &Show, folder: Option<PathBuf>, stop: Receiver<String>, tell: &dyn Fn(String)) {
-    let mut stages: Vec<Box<dyn Stage>> = Vec::new();
-    for device in &show.devices {
-        let Some(port) = &device.port else {
-            tell(format!("{}: no port — type where it is connected", device.name));
-            return;
-        };
-        let opened = match crate::link::by_id::resolve(port) {
-            Ok(opened) if opened == port.trim() => opened,
-            Ok(opened) => {
-                tell(format!("{}: {port} is {opened} now", device.name));
-                opened
-            }
-            Err(error) => {
-                tell(format!("{} did not answer on {port}: {error}; nothing was played", device.name));
-                return;
-            }
-        };
-        match crate::show::stages::connect(&opened, device) {
-            Ok((stage, delay)) => {
-                tell(format!(
-                    "{} answered on {port} ({:.1} ms to reach it)",
-                    device.name,
-                    delay.as_secs_f64() * 1000.0
-                ));
-                stages.push(stage);
-            }
-            Err(error) => {
-                tell(format!("{} did not answer on {port}: {error:#}; nothing was played", device.name));
-                return;
-            }
-        }
-    }
-    let sound = show.sound.as_ref().and_then(|track| {
-        let path = folder.unwrap_or_default().join(&track.path);
-        match crate::audio::output::Speakers::connect() {
-            Ok(speakers) => Some((speakers, path)),
-            Err(error) => {
-                tell(format!("no sound output ({error}): playing silent"));
-                None
-            }
-        }
-    });
-    let mut player = Player { show, stages, sound, stop };
-    match player.run() {
-        Ok(ran) => {
-            for sent in &ran.sent {
-                tell(format!("{} started {:?}, {:.2} ms late", sent.device, sent.start, sent.late_ms()));
-            }
-            for (device, why) in &ran.lost {
-                tell(format!("the link to {device} was lost ({why}): the show played on without it"));
-            }
-            tell(format!("ended after {:.2} s", ran.ended.saturating_duration_since(ran.zero).as_secs_f64()));
-        }
-        Err(stopped) => tell(stopped.to_string()),
-    }
-}
+/// What the window shows beside the show: the USB adapters attached, the
+/// gamepad's moved axes (by code, −1 … 1), each held link's state.
+type Around<'a> = (&'a [Attached], &'a [(u16, f64)], Option<&'a [LinkState]>);
 
 fn session_ui(
     ui: &mut egui::Ui,
     (session, stage, passes): (&mut ShowSession, &mut stage::Stage, &mut record::Passes),
-    (attached, pad): (&[Attached], &[(u16, f64)]),
+    (attached, pad, links): Around<'_>,
     playing: bool,
     words: &ShowWords,
     actions: &mut Vec<crate::ui::Action>,
@@ -360,14 +359,15 @@ fn session_ui(
     ui.label(egui::RichText::new(format!("{name} — {} {}", session.show.devices.len(), words.devices)).strong());
     // Play, Save and Stop all first, where a tall show does not scroll them away.
     let problem = session.show.check().err().map(|error| error.to_string());
-    buttons(ui, session, playing, problem.is_none(), words, actions);
+    buttons(ui, session, (playing, links.is_some()), problem.is_none(), words, actions);
     egui::ScrollArea::vertical().id_salt("show-said").max_height(90.0).show(ui, |ui| {
         for line in &session.said {
             ui.label(egui::RichText::new(line).small());
         }
     });
     ui.separator();
-    devices::devices_ui(ui, session, attached, !playing, words, actions);
+    // Devices change only while their boards are not held (a link per device, in order).
+    devices::devices_ui(ui, session, (attached, links), !playing && links.is_none(), words, actions);
     ui.separator();
     // The cues' blocks are worked out once a frame, by the lanes: their span serves the stage too.
     let (clicked, span) = lanes(ui, &session.show, stage.scrub_ms, words);
@@ -383,16 +383,21 @@ fn session_ui(
     }
 }
 
-/// Play on the boards, Save show… (both only when the show `holds` together), Stop all.
+/// Connect / Disconnect the boards, Play on the boards, Save show… (both
+/// only when the show `holds` together), Stop all.
 fn buttons(
     ui: &mut egui::Ui,
     session: &ShowSession,
-    playing: bool,
+    (playing, linked): (bool, bool),
     holds: bool,
     words: &ShowWords,
     actions: &mut Vec<crate::ui::Action>,
 ) {
     ui.horizontal(|ui| {
+        let (connect, caption) = if linked { (false, words.disconnect_boards) } else { (true, words.connect_boards) };
+        if ui.add_enabled(!playing, egui::Button::new(caption)).clicked() {
+            actions.push(crate::ui::Action::Show(ShowAction::Boards(connect)));
+        }
         let can = !playing && !session.show.cues.is_empty() && holds;
         if ui.add_enabled(can, egui::Button::new(words.play)).clicked() {
             actions.push(crate::ui::Action::Show(ShowAction::Play));
@@ -414,6 +419,8 @@ fn buttons(
         }
         if playing {
             ui.spinner();
+        } else if linked {
+            ui.weak(words.boards_follow);
         }
     });
 }

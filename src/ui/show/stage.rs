@@ -6,7 +6,7 @@
 //! heading where its drives have taken it.
 
 use crate::figure::{self, Mat3, Placed, Shape, Vec3, WorldSolid};
-use crate::show::at::{Posed, posed_at};
+use crate::show::at::{Posed, hold, posed_at};
 use crate::show::passes::Axis;
 use crate::show::{Device, Show};
 use crate::ui::view3d::{Scene, View};
@@ -145,24 +145,6 @@ impl Stage {
             }
         }
         Scene { solids, ground_z: 0.0, ..Scene::default() }
-    }
-}
-
-/// `posed` with `axis` at `value` degrees (the pass being recorded).
-fn hold(posed: &mut Posed, axis: Axis, value: f64) {
-    match (posed, axis) {
-        (Posed::Servos(degrees), Axis::Servo(id)) => {
-            degrees.insert(id, value);
-        }
-        (Posed::Joints(values), Axis::Joint(joint)) => {
-            if let Some(slot) = values.get_mut(usize::from(joint)) {
-                // Tenths of a degree within ±180°.
-                #[allow(clippy::cast_possible_truncation)]
-                let tenths = (value * 10.0).round().clamp(-1800.0, 1800.0) as i16;
-                *slot = tenths;
-            }
-        }
-        _ => {}
     }
 }
 

@@ -38,6 +38,24 @@ pub struct ShowWords {
     pub families: [(&'static str, &'static str); 3],
     /// "If its link is lost".
     pub if_lost: &'static str,
+    /// "Connect the boards" (held while the window is open).
+    pub connect_boards: &'static str,
+    /// "Disconnect the boards".
+    pub disconnect_boards: &'static str,
+    /// What connected boards do.
+    pub boards_follow: &'static str,
+    /// The link column's head.
+    pub link: &'static str,
+    /// A device being connected.
+    pub asking: &'static str,
+    /// A device that answered.
+    pub answered: &'static str,
+    /// A device that did not answer.
+    pub silent: &'static str,
+    /// A device whose link was lost.
+    pub lost: &'static str,
+    /// After a lost link: every device was stopped.
+    pub all_stopped: &'static str,
     /// "play on without it".
     pub play_on: &'static str,
     /// "At".
@@ -119,6 +137,15 @@ const ENGLISH: ShowWords = ShowWords {
     drive_word: "drive",
     families: [("servo", "servo board"), ("plen2", "PLEN2"), ("rflex", "rFLEX base")],
     if_lost: "If its link is lost",
+    connect_boards: "Connect the boards",
+    disconnect_boards: "Disconnect the boards",
+    boards_follow: "the boards follow the preview and record passes",
+    link: "Link",
+    asking: "connecting…",
+    answered: "answered",
+    silent: "did not answer",
+    lost: "link lost",
+    all_stopped: ": every device was stopped",
     play_on: "play on without it",
     at: "At",
     cue: "Cue",
@@ -168,6 +195,15 @@ const CHINESE: ShowWords = ShowWords {
     drive_word: "行駛",
     families: [("servo", "伺服板"), ("plen2", "PLEN2"), ("rflex", "rFLEX 底盤")],
     if_lost: "連線中斷時",
+    connect_boards: "連接所有板子",
+    disconnect_boards: "中斷所有板子",
+    boards_follow: "板子會跟著預覽與錄製播放",
+    link: "連線",
+    asking: "連線中…",
+    answered: "已回應",
+    silent: "沒有回應",
+    lost: "連線中斷",
+    all_stopped: "：所有裝置已停止",
     play_on: "其他裝置繼續演出",
     at: "時間",
     cue: "提示點",

@@ -3,17 +3,15 @@
 //! motion, fitted into the board's steps or frames within the tolerance
 //! (a talking skull's jaw, a PLEN2 nodding to a beat). The motion is timed
 //! to the sound as the lane places it (its offset), and added to the
-//! project in one undo step: a servo's actions and a macro running them, or
-//! a PLEN2 chain of motions — each up to 20 frames, jumping to the next, so
-//! a sentence fits — in the free slots or from a slot the user picks
-//! (replacing what it holds).
+//! project in one undo step. The dialog is the same for every family: it
+//! asks the open family's [`SoundFollower`] for its axes and its motion (a
+//! servo's actions and a macro running them, `ui::servo::follow`; a PLEN2
+//! chain of motions, `ui::plen2::follow`).
 
 use crate::audio::follow::{self as loudness, Follow};
 use crate::authoring::fit::FitError;
-use crate::authoring::fitted::{PLEN2_UPDATE_MS, SERVO_UPDATE_MS};
-use crate::authoring::follow::{self, Follower};
-use crate::project::plen2::{Joint, Motion, Plen2Project, SLOTS};
-use crate::project::{Edit, Family, Project, next_free_id};
+pub use crate::authoring::follow::Follower;
+use crate::project::{Edit, Project};
 use crate::ui::action::Action;
 use crate::ui::i18n::Language;
 
@@ -23,8 +21,8 @@ const DIALOG_WIDTH: f32 = 560.0;
 /// The dialog's fields.
 #[derive(Clone, Debug, PartialEq)]
 pub struct FollowForm {
-    servo_id: Option<u8>,
-    joint: usize,
+    /// The axis that follows (a servo's id, a joint's index), as its family keys it.
+    axis: Option<usize>,
     closed_deg: f64,
     open_deg: f64,
     attack_ms: f64,
@@ -37,7 +35,7 @@ pub struct FollowForm {
     said: Option<String>,
 }
 
-/// Where a PLEN2's follow is written: a chain of motions (each up to 20
+/// Where a follow that takes slots (a PLEN2's) is written: a chain of motions (each up to 20
 /// frames, jumping to the next) when the sound is longer than one holds.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Target {
@@ -52,8 +50,7 @@ impl Default for FollowForm {
     fn default() -> Self {
         let follow = Follow::default();
         Self {
-            servo_id: None,
-            joint: 0,
+            axis: None,
             closed_deg: 0.0,
             open_deg: 30.0,
             attack_ms: follow.attack_ms,
@@ -66,34 +63,37 @@ impl Default for FollowForm {
     }
 }
 
-/// The dialog's words.
-struct Words {
-    title: &'static str,
-    servo: &'static str,
-    joint: &'static str,
-    closed: &'static str,
-    open: &'static str,
-    attack: &'static str,
-    release: &'static str,
-    threshold: &'static str,
-    tolerance: &'static str,
-    make: &'static str,
-    close: &'static str,
-    no_servo: &'static str,
-    made_steps: &'static str,
-    write_to: &'static str,
-    free_slots: &'static str,
-    from_slot: &'static str,
-    replaces: &'static str,
-    made_chain: &'static str,
-    replaced: &'static str,
-    no_slot: &'static str,
-    frames: &'static str,
-    steps: &'static str,
-    tolerance_error: &'static str,
-    too_long: &'static str,
+/// The dialog's words (a family's follower says what it made in them).
+#[allow(missing_docs)]
+pub struct Words {
+    pub title: &'static str,
+    pub servo: &'static str,
+    pub joint: &'static str,
+    pub closed: &'static str,
+    pub open: &'static str,
+    pub attack: &'static str,
+    pub release: &'static str,
+    pub threshold: &'static str,
+    pub tolerance: &'static str,
+    pub make: &'static str,
+    pub close: &'static str,
+    pub no_servo: &'static str,
+    pub made_steps: &'static str,
+    pub write_to: &'static str,
+    pub free_slots: &'static str,
+    pub from_slot: &'static str,
+    pub replaces: &'static str,
+    pub made_chain: &'static str,
+    pub replaced: &'static str,
+    pub no_slot: &'static str,
+    pub frames: &'static str,
+    pub steps: &'static str,
+    pub tolerance_error: &'static str,
+    pub too_long: &'static str,
     /// What to do when a PLEN2's slots are too few for the sound.
-    more_slots: &'static str,
+    pub more_slots: &'static str,
+    /// The open board has no axis the sound can move.
+    pub no_axis: &'static str,
 }
 
 const ENGLISH: Words = Words {
@@ -122,6 +122,7 @@ const ENGLISH: Words = Words {
     tolerance_error: "{needed} {moves} are needed within {tolerance} and at most {allowed} fit; the smallest tolerance that fits is {smallest}",
     too_long: "the sound is too long: it needs at least {needed} {moves} of at most {longest} each, and at most {allowed} fit",
     more_slots: ": write from an earlier slot (its chain may take the slots after it), or use a shorter sound",
+    no_axis: "This board has no servo or joint to follow the sound: open a servo board or a PLEN2 project",
 };
 
 const TRADITIONAL_CHINESE: Words = Words {
@@ -150,23 +151,56 @@ const TRADITIONAL_CHINESE: Words = Words {
     tolerance_error: "在 {tolerance} 內需要 {needed} 個{moves}，最多只能放 {allowed} 個；可行的最小容許誤差為 {smallest}",
     too_long: "聲音太長：至少需要 {needed} 個{moves}（每個最長 {longest}），最多只能放 {allowed} 個",
     more_slots: "：請從較前面的位置寫入（動作串可使用其後的位置），或改用較短的聲音",
+    no_axis: "此板子沒有可跟隨聲音的伺服機或關節：請開啟伺服機板或 PLEN2 專案",
 };
 
-fn words(language: Language) -> &'static Words {
+/// The dialog's words in `language`.
+pub fn words(language: Language) -> &'static Words {
     match language {
         Language::English => &ENGLISH,
         Language::TraditionalChinese => &TRADITIONAL_CHINESE,
     }
 }
 
+/// A family whose axis can follow the sound's loudness (a servo, a PLEN2
+/// joint): the dialog asks it for its axes and for the motion, never which
+/// family it is. A family with none (a base) offers no follower.
+pub trait SoundFollower {
+    /// The axes that may follow, each a key and a name, in order.
+    fn axes(&self, project: &Project) -> Vec<(usize, String)>;
+
+    /// What one of its axes is called.
+    fn axis_word(&self, words: &Words) -> &'static str;
+
+    /// Rows of its own under the axis (a PLEN2's "Write to"); `target` is
+    /// where the motion goes. Whether `target` changed.
+    fn options(&self, _ui: &mut egui::Ui, _project: &Project, _target: &mut Target, _words: &Words) -> bool {
+        false
+    }
+
+    /// The motion of `axis` following `open` (0 closed … 1 open, a value a
+    /// millisecond on the motion's time): the project's edits (one undo step)
+    /// and what to say; or why not, in the interface's words.
+    fn make(
+        &self,
+        project: &Project,
+        axis: usize,
+        open: &[f64],
+        how: (Follower, Target),
+        words: &Words,
+    ) -> Result<(Vec<Edit>, String), String>;
+}
+
 impl FollowForm {
     /// The dialog; `open` is cleared by its Close. `loudness_db` is the
-    /// sound's, one value a millisecond; `offset_ms` where it starts on the motion's time.
+    /// sound's, one value a millisecond; `offset_ms` where it starts on the
+    /// motion's time; `family` the open family's follower (None: it has no
+    /// axis to follow with, and the dialog says so).
     pub fn window(
         &mut self,
         ctx: &egui::Context,
         (project, loudness_db, offset_ms): (&Project, &[f32], i64),
-        language: Language,
+        (family, language): (Option<&dyn SoundFollower>, Language),
         open: &mut bool,
         actions: &mut Vec<Action>,
     ) {
@@ -177,9 +211,15 @@ impl FollowForm {
         window.pivot(egui::Align2::CENTER_CENTER).default_pos(middle).show(ctx, |ui| {
             // What it says wraps: a long message does not widen the dialog.
             ui.set_max_width(DIALOG_WIDTH);
-            self.axis(ui, project, words);
-            if project.family == Family::Plen2 {
-                self.target_row(ui, project, words);
+            let Some(family) = family else {
+                ui.label(words.no_axis);
+                keep = !ui.button(words.close).clicked();
+                return;
+            };
+            self.axis(ui, project, family, words);
+            if family.options(ui, project, &mut self.target, words) {
+                // What the last try said was of the target before.
+                self.said = None;
             }
             egui::Grid::new("follow-sound").num_columns(2).show(ui, |ui| {
                 let row = |ui: &mut egui::Ui, label: &str, value: &mut f64, range, suffix: &str| {
@@ -199,7 +239,7 @@ impl FollowForm {
             }
             ui.horizontal(|ui| {
                 if ui.button(words.make).clicked() {
-                    self.make(project, (loudness_db, offset_ms), words, actions);
+                    self.make(project, family, (loudness_db, offset_ms), words, actions);
                 }
                 keep = !ui.button(words.close).clicked();
             });
@@ -207,40 +247,28 @@ impl FollowForm {
         *open &= keep;
     }
 
-    /// The servo or the joint that follows.
-    fn axis(&mut self, ui: &mut egui::Ui, project: &Project, words: &Words) {
+    /// The axis that follows, among those the family offers.
+    fn axis(&mut self, ui: &mut egui::Ui, project: &Project, family: &dyn SoundFollower, words: &Words) {
+        let axes = family.axes(project);
+        if self.axis.is_none_or(|key| !axes.iter().any(|(axis, _)| *axis == key)) {
+            self.axis = axes.first().map(|(axis, _)| *axis);
+        }
         ui.horizontal(|ui| {
-            if project.family == Family::Plen2 {
-                let label = ui.label(words.joint);
-                let names: Vec<&str> = Joint::ALL.iter().map(|joint| joint.name()).collect();
-                egui::ComboBox::from_id_salt("follow-joint")
-                    .selected_text(names[self.joint])
-                    .show_ui(ui, |ui| {
-                        for (index, name) in names.iter().enumerate() {
-                            ui.selectable_value(&mut self.joint, index, *name);
-                        }
-                    })
-                    .response
-                    .labelled_by(label.id);
-                return;
-            }
-            let servos = &project.servo.servos;
-            if self.servo_id.is_none_or(|id| !servos.iter().any(|servo| servo.id == id)) {
-                self.servo_id = servos.first().map(|servo| servo.id);
-            }
-            ui.label(words.servo);
-            let Some(selected) = self.servo_id else {
+            let label = ui.label(family.axis_word(words));
+            let Some(selected) = self.axis else {
                 ui.label(words.no_servo);
                 return;
             };
-            let name = |id: u8| {
-                servos.iter().find(|s| s.id == id).map_or(String::new(), |s| format!("{} {}", s.id, s.caption))
-            };
-            egui::ComboBox::from_id_salt("follow-servo").selected_text(name(selected)).show_ui(ui, |ui| {
-                for servo in servos {
-                    ui.selectable_value(&mut self.servo_id, Some(servo.id), name(servo.id));
-                }
-            });
+            let name = |key: usize| axes.iter().find(|(axis, _)| *axis == key).map_or("", |(_, name)| name.as_str());
+            egui::ComboBox::from_id_salt("follow-axis")
+                .selected_text(name(selected))
+                .show_ui(ui, |ui| {
+                    for (key, name) in &axes {
+                        ui.selectable_value(&mut self.axis, Some(*key), name);
+                    }
+                })
+                .response
+                .labelled_by(label.id);
         });
     }
 
@@ -248,10 +276,12 @@ impl FollowForm {
     fn make(
         &mut self,
         project: &Project,
+        family: &dyn SoundFollower,
         (loudness_db, offset_ms): (&[f32], i64),
         words: &Words,
         actions: &mut Vec<Action>,
     ) {
+        let Some(axis) = self.axis else { return };
         let settings =
             Follow { attack_ms: self.attack_ms, release_ms: self.release_ms, threshold_db: self.threshold_db };
         let mut open = loudness::openness(loudness_db, &settings);
@@ -264,124 +294,21 @@ impl FollowForm {
         }
         let follower =
             Follower { closed_deg: self.closed_deg, open_deg: self.open_deg, tolerance_deg: self.tolerance_deg };
-        let key = Some("follow the sound".to_string());
-        let edit = |edit: Edit| Action::Edit { edit, coalesce: key.clone() };
-        if project.family == Family::Plen2 {
-            self.said = Some(match self.follow_plen2(&project.plen2, &open, follower, words) {
-                Ok((plen2, said)) => {
-                    actions.push(edit(Edit::SetPlen2(Box::new(plen2))));
-                    said
-                }
-                Err(said) => said,
-            });
-            return;
-        }
-        let Some(servo_id) = self.servo_id else { return };
-        let servo = &project.servo;
-        // Ids after every one in use: the fitted actions take the next ones in a row.
-        let first = servo.actions.iter().map(|action| action.id).max().unwrap_or(0).saturating_add(1);
-        let macro_id = next_free_id(servo.macros.iter().map(|item| item.id));
-        match follow::servo(&open, servo_id, follower, (first, macro_id, "follow the sound")) {
-            Ok((made, running, _)) => {
-                self.said = Some(format!("{} {} {macro_id}", made.len(), words.made_steps));
-                actions.extend(made.into_iter().map(|action| edit(Edit::AddAction(action))));
-                actions.push(edit(Edit::AddMacro(running)));
+        self.said = Some(match family.make(project, axis, &open, (follower, self.target), words) {
+            Ok((edits, said)) => {
+                let key = Some("follow the sound".to_string());
+                actions.extend(edits.into_iter().map(|edit| Action::Edit { edit, coalesce: key.clone() }));
+                said
             }
-            Err(error) => self.said = Some(fit_error(&error, (1.0, SERVO_UPDATE_MS), words.steps, words)),
-        }
-    }
-
-    /// Which slots a PLEN2's follow may take, in the order its chain takes them.
-    fn slots(&self, plen2: &Plen2Project) -> Vec<u8> {
-        match self.target {
-            Target::FreeSlots => (0..SLOTS).filter(|slot| !plen2.motions.iter().any(|m| m.slot == *slot)).collect(),
-            Target::From(first) => (first..SLOTS).collect(),
-        }
-    }
-
-    /// "Write to": the free slots, or a slot and those after it (saying
-    /// what it holds: that is what is replaced first).
-    fn target_row(&mut self, ui: &mut egui::Ui, project: &Project, words: &Words) {
-        let before = self.target;
-        ui.horizontal(|ui| {
-            ui.label(words.write_to);
-            ui.radio_value(&mut self.target, Target::FreeSlots, words.free_slots);
-            let first = match self.target {
-                Target::From(slot) => slot,
-                Target::FreeSlots => 0,
-            };
-            let from = ui.radio_value(&mut self.target, Target::From(first), words.from_slot);
-            let mut slot = first;
-            let field = ui.add_enabled(
-                matches!(self.target, Target::From(_)),
-                egui::DragValue::new(&mut slot).range(0..=SLOTS - 1),
-            );
-            if field.labelled_by(from.id).changed() {
-                self.target = Target::From(slot);
-            }
-            if let Target::From(slot) = self.target
-                && let Some(held) = project.plen2.motions.iter().find(|m| m.slot == slot)
-            {
-                ui.weak(format!("{} {slot} {}", words.replaces, held.name));
-            }
+            Err(said) => said,
         });
-        if self.target != before {
-            // What the last try said was of the slots before.
-            self.said = None;
-        }
-    }
-
-    /// The project with a PLEN2 joint following the sound — a chain of
-    /// motions in the slots [`Self::slots`] gives, each jumping to the next —
-    /// and what to say; or why not, in the interface's words.
-    fn follow_plen2(
-        &self,
-        plen2: &Plen2Project,
-        open: &[f64],
-        follower: Follower,
-        words: &Words,
-    ) -> Result<(Plen2Project, String), String> {
-        let slots = self.slots(plen2);
-        if slots.is_empty() {
-            return Err(words.no_slot.to_string());
-        }
-        let chain = follow::plen2(open, Joint::ALL[self.joint], follower, slots.len()).map_err(|error| {
-            let said = fit_error(&error, (0.1, PLEN2_UPDATE_MS), words.frames, words);
-            // Too long for the slots it may take: more slots hold more.
-            if matches!(error, FitError::TooLong { .. }) { format!("{said}{}", words.more_slots) } else { said }
-        })?;
-        let used = &slots[..chain.len()];
-        let mut made = plen2.clone();
-        let replaced: Vec<String> = made
-            .motions
-            .iter()
-            .filter(|motion| used.contains(&motion.slot))
-            .map(|motion| format!("{} {}", motion.slot, motion.name))
-            .collect();
-        made.motions.retain(|motion| !used.contains(&motion.slot));
-        let frames: usize = chain.iter().map(Vec::len).sum();
-        for (part, (frames, &slot)) in chain.into_iter().zip(used).enumerate() {
-            let jump_slot = used.get(part + 1).copied();
-            made.motions.push(Motion { slot, name: "follow".into(), frames, loop_range: None, jump_slot });
-        }
-        made.motions.sort_by_key(|motion| motion.slot);
-        let listed: Vec<String> = used.iter().map(u8::to_string).collect();
-        let mut said = words
-            .made_chain
-            .replace("{frames}", &frames.to_string())
-            .replace("{motions}", &used.len().to_string())
-            .replace("{slots}", &listed.join(", "));
-        if !replaced.is_empty() {
-            said = format!("{said}{}{}", words.replaced, replaced.join(", "));
-        }
-        Ok((made, said))
     }
 }
 
 /// A fit that failed, in the interface's words: tolerances in degrees
 /// (`degrees` a board unit: a PLEN2's tenth, a servo's degree), lengths in
 /// ms (`update_ms` a board update), `moves` the board's frames or steps.
-fn fit_error(error: &FitError, (degrees, update_ms): (f64, f64), moves: &str, words: &Words) -> String {
+pub fn fit_error(error: &FitError, (degrees, update_ms): (f64, f64), moves: &str, words: &Words) -> String {
     let deg = |units: f64| format!("{:.1}°", units * degrees);
     match *error {
         FitError::Tolerance { needed, allowed, tolerance, smallest } => words
@@ -410,19 +337,15 @@ mod tests {
     use super::*;
 
     #[test]
-    fn a_fit_that_cannot_be_made_is_said_in_degrees_and_ms_and_a_short_chain_says_what_to_do() {
+    fn a_fit_that_cannot_be_made_is_said_in_degrees_and_ms() {
         let tolerance = FitError::Tolerance { needed: 36, allowed: 20, tolerance: 10.0, smallest: 29.0 };
-        let said = fit_error(&tolerance, (0.1, PLEN2_UPDATE_MS), ENGLISH.frames, &ENGLISH);
+        let said = fit_error(&tolerance, (0.1, 32.768), ENGLISH.frames, &ENGLISH);
         assert_eq!(
             said,
             "36 frames are needed within 1.0° and at most 20 fit; the smallest tolerance that fits is 2.9°"
         );
-        // 200 s of sound from slot 89: one motion of 20 frames of at most 255 cycles cannot hold it.
-        let form = FollowForm { target: Target::From(89), ..FollowForm::default() };
-        let open = vec![0.5; 200_000];
-        let follower = Follower { closed_deg: 0.0, open_deg: 30.0, tolerance_deg: 1.0 };
-        let said = form.follow_plen2(&Plen2Project::default(), &open, follower, &TRADITIONAL_CHINESE).unwrap_err();
-        assert!(said.starts_with("聲音太長") && said.contains("8356 ms"), "{said}");
-        assert!(said.ends_with(TRADITIONAL_CHINESE.more_slots), "says what to do: {said}");
+        let too_long = FitError::TooLong { updates: 9000, needed: 30, longest: 255, allowed: 20 };
+        let said = fit_error(&too_long, (1.0, 10.0), TRADITIONAL_CHINESE.steps, &TRADITIONAL_CHINESE);
+        assert!(said.starts_with("聲音太長") && said.contains("2550 ms"), "{said}");
     }
 }

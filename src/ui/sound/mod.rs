@@ -6,7 +6,7 @@
 //! preview's cursor is [`lane`].
 
 pub mod action;
-mod follow;
+pub mod follow;
 pub mod lane;
 mod out;
 pub use out::SoundOut;
@@ -314,14 +314,14 @@ impl SoundDesk {
     pub fn follow_window(
         &mut self,
         ctx: &egui::Context,
-        project: &Project,
+        (project, family): (&Project, Option<&dyn follow::SoundFollower>),
         language: crate::ui::i18n::Language,
         actions: &mut Vec<crate::ui::action::Action>,
     ) {
         let (Some(form), Some(read), Some(track)) = (&mut self.follow, &self.read, &project.sound) else { return };
         let loudness = read.analysis.found.loudness_db();
         let mut open = true;
-        form.window(ctx, (project, &loudness, track.offset_ms), language, &mut open, actions);
+        form.window(ctx, (project, &loudness, track.offset_ms), (family, language), &mut open, actions);
         if !open {
             self.follow = None;
         }
