@@ -41,11 +41,12 @@ pub(super) fn devices_ui(
             }
             if let Some(state) = links.and_then(|links| links.get(index)) {
                 let (said, well) = state_words(state, words);
-                if well {
-                    ui.label(said)
-                } else {
-                    ui.colored_label(ui.visuals().warn_fg_color, said)
-                };
+                let color = if well { ui.visuals().text_color() } else { ui.visuals().warn_fg_color };
+                // A long reason stays in its cell (whole on hover, and in the lines above).
+                ui.scope(|ui| {
+                    ui.set_max_width(300.0);
+                    ui.add(egui::Label::new(egui::RichText::new(&said).color(color)).truncate()).on_hover_text(&said);
+                });
             }
             ui.end_row();
         }

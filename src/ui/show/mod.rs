@@ -414,7 +414,7 @@ fn buttons(
                 |path| crate::ui::Action::Show(ShowAction::Save(path)),
             ))));
         }
-        if ui.add_enabled(playing, egui::Button::new(words.stop_all)).clicked() {
+        if ui.add_enabled(playing || linked, egui::Button::new(words.stop_all)).clicked() {
             actions.push(crate::ui::Action::Show(ShowAction::StopAll));
         }
         if playing {
