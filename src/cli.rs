@@ -22,6 +22,7 @@ mod play;
 mod plen2;
 mod probe;
 mod rflex;
+mod serve;
 mod servo;
 mod signals;
 mod sim;
@@ -165,6 +166,11 @@ pub enum CliCommand {
     /// and end logged; Ctrl-C / SIGTERM stop every device (bases brake) and exit 130 / 143.
     /// The boards must hold the show's content (servo-studio import). docs/show.md
     Play(play::PlayArgs),
+    /// Remote control with no window: hold every device of a show connected and take HTTP +
+    /// JSON (and OSC with --osc) from cue software and control surfaces — play, stop, pose,
+    /// drive (with heartbeats), status as Server-Sent Events. Loopback only unless
+    /// --token-file. Ctrl-C / SIGTERM stop every device and exit 130 / 143. docs/remote.md
+    Serve(serve::ServeArgs),
     /// Read everything from a board into a project file.
     Export {
         /// The board.
@@ -318,6 +324,7 @@ pub fn run(command: CliCommand) -> ExitCode {
         CliCommand::Probe { port, baud, timeout_ms } => probe::run(port.as_deref(), baud, timeout_ms),
         CliCommand::Sim { args, protocol } => sim::run(&args, protocol),
         CliCommand::Play(args) => play::run(&args),
+        CliCommand::Serve(args) => serve::run(&args),
         CliCommand::Rflex { command } => rflex::run(&command),
         CliCommand::Export { port, out, slots, force } => export(&port, &out, slots.as_ref(), force),
         CliCommand::Import { port, input, yes, force, no_backup, backup_dir } => {

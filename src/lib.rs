@@ -15,6 +15,7 @@ pub mod interchange;
 pub mod link;
 pub mod project;
 pub mod protocol;
+pub mod remote;
 pub mod show;
 pub mod sim;
 pub mod ui;

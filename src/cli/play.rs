@@ -183,7 +183,7 @@ fn default_cue(show: &mut Show) -> anyhow::Result<()> {
 }
 
 /// Each device's port: `--device NAME=PORT`, else the show's.
-fn ports(show: &Show, given: &[String]) -> anyhow::Result<Vec<String>> {
+pub(super) fn ports(show: &Show, given: &[String]) -> anyhow::Result<Vec<String>> {
     let mut named: Vec<(String, String)> = Vec::new();
     for pair in given {
         let Some((name, port)) = pair.split_once('=') else { bail!("--device {pair:?}: give NAME=PORT") };

@@ -12,6 +12,7 @@ pub mod plen2;
 pub mod probe;
 pub mod rflex;
 pub mod servo;
+pub mod speed;
 
 pub use family::line_settings;
 pub use operation::{Cancel, Left, Phase, Progress, Stage, UploadFailure, UploadSteps, backup_path, upload};

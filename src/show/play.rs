@@ -15,6 +15,7 @@ use super::{Show, Start};
 use crate::audio::output::{Playing, Speakers};
 use crate::audio::together::PREROLL;
 use crate::device::plen2::playback::{self, StoredMotions};
+use crate::device::speed::LiveSpeed;
 use crate::project::{Family, Run};
 
 /// How far ahead of its first cue a show without sound starts its clock.
@@ -47,6 +48,26 @@ pub trait Stage: Send {
     fn follow(&mut self, now: &super::at::Now) -> Result<(), String> {
         let _ = now;
         Ok(())
+    }
+    /// Plays a list of (slot, plays) in order (a PLEN2's play list).
+    fn start_list(&mut self, entries: &[(u8, u8)]) -> Result<(), String> {
+        let _ = entries;
+        Err("it has no play lists".into())
+    }
+    /// Moves one axis to `value_deg` (a servo's angle; a joint's from home),
+    /// within its limits and no faster than `speed` — as a slider does; the value it took.
+    fn pose(&mut self, axis: super::passes::Axis, value_deg: f64, speed: LiveSpeed) -> Result<f64, String> {
+        let _ = (axis, value_deg, speed);
+        Err("it has no servo or joint to pose: drive it".into())
+    }
+    /// Drives at (speed m/s, turn °/s) until told otherwise or stopped (a base).
+    fn drive(&mut self, drive: (f64, f64)) -> Result<(), String> {
+        let _ = drive;
+        Err("only a base is driven".into())
+    }
+    /// Its battery, said, when the board tells it.
+    fn battery(&self) -> Option<String> {
+        None
     }
 }
 

@@ -4,9 +4,12 @@
 use std::collections::BTreeMap;
 use std::time::{Duration, Instant};
 
+use crossbeam_channel::Receiver;
+
 use anyhow::bail;
 
 use super::at::{Now, Posed};
+use super::passes::Axis;
 use super::play::Stage;
 use super::{Device, Start};
 use crate::audio::together::link_delay;
@@ -15,7 +18,8 @@ use crate::device::plen2::{
     Command as Plen2Command, Plen2Handle, Plen2Notice, Plen2Options, Plen2Requester, start_delay,
 };
 use crate::device::rflex::{RflexBase, RflexNotice};
-use crate::device::servo::{DEFAULT_BAUD, Requester, ServoBoard, SessionConfig};
+use crate::device::servo::{DEFAULT_BAUD, RequestError, Requester, ServoBoard, SessionConfig};
+use crate::device::speed::{LiveSpeed, Slew};
 use crate::device::{self};
 use crate::link::{self, LineSettings, LinkEvent, PortName, no_waker};
 use crate::project::plen2::Joint;
@@ -33,8 +37,9 @@ pub fn connect(port: &str, device: &Device) -> anyhow::Result<(Box<dyn Stage>, D
             board.requester().request(Message::QueryMemorySizeRequest).map(|_| ()).map_err(|e| e.to_string())
         })?;
         let servos = device.project.servo.servos.clone();
-        let stage =
-            ServoStage { requester: board.requester(), latency, board, lost: None, servos, sent: BTreeMap::new() };
+        let requester = board.requester();
+        let (sent, battery) = (BTreeMap::new(), (None, None, None));
+        let stage = ServoStage { requester, latency, board, lost: None, servos, sent, battery };
         let delay = stage.start_delay(&Start::Macro(0));
         return Ok((Box::new(stage), delay));
     }
@@ -48,7 +53,7 @@ pub fn connect(port: &str, device: &Device) -> anyhow::Result<(Box<dyn Stage>, D
             _ => None,
         });
         let settings = joint_settings(&device.project.plen2);
-        let stage = Plen2Stage { handle, requester, latency, lost, settings, sent: None };
+        let stage = Plen2Stage { handle, requester, latency, lost, settings, sent: None, slew: None };
         let delay = stage.start_delay(&Start::Slot(0));
         return Ok((Box::new(stage), delay));
     }
@@ -63,6 +68,31 @@ pub fn connect(port: &str, device: &Device) -> anyhow::Result<(Box<dyn Stage>, D
     }
     bail!("a {} cannot play in a show", family.name())
 }
+
+impl ServoStage {
+    /// Asks for the battery every [`BATTERY_EVERY`], taking the answer in when it came.
+    fn ask_battery(&mut self, now: Instant) {
+        let (asking, asked, permil) = &mut self.battery;
+        if let Some(answer) = asking
+            && let Ok(answered) = answer.try_recv()
+        {
+            if let Ok(Message::QueryRemainPowerResponse { permil: read }) = answered {
+                *permil = Some(read);
+            }
+            *asking = None;
+        }
+        if asking.is_none() && asked.is_none_or(|at| now.saturating_duration_since(at) >= BATTERY_EVERY) {
+            *asking = self.requester.request_async(Message::QueryRemainPowerRequest).ok();
+            *asked = Some(now);
+        }
+    }
+}
+
+/// A question's answer on its way.
+type Answer = Receiver<Result<Message, RequestError>>;
+
+/// How often a held servo board is asked for its battery.
+const BATTERY_EVERY: Duration = Duration::from_secs(5);
 
 /// How long a servo not yet told where to be takes to get there while following, 10 ms units.
 const EASE_IN_10MS: i16 = 100;
@@ -93,6 +123,8 @@ struct ServoStage {
     servos: Vec<Servo>,
     /// What each servo was last told while following, and when.
     sent: BTreeMap<u8, (i16, Instant)>,
+    /// The battery: the question out (and when it was asked), the last answer (‰).
+    battery: (Option<Answer>, Option<Instant>, Option<i16>),
 }
 
 impl Stage for ServoStage {
@@ -144,12 +176,38 @@ impl Stage for ServoStage {
         self.requester.live_move(moves).map_err(|error| error.to_string())
     }
 
-    fn tick(&mut self, _now: Instant) {
+    fn tick(&mut self, now: Instant) {
         for event in self.board.events().try_iter() {
             if let LinkEvent::Disconnected { reason } = event {
                 self.lost = Some(reason.to_string());
             }
         }
+        self.ask_battery(now);
+    }
+
+    fn pose(&mut self, axis: Axis, value_deg: f64, speed: LiveSpeed) -> Result<f64, String> {
+        let Axis::Servo(id) = axis else { return Err("a servo board's axes are servos".into()) };
+        let servo = self.servos.iter().find(|servo| servo.id == id).ok_or(format!("it has no servo {id}"))?;
+        // Degrees of a servo: a finite value within ±180 once clamped.
+        #[allow(clippy::cast_possible_truncation)]
+        let degree = servo.clamp(value_deg.clamp(-180.0, 180.0).round() as i16);
+        let from = match self.sent.get(&id) {
+            Some(&(told, _)) => f64::from(told),
+            // Where it is is not known: as if from the farther limit, so it cannot slam.
+            None => {
+                let (low, high) = (f64::from(servo.min_deg), f64::from(servo.max_deg));
+                if (f64::from(degree) - low).abs() > (f64::from(degree) - high).abs() { low } else { high }
+            }
+        };
+        let interval_10ms = speed.interval_10ms(f64::from(degree) - from, 2);
+        self.sent.insert(id, (degree, Instant::now()));
+        let moves = vec![ServoMove { servo_id: id, degree, interval_10ms }];
+        self.requester.live_move(moves).map_err(|error| error.to_string())?;
+        Ok(f64::from(degree))
+    }
+
+    fn battery(&self) -> Option<String> {
+        self.battery.2.map(device::servo::battery_text)
     }
 
     fn lost(&self) -> Option<String> {
@@ -166,6 +224,8 @@ struct Plen2Stage {
     settings: Settings,
     /// The joints' values last told while following (from home).
     sent: Option<[i16; DEVICE_IDS]>,
+    /// A remote's pose, walked toward a cycle at a time (absolute, by joint), and how fast.
+    slew: Option<(Slew, LiveSpeed)>,
 }
 
 impl Stage for Plen2Stage {
@@ -183,6 +243,7 @@ impl Stage for Plen2Stage {
         self.handle.stop();
         // STOP sends the joints home (`$HP`).
         self.sent = Some([0; DEVICE_IDS]);
+        self.slew = None;
     }
 
     fn follow(&mut self, now: &Now) -> Result<(), String> {
@@ -211,6 +272,45 @@ impl Stage for Plen2Stage {
                 self.lost = Some(reason.to_string());
             }
         }
+        if let Some((slew, speed)) = &mut self.slew {
+            let moves: Vec<(u8, i16)> = slew
+                .step(now, *speed)
+                .into_iter()
+                .map(|(index, angle)| (Joint::ALL[index].device_id(), angle))
+                .collect();
+            if !moves.is_empty() {
+                self.handle.move_joints(moves);
+            }
+        }
+    }
+
+    fn start_list(&mut self, entries: &[(u8, u8)]) -> Result<(), String> {
+        self.slew = None;
+        self.handle.queue_list(entries);
+        self.requester.send(Plen2Command::Pop).map_err(|error| error.to_string())
+    }
+
+    fn pose(&mut self, axis: Axis, value_deg: f64, speed: LiveSpeed) -> Result<f64, String> {
+        let Axis::Joint(device) = axis else { return Err("a PLEN2's axes are joints".into()) };
+        let joint = Joint::ALL.iter().find(|joint| joint.device_id() == device).ok_or(format!("no joint {device}"))?;
+        let (home, min, max) = self.settings[usize::from(device)];
+        // Tenths of a degree of a finite value within ±180°.
+        #[allow(clippy::cast_possible_truncation)]
+        let tenths = (value_deg.clamp(-180.0, 180.0) * 10.0).round() as i16;
+        let target = home.saturating_add(tenths).clamp(min.min(max), max.max(min));
+        let now = Instant::now();
+        let (slew, pace) = self.slew.get_or_insert_with(|| {
+            // Where the joints are: where they were last told, else home.
+            let told = self.sent.unwrap_or([0; DEVICE_IDS]);
+            let at: [i16; 18] = std::array::from_fn(|index| {
+                let id = usize::from(Joint::ALL[index].device_id());
+                self.settings[id].0.saturating_add(told[id])
+            });
+            (Slew::new(at, at, now), speed)
+        });
+        slew.target[joint.index()] = target;
+        *pace = speed;
+        Ok(f64::from(target - home) / 10.0)
     }
 
     fn lost(&self) -> Option<String> {
@@ -246,6 +346,10 @@ impl Stage for RflexStage {
         self.base.stop();
         self.base.set_brake(true);
         self.driving = Some(None);
+    }
+
+    fn drive(&mut self, drive: (f64, f64)) -> Result<(), String> {
+        self.follow(&Now::Driving(Some(drive)))
     }
 
     fn follow(&mut self, now: &Now) -> Result<(), String> {

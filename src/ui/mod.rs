@@ -29,7 +29,6 @@ mod servo;
 mod shell;
 pub mod show;
 pub mod sound;
-pub mod speed;
 mod transport;
 pub mod view3d;
 

@@ -2,10 +2,10 @@
 
 use std::path::PathBuf;
 
+use crate::device::speed::LiveSpeed;
 use crate::project::Family;
 use crate::ui::i18n::Language;
 use crate::ui::layout::Layout;
-use crate::ui::speed::LiveSpeed;
 
 /// What is remembered between runs (the window's size and place are
 /// remembered by eframe itself).

@@ -120,7 +120,7 @@ pub struct Shell<'a> {
     /// The interface language.
     pub language: Language,
     /// How fast anything sent live may turn a servo or joint.
-    pub speed: crate::ui::speed::LiveSpeed,
+    pub speed: crate::device::speed::LiveSpeed,
     /// Where backups go (under `backups/`).
     pub data_dir: &'a Path,
     /// Wakes the window from other threads.

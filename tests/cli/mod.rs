@@ -8,6 +8,7 @@ mod hostile;
 mod inputs;
 pub mod play;
 mod robust;
+mod serve;
 mod servo;
 mod sim_log;
 mod trajectory;

@@ -10,7 +10,7 @@ use super::source::{Body, Channel, Clip, Source, Timing};
 use crate::project::{Family, Project};
 
 /// How fast a move of no time is made to go, °/s: the live speed limit's
-/// default (`ui::speed::DEFAULT_DEG_PER_S`), the rule that keeps a servo from slamming.
+/// default (`device::speed::DEFAULT_DEG_PER_S`), the rule that keeps a servo from slamming.
 pub const LIVE_DEG_PER_S: f64 = 180.0;
 
 /// Which clips to convert.

@@ -2,8 +2,8 @@
 //! a shortcut or a dialog pushed, applied in order.
 
 use super::*;
+use crate::device::speed::LiveSpeed;
 use crate::project::LivePose;
-use crate::ui::speed::LiveSpeed;
 
 impl StudioApp {
     /// Applies one action. The only place that changes the editor's state.

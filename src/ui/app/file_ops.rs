@@ -154,7 +154,7 @@ impl StudioApp {
                 let label = ui.label(words.live_speed_limit);
                 let mut deg_per_s = self.live_speed.deg_per_s();
                 let drag = egui::DragValue::new(&mut deg_per_s)
-                    .range(crate::ui::speed::RANGE_DEG_PER_S)
+                    .range(crate::device::speed::RANGE_DEG_PER_S)
                     .speed(1.0)
                     .suffix(" °/s");
                 let response = ui.add(drag).labelled_by(label.id).on_hover_text(words.live_speed_hint);

@@ -28,6 +28,7 @@ pub use dialogs::{Picker, system_picker};
 pub use file_desk::FileDesk;
 pub use link_desk::{Connecting, LinkDesk};
 
+use crate::device::speed::LiveSpeed;
 use crate::link::{Opener, PortInfo, Waker};
 use crate::project::{Family, Project};
 use crate::ui::action::{Action, AfterUnsaved, FileRequest, Tab};
@@ -40,7 +41,6 @@ use crate::ui::i18n::Language;
 use crate::ui::layout::Layout;
 pub use crate::ui::remembered::Remembered;
 use crate::ui::shell::{RunningOperation, Shell, ShellView, StatusLine};
-use crate::ui::speed::LiveSpeed;
 
 /// The whole editor: the document, the link and what runs on it, each
 /// family's side, and the desks that do the rest (files, connecting, the

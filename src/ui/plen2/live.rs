@@ -12,12 +12,12 @@ use crate::authoring::fit::{self, Budget, FitError, Plen2Board};
 use crate::authoring::fitted::{PLEN2_UPDATE_MS, plen2_frames};
 use crate::authoring::recording::Recorder;
 use crate::device::plen2::playback::{self, DEVICE_IDS, StoredMotions};
+use crate::device::speed::{PLEN2_CYCLE, Slew};
 use crate::project::Edit;
 use crate::project::plen2::MAX_FRAMES;
 use crate::project::plen2::{Frame, Joint, Motion, Plen2Project, Pose};
 use crate::ui::plen2::captions::Plen2Words;
 use crate::ui::shell::Shell;
-use crate::ui::speed::{PLEN2_CYCLE, Slew};
 
 /// A motion played from one of its frames by streaming its poses live.
 #[derive(Debug)]

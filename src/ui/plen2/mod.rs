@@ -64,7 +64,7 @@ pub struct Plen2Ui {
     turning: Option<[i16; 18]>,
     stream: Option<live::Stream>,
     /// Joints walked toward the sliders at the live speed limit.
-    slew: Option<crate::ui::speed::Slew>,
+    slew: Option<crate::device::speed::Slew>,
     /// The live pose being recorded into a motion.
     recording: Option<live::Recording>,
     /// What the robot held when last read.

@@ -9,11 +9,11 @@ use crate::authoring::bake_servo;
 use crate::authoring::fit::{self, Board, ServoBoard};
 use crate::authoring::fitted::{self, SERVO_UPDATE_MS};
 use crate::device::servo::ServoMove;
+use crate::device::speed::LiveSpeed;
 use crate::project::{Action as ProjectAction, Edit, Run, ServoProject, Step, next_free_id};
 use crate::ui::i18n::Worded;
 use crate::ui::servo::captions::ServoWords;
 use crate::ui::shell::Shell;
-use crate::ui::speed::LiveSpeed;
 use std::collections::BTreeMap;
 
 /// A live move as sent: the board turns the servo linearly from `from` to

@@ -7,15 +7,21 @@
 //! the show or the editor does too.
 
 use std::path::PathBuf;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use crossbeam_channel::{Receiver, Sender};
 
-use super::Show;
-use super::at::now_at;
+mod worker;
+
+use std::sync::{Arc, Condvar, Mutex};
+
 use super::passes::Axis;
 use super::play::{Player, Stage, Stopped};
+use super::{Show, Start};
+use crate::device::speed::LiveSpeed;
 use crate::link::Waker;
+pub use worker::DEAD_MAN;
+use worker::Worker;
 
 /// How often the worker looks at its links while it waits.
 const LOOK_EVERY: Duration = Duration::from_millis(20);
@@ -56,10 +62,115 @@ enum Order {
     Rest,
     /// Play the show on the boards with its sound.
     Play(Box<Show>, Option<PathBuf>),
+    /// A remote: run this on the device (its caption), queued behind what it plays (`true`) or refused.
+    Run(usize, (Run, String), bool, Sender<Result<&'static str, Refused>>),
+    /// A remote: stop this device.
+    StopOne(usize),
+    /// A remote: an axis of the device to a value (degrees), paced and limited as a slider; the value it took.
+    Pose(usize, Axis, f64, Sender<Result<f64, Refused>>),
+    /// A remote: drive a base (speed m/s, turn °/s; None: a heartbeat only).
+    Drive(usize, Option<(f64, f64)>, Sender<Result<(), Refused>>),
+    /// How fast a remote's pose may move a servo or a joint.
+    Speed(LiveSpeed),
 }
+
+/// What a remote runs on a device: a cue's start, or a PLEN2's play list (slot, plays).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Run {
+    /// A macro, a motion or a timed drive.
+    Start(Start),
+    /// A play list: each slot played so many times (0: forever), in order.
+    List(Vec<(u8, u8)>),
+}
+
+/// Why a remote's order was not carried out.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum Refused {
+    /// The device plays something else (or the show plays).
+    #[error("busy: {0}")]
+    Busy(String),
+    /// The device is not connected.
+    #[error("{0} is not connected")]
+    NotConnected(String),
+    /// The device cannot do it (why).
+    #[error("{0}")]
+    Cannot(String),
+    /// The boards did not answer in time.
+    #[error("the boards did not answer in time")]
+    Late,
+}
+
+/// A device as a remote's status says it.
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
+pub struct DeviceStatus {
+    /// Its name in the show.
+    pub name: String,
+    /// Its family's tag (`servo`, `plen2`, `rflex`).
+    pub family: String,
+    /// Its link, said ("answered (0.4 ms to reach it)", "lost: …").
+    pub link: String,
+    /// Its battery, when the board tells it.
+    pub battery: Option<String>,
+    /// What it plays now.
+    pub playing: Option<String>,
+    /// What it plays next.
+    pub queued: Vec<String>,
+    /// Whether a remote drives it (heartbeats arriving).
+    pub driven: bool,
+}
+
+/// Every device's status, numbered as it changes.
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
+pub struct Status {
+    /// Which change this is.
+    pub revision: u64,
+    /// Whether the show plays on the boards.
+    pub show_playing: bool,
+    /// Each device, in the show's order.
+    pub devices: Vec<DeviceStatus>,
+}
+
+/// The status, shared between the worker and the remotes reading it.
+#[derive(Debug, Default)]
+pub struct Shared {
+    status: Mutex<Status>,
+    changed: Condvar,
+}
+
+impl Shared {
+    fn publish(&self, devices: Vec<DeviceStatus>, show_playing: bool) {
+        let Ok(mut status) = self.status.lock() else { return };
+        if status.devices != devices || status.show_playing != show_playing {
+            status.devices = devices;
+            status.show_playing = show_playing;
+            status.revision += 1;
+            self.changed.notify_all();
+        }
+    }
+}
+
+/// How long a remote's run keeps its device busy, ms.
+fn run_length_ms(device: &super::Device, run: &Run) -> u64 {
+    match run {
+        Run::Start(start) => super::play::cue_length_ms(device, start),
+        Run::List(entries) => entries
+            .iter()
+            .map(|&(slot, plays)| {
+                if plays == 0 {
+                    return u64::MAX / 4;
+                }
+                super::play::cue_length_ms(device, &Start::Slot(slot)).saturating_mul(u64::from(plays))
+            })
+            .fold(0, u64::saturating_add),
+    }
+}
+
+/// How long a remote waits for the boards to take an order.
+const ANSWER_WITHIN: Duration = Duration::from_secs(2);
 
 /// The boards of a show, connected.
 pub struct Boards {
+    shared: Arc<Shared>,
     orders: Sender<Order>,
     stop: Sender<String>,
     heard: Receiver<Heard>,
@@ -81,16 +192,65 @@ impl Boards {
         let (stop, stopped) = crossbeam_channel::unbounded();
         let (say, heard) = crossbeam_channel::unbounded();
         let show = show.clone();
+        let shared = Arc::new(Shared::default());
+        let theirs = Arc::clone(&shared);
         let worker = std::thread::Builder::new().name("show boards".into()).spawn(move || {
             let tell = |heard: Heard| {
                 let _ = say.send(heard);
                 waker();
             };
-            let mut worker = Worker::connect(show, &tell);
+            let mut worker = Worker::connect(show, theirs, &tell);
             worker.serve(&taken, &stopped, &tell);
             worker.stop_all();
         })?;
-        Ok(Self { orders, stop, heard, worker: Some(worker) })
+        Ok(Self { shared, orders, stop, heard, worker: Some(worker) })
+    }
+
+    /// A remote: runs `run` (called `caption`) on the device at `index` —
+    /// "started", or "queued" behind what it plays when `queue`; else why not.
+    pub fn run(&self, index: usize, run: Run, caption: &str, queue: bool) -> Result<&'static str, Refused> {
+        self.ask(|reply| Order::Run(index, (run, caption.to_string()), queue, reply))?
+    }
+
+    /// A remote: stops the device at `index` (a base brakes).
+    pub fn stop_one(&self, index: usize) {
+        let _ = self.orders.send(Order::StopOne(index));
+    }
+
+    /// A remote: an axis of the device at `index` to `value` degrees, paced
+    /// and limited as a slider is; the value it took (within the limits).
+    pub fn pose(&self, index: usize, axis: Axis, value: f64) -> Result<f64, Refused> {
+        self.ask(|reply| Order::Pose(index, axis, value, reply))?
+    }
+
+    /// A remote: drives the base at `index` (speed m/s, turn °/s), or only
+    /// keeps it driving (None); it stops [`DEAD_MAN`] after the last of these.
+    pub fn drive(&self, index: usize, drive: Option<(f64, f64)>) -> Result<(), Refused> {
+        self.ask(|reply| Order::Drive(index, drive, reply))?
+    }
+
+    /// How fast a remote's pose may move a servo or a joint (the editor's live speed).
+    pub fn set_speed(&self, speed: LiveSpeed) {
+        let _ = self.orders.send(Order::Speed(speed));
+    }
+
+    /// Every device's status now.
+    pub fn status(&self) -> Status {
+        self.shared.status.lock().map(|status| status.clone()).unwrap_or_default()
+    }
+
+    /// The status once its revision is past `seen`, or as it is after `within`.
+    pub fn status_after(&self, seen: u64, within: Duration) -> Status {
+        let Ok(status) = self.shared.status.lock() else { return Status::default() };
+        let waited = self.shared.changed.wait_timeout_while(status, within, |status| status.revision <= seen);
+        waited.map(|(status, _)| status.clone()).unwrap_or_default()
+    }
+
+    /// Sends an order with a reply and waits for it (a show playing holds the worker: said as late).
+    fn ask<T>(&self, order: impl FnOnce(Sender<T>) -> Order) -> Result<T, Refused> {
+        let (reply, answer) = crossbeam_channel::bounded(1);
+        self.orders.send(order(reply)).map_err(|_| Refused::Late)?;
+        answer.recv_timeout(ANSWER_WITHIN).map_err(|_| Refused::Late)
     }
 
     /// Follows `show` from now on (servo boards are let move again after a STOP).
@@ -122,6 +282,11 @@ impl Boards {
     pub fn heard(&self) -> Vec<Heard> {
         self.heard.try_iter().collect()
     }
+
+    /// The next thing the worker says, waiting up to `within`.
+    pub fn hear_within(&self, within: Duration) -> Option<Heard> {
+        self.heard.recv_timeout(within).ok()
+    }
 }
 
 impl Drop for Boards {
@@ -133,185 +298,6 @@ impl Drop for Boards {
         if let Some(worker) = self.worker.take() {
             let _ = worker.join();
         }
-    }
-}
-
-/// The worker's side: a stage per device (None: it did not answer or is lost).
-struct Worker {
-    show: Show,
-    stages: Vec<Option<Box<dyn Stage>>>,
-    /// The show being followed, and when each board was last told.
-    following: Option<(Show, Vec<Option<Instant>>)>,
-    /// The newest time not yet told (it waits for [`FOLLOW_EVERY`]).
-    pending: Option<(u64, Option<Held>)>,
-}
-
-impl Worker {
-    /// Connects every device in turn, saying how each answered.
-    fn connect(show: Show, tell: &dyn Fn(Heard)) -> Self {
-        let mut stages = Vec::new();
-        for (index, device) in show.devices.iter().enumerate() {
-            let stage = match connect_one(device) {
-                Ok((stage, delay)) => {
-                    tell(Heard::Linked(index, Ok(delay)));
-                    Some(stage)
-                }
-                Err(why) => {
-                    tell(Heard::Linked(index, Err(why)));
-                    None
-                }
-            };
-            stages.push(stage);
-        }
-        Self { show, stages, following: None, pending: None }
-    }
-
-    /// Takes orders until the editor lets the boards go.
-    fn serve(&mut self, orders: &Receiver<Order>, stop: &Receiver<String>, tell: &dyn Fn(Heard)) {
-        loop {
-            let wait = if self.pending.is_some() { FOLLOW_EVERY / 2 } else { LOOK_EVERY };
-            crossbeam_channel::select! {
-                recv(orders) -> order => match order {
-                    Ok(order) => self.take(order, stop, tell),
-                    Err(_) => return,
-                },
-                recv(stop) -> why => {
-                    self.stop_all();
-                    self.following = None;
-                    if why.is_err() {
-                        return;
-                    }
-                }
-                default(wait) => {}
-            }
-            self.tell_pending();
-            self.look(tell);
-        }
-    }
-
-    fn take(&mut self, order: Order, stop: &Receiver<String>, tell: &dyn Fn(Heard)) {
-        match order {
-            Order::Follow(show) => {
-                for stage in self.stages.iter_mut().flatten() {
-                    stage.resume();
-                }
-                let told = vec![None; show.devices.len()];
-                self.following = Some((*show, told));
-            }
-            Order::At(t_ms, held) => self.pending = Some((t_ms, held)),
-            Order::Rest => {
-                self.tell_pending();
-                self.following = None;
-                for stage in self.stages.iter_mut().flatten() {
-                    // A base at rest; servos and joints hold where they are.
-                    let _ = stage.follow(&super::at::Now::Driving(None));
-                }
-            }
-            Order::Play(show, sound) => {
-                self.following = None;
-                let played = self.play(&show, sound, stop);
-                tell(Heard::Played(played));
-            }
-        }
-    }
-
-    /// Tells every following board where the show has it now.
-    fn tell_pending(&mut self) {
-        let (Some((t_ms, held)), Some((show, told))) = (self.pending, &mut self.following) else { return };
-        let now = Instant::now();
-        if told.iter().flatten().any(|at| now.saturating_duration_since(*at) < FOLLOW_EVERY) {
-            return;
-        }
-        self.pending = None;
-        for (index, (stage, told)) in self.stages.iter_mut().zip(told.iter_mut()).enumerate() {
-            let Some(stage) = stage else { continue };
-            let held = held.filter(|(device, ..)| *device == index).map(|(_, axis, value)| (axis, value));
-            let Some(at) = now_at(show, index, t_ms, held) else { continue };
-            if stage.follow(&at).is_ok() {
-                *told = Some(now);
-            }
-        }
-    }
-
-    /// Keeps links fresh and says which was lost: one the show needs stops
-    /// every device while they follow.
-    fn look(&mut self, tell: &dyn Fn(Heard)) {
-        let now = Instant::now();
-        let mut lost = Vec::new();
-        for (index, slot) in self.stages.iter_mut().enumerate() {
-            let Some(stage) = slot else { continue };
-            stage.tick(now);
-            if let Some(why) = stage.lost() {
-                lost.push((index, why));
-                *slot = None;
-            }
-        }
-        for (device, why) in lost {
-            let needed = !self.show.devices.get(device).is_some_and(|device| device.play_on_without);
-            let all_stopped = needed && self.following.is_some();
-            if all_stopped {
-                self.stop_all();
-                self.following = None;
-            }
-            tell(Heard::Lost { device, why, all_stopped });
-        }
-    }
-
-    /// Plays `show` once on the boards (the same player as `servo-studio
-    /// play`); what it says at the end. Every device must be connected,
-    /// unless the show plays on without it.
-    fn play(&mut self, show: &Show, sound: Option<PathBuf>, stop: &Receiver<String>) -> Result<String, Stopped> {
-        let missing = show
-            .devices
-            .iter()
-            .zip(&self.stages)
-            .find(|(device, stage)| stage.is_none() && !device.play_on_without)
-            .map(|(device, _)| device.name.clone());
-        if let Some(device) = missing {
-            let why = "it is not connected: connect the boards again".to_string();
-            return Err(Stopped::Failed { device, why });
-        }
-        let stages: Vec<Box<dyn Stage>> = self
-            .stages
-            .iter_mut()
-            .map(|stage| {
-                let mut stage = stage.take().unwrap_or_else(|| Box::new(Gone));
-                stage.resume();
-                stage
-            })
-            .collect();
-        let sound = sound.and_then(|path| crate::audio::output::Speakers::connect().ok().map(|out| (out, path)));
-        let mut player = Player { show, stages, sound, stop: stop.clone() };
-        let ran = player.run();
-        for (slot, stage) in self.stages.iter_mut().zip(player.stages) {
-            *slot = (stage.lost().is_none()).then_some(stage);
-        }
-        ran.map(|ran| super::play::ran_words(&ran))
-    }
-
-    fn stop_all(&mut self) {
-        for stage in self.stages.iter_mut().flatten() {
-            stage.stop();
-        }
-    }
-}
-
-/// A device that did not answer, played on without.
-struct Gone;
-
-impl Stage for Gone {
-    fn start_delay(&self, _start: &super::Start) -> Duration {
-        Duration::ZERO
-    }
-
-    fn start(&mut self, _start: &super::Start) -> Result<(), String> {
-        Ok(())
-    }
-
-    fn stop(&mut self) {}
-
-    fn lost(&self) -> Option<String> {
-        Some("it did not answer".into())
     }
 }
 

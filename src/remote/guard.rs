@@ -1,0 +1,132 @@
+//! Who may drive the robot, and how much: a remote listens on the loopback
+//! address unless told otherwise, and then only with a token (a bearer
+//! token, compared in constant time); a browser page of another site is
+//! turned away by its `Origin`; requests beyond a steady rate are refused
+//! (429), STOP never.
+
+use std::net::SocketAddr;
+use std::path::Path;
+use std::sync::Mutex;
+use std::time::Instant;
+
+use subtle::ConstantTimeEq;
+
+/// Requests a second a remote may send, on average.
+pub const RATE_PER_S: f64 = 100.0;
+/// How many it may send at once above that.
+pub const BURST: f64 = 50.0;
+/// The shortest token a file may hold.
+const SHORTEST_TOKEN: usize = 16;
+
+/// The rules a server applies to every request.
+#[derive(Debug)]
+pub struct Guard {
+    token: Option<Vec<u8>>,
+    /// The origins of the server's own pages (`http://127.0.0.1:8765`, …).
+    own_origins: Vec<String>,
+    /// Tokens left, and when they were counted.
+    bucket: Mutex<(f64, Instant)>,
+}
+
+impl Guard {
+    /// The rules for a server on `listen` with `token` (from `--token-file`):
+    /// an address other than loopback needs a token.
+    pub fn new(listen: SocketAddr, token: Option<String>) -> Result<Self, String> {
+        if !listen.ip().is_loopback() && token.is_none() {
+            return Err(format!(
+                "listening on {listen} lets other machines in: give --token-file FILE (a secret of at least {SHORTEST_TOKEN} characters), or listen on 127.0.0.1"
+            ));
+        }
+        let port = listen.port();
+        let own_origins =
+            ["127.0.0.1", "localhost", "[::1]"].iter().map(|host| format!("http://{host}:{port}")).collect();
+        Ok(Self { token: token.map(String::into_bytes), own_origins, bucket: Mutex::new((BURST, Instant::now())) })
+    }
+
+    /// Whether a token is needed.
+    pub fn needs_token(&self) -> bool {
+        self.token.is_some()
+    }
+
+    /// Whether `given` is the token (anything, when none is needed); compared in constant time.
+    pub fn token_ok(&self, given: Option<&str>) -> bool {
+        let Some(token) = &self.token else { return true };
+        let given = given.unwrap_or_default().as_bytes();
+        // The length is no secret; the bytes are compared without an early end.
+        given.len() == token.len() && bool::from(given.ct_eq(token))
+    }
+
+    /// Whether a request with this `Origin` header may act: none (not a
+    /// browser), or the server's own page; another site's page may not.
+    pub fn origin_ok(&self, origin: Option<&str>) -> bool {
+        origin.is_none_or(|origin| self.own_origins.iter().any(|own| own == origin))
+    }
+
+    /// Whether the request is let through now: STOP always; others while the
+    /// rate allows ([`RATE_PER_S`], bursts of [`BURST`]).
+    pub fn admit(&self, stops: bool) -> bool {
+        if stops {
+            return true;
+        }
+        let Ok(mut bucket) = self.bucket.lock() else { return false };
+        let now = Instant::now();
+        let (left, counted) = *bucket;
+        let left = (left + now.saturating_duration_since(counted).as_secs_f64() * RATE_PER_S).min(BURST);
+        if left >= 1.0 {
+            *bucket = (left - 1.0, now);
+            true
+        } else {
+            *bucket = (left, now);
+            false
+        }
+    }
+}
+
+/// The token in `path`: its first line, trimmed; a file too short or unreadable is an error.
+pub fn read_token(path: &Path) -> Result<String, String> {
+    let text =
+        std::fs::read_to_string(path).map_err(|error| format!("cannot read the token {}: {error}", path.display()))?;
+    let token = text.lines().next().unwrap_or_default().trim().to_string();
+    if token.chars().count() < SHORTEST_TOKEN {
+        return Err(format!(
+            "the token in {} is shorter than {SHORTEST_TOKEN} characters: make a longer secret",
+            path.display()
+        ));
+    }
+    Ok(token)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn another_machine_needs_a_token_and_only_the_right_one_gets_in() {
+        let anywhere: SocketAddr = "0.0.0.0:8765".parse().unwrap();
+        assert!(Guard::new(anywhere, None).unwrap_err().contains("--token-file"));
+        let guard = Guard::new(anywhere, Some("a-secret-of-24-letters!!".into())).unwrap();
+        assert!(guard.token_ok(Some("a-secret-of-24-letters!!")));
+        assert!(!guard.token_ok(Some("a-secret-of-24-letters!?")));
+        assert!(!guard.token_ok(Some("a-secret")) && !guard.token_ok(None));
+        let local = Guard::new("127.0.0.1:8765".parse().unwrap(), None).unwrap();
+        assert!(local.token_ok(None) && !local.needs_token());
+    }
+
+    #[test]
+    fn only_the_servers_own_page_or_no_browser_may_act() {
+        let guard = Guard::new("127.0.0.1:8765".parse().unwrap(), None).unwrap();
+        assert!(guard.origin_ok(None));
+        assert!(guard.origin_ok(Some("http://localhost:8765")));
+        assert!(!guard.origin_ok(Some("https://evil.example")));
+        assert!(!guard.origin_ok(Some("http://127.0.0.1:9999")));
+    }
+
+    #[test]
+    fn a_flood_is_refused_beyond_the_burst_and_stop_never_is() {
+        let guard = Guard::new("127.0.0.1:8765".parse().unwrap(), None).unwrap();
+        // Counted at once: a burst's worth, then a few more as the clock moves on.
+        let admitted = (0..1000).filter(|_| guard.admit(false)).count();
+        assert!((50..1000).contains(&admitted), "{admitted}");
+        assert!((0..100).all(|_| guard.admit(true)), "STOP is always let through");
+    }
+}

@@ -1,0 +1,314 @@
+//! Remote control: other programs — cue software (QLab, TouchDesigner),
+//! control surfaces (Bitfocus Companion, a Stream Deck), Home Assistant —
+//! play and stop a show's devices, pose them and drive them, over HTTP + JSON
+//! (`http`, documented in `docs/remote-openapi.yaml`) or OSC over UDP
+//! (`osc`). Both speak the same [`Verb`]s to one [`Remote`], which carries
+//! them out on the show's held boards (`show::boards`): a pose paced and
+//! limited as a slider, a base driven only while heartbeats arrive.
+//! Who may get in, how much, and from where is `guard`'s.
+
+pub mod guard;
+pub mod http;
+pub mod osc;
+mod verbs;
+
+use std::sync::Weak;
+
+use serde_json::{Value, json};
+
+use crate::show::boards::{Boards, Refused, Run};
+use crate::show::passes::Axis;
+use crate::show::{Device, Show, Start};
+pub use verbs::{BadRequest, Verb};
+
+/// An answer: an HTTP status code (OSC replies with it too) and a JSON body.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Reply {
+    /// 200, 400, 404, 409, …
+    pub code: u16,
+    /// What it says.
+    pub body: Value,
+}
+
+impl Reply {
+    fn ok(body: Value) -> Self {
+        Self { code: 200, body }
+    }
+
+    /// An error with its code and what to say.
+    pub fn error(code: u16, said: impl Into<String>) -> Self {
+        Self { code, body: json!({ "error": said.into() }) }
+    }
+}
+
+/// The verbs carried out on a show's held boards.
+#[derive(Debug, Clone)]
+pub struct Remote {
+    show: Show,
+    boards: Weak<Boards>,
+    /// A play on a busy device waits its turn (true) or is refused with 409.
+    pub queue: bool,
+}
+
+impl Remote {
+    /// The verbs on `show`'s devices, held by `boards` (gone: every verb is 503).
+    pub fn new(show: Show, boards: Weak<Boards>, queue: bool) -> Self {
+        Self { show, boards, queue }
+    }
+
+    /// The show served.
+    pub fn show(&self) -> &Show {
+        &self.show
+    }
+
+    /// The boards, while they are held.
+    pub fn boards(&self) -> Option<std::sync::Arc<Boards>> {
+        self.boards.upgrade()
+    }
+
+    /// Carries out `verb`.
+    pub fn act(&self, verb: &Verb) -> Reply {
+        let Some(boards) = self.boards.upgrade() else {
+            return Reply::error(503, "the show's boards are not connected");
+        };
+        match self.carried(verb, &boards) {
+            Ok(reply) => reply,
+            Err(reply) => reply,
+        }
+    }
+
+    fn carried(&self, verb: &Verb, boards: &Boards) -> Result<Reply, Reply> {
+        Ok(match verb {
+            Verb::Devices => Reply::ok(json!({ "devices": self.show.devices.iter().map(listed).collect::<Vec<_>>() })),
+            Verb::Device(name) => Reply::ok(listed(self.device(name)?.1)),
+            Verb::Show => Reply::ok(self.listed_show()),
+            Verb::Status => Reply::ok(json!(boards.status())),
+            Verb::Stop(None) => {
+                boards.stop();
+                Reply::ok(json!({ "stopped": "every device" }))
+            }
+            Verb::Stop(Some(name)) => {
+                let (index, device) = self.device(name)?;
+                boards.stop_one(index);
+                Reply::ok(json!({ "stopped": device.name }))
+            }
+            Verb::Play { device, what } => {
+                let (index, device) = self.device(device)?;
+                let (run, caption) = runnable(device, what)?;
+                let said = boards.run(index, run, &caption, self.queue).map_err(|why| refused(&why))?;
+                Reply::ok(json!({ "device": device.name, "plays": caption, "as": said }))
+            }
+            Verb::PlayShow => {
+                if boards.status().show_playing {
+                    return Err(Reply::error(409, "the show is already playing"));
+                }
+                boards.play(&self.show, None);
+                Reply::ok(json!({ "plays": "the show" }))
+            }
+            Verb::Pose { device, axis, value } => {
+                let (index, device) = self.device(device)?;
+                let axis_of = axis_of(device, axis)?;
+                let took = boards.pose(index, axis_of, *value).map_err(|why| refused(&why))?;
+                Reply::ok(json!({ "device": device.name, "axis": axis, "value": took }))
+            }
+            Verb::Drive { device, speed_m_s, turn_deg_s } => {
+                let (index, device) = self.device(device)?;
+                boards.drive(index, Some((*speed_m_s, *turn_deg_s))).map_err(|why| refused(&why))?;
+                Reply::ok(json!({ "device": device.name, "drives": [speed_m_s, turn_deg_s] }))
+            }
+            Verb::Heartbeat(device) => {
+                let (index, device) = self.device(device)?;
+                boards.drive(index, None).map_err(|why| refused(&why))?;
+                Reply::ok(json!({ "device": device.name, "heartbeat": true }))
+            }
+        })
+    }
+
+    /// The device called `name` and where it is in the show; or 404.
+    fn device(&self, name: &str) -> Result<(usize, &Device), Reply> {
+        self.show
+            .devices
+            .iter()
+            .enumerate()
+            .find(|(_, device)| device.name == name)
+            .ok_or_else(|| Reply::error(404, format!("no device {name:?} in the show")))
+    }
+
+    fn listed_show(&self) -> Value {
+        let cues: Vec<Value> = self
+            .show
+            .cues
+            .iter()
+            .map(|cue| json!({ "device": cue.device, "at_ms": cue.at_ms, "start": format!("{:?}", cue.start) }))
+            .collect();
+        json!({
+            "devices": self.show.devices.iter().map(|device| device.name.clone()).collect::<Vec<_>>(),
+            "cues": cues,
+            "sound": self.show.sound.as_ref().map(|sound| sound.path.clone()),
+        })
+    }
+}
+
+/// What a refused order answers.
+fn refused(refused: &Refused) -> Reply {
+    let code = match refused {
+        Refused::Busy(_) => 409,
+        Refused::NotConnected(_) | Refused::Late => 503,
+        Refused::Cannot(_) => 422,
+    };
+    Reply::error(code, refused.to_string())
+}
+
+/// A device as listed: its family, link-free, and what it holds to play and pose.
+fn listed(device: &Device) -> Value {
+    let project = &device.project;
+    let servo = &project.servo;
+    let plen2 = &project.plen2;
+    json!({
+        "name": device.name,
+        "family": project.family.tag(),
+        "macros": servo.macros.iter().map(|m| json!({ "id": m.id, "caption": m.caption })).collect::<Vec<_>>(),
+        "motions": plen2.motions.iter().map(|m| json!({ "slot": m.slot, "name": m.name })).collect::<Vec<_>>(),
+        "play_lists": plen2.play_lists.iter().map(|l| json!({ "name": l.name, "entries": l.entries.len() })).collect::<Vec<_>>(),
+        "axes": axes(device).into_iter().map(|(name, _)| name).collect::<Vec<_>>(),
+    })
+}
+
+/// What `what` names on `device`: a servo board's macro (by id or caption),
+/// a PLEN2's motion (by slot or name) or play list (by name); or 404.
+fn runnable(device: &Device, what: &str) -> Result<(Run, String), Reply> {
+    let project = &device.project;
+    let number: Option<i64> = what.trim().parse().ok();
+    let family = project.family;
+    if family == crate::project::Family::Servo {
+        let found = project.servo.macros.iter().find(|m| number == Some(i64::from(m.id)) || m.caption == what);
+        return found
+            .map(|m| (Run::Start(Start::Macro(m.id)), format!("macro {} {}", m.id, m.caption)))
+            .ok_or_else(|| Reply::error(404, format!("{} has no macro {what:?}", device.name)));
+    }
+    if family == crate::project::Family::Plen2 {
+        let plen2 = &project.plen2;
+        if let Some(m) = plen2.motions.iter().find(|m| number == Some(i64::from(m.slot)) || m.name == what) {
+            return Ok((Run::Start(Start::Slot(m.slot)), format!("motion {} {}", m.slot, m.name)));
+        }
+        if let Some(list) = plen2.play_lists.iter().find(|list| list.name == what) {
+            let entries = list.entries.iter().map(|entry| (entry.slot, entry.plays)).collect();
+            return Ok((Run::List(entries), format!("play list {}", list.name)));
+        }
+        return Err(Reply::error(404, format!("{} has no motion or play list {what:?}", device.name)));
+    }
+    Err(Reply::error(422, format!("{} is a base: drive it (POST /devices/{}/drive)", device.name, device.name)))
+}
+
+/// The device's axes a pose may move, named: a servo's id (and caption), a PLEN2 joint's name.
+fn axes(device: &Device) -> Vec<(String, Axis)> {
+    let project = &device.project;
+    if project.family == crate::project::Family::Plen2 {
+        return crate::project::plen2::Joint::ALL
+            .iter()
+            .map(|joint| (joint.name().to_string(), Axis::Joint(joint.device_id())))
+            .collect();
+    }
+    project.servo.servos.iter().map(|servo| (servo.id.to_string(), Axis::Servo(servo.id))).collect()
+}
+
+/// The axis `name` names on `device` (a servo by id or caption, a joint by name or device id); or 404.
+fn axis_of(device: &Device, name: &str) -> Result<Axis, Reply> {
+    let by_caption = device.project.servo.servos.iter().find(|servo| servo.caption == name).map(|s| Axis::Servo(s.id));
+    let joint_id = name.parse::<u8>().ok().filter(|_| device.project.family == crate::project::Family::Plen2);
+    axes(device)
+        .into_iter()
+        .find(|(axis, found)| axis == name || joint_id.is_some_and(|id| *found == Axis::Joint(id)))
+        .map(|(_, axis)| axis)
+        .or(by_caption)
+        .ok_or_else(|| Reply::error(404, format!("{} has no servo or joint {name:?}", device.name)))
+}
+
+#[cfg(test)]
+mod tests {
+    use std::sync::Weak;
+
+    use proptest::prelude::*;
+    use rosc::{OscMessage, OscPacket, OscType};
+
+    use super::guard::Guard;
+    use super::*;
+
+    fn remote() -> Remote {
+        let show = Show::of_one("skull", crate::project::Project::empty(crate::project::Family::Servo));
+        Remote::new(show, Weak::new(), false)
+    }
+
+    fn guard(token: Option<&str>) -> Guard {
+        Guard::new("127.0.0.1:8765".parse().unwrap(), token.map(str::to_string)).unwrap()
+    }
+
+    proptest! {
+        /// Any datagram is answered (400 when it is not OSC), never a panic.
+        #[test]
+        fn any_datagram_is_answered_and_never_panics(bytes in proptest::collection::vec(any::<u8>(), 0..600)) {
+            for reply in osc::take(&bytes, &remote(), &guard(None)) {
+                prop_assert!((200..600).contains(&reply.code));
+            }
+        }
+
+        /// Any OSC message — any address, any arguments, a token or not — is answered.
+        #[test]
+        fn any_osc_message_is_answered(
+            address in "/[a-z/]{0,30}",
+            numbers in proptest::collection::vec(any::<f32>(), 0..4),
+            text in ".{0,20}",
+            token in proptest::option::of("[a-z]{16,20}"),
+        ) {
+            let mut args: Vec<OscType> = numbers.into_iter().map(OscType::Float).collect();
+            args.push(OscType::String(text));
+            let packet = rosc::encoder::encode(&OscPacket::Message(OscMessage { addr: address, args })).unwrap();
+            let guard = guard(token.as_deref());
+            for reply in osc::take(&packet, &remote(), &guard) {
+                prop_assert!((200..600).contains(&reply.code));
+                if token.is_some() {
+                    prop_assert_eq!(reply.code, 401, "no token given: {}", reply.body);
+                }
+            }
+        }
+
+        /// Any HTTP method, path and body reads as a verb or as a bad request that says why.
+        #[test]
+        fn any_http_request_is_a_verb_or_says_why_not(
+            method in "(GET|POST|PUT|DELETE)",
+            path in "/[a-z%0-9/]{0,40}",
+            body in proptest::collection::vec(any::<u8>(), 0..300),
+        ) {
+            match verbs::from_http(&method, &path, &body) {
+                Ok(verb) => prop_assert!((200..600).contains(&remote().act(&verb).code)),
+                Err(bad) => prop_assert!(matches!(bad.code, 400 | 404 | 405) && !bad.said.is_empty()),
+            }
+        }
+
+        /// Any JSON-ish body for a pose or a drive never panics, and a number that is not finite is refused.
+        #[test]
+        fn any_body_of_a_pose_or_a_drive_is_read_or_refused(axis in ".{0,10}", value in any::<f64>(), junk in ".{0,10}") {
+            let body = format!(r#"{{"axis": {}, "value": {value}{junk}}}"#, serde_json::json!(axis));
+            let _ = verbs::from_http("POST", "/devices/skull/pose", body.as_bytes());
+            let drive = format!(r#"{{"speed_m_s": {value}}}"#);
+            if let Ok(Verb::Drive { speed_m_s, .. }) = verbs::from_http("POST", "/devices/base/drive", drive.as_bytes()) {
+                prop_assert!(speed_m_s.is_finite());
+            }
+        }
+    }
+
+    #[test]
+    fn the_dead_man_stops_a_base_within_200_ms_of_its_last_heartbeat() {
+        // The worker looks every 20 ms: a heartbeat 180 ms old is seen by 200 ms.
+        assert!(
+            crate::show::boards::DEAD_MAN + std::time::Duration::from_millis(20)
+                <= std::time::Duration::from_millis(200)
+        );
+    }
+
+    #[test]
+    fn with_the_boards_let_go_a_verb_is_answered_503() {
+        let reply = remote().act(&Verb::Stop(None));
+        assert_eq!(reply.code, 503, "{}", reply.body);
+    }
+}
