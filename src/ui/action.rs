@@ -341,6 +341,10 @@ pub enum ShowAction {
     AddFromFile(PathBuf),
     /// Connect every device and hold the links while the window is open (`true`), or let them go.
     Boards(bool),
+    /// Serve remote control on the show's boards (`true`), or stop.
+    Remote(bool),
+    /// Open the remote control window (Settings → Remote control…).
+    RemoteWindow,
     /// Connect every device and play the show.
     Play,
     /// Stop every device.

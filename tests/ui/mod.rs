@@ -19,6 +19,7 @@ mod macros;
 mod plen2;
 mod pose3d;
 mod preview;
+mod remote;
 mod rig3d;
 mod rows;
 mod show;

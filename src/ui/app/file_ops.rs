@@ -146,7 +146,7 @@ impl StudioApp {
         });
     }
 
-    /// Settings: the live speed limit.
+    /// Settings: the live speed limit, remote control.
     pub(super) fn settings_menu(&self, ui: &mut egui::Ui, actions: &mut Vec<Action>) {
         let words = self.language.strings();
         ui.menu_button(words.settings, |ui| {
@@ -162,6 +162,10 @@ impl StudioApp {
                     actions.push(Action::SetLiveSpeed(deg_per_s));
                 }
             });
+            if ui.button(crate::ui::show::words(self.language).remote_menu).clicked() {
+                actions.push(Action::Show(crate::ui::show::ShowAction::RemoteWindow));
+                ui.close();
+            }
         });
     }
 

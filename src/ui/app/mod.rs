@@ -387,6 +387,8 @@ impl StudioApp {
         self.desks.import.window(ui.ctx(), (&self.document.project, &self.files.work), self.language, &mut actions);
         let pad: Vec<(u16, f64)> =
             self.desks.pad.state.as_ref().map(|state| state.axes().collect()).unwrap_or_default();
+        // A remote's poses keep to the editor's live speed limit.
+        self.desks.show.live_speed.0 = self.live_speed;
         self.desks.show.window(ui.ctx(), (self.language, &pad), &mut actions);
         let follower = self.families.get(self.document.project.family).sound_follower();
         let document = (&self.document.project, follower);
@@ -437,7 +439,7 @@ impl StudioApp {
         self.desks.sound.silence();
         // A show's held boards: every device stopped (bases brake) and its link closed.
         self.desks.show.stop();
-        self.desks.show.linked = None;
+        self.desks.show.let_boards_go(crate::ui::show::words(self.language));
         self.drop_link();
         self.links.wait_for_closing(deadline);
         self.finish_file_work(Some(deadline.saturating_duration_since(Instant::now())));

@@ -28,7 +28,7 @@ pub enum LinkState {
 /// The boards, connected, and what each device's link is doing.
 #[derive(Debug)]
 pub struct Linked {
-    boards: Boards,
+    boards: std::sync::Arc<Boards>,
     /// A state per device, in the show's order.
     pub states: Vec<LinkState>,
     /// Whether the boards follow a preview now.
@@ -49,7 +49,7 @@ pub struct Taken {
 impl Linked {
     /// Connects every device of `show` (ports as given), off the frame.
     pub fn connect(show: &Show, waker: Waker) -> std::io::Result<Self> {
-        let boards = Boards::connect(show, waker)?;
+        let boards = std::sync::Arc::new(Boards::connect(show, waker)?);
         Ok(Self { boards, states: vec![LinkState::Asking; show.devices.len()], following: false, playing: false })
     }
 
@@ -124,6 +124,16 @@ impl Linked {
         self.playing = true;
         self.following = false;
         self.boards.play(show, sound);
+    }
+
+    /// The boards, for a remote to reach while they are held (never to keep them).
+    pub fn shared(&self) -> std::sync::Weak<Boards> {
+        std::sync::Arc::downgrade(&self.boards)
+    }
+
+    /// How fast a remote's pose may move a servo or a joint.
+    pub fn set_speed(&self, speed: crate::device::speed::LiveSpeed) {
+        self.boards.set_speed(speed);
     }
 
     /// Stops every device at once.

@@ -8,6 +8,7 @@ mod cues;
 mod devices;
 pub mod linked;
 mod record;
+mod remote;
 mod stage;
 mod words;
 
@@ -76,6 +77,10 @@ pub struct ShowDesk {
     pub passes: record::Passes,
     /// The boards, held connected (Connect the boards).
     pub linked: Option<Linked>,
+    /// Settings → Remote control: its settings and servers.
+    pub remote: remote::RemoteDesk,
+    /// The editor's live speed limit (a remote's poses keep to it), and the one last told to the boards.
+    pub live_speed: (crate::device::speed::LiveSpeed, Option<crate::device::speed::LiveSpeed>),
 }
 
 impl std::fmt::Debug for ShowDesk {
@@ -112,7 +117,10 @@ impl ShowDesk {
                     Err(error) => return Some(format!("cannot connect the boards: {error}")),
                 }
             }
-            ShowAction::Boards(false) => self.linked = None,
+            ShowAction::Boards(false) => self.let_boards_go(words(language)),
+            ShowAction::RemoteWindow => self.remote.open = true,
+            ShowAction::Remote(true) => return self.serve(project, language, waker),
+            ShowAction::Remote(false) => self.remote.stop(None),
             ShowAction::Play => self.play(waker.clone()),
             ShowAction::StopAll => self.stop(),
             ShowAction::Preview(true) => {
@@ -148,7 +156,7 @@ impl ShowDesk {
             }
             ShowAction::Close => {
                 self.stop();
-                self.linked = None;
+                self.let_boards_go(words(language));
                 self.session = None;
             }
         }
@@ -192,9 +200,34 @@ impl ShowDesk {
 
     fn opened(&mut self, path: Option<PathBuf>, show: Show) {
         self.stop();
+        self.remote.stop(None);
         self.linked = None;
         let ports = show.devices.iter().map(|device| device.port.clone().unwrap_or_default()).collect();
         self.session = Some(ShowSession { path, show, ports, said: Vec::new() });
+    }
+
+    /// Lets the held boards go (every device stopped, every link closed), and the remote control with them.
+    pub fn let_boards_go(&mut self, words: &ShowWords) {
+        if self.linked.take().is_some() {
+            self.remote.stop(Some(words.remote_stopped));
+        }
+    }
+
+    /// Serves remote control on the show's boards: the open project as a
+    /// show when none is open, its boards connected when they are not.
+    fn serve(&mut self, project: &Project, language: Language, waker: &Waker) -> Option<String> {
+        if self.session.is_none() {
+            self.opened(None, Show::of_one("board", project.clone()));
+        }
+        if self.linked.is_none()
+            && let Some(said) = self.apply(ShowAction::Boards(true), (project, language), waker)
+        {
+            return Some(said);
+        }
+        let (Some(session), Some(linked)) = (&self.session, &self.linked) else { return None };
+        self.live_speed.1 = None;
+        self.remote.start(session.with_ports(), linked, words(language));
+        None
     }
 
     /// Whether a show is playing.
@@ -291,6 +324,13 @@ impl ShowDesk {
     ) {
         self.poll();
         let words = words(language);
+        self.remote.window(ctx, words, actions);
+        if let Some(linked) = &self.linked
+            && self.live_speed.1 != Some(self.live_speed.0)
+        {
+            linked.set_speed(self.live_speed.0);
+            self.live_speed.1 = Some(self.live_speed.0);
+        }
         self.poll_boards(words);
         let playing = self.playing();
         let Some(session) = &mut self.session else { return };
@@ -301,9 +341,11 @@ impl ShowDesk {
             *listed = Some(std::time::Instant::now());
         }
         let mut open = true;
-        let room = ctx.content_rect().size() - egui::vec2(40.0, 60.0);
+        // Below the toolbar (File, Settings and STOP stay in reach), as tall as the rest allows.
+        let room = ctx.content_rect().size() - egui::vec2(40.0, 130.0);
         egui::Window::new(words.title)
             .open(&mut open)
+            .default_pos(egui::pos2(20.0, 100.0))
             .resizable(true)
             .default_size(egui::vec2(1000.0, room.y).min(room))
             .max_size(room)

@@ -56,6 +56,26 @@ pub struct ShowWords {
     pub lost: &'static str,
     /// After a lost link: every device was stopped.
     pub all_stopped: &'static str,
+    /// Settings → "Remote control…".
+    pub remote_menu: &'static str,
+    /// The remote control window's title.
+    pub remote_title: &'static str,
+    /// Its on / off box.
+    pub remote_serve: &'static str,
+    /// "Listen on".
+    pub remote_listen: &'static str,
+    /// "OSC port".
+    pub remote_osc: &'static str,
+    /// "Token file".
+    pub remote_token: &'static str,
+    /// Queue a play on a busy device, or refuse it.
+    pub remote_queue: &'static str,
+    /// What it serves, and the token rule.
+    pub remote_hint: &'static str,
+    /// "listening on".
+    pub remote_listening: &'static str,
+    /// It stopped because the boards went.
+    pub remote_stopped: &'static str,
     /// "play on without it".
     pub play_on: &'static str,
     /// "At".
@@ -146,6 +166,16 @@ const ENGLISH: ShowWords = ShowWords {
     silent: "did not answer",
     lost: "link lost",
     all_stopped: ": every device was stopped",
+    remote_menu: "Remote control…",
+    remote_title: "Remote control",
+    remote_serve: "Serve remote control (HTTP + OSC)",
+    remote_listen: "Listen on",
+    remote_osc: "OSC port (empty: none)",
+    remote_token: "Token file",
+    remote_queue: "A play on a busy device waits its turn (else it is refused)",
+    remote_hint: "Serves the show window's devices, their boards connected (the open project as a show when none is open). Any address but 127.0.0.1 needs a token file. docs/remote.md",
+    remote_listening: "listening on",
+    remote_stopped: "remote control stopped: the boards were disconnected",
     play_on: "play on without it",
     at: "At",
     cue: "Cue",
@@ -204,6 +234,16 @@ const CHINESE: ShowWords = ShowWords {
     silent: "沒有回應",
     lost: "連線中斷",
     all_stopped: "：所有裝置已停止",
+    remote_menu: "遠端控制…",
+    remote_title: "遠端控制",
+    remote_serve: "開啟遠端控制（HTTP + OSC）",
+    remote_listen: "監聽位址",
+    remote_osc: "OSC 連接埠（空白：不使用）",
+    remote_token: "權杖檔案",
+    remote_queue: "裝置忙碌時，播放請求排隊等候（否則拒絕）",
+    remote_hint: "控制演出視窗中的裝置，並連接它們的板子（沒有開啟演出時，以目前的專案作為演出）。127.0.0.1 以外的位址需要權杖檔案。docs/remote.md",
+    remote_listening: "正在監聽",
+    remote_stopped: "遠端控制已停止：板子已中斷連線",
     play_on: "其他裝置繼續演出",
     at: "時間",
     cue: "提示點",

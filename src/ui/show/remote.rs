@@ -1,0 +1,144 @@
+//! Settings → Remote control…: the same server as `servo-studio serve`,
+//! from the open editor, on the show window's boards (connecting them, and
+//! opening the open project as a show of one device when no show is open).
+//! Off at every start; the address, OSC port and token file are typed here.
+//! Disconnecting the boards or closing the show turns it off.
+
+use std::sync::Arc;
+
+use crate::remote::Remote;
+use crate::remote::guard::{Guard, read_token};
+use crate::remote::http::HttpServer;
+use crate::remote::osc::OscServer;
+
+use super::ShowWords;
+use super::linked::Linked;
+
+/// The remote control's settings and its servers while on.
+#[derive(Debug)]
+pub struct RemoteDesk {
+    /// Whether its window is open.
+    pub open: bool,
+    /// Where HTTP listens, as typed.
+    pub listen: String,
+    /// The OSC port, as typed (empty: no OSC).
+    pub osc: String,
+    /// The token file, as typed (empty: none; needed off loopback).
+    pub token_file: String,
+    /// A play on a busy device waits its turn (else 409).
+    pub queue: bool,
+    /// The servers while on.
+    serving: Option<(HttpServer, Option<OscServer>)>,
+    /// What it says: where it listens, or why it could not.
+    pub said: Option<String>,
+}
+
+impl Default for RemoteDesk {
+    fn default() -> Self {
+        Self {
+            open: false,
+            listen: "127.0.0.1:8765".into(),
+            osc: String::new(),
+            token_file: String::new(),
+            queue: false,
+            serving: None,
+            said: None,
+        }
+    }
+}
+
+impl RemoteDesk {
+    /// Whether it serves.
+    pub fn serving(&self) -> bool {
+        self.serving.is_some()
+    }
+
+    /// Where HTTP listens while on.
+    pub fn addr(&self) -> Option<std::net::SocketAddr> {
+        self.serving.as_ref().map(|(http, _)| http.addr())
+    }
+
+    /// Starts serving `show` on `linked`'s boards, saying where or why not.
+    pub fn start(&mut self, show: crate::show::Show, linked: &Linked, words: &ShowWords) {
+        self.serving = None;
+        match self.servers(show, linked) {
+            Ok((http, osc, token)) => {
+                let osc_said = osc.as_ref().map(|osc| format!(" · OSC udp://{}", osc.addr())).unwrap_or_default();
+                self.said = Some(format!("{} http://{}{osc_said} ({token})", words.remote_listening, http.addr()));
+                self.serving = Some((http, osc));
+            }
+            Err(why) => self.said = Some(why),
+        }
+    }
+
+    fn servers(
+        &self,
+        show: crate::show::Show,
+        linked: &Linked,
+    ) -> Result<(HttpServer, Option<OscServer>, &'static str), String> {
+        let listen: std::net::SocketAddr = self
+            .listen
+            .trim()
+            .parse()
+            .map_err(|_| format!("{:?}: give ADDRESS:PORT, e.g. 127.0.0.1:8765", self.listen))?;
+        let token_file = self.token_file.trim();
+        let token = (!token_file.is_empty()).then(|| read_token(std::path::Path::new(token_file))).transpose()?;
+        let guard = Arc::new(Guard::new(listen, token)?);
+        let remote = Arc::new(Remote::new(show, linked.shared(), self.queue));
+        let http = HttpServer::start(listen, &remote, &guard)
+            .map_err(|error| format!("cannot listen on {listen}: {error}"))?;
+        let osc = match self.osc.trim() {
+            "" => None,
+            port => {
+                let port: u16 = port.parse().map_err(|_| format!("{port:?} is not a UDP port"))?;
+                let at = std::net::SocketAddr::new(listen.ip(), port);
+                Some(
+                    OscServer::start(at, &remote, &guard)
+                        .map_err(|error| format!("cannot take OSC on {at}: {error}"))?,
+                )
+            }
+        };
+        let token = if guard.needs_token() { "token needed" } else { "loopback only, no token" };
+        Ok((http, osc, token))
+    }
+
+    /// Stops serving (saying why, when it is not the user's click).
+    pub fn stop(&mut self, why: Option<&str>) {
+        if self.serving.take().is_some() {
+            self.said = why.map(str::to_string);
+        }
+    }
+
+    /// The window: on / off, where, the token file, queue or refuse; what it says.
+    pub fn window(&mut self, ctx: &egui::Context, words: &ShowWords, actions: &mut Vec<crate::ui::Action>) {
+        let mut open = self.open;
+        let right = ctx.content_rect().right();
+        let window = egui::Window::new(words.remote_title).open(&mut open).resizable(false);
+        window.default_pos(egui::pos2(right - 560.0, 100.0)).show(ctx, |ui| {
+            ui.set_max_width(520.0);
+            let mut on = self.serving();
+            if ui.checkbox(&mut on, words.remote_serve).changed() {
+                actions.push(crate::ui::Action::Show(super::ShowAction::Remote(on)));
+            }
+            ui.add_enabled_ui(!self.serving(), |ui| {
+                egui::Grid::new("remote-settings").num_columns(2).show(ui, |ui| {
+                    let field = |ui: &mut egui::Ui, label: &str, text: &mut String, hint: &str| {
+                        let label = ui.label(label);
+                        ui.add(egui::TextEdit::singleline(text).hint_text(hint).desired_width(300.0))
+                            .labelled_by(label.id);
+                        ui.end_row();
+                    };
+                    field(ui, words.remote_listen, &mut self.listen, "127.0.0.1:8765");
+                    field(ui, words.remote_osc, &mut self.osc, "9000");
+                    field(ui, words.remote_token, &mut self.token_file, "/home/me/.servo-studio-token");
+                });
+                ui.checkbox(&mut self.queue, words.remote_queue);
+            });
+            ui.weak(words.remote_hint);
+            if let Some(said) = &self.said {
+                ui.label(said);
+            }
+        });
+        self.open = open;
+    }
+}
