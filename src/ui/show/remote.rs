@@ -27,8 +27,9 @@ pub struct RemoteDesk {
     pub token_file: String,
     /// A play on a busy device waits its turn (else 409).
     pub queue: bool,
-    /// The servers while on.
+    /// The servers while on, and what they serve.
     serving: Option<(HttpServer, Option<OscServer>)>,
+    remote: Option<Arc<Remote>>,
     /// What it says: where it listens, or why it could not.
     pub said: Option<String>,
 }
@@ -42,6 +43,7 @@ impl Default for RemoteDesk {
             token_file: String::new(),
             queue: false,
             serving: None,
+            remote: None,
             said: None,
         }
     }
@@ -62,7 +64,8 @@ impl RemoteDesk {
     pub fn start(&mut self, show: crate::show::Show, linked: &Linked, words: &ShowWords) {
         self.serving = None;
         match self.servers(show, linked) {
-            Ok((http, osc, token)) => {
+            Ok((http, osc, token, remote)) => {
+                self.remote = Some(remote);
                 let osc_said = osc.as_ref().map(|osc| format!(" · OSC udp://{}", osc.addr())).unwrap_or_default();
                 self.said = Some(format!("{} http://{}{osc_said} ({token})", words.remote_listening, http.addr()));
                 self.serving = Some((http, osc));
@@ -75,7 +78,7 @@ impl RemoteDesk {
         &self,
         show: crate::show::Show,
         linked: &Linked,
-    ) -> Result<(HttpServer, Option<OscServer>, &'static str), String> {
+    ) -> Result<(HttpServer, Option<OscServer>, &'static str, Arc<Remote>), String> {
         let listen: std::net::SocketAddr = self
             .listen
             .trim()
@@ -99,11 +102,12 @@ impl RemoteDesk {
             }
         };
         let token = if guard.needs_token() { "token needed" } else { "loopback only, no token" };
-        Ok((http, osc, token))
+        Ok((http, osc, token, remote))
     }
 
     /// Stops serving (saying why, when it is not the user's click).
     pub fn stop(&mut self, why: Option<&str>) {
+        self.remote = None;
         if self.serving.take().is_some() {
             self.said = why.map(str::to_string);
         }
@@ -137,6 +141,19 @@ impl RemoteDesk {
             ui.weak(words.remote_hint);
             if let Some(said) = &self.said {
                 ui.label(said);
+            }
+            // What the remotes have the devices doing now (looked at twice a second while serving).
+            if self.serving() {
+                ui.ctx().request_repaint_after(std::time::Duration::from_millis(500));
+            }
+            let status = self.remote.as_ref().and_then(|remote| remote.boards()).map(|boards| boards.status());
+            for device in status.iter().flat_map(|status| &status.devices) {
+                let doing = match (&device.playing, device.driven) {
+                    (Some(playing), _) => playing.clone(),
+                    (None, true) => words.remote_driven.to_string(),
+                    (None, false) => continue,
+                };
+                ui.weak(format!("{}: {doing}", device.name));
             }
         });
         self.open = open;

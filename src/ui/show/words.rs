@@ -76,6 +76,8 @@ pub struct ShowWords {
     pub remote_listening: &'static str,
     /// It stopped because the boards went.
     pub remote_stopped: &'static str,
+    /// A base a remote drives.
+    pub remote_driven: &'static str,
     /// "play on without it".
     pub play_on: &'static str,
     /// "At".
@@ -176,6 +178,7 @@ const ENGLISH: ShowWords = ShowWords {
     remote_hint: "Serves the show window's devices, their boards connected (the open project as a show when none is open). Any address but 127.0.0.1 needs a token file. docs/remote.md",
     remote_listening: "listening on",
     remote_stopped: "remote control stopped: the boards were disconnected",
+    remote_driven: "driven (heartbeats arriving)",
     play_on: "play on without it",
     at: "At",
     cue: "Cue",
@@ -244,6 +247,7 @@ const CHINESE: ShowWords = ShowWords {
     remote_hint: "控制演出視窗中的裝置，並連接它們的板子（沒有開啟演出時，以目前的專案作為演出）。127.0.0.1 以外的位址需要權杖檔案。docs/remote.md",
     remote_listening: "正在監聽",
     remote_stopped: "遠端控制已停止：板子已中斷連線",
+    remote_driven: "遠端駕駛中（持續收到心跳）",
     play_on: "其他裝置繼續演出",
     at: "時間",
     cue: "提示點",
