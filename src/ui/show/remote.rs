@@ -49,6 +49,14 @@ impl Default for RemoteDesk {
     }
 }
 
+/// The servers started, the token rule said, and what they serve.
+struct Servers {
+    http: HttpServer,
+    osc: Option<OscServer>,
+    token: &'static str,
+    remote: Arc<Remote>,
+}
+
 impl RemoteDesk {
     /// Whether it serves.
     pub fn serving(&self) -> bool {
@@ -64,7 +72,7 @@ impl RemoteDesk {
     pub fn start(&mut self, show: crate::show::Show, linked: &Linked, words: &ShowWords) {
         self.serving = None;
         match self.servers(show, linked) {
-            Ok((http, osc, token, remote)) => {
+            Ok(Servers { http, osc, token, remote }) => {
                 self.remote = Some(remote);
                 let osc_said = osc.as_ref().map(|osc| format!(" · OSC udp://{}", osc.addr())).unwrap_or_default();
                 self.said = Some(format!("{} http://{}{osc_said} ({token})", words.remote_listening, http.addr()));
@@ -74,11 +82,7 @@ impl RemoteDesk {
         }
     }
 
-    fn servers(
-        &self,
-        show: crate::show::Show,
-        linked: &Linked,
-    ) -> Result<(HttpServer, Option<OscServer>, &'static str, Arc<Remote>), String> {
+    fn servers(&self, show: crate::show::Show, linked: &Linked) -> Result<Servers, String> {
         let listen: std::net::SocketAddr = self
             .listen
             .trim()
@@ -102,7 +106,7 @@ impl RemoteDesk {
             }
         };
         let token = if guard.needs_token() { "token needed" } else { "loopback only, no token" };
-        Ok((http, osc, token, remote))
+        Ok(Servers { http, osc, token, remote })
     }
 
     /// Stops serving (saying why, when it is not the user's click).
