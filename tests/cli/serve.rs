@@ -277,3 +277,28 @@ fn osc_plays_poses_and_stops_as_qlab_sends_it_and_garbage_is_answered_400() {
     logged_until(stage.log("skull"), "is_start: false", LONG);
     drop(served);
 }
+
+#[test]
+fn with_queue_a_second_play_waits_its_turn_and_the_whole_show_plays_once_at_a_time() {
+    let stage = Stage::new(&three_devices(), &[]);
+    let served = serve(&stage, &["--listen", "127.0.0.1:0", "--queue"]);
+    assert_eq!(post(&served, "/devices/skull/play", Some(r#"{"what": "show"}"#)).1["as"], "started");
+    let (code, queued) = post(&served, "/devices/skull/play", Some(r#"{"what": "show"}"#));
+    assert_eq!((code, queued["as"].as_str()), (200, Some("queued")), "{queued}");
+    let (_, status) = ask("GET", &format!("{}/status", served.url), None, &[]);
+    assert_eq!(status["devices"][0]["queued"][0], "macro 1 show", "{status}");
+    assert_eq!(post(&served, "/stop", None).0, 200);
+    logged_until(stage.log("skull"), "is_start: false", LONG);
+    // The whole show, on its boards; asked again while it plays: 409.
+    let starts = count(&stage, "skull", "ExecuteMacroRequest");
+    assert_eq!(post(&served, "/show/play", None).0, 200);
+    let deadline = std::time::Instant::now() + LONG;
+    // (Asked as fast as it answers: a 429 now and then is not a "no".)
+    while ask("GET", &format!("{}/status", served.url), None, &[]).1["show_playing"].as_bool() != Some(true) {
+        assert!(std::time::Instant::now() < deadline, "the show never began");
+        std::thread::yield_now();
+    }
+    assert_eq!(post(&served, "/show/play", None).0, 409, "one show at a time");
+    logged_more(&stage, "skull", "ExecuteMacroRequest", starts);
+    assert_eq!(post(&served, "/stop", None).0, 200, "STOP ends the show too");
+}
