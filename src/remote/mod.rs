@@ -78,6 +78,11 @@ impl Remote {
     }
 
     fn carried(&self, verb: &Verb, boards: &Boards) -> Result<Reply, Reply> {
+        // While the whole show plays, its worker plays it: a device's own verb waits for no one.
+        let own = matches!(verb, Verb::Play { .. } | Verb::Pose { .. } | Verb::Drive { .. } | Verb::Heartbeat(_));
+        if own && boards.status().show_playing {
+            return Err(Reply::error(409, "busy: the show is playing on the boards (POST /stop ends it)"));
+        }
         Ok(match verb {
             Verb::Devices => Reply::ok(json!({ "devices": self.show.devices.iter().map(listed).collect::<Vec<_>>() })),
             Verb::Device(name) => Reply::ok(listed(self.device(name)?.1)),

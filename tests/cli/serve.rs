@@ -299,6 +299,8 @@ fn with_queue_a_second_play_waits_its_turn_and_the_whole_show_plays_once_at_a_ti
         std::thread::yield_now();
     }
     assert_eq!(post(&served, "/show/play", None).0, 409, "one show at a time");
+    let (code, said) = post(&served, "/devices/plen/play", Some(r#"{"what": "wave"}"#));
+    assert!(code == 409 && said["error"].as_str().unwrap().contains("the show is playing"), "{said}");
     logged_more(&stage, "skull", "ExecuteMacroRequest", starts);
     assert_eq!(post(&served, "/stop", None).0, 200, "STOP ends the show too");
 }
