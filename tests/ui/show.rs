@@ -161,6 +161,8 @@ fn devices_are_added_and_removed_and_a_port_is_found_by_id() {
     let session = harness.state().desks.show.session.as_ref().unwrap();
     assert_eq!(session.show.cues.iter().map(|c| c.device.as_str()).collect::<Vec<_>>(), ["arms"]);
     assert!(session.said.iter().any(|line| line == "skull: 1 cues went with it"), "{:?}", session.said);
+    // Listed off the frame: once they are, the menu shows them.
+    common::ui::run_until(&mut harness, "the adapters listed", |app| app.desks.show.adapters_listed());
     harness.query_all_by_label("Find by id").next().unwrap().click();
     harness.run();
     let attached = servo_studio::link::by_id::attached();

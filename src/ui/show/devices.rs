@@ -64,6 +64,46 @@ pub(super) fn devices_ui(
     ui.add_enabled_ui(editable, |ui| ui.menu_button(words.add_device, |ui| add_menu(ui, session, words, actions)));
 }
 
+/// The USB serial adapters attached, listed on a thread of its own every
+/// [`LIST_EVERY`] while the show window is open (a sysfs scan, not the frame's to wait for).
+#[derive(Debug, Default)]
+pub(super) struct Adapters {
+    listed: Option<Vec<Attached>>,
+    asked: Option<std::time::Instant>,
+    coming: Option<crossbeam_channel::Receiver<Vec<Attached>>>,
+}
+
+/// How often the adapters are listed again.
+const LIST_EVERY: std::time::Duration = std::time::Duration::from_secs(3);
+
+impl Adapters {
+    /// The adapters as last listed; a new listing asked for when it is time.
+    pub(super) fn refresh(&mut self, ctx: &egui::Context) -> &[Attached] {
+        if let Some(list) = self.coming.as_ref().and_then(|coming| coming.try_recv().ok()) {
+            self.listed = Some(list);
+            self.coming = None;
+        }
+        if self.coming.is_none() && self.asked.is_none_or(|at| at.elapsed() >= LIST_EVERY) {
+            let (send, coming) = crossbeam_channel::bounded(1);
+            let ctx = ctx.clone();
+            let spawned = std::thread::Builder::new().name("usb adapters".into()).spawn(move || {
+                let _ = send.send(crate::link::by_id::attached());
+                ctx.request_repaint();
+            });
+            if spawned.is_ok() {
+                self.coming = Some(coming);
+            }
+            self.asked = Some(std::time::Instant::now());
+        }
+        self.listed.as_deref().unwrap_or_default()
+    }
+
+    /// Whether they were listed at least once.
+    pub(super) fn listed(&self) -> bool {
+        self.listed.is_some()
+    }
+}
+
 /// The USB serial devices attached now, each to pick as the port's id.
 fn find_menu(ui: &mut egui::Ui, port: &mut String, attached: &[Attached], words: &ShowWords) {
     if attached.is_empty() {

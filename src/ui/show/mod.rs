@@ -69,8 +69,8 @@ pub struct ShowDesk {
     /// The open show.
     pub session: Option<ShowSession>,
     running: Option<Running>,
-    /// The USB serial devices attached, and when they were last listed (for "find by id").
-    attached: (Vec<Attached>, Option<std::time::Instant>),
+    /// The USB serial devices attached (for "find by id"), listed off the frame.
+    adapters: devices::Adapters,
     /// The stage: every device in 3D at the scrub's time.
     pub stage: stage::Stage,
     /// Record passes: the passes kept and the one being recorded.
@@ -230,6 +230,11 @@ impl ShowDesk {
         None
     }
 
+    /// Whether the USB adapters attached were listed at least once since the window opened.
+    pub fn adapters_listed(&self) -> bool {
+        self.adapters.listed()
+    }
+
     /// Whether a show is playing.
     pub fn playing(&self) -> bool {
         self.running.is_some() || self.linked.as_ref().is_some_and(|linked| linked.playing)
@@ -335,11 +340,7 @@ impl ShowDesk {
         let playing = self.playing();
         let Some(session) = &mut self.session else { return };
         // Listed again every few seconds while the window is open (an adapter plugged in meanwhile).
-        let (attached, listed) = &mut self.attached;
-        if listed.is_none_or(|at| at.elapsed() > std::time::Duration::from_secs(3)) {
-            *attached = crate::link::by_id::attached();
-            *listed = Some(std::time::Instant::now());
-        }
+        let attached = self.adapters.refresh(ctx);
         let mut open = true;
         // Below the toolbar (File, Settings and STOP stay in reach), as tall as the rest allows.
         let room = ctx.content_rect().size() - egui::vec2(40.0, 130.0);
