@@ -384,7 +384,7 @@ fn recording_slider_moves_fits_them_into_actions_and_a_macro() {
         .collect();
     assert_eq!(runs, added.iter().map(|action| action.id).collect::<Vec<_>>(), "the macro runs them in order");
     let status = harness.state().status.as_ref().unwrap().text.clone();
-    assert!(status.contains("→ 1 actions, run in order by macro"), "{status}");
+    assert!(status.contains("→ 1 action, run by macro"), "one action, said as one: {status}");
     harness.state_mut().apply(Action::Undo);
     harness.step();
     assert_eq!(harness.state().document.project.servo.actions.len(), actions_before, "one undo step");

@@ -35,6 +35,8 @@ pub struct ServoCaptions {
     pub recording_caption: &'static str,
     /// "actions, run in order by macro".
     pub actions_run_by_macro: &'static str,
+    /// The same after a count of one.
+    pub action_run_by_macro: &'static str,
     /// "Capture from board".
     pub capture_from_board: &'static str,
     /// "No servos yet: read a board, or add one".
@@ -224,6 +226,7 @@ const ENGLISH: ServoCaptions = ServoCaptions {
     record_hint: "Record the servos as you move them (sliders, keys, a gamepad), after a 3 s count-in; Stop fits what you did into the fewest steps the board plays within 1°: one action per step and a macro running them in order (an action's steps all start together, so a sequence is a macro). One undo step.",
     recording_caption: "Recording",
     actions_run_by_macro: "actions, run in order by macro",
+    action_run_by_macro: "action, run by macro",
     capture_from_board: "Capture from board",
     no_servos: "No servos yet: read a board, or add one",
     add_servo: "Add servo",
@@ -327,6 +330,7 @@ const TRADITIONAL_CHINESE: ServoCaptions = ServoCaptions {
     record_hint: "倒數 3 秒後錄下你移動伺服機的過程（滑桿、按鍵、遊戲手把）；停止時會擬合成板子播放誤差在 1° 內的最少步驟：每一步一個動作，加上依序執行它們的巨集（一個動作的所有步驟同時開始，所以序列要用巨集）。可一步復原。",
     recording_caption: "錄製",
     actions_run_by_macro: "個動作，依序由巨集執行：",
+    action_run_by_macro: "個動作，由巨集執行：",
     capture_from_board: "從控制板擷取",
     no_servos: "尚無舵機：請讀取控制板或新增舵機",
     add_servo: "新增舵機",

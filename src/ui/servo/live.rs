@@ -268,7 +268,7 @@ impl ServoUi {
                 "{}: {seconds:.1} s → {} {} {macro_id} \"{caption}\" · {} {:.1}°",
                 shared.msg_recorded,
                 added.len(),
-                captions.actions_run_by_macro,
+                if added.len() == 1 { captions.action_run_by_macro } else { captions.actions_run_by_macro },
                 shared.largest_error,
                 fitted.max_error
             ),
