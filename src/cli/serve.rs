@@ -15,10 +15,8 @@ use clap::Args;
 
 use super::out::{line, say};
 use super::signals;
-use crate::remote::Remote;
-use crate::remote::guard::{Guard, read_token};
-use crate::remote::http::HttpServer;
-use crate::remote::osc::OscServer;
+use crate::remote::guard::Guard;
+use crate::remote::{Remote, Servers};
 use crate::show::Show;
 use crate::show::boards::{Boards, Heard};
 
@@ -50,8 +48,7 @@ const ANSWER_WITHIN: Duration = Duration::from_secs(15);
 /// Serves the show's devices until a signal.
 pub fn run(args: &ServeArgs) -> anyhow::Result<()> {
     // Who may get in is settled first: nothing is connected for a server that may not start.
-    let token = args.token_file.as_deref().map(read_token).transpose().map_err(|error| anyhow!(error))?;
-    let guard = Arc::new(Guard::new(args.listen, token).map_err(|error| anyhow!(error))?);
+    let guard = Arc::new(Guard::from_file(args.listen, args.token_file.as_deref()).map_err(|error| anyhow!(error))?);
     let mut show = Show::open(&args.show).with_context(|| format!("cannot serve {}", args.show.display()))?;
     let ports = super::play::ports(&show, &args.devices)?;
     for (device, port) in show.devices.iter_mut().zip(ports) {
@@ -61,29 +58,21 @@ pub fn run(args: &ServeArgs) -> anyhow::Result<()> {
     let boards = Arc::new(Boards::connect(&show, crate::link::no_waker()).context("cannot start the boards' worker")?);
     answered(&boards, &show);
     let remote = Arc::new(Remote::new(show, Arc::downgrade(&boards), args.queue));
-    let http =
-        HttpServer::start(args.listen, &remote, &guard).with_context(|| format!("cannot listen on {}", args.listen))?;
-    let token = if guard.needs_token() { "a bearer token is needed" } else { "no token: loopback only" };
+    let servers = Servers::start(args.listen, args.osc, &guard, remote).map_err(|error| anyhow!(error))?;
+    let token = if servers.needs_token { "a bearer token is needed" } else { "no token: loopback only" };
     // Where it listens is the command's output (stdout): a program starting it reads the port there.
-    let _ = line(&format!("listening on http://{} ({token}); docs/remote-openapi.yaml", http.addr()));
-    let osc = match args.osc {
-        Some(port) => {
-            let at = SocketAddr::new(args.listen.ip(), port);
-            let osc =
-                OscServer::start(at, &remote, &guard).with_context(|| format!("cannot listen for OSC on udp {at}"))?;
-            let _ = line(&format!("OSC on udp://{}", osc.addr()));
-            Some(osc)
-        }
-        None => None,
-    };
+    let _ = line(&format!("listening on http://{} ({token}); docs/remote-openapi.yaml", servers.http.addr()));
+    if let Some(osc) = &servers.osc {
+        let _ = line(&format!("OSC on udp://{}", osc.addr()));
+    }
     let interrupt = loop {
         crossbeam_channel::select! {
             recv(interrupts) -> interrupt => break interrupt.ok(),
-            default(Duration::from_millis(200)) => said(&boards, &remote),
+            default(Duration::from_millis(200)) => said(&boards, &servers.remote),
         }
     };
     boards.stop();
-    drop((osc, http));
+    drop(servers);
     drop(boards);
     let interrupt = interrupt.unwrap_or(signals::Interrupt { name: "SIGTERM", exit_code: 143 });
     Err(super::interrupted(interrupt, "every device was stopped and its link closed"))

@@ -43,6 +43,12 @@ impl Guard {
         Ok(Self { token: token.map(String::into_bytes), own_origins, bucket: Mutex::new((BURST, Instant::now())) })
     }
 
+    /// The rules for a server on `listen`, its token read from `token_file` (see [`read_token`]).
+    pub fn from_file(listen: SocketAddr, token_file: Option<&Path>) -> Result<Self, String> {
+        let token = token_file.map(read_token).transpose()?;
+        Self::new(listen, token)
+    }
+
     /// Whether a token is needed.
     pub fn needs_token(&self) -> bool {
         self.token.is_some()

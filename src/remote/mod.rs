@@ -12,7 +12,8 @@ pub mod http;
 pub mod osc;
 mod verbs;
 
-use std::sync::Weak;
+use std::net::SocketAddr;
+use std::sync::{Arc, Weak};
 
 use serde_json::{Value, json};
 
@@ -20,6 +21,44 @@ use crate::show::boards::{Boards, Refused, Run};
 use crate::show::passes::Axis;
 use crate::show::{Device, Show, Start};
 pub use verbs::{BadRequest, Verb};
+
+/// HTTP, and OSC when asked, serving one [`Remote`] under one [`guard::Guard`]:
+/// what `servo-studio serve` and the editor's Settings → Remote control both start.
+#[derive(Debug)]
+pub struct Servers {
+    /// The HTTP server.
+    pub http: http::HttpServer,
+    /// The OSC listener, when asked for.
+    pub osc: Option<osc::OscServer>,
+    /// What they serve.
+    pub remote: Arc<Remote>,
+    /// Whether a token is needed.
+    pub needs_token: bool,
+}
+
+impl Servers {
+    /// HTTP on `listen`, OSC on `osc_port` (on the same address), both serving `remote` under `guard`.
+    pub fn start(
+        listen: SocketAddr,
+        osc_port: Option<u16>,
+        guard: &Arc<guard::Guard>,
+        remote: Arc<Remote>,
+    ) -> Result<Self, String> {
+        let taken = "another program may be listening there: pick another port";
+        let http = http::HttpServer::start(listen, &remote, guard)
+            .map_err(|error| format!("cannot listen on {listen} ({error}): {taken}"))?;
+        let osc = match osc_port {
+            Some(port) => {
+                let at = SocketAddr::new(listen.ip(), port);
+                let osc = osc::OscServer::start(at, &remote, guard)
+                    .map_err(|error| format!("cannot take OSC on udp {at} ({error}): {taken}"))?;
+                Some(osc)
+            }
+            None => None,
+        };
+        Ok(Self { http, osc, remote, needs_token: guard.needs_token() })
+    }
+}
 
 /// An answer: an HTTP status code (OSC replies with it too) and a JSON body.
 #[derive(Clone, Debug, PartialEq)]
@@ -62,7 +101,7 @@ impl Remote {
     }
 
     /// The boards, while they are held.
-    pub fn boards(&self) -> Option<std::sync::Arc<Boards>> {
+    pub fn boards(&self) -> Option<Arc<Boards>> {
         self.boards.upgrade()
     }
 

@@ -90,13 +90,13 @@ pub enum Refused {
     #[error("busy: {0}")]
     Busy(String),
     /// The device is not connected.
-    #[error("{0} is not connected")]
+    #[error("{0} is not connected: check its cable and port, then connect the boards again")]
     NotConnected(String),
     /// The device cannot do it (why).
     #[error("{0}")]
     Cannot(String),
     /// The boards did not answer in time.
-    #[error("the boards did not answer in time")]
+    #[error("the boards did not answer in time: try again (STOP is always taken at once)")]
     Late,
 }
 

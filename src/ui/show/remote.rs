@@ -6,10 +6,8 @@
 
 use std::sync::Arc;
 
-use crate::remote::Remote;
-use crate::remote::guard::{Guard, read_token};
-use crate::remote::http::HttpServer;
-use crate::remote::osc::OscServer;
+use crate::remote::guard::Guard;
+use crate::remote::{Remote, Servers};
 
 use super::ShowWords;
 use super::linked::Linked;
@@ -27,9 +25,8 @@ pub struct RemoteDesk {
     pub token_file: String,
     /// A play on a busy device waits its turn (else 409).
     pub queue: bool,
-    /// The servers while on, and what they serve.
-    serving: Option<(HttpServer, Option<OscServer>)>,
-    remote: Option<Arc<Remote>>,
+    /// The servers while on.
+    serving: Option<Servers>,
     /// What it says: where it listens, or why it could not.
     pub said: Option<String>,
 }
@@ -43,18 +40,9 @@ impl Default for RemoteDesk {
             token_file: String::new(),
             queue: false,
             serving: None,
-            remote: None,
             said: None,
         }
     }
-}
-
-/// The servers started, the token rule said, and what they serve.
-struct Servers {
-    http: HttpServer,
-    osc: Option<OscServer>,
-    token: &'static str,
-    remote: Arc<Remote>,
 }
 
 impl RemoteDesk {
@@ -65,18 +53,18 @@ impl RemoteDesk {
 
     /// Where HTTP listens while on.
     pub fn addr(&self) -> Option<std::net::SocketAddr> {
-        self.serving.as_ref().map(|(http, _)| http.addr())
+        self.serving.as_ref().map(|servers| servers.http.addr())
     }
 
     /// Starts serving `show` on `linked`'s boards, saying where or why not.
     pub fn start(&mut self, show: crate::show::Show, linked: &Linked, words: &ShowWords) {
         self.serving = None;
         match self.servers(show, linked) {
-            Ok(Servers { http, osc, token, remote }) => {
-                self.remote = Some(remote);
-                let osc_said = osc.as_ref().map(|osc| format!(" · OSC udp://{}", osc.addr())).unwrap_or_default();
-                self.said = Some(format!("{} http://{}{osc_said} ({token})", words.remote_listening, http.addr()));
-                self.serving = Some((http, osc));
+            Ok(servers) => {
+                let osc = servers.osc.as_ref().map(|osc| format!(" · OSC udp://{}", osc.addr())).unwrap_or_default();
+                let token = if servers.needs_token { "token needed" } else { "loopback only, no token" };
+                self.said = Some(format!("{} http://{}{osc} ({token})", words.remote_listening, servers.http.addr()));
+                self.serving = Some(servers);
             }
             Err(why) => self.said = Some(why),
         }
@@ -88,30 +76,20 @@ impl RemoteDesk {
             .trim()
             .parse()
             .map_err(|_| format!("{:?}: give ADDRESS:PORT, e.g. 127.0.0.1:8765", self.listen))?;
-        let token_file = self.token_file.trim();
-        let token = (!token_file.is_empty()).then(|| read_token(std::path::Path::new(token_file))).transpose()?;
-        let guard = Arc::new(Guard::new(listen, token)?);
-        let remote = Arc::new(Remote::new(show, linked.shared(), self.queue));
-        let http = HttpServer::start(listen, &remote, &guard)
-            .map_err(|error| format!("cannot listen on {listen}: {error}"))?;
+        let token_file = Some(self.token_file.trim()).filter(|file| !file.is_empty()).map(std::path::Path::new);
+        let guard = Arc::new(Guard::from_file(listen, token_file)?);
         let osc = match self.osc.trim() {
             "" => None,
-            port => {
-                let port: u16 = port.parse().map_err(|_| format!("{port:?} is not a UDP port"))?;
-                let at = std::net::SocketAddr::new(listen.ip(), port);
-                Some(
-                    OscServer::start(at, &remote, &guard)
-                        .map_err(|error| format!("cannot take OSC on {at}: {error}"))?,
-                )
-            }
+            port => Some(
+                port.parse::<u16>()
+                    .map_err(|_| format!("{port:?} is not a UDP port: give 1–65535, or leave it empty"))?,
+            ),
         };
-        let token = if guard.needs_token() { "token needed" } else { "loopback only, no token" };
-        Ok(Servers { http, osc, token, remote })
+        Servers::start(listen, osc, &guard, Arc::new(Remote::new(show, linked.shared(), self.queue)))
     }
 
     /// Stops serving (saying why, when it is not the user's click).
     pub fn stop(&mut self, why: Option<&str>) {
-        self.remote = None;
         if self.serving.take().is_some() {
             self.said = why.map(str::to_string);
         }
@@ -150,7 +128,8 @@ impl RemoteDesk {
             if self.serving() {
                 ui.ctx().request_repaint_after(std::time::Duration::from_millis(500));
             }
-            let status = self.remote.as_ref().and_then(|remote| remote.boards()).map(|boards| boards.status());
+            let status =
+                self.serving.as_ref().and_then(|servers| servers.remote.boards()).map(|boards| boards.status());
             for device in status.iter().flat_map(|status| &status.devices) {
                 let doing = match (&device.playing, device.driven) {
                     (Some(playing), _) => playing.clone(),
