@@ -163,6 +163,13 @@ impl Servo {
         }
     }
 
+    /// The limit farther from `degree`: where a servo whose position is not
+    /// known is taken to be, so a move timed from there can never be too fast.
+    pub fn farther_limit(&self, degree: f64) -> f64 {
+        let (low, high) = (f64::from(self.min_deg.min(self.max_deg)), f64::from(self.max_deg.max(self.min_deg)));
+        if (degree - low).abs() > (degree - high).abs() { low } else { high }
+    }
+
     /// `degree` clamped into this servo's limits.
     pub fn clamp(&self, degree: i16) -> i16 {
         degree.clamp(self.min_deg.min(self.max_deg), self.max_deg.max(self.min_deg))

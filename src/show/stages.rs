@@ -194,10 +194,7 @@ impl Stage for ServoStage {
         let from = match self.sent.get(&id) {
             Some(&(told, _)) => f64::from(told),
             // Where it is is not known: as if from the farther limit, so it cannot slam.
-            None => {
-                let (low, high) = (f64::from(servo.min_deg), f64::from(servo.max_deg));
-                if (f64::from(degree) - low).abs() > (f64::from(degree) - high).abs() { low } else { high }
-            }
+            None => servo.farther_limit(f64::from(degree)),
         };
         let interval_10ms = speed.interval_10ms(f64::from(degree) - from, 2);
         self.sent.insert(id, (degree, Instant::now()));

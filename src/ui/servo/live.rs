@@ -126,10 +126,7 @@ impl ServoUi {
         let (shown, reading, read_at) = from;
         let unknown = self.unsure.remove(&servo.id).is_some_and(|since| read_at.is_none_or(|at| at <= since));
         let here = if unknown {
-            let (low, high) =
-                (f64::from(servo.min_deg.min(servo.max_deg)), f64::from(servo.max_deg.max(servo.min_deg)));
-            let to = f64::from(degree);
-            if (to - low).abs() > (to - high).abs() { low } else { high }
+            servo.farther_limit(f64::from(degree))
         } else {
             self.moving.get(&servo.id).map_or_else(|| f64::from(reading.unwrap_or(shown)), |moving| moving.at(now))
         };
