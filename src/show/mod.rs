@@ -115,9 +115,48 @@ pub enum ShowError {
     /// JSON that is not a show.
     #[error("not a show: {0}")]
     Json(String),
-    /// What the show says does not hold together.
-    #[error("{0}")]
-    Invalid(String),
+    /// A show file newer than this Servo Studio.
+    #[error(
+        "show file version {found} is newer than this Servo Studio understands (up to {VERSION}); update Servo Studio to open it"
+    )]
+    NewerVersion {
+        /// The file's version.
+        found: u32,
+    },
+    /// A device's project does not read.
+    #[error("device {name:?}: {error}")]
+    DeviceProject {
+        /// The device.
+        name: String,
+        /// Why its project does not read.
+        error: project::LoadError,
+    },
+    /// A device without a name (numbered from 1).
+    #[error("device {0} has no name")]
+    NoName(usize),
+    /// Two devices of one name.
+    #[error("two devices are called {0:?}: names must differ")]
+    SameName(String),
+    /// A cue names no device of the show.
+    #[error("a cue at {at_ms} ms starts {device:?}, which is not a device of the show")]
+    NoDevice {
+        /// When the cue starts, ms.
+        at_ms: u64,
+        /// The name it gives.
+        device: String,
+    },
+    /// A cue starts what its device does not hold.
+    #[error("the cue at {at_ms} ms asks {device:?} ({}) to start {start:?}, which it does not hold", .family.name())]
+    NotHeld {
+        /// When the cue starts, ms.
+        at_ms: u64,
+        /// The device.
+        device: String,
+        /// Its family.
+        family: Family,
+        /// What the cue starts.
+        start: Start,
+    },
 }
 
 /// A device as the file holds it: its project as a whole project file's JSON.
@@ -170,15 +209,12 @@ impl Show {
         }
         let file: ShowFile = serde_json::from_value(value).map_err(|error| ShowError::Json(error.to_string()))?;
         if file.version > VERSION {
-            return Err(ShowError::Invalid(format!(
-                "show file version {} is newer than this Servo Studio understands (up to {VERSION}); update Servo Studio to open it",
-                file.version
-            )));
+            return Err(ShowError::NewerVersion { found: file.version });
         }
         let mut devices = Vec::new();
         for device in file.devices {
             let project = project::from_json(&device.project.to_string())
-                .map_err(|error| ShowError::Invalid(format!("device {:?}: {error}", device.name)))?;
+                .map_err(|error| ShowError::DeviceProject { name: device.name.clone(), error })?;
             devices.push(Device {
                 name: device.name,
                 port: device.port,
@@ -258,19 +294,16 @@ impl Show {
     pub fn check(&self) -> Result<(), ShowError> {
         for (index, device) in self.devices.iter().enumerate() {
             if device.name.trim().is_empty() {
-                return Err(ShowError::Invalid(format!("device {} has no name", index + 1)));
+                return Err(ShowError::NoName(index + 1));
             }
             if self.devices[..index].iter().any(|other| other.name == device.name) {
-                return Err(ShowError::Invalid(format!("two devices are called {:?}: names must differ", device.name)));
+                return Err(ShowError::SameName(device.name.clone()));
             }
         }
         for cue in &self.cues {
-            let device = self.device(&cue.device).ok_or_else(|| {
-                ShowError::Invalid(format!(
-                    "a cue at {} ms starts {:?}, which is not a device of the show",
-                    cue.at_ms, cue.device
-                ))
-            })?;
+            let device = self
+                .device(&cue.device)
+                .ok_or_else(|| ShowError::NoDevice { at_ms: cue.at_ms, device: cue.device.clone() })?;
             let family = device.project.family;
             let holds = match cue.start {
                 Start::Macro(id) => family == Family::Servo && device.project.servo.macro_by_id(id).is_some(),
@@ -282,13 +315,12 @@ impl Show {
                 }
             };
             if !holds {
-                return Err(ShowError::Invalid(format!(
-                    "the cue at {} ms asks {:?} ({}) to start {:?}, which it does not hold",
-                    cue.at_ms,
-                    cue.device,
-                    family.name(),
-                    cue.start
-                )));
+                return Err(ShowError::NotHeld {
+                    at_ms: cue.at_ms,
+                    device: cue.device.clone(),
+                    family,
+                    start: cue.start,
+                });
             }
         }
         Ok(())

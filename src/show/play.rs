@@ -118,7 +118,7 @@ impl Sent {
 }
 
 /// What one run did.
-#[derive(Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Ran {
     /// When the show's 0 was (the sound's point heard, or the clock's start).
     pub zero: Instant,

@@ -111,11 +111,9 @@ pub enum StartError {
 
 impl Worded for StartError {
     fn worded(&self, language: Language) -> String {
-        match (language, self) {
-            (Language::English, Self::Thread(text)) => format!("cannot start the connection: {text}"),
-            (Language::TraditionalChinese, Self::Thread(_)) => {
-                "無法啟動連線：系統無法再建立執行緒，請關閉一些程式後重試".into()
-            }
+        match self {
+            Self::Thread(text) if language == Language::English => format!("cannot start the connection: {text}"),
+            Self::Thread(_) => crate::say!(language, "status.no_thread"),
         }
     }
 }

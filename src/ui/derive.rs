@@ -154,7 +154,9 @@ impl<T: Send + 'static> Derived<(u64, usize), T> {
 /// A revision key that changes with the interface's language too (for what
 /// is derived with words in it): each revision and language its own key.
 pub fn with_language(revision: u64, language: crate::ui::i18n::Language) -> u64 {
-    revision.wrapping_mul(2) + u64::from(language == crate::ui::i18n::Language::TraditionalChinese)
+    let languages = crate::ui::i18n::Language::ALL;
+    let index = languages.iter().position(|option| *option == language).unwrap_or_default();
+    revision.wrapping_mul(languages.len() as u64) + index as u64
 }
 
 #[cfg(test)]

@@ -49,7 +49,7 @@ pub enum Heard {
         all_stopped: bool,
     },
     /// A play on the boards ended (how).
-    Played(Result<String, Stopped>),
+    Played(Result<crate::show::play::Ran, Stopped>),
 }
 
 /// What the editor asks of the boards.

@@ -302,7 +302,12 @@ impl Worker {
     /// Plays `show` once on the boards (the same player as `servo-studio
     /// play`); what it says at the end. Every device must be connected,
     /// unless the show plays on without it.
-    fn play(&mut self, show: &Show, sound: Option<PathBuf>, stop: &Receiver<String>) -> Result<String, Stopped> {
+    fn play(
+        &mut self,
+        show: &Show,
+        sound: Option<PathBuf>,
+        stop: &Receiver<String>,
+    ) -> Result<crate::show::play::Ran, Stopped> {
         let missing = show
             .devices
             .iter()
@@ -328,7 +333,7 @@ impl Worker {
         for (slot, stage) in self.stages.iter_mut().zip(player.stages) {
             *slot = (stage.lost().is_none()).then_some(stage);
         }
-        ran.map(|ran| crate::show::play::ran_words(&ran))
+        ran
     }
 
     /// Every device stopped (bases brake); nothing follows, plays or is queued.

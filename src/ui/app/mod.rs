@@ -282,7 +282,7 @@ impl StudioApp {
             let mut language = self.language;
             let language_label = ui.label(words.language);
             let picked = egui::ComboBox::from_id_salt("language").selected_text(language.name()).show_ui(ui, |ui| {
-                for option in [Language::English, Language::TraditionalChinese] {
+                for option in Language::ALL {
                     ui.selectable_value(&mut language, option, option.name());
                 }
             });

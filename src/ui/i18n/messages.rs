@@ -2,45 +2,32 @@
 //! problems, operation errors, status lines.
 
 use super::Language;
+use crate::say;
 
 impl Language {
     /// A link error in this language, with what to try.
     pub fn link_error(self, error: &crate::link::LinkError) -> String {
         use crate::link::LinkError as E;
-        match (self, error) {
-            (Self::English, _) => error.to_string(),
-            (Self::TraditionalChinese, E::BadPortName { name, .. }) => {
-                format!("無法辨識連接埠名稱 {name:?}：請輸入序列埠（例如 /dev/ttyUSB0 或 COM3）或 tcp://主機:埠號")
-            }
-            (Self::TraditionalChinese, E::NotFound { port }) => {
-                format!("{port}：找不到此連接埠。控制板是否已插上？`servo-studio ports` 會列出電腦看到的連接埠")
-            }
-            (Self::TraditionalChinese, E::PermissionDenied { port }) => format!(
-                "{port}：沒有權限。在 Linux 上請把自己加入 `dialout` 群組（sudo usermod -aG dialout $USER）後重新登入"
-            ),
-            (Self::TraditionalChinese, E::Busy { port }) => {
-                format!("{port}：連接埠使用中。請關閉其他使用它的程式（另一個 Servo Studio、序列埠監看程式）後重試")
-            }
-            (Self::TraditionalChinese, E::TimedOut { port, timeout_ms }) => {
-                format!("{port}：{timeout_ms} ms 內沒有回應。位址是否正確？橋接器是否已開機並在同一個網路上？")
-            }
-            (Self::TraditionalChinese, E::Refused { port }) => {
-                format!("{port}：連線被拒。該位址上的橋接程式（或 `servo-studio sim --tcp`）是否正在執行？")
-            }
-            (Self::TraditionalChinese, E::NotAPort { port, what }) => {
+        match error {
+            _ if self == Self::English => error.to_string(),
+            E::BadPortName { name, .. } => say!(self, "link.bad_port_name", name = format!("{name:?}")),
+            E::NotFound { port } => say!(self, "link.not_found", port),
+            E::PermissionDenied { port } => say!(self, "link.permission_denied", port),
+            E::Busy { port } => say!(self, "link.busy", port),
+            E::TimedOut { port, timeout_ms } => say!(self, "link.timed_out", port, timeout_ms),
+            E::Refused { port } => say!(self, "link.refused", port),
+            E::NotAPort { port, what } => {
                 let what = match *what {
-                    "a regular file" => "一般檔案",
-                    "a folder" => "資料夾",
-                    "a named pipe (FIFO)" => "具名管道（FIFO）",
-                    "a socket" => "socket",
-                    "a block device" => "區塊裝置",
-                    _ => "不是終端機的裝置",
+                    "a regular file" => self.word("link.a_regular_file"),
+                    "a folder" => self.word("link.a_folder"),
+                    "a named pipe (FIFO)" => self.word("link.a_named_pipe"),
+                    "a socket" => self.word("link.a_socket"),
+                    "a block device" => self.word("link.a_block_device"),
+                    _ => self.word("link.a_device"),
                 };
-                format!(
-                    "{port} 是{what}，不是序列埠：請選擇控制板所在的連接埠（`servo-studio ports` 會列出），或 tcp://主機:埠號"
-                )
+                say!(self, "link.not_a_port", port, what)
             }
-            (Self::TraditionalChinese, E::Open { port, source }) => format!("{port}：無法開啟：{source}"),
+            E::Open { port, source } => say!(self, "link.open", port, source),
         }
     }
 
@@ -49,110 +36,95 @@ impl Language {
         if self == Self::English {
             return kind.to_string();
         }
-        Self::board_problem(kind).or_else(|| Self::other_problem(kind)).unwrap_or_else(|| kind.to_string())
+        self.board_problem(kind).or_else(|| self.other_problem(kind)).unwrap_or_else(|| kind.to_string())
     }
 
-    /// A servo board's problem (captions, ids, limits, steps, commands, tables), in Chinese.
-    fn board_problem(kind: &crate::project::ProblemKind) -> Option<String> {
-        use crate::project::{ItemKind, ProblemKind as P};
-        let item = |kind: &ItemKind| match kind {
-            ItemKind::Servo => "舵機",
-            ItemKind::Action => "動作",
-            ItemKind::Macro => "巨集",
-            ItemKind::Table => "遙控對應表",
-        };
+    /// What a project's item is called ("servo", "action", "macro", "table").
+    fn item(self, kind: &crate::project::ItemKind) -> &'static str {
+        use crate::project::ItemKind;
+        match kind {
+            ItemKind::Servo => self.word("item.servo"),
+            ItemKind::Action => self.word("item.action"),
+            ItemKind::Macro => self.word("item.macro"),
+            ItemKind::Table => self.word("item.table"),
+        }
+    }
+
+    /// A servo board's problem (captions, ids, limits, steps, commands, tables).
+    fn board_problem(self, kind: &crate::project::ProblemKind) -> Option<String> {
+        use crate::project::ProblemKind as P;
         let text = match kind {
-            P::CaptionTooLong { bytes } => format!("標題有 {bytes} 個 UTF-8 位元組；控制板最多儲存 32 個"),
-            P::IdNotPositive { kind, id } => {
-                format!("{}編號必須大於或等於 1（0 在控制板上表示「無」），目前為 {id}", item(kind))
-            }
-            P::DuplicateId { kind, id } => format!("{}編號 {id} 重複", item(kind)),
-            P::ReservedServoId => "舵機編號 255 保留給「所有舵機」；請使用 0..=254".to_string(),
-            P::MinAboveMax { min_deg, max_deg } => format!("最小值 {min_deg}° 大於最大值 {max_deg}°"),
+            P::CaptionTooLong { bytes } => say!(self, "problem.caption_too_long", bytes),
+            P::IdNotPositive { kind, id } => say!(self, "problem.id_not_positive", item = self.item(kind), id),
+            P::DuplicateId { kind, id } => say!(self, "problem.duplicate_id", item = self.item(kind), id),
+            P::ReservedServoId => say!(self, "problem.reserved_servo_id"),
+            P::MinAboveMax { min_deg, max_deg } => say!(self, "problem.min_above_max", min_deg, max_deg),
             P::HomeOutsideLimits { home_deg, min_deg, max_deg } => {
-                format!("原點 {home_deg}° 超出範圍 {min_deg}°..{max_deg}°")
+                say!(self, "problem.home_outside_limits", home_deg, min_deg, max_deg)
             }
-            P::NoSteps => "沒有步驟：執行它不會有動作".to_string(),
-            P::ServoTwiceInAction { servo_id } => format!("舵機 {servo_id} 在此動作中已有步驟"),
-            P::NegativeInterval { interval_10ms } => format!("時間 {interval_10ms} × 10 ms 為負值"),
-            P::MissingServo { servo_id } => format!("舵機 {servo_id} 不存在"),
+            P::NoSteps => say!(self, "problem.no_steps"),
+            P::ServoTwiceInAction { servo_id } => say!(self, "problem.servo_twice_in_action", servo_id),
+            P::NegativeInterval { interval_10ms } => say!(self, "problem.negative_interval", interval_10ms),
+            P::MissingServo { servo_id } => say!(self, "problem.missing_servo", servo_id),
             P::StepOutsideLimits { degree, servo_id, min_deg, max_deg } => {
-                format!("{degree}° 超出舵機 {servo_id} 的範圍 {min_deg}°..{max_deg}°")
+                say!(self, "problem.step_outside_limits", degree, servo_id, min_deg, max_deg)
             }
-            P::NoCommands => "沒有指令：執行它不會有動作".to_string(),
-            P::TooManyCommands { count, max } => format!("有 {count} 個指令；一個封包最多容納 {max} 個"),
-            P::RatioOutOfRange { ratio_percent } => format!("速度比例 {ratio_percent} % 不在 1..=100 之間"),
-            P::LoopBelowOne { loop_count } => format!("重複次數 {loop_count} 必須至少為 1"),
-            P::MissingAction { action_id } => format!("動作 {action_id} 不存在"),
-            P::MissingMacro { macro_id } => format!("巨集 {macro_id} 不存在"),
-            P::NegativeDelay { delay_ms } => format!("延遲 {delay_ms} ms 為負值"),
-            P::TotalTooLong { total_ms } => format!("執行 {total_ms} ms，超過控制板能計算的長度（{} ms）", i32::MAX),
-            P::MacroCycle { path } => {
-                let names: Vec<String> = path.iter().map(ToString::to_string).collect();
-                format!("巨集循環 {}：巨集不可呼叫到自己", names.join(" → "))
-            }
+            P::NoCommands => say!(self, "problem.no_commands"),
+            P::TooManyCommands { count, max } => say!(self, "problem.too_many_commands", count, max),
+            P::RatioOutOfRange { ratio_percent } => say!(self, "problem.ratio_out_of_range", ratio_percent),
+            P::LoopBelowOne { loop_count } => say!(self, "problem.loop_below_one", loop_count),
+            P::MissingAction { action_id } => say!(self, "problem.missing_action", action_id),
+            P::MissingMacro { macro_id } => say!(self, "problem.missing_macro", macro_id),
+            P::NegativeDelay { delay_ms } => say!(self, "problem.negative_delay", delay_ms),
+            P::TotalTooLong { total_ms } => say!(self, "problem.total_too_long", total_ms, max_ms = i32::MAX),
+            P::MacroCycle { path } => say!(self, "problem.macro_cycle", path = arrows(path)),
             _ => return None,
         };
         Some(text)
     }
 
-    /// A rig's, a gamepad binding's, a PLEN2's or any section's problem, in Chinese.
-    fn other_problem(kind: &crate::project::ProblemKind) -> Option<String> {
+    /// A rig's, a gamepad binding's, a PLEN2's or any section's problem.
+    fn other_problem(self, kind: &crate::project::ProblemKind) -> Option<String> {
         use crate::project::{ButtonSlot, ProblemKind as P};
         let text = match kind {
-            P::RigUnknownParent { parent } => {
-                format!("骨架中它裝在舵機 {parent} 上，但該舵機不在骨架中：請為該舵機設定骨架，或改選其他上層")
+            P::RigUnknownParent { parent } => say!(self, "problem.rig_unknown_parent", parent),
+            P::RigCycle { path } => say!(self, "problem.rig_cycle", path = arrows(path)),
+            P::RigUnknownTwin { twin } => say!(self, "problem.rig_unknown_twin", twin),
+            P::BoundTwice => say!(self, "problem.bound_twice"),
+            P::MissingPlayList { index } => say!(self, "problem.missing_play_list", index),
+            P::TooManyButtons { count, max } => say!(self, "problem.too_many_buttons", count, max),
+            P::DuplicateButton { button_id } => {
+                say!(self, "problem.duplicate_button", button_id = format!("0x{button_id:08x}"))
             }
-            P::RigCycle { path } => {
-                let names: Vec<String> = path.iter().map(ToString::to_string).collect();
-                format!("骨架循環 {}：舵機不可裝在自己身上", names.join(" → "))
-            }
-            P::RigUnknownTwin { twin } => {
-                format!(
-                    "左右鏡像的對側是舵機 {twin}，但它不是骨架中的另一個舵機：左右鏡像會保留此步驟；請指定另一側的骨架舵機"
-                )
-            }
-            P::BoundTwice => "重複綁定（或已被其他用途佔用）：只有其中一個綁定有效；請移除其他的".into(),
-            P::MissingPlayList { index } => format!("播放清單 {index} 不存在"),
-            P::TooManyButtons { count, max } => format!("有 {count} 個按鍵；一個封包最多容納 {max} 個"),
-            P::DuplicateButton { button_id } => format!("按鍵編號 0x{button_id:08x} 在此對應表中重複"),
             P::MissingButtonMacro { slot, macro_id } => {
                 let event = match slot {
-                    ButtonSlot::Press => "按下",
-                    ButtonSlot::LongPress => "長按",
-                    ButtonSlot::Release => "放開",
+                    ButtonSlot::Press => self.word("problem.press"),
+                    ButtonSlot::LongPress => self.word("problem.long_press"),
+                    ButtonSlot::Release => self.word("problem.release"),
                 };
-                format!("{event}巨集 {macro_id} 不存在")
+                say!(self, "problem.missing_button_macro", event, macro_id)
             }
-            P::ButtonRunsNothing => "不會執行任何巨集".to_string(),
-            P::MissingActiveTable { table_id } => format!("使用中的遙控對應表 {table_id} 不存在"),
+            P::ButtonRunsNothing => say!(self, "problem.button_runs_nothing"),
+            P::MissingActiveTable { table_id } => say!(self, "problem.missing_active_table", table_id),
             P::StoredTotalDiffers { stored_ms, derived_ms } => {
-                format!("控制板儲存的總時間是 {stored_ms} ms，依專案計算為 {derived_ms} ms；修改此指令之前保留儲存的值")
+                say!(self, "problem.stored_total_differs", stored_ms, derived_ms)
             }
-            P::OutOfRange { field, value, min, max } => format!("{field} {value} 不在 {min}..={max} 之間"),
-            P::DuplicateSlot { slot } => format!("位置 {slot} 已有另一個動作"),
-            P::DuplicateJoint => "重複列出".to_string(),
-            P::NameTooLong { bytes, max } => format!("名稱有 {bytes} 個位元組；機器人最多儲存 {max} 個"),
-            P::NameNotAscii => "名稱只能使用可列印的 ASCII 字元（機器人儲存的是位元組）".to_string(),
-            P::NoFrames => "沒有任何影格".to_string(),
+            P::OutOfRange { field, value, min, max } => say!(self, "problem.out_of_range", field, value, min, max),
+            P::DuplicateSlot { slot } => say!(self, "problem.duplicate_slot", slot),
+            P::DuplicateJoint => say!(self, "problem.duplicate_joint"),
+            P::NameTooLong { bytes, max } => say!(self, "problem.name_too_long", bytes, max),
+            P::NameNotAscii => say!(self, "problem.name_not_ascii"),
+            P::NoFrames => say!(self, "problem.no_frames"),
             P::BadLoopRange { begin_frame, end_frame, frames } => {
-                format!("從影格 {begin_frame} 到 {end_frame} 的循環不在它的 {frames} 個影格之內")
+                say!(self, "problem.bad_loop_range", begin_frame, end_frame, frames)
             }
-            P::MissingMotion { slot } => format!("位置 {slot} 沒有動作"),
-            P::LoopRunsForever => {
-                "循環次數 0 會永遠循環：機器人會把它倒數成 255（兩遍請填 1，永遠請填 255）".to_string()
-            }
-            P::JumpBeyondSlots { slot } => {
-                format!("跳到位置 {slot}：機器人只有位置 0..=89，因此會永遠重播這個動作")
-            }
-            P::FirstFrameZeroCycles { transition_ms } => format!(
-                "transition_ms {transition_ms} 是 0 個 32 毫秒週期：作為第一個影格，機器人會除以零（行為無法預測）；請填 32..=8191"
-            ),
-            P::FrameSkipped { transition_ms } => format!(
-                "transition_ms {transition_ms} 是 0 個 32 毫秒週期：機器人會跳過這個影格（不會顯示它的姿勢，下一個影格從它開始）"
-            ),
-            P::NotPositive { field } => format!("{field} 必須是正數"),
-            P::UnknownKey => "不認得的欄位，已略過（是否拼錯？）".to_string(),
+            P::MissingMotion { slot } => say!(self, "problem.missing_motion", slot),
+            P::LoopRunsForever => say!(self, "problem.loop_runs_forever"),
+            P::JumpBeyondSlots { slot } => say!(self, "problem.jump_beyond_slots", slot),
+            P::FirstFrameZeroCycles { transition_ms } => say!(self, "problem.first_frame_zero_cycles", transition_ms),
+            P::FrameSkipped { transition_ms } => say!(self, "problem.frame_skipped", transition_ms),
+            P::NotPositive { field } => say!(self, "problem.not_positive", field),
+            P::UnknownKey => say!(self, "problem.unknown_key"),
             _ => return None,
         };
         Some(text)
@@ -164,14 +136,11 @@ impl Language {
         let mut list: Vec<String> = problems
             .iter()
             .take(20)
-            .map(|p| format!("{}：{}", self.location(&p.location), self.problem(&p.kind)))
+            .map(|p| say!(self, "location.at", location = self.location(&p.location), problem = self.problem(&p.kind)))
             .collect();
         let more = problems.errors() + problems.warnings() - list.len();
         if more > 0 {
-            list.push(match self {
-                Self::English => format!("… and {more} more (servo-studio check lists them all)"),
-                Self::TraditionalChinese => format!("……還有 {more} 個（servo-studio check 會全部列出）"),
-            });
+            list.push(say!(self, "status.more_problems", more));
         }
         list
     }
@@ -182,127 +151,95 @@ impl Language {
         if self == Self::English {
             return location.to_string();
         }
+        let q = |caption: &str| format!("{caption:?}");
         match location {
-            L::Project => "專案".into(),
-            L::Servo { servo_id, caption } => format!("舵機 {servo_id} {caption:?}"),
-            L::Action { action_id, caption } => format!("動作 {action_id} {caption:?}"),
-            L::Step { action_id, caption, step } => format!("動作 {action_id} {caption:?}，步驟 {step}"),
-            L::Macro { macro_id, caption } => format!("巨集 {macro_id} {caption:?}"),
-            L::Command { macro_id, caption, command } => format!("巨集 {macro_id} {caption:?}，指令 {command}"),
-            L::Table { table_id, caption } => format!("遙控對應表 {table_id} {caption:?}"),
-            L::Button { table_id, table_caption, button_id, caption } => {
-                format!("遙控對應表 {table_id} {table_caption:?}，按鍵 0x{button_id:08x} {caption:?}")
+            L::Project => say!(self, "location.project"),
+            L::Servo { servo_id, caption } => say!(self, "location.servo", servo_id, caption = q(caption)),
+            L::Action { action_id, caption } => say!(self, "location.action", action_id, caption = q(caption)),
+            L::Step { action_id, caption, step } => say!(self, "location.step", action_id, caption = q(caption), step),
+            L::Macro { macro_id, caption } => say!(self, "location.macro", macro_id, caption = q(caption)),
+            L::Command { macro_id, caption, command } => {
+                say!(self, "location.command", macro_id, caption = q(caption), command)
             }
-            L::Joint { joint } => format!("關節 {joint}"),
-            L::Motion { slot, name } => format!("動作 {slot} {name:?}"),
-            L::Frame { slot, name, frame } => format!("動作 {slot} {name:?}，影格 {frame}"),
-            L::PlayList { index, name } => format!("播放清單 {index} {name:?}"),
-            L::Robot => "機器人".into(),
-            L::GamepadButton { button } => format!("遊戲手把按鈕 0x{button:03x}"),
-            L::GamepadAxis { axis } => format!("遊戲手把搖桿軸 {axis}"),
+            L::Table { table_id, caption } => say!(self, "location.table", table_id, caption = q(caption)),
+            L::Button { table_id, table_caption, button_id, caption } => say!(
+                self,
+                "location.button",
+                table_id,
+                table_caption = q(table_caption),
+                button_id = format!("0x{button_id:08x}"),
+                caption = q(caption)
+            ),
+            L::Joint { joint } => say!(self, "location.joint", joint),
+            L::Motion { slot, name } => say!(self, "location.motion", slot, name = q(name)),
+            L::Frame { slot, name, frame } => say!(self, "location.frame", slot, name = q(name), frame),
+            L::PlayList { index, name } => say!(self, "location.play_list", index, name = q(name)),
+            L::Robot => say!(self, "location.robot"),
+            L::GamepadButton { button } => say!(self, "location.gamepad_button", button = format!("0x{button:03x}")),
+            L::GamepadAxis { axis } => say!(self, "location.gamepad_axis", axis),
             L::Key { path } => path.clone(),
         }
     }
 
     /// A family's name.
     pub fn family(self, family: crate::project::Family) -> &'static str {
-        use crate::project::Family as F;
-        match (self, family) {
-            (Self::English, F::Servo) => "Servo board",
-            (Self::TraditionalChinese, F::Servo) => "舵機控制板",
-            (_, F::Plen2) => "PLEN2",
-            (Self::English, F::Rflex) => "rFLEX base",
-            (Self::TraditionalChinese, F::Rflex) => "rFLEX 移動底盤",
-            // Any other family by its own name.
-            (_, family) => family.name(),
-        }
+        super::Catalogue::of(self).find(&format!("family.{}", family.tag())).unwrap_or_else(|| family.name())
     }
 
     /// "connecting to PORT…".
     pub fn connecting_to(self, port: &str) -> String {
-        match self {
-            Self::English => format!("connecting to {port}…"),
-            Self::TraditionalChinese => format!("正在連線至 {port}…"),
-        }
+        say!(self, "status.connecting_to", port)
     }
 
     /// The user stopped a connection attempt.
     pub fn connect_cancelled(self, port: &str) -> String {
-        match self {
-            Self::English => format!("stopped connecting to {port}"),
-            Self::TraditionalChinese => format!("已取消連線至 {port}"),
-        }
+        say!(self, "status.connect_cancelled", port)
     }
 
     /// Why a link ended, as a phrase.
     pub fn disconnect_reason(self, reason: &crate::link::DisconnectReason) -> String {
         use crate::link::DisconnectReason as D;
-        match (self, reason) {
-            (Self::English, _) => reason.to_string(),
-            (_, D::Closed) => "連線已關閉".into(),
-            (_, D::ClosedByDriver) => "驅動程式關閉了連線".into(),
-            (_, D::ClosedByPeer) => "另一端關閉了連接埠".into(),
-            (_, D::ReadFailed(_)) => "讀取連接埠失敗，線材是否被拔掉，或控制板斷電了".into(),
-            (_, D::WriteFailed(_)) => "寫入連接埠失敗，線材是否被拔掉，或控制板斷電了".into(),
-            (_, D::ThreadFailed(_)) => "連線的讀取執行緒停止了".into(),
+        match reason {
+            _ if self == Self::English => reason.to_string(),
+            D::Closed => say!(self, "link.closed"),
+            D::ClosedByDriver => say!(self, "link.closed_by_driver"),
+            D::ClosedByPeer => say!(self, "link.closed_by_peer"),
+            D::ReadFailed(_) => say!(self, "link.read_failed"),
+            D::WriteFailed(_) => say!(self, "link.write_failed"),
+            D::ThreadFailed(_) => say!(self, "link.thread_failed"),
         }
     }
 
     /// The status line when the link ends: one sentence, the reason once.
     pub fn link_ended(self, reason: &crate::link::DisconnectReason) -> String {
-        let why = self.disconnect_reason(reason);
-        match self {
-            Self::English => {
-                format!("The board link ended ({why}). Your project is unchanged; reconnect when ready.")
-            }
-            Self::TraditionalChinese => format!("與控制板的連線已中斷（{why}）。專案未變更，準備好後請重新連線。"),
-        }
+        say!(self, "status.link_ended", why = self.disconnect_reason(reason))
     }
 
     /// The backup folder could not be made, so nothing was written.
     pub fn backup_folder_failed(self, folder: &std::path::Path, error: &std::io::Error) -> String {
-        match self {
-            Self::English => {
-                format!("cannot create the backup folder {}: {error}; nothing was written", folder.display())
-            }
-            Self::TraditionalChinese => {
-                format!("無法建立備份資料夾 {}，因此沒有寫入任何資料。請確認磁碟空間與權限", folder.display())
-            }
-        }
+        say!(self, "file.backup_folder_failed", folder = folder.display(), error = self.io_error(error))
     }
 
     /// A file opened, but with keys Servo Studio does not know (ignored).
     /// `keys` are the first unknown keys by name, `count` how many there were.
     pub fn opened_with_unknown_keys(self, path: &std::path::Path, keys: &[String], count: usize) -> String {
-        let file = path.display();
         let shown: Vec<&str> = keys.iter().take(3).map(String::as_str).collect();
-        let more = if count > shown.len() { ", …" } else { "" };
-        match self {
-            Self::English => {
-                format!("opened {file}; {count} unknown key(s) ignored (misspelt?): {}{more}", shown.join(", "))
-            }
-            Self::TraditionalChinese => {
-                format!("已開啟 {file}；略過 {count} 個不認得的欄位（是否拼錯？）：{}{more}", shown.join("、"))
-            }
-        }
+        let more = if count > shown.len() { self.word("file.and_more") } else { "" };
+        let keys = shown.join(self.word("file.list_comma"));
+        say!(self, "file.opened_with_unknown_keys", file = path.display(), count, keys, more)
     }
 
     /// A file that could not be read at all, in one sentence.
     pub fn read_error(self, error: &crate::project::input::ReadError) -> String {
         use crate::project::input::ReadError as E;
-        match (self, error) {
-            (Self::English, _) => error.to_string(),
-            (_, E::Io { path, source }) => format!("無法開啟 {}：{}", path.display(), io_words(source.kind())),
-            (_, E::NotAFile { path, .. }) => {
-                format!("無法開啟 {}：它不是一般檔案（具名管道、裝置或資料夾）", path.display())
+        match error {
+            _ if self == Self::English => error.to_string(),
+            E::Io { path, source } => say!(self, "file.io", file = path.display(), why = self.io_words(source.kind())),
+            E::NotAFile { path, .. } => say!(self, "file.not_a_file", file = path.display()),
+            E::TooLarge { path, bytes, max } => {
+                say!(self, "file.too_large", file = path.display(), mb = bytes / 1_000_000, max_mb = max / 1_000_000)
             }
-            (_, E::TooLarge { path, bytes, max }) => format!(
-                "無法開啟 {}：檔案有 {} MB，超過上限 {} MB（是正確的檔案嗎？）",
-                path.display(),
-                bytes / 1_000_000,
-                max / 1_000_000
-            ),
-            (_, E::NotText { path, .. }) => format!("無法開啟 {}：內容不是有效的 UTF-8 文字", path.display()),
+            E::NotText { path, .. } => say!(self, "file.not_text", file = path.display()),
         }
     }
 
@@ -311,16 +248,11 @@ impl Language {
         use crate::project::LoadError as E;
         let file = path.display();
         match (self, error) {
-            (Self::English, E::Read(error)) => error.to_string(),
-            (Self::English, _) => format!("cannot open {file}: {error}"),
             (_, E::Read(error)) => self.read_error(error),
-            (_, E::Syntax { line, column, .. }) => {
-                format!("無法開啟 {file}：第 {line} 行第 {column} 欄不是有效的專案內容")
-            }
-            (_, E::WrongFormat { .. }) => format!("無法開啟 {file}：這不是 Servo Studio 的專案檔"),
-            (_, E::NewerVersion { found, .. }) => {
-                format!("無法開啟 {file}：它是較新版本的 Servo Studio 所寫（格式版本 {found}）；請更新 Servo Studio")
-            }
+            (Self::English, _) => format!("cannot open {file}: {error}"),
+            (_, E::Syntax { line, column, .. }) => say!(self, "file.syntax", file, line, column),
+            (_, E::WrongFormat { .. }) => say!(self, "file.wrong_format", file),
+            (_, E::NewerVersion { found, .. }) => say!(self, "file.newer_version", file, found),
         }
     }
 
@@ -334,49 +266,53 @@ impl Language {
             (_, E::Project { source, .. }) => self.load_error(path, source),
             (Self::English, _) => error.to_string(),
             (_, E::Motion(M::Io { path, source })) => {
-                format!("無法讀取 {}：{}", path.display(), io_words(source.kind()))
+                say!(self, "file.motion_io", file = path.display(), why = self.io_words(source.kind()))
             }
             (_, E::Motion(M::NotAMotion { path, reason })) => {
-                format!("{} 不是 PLEN2 的 motion.json：{reason}", path.display())
+                say!(self, "file.not_a_motion", file = path.display(), reason)
             }
-            (_, E::Motion(M::Empty { path })) => format!("{} 裡沒有 motion.json（*.json）檔案", path.display()),
-            (_, E::Entry { folder, skipped }) => {
-                format!("無法開啟資料夾 {}（資料夾不會只開啟一部分）：{skipped}", folder.display())
-            }
+            (_, E::Motion(M::Empty { path })) => say!(self, "file.no_motions", folder = path.display()),
+            (_, E::Entry { folder, skipped }) => say!(self, "file.folder_entry", folder = folder.display(), skipped),
         }
     }
 
     /// A project file that could not be saved; the previous file is intact.
     pub fn save_error(self, error: &crate::project::SaveError) -> String {
-        match self {
-            Self::English => error.to_string(),
-            Self::TraditionalChinese => format!(
-                "無法儲存 {}：{}；{}",
-                error.path.display(),
-                io_words(error.source.kind()),
-                if error.existed { "原本的檔案沒有改變" } else { "沒有寫入任何東西" }
-            ),
+        if self == Self::English {
+            return error.to_string();
         }
+        let kept = if error.existed { self.word("file.previous_kept") } else { self.word("file.nothing_written") };
+        say!(self, "file.save_error", file = error.path.display(), why = self.io_words(error.source.kind()), kept)
     }
 
     /// The recovery file could not be written.
     pub fn autosave_failed(self, error: &std::io::Error) -> String {
+        say!(self, "file.autosave_failed", error = self.io_error(error))
+    }
+
+    /// An I/O error: as the system says it in English, else in words.
+    fn io_error(self, error: &std::io::Error) -> String {
         match self {
-            Self::English => format!("autosave failed: {error}"),
-            Self::TraditionalChinese => format!("自動儲存失敗：{}", io_words(error.kind())),
+            Self::English => error.to_string(),
+            _ => self.io_words(error.kind()).to_string(),
+        }
+    }
+
+    /// What went wrong with a file.
+    fn io_words(self, kind: std::io::ErrorKind) -> &'static str {
+        use std::io::ErrorKind as K;
+        match kind {
+            K::NotFound => self.word("file.not_found"),
+            K::PermissionDenied => self.word("file.permission_denied"),
+            K::StorageFull => self.word("file.storage_full"),
+            K::ReadOnlyFilesystem => self.word("file.read_only"),
+            K::InvalidData => self.word("file.invalid_data"),
+            _ => self.word("file.io_failed"),
         }
     }
 }
 
-/// What went wrong with a file, in Traditional Chinese.
-fn io_words(kind: std::io::ErrorKind) -> &'static str {
-    use std::io::ErrorKind as K;
-    match kind {
-        K::NotFound => "找不到檔案或資料夾",
-        K::PermissionDenied => "沒有權限",
-        K::StorageFull => "磁碟已滿",
-        K::ReadOnlyFilesystem => "磁碟是唯讀的",
-        K::InvalidData => "內容不是有效的 UTF-8 文字",
-        _ => "讀寫失敗",
-    }
+/// A path of ids joined by arrows ("1 → 2 → 1").
+fn arrows(path: &[impl ToString]) -> String {
+    path.iter().map(ToString::to_string).collect::<Vec<_>>().join(" → ")
 }

@@ -1,16 +1,23 @@
-//! The interface's words in English and Traditional Chinese, chosen from the
-//! OS locale and switchable at run time: captions in [`strings`], whole
-//! sentences for errors, problems and status in `messages`.
+//! The interface's words in English, 繁體中文, 日本語 and 한국어, chosen from
+//! the OS locale and switchable at run time. Each language is one file,
+//! `assets/i18n/<tag>.toml` (a section per panel, a key per caption, `{holes}`
+//! in sentences), read by [`Catalogue`]; the tables of captions are built
+//! from it (`words!`), and sentences are said with `say!`.
 
+mod catalogue;
+#[cfg(test)]
+mod coverage;
 mod doctor;
 mod headings;
 mod messages;
 mod operations;
 mod strings;
 
+#[cfg(test)]
+use catalogue::holes;
+pub use catalogue::{Catalogue, Table, Word, fill};
 pub use doctor::{PadConflict, SaidWords};
 pub use strings::Strings;
-use strings::{ENGLISH, TRADITIONAL_CHINESE};
 
 /// A language of the interface.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
@@ -20,19 +27,40 @@ pub enum Language {
     English,
     /// 繁體中文.
     TraditionalChinese,
+    /// 日本語.
+    Japanese,
+    /// 한국어.
+    Korean,
 }
 
 impl Language {
-    /// The language the OS locale asks for: Traditional Chinese for `zh_TW`,
-    /// `zh_HK`, `zh_MO` and `zh-Hant`, English otherwise.
+    /// Every language, in menu order.
+    pub const ALL: [Self; 4] = [Self::English, Self::TraditionalChinese, Self::Japanese, Self::Korean];
+
+    /// The language's file (`assets/i18n/`): its words, its name, and the locales it serves.
+    fn file(self) -> &'static str {
+        match self {
+            Self::English => include_str!("../../../assets/i18n/en.toml"),
+            Self::TraditionalChinese => include_str!("../../../assets/i18n/zh-Hant.toml"),
+            Self::Japanese => include_str!("../../../assets/i18n/ja.toml"),
+            Self::Korean => include_str!("../../../assets/i18n/ko.toml"),
+        }
+    }
+
+    /// The language's file, parsed.
+    fn parsed(self) -> Catalogue {
+        Catalogue::parse(self, self.file())
+    }
+
+    /// The language the OS locale asks for: the one whose file lists a prefix
+    /// of it (`zh_TW`, `zh-Hant`, `ja_JP`, `ko_KR`…), English otherwise.
     pub fn from_locale(locale: &str) -> Self {
         let locale = locale.to_ascii_lowercase().replace('-', "_");
-        let traditional = ["zh_tw", "zh_hk", "zh_mo", "zh_hant"];
-        if traditional.iter().any(|prefix| locale.starts_with(prefix)) {
-            Self::TraditionalChinese
-        } else {
-            Self::English
-        }
+        let serves = |language: &Self| {
+            let locales = Catalogue::of(*language).value("language.locales").and_then(toml::Value::as_array);
+            locales.into_iter().flatten().filter_map(toml::Value::as_str).any(|prefix| locale.starts_with(prefix))
+        };
+        Self::ALL.into_iter().find(serves).unwrap_or(Self::English)
     }
 
     /// The language of this process's locale (`LC_ALL`, `LC_MESSAGES`, `LANG`).
@@ -46,18 +74,12 @@ impl Language {
 
     /// The words of this language.
     pub fn strings(self) -> &'static Strings {
-        match self {
-            Self::English => &ENGLISH,
-            Self::TraditionalChinese => &TRADITIONAL_CHINESE,
-        }
+        Strings::of(self)
     }
 
-    /// The language's own name.
+    /// The language's own name ("日本語").
     pub fn name(self) -> &'static str {
-        match self {
-            Self::English => "English",
-            Self::TraditionalChinese => "繁體中文",
-        }
+        Catalogue::of(self).text("language.name")
     }
 }
 
@@ -139,6 +161,9 @@ mod tests {
         assert_eq!(Language::from_locale("zh-Hant-TW"), Language::TraditionalChinese);
         assert_eq!(Language::from_locale("zh_HK"), Language::TraditionalChinese);
         assert_eq!(Language::from_locale("en_US.UTF-8"), Language::English);
+        assert_eq!(Language::from_locale("ja_JP.UTF-8"), Language::Japanese);
+        assert_eq!(Language::from_locale("ko_KR.UTF-8"), Language::Korean);
+        assert_eq!(Language::from_locale("zh_CN.UTF-8"), Language::English, "Simplified is not Traditional");
         assert_eq!(Language::from_locale("C"), Language::English);
     }
 }

@@ -6,6 +6,7 @@
 use crate::device::{Left, Stage, UploadFailure};
 
 use super::Language;
+use crate::say;
 
 impl Language {
     /// A failed upload of any family: why (`error` words it), and what it
@@ -21,33 +22,27 @@ impl Language {
         }
         let reason = error(&failure.error);
         let mut text = match failure.stage {
-            Stage::BackingUp => format!("備份裝置時：{reason}"),
-            Stage::Verifying => format!("驗證時：{reason}"),
+            Stage::BackingUp => say!(self, "upload.backing_up", reason),
+            Stage::Verifying => say!(self, "upload.verifying", reason),
             Stage::Checking | Stage::Writing => reason,
         };
         match &failure.left {
-            Left::Untouched => text.push_str("\n沒有寫入任何資料：裝置保持原狀"),
+            Left::Untouched => text.push_str(&format!("\n{}", say!(self, "upload.untouched"))),
             Left::Partly { reached, total } => {
                 let names: Vec<String> = reached.iter().take(6).map(&item).collect();
-                text.push_str(&format!(
-                    "\n裝置可能只寫入了一部分：{total} 個項目中有 {} 個已寫入（{}）",
-                    reached.len(),
-                    names.join("、")
-                ));
+                let (count, names) = (reached.len(), names.join(self.word("file.list_comma")));
+                text.push_str(&format!("\n{}", say!(self, "upload.partly", total, count, names)));
             }
-            Left::Everything => text.push_str("\n所有項目都已寫入"),
+            Left::Everything => text.push_str(&format!("\n{}", say!(self, "upload.everything"))),
         }
         if let Some(backup) = &failure.backup {
-            text.push_str(&format!("\n裝置原本的內容已備份於 {}", backup.display()));
+            text.push_str(&format!("\n{}", say!(self, "upload.backed_up", backup = backup.display())));
         }
         text
     }
 
     /// No thread could be started for an operation.
     pub fn no_worker(self, error: &std::io::Error) -> String {
-        match self {
-            Self::English => format!("cannot start the operation: {error}"),
-            Self::TraditionalChinese => format!("無法開始此操作（{error}）。請關閉其他程式後再試"),
-        }
+        say!(self, "upload.no_worker", error)
     }
 }

@@ -9,6 +9,7 @@ use crate::interchange::build::{self, Built, Options, Selection};
 use crate::interchange::map::Target;
 use crate::project::{Family, Project};
 use crate::ui::files::FileWork;
+use crate::ui::i18n::fill;
 
 /// The conversion Create would make and what the board plays of the previewed clip.
 pub(super) type Checked = Result<(Box<Built>, Option<Played>), String>;
@@ -74,7 +75,8 @@ impl ImportDesk {
                     Some(differs) => {
                         let channel = &session.source.channels[differs.channel];
                         let target = session.map.entry(&channel.key).and_then(|e| e.target);
-                        let said = (words.differs)(
+                        let said = words::differs(
+                            words,
                             &channel.key,
                             &target.map_or_else(String::new, |t| words::target(t, words)),
                             differs.degrees,
@@ -106,7 +108,8 @@ pub(super) fn landings(session: &Session, project: &Project, words: &ImportWords
             && project.family == Family::Servo
             && project.servo.servo(id).is_some()
         {
-            said.push((words.in_use)(&entry.source, &words::target(target, words)));
+            let (channel, target) = (&entry.source, words::target(target, words));
+            said.push(fill(words.in_use, &[("channel", channel), ("target", &target)]));
         }
         match by_target.iter_mut().find(|(t, _)| *t == target) {
             Some((_, channels)) => channels.push(&entry.source),
@@ -114,7 +117,8 @@ pub(super) fn landings(session: &Session, project: &Project, words: &ImportWords
         }
     }
     for (target, channels) in by_target.iter().filter(|(_, channels)| channels.len() > 1) {
-        said.push((words.twice)(&channels.join(", "), &words::target(*target, words)));
+        let (channels, target) = (channels.join(", "), words::target(*target, words));
+        said.push(fill(words.twice, &[("channels", &channels), ("target", &target)]));
     }
     said
 }

@@ -1,7 +1,7 @@
 //! The import window's joint map table: a row per channel of the file — what
 //! it drives, its zero, units per degree, reversed, offset, and its angle now.
 
-use super::{ImportWords, Session};
+use super::{ImportWords, Session, words};
 use crate::interchange::map::Target;
 use crate::project::Family;
 use crate::project::plen2::Joint;
@@ -85,19 +85,19 @@ fn target_picker(
     (family, key, named): (Family, &str, egui::Id),
     words: &ImportWords,
 ) {
-    let shown = target.map_or_else(|| words.not_imported.to_string(), |t| super::words::target(t, words));
+    let shown = target.map_or_else(|| words.not_imported.to_string(), |t| words::target(t, words));
     let picked =
         egui::ComboBox::from_id_salt(("import-target", key)).selected_text(shown).width(160.0).show_ui(ui, |ui| {
             ui.selectable_value(target, None, words.not_imported);
             match family {
                 Family::Plen2 => {
                     for joint in Joint::ALL {
-                        ui.selectable_value(target, Some(Target::Joint(joint)), (words.joint)(joint));
+                        ui.selectable_value(target, Some(Target::Joint(joint)), words::joint(joint, words));
                     }
                 }
                 _ => {
                     for id in 0..=254u8 {
-                        ui.selectable_value(target, Some(Target::Servo(id)), (words.servo)(id));
+                        ui.selectable_value(target, Some(Target::Servo(id)), words::target(Target::Servo(id), words));
                     }
                 }
             }

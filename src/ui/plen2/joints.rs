@@ -68,7 +68,7 @@ pub fn ui(ui: &mut egui::Ui, view: &JointsView<'_>, layout: &mut Layout, words: 
     });
     let settings = (&mut layout.settings_share, &mut layout.settings_open);
     layout::over(ui, "plen2-joint-settings", settings, words.plen2().joint_settings, |ui, pane| match pane {
-        Pane::First => sliders(ui, view, actions),
+        Pane::First => sliders(ui, view, words.home, actions),
         Pane::Second => {
             egui::ScrollArea::vertical().id_salt("plen2-settings-scroll").show(ui, |ui| {
                 settings_editor(ui, view, words, actions);
@@ -78,7 +78,7 @@ pub fn ui(ui: &mut egui::Ui, view: &JointsView<'_>, layout: &mut Layout, words: 
 }
 
 /// The 18 joints' sliders, in the height left (only the rows in view laid out).
-fn sliders(ui: &mut egui::Ui, view: &JointsView<'_>, actions: &mut Vec<Action>) {
+fn sliders(ui: &mut egui::Ui, view: &JointsView<'_>, home: &str, actions: &mut Vec<Action>) {
     // Which slider is whose joint, remembered from the last frame (egui gives
     // widgets their ids as they are drawn).
     let ids_key = ui.scope_id().with("plen2-joint-slider-ids");
@@ -117,7 +117,7 @@ fn sliders(ui: &mut egui::Ui, view: &JointsView<'_>, actions: &mut Vec<Action>) 
         if response.changed() || (focused == Some(joint) && nudge != 0) {
             actions.push(Action::family(Plen2Action::SetJoint { joint, tenths: value }));
         }
-        ui.weak(format!("home {:.1}°", f64::from(setting.home_tenths_deg) / 10.0));
+        ui.weak(format!("{home} {:.1}°", f64::from(setting.home_tenths_deg) / 10.0));
     });
     ui.data_mut(|data| data.insert_temp(ids_key, ids));
 }

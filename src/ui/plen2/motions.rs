@@ -268,7 +268,7 @@ impl MotionsPanel {
             if easing != frame.easing {
                 actions.push(edit(project, |p| p.motions[index].frames[f].easing = easing, None));
             }
-            if ui.small_button(words.copy_frame()).clicked() {
+            if ui.small_button(words.copy_frame).clicked() {
                 *clipboard = Some(*frame);
             }
             if ui

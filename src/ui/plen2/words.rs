@@ -2,6 +2,7 @@
 //! says after one — in the interface's language.
 
 use crate::device::plen2::{Plen2Item, Plen2OpError, ReplyError, SlotResult};
+use crate::say;
 use crate::ui::i18n::{Language, Worded};
 
 use super::{Plen2Failure, Plen2Result};
@@ -67,22 +68,12 @@ impl Worded for crate::device::plen2::Widened {
             return widened.to_string();
         }
         let ms = |d: std::time::Duration| d.as_secs_f64() * 1000.0;
-        let window = ms(widened.window);
+        let (window, bytes) = (ms(widened.window), RING_WINDOW_BYTES);
         match widened.reason {
-            WidenReason::Bursts { gap } => format!(
-                "傳送節奏已放寬：連線以最長 {:.1} ms 的間隔成批送達；之後每 {window:.1} ms 最多傳送 {RING_WINDOW_BYTES} 位元組",
-                ms(gap)
-            ),
-            WidenReason::Slow { bytes_per_s } => {
-                format!("傳送節奏已放寬：連線每秒只傳送 {bytes_per_s} 位元組；之後依這個速率傳送")
-            }
-            WidenReason::Late { delay } => format!(
-                "傳送節奏已放寬：回應最多晚 {:.1} ms 才送達；之後每 {window:.1} ms 最多傳送 {RING_WINDOW_BYTES} 位元組",
-                ms(delay)
-            ),
-            WidenReason::ReadBackDiffered => {
-                format!("傳送節奏已放寬：讀回的位置內容不同；之後每 {window:.1} ms 最多傳送 {RING_WINDOW_BYTES} 位元組")
-            }
+            WidenReason::Bursts { gap } => say!(language, "widened.bursts", gap = ms(gap), window, bytes),
+            WidenReason::Slow { bytes_per_s } => say!(language, "widened.slow", bytes_per_s),
+            WidenReason::Late { delay } => say!(language, "widened.late", delay = ms(delay), window, bytes),
+            WidenReason::ReadBackDiffered => say!(language, "widened.read_back_differed", window, bytes),
         }
     }
 }
@@ -90,13 +81,10 @@ impl Worded for crate::device::plen2::Widened {
 /// A PLEN2 pacing mode's name.
 pub(crate) fn pacing_name(language: Language, mode: crate::device::plen2::PacingMode) -> &'static str {
     use crate::device::plen2::PacingMode as P;
-    match (language, mode) {
-        (Language::English, P::Fast) => "Fast",
-        (Language::English, P::Adaptive) => "Adaptive",
-        (Language::English, P::Safe) => "Safe (official)",
-        (Language::TraditionalChinese, P::Fast) => "快速",
-        (Language::TraditionalChinese, P::Adaptive) => "自動調整",
-        (Language::TraditionalChinese, P::Safe) => "安全（官方）",
+    match mode {
+        P::Fast => language.word("pacing.fast"),
+        P::Adaptive => language.word("pacing.adaptive"),
+        P::Safe => language.word("pacing.safe"),
     }
 }
 
@@ -108,24 +96,22 @@ impl Worded for Plen2Item {
             return item.to_string();
         }
         match item {
-            Plen2Item::Version => "韌體版本".into(),
-            Plen2Item::JointSettings => "關節設定".into(),
-            Plen2Item::Joint(joint) => format!("關節 {}", joint.name()),
-            Plen2Item::Slot { slot, name } if name.is_empty() => format!("槽位 {slot}"),
-            Plen2Item::Slot { slot, name } => format!("槽位 {slot} {name:?}"),
-            Plen2Item::Link => "連線".into(),
+            Plen2Item::Version => say!(language, "plen2_item.version"),
+            Plen2Item::JointSettings => say!(language, "plen2_item.joint_settings"),
+            Plen2Item::Joint(joint) => say!(language, "plen2_item.joint", joint = joint.name()),
+            Plen2Item::Slot { slot, name } if name.is_empty() => say!(language, "plen2_item.slot", slot),
+            Plen2Item::Slot { slot, name } => say!(language, "plen2_item.named_slot", slot, name = format!("{name:?}")),
+            Plen2Item::Link => say!(language, "plen2_item.link"),
             Plen2Item::Erased { slot, remaining } => {
-                let mut text = format!(
-                    "槽位 {slot} 從未寫入：機器人會先送出整個未寫入的記憶體（約 300 KB），之後才讀取下一個指令"
-                );
+                let mut text = say!(language, "plen2_item.erased", slot);
                 if let Some(left) = remaining {
-                    text.push_str(&format!("；在這條連線上約還需 {} 秒", left.as_secs().max(1)));
+                    text.push_str(&say!(language, "plen2_item.erased_left", seconds = left.as_secs().max(1)));
                 }
                 text
             }
-            Plen2Item::Pacing => "傳送節奏".into(),
-            Plen2Item::FactoryReset => "出廠關節設定".into(),
-            Plen2Item::Done => "完成".into(),
+            Plen2Item::Pacing => say!(language, "plen2_item.pacing"),
+            Plen2Item::FactoryReset => say!(language, "plen2_item.factory_reset"),
+            Plen2Item::Done => say!(language, "plen2_item.done"),
         }
     }
 }
@@ -136,15 +122,11 @@ impl Worded for ReplyError {
         let error = self;
         match (language, error) {
             (Language::English, _) => error.to_string(),
-            (_, ReplyError::Timeout { timeout_ms }) => {
-                format!("{timeout_ms} 毫秒內沒有回應。機器人是否已開機、鮑率 2,000,000、DTR 已啟用？")
-            }
-            (_, ReplyError::NotThisProtocol { bytes }) => {
-                format!("裝置有回應（{bytes} 位元組），但不是 PLEN2 的協定。它是 PLEN2 嗎？")
-            }
-            (_, ReplyError::Garbage { bytes }) => format!("回應是 {bytes} 位元組的無效資料"),
-            (_, ReplyError::Disconnected) => "與機器人的連線已中斷".into(),
-            (_, ReplyError::Stopped) => "傳送前已按下停止：沒有傳送".into(),
+            (_, ReplyError::Timeout { timeout_ms }) => say!(language, "reply.timeout", timeout_ms),
+            (_, ReplyError::NotThisProtocol { bytes }) => say!(language, "reply.not_this_protocol", bytes),
+            (_, ReplyError::Garbage { bytes }) => say!(language, "reply.garbage", bytes),
+            (_, ReplyError::Disconnected) => say!(language, "reply.disconnected"),
+            (_, ReplyError::Stopped) => say!(language, "reply.stopped"),
         }
     }
 }
@@ -157,25 +139,26 @@ impl Worded for Plen2OpError {
             return error.to_string();
         }
         match error {
-            Plen2OpError::Reply { item, source } => format!("{}：{}", item.worded(language), source.worded(language)),
-            Plen2OpError::Unreadable { item } => {
-                format!("{}：裝置有回應，但不是 PLEN2 的協定。它是韌體 1.4.x 的 PLEN2 嗎？", item.worded(language))
+            Plen2OpError::Reply { item, source } => {
+                say!(language, "op.request", item = item.worded(language), source = source.worded(language))
             }
+            Plen2OpError::Unreadable { item } => say!(language, "plen2_op.unreadable", item = item.worded(language)),
             Plen2OpError::Invalid { problems } => {
-                let list = language.problem_lines(problems);
-                format!("專案有 {} 個錯誤，沒有寫入任何資料：\n{}", problems.errors(), list.join("\n"))
+                let list = language.problem_lines(problems).join("\n");
+                say!(language, "plen2_op.invalid", errors = problems.errors(), list)
             }
-            Plen2OpError::Backup(error) => format!("備份失敗，因此沒有寫入任何資料：{}", language.save_error(error)),
+            Plen2OpError::Backup(error) => say!(language, "op.backup", error = language.save_error(error)),
             Plen2OpError::Unstorable(error) => {
                 use crate::device::plen2::NotStorable;
                 let why = match error.why {
-                    NotStorable::Frames(count) => format!("它有 {count} 個影格，PLEN2 的動作只能有 1 到 20 個"),
-                    NotStorable::Slot => "PLEN2 只有 0 到 89 號槽位".to_string(),
-                    NotStorable::Name => "名稱最多 20 個可列印的 ASCII 字元".to_string(),
+                    NotStorable::Frames(count) => say!(language, "plen2_op.frames", count),
+                    NotStorable::Slot => say!(language, "plen2_op.slot"),
+                    NotStorable::Name => say!(language, "plen2_op.name"),
                 };
-                format!("動作 {} {:?} 無法存進 PLEN2，沒有寫入任何資料：{why}", error.slot, error.name)
+                let (slot, name) = (error.slot, format!("{:?}", error.name));
+                say!(language, "plen2_op.unstorable", slot, name, why)
             }
-            Plen2OpError::Cancelled => "已取消".into(),
+            Plen2OpError::Cancelled => say!(language, "op.cancelled"),
         }
     }
 }

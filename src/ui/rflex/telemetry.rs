@@ -43,8 +43,9 @@ pub fn ui(ui: &mut egui::Ui, telemetry: &Telemetry, words: &Strings) {
         .collect();
     let pressed = if pressed.is_empty() { "—".to_string() } else { pressed.join(", ") };
     ui.label(format!("{}: {pressed}", words.bumpers));
-    let stick =
-        telemetry.joystick.map_or("—".to_string(), |(x, y, buttons)| format!("x {x}  y {y}  buttons {buttons:08b}"));
+    let stick = telemetry
+        .joystick
+        .map_or("—".to_string(), |(x, y, buttons)| format!("x {x}  y {y}  {} {buttons:08b}", words.pad_buttons));
     ui.monospace(format!("{}: {stick}", words.rflex().joystick_state));
     ui.label(format!("{}: {}", words.checksum_failures, telemetry.checksum_failures));
     let echoing = telemetry.sonar_m.values().filter(|range| range.is_some()).count();
@@ -88,7 +89,7 @@ mod tests {
         telemetry.unknown_sonar.insert(40, 700);
         let harness = panel(telemetry, Language::English);
         assert!(harness.query_by_label_contains("24.38 V").is_some(), "volts to the hundredth");
-        assert!(harness.query_by_label_contains("x 12  y -3  buttons 00000101").is_some());
+        assert!(harness.query_by_label_contains("x 12  y -3  Buttons 00000101").is_some());
         assert!(harness.query_by_label_contains(": 2").is_some(), "checksum failures counted");
         assert!(harness.query_by_label_contains("1/2 (+1 ?)").is_some(), "echoing of known, unknown ids apart");
     }

@@ -2,6 +2,7 @@
 //! to the connection doctor, in the interface's language.
 
 use crate::device::rflex::Said;
+use crate::say;
 use crate::ui::i18n::{Language, SaidWords, Worded};
 
 /// What a base said of itself, in this language.
@@ -10,11 +11,9 @@ impl Worded for Said {
         if language == Language::English {
             return self.to_string();
         }
-        format!(
-            "rFLEX 底盤，電池 {:.2} V（原始值），煞車{}",
-            f64::from(self.voltage_raw) / 100.0,
-            if self.braked { "已鎖定" } else { "已放開" }
-        )
+        let volts = f64::from(self.voltage_raw) / 100.0;
+        let brake = if self.braked { language.word("rflex_said.braked") } else { language.word("rflex_said.released") };
+        say!(language, "rflex_said.base", volts, brake)
     }
 }
 

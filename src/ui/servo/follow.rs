@@ -32,7 +32,7 @@ impl SoundFollower for ServoFollower {
         // Ids after every one in use: the fitted actions take the next ones in a row.
         let first = servo.actions.iter().map(|action| action.id).max().unwrap_or(0).saturating_add(1);
         let macro_id = next_free_id(servo.macros.iter().map(|item| item.id));
-        match follow::servo(open, servo_id, follower, (first, macro_id, "follow the sound")) {
+        match follow::servo(open, servo_id, follower, (first, macro_id, words.title)) {
             Ok((made, running, _)) => {
                 let said = format!("{} {} {macro_id}", made.len(), words.made_steps);
                 let mut edits: Vec<Edit> = made.into_iter().map(Edit::AddAction).collect();

@@ -6,6 +6,7 @@
 use super::ShowWords;
 use crate::project::Family;
 use crate::show::{Cue, Show, Start};
+use crate::ui::i18n::Worded;
 
 /// The cues' table; `editable` while no show plays. Returns what the show's check says, if it fails.
 pub(super) fn cues_ui(ui: &mut egui::Ui, show: &mut Show, editable: bool, words: &ShowWords) -> Option<String> {
@@ -57,7 +58,7 @@ pub(super) fn cues_ui(ui: &mut egui::Ui, show: &mut Show, editable: bool, words:
             show.cues.push(Cue { device: device.name.clone(), at_ms: 0, start });
         }
     }
-    show.check().err().map(|error| error.to_string())
+    show.check().err().map(|error| error.worded(words.lang))
 }
 
 /// What a new cue of a device starts: its lowest macro or motion, or a slow drive of a second.

@@ -4,6 +4,7 @@
 //! the boards uses these links, and STOP, a lost link the show needs,
 //! Disconnect or closing the window stops them all.
 
+use crate::ui::i18n::Worded;
 use std::time::Duration;
 
 use crate::link::Waker;
@@ -83,8 +84,8 @@ impl Linked {
                 Heard::Played(played) => {
                     self.playing = false;
                     match played {
-                        Ok(lines) => taken.said.extend(lines.lines().map(str::to_string)),
-                        Err(stopped) => taken.said.push(stopped.to_string()),
+                        Ok(ran) => taken.said.extend(super::said::ran(&ran, words)),
+                        Err(stopped) => taken.said.push(stopped.worded(words.lang)),
                     }
                 }
             }

@@ -9,9 +9,11 @@ mod devices;
 pub mod linked;
 mod record;
 mod remote;
+mod said;
 mod stage;
 mod words;
 
+use crate::ui::i18n::Worded;
 use std::path::PathBuf;
 
 use crossbeam_channel::{Receiver, Sender};
@@ -100,7 +102,7 @@ impl ShowDesk {
         match action {
             ShowAction::Open(path) => match Show::open(&path) {
                 Ok(show) => self.opened(Some(path), show),
-                Err(error) => return Some(format!("{}: {error}", path.display())),
+                Err(error) => return Some(format!("{}: {}", path.display(), error.worded(language))),
             },
             ShowAction::OpenProject => self.opened(None, Show::of_one("board", project.clone())),
             ShowAction::AddOpenProject => {
@@ -108,13 +110,13 @@ impl ShowDesk {
                     session.add("board", project.clone());
                 }
             }
-            ShowAction::AddFromFile(path) => return self.add_from(&path),
+            ShowAction::AddFromFile(path) => return self.add_from(&path, language),
             ShowAction::Boards(true) => {
                 let Some(session) = &self.session else { return None };
                 self.linked = None;
                 match Linked::connect(&session.with_ports(), waker.clone()) {
                     Ok(linked) => self.linked = Some(linked),
-                    Err(error) => return Some(format!("cannot connect the boards: {error}")),
+                    Err(error) => return Some(crate::say!(language, "show_said.cannot_connect", error)),
                 }
             }
             ShowAction::Boards(false) => self.let_boards_go(words(language)),
@@ -150,7 +152,7 @@ impl ShowDesk {
                 let Some(session) = &mut self.session else { return None };
                 let text = session.show.to_json();
                 if let Err(error) = crate::project::atomic_write_all(&[(path.as_path(), text.as_bytes())]) {
-                    return Some(format!("cannot save {}: {error}; the previous file is unchanged", path.display()));
+                    return Some(crate::say!(language, "show_said.cannot_save", file = path.display(), error));
                 }
                 session.path = Some(path);
             }
@@ -185,7 +187,7 @@ impl ShowDesk {
     }
 
     /// Adds every device of a show file, or a project file as one device named after it.
-    fn add_from(&mut self, path: &std::path::Path) -> Option<String> {
+    fn add_from(&mut self, path: &std::path::Path, language: Language) -> Option<String> {
         let session = self.session.as_mut()?;
         match Show::open(path) {
             Ok(show) => {
@@ -194,7 +196,7 @@ impl ShowDesk {
                 }
                 None
             }
-            Err(error) => Some(format!("{}: {error}", path.display())),
+            Err(error) => Some(format!("{}: {}", path.display(), error.worded(language))),
         }
     }
 
@@ -401,7 +403,7 @@ fn session_ui(
         .map_or_else(|| words.this_project.to_string(), |n| n.to_string_lossy().into_owned());
     ui.label(egui::RichText::new(format!("{name} — {} {}", session.show.devices.len(), words.devices)).strong());
     // Play, Save and Stop all first, where a tall show does not scroll them away.
-    let problem = session.show.check().err().map(|error| error.to_string());
+    let problem = session.show.check().err().map(|error| error.worded(words.lang));
     buttons(ui, session, (playing, links.is_some()), problem.is_none(), words, actions);
     egui::ScrollArea::vertical().id_salt("show-said").max_height(90.0).show(ui, |ui| {
         for line in &session.said {
@@ -578,6 +580,7 @@ fn said_cues(ui: &mut egui::Ui, show: &Show, blocks: &[Block]) {
     }
 }
 
+/// A cue's caption: what it starts, in these words.
 fn cue_caption(start: &Start, words: &ShowWords) -> String {
     match *start {
         Start::Macro(id) => format!("{} {id}", words.macro_word),

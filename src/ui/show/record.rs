@@ -6,6 +6,7 @@
 //! (`show::passes`), cued at the first pass's start. **Undo pass** takes the
 //! last pass back, the show as it was before it.
 
+use crate::ui::i18n::Worded;
 use std::collections::BTreeMap;
 
 use super::{ShowAction, ShowWords};
@@ -88,7 +89,7 @@ impl Passes {
                     joined.tolerance_deg
                 ))
             }
-            Err(error) => Some(format!("{device}: {error}")),
+            Err(error) => Some(format!("{device}: {}", error.worded(words.lang))),
         }
     }
 

@@ -4,6 +4,7 @@
 //! Off at every start; the address, OSC port and token file are typed here.
 //! Disconnecting the boards or closing the show turns it off.
 
+use crate::ui::i18n::Language;
 use std::sync::Arc;
 
 use crate::remote::guard::Guard;
@@ -59,10 +60,10 @@ impl RemoteDesk {
     /// Starts serving `show` on `linked`'s boards, saying where or why not.
     pub fn start(&mut self, show: crate::show::Show, linked: &Linked, words: &ShowWords) {
         self.serving = None;
-        match self.servers(show, linked) {
+        match self.servers(show, linked, words.lang) {
             Ok(servers) => {
                 let osc = servers.osc.as_ref().map(|osc| format!(" · OSC udp://{}", osc.addr())).unwrap_or_default();
-                let token = if servers.needs_token { "token needed" } else { "loopback only, no token" };
+                let token = if servers.needs_token { words.remote_token_needed } else { words.remote_loopback };
                 self.said = Some(format!("{} http://{}{osc} ({token})", words.remote_listening, servers.http.addr()));
                 self.serving = Some(servers);
             }
@@ -70,19 +71,19 @@ impl RemoteDesk {
         }
     }
 
-    fn servers(&self, show: crate::show::Show, linked: &Linked) -> Result<Servers, String> {
+    fn servers(&self, show: crate::show::Show, linked: &Linked, language: Language) -> Result<Servers, String> {
         let listen: std::net::SocketAddr = self
             .listen
             .trim()
             .parse()
-            .map_err(|_| format!("{:?}: give ADDRESS:PORT, e.g. 127.0.0.1:8765", self.listen))?;
+            .map_err(|_| crate::say!(language, "show.remote_bad_listen", listen = format!("{:?}", self.listen)))?;
         let token_file = Some(self.token_file.trim()).filter(|file| !file.is_empty()).map(std::path::Path::new);
         let guard = Arc::new(Guard::from_file(listen, token_file)?);
         let osc = match self.osc.trim() {
             "" => None,
             port => Some(
                 port.parse::<u16>()
-                    .map_err(|_| format!("{port:?} is not a UDP port: give 1–65535, or leave it empty"))?,
+                    .map_err(|_| crate::say!(language, "show.remote_bad_osc", port = format!("{port:?}")))?,
             ),
         };
         Servers::start(listen, osc, &guard, Arc::new(Remote::new(show, linked.shared(), self.queue)))

@@ -63,103 +63,44 @@ impl Default for FollowForm {
     }
 }
 
-/// The dialog's words (a family's follower says what it made in them).
-#[allow(missing_docs)]
-pub struct Words {
-    pub title: &'static str,
-    pub servo: &'static str,
-    pub joint: &'static str,
-    pub closed: &'static str,
-    pub open: &'static str,
-    pub attack: &'static str,
-    pub release: &'static str,
-    pub threshold: &'static str,
-    pub tolerance: &'static str,
-    pub make: &'static str,
-    pub close: &'static str,
-    pub no_servo: &'static str,
-    pub made_steps: &'static str,
-    pub write_to: &'static str,
-    pub free_slots: &'static str,
-    pub from_slot: &'static str,
-    pub replaces: &'static str,
-    pub made_chain: &'static str,
-    pub replaced: &'static str,
-    pub no_slot: &'static str,
-    pub frames: &'static str,
-    pub steps: &'static str,
-    pub tolerance_error: &'static str,
-    pub too_long: &'static str,
-    /// What to do when a PLEN2's slots are too few for the sound.
-    pub more_slots: &'static str,
-    /// The open board has no axis the sound can move.
-    pub no_axis: &'static str,
+crate::words! {
+    /// The dialog's words (a family's follower says what it made in them).
+    #[allow(missing_docs)]
+    pub struct Words in "follow" {
+        pub title: &'static str,
+        pub servo: &'static str,
+        pub joint: &'static str,
+        pub closed: &'static str,
+        pub open: &'static str,
+        pub attack: &'static str,
+        pub release: &'static str,
+        pub threshold: &'static str,
+        pub tolerance: &'static str,
+        pub make: &'static str,
+        pub close: &'static str,
+        pub no_servo: &'static str,
+        pub made_steps: &'static str,
+        pub write_to: &'static str,
+        pub free_slots: &'static str,
+        pub from_slot: &'static str,
+        pub replaces: &'static str,
+        pub made_chain: &'static str,
+        pub replaced: &'static str,
+        pub no_slot: &'static str,
+        pub frames: &'static str,
+        pub steps: &'static str,
+        pub tolerance_error: &'static str,
+        pub too_long: &'static str,
+        /// What to do when a PLEN2's slots are too few for the sound.
+        pub more_slots: &'static str,
+        /// The open board has no axis the sound can move.
+        pub no_axis: &'static str,
+    }
 }
-
-const ENGLISH: Words = Words {
-    title: "Follow the sound",
-    servo: "Servo",
-    joint: "Joint",
-    closed: "Closed (silence)",
-    open: "Open (loudest)",
-    attack: "Attack",
-    release: "Release",
-    threshold: "Quieter than this stays closed",
-    tolerance: "Tolerance",
-    make: "Make the motion",
-    close: "Close",
-    no_servo: "Add a servo first",
-    made_steps: "steps, run by macro",
-    write_to: "Write to",
-    free_slots: "the free slots",
-    from_slot: "from slot",
-    replaces: "replaces",
-    made_chain: "{frames} frames in {motions} motions, slots {slots}, played as one (each jumps to the next)",
-    replaced: "; replaced: ",
-    no_slot: "every PLEN2 slot is taken: pick the slot to write to under Write to (what it holds is replaced; Undo brings it back)",
-    frames: "frames",
-    steps: "steps",
-    tolerance_error: "{needed} {moves} are needed within {tolerance} and at most {allowed} fit; the smallest tolerance that fits is {smallest}",
-    too_long: "the sound is too long: it needs at least {needed} {moves} of at most {longest} each, and at most {allowed} fit",
-    more_slots: ": write from an earlier slot (its chain may take the slots after it), or use a shorter sound",
-    no_axis: "This board has no servo or joint to follow the sound: open a servo board or a PLEN2 project",
-};
-
-const TRADITIONAL_CHINESE: Words = Words {
-    title: "跟隨聲音",
-    servo: "伺服機",
-    joint: "關節",
-    closed: "閉合（安靜時）",
-    open: "張開（最大聲時）",
-    attack: "起音時間",
-    release: "釋放時間",
-    threshold: "低於此音量保持閉合",
-    tolerance: "容許誤差",
-    make: "產生動作",
-    close: "關閉",
-    no_servo: "請先加入伺服機",
-    made_steps: "個步驟，由巨集執行：",
-    write_to: "寫入",
-    free_slots: "空的位置",
-    from_slot: "從位置",
-    replaces: "取代",
-    made_chain: "{frames} 個影格，共 {motions} 個動作，位於位置 {slots}，連續播放（每個動作接著跳到下一個）",
-    replaced: "；已取代：",
-    no_slot: "PLEN2 的位置都已使用：請在「寫入」選擇要寫入的位置（原有內容會被取代；可用復原找回）",
-    frames: "影格",
-    steps: "步驟",
-    tolerance_error: "在 {tolerance} 內需要 {needed} 個{moves}，最多只能放 {allowed} 個；可行的最小容許誤差為 {smallest}",
-    too_long: "聲音太長：至少需要 {needed} 個{moves}（每個最長 {longest}），最多只能放 {allowed} 個",
-    more_slots: "：請從較前面的位置寫入（動作串可使用其後的位置），或改用較短的聲音",
-    no_axis: "此板子沒有可跟隨聲音的伺服機或關節：請開啟伺服機板或 PLEN2 專案",
-};
 
 /// The dialog's words in `language`.
 pub fn words(language: Language) -> &'static Words {
-    match language {
-        Language::English => &ENGLISH,
-        Language::TraditionalChinese => &TRADITIONAL_CHINESE,
-    }
+    Words::of(language)
 }
 
 /// A family whose axis can follow the sound's loudness (a servo, a PLEN2
@@ -339,13 +280,15 @@ mod tests {
     #[test]
     fn a_fit_that_cannot_be_made_is_said_in_degrees_and_ms() {
         let tolerance = FitError::Tolerance { needed: 36, allowed: 20, tolerance: 10.0, smallest: 29.0 };
-        let said = fit_error(&tolerance, (0.1, 32.768), ENGLISH.frames, &ENGLISH);
+        let english = Words::of(Language::English);
+        let said = fit_error(&tolerance, (0.1, 32.768), english.frames, english);
         assert_eq!(
             said,
             "36 frames are needed within 1.0° and at most 20 fit; the smallest tolerance that fits is 2.9°"
         );
         let too_long = FitError::TooLong { updates: 9000, needed: 30, longest: 255, allowed: 20 };
-        let said = fit_error(&too_long, (1.0, 10.0), TRADITIONAL_CHINESE.steps, &TRADITIONAL_CHINESE);
+        let chinese = Words::of(Language::TraditionalChinese);
+        let said = fit_error(&too_long, (1.0, 10.0), chinese.steps, chinese);
         assert!(said.starts_with("聲音太長") && said.contains("2550 ms"), "{said}");
     }
 }

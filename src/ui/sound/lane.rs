@@ -40,91 +40,50 @@ pub struct SoundLane {
     drawn: Option<(f32, f64, f64)>,
 }
 
-/// The lane's words.
-#[derive(Debug)]
-pub struct LaneWords {
-    /// "Sound".
-    pub sound: &'static str,
-    /// "Add a sound…".
-    pub add: &'static str,
-    /// "Starts at".
-    pub offset: &'static str,
-    /// Its hover.
-    pub offset_hint: &'static str,
-    /// "Onsets".
-    pub sensitivity: &'static str,
-    /// Its hover.
-    pub sensitivity_hint: &'static str,
-    /// "Remove".
-    pub remove: &'static str,
-    /// "Follow the sound…".
-    pub follow: &'static str,
-    /// "Locate…".
-    pub locate: &'static str,
-    /// "Keep it as it is now".
-    pub accept: &'static str,
-    /// "is missing".
-    pub missing: &'static str,
-    /// "changed since the show was timed to it".
-    pub changed: &'static str,
-    /// "cannot be read".
-    pub unreadable: &'static str,
-    /// "Reading the sound".
-    pub reading: &'static str,
-    /// The lane's hover: how to use it.
-    pub lane_hint: &'static str,
-    /// The kind of file, in the dialog.
-    pub kind: &'static str,
-    /// "no sound output" (no sound server): the motion plays on alone.
-    pub no_output: &'static str,
+crate::words! {
+    /// The lane's words.
+    #[derive(Debug)]
+    pub struct LaneWords in "lane" {
+        /// "Sound".
+        pub sound: &'static str,
+        /// "Add a sound…".
+        pub add: &'static str,
+        /// "Starts at".
+        pub offset: &'static str,
+        /// Its hover.
+        pub offset_hint: &'static str,
+        /// "Onsets".
+        pub sensitivity: &'static str,
+        /// Its hover.
+        pub sensitivity_hint: &'static str,
+        /// "Remove".
+        pub remove: &'static str,
+        /// "Follow the sound…".
+        pub follow: &'static str,
+        /// "Locate…".
+        pub locate: &'static str,
+        /// "Keep it as it is now".
+        pub accept: &'static str,
+        /// "is missing".
+        pub missing: &'static str,
+        /// "changed since the show was timed to it".
+        pub changed: &'static str,
+        /// "cannot be read".
+        pub unreadable: &'static str,
+        /// "Reading the sound".
+        pub reading: &'static str,
+        /// The lane's hover: how to use it.
+        pub lane_hint: &'static str,
+        /// The kind of file, in the dialog.
+        pub kind: &'static str,
+        /// "no sound output" (no sound server): the motion plays on alone.
+        pub no_output: &'static str,
+    }
 }
-
-const ENGLISH: LaneWords = LaneWords {
-    sound: "Sound",
-    add: "Add a sound…",
-    offset: "starts at",
-    offset_hint: "Where the sound starts on the motion's time, ms (negative: before the motion). Or drag the waveform.",
-    sensitivity: "onsets",
-    sensitivity_hint: "How readily a rise counts as an onset (beats, syllables): frames, steps and keys snap to them",
-    remove: "Remove",
-    follow: "Follow the sound…",
-    locate: "Locate…",
-    accept: "Keep it as it is now",
-    missing: "is missing: locate it, or remove the sound from the project",
-    changed: "has changed since the show was timed to it",
-    unreadable: "cannot be read",
-    reading: "Reading the sound",
-    lane_hint: "Click: cursor here · drag sideways: move the sound · Ctrl + wheel: zoom · wheel: scroll",
-    kind: "Sound (WAV, FLAC, MP3, OGG)",
-    no_output: "no sound output: the motion plays without sound",
-};
-
-const TRADITIONAL_CHINESE: LaneWords = LaneWords {
-    sound: "聲音",
-    add: "加入聲音…",
-    offset: "開始於",
-    offset_hint: "聲音在動作時間上的開始位置（毫秒，負值：在動作之前）。也可拖曳波形。",
-    sensitivity: "起音",
-    sensitivity_hint: "上升多容易算作起音（節拍、音節）：影格、步驟與關鍵點會吸附到起音",
-    remove: "移除",
-    follow: "跟隨聲音…",
-    locate: "尋找檔案…",
-    accept: "保留現在的檔案",
-    missing: "不存在：請尋找檔案，或從專案移除聲音",
-    changed: "在節目對齊後已變更",
-    unreadable: "無法讀取",
-    reading: "正在讀取聲音",
-    lane_hint: "點擊：游標移到此處 · 左右拖曳：移動聲音 · Ctrl + 滾輪：縮放 · 滾輪：捲動",
-    kind: "聲音（WAV、FLAC、MP3、OGG）",
-    no_output: "沒有聲音輸出：動作將不帶聲音播放",
-};
 
 /// The lane's words in `language`.
 pub fn words(language: Language) -> &'static LaneWords {
-    match language {
-        Language::English => &ENGLISH,
-        Language::TraditionalChinese => &TRADITIONAL_CHINESE,
-    }
+    LaneWords::of(language)
 }
 
 /// The endings the sound dialog offers.

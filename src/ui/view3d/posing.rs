@@ -255,87 +255,53 @@ fn position(goal: Goal) -> Vec3 {
     }
 }
 
-/// The posing row's words.
-#[derive(Debug)]
-pub struct PosingWords {
-    /// "Keep turn".
-    pub keep_turn: &'static str,
-    /// Its hover.
-    pub keep_turn_hint: &'static str,
-    /// "Symmetric".
-    pub symmetric: &'static str,
-    /// Its hover.
-    pub symmetric_hint: &'static str,
-    /// "Stand on".
-    pub stand_on: &'static str,
-    /// Its hover.
-    pub stand_on_hint: &'static str,
-    /// "body fixed" (stand on nothing).
-    pub body_fixed: &'static str,
-    /// "Frame all".
-    pub frame_all: &'static str,
-    /// Its hover.
-    pub frame_all_hint: &'static str,
-    /// Hover of an end: how to drag it.
-    pub drag_end: &'static str,
-    /// Hover of the end stood on.
-    pub planted: &'static str,
-    /// Hover of the pelvis.
-    pub pelvis: &'static str,
-    /// After a gap's millimetres: "out of reach".
-    pub out_of_reach: &'static str,
+crate::words! {
+    /// The posing row's words.
+    #[derive(Debug)]
+    pub struct PosingWords in "posing" {
+        /// "Keep turn".
+        pub keep_turn: &'static str,
+        /// Its hover.
+        pub keep_turn_hint: &'static str,
+        /// "Symmetric".
+        pub symmetric: &'static str,
+        /// Its hover.
+        pub symmetric_hint: &'static str,
+        /// "Stand on".
+        pub stand_on: &'static str,
+        /// Its hover.
+        pub stand_on_hint: &'static str,
+        /// "body fixed" (stand on nothing).
+        pub body_fixed: &'static str,
+        /// "Frame all".
+        pub frame_all: &'static str,
+        /// Its hover.
+        pub frame_all_hint: &'static str,
+        /// Hover of an end: how to drag it.
+        pub drag_end: &'static str,
+        /// Hover of the end stood on.
+        pub planted: &'static str,
+        /// Hover of the pelvis.
+        pub pelvis: &'static str,
+        /// After a gap's millimetres: "out of reach".
+        pub out_of_reach: &'static str,
+        /// The PLEN2's own limbs: left foot, right foot, left hand, right hand.
+        pub limbs: [&'static str; 4],
+    }
 }
-
-const ENGLISH: PosingWords = PosingWords {
-    keep_turn: "Keep turn",
-    keep_turn_hint: "A dragged foot keeps the way it is turned (flat stays flat); off: only its place follows the pointer",
-    symmetric: "Symmetric",
-    symmetric_hint: "Dragging a hand or a foot moves its twin as its mirror image",
-    stand_on: "Stand on",
-    stand_on_hint: "The foot the figure stands on stays planted where it stands at home; \
-                    then drag the pelvis ring to shift the weight over both feet",
-    body_fixed: "body fixed",
-    frame_all: "Frame all",
-    frame_all_hint: "Fit the whole figure in the view (F over the view)",
-    drag_end: "Drag the ring to pose the limb by its end",
-    planted: "Planted: the figure stands on it",
-    pelvis: "Pelvis: drag to shift the weight; the feet stay planted",
-    out_of_reach: "out of reach",
-};
-
-const TRADITIONAL_CHINESE: PosingWords = PosingWords {
-    keep_turn: "保持方向",
-    keep_turn_hint: "拖曳腳時保持其方向（平貼地面）；關閉時只跟隨位置",
-    symmetric: "對稱",
-    symmetric_hint: "拖曳一隻手或腳時，另一側以鏡像跟著動",
-    stand_on: "站立於",
-    stand_on_hint: "站立的腳固定在原位；可拖曳骨盆圓圈讓重心在雙腳間移動",
-    body_fixed: "身體固定",
-    frame_all: "全部顯示",
-    frame_all_hint: "讓整個機器人顯示在視圖中（在視圖上按 F）",
-    drag_end: "拖曳圓圈，以末端擺出肢體姿勢",
-    planted: "已固定：機器人站在此腳上",
-    pelvis: "骨盆：拖曳可移動重心，雙腳保持固定",
-    out_of_reach: "無法到達",
-};
 
 /// A limb's name as shown: the PLEN2's own four in the interface's
 /// language; a rig's (its servo's caption) as the user wrote it.
 pub fn shown(name: &str, language: Language) -> &str {
-    const CHINESE: [(&str, &str); 4] =
-        [("left foot", "左腳"), ("right foot", "右腳"), ("left hand", "左手"), ("right hand", "右手")];
-    match language {
-        Language::TraditionalChinese => {
-            CHINESE.iter().find(|(english, _)| *english == name).map_or(name, |(_, chinese)| chinese)
-        }
-        Language::English => name,
-    }
+    let limbs = PosingWords::of(language).limbs;
+    ["left foot", "right foot", "left hand", "right hand"]
+        .iter()
+        .zip(limbs)
+        .find(|(english, _)| **english == name)
+        .map_or(name, |(_, shown)| shown)
 }
 
 /// The posing row's words in `language`.
 pub fn words(language: Language) -> &'static PosingWords {
-    match language {
-        Language::English => &ENGLISH,
-        Language::TraditionalChinese => &TRADITIONAL_CHINESE,
-    }
+    PosingWords::of(language)
 }
