@@ -127,8 +127,8 @@ fn settings_editor(ui: &mut egui::Ui, view: &JointsView<'_>, words: &Strings, ac
     let mut changed = false;
     egui::Grid::new("plen2-settings").striped(true).show(ui, |ui| {
         ui.label("");
-        ui.label("min");
-        ui.label("max");
+        ui.label(words.min);
+        ui.label(words.max);
         ui.label(words.home);
         ui.end_row();
         for joint in Joint::ALL {
