@@ -1,4 +1,4 @@
-//! Nothing cut at 1280×800, in English and in 繁體中文: the panels users
+//! Nothing cut at 1280×800, in every language of the interface: the panels users
 //! found cut — the PLEN2 frames table ("Play from here" was cut to "P"), the
 //! servo macro rows (their ↓ and × were cut off), the servo settings' rig,
 //! hands-and-feet and meshes tables (which needed a sideways scroll that took
@@ -21,12 +21,11 @@ const SIZE: (f32, f32) = (1280.0, 800.0);
 
 /// The widgets that straddle the 3D view's left edge or the window's right
 /// edge: each as its role, label and horizontal extent.
-fn cut(harness: &Harness<'static, StudioApp>) -> Vec<String> {
+fn cut(harness: &Harness<'static, StudioApp>, language: Language) -> Vec<String> {
+    let preview = language.word("strings.robot_preview");
     let view = harness
         .get_all_by_role(Role::Image)
-        .find(|node| {
-            node.accesskit_node().label().is_some_and(|l| l.contains("Robot preview") || l.contains("機器人預覽"))
-        })
+        .find(|node| node.accesskit_node().label().is_some_and(|l| l.contains(preview)))
         .expect("the 3D view")
         .rect();
     let mut cut = vec![];
@@ -63,28 +62,28 @@ fn the_plen2_frames_table_is_not_cut() {
         .take(10)
         .map(|file| servo_studio::project::motion_json::read_motion_file(file).unwrap().0)
         .collect();
-    for language in [Language::English, Language::TraditionalChinese] {
+    for language in Language::ALL {
         let mut project = Project::empty(Family::Plen2);
         project.plen2.motions.clone_from(&motions);
         let harness = editor(project, language, Tab::Motions);
-        let play_here = if language == Language::English { "Play from here" } else { "從這裡播放" };
+        let play_here = language.word("plen2.play_from_here");
         assert!(harness.query_all_by_label(play_here).count() >= 3, "{language:?}: the rows' {play_here} are drawn");
-        assert_eq!(cut(&harness), Vec::<String>::new(), "{language:?}");
+        assert_eq!(cut(&harness, language), Vec::<String>::new(), "{language:?}");
     }
 }
 
 #[test]
 fn the_servo_macro_rows_are_not_cut() {
-    for language in [Language::English, Language::TraditionalChinese] {
+    for language in Language::ALL {
         let harness = editor(servo_studio::ui::sample_project(), language, Tab::Macros);
         assert!(harness.query_all_by_label("×").count() >= 3, "the rows' × are drawn");
-        assert_eq!(cut(&harness), Vec::<String>::new(), "{language:?}");
+        assert_eq!(cut(&harness, language), Vec::<String>::new(), "{language:?}");
     }
 }
 
 #[test]
 fn the_servo_settings_tables_are_not_cut_and_every_field_is_labelled() {
-    for language in [Language::English, Language::TraditionalChinese] {
+    for language in Language::ALL {
         let mut project = servo_studio::ui::sample_project();
         project.servo.meshes = vec![servo_studio::project::LinkMesh {
             servo_id: Some(9),
@@ -94,17 +93,14 @@ fn the_servo_settings_tables_are_not_cut_and_every_field_is_labelled() {
             scale_milli: 1000,
         }];
         let mut harness = editor(project, language, Tab::Servos);
-        let (settings, parts) = if language == Language::English {
-            ("Servo settings", ["Rig", "Hands & feet", "Meshes"])
-        } else {
-            ("舵機設定", ["骨架", "手與腳", "外形"])
-        };
+        let settings = language.word("servo.servo_settings");
+        let parts = ["strings.rig", "servo.ends_tab", "servo.meshes_tab"].map(|key| language.word(key));
         harness.get_by_label(settings).click();
         harness.run_steps(3);
         for part in parts {
             harness.get_by_label(part).click();
             harness.run_steps(3);
-            assert_eq!(cut(&harness), Vec::<String>::new(), "{language:?}, {part}");
+            assert_eq!(cut(&harness, language), Vec::<String>::new(), "{language:?}, {part}");
             // The id column stays: the first servo's row is there, and every field is labelled by it.
             let unlabelled: Vec<String> = [Role::ComboBox, Role::CheckBox, Role::SpinButton]
                 .into_iter()
@@ -119,5 +115,14 @@ fn the_servo_settings_tables_are_not_cut_and_every_field_is_labelled() {
                 "{language:?}, {part}: the Id column"
             );
         }
+    }
+}
+
+#[test]
+fn the_servo_action_steps_are_not_cut() {
+    for language in Language::ALL {
+        let harness = editor(servo_studio::ui::sample_project(), language, Tab::Actions);
+        assert!(harness.query_all_by_label("×").count() >= 3, "the steps' × are drawn");
+        assert_eq!(cut(&harness, language), Vec::<String>::new(), "{language:?}");
     }
 }

@@ -58,7 +58,12 @@ impl Language {
         let locale = locale.to_ascii_lowercase().replace('-', "_");
         let serves = |language: &Self| {
             let locales = Catalogue::of(*language).value("language.locales").and_then(toml::Value::as_array);
-            locales.into_iter().flatten().filter_map(toml::Value::as_str).any(|prefix| locale.starts_with(prefix))
+            let whole = |prefix: &str| {
+                // A whole part of the locale: `ko` serves `ko_KR`, not `kok_IN` (Konkani).
+                let rest = locale.strip_prefix(prefix);
+                rest.is_some_and(|rest| rest.chars().next().is_none_or(|c| matches!(c, '_' | '.' | '@')))
+            };
+            locales.into_iter().flatten().filter_map(toml::Value::as_str).any(whole)
         };
         Self::ALL.into_iter().find(serves).unwrap_or(Self::English)
     }
@@ -164,6 +169,8 @@ mod tests {
         assert_eq!(Language::from_locale("ja_JP.UTF-8"), Language::Japanese);
         assert_eq!(Language::from_locale("ko_KR.UTF-8"), Language::Korean);
         assert_eq!(Language::from_locale("zh_CN.UTF-8"), Language::English, "Simplified is not Traditional");
+        assert_eq!(Language::from_locale("ja"), Language::Japanese);
+        assert_eq!(Language::from_locale("kok_IN.UTF-8"), Language::English, "Konkani is not Korean");
         assert_eq!(Language::from_locale("C"), Language::English);
     }
 }
