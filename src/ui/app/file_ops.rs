@@ -119,7 +119,7 @@ impl StudioApp {
             ui.separator();
             let import = crate::ui::import::words(self.language).title;
             if ui.add_enabled(!asking, egui::Button::new(import)).clicked() {
-                actions.push(crate::ui::import::ask_file());
+                actions.push(crate::ui::import::ask_file(self.language));
             }
             let export = crate::ui::import::words(self.language).export_title;
             if ui.button(export).clicked() {
@@ -129,7 +129,7 @@ impl StudioApp {
             let show = crate::ui::show::words(self.language).title;
             if ui.add_enabled(!asking, egui::Button::new(show)).clicked() {
                 actions.push(Action::AskFile(FileRequest::Pick(crate::ui::action::Pick {
-                    kind: "Servo Studio show or project",
+                    kind: self.language.word("files.show_or_project"),
                     extensions: &["json"],
                     then: std::sync::Arc::new(|path| Action::Show(crate::ui::show::ShowAction::Open(path))),
                 })));

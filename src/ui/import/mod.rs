@@ -95,9 +95,9 @@ impl std::fmt::Debug for ImportDesk {
 }
 
 /// The file dialog for File → Import from another tool….
-pub fn ask_file() -> Action {
+pub fn ask_file(language: Language) -> Action {
     Action::AskFile(FileRequest::Pick(Pick {
-        kind: "Maestro settings, RoboPlus .mtn, R+ .mtnx, Blender JSON",
+        kind: language.word("files.other_tools"),
         extensions: &["xml", "txt", "mtn", "mtnx", "json"],
         then: Arc::new(|path| Action::Import(ImportAction::Read(path))),
     }))

@@ -126,7 +126,7 @@ fn add_menu(ui: &mut egui::Ui, session: &mut ShowSession, words: &ShowWords, act
     }
     if ui.button(words.from_file).clicked() {
         actions.push(Action::AskFile(crate::ui::FileRequest::Pick(crate::ui::action::Pick {
-            kind: "Servo Studio project",
+            kind: words.lang.word("files.project"),
             extensions: &["json"],
             then: std::sync::Arc::new(|path| Action::Show(ShowAction::AddFromFile(path))),
         })));
