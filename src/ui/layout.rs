@@ -51,7 +51,8 @@ impl Default for Layout {
 /// Thickness of a divider, points.
 pub const DIVIDER: f32 = 8.0;
 
-fn divider(ui: &mut egui::Ui, rect: Rect, id: egui::Id, horizontal: bool, label: &'static str) -> egui::Response {
+fn divider(ui: &mut egui::Ui, rect: Rect, id: egui::Id, horizontal: bool, key: &'static str) -> egui::Response {
+    let label = crate::ui::i18n::Language::in_context(ui.ctx()).word(key);
     let response = ui.interact(rect, id, Sense::drag());
     response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Splitter, true, label));
     let response = response.on_hover_cursor(if horizontal {
@@ -102,7 +103,7 @@ pub fn columns(ui: &mut egui::Ui, id_salt: &str, width: &mut f32, min: f32, mut 
     let left_rect = Rect::from_min_size(area.min, vec2(w, area.height()));
     let bar = Rect::from_min_size(pos2(left_rect.right(), area.top()), vec2(DIVIDER, area.height()));
     let right_rect = Rect::from_min_max(pos2(bar.right(), area.top()), area.max);
-    let response = divider(ui, bar, ui.scope_id().with((id_salt, "divider")), true, "Resize the panes");
+    let response = divider(ui, bar, ui.scope_id().with((id_salt, "divider")), true, "layout.resize_panes");
     if response.dragged() {
         *width = (w + response.drag_delta().x).clamp(min, most);
     }
@@ -135,7 +136,7 @@ pub fn over(
     let header_rect = Rect::from_min_size(pos2(area.left(), header_top), vec2(area.width(), header));
     let lower_rect = Rect::from_min_max(pos2(area.left(), header_rect.bottom()), area.max);
     if *open {
-        let response = divider(ui, bar, ui.scope_id().with((id_salt, "divider")), false, "Resize the lower pane");
+        let response = divider(ui, bar, ui.scope_id().with((id_salt, "divider")), false, "layout.resize_lower_pane");
         if response.dragged() {
             *share = (h - response.drag_delta().y).clamp(min, most) / room;
         }
@@ -279,5 +280,22 @@ mod tests {
         assert!(!harness.state().lower_open, "collapsed");
         assert!(harness.query_by_label("lower pane").is_none());
         assert!(harness.query_by_label("upper pane").is_some());
+    }
+
+    /// A screen reader names the dividers in the interface's language.
+    #[test]
+    fn the_dividers_are_named_in_the_interfaces_language() {
+        let mut harness = Harness::builder().with_size(vec2(800.0, 500.0)).build_ui_state(
+            |ui, width: &mut f32| {
+                crate::ui::i18n::Language::Korean.put_in(ui.ctx());
+                columns(ui, "test", width, 100.0, |ui, _| {
+                    ui.label("pane");
+                });
+            },
+            300.0,
+        );
+        harness.run();
+        assert!(harness.query_by_label("창 크기 조절").is_some());
+        assert!(harness.query_by_label_contains("Resize").is_none());
     }
 }

@@ -365,6 +365,7 @@ impl StudioApp {
         self.finish_file_work(None);
         self.poll_import(ui.ctx());
         self.keep_sound();
+        self.language.put_in(ui.ctx());
         let mut actions = Vec::new();
         Self::shortcuts(ui, &mut actions);
         self.poll_dialog(&mut actions);

@@ -19,6 +19,9 @@ pub use catalogue::{Catalogue, Table, Word, fill};
 pub use doctor::{PadConflict, SaidWords};
 pub use strings::Strings;
 
+/// Where the interface's language is kept in an egui context.
+const CONTEXT_KEY: &str = "servo-studio-language";
+
 /// A language of the interface.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 pub enum Language {
@@ -80,6 +83,16 @@ impl Language {
     /// The words of this language.
     pub fn strings(self) -> &'static Strings {
         Strings::of(self)
+    }
+
+    /// Puts this language in `ctx`, for the widgets drawn without the interface's words.
+    pub fn put_in(self, ctx: &egui::Context) {
+        ctx.data_mut(|data| data.insert_temp(egui::Id::NULL.with(CONTEXT_KEY), self));
+    }
+
+    /// The language put in `ctx` (English when none was).
+    pub fn in_context(ctx: &egui::Context) -> Self {
+        ctx.data(|data| data.get_temp(egui::Id::NULL.with(CONTEXT_KEY))).unwrap_or_default()
     }
 
     /// The language's own name ("日本語").
