@@ -28,12 +28,12 @@ impl Catalogue {
         Self { language, table }
     }
 
-    /// The catalogue of `language`, parsed on first use.
+    /// The catalogue of `language`, parsed on its first use (a language
+    /// never shown is never parsed).
     pub fn of(language: Language) -> &'static Self {
-        static CATALOGUES: OnceLock<HashMap<Language, Catalogue>> = OnceLock::new();
-        let all =
-            CATALOGUES.get_or_init(|| Language::ALL.iter().map(|&language| (language, language.parsed())).collect());
-        &all[&language]
+        static CATALOGUES: [OnceLock<Catalogue>; Language::ALL.len()] =
+            [const { OnceLock::new() }; Language::ALL.len()];
+        CATALOGUES[language.index()].get_or_init(|| language.parsed())
     }
 
     /// The value at `key` ("section.name"), in this language only.
@@ -233,21 +233,18 @@ macro_rules! words {
 
             /// The table in `language`, read from its file on first use.
             pub fn of(language: $crate::ui::i18n::Language) -> &'static Self {
-                static TABLES: std::sync::OnceLock<std::collections::HashMap<$crate::ui::i18n::Language, $name>> =
-                    std::sync::OnceLock::new();
-                let tables = TABLES.get_or_init(|| {
-                    $crate::ui::i18n::Language::ALL.iter().map(|&language| {
-                        let catalogue = $crate::ui::i18n::Catalogue::of(language);
-                        let table = $name {
-                            $($field: $crate::ui::i18n::Word::read(
-                                catalogue,
-                                concat!($section, ".", stringify!($field)),
-                            ),)*
-                        };
-                        (language, table)
-                    }).collect()
-                });
-                &tables[&language]
+                const LANGUAGES: usize = $crate::ui::i18n::Language::ALL.len();
+                static TABLES: [std::sync::OnceLock<$name>; LANGUAGES] =
+                    [const { std::sync::OnceLock::new() }; LANGUAGES];
+                TABLES[language.index()].get_or_init(|| {
+                    let catalogue = $crate::ui::i18n::Catalogue::of(language);
+                    $name {
+                        $($field: $crate::ui::i18n::Word::read(
+                            catalogue,
+                            concat!($section, ".", stringify!($field)),
+                        ),)*
+                    }
+                })
             }
         }
 

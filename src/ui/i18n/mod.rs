@@ -40,6 +40,11 @@ impl Language {
     /// Every language, in menu order.
     pub const ALL: [Self; 4] = [Self::English, Self::TraditionalChinese, Self::Japanese, Self::Korean];
 
+    /// Its place in [`Self::ALL`].
+    pub const fn index(self) -> usize {
+        self as usize
+    }
+
     /// The language's file (`assets/i18n/`): its words, its name, and the locales it serves.
     fn file(self) -> &'static str {
         match self {
@@ -48,6 +53,15 @@ impl Language {
             Self::Japanese => include_str!("../../../assets/i18n/ja.toml"),
             Self::Korean => include_str!("../../../assets/i18n/ko.toml"),
         }
+    }
+
+    /// The locale prefixes the language serves, from its file's `[language]`
+    /// section alone (the file's first: choosing a language parses no other's words).
+    fn locales(self) -> Vec<String> {
+        let head = self.file().split("\n[").take(2).collect::<Vec<_>>().join("\n[");
+        let head: toml::Table = head.parse().unwrap_or_default();
+        let locales = head.get("language").and_then(|language| language.get("locales")).and_then(toml::Value::as_array);
+        locales.into_iter().flatten().filter_map(toml::Value::as_str).map(str::to_string).collect()
     }
 
     /// The language's file, parsed.
@@ -60,13 +74,12 @@ impl Language {
     pub fn from_locale(locale: &str) -> Self {
         let locale = locale.to_ascii_lowercase().replace('-', "_");
         let serves = |language: &Self| {
-            let locales = Catalogue::of(*language).value("language.locales").and_then(toml::Value::as_array);
-            let whole = |prefix: &str| {
+            let whole = |prefix: &String| {
                 // A whole part of the locale: `ko` serves `ko_KR`, not `kok_IN` (Konkani).
-                let rest = locale.strip_prefix(prefix);
+                let rest = locale.strip_prefix(prefix.as_str());
                 rest.is_some_and(|rest| rest.chars().next().is_none_or(|c| matches!(c, '_' | '.' | '@')))
             };
-            locales.into_iter().flatten().filter_map(toml::Value::as_str).any(whole)
+            language.locales().iter().any(whole)
         };
         Self::ALL.into_iter().find(serves).unwrap_or(Self::English)
     }
