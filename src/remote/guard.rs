@@ -16,7 +16,7 @@ pub const RATE_PER_S: f64 = 100.0;
 /// How many it may send at once above that.
 pub const BURST: f64 = 50.0;
 /// The shortest token a file may hold.
-const SHORTEST_TOKEN: usize = 16;
+pub const SHORTEST_TOKEN: usize = 16;
 
 /// The rules a server applies to every request.
 #[derive(Debug)]
@@ -31,11 +31,9 @@ pub struct Guard {
 impl Guard {
     /// The rules for a server on `listen` with `token` (from `--token-file`):
     /// an address other than loopback needs a token.
-    pub fn new(listen: SocketAddr, token: Option<String>) -> Result<Self, String> {
+    pub fn new(listen: SocketAddr, token: Option<String>) -> Result<Self, ServeError> {
         if !listen.ip().is_loopback() && token.is_none() {
-            return Err(format!(
-                "listening on {listen} lets other machines in: give --token-file FILE (a secret of at least {SHORTEST_TOKEN} characters), or listen on 127.0.0.1"
-            ));
+            return Err(ServeError::NoToken { listen });
         }
         let port = listen.port();
         let own_origins =
@@ -44,7 +42,7 @@ impl Guard {
     }
 
     /// The rules for a server on `listen`, its token read from `token_file` (see [`read_token`]).
-    pub fn from_file(listen: SocketAddr, token_file: Option<&Path>) -> Result<Self, String> {
+    pub fn from_file(listen: SocketAddr, token_file: Option<&Path>) -> Result<Self, ServeError> {
         let token = token_file.map(read_token).transpose()?;
         Self::new(listen, token)
     }
@@ -89,17 +87,57 @@ impl Guard {
 }
 
 /// The token in `path`: its first line, trimmed; a file too short or unreadable is an error.
-pub fn read_token(path: &Path) -> Result<String, String> {
-    let text =
-        std::fs::read_to_string(path).map_err(|error| format!("cannot read the token {}: {error}", path.display()))?;
+pub fn read_token(path: &Path) -> Result<String, ServeError> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|error| ServeError::TokenUnreadable { path: path.to_path_buf(), why: error.to_string() })?;
     let token = text.lines().next().unwrap_or_default().trim().to_string();
     if token.chars().count() < SHORTEST_TOKEN {
-        return Err(format!(
-            "the token in {} is shorter than {SHORTEST_TOKEN} characters: make a longer secret",
-            path.display()
-        ));
+        return Err(ServeError::TokenTooShort { path: path.to_path_buf() });
     }
     Ok(token)
+}
+
+/// Why remote control could not start.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum ServeError {
+    /// An address other than loopback, and no token.
+    #[error(
+        "listening on {listen} lets other machines in: give --token-file FILE (a secret of at least {SHORTEST_TOKEN} characters), or listen on 127.0.0.1"
+    )]
+    NoToken {
+        /// Where it was to listen.
+        listen: SocketAddr,
+    },
+    /// The token file cannot be read.
+    #[error("cannot read the token {}: {why}", .path.display())]
+    TokenUnreadable {
+        /// The file.
+        path: std::path::PathBuf,
+        /// What the system said.
+        why: String,
+    },
+    /// The token is too short to be a secret.
+    #[error("the token in {} is shorter than {SHORTEST_TOKEN} characters: make a longer secret", .path.display())]
+    TokenTooShort {
+        /// The file.
+        path: std::path::PathBuf,
+    },
+    /// The HTTP port is taken.
+    #[error("cannot listen on {at} ({why}): another program may be listening there: pick another port")]
+    HttpTaken {
+        /// The address.
+        at: SocketAddr,
+        /// What the system said.
+        why: String,
+    },
+    /// The OSC port is taken.
+    #[error("cannot take OSC on udp {at} ({why}): another program may be listening there: pick another port")]
+    OscTaken {
+        /// The address.
+        at: SocketAddr,
+        /// What the system said.
+        why: String,
+    },
 }
 
 #[cfg(test)]
@@ -109,7 +147,7 @@ mod tests {
     #[test]
     fn another_machine_needs_a_token_and_only_the_right_one_gets_in() {
         let anywhere: SocketAddr = "0.0.0.0:8765".parse().unwrap();
-        assert!(Guard::new(anywhere, None).unwrap_err().contains("--token-file"));
+        assert!(Guard::new(anywhere, None).unwrap_err().to_string().contains("--token-file"));
         let guard = Guard::new(anywhere, Some("a-secret-of-24-letters!!".into())).unwrap();
         assert!(guard.token_ok(Some("a-secret-of-24-letters!!")));
         assert!(!guard.token_ok(Some("a-secret-of-24-letters!?")));

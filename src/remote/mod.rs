@@ -43,15 +43,14 @@ impl Servers {
         osc_port: Option<u16>,
         guard: &Arc<guard::Guard>,
         remote: Arc<Remote>,
-    ) -> Result<Self, String> {
-        let taken = "another program may be listening there: pick another port";
+    ) -> Result<Self, guard::ServeError> {
         let http = http::HttpServer::start(listen, &remote, guard)
-            .map_err(|error| format!("cannot listen on {listen} ({error}): {taken}"))?;
+            .map_err(|error| guard::ServeError::HttpTaken { at: listen, why: error.to_string() })?;
         let osc = match osc_port {
             Some(port) => {
                 let at = SocketAddr::new(listen.ip(), port);
                 let osc = osc::OscServer::start(at, &remote, guard)
-                    .map_err(|error| format!("cannot take OSC on udp {at} ({error}): {taken}"))?;
+                    .map_err(|error| guard::ServeError::OscTaken { at, why: error.to_string() })?;
                 Some(osc)
             }
             None => None,

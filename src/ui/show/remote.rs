@@ -4,7 +4,7 @@
 //! Off at every start; the address, OSC port and token file are typed here.
 //! Disconnecting the boards or closing the show turns it off.
 
-use crate::ui::i18n::Language;
+use crate::ui::i18n::{Language, Worded};
 use std::sync::Arc;
 
 use crate::remote::guard::Guard;
@@ -78,7 +78,7 @@ impl RemoteDesk {
             .parse()
             .map_err(|_| crate::say!(language, "show.remote_bad_listen", listen = format!("{:?}", self.listen)))?;
         let token_file = Some(self.token_file.trim()).filter(|file| !file.is_empty()).map(std::path::Path::new);
-        let guard = Arc::new(Guard::from_file(listen, token_file)?);
+        let guard = Arc::new(Guard::from_file(listen, token_file).map_err(|error| error.worded(language))?);
         let osc = match self.osc.trim() {
             "" => None,
             port => Some(
@@ -87,6 +87,7 @@ impl RemoteDesk {
             ),
         };
         Servers::start(listen, osc, &guard, Arc::new(Remote::new(show, linked.shared(), self.queue)))
+            .map_err(|error| error.worded(language))
     }
 
     /// Stops serving (saying why, when it is not the user's click).

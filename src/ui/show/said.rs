@@ -3,6 +3,7 @@
 //! the same in English (the types' own `Display`).
 
 use super::ShowWords;
+use crate::remote::guard::{SHORTEST_TOKEN, ServeError};
 use crate::say;
 use crate::show::ShowError;
 use crate::show::passes::JoinError;
@@ -27,6 +28,23 @@ impl Worded for ShowError {
             Self::NotHeld { at_ms, device, family, .. } => {
                 say!(language, "show_said.not_held", at_ms, device, family = language.family(*family))
             }
+        }
+    }
+}
+
+impl Worded for ServeError {
+    fn worded(&self, language: Language) -> String {
+        match self {
+            _ if language == Language::English => self.to_string(),
+            Self::NoToken { listen } => say!(language, "show_said.no_token", listen, shortest = SHORTEST_TOKEN),
+            Self::TokenUnreadable { path, why } => {
+                say!(language, "show_said.token_unreadable", file = path.display(), why)
+            }
+            Self::TokenTooShort { path } => {
+                say!(language, "show_said.token_too_short", file = path.display(), shortest = SHORTEST_TOKEN)
+            }
+            Self::HttpTaken { at, why } => say!(language, "show_said.http_taken", at, why),
+            Self::OscTaken { at, why } => say!(language, "show_said.osc_taken", at, why),
         }
     }
 }
@@ -84,6 +102,13 @@ mod tests {
         assert_eq!(
             error.worded(Language::Japanese),
             "「頭」という名前のデバイスが 2 つあります：名前は別々にしてください"
+        );
+        let refused = ServeError::NoToken { listen: "0.0.0.0:8765".parse().unwrap() };
+        assert_eq!(refused.worded(Language::English), refused.to_string());
+        assert!(
+            refused.worded(Language::Korean).starts_with("0.0.0.0:8765에서 수신하면"),
+            "{}",
+            refused.worded(Language::Korean)
         );
         let stopped = Stopped::Lost { device: "arm".into(), why: "EOF".into() };
         assert_eq!(stopped.worded(Language::English), stopped.to_string());

@@ -78,6 +78,8 @@ crate::words! {
         pub kind: &'static str,
         /// "no sound output" (no sound server): the motion plays on alone.
         pub no_output: &'static str,
+        /// "the sound server" (when its address is the system's).
+        pub the_server: &'static str,
     }
 }
 

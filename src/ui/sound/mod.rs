@@ -27,8 +27,21 @@ pub use lane::SoundLane;
 pub use out::ANSWER_WITHIN;
 pub use reading::sha256 as sha256_of;
 
-/// How a "no sound output" line starts (the shell words it in the interface's language).
-pub const NO_OUTPUT: &str = "no sound output: ";
+/// What the sound says on the status line (the shell words it in the interface's language).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Said {
+    /// There is no sound output: why, as the output said it.
+    NoOutput(String),
+    /// The sound server stopped answering: the motion plays on without sound.
+    Stalled {
+        /// The server, as its address reads (none: the system's).
+        server: Option<String>,
+        /// How long it was given, s.
+        after_s: u64,
+    },
+    /// Anything else (a file that is no sound), as it was said.
+    Line(String),
+}
 
 /// A grain played while scrubbing, s.
 pub const GRAIN_S: f64 = 0.06;
@@ -64,7 +77,7 @@ pub struct SoundDesk {
     /// Picks the read sound's onsets again, off the frame, as the sensitivity changes.
     picking: Option<picking::Picking>,
     /// A line for the status bar, once.
-    said: Option<String>,
+    said: Option<Said>,
     /// An edit the project needs (a sound added or located, once read).
     edit: Option<(Edit, &'static str)>,
     /// The file being added or located, and the track it becomes.
@@ -184,10 +197,10 @@ impl SoundDesk {
             (Err(problem), adding) => {
                 if adding.is_some() {
                     // The file picked is no sound: the project keeps what it had.
-                    self.said = Some(match &problem {
+                    self.said = Some(Said::Line(match &problem {
                         Problem::Unreadable(why) => why.clone(),
                         Problem::Missing(file) | Problem::Changed(file) => file.display().to_string(),
-                    });
+                    }));
                     self.file = None;
                 } else {
                     self.problem = Some(problem);
@@ -338,7 +351,7 @@ impl SoundDesk {
     }
 
     /// A line for the status bar, once ("no sound output", a file that is no sound).
-    pub fn take_said(&mut self) -> Option<String> {
+    pub fn take_said(&mut self) -> Option<Said> {
         self.said.take()
     }
 

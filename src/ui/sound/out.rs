@@ -168,7 +168,7 @@ impl SoundOut {
 
     /// Takes the output's answers; says (once) when it has none or stopped
     /// answering. Returns what to say on the status line.
-    pub fn poll(&mut self, now: Instant) -> Option<String> {
+    pub fn poll(&mut self, now: Instant) -> Option<super::Said> {
         let mut said = None;
         while let Ok(answer) = self.answers.try_recv() {
             if !matches!(answer, Answer::Connected) {
@@ -194,9 +194,9 @@ impl SoundOut {
                     self.asked = false;
                     if no_output {
                         self.reach = Reach::Gone;
-                        said = Some(format!("{}{why}", super::NO_OUTPUT));
+                        said = Some(super::Said::NoOutput(why));
                     } else {
-                        said = Some(why);
+                        said = Some(super::Said::Line(why));
                     }
                 }
             }
@@ -212,13 +212,8 @@ impl SoundOut {
             self.asked = false;
             self.ended = None;
             self.reach = Reach::Gone;
-            let server =
-                self.server.as_ref().map_or_else(|| "the sound server".to_string(), |s| s.display().to_string());
-            said = Some(format!(
-                "{}the server at {server} did not answer in {} s: the motion plays on without sound",
-                super::NO_OUTPUT,
-                ANSWER_WITHIN.as_secs()
-            ));
+            let server = self.server.as_ref().map(|server| server.display().to_string());
+            said = Some(super::Said::Stalled { server, after_s: ANSWER_WITHIN.as_secs() });
         }
         said
     }
