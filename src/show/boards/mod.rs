@@ -38,7 +38,7 @@ pub enum Heard {
     /// A line for the user.
     Said(String),
     /// The device at this index answered (how long a command takes to reach it) or did not (why).
-    Linked(usize, Result<Duration, String>),
+    Linked(usize, Result<Duration, Unlinked>),
     /// The device's link was lost (why); `all_stopped`: every device was stopped with it.
     Lost {
         /// The device's index.
@@ -81,6 +81,17 @@ pub enum Run {
     Start(Start),
     /// A play list: each slot played so many times (0: forever), in order.
     List(Vec<(u8, u8)>),
+}
+
+/// Why a device of the show was not linked.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum Unlinked {
+    /// The show gives it no port.
+    #[error("no port — type where it is connected")]
+    NoPort,
+    /// Its port did not open, or nothing answered there: what the link said.
+    #[error("{0}")]
+    Failed(String),
 }
 
 /// Why a remote's order was not carried out.
@@ -308,7 +319,7 @@ pub fn play_once(show: &Show, folder: Option<PathBuf>, stop: Receiver<String>, t
     let mut stages: Vec<Box<dyn Stage>> = Vec::new();
     for device in &show.devices {
         let Some(port) = device.port.as_deref() else {
-            tell(format!("{}: no port — type where it is connected", device.name));
+            tell(format!("{}: {}", device.name, Unlinked::NoPort));
             return;
         };
         if let Ok(opened) = crate::link::by_id::resolve(port)
@@ -350,8 +361,8 @@ fn answered(name: &str, port: &str, delay: Duration) -> String {
 }
 
 /// Connects one device on its port (a `usb:` id found first).
-pub fn connect_one(device: &super::Device) -> Result<(Box<dyn Stage>, Duration), String> {
-    let Some(port) = &device.port else { return Err("no port — type where it is connected".into()) };
-    let opened = crate::link::by_id::resolve(port).map_err(|error| format!("{error}"))?;
-    super::stages::connect(&opened, device).map_err(|error| format!("{error:#}"))
+pub fn connect_one(device: &super::Device) -> Result<(Box<dyn Stage>, Duration), Unlinked> {
+    let Some(port) = &device.port else { return Err(Unlinked::NoPort) };
+    let opened = crate::link::by_id::resolve(port).map_err(|error| Unlinked::Failed(format!("{error}")))?;
+    super::stages::connect(&opened, device).map_err(|error| Unlinked::Failed(format!("{error:#}")))
 }

@@ -3,7 +3,7 @@
 //! A word a language lacks falls back to English (and a test fails on it).
 
 use std::collections::HashMap;
-use std::fmt::Display;
+use std::fmt::{Display, Write as _};
 use std::sync::OnceLock;
 
 use super::Language;
@@ -66,7 +66,7 @@ impl Catalogue {
 
     /// The text at `key`, else the English, else the key itself (seen, and failed by a test).
     pub fn text(&'static self, key: &str) -> &'static str {
-        self.value_or_english(key).and_then(toml::Value::as_str).unwrap_or_else(|| missing(key))
+        self.find(key).unwrap_or_else(|| missing(key))
     }
 }
 
@@ -95,11 +95,12 @@ pub fn fill(template: &str, args: &[(&str, &dyn Display)]) -> String {
             Some((name, decimals)) => (name, decimals.parse::<usize>().ok()),
             None => (hole, None),
         };
-        match (args.iter().find(|(arg, _)| *arg == name), decimals) {
-            (Some((_, value)), Some(decimals)) => out.push_str(&format!("{value:.decimals$}")),
-            (Some((_, value)), None) => out.push_str(&value.to_string()),
-            (None, _) => out.push_str(&rest[open..open + close + 2]),
-        }
+        // Writing to a String cannot fail.
+        let _ = match (args.iter().find(|(arg, _)| *arg == name), decimals) {
+            (Some((_, value)), Some(decimals)) => write!(out, "{value:.decimals$}"),
+            (Some((_, value)), None) => write!(out, "{value}"),
+            (None, _) => out.write_str(&rest[open..open + close + 2]),
+        };
         rest = &after[close + 1..];
     }
     out.push_str(rest);

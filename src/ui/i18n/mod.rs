@@ -98,9 +98,12 @@ impl Language {
         Strings::of(self)
     }
 
-    /// Puts this language in `ctx`, for the widgets drawn without the interface's words.
+    /// Puts this language in `ctx`, for the widgets drawn without the interface's words
+    /// (written only when it changed: called every frame).
     pub fn put_in(self, ctx: &egui::Context) {
-        ctx.data_mut(|data| data.insert_temp(egui::Id::NULL.with(CONTEXT_KEY), self));
+        if Self::in_context(ctx) != self {
+            ctx.data_mut(|data| data.insert_temp(egui::Id::NULL.with(CONTEXT_KEY), self));
+        }
     }
 
     /// The language put in `ctx` (English when none was).

@@ -193,31 +193,40 @@ fn refill(text: &str, pattern: &str, into: &str) -> Option<String> {
 /// `into` with its holes filled: `{}` by the next hole in turn, `{N}` by hole
 /// N (a language whose order differs), a hole that is not there by nothing.
 fn fill_holes(into: &str, holes: &[&str]) -> String {
-    let mut out = String::new();
-    let (mut next, mut rest) = (0, into);
-    while let Some(open) = rest.find('{') {
-        out.push_str(&rest[..open]);
-        let after = &rest[open + 1..];
-        let close = after.find('}').filter(|&close| after[..close].chars().all(|c| c.is_ascii_digit()));
-        let Some(close) = close else {
-            out.push('{');
-            rest = after;
-            continue;
-        };
-        let index = if close == 0 {
-            next += 1;
-            next - 1
-        } else {
-            after[..close].parse().unwrap_or(usize::MAX)
-        };
-        out.push_str(holes.get(index).copied().unwrap_or_default());
-        rest = &after[close + 1..];
+    // `{}` numbered in turn, so the template is one `fill` reads (`{0}`, `{1}`…).
+    let mut numbered = String::with_capacity(into.len() + 8);
+    for (index, part) in into.split("{}").enumerate() {
+        if index > 0 {
+            numbered.push_str(&format!("{{{}}}", index - 1));
+        }
+        numbered.push_str(part);
     }
-    out.push_str(rest);
-    out
+    let names: Vec<String> = (0..holes.len()).map(|index| index.to_string()).collect();
+    let args: Vec<(&str, &dyn std::fmt::Display)> =
+        names.iter().zip(holes).map(|(name, hole)| (name.as_str(), hole as &dyn std::fmt::Display)).collect();
+    fill(&numbered, &args)
 }
 
 /// The captions in `language`.
 pub fn words(language: Language) -> &'static ImportWords {
     ImportWords::of(language)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A note is read by its English and written in the language, holes carried
+    /// over in turn (`{}`) or by number (`{1}` before `{0}`, as Japanese words it).
+    #[test]
+    fn a_note_keeps_its_holes_in_the_languages_order() {
+        let japanese = words(Language::Japanese);
+        let said = "90 steps are needed to stay within 0.5° and at most 64 fit: the smallest tolerance that fits is --tolerance-deg 1.2. Nothing was written";
+        assert_eq!(
+            note(said, japanese),
+            "0.5° 以内に収めるには 90 ステップ必要ですが、入るのは最大 64 です：入る最小の許容誤差は --tolerance-deg 1.2 です。何も書き込んでいません"
+        );
+        assert_eq!(note("channel 7: not mapped", words(Language::Korean)), "채널 7: 대응 없음");
+        assert_eq!(note("not a note at all", japanese), "not a note at all");
+    }
 }

@@ -64,10 +64,8 @@ impl Linked {
                 Heard::Linked(index, answered) => {
                     let state = match answered {
                         Ok(delay) => LinkState::Answered(delay),
-                        Err(why) => {
-                            // A device given no port is told so in the interface's language.
-                            let portless = show.devices.get(index).is_some_and(|device| device.port.is_none());
-                            let why = if portless { crate::say!(words.lang, "show_said.no_port") } else { why };
+                        Err(unlinked) => {
+                            let why = unlinked.worded(words.lang);
                             taken.said.push(format!("{} {}: {why}", name(index), words.silent));
                             LinkState::Silent(why)
                         }

@@ -6,6 +6,7 @@ use super::ShowWords;
 use crate::remote::guard::{SHORTEST_TOKEN, ServeError};
 use crate::say;
 use crate::show::ShowError;
+use crate::show::boards::Unlinked;
 use crate::show::passes::JoinError;
 use crate::show::play::{Ran, Stopped};
 use crate::ui::i18n::{Language, Worded};
@@ -28,6 +29,16 @@ impl Worded for ShowError {
             Self::NotHeld { at_ms, device, family, .. } => {
                 say!(language, "show_said.not_held", at_ms, device, family = language.family(*family))
             }
+        }
+    }
+}
+
+impl Worded for Unlinked {
+    fn worded(&self, language: Language) -> String {
+        match self {
+            Self::NoPort => say!(language, "show_said.no_port"),
+            // What the link said: its error, worded where it was made.
+            Self::Failed(why) => why.clone(),
         }
     }
 }
@@ -103,6 +114,8 @@ mod tests {
             error.worded(Language::Japanese),
             "「頭」という名前のデバイスが 2 つあります：名前は別々にしてください"
         );
+        assert_eq!(Unlinked::NoPort.worded(Language::English), Unlinked::NoPort.to_string());
+        assert_eq!(Unlinked::NoPort.worded(Language::Japanese), "ポートがありません：接続先を入力してください");
         let refused = ServeError::NoToken { listen: "0.0.0.0:8765".parse().unwrap() };
         assert_eq!(refused.worded(Language::English), refused.to_string());
         assert!(
