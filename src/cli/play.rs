@@ -46,16 +46,19 @@ fn parse_pad(text: &str) -> Result<(PathBuf, u16), String> {
     Ok((PathBuf::from(path), code))
 }
 
-/// Waits for a press (not a hold) of `button`; `Err` when STOP came first or the gamepad went.
+/// Waits for a press (not a hold) of `button`, keeping the devices' links
+/// fresh; `Ok(Err)` when STOP, a signal or a lost device came first, `Err`
+/// when the gamepad went.
 fn wait_for_press(
     pad: &crate::gamepad::Gamepad,
     button: u16,
     held: &mut bool,
-    stopped: &crossbeam_channel::Receiver<String>,
-) -> anyhow::Result<Result<(), String>> {
+    player: &mut Player<'_>,
+) -> anyhow::Result<Result<(), Stopped>> {
+    let stop = player.stop.clone();
     loop {
         crossbeam_channel::select! {
-            recv(stopped) -> what => return Ok(Err(what.unwrap_or_default())),
+            recv(stop) -> what => return Ok(Err(Stopped::Asked(what.unwrap_or_default()))),
             recv(pad.updates()) -> update => match update.map(|(_, update)| update) {
                 Ok(crate::gamepad::PadUpdate::State(state)) => {
                     let now = state.pressed(button);
@@ -69,9 +72,17 @@ fn wait_for_press(
                 Ok(crate::gamepad::PadUpdate::Gone(gone)) => bail!("the gamepad {} is gone: {gone}", pad.path.display()),
                 Err(_) => bail!("the gamepad {} is gone", pad.path.display()),
             },
+            default(LOOK_EVERY) => {
+                if let Err(stopped) = player.wait_between(Instant::now()) {
+                    return Ok(Err(stopped));
+                }
+            }
         }
     }
 }
+
+/// How often the devices' links are looked at while a run waits for its button.
+const LOOK_EVERY: std::time::Duration = std::time::Duration::from_millis(20);
 
 fn parse_at(text: &str) -> Result<(u32, u32), String> {
     let (hours, minutes) = text.split_once(':').ok_or_else(|| format!("{text:?}: give a time as HH:MM"))?;
@@ -86,21 +97,16 @@ pub fn run(args: &PlayArgs) -> anyhow::Result<()> {
     let mut show = Show::open(&args.show).with_context(|| format!("cannot play {}", args.show.display()))?;
     default_cue(&mut show)?;
     let ports = ports(&show, &args.devices)?;
+    for (device, port) in show.devices.iter_mut().zip(ports) {
+        device.port = Some(port);
+    }
     let interrupts = signals::listen().context("cannot listen for Ctrl-C")?;
     let mut stages: Vec<Box<dyn Stage>> = Vec::new();
-    for (device, port) in show.devices.iter().zip(&ports) {
-        let not_played = || {
+    for device in &show.devices {
+        let stage = connect(device).with_context(|| {
+            let port = device.port.as_deref().unwrap_or_default();
             format!("{} ({}) did not answer on {port}; nothing was played", device.name, device.project.family.name())
-        };
-        let opened = crate::link::by_id::resolve(port).with_context(not_played)?;
-        let (stage, delay) = crate::show::stages::connect(&opened, device).with_context(not_played)?;
-        let port = if opened == port.trim() { opened } else { format!("{port} ({opened})") };
-        say!(
-            "{} ({}) answered on {port}; its start takes {:.1} ms to reach it",
-            device.name,
-            device.project.family.name(),
-            delay.as_secs_f64() * 1000.0
-        );
+        })?;
         stages.push(stage);
     }
     let sound = sound(&show, &args.show);
@@ -129,10 +135,12 @@ pub fn run(args: &PlayArgs) -> anyhow::Result<()> {
     let runs = args.runs.unwrap_or(if unattended { u32::MAX } else { 1 });
     let clock = MonotonicClock::now();
     for run in 1..=runs {
-        if let Some(at) = next_time(&args.at, run)
-            && let Ok(what) = stopped.recv_deadline(at)
-        {
-            return Err(interrupted(&exit_code, &what));
+        if let Some(at) = next_time(&args.at, run) {
+            match player.wait_between(at) {
+                Ok(()) => {}
+                Err(Stopped::Asked(what)) => return Err(interrupted(&exit_code, &what)),
+                Err(stopped) => bail!("before run {run}: {stopped}"),
+            }
         }
         if let (Some(pad), Some((path, button))) = (&pad, &args.wait_gamepad) {
             say!(
@@ -140,9 +148,14 @@ pub fn run(args: &PlayArgs) -> anyhow::Result<()> {
                 crate::gamepad::code_name(crate::gamepad::EV_KEY, *button),
                 path.display()
             );
-            if let Err(what) = wait_for_press(pad, *button, &mut held, &stopped)? {
-                return Err(interrupted(&exit_code, &what));
+            match wait_for_press(pad, *button, &mut held, &mut player)? {
+                Ok(()) => {}
+                Err(Stopped::Asked(what)) => return Err(interrupted(&exit_code, &what)),
+                Err(stopped) => bail!("before run {run}: {stopped}"),
             }
+        }
+        if run > 1 {
+            reconnect_lost(&mut player);
         }
         match player.run() {
             Ok(ran) => log_run(run, &ran, &clock)?,
@@ -151,6 +164,36 @@ pub fn run(args: &PlayArgs) -> anyhow::Result<()> {
         }
     }
     Ok(())
+}
+
+/// Connects `device` on its port, saying how it answered and how its link was measured.
+fn connect(device: &crate::show::Device) -> anyhow::Result<Box<dyn Stage>> {
+    let port = device.port.as_deref().unwrap_or_default();
+    let linked = crate::show::boards::connect_one(device)?;
+    let opened = crate::link::by_id::resolve(port).unwrap_or_else(|_| port.to_string());
+    let port = if opened == port.trim() { opened } else { format!("{port} ({opened})") };
+    say!(
+        "{} ({}) answered on {port}; its start takes {:.1} ms to reach it (its link {:.1} ms each way ± {:.1} ms, from {} round trips)",
+        device.name,
+        device.project.family.name(),
+        linked.start_delay.as_secs_f64() * 1000.0,
+        linked.link.one_way.as_secs_f64() * 1000.0,
+        linked.link.spread.as_secs_f64() * 1000.0,
+        crate::show::stages::ROUND_TRIPS,
+    );
+    Ok(linked.stage)
+}
+
+/// Before a run after the first: each device lost in an earlier run (one the
+/// show plays on without) is connected again, or the run plays on without it (said).
+fn reconnect_lost(player: &mut Player<'_>) {
+    for (stage, device) in player.stages.iter_mut().zip(&player.show.devices) {
+        let Some(why) = stage.lost() else { continue };
+        match connect(device) {
+            Ok(again) => *stage = again,
+            Err(error) => say!("{} is still lost ({why}; {error:#}): this run plays on without it", device.name),
+        }
+    }
 }
 
 fn interrupted(exit_code: &std::sync::atomic::AtomicU8, what: &str) -> anyhow::Error {
@@ -244,20 +287,23 @@ fn log_run(run: u32, ran: &Ran, clock: &MonotonicClock) -> anyhow::Result<()> {
     ))?;
     for sent in &ran.sent {
         line(&format!(
-            "run {run}: {} {:?} due at {} ns, written {:.2} ms late, moving at {} ns",
+            "run {run}: {} {:?} due at {} ns, written {:.2} ms late, moving at {} ns ± {:.2} ms (its link's spread{})",
             sent.device,
             sent.start,
             clock.ns(sent.due_at),
             sent.late_ms(),
-            clock.ns(sent.moving_at)
+            clock.ns(sent.moving_at),
+            sent.uncertain_ms(),
+            if matches!(sent.start, crate::show::Start::Slot(_)) { " and half its cycle" } else { "" },
         ))?;
     }
     for (device, why) in &ran.lost {
         line(&format!("run {run}: the link to {device} was lost ({why}): the show played on without it"))?;
     }
-    let worst = ran.sent.iter().map(Sent::late_ms).fold(0.0, f64::max);
+    let worst = ran.sent.iter().map(Sent::skew_ms).fold(0.0, f64::max);
+    let late = ran.sent.iter().map(Sent::late_ms).fold(0.0, f64::max);
     line(&format!(
-        "run {run}: ended after {:.2} s; largest skew {worst:.2} ms",
+        "run {run}: ended after {:.2} s; largest skew {worst:.2} ms (written up to {late:.2} ms late, plus each link's spread and a PLEN2's wait for its cycle)",
         ran.ended.saturating_duration_since(ran.zero).as_secs_f64()
     ))?;
     Ok(())

@@ -169,6 +169,11 @@ pub fn run<D: Driver>(
         }
         Err(error) => DisconnectReason::ThreadFailed(error.to_string()),
     };
+    if matches!(reason, DisconnectReason::Closed | DisconnectReason::ClosedByDriver) {
+        // What was written (a stop, a brake) leaves the port before it is
+        // closed: a serial port waits until its last byte is on the wire.
+        let _ = writer.flush();
+    }
     driver.handle_disconnect(&reason.to_string());
     forward_events(&mut driver, events);
     let _ = events.send(LinkEvent::Disconnected { reason });

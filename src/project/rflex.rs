@@ -16,6 +16,29 @@ pub struct RflexProject {
     pub drive: DriveSettings,
 }
 
+impl RflexProject {
+    /// The fastest the base is ever driven, as the editor drives it: the
+    /// project's drive settings, never past what the robot's preset allows
+    /// (a setting that is not a number, or not above zero, counts as zero).
+    pub fn limits(&self) -> SpeedLimits {
+        let robot = self.robot.limits();
+        let within = |asked: f64, most: f64| if asked.is_finite() { asked.clamp(0.0, most) } else { 0.0 };
+        SpeedLimits {
+            max_speed_m_per_s: within(self.drive.max_speed_m_per_s, robot.max_speed_m_per_s),
+            max_turn_rad_per_s: within(self.drive.max_turn_rad_per_s, robot.max_turn_rad_per_s),
+            max_accel_m_per_s2: within(self.drive.accel_m_per_s2, robot.max_accel_m_per_s2),
+        }
+    }
+}
+
+impl SpeedLimits {
+    /// (speed m/s, turn rad/s) held within these limits; NaN is a stop.
+    pub fn hold(&self, speed_m_per_s: f64, turn_rad_per_s: f64) -> (f64, f64) {
+        let within = |asked: f64, most: f64| if asked.is_nan() { 0.0 } else { asked.clamp(-most, most) };
+        (within(speed_m_per_s, self.max_speed_m_per_s), within(turn_rad_per_s, self.max_turn_rad_per_s))
+    }
+}
+
 /// A robot preset, or custom conversion constants.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "preset", rename_all = "kebab-case")]
@@ -104,6 +127,22 @@ pub struct DriveSettings {
 impl Default for DriveSettings {
     fn default() -> Self {
         Self { max_speed_m_per_s: 0.5, max_turn_rad_per_s: 1.0, accel_m_per_s2: 0.5, sonar_on_connect: true }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_base_is_limited_by_its_project_and_never_past_its_robot() {
+        let mut project = RflexProject::default();
+        assert_eq!(project.limits().hold(50.0, -1e308), (0.5, -1.0), "the project's 0.5 m/s and 1 rad/s");
+        project.drive.max_speed_m_per_s = 9.0;
+        project.drive.max_turn_rad_per_s = f64::INFINITY;
+        assert_eq!(project.limits().hold(50.0, 9.0), (1.0, 0.0), "a B21r: 1 m/s; an infinite setting counts as 0");
+        assert_eq!(project.limits().hold(f64::NAN, 0.2), (0.0, 0.0));
+        assert_eq!(project.limits().hold(-0.3, 0.0), (-0.3, 0.0), "within the limits: as asked");
     }
 }
 

@@ -86,10 +86,18 @@ impl Guard {
     }
 }
 
-/// The token in `path`: its first line, trimmed; a file too short or unreadable is an error.
+/// The largest token file read, bytes (a token is a line of a few dozen characters).
+pub const MOST_TOKEN_FILE: u64 = 4096;
+
+/// The token in `path`: its first line, trimmed. Only a regular file of at
+/// most [`MOST_TOKEN_FILE`] bytes is read (a named pipe or a device is
+/// refused without waiting on it); one too short, too large, not text or
+/// unreadable is an error.
 pub fn read_token(path: &Path) -> Result<String, ServeError> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|error| ServeError::TokenUnreadable { path: path.to_path_buf(), why: error.to_string() })?;
+    let unreadable = |why: String| ServeError::TokenUnreadable { path: path.to_path_buf(), why };
+    let bytes =
+        crate::project::input::read_bytes(path, MOST_TOKEN_FILE).map_err(|error| unreadable(error.to_string()))?;
+    let text = String::from_utf8(bytes).map_err(|_| unreadable("it is not text".into()))?;
     let token = text.lines().next().unwrap_or_default().trim().to_string();
     if token.chars().count() < SHORTEST_TOKEN {
         return Err(ServeError::TokenTooShort { path: path.to_path_buf() });

@@ -53,6 +53,12 @@ impl Verb {
     pub fn stops(&self) -> bool {
         matches!(self, Self::Stop(_))
     }
+
+    /// Whether carrying it out waits for the boards' worker to answer (up to
+    /// its bound); the others — STOP above all — are carried out at once.
+    pub fn waits_for_the_boards(&self) -> bool {
+        matches!(self, Self::Play { .. } | Self::Pose { .. } | Self::Drive { .. } | Self::Heartbeat(_))
+    }
 }
 
 /// A request that is not one: its status code (400, 404, 405) and where it went wrong.

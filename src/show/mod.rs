@@ -5,6 +5,7 @@
 //! project file opens as a show of one device whose project is that file,
 //! byte for byte ([`Show::open`]).
 
+pub mod alive;
 pub mod at;
 pub mod boards;
 pub mod passes;

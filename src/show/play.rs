@@ -29,6 +29,12 @@ const LONGEST_MOTION_MS: f64 = 600_000.0;
 pub trait Stage: Send {
     /// How long after a start command is written the device starts moving.
     fn start_delay(&self, start: &Start) -> Duration;
+    /// How far the device's start may be from when it was due, either way,
+    /// as far as can be known: its link's spread, a board's wait for its next update.
+    fn start_uncertainty(&self, start: &Start) -> Duration {
+        let _ = start;
+        Duration::ZERO
+    }
     /// Writes the start of a cue.
     fn start(&mut self, start: &Start) -> Result<(), String>;
     /// Stops the device where it is (a base stops and brakes).
@@ -60,8 +66,9 @@ pub trait Stage: Send {
         let _ = (axis, value_deg, speed);
         Err("it has no servo or joint to pose: drive it".into())
     }
-    /// Drives at (speed m/s, turn °/s) until told otherwise or stopped (a base).
-    fn drive(&mut self, drive: (f64, f64)) -> Result<(), String> {
+    /// Drives at (speed m/s, turn °/s) until told otherwise or stopped (a
+    /// base), held within its limits; the (speed, turn) it drives at.
+    fn drive(&mut self, drive: (f64, f64)) -> Result<(f64, f64), String> {
         let _ = drive;
         Err("only a base is driven".into())
     }
@@ -108,12 +115,26 @@ pub struct Sent {
     pub due_at: Instant,
     /// When it was written (never before `due_at`).
     pub sent_at: Instant,
+    /// How far its start may still be off either way, as far as can be known
+    /// (its link's spread; a PLEN2's wait for its next cycle).
+    pub uncertain: Duration,
 }
 
 impl Sent {
-    /// How late it was written, ms (the skew it adds).
+    /// How late it was written, ms.
     pub fn late_ms(&self) -> f64 {
         self.sent_at.saturating_duration_since(self.due_at).as_secs_f64() * 1000.0
+    }
+
+    /// How far its start may be off either way, ms, besides being written late.
+    pub fn uncertain_ms(&self) -> f64 {
+        self.uncertain.as_secs_f64() * 1000.0
+    }
+
+    /// The most its device's start can be off its cue, ms, as far as can be
+    /// known: written late, plus what its link and its board's cycle leave open.
+    pub fn skew_ms(&self) -> f64 {
+        self.late_ms() + self.uncertain_ms()
     }
 }
 
@@ -183,7 +204,8 @@ impl Player<'_> {
             if let Start::Drive { for_ms, .. } = start {
                 going.drives.push((moving_at + Duration::from_millis(for_ms), index));
             }
-            sent.push(Sent { device, start, moving_at, due_at: due, sent_at });
+            let uncertain = self.stages[index].start_uncertainty(&start);
+            sent.push(Sent { device, start, moving_at, due_at: due, sent_at, uncertain });
         }
         self.wait_until(end, &mut going)?;
         drop(playing);
@@ -247,21 +269,7 @@ impl Player<'_> {
                 }
                 done > now
             });
-            for (index, (stage, device)) in self.stages.iter_mut().zip(&self.show.devices).enumerate() {
-                if going.lost.iter().any(|(gone, ..)| *gone == index) {
-                    continue;
-                }
-                stage.tick(now);
-                let Some(why) = stage.lost() else { continue };
-                if device.play_on_without {
-                    going.lost.push((index, device.name.clone(), why));
-                    going.drives.retain(|&(_, driving)| driving != index);
-                    continue;
-                }
-                let device = device.name.clone();
-                self.stop_all();
-                return Err(Stopped::Lost { device, why });
-            }
+            self.look(now, going)?;
             if now >= until {
                 return Ok(());
             }
@@ -272,6 +280,35 @@ impl Player<'_> {
                 return Err(Stopped::Asked(what));
             }
         }
+    }
+
+    /// Keeps every device's link fresh and looks whether one was lost: one
+    /// the show plays on without is left behind (noted in `going`); any other
+    /// stops every device and ends the run.
+    fn look(&mut self, now: Instant, going: &mut Going) -> Result<(), Stopped> {
+        for (index, (stage, device)) in self.stages.iter_mut().zip(&self.show.devices).enumerate() {
+            if going.lost.iter().any(|(gone, ..)| *gone == index) {
+                continue;
+            }
+            stage.tick(now);
+            let Some(why) = stage.lost() else { continue };
+            if device.play_on_without {
+                going.lost.push((index, device.name.clone(), why));
+                going.drives.retain(|&(_, driving)| driving != index);
+                continue;
+            }
+            let device = device.name.clone();
+            self.stop_all();
+            return Err(Stopped::Lost { device, why });
+        }
+        Ok(())
+    }
+
+    /// Waits until `until` between runs (nothing playing): links kept fresh,
+    /// and a device the show needs that is lost meanwhile, STOP or a signal
+    /// end the wait (every device stopped).
+    pub fn wait_between(&mut self, until: Instant) -> Result<(), Stopped> {
+        self.wait_until(until, &mut Going::default())
     }
 
     /// Stops every device (bases stop and brake).

@@ -25,7 +25,7 @@ const EXE: &str = env!("CARGO_BIN_EXE_servo-studio");
 const LONG: Duration = Duration::from_secs(30);
 
 /// A skull swinging (servo 1 limited to ±60°), a PLEN2 waving in slot 2, a base.
-fn three_devices() -> Show {
+pub(super) fn three_devices() -> Show {
     let mut skull = swinging(400);
     skull.servo.servos[0].min_deg = -60;
     skull.servo.servos[0].max_deg = 60;
@@ -36,10 +36,10 @@ fn three_devices() -> Show {
     }
 }
 
-struct Served {
-    child: Child,
-    url: String,
-    osc: Option<String>,
+pub(super) struct Served {
+    pub(super) child: Child,
+    pub(super) url: String,
+    pub(super) osc: Option<String>,
 }
 
 impl Drop for Served {
@@ -50,7 +50,7 @@ impl Drop for Served {
 }
 
 /// `serve` on the stage's emulators with `more` options; its URL once it listens.
-fn serve(stage: &Stage, more: &[&str]) -> Served {
+pub(super) fn serve(stage: &Stage, more: &[&str]) -> Served {
     let mut args = vec!["serve".to_string(), stage.dir.path().join("show.json").to_str().unwrap().to_string()];
     args.extend(stage.device_args());
     args.extend(more.iter().map(ToString::to_string));
@@ -82,7 +82,7 @@ fn agent() -> ureq::Agent {
 }
 
 /// A request's status and JSON body.
-fn ask(method: &str, url: &str, body: Option<&str>, headers: &[(&str, &str)]) -> (u16, Value) {
+pub(super) fn ask(method: &str, url: &str, body: Option<&str>, headers: &[(&str, &str)]) -> (u16, Value) {
     let agent = agent();
     let mut response = if method == "GET" {
         let mut request = agent.get(url);
@@ -105,7 +105,7 @@ fn ask(method: &str, url: &str, body: Option<&str>, headers: &[(&str, &str)]) ->
     (status, serde_json::from_str(&text).unwrap_or(Value::String(text)))
 }
 
-fn post(served: &Served, path: &str, body: Option<&str>) -> (u16, Value) {
+pub(super) fn post(served: &Served, path: &str, body: Option<&str>) -> (u16, Value) {
     ask("POST", &format!("{}{path}", served.url), body, &[])
 }
 
@@ -176,12 +176,12 @@ fn a_driven_base_stops_and_brakes_once_its_heartbeats_stop() {
     assert_eq!(post(&served, "/devices/skull/drive", Some(r#"{"speed_m_s": 0.1}"#)).0, 422, "only a base is driven");
 }
 
-fn count(stage: &Stage, name: &str, wanted: &str) -> usize {
+pub(super) fn count(stage: &Stage, name: &str, wanted: &str) -> usize {
     std::fs::read_to_string(stage.log(name)).unwrap_or_default().lines().filter(|l| l.contains(wanted)).count()
 }
 
 /// The log once more than `seen` lines contain `wanted`.
-fn logged_more(stage: &Stage, name: &str, wanted: &str, seen: usize) -> Vec<(u128, String)> {
+pub(super) fn logged_more(stage: &Stage, name: &str, wanted: &str, seen: usize) -> Vec<(u128, String)> {
     let deadline = std::time::Instant::now() + LONG;
     while count(stage, name, wanted) <= seen {
         assert!(std::time::Instant::now() < deadline, "{name} never logged {wanted:?} again");
@@ -238,7 +238,7 @@ fn off_loopback_every_request_needs_the_token_and_a_flood_still_lets_stop_throug
 }
 
 /// Sends one OSC message and takes its `/reply i s`: the code and what it said.
-fn osc_ask(to: &str, addr: &str, args: Vec<OscType>) -> (i32, String) {
+pub(super) fn osc_ask(to: &str, addr: &str, args: Vec<OscType>) -> (i32, String) {
     let socket = UdpSocket::bind("127.0.0.1:0").unwrap();
     socket.set_read_timeout(Some(LONG)).unwrap();
     let packet = rosc::encoder::encode(&OscPacket::Message(OscMessage { addr: addr.into(), args })).unwrap();
@@ -246,7 +246,7 @@ fn osc_ask(to: &str, addr: &str, args: Vec<OscType>) -> (i32, String) {
     osc_reply(&socket)
 }
 
-fn osc_reply(socket: &UdpSocket) -> (i32, String) {
+pub(super) fn osc_reply(socket: &UdpSocket) -> (i32, String) {
     let mut buffer = [0; 65_536];
     let (length, _) = socket.recv_from(&mut buffer).unwrap();
     let (_, packet) = rosc::decoder::decode_udp(&buffer[..length]).unwrap();

@@ -118,6 +118,16 @@ impl Plen2Requester {
         outcome.recv().unwrap_or(Err(ReplyError::Disconnected)).map(|_| ())
     }
 
+    /// Sends a getter, paced, without waiting: its reply (or why none came) arrives on the returned receiver.
+    pub fn ask(
+        &self,
+        command: Command,
+    ) -> Result<crossbeam_channel::Receiver<Result<Vec<u8>, ReplyError>>, ReplyError> {
+        let (reply, outcome) = crossbeam_channel::bounded(1);
+        self.commands.send(Plen2Command::Get { command, reply, news: None }).map_err(|_| ReplyError::Disconnected)?;
+        Ok(outcome)
+    }
+
     /// A slot read back different: the adaptive pacing widens its margins.
     pub fn read_back_differed(&self) -> Result<(), ReplyError> {
         self.commands.send(Plen2Command::ReadBackDiffered).map_err(|_| ReplyError::Disconnected)

@@ -39,6 +39,8 @@ pub enum RflexCommand {
         /// m/s².
         accel_m_per_s2: f64,
     },
+    /// Ask for the system status once (its answer's round trip is reported).
+    AskStatus,
     /// Stop now: both axes at speed 0, once.
     Stop,
     /// Set (true) or release (false) the brake.
@@ -69,7 +71,12 @@ pub enum RflexEvent {
     Log(LogEntry),
     /// The base said nothing for [`SILENCE_LIMIT`] while driving: the driver sent a stop.
     Silent,
+    /// A status request was answered, this long after it was sent (a round trip on the link).
+    StatusAnswered(Duration),
 }
+
+/// Status requests older than this are not waited for (their answer was lost).
+const STATUS_FORGOTTEN: Duration = Duration::from_secs(2);
 
 /// The driver.
 #[derive(Debug)]
@@ -85,6 +92,9 @@ pub struct RflexDriver {
     next_poll: Option<Instant>,
     last_heard: Option<Instant>,
     shutdown_done: Option<Sender<()>>,
+    /// When each status request still unanswered was sent, oldest first
+    /// (the base answers them in order: a status report each).
+    status_asked: VecDeque<Instant>,
 }
 
 impl RflexDriver {
@@ -101,6 +111,7 @@ impl RflexDriver {
             next_poll: None,
             last_heard: None,
             shutdown_done: None,
+            status_asked: VecDeque::new(),
         }
     }
 
@@ -109,6 +120,10 @@ impl RflexDriver {
     }
 
     fn send(&mut self, now: Instant, command: &Command) {
+        if *command == Command::SystemStatus {
+            self.status_asked.retain(|asked| now.saturating_duration_since(*asked) < STATUS_FORGOTTEN);
+            self.status_asked.push_back(now);
+        }
         let frame = command.to_frame();
         // Every command of rflex.md fits its LEN byte.
         let Ok(bytes) = frame.to_bytes() else { return };
@@ -176,6 +191,7 @@ impl Driver for RflexDriver {
                     self.last_heard.get_or_insert(now);
                 }
             }
+            RflexCommand::AskStatus => self.send(now, &Command::SystemStatus),
             RflexCommand::Stop => self.stop(now),
             RflexCommand::Brake(on) => {
                 if on {
@@ -215,6 +231,11 @@ impl Driver for RflexDriver {
                             // Only a report that decodes counts as the base answering:
                             // noise or another protocol's bytes are no sign of life.
                             self.last_heard = Some(now);
+                            if matches!(report, Report::Status { .. })
+                                && let Some(asked) = self.status_asked.pop_front()
+                            {
+                                self.events.push_back(RflexEvent::StatusAnswered(now.saturating_duration_since(asked)));
+                            }
                             self.events.push_back(RflexEvent::Log(LogEntry {
                                 seconds,
                                 direction: Direction::Received,
@@ -377,6 +398,27 @@ mod tests {
         driver.handle_command(t0 + Duration::from_millis(150), RflexCommand::Stop);
         assert_eq!(sent(&mut driver), B21R.stop(0.5).to_vec());
         assert_eq!(driver.poll_timeout(), Some(t0 + POLL_EVERY), "only the status poll is left");
+    }
+
+    #[test]
+    fn each_status_answered_is_paired_with_its_request_oldest_first() {
+        let mut driver = RflexDriver::new(B21R);
+        let t0 = Instant::now();
+        driver.handle_command(t0, RflexCommand::AskStatus);
+        driver.handle_command(t0 + Duration::from_millis(5), RflexCommand::AskStatus);
+        sent(&mut driver);
+        let status = Report::Status { timestamp: 1, voltage_raw: 2400, brake: 1 }.to_frame(1).to_bytes().unwrap();
+        driver.handle_input(t0 + Duration::from_millis(40), &status);
+        driver.handle_input(t0 + Duration::from_millis(50), &status);
+        let answered: Vec<RflexEvent> =
+            std::iter::from_fn(|| driver.poll_event()).filter(|e| matches!(e, RflexEvent::StatusAnswered(_))).collect();
+        assert_eq!(
+            answered,
+            [
+                RflexEvent::StatusAnswered(Duration::from_millis(40)),
+                RflexEvent::StatusAnswered(Duration::from_millis(45))
+            ]
+        );
     }
 
     #[test]

@@ -201,6 +201,8 @@ pub struct RflexBase {
     /// The velocity last asked for (speed m/s, turn rad/s): what the base is told to do.
     pub commanded: (f64, f64),
     lost: bool,
+    /// Round trips of status requests answered since last taken.
+    answered: Vec<Duration>,
 }
 
 impl std::fmt::Debug for RflexBase {
@@ -221,6 +223,7 @@ impl RflexBase {
             telemetry: Telemetry::default(),
             commanded: (0.0, 0.0),
             lost: false,
+            answered: Vec::new(),
         })
     }
 
@@ -261,6 +264,16 @@ impl RflexBase {
         self.command(RflexCommand::Brake(on));
     }
 
+    /// Asks for the system status once; its round trip comes in [`RflexBase::round_trips`].
+    pub fn ask_status(&self) {
+        self.command(RflexCommand::AskStatus);
+    }
+
+    /// The round trips of status requests answered since last asked (taken in by [`RflexBase::pump`]).
+    pub fn round_trips(&mut self) -> Vec<Duration> {
+        std::mem::take(&mut self.answered)
+    }
+
     /// Turns the sonar ring on or off.
     pub fn set_sonar(&self, on: bool) {
         self.command(RflexCommand::Sonar(on));
@@ -294,6 +307,13 @@ impl RflexBase {
                     self.telemetry.skipped_bytes += u64::try_from(bytes).unwrap_or(u64::MAX);
                 }
                 LinkEvent::Driver(RflexEvent::Log(entry)) => notices.push(RflexNotice::Log(entry)),
+                LinkEvent::Driver(RflexEvent::StatusAnswered(round_trip)) => {
+                    // Kept for whoever measures the link; the newest few, never more.
+                    if self.answered.len() >= 16 {
+                        self.answered.remove(0);
+                    }
+                    self.answered.push(round_trip);
+                }
                 LinkEvent::Driver(RflexEvent::Silent) => {
                     self.commanded = (0.0, 0.0);
                     notices.push(RflexNotice::Silent);

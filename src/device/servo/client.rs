@@ -100,6 +100,11 @@ impl Driver for ServoDriver {
     type Command = ServoCommand;
     type Event = ServoEvent;
 
+    /// STOP goes out even when the owner closes right after sending it.
+    fn is_last_word(&self, command: &ServoCommand) -> bool {
+        matches!(command, ServoCommand::Stop { .. })
+    }
+
     fn handle_command(&mut self, now: Instant, command: ServoCommand) {
         match command {
             ServoCommand::Request { message, reply } => match self.session.submit(now, message) {

@@ -11,6 +11,7 @@ use std::time::Duration;
 
 use crossbeam_channel::{Receiver, Sender};
 
+mod dead_man;
 mod worker;
 
 use std::sync::{Arc, Condvar, Mutex};
@@ -20,7 +21,7 @@ use super::play::{Player, Stage, Stopped};
 use super::{Show, Start};
 use crate::device::speed::LiveSpeed;
 use crate::link::Waker;
-pub use worker::DEAD_MAN;
+pub use dead_man::{DeadMan, MOST_GAP, NotDriven};
 use worker::Worker;
 
 /// How often the worker looks at its links while it waits.
@@ -68,8 +69,8 @@ enum Order {
     StopOne(usize),
     /// A remote: an axis of the device to a value (degrees), paced and limited as a slider; the value it took.
     Pose(usize, Axis, f64, Sender<Result<f64, Refused>>),
-    /// A remote: drive a base (speed m/s, turn °/s; None: a heartbeat only).
-    Drive(usize, Option<(f64, f64)>, Sender<Result<(), Refused>>),
+    /// A remote: drive a base (speed m/s, turn °/s; None: a heartbeat only), taken in at this instant.
+    Drive(usize, Option<(f64, f64)>, std::time::Instant, Sender<Result<Drove, Refused>>),
     /// How fast a remote's pose may move a servo or a joint.
     Speed(LiveSpeed),
 }
@@ -109,6 +110,18 @@ pub enum Refused {
     /// The boards did not answer in time.
     #[error("the boards did not answer in time: try again (STOP is always taken at once)")]
     Late,
+    /// A heartbeat that keeps nothing driving (never driven, or the dead-man stopped it).
+    #[error("{0}")]
+    NotDriven(NotDriven),
+}
+
+/// What a remote's drive or heartbeat did.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Drove {
+    /// The speed and turn the base drives at (m/s, °/s), within its limits; None for a heartbeat.
+    pub taken: Option<(f64, f64)>,
+    /// How long since the previous drive or heartbeat, when the base was being driven.
+    pub gap: Option<Duration>,
 }
 
 /// A device as a remote's status says it.
@@ -234,10 +247,12 @@ impl Boards {
         self.ask(|reply| Order::Pose(index, axis, value, reply))?
     }
 
-    /// A remote: drives the base at `index` (speed m/s, turn °/s), or only
-    /// keeps it driving (None); it stops [`DEAD_MAN`] after the last of these.
-    pub fn drive(&self, index: usize, drive: Option<(f64, f64)>) -> Result<(), Refused> {
-        self.ask(|reply| Order::Drive(index, drive, reply))?
+    /// A remote: drives the base at `index` (speed m/s, turn °/s, held
+    /// within its limits), or only keeps it driving (None); it stops once
+    /// more than [`MOST_GAP`] passes after the last of these, timed from now.
+    pub fn drive(&self, index: usize, drive: Option<(f64, f64)>) -> Result<Drove, Refused> {
+        let taken_in = std::time::Instant::now();
+        self.ask(|reply| Order::Drive(index, drive, taken_in, reply))?
     }
 
     /// How fast a remote's pose may move a servo or a joint (the editor's live speed).
@@ -328,9 +343,9 @@ pub fn play_once(show: &Show, folder: Option<PathBuf>, stop: Receiver<String>, t
             tell(format!("{}: {port} is {opened} now", device.name));
         }
         match connect_one(device) {
-            Ok((stage, delay)) => {
-                tell(answered(&device.name, port, delay));
-                stages.push(stage);
+            Ok(linked) => {
+                tell(answered(&device.name, port, linked.start_delay));
+                stages.push(linked.stage);
             }
             Err(error) => {
                 tell(format!("{} did not answer on {port}: {error}; nothing was played", device.name));
@@ -360,8 +375,8 @@ fn answered(name: &str, port: &str, delay: Duration) -> String {
     format!("{name} answered on {port} ({:.1} ms to reach it)", delay.as_secs_f64() * 1000.0)
 }
 
-/// Connects one device on its port (a `usb:` id found first).
-pub fn connect_one(device: &super::Device) -> Result<(Box<dyn Stage>, Duration), Unlinked> {
+/// Connects one device on its port (a `usb:` id found first), its link measured.
+pub fn connect_one(device: &super::Device) -> Result<super::stages::Linked, Unlinked> {
     let Some(port) = &device.port else { return Err(Unlinked::NoPort) };
     let opened = crate::link::by_id::resolve(port).map_err(|error| Unlinked::Failed(format!("{error}")))?;
     super::stages::connect(&opened, device).map_err(|error| Unlinked::Failed(format!("{error:#}")))

@@ -9,15 +9,14 @@ use std::time::{Duration, Instant};
 
 use crossbeam_channel::Receiver;
 
-use super::{DeviceStatus, FOLLOW_EVERY, Heard, Held, LOOK_EVERY, Order, Refused, Run, Shared, connect_one};
+use super::{
+    DeadMan, DeviceStatus, Drove, FOLLOW_EVERY, Heard, Held, LOOK_EVERY, NotDriven, Order, Refused, Run, Shared,
+    connect_one,
+};
 use crate::device::speed::LiveSpeed;
 use crate::show::at::{Now, now_at};
 use crate::show::play::{Player, Stage, Stopped};
 use crate::show::{Show, Start};
-
-/// A base driven by a remote stops this long after its last heartbeat (the
-/// worker looks every [`LOOK_EVERY`], so it stops within 200 ms).
-pub const DEAD_MAN: Duration = Duration::from_millis(180);
 
 /// What a device does for a remote.
 #[derive(Debug, Default)]
@@ -26,8 +25,8 @@ struct Doing {
     playing: Option<(String, Instant)>,
     /// What plays after it (when the remote asked to queue).
     queue: VecDeque<(Run, String)>,
-    /// A base's last heartbeat while driven.
-    heartbeat: Option<Instant>,
+    /// A base's dead-man while a remote drives it.
+    dead_man: DeadMan,
     /// Its link, said.
     link: String,
     /// Its battery, said, when the board tells it.
@@ -59,9 +58,10 @@ impl Worker {
         let mut doing = Vec::new();
         for (index, device) in show.devices.iter().enumerate() {
             let (stage, link) = match connect_one(device) {
-                Ok((stage, delay)) => {
+                Ok(linked) => {
+                    let delay = linked.start_delay;
                     tell(Heard::Linked(index, Ok(delay)));
-                    (Some(stage), format!("answered ({:.1} ms to reach it)", delay.as_secs_f64() * 1000.0))
+                    (Some(linked.stage), format!("answered ({:.1} ms to reach it)", delay.as_secs_f64() * 1000.0))
                 }
                 Err(why) => {
                     tell(Heard::Linked(index, Err(why.clone())));
@@ -83,7 +83,14 @@ impl Worker {
             let wait = if self.pending.is_some() { FOLLOW_EVERY / 2 } else { LOOK_EVERY };
             crossbeam_channel::select! {
                 recv(orders) -> order => match order {
-                    Ok(order) => self.take(order, stop, tell),
+                    Ok(order) => {
+                        self.take(order, stop, tell);
+                        // Every order already waiting is taken before time is looked at: a
+                        // heartbeat queued behind another is never judged late for the queue.
+                        while let Ok(order) = orders.try_recv() {
+                            self.take(order, stop, tell);
+                        }
+                    }
                     Err(_) => return,
                 },
                 recv(stop) -> why => {
@@ -136,8 +143,8 @@ impl Worker {
                 let posed = self.stage(index).and_then(|stage| stage.pose(axis, value, speed).map_err(Refused::Cannot));
                 let _ = reply.send(posed);
             }
-            Order::Drive(index, drive, reply) => {
-                let _ = reply.send(self.drive(index, drive));
+            Order::Drive(index, drive, taken_in, reply) => {
+                let _ = reply.send(self.drive(index, drive, taken_in));
             }
             Order::Speed(speed) => self.speed = speed,
         }
@@ -183,35 +190,50 @@ impl Worker {
         self.doing[index].playing = Some((caption, until));
         if let Run::Start(Start::Drive { .. }) = *run {
             // A timed drive is the show's, not a remote's stick: no heartbeat.
-            self.doing[index].heartbeat = None;
+            self.doing[index].dead_man.release();
         }
         Ok(())
     }
 
     fn stop_one(&mut self, index: usize) {
+        self.halt(index);
+        if let Some(doing) = self.doing.get_mut(index) {
+            doing.dead_man.release();
+        }
+    }
+
+    /// The device stopped where it is (a base brakes); nothing it played or had queued goes on.
+    fn halt(&mut self, index: usize) {
         if let Ok(stage) = self.stage(index) {
             stage.stop();
         }
         if let Some(doing) = self.doing.get_mut(index) {
             doing.playing = None;
             doing.queue.clear();
-            doing.heartbeat = None;
         }
     }
 
-    /// A base driven by a remote (None: only a heartbeat); each is a heartbeat.
-    fn drive(&mut self, index: usize, drive: Option<(f64, f64)>) -> Result<(), Refused> {
+    /// A base driven by a remote, taken in at `taken_in` (None: only a
+    /// heartbeat); each keeps it driving for [`super::MOST_GAP`] more.
+    fn drive(&mut self, index: usize, drive: Option<(f64, f64)>, taken_in: Instant) -> Result<Drove, Refused> {
         if self.show_playing {
             return Err(Refused::Busy("the show is playing on the boards".into()));
         }
         let stage = self.stage(index)?;
-        if let Some(drive) = drive {
-            stage.drive(drive).map_err(Refused::Cannot)?;
-        } else if self.doing[index].heartbeat.is_none() {
-            return Err(Refused::Cannot("it is not being driven: send a drive first".into()));
-        }
-        self.doing[index].heartbeat = Some(Instant::now());
-        Ok(())
+        let Some(drive) = drive else {
+            return match self.doing[index].dead_man.heartbeat(taken_in) {
+                Ok(gap) => Ok(Drove { taken: None, gap: Some(gap) }),
+                Err(late @ NotDriven::Stopped(_)) => {
+                    // Too late: stopped now, as the dead-man would have (the worker had not looked yet).
+                    self.halt(index);
+                    Err(Refused::NotDriven(late))
+                }
+                Err(not_driven) => Err(Refused::NotDriven(not_driven)),
+            };
+        };
+        let taken = stage.drive(drive).map_err(Refused::Cannot)?;
+        let gap = self.doing[index].dead_man.drive(taken_in);
+        Ok(Drove { taken: Some(taken), gap })
     }
 
     /// A remote's side of time passing: a base whose heartbeats stopped
@@ -219,8 +241,8 @@ impl Worker {
     fn remote_tick(&mut self) {
         let now = Instant::now();
         for index in 0..self.doing.len() {
-            if self.doing[index].heartbeat.is_some_and(|beat| now.saturating_duration_since(beat) >= DEAD_MAN) {
-                self.stop_one(index);
+            if self.doing[index].dead_man.expired(now) {
+                self.halt(index);
             }
             if self.doing[index].playing.as_ref().is_some_and(|(_, until)| *until <= now) {
                 self.doing[index].playing = None;
@@ -249,7 +271,7 @@ impl Worker {
                 battery: doing.battery.clone(),
                 playing: doing.playing.as_ref().filter(|(_, until)| *until > now).map(|(what, _)| what.clone()),
                 queued: doing.queue.iter().map(|(_, caption)| caption.clone()).collect(),
-                driven: doing.heartbeat.is_some(),
+                driven: doing.dead_man.driven(),
             })
             .collect();
         self.shared.publish(devices, self.show_playing);
@@ -290,8 +312,7 @@ impl Worker {
             self.doing[device] = Doing { link: format!("lost: {why}"), ..Doing::default() };
             let needed = !self.show.devices.get(device).is_some_and(|device| device.play_on_without);
             let all_stopped = needed
-                && (self.following.is_some()
-                    || self.doing.iter().any(|d| d.playing.is_some() || d.heartbeat.is_some()));
+                && (self.following.is_some() || self.doing.iter().any(|d| d.playing.is_some() || d.dead_man.driven()));
             if all_stopped {
                 self.stop_all();
             }
@@ -345,7 +366,7 @@ impl Worker {
         for doing in &mut self.doing {
             doing.playing = None;
             doing.queue.clear();
-            doing.heartbeat = None;
+            doing.dead_man.release();
         }
     }
 }

@@ -133,6 +133,7 @@ mod tests {
             moving_at: now,
             due_at: now,
             sent_at: now,
+            uncertain: std::time::Duration::ZERO,
         };
         let run = Ran { zero: now, sent: vec![sent], ended: now, with_sound: false, lost: Vec::new() };
         let english = ran(&run, ShowWords::of(Language::English));

@@ -293,6 +293,11 @@ impl Driver for Plen2Driver {
     type Command = Plen2Command;
     type Event = Plen2Event;
 
+    /// STOP (`#RI`, `$HP`) goes out even when the owner closes right after sending it.
+    fn is_last_word(&self, command: &Plen2Command) -> bool {
+        matches!(command, Plen2Command::Stop)
+    }
+
     fn handle_command(&mut self, now: Instant, command: Plen2Command) {
         match command {
             Plen2Command::Send { command, done } => self.enqueue(command, done, None),

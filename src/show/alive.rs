@@ -1,0 +1,114 @@
+//! Whether a device held by a show still answers: a link can stay open —
+//! a TCP bridge, a USB adapter with the board's power gone — while nothing
+//! answers behind it. Each stage asks its device a harmless question every
+//! [`ASK_EVERY`] (a base reports on its own) and calls it lost once nothing
+//! has come back for [`SILENT_AFTER`]. Sans-IO: time comes in.
+
+use std::time::{Duration, Instant};
+
+/// How often a held device is asked whether it is there.
+pub const ASK_EVERY: Duration = Duration::from_millis(500);
+/// A device that answered nothing for this long is lost (its link may still be open).
+pub const SILENT_AFTER: Duration = Duration::from_secs(2);
+
+/// A device's signs of life.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Alive {
+    /// When it last answered (or was connected).
+    heard: Instant,
+    /// When the question now out was asked.
+    asked: Option<Instant>,
+}
+
+impl Alive {
+    /// Connected and answering at `now`.
+    pub fn new(now: Instant) -> Self {
+        Self { heard: now, asked: None }
+    }
+
+    /// It answered (anything that decodes as its protocol) at `at`.
+    pub fn heard(&mut self, at: Instant) {
+        self.heard = self.heard.max(at);
+        self.asked = None;
+    }
+
+    /// The question out was withdrawn before it could be answered (STOP
+    /// drops what is queued): no sign either way, so its time does not count
+    /// as silence, and it is asked again.
+    pub fn withdrawn(&mut self) {
+        if let Some(asked) = self.asked.take() {
+            self.heard = self.heard.max(asked);
+        }
+    }
+
+    /// Whether to ask it now: no question is out, the last answer is
+    /// [`ASK_EVERY`] old, and the last question is as old (a question lost
+    /// on the way is asked again). Noted as asked when it says so.
+    pub fn ask(&mut self, now: Instant) -> bool {
+        let due = |since: Instant| now.saturating_duration_since(since) >= ASK_EVERY;
+        if due(self.heard) && self.asked.is_none_or(due) {
+            self.asked = Some(now);
+            return true;
+        }
+        false
+    }
+
+    /// How long it has said nothing, once that is [`SILENT_AFTER`] or more.
+    pub fn silent(&self, now: Instant) -> Option<Duration> {
+        Some(now.saturating_duration_since(self.heard)).filter(|quiet| *quiet >= SILENT_AFTER)
+    }
+}
+
+/// What a lost device's link says once it went silent.
+pub fn silence(quiet: Duration) -> String {
+    format!(
+        "it stopped answering: nothing came back for {:.1} s (asked every {:.1} s) though its link is open — is it powered, or its bridge hung?",
+        quiet.as_secs_f64(),
+        ASK_EVERY.as_secs_f64()
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_device_answering_is_asked_twice_a_second_and_never_silent() {
+        let t0 = Instant::now();
+        let mut alive = Alive::new(t0);
+        assert!(!alive.ask(t0 + Duration::from_millis(100)));
+        for tick in 1..100u32 {
+            let now = t0 + ASK_EVERY * tick;
+            assert!(alive.ask(now), "asked at tick {tick}");
+            assert!(!alive.ask(now), "once");
+            // Answered the moment it was asked (a round trip later, it is asked that much later).
+            alive.heard(now);
+            assert_eq!(alive.silent(now + Duration::from_millis(40)), None);
+        }
+    }
+
+    #[test]
+    fn a_device_that_stops_answering_is_asked_again_and_called_silent_after_the_limit() {
+        let t0 = Instant::now();
+        let mut alive = Alive::new(t0);
+        assert!(alive.ask(t0 + ASK_EVERY));
+        assert!(!alive.ask(t0 + ASK_EVERY + Duration::from_millis(200)), "its question is out");
+        assert!(alive.ask(t0 + ASK_EVERY * 2), "a question lost on the way is asked again");
+        assert_eq!(alive.silent(t0 + SILENT_AFTER - Duration::from_millis(1)), None);
+        assert_eq!(alive.silent(t0 + SILENT_AFTER), Some(SILENT_AFTER));
+        assert!(silence(SILENT_AFTER).contains("nothing came back for 2.0 s"));
+    }
+
+    #[test]
+    fn a_question_withdrawn_by_stop_is_no_sign_of_silence() {
+        let t0 = Instant::now();
+        let mut alive = Alive::new(t0);
+        // STOP after STOP: each question is dropped before the device could answer.
+        for tick in 1..20u32 {
+            let now = t0 + ASK_EVERY * tick;
+            assert!(alive.ask(now));
+            alive.withdrawn();
+            assert_eq!(alive.silent(now + Duration::from_millis(100)), None, "tick {tick}");
+        }
+    }
+}

@@ -1,0 +1,182 @@
+//! A PLEN2 on a show's stage: motions and play lists started, joints
+//! followed and posed within their limits a cycle at a time, asked its
+//! version twice a second (the robot acknowledges nothing else, so this is
+//! how it is known to be there).
+
+use std::time::{Duration, Instant};
+
+use crossbeam_channel::Receiver;
+
+use super::{LinkDelay, Linked};
+use crate::device::plen2::playback::{CYCLE_US, DEVICE_IDS, Settings, joint_settings};
+use crate::device::plen2::{
+    Command as Plen2Command, Plen2Handle, Plen2Notice, Plen2Options, Plen2Requester, ReplyError, start_delay,
+};
+use crate::device::speed::{LiveSpeed, Slew};
+use crate::link::{self, LineSettings, PortName, no_waker};
+use crate::project::plen2::Joint;
+use crate::show::alive::{Alive, silence};
+use crate::show::at::{Now, Posed};
+use crate::show::passes::Axis;
+use crate::show::play::Stage;
+use crate::show::{Device, Start};
+
+/// Connects the PLEN2 on `port`: the driver's own probe (which also sets its
+/// pacing), then its link measured on version questions.
+pub(super) fn connect(port: &PortName, settings: &LineSettings, device: &Device) -> anyhow::Result<Linked> {
+    let connection = link::open(port, settings)?;
+    let mut handle = Plen2Handle::over(connection, Plen2Options::default(), no_waker())?;
+    let requester = handle.requester();
+    requester.probe().map_err(|error| anyhow::anyhow!(error.to_string()))?;
+    let link =
+        LinkDelay::measured(|| requester.get(Plen2Command::GetVersion).map(|_| ()).map_err(|error| error.to_string()))?;
+    let lost = handle.pump(Instant::now()).into_iter().find_map(|notice| match notice {
+        Plen2Notice::Disconnected(reason) => Some(reason.to_string()),
+        _ => None,
+    });
+    let settings = joint_settings(&device.project.plen2);
+    let alive = Alive::new(Instant::now());
+    let stage = Plen2Stage { handle, requester, link, lost, alive, asking: None, settings, sent: None, slew: None };
+    let start_delay = stage.start_delay(&Start::Slot(0));
+    Ok(Linked { stage: Box::new(stage), start_delay, link })
+}
+
+impl Plen2Stage {
+    /// Asks its version twice a second, taking the answer in when it came:
+    /// an answer is a sign of life; none for long, the robot is lost.
+    fn ask_alive(&mut self, now: Instant) {
+        if let Some(answer) = &self.asking {
+            match answer.try_recv() {
+                Ok(Ok(_)) => {
+                    self.alive.heard(now);
+                    self.asking = None;
+                }
+                Ok(Err(ReplyError::Stopped)) => {
+                    self.alive.withdrawn();
+                    self.asking = None;
+                }
+                Ok(Err(_)) | Err(crossbeam_channel::TryRecvError::Disconnected) => self.asking = None,
+                Err(crossbeam_channel::TryRecvError::Empty) => {}
+            }
+        }
+        if self.asking.is_none() && self.alive.ask(now) {
+            self.asking = self.requester.ask(Plen2Command::GetVersion).ok();
+        }
+        if let Some(quiet) = self.alive.silent(now) {
+            self.lost.get_or_insert_with(|| silence(quiet));
+        }
+    }
+}
+
+struct Plen2Stage {
+    handle: Plen2Handle,
+    requester: Plen2Requester,
+    link: LinkDelay,
+    lost: Option<String>,
+    /// Its signs of life: asked its version twice a second.
+    alive: Alive,
+    /// The version question out.
+    asking: Option<Receiver<Result<Vec<u8>, ReplyError>>>,
+    /// Each joint's home and limits, by device id.
+    settings: Settings,
+    /// The joints' values last told while following (from home).
+    sent: Option<[i16; DEVICE_IDS]>,
+    /// A remote's pose, walked toward a cycle at a time (absolute, by joint), and how fast.
+    slew: Option<(Slew, LiveSpeed)>,
+}
+
+impl Stage for Plen2Stage {
+    fn start_delay(&self, start: &Start) -> Duration {
+        let Start::Slot(slot) = *start else { return Duration::ZERO };
+        start_delay(&Plen2Command::PlayMotion { slot }, self.link.one_way)
+    }
+
+    fn start_uncertainty(&self, _start: &Start) -> Duration {
+        // It starts at its next cycle: the start's delay counts half of one.
+        self.link.spread + Duration::from_micros(CYCLE_US / 2)
+    }
+
+    fn start(&mut self, start: &Start) -> Result<(), String> {
+        let Start::Slot(slot) = *start else { return Err(format!("a PLEN2 cannot start {start:?}")) };
+        self.requester.send(Plen2Command::PlayMotion { slot }).map_err(|error| error.to_string())
+    }
+
+    fn stop(&mut self) {
+        self.handle.stop();
+        // STOP sends the joints home (`$HP`).
+        self.sent = Some([0; DEVICE_IDS]);
+        self.slew = None;
+    }
+
+    fn follow(&mut self, now: &Now) -> Result<(), String> {
+        let Now::Posed(Posed::Joints(values)) = now else { return Ok(()) };
+        let before = self.sent.unwrap_or([i16::MIN; DEVICE_IDS]);
+        let moves: Vec<(u8, i16)> = Joint::ALL
+            .iter()
+            .map(|joint| (joint.device_id(), usize::from(joint.device_id())))
+            .filter(|&(_, device)| before[device] != values[device])
+            .map(|(id, device)| {
+                let (home, min, max) = self.settings[device];
+                (id, home.saturating_add(values[device]).clamp(min.min(max), max.max(min)))
+            })
+            .collect();
+        self.sent = Some(*values);
+        if !moves.is_empty() {
+            // Coalesced and paced by the driver, as the sliders are.
+            self.handle.move_joints(moves);
+        }
+        Ok(())
+    }
+
+    fn tick(&mut self, now: Instant) {
+        for notice in self.handle.pump(now) {
+            if let Plen2Notice::Disconnected(reason) = notice {
+                self.lost = Some(reason.to_string());
+            }
+        }
+        self.ask_alive(now);
+        if let Some((slew, speed)) = &mut self.slew {
+            let moves: Vec<(u8, i16)> = slew
+                .step(now, *speed)
+                .into_iter()
+                .map(|(index, angle)| (Joint::ALL[index].device_id(), angle))
+                .collect();
+            if !moves.is_empty() {
+                self.handle.move_joints(moves);
+            }
+        }
+    }
+
+    fn start_list(&mut self, entries: &[(u8, u8)]) -> Result<(), String> {
+        self.slew = None;
+        self.handle.queue_list(entries);
+        self.requester.send(Plen2Command::Pop).map_err(|error| error.to_string())
+    }
+
+    fn pose(&mut self, axis: Axis, value_deg: f64, speed: LiveSpeed) -> Result<f64, String> {
+        let Axis::Joint(device) = axis else { return Err("a PLEN2's axes are joints".into()) };
+        let joint = Joint::ALL.iter().find(|joint| joint.device_id() == device).ok_or(format!("no joint {device}"))?;
+        let (home, min, max) = self.settings[usize::from(device)];
+        // Tenths of a degree of a finite value within ±180°.
+        #[allow(clippy::cast_possible_truncation)]
+        let tenths = (value_deg.clamp(-180.0, 180.0) * 10.0).round() as i16;
+        let target = home.saturating_add(tenths).clamp(min.min(max), max.max(min));
+        let now = Instant::now();
+        let (slew, pace) = self.slew.get_or_insert_with(|| {
+            // Where the joints are: where they were last told, else home.
+            let told = self.sent.unwrap_or([0; DEVICE_IDS]);
+            let at: [i16; 18] = std::array::from_fn(|index| {
+                let id = usize::from(Joint::ALL[index].device_id());
+                self.settings[id].0.saturating_add(told[id])
+            });
+            (Slew::new(at, at, now), speed)
+        });
+        slew.target[joint.index()] = target;
+        *pace = speed;
+        Ok(f64::from(target - home) / 10.0)
+    }
+
+    fn lost(&self) -> Option<String> {
+        self.lost.clone()
+    }
+}

@@ -1,0 +1,186 @@
+//! A servo board on a show's stage: macros started, servos followed and
+//! posed within their limits, asked for its battery twice a second (which
+//! is also how it is known to be there).
+
+use std::collections::BTreeMap;
+use std::time::{Duration, Instant};
+
+use crossbeam_channel::Receiver;
+
+use super::LinkDelay;
+use super::Linked;
+use crate::audio::together::link_delay;
+use crate::device;
+use crate::device::servo::{DEFAULT_BAUD, RequestError, Requester, ServoBoard, SessionConfig};
+use crate::device::speed::LiveSpeed;
+use crate::link::{LinkEvent, PortName, no_waker};
+use crate::project::Servo;
+use crate::protocol::servo::{ALL_SERVOS, Message, ServoMove, ServoSwitches};
+use crate::show::Device;
+use crate::show::Start;
+use crate::show::alive::{Alive, silence};
+use crate::show::at::{Now, Posed};
+use crate::show::passes::Axis;
+use crate::show::play::Stage;
+
+/// Connects the servo board on `port`, its link measured on memory-size questions.
+pub(super) fn connect(port: &PortName, device: &Device) -> anyhow::Result<Linked> {
+    let board = ServoBoard::connect(port, DEFAULT_BAUD, SessionConfig::default(), no_waker())?;
+    let requester = board.requester();
+    let link = LinkDelay::measured(|| {
+        requester.request(Message::QueryMemorySizeRequest).map(|_| ()).map_err(|error| error.to_string())
+    })?;
+    let servos = device.project.servo.servos.clone();
+    let alive = Alive::new(Instant::now());
+    let stage =
+        ServoStage { requester, link, board, lost: None, alive, servos, sent: BTreeMap::new(), battery: (None, None) };
+    let start_delay = stage.start_delay(&Start::Macro(0));
+    Ok(Linked { stage: Box::new(stage), start_delay, link })
+}
+
+impl ServoStage {
+    /// Asks for the battery twice a second, taking the answer in when it
+    /// came: an answer is a sign of life; none for long, the board is lost.
+    fn ask_alive(&mut self, now: Instant) {
+        let (asking, permil) = &mut self.battery;
+        if let Some(answer) = asking {
+            match answer.try_recv() {
+                Ok(Ok(answered)) => {
+                    self.alive.heard(now);
+                    if let Message::QueryRemainPowerResponse { permil: read } = answered {
+                        *permil = Some(read);
+                    }
+                    *asking = None;
+                }
+                Ok(Err(RequestError::Stopped { .. })) => {
+                    self.alive.withdrawn();
+                    *asking = None;
+                }
+                Ok(Err(_)) | Err(crossbeam_channel::TryRecvError::Disconnected) => *asking = None,
+                Err(crossbeam_channel::TryRecvError::Empty) => {}
+            }
+        }
+        if asking.is_none() && self.alive.ask(now) {
+            *asking = self.requester.request_async(Message::QueryRemainPowerRequest).ok();
+        }
+        if let Some(quiet) = self.alive.silent(now) {
+            self.lost.get_or_insert_with(|| silence(quiet));
+        }
+    }
+}
+
+/// A question's answer on its way.
+type Answer = Receiver<Result<Message, RequestError>>;
+
+/// How long a servo not yet told where to be takes to get there while following, 10 ms units.
+const EASE_IN_10MS: i16 = 100;
+
+/// Whole 10 ms from `when` to `at` (at least one, at most the protocol's field).
+fn ten_ms_since(when: Instant, at: Instant) -> i16 {
+    let tens = at.saturating_duration_since(when).as_millis() / 10;
+    i16::try_from(tens.clamp(1, 1000)).unwrap_or(1000)
+}
+
+struct ServoStage {
+    board: ServoBoard,
+    requester: Requester,
+    link: LinkDelay,
+    lost: Option<String>,
+    /// Its signs of life: asked for its battery twice a second.
+    alive: Alive,
+    /// The servos, with their limits.
+    servos: Vec<Servo>,
+    /// What each servo was last told while following, and when.
+    sent: BTreeMap<u8, (i16, Instant)>,
+    /// The battery question out, and the last answer (‰).
+    battery: (Option<Answer>, Option<i16>),
+}
+
+impl Stage for ServoStage {
+    fn start_delay(&self, start: &Start) -> Duration {
+        let Start::Macro(macro_id) = *start else { return Duration::ZERO };
+        let bytes = Message::ExecuteMacroRequest { macro_id }.encode().map_or(16, |bytes| bytes.len());
+        link_delay(bytes, DEFAULT_BAUD, self.link.one_way)
+    }
+
+    fn start_uncertainty(&self, _start: &Start) -> Duration {
+        self.link.spread
+    }
+
+    fn start(&mut self, start: &Start) -> Result<(), String> {
+        let Start::Macro(macro_id) = *start else { return Err(format!("a servo board cannot start {start:?}")) };
+        self.requester.send(Message::ExecuteMacroRequest { macro_id }).map_err(|error| error.to_string())
+    }
+
+    fn stop(&mut self) {
+        let all = ServoSwitches { servo_id: ALL_SERVOS, is_start: false, is_hold: true };
+        let _ = self.requester.stop(Message::SetServoParameterRequest(all));
+        // Where they stopped is not known: the next follow eases them in again.
+        self.sent.clear();
+    }
+
+    fn resume(&mut self) {
+        let all = ServoSwitches { servo_id: ALL_SERVOS, is_start: true, is_hold: true };
+        let _ = self.requester.send(Message::SetServoParameterRequest(all));
+    }
+
+    fn follow(&mut self, now: &Now) -> Result<(), String> {
+        let Now::Posed(Posed::Servos(degrees)) = now else { return Ok(()) };
+        let at = Instant::now();
+        let mut moves = Vec::new();
+        for servo in &self.servos {
+            let Some(&degree) = degrees.get(&servo.id) else { continue };
+            // Degrees of a servo: within ±180.
+            #[allow(clippy::cast_possible_truncation)]
+            let degree = servo.clamp(degree.round() as i16);
+            let interval_10ms = match self.sent.get(&servo.id) {
+                Some(&(told, _)) if told == degree => continue,
+                // Over the time since it was last told, as the show moved it.
+                Some(&(_, when)) => ten_ms_since(when, at),
+                // Where it is now is not known: eased in, not slammed.
+                None => EASE_IN_10MS,
+            };
+            self.sent.insert(servo.id, (degree, at));
+            moves.push(ServoMove { servo_id: servo.id, degree, interval_10ms });
+        }
+        if moves.is_empty() {
+            return Ok(());
+        }
+        self.requester.live_move(moves).map_err(|error| error.to_string())
+    }
+
+    fn tick(&mut self, now: Instant) {
+        for event in self.board.events().try_iter() {
+            if let LinkEvent::Disconnected { reason } = event {
+                self.lost = Some(reason.to_string());
+            }
+        }
+        self.ask_alive(now);
+    }
+
+    fn pose(&mut self, axis: Axis, value_deg: f64, speed: LiveSpeed) -> Result<f64, String> {
+        let Axis::Servo(id) = axis else { return Err("a servo board's axes are servos".into()) };
+        let servo = self.servos.iter().find(|servo| servo.id == id).ok_or(format!("it has no servo {id}"))?;
+        // Degrees of a servo: a finite value within ±180 once clamped.
+        #[allow(clippy::cast_possible_truncation)]
+        let degree = servo.clamp(value_deg.clamp(-180.0, 180.0).round() as i16);
+        let from = match self.sent.get(&id) {
+            Some(&(told, _)) => f64::from(told),
+            // Where it is is not known: as if from the farther limit, so it cannot slam.
+            None => servo.farther_limit(f64::from(degree)),
+        };
+        let interval_10ms = speed.interval_10ms(f64::from(degree) - from, 2);
+        self.sent.insert(id, (degree, Instant::now()));
+        let moves = vec![ServoMove { servo_id: id, degree, interval_10ms }];
+        self.requester.live_move(moves).map_err(|error| error.to_string())?;
+        Ok(f64::from(degree))
+    }
+
+    fn battery(&self) -> Option<String> {
+        self.battery.1.map(device::servo::battery_text)
+    }
+
+    fn lost(&self) -> Option<String> {
+        self.lost.clone()
+    }
+}
