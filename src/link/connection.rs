@@ -13,6 +13,9 @@ pub struct Connection {
     pub(crate) writer: Box<dyn Write + Send>,
     /// Wakes a reader blocked in `read` so that the link can close promptly.
     pub(crate) shutdown: Option<Box<dyn FnOnce() + Send>>,
+    /// Ends the writing half only (TCP: a FIN after every byte written), so
+    /// that the owner's close can wait for the peer to have read it all.
+    pub(crate) half_close: Option<Box<dyn FnOnce() + Send>>,
     /// Whatever must stay open as long as the connection does.
     pub(crate) keep: Vec<Box<dyn Send>>,
     /// Least time between two writes (zero: none).
@@ -35,6 +38,7 @@ impl Connection {
             reader: Box::new(reader),
             writer: Box::new(port),
             shutdown: None,
+            half_close: None,
             keep: Vec::new(),
             min_write_gap: std::time::Duration::ZERO,
         })
@@ -45,6 +49,7 @@ impl Connection {
         stream.set_nodelay(true)?;
         let reader = stream.try_clone()?;
         let closer = stream.try_clone()?;
+        let half_closer = stream.try_clone()?;
         Ok(Self {
             description,
             reader: Box::new(reader),
@@ -52,6 +57,9 @@ impl Connection {
             shutdown: Some(Box::new(move || {
                 // Already closed by the peer is fine: the reader is awake either way.
                 let _ = closer.shutdown(Shutdown::Both);
+            })),
+            half_close: Some(Box::new(move || {
+                let _ = half_closer.shutdown(Shutdown::Write);
             })),
             keep: Vec::new(),
             min_write_gap: std::time::Duration::ZERO,
@@ -73,6 +81,7 @@ impl Connection {
             reader: Box::new(MemoryReader { from_peer, woken, leftover: Vec::new() }),
             writer: Box::new(MemoryWriter { to_peer }),
             shutdown: Some(Box::new(move || drop(wake))),
+            half_close: None,
             keep: Vec::new(),
             min_write_gap: std::time::Duration::ZERO,
         }

@@ -157,7 +157,7 @@ pub fn run<D: Driver>(
     events: &Sender<LinkEvent<D::Event>>,
     waker: &Waker,
 ) -> D {
-    let Connection { reader, mut writer, shutdown, keep, min_write_gap, .. } = connection;
+    let Connection { reader, mut writer, shutdown, half_close, keep, min_write_gap, .. } = connection;
     let (input_tx, input_rx) = crossbeam_channel::unbounded();
     let (stop_tx, stop_rx) = crossbeam_channel::bounded::<()>(0);
     let reader_thread =
@@ -169,10 +169,12 @@ pub fn run<D: Driver>(
         }
         Err(error) => DisconnectReason::ThreadFailed(error.to_string()),
     };
-    if matches!(reason, DisconnectReason::Closed | DisconnectReason::ClosedByDriver) {
-        // What was written (a stop, a brake) leaves the port before it is
-        // closed: a serial port waits until its last byte is on the wire.
-        let _ = writer.flush();
+    if let Some(half_close) = half_close.filter(|_| matches!(reason, DisconnectReason::Closed)) {
+        // Every byte written (a stop, a brake) has reached the board once it
+        // closes its side in turn, as a board or its bridge does at once: waited for, briefly.
+        half_close();
+        let deadline = Instant::now() + PEER_CLOSES_WITHIN;
+        while let Ok(Input::Bytes(..)) = input_rx.recv_deadline(deadline) {}
     }
     driver.handle_disconnect(&reason.to_string());
     forward_events(&mut driver, events);
@@ -343,6 +345,9 @@ fn last_words<D: Driver>(driver: &mut D, output: &mut Output<'_>, owner: &Owner<
     }
 }
 
+/// How long a closing TCP link waits for the board to close its side after ours.
+pub const PEER_CLOSES_WITHIN: std::time::Duration = std::time::Duration::from_millis(250);
+
 /// The shortest wait between tries to write last words.
 const WAIT_STEP: std::time::Duration = std::time::Duration::from_millis(1);
 
@@ -444,5 +449,33 @@ mod tests {
         last_words(&mut Told { out: VecDeque::new() }, &mut output, &owner);
         drop(output);
         assert!(port.is_empty(), "nothing but last words at the close");
+    }
+
+    /// Closing a TCP link: the last words are written and our side
+    /// half-closed (a FIN after them); the close waits for the board to close
+    /// its side — here it never does, so the close takes the whole bound — and
+    /// the board, reading later, finds every byte and then the end.
+    #[test]
+    fn a_tcp_link_waits_for_the_board_to_close_its_side_after_the_last_words() {
+        let listener = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+        let address = listener.local_addr().unwrap();
+        let (closed, told) = crossbeam_channel::bounded::<()>(1);
+        let board = std::thread::spawn(move || {
+            let (mut stream, _) = listener.accept().unwrap();
+            // Reads nothing, closes nothing, until the owner's close has returned.
+            let _ = told.recv();
+            let mut heard = Vec::new();
+            stream.read_to_end(&mut heard).unwrap();
+            heard
+        });
+        let stream = std::net::TcpStream::connect(address).unwrap();
+        let connection = Connection::from_tcp(stream, "board".into()).unwrap();
+        let link = spawn(connection, Told { out: VecDeque::new() }, no_waker()).unwrap();
+        link.commands().send((true, b"STOP".to_vec())).unwrap();
+        let began = Instant::now();
+        link.close();
+        assert!(began.elapsed() >= PEER_CLOSES_WITHIN, "the close waited for the board: {:?}", began.elapsed());
+        closed.send(()).unwrap();
+        assert_eq!(board.join().unwrap(), b"STOP", "every byte, then the end");
     }
 }

@@ -2,7 +2,9 @@
 //! address unless told otherwise, and then only with a token (a bearer
 //! token, compared in constant time); a browser page of another site is
 //! turned away by its `Origin`; requests beyond a steady rate are refused
-//! (429), STOP never.
+//! (429), STOP never: each client (an HTTP connection, an OSC sender) has a
+//! [`Rate`] of its own, so a flood slows only its sender, and every client
+//! together shares a larger one.
 
 use std::net::SocketAddr;
 use std::path::Path;
@@ -11,10 +13,48 @@ use std::time::Instant;
 
 use subtle::ConstantTimeEq;
 
-/// Requests a second a remote may send, on average.
+/// Requests a second one client may send, on average.
 pub const RATE_PER_S: f64 = 100.0;
 /// How many it may send at once above that.
 pub const BURST: f64 = 50.0;
+/// Requests a second every client together may send, on average.
+pub const ALL_RATE_PER_S: f64 = 500.0;
+/// How many they may send at once above that.
+pub const ALL_BURST: f64 = 250.0;
+
+/// A token bucket: requests let through at a steady rate, with bursts.
+#[derive(Clone, Copy, Debug)]
+pub struct Rate {
+    per_s: f64,
+    burst: f64,
+    /// Tokens left, and when they were counted.
+    left: f64,
+    counted: Instant,
+}
+
+impl Rate {
+    /// One client's: [`RATE_PER_S`], bursts of [`BURST`].
+    pub fn client() -> Self {
+        Self::new(RATE_PER_S, BURST)
+    }
+
+    fn new(per_s: f64, burst: f64) -> Self {
+        Self { per_s, burst, left: burst, counted: Instant::now() }
+    }
+
+    /// Whether one more is let through at `now` (taking its token).
+    pub fn take(&mut self, now: Instant) -> bool {
+        self.left =
+            (self.left + now.saturating_duration_since(self.counted).as_secs_f64() * self.per_s).min(self.burst);
+        self.counted = now;
+        if self.left >= 1.0 {
+            self.left -= 1.0;
+            true
+        } else {
+            false
+        }
+    }
+}
 /// The shortest token a file may hold.
 pub const SHORTEST_TOKEN: usize = 16;
 
@@ -24,8 +64,8 @@ pub struct Guard {
     token: Option<Vec<u8>>,
     /// The origins of the server's own pages (`http://127.0.0.1:8765`, …).
     own_origins: Vec<String>,
-    /// Tokens left, and when they were counted.
-    bucket: Mutex<(f64, Instant)>,
+    /// Every client's requests together.
+    all: Mutex<Rate>,
 }
 
 impl Guard {
@@ -38,7 +78,11 @@ impl Guard {
         let port = listen.port();
         let own_origins =
             ["127.0.0.1", "localhost", "[::1]"].iter().map(|host| format!("http://{host}:{port}")).collect();
-        Ok(Self { token: token.map(String::into_bytes), own_origins, bucket: Mutex::new((BURST, Instant::now())) })
+        Ok(Self {
+            token: token.map(String::into_bytes),
+            own_origins,
+            all: Mutex::new(Rate::new(ALL_RATE_PER_S, ALL_BURST)),
+        })
     }
 
     /// The rules for a server on `listen`, its token read from `token_file` (see [`read_token`]).
@@ -66,23 +110,18 @@ impl Guard {
         origin.is_none_or(|origin| self.own_origins.iter().any(|own| own == origin))
     }
 
-    /// Whether the request is let through now: STOP always; others while the
-    /// rate allows ([`RATE_PER_S`], bursts of [`BURST`]).
-    pub fn admit(&self, stops: bool) -> bool {
+    /// Whether a request from the client whose rate is `client` is let
+    /// through now: STOP always; others while the client's rate allows
+    /// ([`RATE_PER_S`], bursts of [`BURST`]), and those that reach the
+    /// boards (`to_boards`) while every client's together does too
+    /// ([`ALL_RATE_PER_S`], bursts of [`ALL_BURST`]): a flood of status
+    /// questions takes nothing from a show controller's plays and drives.
+    pub fn admit(&self, client: &mut Rate, stops: bool, to_boards: bool) -> bool {
         if stops {
             return true;
         }
-        let Ok(mut bucket) = self.bucket.lock() else { return false };
         let now = Instant::now();
-        let (left, counted) = *bucket;
-        let left = (left + now.saturating_duration_since(counted).as_secs_f64() * RATE_PER_S).min(BURST);
-        if left >= 1.0 {
-            *bucket = (left - 1.0, now);
-            true
-        } else {
-            *bucket = (left, now);
-            false
-        }
+        client.take(now) && (!to_boards || self.all.lock().is_ok_and(|mut all| all.take(now)))
     }
 }
 
@@ -174,11 +213,32 @@ mod tests {
     }
 
     #[test]
-    fn a_flood_is_refused_beyond_the_burst_and_stop_never_is() {
+    fn a_flood_is_refused_beyond_its_clients_burst_and_stop_never_is() {
         let guard = Guard::new("127.0.0.1:8765".parse().unwrap(), None).unwrap();
+        let (mut flooder, mut other) = (Rate::client(), Rate::client());
         // Counted at once: a burst's worth, then a few more as the clock moves on.
-        let admitted = (0..1000).filter(|_| guard.admit(false)).count();
+        let admitted = (0..1000).filter(|_| guard.admit(&mut flooder, false, true)).count();
         assert!((50..1000).contains(&admitted), "{admitted}");
-        assert!((0..100).all(|_| guard.admit(true)), "STOP is always let through");
+        assert!((0..100).all(|_| guard.admit(&mut flooder, true, true)), "STOP is always let through");
+        assert!(guard.admit(&mut other, false, true), "the flood slowed only its sender");
+    }
+
+    #[test]
+    fn many_clients_together_are_held_to_the_shared_rate() {
+        let guard = Guard::new("127.0.0.1:8765".parse().unwrap(), None).unwrap();
+        let mut clients = vec![Rate::client(); 20];
+        let admitted: usize =
+            clients.iter_mut().map(|client| (0..50).filter(|_| guard.admit(client, false, true)).count()).sum();
+        assert!((250..1000).contains(&admitted), "{admitted} of 1000 at once");
+    }
+
+    #[test]
+    fn a_rate_refills_at_its_pace() {
+        let t0 = Instant::now();
+        let mut rate = Rate::new(100.0, 2.0);
+        rate.counted = t0;
+        assert!(rate.take(t0) && rate.take(t0) && !rate.take(t0));
+        assert!(!rate.take(t0 + std::time::Duration::from_millis(5)), "half a token");
+        assert!(rate.take(t0 + std::time::Duration::from_millis(10)), "a whole one");
     }
 }

@@ -54,6 +54,12 @@ impl Verb {
         matches!(self, Self::Stop(_))
     }
 
+    /// Whether it moves or asks something of the boards (everything but the
+    /// questions about the show and its status).
+    pub fn reaches_the_boards(&self) -> bool {
+        !matches!(self, Self::Devices | Self::Device(_) | Self::Show | Self::Status)
+    }
+
     /// Whether carrying it out waits for the boards' worker to answer (up to
     /// its bound); the others — STOP above all — are carried out at once.
     pub fn waits_for_the_boards(&self) -> bool {

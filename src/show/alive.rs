@@ -1,8 +1,11 @@
 //! Whether a device held by a show still answers: a link can stay open —
 //! a TCP bridge, a USB adapter with the board's power gone — while nothing
 //! answers behind it. Each stage asks its device a harmless question every
-//! [`ASK_EVERY`] (a base reports on its own) and calls it lost once nothing
-//! has come back for [`SILENT_AFTER`]. Sans-IO: time comes in.
+//! [`ASK_EVERY`] (a base reports on its own) and calls it lost once its
+//! questions have gone unanswered for [`SILENT_AFTER`] — counted from the
+//! first question after its last answer, so time in which nobody asked (the
+//! player busy connecting another device) is never taken for silence.
+//! Sans-IO: time comes in.
 
 use std::time::{Duration, Instant};
 
@@ -18,44 +21,47 @@ pub struct Alive {
     heard: Instant,
     /// When the question now out was asked.
     asked: Option<Instant>,
+    /// When the first question since its last answer was asked.
+    waiting_since: Option<Instant>,
 }
 
 impl Alive {
     /// Connected and answering at `now`.
     pub fn new(now: Instant) -> Self {
-        Self { heard: now, asked: None }
+        Self { heard: now, asked: None, waiting_since: None }
     }
 
     /// It answered (anything that decodes as its protocol) at `at`.
     pub fn heard(&mut self, at: Instant) {
         self.heard = self.heard.max(at);
         self.asked = None;
+        self.waiting_since = None;
     }
 
     /// The question out was withdrawn before it could be answered (STOP
-    /// drops what is queued): no sign either way, so its time does not count
-    /// as silence, and it is asked again.
+    /// drops what is queued): no sign either way, so the wait starts again
+    /// with the next question.
     pub fn withdrawn(&mut self) {
-        if let Some(asked) = self.asked.take() {
-            self.heard = self.heard.max(asked);
-        }
+        self.asked = None;
+        self.waiting_since = None;
     }
 
-    /// Whether to ask it now: no question is out, the last answer is
-    /// [`ASK_EVERY`] old, and the last question is as old (a question lost
-    /// on the way is asked again). Noted as asked when it says so.
+    /// Whether to ask it now: the last answer is [`ASK_EVERY`] old, and so is
+    /// the last question (a question lost on the way is asked again). Noted
+    /// as asked when it says so.
     pub fn ask(&mut self, now: Instant) -> bool {
         let due = |since: Instant| now.saturating_duration_since(since) >= ASK_EVERY;
         if due(self.heard) && self.asked.is_none_or(due) {
             self.asked = Some(now);
+            self.waiting_since.get_or_insert(now);
             return true;
         }
         false
     }
 
-    /// How long it has said nothing, once that is [`SILENT_AFTER`] or more.
+    /// How long its questions have gone unanswered, once that is [`SILENT_AFTER`] or more.
     pub fn silent(&self, now: Instant) -> Option<Duration> {
-        Some(now.saturating_duration_since(self.heard)).filter(|quiet| *quiet >= SILENT_AFTER)
+        self.waiting_since.map(|since| now.saturating_duration_since(since)).filter(|quiet| *quiet >= SILENT_AFTER)
     }
 }
 
@@ -91,12 +97,26 @@ mod tests {
     fn a_device_that_stops_answering_is_asked_again_and_called_silent_after_the_limit() {
         let t0 = Instant::now();
         let mut alive = Alive::new(t0);
-        assert!(alive.ask(t0 + ASK_EVERY));
-        assert!(!alive.ask(t0 + ASK_EVERY + Duration::from_millis(200)), "its question is out");
-        assert!(alive.ask(t0 + ASK_EVERY * 2), "a question lost on the way is asked again");
-        assert_eq!(alive.silent(t0 + SILENT_AFTER - Duration::from_millis(1)), None);
-        assert_eq!(alive.silent(t0 + SILENT_AFTER), Some(SILENT_AFTER));
+        let first = t0 + ASK_EVERY;
+        assert!(alive.ask(first));
+        assert!(!alive.ask(first + Duration::from_millis(200)), "its question is out");
+        assert!(alive.ask(first + ASK_EVERY), "a question lost on the way is asked again");
+        assert_eq!(alive.silent(first + SILENT_AFTER - Duration::from_millis(1)), None);
+        assert_eq!(alive.silent(first + SILENT_AFTER), Some(SILENT_AFTER), "counted from the first question");
         assert!(silence(SILENT_AFTER).contains("nothing came back for 2.0 s"));
+    }
+
+    #[test]
+    fn time_in_which_nobody_asked_is_not_silence() {
+        let t0 = Instant::now();
+        let mut alive = Alive::new(t0);
+        // The player was busy for 5 s (connecting another device): nothing was asked.
+        let back = t0 + Duration::from_secs(5);
+        assert_eq!(alive.silent(back), None);
+        assert!(alive.ask(back));
+        assert_eq!(alive.silent(back + Duration::from_millis(100)), None, "its question has only just gone out");
+        alive.heard(back + Duration::from_millis(20));
+        assert_eq!(alive.silent(back + SILENT_AFTER * 2), None, "it answered");
     }
 
     #[test]

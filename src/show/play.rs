@@ -293,6 +293,8 @@ impl Player<'_> {
             stage.tick(now);
             let Some(why) = stage.lost() else { continue };
             if device.play_on_without {
+                // It may still hear though it cannot answer: a base is not left driving.
+                stage.stop();
                 going.lost.push((index, device.name.clone(), why));
                 going.drives.retain(|&(_, driving)| driving != index);
                 continue;

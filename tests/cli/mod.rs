@@ -7,6 +7,7 @@ mod honest;
 mod hostile;
 mod inputs;
 pub mod play;
+mod play_links;
 mod robust;
 pub mod serve;
 mod serve_hostile;

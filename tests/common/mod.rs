@@ -5,6 +5,7 @@ use std::io::{BufRead, BufReader, Read, Write};
 use std::process::{Child, Stdio};
 use std::time::Duration;
 
+pub mod proxy;
 pub mod pulse;
 pub mod ui;
 

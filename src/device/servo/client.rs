@@ -245,3 +245,29 @@ impl Requester {
 fn lost() -> RequestError {
     RequestError::Disconnected { reason: "the link is closed".into() }
 }
+
+#[cfg(test)]
+mod tests {
+
+    use super::*;
+    use crate::protocol::servo::{ALL_SERVOS, ServoSwitches};
+
+    /// The owner sends STOP and closes the link at once (the command line's
+    /// Ctrl-C, a show closing): whichever the I/O thread sees first, the stop
+    /// still goes out. (A coin toss each time: twenty in a row.)
+    #[test]
+    fn a_stop_sent_just_before_the_close_still_goes_out() {
+        let stop =
+            Message::SetServoParameterRequest(ServoSwitches { servo_id: ALL_SERVOS, is_start: false, is_hold: true });
+        let expected = stop.encode().unwrap();
+        for _ in 0..20 {
+            let (mut board, ours) = Connection::memory_pair();
+            let link = link::spawn(ours, ServoDriver::new(SessionConfig::default()), link::no_waker()).unwrap();
+            link.commands().send(ServoCommand::Stop { message: stop.clone() }).unwrap();
+            link.close();
+            let mut heard = Vec::new();
+            board.reader_mut().read_to_end(&mut heard).unwrap();
+            assert!(heard.windows(expected.len()).any(|sent| sent == expected), "{heard:02x?}");
+        }
+    }
+}

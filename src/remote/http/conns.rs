@@ -16,6 +16,8 @@ use tokio::io::{AsyncRead, AsyncWrite, ReadBuf};
 use tokio::net::TcpStream;
 use tokio::sync::Notify;
 
+use crate::remote::guard::Rate;
+
 /// The most connections held open at once; the next takes the place of the quietest.
 pub const MOST_CONNECTIONS: usize = 256;
 /// A connection on which no byte moved for this long is closed (a stalled
@@ -34,6 +36,8 @@ pub struct Conn {
     pub streams: Arc<AtomicUsize>,
     /// Notified when the connection must close now (evicted, or its stream fell behind).
     pub kill: Arc<Notify>,
+    /// Its requests' rate (a flood on it slows it alone).
+    pub rate: Arc<Mutex<Rate>>,
 }
 
 /// Every connection open.
@@ -113,6 +117,7 @@ impl Conn {
             active_ms: Arc::new(AtomicU64::new(now_ms)),
             streams: Arc::new(AtomicUsize::new(0)),
             kill: Arc::new(Notify::new()),
+            rate: Arc::new(Mutex::new(Rate::client())),
         }
     }
 }

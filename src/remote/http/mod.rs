@@ -225,13 +225,19 @@ async fn answer(request: Request<Incoming>, served: &Served, conn: &Conn) -> Res
     };
     let reply = match verbs::from_http(&method, &path, &body) {
         Err(bad) => Reply::error(bad.code, bad.said),
-        Ok(verb) if !served.guard.admit(verb.stops()) => Reply::error(
+        Ok(verb) if !admitted(served, conn, &verb) => Reply::error(
             429,
             format!("more than {} requests a second: slow down (STOP is always served)", super::guard::RATE_PER_S),
         ),
         Ok(verb) => carried(&served.remote, &served.waiting, verb).await,
     };
     respond(&reply, false)
+}
+
+/// Whether `verb` is let through now on `conn` (STOP always).
+fn admitted(served: &Served, conn: &Conn, verb: &Verb) -> bool {
+    let Ok(mut rate) = conn.rate.lock() else { return verb.stops() };
+    served.guard.admit(&mut rate, verb.stops(), verb.reaches_the_boards())
 }
 
 /// Carries `verb` out on `remote`: at once when it does not wait for the

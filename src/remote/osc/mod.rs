@@ -21,7 +21,7 @@ use std::sync::Arc;
 use tokio::sync::Semaphore;
 
 pub use self::shape::{MOST_MESSAGES, MOST_NESTING, Misshapen};
-use super::guard::Guard;
+use super::guard::{Guard, Rate};
 use super::running::{Running, WAITING_FOR_BOARDS};
 use super::verbs::{self, Arg, Verb};
 use super::{Remote, Reply};
@@ -65,10 +65,11 @@ impl OscServer {
 /// Takes datagrams until the server ends, each on a task of its own.
 async fn listen_on(socket: Arc<tokio::net::UdpSocket>, remote: Arc<Remote>, guard: Arc<Guard>) {
     let waiting = Arc::new(Semaphore::new(WAITING_FOR_BOARDS));
+    let mut senders = Senders::default();
     let mut buffer = vec![0; MOST_PACKET];
     loop {
         let Ok((length, from)) = socket.recv_from(&mut buffer).await else { continue };
-        let messages = match read(&buffer[..length], &guard) {
+        let messages = match read(&buffer[..length], &guard, senders.rate(from)) {
             Ok(messages) => messages,
             Err(reply) => {
                 let _ = socket.send_to(&encoded(&reply), from).await;
@@ -97,9 +98,35 @@ fn encoded(reply: &Reply) -> Vec<u8> {
     rosc::encoder::encode(&OscPacket::Message(message)).unwrap_or_default()
 }
 
+/// The most senders whose rates are remembered (the one heard from longest ago goes).
+const MOST_SENDERS: usize = 1024;
+
+/// Each sender's rate, the newest [`MOST_SENDERS`] of them.
+#[derive(Default)]
+struct Senders {
+    rates: std::collections::HashMap<SocketAddr, (Rate, u64)>,
+    heard: u64,
+}
+
+impl Senders {
+    /// The rate of `from`, remembered from now (a new sender starts with a full burst).
+    fn rate(&mut self, from: SocketAddr) -> &mut Rate {
+        self.heard += 1;
+        if self.rates.len() >= MOST_SENDERS && !self.rates.contains_key(&from) {
+            let oldest = self.rates.iter().min_by_key(|(_, (_, heard))| *heard).map(|(sender, _)| *sender);
+            if let Some(oldest) = oldest {
+                self.rates.remove(&oldest);
+            }
+        }
+        let (rate, heard) = self.rates.entry(from).or_insert_with(|| (Rate::client(), 0));
+        *heard = self.heard;
+        rate
+    }
+}
+
 /// A datagram read: each message's verb (or why it is refused), in order;
 /// or one refusal for the whole datagram (not OSC, misshapen).
-fn read(packet: &[u8], guard: &Guard) -> Result<Vec<Result<Verb, Reply>>, Reply> {
+fn read(packet: &[u8], guard: &Guard, rate: &mut Rate) -> Result<Vec<Result<Verb, Reply>>, Reply> {
     shape::check(packet).map_err(|misshapen| Reply::error(400, misshapen.to_string()))?;
     // Bounded by its shape; a panic inside the decoder all the same is a refusal, not the server's end.
     let decoded = std::panic::catch_unwind(|| rosc::decoder::decode_udp(packet))
@@ -107,13 +134,13 @@ fn read(packet: &[u8], guard: &Guard) -> Result<Vec<Result<Verb, Reply>>, Reply>
     let (_, packet) = decoded.map_err(|error| Reply::error(400, format!("not an OSC packet: {error}")))?;
     let mut messages = Vec::new();
     flatten(packet, &mut messages);
-    Ok(messages.iter().map(|message| verb(message, guard)).collect())
+    Ok(messages.iter().map(|message| verb(message, guard, rate)).collect())
 }
 
 /// Every reply to one datagram (a bundle: one per message), carried out here and now.
 #[cfg(test)]
 pub(super) fn take(packet: &[u8], remote: &Remote, guard: &Guard) -> Vec<Reply> {
-    match read(packet, guard) {
+    match read(packet, guard, &mut Rate::client()) {
         Ok(messages) => {
             messages.into_iter().map(|message| message.map_or_else(|reply| reply, |verb| remote.act(&verb))).collect()
         }
@@ -133,7 +160,7 @@ fn flatten(packet: OscPacket, into: &mut Vec<OscMessage>) {
 }
 
 /// One message as a verb: the token first (401 without it), then its address and arguments, then the rate.
-fn verb(message: &OscMessage, guard: &Guard) -> Result<Verb, Reply> {
+fn verb(message: &OscMessage, guard: &Guard, rate: &mut Rate) -> Result<Verb, Reply> {
     let mut args: &[OscType] = &message.args;
     if guard.needs_token() {
         let given = match args.first() {
@@ -160,7 +187,9 @@ fn verb(message: &OscMessage, guard: &Guard) -> Result<Verb, Reply> {
         .collect();
     match verbs::from_osc(&message.addr, &args) {
         Err(bad) => Err(Reply::error(bad.code, bad.said)),
-        Ok(verb) if !guard.admit(verb.stops()) => Err(Reply::error(429, "too many messages a second: slow down")),
+        Ok(verb) if !guard.admit(rate, verb.stops(), verb.reaches_the_boards()) => {
+            Err(Reply::error(429, "too many messages a second: slow down"))
+        }
         Ok(verb) => Ok(verb),
     }
 }

@@ -157,6 +157,9 @@ impl Stage for RflexStage {
             self.reports = reports;
             self.alive.heard(now);
         }
+        // Its driver asks for its status twice a second and it reports ten times a second:
+        // expected to be heard from, as if asked.
+        self.alive.ask(now);
         if let Some(quiet) = self.alive.silent(now) {
             self.lost.get_or_insert_with(|| silence(quiet));
         }

@@ -113,3 +113,21 @@ fn stop_drops_every_command_still_queued_and_nothing_that_moves_the_robot_goes_o
     // The getter already on the wire is STOP's to let end, not to drop.
     assert!(!matches!(waiting.try_recv(), Ok(Err(ReplyError::Stopped))));
 }
+
+/// The owner sends STOP and closes the link at once (the command line's
+/// Ctrl-C, a show closing): whichever the I/O thread sees first, `#RI` and
+/// `$HP` still go out. (A coin toss each time: twenty in a row.)
+#[test]
+fn a_stop_sent_just_before_the_close_still_goes_out() {
+    for _ in 0..20 {
+        let (mut robot, ours) = crate::link::Connection::memory_pair();
+        let link =
+            crate::link::spawn(ours, Plen2Driver::new(Plen2Options::default()), crate::link::no_waker()).unwrap();
+        link.commands().send(Plen2Command::Stop).unwrap();
+        link.close();
+        let mut heard = Vec::new();
+        robot.reader_mut().read_to_end(&mut heard).unwrap();
+        let heard = String::from_utf8_lossy(&heard);
+        assert!(heard.contains("#RI") && heard.contains("$HP"), "{heard:?}");
+    }
+}
