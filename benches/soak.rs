@@ -150,14 +150,18 @@ fn percentile(sorted: &[f64], p: f64) -> f64 {
 struct Memory(Vec<u64>);
 
 impl Memory {
+    /// First, after the first minute (the load under way), largest, last; one sample each 10 s.
     fn said(&self, what: &str) -> String {
+        let mib = |kib: u64| kib as f64 / 1024.0;
         let (first, last) = (self.0.first().copied().unwrap_or(0), self.0.last().copied().unwrap_or(0));
+        let settled = self.0.get(6).copied().unwrap_or(last);
         let most = self.0.iter().copied().max().unwrap_or(0);
         format!(
-            "{what} memory: first {:.1} MiB, largest {:.1} MiB, last {:.1} MiB ({} samples)",
-            first as f64 / 1024.0,
-            most as f64 / 1024.0,
-            last as f64 / 1024.0,
+            "{what} memory: first {:.1} MiB, after a minute {:.1} MiB, largest {:.1} MiB, last {:.1} MiB ({} samples, one each 10 s)",
+            mib(first),
+            mib(settled),
+            mib(most),
+            mib(last),
             self.0.len()
         )
     }

@@ -189,6 +189,9 @@ fn connect(device: &crate::show::Device) -> anyhow::Result<Box<dyn Stage>> {
 fn reconnect_lost(player: &mut Player<'_>) {
     for (stage, device) in player.stages.iter_mut().zip(&player.show.devices) {
         let Some(why) = stage.lost() else { continue };
+        // Its old link is let go first (told to stop, closed): a board or a
+        // bridge that serves one client at a time takes the new one only then.
+        *stage = Box::new(crate::show::play::Gone(why.clone()));
         match connect(device) {
             Ok(again) => *stage = again,
             Err(error) => say!("{} is still lost ({why}; {error:#}): this run plays on without it", device.name),

@@ -78,6 +78,26 @@ pub trait Stage: Send {
     }
 }
 
+/// A device whose link is gone (why), played on without: it starts nothing and says it is lost.
+#[derive(Debug)]
+pub struct Gone(pub String);
+
+impl Stage for Gone {
+    fn start_delay(&self, _start: &Start) -> Duration {
+        Duration::ZERO
+    }
+
+    fn start(&mut self, _start: &Start) -> Result<(), String> {
+        Ok(())
+    }
+
+    fn stop(&mut self) {}
+
+    fn lost(&self) -> Option<String> {
+        Some(self.0.clone())
+    }
+}
+
 /// Why a run ended early.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum Stopped {

@@ -284,3 +284,36 @@ fn a_device_lost_in_one_run_is_connected_again_for_the_next_once_its_link_is_bac
     assert!(count(&plen.log, "$PM02") >= 2, "it played again after the cable was back: {rest:?}");
     assert_eq!(count(&arm.log, "ExecuteMacroRequest"), 3, "every run played the arm");
 }
+
+#[test]
+fn a_device_that_went_silent_is_connected_again_once_it_answers() {
+    let dir = tempfile::tempdir().unwrap();
+    let arm = board(dir.path(), "arm", &swinging(12), None);
+    let base = board(dir.path(), "base", &Project::empty(Family::Rflex), Some(Duration::ZERO));
+    let show = Show {
+        devices: vec![device("arm", swinging(12), false), device("base", Project::empty(Family::Rflex), true)],
+        sound: None,
+        cues: vec![
+            Cue { device: "arm".into(), at_ms: 0, start: Start::Macro(1) },
+            Cue {
+                device: "base".into(),
+                at_ms: 0,
+                start: Start::Drive { speed_m_s: 0.1, turn_deg_s: 0.0, for_ms: 1_000 },
+            },
+        ],
+    };
+    let mut child = play(dir.path(), &show, &[("arm", &arm.port), ("base", &base.port)], &["--loop", "2"]);
+    let stdout = BufReader::new(child.stdout.take().unwrap());
+    logged_until(&base.log, "AxisSetDir { axis: 0, speed: 1", LONG);
+    let proxy = base.proxy.as_ref().unwrap();
+    proxy.silence(true);
+    let mut lines = stdout.lines().map(Result::unwrap);
+    assert!(lines.by_ref().any(|line| line.contains("the link to base was lost (it stopped answering")), "run 1");
+    // It answers again: its old link is let go and run 2 connects it anew.
+    proxy.silence(false);
+    let rest: Vec<String> = lines.collect();
+    let (code, stderr) = common::ended(child, Duration::from_secs(60));
+    assert_eq!(code, Some(0), "{stderr}");
+    assert_eq!(stderr.matches("base (rFLEX base) answered on").count(), 2, "connected again: {stderr} {rest:?}");
+    assert!(!rest.iter().any(|line| line.starts_with("run 2: the link to base was lost")), "{rest:?}");
+}

@@ -15,7 +15,7 @@ use super::{
 };
 use crate::device::speed::LiveSpeed;
 use crate::show::at::{Now, now_at};
-use crate::show::play::{Player, Stage, Stopped};
+use crate::show::play::{Gone, Player, Stage, Stopped};
 use crate::show::{Show, Start};
 
 /// What a device does for a remote.
@@ -343,7 +343,7 @@ impl Worker {
             .stages
             .iter_mut()
             .map(|stage| {
-                let mut stage = stage.take().unwrap_or_else(|| Box::new(Gone));
+                let mut stage = stage.take().unwrap_or_else(|| Box::new(Gone("it did not answer".into())));
                 stage.resume();
                 stage
             })
@@ -374,23 +374,4 @@ impl Worker {
 /// An instant far enough ahead to stand for "never ends".
 fn far_future() -> Instant {
     Instant::now() + Duration::from_secs(86_400 * 365)
-}
-
-/// A device that did not answer, played on without.
-struct Gone;
-
-impl Stage for Gone {
-    fn start_delay(&self, _start: &Start) -> Duration {
-        Duration::ZERO
-    }
-
-    fn start(&mut self, _start: &Start) -> Result<(), String> {
-        Ok(())
-    }
-
-    fn stop(&mut self) {}
-
-    fn lost(&self) -> Option<String> {
-        Some("it did not answer".into())
-    }
 }
