@@ -337,26 +337,28 @@ fn a_missing_shared_folder_skips_only_where_it_is_not_required() {
     assert_eq!(crate::common::shared_in(here, "tests", true), Some(here.join("tests")), "present: found");
 }
 
-/// The packages of the build graph that declare a native library they link
-/// (`links` in their manifest), for this machine, with `features`: the
-/// resolver's graph from `cargo metadata`, normal, build and dev
-/// dependencies alike (the graph `cargo test` builds).
-fn linking_packages(features: &[&str]) -> Vec<String> {
+/// The build graph for this machine with the default features: the
+/// resolver's graph from `cargo metadata` (normal, build and dev
+/// dependencies alike: the graph `cargo test` builds), offline — only what a
+/// fresh machine's `cargo test` has downloaded is there to read.
+fn default_graph() -> serde_json::Value {
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
     let rustc = std::env::var("RUSTC").unwrap_or_else(|_| "rustc".into());
     let version = std::process::Command::new(rustc).arg("-vV").output().unwrap();
     let version = String::from_utf8(version.stdout).unwrap();
     let host = version.lines().find_map(|line| line.strip_prefix("host: ")).unwrap().to_string();
-    let mut command = std::process::Command::new(cargo);
-    command
+    let output = std::process::Command::new(cargo)
         .args(["metadata", "--format-version", "1", "--locked", "--offline", "--filter-platform", &host])
-        .current_dir(env!("CARGO_MANIFEST_DIR"));
-    for feature in features {
-        command.args(["--features", feature]);
-    }
-    let output = command.output().unwrap();
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .unwrap();
     assert!(output.status.success(), "cargo metadata: {}", String::from_utf8_lossy(&output.stderr));
-    let metadata: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    serde_json::from_slice(&output.stdout).unwrap()
+}
+
+/// The packages of a graph (`cargo metadata`'s JSON) that are resolved into
+/// it and declare a native library they link (`links` in their manifest).
+fn linking_packages(metadata: &serde_json::Value) -> Vec<String> {
     let packages = metadata["packages"].as_array().unwrap();
     let resolved: BTreeSet<&str> =
         metadata["resolve"]["nodes"].as_array().unwrap().iter().map(|node| node["id"].as_str().unwrap()).collect();
@@ -369,12 +371,28 @@ fn linking_packages(features: &[&str]) -> Vec<String> {
 
 /// A fresh machine with only the Rust toolchain builds the tests: nothing in
 /// the default graph links a system library at build time (no `-dev`
-/// package needed). The `cpal` feature, which `.ci/run` turns on for the
-/// sound tests through ALSA, is the one place that does — found here, so the
-/// check would see one in the default graph.
+/// package needed). The graph is read offline, so this also fails if it
+/// needed a crate the default build never downloads (`.ci/run` runs it with
+/// a cargo home holding only those).
 #[test]
 fn the_default_build_links_no_system_library() {
-    assert_eq!(linking_packages(&[]), Vec::<String>::new(), "the default graph links a system library");
-    let with_cpal = linking_packages(&["cpal"]);
-    assert!(with_cpal.iter().any(|package| package.starts_with("alsa-sys")), "{with_cpal:?}");
+    let graph = default_graph();
+    let resolved = graph["resolve"]["nodes"].as_array().unwrap();
+    assert!(resolved.len() > 100, "the whole default graph was read: {} packages", resolved.len());
+    assert_eq!(linking_packages(&graph), Vec::<String>::new(), "the default graph links a system library");
+}
+
+/// The check sees a linking package where there is one (the `cpal`
+/// feature's ALSA binding, as `cargo metadata` lists it), and only a resolved one.
+#[test]
+fn a_package_that_links_a_system_library_is_seen_only_when_resolved() {
+    let metadata = serde_json::json!({
+        "packages": [
+            { "id": "alsa-sys 0.3.1", "name": "alsa-sys", "links": "alsa" },
+            { "id": "x11-dl 2.21.0", "name": "x11-dl", "links": null },
+            { "id": "ring 0.17.0", "name": "ring", "links": "ring_core" },
+        ],
+        "resolve": { "nodes": [ { "id": "alsa-sys 0.3.1" }, { "id": "x11-dl 2.21.0" } ] },
+    });
+    assert_eq!(linking_packages(&metadata), ["alsa-sys (links \"alsa\")"]);
 }
