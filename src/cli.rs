@@ -17,6 +17,7 @@ mod family;
 mod fit;
 mod follow_audio;
 mod gui;
+mod installed;
 mod out;
 mod play;
 mod plen2;
@@ -39,10 +40,13 @@ use crate::project::{self, Family};
 pub use failed::{Advised, Exit, exported, import_failed, interrupted, restore_hint};
 use out::say;
 
+/// The version `--version` says: the package's, and the commit it was built from.
+pub const VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), " (", env!("SERVO_STUDIO_COMMIT"), ")");
+
 /// Servo Studio: pose robot servos live, author actions and macros, and back up
 /// and upload servo controller boards.
 #[derive(Debug, Parser)]
-#[command(name = "servo-studio", version, about, long_about = None)]
+#[command(name = "servo-studio", version = VERSION, about, long_about = None)]
 pub struct Cli {
     /// What to do.
     #[command(subcommand)]
@@ -121,6 +125,19 @@ pub enum CliCommand {
     },
     /// List the serial ports this computer sees.
     Ports,
+    /// Print the shell completions for SHELL (bash, zsh, fish, elvish, powershell) — e.g.
+    /// `servo-studio completions bash > ~/.local/share/bash-completion/completions/servo-studio`.
+    Completions {
+        /// The shell.
+        shell: clap_complete::Shell,
+    },
+    /// Write a man page for the command and each subcommand into a folder (what the package installs).
+    #[command(hide = true)]
+    Man {
+        /// The folder.
+        #[arg(long)]
+        out: PathBuf,
+    },
     /// Read a sound (WAV, FLAC, MP3, OGG/Vorbis) and print one JSON object:
     /// `duration_s`, `sample_rate`, `channels`, `onsets_s` (seconds). Exits 1
     /// when it cannot be read.
@@ -320,6 +337,8 @@ pub fn run(command: CliCommand) -> ExitCode {
     let result = match command {
         CliCommand::Check { file } => return check::run(&file),
         CliCommand::Ports => servo::ports(),
+        CliCommand::Completions { shell } => installed::completions(shell),
+        CliCommand::Man { out } => installed::man_pages(&out),
         CliCommand::AudioInfo { sound, sensitivity } => audio_info(&sound, sensitivity),
         CliCommand::Probe { port, baud, timeout_ms } => probe::run(port.as_deref(), baud, timeout_ms),
         CliCommand::Sim { args, protocol } => sim::run(&args, protocol),

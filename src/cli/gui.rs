@@ -14,6 +14,11 @@ pub fn run(
     protocol: Option<Family>,
     (import, show): (Option<PathBuf>, Option<PathBuf>),
 ) -> anyhow::Result<()> {
+    // A show file (double-clicked in a file manager: `gui FILE`) opens as the show it is.
+    let (file, show) = match file {
+        Some(path) if show.is_none() && crate::show::Show::is_show_file(path) => (None, Some(path.to_path_buf())),
+        _ => (file, show),
+    };
     let (project, path) = match file {
         // A project file, or the PLEN community's motion.json (one file or a folder):
         // a motion.json or a folder of them is saved as a new project.

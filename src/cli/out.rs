@@ -44,6 +44,15 @@ pub fn line(text: &str) -> Result<(), Unwritten> {
     })
 }
 
+/// Writes bytes on standard output as they are (a generated script), as [`line`] does a line.
+pub fn bytes(bytes: &[u8]) -> Result<(), Unwritten> {
+    let mut stdout = std::io::stdout().lock();
+    stdout.write_all(bytes).and_then(|()| stdout.flush()).map_err(|error| match error.kind() {
+        std::io::ErrorKind::BrokenPipe => Unwritten::Closed,
+        _ => Unwritten::Failed(error),
+    })
+}
+
 /// Writes a message on standard error. Nothing is done when stderr cannot be
 /// written (closed, a full disk): a message must never end a command.
 pub fn say_line(message: std::fmt::Arguments<'_>) {

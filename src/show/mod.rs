@@ -193,6 +193,18 @@ impl Show {
         Self { devices: vec![device], sound, cues: Vec::new() }
     }
 
+    /// Whether `path` is a show file (its `format` says so): what a double-click hands the editor may be either.
+    pub fn is_show_file(path: &Path) -> bool {
+        #[derive(serde::Deserialize)]
+        struct Format {
+            format: Option<String>,
+        }
+        project::input::read_text(path, project::input::MAX_PROJECT_BYTES)
+            .ok()
+            .and_then(|text| serde_json::from_str::<Format>(&text).ok())
+            .is_some_and(|file| file.format.as_deref() == Some(FORMAT_TAG))
+    }
+
     /// A show file (version 3), or a project file (version 1 or 2) as a show of one device named after the file.
     pub fn open(path: &Path) -> Result<Self, ShowError> {
         let text = project::input::read_text(path, project::input::MAX_PROJECT_BYTES)

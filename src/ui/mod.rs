@@ -11,6 +11,7 @@ mod document;
 mod echo;
 mod families;
 mod family;
+mod file_browser;
 pub mod files;
 pub mod fonts;
 pub mod gamepad;
@@ -113,10 +114,21 @@ impl Start {
     }
 }
 
+/// The app's own icon (`assets/icons`), for its window.
+const ICON_PNG: &[u8] = include_bytes!("../../assets/icons/servo-studio-128.png");
+
 /// Opens the editor window and runs until it is closed.
 pub fn run(mut start: Start) -> eframe::Result {
+    let mut viewport = egui::ViewportBuilder::default()
+        .with_title("Servo Studio")
+        // The desktop entry's name: the window is the installed program's (its icon, its taskbar group).
+        .with_app_id("servo-studio")
+        .with_inner_size([1100.0, 720.0]);
+    if let Ok(icon) = eframe::icon_data::from_png_bytes(ICON_PNG) {
+        viewport = viewport.with_icon(icon);
+    }
     let options = eframe::NativeOptions {
-        viewport: egui::ViewportBuilder::default().with_title("Servo Studio").with_inner_size([1100.0, 720.0]),
+        viewport,
         // The 3D view draws meshes with a depth buffer.
         depth_buffer: 24,
         ..Default::default()

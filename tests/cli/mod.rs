@@ -6,6 +6,7 @@ mod follow_audio;
 mod honest;
 mod hostile;
 mod inputs;
+mod installed;
 pub mod play;
 mod play_links;
 mod robust;

@@ -242,3 +242,55 @@ fn a_recovery_file_that_is_a_named_pipe_neither_blocks_the_start_nor_is_read() {
     let offered = start.recv_timeout(Duration::from_secs(10)).expect("the editor starts, the pipe refused at once");
     assert!(!offered, "a pipe is no recovery file");
 }
+
+/// A desktop with no file-dialog service (no desktop portal with a file
+/// chooser, no zenity: a bare X session): File → Open… and Save as… use the
+/// editor's own picker — said, with what to install — and what is chosen there
+/// is opened, or saved where it was named.
+#[test]
+fn without_a_file_dialog_service_the_editors_own_picker_opens_and_saves() {
+    let data = tempfile::tempdir().unwrap();
+    let folder = tempfile::tempdir().unwrap();
+    std::fs::copy(fixture(), folder.path().join("skull.json")).unwrap();
+    let app = app(data.path()).with_own_file_picker("zenity");
+    let mut harness = harness(app);
+    harness.run();
+    harness.get_by_label("File").click();
+    harness.run();
+    harness.get_by_label("Open…").click();
+    harness.run();
+    assert!(harness.state().asking_for_file(), "the editor's own picker is open");
+    let said = harness.state().status.as_ref().map(|line| line.text.clone()).unwrap_or_default();
+    assert!(said.contains("install zenity"), "said, with what to install: {said}");
+    // Its folder typed, as a user does on a desktop with none of its own dialogs.
+    harness.get_by_label("Folder").focus();
+    harness.run();
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
+    harness.run();
+    harness.get_by_label("Folder").type_text(&format!("{}", folder.path().display()));
+    harness.run();
+    harness.key_press(egui::Key::Enter);
+    harness.run();
+    harness.get_by_label("skull.json").click();
+    harness.run();
+    harness.get_by_label("Open").click();
+    harness.run();
+    harness.state_mut().finish_file_work(WAIT);
+    harness.run();
+    assert_eq!(harness.state().document.path.as_deref(), Some(folder.path().join("skull.json").as_path()));
+    // Save as…: a new name in that folder.
+    harness.get_by_label("File").click();
+    harness.run();
+    harness.get_by_label("Save As…").click();
+    harness.run();
+    harness.get_by_label("Name").focus();
+    harness.run();
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
+    harness.run();
+    harness.get_by_label("Name").type_text("copy.json");
+    harness.run();
+    harness.get_by_label("Save").click();
+    harness.run();
+    harness.state_mut().finish_file_work(WAIT);
+    assert!(folder.path().join("copy.json").is_file(), "saved where it was named");
+}

@@ -54,10 +54,7 @@ impl StudioApp {
                 let (_, family_ui) = self.parts(self.document.project.family);
                 family_ui.layout_mut().view_open = open;
             }
-            Action::AskFile(request) => {
-                let answer = (self.files.picker)(&request, self.window.waker.clone());
-                self.files.dialog = Some((request, answer));
-            }
+            Action::AskFile(request) => self.ask_file(request),
             Action::CancelOperation => {
                 if let Some(operation) = &self.operation {
                     operation.cancel();

@@ -12,6 +12,7 @@ use crate::link::Waker;
 use crate::project::input::{OpenError, Opened, ReadError};
 use crate::project::{Project, SaveError};
 use crate::ui::action::{AfterUnsaved, FileRequest};
+use crate::ui::file_browser::FileBrowser;
 use crate::ui::files::{self, FileWork, Recovery};
 
 /// The document's files, apart from the document.
@@ -30,6 +31,11 @@ pub struct FileDesk {
     /// A file dialog open, and the request it answers.
     pub(super) dialog: Option<(FileRequest, Receiver<Option<PathBuf>>)>,
     pub(super) picker: Picker,
+    /// Where no system file dialog can appear, what to install for one: the
+    /// editor's own picker is used instead (said once).
+    pub(super) no_system_dialog: Option<&'static str>,
+    /// The editor's own picker, open, and the request it answers.
+    pub(super) browser: Option<(FileRequest, FileBrowser)>,
     pub(super) last_autosave: Instant,
 }
 
@@ -45,6 +51,8 @@ impl FileDesk {
             jobs: Vec::new(),
             dialog: None,
             picker: system_picker(),
+            no_system_dialog: crate::ui::file_browser::no_system_dialog(),
+            browser: None,
             last_autosave: Instant::now(),
         }
     }

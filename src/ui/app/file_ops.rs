@@ -2,6 +2,7 @@
 //! autosave, dropped files, the File menu, dialogs and shortcuts.
 
 use super::*;
+use crate::ui::file_browser::{FileBrowser, Outcome};
 
 impl StudioApp {
     pub(super) fn replace_document(&mut self, project: Project, path: Option<PathBuf>) {
@@ -106,7 +107,7 @@ impl StudioApp {
             }
             // Dialogs open off the frame: the window keeps drawing (and a base keeps
             // being watched) while the user looks for a file.
-            let asking = self.files.dialog.is_some();
+            let asking = self.asking_for_file();
             if ui.add_enabled(!asking, egui::Button::new(words.open)).clicked() {
                 actions.push(Action::AskFile(FileRequest::Open));
             }
@@ -224,6 +225,36 @@ impl StudioApp {
         });
     }
 
+    /// Asks for a file: the system's dialog, or — where none can appear —
+    /// the editor's own picker, starting in the document's folder (said once).
+    pub(super) fn ask_file(&mut self, request: FileRequest) {
+        let Some(install) = self.files.no_system_dialog else {
+            let answer = (self.files.picker)(&request, self.window.waker.clone());
+            self.files.dialog = Some((request, answer));
+            return;
+        };
+        if self.files.browser.is_none() {
+            let said = crate::say!(self.language, "browser.no_service", install);
+            self.report(said, false);
+        }
+        let folder = self.document.path.as_deref().and_then(std::path::Path::parent).map_or_else(
+            || std::env::var_os("HOME").map_or_else(|| PathBuf::from("."), PathBuf::from),
+            std::path::Path::to_path_buf,
+        );
+        let browser = FileBrowser::for_request(&request, &folder);
+        self.files.browser = Some((request, browser));
+    }
+
+    /// Draws the editor's own file picker when it is open; its answer's actions.
+    pub(super) fn file_browser(&mut self, ctx: &egui::Context, actions: &mut Vec<Action>) {
+        let Some((_, browser)) = &mut self.files.browser else { return };
+        let Some(outcome) = browser.ui(ctx, self.language) else { return };
+        let Some((request, _)) = self.files.browser.take() else { return };
+        if let Outcome::Chosen(path) = outcome {
+            actions.extend(dialogs::answered(&request, path));
+        }
+    }
+
     /// Takes the answer of an open file dialog: the actions that waited for it.
     pub(super) fn poll_dialog(&mut self, actions: &mut Vec<Action>) {
         let Some((_, answer)) = &self.files.dialog else { return };
@@ -239,8 +270,8 @@ impl StudioApp {
         }
     }
 
-    /// Whether a file dialog is open.
+    /// Whether a file dialog (the system's or the editor's own) is open.
     pub fn asking_for_file(&self) -> bool {
-        self.files.dialog.is_some()
+        self.files.dialog.is_some() || self.files.browser.is_some()
     }
 }

@@ -136,9 +136,17 @@ impl StudioApp {
         self
     }
 
+    /// Asks for files with the editor's own picker, as where no system dialog
+    /// can appear (`install`: what would give one).
+    pub fn with_own_file_picker(mut self, install: &'static str) -> Self {
+        self.files.no_system_dialog = Some(install);
+        self
+    }
+
     /// Opens file dialogs with `picker` instead of the system's (tests answer them).
     pub fn with_picker(mut self, picker: Picker) -> Self {
         self.files.picker = picker;
+        self.files.no_system_dialog = None;
         self
     }
 
@@ -385,6 +393,7 @@ impl StudioApp {
         egui::CentralPanel::default().show(ui, |ui| self.tab_panel(ui, &mut actions));
 
         self.dialogs(ui, &mut actions);
+        self.file_browser(ui.ctx(), &mut actions);
         self.desks.import.window(ui.ctx(), (&self.document.project, &self.files.work), self.language, &mut actions);
         let pad: Vec<(u16, f64)> =
             self.desks.pad.state.as_ref().map(|state| state.axes().collect()).unwrap_or_default();
