@@ -104,9 +104,34 @@ pub fn run(file: &Path) -> ExitCode {
 }
 
 fn single(file: &Path) -> anyhow::Result<Report> {
+    if crate::show::Show::is_show_file(file) {
+        return show(file);
+    }
     let opened = super::open_input(file)?;
     let mut report = Report::default();
     report.problems("", &loaded_problems(&opened.loaded));
+    Ok(report)
+}
+
+/// A show file (version 3): each device's project checked as a project is
+/// (its problems after `device NAME`), then the show's own — names, and every
+/// cue against what its device holds.
+fn show(file: &Path) -> anyhow::Result<Report> {
+    let text = input::read_text(file, input::MAX_PROJECT_BYTES)?;
+    let checked = crate::show::checked(&text).map_err(|error| anyhow::anyhow!("{}: {error}", file.display()))?;
+    let mut report = Report::default();
+    let problems: Problems = checked.unknown_keys.into_iter().map(unknown_key).collect();
+    report.problems("", &problems);
+    for (name, loaded) in &checked.devices {
+        let prefix = format!("device {name:?}");
+        match loaded {
+            Ok(loaded) => report.problems(&prefix, &loaded_problems(loaded)),
+            Err(error) => report.error(&format!("{prefix}: {error}")),
+        }
+    }
+    for problem in &checked.problems {
+        report.error(&problem.to_string());
+    }
     Ok(report)
 }
 

@@ -305,18 +305,29 @@ impl Show {
 
     /// Whether names are unique, every cue names a device and starts what it holds.
     pub fn check(&self) -> Result<(), ShowError> {
+        match self.problems().into_iter().next() {
+            Some(problem) => Err(problem),
+            None => Ok(()),
+        }
+    }
+
+    /// Every problem of the show itself, in order: a device without a name or
+    /// with another's, a cue that names no device or starts what its device
+    /// does not hold.
+    pub fn problems(&self) -> Vec<ShowError> {
+        let mut problems = Vec::new();
         for (index, device) in self.devices.iter().enumerate() {
             if device.name.trim().is_empty() {
-                return Err(ShowError::NoName(index + 1));
-            }
-            if self.devices[..index].iter().any(|other| other.name == device.name) {
-                return Err(ShowError::SameName(device.name.clone()));
+                problems.push(ShowError::NoName(index + 1));
+            } else if self.devices[..index].iter().any(|other| other.name == device.name) {
+                problems.push(ShowError::SameName(device.name.clone()));
             }
         }
         for cue in &self.cues {
-            let device = self
-                .device(&cue.device)
-                .ok_or_else(|| ShowError::NoDevice { at_ms: cue.at_ms, device: cue.device.clone() })?;
+            let Some(device) = self.device(&cue.device) else {
+                problems.push(ShowError::NoDevice { at_ms: cue.at_ms, device: cue.device.clone() });
+                continue;
+            };
             let family = device.project.family;
             let holds = match cue.start {
                 Start::Macro(id) => family == Family::Servo && device.project.servo.macro_by_id(id).is_some(),
@@ -328,7 +339,7 @@ impl Show {
                 }
             };
             if !holds {
-                return Err(ShowError::NotHeld {
+                problems.push(ShowError::NotHeld {
                     at_ms: cue.at_ms,
                     device: cue.device.clone(),
                     family,
@@ -336,8 +347,63 @@ impl Show {
                 });
             }
         }
-        Ok(())
+        problems
     }
+}
+
+/// A show file read for `check`: each device's project as its loader read it
+/// (with the keys it did not know), the keys of the show itself it did not
+/// know, and every problem of the show (as [`Show::problems`] finds them, a
+/// device whose project does not read left out of the cues' checks).
+#[derive(Debug)]
+pub struct Checked {
+    /// Each device's name and its project, read, or why not.
+    pub devices: Vec<(String, Result<project::Loaded, project::LoadError>)>,
+    /// Keys of the show file (outside the devices' projects) it does not know.
+    pub unknown_keys: Vec<String>,
+    /// The show's own problems.
+    pub problems: Vec<ShowError>,
+}
+
+/// `text` read as a show file for `check` (the whole file is read: every
+/// problem found, not only the first); an error when it is not a show at all.
+pub fn checked(text: &str) -> Result<Checked, ShowError> {
+    let mut unknown_keys = Vec::new();
+    let file: ShowFile = serde_ignored::deserialize(&mut serde_json::Deserializer::from_str(text), |path| {
+        unknown_keys.push(path.to_string());
+    })
+    .map_err(|error| ShowError::Json(format!("line {}: {error}", error.line())))?;
+    if file.format != FORMAT_TAG {
+        return Err(ShowError::Json(format!("its \"format\" is {:?}, not {FORMAT_TAG:?}", file.format)));
+    }
+    if file.version > VERSION {
+        return Err(ShowError::NewerVersion { found: file.version });
+    }
+    let mut devices = Vec::new();
+    let mut read = Vec::new();
+    for device in file.devices {
+        let loaded = project::parse(&device.project.to_string());
+        if let Ok(loaded) = &loaded {
+            read.push(Device {
+                name: device.name.clone(),
+                port: device.port,
+                place: device.place,
+                project: loaded.project.clone(),
+                play_on_without: device.play_on_without,
+            });
+        }
+        devices.push((device.name, loaded));
+    }
+    let show = Show { devices: read, sound: file.sound, cues: file.cues };
+    let unread: Vec<&str> =
+        devices.iter().filter(|(_, loaded)| loaded.is_err()).map(|(name, _)| name.as_str()).collect();
+    // A cue of a device whose project does not read is not said twice.
+    let problems = show
+        .problems()
+        .into_iter()
+        .filter(|problem| !matches!(problem, ShowError::NoDevice { device, .. } if unread.contains(&device.as_str())))
+        .collect();
+    Ok(Checked { devices, unknown_keys, problems })
 }
 
 #[cfg(test)]

@@ -203,8 +203,11 @@ pub enum Action {
     /// Close the link.
     Disconnect,
     /// STOP, the family's way: every servo held where it is; a PLEN2's motion
-    /// stopped and every joint home; a base stopped at once.
+    /// stopped and every joint home; a base stopped at once — and the editor's
+    /// own previews and sound; nothing that moves a robot goes out until [`Action::Resume`].
     Stop,
+    /// After STOP: moves may go out again.
+    Resume,
     /// Switch the interface language.
     SetLanguage(Language),
     /// Set the live speed limit, °/s.
@@ -275,6 +278,12 @@ impl Action {
 pub trait ActionOf {
     /// The family whose ui applies it.
     const FAMILY: Family;
+
+    /// Whether it moves a robot (a servo, a joint, a motion, a drive): after
+    /// STOP, refused until Resume.
+    fn moves_robot(&self) -> bool {
+        false
+    }
 }
 
 /// A family's action as the shell carries it, whatever its type.
@@ -285,6 +294,8 @@ pub trait FamilyAction: Any + std::fmt::Debug {
     fn boxed_clone(&self) -> Box<dyn FamilyAction>;
     /// Whether it is the same action as `other`.
     fn same_as(&self, other: &dyn FamilyAction) -> bool;
+    /// Whether it moves a robot (see [`ActionOf::moves_robot`]).
+    fn moves_robot(&self) -> bool;
     /// Itself, for its family to take back.
     fn into_any(self: Box<Self>) -> Box<dyn Any>;
 }
@@ -299,6 +310,9 @@ impl<T: ActionOf + Any + Clone + PartialEq + std::fmt::Debug> FamilyAction for T
     fn same_as(&self, other: &dyn FamilyAction) -> bool {
         let other: &dyn Any = other;
         other.downcast_ref::<T>() == Some(self)
+    }
+    fn moves_robot(&self) -> bool {
+        ActionOf::moves_robot(self)
     }
     fn into_any(self: Box<Self>) -> Box<dyn Any> {
         self
@@ -359,4 +373,12 @@ pub enum ShowAction {
     Save(PathBuf),
     /// Close the window (stopping a show that plays).
     Close,
+}
+
+impl ShowAction {
+    /// Whether it moves the show's boards: playing the show on them (a preview
+    /// or a pass followed on held boards is stopped by STOP and started again by hand).
+    pub fn moves_robots(&self) -> bool {
+        matches!(self, Self::Play)
+    }
 }

@@ -123,6 +123,15 @@ pub trait FamilyBoard {
     /// STOP, the family's way (the link is connected and of this family).
     fn stop(&mut self, shell: &mut Shell<'_>);
 
+    /// STOP's part in the editor's own playback, a board or not: its previews
+    /// stop where they are. Whether one was playing.
+    fn halt(&mut self) -> bool {
+        false
+    }
+
+    /// After STOP, moves may go out again (a board that holds a stop of its own is told).
+    fn resume(&mut self, _shell: &mut Shell<'_>) {}
+
     /// A link was made: the family starts from rest.
     fn connected(&mut self, _project: &Project) {}
 

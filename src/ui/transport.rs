@@ -37,6 +37,11 @@ impl Transport {
         self.playing
     }
 
+    /// Stops where it is (STOP); whether it was playing.
+    pub fn halt(&mut self) -> bool {
+        self.playing.take().is_some()
+    }
+
     /// Plays from the cursor, or stops where it is.
     pub fn toggle(&mut self, now_s: f64) {
         self.playing = match self.playing {

@@ -106,3 +106,50 @@ fn check_reads_a_plen2_motion_json_and_locates_its_problems() {
     );
     assert!(printed.contains("1 error(s)"), "{printed}");
 }
+
+/// `check` takes a show file (version 3): each device's project is checked as
+/// a project is, and every cue against what its device holds — every problem
+/// said, not only the first; a good show passes.
+#[test]
+fn check_takes_a_show_and_says_every_problem_of_its_devices_and_cues() {
+    use servo_studio::project::{Family, Project};
+    use servo_studio::show::{Cue, Device, Place, Show, Start};
+    let dir = tempfile::tempdir().unwrap();
+    let skull = servo_studio::project::load(std::path::Path::new(&fixture())).unwrap();
+    let macro_id = skull.servo.macros[0].id;
+    let device = |name: &str, project: Project| Device {
+        name: name.into(),
+        port: None,
+        place: Place::default(),
+        project,
+        play_on_without: false,
+    };
+    let good = Show {
+        devices: vec![device("skull", skull.clone()), device("base", Project::empty(Family::Rflex))],
+        sound: None,
+        cues: vec![Cue { device: "skull".into(), at_ms: 0, start: Start::Macro(macro_id) }],
+    };
+    let file = dir.path().join("good.json");
+    std::fs::write(&file, good.to_json()).unwrap();
+    let output = run(&["check", file.to_str().unwrap()]);
+    assert!(output.status.success(), "{}", stdout(&output));
+    assert!(stdout(&output).ends_with("0 error(s), 0 warning(s)\n"), "{}", stdout(&output));
+    // Three things wrong at once, and a key misspelt: each said.
+    let mut text: serde_json::Value = serde_json::from_str(&good.to_json()).unwrap();
+    text["cues"] = serde_json::json!([
+        { "device": "skull", "at_ms": 0, "macro": 999 },
+        { "device": "nobody", "at_ms": 500, "macro": 1 },
+    ]);
+    text["devices"][0]["project"]["servo"]["servos"][0]["id"] = serde_json::json!(200);
+    text["cuess"] = serde_json::json!([]);
+    let bad = dir.path().join("bad.json");
+    std::fs::write(&bad, serde_json::to_string_pretty(&text).unwrap()).unwrap();
+    let output = run(&["check", bad.to_str().unwrap()]);
+    let said = stdout(&output);
+    assert_eq!(output.status.code(), Some(1), "{said}");
+    assert!(said.contains("cuess") && said.contains("unknown key"), "the misspelt key: {said}");
+    assert!(said.contains("device \"skull\""), "the device's own project checked: {said}");
+    assert!(said.contains("to start Macro(999), which it does not hold"), "{said}");
+    assert!(said.contains("\"nobody\", which is not a device of the show"), "{said}");
+    assert!(!said.contains("expected servo-studio-project"), "taken as a show: {said}");
+}

@@ -89,7 +89,18 @@ fn an_arrow_key_drives_the_base_and_letting_go_stops_it_within_one_frame() {
     harness.step();
     wait_for_motion(&harness, "the STOP", |speed, _| speed == 0);
     assert_eq!(inspect(&harness).target_speed_m_per_s, 0.0);
-    assert_eq!(harness.state().status.as_ref().unwrap().text, "STOP: the base was told to stop at once");
+    // The key still held asks to drive on: refused until Resume, and said.
+    assert!(harness.state().stopped());
+    assert!(status(&harness).contains("press Resume"), "{}", status(&harness));
+    harness.key_up(egui::Key::ArrowDown);
+    harness.step();
+    assert_eq!(inspect(&harness).target_speed_m_per_s, 0.0, "never driven after STOP");
+    harness.get_by_label("Resume").click();
+    harness.step();
+    assert!(!harness.state().stopped(), "{}", status(&harness));
+    harness.key_down(egui::Key::ArrowDown);
+    harness.step();
+    wait_for_motion(&harness, "a backward command after Resume", |speed, direction| speed == 51_500 && direction == 0);
     harness.key_up(egui::Key::ArrowDown);
     harness.step();
 }

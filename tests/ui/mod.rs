@@ -26,4 +26,5 @@ mod show;
 mod show_boards;
 mod sliders;
 mod sound;
+mod stop;
 mod uncut;

@@ -239,7 +239,7 @@ fn a_sound_server_that_never_answers_freezes_nothing_and_stop_works() {
         drawn.send("stopped").unwrap();
         // STOP holds the servos until Resume; the preview (which plays on its
         // own) is paused, so its end does not silence the next sound.
-        harness.state_mut().apply(Action::family(servo_studio::ui::ServoAction::Resume));
+        harness.state_mut().apply(Action::Resume);
         if let Some(pause) = harness.query_by_label("Pause") {
             pause.click();
         }

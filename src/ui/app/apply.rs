@@ -35,7 +35,11 @@ impl StudioApp {
                 self.report(self.words().msg_disconnected, false);
             }
             Action::Stop => self.stop(),
+            Action::Resume => self.resume(),
             Action::Import(action) => self.desks.import.apply(action, &self.files.work, &self.document.project),
+            Action::Show(action) if self.stopped() && action.moves_robots() => {
+                self.report(self.language.word("strings.msg_press_resume"), true);
+            }
             Action::Show(action) => {
                 if let Some(error) =
                     self.desks.show.apply(action, (&self.document.project, self.language), &self.window.waker)
@@ -71,6 +75,10 @@ impl StudioApp {
             | Action::DeclineRecovery
             | Action::Autosave
             | Action::Terminate => self.apply_file(action),
+            // After STOP nothing that moves a robot goes out until Resume: refused, and said.
+            Action::Family(action) if action.moves_robot() && self.stopped() => {
+                self.report(self.language.word("strings.msg_press_resume"), true);
+            }
             Action::Family(action) => {
                 let (mut shell, families) = self.split();
                 families.get_mut(action.owner()).act(&mut shell, action);

@@ -42,6 +42,11 @@ use crate::ui::layout::Layout;
 pub use crate::ui::remembered::Remembered;
 use crate::ui::shell::{RunningOperation, Shell, ShellView, StatusLine};
 
+/// STOP's distance from the window's right edge, points.
+const STOP_MARGIN: f32 = 8.0;
+/// The width kept at the toolbar's right end for STOP and Resume (wide enough in every language).
+const STOP_WIDTH: f32 = 240.0;
+
 /// The whole editor: the document, the link and what runs on it, each
 /// family's side, and the desks that do the rest (files, connecting, the
 /// window's own state). Only [`StudioApp::apply`] changes it.
@@ -94,6 +99,12 @@ pub struct Window {
     terminate: Option<Receiver<()>>,
     /// Wakes the window from other threads.
     waker: Waker,
+    /// STOP was pressed and Resume not yet: nothing that moves a robot goes out.
+    stopped: bool,
+    /// Where STOP (and Resume) were drawn last frame, over everything.
+    stop_rect: Option<egui::Rect>,
+    /// The toolbar's top, where STOP is drawn level with it.
+    stop_top: f32,
 }
 
 impl std::fmt::Debug for StudioApp {
@@ -117,7 +128,15 @@ impl StudioApp {
             operation: None,
             files: FileDesk::new(waker.clone()),
             links: LinkDesk::new(waker.clone()),
-            window: Window { tab: Tab::Log, quit_allowed: false, terminate: None, waker },
+            window: Window {
+                tab: Tab::Log,
+                quit_allowed: false,
+                terminate: None,
+                waker,
+                stopped: false,
+                stop_rect: None,
+                stop_top: 4.0,
+            },
             desks: Desks::default(),
         };
         app.files.read_recovery_later();
@@ -238,12 +257,38 @@ impl StudioApp {
         self.family_ui(family).layout()
     }
 
-    /// STOP, the family's way (always visible, Esc too).
+    /// Whether STOP holds: pressed (or the board stopped) and not resumed.
+    pub fn stopped(&self) -> bool {
+        self.window.stopped || self.link.as_ref().is_some_and(BoardLink::stopped)
+    }
+
+    /// Where STOP was drawn last frame (over every window), for tests.
+    pub fn stop_rect(&self) -> Option<egui::Rect> {
+        self.window.stop_rect
+    }
+
+    /// After STOP: moves may go out again (a board holding its own stop is told), said.
+    fn resume(&mut self) {
+        self.window.stopped = false;
+        if let Some(link) = &self.link {
+            let (mut shell, family_ui) = self.parts(link.family());
+            family_ui.resume(&mut shell);
+        }
+        self.report(self.language.word("strings.msg_resumed"), false);
+    }
+
+    /// STOP, the family's way (always visible, Esc too), and everything the
+    /// editor plays itself: previews and their sound; nothing that moves a
+    /// robot goes out until Resume.
     fn stop(&mut self) {
+        self.window.stopped = true;
         // The show's sound stops too, and a board's start still waiting for it never goes out.
         self.desks.sound.silence();
         // A show previewed on its stage stops where it is (its sound too).
         self.desks.show.stage.stop_preview();
+        // The editor's own previews, whichever family's.
+        let mut previewing = false;
+        self.each_family(|family_ui, _| previewing |= family_ui.halt());
         // A show playing on several boards, or holding them: every one of them (and the editor's own).
         let show_boards = self.desks.show.playing() || self.desks.show.linked.is_some();
         if show_boards {
@@ -251,7 +296,12 @@ impl StudioApp {
         }
         let Some(link) = &self.link else {
             if !show_boards {
-                self.report(self.words().msg_stop_no_board, false);
+                let said = if previewing {
+                    self.language.word("strings.msg_stopped_preview")
+                } else {
+                    self.words().msg_stop_no_board
+                };
+                self.report(said, false);
             }
             return;
         };
@@ -299,13 +349,10 @@ impl StudioApp {
                 actions.push(Action::SetLanguage(language));
             }
             ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
-                let stop = egui::Button::new(
-                    egui::RichText::new(format!("■ {}", words.stop)).strong().size(18.0).color(egui::Color32::WHITE),
-                )
-                .fill(egui::Color32::from_rgb(200, 30, 30));
-                if ui.add(stop).on_hover_text("Esc").clicked() {
-                    actions.push(Action::Stop);
-                }
+                // STOP (and Resume) are drawn over everything at the end of the frame
+                // (`stop_on_top`): here their place is kept, so nothing else is put there.
+                let (kept, _) = ui.allocate_exact_size(egui::vec2(STOP_WIDTH, 26.0), egui::Sense::hover());
+                self.window.stop_top = kept.min.y;
                 let (view, family_ui, _) = self.drawing(self.document.project.family);
                 family_ui.toolbar(ui, &view, actions);
             });
@@ -343,6 +390,42 @@ impl StudioApp {
                 });
             }
         });
+    }
+
+    /// STOP — and Resume while STOP holds — in a layer above every window,
+    /// popup and dialog (which are drawn below it), at the toolbar's right
+    /// end: whole and clickable whatever else is open.
+    fn stop_on_top(&mut self, ctx: &egui::Context, actions: &mut Vec<Action>) {
+        let words = self.language.strings();
+        let stopped = self.stopped();
+        // At the window's right edge, level with the toolbar, whatever the
+        // toolbar's own width: STOP never moves and is never pushed off the
+        // window; Resume appears to its left while STOP holds.
+        let right = ctx.content_rect().max.x - STOP_MARGIN;
+        let at = egui::pos2(right - STOP_WIDTH, self.window.stop_top);
+        let mut drawn = egui::Rect::NOTHING;
+        egui::Area::new(egui::Id::unique("STOP")).order(egui::Order::Tooltip).fixed_pos(at).show(ctx, |ui| {
+            ui.set_width(STOP_WIDTH);
+            ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
+                let stop = egui::Button::new(
+                    egui::RichText::new(format!("■ {}", words.stop)).strong().size(18.0).color(egui::Color32::WHITE),
+                )
+                .fill(egui::Color32::from_rgb(200, 30, 30));
+                let stop = ui.add(stop).on_hover_text("Esc");
+                if stop.clicked() {
+                    actions.push(Action::Stop);
+                }
+                drawn = stop.rect;
+                if stopped {
+                    let resume = ui.button(self.language.word("strings.resume"));
+                    if resume.clicked() {
+                        actions.push(Action::Resume);
+                    }
+                    drawn = drawn.union(resume.rect);
+                }
+            });
+        });
+        self.window.stop_rect = Some(drawn);
     }
 
     /// The status line.
@@ -405,6 +488,8 @@ impl StudioApp {
         self.desks.sound.follow_window(ui.ctx(), document, self.language, &mut actions);
         let document = (&self.document.project, self.document.path.as_ref());
         self.desks.import.export_window(ui.ctx(), document, self.language, &mut actions);
+        // Last, over every window, popup and dialog, whatever their size or language.
+        self.stop_on_top(ui.ctx(), &mut actions);
         for action in actions {
             self.apply(action);
         }

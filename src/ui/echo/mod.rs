@@ -75,6 +75,10 @@ pub enum EchoAction {
 
 impl ActionOf for EchoAction {
     const FAMILY: Family = Family::Echo;
+
+    fn moves_robot(&self) -> bool {
+        matches!(self, Self::Move(_))
+    }
 }
 
 /// The echo board's side of the editor.

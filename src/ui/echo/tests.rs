@@ -60,6 +60,12 @@ fn the_echo_board_is_a_family_of_the_editor_moved_live_on_its_own_emulator() {
     assert!(matches!(stopped, LinkEvent::Driver(BoardEvent::Stopped)), "{stopped:?}");
     assert_eq!(harness.state().status.as_ref().unwrap().text, "the echo board stopped");
 
+    // Until Resume, a move is refused (and said).
+    let before = echo(harness.state()).pose;
+    harness.state_mut().apply(Action::family(EchoAction::Move(40)));
+    assert_eq!(echo(harness.state()).pose, before, "refused after STOP");
+    assert!(harness.state().status.as_ref().unwrap().text.contains("press Resume"));
+    harness.state_mut().apply(Action::Resume);
     // A move is one of its own actions, routed to it alone.
     harness.state_mut().apply(Action::family(EchoAction::Move(500)));
     assert_eq!(echo(harness.state()).pose, 90, "clamped to its range");

@@ -87,4 +87,17 @@ pub enum Plen2Action {
 
 impl ActionOf for Plen2Action {
     const FAMILY: Family = Family::Plen2;
+
+    fn moves_robot(&self) -> bool {
+        matches!(
+            self,
+            Self::SetJoint { .. }
+                | Self::TurnJoint { .. }
+                | Self::Pose(_)
+                | Self::Home
+                | Self::PlayMotion(_)
+                | Self::PlayFrom { .. }
+                | Self::PlayList(_)
+        )
+    }
 }

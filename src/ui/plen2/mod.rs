@@ -434,6 +434,10 @@ impl FamilyBoard for Plen2Ui {
         self.slew = None;
     }
 
+    fn halt(&mut self) -> bool {
+        self.preview.transport.halt()
+    }
+
     /// Moves a streamed motion on, and takes written files' answers; whether something still plays.
     fn tick(&mut self, shell: &mut Shell<'_>, now: Instant) -> bool {
         self.finish_writing(shell);

@@ -25,4 +25,13 @@ pub enum RflexAction {
 
 impl ActionOf for RflexAction {
     const FAMILY: Family = Family::Rflex;
+
+    /// A drive that moves (a stop never waits for Resume), and letting the brake go.
+    fn moves_robot(&self) -> bool {
+        match self {
+            Self::Drive { speed_m_per_s, turn_rad_per_s } => *speed_m_per_s != 0.0 || *turn_rad_per_s != 0.0,
+            Self::SetBrake(on) => !on,
+            _ => false,
+        }
+    }
 }

@@ -66,11 +66,9 @@ impl DrivePanel {
             return;
         }
         self.asked = wanted;
-        if wanted == (0.0, 0.0) {
-            actions.push(Action::Stop);
-        } else {
-            actions.push(Action::family(RflexAction::Drive { speed_m_per_s: wanted.0, turn_rad_per_s: wanted.1 }));
-        }
+        // A key or the pad let go stops the base at once (a drive of nothing):
+        // it is no STOP, so the next key drives again without Resume.
+        actions.push(Action::family(RflexAction::Drive { speed_m_per_s: wanted.0, turn_rad_per_s: wanted.1 }));
     }
 
     /// Draws the panel.
@@ -231,7 +229,8 @@ mod tests {
         harness.key_up(egui::Key::ArrowUp);
         harness.key_up(egui::Key::ArrowLeft);
         harness.step();
-        assert_eq!(harness.state().1.last(), Some(&Action::Stop), "released: stopped at once");
+        let stopped = Action::family(RflexAction::Drive { speed_m_per_s: 0.0, turn_rad_per_s: 0.0 });
+        assert_eq!(harness.state().1.last(), Some(&stopped), "released: stopped at once");
         assert_eq!(harness.state().0.asked(), (0.0, 0.0));
     }
 

@@ -152,7 +152,8 @@ impl FamilyPanels for RflexUi {
     fn while_showing(&self, tab: Tab) -> Option<Action> {
         // The pad, the keys and the gamepad live on the Drive tab: leaving it is letting go.
         let driving = self.drive_asked() != (0.0, 0.0) || self.pad.driving();
-        (tab != Tab::Drive && driving).then_some(Action::Stop)
+        (tab != Tab::Drive && driving)
+            .then(|| Action::family(RflexAction::Drive { speed_m_per_s: 0.0, turn_rad_per_s: 0.0 }))
     }
 
     /// Draws the tab: the drive pad or the telemetry, with the world view beside it.

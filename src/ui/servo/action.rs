@@ -56,8 +56,6 @@ pub enum ServoAction {
         /// Hold (true) or release (false).
         hold: bool,
     },
-    /// Let servos move again after a STOP.
-    Resume,
     /// Start recording the sliders (after a count-in), to be fitted into
     /// actions and a macro running them.
     Record,
@@ -99,4 +97,16 @@ pub enum ServoAction {
 
 impl ActionOf for ServoAction {
     const FAMILY: Family = Family::Servo;
+
+    fn moves_robot(&self) -> bool {
+        matches!(
+            self,
+            Self::SetPose { .. }
+                | Self::TurnServo { .. }
+                | Self::Pose(_)
+                | Self::RunMacro(_)
+                | Self::PlayAction(_)
+                | Self::PlayMacroFrom { .. }
+        )
+    }
 }

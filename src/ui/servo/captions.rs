@@ -24,8 +24,6 @@ crate::words! {
         pub upload_anyway_hint: &'static str,
         /// "Free memory".
         pub free_memory: &'static str,
-        /// "Resume".
-        pub resume: &'static str,
         /// "Read angles".
         pub read_angles: &'static str,
         /// "Capture pose".
@@ -54,8 +52,6 @@ crate::words! {
         pub msg_connected_demo: &'static str,
         /// "STOP: every servo stopped where it is, holding torque".
         pub msg_stopped_all: &'static str,
-        /// "servos may move again".
-        pub msg_resumed: &'static str,
         /// "connect a board to run a macro".
         pub msg_connect_for_macro: &'static str,
         /// "connect a board to pick buttons from its remote".

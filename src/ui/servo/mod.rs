@@ -172,12 +172,6 @@ impl ServoUi {
                     servo.set_hold(servo_id, hold);
                 }
             }
-            ServoAction::Resume => {
-                if let Some(servo) = shell.servo_mut() {
-                    servo.resume();
-                    shell.report(shell.words().servo().msg_resumed, false);
-                }
-            }
             ServoAction::CapturePose { from_board } => self.capture_pose(shell, from_board),
             ServoAction::SetPolling(polling) => self.polling = polling,
             ServoAction::BoardCompare(intent) => self.board_compare(shell, intent),
@@ -353,13 +347,6 @@ impl FamilyPanels for ServoUi {
             }
         }
     }
-
-    fn toolbar(&mut self, ui: &mut egui::Ui, view: &ShellView<'_>, actions: &mut Vec<Action>) {
-        // A board stopped by STOP holds every servo until told to go on.
-        if view.link.is_some_and(BoardLink::stopped) && ui.button(view.language.strings().servo().resume).clicked() {
-            actions.push(Action::family(ServoAction::Resume));
-        }
-    }
 }
 
 impl FamilyBoard for ServoUi {
@@ -401,6 +388,18 @@ impl FamilyBoard for ServoUi {
         match link.stop() {
             None => shell.report(shell.words().servo().msg_stopped_all, false),
             Some(failed) => self.notice(shell, failed),
+        }
+    }
+
+    fn halt(&mut self) -> bool {
+        let previewing = self.figure.transport.halt() | self.preview.take().is_some();
+        self.playing.clear();
+        previewing
+    }
+
+    fn resume(&mut self, shell: &mut Shell<'_>) {
+        if let Some(servo) = shell.servo_mut() {
+            servo.resume();
         }
     }
 
