@@ -19,6 +19,7 @@ use crate::ui::gamepad::PadTarget;
 use crate::ui::i18n::Strings;
 use crate::ui::layout::Layout;
 use crate::ui::remembered::Remembered;
+use crate::ui::shell::StatusLine;
 use crate::ui::shell::{Shell, ShellView};
 use crate::ui::sound::follow::SoundFollower;
 
@@ -144,8 +145,8 @@ pub trait FamilyBoard {
     }
 
     /// Takes its running operation's outcome when it has ended (waiting up to
-    /// `wait`; None: not at all); returns the whole summary it left.
-    fn finish_operation(&mut self, _shell: &mut Shell<'_>, _wait: Option<Duration>) -> Option<(String, bool)> {
+    /// `wait`; None: not at all); returns the whole summary it left, worded in every language.
+    fn finish_operation(&mut self, _shell: &mut Shell<'_>, _wait: Option<Duration>) -> Option<StatusLine> {
         None
     }
 

@@ -11,16 +11,49 @@ use crate::project::Project;
 use crate::ui::board_link::BoardLink;
 use crate::ui::document::Document;
 use crate::ui::files::FileWork;
-use crate::ui::i18n::{Language, Strings};
+use crate::ui::i18n::{Language, Said, Strings};
 use crate::ui::operation::Operation;
 
-/// A line for the status bar.
+/// A line for the status bar, kept as what it means ([`Said`]): another
+/// language chosen while it shows says it again in that language.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct StatusLine {
-    /// The text.
+    /// The text, in the language shown.
     pub text: String,
     /// Whether it reports a failure.
     pub is_error: bool,
+    /// What it means, in every language.
+    said: Said,
+}
+
+impl StatusLine {
+    /// A line that is the same in every language.
+    pub fn new(text: impl Into<String>, is_error: bool) -> Self {
+        let text = text.into();
+        Self { said: Said::fixed(text.clone()), text, is_error }
+    }
+
+    /// A line worded by `word` in every language, shown in `language`.
+    pub fn worded<T: Into<String>>(language: Language, word: impl Fn(Language) -> T, is_error: bool) -> Self {
+        Self::said(language, Said::new(word), is_error)
+    }
+
+    /// A line saying `said`, shown in `language`.
+    pub fn said(language: Language, said: Said, is_error: bool) -> Self {
+        Self { text: said.in_(language).to_string(), is_error, said }
+    }
+
+    /// Its first line only, in every language.
+    pub fn first_line(&self) -> Self {
+        let said = self.said.map(|text| text.lines().next().unwrap_or_default().to_string());
+        let text = self.text.lines().next().unwrap_or_default().to_string();
+        Self { text, is_error: self.is_error, said }
+    }
+
+    /// Says it again in `language`.
+    pub fn reword(&mut self, language: Language) {
+        self.text = self.said.in_(language).to_string();
+    }
 }
 
 /// A board operation as the shell holds it, whatever its family's types.
@@ -137,9 +170,15 @@ impl Shell<'_> {
         self.language.strings()
     }
 
-    /// Says something on the status line.
+    /// Says something on the status line that is the same in every language.
     pub fn report(&mut self, text: impl Into<String>, is_error: bool) {
-        *self.status = Some(StatusLine { text: text.into(), is_error });
+        *self.status = Some(StatusLine::new(text, is_error));
+    }
+
+    /// Says something on the status line, worded by `word` in each language
+    /// (said again in another when the language changes).
+    pub fn say<T: Into<String>>(&mut self, word: impl Fn(Language) -> T, is_error: bool) {
+        *self.status = Some(StatusLine::worded(self.language, word, is_error));
     }
 }
 

@@ -108,3 +108,11 @@ pub fn plen2_ui(app: &StudioApp) -> &Plen2Ui {
 pub fn rflex_ui(app: &StudioApp) -> &RflexUi {
     app.families.of().expect("the editor has the rFLEX family")
 }
+
+/// The open show's run log, in English, a line each (empty with no show open).
+pub fn show_log(app: &StudioApp) -> Vec<String> {
+    let session = app.desks.show.session.as_ref();
+    session
+        .map(|session| session.log(servo_studio::ui::Language::English).into_iter().map(String::from).collect())
+        .unwrap_or_default()
+}

@@ -20,6 +20,7 @@ mod plen2;
 mod pose3d;
 mod preview;
 mod remote;
+mod reworded;
 mod rig3d;
 mod rows;
 mod show;

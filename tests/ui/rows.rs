@@ -37,7 +37,7 @@ fn harness(project: Project, tab: Tab, connect: bool, (width, height): (f32, f32
         assert!(app.link.is_some(), "{:?}", app.status);
     }
     app.apply(UiAction::ShowTab(tab));
-    app.status = Some(StatusLine { text: STATUS.into(), is_error: false });
+    app.status = Some(StatusLine::new(STATUS, false));
     let mut harness = common::ui::builder((width, height))
         .with_accessibility_check(false)
         .build_ui_state(|ui, app: &mut StudioApp| app.show(ui), app);

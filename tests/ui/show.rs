@@ -10,7 +10,7 @@ use std::time::Duration;
 use egui_kittest::kittest::Queryable;
 use servo_studio::show::{Cue, Show, Start};
 use servo_studio::ui::show::ShowAction;
-use servo_studio::ui::{Action, Tab};
+use servo_studio::ui::{Action, Language, Tab};
 
 use crate::cli::play::{Stage, device, logged_until, swinging};
 use crate::common;
@@ -48,10 +48,9 @@ fn the_show_window_lays_out_each_device_s_cues_and_plays_them_on_the_boards() {
     assert!(harness.query_by_label("arms macro 1 0.50–1.50 s").is_some());
     harness.get_by_label("Play on the boards").click();
     common::ui::run_until(&mut harness, "the show ended", |app| {
-        !app.desks.show.playing()
-            && app.desks.show.session.as_ref().unwrap().said.iter().any(|l| l.starts_with("ended after"))
+        !app.desks.show.playing() && common::ui::show_log(app).iter().any(|l| l.starts_with("ended after"))
     });
-    let said = harness.state().desks.show.session.as_ref().unwrap().said.join("\n");
+    let said = common::ui::show_log(harness.state()).join("\n");
     assert!(said.contains("skull answered on") && said.contains("arms answered on"), "{said}");
     logged_until(stage.log("skull"), "ExecuteMacroRequest", Duration::from_secs(10));
     logged_until(stage.log("arms"), "ExecuteMacroRequest", Duration::from_secs(10));
@@ -66,8 +65,8 @@ fn stop_stops_every_board_of_a_show_that_plays() {
     logged_until(stage.log("arms"), "ExecuteMacroRequest", Duration::from_secs(30));
     harness.get_by_label("■ STOP").click();
     common::ui::run_until(&mut harness, "the show stopped", |app| !app.desks.show.playing());
-    let said = harness.state().desks.show.session.as_ref().unwrap().said.join("\n");
-    assert!(said.contains("stopped by STOP: every device was stopped"), "{said}");
+    let said = common::ui::show_log(harness.state()).join("\n");
+    assert!(said.contains("STOP stopped every device"), "{said}");
     for name in ["skull", "arms"] {
         let log = logged_until(stage.log(name), "SetServoParameterRequest", Duration::from_secs(10));
         assert!(log.iter().any(|(_, line)| line.contains("is_start: false")), "{name}: {log:?}");
@@ -160,7 +159,11 @@ fn devices_are_added_and_removed_and_a_port_is_found_by_id() {
     assert_eq!(names(&harness), ["arms", "plen2"]);
     let session = harness.state().desks.show.session.as_ref().unwrap();
     assert_eq!(session.show.cues.iter().map(|c| c.device.as_str()).collect::<Vec<_>>(), ["arms"]);
-    assert!(session.said.iter().any(|line| line == "skull: 1 cues went with it"), "{:?}", session.said);
+    assert!(
+        session.log(Language::English).contains(&"skull: 1 cues went with it"),
+        "{:?}",
+        session.log(Language::English)
+    );
     // Listed off the frame: once they are, the menu shows them.
     common::ui::run_until(&mut harness, "the adapters listed", |app| app.desks.show.adapters_listed());
     harness.query_all_by_label("Find by id").next().unwrap().click();
@@ -234,7 +237,7 @@ fn a_record_pass_joins_into_the_show_and_is_undone_on_its_own() {
     let made = skull.macros.last().unwrap();
     assert_eq!(made.caption, "Recorded passes");
     assert!(show.cues.iter().any(|cue| cue.device == "skull" && cue.start == Start::Macro(made.id)), "cued");
-    let said = harness.state().desks.show.session.as_ref().unwrap().said.join("\n");
+    let said = common::ui::show_log(harness.state()).join("\n");
     assert!(said.contains("skull: 1 passes joined →") && said.contains("steps"), "{said}");
     harness.get_by_label("Undo pass").click();
     harness.run();

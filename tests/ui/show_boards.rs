@@ -118,8 +118,7 @@ fn the_show_plays_on_the_held_boards_and_a_lost_link_stops_every_following_devic
     let mut harness = connected(&stage);
     harness.get_by_label("Play on the boards").click();
     common::ui::run_until(&mut harness, "the show ended", |app| {
-        !app.desks.show.playing()
-            && app.desks.show.session.as_ref().unwrap().said.iter().any(|line| line.starts_with("ended after"))
+        !app.desks.show.playing() && common::ui::show_log(app).iter().any(|line| line.starts_with("ended after"))
     });
     logged_until(stage.log("skull"), "ExecuteMacroRequest", LONG);
     logged_until(stage.log("arms"), "ExecuteMacroRequest", LONG);
@@ -131,9 +130,9 @@ fn the_show_plays_on_the_held_boards_and_a_lost_link_stops_every_following_devic
     gone.child.kill().unwrap();
     gone.child.wait().unwrap();
     common::ui::run_until(&mut harness, "the lost link said", |app| {
-        app.desks.show.session.as_ref().unwrap().said.iter().any(|line| line.contains("arms link lost"))
+        common::ui::show_log(app).iter().any(|line| line.contains("arms link lost"))
     });
-    let said = harness.state().desks.show.session.as_ref().unwrap().said.join("\n");
+    let said = common::ui::show_log(harness.state()).join("\n");
     assert!(said.contains("every device was stopped"), "{said}");
     assert!(!harness.state().desks.show.stage.previewing(), "the preview stopped with the boards");
     logged_until(stage.log("skull"), "is_start: false", LONG);

@@ -36,8 +36,6 @@ pub type Held = (usize, Axis, f64);
 /// What the boards' worker says.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Heard {
-    /// A line for the user.
-    Said(String),
     /// The device at this index answered (how long a command takes to reach it) or did not (why).
     Linked(usize, Result<Duration, Unlinked>),
     /// The device's link was lost (why); `all_stopped`: every device was stopped with it.
@@ -327,28 +325,83 @@ impl Drop for Boards {
     }
 }
 
+/// What [`play_once`] tells as it goes, for its caller to word.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Told {
+    /// The device's `usb:` id found its adapter on another port now.
+    Moved {
+        /// The device's name.
+        device: String,
+        /// Its port as the show names it.
+        port: String,
+        /// The port opened.
+        opened: String,
+    },
+    /// The device answered on its port; how long a command takes to reach it.
+    Answered {
+        /// The device's name.
+        device: String,
+        /// Its port.
+        port: String,
+        /// How long a command takes to reach it.
+        delay: Duration,
+    },
+    /// The device could not be linked: nothing was played.
+    Unlinked {
+        /// The device's name.
+        device: String,
+        /// Its port, if the show gives one.
+        port: Option<String>,
+        /// Why.
+        why: Unlinked,
+    },
+    /// No sound output could be opened (why): the show plays silent.
+    Silent(String),
+    /// The run ended.
+    Ran(crate::show::play::Ran),
+    /// The run was stopped.
+    Stopped(Stopped),
+}
+
+impl std::fmt::Display for Told {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Moved { device, port, opened } => write!(f, "{device}: {port} is {opened} now"),
+            Self::Answered { device, port, delay } => {
+                write!(f, "{device} answered on {port} ({:.1} ms to reach it)", delay.as_secs_f64() * 1000.0)
+            }
+            Self::Unlinked { device, port: None, why } => write!(f, "{device}: {why}"),
+            Self::Unlinked { device, port: Some(port), why } => {
+                write!(f, "{device} did not answer on {port}: {why}; nothing was played")
+            }
+            Self::Silent(why) => write!(f, "no sound output ({why}): playing silent"),
+            Self::Ran(ran) => f.write_str(crate::show::play::ran_words(ran).trim_end()),
+            Self::Stopped(stopped) => write!(f, "{stopped}"),
+        }
+    }
+}
+
 /// Connects every device of `show` and plays it once with its sound (from
-/// `folder`), saying what happens (the show window's Play on the boards
+/// `folder`), telling what happens (the show window's Play on the boards
 /// when the boards are not held).
-pub fn play_once(show: &Show, folder: Option<PathBuf>, stop: Receiver<String>, tell: &dyn Fn(String)) {
+pub fn play_once(show: &Show, folder: Option<PathBuf>, stop: Receiver<String>, tell: &dyn Fn(Told)) {
     let mut stages: Vec<Box<dyn Stage>> = Vec::new();
     for device in &show.devices {
-        let Some(port) = device.port.as_deref() else {
-            tell(format!("{}: {}", device.name, Unlinked::NoPort));
-            return;
-        };
-        if let Ok(opened) = crate::link::by_id::resolve(port)
+        let name = device.name.clone();
+        if let Some(port) = device.port.as_deref()
+            && let Ok(opened) = crate::link::by_id::resolve(port)
             && opened != port.trim()
         {
-            tell(format!("{}: {port} is {opened} now", device.name));
+            tell(Told::Moved { device: name.clone(), port: port.to_string(), opened });
         }
         match connect_one(device) {
             Ok(linked) => {
-                tell(answered(&device.name, port, linked.start_delay));
+                let port = device.port.clone().unwrap_or_default();
+                tell(Told::Answered { device: name, port, delay: linked.start_delay });
                 stages.push(linked.stage);
             }
-            Err(error) => {
-                tell(format!("{} did not answer on {port}: {error}; nothing was played", device.name));
+            Err(why) => {
+                tell(Told::Unlinked { device: name, port: device.port.clone(), why });
                 return;
             }
         }
@@ -358,21 +411,16 @@ pub fn play_once(show: &Show, folder: Option<PathBuf>, stop: Receiver<String>, t
         match crate::audio::output::Speakers::connect() {
             Ok(speakers) => Some((speakers, path)),
             Err(error) => {
-                tell(format!("no sound output ({error}): playing silent"));
+                tell(Told::Silent(error.to_string()));
                 None
             }
         }
     });
     let mut player = Player { show, stages, sound, stop };
     match player.run() {
-        Ok(ran) => crate::show::play::ran_words(&ran).lines().for_each(|line| tell(line.to_string())),
-        Err(stopped) => tell(stopped.to_string()),
+        Ok(ran) => tell(Told::Ran(ran)),
+        Err(stopped) => tell(Told::Stopped(stopped)),
     }
-}
-
-/// "NAME answered on PORT (… ms to reach it)".
-fn answered(name: &str, port: &str, delay: Duration) -> String {
-    format!("{name} answered on {port} ({:.1} ms to reach it)", delay.as_secs_f64() * 1000.0)
 }
 
 /// Connects one device on its port (a `usb:` id found first), its link measured.

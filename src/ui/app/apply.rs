@@ -24,7 +24,7 @@ impl StudioApp {
             Action::CancelConnect => {
                 self.forget_link();
                 if let Some(connecting) = self.links.connecting.take() {
-                    self.report(self.language.connect_cancelled(&connecting.opening.port.to_string()), false);
+                    self.say(|language| language.connect_cancelled(&connecting.opening.port.to_string()), false);
                 }
             }
             Action::ConnectDemo => self.connect_demo(),
@@ -32,23 +32,29 @@ impl StudioApp {
             Action::Disconnect => {
                 self.forget_link();
                 self.drop_link();
-                self.report(self.words().msg_disconnected, false);
+                self.say(|language| language.strings().msg_disconnected, false);
             }
             Action::Stop => self.stop(),
             Action::Resume => self.resume(),
             Action::Import(action) => self.desks.import.apply(action, &self.files.work, &self.document.project),
             Action::Show(action) if self.stopped() && action.moves_robots() => {
-                self.report(self.language.word("strings.msg_press_resume"), true);
+                self.say(|language| language.word("strings.msg_press_resume"), true);
             }
             Action::Show(action) => {
-                if let Some(error) =
+                if let Some(said) =
                     self.desks.show.apply(action, (&self.document.project, self.language), &self.window.waker)
                 {
-                    self.report(error, true);
+                    self.status = Some(said);
                 }
             }
             Action::Sound(action) => self.apply_sound(action),
-            Action::SetLanguage(language) => self.language = language,
+            Action::SetLanguage(language) => {
+                self.language = language;
+                // What the status line says, said again in the new language.
+                if let Some(status) = &mut self.status {
+                    status.reword(language);
+                }
+            }
             Action::SetLiveSpeed(deg_per_s) => self.live_speed = LiveSpeed { deg_per_s }.clamped(),
             Action::ShowTab(tab) => self.window.tab = tab,
             Action::UseGamepad(path) => self.use_gamepad(path),
@@ -77,7 +83,7 @@ impl StudioApp {
             | Action::Terminate => self.apply_file(action),
             // After STOP nothing that moves a robot goes out until Resume: refused, and said.
             Action::Family(action) if action.moves_robot() && self.stopped() => {
-                self.report(self.language.word("strings.msg_press_resume"), true);
+                self.say(|language| language.word("strings.msg_press_resume"), true);
             }
             Action::Family(action) => {
                 let (mut shell, families) = self.split();
@@ -120,7 +126,7 @@ impl StudioApp {
                     self.replace_document(recovery.project, recovery.path);
                     // Recovered work is unsaved until the user saves it.
                     self.document.dirty = true;
-                    self.report(self.words().msg_recovered, false);
+                    self.say(|language| language.strings().msg_recovered, false);
                 }
             }
             Action::DeclineRecovery => {
@@ -159,7 +165,7 @@ impl StudioApp {
             operation.cancel();
             let summary = self.finish_operation(Some(TERMINATE_WAIT));
             let said = match summary {
-                Some((text, _)) => text,
+                Some(said) => said.text,
                 None => self.words().msg_operation_left_running.to_string(),
             };
             let _ = writeln!(std::io::stderr(), "servo-studio: {said}");

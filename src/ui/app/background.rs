@@ -37,7 +37,7 @@ impl StudioApp {
 
     /// Saves the project to `path` off the frame; `then` goes on once it is saved.
     pub(super) fn save_to(&mut self, path: PathBuf, then: Option<AfterUnsaved>) {
-        self.report(format!("{} {}", self.words().msg_saving, path.display()), false);
+        self.say(|language| format!("{} {}", language.strings().msg_saving, path.display()), false);
         self.files.save(path, &self.document.project, self.document.revision(), then);
     }
 
@@ -49,7 +49,7 @@ impl StudioApp {
     /// Writes the recovery file off the frame (one at a time).
     pub(super) fn autosave_later(&mut self) {
         if let Err(error) = self.files.autosave_later(self.document.path.as_deref(), &self.document.project) {
-            self.report(self.language.autosave_failed(&error), true);
+            self.say(|language| language.autosave_failed(&error), true);
         }
     }
 
@@ -72,7 +72,7 @@ impl StudioApp {
         match answer {
             FileAnswer::Saved { path, revision, result, then } => self.saved(path, revision, result, then),
             FileAnswer::Opened { path, result } => self.opened(path, result),
-            FileAnswer::AutosaveFailed(error) => self.report(self.language.autosave_failed(&error), true),
+            FileAnswer::AutosaveFailed(error) => self.say(|language| language.autosave_failed(&error), true),
         }
     }
 
@@ -81,7 +81,7 @@ impl StudioApp {
             Ok(()) => {
                 files::remember(&mut self.files.recent, &path);
                 self.files.clear_recovery_later();
-                self.report(format!("{} {}", self.words().msg_saved, path.display()), false);
+                self.say(|language| format!("{} {}", language.strings().msg_saved, path.display()), false);
                 self.document.path = Some(path);
                 // Edits made while the file was written are still unsaved.
                 if self.document.revision() == revision {
@@ -92,7 +92,7 @@ impl StudioApp {
                     self.after_unsaved(next);
                 }
             }
-            Err(error) => self.report(self.language.save_error(&error), true),
+            Err(error) => self.say(|language| language.save_error(&error), true),
         }
     }
 

@@ -42,7 +42,7 @@ impl StudioApp {
 
     /// Hands the running operation's outcome to the family that started it,
     /// waiting up to `wait` for it (None: not at all); returns the whole summary it left.
-    pub(super) fn finish_operation(&mut self, wait: Option<Duration>) -> Option<(String, bool)> {
+    pub(super) fn finish_operation(&mut self, wait: Option<Duration>) -> Option<StatusLine> {
         self.operation.as_ref()?;
         let mut summary = None;
         self.each_family(|family_ui, shell| {
@@ -53,8 +53,8 @@ impl StudioApp {
         // The status line follows: what the connection said of the board
         // ("factory-fresh") may no longer hold.
         // The status line holds its first line; the whole text (what an upload left) is returned.
-        if let Some((text, is_error)) = &summary {
-            self.report(text.lines().next().unwrap_or_default(), *is_error);
+        if let Some(said) = &summary {
+            self.status = Some(said.first_line());
         }
         summary
     }
@@ -73,14 +73,14 @@ impl StudioApp {
         let name = match PortName::parse(port) {
             Ok(name) => name,
             Err(error) => {
-                self.report(self.language.link_error(&error), true);
+                self.say(|language| language.link_error(&error), true);
                 return;
             }
         };
         let family = self.document.project.family;
         let settings = crate::link::LineSettings { baud, ..crate::device::line_settings(family) };
         if !quiet {
-            self.report(self.language.connecting_to(&name.to_string()), false);
+            self.say(|language| language.connecting_to(&name.to_string()), false);
         }
         let opening = Opening::start(name, settings, self.links.opener.clone(), self.window.waker.clone());
         let starter = self.family_ui(family).link_starter(baud);
@@ -97,10 +97,12 @@ impl StudioApp {
             Ok(link) => {
                 self.link = Some(link);
                 self.connected();
-                let text = self.family_ui(family).demo_connected(self.words());
-                self.report(text, false);
+                let family_ui = self.family_ui(family);
+                let said =
+                    StatusLine::worded(self.language, |language| family_ui.demo_connected(language.strings()), false);
+                self.status = Some(said);
             }
-            Err(error) => self.report(error.worded(self.language), true),
+            Err(error) => self.say(|language| error.worded(language), true),
         }
     }
 
@@ -118,16 +120,16 @@ impl StudioApp {
             Ok(connection) => match starter(&self.document.project, connection, self.window.waker.clone()) {
                 Ok(device) => {
                     let label = opening.port.to_string();
-                    self.report(format!("{} {label}", self.words().msg_connected_to), false);
+                    self.say(|language| format!("{} {label}", language.strings().msg_connected_to), false);
                     self.link = Some(BoardLink::new(device, label.clone()));
                     self.link_made(&label, baud, family);
                     self.connected();
                 }
-                Err(error) => self.report(error.worded(self.language), true),
+                Err(error) => self.say(|language| error.worded(language), true),
             },
             // Still gone: tried again at the next turn.
             Err(_) if quiet => {}
-            Err(error) => self.report(self.language.link_error(&error), true),
+            Err(error) => self.say(|language| language.link_error(&error), true),
         }
     }
 

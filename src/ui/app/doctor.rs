@@ -58,7 +58,7 @@ impl StudioApp {
     /// `connect`, connects to it as that family once known.
     pub(super) fn find_board(&mut self, port: &str, connect: bool) {
         if let Err(error) = PortName::parse(port) {
-            self.report(self.language.link_error(&error), true);
+            self.say(|language| language.link_error(&error), true);
             return;
         }
         self.ask(&[port.to_string()], connect);
@@ -68,7 +68,7 @@ impl StudioApp {
     pub(super) fn find_every_board(&mut self) {
         let ports: Vec<String> = self.links.ports.iter().map(|info| info.name.clone()).collect();
         if ports.is_empty() {
-            self.report(self.words().msg_no_ports, true);
+            self.say(|language| language.strings().msg_no_ports, true);
             return;
         }
         self.ask(&ports, false);
@@ -92,11 +92,10 @@ impl StudioApp {
             }
         });
         if let Err(error) = spawned {
-            self.report(self.language.no_worker(&error), true);
+            self.say(|language| language.no_worker(&error), true);
             return;
         }
-        let text = self.language.probing(&ports.join(", "));
-        self.report(text, false);
+        self.say(|language| language.probing(&ports.join(", ")), false);
         self.links.doctor.lines = ports
             .iter()
             .map(|port| DoctorLine { port: port.clone(), text: self.language.probing(port), offer: None, busy: true })
@@ -145,8 +144,14 @@ impl StudioApp {
             }
             match (connect, offer, &outcome) {
                 (true, Some((family, baud)), _) => self.connect_found(&port, family, baud),
-                (true, None, Ok(result)) => self.report(self.language.auto_found_nothing(&port, result), true),
-                (_, offer, _) => self.report(text, offer.is_none()),
+                (true, None, Ok(result)) => self.say(|language| language.auto_found_nothing(&port, result), true),
+                (_, offer, _) => {
+                    let said = |language: Language| match &outcome {
+                        Ok(result) => language.probe_result(&port, result),
+                        Err(error) => language.link_error(error),
+                    };
+                    self.say(said, offer.is_none());
+                }
             }
         }
         if self.links.doctor.probing.as_ref().is_some_and(|probing| probing.left == 0) {
@@ -178,7 +183,7 @@ impl StudioApp {
         self.links.doctor.current = Some(Current { port: port.to_string(), baud, family, description });
         self.links.doctor.lines.clear();
         if again {
-            self.report(self.language.reconnected(port), false);
+            self.say(|language| language.reconnected(port), false);
         }
     }
 
@@ -192,10 +197,10 @@ impl StudioApp {
         );
         match current.filter(|_| physical) {
             Some(link) => {
-                self.report(self.language.lost_waiting(reason, &link.port), true);
+                self.say(|language| language.lost_waiting(reason, &link.port), true);
                 self.links.doctor.lost = Some(Lost { link, next_try: Instant::now() + RETRY_EVERY, other_said: false });
             }
-            None => self.report(self.language.link_ended(reason), true),
+            None => self.say(|language| language.link_ended(reason), true),
         }
     }
 
@@ -222,8 +227,12 @@ impl StudioApp {
             (Some(info), Some(was)) if &info.description != was => {
                 if !lost.other_said {
                     lost.other_said = true;
-                    let text = self.language.other_device(&link.port, &info.description);
-                    self.report(text, true);
+                    let said = StatusLine::worded(
+                        self.language,
+                        |language| language.other_device(&link.port, &info.description),
+                        true,
+                    );
+                    self.status = Some(said);
                 }
                 false
             }

@@ -22,10 +22,10 @@ impl StudioApp {
                 let loaded = opened.loaded;
                 let unknown = loaded.unknown_key_count();
                 if unknown == 0 {
-                    self.report(format!("{} {}", self.words().msg_opened, path.display()), false);
+                    self.say(|language| format!("{} {}", language.strings().msg_opened, path.display()), false);
                 } else {
                     // A misspelt key changes nothing in the editor: say so.
-                    self.report(self.language.opened_with_unknown_keys(&path, &loaded.unknown_keys, unknown), true);
+                    self.say(|language| language.opened_with_unknown_keys(&path, &loaded.unknown_keys, unknown), true);
                 }
                 match opened.kind {
                     InputKind::ProjectFile => {
@@ -40,7 +40,7 @@ impl StudioApp {
                     }
                 }
             }
-            Err(error) => self.report(self.language.open_error(&path, &error), true),
+            Err(error) => self.say(|language| language.open_error(&path, &error), true),
         }
     }
 
@@ -48,7 +48,7 @@ impl StudioApp {
         match next {
             AfterUnsaved::New => {
                 self.replace_document(Project::empty(self.document.project.family), None);
-                self.report(self.words().msg_new_project, false);
+                self.say(|language| language.strings().msg_new_project, false);
             }
             AfterUnsaved::Open(path) => self.files.open_later(path),
             AfterUnsaved::Quit => {
@@ -234,8 +234,7 @@ impl StudioApp {
             return;
         };
         if self.files.browser.is_none() {
-            let said = crate::say!(self.language, "browser.no_service", install);
-            self.report(said, false);
+            self.say(|language| crate::say!(language, "browser.no_service", install), false);
         }
         let folder = self.document.path.as_deref().and_then(std::path::Path::parent).map_or_else(
             || std::env::var_os("HOME").map_or_else(|| PathBuf::from("."), PathBuf::from),

@@ -62,7 +62,7 @@ impl StudioApp {
             self.apply(action);
         }
         if let Some(why) = gone {
-            self.report(format!("{}: {why}", self.words().msg_pad_gone), true);
+            self.say(|language| format!("{}: {why}", language.strings().msg_pad_gone), true);
         }
         moving
     }

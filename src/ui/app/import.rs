@@ -12,24 +12,25 @@ impl StudioApp {
         for finished in self.desks.import.poll(self.document.project.family) {
             match finished {
                 Finished::Failed(error) => {
-                    let said = crate::ui::import::note(&error, crate::ui::import::words(self.language));
-                    self.report(said, true);
+                    self.say(|language| crate::ui::import::note(&error, crate::ui::import::words(language)), true);
                 }
                 Finished::MapSaved(path) => {
-                    self.report(format!("{} {}", self.words().msg_saved, path.display()), false);
+                    self.say(|language| format!("{} {}", language.strings().msg_saved, path.display()), false);
                 }
                 Finished::Built(built) => self.add_imported(*built),
                 Finished::Exported(path, report) => {
-                    let words = crate::ui::import::words(self.language);
                     let notes = report.approximated.len() + report.dropped.len();
                     let said = report.converted.join("; ");
-                    let text = format!("{} {}: {said}", words.exported, path.display());
-                    let text = if notes > 0 {
-                        format!("{text} ({})", report.lines()[report.converted.len()..].join("; "))
-                    } else {
-                        text
+                    let worded = |language| {
+                        let text =
+                            format!("{} {}: {said}", crate::ui::import::words(language).exported, path.display());
+                        if notes > 0 {
+                            format!("{text} ({})", report.lines()[report.converted.len()..].join("; "))
+                        } else {
+                            text
+                        }
                     };
-                    self.report(text, false);
+                    self.say(worded, false);
                 }
             }
         }
@@ -53,7 +54,10 @@ impl StudioApp {
                     notes.into_iter().for_each(|note| report.approximated(note));
                     Edit::SetPlen2(Box::new(merged))
                 }
-                Err(error) => return self.report(error, true),
+                Err(error) => {
+                    return self
+                        .say(|language| crate::ui::import::note(&error, crate::ui::import::words(language)), true);
+                }
             },
             // A base, or any other family: the import window offers nothing to create.
             _ => return,
@@ -61,7 +65,7 @@ impl StudioApp {
         self.document.apply(edit, None);
         self.document.seal();
         let said = report.converted.join("; ");
-        self.report(format!("{}: {said}", crate::ui::import::words(self.language).imported), false);
+        self.say(|language| format!("{}: {said}", crate::ui::import::words(language).imported), false);
         self.desks.import.created(report);
     }
 }

@@ -179,7 +179,13 @@ impl StudioApp {
     }
 
     fn report(&mut self, text: impl Into<String>, is_error: bool) {
-        self.status = Some(StatusLine { text: text.into(), is_error });
+        self.status = Some(StatusLine::new(text, is_error));
+    }
+
+    /// Says something on the status line, worded by `word` in each language
+    /// (said again in another when the language changes).
+    fn say<T: Into<String>>(&mut self, word: impl Fn(Language) -> T, is_error: bool) {
+        self.status = Some(StatusLine::worded(self.language, word, is_error));
     }
 
     /// The shell as a family's ui changes it, and the families' uis (borrowed apart).
@@ -274,7 +280,7 @@ impl StudioApp {
             let (mut shell, family_ui) = self.parts(link.family());
             family_ui.resume(&mut shell);
         }
-        self.report(self.language.word("strings.msg_resumed"), false);
+        self.say(|language| language.word("strings.msg_resumed"), false);
     }
 
     /// STOP, the family's way (always visible, Esc too), and everything the
@@ -296,12 +302,14 @@ impl StudioApp {
         }
         let Some(link) = &self.link else {
             if !show_boards {
-                let said = if previewing {
-                    self.language.word("strings.msg_stopped_preview")
-                } else {
-                    self.words().msg_stop_no_board
+                let said = |language: Language| {
+                    if previewing {
+                        language.word("strings.msg_stopped_preview")
+                    } else {
+                        language.strings().msg_stop_no_board
+                    }
                 };
-                self.report(said, false);
+                self.say(said, false);
             }
             return;
         };

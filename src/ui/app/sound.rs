@@ -31,17 +31,19 @@ impl StudioApp {
     fn say_sound(&mut self) {
         if let Some(said) = self.desks.sound.take_said() {
             use crate::ui::sound::Said;
-            let words = crate::ui::sound::lane::words(self.language);
-            let said = match said {
-                Said::NoOutput(why) => format!("{} ({why})", words.no_output),
-                Said::Stalled { server, after_s } => {
-                    let server = server.unwrap_or_else(|| words.the_server.to_string());
-                    let why = crate::say!(self.language, "lane.stalled", server, after_s);
-                    format!("{} ({why})", words.no_output)
+            let worded = |language| {
+                let words = crate::ui::sound::lane::words(language);
+                match &said {
+                    Said::NoOutput(why) => format!("{} ({why})", words.no_output),
+                    Said::Stalled { server, after_s } => {
+                        let server = server.clone().unwrap_or_else(|| words.the_server.to_string());
+                        let why = crate::say!(language, "lane.stalled", server, after_s);
+                        format!("{} ({why})", words.no_output)
+                    }
+                    Said::Line(line) => line.clone(),
                 }
-                Said::Line(line) => line,
             };
-            self.report(said, false);
+            self.say(worded, false);
         }
     }
 }

@@ -11,12 +11,14 @@ mod doctor;
 mod headings;
 mod messages;
 mod operations;
+mod said;
 mod strings;
 
 #[cfg(test)]
 use catalogue::holes;
 pub use catalogue::{Catalogue, Table, Word, fill};
 pub use doctor::{PadConflict, SaidWords};
+pub use said::Said;
 pub use strings::Strings;
 
 /// Where the interface's language is kept in an egui context.

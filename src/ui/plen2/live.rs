@@ -152,7 +152,7 @@ impl Plen2Ui {
         let Some(motion) = plen2.motions.iter_mut().find(|m| m.slot == slot) else { return };
         if motion.frames.len() >= MAX_FRAMES {
             let full = crate::project::ProblemKind::OutOfRange { field: "frames", value: 21, min: 1, max: 20 };
-            shell.report(shell.language.problem(&full), true);
+            shell.say(|language| language.problem(&full), true);
             return;
         }
         motion.frames.push(Frame::new(500, pose));
@@ -174,10 +174,9 @@ impl Plen2Ui {
     /// selected when recording began (one undo step); says how it went.
     pub(super) fn finish_recording(&mut self, shell: &mut Shell<'_>) {
         let Some(Recording { slot, after, recorder }) = self.recording.take() else { return };
-        let (shared, captions) = (shell.words(), shell.words().plen2());
         let names = Joint::ALL.iter().map(|joint| joint.name().to_string()).collect();
         let Some(recorded) = recorder.finish(names) else {
-            shell.report(shared.msg_nothing_recorded, true);
+            shell.say(|language| language.strings().msg_nothing_recorded, true);
             return;
         };
         let rows = recorded.resample(PLEN2_UPDATE_MS);
@@ -185,7 +184,7 @@ impl Plen2Ui {
         let Some(motion) = plen2.motions.iter_mut().find(|m| m.slot == slot) else { return };
         let allowed = MAX_FRAMES.saturating_sub(motion.frames.len());
         if allowed == 0 {
-            shell.report(captions.msg_no_room, true);
+            shell.say(|language| language.strings().plen2().msg_no_room, true);
             return;
         }
         // From the frame it goes after (the robot's frame buffer holds it then).
@@ -201,7 +200,7 @@ impl Plen2Ui {
                 (fitted, Some(wider))
             }
             Err(FitError::TooLong { .. }) => {
-                shell.report(captions.msg_recording_too_long, true);
+                shell.say(|language| language.strings().plen2().msg_recording_too_long, true);
                 return;
             }
         };
@@ -213,17 +212,21 @@ impl Plen2Ui {
         // Update counts at most an hour's: exact.
         #[allow(clippy::cast_precision_loss)]
         let seconds = rows.len() as f64 * PLEN2_UPDATE_MS / 1000.0;
-        let mut said = format!(
-            "{}: {seconds:.1} s → {count} {} {after} · {} {:.1}°",
-            shared.msg_recorded,
-            captions.frames_inserted_after,
-            shared.largest_error,
-            fitted.max_error / 10.0
-        );
-        if let Some(wider) = widened {
-            said.push_str(&format!(" ({} → {:.1}°)", captions.tolerance_widened, wider / 10.0));
-        }
-        shell.report(said, false);
+        let said = |language: crate::ui::i18n::Language| {
+            let (shared, captions) = (language.strings(), language.strings().plen2());
+            let mut said = format!(
+                "{}: {seconds:.1} s → {count} {} {after} · {} {:.1}°",
+                shared.msg_recorded,
+                captions.frames_inserted_after,
+                shared.largest_error,
+                fitted.max_error / 10.0
+            );
+            if let Some(wider) = widened {
+                said.push_str(&format!(" ({} → {:.1}°)", captions.tolerance_widened, wider / 10.0));
+            }
+            said
+        };
+        shell.say(said, false);
     }
 
     /// Plays a play list: `#RI` and a `#PU` each at once, then `#PO`, which

@@ -177,7 +177,7 @@ impl Plen2Ui {
 
     fn start(&mut self, shell: &mut Shell<'_>, kind: Plen2Kind, project: Plen2Project) {
         let Some(robot) = shell.plen2() else {
-            shell.report(shell.words().msg_connect_first, true);
+            shell.say(|language| language.strings().msg_connect_first, true);
             return;
         };
         let requester = robot.requester();
@@ -241,8 +241,10 @@ impl Plen2Ui {
             match (file.export, result) {
                 (true, Ok(())) => self.result = Some(Plen2Result::Exported(file.path)),
                 (true, Err(error)) => self.result = Some(Plen2Result::ExportFailed(language.save_error(&error))),
-                (false, Ok(())) => shell.report(format!("{} {}", shell.words().msg_saved, file.path.display()), false),
-                (false, Err(error)) => shell.report(language.save_error(&error), true),
+                (false, Ok(())) => {
+                    shell.say(|language| format!("{} {}", language.strings().msg_saved, file.path.display()), false);
+                }
+                (false, Err(error)) => shell.say(|language| language.save_error(&error), true),
             }
         }
     }
@@ -411,7 +413,7 @@ impl FamilyBoard for Plen2Ui {
     fn notice(&mut self, shell: &mut Shell<'_>, notice: FamilyNotice) {
         if let Some(plen2::Plen2Notice::Widened(widened)) = notice.of(Family::Plen2) {
             // Not an error: the upload goes on, more carefully.
-            shell.report(widened.worded(shell.language), false);
+            shell.say(|language| widened.worded(language), false);
         }
     }
 
@@ -426,7 +428,7 @@ impl FamilyBoard for Plen2Ui {
         if let Some(link) = shell.link.as_mut() {
             let _ = link.stop();
         }
-        shell.report(shell.words().plen2().msg_plen2_stopped, false);
+        shell.say(|language| language.strings().plen2().msg_plen2_stopped, false);
     }
 
     fn disconnected(&mut self) {
@@ -444,10 +446,19 @@ impl FamilyBoard for Plen2Ui {
         self.advance_slew(shell, now) | self.advance_stream(shell, now)
     }
 
-    fn finish_operation(&mut self, shell: &mut Shell<'_>, wait: Option<std::time::Duration>) -> Option<(String, bool)> {
+    fn finish_operation(
+        &mut self,
+        shell: &mut Shell<'_>,
+        wait: Option<std::time::Duration>,
+    ) -> Option<crate::ui::shell::StatusLine> {
         let (_, outcome) = RunningOperation::finished::<Plen2Kind, Plen2Outcome, Plen2Item>(shell.operation, wait)?;
         self.finish(outcome);
-        self.summary(shell.language)
+        let (_, is_error) = self.summary(shell.language)?;
+        Some(crate::ui::shell::StatusLine::worded(
+            shell.language,
+            |language| self.summary(language).map(|(text, _)| text).unwrap_or_default(),
+            is_error,
+        ))
     }
 }
 

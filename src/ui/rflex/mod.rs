@@ -90,8 +90,11 @@ impl RflexUi {
                 if let Some(base) = shell.rflex_mut() {
                     base.set_brake(on);
                     // The connection message said "braked": the status follows the brake.
-                    let words = shell.words();
-                    shell.report(if on { words.rflex().msg_brake_on } else { words.rflex().msg_brake_released }, false);
+                    let said = |language: crate::ui::i18n::Language| {
+                        let words = language.strings().rflex();
+                        if on { words.msg_brake_on } else { words.msg_brake_released }
+                    };
+                    shell.say(said, false);
                 }
             }
             RflexAction::SetSonar(on) => {
@@ -233,7 +236,7 @@ impl FamilyBoard for RflexUi {
             // Both axes to 0 at once (never fails; a lost link is reported by pump).
             let _ = link.stop();
         }
-        shell.report(shell.words().rflex().msg_base_stopped, false);
+        shell.say(|language| language.strings().rflex().msg_base_stopped, false);
     }
 
     /// A new connection: the sonar as the project starts it, the pad at rest.
@@ -250,7 +253,7 @@ impl FamilyBoard for RflexUi {
     fn notice(&mut self, shell: &mut Shell<'_>, notice: FamilyNotice) {
         if notice.of::<RflexNotice>(Family::Rflex) == Some(&RflexNotice::Silent) {
             self.disconnected();
-            shell.report(shell.words().rflex().msg_base_silent, true);
+            shell.say(|language| language.strings().rflex().msg_base_silent, true);
         }
     }
 }

@@ -151,7 +151,7 @@ impl ServoUi {
     /// moving, the command sent the line's time early).
     pub(super) fn run_macro(&mut self, shell: &mut Shell<'_>, macro_id: i32) {
         let Some(servo) = shell.servo_mut() else {
-            shell.report(shell.words().servo().msg_connect_for_macro, true);
+            shell.say(|language| language.strings().servo().msg_connect_for_macro, true);
             return;
         };
         let requester = servo.requester();
@@ -183,14 +183,14 @@ impl ServoUi {
         let speed = shell.speed;
         if let Some(link) = shell.servo() {
             if link.stopped {
-                shell.report(shell.words().servo().msg_press_resume, true);
+                shell.say(|language| language.strings().servo().msg_press_resume, true);
                 return;
             }
             let reading = link.servos.get(&servo_id).map(|state| state.angle);
             let from = (before, reading, link.servos_read_at);
             let servo_move = self.limited_move(speed, (servo, degree), from, LIVE_MOVE_INTERVAL_10MS);
             if let Err(error) = link.live_move(vec![servo_move]) {
-                shell.report(error.worded(shell.language), true);
+                shell.say(|language| error.worded(language), true);
             }
         }
     }
@@ -222,25 +222,25 @@ impl ServoUi {
             .map(|servo| Step::new(servo.id, servo.clamp(angle(servo.id, servo.home_deg)), CAPTURED_STEP_INTERVAL_10MS))
             .collect();
         if steps.is_empty() {
-            shell.report(shell.words().servo().msg_nothing_to_capture, true);
+            shell.say(|language| language.strings().servo().msg_nothing_to_capture, true);
             return;
         }
         let id = next_free_id(project.actions.iter().map(|action| action.id));
         let caption = format!("{} {id}", shell.words().pose);
         shell.document.apply(Edit::AddAction(ProjectAction { id, caption: caption.clone(), steps }), None);
-        shell.report(format!("{} {id} \"{caption}\"", shell.words().servo().msg_captured), false);
+        shell.say(|language| format!("{} {id} \"{caption}\"", language.strings().servo().msg_captured), false);
     }
 
     /// Fits what was recorded into steps — one action each, and a macro
     /// running them in order — and adds them (one undo step); says how it went.
     pub(super) fn finish_recording(&mut self, shell: &mut Shell<'_>) {
         let Some(recorder) = self.recording.take() else { return };
-        let (shared, captions) = (shell.words(), shell.words().servo());
+        let captions = shell.words().servo();
         let project = &shell.document.project.servo;
         let names = project.servos.iter().map(|servo| servo.id.to_string()).collect();
         let rows = recorder.finish(names).map(|recorded| recorded.resample(SERVO_UPDATE_MS)).unwrap_or_default();
         let Some((first, rest)) = rows.split_first().filter(|(_, rest)| !rest.is_empty()) else {
-            shell.report(shared.msg_nothing_recorded, true);
+            shell.say(|language| language.strings().msg_nothing_recorded, true);
             return;
         };
         // From where the servos were when recording began, within 1°.
@@ -260,15 +260,18 @@ impl ServoUi {
         // Update counts at most an hour's: exact.
         #[allow(clippy::cast_precision_loss)]
         let seconds = rest.len() as f64 * SERVO_UPDATE_MS / 1000.0;
-        shell.report(
-            format!(
-                "{}: {seconds:.1} s → {} {} {macro_id} \"{caption}\" · {} {:.1}°",
-                shared.msg_recorded,
-                added.len(),
-                if added.len() == 1 { captions.action_run_by_macro } else { captions.actions_run_by_macro },
-                shared.largest_error,
-                fitted.max_error
-            ),
+        shell.say(
+            |language| {
+                let (shared, captions) = (language.strings(), language.strings().servo());
+                format!(
+                    "{}: {seconds:.1} s → {} {} {macro_id} \"{caption}\" · {} {:.1}°",
+                    shared.msg_recorded,
+                    added.len(),
+                    if added.len() == 1 { captions.action_run_by_macro } else { captions.actions_run_by_macro },
+                    shared.largest_error,
+                    fitted.max_error
+                )
+            },
             false,
         );
     }
@@ -321,7 +324,7 @@ impl ServoUi {
 
     fn play_parts(&mut self, shell: &mut Shell<'_>, parts: Vec<Part>) {
         if shell.servo().is_none() {
-            shell.report(shell.words().servo().msg_connect_for_play, true);
+            shell.say(|language| language.strings().servo().msg_connect_for_play, true);
             return;
         }
         self.playing = parts.into();
@@ -351,19 +354,19 @@ impl ServoUi {
         }
         let Some(link) = shell.servo() else {
             self.playing.clear();
-            shell.report(shell.words().servo().msg_connect_for_play, true);
+            shell.say(|language| language.strings().servo().msg_connect_for_play, true);
             return;
         };
         if link.stopped {
             self.playing.clear();
-            shell.report(shell.words().servo().msg_press_resume, true);
+            shell.say(|language| language.strings().servo().msg_press_resume, true);
             return;
         }
         if !moves.is_empty()
             && let Err(error) = link.move_now(moves.clone())
         {
             self.playing.clear();
-            shell.report(error.worded(shell.language), true);
+            shell.say(|language| error.worded(language), true);
             return;
         }
         let longest = moves.iter().map(|m| u64::from(m.interval_10ms.max(0).unsigned_abs()) * 10).max().unwrap_or(0);
@@ -396,7 +399,7 @@ impl ServoUi {
         self.picked_button = Some(button_id);
         let Some(table) = shell.document.project.servo.joystick_tables.get(table_index) else { return };
         if table.buttons.iter().any(|button| button.id == button_id) {
-            shell.report(format!("{} 0x{button_id:08x}", shell.words().servo().msg_picked), false);
+            shell.say(|language| format!("{} 0x{button_id:08x}", language.strings().servo().msg_picked), false);
             return;
         }
         let mut table = table.clone();
@@ -409,6 +412,6 @@ impl ServoUi {
             uninterruptible: false,
         });
         shell.document.apply(Edit::SetTable { index: table_index, table }, None);
-        shell.report(format!("{} 0x{button_id:08x}", shell.words().servo().msg_added_button), false);
+        shell.say(|language| format!("{} 0x{button_id:08x}", language.strings().servo().msg_added_button), false);
     }
 }

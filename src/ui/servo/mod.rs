@@ -189,7 +189,7 @@ impl ServoUi {
                     servo.subscribe_buttons(true);
                     self.picking = table_index;
                 }
-                None => shell.report(shell.words().servo().msg_connect_for_pick, true),
+                None => shell.say(|language| language.strings().servo().msg_connect_for_pick, true),
             },
         }
     }
@@ -386,7 +386,7 @@ impl FamilyBoard for ServoUi {
         self.playing.clear();
         let Some(link) = shell.link.as_mut() else { return };
         match link.stop() {
-            None => shell.report(shell.words().servo().msg_stopped_all, false),
+            None => shell.say(|language| language.strings().servo().msg_stopped_all, false),
             Some(failed) => self.notice(shell, failed),
         }
     }
@@ -424,19 +424,28 @@ impl FamilyBoard for ServoUi {
         self.preview.is_some() || !self.playing.is_empty()
     }
 
-    fn finish_operation(&mut self, shell: &mut Shell<'_>, wait: Option<std::time::Duration>) -> Option<(String, bool)> {
+    fn finish_operation(
+        &mut self,
+        shell: &mut Shell<'_>,
+        wait: Option<std::time::Duration>,
+    ) -> Option<crate::ui::shell::StatusLine> {
         let (operation, outcome) = crate::ui::shell::RunningOperation::finished(shell.operation, wait)?;
         self.finish(&operation, outcome);
-        self.summary(shell.language)
+        let (_, is_error) = self.summary(shell.language)?;
+        Some(crate::ui::shell::StatusLine::worded(
+            shell.language,
+            |language| self.summary(language).map(|(text, _)| text).unwrap_or_default(),
+            is_error,
+        ))
     }
 
     fn notice(&mut self, shell: &mut Shell<'_>, notice: FamilyNotice) {
         let Some(notice) = notice.of::<ServoNotice>(Family::Servo).cloned() else { return };
         match notice {
             ServoNotice::Button { button_id, event } => self.button(shell, button_id, event),
-            ServoNotice::SendFailed(error) => shell.report(words::send_failed(shell.language, &error), true),
-            ServoNotice::RequestFailed(error) => shell.report(error.worded(shell.language), true),
-            ServoNotice::MacroRefused => shell.report(shell.words().servo().msg_macro_refused, true),
+            ServoNotice::SendFailed(error) => shell.say(|language| words::send_failed(language, &error), true),
+            ServoNotice::RequestFailed(error) => shell.say(|language| error.worded(language), true),
+            ServoNotice::MacroRefused => shell.say(|language| language.strings().servo().msg_macro_refused, true),
             // The link takes these itself.
             ServoNotice::Log(_) | ServoNotice::Disconnected(_) => {}
         }

@@ -182,7 +182,7 @@ fn run(
 impl ServoUi {
     fn start(&mut self, shell: &mut Shell<'_>, kind: ServoKind) {
         let Some(link) = shell.servo() else {
-            shell.report(shell.words().msg_connect_first, true);
+            shell.say(|language| language.strings().msg_connect_first, true);
             return;
         };
         let requester = link.requester();

@@ -58,7 +58,7 @@ pub(super) fn devices_ui(
             session.ports.remove(index);
         }
         if cues > 0 {
-            session.said.push(format!("{name}: {cues} {}", words.cues_removed));
+            session.said.push(super::said_by(|words| format!("{name}: {cues} {}", words.cues_removed)));
         }
     }
     ui.add_enabled_ui(editable, |ui| ui.menu_button(words.add_device, |ui| add_menu(ui, session, words, actions)));

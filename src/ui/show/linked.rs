@@ -4,7 +4,7 @@
 //! the boards uses these links, and STOP, a lost link the show needs,
 //! Disconnect or closing the window stops them all.
 
-use crate::ui::i18n::Worded;
+use crate::ui::i18n::{Said, Worded};
 use std::time::Duration;
 
 use crate::link::Waker;
@@ -21,7 +21,7 @@ pub enum LinkState {
     /// It answered: how long a command takes to reach it.
     Answered(Duration),
     /// It did not answer: why.
-    Silent(String),
+    Silent(Said),
     /// Its link was lost: why.
     Lost(String),
 }
@@ -42,7 +42,7 @@ pub struct Linked {
 #[derive(Debug, Default, PartialEq)]
 pub struct Taken {
     /// Lines for the user.
-    pub said: Vec<String>,
+    pub said: Vec<Said>,
     /// Every device was stopped (a lost link the show needs): the preview stops too.
     pub all_stopped: bool,
 }
@@ -55,18 +55,20 @@ impl Linked {
     }
 
     /// Takes in what the boards said.
-    pub fn poll(&mut self, show: &Show, words: &ShowWords) -> Taken {
+    pub fn poll(&mut self, show: &Show) -> Taken {
         let mut taken = Taken::default();
         let name = |index: usize| show.devices.get(index).map_or("?", |device| device.name.as_str()).to_string();
         for heard in self.boards.heard() {
             match heard {
-                Heard::Said(line) => taken.said.push(line),
                 Heard::Linked(index, answered) => {
                     let state = match answered {
                         Ok(delay) => LinkState::Answered(delay),
                         Err(unlinked) => {
-                            let why = unlinked.worded(words.lang);
-                            taken.said.push(format!("{} {}: {why}", name(index), words.silent));
+                            let why = Said::new(|language| unlinked.worded(language));
+                            let device = name(index);
+                            taken.said.push(super::said_by(|words| {
+                                format!("{device} {}: {}", words.silent, why.in_(words.lang))
+                            }));
                             LinkState::Silent(why)
                         }
                     };
@@ -75,8 +77,11 @@ impl Linked {
                     }
                 }
                 Heard::Lost { device, why, all_stopped } => {
-                    let then = if all_stopped { words.all_stopped } else { "" };
-                    taken.said.push(format!("{} {} ({why}){then}", name(device), words.lost));
+                    let named = name(device);
+                    taken.said.push(super::said_by(|words| {
+                        let then = if all_stopped { words.all_stopped } else { "" };
+                        format!("{named} {} ({why}){then}", words.lost)
+                    }));
                     taken.all_stopped |= all_stopped;
                     if let Some(slot) = self.states.get_mut(device) {
                         *slot = LinkState::Lost(why);
@@ -85,8 +90,8 @@ impl Linked {
                 Heard::Played(played) => {
                     self.playing = false;
                     match played {
-                        Ok(ran) => taken.said.extend(super::said::ran(&ran, words)),
-                        Err(stopped) => taken.said.push(stopped.worded(words.lang)),
+                        Ok(ran) => taken.said.extend(super::said::ran(&ran)),
+                        Err(stopped) => taken.said.push(Said::new(|language| stopped.worded(language))),
                     }
                 }
             }
@@ -150,7 +155,7 @@ pub fn state_words(state: &LinkState, words: &ShowWords) -> (String, bool) {
     match state {
         LinkState::Asking => (words.asking.to_string(), true),
         LinkState::Answered(delay) => (format!("● {} ({:.1} ms)", words.answered, delay.as_secs_f64() * 1000.0), true),
-        LinkState::Silent(why) => (format!("{}: {why}", words.silent), false),
+        LinkState::Silent(why) => (format!("{}: {}", words.silent, why.in_(words.lang)), false),
         LinkState::Lost(why) => (format!("{}: {why}", words.lost), false),
     }
 }

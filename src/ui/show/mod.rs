@@ -14,6 +14,7 @@ mod stage;
 mod words;
 
 use crate::ui::i18n::Worded;
+use crate::ui::shell::StatusLine;
 use std::path::PathBuf;
 
 use crossbeam_channel::{Receiver, Sender};
@@ -24,7 +25,7 @@ use crate::project::Project;
 use crate::show::play::cue_length_ms;
 use crate::show::{Show, Start};
 pub use crate::ui::action::ShowAction;
-use crate::ui::i18n::Language;
+use crate::ui::i18n::{Language, Said};
 use linked::LinkState;
 pub use linked::Linked;
 pub use words::{ShowWords, words};
@@ -38,16 +39,26 @@ pub struct ShowSession {
     pub show: Show,
     /// Each device's port, as typed.
     pub ports: Vec<String>,
-    /// What playing it said, line by line.
-    pub said: Vec<String>,
+    /// What playing it said, line by line (in every language).
+    pub said: Vec<Said>,
 }
 
 struct Running {
     stop: Sender<String>,
-    said: Receiver<String>,
+    told: Receiver<crate::show::boards::Told>,
+}
+
+/// A line worded from the show window's words, in every language.
+pub(crate) fn said_by(word: impl Fn(&ShowWords) -> String) -> Said {
+    Said::new(|language| word(words(language)))
 }
 
 impl ShowSession {
+    /// The run log, each line in `language`.
+    pub fn log(&self, language: Language) -> Vec<&str> {
+        self.said.iter().map(|line| line.in_(language)).collect()
+    }
+
     /// The show with each device's port as typed (none where the field is empty).
     pub fn with_ports(&self) -> Show {
         let mut show = self.show.clone();
@@ -98,11 +109,14 @@ impl ShowDesk {
         action: ShowAction,
         (project, language): (&Project, Language),
         waker: &Waker,
-    ) -> Option<String> {
+    ) -> Option<StatusLine> {
         match action {
             ShowAction::Open(path) => match Show::open(&path) {
                 Ok(show) => self.opened(Some(path), show),
-                Err(error) => return Some(format!("{}: {}", path.display(), error.worded(language))),
+                Err(error) => {
+                    let said = |language: Language| format!("{}: {}", path.display(), error.worded(language));
+                    return Some(StatusLine::worded(language, said, true));
+                }
             },
             ShowAction::OpenProject => self.opened(None, Show::of_one("board", project.clone())),
             ShowAction::AddOpenProject => {
@@ -116,7 +130,10 @@ impl ShowDesk {
                 self.linked = None;
                 match Linked::connect(&session.with_ports(), waker.clone()) {
                     Ok(linked) => self.linked = Some(linked),
-                    Err(error) => return Some(crate::say!(language, "show_said.cannot_connect", error)),
+                    Err(error) => {
+                        let said = |language: Language| crate::say!(language, "show_said.cannot_connect", error);
+                        return Some(StatusLine::worded(language, said, true));
+                    }
                 }
             }
             ShowAction::Boards(false) => self.let_boards_go(words(language)),
@@ -141,7 +158,7 @@ impl ShowDesk {
                     return self.apply(ShowAction::Preview(true), (project, language), waker);
                 }
             }
-            ShowAction::RecordPass(false) => self.end_pass(words(language)),
+            ShowAction::RecordPass(false) => self.end_pass(),
             ShowAction::UndoPass => {
                 if let Some(session) = &mut self.session {
                     self.passes.undo(&mut session.show);
@@ -152,7 +169,10 @@ impl ShowDesk {
                 let Some(session) = &mut self.session else { return None };
                 let text = session.show.to_json();
                 if let Err(error) = crate::project::atomic_write_all(&[(path.as_path(), text.as_bytes())]) {
-                    return Some(crate::say!(language, "show_said.cannot_save", file = path.display(), error));
+                    let said = |language: Language| {
+                        crate::say!(language, "show_said.cannot_save", file = path.display(), error)
+                    };
+                    return Some(StatusLine::worded(language, said, true));
                 }
                 session.path = Some(path);
             }
@@ -177,17 +197,17 @@ impl ShowDesk {
     }
 
     /// Ends the pass being recorded (and the preview under it) and joins it, saying how.
-    fn end_pass(&mut self, words: &ShowWords) {
+    fn end_pass(&mut self) {
         self.stage.stop_preview();
         self.stage.held = None;
         let Some(session) = &mut self.session else { return };
-        if let Some(said) = self.passes.end(&mut session.show, words) {
+        if let Some(said) = self.passes.end(&mut session.show) {
             session.said.push(said);
         }
     }
 
     /// Adds every device of a show file, or a project file as one device named after it.
-    fn add_from(&mut self, path: &std::path::Path, language: Language) -> Option<String> {
+    fn add_from(&mut self, path: &std::path::Path, language: Language) -> Option<StatusLine> {
         let session = self.session.as_mut()?;
         match Show::open(path) {
             Ok(show) => {
@@ -196,7 +216,10 @@ impl ShowDesk {
                 }
                 None
             }
-            Err(error) => Some(format!("{}: {}", path.display(), error.worded(language))),
+            Err(error) => {
+                let said = |language: Language| format!("{}: {}", path.display(), error.worded(language));
+                Some(StatusLine::worded(language, said, true))
+            }
         }
     }
 
@@ -217,7 +240,7 @@ impl ShowDesk {
 
     /// Serves remote control on the show's boards: the open project as a
     /// show when none is open, its boards connected when they are not.
-    fn serve(&mut self, project: &Project, language: Language, waker: &Waker) -> Option<String> {
+    fn serve(&mut self, project: &Project, language: Language, waker: &Waker) -> Option<StatusLine> {
         if self.session.is_none() {
             self.opened(None, Show::of_one("board", project.clone()));
         }
@@ -267,17 +290,17 @@ impl ShowDesk {
             return;
         }
         let (stop, stopped) = crossbeam_channel::unbounded();
-        let (say, said) = crossbeam_channel::unbounded();
+        let (tell, told) = crossbeam_channel::unbounded();
         session.said.clear();
         let spawned = std::thread::Builder::new().name("show".into()).spawn(move || {
-            let tell = |line: String| {
-                let _ = say.send(line);
+            let tell = |what| {
+                let _ = tell.send(what);
                 waker();
             };
             crate::show::boards::play_once(&show, folder, stopped, &tell);
         });
         if spawned.is_ok() {
-            self.running = Some(Running { stop, said });
+            self.running = Some(Running { stop, told });
         }
     }
 
@@ -287,8 +310,8 @@ impl ShowDesk {
         // Every line said so far; the player is done once its end of the channel is gone.
         let mut lines = Vec::new();
         let ended = loop {
-            match running.said.try_recv() {
-                Ok(line) => lines.push(line),
+            match running.told.try_recv() {
+                Ok(told) => lines.extend(said::told(&told)),
                 Err(crossbeam_channel::TryRecvError::Empty) => break false,
                 Err(crossbeam_channel::TryRecvError::Disconnected) => break true,
             }
@@ -302,9 +325,9 @@ impl ShowDesk {
     }
 
     /// Takes in what the held boards said; a lost link the show needs stops the preview too.
-    fn poll_boards(&mut self, words: &ShowWords) {
+    fn poll_boards(&mut self) {
         let (Some(linked), Some(session)) = (&mut self.linked, &mut self.session) else { return };
-        let taken = linked.poll(&session.show, words);
+        let taken = linked.poll(&session.show);
         session.said.extend(taken.said);
         if taken.all_stopped {
             self.stage.stop_preview();
@@ -338,7 +361,7 @@ impl ShowDesk {
             linked.set_speed(self.live_speed.0);
             self.live_speed.1 = Some(self.live_speed.0);
         }
-        self.poll_boards(words);
+        self.poll_boards();
         let playing = self.playing();
         let Some(session) = &mut self.session else { return };
         // Listed again every few seconds while the window is open (an adapter plugged in meanwhile).
@@ -405,9 +428,9 @@ fn session_ui(
     // Play, Save and Stop all first, where a tall show does not scroll them away.
     let problem = session.show.check().err().map(|error| error.worded(words.lang));
     buttons(ui, session, (playing, links.is_some()), problem.is_none(), words, actions);
-    egui::ScrollArea::vertical().id_salt("show-said").max_height(90.0).show(ui, |ui| {
+    egui::ScrollArea::vertical().id_salt("show-said").max_height(150.0).show(ui, |ui| {
         for line in &session.said {
-            ui.label(egui::RichText::new(line).small());
+            ui.label(line.in_(words.lang));
         }
     });
     ui.separator();

@@ -6,7 +6,7 @@
 //! (`show::passes`), cued at the first pass's start. **Undo pass** takes the
 //! last pass back, the show as it was before it.
 
-use crate::ui::i18n::Worded;
+use crate::ui::i18n::{Said, Worded};
 use std::collections::BTreeMap;
 
 use super::{ShowAction, ShowWords};
@@ -65,7 +65,7 @@ impl Passes {
     }
 
     /// Ends the pass and joins it into the show; what to say.
-    pub fn end(&mut self, show: &mut Show, words: &ShowWords) -> Option<String> {
+    pub fn end(&mut self, show: &mut Show) -> Option<Said> {
         let pass = self.recording.take()?;
         let device = pass.device.clone();
         let before = (show.clone(), self.recorded.clone(), self.made.clone());
@@ -73,23 +73,25 @@ impl Passes {
         recorded.push(pass);
         match passes::join(show, &recorded, &device, self.made.get(&device)) {
             Ok(joined) => {
-                let cut = cut_short(show, &device, &joined.made, words);
                 self.undo.push(before);
                 self.recorded = recorded;
                 self.made.insert(device.clone(), joined.made.clone());
-                let unit = if matches!(joined.made, Made::Servo { .. }) { words.steps } else { words.frames };
-                Some(format!(
-                    "{device}: {} {} → {} {unit} · {} {:.1}° ({} {:.1}°){cut}",
-                    self.recorded.iter().filter(|p| p.device == device).count(),
-                    words.passes_joined,
-                    joined.moves,
-                    words.largest_error,
-                    joined.max_error_deg,
-                    words.tolerance,
-                    joined.tolerance_deg
-                ))
+                let passes = self.recorded.iter().filter(|p| p.device == device).count();
+                Some(super::said_by(|words| {
+                    let cut = cut_short(show, &device, &joined.made, words);
+                    let unit = if matches!(joined.made, Made::Servo { .. }) { words.steps } else { words.frames };
+                    format!(
+                        "{device}: {passes} {} → {} {unit} · {} {:.1}° ({} {:.1}°){cut}",
+                        words.passes_joined,
+                        joined.moves,
+                        words.largest_error,
+                        joined.max_error_deg,
+                        words.tolerance,
+                        joined.tolerance_deg
+                    )
+                }))
             }
-            Err(error) => Some(format!("{device}: {}", error.worded(words.lang))),
+            Err(error) => Some(Said::new(|language| format!("{device}: {}", error.worded(language)))),
         }
     }
 

@@ -2,14 +2,13 @@
 //! or play, how a run went, why passes did not join. The command line says
 //! the same in English (the types' own `Display`).
 
-use super::ShowWords;
 use crate::remote::guard::{SHORTEST_TOKEN, ServeError};
 use crate::say;
 use crate::show::ShowError;
-use crate::show::boards::Unlinked;
+use crate::show::boards::{Told, Unlinked};
 use crate::show::passes::JoinError;
 use crate::show::play::{Ran, Stopped};
-use crate::ui::i18n::{Language, Worded};
+use crate::ui::i18n::{Language, Said, Worded};
 
 impl Worded for ShowError {
     fn worded(&self, language: Language) -> String {
@@ -63,6 +62,8 @@ impl Worded for ServeError {
 impl Worded for Stopped {
     fn worded(&self, language: Language) -> String {
         match self {
+            // The editor's own STOP is named as its button is.
+            Self::Asked(by) if by == "STOP" => say!(language, "show_said.stopped_by_stop"),
             Self::Asked(by) => say!(language, "show_said.stopped_by", by),
             Self::Lost { device, why } => say!(language, "show_said.lost", device, why),
             Self::Failed { device, why } => say!(language, "show_said.failed", device, why),
@@ -83,22 +84,46 @@ impl Worded for JoinError {
 
 /// What a run did, a line each: every start (as its cue is captioned) and
 /// how late it was written, every device played on without, and when it ended.
-pub fn ran(ran: &Ran, words: &ShowWords) -> Vec<String> {
-    let language = words.lang;
-    let mut lines: Vec<String> = ran
+pub fn ran(ran: &Ran) -> Vec<Said> {
+    let mut lines: Vec<Said> = ran
         .sent
         .iter()
         .map(|sent| {
-            let (device, start, late_ms) = (&sent.device, super::cue_caption(&sent.start, words), sent.late_ms());
-            say!(language, "show_said.started", device, start, late_ms)
+            let (device, late_ms) = (&sent.device, sent.late_ms());
+            super::said_by(|words| {
+                let start = super::cue_caption(&sent.start, words);
+                say!(words.lang, "show_said.started", device, start, late_ms)
+            })
         })
         .collect();
     for (device, why) in &ran.lost {
-        lines.push(say!(language, "show_said.played_on_without", device, why));
+        lines.push(Said::new(|language| say!(language, "show_said.played_on_without", device, why)));
     }
     let seconds = ran.ended.saturating_duration_since(ran.zero).as_secs_f64();
-    lines.push(say!(language, "show_said.ended_after", seconds));
+    lines.push(Said::new(|language| say!(language, "show_said.ended_after", seconds)));
     lines
+}
+
+/// What playing once (the boards not held) told, a line each.
+pub fn told(told: &Told) -> Vec<Said> {
+    match told {
+        Told::Moved { device, port, opened } => {
+            vec![Said::new(|language| say!(language, "show_said.port_moved", device, port, opened))]
+        }
+        Told::Answered { device, port, delay } => {
+            let ms = delay.as_secs_f64() * 1000.0;
+            vec![Said::new(|language| say!(language, "show_said.answered_on", device, port, ms))]
+        }
+        Told::Unlinked { device, port: None, why } => {
+            vec![Said::new(|language| format!("{device}: {}", why.worded(language)))]
+        }
+        Told::Unlinked { device, port: Some(port), why } => vec![Said::new(|language| {
+            say!(language, "show_said.did_not_answer_on", device, port, why = why.worded(language))
+        })],
+        Told::Silent(why) => vec![Said::new(|language| say!(language, "show_said.playing_silent", why))],
+        Told::Ran(done) => ran(done),
+        Told::Stopped(stopped) => vec![Said::new(|language| stopped.worded(language))],
+    }
 }
 
 #[cfg(test)]
@@ -136,8 +161,44 @@ mod tests {
             uncertain: std::time::Duration::ZERO,
         };
         let run = Ran { zero: now, sent: vec![sent], ended: now, with_sound: false, lost: Vec::new() };
-        let english = ran(&run, ShowWords::of(Language::English));
+        let said = ran(&run);
+        let english: Vec<&str> = said.iter().map(|line| line.in_(Language::English)).collect();
         assert_eq!(english, ["arm started macro 2, 0.00 ms late", "ended after 0.00 s"]);
-        assert_eq!(ran(&run, ShowWords::of(Language::Japanese))[0], "arm が マクロ 2 を開始、0.00 ms 遅れ");
+        assert_eq!(said[0].in_(Language::Japanese), "arm が マクロ 2 を開始、0.00 ms 遅れ");
+    }
+
+    /// What playing once tells is worded in English as the type says it, and in each language in its own words.
+    #[test]
+    fn playing_once_is_told_in_every_language() {
+        let told = [
+            Told::Moved { device: "arm".into(), port: "usb:0403:6001:A1".into(), opened: "/dev/ttyUSB1".into() },
+            Told::Answered {
+                device: "arm".into(),
+                port: "/dev/ttyUSB1".into(),
+                delay: std::time::Duration::from_micros(1500),
+            },
+            Told::Unlinked { device: "arm".into(), port: None, why: Unlinked::NoPort },
+            Told::Unlinked {
+                device: "arm".into(),
+                port: Some("/dev/ttyUSB1".into()),
+                why: Unlinked::Failed("timed out".into()),
+            },
+            Told::Silent("no server".into()),
+            Told::Stopped(Stopped::Lost { device: "arm".into(), why: "EOF".into() }),
+        ];
+        for each in &told {
+            let said = super::told(each);
+            assert_eq!(said.len(), 1);
+            assert_eq!(said[0].in_(Language::English), each.to_string());
+            for language in [Language::Japanese, Language::Korean, Language::TraditionalChinese] {
+                let words = said[0].in_(language);
+                assert!(words.contains("arm") || words.contains("no server"), "{language:?}: {words}");
+                assert_ne!(words, each.to_string(), "{language:?} says it in English");
+            }
+        }
+        // The editor's STOP is named as its button is named in each language.
+        let stopped = Stopped::Asked("STOP".into());
+        assert_eq!(stopped.worded(Language::Korean), "정지 버튼으로 모든 장치를 정지했습니다");
+        assert!(!stopped.worded(Language::Japanese).contains("STOP"));
     }
 }
