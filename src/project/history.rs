@@ -56,6 +56,10 @@ pub enum Step {
     Project(Box<Project>),
     /// The live pose before a turn in the 3D view.
     Pose(LivePose),
+    /// An edit made beside the project (a pass recorded in the show window,
+    /// which keeps its own before and after): the project before it, when
+    /// the edit changed the project too.
+    Beside(Option<Box<Project>>),
 }
 
 /// Most undo steps kept.
@@ -88,6 +92,40 @@ impl History {
         self.redo.clear();
         self.push(Step::Pose(before));
         self.open_key = None;
+    }
+
+    /// Records an edit made beside the project (see [`Step::Beside`]):
+    /// `before` is the project before it, when it changes the project too.
+    pub fn record_beside(&mut self, before: Option<&Project>) {
+        self.redo.clear();
+        self.push(Step::Beside(before.map(|project| Box::new(project.clone()))));
+        self.open_key = None;
+    }
+
+    /// Whether the step undo would take back is one made beside the project.
+    pub fn beside_on_top(&self) -> bool {
+        matches!(self.undo.last(), Some(Step::Beside(_)))
+    }
+
+    /// Whether the step redo would bring back is one made beside the project.
+    pub fn beside_to_redo(&self) -> bool {
+        matches!(self.redo.last(), Some(Step::Beside(_)))
+    }
+
+    /// Forgets what was made beside the project (its keeper is gone: the
+    /// show window closed): a step that changed the project too stays, as an
+    /// edit of the project; the rest go.
+    pub fn forget_beside(&mut self) {
+        let keep = |steps: &mut Vec<Step>| {
+            steps.retain(|step| !matches!(step, Step::Beside(None)));
+            for step in steps.iter_mut() {
+                if let Step::Beside(Some(project)) = step {
+                    *step = Step::Project(project.clone());
+                }
+            }
+        };
+        keep(&mut self.undo);
+        keep(&mut self.redo);
     }
 
     fn push(&mut self, step: Step) {
@@ -129,6 +167,7 @@ impl History {
         match step {
             Step::Project(_) => Step::Project(Box::new(current.clone())),
             Step::Pose(pose) => Step::Pose(pose_now(pose)),
+            Step::Beside(before) => Step::Beside(before.as_ref().map(|_| Box::new(current.clone()))),
         }
     }
 
@@ -160,15 +199,35 @@ mod tests {
     fn undo(history: &mut History, current: &Project) -> Option<Project> {
         match history.undo(current, Clone::clone)? {
             Step::Project(project) => Some(*project),
-            Step::Pose(pose) => panic!("a pose step: {pose:?}"),
+            other => panic!("not a project step: {other:?}"),
         }
     }
 
     fn redo(history: &mut History, current: &Project) -> Option<Project> {
         match history.redo(current, Clone::clone)? {
             Step::Project(project) => Some(*project),
-            Step::Pose(pose) => panic!("a pose step: {pose:?}"),
+            other => panic!("not a project step: {other:?}"),
         }
+    }
+
+    #[test]
+    fn a_step_made_beside_the_project_is_one_step_in_order_and_outlives_its_keeper_as_an_edit() {
+        let mut history = History::default();
+        history.record(&with_id(1), None);
+        history.record_beside(Some(&with_id(2)));
+        history.record_beside(None);
+        assert!(history.beside_on_top());
+        assert_eq!(history.undo(&with_id(3), Clone::clone), Some(Step::Beside(None)));
+        assert!(history.beside_to_redo());
+        // Undone, the step that changed the project too brings back the project before it; redo, the one after.
+        assert_eq!(history.undo(&with_id(3), Clone::clone), Some(Step::Beside(Some(Box::new(with_id(2))))));
+        assert_eq!(history.redo(&with_id(2), Clone::clone), Some(Step::Beside(Some(Box::new(with_id(3))))));
+        // The show closed: the step without a project goes, the other stays as an edit of the project.
+        history.forget_beside();
+        assert!(!history.beside_on_top() && !history.can_redo());
+        assert_eq!(undo(&mut history, &with_id(3)), Some(with_id(2)));
+        assert_eq!(undo(&mut history, &with_id(2)), Some(with_id(1)));
+        assert!(!history.can_undo());
     }
 
     #[test]

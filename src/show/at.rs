@@ -138,6 +138,18 @@ pub fn hold(posed: &mut Posed, axis: Axis, value: f64) {
     }
 }
 
+/// The value of `axis` in `posed`, as [`hold`] takes it (degrees); none
+/// where the pose has no such axis.
+pub fn axis_value(posed: &Posed, axis: Axis) -> Option<f64> {
+    match (posed, axis) {
+        (Posed::Servos(degrees), Axis::Servo(id)) => degrees.get(&id).copied(),
+        (Posed::Joints(values), Axis::Joint(joint)) => {
+            values.get(usize::from(joint)).map(|&tenths| f64::from(tenths) / 10.0)
+        }
+        _ => None,
+    }
+}
+
 /// Where `seconds` at `speed_m_s` turning `turn_deg_s` take a base from `from`.
 fn arc(from: Place, speed_m_s: f64, turn_deg_s: f64, seconds: f64) -> Place {
     let heading = from.heading_deg.to_radians();

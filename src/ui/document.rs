@@ -19,6 +19,17 @@ pub struct Document {
     revision: u64,
 }
 
+/// What an undo or redo changed.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Undone {
+    /// The project.
+    Project,
+    /// The live pose: the live side moves to it.
+    Pose(LivePose),
+    /// An edit made beside the project (a show's pass): its keeper takes it back or brings it again.
+    Beside,
+}
+
 /// Revisions are unique across documents, so a cache keyed by one never
 /// mistakes a newly opened project for the previous one.
 static NEXT_REVISION: AtomicU64 = AtomicU64::new(1);
@@ -68,28 +79,66 @@ impl Document {
         self.history.record_pose(before);
     }
 
-    /// Undoes the last step; a pose step's pose is returned, for the live side
-    /// to move to (`pose_now`: the live pose of that family now, for redo).
-    pub fn undo(&mut self, pose_now: impl FnOnce(&LivePose) -> LivePose) -> Option<LivePose> {
+    /// Records an edit made beside the project (a show window's pass) as one
+    /// undo step; `project`: what it made of the project too, if anything.
+    pub fn apply_beside(&mut self, project: Option<Project>) {
+        match project {
+            Some(project) if project != self.project => {
+                self.history.record_beside(Some(&self.project));
+                self.project = project;
+                self.dirty = true;
+                self.revision = next_revision();
+            }
+            _ => self.history.record_beside(None),
+        }
+    }
+
+    /// Whether the step undo would take back was made beside the project.
+    pub fn beside_on_top(&self) -> bool {
+        self.history.beside_on_top()
+    }
+
+    /// Whether the step redo would bring back was made beside the project.
+    pub fn beside_to_redo(&self) -> bool {
+        self.history.beside_to_redo()
+    }
+
+    /// Forgets the steps made beside the project (their keeper closed).
+    pub fn forget_beside(&mut self) {
+        self.history.forget_beside();
+    }
+
+    /// Undoes the last step and says what it was, for the side that keeps
+    /// it to follow (`pose_now`: the live pose of that family now, for redo).
+    pub fn undo(&mut self, pose_now: impl FnOnce(&LivePose) -> LivePose) -> Option<Undone> {
         let step = self.history.undo(&self.project, pose_now)?;
-        self.show(step)
+        Some(self.show(step))
     }
 
     /// Redoes the last undone step, as [`Self::undo`].
-    pub fn redo(&mut self, pose_now: impl FnOnce(&LivePose) -> LivePose) -> Option<LivePose> {
+    pub fn redo(&mut self, pose_now: impl FnOnce(&LivePose) -> LivePose) -> Option<Undone> {
         let step = self.history.redo(&self.project, pose_now)?;
-        self.show(step)
+        Some(self.show(step))
     }
 
-    fn show(&mut self, step: UndoStep) -> Option<LivePose> {
+    fn show(&mut self, step: UndoStep) -> Undone {
+        let mut project_back = |project: Box<Project>| {
+            self.project = *project;
+            self.dirty = true;
+            self.revision = next_revision();
+        };
         match step {
             UndoStep::Project(project) => {
-                self.project = *project;
-                self.dirty = true;
-                self.revision = next_revision();
-                None
+                project_back(project);
+                Undone::Project
             }
-            UndoStep::Pose(pose) => Some(pose),
+            UndoStep::Pose(pose) => Undone::Pose(pose),
+            UndoStep::Beside(project) => {
+                if let Some(project) = project {
+                    project_back(project);
+                }
+                Undone::Beside
+            }
         }
     }
 

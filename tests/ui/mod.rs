@@ -16,6 +16,7 @@ mod import_board;
 mod joystick;
 mod log;
 mod macros;
+mod passes;
 mod plen2;
 mod pose3d;
 mod preview;

@@ -160,7 +160,7 @@ fn devices_are_added_and_removed_and_a_port_is_found_by_id() {
     let session = harness.state().desks.show.session.as_ref().unwrap();
     assert_eq!(session.show.cues.iter().map(|c| c.device.as_str()).collect::<Vec<_>>(), ["arms"]);
     assert!(
-        session.log(Language::English).contains(&"skull: 1 cues went with it"),
+        session.log(Language::English).contains(&"skull: 1 cue went with it"),
         "{:?}",
         session.log(Language::English)
     );
@@ -238,7 +238,7 @@ fn a_record_pass_joins_into_the_show_and_is_undone_on_its_own() {
     assert_eq!(made.caption, "Recorded passes");
     assert!(show.cues.iter().any(|cue| cue.device == "skull" && cue.start == Start::Macro(made.id)), "cued");
     let said = common::ui::show_log(harness.state()).join("\n");
-    assert!(said.contains("skull: 1 passes joined →") && said.contains("steps"), "{said}");
+    assert!(said.contains("skull: 1 pass joined → ") && said.contains(" step"), "{said}");
     harness.get_by_label("Undo pass").click();
     harness.run();
     let show = &harness.state().desks.show.session.as_ref().unwrap().show;

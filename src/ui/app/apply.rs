@@ -4,6 +4,8 @@
 use super::*;
 use crate::device::speed::LiveSpeed;
 use crate::project::LivePose;
+use crate::ui::document::Undone;
+use crate::ui::show::ShowAction;
 
 impl StudioApp {
     /// Applies one action. The only place that changes the editor's state.
@@ -40,13 +42,7 @@ impl StudioApp {
             Action::Show(action) if self.stopped() && action.moves_robots() => {
                 self.say(|language| language.word("strings.msg_press_resume"), true);
             }
-            Action::Show(action) => {
-                if let Some(said) =
-                    self.desks.show.apply(action, (&self.document.project, self.language), &self.window.waker)
-                {
-                    self.status = Some(said);
-                }
-            }
+            Action::Show(action) => self.apply_show(action),
             Action::Sound(action) => self.apply_sound(action),
             Action::SetLanguage(language) => {
                 self.language = language;
@@ -146,9 +142,35 @@ impl StudioApp {
         let (mut shell, families) = self.split();
         // A turn in the 3D view is undone by moving the live pose back.
         let now = |pose: &LivePose| families.get(pose.family()).live_pose().unwrap_or_else(|| pose.clone());
-        let pose = if undo { shell.document.undo(now) } else { shell.document.redo(now) };
-        if let Some(pose) = pose {
-            families.get_mut(pose.family()).restore_pose(&mut shell, pose);
+        let undone = if undo { shell.document.undo(now) } else { shell.document.redo(now) };
+        match undone {
+            Some(Undone::Pose(pose)) => families.get_mut(pose.family()).restore_pose(&mut shell, pose),
+            // A show's pass: the show window takes it back or joins it again.
+            Some(Undone::Beside) if undo => self.desks.show.undo_pass(),
+            Some(Undone::Beside) => self.desks.show.redo_pass(),
+            Some(Undone::Project) | None => {}
+        }
+    }
+
+    /// A show window's action, then what it made of the editor's history: a
+    /// pass joined is one undo step (and an edit of the project when it was
+    /// recorded on it); a show opened or closed takes its passes' steps with it.
+    fn apply_show(&mut self, action: ShowAction) {
+        let opens_or_closes = matches!(action, ShowAction::Open(_) | ShowAction::OpenProject | ShowAction::Close);
+        if action == ShowAction::UndoPass {
+            if self.document.beside_on_top() {
+                self.undo_redo(true);
+            }
+            return;
+        }
+        if let Some(said) = self.desks.show.apply(action, (&self.document.project, self.language), &self.window.waker) {
+            self.status = Some(said);
+        }
+        if let Some(project) = self.desks.show.take_joined() {
+            self.document.apply_beside(project);
+        }
+        if opens_or_closes {
+            self.document.forget_beside();
         }
     }
 

@@ -490,6 +490,9 @@ impl StudioApp {
             self.desks.pad.state.as_ref().map(|state| state.axes().collect()).unwrap_or_default();
         // A remote's poses keep to the editor's live speed limit.
         self.desks.show.live_speed.0 = self.live_speed;
+        // The device that is the editor's project is the project as it is now (edited, undone, redone).
+        self.desks.show.follow_editor(&self.document.project, self.document.revision());
+        self.desks.show.passes.undo_reaches = self.document.beside_on_top();
         self.desks.show.window(ui.ctx(), (self.language, &pad), &mut actions);
         let follower = self.families.get(self.document.project.family).sound_follower();
         let document = (&self.document.project, follower);

@@ -79,8 +79,15 @@ fn missing(key: &str) -> &'static str {
 }
 
 /// `template` with each `{name}` (or `{name:.N}`, N decimals) replaced by
-/// the argument of that name; a hole with no argument is kept as it is.
+/// the argument of that name; a hole with no argument is kept as it is. A
+/// hole `{name|one|other}` is the word for that many (English's rule: see
+/// [`fill_in`] for a language's own).
 pub fn fill(template: &str, args: &[(&str, &dyn Display)]) -> String {
+    fill_in(Language::English, template, args)
+}
+
+/// [`fill`], a count's word (`{count|frame|frames}`) chosen by `language`'s plural rule.
+pub fn fill_in(language: Language, template: &str, args: &[(&str, &dyn Display)]) -> String {
     let mut out = String::with_capacity(template.len() + 16);
     let mut rest = template;
     while let Some(open) = rest.find('{') {
@@ -91,6 +98,14 @@ pub fn fill(template: &str, args: &[(&str, &dyn Display)]) -> String {
             return out;
         };
         let hole = &after[..close];
+        if let Some((name, forms)) = hole.split_once('|')
+            && let Some((_, value)) = args.iter().find(|(arg, _)| *arg == name)
+        {
+            let (one, other) = forms.split_once('|').unwrap_or((forms, forms));
+            out.push_str(if language.one(&value.to_string()) { one } else { other });
+            rest = &after[close + 1..];
+            continue;
+        }
         let (name, decimals) = match hole.split_once(":.") {
             Some((name, decimals)) => (name, decimals.parse::<usize>().ok()),
             None => (hole, None),
@@ -115,7 +130,7 @@ pub fn holes(template: &str) -> Vec<&str> {
     while let Some(open) = rest.find('{') {
         let after = &rest[open + 1..];
         let Some(close) = after.find('}') else { break };
-        names.push(after[..close].split(':').next().unwrap_or_default());
+        names.push(after[..close].split([':', '|']).next().unwrap_or_default());
         rest = &after[close + 1..];
     }
     names
@@ -125,7 +140,17 @@ impl Language {
     /// The sentence at `key` in this language, its holes filled from `args`
     /// (usually through [`say!`](crate::say)).
     pub fn say(self, key: &str, args: &[(&str, &dyn Display)]) -> String {
-        fill(Catalogue::of(self).text(key), args)
+        fill_in(self, Catalogue::of(self).text(key), args)
+    }
+
+    /// Whether `count` (as written) takes the word for one thing, by this
+    /// language's plural rule: English, exactly 1; Chinese, Japanese and
+    /// Korean have one form for every count (a counter word, not a plural).
+    pub fn one(self, count: &str) -> bool {
+        match self {
+            Self::English => count.trim() == "1",
+            Self::TraditionalChinese | Self::Japanese | Self::Korean => false,
+        }
     }
 
     /// The caption at `key` in this language.
@@ -256,6 +281,23 @@ macro_rules! words {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_count_takes_its_word_by_each_languages_own_rule() {
+        let template = "{count} {count|frame|frames}";
+        let english: Vec<String> =
+            [0, 1, 2, 21].iter().map(|count| fill_in(Language::English, template, &[("count", count)])).collect();
+        assert_eq!(english, ["0 frames", "1 frame", "2 frames", "21 frames"]);
+        assert_eq!(fill_in(Language::English, "{n|one|many}", &[("n", &1.5)]), "many", "1.5 is not one");
+        for language in [Language::TraditionalChinese, Language::Japanese, Language::Korean] {
+            assert!(!language.one("1") && !language.one("2"), "{language:?} has one form");
+            assert_eq!(fill_in(language, "{n|a|b}", &[("n", &1)]), "b");
+        }
+        // Every catalogue's counts: English says "1 device", never "1 devices".
+        let devices = |count: usize| crate::say!(Language::English, "show.device_count", count);
+        assert_eq!((devices(1), devices(3)), ("1 device".to_string(), "3 devices".to_string()));
+        assert_eq!(crate::say!(Language::Japanese, "show.device_count", count = 1), "1 台のデバイス");
+    }
 
     #[test]
     fn holes_are_filled_by_name_with_decimals() {

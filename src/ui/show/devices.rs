@@ -8,6 +8,7 @@ use super::{ShowAction, ShowSession, ShowWords, words::family_name};
 use crate::link::by_id::Attached;
 use crate::project::{Family, Project};
 use crate::ui::Action;
+use crate::ui::i18n::Said;
 
 /// The devices' table, with each held link's state; `editable` while no
 /// show plays and the boards are not held.
@@ -58,7 +59,9 @@ pub(super) fn devices_ui(
             session.ports.remove(index);
         }
         if cues > 0 {
-            session.said.push(super::said_by(|words| format!("{name}: {cues} {}", words.cues_removed)));
+            session
+                .said
+                .push(Said::new(|language| crate::say!(language, "show.cues_went", device = name, count = cues)));
         }
     }
     ui.add_enabled_ui(editable, |ui| ui.menu_button(words.add_device, |ui| add_menu(ui, session, words, actions)));

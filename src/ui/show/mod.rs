@@ -41,6 +41,12 @@ pub struct ShowSession {
     pub ports: Vec<String>,
     /// What playing it said, line by line (in every language).
     pub said: Vec<Said>,
+    /// The device that is the editor's open project (the show was opened
+    /// from it, or it was added): a pass joined into it is an edit of the
+    /// project, and the project's edits reach it.
+    pub editor: Option<String>,
+    /// The document's revision the editor's device last took.
+    synced: Option<u64>,
 }
 
 struct Running {
@@ -74,6 +80,12 @@ impl ShowSession {
         self.ports.push(String::new());
         name
     }
+
+    /// The index of the device that is the editor's project.
+    fn editor_index(&self) -> Option<usize> {
+        let name = self.editor.as_deref()?;
+        self.show.devices.iter().position(|device| device.name == name)
+    }
 }
 
 /// The show window and a show playing.
@@ -88,6 +100,8 @@ pub struct ShowDesk {
     pub stage: stage::Stage,
     /// Record passes: the passes kept and the one being recorded.
     pub passes: record::Passes,
+    /// A pass joined, not yet recorded in the editor's history (see `take_joined`).
+    joined: Option<Option<Project>>,
     /// The boards, held connected (Connect the boards).
     pub linked: Option<Linked>,
     /// Settings → Remote control: its settings and servers.
@@ -118,10 +132,14 @@ impl ShowDesk {
                     return Some(StatusLine::worded(language, said, true));
                 }
             },
-            ShowAction::OpenProject => self.opened(None, Show::of_one("board", project.clone())),
+            ShowAction::OpenProject => self.opened_project(project),
             ShowAction::AddOpenProject => {
                 if let Some(session) = &mut self.session {
-                    session.add("board", project.clone());
+                    let name = session.add("board", project.clone());
+                    // One device is the editor's project: the first added.
+                    if session.editor_index().is_none() {
+                        session.editor = Some(name);
+                    }
                 }
             }
             ShowAction::AddFromFile(path) => return self.add_from(&path, language),
@@ -154,17 +172,14 @@ impl ShowDesk {
             }
             ShowAction::Preview(false) => self.stage.stop_preview(),
             ShowAction::RecordPass(true) => {
-                if self.passes.begin() {
+                let Some(session) = &self.session else { return None };
+                if self.passes.begin(&session.show, self.stage.scrub_ms) {
                     return self.apply(ShowAction::Preview(true), (project, language), waker);
                 }
             }
             ShowAction::RecordPass(false) => self.end_pass(),
-            ShowAction::UndoPass => {
-                if let Some(session) = &mut self.session {
-                    self.passes.undo(&mut session.show);
-                    self.stage.held = None;
-                }
-            }
+            // The editor's Undo takes a pass back (one history): see `undo_pass`.
+            ShowAction::UndoPass => {}
             ShowAction::Save(path) => {
                 let Some(session) = &mut self.session else { return None };
                 let text = session.show.to_json();
@@ -201,8 +216,48 @@ impl ShowDesk {
         self.stage.stop_preview();
         self.stage.held = None;
         let Some(session) = &mut self.session else { return };
-        if let Some(said) = self.passes.end(&mut session.show) {
-            session.said.push(said);
+        let Some((said, joined)) = self.passes.end(&mut session.show) else { return };
+        session.said.push(said);
+        if let Some(device) = joined {
+            // What the pass made of the editor's project, when it was recorded on it.
+            let editor = session.editor_index().filter(|&index| session.show.devices[index].name == device);
+            self.joined = Some(editor.map(|index| session.show.devices[index].project.clone()));
+        }
+    }
+
+    /// A pass joined since this was last asked: what it made of the editor's
+    /// project (`Some(None)`: it joined into another device). The editor
+    /// records it as one step of its undo history.
+    pub fn take_joined(&mut self) -> Option<Option<Project>> {
+        self.joined.take()
+    }
+
+    /// The editor's Undo reached a pass: it is taken back (the show, the
+    /// passes and the log line it said as they were before it).
+    pub fn undo_pass(&mut self) {
+        if let Some(session) = &mut self.session {
+            self.passes.undo(&mut session.show, &mut session.said);
+            self.stage.held = None;
+        }
+    }
+
+    /// The editor's Redo reached a pass: it is joined again.
+    pub fn redo_pass(&mut self) {
+        if let Some(session) = &mut self.session {
+            self.passes.redo(&mut session.show, &mut session.said);
+        }
+    }
+
+    /// The editor's project, as it is now, in the device that is it (the
+    /// project edited, undone or redone since).
+    pub fn follow_editor(&mut self, project: &Project, revision: u64) {
+        let Some(session) = &mut self.session else { return };
+        let Some(index) = session.editor_index() else { return };
+        if session.synced != Some(revision) {
+            session.synced = Some(revision);
+            if session.show.devices[index].project != *project {
+                session.show.devices[index].project = project.clone();
+            }
         }
     }
 
@@ -227,8 +282,21 @@ impl ShowDesk {
         self.stop();
         self.remote.stop(None);
         self.linked = None;
+        // The passes were the last show's.
+        let pad_axis = self.passes.pad_axis;
+        self.passes = record::Passes::default();
+        self.passes.pad_axis = pad_axis;
+        self.joined = None;
         let ports = show.devices.iter().map(|device| device.port.clone().unwrap_or_default()).collect();
-        self.session = Some(ShowSession { path, show, ports, said: Vec::new() });
+        self.session = Some(ShowSession { path, show, ports, said: Vec::new(), editor: None, synced: None });
+    }
+
+    /// The editor's open project as a show of one device, which is it.
+    fn opened_project(&mut self, project: &Project) {
+        self.opened(None, Show::of_one("board", project.clone()));
+        if let Some(session) = &mut self.session {
+            session.editor = session.show.devices.first().map(|device| device.name.clone());
+        }
     }
 
     /// Lets the held boards go (every device stopped, every link closed), and the remote control with them.
@@ -242,7 +310,7 @@ impl ShowDesk {
     /// show when none is open, its boards connected when they are not.
     fn serve(&mut self, project: &Project, language: Language, waker: &Waker) -> Option<StatusLine> {
         if self.session.is_none() {
-            self.opened(None, Show::of_one("board", project.clone()));
+            self.opened_project(project);
         }
         if self.linked.is_none()
             && let Some(said) = self.apply(ShowAction::Boards(true), (project, language), waker)
@@ -424,7 +492,8 @@ fn session_ui(
         .as_ref()
         .and_then(|p| p.file_name())
         .map_or_else(|| words.this_project.to_string(), |n| n.to_string_lossy().into_owned());
-    ui.label(egui::RichText::new(format!("{name} — {} {}", session.show.devices.len(), words.devices)).strong());
+    let devices = crate::say!(words.lang, "show.device_count", count = session.show.devices.len());
+    ui.label(egui::RichText::new(format!("{name} — {devices}")).strong());
     // Play, Save and Stop all first, where a tall show does not scroll them away.
     let problem = session.show.check().err().map(|error| error.worded(words.lang));
     buttons(ui, session, (playing, links.is_some()), problem.is_none(), words, actions);
@@ -444,7 +513,7 @@ fn session_ui(
     }
     stage.span_ms = span;
     stage.ui(ui, (&mut session.show, span), !playing, words, actions);
-    record::passes_ui(ui, (&session.show, pad), passes, !playing, words, actions);
+    record::passes_ui(ui, (&session.show, pad, stage.scrub_ms), passes, !playing, words, actions);
     ui.separator();
     if let Some(problem) = cues::cues_ui(ui, &mut session.show, !playing, words) {
         ui.colored_label(ui.visuals().warn_fg_color, problem);

@@ -25,21 +25,40 @@ pub struct Passes {
     pub recording: Option<Pass>,
     /// What each device's passes made in its project.
     made: BTreeMap<String, Made>,
-    /// Before each pass: the show, the passes and what they made.
-    undo: Vec<(Show, Vec<Pass>, BTreeMap<String, Made>)>,
+    /// Before each pass joined: the show, the passes and what they made, and what the pass said.
+    undo: Vec<Kept>,
+    /// After each pass taken back, to join it again.
+    redo: Vec<Kept>,
     /// The device picked, and its axis.
     device: Option<String>,
     axis: Option<Axis>,
     /// The axis's value now, degrees.
     pub value: f64,
+    /// The device and axis `value` is of (another picked: it is taken from the show).
+    value_of: Option<(String, Axis)>,
+    /// The value when the axis was picked (moved since: the hand's, kept).
+    value_at_pick: Option<f64>,
     /// The gamepad axis that moves it (by code), instead of the slider.
     pub pad_axis: Option<u16>,
+    /// Whether the editor's Undo would take back a pass now (nothing edited since the last).
+    pub undo_reaches: bool,
+}
+
+/// The show and the passes at one step of the history, and the line the
+/// pass between it and the next said (taken off the log while it is undone).
+#[derive(Debug)]
+struct Kept {
+    show: Show,
+    recorded: Vec<Pass>,
+    made: BTreeMap<String, Made>,
+    said: Said,
 }
 
 impl Passes {
     /// Picks the device and axis the next pass records (as the row's boxes do).
     pub fn pick(&mut self, device: &str, axis: Axis) {
         (self.device, self.axis) = (Some(device.to_string()), Some(axis));
+        self.value_at_pick = Some(self.value);
     }
 
     /// The device and axis picked, when both are.
@@ -47,8 +66,30 @@ impl Passes {
         self.device.clone().zip(self.axis)
     }
 
-    /// Begins a pass of the picked axis (none picked: nothing).
-    pub fn begin(&mut self) -> bool {
+    /// The value starts where the picked axis is in `show` at `t_ms` (as
+    /// the stage shows it), once per axis picked: a pass never starts from
+    /// a value left by another axis; the hand moves it from there.
+    pub fn settle(&mut self, show: &Show, t_ms: u64) {
+        let picked = self.picked();
+        if picked.is_none() || picked == self.value_of {
+            return;
+        }
+        let moved_since_picked = self.value_at_pick.is_some_and(|at_pick| at_pick != self.value);
+        if !moved_since_picked
+            && let Some((device, axis)) = &picked
+            && let Some(index) = show.devices.iter().position(|each| each.name == *device)
+            && let Some(value) = crate::show::at::posed_at(show, index, t_ms)
+                .and_then(|posed| crate::show::at::axis_value(&posed, *axis))
+        {
+            self.value = value;
+        }
+        self.value_of = picked;
+    }
+
+    /// Begins a pass of the picked axis (none picked: nothing), from where it
+    /// is in `show` at `t_ms` unless the hand has moved it since it was picked.
+    pub fn begin(&mut self, show: &Show, t_ms: u64) -> bool {
+        self.settle(show, t_ms);
         let Some((device, axis)) = self.picked() else { return false };
         self.recording = Some(Pass { device, axis, samples: Vec::new() });
         true
@@ -64,8 +105,9 @@ impl Passes {
         }
     }
 
-    /// Ends the pass and joins it into the show; what to say.
-    pub fn end(&mut self, show: &mut Show) -> Option<Said> {
+    /// Ends the pass and joins it into the show; what to say, and the
+    /// device it joined into (none: it did not join, said why).
+    pub fn end(&mut self, show: &mut Show) -> Option<(Said, Option<String>)> {
         let pass = self.recording.take()?;
         let device = pass.device.clone();
         let before = (show.clone(), self.recorded.clone(), self.made.clone());
@@ -73,35 +115,64 @@ impl Passes {
         recorded.push(pass);
         match passes::join(show, &recorded, &device, self.made.get(&device)) {
             Ok(joined) => {
-                self.undo.push(before);
                 self.recorded = recorded;
                 self.made.insert(device.clone(), joined.made.clone());
                 let passes = self.recorded.iter().filter(|p| p.device == device).count();
-                Some(super::said_by(|words| {
+                let said = super::said_by(|words| {
                     let cut = cut_short(show, &device, &joined.made, words);
-                    let unit = if matches!(joined.made, Made::Servo { .. }) { words.steps } else { words.frames };
-                    format!(
-                        "{device}: {passes} {} → {} {unit} · {} {:.1}° ({} {:.1}°){cut}",
-                        words.passes_joined,
-                        joined.moves,
-                        words.largest_error,
-                        joined.max_error_deg,
-                        words.tolerance,
-                        joined.tolerance_deg
-                    )
-                }))
+                    let (language, moves) = (words.lang, joined.moves);
+                    let (error, tolerance) = (joined.max_error_deg, joined.tolerance_deg);
+                    let line = if matches!(joined.made, Made::Servo { .. }) {
+                        crate::say!(language, "show.passes_joined_steps", device, passes, moves, error, tolerance)
+                    } else {
+                        crate::say!(language, "show.passes_joined_frames", device, passes, moves, error, tolerance)
+                    };
+                    format!("{line}{cut}")
+                });
+                let (show, recorded, made) = before;
+                self.undo.push(Kept { show, recorded, made, said: said.clone() });
+                self.redo.clear();
+                Some((said, Some(device)))
             }
-            Err(error) => Some(Said::new(|language| format!("{device}: {}", error.worded(language)))),
+            Err(error) => Some((Said::new(|language| format!("{device}: {}", error.worded(language))), None)),
         }
     }
 
-    /// Takes the last pass back.
-    pub fn undo(&mut self, show: &mut Show) -> bool {
-        let Some((before, recorded, made)) = self.undo.pop() else { return false };
-        *show = before;
-        self.recorded = recorded;
-        self.made = made;
+    /// Takes the last pass back: the show and the passes as they were before
+    /// it, its line off the log `said`. Whether there was one.
+    pub fn undo(&mut self, show: &mut Show, said: &mut Vec<Said>) -> bool {
+        let Some(kept) = self.undo.pop() else { return false };
+        let now = self.swap(kept, show);
+        if let Some(at) = said.iter().rposition(|line| *line == now.said) {
+            said.remove(at);
+        }
+        self.redo.push(now);
         true
+    }
+
+    /// Joins the last pass taken back again, its line back on the log.
+    pub fn redo(&mut self, show: &mut Show, said: &mut Vec<Said>) -> bool {
+        let Some(kept) = self.redo.pop() else { return false };
+        let now = self.swap(kept, show);
+        said.push(now.said.clone());
+        self.undo.push(now);
+        true
+    }
+
+    /// Puts `kept` in place, returning what stood there (with `kept`'s line).
+    fn swap(&mut self, kept: Kept, show: &mut Show) -> Kept {
+        let Kept { show: then, recorded, made, said } = kept;
+        Kept {
+            show: std::mem::replace(show, then),
+            recorded: std::mem::replace(&mut self.recorded, recorded),
+            made: std::mem::replace(&mut self.made, made),
+            said,
+        }
+    }
+
+    /// Whether a pass can be taken back (the editor's Undo reaches it).
+    pub fn can_undo(&self) -> bool {
+        self.undo_reaches && !self.undo.is_empty()
     }
 }
 
@@ -167,7 +238,7 @@ pub fn from_pad(value: f64, range: &std::ops::RangeInclusive<f64>) -> f64 {
 /// axis's slider, Record / Stop, Undo pass.
 pub(super) fn passes_ui(
     ui: &mut egui::Ui,
-    (show, pad): (&Show, &[(u16, f64)]),
+    (show, pad, t_ms): (&Show, &[(u16, f64)], u64),
     passes: &mut Passes,
     editable: bool,
     words: &ShowWords,
@@ -208,8 +279,13 @@ pub(super) fn passes_ui(
         if device != passes.device {
             // Another device: its own axes.
             (passes.device, passes.axis) = (device, None);
-        } else {
-            passes.axis = axis;
+        } else if axis != passes.axis
+            && let (Some(device), Some(axis)) = (device, axis)
+        {
+            passes.pick(&device, axis);
+        }
+        if !recording {
+            passes.settle(show, t_ms);
         }
         if let Some((device, axis)) = passes.picked() {
             input_ui(ui, passes, pad, (words, label.id));
@@ -230,7 +306,7 @@ pub(super) fn passes_ui(
         if ui.add_enabled(editable && passes.picked().is_some(), egui::Button::new(caption)).clicked() {
             actions.push(Action::Show(action));
         }
-        if ui.add_enabled(!recording && !passes.undo.is_empty(), egui::Button::new(words.undo_pass)).clicked() {
+        if ui.add_enabled(!recording && passes.can_undo(), egui::Button::new(words.undo_pass)).clicked() {
             actions.push(Action::Show(ShowAction::UndoPass));
         }
     });

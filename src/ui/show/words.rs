@@ -17,8 +17,6 @@ crate::words! {
         pub title: &'static str,
         /// "Show the open project as a show".
         pub this_project: &'static str,
-        /// "devices".
-        pub devices: &'static str,
         /// Column heads.
         pub device: &'static str,
         /// "Family".
@@ -107,8 +105,6 @@ crate::words! {
         pub find: &'static str,
         /// Said when no USB serial device is attached.
         pub none_attached: &'static str,
-        /// "its cues went with it" (after a count).
-        pub cues_removed: &'static str,
         /// "Time shown" (the scrub's caption).
         pub scrub: &'static str,
         /// The stage view's name.
@@ -129,16 +125,6 @@ crate::words! {
         pub stop_pass: &'static str,
         /// "Undo pass".
         pub undo_pass: &'static str,
-        /// "passes joined".
-        pub passes_joined: &'static str,
-        /// "steps" (a servo board's).
-        pub steps: &'static str,
-        /// "frames" (a PLEN2's).
-        pub frames: &'static str,
-        /// "largest error".
-        pub largest_error: &'static str,
-        /// "tolerance".
-        pub tolerance: &'static str,
         /// "its own cue cuts the passes short at" (a board plays one at a time).
         pub cut_short_at: &'static str,
         /// A remote served beyond this computer: "token needed".
