@@ -98,6 +98,10 @@ pub trait FamilyPanels {
     }
 }
 
+/// An emulated board served on a loopback port: its server (it stops when
+/// this is dropped) and the port to open.
+pub type DemoServer = (Box<dyn std::any::Any + Send>, String);
+
 /// A family's board: how its link is started (a port, the built-in
 /// emulator), what is said of it, STOP, and what the family does as the
 /// link comes, goes, speaks, works and ends its operations.
@@ -112,6 +116,14 @@ pub trait FamilyBoard {
     /// Starts its built-in emulated board in this process, preloaded with the
     /// project where the board stores one, and connects to it (at the board's own line rate).
     fn demo_link(&self, project: &Project, waker: Waker) -> Result<BoardLink, StartError>;
+
+    /// Starts its built-in emulated board, preloaded as its demo is, as a
+    /// server on a loopback port any link opens (`tcp://127.0.0.1:N`): the
+    /// editor's demo board lent to remote control. The server (kept alive
+    /// while held) and its port; none for a family no show plays.
+    fn demo_server(&self, _project: &Project, _waker: Waker) -> Option<Result<DemoServer, StartError>> {
+        None
+    }
 
     /// What the connection bar says of its connected board, after "connected to …".
     fn link_details(&self, _link: &BoardLink, _words: &Strings) -> Vec<String> {

@@ -163,6 +163,9 @@ impl StudioApp {
             }
             return;
         }
+        if action == ShowAction::Remote(true) {
+            self.lend_board_to_remote();
+        }
         if let Some(said) = self.desks.show.apply(action, (&self.document.project, self.language), &self.window.waker) {
             self.status = Some(said);
         }

@@ -165,6 +165,12 @@ impl StudioApp {
         self.links.doctor.latency.get(&current.port).copied()
     }
 
+    /// The port and line rate of the link now open (none for the demo board).
+    pub(super) fn link_port(&self) -> Option<(String, u32)> {
+        let current = self.links.doctor.current.as_ref()?;
+        Some((current.port.clone(), current.baud))
+    }
+
     /// Connects to `port` as `family` (the document's family becomes it, one undo step) at `baud`.
     pub(super) fn connect_found(&mut self, port: &str, family: Family, baud: u32) {
         if self.link.is_some() || self.links.connecting.is_some() {

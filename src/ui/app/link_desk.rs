@@ -49,6 +49,8 @@ pub struct LinkDesk {
     pub(super) closing: Vec<std::thread::JoinHandle<()>>,
     pub(super) bar: ConnectionBar,
     pub(super) doctor: Doctor,
+    /// The board lent to remote control, to connect to again when it comes back.
+    pub(super) lent: Option<super::lent::Lent>,
     waker: Waker,
 }
 
@@ -64,6 +66,7 @@ impl LinkDesk {
             closing: Vec::new(),
             bar: ConnectionBar::default(),
             doctor: Doctor::default(),
+            lent: None,
             waker,
         }
     }

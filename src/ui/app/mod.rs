@@ -13,6 +13,7 @@ mod file_desk;
 mod file_ops;
 mod gamepad;
 mod import;
+mod lent;
 mod link_desk;
 mod sound;
 mod tabs;
@@ -461,6 +462,7 @@ impl StudioApp {
         self.links.scan_ports();
         self.poll_probe();
         self.reconnect_when_back(now);
+        self.take_lent_board_back();
         self.finish_file_work(None);
         self.poll_import(ui.ctx());
         self.keep_sound();
@@ -545,7 +547,7 @@ impl StudioApp {
         self.desks.sound.silence();
         // A show's held boards: every device stopped (bases brake) and its link closed.
         self.desks.show.stop();
-        self.desks.show.let_boards_go(crate::ui::show::words(self.language));
+        self.desks.show.let_boards_go();
         self.drop_link();
         self.links.wait_for_closing(deadline);
         self.finish_file_work(Some(deadline.saturating_duration_since(Instant::now())));

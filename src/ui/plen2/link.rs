@@ -6,7 +6,7 @@ use std::time::Instant;
 use crate::device::plen2::{PacingMode, Plen2Handle, Plen2Notice, Plen2Options};
 use crate::link::Waker;
 use crate::project::{Family, Project};
-use crate::sim::{Plen2Sim, Plen2SimCommand, Plen2SimEvent, Plen2Timing, SimHandle, spawn_in_memory};
+use crate::sim::{Plen2Sim, Plen2SimCommand, Plen2SimEvent, Plen2Timing, SimHandle, spawn_in_memory, spawn_tcp};
 use crate::ui::board_link::{BoardLink, FamilyLink, FamilyNotice, LinkNotice, LinkStarter, StartError};
 use crate::ui::packet_log::PacketLog;
 use crate::ui::shell::Shell;
@@ -51,6 +51,13 @@ pub(super) fn demo_link(project: &Project, pacing: PacingMode, waker: Waker) -> 
     let (sim, connection) = spawn_in_memory(Plen2Sim::new(Plen2Timing::default()), waker.clone())?;
     let handle = starter(DEMO_BAUD, pacing)(project, connection, waker)?;
     Ok(BoardLink::demo(handle, sim))
+}
+
+/// The demo PLEN2 as a server on a loopback port (the editor's demo lent to remote control).
+pub(super) fn demo_server(waker: Waker) -> Result<crate::ui::family::DemoServer, StartError> {
+    let server = spawn_tcp(Plen2Sim::new(Plen2Timing::default()), crate::sim::LOOPBACK_ANY, waker)?;
+    let port = server.port_name.clone();
+    Ok((Box::new(server), port))
 }
 
 /// A link as a PLEN2's (the shell's `BoardLink` names no family).

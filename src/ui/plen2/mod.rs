@@ -417,6 +417,14 @@ impl FamilyBoard for Plen2Ui {
         }
     }
 
+    fn demo_server(
+        &self,
+        _project: &Project,
+        waker: crate::link::Waker,
+    ) -> Option<Result<crate::ui::family::DemoServer, StartError>> {
+        Some(link::demo_server(waker))
+    }
+
     fn demo_connected(&self, words: &Strings) -> &'static str {
         words.plen2().msg_connected_demo_plen2
     }

@@ -6,7 +6,7 @@ use std::time::Instant;
 use crate::device::rflex::{RflexBase, RflexNotice};
 use crate::link::{Connection, Waker};
 use crate::project::{Family, Project};
-use crate::sim::{RflexSim, RflexSimCommand, RflexSimConfig, RflexSimEvent, SimHandle, spawn_in_memory};
+use crate::sim::{RflexSim, RflexSimCommand, RflexSimConfig, RflexSimEvent, SimHandle, spawn_in_memory, spawn_tcp};
 use crate::ui::board_link::{BoardLink, FamilyLink, FamilyNotice, LinkNotice, LinkStarter, StartError};
 use crate::ui::packet_log::PacketLog;
 use crate::ui::shell::Shell;
@@ -54,6 +54,14 @@ pub(super) fn demo_link(project: &Project, waker: Waker) -> Result<BoardLink, St
     let config = RflexSimConfig { conversion: project.rflex.robot.conversion(), ..RflexSimConfig::default() };
     let (sim, connection) = spawn_in_memory(RflexSim::new(config), waker.clone())?;
     Ok(BoardLink::demo(Box::new(start(project, connection, waker)?), sim))
+}
+
+/// The demo base as a server on a loopback port (the editor's demo lent to remote control).
+pub(super) fn demo_server(project: &Project, waker: Waker) -> Result<crate::ui::family::DemoServer, StartError> {
+    let config = RflexSimConfig { conversion: project.rflex.robot.conversion(), ..RflexSimConfig::default() };
+    let server = spawn_tcp(RflexSim::new(config), crate::sim::LOOPBACK_ANY, waker)?;
+    let port = server.port_name.clone();
+    Ok((Box::new(server), port))
 }
 
 /// A link as a mobile base's (the shell's `BoardLink` names no family).

@@ -229,6 +229,14 @@ impl FamilyBoard for RflexUi {
         words.rflex().msg_connected_demo_rflex
     }
 
+    fn demo_server(
+        &self,
+        project: &Project,
+        waker: crate::link::Waker,
+    ) -> Option<Result<crate::ui::family::DemoServer, StartError>> {
+        Some(link::demo_server(project, waker))
+    }
+
     fn stop(&mut self, shell: &mut Shell<'_>) {
         self.disconnected();
         self.pad.halt(shell);

@@ -6,7 +6,7 @@ use std::time::Instant;
 use crate::device::servo::{ServoHandle, ServoImage, ServoNotice};
 use crate::link::Waker;
 use crate::project::{Family, Project};
-use crate::sim::{ServoSim, SimConfig, SimHandle, spawn_in_memory};
+use crate::sim::{ServoSim, SimConfig, SimHandle, spawn_in_memory, spawn_tcp};
 use crate::ui::board_link::{BoardLink, FamilyLink, FamilyNotice, LinkNotice, LinkStarter, StartError};
 use crate::ui::packet_log::PacketLog;
 use crate::ui::shell::Shell;
@@ -54,6 +54,14 @@ pub fn demo_link(project: &Project, config: SimConfig, waker: Waker) -> Result<B
     let (sim, connection) = spawn_in_memory(ServoSim::new(config, image), waker.clone())?;
     let handle = ServoHandle::over(connection, None, waker)?;
     Ok(BoardLink::demo(Box::new(handle), sim))
+}
+
+/// The demo board as a server on a loopback port (the editor's demo lent to remote control).
+pub fn demo_server(project: &Project, waker: Waker) -> Result<crate::ui::family::DemoServer, StartError> {
+    let image = ServoImage::from_project(&project.servo).unwrap_or_default();
+    let server = spawn_tcp(ServoSim::new(SimConfig::default(), image), crate::sim::LOOPBACK_ANY, waker)?;
+    let port = server.port_name.clone();
+    Ok((Box::new(server), port))
 }
 
 /// A link as a servo board's (the shell's `BoardLink` names no family).

@@ -380,6 +380,14 @@ impl FamilyBoard for ServoUi {
         words.servo().msg_connected_demo
     }
 
+    fn demo_server(
+        &self,
+        project: &Project,
+        waker: crate::link::Waker,
+    ) -> Option<Result<crate::ui::family::DemoServer, StartError>> {
+        Some(link::demo_server(project, waker))
+    }
+
     fn stop(&mut self, shell: &mut Shell<'_>) {
         // Held wherever they were: where is read again, not guessed.
         self.board_moved_them(&shell.document.project.servo, Instant::now(), std::time::Duration::ZERO);

@@ -100,6 +100,8 @@ pub struct ShowDesk {
     pub stage: stage::Stage,
     /// Record passes: the passes kept and the one being recorded.
     pub passes: record::Passes,
+    /// The boards were connected by turning remote control on (they go when it stops).
+    boards_for_remote: bool,
     /// A pass joined, not yet recorded in the editor's history (see `take_joined`).
     joined: Option<Option<Project>>,
     /// The boards, held connected (Connect the boards).
@@ -146,6 +148,7 @@ impl ShowDesk {
             ShowAction::Boards(true) => {
                 let Some(session) = &self.session else { return None };
                 self.linked = None;
+                self.boards_for_remote = false;
                 match Linked::connect(&session.with_ports(), waker.clone()) {
                     Ok(linked) => self.linked = Some(linked),
                     Err(error) => {
@@ -154,10 +157,16 @@ impl ShowDesk {
                     }
                 }
             }
-            ShowAction::Boards(false) => self.let_boards_go(words(language)),
+            ShowAction::Boards(false) => self.let_boards_go(),
             ShowAction::RemoteWindow => self.remote.open = true,
             ShowAction::Remote(true) => return self.serve(project, language, waker),
-            ShowAction::Remote(false) => self.remote.stop(None),
+            ShowAction::Remote(false) => {
+                self.remote.stop(None);
+                // The boards remote control connected go with it; boards the user connected stay.
+                if self.boards_for_remote {
+                    self.let_boards_go();
+                }
+            }
             ShowAction::Play => self.play(waker.clone()),
             ShowAction::StopAll => self.stop(),
             ShowAction::Preview(true) => {
@@ -193,7 +202,7 @@ impl ShowDesk {
             }
             ShowAction::Close => {
                 self.stop();
-                self.let_boards_go(words(language));
+                self.let_boards_go();
                 self.session = None;
             }
         }
@@ -223,6 +232,37 @@ impl ShowDesk {
             let editor = session.editor_index().filter(|&index| session.show.devices[index].name == device);
             self.joined = Some(editor.map(|index| session.show.devices[index].project.clone()));
         }
+    }
+
+    /// Whether the device that is the editor's project has no port (or no
+    /// show is open: remote control opens the project as one): the editor's
+    /// own board is what it would serve.
+    pub fn project_without_port(&self) -> bool {
+        let Some(session) = &self.session else { return true };
+        session.editor_index().is_some_and(|index| session.ports.get(index).is_some_and(|port| port.trim().is_empty()))
+    }
+
+    /// The editor's board's `port` given to the device that is the project
+    /// (the project opened as a show first when none is open).
+    pub fn lend_port(&mut self, project: &Project, port: &str) {
+        if self.session.is_none() {
+            self.opened_project(project);
+        }
+        let Some(session) = &mut self.session else { return };
+        if let Some(slot) = session.editor_index().and_then(|index| session.ports.get_mut(index)) {
+            *slot = port.to_string();
+        }
+    }
+
+    /// The lent `port` given back: no device names it any more.
+    pub fn unlend_port(&mut self, port: &str) {
+        let Some(session) = &mut self.session else { return };
+        session.ports.iter_mut().filter(|each| each.trim() == port).for_each(String::clear);
+    }
+
+    /// Whether the show's boards are held (connected, or served to remote control).
+    pub fn holds_boards(&self) -> bool {
+        self.linked.is_some() || self.remote.serving()
     }
 
     /// A pass joined since this was last asked: what it made of the editor's
@@ -300,9 +340,10 @@ impl ShowDesk {
     }
 
     /// Lets the held boards go (every device stopped, every link closed), and the remote control with them.
-    pub fn let_boards_go(&mut self, words: &ShowWords) {
+    pub fn let_boards_go(&mut self) {
+        self.boards_for_remote = false;
         if self.linked.take().is_some() {
-            self.remote.stop(Some(words.remote_stopped));
+            self.remote.stop(Some(said_by(|words| words.remote_stopped.to_string())));
         }
     }
 
@@ -312,14 +353,19 @@ impl ShowDesk {
         if self.session.is_none() {
             self.opened_project(project);
         }
-        if self.linked.is_none()
-            && let Some(said) = self.apply(ShowAction::Boards(true), (project, language), waker)
-        {
-            return Some(said);
+        if self.linked.is_none() {
+            if let Some(said) = self.apply(ShowAction::Boards(true), (project, language), waker) {
+                return Some(said);
+            }
+            // Connected for remote control: let go with it.
+            self.boards_for_remote = true;
         }
         let (Some(session), Some(linked)) = (&self.session, &self.linked) else { return None };
         self.live_speed.1 = None;
-        self.remote.start(session.with_ports(), linked, words(language));
+        self.remote.start(session.with_ports(), linked);
+        if !self.remote.serving() && self.boards_for_remote {
+            self.let_boards_go();
+        }
         None
     }
 

@@ -4,7 +4,7 @@
 //! Off at every start; the address, OSC port and token file are typed here.
 //! Disconnecting the boards or closing the show turns it off.
 
-use crate::ui::i18n::{Language, Worded};
+use crate::ui::i18n::{Said, Worded};
 use std::sync::Arc;
 
 use crate::remote::guard::Guard;
@@ -28,8 +28,8 @@ pub struct RemoteDesk {
     pub queue: bool,
     /// The servers while on.
     serving: Option<Servers>,
-    /// What it says: where it listens, or why it could not.
-    pub said: Option<String>,
+    /// What it says: where it listens, or why it could not (in every language).
+    pub said: Option<Said>,
 }
 
 impl Default for RemoteDesk {
@@ -58,42 +58,45 @@ impl RemoteDesk {
     }
 
     /// Starts serving `show` on `linked`'s boards, saying where or why not.
-    pub fn start(&mut self, show: crate::show::Show, linked: &Linked, words: &ShowWords) {
+    pub fn start(&mut self, show: crate::show::Show, linked: &Linked) {
         self.serving = None;
-        match self.servers(show, linked, words.lang) {
+        match self.servers(show, linked) {
             Ok(servers) => {
                 let osc = servers.osc.as_ref().map(|osc| format!(" · OSC udp://{}", osc.addr())).unwrap_or_default();
-                let token = if servers.needs_token { words.remote_token_needed } else { words.remote_loopback };
-                self.said = Some(format!("{} http://{}{osc} ({token})", words.remote_listening, servers.http.addr()));
+                let (needs_token, http) = (servers.needs_token, servers.http.addr());
+                self.said = Some(super::said_by(|words| {
+                    let token = if needs_token { words.remote_token_needed } else { words.remote_loopback };
+                    format!("{} http://{http}{osc} ({token})", words.remote_listening)
+                }));
                 self.serving = Some(servers);
             }
             Err(why) => self.said = Some(why),
         }
     }
 
-    fn servers(&self, show: crate::show::Show, linked: &Linked, language: Language) -> Result<Servers, String> {
-        let listen: std::net::SocketAddr = self
-            .listen
-            .trim()
-            .parse()
-            .map_err(|_| crate::say!(language, "show.remote_bad_listen", listen = format!("{:?}", self.listen)))?;
+    fn servers(&self, show: crate::show::Show, linked: &Linked) -> Result<Servers, Said> {
+        let listen: std::net::SocketAddr = self.listen.trim().parse().map_err(|_| {
+            let listen = format!("{:?}", self.listen);
+            Said::new(|language| crate::say!(language, "show.remote_bad_listen", listen))
+        })?;
         let token_file = Some(self.token_file.trim()).filter(|file| !file.is_empty()).map(std::path::Path::new);
-        let guard = Arc::new(Guard::from_file(listen, token_file).map_err(|error| error.worded(language))?);
+        let guard =
+            Guard::from_file(listen, token_file).map_err(|error| Said::new(|language| error.worded(language)))?;
         let osc = match self.osc.trim() {
             "" => None,
-            port => Some(
-                port.parse::<u16>()
-                    .map_err(|_| crate::say!(language, "show.remote_bad_osc", port = format!("{port:?}")))?,
-            ),
+            port => Some(port.parse::<u16>().map_err(|_| {
+                let port = format!("{port:?}");
+                Said::new(|language| crate::say!(language, "show.remote_bad_osc", port))
+            })?),
         };
-        Servers::start(listen, osc, &guard, Arc::new(Remote::new(show, linked.shared(), self.queue)))
-            .map_err(|error| error.worded(language))
+        Servers::start(listen, osc, &Arc::new(guard), Arc::new(Remote::new(show, linked.shared(), self.queue)))
+            .map_err(|error| Said::new(|language| error.worded(language)))
     }
 
     /// Stops serving (saying why, when it is not the user's click).
-    pub fn stop(&mut self, why: Option<&str>) {
+    pub fn stop(&mut self, why: Option<Said>) {
         if self.serving.take().is_some() {
-            self.said = why.map(str::to_string);
+            self.said = why;
         }
     }
 
@@ -124,7 +127,7 @@ impl RemoteDesk {
             });
             ui.weak(words.remote_hint);
             if let Some(said) = &self.said {
-                ui.label(said);
+                ui.label(said.in_(words.lang));
             }
             // What the remotes have the devices doing now (looked at twice a second while serving).
             if self.serving() {
