@@ -14,6 +14,7 @@ use super::out::say;
 use super::sim::SimArgs;
 use crate::device::servo::ServoImage;
 use crate::device::servo::{self as device, ImportOptions, Phase, Progress, Requester, ServoBoard, SessionConfig};
+use crate::interchange::count;
 use crate::link::{self, PortName, no_waker};
 use crate::project::{self, Family, Project};
 use crate::sim::{ServoSim, SimConfig};
@@ -77,12 +78,12 @@ pub fn export(port: &PortArgs, out: &Path, slots: Option<&Slots>) -> anyhow::Res
     let exported = super::exported(exported, interrupt, &port.port, out)?;
     project::save(out, &Project::servo(exported.clone()))?;
     say!(
-        "exported project {} ({} servos, {} actions, {} macros, {} joystick tables) to {}",
+        "exported project {} ({}, {}, {}, {}) to {}",
         exported.project_id,
-        exported.servos.len(),
-        exported.actions.len(),
-        exported.macros.len(),
-        exported.joystick_tables.len(),
+        count(exported.servos.len(), "servo", "servos"),
+        count(exported.actions.len(), "action", "actions"),
+        count(exported.macros.len(), "macro", "macros"),
+        count(exported.joystick_tables.len(), "joystick table", "joystick tables"),
         out.display()
     );
     Ok(())

@@ -28,5 +28,5 @@ mod xml;
 pub use format::{Format, ReadError};
 pub use map::{JointMap, MapEntry, Target};
 pub use read::{read, read_decoded};
-pub use report::Report;
+pub use report::{COUNTED, Report, count};
 pub use source::{Body, Channel, Clip, Key, Link, Source, Timing, Unit};

@@ -62,10 +62,19 @@ fn raw_at(source: &Source, clip: &Clip, time_ms: f64, depth: usize) -> Vec<Optio
         Body::Samples { fps, rows } => {
             let one = clip.duration_ms();
             let at = if one > 0.0 { (time_ms % (one * f64::from(clip.repeat.max(1)) + 1e-9)).min(one) } else { 0.0 };
+            // Between two samples the file moves straight from one to the next,
+            // as the conversion reads it (`Recording::resample`).
+            let along = (at * clip.speed * fps / 1000.0).max(0.0);
             // Frame indices of any real animation are far below 2^52.
             #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-            let frame = ((at * clip.speed * fps / 1000.0).floor() as usize).min(rows.len().saturating_sub(1));
-            rows.get(frame).map_or_else(|| vec![None; width], |row| row.iter().map(|v| Some(*v)).collect())
+            let frame = (along.floor() as usize).min(rows.len().saturating_sub(1));
+            let next = (frame + 1).min(rows.len().saturating_sub(1));
+            #[allow(clippy::cast_precision_loss)]
+            let part = (along - frame as f64).clamp(0.0, 1.0);
+            match (rows.get(frame), rows.get(next)) {
+                (Some(row), Some(after)) => row.iter().zip(after).map(|(a, b)| Some(a + (b - a) * part)).collect(),
+                _ => vec![None; width],
+            }
         }
         Body::Keys(keys) => {
             let one = clip.duration_ms();

@@ -14,6 +14,15 @@ pub struct Report {
     pub notes: Vec<String>,
 }
 
+/// `n` things in English: "1 servo", "3 servos" (`one` and `many`: the word for each).
+pub fn count(n: usize, one: &str, many: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { many })
+}
+
+/// The English nouns conversions count, for [`count`] and for reading a
+/// note back by its pattern (which names the plural): "1 servo" is "1 servos".
+pub const COUNTED: [&str; 7] = ["servo", "action", "macro", "frame", "step", "sample", "joystick table"];
+
 impl Report {
     /// Notes something made.
     pub fn converted(&mut self, note: impl Into<String>) {

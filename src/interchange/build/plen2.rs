@@ -112,7 +112,8 @@ fn place(
             slot += 1;
         }
         let first = slot - u8::try_from(chunks.len()).unwrap_or(0);
-        report.converted(format!("{:?}: motion in slot {first} ({} frames)", clip.name, frames.len()));
+        let frames = crate::interchange::count(frames.len(), "frame", "frames");
+        report.converted(format!("{:?}: motion in slot {first} ({frames})", clip.name));
     }
     first_slot
 }

@@ -7,7 +7,7 @@ use crate::authoring::fit::{self, Board, Budget, FitError, ServoBoard};
 use crate::authoring::fitted::{self, SERVO_UPDATE_MS, caption_within};
 use crate::authoring::recording::Recording;
 use crate::interchange::map::Target;
-use crate::interchange::report::Report;
+use crate::interchange::report::{Report, count};
 use crate::interchange::source::{Body, Clip, Key};
 use crate::project::{Action, Command, MAX_LIST_LEN, Macro, Run, Servo, ServoProject, Step};
 
@@ -71,10 +71,10 @@ pub(super) fn build(
     starts.extend(ids.clips.iter().map(|&(clip, _, play)| (clip, Start::Macro(play))));
     made.macros.sort_by_key(|m| m.id);
     report.converted(format!(
-        "{} servos, {} actions, {} macros",
-        made.servos.len(),
-        made.actions.len(),
-        made.macros.len()
+        "{}, {}, {}",
+        count(made.servos.len(), "servo", "servos"),
+        count(made.actions.len(), "action", "actions"),
+        count(made.macros.len(), "macro", "macros")
     ));
     Ok(ServoProject { servos: made.servos, actions: made.actions, macros: made.macros, ..ServoProject::default() })
 }

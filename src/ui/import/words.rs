@@ -9,6 +9,8 @@ crate::words! {
     /// The import window's captions.
     #[derive(Debug)]
     pub struct ImportWords in "import" {
+        /// The language these words are in.
+        pub lang: Language,
         /// The File menu's entry and the window's title.
         pub title: &'static str,
         /// "Reading".
@@ -160,7 +162,32 @@ pub fn target(target: Target, words: &ImportWords) -> String {
 /// A conversion's note or error in these words: the first pattern it fits,
 /// its holes carried over; as it is when none fits (English).
 pub fn note(text: &str, words: &ImportWords) -> String {
-    words.notes.iter().find_map(|(english, ours)| refill(text, english, ours)).unwrap_or_else(|| text.to_string())
+    let find = |text: &str| words.notes.iter().find_map(|(english, ours)| refill(text, english, ours));
+    if words.lang == Language::English {
+        // The conversion's own English, its counts' words right.
+        return text.to_string();
+    }
+    find(text).or_else(|| find(&counted_as_many(text))).unwrap_or_else(|| text.to_string())
+}
+
+/// `text` with "1 servo" read as "1 servos": the patterns name the plural
+/// (a language without one says a count the same way for every number).
+fn counted_as_many(text: &str) -> String {
+    let mut out = text.to_string();
+    for noun in crate::interchange::COUNTED {
+        let one = format!("1 {noun}");
+        let mut from = 0;
+        while let Some(found) = out[from..].find(&one).map(|at| at + from) {
+            let end = found + one.len();
+            let before = out[..found].chars().next_back();
+            let after = out[end..].chars().next();
+            if before.is_none_or(|c| !c.is_ascii_digit() && c != '.') && after.is_none_or(|c| !c.is_alphanumeric()) {
+                out.insert(end, 's');
+            }
+            from = end;
+        }
+    }
+    out
 }
 
 /// `text` read by `pattern` (`{}` a hole: as little as reaches the next
@@ -218,6 +245,27 @@ mod tests {
 
     /// A note is read by its English and written in the language, holes carried
     /// over in turn (`{}`) or by number (`{1}` before `{0}`, as Japanese words it).
+    /// A count of one is said in the singular in English and, in a language
+    /// with one form, read by the same pattern as any other count.
+    #[test]
+    fn a_count_of_one_is_singular_in_english_and_translated_in_the_others() {
+        let made = format!(
+            "{}, {}, {}",
+            crate::interchange::count(1, "servo", "servos"),
+            crate::interchange::count(10, "action", "actions"),
+            crate::interchange::count(1, "macro", "macros")
+        );
+        assert_eq!(made, "1 servo, 10 actions, 1 macro");
+        assert_eq!(note(&made, words(Language::English)), made);
+        for language in [Language::Japanese, Language::Korean, Language::TraditionalChinese] {
+            let said = note(&made, words(language));
+            assert!(!said.contains("servo") && !said.contains("macro"), "{language:?}: {said}");
+            assert!(said.contains('1') && said.contains("10"), "{language:?}: {said}");
+        }
+        // "11 servo" is not one servo; a word that only begins with the noun is not it.
+        assert_eq!(counted_as_many("11 servo, 1 servomotor, 1 step."), "11 servo, 1 servomotor, 1 steps.");
+    }
+
     #[test]
     fn a_note_keeps_its_holes_in_the_languages_order() {
         let japanese = words(Language::Japanese);
