@@ -24,6 +24,11 @@
 //!    echo map full) — posing, drawing and tessellating, per frame.
 //! 4. The time from the last slider change of a drag to the emulated board
 //!    holding that angle, over a link throttled to 115200 baud.
+//! 5. The show window at 1280 × 800 on a show of four devices (two servo
+//!    boards, a PLEN2, a base) cued every few seconds, one minute long and
+//!    one hour long, the two taking turns frame by frame, the scrub moved
+//!    every frame (as a preview or a drag moves it): median frame time of
+//!    each and `ratio show hour ÷ minute` (`UI_BENCH_SHOW=1` runs only this).
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::cast_possible_truncation, missing_docs)]
 
@@ -668,8 +673,87 @@ fn biped_meshes(chain: &servo_studio::figure::Chain, total: usize) -> Vec<servo_
         .collect()
 }
 
+/// A show of `minutes`: two servo boards, a PLEN2 and a base, each cued every few seconds.
+fn show_of(minutes: u64) -> servo_studio::show::Show {
+    use servo_studio::show::{Cue, Show, Start};
+    let steps = |degree: i16| vec![Step::new(1, degree, 40), Step::new(2, -degree, 60)];
+    let actions: Vec<Action> = (1..=4)
+        .map(|id| Action { id, caption: format!("動作{id}"), steps: steps(20 * i16::try_from(id).unwrap()) })
+        .collect();
+    let commands = actions.iter().map(|a| Command::once(Run::Action { action_id: a.id })).collect();
+    let macros = vec![Macro { id: 1, caption: "Wave 揮手".into(), commands }];
+    let servos = vec![Servo::new(1, "jaw"), Servo::new(2, "neck")];
+    let servo = Project::servo(ServoProject { servos, actions, macros, ..ServoProject::default() });
+    let plen = plen2(2, 12, 0, 0);
+    let mut show = Show::of_one("skull", servo.clone());
+    show.add_device("arms", servo);
+    show.add_device("plen", plen);
+    show.add_device("base", Project::empty(Family::Rflex));
+    for at_ms in (0..minutes * 60_000).step_by(3000) {
+        show.cues.push(Cue { device: "skull".into(), at_ms, start: Start::Macro(1) });
+        show.cues.push(Cue { device: "arms".into(), at_ms: at_ms + 1500, start: Start::Macro(1) });
+    }
+    for (k, at_ms) in (0..minutes * 60_000).step_by(4000).enumerate() {
+        show.cues.push(Cue { device: "plen".into(), at_ms, start: Start::Slot(u8::try_from(k % 2).unwrap()) });
+        let turn = if k % 2 == 0 { 0.0 } else { 30.0 };
+        show.cues.push(Cue {
+            device: "base".into(),
+            at_ms,
+            start: Start::Drive { speed_m_s: 0.2, turn_deg_s: turn, for_ms: 2500 },
+        });
+    }
+    show
+}
+
+/// The show window's frame time on a minute's show and an hour's, the scrub moved every frame.
+fn show_frame_times() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut windows: Vec<(String, u64, Window)> = [1, 60]
+        .into_iter()
+        .map(|minutes| {
+            let show = show_of(minutes);
+            let path = dir.path().join(format!("{minutes}.json"));
+            std::fs::write(&path, show.to_json()).unwrap();
+            let mut app = StudioApp::new(Project::default(), None, no_waker());
+            app.apply(UiAction::Show(servo_studio::ui::show::ShowAction::Open(path)));
+            let label = format!("{} min, {} cues", minutes, show.cues.len());
+            (label, minutes * 60_000, Window::new(app, (1280.0, 800.0)))
+        })
+        .collect();
+    for (_, _, window) in &mut windows {
+        window.run_steps(10);
+    }
+    let frames = measured_frames();
+    let mut times = vec![Vec::with_capacity(frames); windows.len()];
+    for frame in 0..frames {
+        for ((_, length_ms, window), times) in windows.iter_mut().zip(&mut times) {
+            // The scrub a step on each frame, across the whole show (a preview, a drag).
+            window.app.desks.show.stage.scrub_ms = (frame as u64 * 7919) % *length_ms;
+            let began = Instant::now();
+            window.step();
+            times.push(began.elapsed());
+        }
+    }
+    let mut medians = Vec::new();
+    for ((label, _, _), times) in windows.iter().zip(&mut times) {
+        times.sort_unstable();
+        let median = times[frames / 2].as_secs_f64() * 1e3;
+        println!(
+            "frame time show window @1280x800, {label}: median {median:.3} ms, p90 {:.3} ms, max {:.3} ms",
+            times[frames * 9 / 10].as_secs_f64() * 1e3,
+            times[frames - 1].as_secs_f64() * 1e3
+        );
+        medians.push(median);
+    }
+    println!("ratio show hour ÷ minute = {:.2} (hour: median {:.2} ms a frame)", medians[1] / medians[0], medians[1]);
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().collect();
+    if std::env::var_os("UI_BENCH_SHOW").is_some() {
+        show_frame_times();
+        return;
+    }
     if let Some(at) = args.iter().position(|arg| arg == "--cold-start") {
         let family = Family::all().iter().copied().find(|f| f.tag() == args[at + 1]).unwrap();
         cold_start_child(family, Path::new(&args[at + 2]));
@@ -685,6 +769,7 @@ fn main() {
     }
     frame_times();
     if std::env::var_os("UI_BENCH_ONLY").is_none() {
+        show_frame_times();
         view_costs();
         editing_frame_times();
         cold_starts();

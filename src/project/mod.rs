@@ -40,8 +40,8 @@ pub use servo::{
 pub use sound::SoundTrack;
 pub use timing::{Timing, TimingError, action_duration_ms};
 pub use trajectory::{
-    Follower, MAX_TRACE_WORK, SAMPLE_MS, Samples, TraceError, Trajectories, action_trajectories, angle_at, macro_cycle,
-    macro_trajectories, pose_at, sample, sample_count, trace,
+    Follower, MAX_TRACE_WORK, SAMPLE_MS, Samples, TraceError, Trajectories, action_trajectories, angle_at,
+    angle_at_sorted, macro_cycle, macro_trajectories, pose_at, sample, sample_count, times_sorted, trace,
 };
 pub use validate::{
     ButtonSlot, ItemKind, Location, Problem, ProblemKind, Problems, Severity, has_errors, validate_plen2,

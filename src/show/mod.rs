@@ -11,6 +11,7 @@ pub mod boards;
 pub mod passes;
 pub mod play;
 pub mod stages;
+pub mod timeline;
 
 use std::path::Path;
 

@@ -14,16 +14,12 @@ use crossbeam_channel::Receiver;
 use super::{Show, Start};
 use crate::audio::output::{Playing, Speakers};
 use crate::audio::together::PREROLL;
-use crate::device::plen2::playback::{self, StoredMotions};
 use crate::device::speed::LiveSpeed;
-use crate::project::{Family, Run};
 
 /// How far ahead of its first cue a show without sound starts its clock.
 pub const LEAD: Duration = Duration::from_millis(300);
 /// How often the player looks at its devices' links (and keeps bases' commands fresh) while it waits.
 const LOOK_EVERY: Duration = Duration::from_millis(20);
-/// The longest a PLEN2 motion is counted for (one that never ends).
-const LONGEST_MOTION_MS: f64 = 600_000.0;
 
 /// A connected device the player drives.
 pub trait Stage: Send {
@@ -271,7 +267,9 @@ impl Player<'_> {
         self.show
             .cues
             .iter()
-            .filter_map(|cue| Some(cue.at_ms + cue_length_ms(self.show.device(&cue.device)?, &cue.start)))
+            .filter_map(|cue| {
+                Some(cue.at_ms + super::timeline::cue_length_ms(self.show.device(&cue.device)?, &cue.start))
+            })
             .chain([sound])
             .max()
             .unwrap_or(0)
@@ -354,29 +352,4 @@ pub fn ran_words(ran: &Ran) -> String {
     }
     lines.push(format!("ended after {:.2} s", ran.ended.saturating_duration_since(ran.zero).as_secs_f64()));
     lines.join("\n")
-}
-
-/// How long a cue keeps its device busy, ms, from the device's project.
-pub fn cue_length_ms(device: &super::Device, start: &Start) -> u64 {
-    let ms = match (*start, device.project.family) {
-        (Start::Macro(macro_id), family) if family == Family::Servo => {
-            crate::project::trace(&device.project.servo, Run::Macro { macro_id }, 3_600_000.0)
-                .map_or(0.0, |(_, end)| end)
-        }
-        (Start::Slot(slot), family) if family == Family::Plen2 => {
-            let stored = StoredMotions::new(&device.project.plen2);
-            // Cycle counts from a bounded time.
-            #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-            let cycles = (LONGEST_MOTION_MS / playback::Playback::CYCLE_MS) as usize;
-            playback::play(&stored, slot, [0; playback::DEVICE_IDS], cycles).duration_ms()
-        }
-        // Whole ms of a bounded time.
-        #[allow(clippy::cast_precision_loss)]
-        (Start::Drive { for_ms, .. }, _) => for_ms as f64,
-        _ => 0.0,
-    };
-    // Non-negative, under an hour.
-    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-    let whole = ms.max(0.0).ceil() as u64;
-    whole
 }

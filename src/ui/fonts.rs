@@ -26,6 +26,12 @@ pub fn definitions() -> egui::FontDefinitions {
 /// Installs [`definitions`] in `ctx`.
 pub fn install(ctx: &egui::Context) {
     ctx.set_fonts(definitions());
+    // No text smaller than the body's: a note, a hint, a log line is read as
+    // easily as a caption (egui's "small" style is 9 px, CJK unreadable at it).
+    ctx.all_styles_mut(|style| {
+        let body = style.text_styles.get(&egui::TextStyle::Body).map_or(13.0, |font| font.size);
+        style.text_styles.insert(egui::TextStyle::Small, egui::FontId::proportional(body));
+    });
 }
 
 #[cfg(test)]

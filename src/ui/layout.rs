@@ -237,6 +237,38 @@ pub fn list_editor_and_graph(
     (layout.graph_share, layout.graph_open) = (share, open);
 }
 
+/// A floating window that stays out of the way when collapsed: its id is
+/// `id` (not its title's, which changes with the language), and collapsed
+/// it is parked at the bottom edge — `slot` its place along it, one per
+/// window — where its title bar covers no panel's heading or tab.
+pub fn parked_when_collapsed<'a>(
+    window: egui::Window<'a>,
+    ctx: &egui::Context,
+    id: &str,
+    slot: u8,
+) -> egui::Window<'a> {
+    let id = egui::Id::unique(id);
+    let collapsed = egui::collapsing_header::CollapsingState::load(ctx, id.with("collapsing"))
+        .is_some_and(|state| !state.is_open());
+    if collapsed {
+        let rect = ctx.content_rect();
+        let parked = pos2(rect.left() + 8.0 + f32::from(slot) * PARKED_WIDTH, rect.bottom() - PARKED_ABOVE_BOTTOM);
+        // Put where it stands (a window dragged by its title bar takes its
+        // place from memory, not from `current_pos`).
+        if let Some(mut state) = egui::AreaState::load(ctx, id) {
+            state.set_left_top_pos(parked);
+            let layer = egui::LayerId::new(egui::Order::Middle, id);
+            ctx.memory_mut(|memory| memory.areas_mut().set_state(layer, state));
+        }
+    }
+    window.id(id)
+}
+
+/// How far apart parked windows are along the bottom edge.
+const PARKED_WIDTH: f32 = 280.0;
+/// How far above the window's bottom a parked title bar sits (above the status line).
+pub const PARKED_ABOVE_BOTTOM: f32 = 64.0;
+
 #[cfg(test)]
 mod tests {
     use egui_kittest::Harness;

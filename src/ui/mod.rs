@@ -41,7 +41,7 @@ pub use document::Document;
 pub use families::Families;
 pub use family::FamilyUi;
 pub use i18n::{Language, Strings, Worded};
-pub use layout::Layout;
+pub use layout::{Layout, PARKED_ABOVE_BOTTOM};
 pub use operation::{Operation, Step};
 pub use plen2::{
     Plen2Action, Plen2BoardLink, Plen2Failure, Plen2Intent, Plen2Kind, Plen2Operation, Plen2Outcome, Plen2Result,

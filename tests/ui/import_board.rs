@@ -130,3 +130,39 @@ fn every_note_a_conversion_says_has_its_traditional_chinese() {
     let untranslated: Vec<&String> = said.iter().filter(|line| note(line, chinese) == **line).collect();
     assert!(untranslated.is_empty(), "notes with no Traditional Chinese: {untranslated:#?}");
 }
+
+/// Several channels landing on servos the project has are one warning with
+/// their count, the list under it on demand; one is said on its own.
+#[test]
+fn channels_landing_on_servos_the_project_has_are_one_line_with_a_list_on_demand() {
+    let maestro = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/fixtures/interchange/maestro/mini-maestro-24-script.xml");
+    let servos = (0..24).map(|id| servo_studio::project::Servo::new(id, format!("s{id}"))).collect();
+    let mut app = common::ui::editor(Project::servo(ServoProject { servos, ..ServoProject::default() }));
+    app.apply(Action::Import(ImportAction::Read(maestro)));
+    let mut harness = common::ui::showing(app, Tab::Servos, (1280.0, 800.0));
+    common::ui::run_until(&mut harness, "the file read", |app| app.desks.import.board_known());
+    let landed = harness
+        .state()
+        .desks
+        .import
+        .session
+        .as_ref()
+        .unwrap()
+        .map
+        .entries
+        .iter()
+        .filter(|e| e.target.is_some())
+        .count();
+    assert!(landed > 1, "the fixture maps several channels: {landed}");
+    let line = format!("{landed} channels drive servos this project already has");
+    assert_eq!(harness.query_all_by_label_contains(&line).count(), 1, "one line: {line}");
+    assert!(
+        harness.query_by_label_contains("which this project already has: its limits").is_none(),
+        "not one a channel"
+    );
+    assert_eq!(harness.query_all_by_label_contains(" → servo ").count(), 0, "the list folded away");
+    harness.get_by_label(&format!("Which {landed} channels")).click();
+    harness.run();
+    assert_eq!(harness.query_all_by_label_contains(" → servo ").count(), landed, "the list, on demand");
+}

@@ -126,7 +126,7 @@ fn a_pass_starts_where_its_axis_is_not_where_another_axis_was_left() {
     harness.state_mut().apply(Action::Show(ShowAction::RecordPass(true)));
     harness.step();
     let show = harness.state().desks.show.session.as_ref().unwrap().show.clone();
-    let posed = servo_studio::show::at::posed_at(&show, 0, 0).unwrap();
+    let posed = servo_studio::show::timeline::posed_at(&show, 0, 0).unwrap();
     let servo_1 = servo_studio::show::at::axis_value(&posed, Axis::Servo(1)).unwrap();
     assert!((servo_1 - -26.0).abs() > 1.0, "the test needs servo 1 away from −26°: {servo_1}");
     harness.step();

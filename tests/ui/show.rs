@@ -44,8 +44,8 @@ fn the_show_window_lays_out_each_device_s_cues_and_plays_them_on_the_boards() {
     assert!(
         harness.query_all_by_label("skull").next().is_some() && harness.query_all_by_label("arms").next().is_some()
     );
-    assert!(harness.query_by_label("skull macro 1 0.00–1.00 s").is_some());
-    assert!(harness.query_by_label("arms macro 1 0.50–1.50 s").is_some());
+    assert!(harness.query_by_label("skull macro 1 show 0.00–1.00 s").is_some());
+    assert!(harness.query_by_label("arms macro 1 show 0.50–1.50 s").is_some());
     harness.get_by_label("Play on the boards").click();
     common::ui::run_until(&mut harness, "the show ended", |app| {
         !app.desks.show.playing() && common::ui::show_log(app).iter().any(|l| l.starts_with("ended after"))
@@ -95,7 +95,11 @@ fn a_cue_is_added_changed_and_the_show_saved_as_version_3() {
     harness.run();
     // The new cue: the first device's first macro, at 0; moved to the other board in its row.
     assert_eq!(harness.state().desks.show.session.as_ref().unwrap().show.cues.len(), 3);
-    assert_eq!(harness.query_all(by().label("skull macro 1 0.00–1.00 s")).count(), 2, "the first cue and the new one");
+    assert_eq!(
+        harness.query_all(by().label("skull macro 1 show 0.00–1.00 s")).count(),
+        2,
+        "the first cue and the new one"
+    );
     let rows: Vec<_> = harness.query_all(by().role(Role::ComboBox).value("skull")).collect();
     rows.last().unwrap().click();
     harness.run();
@@ -197,6 +201,10 @@ fn the_stage_previews_the_show_and_stop_stops_it() {
     harness.get_by_label("■ STOP").click();
     harness.run();
     assert!(!harness.state().desks.show.stage.previewing(), "the window's STOP stops the preview");
+    // Said where it was stopped, in the show's log.
+    let at = harness.state().desks.show.stage.scrub_ms as f64 / 1000.0;
+    let said = format!("STOP stopped the preview at {at:.2} s");
+    assert!(common::ui::show_log(harness.state()).contains(&said), "{:?}", common::ui::show_log(harness.state()));
     // To its end: it stops there by itself.
     harness.get_by_label("Preview").click();
     harness.step();
@@ -286,4 +294,36 @@ fn a_record_pass_follows_a_gamepad_axis() {
         first < low + (high - low) * 0.2 && last > low + (high - low) * 0.8,
         "from near {low} to near {high}: {first} … {last}"
     );
+}
+
+/// Collapsed, the show window parks at the bottom edge, above the status
+/// line: its title bar covers no tab or panel heading; opened again, it is whole.
+#[test]
+fn a_collapsed_show_window_parks_at_the_bottom_edge() {
+    let mut app = common::ui::editor(servo_studio::ui::sample_project());
+    app.apply(Action::Show(ShowAction::OpenProject));
+    let mut harness = common::ui::showing(app, Tab::Servos, (1280.0, 800.0));
+    let id = egui::Id::unique("show-window");
+    let area = |harness: &egui_kittest::Harness<'static, servo_studio::ui::StudioApp>| {
+        harness.ctx.memory(|memory| memory.area_rect(id)).expect("the show window's area")
+    };
+    assert!(area(&harness).top() < 200.0, "open, it stands near the top: {:?}", area(&harness));
+    let collapse = |harness: &mut egui_kittest::Harness<'static, servo_studio::ui::StudioApp>, open: bool| {
+        let mut state =
+            egui::collapsing_header::CollapsingState::load_with_default_open(&harness.ctx, id.with("collapsing"), true);
+        state.set_open(open);
+        state.store(&harness.ctx);
+        harness.run_steps(4);
+    };
+    collapse(&mut harness, false);
+    let parked = area(&harness);
+    assert!(parked.top() >= 800.0 - servo_studio::ui::PARKED_ABOVE_BOTTOM - 1.0, "{parked:?}");
+    assert!(parked.bottom() <= 800.0, "within the window: {parked:?}");
+    // Nothing of the tab bar or the panels' headings is under it.
+    for tab in harness.query_all_by_label("Servos").map(|node| node.rect()) {
+        assert!(!parked.intersects(tab), "{parked:?} over {tab:?}");
+    }
+    collapse(&mut harness, true);
+    let open = area(&harness);
+    assert!(open.height() > 300.0 && open.bottom() <= 800.0 + 1.0, "opened again, whole: {open:?}");
 }

@@ -97,6 +97,15 @@ impl std::fmt::Debug for Playing {
     }
 }
 
+/// Where the sound server this user's programs reach listens (`PULSE_SERVER`,
+/// or the user's runtime folder), when one is named: what a stalled output names.
+pub fn default_server() -> Option<std::path::PathBuf> {
+    #[cfg(not(any(windows, target_os = "macos")))]
+    return pulseaudio::socket_path_from_env();
+    #[cfg(any(windows, target_os = "macos"))]
+    None
+}
+
 impl Speakers {
     /// The system's sound output: the sound server the environment names
     /// (`PULSE_SERVER`, or the user's runtime folder), as every PulseAudio

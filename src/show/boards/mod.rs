@@ -174,14 +174,14 @@ impl Shared {
 /// How long a remote's run keeps its device busy, ms.
 fn run_length_ms(device: &super::Device, run: &Run) -> u64 {
     match run {
-        Run::Start(start) => super::play::cue_length_ms(device, start),
+        Run::Start(start) => super::timeline::cue_length_ms(device, start),
         Run::List(entries) => entries
             .iter()
             .map(|&(slot, plays)| {
                 if plays == 0 {
                     return u64::MAX / 4;
                 }
-                super::play::cue_length_ms(device, &Start::Slot(slot)).saturating_mul(u64::from(plays))
+                super::timeline::cue_length_ms(device, &Start::Slot(slot)).saturating_mul(u64::from(plays))
             })
             .fold(0, u64::saturating_add),
     }

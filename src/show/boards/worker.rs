@@ -14,8 +14,9 @@ use super::{
     connect_one,
 };
 use crate::device::speed::LiveSpeed;
-use crate::show::at::{Now, now_at};
+use crate::show::at::Now;
 use crate::show::play::{Gone, Player, Stage, Stopped};
+use crate::show::timeline::now_at;
 use crate::show::{Show, Start};
 
 /// What a device does for a remote.

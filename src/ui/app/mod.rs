@@ -291,10 +291,9 @@ impl StudioApp {
         self.window.stopped = true;
         // The show's sound stops too, and a board's start still waiting for it never goes out.
         self.desks.sound.silence();
-        // A show previewed on its stage stops where it is (its sound too).
-        self.desks.show.stage.stop_preview();
+        // A show previewed on its stage stops where it is (its sound too), said in its log.
+        let mut previewing = self.desks.show.stop_preview_said();
         // The editor's own previews, whichever family's.
-        let mut previewing = false;
         self.each_family(|family_ui, _| previewing |= family_ui.halt());
         // A show playing on several boards, or holding them: every one of them (and the editor's own).
         let show_boards = self.desks.show.playing() || self.desks.show.linked.is_some();

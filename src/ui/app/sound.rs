@@ -35,10 +35,10 @@ impl StudioApp {
                 let words = crate::ui::sound::lane::words(language);
                 match &said {
                     Said::NoOutput(why) => format!("{} ({why})", words.no_output),
+                    // Said once: which server, how long, and that the motion plays on.
                     Said::Stalled { server, after_s } => {
                         let server = server.clone().unwrap_or_else(|| words.the_server.to_string());
-                        let why = crate::say!(language, "lane.stalled", server, after_s);
-                        format!("{} ({why})", words.no_output)
+                        crate::say!(language, "lane.stalled", server, after_s)
                     }
                     Said::Line(line) => line.clone(),
                 }

@@ -99,8 +99,8 @@ impl ImportDesk {
 /// Where the map lands on something already taken, before Create: a servo
 /// the project already has (its settings are kept), or a servo or joint
 /// that two channels drive.
-pub(super) fn landings(session: &Session, project: &Project, words: &ImportWords) -> Vec<String> {
-    let mut said = Vec::new();
+pub(super) fn landings(session: &Session, project: &Project, words: &ImportWords) -> Landings {
+    let mut said = Landings::default();
     let mut by_target: Vec<(Target, Vec<&str>)> = Vec::new();
     for entry in &session.map.entries {
         let Some(target) = entry.target else { continue };
@@ -108,8 +108,7 @@ pub(super) fn landings(session: &Session, project: &Project, words: &ImportWords
             && project.family == Family::Servo
             && project.servo.servo(id).is_some()
         {
-            let (channel, target) = (&entry.source, words::target(target, words));
-            said.push(fill(words.in_use, &[("channel", channel), ("target", &target)]));
+            said.in_use.push((entry.source.clone(), words::target(target, words)));
         }
         match by_target.iter_mut().find(|(t, _)| *t == target) {
             Some((_, channels)) => channels.push(&entry.source),
@@ -118,7 +117,44 @@ pub(super) fn landings(session: &Session, project: &Project, words: &ImportWords
     }
     for (target, channels) in by_target.iter().filter(|(_, channels)| channels.len() > 1) {
         let (channels, target) = (channels.join(", "), words::target(*target, words));
-        said.push(fill(words.twice, &[("channels", &channels), ("target", &target)]));
+        said.twice.push(fill(words.twice, &[("channels", &channels), ("target", &target)]));
     }
     said
+}
+
+/// Where the map lands on something already taken.
+#[derive(Debug, Default)]
+pub(super) struct Landings {
+    /// Each channel driving a servo the project already has, and that servo, in these words.
+    pub in_use: Vec<(String, String)>,
+    /// Each servo or joint more than one channel drives, said.
+    pub twice: Vec<String>,
+}
+
+impl Landings {
+    /// The warnings, a line each; channels landing on servos the project has
+    /// are one line with their count when there are several, the list under it on demand.
+    pub fn ui(&self, ui: &mut egui::Ui, words: &ImportWords) {
+        let warn = ui.visuals().warn_fg_color;
+        match self.in_use.as_slice() {
+            [] => {}
+            [(channel, target)] => {
+                ui.colored_label(warn, fill(words.in_use, &[("channel", channel), ("target", target)]));
+            }
+            many => {
+                let count = many.len();
+                ui.colored_label(warn, crate::say!(words.lang, "import.in_use_many", count));
+                egui::CollapsingHeader::new(crate::say!(words.lang, "import.which_channels", count))
+                    .id_salt("import-in-use")
+                    .show(ui, |ui| {
+                        for (channel, target) in many {
+                            ui.label(format!("{channel} → {target}"));
+                        }
+                    });
+            }
+        }
+        for line in &self.twice {
+            ui.colored_label(warn, line);
+        }
+    }
 }

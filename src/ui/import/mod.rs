@@ -294,18 +294,17 @@ impl ImportDesk {
         }
         let mut open = true;
         let room = ctx.content_rect().size() - egui::vec2(40.0, 60.0);
-        egui::Window::new(words.title)
-            .open(&mut open)
-            .resizable(true)
-            .default_size(egui::vec2(980.0, 600.0).min(room))
-            .max_size(room)
-            .show(ctx, |ui| {
+        let window = crate::ui::layout::parked_when_collapsed(egui::Window::new(words.title), ctx, "import-window", 1);
+        window.open(&mut open).resizable(true).default_size(egui::vec2(980.0, 600.0).min(room)).max_size(room).show(
+            ctx,
+            |ui| {
                 if let Some(report) = &session.done {
                     report_ui(ui, report, words, actions);
                 } else {
                     self.session_ui(ui, &mut session, project, words, actions);
                 }
-            });
+            },
+        );
         if session.playing {
             let shown = session.source.clips.get(session.clip.unwrap_or(0));
             let length = shown.map_or(0.0, |clip| preview::length_ms(&session.source, clip));
@@ -337,9 +336,7 @@ impl ImportDesk {
             session.family = project.family;
             session.map = JointMap::for_source(&session.source, project.family, None);
         }
-        for warning in landings(session, project, words) {
-            ui.colored_label(ui.visuals().warn_fg_color, warning);
-        }
+        landings(session, project, words).ui(ui, words);
         let clip = session.clip.unwrap_or(0);
         let file_length = session.source.clips.get(clip).map_or(0.0, |c| preview::length_ms(&session.source, c));
         // What the board plays, once worked out; the file's own motion until then.
@@ -455,9 +452,9 @@ impl ImportDesk {
                     if notes.is_empty() {
                         continue;
                     }
-                    ui.label(egui::RichText::new(head).small().strong());
+                    ui.label(egui::RichText::new(head).strong());
                     for line in notes {
-                        ui.label(egui::RichText::new(format!("• {}", note(line, words))).small());
+                        ui.label(format!("• {}", note(line, words)));
                     }
                 }
             });

@@ -91,21 +91,21 @@ fn cell(ui: &mut egui::Ui, slot: usize, cell: &SlotCell) {
         SlotState::Empty => visuals.extreme_bg_color,
     };
     let (weak, strong) = (visuals.weak_text_color(), visuals.text_color());
-    let (rect, response) = ui.allocate_exact_size(egui::vec2(104.0, 30.0), egui::Sense::hover());
+    let (rect, response) = ui.allocate_exact_size(egui::vec2(112.0, 40.0), egui::Sense::hover());
     let painter = ui.painter_at(rect);
     painter.rect_filled(rect.shrink(1.0), 3.0, fill);
     painter.text(
         rect.left_top() + egui::vec2(4.0, 2.0),
         egui::Align2::LEFT_TOP,
         slot.to_string(),
-        egui::FontId::monospace(9.0),
+        egui::TextStyle::Monospace.resolve(ui.style()),
         weak,
     );
     painter.text(
         rect.left_bottom() + egui::vec2(4.0, -3.0),
         egui::Align2::LEFT_BOTTOM,
         &cell.name,
-        egui::FontId::proportional(11.0),
+        egui::TextStyle::Body.resolve(ui.style()),
         strong,
     );
     let label = format!("{slot} {}", cell.name);
@@ -178,7 +178,7 @@ pub fn robot_panel(ui: &mut egui::Ui, view: &RobotView<'_>, language: Language, 
     let rows_count = view.slots.len().div_ceil(per_row);
     ui.spacing_mut().item_spacing = egui::vec2(2.0, 2.0);
     // Each row is laid out left to right already.
-    rows::list(ui, "plen2-slot-map", 30.0, rows_count, ui.available_height(), |ui, row| {
+    rows::list(ui, "plen2-slot-map", 40.0, rows_count, ui.available_height(), |ui, row| {
         let first = row * per_row;
         for (slot, slot_cell) in view.slots.iter().enumerate().skip(first).take(per_row) {
             cell(ui, slot, slot_cell);

@@ -409,7 +409,7 @@ fn timeline(ui: &mut egui::Ui, (project, index): (&Plen2Project, usize), selecte
             .replace("{slots}", &slots.join(" → "))
             .replace("{total}", &format!("{:.2} s", total / 1000.0));
         response.on_hover_text(&said);
-        ui.label(egui::RichText::new(said).small().weak());
+        ui.label(egui::RichText::new(said).weak());
     }
 }
 

@@ -140,7 +140,7 @@ pub fn panel(
             actions.push(Action::family(RflexAction::ClearMap));
         }
     });
-    ui.label(egui::RichText::new(words.rflex().world_hint).small().weak());
+    ui.label(egui::RichText::new(words.rflex().world_hint).weak());
     match telemetry {
         Some(telemetry) => {
             let rect = ui.available_rect_before_wrap();

@@ -6,49 +6,35 @@
 use super::ShowWords;
 use crate::project::Family;
 use crate::show::{Cue, Show, Start};
-use crate::ui::i18n::Worded;
 
-/// The cues' table; `editable` while no show plays. Returns what the show's check says, if it fails.
-pub(super) fn cues_ui(ui: &mut egui::Ui, show: &mut Show, editable: bool, words: &ShowWords) -> Option<String> {
+/// The cues' table; `editable` while no show plays.
+pub(super) fn cues_ui(ui: &mut egui::Ui, show: &mut Show, editable: bool, words: &ShowWords) {
     let mut remove = None;
-    egui::Grid::new("show-cues").striped(true).show(ui, |ui| {
-        for head in ["#", words.device, words.at, words.starts, ""] {
-            ui.strong(head);
-        }
-        ui.end_row();
-        let names: Vec<String> = show.devices.iter().map(|d| d.name.clone()).collect();
-        for (index, cue) in show.cues.iter_mut().enumerate() {
-            // Each row's widgets are named by the cue's number (screen readers, tests).
-            let named = ui.label(format!("{} {}", words.cue, index + 1)).id;
-            ui.add_enabled_ui(editable, |ui| {
-                egui::ComboBox::from_id_salt(("cue-device", index))
-                    .selected_text(cue.device.clone())
-                    .show_ui(ui, |ui| {
-                        for name in &names {
-                            ui.selectable_value(&mut cue.device, name.clone(), name);
-                        }
-                    })
-                    .response
-                    .labelled_by(named);
-            });
-            let mut seconds = cue.at_ms as f64 / 1000.0;
-            let time = ui
-                .add_enabled(editable, egui::DragValue::new(&mut seconds).range(0.0..=3600.0).speed(0.01).suffix(" s"))
-                .labelled_by(named);
-            if time.changed() {
-                // Seconds within an hour: whole ms.
-                #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-                let ms = (seconds * 1000.0).round().max(0.0) as u64;
-                cue.at_ms = ms;
-            }
-            let device = show.devices.iter().find(|d| d.name == cue.device);
-            ui.add_enabled_ui(editable, |ui| start_ui(ui, (index, named, &mut cue.start), device, words));
-            if ui.add_enabled(editable, egui::Button::new(words.remove)).clicked() {
-                remove = Some(index);
-            }
-            ui.end_row();
+    // Only the rows in view are laid out: an hour of cues costs a frame what a dozen do.
+    let row_height = ui.spacing().interact_size.y;
+    let names: Vec<String> = show.devices.iter().map(|d| d.name.clone()).collect();
+    let heads = [words.device, words.at, words.starts];
+    ui.horizontal(|ui| {
+        ui.add_sized([70.0, row_height], egui::Label::new(egui::RichText::new("#").strong()));
+        for (head, width) in heads.into_iter().zip([130.0, 90.0, 260.0]) {
+            ui.add_sized([width, row_height], egui::Label::new(egui::RichText::new(head).strong()));
         }
     });
+    let rows = show.cues.len();
+    egui::ScrollArea::vertical().id_salt("show-cues").max_height((row_height + 4.0) * 12.0).show_rows(
+        ui,
+        row_height,
+        rows,
+        |ui, range| {
+            for index in range {
+                ui.horizontal(|ui| {
+                    if cue_row(ui, (show, &names, index), editable, words) {
+                        remove = Some(index);
+                    }
+                });
+            }
+        },
+    );
     if let Some(index) = remove {
         show.cues.remove(index);
     }
@@ -58,7 +44,44 @@ pub(super) fn cues_ui(ui: &mut egui::Ui, show: &mut Show, editable: bool, words:
             show.cues.push(Cue { device: device.name.clone(), at_ms: 0, start });
         }
     }
-    show.check().err().map(|error| error.worded(words.lang))
+}
+
+/// One cue's row: its number, device, time and start, and Remove (whether it was clicked).
+fn cue_row(
+    ui: &mut egui::Ui,
+    (show, names, index): (&mut Show, &[String], usize),
+    editable: bool,
+    words: &ShowWords,
+) -> bool {
+    // Each row's widgets are named by the cue's number (screen readers, tests).
+    let named =
+        ui.add_sized([70.0, ui.spacing().interact_size.y], egui::Label::new(format!("{} {}", words.cue, index + 1))).id;
+    let Some(cue) = show.cues.get_mut(index) else { return false };
+    ui.add_enabled_ui(editable, |ui| {
+        egui::ComboBox::from_id_salt(("cue-device", index))
+            .selected_text(cue.device.clone())
+            .width(122.0)
+            .show_ui(ui, |ui| {
+                for name in names {
+                    ui.selectable_value(&mut cue.device, name.clone(), name);
+                }
+            })
+            .response
+            .labelled_by(named);
+    });
+    let mut seconds = cue.at_ms as f64 / 1000.0;
+    let time = ui
+        .add_enabled(editable, egui::DragValue::new(&mut seconds).range(0.0..=3600.0).speed(0.01).suffix(" s"))
+        .labelled_by(named);
+    if time.changed() {
+        // Seconds within an hour: whole ms.
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        let ms = (seconds * 1000.0).round().max(0.0) as u64;
+        cue.at_ms = ms;
+    }
+    let device = show.devices.iter().find(|d| d.name == cue.device);
+    ui.add_enabled_ui(editable, |ui| start_ui(ui, (index, named, &mut cue.start), device, words));
+    ui.add_enabled(editable, egui::Button::new(words.remove)).clicked()
 }
 
 /// What a new cue of a device starts: its lowest macro or motion, or a slow drive of a second.

@@ -46,7 +46,7 @@ pub(super) fn devices_ui(
                 // A long reason stays in its cell (whole on hover, and in the lines above).
                 ui.scope(|ui| {
                     ui.set_max_width(300.0);
-                    ui.add(egui::Label::new(egui::RichText::new(&said).color(color)).truncate()).on_hover_text(&said);
+                    ui.add(egui::Label::new(egui::RichText::new(&said).color(color)).wrap());
                 });
             }
             ui.end_row();
@@ -55,6 +55,7 @@ pub(super) fn devices_ui(
     if let Some(index) = remove {
         let name = session.show.devices.get(index).map(|device| device.name.clone()).unwrap_or_default();
         let cues = session.show.remove_device(index);
+        session.touch();
         if index < session.ports.len() {
             session.ports.remove(index);
         }

@@ -22,7 +22,7 @@ use crossbeam_channel::{Receiver, Sender};
 use crate::link::Waker;
 use crate::link::by_id::Attached;
 use crate::project::Project;
-use crate::show::play::cue_length_ms;
+use crate::show::timeline::{Block, Timeline};
 use crate::show::{Show, Start};
 pub use crate::ui::action::ShowAction;
 use crate::ui::i18n::{Language, Said};
@@ -47,7 +47,12 @@ pub struct ShowSession {
     pub editor: Option<String>,
     /// The document's revision the editor's device last took.
     synced: Option<u64>,
+    /// Changes whenever a device's project does (what the stage and lanes worked out is then worked out again).
+    pub projects: u64,
 }
+
+/// Project revisions, unique across sessions.
+static NEXT_PROJECTS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
 
 struct Running {
     stop: Sender<String>,
@@ -60,6 +65,11 @@ pub(crate) fn said_by(word: impl Fn(&ShowWords) -> String) -> Said {
 }
 
 impl ShowSession {
+    /// A device's project changed.
+    pub fn touch(&mut self) {
+        self.projects = NEXT_PROJECTS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    }
+
     /// The run log, each line in `language`.
     pub fn log(&self, language: Language) -> Vec<&str> {
         self.said.iter().map(|line| line.in_(language)).collect()
@@ -78,6 +88,7 @@ impl ShowSession {
     pub fn add(&mut self, name: &str, project: Project) -> String {
         let name = self.show.add_device(name, project);
         self.ports.push(String::new());
+        self.touch();
         name
     }
 
@@ -227,6 +238,7 @@ impl ShowDesk {
         let Some(session) = &mut self.session else { return };
         let Some((said, joined)) = self.passes.end(&mut session.show) else { return };
         session.said.push(said);
+        session.touch();
         if let Some(device) = joined {
             // What the pass made of the editor's project, when it was recorded on it.
             let editor = session.editor_index().filter(|&index| session.show.devices[index].name == device);
@@ -260,6 +272,22 @@ impl ShowDesk {
         session.ports.iter_mut().filter(|each| each.trim() == port).for_each(String::clear);
     }
 
+    /// STOP: the stage's preview (and a pass recorded over it) stops where
+    /// it is, said in the show's log with the time it stopped at; whether one ran.
+    pub fn stop_preview_said(&mut self) -> bool {
+        if !self.stage.previewing() {
+            return false;
+        }
+        self.stage.stop_preview();
+        // Whole ms of a show: exact in f64.
+        #[allow(clippy::cast_precision_loss)]
+        let seconds = self.stage.scrub_ms as f64 / 1000.0;
+        if let Some(session) = &mut self.session {
+            session.said.push(Said::new(|language| crate::say!(language, "show.preview_stopped", seconds)));
+        }
+        true
+    }
+
     /// Whether the show's boards are held (connected, or served to remote control).
     pub fn holds_boards(&self) -> bool {
         self.linked.is_some() || self.remote.serving()
@@ -277,6 +305,7 @@ impl ShowDesk {
     pub fn undo_pass(&mut self) {
         if let Some(session) = &mut self.session {
             self.passes.undo(&mut session.show, &mut session.said);
+            session.touch();
             self.stage.held = None;
         }
     }
@@ -285,6 +314,7 @@ impl ShowDesk {
     pub fn redo_pass(&mut self) {
         if let Some(session) = &mut self.session {
             self.passes.redo(&mut session.show, &mut session.said);
+            session.touch();
         }
     }
 
@@ -297,6 +327,7 @@ impl ShowDesk {
             session.synced = Some(revision);
             if session.show.devices[index].project != *project {
                 session.show.devices[index].project = project.clone();
+                session.touch();
             }
         }
     }
@@ -328,7 +359,9 @@ impl ShowDesk {
         self.passes.pad_axis = pad_axis;
         self.joined = None;
         let ports = show.devices.iter().map(|device| device.port.clone().unwrap_or_default()).collect();
-        self.session = Some(ShowSession { path, show, ports, said: Vec::new(), editor: None, synced: None });
+        let mut session = ShowSession { path, show, ports, said: Vec::new(), editor: None, synced: None, projects: 0 };
+        session.touch();
+        self.session = Some(session);
     }
 
     /// The editor's open project as a show of one device, which is it.
@@ -483,7 +516,8 @@ impl ShowDesk {
         let mut open = true;
         // Below the toolbar (File, Settings and STOP stay in reach), as tall as the rest allows.
         let room = ctx.content_rect().size() - egui::vec2(40.0, 130.0);
-        egui::Window::new(words.title)
+        let window = crate::ui::layout::parked_when_collapsed(egui::Window::new(words.title), ctx, "show-window", 0);
+        window
             .open(&mut open)
             .default_pos(egui::pos2(20.0, 100.0))
             .resizable(true)
@@ -540,8 +574,10 @@ fn session_ui(
         .map_or_else(|| words.this_project.to_string(), |n| n.to_string_lossy().into_owned());
     let devices = crate::say!(words.lang, "show.device_count", count = session.show.devices.len());
     ui.label(egui::RichText::new(format!("{name} — {devices}")).strong());
+    // What each device does over time, and whether the show holds together: worked out once per show as it stands.
+    stage.timeline.keep_to(&session.show, session.projects);
+    let problem = stage.timeline.problem(&session.show).map(|error| error.worded(words.lang));
     // Play, Save and Stop all first, where a tall show does not scroll them away.
-    let problem = session.show.check().err().map(|error| error.worded(words.lang));
     buttons(ui, session, (playing, links.is_some()), problem.is_none(), words, actions);
     egui::ScrollArea::vertical().id_salt("show-said").max_height(150.0).show(ui, |ui| {
         for line in &session.said {
@@ -553,7 +589,9 @@ fn session_ui(
     devices::devices_ui(ui, session, (attached, links), !playing && links.is_none(), words, actions);
     ui.separator();
     // The cues' blocks are worked out once a frame, by the lanes: their span serves the stage too.
-    let (clicked, span) = lanes(ui, &session.show, stage.scrub_ms, words);
+    // Devices or cues may have changed above, this frame.
+    stage.timeline.keep_to(&session.show, session.projects);
+    let (clicked, span) = lanes(ui, (&session.show, &mut stage.timeline), stage.scrub_ms, words);
     if let Some(clicked) = clicked {
         stage.scrub_ms = clicked;
     }
@@ -561,7 +599,8 @@ fn session_ui(
     stage.ui(ui, (&mut session.show, span), !playing, words, actions);
     record::passes_ui(ui, (&session.show, pad, stage.scrub_ms), passes, !playing, words, actions);
     ui.separator();
-    if let Some(problem) = cues::cues_ui(ui, &mut session.show, !playing, words) {
+    cues::cues_ui(ui, &mut session.show, !playing, words);
+    if let Some(problem) = problem {
         ui.colored_label(ui.visuals().warn_fg_color, problem);
     }
 }
@@ -608,32 +647,24 @@ fn buttons(
     });
 }
 
-/// A cue on the timeline: its device's row, when it starts and for how long (ms), and its caption.
-type Block = (usize, u64, u64, String);
-
-/// Every cue as a block, and the span the timeline shows (ms, at least a second).
-fn blocks(show: &Show, words: &ShowWords) -> (Vec<Block>, u64) {
-    let blocks: Vec<Block> = show
-        .cues
-        .iter()
-        .filter_map(|cue| {
-            let index = show.devices.iter().position(|d| d.name == cue.device)?;
-            let length = cue_length_ms(&show.devices[index], &cue.start);
-            Some((index, cue.at_ms, length, cue_caption(&cue.start, words)))
-        })
-        .collect();
-    let sound = show.sound.as_ref().map(|s| s.offset_ms.max(0).unsigned_abs() + s.duration_ms);
-    let span = blocks.iter().map(|(_, at, length, _)| at + length).chain(sound).max().unwrap_or(0).max(1000);
-    (blocks, span)
-}
-
 /// The timeline: the sound's lane, then a lane per device with its cues, on
 /// one time axis, and the scrub's time as a line; where a click or a drag on
-/// it puts the scrub (ms), and the span it shows (ms).
-fn lanes(ui: &mut egui::Ui, show: &Show, scrub_ms: u64, words: &ShowWords) -> (Option<u64>, u64) {
+/// it puts the scrub (ms), and the span it shows (ms). What it draws costs
+/// what fits its width, not the show's length: cues closer together than a
+/// pixel are drawn as one block (said with how many), the seconds labelled
+/// as far apart as they can be read.
+fn lanes(
+    ui: &mut egui::Ui,
+    (show, timeline): (&Show, &mut Timeline),
+    scrub_ms: u64,
+    words: &ShowWords,
+) -> (Option<u64>, u64) {
     const LANE: f32 = 26.0;
     const NAMES: f32 = 130.0;
-    let (blocks, span) = blocks(show, words);
+    let (count, span) = {
+        let (blocks, span) = timeline.blocks(show);
+        (blocks.len(), span)
+    };
     let rows = u16::try_from(show.devices.len() + 1).unwrap_or(u16::MAX);
     let (rect, response) = ui.allocate_exact_size(
         egui::vec2(ui.available_width(), LANE * f32::from(rows) + 18.0),
@@ -648,7 +679,15 @@ fn lanes(ui: &mut egui::Ui, show: &Show, scrub_ms: u64, words: &ShowWords) -> (O
     let x = |ms: u64| rect.left() + NAMES + width * (ms as f32 / span as f32);
     let font = egui::FontId::proportional(13.0);
     let top = |row: u16| rect.top() + LANE * f32::from(row);
-    let lane = |row: u16, name: &str, spans: &[(u64, u64, &str)], fill: egui::Color32| {
+    let caption_of = |block: &Block| {
+        let cue = &show.cues[block.cue];
+        cue_caption(&cue.start, show.devices.get(block.device), words)
+    };
+    // One lane: its name, and its cues as blocks, those within a pixel of each other as one.
+    let lane = |row: u16,
+                name: &str,
+                spans: &mut dyn Iterator<Item = (u64, u64, Option<&Block>)>,
+                fill: egui::Color32| {
         painter.text(
             egui::pos2(rect.left(), top(row) + LANE / 2.0),
             egui::Align2::LEFT_CENTER,
@@ -657,38 +696,61 @@ fn lanes(ui: &mut egui::Ui, show: &Show, scrub_ms: u64, words: &ShowWords) -> (O
             visuals.text_color(),
         );
         painter.hline(rect.left() + NAMES..=rect.right(), top(row), visuals.widgets.noninteractive.bg_stroke);
-        for &(at, length, caption) in spans {
-            let block = egui::Rect::from_min_max(
-                egui::pos2(x(at), top(row) + 4.0),
-                egui::pos2(x(at + length).max(x(at) + 6.0), top(row) + LANE - 4.0),
-            );
+        let mut run: Option<(f32, f32, usize, Option<&Block>)> = None;
+        let draw = |(left, right, count, only): (f32, f32, usize, Option<&Block>)| {
+            let block =
+                egui::Rect::from_min_max(egui::pos2(left, top(row) + 4.0), egui::pos2(right, top(row) + LANE - 4.0));
             painter.rect_filled(block, 3.0, fill);
-            painter.text(
-                block.left_center() + egui::vec2(4.0, 0.0),
-                egui::Align2::LEFT_CENTER,
-                caption,
-                font.clone(),
-                visuals.strong_text_color(),
-            );
+            let caption = match only {
+                Some(cue) if count == 1 => caption_of(cue),
+                Some(_) => crate::say!(words.lang, "show.cues_together", count),
+                None => String::new(),
+            };
+            if !caption.is_empty() && block.width() >= 24.0 {
+                painter.with_clip_rect(block.intersect(rect)).text(
+                    block.left_center() + egui::vec2(4.0, 0.0),
+                    egui::Align2::LEFT_CENTER,
+                    caption,
+                    font.clone(),
+                    visuals.strong_text_color(),
+                );
+            }
+        };
+        for (at, length, cue) in spans {
+            let (left, right) = (x(at), x(at + length).max(x(at) + 6.0));
+            run = match run {
+                Some((from, to, count, first)) if left <= to + 1.0 => Some((from, to.max(right), count + 1, first)),
+                Some(done) => {
+                    draw(done);
+                    Some((left, right, 1, cue))
+                }
+                None => Some((left, right, 1, cue)),
+            };
+        }
+        if let Some(done) = run {
+            draw(done);
         }
     };
-    let sound: Vec<(u64, u64, &str)> =
-        show.sound.iter().map(|s| (s.offset_ms.max(0).unsigned_abs(), s.duration_ms, "")).collect();
-    lane(0, words.sound, &sound, visuals.selection.bg_fill.gamma_multiply(0.5));
+    let mut sound = show.sound.iter().map(|s| (s.offset_ms.max(0).unsigned_abs(), s.duration_ms, None));
+    lane(0, words.sound, &mut sound, visuals.selection.bg_fill.gamma_multiply(0.5));
     for (row, device) in show.devices.iter().enumerate() {
-        let spans: Vec<(u64, u64, &str)> = blocks
-            .iter()
-            .filter(|(index, ..)| *index == row)
-            .map(|(_, at, length, c)| (*at, *length, c.as_str()))
-            .collect();
-        lane(u16::try_from(row + 1).unwrap_or(u16::MAX), &device.name, &spans, visuals.selection.bg_fill);
+        let mut spans = timeline.lane(row).iter().map(|block| (block.at_ms, block.length_ms, Some(block)));
+        lane(u16::try_from(row + 1).unwrap_or(u16::MAX), &device.name, &mut spans, visuals.selection.bg_fill);
     }
-    for second in 0..=span / 1000 {
+    // The seconds, labelled every 1, 2, 5, 10 … s: as often as labels 70 px apart allow.
+    #[allow(clippy::cast_precision_loss)]
+    let px_per_s = width / (span as f32 / 1000.0);
+    let every_s = [1, 2, 5, 10, 15, 30, 60, 120, 300, 600, 900, 1800, 3600]
+        .into_iter()
+        .find(|&step| step as f32 * px_per_s >= 70.0)
+        .unwrap_or(3600);
+    for second in (0..=span / 1000).step_by(every_s) {
+        let label = if span >= 60_000 { format!("{}:{:02}", second / 60, second % 60) } else { format!("{second} s") };
         painter.text(
             egui::pos2(x(second * 1000), top(rows) + 12.0),
             egui::Align2::CENTER_CENTER,
-            format!("{second} s"),
-            egui::FontId::proportional(11.0),
+            label,
+            egui::FontId::proportional(13.0),
             visuals.weak_text_color(),
         );
     }
@@ -699,30 +761,51 @@ fn lanes(ui: &mut egui::Ui, show: &Show, scrub_ms: u64, words: &ShowWords) -> (O
         let ms = (((pos.x - rect.left() - NAMES) / width).clamp(0.0, 1.0) * span as f32).round() as u64;
         ms
     });
-    said_cues(ui, show, &blocks);
+    said_cues(ui, (show, timeline), count, words);
     (scrubbed, span)
 }
 
-/// Each cue said as text too (screen readers, tests).
-fn said_cues(ui: &mut egui::Ui, show: &Show, blocks: &[Block]) {
-    for (index, at, length, caption) in blocks {
-        // Whole ms of a show: exact in f64.
-        #[allow(clippy::cast_precision_loss)]
-        let said = format!(
-            "{} {caption} {:.2}–{:.2} s",
-            show.devices[*index].name,
-            *at as f64 / 1000.0,
-            (at + length) as f64 / 1000.0
-        );
-        ui.label(egui::RichText::new(said).small().weak());
-    }
+/// Each cue said as text too, as its row names it, with when it starts and
+/// ends (screen readers, tests): a list that scrolls, only the lines in view laid out.
+fn said_cues(ui: &mut egui::Ui, (show, timeline): (&Show, &mut Timeline), count: usize, words: &ShowWords) {
+    let line_height = ui.text_style_height(&egui::TextStyle::Body);
+    egui::ScrollArea::vertical().id_salt("show-cue-lines").max_height(line_height * 6.0 + 12.0).show_rows(
+        ui,
+        line_height,
+        count,
+        |ui, range| {
+            let (blocks, _) = timeline.blocks(show);
+            for block in &blocks[range] {
+                let cue = &show.cues[block.cue];
+                let device = show.devices.get(block.device);
+                // Whole ms of a show: exact in f64.
+                #[allow(clippy::cast_precision_loss)]
+                let said = format!(
+                    "{} {} {:.2}–{:.2} s",
+                    device.map_or("?", |device| device.name.as_str()),
+                    cue_caption(&cue.start, device, words),
+                    block.at_ms as f64 / 1000.0,
+                    (block.at_ms + block.length_ms) as f64 / 1000.0
+                );
+                ui.weak(said);
+            }
+        },
+    );
 }
 
-/// A cue's caption: what it starts, in these words.
-fn cue_caption(start: &Start, words: &ShowWords) -> String {
+/// A cue's caption: what it starts, in these words, named as its device
+/// names it (its macro's caption, its motion's name) when it is known.
+fn cue_caption(start: &Start, device: Option<&crate::show::Device>, words: &ShowWords) -> String {
     match *start {
-        Start::Macro(id) => format!("{} {id}", words.macro_word),
-        Start::Slot(slot) => format!("{} {slot}", words.motion_word),
+        Start::Macro(id) => {
+            let caption = device.and_then(|d| d.project.servo.macro_by_id(id)).map(|m| m.caption.as_str());
+            format!("{} {id} {}", words.macro_word, caption.unwrap_or_default()).trim_end().to_string()
+        }
+        Start::Slot(slot) => {
+            let name =
+                device.and_then(|d| d.project.plen2.motions.iter().find(|m| m.slot == slot)).map(|m| m.name.as_str());
+            format!("{} {slot} {}", words.motion_word, name.unwrap_or_default()).trim_end().to_string()
+        }
         Start::Drive { speed_m_s, turn_deg_s, .. } => {
             format!("{} {speed_m_s:.2} m/s {turn_deg_s:.0}°/s", words.drive_word)
         }

@@ -78,7 +78,7 @@ impl Passes {
         if !moved_since_picked
             && let Some((device, axis)) = &picked
             && let Some(index) = show.devices.iter().position(|each| each.name == *device)
-            && let Some(value) = crate::show::at::posed_at(show, index, t_ms)
+            && let Some(value) = crate::show::timeline::posed_at(show, index, t_ms)
                 .and_then(|posed| crate::show::at::axis_value(&posed, *axis))
         {
             self.value = value;
@@ -186,7 +186,7 @@ fn cut_short(show: &Show, device: &str, made: &Made, words: &ShowWords) -> Strin
     };
     let cue = show.cues.iter().find(|c| c.device == device && c.start == mine).map(|c| c.at_ms);
     let (Some(start), Some(joined)) = (cue, show.device(device)) else { return String::new() };
-    let end = start + crate::show::play::cue_length_ms(joined, &mine);
+    let end = start + crate::show::timeline::cue_length_ms(joined, &mine);
     match show
         .cues
         .iter()

@@ -104,7 +104,9 @@ impl RemoteDesk {
     pub fn window(&mut self, ctx: &egui::Context, words: &ShowWords, actions: &mut Vec<crate::ui::Action>) {
         let mut open = self.open;
         let right = ctx.content_rect().right();
-        let window = egui::Window::new(words.remote_title).open(&mut open).resizable(false);
+        let window = egui::Window::new(words.remote_title);
+        let window =
+            crate::ui::layout::parked_when_collapsed(window, ctx, "remote-window", 2).open(&mut open).resizable(false);
         window.default_pos(egui::pos2(right - 560.0, 100.0)).show(ctx, |ui| {
             ui.set_max_width(520.0);
             let mut on = self.serving();

@@ -6,7 +6,7 @@
 //! heading where its drives have taken it.
 
 use crate::figure::{self, Mat3, Placed, Shape, Vec3, WorldSolid};
-use crate::show::at::{Posed, hold, posed_at};
+use crate::show::at::{Posed, hold};
 use crate::show::passes::Axis;
 use crate::show::{Device, Show};
 use crate::ui::view3d::{Scene, View};
@@ -27,6 +27,8 @@ pub struct Stage {
     plen2: Option<figure::Chain>,
     /// Previewing: when it began and the time shown then.
     preview: Option<(std::time::Instant, u64)>,
+    /// What each device does over time, worked out once for the show as it stands.
+    pub timeline: crate::show::timeline::Timeline,
     /// The show's sound for the preview (its own worker: a stalled sound server waits there, not here).
     sound: Option<crate::ui::sound::SoundOut>,
 }
@@ -127,7 +129,7 @@ impl Stage {
     pub fn scene(&mut self, show: &Show) -> Scene {
         let mut solids = Vec::new();
         for (index, device) in show.devices.iter().enumerate() {
-            let Some(mut posed) = posed_at(show, index, self.scrub_ms) else { continue };
+            let Some(mut posed) = self.timeline.posed_at(show, index, self.scrub_ms) else { continue };
             if let Some((name, axis, value)) = &self.held
                 && *name == device.name
             {

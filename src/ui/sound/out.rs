@@ -212,7 +212,9 @@ impl SoundOut {
             self.asked = false;
             self.ended = None;
             self.reach = Reach::Gone;
-            let server = self.server.as_ref().map(|server| server.display().to_string());
+            // Named, the user's default server too: where it stalled is what to look at.
+            let server = self.server.clone().or_else(crate::audio::output::default_server);
+            let server = server.map(|server| server.display().to_string());
             said = Some(super::Said::Stalled { server, after_s: ANSWER_WITHIN.as_secs() });
         }
         said
