@@ -456,8 +456,8 @@ mod tests {
 mod at_tests {
     #![allow(clippy::unwrap_used)]
     use super::*;
-    use crate::project::plen2::{Frame, Pose};
     use crate::project::Step;
+    use crate::project::plen2::{Frame, Pose};
     use crate::show::Cue;
 
     fn show() -> Show {

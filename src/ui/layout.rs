@@ -239,8 +239,8 @@ pub fn list_editor_and_graph(
 
 /// A floating window that stays out of the way when collapsed: its id is
 /// `id` (not its title's, which changes with the language), and collapsed
-/// it is parked at the bottom edge — `slot` its place along it, one per
-/// window — where its title bar covers no panel's heading or tab.
+/// it is parked at the bottom edge, from the right — `slot` its place along
+/// it, one per window — where its title bar covers no panel's heading or tab.
 pub fn parked_when_collapsed<'a>(
     window: egui::Window<'a>,
     ctx: &egui::Context,
@@ -250,16 +250,44 @@ pub fn parked_when_collapsed<'a>(
     let id = egui::Id::unique(id);
     let collapsed = egui::collapsing_header::CollapsingState::load(ctx, id.with("collapsing"))
         .is_some_and(|state| !state.is_open());
-    if collapsed {
-        let rect = ctx.content_rect();
-        let parked = pos2(rect.left() + 8.0 + f32::from(slot) * PARKED_WIDTH, rect.bottom() - PARKED_ABOVE_BOTTOM);
+    // Where it stood before it was parked: it goes back there when opened.
+    let before = id.with("before parked");
+    let Some(mut state) = egui::AreaState::load(ctx, id) else { return window.id(id) };
+    let stood: Option<egui::Pos2> = ctx.data(|data| data.get_temp(before));
+    let place = match (collapsed, stood) {
+        (true, _) => {
+            // Its right edge at its slot's, counted from the window's right
+            // (the left keeps the lower pane's headings), above the status line.
+            let rect = ctx.content_rect();
+            let width = state.size.map_or(PARKED_WIDTH, |size| size.x);
+            let right = rect.right() - 8.0 - f32::from(slot) * PARKED_WIDTH;
+            let parked = pos2(right - width, rect.bottom() - PARKED_ABOVE_BOTTOM);
+            if stood.is_none() && state.left_top_pos() != parked {
+                ctx.data_mut(|data| data.insert_temp(before, state.left_top_pos()));
+            }
+            Some(parked)
+        }
+        (false, Some(stood)) => {
+            ctx.data_mut(|data| data.remove::<egui::Pos2>(before));
+            Some(stood)
+        }
+        // Open: whole on the screen (a place remembered from a larger window, or a drag, may leave it hanging off).
+        (false, None) => state.size.and_then(|size| {
+            let rect = ctx.content_rect();
+            let at = state.left_top_pos();
+            let whole = pos2(
+                at.x.min(rect.right() - size.x).max(rect.left()),
+                at.y.min(rect.bottom() - size.y).max(rect.top()),
+            );
+            (whole != at).then_some(whole)
+        }),
+    };
+    if let Some(place) = place {
         // Put where it stands (a window dragged by its title bar takes its
         // place from memory, not from `current_pos`).
-        if let Some(mut state) = egui::AreaState::load(ctx, id) {
-            state.set_left_top_pos(parked);
-            let layer = egui::LayerId::new(egui::Order::Middle, id);
-            ctx.memory_mut(|memory| memory.areas_mut().set_state(layer, state));
-        }
+        state.set_left_top_pos(place);
+        let layer = egui::LayerId::new(egui::Order::Middle, id);
+        ctx.memory_mut(|memory| memory.areas_mut().set_state(layer, state));
     }
     window.id(id)
 }

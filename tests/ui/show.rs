@@ -297,7 +297,8 @@ fn a_record_pass_follows_a_gamepad_axis() {
 }
 
 /// Collapsed, the show window parks at the bottom edge, above the status
-/// line: its title bar covers no tab or panel heading; opened again, it is whole.
+/// line: its title bar covers no tab or panel heading; opened again, it is
+/// whole, back where it stood.
 #[test]
 fn a_collapsed_show_window_parks_at_the_bottom_edge() {
     let mut app = common::ui::editor(servo_studio::ui::sample_project());
@@ -326,4 +327,5 @@ fn a_collapsed_show_window_parks_at_the_bottom_edge() {
     collapse(&mut harness, true);
     let open = area(&harness);
     assert!(open.height() > 300.0 && open.bottom() <= 800.0 + 1.0, "opened again, whole: {open:?}");
+    assert!(open.top() < 200.0, "back where it stood before it was parked: {open:?}");
 }
