@@ -120,6 +120,7 @@ mod tests {
         let words = words(crate::ui::i18n::Language::English);
         let (edits, said) = servos.make(&project, 7, &open, (follower, Target::FreeSlots), words).unwrap();
         assert!(matches!(edits.last(), Some(crate::project::Edit::AddMacro(_))), "a macro runs the steps");
+        let said = said.in_(crate::ui::i18n::Language::English);
         assert!(said.contains("steps, run by macro"), "{said}");
         let (edits, _) =
             joints.make(&Project::empty(Family::Plen2), 0, &open, (follower, Target::FreeSlots), words).unwrap();

@@ -346,6 +346,13 @@ fn follow_the_sound_adds_a_servos_steps_and_a_macro_timed_to_it_in_one_undo_step
     let total_ms: i64 = added.iter().map(|action| i64::from(action.steps[0].interval_10ms) * 10).sum();
     assert!((total_ms - 3000).abs() <= 20, "{total_ms} ms of steps for 3 s of sound");
     assert!(harness.query_by_label_contains("steps, run by macro").is_some(), "it says what it made");
+    // Said again in the language chosen while it shows.
+    harness.state_mut().apply(Action::SetLanguage(servo_studio::ui::Language::Japanese));
+    harness.run_steps(2);
+    assert!(harness.query_by_label_contains("steps, run by macro").is_none(), "no English left");
+    let said = format!("{} ステップ、マクロで実行", added.len());
+    assert!(harness.query_by_label_contains(&said).is_some(), "said in Japanese: {said}");
+    harness.state_mut().apply(Action::SetLanguage(servo_studio::ui::Language::English));
     harness.state_mut().apply(Action::Undo);
     harness.run_steps(2);
     assert_eq!(harness.state().document.project.servo, before, "one undo step");

@@ -8,7 +8,8 @@ use crate::authoring::fitted::PLEN2_UPDATE_MS;
 use crate::authoring::follow;
 use crate::project::plen2::{Joint, Motion, Plen2Project, SLOTS};
 use crate::project::{Edit, Project};
-use crate::ui::sound::follow::{Follower, SoundFollower, Target, Words, fit_error};
+use crate::ui::i18n::Said;
+use crate::ui::sound::follow::{Follower, SoundFollower, Target, Words, fit_error, said_by};
 
 /// A PLEN2's side of following the sound.
 pub struct Plen2Follower;
@@ -55,10 +56,10 @@ impl SoundFollower for Plen2Follower {
         axis: usize,
         open: &[f64],
         (follower, target): (Follower, Target),
-        words: &Words,
-    ) -> Result<(Vec<Edit>, String), String> {
-        let joint = *Joint::ALL.get(axis).ok_or_else(|| words.no_axis.to_string())?;
-        let (plen2, said) = chain(&project.plen2, joint, open, (follower, target), words)?;
+        _words: &Words,
+    ) -> Result<(Vec<Edit>, Said), Said> {
+        let joint = *Joint::ALL.get(axis).ok_or_else(|| said_by(|words| words.no_axis.to_string()))?;
+        let (plen2, said) = chain(&project.plen2, joint, open, (follower, target))?;
         Ok((vec![Edit::SetPlen2(Box::new(plen2))], said))
     }
 }
@@ -73,22 +74,23 @@ fn slots(target: Target, plen2: &Plen2Project) -> Vec<u8> {
 
 /// The project with `joint` following the sound — a chain of motions in
 /// the slots [`slots`] gives, each jumping to the next — and what to say;
-/// or why not, in the interface's words.
+/// or why not, in the interface's words (every language's).
 fn chain(
     plen2: &Plen2Project,
     joint: Joint,
     open: &[f64],
     (follower, target): (Follower, Target),
-    words: &Words,
-) -> Result<(Plen2Project, String), String> {
+) -> Result<(Plen2Project, Said), Said> {
     let slots = slots(target, plen2);
     if slots.is_empty() {
-        return Err(words.no_slot.to_string());
+        return Err(said_by(|words| words.no_slot.to_string()));
     }
     let chain = follow::plen2(open, joint, follower, slots.len()).map_err(|error| {
-        let said = fit_error(&error, (0.1, PLEN2_UPDATE_MS), words.frames, words);
-        // Too long for the slots it may take: more slots hold more.
-        if matches!(error, FitError::TooLong { .. }) { format!("{said}{}", words.more_slots) } else { said }
+        said_by(|words| {
+            let said = fit_error(&error, (0.1, PLEN2_UPDATE_MS), words.frames, words);
+            // Too long for the slots it may take: more slots hold more.
+            if matches!(error, FitError::TooLong { .. }) { format!("{said}{}", words.more_slots) } else { said }
+        })
     })?;
     let used = &slots[..chain.len()];
     let mut made = plen2.clone();
@@ -105,15 +107,16 @@ fn chain(
         made.motions.push(Motion { slot, name: "follow".into(), frames, loop_range: None, jump_slot });
     }
     made.motions.sort_by_key(|motion| motion.slot);
-    let listed: Vec<String> = used.iter().map(u8::to_string).collect();
-    let mut said = words
-        .made_chain
-        .replace("{frames}", &frames.to_string())
-        .replace("{motions}", &used.len().to_string())
-        .replace("{slots}", &listed.join(", "));
-    if !replaced.is_empty() {
-        said = format!("{said}{}{}", words.replaced, replaced.join(", "));
-    }
+    let listed = used.iter().map(u8::to_string).collect::<Vec<String>>().join(", ");
+    let motions = used.len();
+    let said = said_by(|words| {
+        let made = words
+            .made_chain
+            .replace("{frames}", &frames.to_string())
+            .replace("{motions}", &motions.to_string())
+            .replace("{slots}", &listed);
+        if replaced.is_empty() { made } else { format!("{made}{}{}", words.replaced, replaced.join(", ")) }
+    });
     Ok((made, said))
 }
 
@@ -131,7 +134,8 @@ mod tests {
         let follower = Follower { closed_deg: 0.0, open_deg: 30.0, tolerance_deg: 1.0 };
         let words = words(Language::TraditionalChinese);
         let plen2 = Plen2Project::default();
-        let said = chain(&plen2, Joint::ALL[0], &open, (follower, Target::From(89)), words).unwrap_err();
+        let said = chain(&plen2, Joint::ALL[0], &open, (follower, Target::From(89))).unwrap_err();
+        let said = said.in_(Language::TraditionalChinese);
         assert!(said.starts_with("聲音太長") && said.contains("8356 ms"), "{said}");
         assert!(said.ends_with(words.more_slots), "says what to do: {said}");
     }
@@ -150,8 +154,8 @@ mod tests {
         assert_eq!(slots(Target::From(0), &plen2)[..2], [0, 1], "a picked slot is taken whatever it holds");
         let open: Vec<f64> = (0..2_000).map(|ms| f64::from(ms / 250 % 2)).collect();
         let follower = Follower { closed_deg: 0.0, open_deg: 30.0, tolerance_deg: 1.0 };
-        let words = words(Language::English);
-        let (made, said) = chain(&plen2, Joint::ALL[0], &open, (follower, Target::From(0)), words).unwrap();
+        let (made, said) = chain(&plen2, Joint::ALL[0], &open, (follower, Target::From(0))).unwrap();
+        let said = said.in_(Language::English);
         assert!(said.contains("replaced: 0 wave"), "{said}");
         assert_eq!(made.motions[0].name, "follow");
     }

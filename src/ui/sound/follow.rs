@@ -13,7 +13,7 @@ use crate::authoring::fit::FitError;
 pub use crate::authoring::follow::Follower;
 use crate::project::{Edit, Project};
 use crate::ui::action::Action;
-use crate::ui::i18n::Language;
+use crate::ui::i18n::{Language, Said};
 
 /// The dialog's widest, points.
 const DIALOG_WIDTH: f32 = 560.0;
@@ -31,8 +31,8 @@ pub struct FollowForm {
     tolerance_deg: f64,
     /// Where a PLEN2's motions are written.
     target: Target,
-    /// What the last try said.
-    said: Option<String>,
+    /// What the last try said (in every language).
+    said: Option<Said>,
 }
 
 /// Where a follow that takes slots (a PLEN2's) is written: a chain of motions (each up to 20
@@ -67,6 +67,7 @@ crate::words! {
     /// The dialog's words (a family's follower says what it made in them).
     #[allow(missing_docs)]
     pub struct Words in "follow" {
+        pub lang: Language,
         pub title: &'static str,
         pub servo: &'static str,
         pub joint: &'static str,
@@ -129,7 +130,12 @@ pub trait SoundFollower {
         open: &[f64],
         how: (Follower, Target),
         words: &Words,
-    ) -> Result<(Vec<Edit>, String), String>;
+    ) -> Result<(Vec<Edit>, Said), Said>;
+}
+
+/// Something the dialog says, worded from its words in every language.
+pub fn said_by(word: impl Fn(&Words) -> String) -> Said {
+    Said::new(|language| word(words(language)))
 }
 
 impl FollowForm {
@@ -176,7 +182,7 @@ impl FollowForm {
                 row(ui, words.tolerance, &mut self.tolerance_deg, 0.1..=90.0, "°");
             });
             if let Some(said) = &self.said {
-                ui.label(said);
+                ui.label(said.in_(words.lang));
             }
             ui.horizontal(|ui| {
                 if ui.button(words.make).clicked() {
