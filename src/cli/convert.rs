@@ -119,7 +119,7 @@ enum Input {
 fn read_input(request: &ConvertRequest) -> anyhow::Result<Input> {
     let bytes = read_bytes(&request.input, MAX_PROJECT_BYTES)?;
     let name = request.input.display();
-    let decoded = interchange::text::decode(&bytes).with_context(|| format!("{name} cannot be read as text"))?;
+    let decoded = interchange::text::decode(bytes).with_context(|| format!("{name} cannot be read as text"))?;
     let text = &decoded.text;
     if request.from.is_none() {
         if project::parse(text).is_ok() {

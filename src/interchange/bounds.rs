@@ -6,6 +6,9 @@
 //!
 //! - channels: at most [`MAX_CHANNELS`] (Dynamixel ids are 0–253; a Maestro
 //!   has 24 channels);
+//! - keys of every kind, and a step's values: at most [`MAX_KEYS`] and
+//!   [`MAX_CHANNELS`], counted while the file is read, before they are built
+//!   (a reader's memory stays within a few times its file);
 //! - a key's move, hold or frame: at most [`MAX_CLIP_MS`];
 //! - one pass of a motion at its speed: at most [`MAX_CLIP_MS`];
 //! - speed rates: [`SPEED_RATES`];
@@ -18,6 +21,12 @@ use super::source::{Body, Clip, Source, Timing};
 
 /// The most channels a file may drive.
 pub const MAX_CHANNELS: usize = 256;
+/// The most keys (frames, steps, pages, a flow's units) one file holds,
+/// counted as it is read: a RoboPlus file holds at most 255 pages of 7 steps,
+/// a Maestro's script room a few hundred frames.
+pub const MAX_KEYS: usize = 100_000;
+/// Why a file with more keys is refused.
+pub const TOO_MANY_KEYS: &str = "no tool writes as many (is the file damaged?)";
 /// The longest key, and the longest pass of one motion, ms: an hour.
 pub const MAX_CLIP_MS: f64 = 3_600_000.0;
 /// The speed rates a motion or a flow's step may play at (RoboPlus' speed

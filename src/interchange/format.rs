@@ -65,10 +65,10 @@ impl Format {
 /// Whether a JSON object's top-level keys are the servo-animation add-on's
 /// (`fps` with `servos`, `positions` or `pulses`), read even from a file cut short.
 fn blender_keys(text: &str) -> bool {
-    let keys: Vec<String> = match serde_json::from_str::<serde_json::Map<String, serde_json::Value>>(text) {
-        Ok(object) => object.keys().cloned().collect(),
+    let keys: Vec<String> = match super::blender::top_keys(text) {
+        Some(keys) => keys,
         // Cut short or damaged: the keys named at the top level's indentation or anywhere.
-        Err(_) => ["fps", "servos", "positions", "pulses"]
+        None => ["fps", "servos", "positions", "pulses"]
             .iter()
             .filter(|key| text.contains(&format!("\"{key}\"")))
             .map(ToString::to_string)
@@ -119,6 +119,9 @@ pub(super) const CUT_SHORT: &str = "the file ends early: it was cut short (a cop
 
 impl From<super::xml::XmlError> for ReadError {
     fn from(error: super::xml::XmlError) -> Self {
+        if error.too_much {
+            return Self { line: Some(error.line), element: None, message: error.message };
+        }
         let cut = ["end of input", "never closed", "unexpected end", "eof"]
             .iter()
             .any(|mark| error.message.to_ascii_lowercase().contains(mark));

@@ -3,6 +3,7 @@
 //! microseconds) and sequences of frames, each a duration in ms and a target
 //! per channel (0 = the channel's pulses off).
 
+use super::bounds;
 use super::format::{Format, ReadError, number};
 use super::source::{Body, Channel, Clip, Key, Source, Timing, Unit};
 use super::xml::{self, Element};
@@ -10,9 +11,20 @@ use super::xml::{self, Element};
 /// Quarter-microseconds: 1500 µs at 0°, 10 µs a degree (docs/import-export.md).
 pub const QUARTER_US: Unit = Unit { zero: 6000.0, per_degree: 40.0, label: "¼ µs" };
 
+/// What a settings file may hold, counted as it is read.
+const MOST: [xml::Most; 3] = [
+    xml::Most {
+        name: "Channel",
+        count: bounds::MAX_CHANNELS,
+        because: "a board has no more channels (is the file damaged?)",
+    },
+    xml::Most { name: "Frame", count: bounds::MAX_KEYS, because: bounds::TOO_MANY_KEYS },
+    xml::Most { name: "Sequence", count: bounds::MAX_KEYS, because: bounds::TOO_MANY_KEYS },
+];
+
 /// Reads a settings file.
 pub fn read(text: &str) -> Result<Source, ReadError> {
-    let root = xml::parse(text)?;
+    let root = xml::parse_within(text, &MOST)?;
     if root.name != "UscSettings" {
         return Err(ReadError::at(
             root.line,

@@ -3,6 +3,7 @@
 //! the page's play parameters) and R+ Motion 2.0 `.mtnx` (XML: pages of steps
 //! at absolute times in 1/128 s with poses in degrees, and flows of units).
 
+use super::bounds;
 use super::format::{Format, ReadError, number};
 use super::source::{Body, Channel, Clip, Key, Link, Source, Timing, Unit};
 use super::xml;
@@ -24,7 +25,17 @@ struct Page {
     play: (u32, u32, u32, f64),
 }
 
+/// A line's numbers: at most a value per channel and a step's pause and time,
+/// counted before they are kept.
 fn numbers(text: &str, line: usize, key: &str) -> Result<Vec<f64>, ReadError> {
+    let most = bounds::MAX_CHANNELS + 2;
+    if text.split_whitespace().nth(most).is_some() {
+        return Err(ReadError::at(
+            line,
+            key,
+            format!("more than {most} values: a board has no more channels (is the file damaged?)"),
+        ));
+    }
     text.split_whitespace().map(|word| number(word, line, key, "value")).collect()
 }
 
@@ -35,6 +46,7 @@ pub fn read_mtn(text: &str) -> Result<Source, ReadError> {
     let mut open: Option<Page> = None;
     let mut saw_motion = false;
     let mut commas = false;
+    let mut steps = 0;
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     for (index, raw) in text.lines().enumerate() {
         let line = index + 1;
@@ -48,6 +60,13 @@ pub fn read_mtn(text: &str) -> Result<Source, ReadError> {
             ("version" | "motor_type", _) => {}
             ("enable", _) => enabled = Some(numbers(value, line, key)?.iter().map(|flag| *flag != 0.0).collect()),
             ("page_begin", None) => {
+                if pages.len() >= bounds::MAX_KEYS {
+                    return Err(ReadError::at(
+                        line,
+                        key,
+                        format!("more than {} pages: {}", bounds::MAX_KEYS, bounds::TOO_MANY_KEYS),
+                    ));
+                }
                 let number = u32::try_from(pages.len() + 1).unwrap_or(u32::MAX);
                 open = Some(Page { number, name: String::new(), steps: Vec::new(), play: (0, 0, 1, 1.0) });
             }
@@ -60,6 +79,14 @@ pub fn read_mtn(text: &str) -> Result<Source, ReadError> {
             ("compliance", Some(_)) => {}
             ("play_param", Some(page)) => page.play = play_param(value, line)?,
             ("step", Some(page)) => {
+                steps += 1;
+                if steps > bounds::MAX_KEYS {
+                    return Err(ReadError::at(
+                        line,
+                        key,
+                        format!("more than {} steps: {}", bounds::MAX_KEYS, bounds::TOO_MANY_KEYS),
+                    ));
+                }
                 commas |= value.contains(',');
                 let values = numbers(value, line, key)?;
                 let [.., pause, time] = values[..] else {
@@ -160,9 +187,21 @@ fn mtn_source(pages: &[Page], enabled: Option<&[bool]>) -> Source {
     source
 }
 
+/// What an R+ Motion file may hold, counted as it is read.
+const MTNX_MOST: [xml::Most; 4] = [
+    xml::Most { name: "Page", count: bounds::MAX_KEYS, because: bounds::TOO_MANY_KEYS },
+    xml::Most { name: "step", count: bounds::MAX_KEYS, because: bounds::TOO_MANY_KEYS },
+    xml::Most { name: "unit", count: bounds::MAX_KEYS, because: bounds::TOO_MANY_KEYS },
+    xml::Most {
+        name: "joint",
+        count: bounds::MAX_CHANNELS,
+        because: "a robot has no more joints (is the file damaged?)",
+    },
+];
+
 /// Reads an R+ Motion 2.0 file.
 pub fn read_mtnx(text: &str) -> Result<Source, ReadError> {
-    let root = xml::parse(text)?;
+    let root = xml::parse_within(text, &MTNX_MOST)?;
     let pages = root.descendants_named("Page");
     if pages.is_empty() && !root.name.eq_ignore_ascii_case("Page") {
         return Err(ReadError::at(root.line, &root.name, "no <Page>: is this an R+ Motion .mtnx file?"));

@@ -15,9 +15,12 @@ pub struct Decoded {
 }
 
 /// `bytes` as text; only UTF-16 that is not UTF-16 is refused (with its line).
-pub fn decode(bytes: &[u8]) -> Result<Decoded, ReadError> {
+/// Bytes given whole (a `Vec`) become the text in place, not copied: a large
+/// file is held once.
+pub fn decode(bytes: impl Into<Vec<u8>>) -> Result<Decoded, ReadError> {
+    let mut bytes = bytes.into();
     let mut notes = Vec::new();
-    if let Some(units) = utf16_units(bytes) {
+    if let Some(units) = utf16_units(&bytes) {
         let text = char::decode_utf16(units?).collect::<Result<String, _>>().map_err(|_| ReadError {
             line: None,
             element: None,
@@ -26,12 +29,17 @@ pub fn decode(bytes: &[u8]) -> Result<Decoded, ReadError> {
         notes.push("read as UTF-16 (its byte-order mark says so)".into());
         return Ok(Decoded { text, notes });
     }
-    let body = checksum_trailer(bytes, &mut notes);
-    let body = body.strip_prefix(b"\xef\xbb\xbf").unwrap_or(body);
-    let text = match std::str::from_utf8(body) {
-        Ok(text) => text.to_string(),
+    let end = checksum_trailer(&bytes, &mut notes).len();
+    bytes.truncate(end);
+    if bytes.starts_with(b"\xef\xbb\xbf") {
+        bytes.drain(..3);
+    }
+    let text = match String::from_utf8(bytes) {
+        Ok(text) => text,
         Err(error) => {
-            let line = body[..error.valid_up_to()].iter().filter(|b| **b == b'\n').count() + 1;
+            let body = error.as_bytes();
+            let valid = error.utf8_error().valid_up_to();
+            let line = body[..valid].iter().filter(|b| **b == b'\n').count() + 1;
             notes.push(format!(
                 "bytes that are not UTF-8 (the first on line {line}) are shown as \u{fffd}: a name saved in another code page; save the file as UTF-8 to keep it"
             ));
@@ -107,13 +115,13 @@ mod tests {
     #[test]
     fn a_roboplus_file_loses_its_mark_and_checksum() {
         let text = "type=motion\npage_begin\npage_end\n";
-        let read = decode(&saved(text)).unwrap();
+        let read = decode(saved(text)).unwrap();
         assert_eq!(read.text, text);
         assert!(read.notes[0].contains("matches"), "{:?}", read.notes);
         let mut edited = saved(text);
         edited[5] = b'X';
         edited.push(b'\n');
-        let read = decode(&edited).unwrap();
+        let read = decode(edited.as_slice()).unwrap();
         assert!(read.notes[0].contains("edited outside RoboPlus"), "{:?}", read.notes);
         assert!(read.text.ends_with("page_end\n"));
     }
@@ -124,7 +132,7 @@ mod tests {
         for unit in "name=舞".encode_utf16() {
             utf16.extend_from_slice(&unit.to_le_bytes());
         }
-        assert_eq!(decode(&utf16).unwrap().text, "name=舞");
+        assert_eq!(decode(utf16.as_slice()).unwrap().text, "name=舞");
         assert!(decode(&utf16[..utf16.len() - 1]).is_err());
         let latin1 = b"type=motion\nname=Se\xf1or\n";
         let read = decode(latin1).unwrap();

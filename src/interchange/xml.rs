@@ -5,6 +5,29 @@ use quick_xml::events::{BytesStart, Event};
 
 /// Deeper nesting than any tool's file has: refused, not followed.
 const MAX_DEPTH: usize = 64;
+/// The tree may take this many bytes for each byte of the file (and
+/// [`MIN_BUDGET`] for a small one): past it the file is refused where it
+/// stands, before the rest is built. A backstop: the formats' own counts
+/// ([`Most`]) refuse a file asking for too much long before; an element
+/// costs about 300 bytes and 110 an attribute, a real tool's file 5–11
+/// times its size, many empty elements far more.
+const BUDGET_PER_BYTE: usize = 16;
+/// What one allocation costs beyond its bytes, about.
+const ALLOCATION: usize = 32;
+/// What any file may take, however small.
+const MIN_BUDGET: usize = 4 << 20;
+
+/// The most elements of one name a format reads, and why: counted as the
+/// file is read, so a file asking for more is refused before they are built.
+#[derive(Clone, Copy, Debug)]
+pub struct Most {
+    /// The element's name (case-insensitive).
+    pub name: &'static str,
+    /// How many the file may hold.
+    pub count: usize,
+    /// What a reader is told, after "more than N <name>: ".
+    pub because: &'static str,
+}
 
 /// One element: its name, attributes, children and text, and its line.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -29,6 +52,9 @@ pub struct XmlError {
     pub line: usize,
     /// What is wrong.
     pub message: String,
+    /// Well-formed as far as read, but asking for more than the format may
+    /// hold ([`Most`], the tree's budget).
+    pub too_much: bool,
 }
 
 impl Element {
@@ -101,26 +127,94 @@ fn element(start: &BytesStart<'_>, line: usize) -> Result<Element, String> {
     Ok(Element { name, attributes, children: Vec::new(), text: String::new(), line })
 }
 
+/// What the tree holds so far, against what the file may have it hold.
+struct Tally<'m> {
+    most: &'m [Most],
+    counts: Vec<usize>,
+    bytes: usize,
+    budget: usize,
+}
+
+impl<'m> Tally<'m> {
+    fn new(most: &'m [Most], text: &str) -> Self {
+        let budget = text.len().saturating_mul(BUDGET_PER_BYTE).max(MIN_BUDGET);
+        Self { most, counts: vec![0; most.len()], bytes: 0, budget }
+    }
+
+    /// One more element as read from its start tag: refused when its name
+    /// passes its count, or the tree its budget.
+    fn add(&mut self, start: &BytesStart<'_>) -> Result<(), String> {
+        let name = start.name();
+        let name = name.as_ref();
+        if let Some(index) = self.most.iter().position(|most| most.name.as_bytes().eq_ignore_ascii_case(name)) {
+            self.counts[index] += 1;
+            let most = self.most[index];
+            if self.counts[index] > most.count {
+                return Err(format!("more than {} <{}>: {}", most.count, most.name, most.because));
+            }
+        }
+        // Each attribute a pair of strings, each string an allocation of its own.
+        let raw = start.attributes_raw();
+        let attributes = raw.iter().filter(|byte| **byte == b'=').count();
+        let pair = size_of::<(String, String)>() + 2 * ALLOCATION;
+        // The element in its parent's list (which may hold as much again
+        // spare), its name and its text.
+        self.bytes += 2 * size_of::<Element>() + 2 * ALLOCATION + name.len() + raw.len() + attributes * pair;
+        self.check()
+    }
+
+    /// Text put in the tree.
+    fn text(&mut self, bytes: usize) -> Result<(), String> {
+        self.bytes += bytes;
+        self.check()
+    }
+
+    fn check(&self) -> Result<(), String> {
+        if self.bytes > self.budget {
+            return Err(format!(
+                "the file's elements would take over {} MB, {BUDGET_PER_BYTE} times the file: is it damaged?",
+                self.budget >> 20
+            ));
+        }
+        Ok(())
+    }
+}
+
 /// The file's root element.
+#[cfg(test)]
 pub fn parse(text: &str) -> Result<Element, XmlError> {
+    parse_within(text, &[])
+}
+
+/// The file's root element, the elements `most` names counted as they are
+/// read: a file with more of one than its count, or whose tree would take
+/// many times its size, is refused at the line where it passed, before the
+/// rest is built.
+pub fn parse_within(text: &str, most: &[Most]) -> Result<Element, XmlError> {
     let mut reader = quick_xml::Reader::from_str(text);
     let lines = Lines::new(text);
+    let mut tally = Tally::new(most, text);
     let mut open: Vec<Element> = Vec::new();
     let mut root: Option<Element> = None;
     loop {
-        let event = reader
-            .read_event()
-            .map_err(|error| XmlError { line: lines.at(reader.error_position()), message: error.to_string() })?;
+        let event = reader.read_event().map_err(|error| XmlError {
+            line: lines.at(reader.error_position()),
+            message: error.to_string(),
+            too_much: false,
+        })?;
         let before = lines.of_tag_ending(reader.buffer_position());
-        let fail = |message: String| XmlError { line: before, message };
+        let fail = |message: String| XmlError { line: before, message, too_much: false };
+        let too_much = |message: String| XmlError { line: before, message, too_much: true };
         match event {
             Event::Start(start) => {
                 if open.len() >= MAX_DEPTH {
                     return Err(fail(format!("elements nested over {MAX_DEPTH} deep")));
                 }
+                tally.add(&start).map_err(too_much)?;
                 open.push(element(&start, before).map_err(fail)?);
             }
             Event::Empty(start) => {
+                tally.add(&start).map_err(too_much)?;
                 let done = element(&start, before).map_err(fail)?;
                 match open.last_mut() {
                     Some(parent) => parent.children.push(done),
@@ -138,11 +232,13 @@ pub fn parse(text: &str) -> Result<Element, XmlError> {
             }
             Event::Text(text) => {
                 if let Some(current) = open.last_mut() {
+                    tally.text(text.len()).map_err(too_much)?;
                     current.text.push_str(&text.decode().map_err(|error| fail(error.to_string()))?);
                 }
             }
             Event::CData(data) => {
                 if let Some(current) = open.last_mut() {
+                    tally.text(data.len()).map_err(too_much)?;
                     current.text.push_str(&data.decode().map_err(|error| fail(error.to_string()))?);
                 }
             }
@@ -171,9 +267,10 @@ pub fn parse(text: &str) -> Result<Element, XmlError> {
         return Err(XmlError {
             line: lines.at(u64::MAX),
             message: format!("<{}> (line {}) is never closed: is the file cut short?", unclosed.name, unclosed.line),
+            too_much: false,
         });
     }
-    root.ok_or(XmlError { line: 1, message: "no element at all: is it an XML file?".into() })
+    root.ok_or(XmlError { line: 1, message: "no element at all: is it an XML file?".into(), too_much: false })
 }
 
 #[cfg(test)]

@@ -191,11 +191,12 @@ fn the_official_motions_go_out_and_back_within_the_tolerance() {
 fn malformed_animations_say_where() {
     let read = |text: &str| interchange::read(Format::Blender, text).unwrap_err().to_string();
     let (text, _) = animation();
-    assert!(read(&text[..text.len() / 2]).starts_with("line 2: not JSON"), "{}", read(&text[..text.len() / 2]));
-    assert!(
-        read(&text.replacen("\"Jaw\", \"positions\": [", "\"Jaw\", \"positions\": [\"x\", ", 1))
-            .starts_with("<servos.3.positions[0]>: \"x\" is not a number")
-    );
+    let cut = read(&text[..text.len() / 2]);
+    assert!(cut.starts_with("line 2: <servos.3.positions[") && cut.contains("not JSON"), "{cut}");
+    let word = read(&text.replacen("\"Jaw\", \"positions\": [", "\"Jaw\", \"positions\": [\"x\", ", 1));
+    assert!(word.starts_with("line 2: <servos.3.positions[0]>: \"x\" is not a number"), "{word}");
+    let bare = read(&text.replacen("\"Jaw\", \"positions\": [", "\"Jaw\", \"positions\": [x, ", 1));
+    assert!(bare.starts_with("line 2: <servos.3.positions[0]>: not JSON"), "{bare}");
     assert!(read(r#"{"servos": {}}"#).contains("fps"));
     assert!(
         read(r#"{"fps": 30, "servos": {"1": {"positions": [1, 2]}, "2": {"positions": [1]}}}"#)

@@ -6,6 +6,7 @@
 #![allow(clippy::unwrap_used)]
 
 mod blender;
+mod bounded;
 mod cli;
 mod damaged;
 pub mod maestro;

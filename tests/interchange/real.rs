@@ -45,7 +45,7 @@ fn tool_files(dir: &Path, out: &mut Vec<PathBuf>) {
 
 fn read(path: &Path) -> Source {
     let bytes = std::fs::read(path).unwrap();
-    let decoded = text::decode(&bytes).unwrap();
+    let decoded = text::decode(bytes.as_slice()).unwrap();
     servo_studio::interchange::read_decoded(None, &decoded)
         .unwrap_or_else(|error| panic!("{}: {error}", path.display()))
         .unwrap_or_else(|| panic!("{}: no format told from its content", path.display()))
@@ -393,7 +393,7 @@ fn every_blender_add_on_layout_is_read_with_its_values_and_never_taken_for_a_mot
 #[test]
 fn files_cut_short_name_their_line_and_say_what_to_try() {
     let bytes = std::fs::read(fixture("rplus/cut-short.mtnx")).unwrap();
-    let decoded = text::decode(&bytes).unwrap();
+    let decoded = text::decode(bytes.as_slice()).unwrap();
     let lines = decoded.text.lines().count();
     let error = servo_studio::interchange::read_decoded(None, &decoded).unwrap_err();
     assert_eq!(error.line, Some(lines), "{error}");

@@ -111,7 +111,8 @@ fn every_note_a_conversion_says_has_its_traditional_chinese() {
         }
     }
     for bytes in &texts {
-        let source = servo_studio::interchange::read_decoded(None, &text::decode(bytes).unwrap()).unwrap().unwrap();
+        let source =
+            servo_studio::interchange::read_decoded(None, &text::decode(bytes.as_slice()).unwrap()).unwrap().unwrap();
         said.extend(source.dropped.iter().chain(&source.notes).cloned());
         for family in [Family::Servo, Family::Plen2] {
             let map = JointMap::for_source(&source, family, None);

@@ -105,7 +105,7 @@ pub fn ask_file(language: Language) -> Action {
 
 fn read_source(path: &std::path::Path) -> Result<Source, String> {
     let bytes = read_bytes(path, MAX_PROJECT_BYTES).map_err(|error| error.to_string())?;
-    let decoded = crate::interchange::text::decode(&bytes).map_err(|error| format!("{}: {error}", path.display()))?;
+    let decoded = crate::interchange::text::decode(bytes).map_err(|error| format!("{}: {error}", path.display()))?;
     let format = Format::guess(&decoded.text).ok_or_else(|| {
         format!("{} is not a file Servo Studio can import (a Maestro settings file, RoboPlus .mtn, R+ Motion .mtnx or Blender servo-animation JSON)", path.display())
     })?;

@@ -5,10 +5,13 @@
 //! 1.0 `pulses`: bone → list, values as strings until mid-2022) — in
 //! whatever unit the bone's servo settings map to (default 150..600 over 180°).
 
+mod json;
+
+pub(super) use json::top_keys;
 use serde_json::{Map, Value, json};
 
 use super::format::{Format, ReadError};
-use super::source::{Body, Channel, Clip, Source, Unit};
+use super::source::{Body, Clip, Source, Unit};
 
 /// The add-on's default servo settings: positions 150..=600 over 180°, 90° neutral.
 pub const ADDON_DEFAULT: Unit = Unit { zero: 375.0, per_degree: 2.5, label: "add-on positions" };
@@ -21,31 +24,17 @@ const UNIT_KEY: &str = "servo_studio_unit";
 
 /// Reads an add-on export.
 pub fn read(text: &str) -> Result<Source, ReadError> {
-    let value: Value = serde_json::from_str(text.trim_start_matches('\u{feff}')).map_err(|error| ReadError {
-        line: Some(error.line()),
-        element: None,
-        message: if error.is_eof() {
-            format!("not JSON: {error} — {}", super::format::CUT_SHORT)
-        } else {
-            format!("not JSON: {error}")
-        },
-    })?;
-    let root = value.as_object().ok_or_else(|| at("", "the file is not a JSON object"))?;
-    let fps = root
-        .get("fps")
-        .and_then(Value::as_f64)
-        .ok_or_else(|| at("fps", "no frame rate (fps): is this the add-on's JSON export?"))?;
+    let export = json::read(text.trim_start_matches('\u{feff}'))?;
+    let fps = export.fps.ok_or_else(|| at("fps", "no frame rate (fps): is this the add-on's JSON export?"))?;
     if !(fps > 0.0 && fps <= 1000.0) {
         return Err(at("fps", format!("{fps} frames per second is not a frame rate")));
     }
-    let hint = root.get(UNIT_KEY).and_then(unit_hint);
-    let (mut channels, columns) = match (root.get("servos"), root.get("positions"), root.get("pulses")) {
-        (Some(servos), ..) => by_servo(servos)?,
-        (None, Some(Value::Array(frames)), _) => by_frame(frames)?,
-        (None, Some(Value::Object(bones)), _) => by_bone(bones, "positions")?,
-        (None, None, Some(Value::Object(bones))) => by_bone(bones, "pulses")?,
-        _ => return Err(at("", "no servos, positions or pulses: is this the add-on's JSON export?")),
-    };
+    let (mut channels, columns) = export
+        .servos
+        .or(export.frames)
+        .or(export.bones)
+        .or(export.pulses)
+        .ok_or_else(|| at("", "no servos, positions or pulses: is this the add-on's JSON export?"))?;
     let frames = columns.first().map_or(0, Vec::len);
     if let Some((channel, column)) = channels.iter().zip(&columns).find(|(_, column)| column.len() != frames) {
         return Err(at(&channel.key, format!("{} positions where the first servo has {frames}", column.len())));
@@ -54,10 +43,10 @@ pub fn read(text: &str) -> Result<Source, ReadError> {
         return Err(at("servos", "no positions at all"));
     }
     for (channel, column) in channels.iter_mut().zip(&columns) {
-        channel.unit = hint.unwrap_or_else(|| guess_unit(column));
+        channel.unit = export.unit.unwrap_or_else(|| guess_unit(column));
     }
     let rows = (0..frames).map(|frame| columns.iter().map(|column| column[frame]).collect()).collect();
-    let name = root.get("scene").and_then(Value::as_str).unwrap_or("animation").to_string();
+    let name = export.scene.unwrap_or_else(|| "animation".to_string());
     Ok(Source {
         format: Format::Blender,
         channels,
@@ -67,88 +56,8 @@ pub fn read(text: &str) -> Result<Source, ReadError> {
     })
 }
 
-/// Positions per servo id (the add-on's 1.x–2.x releases: `servos`: id → `name`, `positions`).
-fn by_servo(servos: &Value) -> Result<(Vec<Channel>, Vec<Vec<f64>>), ReadError> {
-    let servos = servos.as_object().ok_or_else(|| at("servos", "not an object of servos by id"))?;
-    let mut channels = Vec::new();
-    let mut columns = Vec::new();
-    for (id, servo) in servos {
-        let where_ = format!("servos.{id}");
-        let positions = servo.get("positions").ok_or_else(|| at(&where_, "no positions"))?;
-        let mut channel = Channel::new(id.clone(), ADDON_DEFAULT);
-        channel.name = servo.get("name").and_then(Value::as_str).unwrap_or_default().to_string();
-        columns.push(positions_of(positions, &format!("{where_}.positions"))?);
-        channels.push(channel);
-    }
-    Ok((channels, columns))
-}
-
-/// Positions per bone (the add-on's first releases: `positions` or, in 1.0,
-/// `pulses`: bone name → list, values as numbers or as strings).
-fn by_bone(bones: &Map<String, Value>, key: &str) -> Result<(Vec<Channel>, Vec<Vec<f64>>), ReadError> {
-    let mut channels = Vec::new();
-    let mut columns = Vec::new();
-    for (bone, positions) in bones {
-        let mut channel = Channel::new(bone.clone(), ADDON_DEFAULT);
-        channel.name.clone_from(bone);
-        columns.push(positions_of(positions, &format!("{key}.{bone}"))?);
-        channels.push(channel);
-    }
-    Ok((channels, columns))
-}
-
-/// One object per frame, servo id → position (the add-on's current releases,
-/// since January 2024: `positions`: [{"0": 1472, "1": 375}, {"1": 376}, …]);
-/// a servo a frame leaves out holds where it was (the add-on writes only
-/// what changed), and one first named later held its first position before.
-fn by_frame(frames: &[Value]) -> Result<(Vec<Channel>, Vec<Vec<f64>>), ReadError> {
-    let mut channels: Vec<Channel> = Vec::new();
-    let mut columns: Vec<Vec<f64>> = Vec::new();
-    for (frame, servos) in frames.iter().enumerate() {
-        let where_ = format!("positions[{frame}]");
-        let servos = servos.as_object().ok_or_else(|| at(&where_, "not an object of positions by servo id"))?;
-        for (id, position) in servos {
-            let value = one_position(position, &format!("{where_}.{id}"))?;
-            let column = if let Some(column) = channels.iter().position(|channel| &channel.key == id) {
-                column
-            } else {
-                channels.push(Channel::new(id.clone(), ADDON_DEFAULT));
-                columns.push(vec![value; frame]);
-                columns.len() - 1
-            };
-            columns[column].push(value);
-        }
-        for column in &mut columns {
-            if let Some(&held) = column.last().filter(|_| column.len() == frame) {
-                column.push(held);
-            }
-        }
-    }
-    Ok((channels, columns))
-}
-
 fn at(element: &str, message: impl Into<String>) -> ReadError {
     ReadError { line: None, element: (!element.is_empty()).then(|| element.to_string()), message: message.into() }
-}
-
-fn positions_of(value: &Value, where_: &str) -> Result<Vec<f64>, ReadError> {
-    let list = value.as_array().ok_or_else(|| at(where_, "not a list of positions"))?;
-    list.iter().enumerate().map(|(frame, position)| one_position(position, &format!("{where_}[{frame}]"))).collect()
-}
-
-/// A position: a number, or a number written as a string (the add-on's first releases).
-fn one_position(position: &Value, where_: &str) -> Result<f64, ReadError> {
-    let value = match position {
-        Value::String(text) => text.trim().parse::<f64>().ok(),
-        other => other.as_f64(),
-    };
-    value.filter(|v| v.is_finite()).ok_or_else(|| at(where_, format!("{position} is not a number")))
-}
-
-fn unit_hint(value: &Value) -> Option<Unit> {
-    let zero = value.get("zero")?.as_f64()?;
-    let per_degree = value.get("per_degree")?.as_f64().filter(|per| *per != 0.0)?;
-    Some(Unit { zero, per_degree, label: "as written" })
 }
 
 /// The unit a servo's positions most likely are: µs past 600, the add-on's
@@ -235,5 +144,12 @@ mod tests {
         assert_eq!(word.element.as_deref(), Some("servos.1.positions[1]"), "{word}");
         assert!(read(r#"{"servos":{}}"#).unwrap_err().message.contains("fps"));
         assert!(read("[1,2]").unwrap_err().message.contains("not a JSON object"));
+        // A unit key of another shape says no unit; the rest is read on.
+        let odd = read(r#"{"servo_studio_unit": [1, {"zero": 2}], "fps": 30, "servos": {"1": {"positions": [1, 2]}}}"#);
+        assert_eq!(odd.unwrap().channels[0].unit, ANGLE_0_180);
+        let hinted = r#"{"servo_studio_unit": {"zero": 1500, "per_degree": 10, "x": null}, "fps": 30, "servos": {"1": {"positions": [1, 2]}}}"#;
+        assert_eq!(read(hinted).unwrap().channels[0].unit.per_degree, 10.0);
+        let late = read("{\"fps\": 30,\n\"positions\": [{\"1\": 375}, {\"1\": true}]}").unwrap_err();
+        assert_eq!((late.line, late.element.as_deref()), (Some(2), Some("positions[1].1")), "{late}");
     }
 }
