@@ -359,12 +359,10 @@ pub fn run(command: CliCommand) -> ExitCode {
             gui::run(file.as_deref(), demo, protocol, (import, show))
         }
         CliCommand::Convert(args) => convert::run_args(args),
-        CliCommand::FollowAudio(args) => {
-            follow_audio::run(&args).and_then(|fitted| match out::line(&follow_audio::said(&fitted, &args)) {
-                Ok(()) | Err(out::Unwritten::Closed) => Ok(()),
-                Err(error) => Err(error.into()),
-            })
-        }
+        CliCommand::FollowAudio(args) => follow_audio::run(&args).and_then(|said| match out::line(&said) {
+            Ok(()) | Err(out::Unwritten::Closed) => Ok(()),
+            Err(error) => Err(error.into()),
+        }),
         CliCommand::Fit { recording, protocol, tolerance_deg, max_frames, name, out, force } => {
             let request = fit::FitRequest { recording, family: protocol, tolerance_deg, max_frames, name, out, force };
             fit::run(&request).and_then(|fitted| match out::line(&fit::said(&fitted, protocol, &request.out)) {

@@ -461,7 +461,7 @@ _servo__studio() {
             return 0
             ;;
         servo__subcmd__studio__subcmd__follow__subcmd__audio)
-            opts="-h --protocol --servo --joint --closed --open --attack-ms --release-ms --threshold-db --tolerance-deg --max-frames --name --out --force --help"
+            opts="-h --protocol --servo --joint --closed --open --attack-ms --release-ms --threshold-db --tolerance-deg --max-frames --from-slot --name --out --force --help"
             if [[ ${cur} == -* || ${COMP_CWORD} -eq 2 ]] ; then
                 COMPREPLY=( $(compgen -W "${opts}" -- "${cur}") )
                 return 0
@@ -504,6 +504,10 @@ _servo__studio() {
                     return 0
                     ;;
                 --max-frames)
+                    COMPREPLY=($(compgen -f "${cur}"))
+                    return 0
+                    ;;
+                --from-slot)
                     COMPREPLY=($(compgen -f "${cur}"))
                     return 0
                     ;;

@@ -62,6 +62,7 @@ complete -c servo-studio -n "__fish_servo_studio_using_subcommand follow-audio" 
 complete -c servo-studio -n "__fish_servo_studio_using_subcommand follow-audio" -l threshold-db -d 'Below this level (dB of full scale) the axis stays closed' -r
 complete -c servo-studio -n "__fish_servo_studio_using_subcommand follow-audio" -l tolerance-deg -d 'How far the board\'s playback may stray from the followed curve, degrees' -r
 complete -c servo-studio -n "__fish_servo_studio_using_subcommand follow-audio" -l max-frames -d 'At most this many frames or steps (PLEN2: 20, what a motion holds)' -r
+complete -c servo-studio -n "__fish_servo_studio_using_subcommand follow-audio" -l from-slot -d 'PLEN2: a chain of motions in the slots from this one on (each up to 20 frames, jumping to the next, played as one), written as a project — into --out when it is a PLEN2 project already, replacing what those slots hold — as the editor\'s "from slot" does. Without it: one motion.json' -r
 complete -c servo-studio -n "__fish_servo_studio_using_subcommand follow-audio" -l name -d 'The motion\'s or macro\'s name (default: the sound\'s file name)' -r
 complete -c servo-studio -n "__fish_servo_studio_using_subcommand follow-audio" -l out -d 'The file to write' -r -F
 complete -c servo-studio -n "__fish_servo_studio_using_subcommand follow-audio" -l force -d 'Replace the output file even when it is read-only'

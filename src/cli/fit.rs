@@ -172,8 +172,7 @@ pub fn servo(recording: &Recording, request: &FitRequest, name: &str) -> anyhow:
     Ok((project::to_json(&project), summary))
 }
 
-/// [`fit::fit_within`], its error said in degrees (to 0.1°) and in the
-/// board's own word for a move (`frames` on a PLEN2, `steps` on a servo board).
+/// [`fit::fit_within`], its error said as [`fit_error_said`] says it.
 fn fitted_within(
     board: &impl Board,
     start: &[i32],
@@ -182,16 +181,24 @@ fn fitted_within(
     (per_degree, moves): (f64, &str),
 ) -> anyhow::Result<Fit> {
     let tolerance = budget.tolerance;
-    fit::fit_within(board, start, rows, budget).map_err(|error| match error {
-        FitError::Tolerance { needed, allowed, smallest, .. } => anyhow::anyhow!(
+    fit::fit_within(board, start, rows, budget)
+        .map_err(|error| anyhow::anyhow!(fit_error_said(&error, (per_degree, moves), tolerance)))
+}
+
+/// A fit's error in degrees (to 0.1°) and in the board's own word for a
+/// move (`frames` on a PLEN2, `steps` on a servo board); `tolerance` in the
+/// board's units (`per_degree` of them a degree).
+pub fn fit_error_said(error: &FitError, (per_degree, moves): (f64, &str), tolerance: f64) -> String {
+    match error {
+        FitError::Tolerance { needed, allowed, smallest, .. } => format!(
             "{needed} {moves} are needed to stay within {}° and at most {allowed} are allowed: the smallest tolerance that fits is --tolerance-deg {}. Nothing was written",
             tenths(tolerance / per_degree),
             tenths(smallest / per_degree)
         ),
-        FitError::TooLong { updates, needed, allowed, .. } => anyhow::anyhow!(
+        FitError::TooLong { updates, needed, allowed, .. } => format!(
             "the recording lasts {updates} board updates: that takes at least {needed} {moves} at any tolerance, and at most {allowed} are allowed. Nothing was written"
         ),
-    })
+    }
 }
 
 /// Degrees to a tenth, as a person writes them ("6.1", "2").

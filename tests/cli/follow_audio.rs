@@ -145,6 +145,104 @@ fn a_plen2_joint_nods_to_two_beats_within_a_motions_twenty_frames() {
     }
 }
 
+/// `follow-audio` of `spoken` bursts in `seconds` by a PLEN2's left shoulder
+/// (0° closed, −30° open) with `extra` arguments: what it printed, and the
+/// robot's playback from `slot` (tenths of a degree from home at each cycle).
+fn plen2_follow(
+    dir: &Path,
+    seconds: f64,
+    spoken: &[(f64, f64)],
+    extra: &[&str],
+    slot: &str,
+) -> (String, Vec<(f64, f64)>) {
+    let sound = dir.join("talk.wav");
+    std::fs::write(&sound, servo_studio::audio::pcm16_wav(&bursts(seconds, spoken), RATE, 1)).unwrap();
+    let out = dir.join(if extra.contains(&"--from-slot") { "robot.json" } else { "talk.json" });
+    let mut args = vec!["follow-audio", sound.to_str().unwrap(), "--protocol", "plen2"];
+    args.extend_from_slice(&["--joint", "left_shoulder_pitch", "--closed", "0", "--open", "-30"]);
+    args.extend_from_slice(extra);
+    args.extend_from_slice(&["--out", out.to_str().unwrap()]);
+    let (ok, stdout, stderr) = run(&args);
+    assert!(ok, "{spoken:?}: {stderr}");
+    let csv = dir.join("played.csv");
+    let (ok, _, stderr) = run(&["trajectory", out.to_str().unwrap(), "--slot", slot, "--out", csv.to_str().unwrap()]);
+    assert!(ok, "{stderr}");
+    (stdout, played(&csv, "left_shoulder_pitch"))
+}
+
+/// The frames a `follow-audio` line says it made ("20 frames …").
+fn frames_said(said: &str) -> usize {
+    said.split_whitespace().next().and_then(|count| count.parse().ok()).unwrap_or_else(|| panic!("{said}"))
+}
+
+/// Open through each burst once the level (10 ms), the attack (five of
+/// 10 ms) and a cycle have passed, and a shift of up to 16 ms; closed before
+/// the first.
+fn opened_through(rows: &[(f64, f64)], spoken: &[(f64, f64)], tolerance_tenths: f64) {
+    for (from, to) in spoken {
+        check(rows, from * 1000.0 + 60.0 + 33.0 + 16.0, to * 1000.0, "open (−30°)", |tenths| {
+            tenths <= -300.0 + tolerance_tenths + 1.0
+        });
+    }
+    check(rows, 0.0, spoken[0].0 * 1000.0 - 16.0, "closed (0°)", |tenths| tenths.abs() <= tolerance_tenths + 1.0);
+}
+
+/// Three bursts in 4.2 s at 1° fit one motion (20 frames), as they did
+/// before follow-audio read a sound's milliseconds exactly: the same curve
+/// needs 18 to 21 frames as the robot's cycles fall against it, and where a
+/// phase within half a cycle fits, it is taken and said.
+#[test]
+fn a_plen2_joint_follows_three_bursts_at_one_degree_in_one_motion() {
+    let dir = tempfile::tempdir().unwrap();
+    let sounds = [
+        [(0.72, 1.20), (1.62, 1.91), (2.51, 3.13)],
+        [(0.40, 0.80), (1.60, 2.00), (2.90, 3.40)],
+        [(0.37, 0.99), (1.47, 1.80), (2.15, 2.57)],
+    ];
+    for spoken in sounds {
+        let (said, rows) = plen2_follow(dir.path(), 4.2, &spoken, &[], "0");
+        assert!(frames_said(&said) <= 20 && said.contains("largest error"), "{spoken:?}: {said}");
+        opened_through(&rows, &spoken, 10.0);
+    }
+}
+
+/// `--from-slot N`: a sound too long for one motion becomes a chain of
+/// motions in slots N, N+1, … (each jumping to the next) in a project the
+/// robot plays as one; given the same project again it replaces the slots
+/// it takes and says which; another file at --out is never replaced (and a
+/// servo board's follow takes no slot: `follow_audio_says_what_is_wrong…`).
+#[test]
+fn from_slot_chains_motions_into_a_plen2_project_as_the_editor_does() {
+    let dir = tempfile::tempdir().unwrap();
+    let spoken: Vec<(f64, f64)> = (0..9).map(|k| (0.5 + 1.3 * f64::from(k), 0.9 + 1.3 * f64::from(k))).collect();
+    let (said, rows) = plen2_follow(dir.path(), 12.4, &spoken, &["--from-slot", "40"], "40");
+    assert!(said.contains("from slot 40 (slots 40, 41") && said.contains("each jumping to the next"), "{said}");
+    assert!(frames_said(&said) > 20, "{said}");
+    assert!(rows.last().unwrap().0 >= 12_000.0, "the chain plays the whole sound: {} ms", rows.last().unwrap().0);
+    opened_through(&rows, &spoken, 10.0);
+    let robot = dir.path().join("robot.json");
+    let (ok, stdout, _) = run(&["check", robot.to_str().unwrap()]);
+    assert!(ok && stdout.contains("0 error(s)"), "{stdout}");
+    // Again from slot 41, into the same project: slot 40 kept, 41 on replaced.
+    let (said, _) = plen2_follow(dir.path(), 12.4, &spoken, &["--from-slot", "41"], "40");
+    assert!(said.contains("replaced: 41 talk"), "{said}");
+    let project = servo_studio::project::from_json(&std::fs::read_to_string(&robot).unwrap()).unwrap();
+    assert!(project.plen2.motions.iter().any(|motion| motion.slot == 40 && motion.name == "talk"));
+    // A servo project at --out is refused and left as it was; --from-slot is a PLEN2's.
+    let servo = dir.path().join("servo.json");
+    let kept = servo_studio::project::to_json(&servo_studio::project::Project::servo(Default::default()));
+    std::fs::write(&servo, &kept).unwrap();
+    let sound = dir.path().join("talk.wav");
+    let (sound, servo_text) = (sound.to_str().unwrap(), servo.to_str().unwrap());
+    let plen2 = ["--protocol", "plen2", "--joint", "left_shoulder_pitch", "--closed", "0", "--open", "-30"];
+    let mut args = vec!["follow-audio", sound];
+    args.extend_from_slice(&plen2);
+    args.extend_from_slice(&["--from-slot", "3", "--out", servo_text]);
+    let (ok, _, stderr) = run(&args);
+    assert!(!ok && stderr.contains("adds motions to a PLEN2 project"), "{stderr}");
+    assert_eq!(std::fs::read_to_string(&servo).unwrap(), kept);
+}
+
 #[test]
 fn follow_audio_says_what_is_wrong_before_writing_anything() {
     let dir = tempfile::tempdir().unwrap();
@@ -152,11 +250,15 @@ fn follow_audio_says_what_is_wrong_before_writing_anything() {
     std::fs::write(&sound, servo_studio::audio::pcm16_wav(&bursts(1.0, &[(0.2, 0.5)]), RATE, 1)).unwrap();
     let out = dir.path().join("out.json");
     let (sound, out_text) = (sound.to_str().unwrap(), out.to_str().unwrap());
-    let cases: [(&[&str], &str); 4] = [
+    let cases: [(&[&str], &str); 5] = [
         (&["--protocol", "plen2", "--joint", "jaw", "--closed", "0", "--open", "10"], "is not a PLEN2 joint"),
         (&["--protocol", "servo", "--joint", "left_shoulder_pitch", "--closed", "0", "--open", "10"], "--servo N"),
         (&["--protocol", "servo", "--servo", "1", "--closed", "0", "--open", "10", "--attack-ms", "0"], "0.1..=10000"),
         (&["--protocol", "servo", "--closed", "0", "--open", "10"], "--servo"),
+        (
+            &["--protocol", "servo", "--servo", "1", "--closed", "0", "--open", "10", "--from-slot", "3"],
+            "is for a PLEN2",
+        ),
     ];
     for (args, said) in cases {
         let mut full = vec!["follow-audio", sound];

@@ -6,7 +6,7 @@
 use crate::authoring::fit::FitError;
 use crate::authoring::fitted::PLEN2_UPDATE_MS;
 use crate::authoring::follow;
-use crate::project::plen2::{Joint, Motion, Plen2Project, SLOTS};
+use crate::project::plen2::{Joint, Plen2Project, SLOTS};
 use crate::project::{Edit, Project};
 use crate::ui::i18n::Said;
 use crate::ui::sound::follow::{Follower, SoundFollower, Target, Words, fit_error, said_by};
@@ -92,29 +92,22 @@ fn chain(
             if matches!(error, FitError::TooLong { .. }) { format!("{said}{}", words.more_slots) } else { said }
         })
     })?;
-    let used = &slots[..chain.len()];
-    let mut made = plen2.clone();
-    let replaced: Vec<String> = made
-        .motions
-        .iter()
-        .filter(|motion| used.contains(&motion.slot))
-        .map(|motion| format!("{} {}", motion.slot, motion.name))
-        .collect();
-    made.motions.retain(|motion| !used.contains(&motion.slot));
-    let frames: usize = chain.iter().map(Vec::len).sum();
-    for (part, (frames, &slot)) in chain.into_iter().zip(used).enumerate() {
-        let jump_slot = used.get(part + 1).copied();
-        made.motions.push(Motion { slot, name: "follow".into(), frames, loop_range: None, jump_slot });
-    }
-    made.motions.sort_by_key(|motion| motion.slot);
+    let (made, replaced) = follow::placed(plen2, &slots, &chain, "follow");
+    let replaced: Vec<String> = replaced.iter().map(|(slot, name)| format!("{slot} {name}")).collect();
+    let used = &slots[..chain.motions.len()];
+    let frames = chain.frames();
     let listed = used.iter().map(u8::to_string).collect::<Vec<String>>().join(", ");
     let motions = used.len();
+    let shift_ms = chain.shift_ms;
     let said = said_by(|words| {
-        let made = words
+        let mut made = words
             .made_chain
             .replace("{frames}", &frames.to_string())
             .replace("{motions}", &motions.to_string())
             .replace("{slots}", &listed);
+        if shift_ms != 0 {
+            made.push_str(&words.shifted.replace("{ms}", &format!("{shift_ms:+}")));
+        }
         if replaced.is_empty() { made } else { format!("{made}{}{}", words.replaced, replaced.join(", ")) }
     });
     Ok((made, said))
@@ -123,6 +116,7 @@ fn chain(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::project::plen2::Motion;
     use crate::ui::i18n::Language;
     use crate::ui::sound::follow::words;
 

@@ -87,6 +87,8 @@ crate::words! {
         pub replaces: &'static str,
         pub made_chain: &'static str,
         pub replaced: &'static str,
+        /// A chain fitted with the curve shifted (`{ms}`, signed) within half a cycle.
+        pub shifted: &'static str,
         pub no_slot: &'static str,
         pub frames: &'static str,
         pub steps: &'static str,
