@@ -41,7 +41,14 @@ pub const MAX_SAMPLED_POSITIONS: f64 = 3_240_000.0 * 10.0;
 /// A number as a person reads it: plainly, or in scientific notation when far
 /// from 1 (1e-300 is not printed as 300 zeros).
 fn shown(value: f64) -> String {
-    if value != 0.0 && !(1e-3..1e9).contains(&value.abs()) { format!("{value:e}") } else { format!("{value}") }
+    if value != 0.0 && !(1e-3..1e9).contains(&value.abs()) {
+        // Four figures at most: 9.766e11, 1e12.
+        let figures = format!("{value:.3e}");
+        let (mantissa, exponent) = figures.split_once('e').unwrap_or((&figures, "0"));
+        format!("{}e{exponent}", mantissa.trim_end_matches('0').trim_end_matches('.'))
+    } else {
+        format!("{value}")
+    }
 }
 
 /// An error about `clip`'s content (no line: the file has been read whole).

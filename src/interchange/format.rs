@@ -65,7 +65,7 @@ impl Format {
 /// Whether a JSON object's top-level keys are the servo-animation add-on's
 /// (`fps` with `servos`, `positions` or `pulses`), read even from a file cut short.
 fn blender_keys(text: &str) -> bool {
-    let keys: Vec<String> = match super::blender::top_keys(text) {
+    let keys: Vec<String> = match top_keys(text) {
         Some(keys) => keys,
         // Cut short or damaged: the keys named at the top level's indentation or anywhere.
         None => ["fps", "servos", "positions", "pulses"]
@@ -76,6 +76,31 @@ fn blender_keys(text: &str) -> bool {
     };
     let has = |key: &str| keys.iter().any(|k| k == key);
     has("fps") && (has("servos") || has("positions") || has("pulses"))
+}
+
+/// The keys of a JSON object's top level, none of their values kept; `None`
+/// when the text is not a whole JSON object.
+fn top_keys(text: &str) -> Option<Vec<String>> {
+    use serde::Deserializer as _;
+    use serde::de::{IgnoredAny, MapAccess, Visitor};
+    struct Keys;
+    impl<'de> Visitor<'de> for Keys {
+        type Value = Vec<String>;
+        fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+            f.write_str("an object")
+        }
+        fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<Vec<String>, A::Error> {
+            let mut keys = Vec::new();
+            while let Some(key) = map.next_key::<String>()? {
+                map.next_value::<IgnoredAny>()?;
+                keys.push(key);
+            }
+            Ok(keys)
+        }
+    }
+    let mut deserializer = serde_json::Deserializer::from_str(text);
+    let keys = deserializer.deserialize_map(Keys).ok()?;
+    deserializer.end().ok().map(|()| keys)
 }
 
 /// A file that cannot be read as its format, and where.

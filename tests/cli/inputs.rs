@@ -127,7 +127,8 @@ fn other_tools_files_asking_for_what_no_board_can_mean_are_refused_naming_it() {
         vec!["90"; 1_000_000].join(",")
     );
     for (name, text, to, said) in [
-        ("walk.mtn", mtn.to_string(), "plen2", "a move of 1e12 ms"),
+        // 10^9 s: 1.25e11 units of 8 ms, played as ticks of 7.8125 ms.
+        ("walk.mtn", mtn.to_string(), "plen2", "a move of 9.766e11 ms"),
         ("talk.xml", maestro.to_string(), "servo", "a frame of 1e12 ms"),
         ("slow.mtn", slow, "servo", "a speed rate of 1e-300"),
         ("wave.json", blender, "servo", "at most an hour"),

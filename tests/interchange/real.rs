@@ -97,6 +97,8 @@ struct Page {
     next: u32,
     repeat: u32,
     speed: f64,
+    /// The inertial force: each step's ease, in ticks.
+    ease: u32,
     /// `(play time, pause)` in seconds.
     steps: Vec<(f64, f64)>,
 }
@@ -108,13 +110,15 @@ fn pages(text: &str) -> Vec<Page> {
     for line in text.lines() {
         let (key, value) = line.split_once('=').unwrap_or((line, ""));
         match key {
-            "page_begin" => pages.push(Page { name: String::new(), next: 0, repeat: 1, speed: 1.0, steps: Vec::new() }),
+            "page_begin" => {
+                pages.push(Page { name: String::new(), next: 0, repeat: 1, speed: 1.0, ease: 0, steps: Vec::new() });
+            }
             "name" => pages.last_mut().unwrap().name = value.to_string(),
             "play_param" => {
                 let words: Vec<&str> = value.split_whitespace().collect();
                 let page = pages.last_mut().unwrap();
-                (page.next, page.repeat, page.speed) =
-                    (words[0].parse().unwrap(), words[2].parse().unwrap(), number(words[3]));
+                (page.next, page.repeat, page.speed, page.ease) =
+                    (words[0].parse().unwrap(), words[2].parse().unwrap(), number(words[3]), words[4].parse().unwrap());
             }
             "step" => {
                 let words: Vec<&str> = value.split_whitespace().collect();
@@ -128,20 +132,14 @@ fn pages(text: &str) -> Vec<Page> {
     pages
 }
 
-/// The file's time (ms from the page's start) at which each move ends and
-/// each pause ends, with whether it is a pause.
-fn boundaries(page: &Page, from_ms: f64) -> Vec<(f64, bool)> {
-    let mut at = from_ms;
-    let mut out = Vec::new();
-    for (time, pause) in &page.steps {
-        at += time * 1000.0 / page.speed;
-        out.push((at, false));
-        if *pause > 0.0 {
-            at += pause * 1000.0 / page.speed;
-            out.push((at, true));
-        }
-    }
-    out
+/// When RoboPlus's controller reaches each pose of `page` (`false`) and ends
+/// each stand (`true`), ms from `from_ms`, and when the page ends: its
+/// controller's own times (`super::robotis::controller`), divided by the
+/// page's speed rate (docs/import-export.md).
+fn boundaries(page: &Page, from_ms: f64) -> (Vec<(f64, bool)>, f64) {
+    let (times, end) = super::robotis::controller(&page.steps, page.ease, 0.0);
+    let at = |ms: f64| from_ms + ms / page.speed;
+    (times.into_iter().map(|(ms, stand)| (at(ms), stand)).collect(), at(end))
 }
 
 fn walk_text() -> String {
@@ -208,7 +206,7 @@ fn roboplus_times_on_a_servo_board_are_kept_at_every_key_not_rounded_step_by_ste
             .unwrap();
         let board = board_times(servo, &body.commands);
         let mut board = board.iter().peekable();
-        for (want, is_pause) in boundaries(page, 0.0) {
+        for (want, is_pause) in boundaries(page, 0.0).0 {
             // A pause the board's clock already covers needs no delay of its own.
             let got = if is_pause {
                 board.next_if(|(_, pause)| *pause).map(|(t, _)| *t)
@@ -254,12 +252,21 @@ fn a_roboplus_page_chain_plays_on_a_plen2_as_one_across_the_jump() {
     let stored = StoredMotions::new(plen2);
     let play = playback::play(&stored, first.slot, [0; DEVICE_IDS], 400);
     // The chain as RoboPlus plays it: the next page starts as the last one ends.
-    let mut want = boundaries(start, 0.0);
-    let joined = want.last().unwrap().0;
-    want.extend(boundaries(next, joined));
-    // A pause under half a cycle is no frame of its own (its time is kept by the frames after it).
+    let (mut want, joined) = boundaries(start, 0.0);
+    want.extend(boundaries(next, joined).0);
+    // A stand within one cycle is no frame of its own (its time is kept by the frames after it).
     let half = Playback::CYCLE_MS / 2.0;
-    let want: Vec<f64> = want.iter().filter(|(_, pause)| !pause).map(|(t, _)| *t).collect();
+    let mut stood = 0.0;
+    let want: Vec<f64> = want
+        .iter()
+        .filter(|(ms, stand)| {
+            // A stand is a frame when it ends on a later cycle than it starts.
+            let kept = !stand || (ms / Playback::CYCLE_MS).round() > (stood / Playback::CYCLE_MS).round();
+            stood = *ms;
+            kept
+        })
+        .map(|(ms, _)| *ms)
+        .collect();
     let got = frame_ends(&play);
     assert_eq!(got.len(), want.len(), "a frame per move: {got:?} for {want:?}");
     for (got, want) in got.iter().zip(&want) {

@@ -50,19 +50,85 @@ fn tenths(units: u32) -> i16 {
     ((f64::from(units) - 512.0) * 300.0 / 1024.0 * 10.0).round() as i16
 }
 
-/// The times (ms from the start) at which the source says each pose is reached and each pause ends.
-fn boundaries(steps: &[(f64, f64)], speed: f64) -> Vec<f64> {
-    let mut at = 0.0;
+/// One section of a step as ROBOTIS's Action engine plays it.
+#[derive(Clone, Copy, PartialEq)]
+enum Section {
+    EaseIn,
+    Straight,
+    EaseOut,
+    Pause,
+}
+
+/// A RoboPlus page's steps (`(play time, pause)` in seconds) played tick by
+/// tick as ROBOTIS's controller plays them (the Action engine of the CM-510
+/// firmware and the DARWIN-OP framework, `Action.cpp`), at 128 ticks a
+/// second with the page's inertial force `ease`: each section counts its
+/// ticks up, writing an output each; a tick with no output passes to the
+/// next section (and, into an ease-in, sets the next step up). Times in
+/// units of 8 ms as RoboPlus writes them, played one tick each.
+///
+/// The ms (from `from_ms`) at which each step's pose is reached (`false`)
+/// and at which it stops standing (`true`: the next step set up), and the
+/// ms the page ends.
+pub fn controller(steps: &[(f64, f64)], ease: u32, from_ms: f64) -> (Vec<(f64, bool)>, f64) {
+    const TICK_MS: f64 = 1000.0 / 128.0;
+    let units = |seconds: f64| (seconds / 0.008).round() as u32;
+    let at = |tick: u32| from_ms + f64::from(tick) * TICK_MS;
     let mut out = Vec::new();
-    for (time, pause) in steps {
-        at += time * 1000.0 / speed;
-        out.push(at);
-        if *pause > 0.0 {
-            at += pause * 1000.0 / speed;
-            out.push(at);
+    let (mut section, mut count, mut num) = (Section::Pause, 0u32, 0u32);
+    let (mut total, mut accel, mut pause, mut next) = (0u32, 0u32, 0u32, 0usize);
+    for tick in 0.. {
+        if count < num {
+            count += 1;
+            // The engine writes the pose itself as the straight part ends (no
+            // ease), one tick before the ease-out ends, or on its only tick.
+            let reached = match section {
+                Section::Straight => accel == 0 && count == num,
+                Section::EaseOut => (accel >= 2 && count == num - 1) || (accel == 1 && count == num),
+                _ => false,
+            };
+            if reached {
+                out.push((at(tick), false));
+            }
+            continue;
+        }
+        count = 0;
+        section = match section {
+            Section::EaseIn => {
+                num = total - 2 * accel;
+                Section::Straight
+            }
+            Section::Straight => {
+                num = accel;
+                Section::EaseOut
+            }
+            Section::EaseOut if pause > 0 => {
+                num = pause;
+                Section::Pause
+            }
+            Section::EaseOut | Section::Pause => Section::EaseIn,
+        };
+        if section == Section::EaseIn {
+            if next > 0 {
+                if total == 0 {
+                    // A step that could not ease jumped: its pose is where the next one starts.
+                    out.push((at(tick), false));
+                }
+                out.push((at(tick), true));
+            }
+            let Some(&(time, step_pause)) = steps.get(next) else { return (out, at(tick)) };
+            next += 1;
+            (total, accel, pause) = (units(time).max(1), ease, units(step_pause));
+            if total <= 2 * accel {
+                accel = (total - 1) >> 1;
+                if accel == 0 {
+                    total = 0;
+                }
+            }
+            num = accel;
         }
     }
-    out
+    unreachable!("a page ends")
 }
 
 /// When each frame of `slot` is reached in its first pass: the last cycle of
@@ -94,8 +160,22 @@ fn an_mtn_page_plays_on_a_plen2_within_one_cycle_of_roboplus_timing() {
         let bow = plen2.motions.iter().find(|m| m.name == "Bow").unwrap();
         let stored = StoredMotions::new(plen2);
         let play = playback::play(&stored, bow.slot, [0; DEVICE_IDS], 2000);
-        let expected = boundaries(&[(0.496, 0.0), (1.0, 0.296), (0.25, 0.1)], speed);
-        assert_eq!(bow.frames.len(), expected.len(), "a frame per move and per pause");
+        // The controller's times at speed rate 1, divided by the rate (docs/import-export.md).
+        let (expected, _) = controller(&[(0.496, 0.0), (1.0, 0.296), (0.25, 0.1)], 32, 0.0);
+        // A stand within one cycle is no frame of its own.
+        let mut stood = 0.0;
+        let expected: Vec<f64> = expected
+            .iter()
+            .map(|(ms, is_stand)| (ms / speed, *is_stand))
+            .filter(|(ms, is_stand)| {
+                // A stand is a frame when it ends on a later cycle than it starts.
+                let kept = !is_stand || (ms / Playback::CYCLE_MS).round() > (stood / Playback::CYCLE_MS).round();
+                stood = *ms;
+                kept
+            })
+            .map(|(ms, _)| ms)
+            .collect();
+        assert_eq!(bow.frames.len(), expected.len(), "a frame per move and per pause: {expected:?}");
         let got = reached(&play, bow.slot, bow.frames.len());
         for (got, want) in got.iter().zip(&expected) {
             assert!(
@@ -128,33 +208,42 @@ fn an_mtn_page_on_a_servo_board_is_actions_of_its_play_time_and_delays_of_its_pa
     let (_, _, built) = built(Format::Mtn, &mtn("1.0"), Family::Servo);
     let servo = &built.project.servo;
     let body = servo.macros.iter().find(|m| m.caption == "Bow steps").unwrap();
-    let intervals: Vec<Vec<(u8, i16, i16)>> = body
-        .commands
-        .iter()
-        .filter_map(|c| match c.run {
-            Run::Action { action_id } => Some(
-                servo
-                    .action(action_id)
-                    .unwrap()
-                    .steps
-                    .iter()
-                    .filter(|s| s.servo_id == 13)
-                    .map(|s| (s.servo_id, s.degree, s.interval_10ms))
-                    .collect(),
-            ),
-            _ => None,
-        })
-        .collect();
-    // 612 AX units is +29.3°: the board's whole degree is 29; 0.496 s is 50 updates (rounded).
-    assert_eq!(intervals, [vec![(13, 29, 50)], vec![(13, 59, 100)], vec![(13, 0, 25)]]);
-    let delays: Vec<i32> = body
-        .commands
-        .iter()
-        .filter_map(|c| if let Run::Delay { delay_ms } = c.run { Some(delay_ms) } else { None })
-        .collect();
-    // The pause ends at 0.496 + 1.000 + 0.296 s, as RoboPlus plays it: the
-    // 4 ms the first move's whole updates ran over come off it.
-    assert_eq!(delays, [292, 100]);
+    // The board's clock after each command: an action's longest step, a delay.
+    let mut clock = 0.0;
+    let mut board = Vec::new();
+    for command in &body.commands {
+        match command.run {
+            Run::Action { action_id } => {
+                let steps = &servo.action(action_id).unwrap().steps;
+                clock += steps.iter().map(|s| f64::from(s.interval_10ms) * 10.0).fold(0.0, f64::max);
+                let knee = steps.iter().find(|s| s.servo_id == 13).unwrap().degree;
+                board.push((clock, Some(knee)));
+            }
+            Run::Delay { delay_ms } => {
+                clock += f64::from(delay_ms);
+                board.push((clock, None));
+            }
+            Run::Macro { .. } => panic!("a page's steps are actions and delays"),
+        }
+    }
+    // Each pose reached and each stand ended within half an update (5 ms) of
+    // the controller's time; a stand the board's clock already covers needs no delay.
+    let (expected, _) = controller(&[(0.496, 0.0), (1.0, 0.296), (0.25, 0.1)], 32, 0.0);
+    let mut board = board.into_iter().peekable();
+    let mut knees = Vec::new();
+    for (want, is_stand) in expected {
+        let got = if is_stand { board.next_if(|(_, knee)| knee.is_none()) } else { board.next() };
+        let Some((got, knee)) = got else { continue };
+        assert!(
+            (got - want).abs() <= 5.0,
+            "{} at {want:.1} ms plays at {got} ms",
+            if is_stand { "a stand ends" } else { "a pose" }
+        );
+        knees.extend(knee);
+    }
+    assert!(board.next().is_none(), "one action per step, a delay per stand at most");
+    // 612 AX units is +29.3°: the board's whole degree is 29.
+    assert_eq!(knees, [29, 59, 0]);
     let play = servo.macros.iter().find(|m| m.caption == "Bow").unwrap();
     assert_eq!(play.commands[0].run, Run::Macro { macro_id: body.id });
     assert_eq!(play.commands[0].loop_count, 2, "repeat 2");
@@ -241,4 +330,55 @@ fn malformed_motion_files_say_which_line() {
     assert!(read(Format::Mtnx, "<Root/>").contains("no <Page>"));
     let unit = read(Format::Mtnx, &MTNX.replace(r#"main="Wave""#, r#"main="Jump""#));
     assert!(unit.contains("line 6: <unit>: page \"Jump\" is not in the file"), "{unit}");
+}
+
+/// How long a servo board plays macro `id`, ms: each action its longest
+/// step, each delay its time, each macro it runs as often as it runs it.
+fn macro_ms(servo: &servo_studio::project::ServoProject, id: i32) -> f64 {
+    let played = servo.macros.iter().find(|m| m.id == id).unwrap();
+    played
+        .commands
+        .iter()
+        .map(|command| match command.run {
+            Run::Action { action_id } => {
+                let steps = &servo.action(action_id).unwrap().steps;
+                steps.iter().map(|s| f64::from(s.interval_10ms) * 10.0).fold(0.0, f64::max)
+            }
+            Run::Delay { delay_ms } => f64::from(delay_ms),
+            Run::Macro { macro_id } => f64::from(command.loop_count.max(1)) * macro_ms(servo, macro_id),
+        })
+        .sum()
+}
+
+/// A chain of next pages plays each page its own repeat count, as RoboPlus's
+/// controller does (a page set up from another takes its own repeat), and
+/// stops before a page that repeats 0 times: the whole within one board
+/// update of the controller's time, worked out page by page here.
+#[test]
+fn a_chain_of_next_pages_plays_each_page_its_own_repeat_count_and_stops_at_a_page_of_none() {
+    let page = |name: &str, next: u32, repeat: u32, steps: &[(&str, &str)]| {
+        let steps: String = steps.iter().map(|(pause, time)| step(612, 512, pause, time)).collect();
+        format!(
+            "page_begin\nname={name}\nplay_param={next} 0 {repeat} 1.0 5\n{steps}{}page_end\n",
+            step(512, 512, "0.000", "0.104")
+        )
+    };
+    let enable = format!("enable=0{}\n", " 1".repeat(18));
+    let text = format!(
+        "type=motion\nversion=1.01\n{enable}motor_type=0\n{}{}{}{}",
+        page("Start", 2, 1, &[("0.000", "0.200")]),
+        page("Walk", 3, 3, &[("0.048", "0.136"), ("0.000", "0.096")]),
+        page("Turn", 4, 2, &[("0.000", "0.304")]),
+        page("Never", 0, 0, &[("0.000", "0.504")]),
+    );
+    let (source, _, built) = built(Format::Mtn, &text, Family::Servo);
+    assert!(source.dropped.iter().any(|n| n.contains("repeats 0 times")), "{:?}", source.dropped);
+    let servo = &built.project.servo;
+    let start = servo.macros.iter().find(|m| m.caption == "Start").unwrap();
+    let one = |steps: &[(f64, f64)]| controller(steps, 5, 0.0).1;
+    let want = one(&[(0.2, 0.0), (0.104, 0.0)])
+        + 3.0 * one(&[(0.136, 0.048), (0.096, 0.0), (0.104, 0.0)])
+        + 2.0 * one(&[(0.304, 0.0), (0.104, 0.0)]);
+    let got = macro_ms(servo, start.id);
+    assert!((got - want).abs() <= 10.0, "the chain plays {got} ms, the controller {want:.1} ms");
 }

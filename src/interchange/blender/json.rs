@@ -85,29 +85,6 @@ pub fn read(text: &str) -> Result<Export, ReadError> {
     })
 }
 
-/// The keys of a JSON object's top level, none of their values kept; `None`
-/// when the text is not a whole JSON object.
-pub fn top_keys(text: &str) -> Option<Vec<String>> {
-    struct Keys;
-    impl<'de> Visitor<'de> for Keys {
-        type Value = Vec<String>;
-        fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-            f.write_str("an object")
-        }
-        fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<Vec<String>, A::Error> {
-            let mut keys = Vec::new();
-            while let Some(key) = map.next_key::<String>()? {
-                map.next_value::<IgnoredAny>()?;
-                keys.push(key);
-            }
-            Ok(keys)
-        }
-    }
-    let mut deserializer = serde_json::Deserializer::from_str(text);
-    let keys = deserializer.deserialize_map(Keys).ok()?;
-    deserializer.end().ok().map(|()| keys)
-}
-
 /// The error of a key that does not say what the add-on writes there.
 fn wrong<E: de::Error>(trail: &RefCell<Trail>, message: impl Into<String>) -> E {
     let mut trail = trail.borrow_mut();

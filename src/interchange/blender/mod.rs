@@ -7,7 +7,6 @@
 
 mod json;
 
-pub(super) use json::top_keys;
 use serde_json::{Map, Value, json};
 
 use super::format::{Format, ReadError};

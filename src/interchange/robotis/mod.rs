@@ -3,6 +3,8 @@
 //! the page's play parameters) and R+ Motion 2.0 `.mtnx` (XML: pages of steps
 //! at absolute times in 1/128 s with poses in degrees, and flows of units).
 
+mod clock;
+
 use super::bounds;
 use super::format::{Format, ReadError, number};
 use super::source::{Body, Channel, Clip, Key, Link, Source, Timing, Unit};
@@ -15,14 +17,18 @@ pub const MX: Unit = Unit { zero: 2048.0, per_degree: 4096.0 / 360.0, label: "MX
 /// R+ Motion's ticks: 128 a second.
 const MTNX_TICKS_PER_S: f64 = 128.0;
 
+/// A page's next page, exit page, repeat (as written: 0 is kept) and speed rate.
+type Play = (u32, u32, u32, f64);
+
 /// A page as read, before its links are resolved.
 struct Page {
     number: u32,
     name: String,
     /// `(values by id, pause s, time s, line)`.
     steps: Vec<(Vec<f64>, f64, f64, usize)>,
-    /// next, exit, repeat, speed rate.
-    play: (u32, u32, u32, f64),
+    play: Play,
+    /// The inertial force: each step's ease-in and ease-out, in ticks.
+    ease: f64,
 }
 
 /// A line's numbers: at most a value per channel and a step's pause and time,
@@ -68,7 +74,7 @@ pub fn read_mtn(text: &str) -> Result<Source, ReadError> {
                     ));
                 }
                 let number = u32::try_from(pages.len() + 1).unwrap_or(u32::MAX);
-                open = Some(Page { number, name: String::new(), steps: Vec::new(), play: (0, 0, 1, 1.0) });
+                open = Some(Page { number, name: String::new(), steps: Vec::new(), play: (0, 0, 1, 1.0), ease: 0.0 });
             }
             ("page_begin", Some(_)) => {
                 return Err(ReadError::at(line, key, "a page begins before the last one ended (page_end missing)"));
@@ -77,7 +83,7 @@ pub fn read_mtn(text: &str) -> Result<Source, ReadError> {
             ("page_end", None) => return Err(ReadError::at(line, key, "page_end without page_begin")),
             ("name", Some(page)) => page.name = value.to_string(),
             ("compliance", Some(_)) => {}
-            ("play_param", Some(page)) => page.play = play_param(value, line)?,
+            ("play_param", Some(page)) => (page.play, page.ease) = play_param(value, line)?,
             ("step", Some(page)) => {
                 steps += 1;
                 if steps > bounds::MAX_KEYS {
@@ -124,7 +130,9 @@ pub fn read_mtn(text: &str) -> Result<Source, ReadError> {
     Ok(source)
 }
 
-fn play_param(value: &str, line: usize) -> Result<(u32, u32, u32, f64), ReadError> {
+/// `play_param=NEXT EXIT REPEAT SPEED_RATE INERTIAL_FORCE`: the page's play
+/// (repeat as written) and its ease.
+fn play_param(value: &str, line: usize) -> Result<(Play, f64), ReadError> {
     let words: Vec<&str> = value.split_whitespace().collect();
     let whole = |at: usize, what: &str| -> Result<u32, ReadError> {
         let Some(word) = words.get(at) else { return Ok(if what == "repeat" { 1 } else { 0 }) };
@@ -138,7 +146,11 @@ fn play_param(value: &str, line: usize) -> Result<(u32, u32, u32, f64), ReadErro
     if speed <= 0.0 {
         return Err(ReadError::at(line, "play_param", format!("speed rate {speed} must be above 0")));
     }
-    Ok((whole(0, "next page")?, whole(1, "exit page")?, whole(2, "repeat")?.max(1), speed))
+    let ease = match words.get(4) {
+        Some(word) => number(word, line, "play_param", "inertial force")?.clamp(0.0, 255.0),
+        None => 0.0,
+    };
+    Ok(((whole(0, "next page")?, whole(1, "exit page")?, whole(2, "repeat")?, speed), ease))
 }
 
 fn mtn_source(pages: &[Page], enabled: Option<&[bool]>) -> Source {
@@ -165,13 +177,27 @@ fn mtn_source(pages: &[Page], enabled: Option<&[bool]>) -> Source {
         let keys = page
             .steps
             .iter()
-            .map(|(values, pause, time, _)| Key {
-                values: ids.iter().map(|&id| values.get(id).copied()).collect(),
-                timing: Timing::Move { move_ms: time * 1000.0, hold_ms: pause * 1000.0 },
-                name: String::new(),
+            .map(|(values, pause, time, _)| {
+                let (reach, stand) = clock::step_ticks(*time, *pause, page.ease);
+                Key {
+                    values: ids.iter().map(|&id| values.get(id).copied()).collect(),
+                    timing: Timing::Move { move_ms: reach * clock::TICK_MS, hold_ms: stand * clock::TICK_MS },
+                    name: String::new(),
+                }
             })
             .collect();
         let (next, exit, repeat, speed) = page.play;
+        // A page that leads to one RoboPlus would not play (repeat 0) ends there, as RoboPlus ends.
+        let next = if kept.iter().any(|other| other.number == next && other.play.2 == 0) {
+            source.drop_note(format!(
+                "page {}: its next page {next} repeats 0 times: RoboPlus stops before it",
+                page.number
+            ));
+            0
+        } else {
+            next
+        };
+        let repeat = repeat.max(1);
         let name = if page.name.is_empty() { format!("page {}", page.number) } else { page.name.clone() };
         let mut clip = Clip::new(name, Body::Keys(keys));
         clip.number = Some(page.number);
@@ -184,6 +210,10 @@ fn mtn_source(pages: &[Page], enabled: Option<&[bool]>) -> Source {
         source.clips.push(clip);
     }
     source.drop_note("compliance and inertial force (each step moves straight)");
+    source.notes.push(
+        "timed as a ROBOTIS controller plays a page: 128 ticks a second, each step its time and 3 ticks more, a pause 1 more"
+            .into(),
+    );
     source
 }
 
@@ -439,7 +469,8 @@ mod tests {
         assert_eq!((bow.repeat, bow.speed, bow.next, bow.number), (3, 2.0, Some(1), Some(1)));
         let Body::Keys(keys) = &bow.body else { panic!() };
         assert_eq!(keys[1].values, [Some(700.0), Some(600.0)]);
-        assert_eq!(keys[1].timing, Timing::Move { move_ms: 1000.0, hold_ms: 296.0 });
+        // 1.000 s: 125 units, reached on tick 126; 0.296 s: 37 units, standing 2 + 38 ticks.
+        assert_eq!(keys[1].timing, Timing::Move { move_ms: 126.0 * 7.8125, hold_ms: 40.0 * 7.8125 });
         assert_eq!(source.clips[1].name, "page 2");
     }
 
