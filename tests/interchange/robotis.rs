@@ -382,3 +382,18 @@ fn a_chain_of_next_pages_plays_each_page_its_own_repeat_count_and_stops_at_a_pag
     let got = macro_ms(servo, start.id);
     assert!((got - want).abs() <= 10.0, "the chain plays {got} ms, the controller {want:.1} ms");
 }
+
+/// The controller eases each step in and out (the page's inertial force);
+/// the conversion moves straight and says how far that strays, worked by
+/// hand for "Bow": its last step moves the knee 200 AX units (58.59°) in 31
+/// units of time, too short for its ease of 32, so eased over (31 − 1) / 2 =
+/// 15 ticks each way. A trapezoid of speed strays from the straight move by
+/// at most D·a(T − a) / (2T²) = 58.59 × 15 × 16 / 1,922 = 7.3°.
+#[test]
+fn how_far_straight_moves_stray_from_the_controllers_eased_ones_is_said() {
+    let (source, _, built) = built(Format::Mtn, &mtn("1.0"), Family::Servo);
+    let said: Vec<&String> = source.notes.iter().filter(|note| note.contains("inertial force")).collect();
+    assert_eq!(said.len(), 1, "{:?}", source.notes);
+    assert!(said[0].contains("up to 7.3°") && said[0].contains("(page 1)"), "{}", said[0]);
+    assert!(built.report.notes.iter().any(|note| note.contains("up to 7.3°")), "{:?}", built.report.notes);
+}

@@ -51,6 +51,22 @@ pub fn step_ticks(time_s: f64, pause_s: f64, ease: f64) -> (f64, f64) {
     (reach, time + 3.0 - reach + if pause > 0.0 { pause + 1.0 } else { 0.0 })
 }
 
+/// How far a step eased in and out over `ease` ticks (a trapezoid of
+/// speed, as the controller moves it) strays from a straight move of the
+/// same length and time, at most: a share of the move's distance. (Within
+/// the ease-in, the eased move is at D·t² / (2a(T − a)), the straight one at
+/// D·t / T; they are farthest apart at t = a(T − a) / T.)
+pub fn eased_share(time_s: f64, ease: f64) -> f64 {
+    let time = units(time_s).max(1.0);
+    let ease = ease.max(0.0).floor();
+    if time <= 2.0 * ease {
+        // Too short for its ease: eased over under half its time (a jump: not at all).
+        let less = ((time - 1.0) / 2.0).floor();
+        return if less == 0.0 { 0.0 } else { eased_share(time_s, less) };
+    }
+    ease * (time - ease) / (2.0 * time * time)
+}
+
 #[cfg(test)]
 mod tests {
     #![allow(clippy::float_cmp)]
@@ -69,5 +85,17 @@ mod tests {
         assert_eq!(step_ticks(0.0, 0.0, 0.0), (2.0, 2.0));
         assert_eq!(step_ticks(0.016, 0.0, 5.0), (1.0, 2.0));
         assert_eq!(step_ticks(0.024, 0.0, 5.0), (5.0, 1.0), "three units ease one tick each way");
+    }
+
+    #[test]
+    fn an_eased_step_strays_from_a_straight_one_by_a_share_of_its_distance() {
+        // 1.000 s (125 units) eased over 32 ticks: 23° of move strays up to
+        // 2.19° (at tick 23.8); 1.9° as its ease-in ends (250 ms: straight 5.9°, eased 4.0°).
+        let share = eased_share(1.0, 32.0);
+        assert!((share * 23.0 - 2.19).abs() < 0.01, "{}", share * 23.0);
+        // A triangle (ease of half the time) strays an eighth of its distance.
+        assert!((eased_share(0.8, 50.0) - 0.125).abs() < 1e-3, "{}", eased_share(0.8, 50.0));
+        assert_eq!(eased_share(1.0, 0.0), 0.0, "no ease: straight");
+        assert_eq!(eased_share(0.016, 5.0), 0.0, "a step that jumps");
     }
 }

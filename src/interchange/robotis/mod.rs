@@ -17,6 +17,29 @@ pub const MX: Unit = Unit { zero: 2048.0, per_degree: 4096.0 / 360.0, label: "MX
 /// R+ Motion's ticks: 128 a second.
 const MTNX_TICKS_PER_S: f64 = 128.0;
 
+/// The farthest a straight move strays from the controller's eased one (the
+/// page's inertial force) over every step of every page, degrees, and the
+/// page: each step's move from the step before it (the page's last, for its first).
+fn eased_most(pages: &[&Page], ids: &[usize], unit: Unit) -> Option<(f64, u32)> {
+    let mut most: Option<(f64, u32)> = None;
+    for page in pages {
+        let Some(last) = page.steps.last() else { continue };
+        let mut before = &last.0;
+        for (values, _, time, _) in &page.steps {
+            let distance = ids
+                .iter()
+                .filter_map(|&id| Some((values.get(id)? - before.get(id)?).abs() / unit.per_degree))
+                .fold(0.0, f64::max);
+            let strays = distance * clock::eased_share(*time, page.ease);
+            if strays > most.map_or(0.05, |(deg, _)| deg) {
+                most = Some((strays, page.number));
+            }
+            before = values;
+        }
+    }
+    most
+}
+
 /// A page's next page, exit page, repeat (as written: 0 is kept) and speed rate.
 type Play = (u32, u32, u32, f64);
 
@@ -210,6 +233,11 @@ fn mtn_source(pages: &[Page], enabled: Option<&[bool]>) -> Source {
         source.clips.push(clip);
     }
     source.drop_note("compliance and inertial force (each step moves straight)");
+    if let Some((strays, page)) = eased_most(&kept, &ids, unit) {
+        source.notes.push(format!(
+            "inertial force: the controller eases each step in and out; moved straight here, up to {strays:.1}° from its path mid-step (page {page})"
+        ));
+    }
     source.notes.push(
         "timed as a ROBOTIS controller plays a page: 128 ticks a second, each step its time and 3 ticks more, a pause 1 more"
             .into(),
