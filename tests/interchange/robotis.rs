@@ -160,8 +160,11 @@ fn an_mtn_page_plays_on_a_plen2_within_one_cycle_of_roboplus_timing() {
         let bow = plen2.motions.iter().find(|m| m.name == "Bow").unwrap();
         let stored = StoredMotions::new(plen2);
         let play = playback::play(&stored, bow.slot, [0; DEVICE_IDS], 2000);
-        // The controller's times at speed rate 1, divided by the rate (docs/import-export.md).
-        let (expected, _) = controller(&[(0.496, 0.0), (1.0, 0.296), (0.25, 0.1)], 32, 0.0);
+        // The controller's times at speed rate 1, divided by the rate
+        // (docs/import-export.md); repeat 2: the second pass from the first's end.
+        let steps = [(0.496, 0.0), (1.0, 0.296), (0.25, 0.1)];
+        let (mut expected, first_pass) = controller(&steps, 32, 0.0);
+        expected.extend(controller(&steps, 32, first_pass).0);
         // A stand within one cycle is no frame of its own.
         let mut stood = 0.0;
         let expected: Vec<f64> = expected
@@ -175,7 +178,7 @@ fn an_mtn_page_plays_on_a_plen2_within_one_cycle_of_roboplus_timing() {
             })
             .map(|(ms, _)| ms)
             .collect();
-        assert_eq!(bow.frames.len(), expected.len(), "a frame per move and per pause: {expected:?}");
+        assert_eq!(bow.frames.len(), expected.len(), "a frame per move and per pause, both passes: {expected:?}");
         let got = reached(&play, bow.slot, bow.frames.len());
         for (got, want) in got.iter().zip(&expected) {
             assert!(
@@ -185,15 +188,17 @@ fn an_mtn_page_plays_on_a_plen2_within_one_cycle_of_roboplus_timing() {
         }
         // Poses within the unit conversion: the knee's AX units as tenths.
         let knees: Vec<i16> = bow.frames.iter().map(|f| f.values_tenths_deg.get(Joint::RightKneePitch)).collect();
-        assert_eq!(knees, [tenths(612), tenths(712), tenths(712), tenths(512), tenths(512)]);
+        let pass = [tenths(612), tenths(712), tenths(712), tenths(512), tenths(512)];
+        assert_eq!(knees, [pass, pass].concat());
         let first = play.frames.iter().rposition(|a| *a == (bow.slot, 0)).unwrap();
         // What the firmware holds at the end of the move: the frame's value, or a
         // tenth below it (16.16 steps floor: plen2.md §6).
         let held = knee(&play.cycles[first]);
         assert!((tenths(612) - 1..=tenths(612)).contains(&held), "{held}");
-        // Repeat 2: one loop of every frame; next page: a jump to Walk's slot.
+        // Repeat 2 played out (no loop: a loop's passes each end a cycle
+        // later); next page: a jump to Walk's slot.
         let walk = plen2.motions.iter().find(|m| m.name == "Walk").unwrap();
-        assert_eq!(bow.loop_range.map(|l| (l.begin_frame, l.end_frame, l.count)), Some((0, 4, 1)));
+        assert_eq!(bow.loop_range, None);
         assert_eq!(bow.jump_slot, Some(walk.slot));
         // Exit page: a play list of the page, then its exit page.
         let rest = plen2.motions.iter().find(|m| m.name == "Rest").unwrap();
@@ -201,6 +206,12 @@ fn an_mtn_page_plays_on_a_plen2_within_one_cycle_of_roboplus_timing() {
         assert_eq!(list.entries.iter().map(|e| e.slot).collect::<Vec<_>>(), [bow.slot, rest.slot]);
         assert_eq!(plen2.motions.len(), 3, "the empty page is no motion");
     }
+    // Repeat 8: 24 frames do not fit a motion: one loop of every frame, 7 more times.
+    let eight = mtn("1.0").replace("play_param=2 3 2 1.0 32", "play_param=2 3 8 1.0 32");
+    let (_, _, built) = built(Format::Mtn, &eight, Family::Plen2);
+    let bow = built.project.plen2.motions.iter().find(|m| m.name == "Bow").unwrap();
+    assert_eq!(bow.loop_range.map(|l| (l.begin_frame, l.end_frame, l.count)), Some((0, 4, 7)));
+    assert!(built.report.approximated.iter().any(|n| n.contains("each pass after the first ends one")));
 }
 
 #[test]

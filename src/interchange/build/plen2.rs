@@ -46,12 +46,14 @@ pub(super) fn build(
     let mut framed: Vec<(usize, Vec<Frame>)> = Vec::new();
     let mut clock = Clock::default();
     let mut ends: Vec<(usize, End)> = Vec::new();
+    // Repeated clips whose passes fit one motion, played out on one clock (no loop).
+    let mut unrolled: Vec<usize> = Vec::new();
     for &index in &input.clips {
         let clip = input.clip(index);
         let before = input.clips.iter().copied().find(|&other| other != index && input.clip(other).next == Some(index));
         let start = before.map(|other| match ends.iter().find(|(clip, _)| *clip == other) {
-            // Played once: on the same clock, rounding carried over.
-            Some((_, end)) if input.clip(other).repeat <= 1 => *end,
+            // Played once, or its passes played out: on the same clock, rounding carried over.
+            Some((_, end)) if input.clip(other).repeat <= 1 || unrolled.contains(&other) => *end,
             // Repeated, or made later: from its end, on a clock of its own.
             found => End {
                 pose: found.map_or([0.0; JOINTS], |(_, end)| end.pose),
@@ -62,6 +64,12 @@ pub(super) fn build(
         });
         let frames = match &clip.body {
             Body::Keys(keys) => {
+                if let Some((frames, end)) = played_out(input, &joints, (clip, keys, start), &mut clock, report) {
+                    unrolled.push(index);
+                    ends.push((index, end));
+                    framed.push((index, frames));
+                    continue;
+                }
                 let (frames, end) = keyed(input, &joints, (clip, keys, start), &mut clock, report);
                 ends.push((index, end));
                 frames
@@ -81,7 +89,7 @@ pub(super) fn build(
     let mut project = Plen2Project::default();
     let first_slot = place(input, &framed, &mut project, report);
     let slot_of = |clip: usize| first_slot.iter().find(|(index, ..)| *index == clip).map(|(_, slot, _)| *slot);
-    link(input, &first_slot, &mut project, report);
+    link(input, (&first_slot, &unrolled), &mut project, report);
     starts.extend(first_slot.iter().map(|&(clip, slot, _)| (clip, Start::Slot(slot))));
     flows(input, &slot_of, &mut project, report, starts);
     Ok(project)
@@ -118,14 +126,47 @@ fn place(
     first_slot
 }
 
-/// Repeats as loops, next pages as jumps, exit pages as play lists.
-fn link(input: &Input<'_>, first_slot: &[(usize, u8, u8)], project: &mut Plen2Project, report: &mut Report) {
+/// A repeated clip's passes played out one after another on one cycle clock,
+/// when they fit one motion (20 frames): every pass's keys then keep their
+/// time as the first pass's do, where a loop's passes each end a cycle later.
+fn played_out(
+    input: &Input<'_>,
+    joints: &[Option<Joint>],
+    (clip, keys, start): (&Clip, &[Key], Option<End>),
+    clock: &mut Clock,
+    report: &mut Report,
+) -> Option<(Vec<Frame>, End)> {
+    let passes = usize::try_from(clip.repeat).ok().filter(|passes| *passes > 1)?;
+    if keys.len().saturating_mul(passes) > MAX_FRAMES {
+        return None;
+    }
+    let (mut tried_clock, mut tried_report) = (clock.clone(), report.clone());
+    let all: Vec<Key> = (0..passes).flat_map(|_| keys.iter().cloned()).collect();
+    let (frames, end) = keyed(input, joints, (clip, &all, start), &mut tried_clock, &mut tried_report);
+    if frames.len() > MAX_FRAMES {
+        return None;
+    }
+    (*clock, *report) = (tried_clock, tried_report);
+    report.converted(format!(
+        "{:?}: its {passes} passes played out in one motion, on one clock (every pass's keys keep their time)",
+        clip.name
+    ));
+    Some((frames, end))
+}
+
+/// Repeats as loops (unless played out), next pages as jumps, exit pages as play lists.
+fn link(
+    input: &Input<'_>,
+    (first_slot, unrolled): (&[(usize, u8, u8)], &[usize]),
+    project: &mut Plen2Project,
+    report: &mut Report,
+) {
     let slot_of = |clip: usize| first_slot.iter().find(|(index, ..)| *index == clip).map(|(_, slot, _)| *slot);
     for &(index, first, parts) in first_slot {
         let clip = input.clip(index);
         // Motions are pushed in slot order from slot 0.
         let last = usize::from(first + parts - 1);
-        if clip.repeat > 1 {
+        if clip.repeat > 1 && !unrolled.contains(&index) {
             if parts == 1 {
                 let motion = &mut project.motions[last];
                 let count = u8::try_from((clip.repeat - 1).min(254)).unwrap_or(254);
@@ -208,7 +249,7 @@ fn tenths(degrees: f64, report: &mut Report) -> i16 {
 }
 
 /// How far the cycles kept from the file's time, over every clip.
-#[derive(Default)]
+#[derive(Clone, Default)]
 struct Clock {
     /// The farthest a key's end was from the file's time, ms.
     worst_ms: f64,
