@@ -59,6 +59,16 @@ pub enum Timing {
     },
 }
 
+impl Timing {
+    /// The same key played at `rate` (2 = twice as fast).
+    pub fn at_rate(self, rate: f64) -> Self {
+        match self {
+            Self::Move { move_ms, hold_ms } => Self::Move { move_ms: move_ms / rate, hold_ms: hold_ms / rate },
+            Self::Frame { duration_ms } => Self::Frame { duration_ms: duration_ms / rate },
+        }
+    }
+}
+
 /// One key: where each channel goes (raw; `None`: the channel is not driven) and when.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Key {

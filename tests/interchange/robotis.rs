@@ -408,3 +408,58 @@ fn how_far_straight_moves_stray_from_the_controllers_eased_ones_is_said() {
     assert!(said[0].contains("up to 7.3°") && said[0].contains("(page 1)"), "{}", said[0]);
     assert!(built.report.notes.iter().any(|note| note.contains("up to 7.3°")), "{:?}", built.report.notes);
 }
+
+/// An R+ flow of pages whose lengths are no whole number of 10 ms updates
+/// (100/128 s = 781.25 ms; 160/128 s = 1,250 ms), played 3 and 2 times, on a
+/// servo board: the flow is played out in one macro on one clock, so every
+/// pose is reached within half an update (5 ms) of the file's time — the
+/// 128ths of a second the format counts, added up here page by page — and
+/// the whole within one. (Page macros run one after another each rounded its
+/// end to an update: 6.25 ms a pass, 18.75 ms over the flow.)
+#[test]
+fn an_r_plus_flow_on_a_servo_board_keeps_every_key_on_one_clock() {
+    let page = |name: &str, frames: &[(u32, f64)]| {
+        let steps: String = frames
+            .iter()
+            .map(|(frame, elbow)| {
+                format!("<step frame=\"{frame}\" pose=\"0 0 0 0 {elbow} 0 0 0 0 0 0 0 0 0 0 0 0 0\" />")
+            })
+            .collect();
+        format!("<Page name=\"{name}\"><steps>{steps}</steps></Page>")
+    };
+    let text = format!(
+        "<?xml version=\"1.0\"?><Root><FlowRoot><Flow name=\"dance\"><units><unit main=\"Step\" mainSpeed=\"1\" loop=\"3\" exit=\"\" /><unit main=\"Sway\" mainSpeed=\"1\" loop=\"2\" exit=\"\" /></units></Flow></FlowRoot><PageRoot>{}{}</PageRoot></Root>",
+        page("Step", &[(50, 20.0), (100, 0.0)]),
+        page("Sway", &[(60, -25.0), (160, 0.0)]),
+    );
+    let (_, _, built) = built(Format::Mtnx, &text, Family::Servo);
+    let servo = &built.project.servo;
+    let dance = servo.macros.iter().find(|m| m.caption == "dance").unwrap();
+    // The file's time of each pose: frames in 128ths of a second from each pass's start.
+    let mut want = Vec::new();
+    let mut start = 0.0;
+    for (frames, passes) in [([50.0, 100.0], 3), ([60.0, 160.0], 2)] {
+        for _ in 0..passes {
+            want.extend(frames.iter().map(|frame| start + frame * 1000.0 / 128.0));
+            start += frames[1] * 1000.0 / 128.0;
+        }
+    }
+    let mut clock = 0.0;
+    let mut got = Vec::new();
+    for command in &dance.commands {
+        match command.run {
+            Run::Action { action_id } => {
+                let steps = &servo.action(action_id).unwrap().steps;
+                clock += steps.iter().map(|s| f64::from(s.interval_10ms) * 10.0).fold(0.0, f64::max);
+                got.push(clock);
+            }
+            Run::Delay { delay_ms } => clock += f64::from(delay_ms),
+            Run::Macro { .. } => panic!("played out: actions and delays"),
+        }
+    }
+    assert_eq!(got.len(), want.len(), "an action per pose: {got:?} for {want:?}");
+    for (got, want) in got.iter().zip(&want) {
+        assert!((got - want).abs() <= 5.0, "a pose at {want:.2} ms reached at {got} ms");
+    }
+    assert!((clock - start).abs() <= 10.0, "the flow ends at {clock} ms, the file's at {start} ms");
+}

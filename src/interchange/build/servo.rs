@@ -34,13 +34,22 @@ pub(super) fn build(
         let commands = match &clip.body {
             Body::Keys(keys) => made.keys(input, clip, keys, report),
             Body::Samples { fps, rows } => made.samples(input, clip, *fps, rows, report)?,
-            Body::Chain(links) => links
-                .iter()
-                .filter_map(|link| {
-                    let macro_id = ids.play_of(link.clip)?;
-                    Some(chained(Run::Macro { macro_id }, link.plays, link.speed, report))
-                })
-                .collect(),
+            Body::Chain(links) => match played_out(input, clip, links) {
+                Some(keys) => {
+                    report.converted(format!(
+                        "{:?}: its pages played out in one macro, on one clock (every key within half an update, the whole within one)",
+                        clip.name
+                    ));
+                    made.keys(input, clip, &keys, report)
+                }
+                None => links
+                    .iter()
+                    .filter_map(|link| {
+                        let macro_id = ids.play_of(link.clip)?;
+                        Some(chained(Run::Macro { macro_id }, link.plays, link.speed, report))
+                    })
+                    .collect(),
+            },
         };
         let caption = if play == body { clip.name.clone() } else { format!("{} steps", clip.name) };
         made.macros.push(Macro { id: body, caption: caption_within(&caption, CAPTION_BYTES), commands });
@@ -95,6 +104,34 @@ impl Ids {
     fn play_of(&self, clip: usize) -> Option<i32> {
         self.clips.iter().find(|(index, ..)| *index == clip).map(|(_, _, play)| *play)
     }
+}
+
+/// The most keys a flow is played out in: an action each (and a delay where
+/// it holds), far within a list's 32,767 and a board's memory for its actions.
+const MOST_PLAYED_OUT: usize = 1_000;
+
+/// A flow's keys one after another — each page's keys as often as the flow
+/// plays it, at the page's and the flow's speed — when every page is keys
+/// played once with nothing after it (an R+ page) and they are few enough:
+/// played in one macro on one clock, no page's rounding adds to the next's.
+fn played_out(input: &Input<'_>, flow: &Clip, links: &[crate::interchange::source::Link]) -> Option<Vec<Key>> {
+    let mut keys = Vec::new();
+    for link in links {
+        let page = input.clip(link.clip);
+        let Body::Keys(page_keys) = &page.body else { return None };
+        if link.plays == 0 || page.repeat > 1 || page.next.is_some() {
+            return None;
+        }
+        let rate = page.speed * link.speed / flow.speed;
+        let plays = usize::try_from(link.plays).ok()?;
+        if keys.len() + page_keys.len().saturating_mul(plays) > MOST_PLAYED_OUT {
+            return None;
+        }
+        for _ in 0..plays {
+            keys.extend(page_keys.iter().map(|key| Key { timing: key.timing.at_rate(rate), ..key.clone() }));
+        }
+    }
+    Some(keys)
 }
 
 /// A macro command played `plays` times at `speed` (a board's ratio is 1..=100 %).
