@@ -321,6 +321,13 @@ fn an_mtnx_page_is_timed_in_128ths_and_its_flow_is_a_play_list() {
     let list = plen2.play_lists.iter().find(|l| l.name == "show").unwrap();
     let rest = plen2.motions.iter().find(|m| m.name == "Rest").unwrap();
     assert_eq!(list.entries.iter().map(|e| (e.slot, e.plays)).collect::<Vec<_>>(), [(wave.slot, 3), (rest.slot, 1)]);
+    // Each motion popped from the queue starts on a cycle 0 of its own (plen2.md §6): Wave's
+    // keys at 500, 1500 and 2000 ms end on cycles 15, 46 and 61, so it lasts 62 cycles
+    // (2,031.6 ms) a pass; Rest's at 1000 ms on cycle 31: 32 cycles (1,048.6 ms). The flow
+    // plays 3 × 2,031.6 + 1,048.6 ms for the file's 3 × 2,000 + 1,000: said, +143.5 ms.
+    let off = 3.0 * (62.0 * Playback::CYCLE_MS - 2000.0) + (32.0 * Playback::CYCLE_MS - 1000.0);
+    let said = format!("\"show\" ends {off:+.1} ms from the file's time");
+    assert!(built.report.approximated.iter().any(|n| n.contains(&said)), "{said}: {:?}", built.report.approximated);
 }
 
 #[test]

@@ -6,7 +6,7 @@ mod servo;
 
 use super::map::{JointMap, MapEntry, Target};
 use super::report::Report;
-use super::source::{Body, Channel, Clip, Source, Timing};
+use super::source::{Body, Channel, Clip, Key, Source, Timing};
 use crate::project::{Family, Project};
 
 /// How fast a move of no time is made to go, °/s: the live speed limit's
@@ -254,6 +254,31 @@ const JUMP: &str =
     "a move of no time (a jump): it takes as long as the live speed limit (180°/s) needs, so that no servo slams";
 
 /// How a key's time is spent, in ms at the clip's speed, and whether it is a Maestro frame.
+/// A flow's keys one after another — each page's keys as often as the flow
+/// plays it, at the page's and the flow's speed — when every page is keys
+/// played once with nothing after it (an R+ page) and there are at most
+/// `most`: played on one clock, no page's rounding to the board's updates
+/// adds to the next's.
+fn flow_keys(input: &Input<'_>, flow: &Clip, links: &[super::source::Link], most: usize) -> Option<Vec<Key>> {
+    let mut keys = Vec::new();
+    for link in links {
+        let page = input.clip(link.clip);
+        let Body::Keys(page_keys) = &page.body else { return None };
+        if link.plays == 0 || page.repeat > 1 || page.next.is_some() {
+            return None;
+        }
+        let rate = page.speed * link.speed / flow.speed;
+        let plays = usize::try_from(link.plays).ok()?;
+        if keys.len() + page_keys.len().saturating_mul(plays) > most {
+            return None;
+        }
+        for _ in 0..plays {
+            keys.extend(page_keys.iter().map(|key| Key { timing: key.timing.at_rate(rate), ..key.clone() }));
+        }
+    }
+    Some(keys)
+}
+
 fn timing(clip: &Clip, timing: Timing) -> (f64, f64, bool) {
     match timing {
         Timing::Move { move_ms, hold_ms } => (move_ms / clip.speed, hold_ms / clip.speed, false),

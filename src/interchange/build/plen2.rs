@@ -204,9 +204,35 @@ fn flows(
     report: &mut Report,
     starts: &mut Vec<(usize, Start)>,
 ) {
+    let mut farthest: Option<(f64, String)> = None;
     for &index in &input.clips {
         let clip = input.clip(index);
         let Body::Chain(links) = &clip.body else { continue };
+        // Each motion of the list lasts whole cycles: how far the flow's end is from the file's.
+        let off: f64 = links
+            .iter()
+            .filter_map(|link| {
+                let page = input.clip(link.clip);
+                let first = slot_of(link.clip)?;
+                let cycles: u32 = project
+                    .motions
+                    .iter()
+                    .skip_while(|motion| motion.slot != first)
+                    .scan(true, |more, motion| {
+                        let this = (*more).then_some(motion);
+                        *more = motion.jump_slot == Some(motion.slot + 1);
+                        this
+                    })
+                    .flat_map(|motion| &motion.frames)
+                    .map(|frame| u32::from(frame.transition_ms) / 32)
+                    .sum();
+                let plays = f64::from(link.plays.max(1));
+                Some(plays * (f64::from(cycles) * CYCLE_MS - page.duration_ms() / link.speed))
+            })
+            .sum();
+        if off.abs() >= 0.5 && farthest.as_ref().is_none_or(|(ms, _)| off.abs() > ms.abs()) {
+            farthest = Some((off, clip.name.clone()));
+        }
         let mut entries: Vec<PlayEntry> = links
             .iter()
             .filter_map(|link| {
@@ -222,6 +248,11 @@ fn flows(
         }
         starts.push((index, Start::PlayList(project.play_lists.len())));
         project.play_lists.push(PlayList { name: clip.name.clone(), entries });
+    }
+    if let Some((ms, name)) = farthest {
+        report.approximated(format!(
+            "a flow's play list plays each motion in whole {CYCLE_MS} ms cycles: {name:?} ends {ms:+.1} ms from the file's time (a queued motion starts on a cycle of its own, and each motion's cycles are rounded)"
+        ));
     }
 }
 

@@ -2,7 +2,7 @@
 //! servo in one step) and, when it holds, a delay; a clip is a macro running
 //! them; repeats, next pages and flows are macros running macros.
 
-use super::{BuildError, CUT_SHORT, Input, JUMP, LIVE_DEG_PER_S, Start, frame_move, timing};
+use super::{BuildError, CUT_SHORT, Input, JUMP, LIVE_DEG_PER_S, Start, flow_keys, frame_move, timing};
 use crate::authoring::fit::{self, Board, Budget, FitError, ServoBoard};
 use crate::authoring::fitted::{self, SERVO_UPDATE_MS, caption_within};
 use crate::authoring::recording::Recording;
@@ -12,6 +12,9 @@ use crate::interchange::source::{Body, Clip, Key};
 use crate::project::{Action, Command, MAX_LIST_LEN, Macro, Run, Servo, ServoProject, Step};
 
 const CAPTION_BYTES: usize = 32;
+/// The most keys a flow is played out in: an action each (and a delay where
+/// it holds), far within a list's 32,767 and a board's memory for its actions.
+const MOST_PLAYED_OUT: usize = 1_000;
 
 pub(super) fn build(
     input: &Input<'_>,
@@ -34,7 +37,7 @@ pub(super) fn build(
         let commands = match &clip.body {
             Body::Keys(keys) => made.keys(input, clip, keys, report),
             Body::Samples { fps, rows } => made.samples(input, clip, *fps, rows, report)?,
-            Body::Chain(links) => match played_out(input, clip, links) {
+            Body::Chain(links) => match flow_keys(input, clip, links, MOST_PLAYED_OUT) {
                 Some(keys) => {
                     report.converted(format!(
                         "{:?}: its pages played out in one macro, on one clock (every key within half an update, the whole within one)",
@@ -104,34 +107,6 @@ impl Ids {
     fn play_of(&self, clip: usize) -> Option<i32> {
         self.clips.iter().find(|(index, ..)| *index == clip).map(|(_, _, play)| *play)
     }
-}
-
-/// The most keys a flow is played out in: an action each (and a delay where
-/// it holds), far within a list's 32,767 and a board's memory for its actions.
-const MOST_PLAYED_OUT: usize = 1_000;
-
-/// A flow's keys one after another — each page's keys as often as the flow
-/// plays it, at the page's and the flow's speed — when every page is keys
-/// played once with nothing after it (an R+ page) and they are few enough:
-/// played in one macro on one clock, no page's rounding adds to the next's.
-fn played_out(input: &Input<'_>, flow: &Clip, links: &[crate::interchange::source::Link]) -> Option<Vec<Key>> {
-    let mut keys = Vec::new();
-    for link in links {
-        let page = input.clip(link.clip);
-        let Body::Keys(page_keys) = &page.body else { return None };
-        if link.plays == 0 || page.repeat > 1 || page.next.is_some() {
-            return None;
-        }
-        let rate = page.speed * link.speed / flow.speed;
-        let plays = usize::try_from(link.plays).ok()?;
-        if keys.len() + page_keys.len().saturating_mul(plays) > MOST_PLAYED_OUT {
-            return None;
-        }
-        for _ in 0..plays {
-            keys.extend(page_keys.iter().map(|key| Key { timing: key.timing.at_rate(rate), ..key.clone() }));
-        }
-    }
-    Some(keys)
 }
 
 /// A macro command played `plays` times at `speed` (a board's ratio is 1..=100 %).
