@@ -65,13 +65,44 @@ impl Alive {
     }
 }
 
-/// What a lost device's link says once it went silent.
-pub fn silence(quiet: Duration) -> String {
-    format!(
+/// Why a device held by a show is gone: kept as what happened, said in the
+/// interface's language when it is shown (English here, as the command line
+/// prints it).
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum Loss {
+    /// Its link ended.
+    #[error("{0}")]
+    Link(crate::link::DisconnectReason),
+    /// It stopped answering though its link is open, for this many ms.
+    #[error(
         "it stopped answering: nothing came back for {:.1} s (asked every {:.1} s) though its link is open — is it powered, or its bridge hung?",
-        quiet.as_secs_f64(),
+        Loss::seconds(*quiet_ms),
         ASK_EVERY.as_secs_f64()
-    )
+    )]
+    Silent {
+        /// How long its questions went unanswered, ms.
+        quiet_ms: u64,
+    },
+    /// Its driver lost the link, saying no more.
+    #[error("the link ended")]
+    Ended,
+    /// It never answered (a show played on without it).
+    #[error("it did not answer")]
+    NoAnswer,
+}
+
+impl Loss {
+    /// A device silent for `quiet`.
+    pub fn silence(quiet: Duration) -> Self {
+        Self::Silent { quiet_ms: u64::try_from(quiet.as_millis()).unwrap_or(u64::MAX) }
+    }
+
+    /// Milliseconds as seconds.
+    // Milliseconds far below 2^52.
+    #[allow(clippy::cast_precision_loss)]
+    pub fn seconds(ms: u64) -> f64 {
+        ms as f64 / 1000.0
+    }
 }
 
 #[cfg(test)]
@@ -103,7 +134,7 @@ mod tests {
         assert!(alive.ask(first + ASK_EVERY), "a question lost on the way is asked again");
         assert_eq!(alive.silent(first + SILENT_AFTER - Duration::from_millis(1)), None);
         assert_eq!(alive.silent(first + SILENT_AFTER), Some(SILENT_AFTER), "counted from the first question");
-        assert!(silence(SILENT_AFTER).contains("nothing came back for 2.0 s"));
+        assert!(Loss::silence(SILENT_AFTER).to_string().contains("nothing came back for 2.0 s"));
     }
 
     #[test]

@@ -11,6 +11,7 @@ use std::time::{Duration, Instant};
 
 use crossbeam_channel::Receiver;
 
+use super::alive::Loss;
 use super::{Show, Start};
 use crate::audio::output::{Playing, Speakers};
 use crate::audio::together::PREROLL;
@@ -40,7 +41,7 @@ pub trait Stage: Send {
         let _ = now;
     }
     /// Why its link is gone, if it is.
-    fn lost(&self) -> Option<String>;
+    fn lost(&self) -> Option<Loss>;
     /// Lets the device move again after [`Stage::stop`] (a servo board
     /// stopped holds its servos until told to go on).
     fn resume(&mut self) {}
@@ -76,7 +77,7 @@ pub trait Stage: Send {
 
 /// A device whose link is gone (why), played on without: it starts nothing and says it is lost.
 #[derive(Debug)]
-pub struct Gone(pub String);
+pub struct Gone(pub Loss);
 
 impl Stage for Gone {
     fn start_delay(&self, _start: &Start) -> Duration {
@@ -89,7 +90,7 @@ impl Stage for Gone {
 
     fn stop(&mut self) {}
 
-    fn lost(&self) -> Option<String> {
+    fn lost(&self) -> Option<Loss> {
         Some(self.0.clone())
     }
 }
@@ -105,8 +106,8 @@ pub enum Stopped {
     Lost {
         /// The device.
         device: String,
-        /// What the link said.
-        why: String,
+        /// Why.
+        why: Loss,
     },
     /// A start could not be written: every device was stopped.
     #[error("{device} could not be started ({why}): every device was stopped")]
@@ -166,7 +167,7 @@ pub struct Ran {
     /// Whether the sound played.
     pub with_sound: bool,
     /// Devices whose link was lost and that the show played on without: name, why.
-    pub lost: Vec<(String, String)>,
+    pub lost: Vec<(String, Loss)>,
 }
 
 /// The show, its devices (in the show's order) and what it plays through.
@@ -187,7 +188,7 @@ struct Going {
     /// Drives that end at an instant, by device.
     drives: Vec<(Instant, usize)>,
     /// Devices lost and played on without: their index, name and why.
-    lost: Vec<(usize, String, String)>,
+    lost: Vec<(usize, String, Loss)>,
 }
 
 impl Player<'_> {

@@ -42,8 +42,8 @@ pub enum Heard {
     Lost {
         /// The device's index.
         device: usize,
-        /// What the link said.
-        why: String,
+        /// Why.
+        why: crate::show::alive::Loss,
         /// Whether every device was stopped (it was following or playing, and the show needs it).
         all_stopped: bool,
     },

@@ -14,6 +14,7 @@ use super::{
     connect_one,
 };
 use crate::device::speed::LiveSpeed;
+use crate::show::alive::Loss;
 use crate::show::at::Now;
 use crate::show::play::{Gone, Player, Stage, Stopped};
 use crate::show::timeline::now_at;
@@ -344,7 +345,7 @@ impl Worker {
             .stages
             .iter_mut()
             .map(|stage| {
-                let mut stage = stage.take().unwrap_or_else(|| Box::new(Gone("it did not answer".into())));
+                let mut stage = stage.take().unwrap_or_else(|| Box::new(Gone(Loss::NoAnswer)));
                 stage.resume();
                 stage
             })

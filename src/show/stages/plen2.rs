@@ -15,7 +15,7 @@ use crate::device::plen2::{
 use crate::device::speed::{LiveSpeed, Slew};
 use crate::link::{self, LineSettings, PortName, no_waker};
 use crate::project::plen2::Joint;
-use crate::show::alive::{Alive, silence};
+use crate::show::alive::{Alive, Loss};
 use crate::show::at::{Now, Posed};
 use crate::show::passes::Axis;
 use crate::show::play::Stage;
@@ -31,7 +31,7 @@ pub(super) fn connect(port: &PortName, settings: &LineSettings, device: &Device)
     let link =
         LinkDelay::measured(|| requester.get(Plen2Command::GetVersion).map(|_| ()).map_err(|error| error.to_string()))?;
     let lost = handle.pump(Instant::now()).into_iter().find_map(|notice| match notice {
-        Plen2Notice::Disconnected(reason) => Some(reason.to_string()),
+        Plen2Notice::Disconnected(reason) => Some(Loss::Link(reason)),
         _ => None,
     });
     let settings = joint_settings(&device.project.plen2);
@@ -63,7 +63,7 @@ impl Plen2Stage {
             self.asking = self.requester.ask(Plen2Command::GetVersion).ok();
         }
         if let Some(quiet) = self.alive.silent(now) {
-            self.lost.get_or_insert_with(|| silence(quiet));
+            self.lost.get_or_insert_with(|| Loss::silence(quiet));
         }
     }
 }
@@ -72,7 +72,7 @@ struct Plen2Stage {
     handle: Plen2Handle,
     requester: Plen2Requester,
     link: LinkDelay,
-    lost: Option<String>,
+    lost: Option<Loss>,
     /// Its signs of life: asked its version twice a second.
     alive: Alive,
     /// The version question out.
@@ -131,7 +131,7 @@ impl Stage for Plen2Stage {
     fn tick(&mut self, now: Instant) {
         for notice in self.handle.pump(now) {
             if let Plen2Notice::Disconnected(reason) = notice {
-                self.lost = Some(reason.to_string());
+                self.lost = Some(Loss::Link(reason.clone()));
             }
         }
         self.ask_alive(now);
@@ -176,7 +176,7 @@ impl Stage for Plen2Stage {
         Ok(f64::from(target - home) / 10.0)
     }
 
-    fn lost(&self) -> Option<String> {
+    fn lost(&self) -> Option<Loss> {
         self.lost.clone()
     }
 }

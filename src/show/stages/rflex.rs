@@ -10,7 +10,7 @@ use crate::audio::together::link_delay;
 use crate::device::rflex::{RflexBase, RflexNotice};
 use crate::link::{self, LineSettings, PortName, no_waker};
 use crate::project::rflex::SpeedLimits;
-use crate::show::alive::{Alive, SILENT_AFTER, silence};
+use crate::show::alive::{Alive, Loss, SILENT_AFTER};
 use crate::show::at::Now;
 use crate::show::play::Stage;
 use crate::show::{Device, Start};
@@ -81,7 +81,7 @@ struct RflexStage {
     /// Its project's drive limits, never past the robot's: every drive is held within them.
     limits: SpeedLimits,
     baud: u32,
-    lost: Option<String>,
+    lost: Option<Loss>,
     /// The drive last told while following (None: not yet).
     driving: Option<Option<(f64, f64)>>,
 }
@@ -149,7 +149,7 @@ impl Stage for RflexStage {
     fn tick(&mut self, now: Instant) {
         for notice in self.base.pump(now) {
             if let RflexNotice::Disconnected(reason) = notice {
-                self.lost = Some(reason.to_string());
+                self.lost = Some(Loss::Link(reason.clone()));
             }
         }
         let reports = self.base.telemetry.reports();
@@ -161,11 +161,11 @@ impl Stage for RflexStage {
         // expected to be heard from, as if asked.
         self.alive.ask(now);
         if let Some(quiet) = self.alive.silent(now) {
-            self.lost.get_or_insert_with(|| silence(quiet));
+            self.lost.get_or_insert_with(|| Loss::silence(quiet));
         }
     }
 
-    fn lost(&self) -> Option<String> {
-        self.lost.clone().or_else(|| self.base.is_lost().then(|| "the link ended".to_string()))
+    fn lost(&self) -> Option<Loss> {
+        self.lost.clone().or_else(|| self.base.is_lost().then_some(Loss::Ended))
     }
 }

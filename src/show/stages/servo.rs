@@ -18,7 +18,7 @@ use crate::project::Servo;
 use crate::protocol::servo::{ALL_SERVOS, Message, ServoMove, ServoSwitches};
 use crate::show::Device;
 use crate::show::Start;
-use crate::show::alive::{Alive, silence};
+use crate::show::alive::{Alive, Loss};
 use crate::show::at::{Now, Posed};
 use crate::show::passes::Axis;
 use crate::show::play::Stage;
@@ -64,7 +64,7 @@ impl ServoStage {
             *asking = self.requester.request_async(Message::QueryRemainPowerRequest).ok();
         }
         if let Some(quiet) = self.alive.silent(now) {
-            self.lost.get_or_insert_with(|| silence(quiet));
+            self.lost.get_or_insert_with(|| Loss::silence(quiet));
         }
     }
 }
@@ -85,7 +85,7 @@ struct ServoStage {
     board: ServoBoard,
     requester: Requester,
     link: LinkDelay,
-    lost: Option<String>,
+    lost: Option<Loss>,
     /// Its signs of life: asked for its battery twice a second.
     alive: Alive,
     /// The servos, with their limits.
@@ -152,7 +152,7 @@ impl Stage for ServoStage {
     fn tick(&mut self, now: Instant) {
         for event in self.board.events().try_iter() {
             if let LinkEvent::Disconnected { reason } = event {
-                self.lost = Some(reason.to_string());
+                self.lost = Some(Loss::Link(reason.clone()));
             }
         }
         self.ask_alive(now);
@@ -180,7 +180,7 @@ impl Stage for ServoStage {
         self.battery.1.map(device::servo::battery_text)
     }
 
-    fn lost(&self) -> Option<String> {
+    fn lost(&self) -> Option<Loss> {
         self.lost.clone()
     }
 }

@@ -9,6 +9,7 @@ use std::time::Duration;
 
 use crate::link::Waker;
 use crate::show::Show;
+use crate::show::alive::Loss;
 use crate::show::boards::{Boards, Heard, Held};
 
 use super::ShowWords;
@@ -23,7 +24,7 @@ pub enum LinkState {
     /// It did not answer: why.
     Silent(Said),
     /// Its link was lost: why.
-    Lost(String),
+    Lost(Loss),
 }
 
 /// The boards, connected, and what each device's link is doing.
@@ -80,7 +81,7 @@ impl Linked {
                     let named = name(device);
                     taken.said.push(super::said_by(|words| {
                         let then = if all_stopped { words.all_stopped } else { "" };
-                        format!("{named} {} ({why}){then}", words.lost)
+                        format!("{named} {} ({}){then}", words.lost, why.worded(words.lang))
                     }));
                     taken.all_stopped |= all_stopped;
                     if let Some(slot) = self.states.get_mut(device) {
@@ -156,6 +157,6 @@ pub fn state_words(state: &LinkState, words: &ShowWords) -> (String, bool) {
         LinkState::Asking => (words.asking.to_string(), true),
         LinkState::Answered(delay) => (format!("● {} ({:.1} ms)", words.answered, delay.as_secs_f64() * 1000.0), true),
         LinkState::Silent(why) => (format!("{}: {}", words.silent, why.in_(words.lang)), false),
-        LinkState::Lost(why) => (format!("{}: {why}", words.lost), false),
+        LinkState::Lost(why) => (format!("{}: {}", words.lost, why.worded(words.lang)), false),
     }
 }

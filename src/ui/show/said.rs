@@ -5,6 +5,7 @@
 use crate::remote::guard::{SHORTEST_TOKEN, ServeError};
 use crate::say;
 use crate::show::ShowError;
+use crate::show::alive::{ASK_EVERY, Loss};
 use crate::show::boards::{Told, Unlinked};
 use crate::show::passes::JoinError;
 use crate::show::play::{Ran, Stopped};
@@ -28,6 +29,24 @@ impl Worded for ShowError {
             Self::NotHeld { at_ms, device, family, .. } => {
                 say!(language, "show_said.not_held", at_ms, device, family = language.family(*family))
             }
+        }
+    }
+}
+
+impl Worded for Loss {
+    fn worded(&self, language: Language) -> String {
+        match self {
+            // The command line's own words.
+            _ if language == Language::English => self.to_string(),
+            Self::Link(reason) => language.disconnect_reason(reason),
+            Self::Silent { quiet_ms } => say!(
+                language,
+                "show_said.silent_link",
+                seconds = format!("{:.1}", Loss::seconds(*quiet_ms)),
+                every = format!("{:.1}", ASK_EVERY.as_secs_f64())
+            ),
+            Self::Ended => say!(language, "show_said.link_ended"),
+            Self::NoAnswer => say!(language, "show_said.no_answer"),
         }
     }
 }
@@ -65,7 +84,7 @@ impl Worded for Stopped {
             // The editor's own STOP is named as its button is.
             Self::Asked(by) if by == "STOP" => say!(language, "show_said.stopped_by_stop"),
             Self::Asked(by) => say!(language, "show_said.stopped_by", by),
-            Self::Lost { device, why } => say!(language, "show_said.lost", device, why),
+            Self::Lost { device, why } => say!(language, "show_said.lost", device, why = why.worded(language)),
             Self::Failed { device, why } => say!(language, "show_said.failed", device, why),
         }
     }
@@ -97,7 +116,9 @@ pub fn ran(ran: &Ran) -> Vec<Said> {
         })
         .collect();
     for (device, why) in &ran.lost {
-        lines.push(Said::new(|language| say!(language, "show_said.played_on_without", device, why)));
+        lines.push(Said::new(|language| {
+            say!(language, "show_said.played_on_without", device, why = why.worded(language))
+        }));
     }
     let seconds = ran.ended.saturating_duration_since(ran.zero).as_secs_f64();
     lines.push(Said::new(|language| say!(language, "show_said.ended_after", seconds)));
@@ -148,9 +169,18 @@ mod tests {
             "{}",
             refused.worded(Language::Korean)
         );
-        let stopped = Stopped::Lost { device: "arm".into(), why: "EOF".into() };
+        let stopped =
+            Stopped::Lost { device: "arm".into(), why: Loss::Link(crate::link::DisconnectReason::ClosedByPeer) };
         assert_eq!(stopped.worded(Language::English), stopped.to_string());
         assert!(stopped.worded(Language::Korean).contains("arm"), "{}", stopped.worded(Language::Korean));
+        // Why a device went is said in the language too, never in English inside it.
+        let silent = Stopped::Lost { device: "arm".into(), why: Loss::silence(std::time::Duration::from_millis(2100)) };
+        assert!(silent.to_string().contains("nothing came back for 2.1 s"), "{silent}");
+        for language in [Language::Japanese, Language::Korean, Language::TraditionalChinese] {
+            let said = silent.worded(language);
+            assert!(said.contains("2.1") && !said.contains("answering"), "{language:?}: {said}");
+        }
+        assert_eq!(Loss::NoAnswer.worded(Language::Japanese), "応答しませんでした");
         let now = std::time::Instant::now();
         let sent = crate::show::play::Sent {
             device: "arm".into(),
@@ -184,7 +214,7 @@ mod tests {
                 why: Unlinked::Failed("timed out".into()),
             },
             Told::Silent("no server".into()),
-            Told::Stopped(Stopped::Lost { device: "arm".into(), why: "EOF".into() }),
+            Told::Stopped(Stopped::Lost { device: "arm".into(), why: Loss::Ended }),
         ];
         for each in &told {
             let said = super::told(each);
