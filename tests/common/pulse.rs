@@ -497,3 +497,33 @@ pub fn measure_servo_through(pulse: &Pulse, steps: usize, speakers: &Speakers) -
     );
     measured
 }
+
+/// Clicks a second apart, one a servo board step.
+pub const SERVO_STEPS: usize = 10;
+
+/// The servo board's start was due the link's delay before the sound's point
+/// and every click fell on its own step; the worst offset, ms.
+pub fn the_servo_board_started_with_the_sound(measured: &Measured) -> f64 {
+    let command = Message::ExecuteMacroRequest { macro_id: 1 }.encode().unwrap();
+    assert_eq!(measured.lead, together::link_delay(command.len(), DEFAULT_BAUD, Duration::ZERO), "the lead");
+    every_click_on_its_step(measured, 1000.0)
+}
+
+/// Each click at its step's place in the show, nearer it than the next
+/// step's or the one before (`spacing_ms` apart); the worst offset from its step, ms.
+pub fn every_click_on_its_step(measured: &Measured, spacing_ms: f64) -> f64 {
+    for (step, placed) in measured.placed_ms.iter().enumerate() {
+        assert!(
+            placed.abs() < spacing_ms / 2.0,
+            "step {step}: the click is {placed:.2} ms from its step's place in the show (all: {:?})",
+            measured.placed_ms
+        );
+    }
+    let worst = measured.offsets_ms.iter().fold(0.0f64, |worst, offset| worst.max(offset.abs()));
+    eprintln!(
+        "sync over {} steps: worst {worst:.2} ms; the start went out {:.2} ms after it was due",
+        measured.offsets_ms.len(),
+        measured.sent_late.as_secs_f64() * 1e3
+    );
+    worst
+}
