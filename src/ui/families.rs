@@ -122,6 +122,11 @@ mod tests {
         assert!(matches!(edits.last(), Some(crate::project::Edit::AddMacro(_))), "a macro runs the steps");
         let said = said.in_(crate::ui::i18n::Language::English);
         assert!(said.contains("steps, run by macro"), "{said}");
+        // One step is said as one, in every language's own way.
+        let one = crate::say!(crate::ui::i18n::Language::English, "follow.made_steps", count = 1, macro_id = 4);
+        assert_eq!(one, "1 step, run by macro 4");
+        let ja = crate::say!(crate::ui::i18n::Language::Japanese, "follow.made_steps", count = 1, macro_id = 4);
+        assert_eq!(ja, "1 ステップ、マクロで実行 4");
         let (edits, _) =
             joints.make(&Project::empty(Family::Plen2), 0, &open, (follower, Target::FreeSlots), words).unwrap();
         assert!(matches!(edits[..], [crate::project::Edit::SetPlen2(_)]), "the motions go into the PLEN2 section");

@@ -36,7 +36,7 @@ impl SoundFollower for ServoFollower {
         match follow::servo(open, servo_id, follower, (first, macro_id, words.title)) {
             Ok((made, running, _)) => {
                 let count = made.len();
-                let said = said_by(|words| format!("{count} {} {macro_id}", words.made_steps));
+                let said = said_by(|words| crate::say!(words.lang, "follow.made_steps", count, macro_id));
                 let mut edits: Vec<Edit> = made.into_iter().map(Edit::AddAction).collect();
                 edits.push(Edit::AddMacro(running));
                 Ok((edits, said))

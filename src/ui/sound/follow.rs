@@ -80,7 +80,6 @@ crate::words! {
         pub make: &'static str,
         pub close: &'static str,
         pub no_servo: &'static str,
-        pub made_steps: &'static str,
         pub write_to: &'static str,
         pub free_slots: &'static str,
         pub from_slot: &'static str,
