@@ -180,6 +180,22 @@ impl<'m> Tally<'m> {
     }
 }
 
+/// The character an entity or character reference stands for (`&amp;`, `&#233;`).
+fn entity(reference: &quick_xml::events::BytesRef<'_>) -> Result<char, String> {
+    if let Ok(Some(c)) = reference.resolve_char_ref() {
+        return Ok(c);
+    }
+    let name = reference.decode().map_err(|error| error.to_string())?;
+    match name.as_ref() {
+        "amp" => Ok('&'),
+        "lt" => Ok('<'),
+        "gt" => Ok('>'),
+        "quot" => Ok('"'),
+        "apos" => Ok('\''),
+        other => Err(format!("unknown entity &{other};")),
+    }
+}
+
 /// The file's root element.
 #[cfg(test)]
 pub fn parse(text: &str) -> Result<Element, XmlError> {
@@ -243,20 +259,8 @@ pub fn parse_within(text: &str, most: &[Most]) -> Result<Element, XmlError> {
                 }
             }
             Event::GeneralRef(reference) => {
-                let Some(current) = open.last_mut() else { continue };
-                if let Ok(Some(c)) = reference.resolve_char_ref() {
-                    current.text.push(c);
-                } else {
-                    let name = reference.decode().map_err(|error| fail(error.to_string()))?;
-                    let c = match name.as_ref() {
-                        "amp" => '&',
-                        "lt" => '<',
-                        "gt" => '>',
-                        "quot" => '"',
-                        "apos" => '\'',
-                        other => return Err(fail(format!("unknown entity &{other};"))),
-                    };
-                    current.text.push(c);
+                if let Some(current) = open.last_mut() {
+                    current.text.push(entity(&reference).map_err(fail)?);
                 }
             }
             Event::Eof => break,

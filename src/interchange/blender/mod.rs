@@ -6,6 +6,7 @@
 //! whatever unit the bone's servo settings map to (default 150..600 over 180°).
 
 mod json;
+mod loose;
 
 use serde_json::{Map, Value, json};
 

@@ -90,11 +90,7 @@ pub fn read_mtn(text: &str) -> Result<Source, ReadError> {
             ("enable", _) => enabled = Some(numbers(value, line, key)?.iter().map(|flag| *flag != 0.0).collect()),
             ("page_begin", None) => {
                 if pages.len() >= bounds::MAX_KEYS {
-                    return Err(ReadError::at(
-                        line,
-                        key,
-                        format!("more than {} pages: {}", bounds::MAX_KEYS, bounds::TOO_MANY_KEYS),
-                    ));
+                    return Err(too_many(line, key, "pages"));
                 }
                 let number = u32::try_from(pages.len() + 1).unwrap_or(u32::MAX);
                 open = Some(Page { number, name: String::new(), steps: Vec::new(), play: (0, 0, 1, 1.0), ease: 0.0 });
@@ -110,21 +106,10 @@ pub fn read_mtn(text: &str) -> Result<Source, ReadError> {
             ("step", Some(page)) => {
                 steps += 1;
                 if steps > bounds::MAX_KEYS {
-                    return Err(ReadError::at(
-                        line,
-                        key,
-                        format!("more than {} steps: {}", bounds::MAX_KEYS, bounds::TOO_MANY_KEYS),
-                    ));
+                    return Err(too_many(line, key, "steps"));
                 }
                 commas |= value.contains(',');
-                let values = numbers(value, line, key)?;
-                let [.., pause, time] = values[..] else {
-                    return Err(ReadError::at(line, key, "a step needs positions, a pause and a play time"));
-                };
-                if pause < 0.0 || time < 0.0 {
-                    return Err(ReadError::at(line, key, "a negative pause or play time"));
-                }
-                page.steps.push((values[..values.len() - 2].to_vec(), pause, time, line));
+                page.steps.push(step_line(value, line)?);
             }
             (_, None) if ["name", "compliance", "play_param", "step"].contains(&key) => {
                 return Err(ReadError::at(line, key, "outside a page (page_begin missing)"));
@@ -151,6 +136,23 @@ pub fn read_mtn(text: &str) -> Result<Source, ReadError> {
         source.notes.push("saved on a decimal-comma locale: \"0,096\" read as 0.096 s".into());
     }
     Ok(source)
+}
+
+/// More of `what` than any tool writes, at `line`.
+fn too_many(line: usize, key: &str, what: &str) -> ReadError {
+    ReadError::at(line, key, format!("more than {} {what}: {}", bounds::MAX_KEYS, bounds::TOO_MANY_KEYS))
+}
+
+/// `step=P0 P1 … Pn PAUSE TIME`: the positions, the pause and play time (s), and the line.
+fn step_line(value: &str, line: usize) -> Result<(Vec<f64>, f64, f64, usize), ReadError> {
+    let values = numbers(value, line, "step")?;
+    let [.., pause, time] = values[..] else {
+        return Err(ReadError::at(line, "step", "a step needs positions, a pause and a play time"));
+    };
+    if pause < 0.0 || time < 0.0 {
+        return Err(ReadError::at(line, "step", "a negative pause or play time"));
+    }
+    Ok((values[..values.len() - 2].to_vec(), pause, time, line))
 }
 
 /// `play_param=NEXT EXIT REPEAT SPEED_RATE INERTIAL_FORCE`: the page's play
