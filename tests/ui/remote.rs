@@ -17,6 +17,23 @@ use servo_studio::ui::{Language, Tab};
 use crate::cli::play::{Stage, device, logged_until, swinging, waving};
 use crate::common;
 
+/// An HTTP client that reads every answer, whatever its status.
+fn agent() -> ureq::Agent {
+    ureq::Agent::config_builder().http_status_as_error(false).build().into()
+}
+
+/// `POST /devices/board/play` of macro `macro_id` to remote control at `addr`, as a client
+/// sends it: the answer's status and body.
+fn play_through_remote(addr: std::net::SocketAddr, macro_id: impl std::fmt::Display) -> (u16, String) {
+    let body = format!(r#"{{"what": "{macro_id}"}}"#);
+    let played = agent()
+        .post(&format!("http://{addr}/devices/board/play"))
+        .header("Content-Type", "application/json")
+        .send(&body)
+        .unwrap();
+    (played.status().as_u16(), played.into_body().read_to_string().unwrap())
+}
+
 #[test]
 fn the_editor_serves_remote_control_on_the_shows_boards_until_they_are_let_go() {
     let show = Show {
@@ -96,15 +113,8 @@ fn remote_control_on_a_plain_project_serves_the_board_the_editor_is_connected_to
     });
     let said = harness.state().status.clone().unwrap().text;
     assert!(said.contains(&port) && said.contains("served to remote control"), "{said}");
-    let url = format!("http://{}", harness.state().desks.show.remote.addr().unwrap());
-    let agent: ureq::Agent = ureq::Agent::config_builder().http_status_as_error(false).build().into();
-    let body = format!(r#"{{"what": "{macro_id}"}}"#);
-    let played = agent
-        .post(&format!("{url}/devices/board/play"))
-        .header("Content-Type", "application/json")
-        .send(&body)
-        .unwrap();
-    assert_eq!(played.status().as_u16(), 200);
+    let addr = harness.state().desks.show.remote.addr().unwrap();
+    assert_eq!(play_through_remote(addr, macro_id).0, 200);
     let deadline = std::time::Instant::now() + Duration::from_secs(30);
     loop {
         match board.events().recv_deadline(deadline) {
@@ -140,19 +150,12 @@ fn remote_control_on_a_plain_project_serves_the_editors_demo_board() {
         app.desks.show.remote.serving()
             && app.desks.show.linked.as_ref().is_some_and(servo_studio::ui::show::Linked::all_answered)
     });
-    let url = format!("http://{}", harness.state().desks.show.remote.addr().unwrap());
-    let agent: ureq::Agent = ureq::Agent::config_builder().http_status_as_error(false).build().into();
-    let body = format!(r#"{{"what": "{macro_id}"}}"#);
-    let played = agent
-        .post(&format!("{url}/devices/board/play"))
-        .header("Content-Type", "application/json")
-        .send(&body)
-        .unwrap();
-    assert_eq!(played.status().as_u16(), 200);
+    let addr = harness.state().desks.show.remote.addr().unwrap();
+    let (status, answer) = play_through_remote(addr, macro_id);
+    assert_eq!(status, 200);
     // Started: the served board answered the macro's start.
-    let answer = played.into_body().read_to_string().unwrap();
     assert!(answer.contains(r#""as":"started""#) && answer.contains(r#""device":"board""#), "{answer}");
-    let status = agent.get(&format!("{url}/devices/board")).call().unwrap();
+    let status = agent().get(&format!("http://{addr}/devices/board")).call().unwrap();
     assert_eq!(status.status().as_u16(), 200);
     harness.state_mut().apply(Action::Show(ShowAction::Remote(false)));
     common::ui::run_until(&mut harness, "the demo board back", |app| {
