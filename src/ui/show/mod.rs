@@ -6,6 +6,7 @@
 
 mod cues;
 mod devices;
+mod lanes;
 pub mod linked;
 mod record;
 mod remote;
@@ -22,8 +23,8 @@ use crossbeam_channel::{Receiver, Sender};
 use crate::link::Waker;
 use crate::link::by_id::Attached;
 use crate::project::Project;
-use crate::show::timeline::{Block, Timeline};
-use crate::show::{Show, Start};
+
+use crate::show::Show;
 pub use crate::ui::action::ShowAction;
 use crate::ui::i18n::{Language, Said};
 use linked::LinkState;
@@ -591,7 +592,7 @@ fn session_ui(
     // The cues' blocks are worked out once a frame, by the lanes: their span serves the stage too.
     // Devices or cues may have changed above, this frame.
     stage.timeline.keep_to(&session.show, session.projects);
-    let (clicked, span) = lanes(ui, (&session.show, &mut stage.timeline), stage.scrub_ms, words);
+    let (clicked, span) = lanes::lanes(ui, (&session.show, &mut stage.timeline), stage.scrub_ms, words);
     if let Some(clicked) = clicked {
         stage.scrub_ms = clicked;
     }
@@ -645,169 +646,4 @@ fn buttons(
             ui.weak(words.boards_follow);
         }
     });
-}
-
-/// The timeline: the sound's lane, then a lane per device with its cues, on
-/// one time axis, and the scrub's time as a line; where a click or a drag on
-/// it puts the scrub (ms), and the span it shows (ms). What it draws costs
-/// what fits its width, not the show's length: cues closer together than a
-/// pixel are drawn as one block (said with how many), the seconds labelled
-/// as far apart as they can be read.
-fn lanes(
-    ui: &mut egui::Ui,
-    (show, timeline): (&Show, &mut Timeline),
-    scrub_ms: u64,
-    words: &ShowWords,
-) -> (Option<u64>, u64) {
-    const LANE: f32 = 26.0;
-    const NAMES: f32 = 130.0;
-    let (count, span) = {
-        let (blocks, span) = timeline.blocks(show);
-        (blocks.len(), span)
-    };
-    let rows = u16::try_from(show.devices.len() + 1).unwrap_or(u16::MAX);
-    let (rect, response) = ui.allocate_exact_size(
-        egui::vec2(ui.available_width(), LANE * f32::from(rows) + 18.0),
-        egui::Sense::click_and_drag(),
-    );
-    response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Canvas, true, words.timeline));
-    let painter = ui.painter_at(rect);
-    let visuals = ui.visuals();
-    let width = (rect.width() - NAMES).max(1.0);
-    // Spans of a show: far below f32's exact integers.
-    #[allow(clippy::cast_precision_loss)]
-    let x = |ms: u64| rect.left() + NAMES + width * (ms as f32 / span as f32);
-    let font = egui::FontId::proportional(13.0);
-    let top = |row: u16| rect.top() + LANE * f32::from(row);
-    let caption_of = |block: &Block| {
-        let cue = &show.cues[block.cue];
-        cue_caption(&cue.start, show.devices.get(block.device), words)
-    };
-    // One lane: its name, and its cues as blocks, those within a pixel of each other as one.
-    let lane = |row: u16,
-                name: &str,
-                spans: &mut dyn Iterator<Item = (u64, u64, Option<&Block>)>,
-                fill: egui::Color32| {
-        painter.text(
-            egui::pos2(rect.left(), top(row) + LANE / 2.0),
-            egui::Align2::LEFT_CENTER,
-            name,
-            font.clone(),
-            visuals.text_color(),
-        );
-        painter.hline(rect.left() + NAMES..=rect.right(), top(row), visuals.widgets.noninteractive.bg_stroke);
-        let mut run: Option<(f32, f32, usize, Option<&Block>)> = None;
-        let draw = |(left, right, count, only): (f32, f32, usize, Option<&Block>)| {
-            let block =
-                egui::Rect::from_min_max(egui::pos2(left, top(row) + 4.0), egui::pos2(right, top(row) + LANE - 4.0));
-            painter.rect_filled(block, 3.0, fill);
-            let caption = match only {
-                Some(cue) if count == 1 => caption_of(cue),
-                Some(_) => crate::say!(words.lang, "show.cues_together", count),
-                None => String::new(),
-            };
-            if !caption.is_empty() && block.width() >= 24.0 {
-                painter.with_clip_rect(block.intersect(rect)).text(
-                    block.left_center() + egui::vec2(4.0, 0.0),
-                    egui::Align2::LEFT_CENTER,
-                    caption,
-                    font.clone(),
-                    visuals.strong_text_color(),
-                );
-            }
-        };
-        for (at, length, cue) in spans {
-            let (left, right) = (x(at), x(at + length).max(x(at) + 6.0));
-            run = match run {
-                Some((from, to, count, first)) if left <= to + 1.0 => Some((from, to.max(right), count + 1, first)),
-                Some(done) => {
-                    draw(done);
-                    Some((left, right, 1, cue))
-                }
-                None => Some((left, right, 1, cue)),
-            };
-        }
-        if let Some(done) = run {
-            draw(done);
-        }
-    };
-    let mut sound = show.sound.iter().map(|s| (s.offset_ms.max(0).unsigned_abs(), s.duration_ms, None));
-    lane(0, words.sound, &mut sound, visuals.selection.bg_fill.gamma_multiply(0.5));
-    for (row, device) in show.devices.iter().enumerate() {
-        let mut spans = timeline.lane(row).iter().map(|block| (block.at_ms, block.length_ms, Some(block)));
-        lane(u16::try_from(row + 1).unwrap_or(u16::MAX), &device.name, &mut spans, visuals.selection.bg_fill);
-    }
-    // The seconds, labelled every 1, 2, 5, 10 … s: as often as labels 70 px apart allow.
-    #[allow(clippy::cast_precision_loss)]
-    let px_per_s = width / (span as f32 / 1000.0);
-    let every_s = [1, 2, 5, 10, 15, 30, 60, 120, 300, 600, 900, 1800, 3600]
-        .into_iter()
-        .find(|&step| step as f32 * px_per_s >= 70.0)
-        .unwrap_or(3600);
-    for second in (0..=span / 1000).step_by(every_s) {
-        let label = if span >= 60_000 { format!("{}:{:02}", second / 60, second % 60) } else { format!("{second} s") };
-        painter.text(
-            egui::pos2(x(second * 1000), top(rows) + 12.0),
-            egui::Align2::CENTER_CENTER,
-            label,
-            egui::FontId::proportional(13.0),
-            visuals.weak_text_color(),
-        );
-    }
-    painter.vline(x(scrub_ms.min(span)), rect.top()..=top(rows), egui::Stroke::new(2.0, visuals.warn_fg_color));
-    let scrubbed = response.interact_pointer_pos().filter(|_| response.clicked() || response.dragged()).map(|pos| {
-        // A fraction of the span: whole ms of a show.
-        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, clippy::cast_precision_loss)]
-        let ms = (((pos.x - rect.left() - NAMES) / width).clamp(0.0, 1.0) * span as f32).round() as u64;
-        ms
-    });
-    said_cues(ui, (show, timeline), count, words);
-    (scrubbed, span)
-}
-
-/// Each cue said as text too, as its row names it, with when it starts and
-/// ends (screen readers, tests): a list that scrolls, only the lines in view laid out.
-fn said_cues(ui: &mut egui::Ui, (show, timeline): (&Show, &mut Timeline), count: usize, words: &ShowWords) {
-    let line_height = ui.text_style_height(&egui::TextStyle::Body);
-    egui::ScrollArea::vertical().id_salt("show-cue-lines").max_height(line_height * 6.0 + 12.0).show_rows(
-        ui,
-        line_height,
-        count,
-        |ui, range| {
-            let (blocks, _) = timeline.blocks(show);
-            for block in &blocks[range] {
-                let cue = &show.cues[block.cue];
-                let device = show.devices.get(block.device);
-                // Whole ms of a show: exact in f64.
-                #[allow(clippy::cast_precision_loss)]
-                let said = format!(
-                    "{} {} {:.2}–{:.2} s",
-                    device.map_or("?", |device| device.name.as_str()),
-                    cue_caption(&cue.start, device, words),
-                    block.at_ms as f64 / 1000.0,
-                    (block.at_ms + block.length_ms) as f64 / 1000.0
-                );
-                ui.weak(said);
-            }
-        },
-    );
-}
-
-/// A cue's caption: what it starts, in these words, named as its device
-/// names it (its macro's caption, its motion's name) when it is known.
-fn cue_caption(start: &Start, device: Option<&crate::show::Device>, words: &ShowWords) -> String {
-    match *start {
-        Start::Macro(id) => {
-            let caption = device.and_then(|d| d.project.servo.macro_by_id(id)).map(|m| m.caption.as_str());
-            format!("{} {id} {}", words.macro_word, caption.unwrap_or_default()).trim_end().to_string()
-        }
-        Start::Slot(slot) => {
-            let name =
-                device.and_then(|d| d.project.plen2.motions.iter().find(|m| m.slot == slot)).map(|m| m.name.as_str());
-            format!("{} {slot} {}", words.motion_word, name.unwrap_or_default()).trim_end().to_string()
-        }
-        Start::Drive { speed_m_s, turn_deg_s, .. } => {
-            format!("{} {speed_m_s:.2} m/s {turn_deg_s:.0}°/s", words.drive_word)
-        }
-    }
 }
