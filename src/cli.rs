@@ -115,6 +115,9 @@ impl PortArgs {
 }
 
 /// The subcommands.
+// Parsed once a run and matched at once: the size of its largest variant (a
+// simulated link's model among the `sim` arguments) costs nothing.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Subcommand)]
 pub enum CliCommand {
     /// Check a project file (or a PLEN2 motion.json, or a folder of them) and print every problem with its location.

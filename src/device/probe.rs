@@ -242,7 +242,7 @@ impl link::Driver for ProbeDriver {
             && asking.deadline.is_none()
         {
             asking.deadline = Some(now + self.timeout);
-            self.meter.watch_reply(now);
+            self.meter.watch_reply(now, now);
         }
     }
 

@@ -11,7 +11,7 @@ mod servo;
 
 pub use faults::{Faults, FaultsError, LineNoise, LineNoiseError};
 pub use log::{Logged, MonotonicClock, Received};
-pub use plen2::{JointLimits, LinkKind, Plen2Sim, Plen2SimCommand, Plen2SimEvent, Plen2State, Plen2Timing};
+pub use plen2::{Bridge, JointLimits, LinkKind, Plen2Sim, Plen2SimCommand, Plen2SimEvent, Plen2State, Plen2Timing};
 pub use rflex::{BaseState, RflexSim, RflexSimCommand, RflexSimConfig, RflexSimEvent};
 pub use runner::{InMemory, SimHandle, spawn_in_memory, spawn_pty, spawn_tcp};
 

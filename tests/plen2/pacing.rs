@@ -58,10 +58,15 @@ struct Rig {
 
 impl Rig {
     fn new(mode: PacingMode, link: LinkKind) -> Self {
+        Self::with_firmware(mode, link, Plen2Timing::default())
+    }
+
+    /// Against a firmware of `timing`.
+    fn with_firmware(mode: PacingMode, link: LinkKind, timing: Plen2Timing) -> Self {
         let start = Instant::now();
         Self {
             driver: Plen2Driver::new(Plen2Options { mode, ..Plen2Options::default() }),
-            sim: Plen2Sim::new(Plen2Timing::default()).with_link(link),
+            sim: Plen2Sim::new(timing).with_link(link),
             now: start,
             start,
             host_hold: None,
@@ -489,4 +494,65 @@ fn an_erased_slot_is_read_whole_over_every_line() {
         assert!(rig.reply(&version).is_ok(), "{link}: the robot answers again");
         eprintln!("{link}: erased slot, {bytes} bytes, in {:?}", rig.now - began);
     }
+}
+
+/// What the official tool's pacing (32 bytes, then 50 ms; motion by motion,
+/// unverified) takes for `motions`.
+fn official_pacing(motions: &[Motion]) -> Duration {
+    motions
+        .iter()
+        .map(|motion| {
+            let bytes: usize = motion_commands(motion).iter().map(|command| command.to_ascii().len()).sum();
+            Duration::from_millis(50) * u32::try_from(bytes.div_ceil(32)).unwrap()
+        })
+        .sum()
+}
+
+/// A user's upload — the first ten official motions, probed, written and
+/// verified in a fresh session — on every model of a Bluetooth LE bridge
+/// (the description's own, other phases, other notifications, whole replies,
+/// late writes) at 15 and 30 ms, against the emulator's firmware and the
+/// slowest plen2.md allows: at least 2.5× and 1.5× the official pacing,
+/// nothing lost, nothing to write again. In virtual time: the pacing alone.
+#[test]
+fn ten_official_motions_upload_fast_on_every_model_of_a_bridge() {
+    let Some(motions) = official_motions() else { return };
+    let ten = &motions[..10];
+    let official = official_pacing(ten);
+    let mut slow = Vec::new();
+    // The emulator's firmware, and the slowest plen2.md allows (a byte read
+    // in 21 µs, EEPROM writes of 6 and 12 ms: what the pacing assumes).
+    let slowest = Plen2Timing {
+        byte_read: Duration::from_micros(21),
+        header_write: Duration::from_millis(6),
+        frame_write: Duration::from_millis(12),
+        joint_write: Duration::from_millis(7),
+        ..Plen2Timing::default()
+    };
+    let intervals = [(Duration::from_millis(15), 2.5), (Duration::from_millis(30), 1.5)];
+    for ((interval, target), firmware) in
+        intervals.into_iter().flat_map(|i| [(i, Plen2Timing::default()), (i, slowest.clone())])
+    {
+        for (name, bridge) in servo_studio::sim::Bridge::models(interval) {
+            let link = LinkKind::Bridge(bridge);
+            let mut rig = Rig::with_firmware(PacingMode::Adaptive, link, firmware.clone());
+            let began = rig.now;
+            rig.probe();
+            let rewrite = rig.write_and_verify(ten);
+            let took = rig.now - began;
+            let state = rig.sim.state();
+            let faster = official.as_secs_f64() / took.as_secs_f64();
+            eprintln!(
+                "{name:<20} {link} (frame write {:?}): {took:.2?}, {faster:.2}× the official {official:.1?}; window {:?}",
+                firmware.frame_write,
+                rig.driver.pacing_window()
+            );
+            assert_eq!((state.lost_bytes, state.dropped), (0, 0), "{name} {link}: {state:?}");
+            assert_eq!(rewrite, Vec::<u8>::new(), "{name} {link}: slots that would be written again");
+            if faster < target {
+                slow.push(format!("{name} {link}: {faster:.2}× the official pacing, not {target}×"));
+            }
+        }
+    }
+    assert!(slow.is_empty(), "{slow:#?}");
 }

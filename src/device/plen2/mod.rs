@@ -236,11 +236,6 @@ impl Plen2Handle {
         self.send(Command::PlayMotion { slot });
     }
 
-    /// Stops after the current pass (`$SM`).
-    pub fn stop_motion(&self) {
-        self.send(Command::StopMotion);
-    }
-
     /// Queues motions to be played one after another (`#RI`, a `#PU` each):
     /// `#PO` starts them.
     pub fn queue_list(&mut self, entries: &[(u8, u8)]) {

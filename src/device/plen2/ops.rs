@@ -368,17 +368,15 @@ impl crate::device::UploadSteps for Upload<'_> {
         if problems.has_errors() && !self.options.force {
             return Err(Plen2OpError::Invalid { problems });
         }
-        // Something is read before anything is written: the backup, the joint
-        // settings (when the project holds some), or — once a session, when the
-        // adaptive pacing has not seen the link yet — a probe. A reply shows how
-        // the link delivers before the first byte of the upload.
-        match &self.options.backup_dir {
-            Some(_) => {}
-            None if self.project.joints.is_empty() => {
-                let item = Plen2Item::Link;
-                self.requester.probe().map_err(|source| Plen2OpError::Reply { item, source })?;
-            }
-            None => self.current_joints = read_joint_settings(self.requester)?,
+        // Something is read before anything is written: once a session, when
+        // the adaptive pacing has not learned the link yet, a probe (short
+        // getters' round trips, the joint settings); then the backup, or the
+        // joint settings when the project holds some. Replies show how the
+        // link delivers before the first byte of the upload.
+        let item = Plen2Item::Link;
+        self.requester.probe().map_err(|source| Plen2OpError::Reply { item, source })?;
+        if self.options.backup_dir.is_none() && !self.project.joints.is_empty() {
+            self.current_joints = read_joint_settings(self.requester)?;
         }
         Ok(())
     }

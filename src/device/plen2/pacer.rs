@@ -10,6 +10,10 @@ use std::time::{Duration, Instant};
 
 pub use super::link_report::{CLUMP_GAP, LinkReport};
 
+mod events;
+
+use events::Events;
+
 /// The firmware timing the pacer assumes: plen2.md's figures at the slow end of their ranges.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Pacing {
@@ -107,6 +111,13 @@ pub enum WidenReason {
     },
     /// A slot read back different from what was written.
     ReadBackDiffered,
+    /// Short getters' round trips agree: the link delivers at connection
+    /// events this far apart. No more than a ring's worth an event, none
+    /// more after an EEPROM write until it is over even if late by `window`.
+    Events {
+        /// The connection interval.
+        interval: Duration,
+    },
 }
 
 /// The pacer widened its margins: from now on every byte is assumed to arrive
@@ -136,6 +147,12 @@ impl std::fmt::Display for Widened {
                 f,
                 "pacing widened: replies arrive up to {:.1} ms late; from now on every byte may arrive {:.1} ms late and no more than {RING_WINDOW_BYTES} are in flight",
                 ms(delay),
+                ms(self.window)
+            ),
+            WidenReason::Events { interval } => write!(
+                f,
+                "pacing learned the link: it delivers at connection events {:.1} ms apart; from now on no more an event than the robot's ring takes in, and no more than {RING_WINDOW_BYTES} bytes after an EEPROM write until it is over, even if the write came {:.1} ms late",
+                ms(interval),
                 ms(self.window)
             ),
             WidenReason::ReadBackDiffered => write!(
@@ -171,6 +188,9 @@ pub const MAX_WINDOW: Duration = Duration::from_millis(200);
 struct Watched {
     /// When the robot should have begun printing it (the getter read).
     expected: Instant,
+    /// When the getter was handed out, and what its round trip samples.
+    sent: Instant,
+    sample: events::Sample,
     first: Option<Instant>,
     last: Option<Instant>,
     /// Bytes after the first arrival (for the rate).
@@ -216,6 +236,10 @@ pub struct Pacer {
     measured: bool,
     report: LinkReport,
     widened: VecDeque<Widened>,
+    /// A link that delivers at connection events.
+    events: Events,
+    /// When the last reply ended (a getter handed out then is back to back).
+    reply_ended_at: Option<Instant>,
 }
 
 impl Pacer {
@@ -236,6 +260,8 @@ impl Pacer {
             measured: false,
             report: LinkReport::default(),
             widened: VecDeque::new(),
+            events: Events::default(),
+            reply_ended_at: None,
         }
     }
 
@@ -247,7 +273,23 @@ impl Pacer {
     /// Whether the pacer still has to see a reply before it knows the link
     /// (only the adaptive pacing learns).
     pub fn wants_measurement(&self) -> bool {
-        self.mode == PacingMode::Adaptive && !self.measured
+        self.mode == PacingMode::Adaptive && (!self.measured || self.events.wants_round_trips())
+    }
+
+    /// Whether the probe should time another short getter's round trip
+    /// (the adaptive pacing learns a bridge's connection events from them).
+    pub fn wants_round_trip(&self) -> bool {
+        self.mode == PacingMode::Adaptive && self.events.wants_round_trips()
+    }
+
+    /// The connection interval of a link that delivers at events, once learned.
+    pub fn interval(&self) -> Option<Duration> {
+        self.events.interval()
+    }
+
+    /// Whether the event rules pace (adaptive, the link's events learned).
+    fn by_events(&self) -> bool {
+        self.mode == PacingMode::Adaptive && self.events.interval().is_some()
     }
 
     /// What the replies so far showed of the link.
@@ -276,8 +318,14 @@ impl Pacer {
     /// the official pause, never the ring.
     pub fn room(&mut self, now: Instant, urgent: bool) -> usize {
         self.settle(now);
+        if !urgent && self.events.due().is_some_and(|due| now < due) {
+            return 0;
+        }
         if self.mode == PacingMode::Safe && !urgent {
             return if self.safe_open_at.is_none_or(|open| now >= open) { self.safe_left } else { 0 };
+        }
+        if self.by_events() {
+            return self.events.room(now, Events::bunch(self.line_byte, self.timing.byte_read));
         }
         if self.window.is_some() {
             // Widened: every byte predicted as if it arrived as late as the
@@ -293,6 +341,12 @@ impl Pacer {
     pub fn next_room(&self, now: Instant) -> Instant {
         if self.mode == PacingMode::Safe {
             return self.safe_open_at.map_or(now, |open| open.max(now));
+        }
+        if let Some(due) = self.events.due().filter(|due| *due > now) {
+            return due;
+        }
+        if self.by_events() {
+            return self.events.next_room(now, Events::bunch(self.line_byte, self.timing.byte_read));
         }
         let at = if self.window.is_some() {
             // Room for one byte once all but RING_WINDOW_BYTES − 1 are read.
@@ -315,7 +369,28 @@ impl Pacer {
         let read = self.next_read.map_or(arrives, |next| next.max(arrives));
         self.in_ring.push_back(read);
         self.next_read = Some(read + self.timing.byte_read + busy);
+        let wait_over = (!busy.is_zero()).then(|| self.wait_over(now, arrives, read, busy));
+        self.events.place(now, wait_over);
         read
+    }
+
+    /// By the event rules: when no byte handed out after a command read at
+    /// `read` (handed out at `now`, arriving by `arrives` at the latest) can
+    /// reach the robot while its EEPROM wait of `busy` lasts. When the
+    /// firmware is not behind and the wait (with a bunch's reads) is over
+    /// before the next event, that is once the command's own event has surely
+    /// gone by: what follows rides a later one. Otherwise, once the wait is
+    /// over at its latest.
+    fn wait_over(&self, now: Instant, arrives: Instant, read: Instant, busy: Duration) -> Instant {
+        let bunch = Events::bunch(self.line_byte, self.timing.byte_read);
+        let reads = self.timing.byte_read * u32::try_from(bunch).unwrap_or(u32::MAX);
+        let behind = read > arrives + reads;
+        let between_events =
+            self.events.interval().is_some_and(|interval| interval > busy + reads + Duration::from_millis(1));
+        match self.window {
+            Some(window) if between_events && !behind => now + window,
+            _ => read + self.timing.byte_read + busy,
+        }
     }
 
     /// The firmware's next read moves to `at` (a reply just ended: it is idle).
@@ -351,6 +426,7 @@ impl Pacer {
             }
         };
         self.in_ring.iter_mut().for_each(shift);
+        self.events.shift(planned, delay);
         self.next_read.iter_mut().for_each(shift);
         self.line_free.iter_mut().for_each(shift);
         self.safe_open_at.iter_mut().for_each(shift);
@@ -363,10 +439,13 @@ impl Pacer {
         Some((planned, delay))
     }
 
-    /// A getter's reply is awaited: the robot should begin printing it at `expected`.
-    pub fn watch_reply(&mut self, expected: Instant) {
+    /// A getter handed out at `sent` awaits its reply: the robot should
+    /// begin printing it at `expected`.
+    pub fn watch_reply(&mut self, sent: Instant, expected: Instant) {
         self.watched = Some(Watched {
             expected,
+            sent,
+            sample: self.events.sample(sent, self.reply_ended_at),
             first: None,
             last: None,
             later_bytes: 0,
@@ -404,29 +483,67 @@ impl Pacer {
         let Some(mut watched) = self.watched.take() else { return };
         watched.close_clump();
         let (Some(first), Some(last)) = (watched.first, watched.last) else { return };
+        self.reply_ended_at = Some(last);
         self.measured |= watched.first_bytes + watched.later_bytes >= RATE_SAMPLE_BYTES;
         self.note(&watched, first, last);
+        let print = self.line_rate(&watched, first, last);
+        if self.learn_events(&watched, first) {
+            return;
+        }
         if !watched.max_gap.is_zero() {
             self.widen(watched.max_gap, WidenReason::Bursts { gap: watched.max_gap });
             self.widen_for_lateness(&watched, first, FASTEST_REPLY_BYTE);
             return;
         }
-        // A smooth reply slower than the line the driver was given: a slower line.
-        let took = last.saturating_duration_since(first);
-        let mut print = FASTEST_REPLY_BYTE;
-        if watched.later_bytes >= RATE_SAMPLE_BYTES && !took.is_zero() {
-            let measured = took / u32::try_from(watched.later_bytes).unwrap_or(u32::MAX);
-            print = print.max(measured);
-            if self.mode == PacingMode::Adaptive && measured > self.line_byte.mul_f64(1.25) {
-                self.line_byte = measured;
-                // A byte takes 10 bits: bytes a second from the time per byte.
-                #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-                let bytes_per_s = (1.0 / measured.as_secs_f64()).round() as u32;
-                let window = self.window.unwrap_or(Duration::ZERO);
-                self.widened.push_back(Widened { window, reason: WidenReason::Slow { bytes_per_s } });
-            }
-        }
         self.widen_for_lateness(&watched, first, print);
+    }
+
+    /// A smooth reply slower than the line the driver was given: a slower
+    /// line, paced for from now on. Returns the time a byte of the reply took.
+    fn line_rate(&mut self, watched: &Watched, first: Instant, last: Instant) -> Duration {
+        let took = last.saturating_duration_since(first);
+        if !watched.max_gap.is_zero() || watched.later_bytes < RATE_SAMPLE_BYTES || took.is_zero() {
+            return FASTEST_REPLY_BYTE;
+        }
+        let measured = took / u32::try_from(watched.later_bytes).unwrap_or(u32::MAX);
+        if self.mode == PacingMode::Adaptive && measured > self.line_byte.mul_f64(1.25) {
+            self.line_byte = measured;
+            // A byte takes 10 bits: bytes a second from the time per byte.
+            #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+            let bytes_per_s = (1.0 / measured.as_secs_f64()).round() as u32;
+            let window = self.window.unwrap_or(Duration::ZERO);
+            self.widened.push_back(Widened { window, reason: WidenReason::Slow { bytes_per_s } });
+        }
+        FASTEST_REPLY_BYTE.max(measured)
+    }
+
+    /// Adaptive only: what the reply's round trip shows of a link that
+    /// delivers at connection events. Once they are learned, the window
+    /// follows the last few replies (it narrows again after one held up by
+    /// the host, not the link). Returns whether the event rules now pace.
+    fn learn_events(&mut self, watched: &Watched, first: Instant) -> bool {
+        if self.mode != PacingMode::Adaptive {
+            return false;
+        }
+        let own = FASTEST_REPLY_BYTE * u32::try_from(watched.first_bytes).unwrap_or(u32::MAX);
+        let bytes = watched.first_bytes + watched.later_bytes;
+        let paced = self.events.interval().is_some();
+        let ended = self.reply_ended_at.unwrap_or(first);
+        let learned = self.events.reply(watched.sample, (watched.sent, first, ended), own, bytes);
+        if !paced && learned.is_none() {
+            return false;
+        }
+        self.events.gap(watched.max_gap);
+        let Some(late) = self.events.robot_late() else { return false };
+        // Waited out once per EEPROM write, not per byte: a wide margin costs little.
+        let window = (late + late / 2 + Duration::from_millis(2)).min(MAX_WINDOW);
+        let before = self.window.replace(window);
+        // Said when learned, and when a reply widens it (not as it narrows again).
+        let widened = before.is_none_or(|before| window > before);
+        if let (Some(interval), true) = (self.events.interval(), learned.is_some() || widened) {
+            self.widened.push_back(Widened { window, reason: WidenReason::Events { interval } });
+        }
+        true
     }
 
     /// What one reply showed, added to the report.
@@ -471,9 +588,7 @@ impl Pacer {
         if self.mode != PacingMode::Adaptive {
             return;
         }
-        // Beyond the longest delay seen — a later one may be longer still, and
-        // the host's own scheduling adds to it: a quarter more (at least 2 ms), and 1 ms.
-        let wanted = (seen + (seen / 4).max(Duration::from_millis(2)) + Duration::from_millis(1)).min(MAX_WINDOW);
+        let wanted = margin(seen);
         if self.window.is_some_and(|window| window >= wanted) {
             return;
         }
@@ -491,7 +606,15 @@ impl Pacer {
         self.in_ring.clear();
         self.unconfirmed.clear();
         self.watched = None;
+        self.events.reset();
     }
+}
+
+/// The window for a delivery delay of `seen`: beyond the longest seen — a
+/// later one may be longer still, and the host's own scheduling adds to it —
+/// a quarter more (at least 2 ms), and 1 ms.
+fn margin(seen: Duration) -> Duration {
+    (seen + (seen / 4).max(Duration::from_millis(2)) + Duration::from_millis(1)).min(MAX_WINDOW)
 }
 
 #[cfg(test)]

@@ -8,6 +8,9 @@
 use std::time::Duration;
 use std::time::Instant;
 
+pub use super::bridge::Bridge;
+use super::bridge::Carried;
+
 /// Bytes a USB full-speed packet carries: replies cross a clean line in these.
 pub const USB_PACKET: usize = 64;
 /// Host → robot bytes a Bluetooth LE bridge delivers per connection event:
@@ -43,6 +46,9 @@ pub enum LinkKind {
         /// The longest hold.
         max_hold: Duration,
     },
+    /// A Bluetooth LE bridge modelled apart from `Bursty`, with what its
+    /// description leaves open chosen otherwise (phases, notifications, late writes).
+    Bridge(Bridge),
     /// A slower line, both ways (10 bits a byte).
     Slow {
         /// Its rate.
@@ -55,6 +61,9 @@ impl std::str::FromStr for LinkKind {
 
     /// `clean`, `bursty` (15 ms), `bursty=MS`, either with `,whole`, `late=MS`, `slow=BAUD`.
     fn from_str(text: &str) -> Result<Self, String> {
+        if text.trim().starts_with("bridge=") {
+            return text.parse().map(Self::Bridge);
+        }
         let bad = || format!("{text:?} is not a link: use clean, bursty[=MS][,whole], late=MS or slow=BAUD");
         if let Some(bursty) = text.trim().strip_suffix(",whole") {
             return match bursty.parse::<Self>()? {
@@ -101,6 +110,7 @@ impl std::fmt::Display for LinkKind {
             }
             Self::Late { max_hold } => write!(f, "late={}", max_hold.as_millis()),
             Self::Slow { baud } => write!(f, "slow={baud}"),
+            Self::Bridge(bridge) => write!(f, "{bridge}"),
         }
     }
 }
@@ -120,6 +130,8 @@ pub struct Link {
     /// Bursty: the event the next byte to the robot can ride, and how full it is.
     robot_event: (u64, usize),
     host_event: (u64, usize),
+    /// A modelled bridge's two directions.
+    carried: Carried,
     seed: u32,
 }
 
@@ -136,6 +148,7 @@ impl Link {
             to_host_free: None,
             robot_event: (0, 0),
             host_event: (0, 0),
+            carried: Carried::default(),
             seed: 0x9e37_79b9,
         }
     }
@@ -212,6 +225,10 @@ impl Link {
                 }
                 self.robot_event = (index, used);
             }
+            LinkKind::Bridge(bridge) => {
+                let held = self.hold(bridge.hold);
+                return bridge.carry_to_robot(&mut self.carried, start, now, held, self.line_byte, bytes);
+            }
         }
         arrivals
     }
@@ -270,6 +287,9 @@ impl Link {
                     }
                 }
                 self.host_event = (index, used);
+            }
+            LinkKind::Bridge(bridge) => {
+                return bridge.carry_to_host(&mut self.carried, start, at, self.reply_byte, bytes);
             }
         }
         (pieces, printed)

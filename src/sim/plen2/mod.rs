@@ -8,13 +8,14 @@
 //! firmware's layout (tab indentation, CRLF); playback on the 32.768 ms tick
 //! and the interpreter queue. Time is emulated from the `now` it is given.
 
+mod bridge;
 mod eeprom;
 mod link;
 mod motion_reply;
 
 use eeprom::{Eeprom, Slot};
 use link::Link;
-pub use link::LinkKind;
+pub use link::{Bridge, LinkKind};
 
 use std::collections::VecDeque;
 use std::time::{Duration, Instant};

@@ -74,6 +74,9 @@ impl Worded for crate::device::plen2::Widened {
             WidenReason::Slow { bytes_per_s } => say!(language, "widened.slow", bytes_per_s),
             WidenReason::Late { delay } => say!(language, "widened.late", delay = ms(delay), window, bytes),
             WidenReason::ReadBackDiffered => say!(language, "widened.read_back_differed", window, bytes),
+            WidenReason::Events { interval } => {
+                say!(language, "widened.events", interval = ms(interval), window, bytes)
+            }
         }
     }
 }

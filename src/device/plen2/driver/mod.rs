@@ -170,7 +170,9 @@ impl Plen2Driver {
             return;
         }
         if result.is_ok() && awaited.kind == ReplyKind::Version {
-            self.enqueue_probe(Command::GetJointSettings);
+            // Another `<VI` while the pacing still learns from round trips, then `<JS`.
+            let next = if self.pacer.wants_round_trip() { Command::GetVersion } else { Command::GetJointSettings };
+            self.enqueue_probe(next);
             return;
         }
         for caller in self.probing.drain(..) {
@@ -254,7 +256,7 @@ impl Plen2Driver {
             }
             if let (Some(kind), Some(sender)) = (queued.command.as_ref().and_then(reply_kind), queued.reply) {
                 self.reader.expect(kind);
-                self.pacer.watch_reply(idle);
+                self.pacer.watch_reply(now, idle);
                 let deadline = idle + self.reply_timeout;
                 let (news, probe) = (queued.news, queued.probe);
                 self.reply = Some(Awaited {
@@ -511,12 +513,13 @@ impl Plen2Driver {
                     let summary: String = text.split_whitespace().collect::<Vec<_>>().join(" ");
                     let summary: String = summary.chars().take(120).collect();
                     self.log(now, Direction::Received, format!("{kind:?} reply"), summary, &bytes);
+                    // What its arrival says about the link (before a probe
+                    // asks whether to time another); the firmware is idle again.
+                    self.pacer.reply_ended();
+                    self.pacer.idle_from(now);
                     if let Some(awaited) = self.reply.take() {
                         self.resolve(&awaited, Ok(bytes));
                     }
-                    // What its arrival says about the link; the firmware is idle again.
-                    self.pacer.reply_ended();
-                    self.pacer.idle_from(now);
                 }
                 ReplyEvent::Oversized { kind, bytes } => {
                     self.log(

@@ -46,7 +46,7 @@ fn a_slow_smooth_reply_is_a_slower_line_and_a_hiccup_is_not_a_burst() {
     let t0 = Instant::now();
     let mut pacer = pacer(PacingMode::Adaptive);
     // 64-byte pieces every 5.6 ms: a 115200-baud line, smooth.
-    pacer.watch_reply(t0);
+    pacer.watch_reply(t0, t0);
     for piece in 0..30u32 {
         pacer.reply_bytes(t0 + Duration::from_micros(5_556) * piece, 64);
     }
@@ -55,7 +55,7 @@ fn a_slow_smooth_reply_is_a_slower_line_and_a_hiccup_is_not_a_burst() {
     assert!(matches!(widened.reason, WidenReason::Slow { bytes_per_s } if (11_400..11_600).contains(&bytes_per_s)));
     assert_eq!(pacer.window(), None, "no bursts: no window");
     // A clean reply with one 6 ms hiccup before a single packet: not a clump.
-    pacer.watch_reply(t0);
+    pacer.watch_reply(t0, t0);
     pacer.reply_bytes(t0, 64);
     pacer.reply_bytes(t0 + Duration::from_millis(6), 64);
     pacer.reply_ended();
@@ -67,7 +67,7 @@ fn a_clumpy_reply_widens_the_adaptive_pacer_and_not_the_fast_one() {
     for mode in [PacingMode::Adaptive, PacingMode::Fast] {
         let t0 = Instant::now();
         let mut pacer = pacer(mode);
-        pacer.watch_reply(t0);
+        pacer.watch_reply(t0, t0);
         for event in 0..3u32 {
             // A Bluetooth bridge's events: 1,464 bytes each, 15 ms apart.
             pacer.reply_bytes(t0 + Duration::from_millis(15) * event, 1464);
@@ -99,7 +99,7 @@ fn a_clumpy_reply_widens_the_adaptive_pacer_and_not_the_fast_one() {
 fn a_reply_that_comes_whole_but_late_widens_the_adaptive_pacer() {
     let t0 = Instant::now();
     let mut late = pacer(PacingMode::Adaptive);
-    late.watch_reply(t0);
+    late.watch_reply(t0, t0);
     // 1,200 bytes, printed by 1.2 ms, handed over at the bridge's event 16 ms after.
     late.reply_bytes(t0 + Duration::from_millis(16), 1200);
     late.reply_ended();
@@ -109,10 +109,73 @@ fn a_reply_that_comes_whole_but_late_widens_the_adaptive_pacer() {
     assert!(widened.to_string().contains("replies arrive up to 14.8 ms late"), "{widened}");
 
     let mut clean = pacer(PacingMode::Adaptive);
-    clean.watch_reply(t0);
+    clean.watch_reply(t0, t0);
     for packet in 0..20u32 {
         clean.reply_bytes(t0 + Duration::from_micros(64) * (packet + 1), 64);
     }
     clean.reply_ended();
     assert_eq!((clean.poll_widened(), clean.window()), (None, None), "on time");
+}
+
+/// One getter's reply, 80 bytes, sent at `sent`, arriving whole at `first`.
+fn answered(pacer: &mut Pacer, sent: Instant, first: Instant) {
+    pacer.watch_reply(sent, sent);
+    pacer.reply_bytes(first, 80);
+    pacer.reply_ended();
+}
+
+/// Short getters' round trips on a bridge: two back to back agree (30 ms),
+/// and one sent half a round trip after the reply before takes as long:
+/// two events each, 15 ms apart. The window then follows the last few
+/// replies: one held up 40 ms by a busy host widens it, four on time
+/// narrow it again.
+#[test]
+fn round_trips_teach_a_bridges_events_and_the_window_narrows_again() {
+    let ms = Duration::from_millis;
+    let t0 = Instant::now();
+    let mut pacer = pacer(PacingMode::Adaptive);
+    answered(&mut pacer, t0, t0 + ms(22));
+    answered(&mut pacer, t0 + ms(22), t0 + ms(52));
+    answered(&mut pacer, t0 + ms(52), t0 + ms(82));
+    assert_eq!(pacer.interval(), None);
+    assert_eq!(pacer.room(t0 + ms(90), false), 0, "the next getter waits half a round trip");
+    assert_eq!(pacer.next_room(t0 + ms(90)), t0 + ms(97));
+    answered(&mut pacer, t0 + ms(97), t0 + ms(127));
+    assert_eq!(pacer.interval(), Some(ms(15)));
+    assert!(!pacer.wants_round_trip());
+    let learned = std::iter::from_fn(|| pacer.poll_widened()).last().unwrap();
+    assert_eq!(learned.reason, WidenReason::Events { interval: ms(15) });
+    assert_eq!(pacer.window(), Some(ms(15) + ms(15) / 2 + ms(2)));
+    assert!(learned.to_string().contains("connection events 15.0 ms apart"), "{learned}");
+
+    // A reply held up by a busy host: 40 ms more than an event's wait.
+    let mut sent = t0 + ms(200);
+    answered(&mut pacer, sent, sent + ms(55));
+    let own = FASTEST_REPLY_BYTE * 80;
+    let held = ms(40) - own;
+    assert_eq!(pacer.window(), Some(held + held / 2 + ms(2)));
+    for _ in 0..4 {
+        sent += ms(100);
+        answered(&mut pacer, sent, sent + ms(30));
+    }
+    assert_eq!(pacer.window(), Some(ms(15) + ms(15) / 2 + ms(2)), "narrowed again");
+}
+
+/// A bridge whose event still takes what the host writes while it lasts:
+/// back to back, a getter rides its answer's event (one interval a round
+/// trip); sent half a round trip later, it takes half of one — twice
+/// running. The interval is then the whole round trip, never half of it.
+#[test]
+fn a_getter_that_rides_its_answers_event_is_not_taken_for_two_events() {
+    let ms = Duration::from_millis;
+    let t0 = Instant::now();
+    let mut pacer = pacer(PacingMode::Adaptive);
+    answered(&mut pacer, t0, t0 + ms(10));
+    answered(&mut pacer, t0 + ms(10), t0 + ms(40));
+    answered(&mut pacer, t0 + ms(40), t0 + ms(70));
+    answered(&mut pacer, t0 + ms(85), t0 + ms(100));
+    assert_eq!(pacer.interval(), None, "once could be a busy host sending it late");
+    assert_eq!(pacer.next_room(t0 + ms(100)), t0 + ms(115));
+    answered(&mut pacer, t0 + ms(115), t0 + ms(130));
+    assert_eq!(pacer.interval(), Some(ms(30)));
 }
