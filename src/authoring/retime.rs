@@ -32,9 +32,25 @@ pub fn scale_steps(steps: &mut [Step], factor: f64) {
     }
 }
 
+/// `t_ms` snapped: to an onset within `reach_ms` if there is one (the
+/// nearest), else to the nearest whole board update.
+pub fn snap(t_ms: f64, update_ms: f64, onsets_ms: &[f64], reach_ms: f64) -> f64 {
+    let nearest_onset = onsets_ms
+        .iter()
+        .copied()
+        .filter(|onset| (onset - t_ms).abs() <= reach_ms)
+        .min_by(|a, b| (a - t_ms).abs().total_cmp(&(b - t_ms).abs()));
+    match nearest_onset {
+        Some(onset) => onset,
+        None if update_ms > 0.0 => (t_ms / update_ms).round() * update_ms,
+        None => t_ms,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
     use crate::project::plen2::Pose;
 
     #[test]
@@ -59,5 +75,13 @@ mod tests {
         assert_eq!(steps.iter().map(|step| step.interval_10ms).collect::<Vec<_>>(), vec![25, 0, 1]);
         scale_steps(&mut steps, 2000.0);
         assert_eq!(steps.iter().map(|step| step.interval_10ms).collect::<Vec<_>>(), vec![i16::MAX, 0, 2000]);
+    }
+
+    #[test]
+    fn a_time_snaps_to_an_onset_in_reach_else_to_a_whole_update() {
+        assert!((snap(100.0, 32.768, &[], 5.0) - 98.304).abs() < 1e-9);
+        assert!((snap(100.0, 32.768, &[103.0, 96.0], 5.0) - 103.0).abs() < 1e-9, "the nearest onset");
+        assert!((snap(100.0, 32.768, &[120.0], 5.0) - 98.304).abs() < 1e-9, "out of reach");
+        assert!((snap(14.0, 10.0, &[], 0.0) - 10.0).abs() < 1e-9);
     }
 }

@@ -51,17 +51,6 @@ pub enum ReadError {
     },
 }
 
-impl ReadError {
-    /// The kind of I/O failure, when it is one (for wording it in another language).
-    pub fn io_kind(&self) -> Option<std::io::ErrorKind> {
-        match self {
-            Self::Io { source, .. } => Some(source.kind()),
-            Self::NotText { .. } => Some(std::io::ErrorKind::InvalidData),
-            Self::NotAFile { .. } | Self::TooLarge { .. } => None,
-        }
-    }
-}
-
 /// What a file system entry is, in words, when it is not a regular file.
 pub fn not_a_file(kind: &std::fs::FileType) -> Option<&'static str> {
     if kind.is_file() {

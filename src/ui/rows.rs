@@ -366,7 +366,7 @@ pub fn retime(ui: &mut egui::Ui, words: &crate::ui::i18n::Strings, total_ms: f64
     let drag = egui::DragValue::new(&mut total).range(10.0..=3_600_000.0).speed(10.0).suffix(" ms");
     let response = ui.add(drag).labelled_by(label.id);
     if response.dragged() {
-        total = crate::ui::graph::shape::snap(total, 0.0, onsets_ms, SNAP_MS).max(10.0);
+        total = crate::authoring::retime::snap(total, 0.0, onsets_ms, SNAP_MS).max(10.0);
     }
     if response.changed() && (total - total_ms.round()).abs() >= 1.0 {
         let factor = crate::authoring::retime::factor_to_total(total_ms, total);

@@ -206,11 +206,6 @@ pub struct Requester {
 }
 
 impl Requester {
-    /// A requester over a raw command channel (for drivers run by other means).
-    pub fn from_sender(commands: Sender<ServoCommand>) -> Self {
-        Self { commands }
-    }
-
     /// Sends `message` and waits for its response. The session bounds the
     /// wait (timeouts, retries); a lost link ends it with `Disconnected`.
     pub fn request(&self, message: Message) -> Result<Message, RequestError> {

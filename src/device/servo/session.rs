@@ -258,11 +258,6 @@ impl Session {
         self.flush_live(now);
     }
 
-    /// Drops live move targets not sent yet (STOP: nothing queued may follow).
-    pub fn cancel_live_moves(&mut self) {
-        self.live.clear();
-    }
-
     /// STOP: drops every live move target and every request still queued
     /// (a macro or an action queued behind a slow answer would move the
     /// servos after it); each dropped request is answered "stopped". The

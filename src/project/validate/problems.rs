@@ -62,11 +62,6 @@ impl Problems {
         Self { kept, errors, warnings: 0 }
     }
 
-    /// The kept problems.
-    pub fn into_vec(self) -> Vec<Problem> {
-        self.kept
-    }
-
     /// The first `shown` kept problems, one per line, and a last line saying
     /// how many more there are, if any.
     pub fn listed(&self, shown: usize) -> String {

@@ -222,7 +222,7 @@ impl OnGraph<'_, '_> {
         let Some(key) = self.curves.channels.get(c).and_then(|channel| channel.keys.get(k)) else { return (0.0, 0.0) };
         let now = self.plot(self.screen([key.t_ms, key.value]) + travel);
         let reach_ms = f64::from(SNAP_REACH) / self.transform.dpos_dvalue_x().abs().max(1e-9);
-        let t = shape::snap(now[0], self.curves.update_ms, self.curves.onsets_ms, reach_ms);
+        let t = crate::authoring::retime::snap(now[0], self.curves.update_ms, self.curves.onsets_ms, reach_ms);
         let t = if ui.input(|input| input.modifiers.alt) { key.t_ms } else { t };
         let limits = self.curves.channels[c].limits;
         (t - key.t_ms, now[1].clamp(limits[0], limits[1]) - key.value)

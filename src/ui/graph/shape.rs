@@ -78,21 +78,6 @@ pub fn placed(handles: Handles, which: Which, from: [f64; 2], to: [f64; 2], poin
     }
 }
 
-/// `t_ms` snapped: to an onset within `reach_ms` if there is one (the
-/// nearest), else to the nearest whole board update.
-pub fn snap(t_ms: f64, update_ms: f64, onsets_ms: &[f64], reach_ms: f64) -> f64 {
-    let nearest_onset = onsets_ms
-        .iter()
-        .copied()
-        .filter(|onset| (onset - t_ms).abs() <= reach_ms)
-        .min_by(|a, b| (a - t_ms).abs().total_cmp(&(b - t_ms).abs()));
-    match nearest_onset {
-        Some(onset) => onset,
-        None if update_ms > 0.0 => (t_ms / update_ms).round() * update_ms,
-        None => t_ms,
-    }
-}
-
 /// The keys (channel, key) of `channels` whose place lies in the box from
 /// `a` to `b` (any two corners, ms and °), of the channels `shown`.
 pub fn keys_in_box(channels: &[Channel], shown: &[bool], a: [f64; 2], b: [f64; 2]) -> Vec<(usize, usize)> {
@@ -152,14 +137,6 @@ mod tests {
         assert_eq!(beyond.arrive, [1000, 1000], "kept within the move");
         let flat = placed(handles, Which::In, [0.0, 5.0], [100.0, 5.0], [50.0, 40.0]);
         assert_eq!(flat.arrive, [500, handles.arrive[1]], "a flat move keeps the way");
-    }
-
-    #[test]
-    fn a_time_snaps_to_an_onset_in_reach_else_to_a_whole_update() {
-        assert!((snap(100.0, 32.768, &[], 5.0) - 98.304).abs() < 1e-9);
-        assert!((snap(100.0, 32.768, &[103.0, 96.0], 5.0) - 103.0).abs() < 1e-9, "the nearest onset");
-        assert!((snap(100.0, 32.768, &[120.0], 5.0) - 98.304).abs() < 1e-9, "out of reach");
-        assert!((snap(14.0, 10.0, &[], 0.0) - 10.0).abs() < 1e-9);
     }
 
     #[test]

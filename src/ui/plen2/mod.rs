@@ -170,11 +170,6 @@ impl Plen2Ui {
         }
     }
 
-    /// Whether a motion is being streamed live.
-    pub fn streaming(&self) -> bool {
-        self.stream.is_some()
-    }
-
     fn start(&mut self, shell: &mut Shell<'_>, kind: Plen2Kind, project: Plen2Project) {
         let Some(robot) = shell.plen2() else {
             shell.say(|language| language.strings().msg_connect_first, true);
@@ -268,11 +263,6 @@ impl Plen2Ui {
     /// The last operation's outcome, whole (the status line shows its first line), and whether it is an error.
     pub fn summary(&self, language: Language) -> Option<(String, bool)> {
         Some(self.result.as_ref()?.words(language))
-    }
-
-    /// The item a step works on, in words.
-    pub fn item_words(language: Language, item: &Plen2Item) -> String {
-        item.worded(language)
     }
 }
 

@@ -5,7 +5,6 @@
 //! grains, and started together with the board. The lane under each
 //! preview's cursor is [`lane`].
 
-pub mod action;
 pub mod follow;
 pub mod lane;
 mod out;
@@ -22,7 +21,7 @@ use crate::link::Waker;
 use crate::project::{Edit, Project, SoundTrack};
 use reading::{Read, Reading};
 
-pub use action::SoundAction;
+pub use crate::ui::action::SoundAction;
 pub use lane::SoundLane;
 pub use out::ANSWER_WITHIN;
 pub use reading::sha256 as sha256_of;
