@@ -199,10 +199,11 @@ impl Rig {
         outcome.into_inner().unwrap()
     }
 
-    /// An upload as `import` runs it: the joint settings read first (what the
-    /// backup reads too), every motion written, every slot read back.
-    /// Returns the time the writing and verifying took.
+    /// An upload as `import` runs it: the probe, then the joint settings read
+    /// (what the backup reads too), every motion written, every slot read
+    /// back. Returns the time the writing and verifying took.
     fn upload(&mut self, motions: &[Motion]) -> Duration {
+        self.probe();
         let settings = self.get(Command::GetJointSettings);
         self.reply(&settings).unwrap();
         eprintln!("{}: window after the first read {:?}", self.link, self.driver.pacing_window());

@@ -218,6 +218,9 @@ pub struct Pacer {
     mode: PacingMode,
     timing: Pacing,
     line_byte: Duration,
+    /// The robot's own line, as given: the fastest its bytes can come in
+    /// (what a slower reply shows is the link's way back, not this).
+    robot_byte: Duration,
     /// Predicted read time of each byte sent and not yet read.
     in_ring: VecDeque<Instant>,
     /// When the firmware reads the next byte sent (EEPROM waits included).
@@ -249,6 +252,7 @@ impl Pacer {
             mode,
             timing,
             line_byte: Duration::from_secs_f64(10.0 / f64::from(line_baud.max(1))),
+            robot_byte: Duration::from_secs_f64(10.0 / f64::from(line_baud.max(1))),
             in_ring: VecDeque::new(),
             next_read: None,
             line_free: None,
@@ -318,14 +322,11 @@ impl Pacer {
     /// the official pause, never the ring.
     pub fn room(&mut self, now: Instant, urgent: bool) -> usize {
         self.settle(now);
-        if !urgent && self.events.due().is_some_and(|due| now < due) {
-            return 0;
-        }
         if self.mode == PacingMode::Safe && !urgent {
             return if self.safe_open_at.is_none_or(|open| now >= open) { self.safe_left } else { 0 };
         }
         if self.by_events() {
-            return self.events.room(now, Events::bunch(self.line_byte, self.timing.byte_read));
+            return self.events.room(now, Events::bunch(self.robot_byte, self.timing.byte_read));
         }
         if self.window.is_some() {
             // Widened: every byte predicted as if it arrived as late as the
@@ -342,11 +343,8 @@ impl Pacer {
         if self.mode == PacingMode::Safe {
             return self.safe_open_at.map_or(now, |open| open.max(now));
         }
-        if let Some(due) = self.events.due().filter(|due| *due > now) {
-            return due;
-        }
         if self.by_events() {
-            return self.events.next_room(now, Events::bunch(self.line_byte, self.timing.byte_read));
+            return self.events.next_room(now, Events::bunch(self.robot_byte, self.timing.byte_read));
         }
         let at = if self.window.is_some() {
             // Room for one byte once all but RING_WINDOW_BYTES − 1 are read.
@@ -382,7 +380,7 @@ impl Pacer {
     /// gone by: what follows rides a later one. Otherwise, once the wait is
     /// over at its latest.
     fn wait_over(&self, now: Instant, arrives: Instant, read: Instant, busy: Duration) -> Instant {
-        let bunch = Events::bunch(self.line_byte, self.timing.byte_read);
+        let bunch = Events::bunch(self.robot_byte, self.timing.byte_read);
         let reads = self.timing.byte_read * u32::try_from(bunch).unwrap_or(u32::MAX);
         let behind = read > arrives + reads;
         let between_events =
@@ -445,7 +443,7 @@ impl Pacer {
         self.watched = Some(Watched {
             expected,
             sent,
-            sample: self.events.sample(sent, self.reply_ended_at),
+            sample: Events::sample(self.reply_ended_at, sent),
             first: None,
             last: None,
             later_bytes: 0,
@@ -528,8 +526,7 @@ impl Pacer {
         let own = FASTEST_REPLY_BYTE * u32::try_from(watched.first_bytes).unwrap_or(u32::MAX);
         let bytes = watched.first_bytes + watched.later_bytes;
         let paced = self.events.interval().is_some();
-        let ended = self.reply_ended_at.unwrap_or(first);
-        let learned = self.events.reply(watched.sample, (watched.sent, first, ended), own, bytes);
+        let learned = self.events.reply(watched.sample, (watched.sent, first), own, bytes);
         if !paced && learned.is_none() {
             return false;
         }

@@ -47,6 +47,8 @@ pub enum Heard {
         /// Whether every device was stopped (it was following or playing, and the show needs it).
         all_stopped: bool,
     },
+    /// A play on the boards begins without its sound: no sound output (why).
+    Silent(String),
     /// A play on the boards ended (how).
     Played(Result<crate::show::play::Ran, Stopped>),
 }

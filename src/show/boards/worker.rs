@@ -132,7 +132,7 @@ impl Worker {
                 self.following = None;
                 self.show_playing = true;
                 self.publish();
-                let played = self.play(&show, sound, stop);
+                let played = self.play(&show, sound, stop, tell);
                 self.show_playing = false;
                 tell(Heard::Played(played));
             }
@@ -330,6 +330,7 @@ impl Worker {
         show: &Show,
         sound: Option<PathBuf>,
         stop: &Receiver<String>,
+        tell: &dyn Fn(Heard),
     ) -> Result<crate::show::play::Ran, Stopped> {
         let missing = show
             .devices
@@ -350,7 +351,14 @@ impl Worker {
                 stage
             })
             .collect();
-        let sound = sound.and_then(|path| crate::audio::output::Speakers::connect().ok().map(|out| (out, path)));
+        // No sound output: the show plays silent, and says so (as `play` and a play from the show window do).
+        let sound = sound.and_then(|path| match crate::audio::output::Speakers::connect() {
+            Ok(out) => Some((out, path)),
+            Err(error) => {
+                tell(Heard::Silent(error.to_string()));
+                None
+            }
+        });
         let mut player = Player { show, stages, sound, stop: stop.clone() };
         let ran = player.run();
         for (slot, stage) in self.stages.iter_mut().zip(player.stages) {

@@ -210,7 +210,8 @@ impl Link {
             }
             LinkKind::Bursty { interval, .. } => {
                 let (mut index, mut used) = self.robot_event;
-                let first = Self::event_at_or_after(start, interval, now);
+                // The next event: one under way at this very instant has its packets already.
+                let first = Self::event_at_or_after(start, interval, now + Duration::from_nanos(1));
                 if first > index {
                     (index, used) = (first, 0);
                 }
@@ -324,14 +325,15 @@ mod tests {
     fn a_bluetooth_bridge_delivers_80_bytes_per_connection_event() {
         let t0 = Instant::now();
         let mut bursty = link(LinkKind::Bursty { interval: Duration::from_millis(15), whole: false });
-        // 100 bytes written at once: 80 ride the event at 0 (the link's start), 20 the next one.
+        // 100 bytes written at once, as the link starts (an event): they wait
+        // for the next one, which takes 80; the next one after, 20.
         let arrivals = bursty.carry_to_robot(t0, 100);
-        assert_eq!(arrivals[0], t0 + Duration::from_micros(5));
-        assert_eq!(arrivals[79], t0 + Duration::from_micros(400));
-        assert_eq!(arrivals[80], t0 + Duration::from_millis(15) + Duration::from_micros(5));
-        // A write 1 ms later waits for the event after the one already used.
+        assert_eq!(arrivals[0], t0 + Duration::from_millis(15) + Duration::from_micros(5));
+        assert_eq!(arrivals[79], t0 + Duration::from_millis(15) + Duration::from_micros(400));
+        assert_eq!(arrivals[80], t0 + Duration::from_millis(30) + Duration::from_micros(5));
+        // A write 1 ms later waits for the event after the one already full.
         let later = bursty.carry_to_robot(t0 + Duration::from_millis(1), 1);
-        assert_eq!(later[0], t0 + Duration::from_millis(15) + Duration::from_micros(105));
+        assert_eq!(later[0], t0 + Duration::from_millis(30) + Duration::from_micros(105));
         // Replies come at events too, 1,464 bytes at most each.
         let (pieces, _) = bursty.carry_to_host(t0 + Duration::from_millis(16), &[b'x'; 2000]);
         let sizes: Vec<usize> = pieces.iter().map(|(_, piece)| piece.len()).collect();

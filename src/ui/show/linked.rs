@@ -88,6 +88,7 @@ impl Linked {
                         *slot = LinkState::Lost(why);
                     }
                 }
+                Heard::Silent(why) => taken.said.extend(super::said::told(&crate::show::boards::Told::Silent(why))),
                 Heard::Played(played) => {
                     self.playing = false;
                     match played {

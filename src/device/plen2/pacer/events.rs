@@ -6,13 +6,17 @@
 //!   margin) than the ring holds while the firmware reads it as it comes in
 //!   (see [`Events::bunch`]), so no event carries more;
 //! - **an EEPROM wait is never overrun**: after a command that makes the
-//!   firmware write its EEPROM, no more than that until the write is over even
-//!   if the command reached the robot as late as the link has shown it may.
+//!   firmware write its EEPROM, no more than [`RING_WINDOW_BYTES`] until the
+//!   write is over even if the command reached the robot as late as the link
+//!   has shown it may — or, when the write ends before the next event, until
+//!   the command's own event has surely gone by (what follows rides a later one).
 //!
 //! The interval is learned from round trips of short getters each sent the
 //! moment the reply before it ended (just after an event): the getter rides
 //! the next event and its answer the one after, two intervals, whatever the
-//! phases. How late a byte may reach the robot is a reply's round trip less
+//! phases — bytes wait for the *next* event, the bridge's description says,
+//! and the one that brought the reply has closed by the time the host has
+//! taken it in and written again. How late a byte may reach the robot is a reply's round trip less
 //! the interval its answer waited, over the last few replies: one reply held
 //! up by a busy host widens it for a while, not for the session.
 
@@ -29,9 +33,9 @@ const AGREEMENT: Duration = Duration::from_millis(1);
 /// round trips shorter than twice this are a line's, not a bridge's.
 const SHORTEST_INTERVAL: Duration = Duration::from_millis(5);
 /// Short getters asked before deciding there are no events to learn: one at
-/// any time, then back to back until two agree, then up to two sent half a
-/// round trip after the reply before — a few more when a busy host blurs them.
-pub const ROUND_TRIPS: usize = 8;
+/// any time, then back to back until two agree — a few more when a busy
+/// host blurs them.
+pub const ROUND_TRIPS: usize = 6;
 /// Host → robot bytes a Bluetooth LE bridge carries in one connection event.
 const BRIDGE_EVENT_BYTES: usize = 80;
 /// Replies whose lateness the pacing keeps in mind.
@@ -41,13 +45,10 @@ const REMEMBERED: usize = 4;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Sample {
     /// Sent the moment the reply before ended (just after an event): it
-    /// rides the next event and its answer the one after — or, on a bridge
-    /// whose event still takes what comes while it lasts, the same one.
+    /// rides the next event — bytes wait for the next one, the bridge's
+    /// description says: one under way has closed by the time the host has
+    /// taken in a reply and written again — and its answer the one after.
     BackToBack,
-    /// Sent half a round trip after the reply before ended (once back-to-back
-    /// ones agreed): the same round trip again when each takes two events;
-    /// half or one and a half round trips when the getter rode its answer's event.
-    Delayed,
     /// Anything else.
     Other,
 }
@@ -64,11 +65,6 @@ pub struct Events {
     round_trips: Vec<Duration>,
     /// Short replies seen while learning (the probe asks no more than a few).
     asked: usize,
-    /// Once back-to-back round trips agreed: when the next getter goes (half
-    /// a round trip after the reply before ended).
-    due: Option<Instant>,
-    /// A delayed round trip already disagreed once.
-    delayed_apart: bool,
     /// The connection interval, once the round trips agreed.
     interval: Option<Duration>,
     /// How late each of the last replies showed a byte may reach the robot.
@@ -93,31 +89,21 @@ impl Events {
         self.interval.is_none() && self.asked <= ROUND_TRIPS
     }
 
-    /// When the getter that tells one interval from two may go (see [`Sample::Delayed`]).
-    pub fn due(&self) -> Option<Instant> {
-        self.due
-    }
-
     /// What a getter handed out at `sent` is a sample of.
-    pub fn sample(&mut self, sent: Instant, reply_ended: Option<Instant>) -> Sample {
-        if self.due.is_some_and(|due| sent >= due) {
-            self.due = None;
-            return Sample::Delayed;
-        }
+    pub fn sample(reply_ended: Option<Instant>, sent: Instant) -> Sample {
         if reply_ended == Some(sent) { Sample::BackToBack } else { Sample::Other }
     }
 
     /// A reply of `bytes` to a getter (a `sample`) sent at `sent` began
-    /// arriving at `first`, its first bytes needing `own` to be printed; the
-    /// reply ended at `ended`. Returns the interval when this reply taught it.
+    /// arriving at `first`, its first bytes needing `own` to be printed.
+    /// Returns the interval when this reply taught it.
     pub fn reply(
         &mut self,
         sample: Sample,
-        times: (Instant, Instant, Instant),
+        (sent, first): (Instant, Instant),
         own: Duration,
         bytes: usize,
     ) -> Option<Duration> {
-        let (sent, first, ended) = times;
         let round_trip = first.saturating_duration_since(sent);
         if let Some(interval) = self.interval {
             // The answer waited an interval for its event (after it was
@@ -136,46 +122,31 @@ impl Events {
             Sample::BackToBack if round_trip < SHORTEST_INTERVAL * 2 => {
                 // A line's round trip, not a bridge's: nothing more to learn here.
                 self.asked = ROUND_TRIPS + 1;
+                None
             }
             Sample::BackToBack => {
                 self.round_trips.push(round_trip);
-                if let Some(typical) = self.typical() {
-                    self.due = Some(ended + typical / 2);
-                }
+                // Two events a round trip.
+                let interval = self.typical()? / 2;
+                self.interval = Some(interval);
+                self.recent.push_back(interval);
+                Some(interval)
             }
-            Sample::Delayed => {
-                let typical = self.typical().unwrap_or(round_trip);
-                // Two events a round trip: sent half a round trip later, it
-                // still takes two. One (the getter rides its answer's event):
-                // it takes half a round trip, or one and a half. A busy host
-                // sending it late can make two look like one: only twice
-                // running is it taken for one.
-                if agree(round_trip, typical) {
-                    self.interval = Some(typical / 2);
-                } else if self.delayed_apart {
-                    self.interval = Some(typical);
-                } else {
-                    self.delayed_apart = true;
-                    self.due = Some(ended + typical / 2);
-                }
-                if let Some(interval) = self.interval {
-                    self.recent.push_back(interval);
-                    return Some(interval);
-                }
-            }
-            Sample::Other => {}
+            Sample::Other => None,
         }
-        None
     }
 
-    /// The back-to-back round trip most of them agree on (a busy host delays
-    /// some, either way): the median, once another agrees with it.
+    /// The back-to-back round trip most of them agree on, once another agrees
+    /// with the median: the longest of those that agree with it. A busy host
+    /// blurs round trips either way — a reply taken in late makes the getter
+    /// after it look quicker — and an interval taken too short could let two
+    /// bunches into one event, one taken too long only paces more slowly.
     fn typical(&self) -> Option<Duration> {
         let mut sorted = self.round_trips.clone();
         sorted.sort();
         let median = *sorted.get(sorted.len() / 2)?;
-        let agreeing = sorted.iter().filter(|round_trip| agree(**round_trip, median)).count();
-        (agreeing >= 2).then_some(median)
+        let agreeing: Vec<Duration> = sorted.into_iter().filter(|round_trip| agree(*round_trip, median)).collect();
+        (agreeing.len() >= 2).then(|| agreeing.into_iter().max()).flatten()
     }
 
     /// The longest a byte may take to reach the robot, from what the link
