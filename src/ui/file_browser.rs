@@ -138,8 +138,8 @@ impl FileBrowser {
         outcome
     }
 
-    fn contents(&mut self, ui: &mut egui::Ui, language: Language) -> Option<Outcome> {
-        let mut outcome = None;
+    /// Up, Home and the folder typed: where to go, if asked.
+    fn folder_bar(&mut self, ui: &mut egui::Ui, language: Language) -> Option<PathBuf> {
         let mut go_to = None;
         ui.horizontal(|ui| {
             if ui.button(language.word("browser.up")).clicked()
@@ -160,7 +160,13 @@ impl FileBrowser {
                 go_to = Some(PathBuf::from(self.typed_folder.trim()));
             }
         });
-        ui.separator();
+        go_to
+    }
+
+    /// The folder's entries (folders, and the files wanted): a folder clicked
+    /// goes into `go_to`, a file clicked is the name, a file double-clicked is chosen.
+    fn listing(&mut self, ui: &mut egui::Ui, language: Language, go_to: &mut Option<PathBuf>) -> Option<Outcome> {
+        let mut outcome = None;
         let listed_height = (ui.available_height() - 90.0).max(120.0);
         egui::ScrollArea::vertical().max_height(listed_height).auto_shrink([false, false]).show(ui, |ui| {
             let mut shown = 0;
@@ -174,7 +180,7 @@ impl FileBrowser {
                 let selected = !entry.folder && entry.name == self.name;
                 let row = ui.selectable_label(selected, shown_as);
                 if entry.folder && (row.double_clicked() || row.clicked()) {
-                    go_to = Some(self.folder.join(&entry.name));
+                    *go_to = Some(self.folder.join(&entry.name));
                 } else if row.clicked() {
                     self.name.clone_from(&entry.name);
                     self.replacing = None;
@@ -187,6 +193,13 @@ impl FileBrowser {
                 ui.weak(language.word("browser.empty"));
             }
         });
+        outcome
+    }
+
+    fn contents(&mut self, ui: &mut egui::Ui, language: Language) -> Option<Outcome> {
+        let mut go_to = self.folder_bar(ui, language);
+        ui.separator();
+        let mut outcome = self.listing(ui, language, &mut go_to);
         if let Some(folder) = go_to {
             self.enter(folder);
         }

@@ -4,6 +4,7 @@
 //! `servo-studio play`, off the frame; Stop all (and the window's STOP)
 //! stops every device, bases braking.
 
+mod apply;
 mod cues;
 mod devices;
 mod lanes;
@@ -131,96 +132,6 @@ impl std::fmt::Debug for ShowDesk {
 }
 
 impl ShowDesk {
-    /// Takes an action of the window; `project` is the open one, `waker` repaints when a show says something.
-    pub fn apply(
-        &mut self,
-        action: ShowAction,
-        (project, language): (&Project, Language),
-        waker: &Waker,
-    ) -> Option<StatusLine> {
-        match action {
-            ShowAction::Open(path) => match Show::open(&path) {
-                Ok(show) => self.opened(Some(path), show),
-                Err(error) => {
-                    let said = |language: Language| format!("{}: {}", path.display(), error.worded(language));
-                    return Some(StatusLine::worded(language, said, true));
-                }
-            },
-            ShowAction::OpenProject => self.opened_project(project),
-            ShowAction::AddOpenProject => {
-                if let Some(session) = &mut self.session {
-                    let name = session.add("board", project.clone());
-                    // One device is the editor's project: the first added.
-                    if session.editor_index().is_none() {
-                        session.editor = Some(name);
-                    }
-                }
-            }
-            ShowAction::AddFromFile(path) => return self.add_from(&path, language),
-            ShowAction::Boards(true) => {
-                let Some(session) = &self.session else { return None };
-                self.linked = None;
-                self.boards_for_remote = false;
-                match Linked::connect(&session.with_ports(), waker.clone()) {
-                    Ok(linked) => self.linked = Some(linked),
-                    Err(error) => {
-                        let said = |language: Language| crate::say!(language, "show_said.cannot_connect", error);
-                        return Some(StatusLine::worded(language, said, true));
-                    }
-                }
-            }
-            ShowAction::Boards(false) => self.let_boards_go(),
-            ShowAction::RemoteWindow => self.remote.open = true,
-            ShowAction::Remote(true) => return self.serve(project, language, waker),
-            ShowAction::Remote(false) => {
-                self.remote.stop(None);
-                // The boards remote control connected go with it; boards the user connected stay.
-                if self.boards_for_remote {
-                    self.let_boards_go();
-                }
-            }
-            ShowAction::Play => self.play(waker.clone()),
-            ShowAction::StopAll => self.stop(),
-            ShowAction::Preview(true) => {
-                let Some(session) = &self.session else { return None };
-                let folder = session.path.as_ref().and_then(|path| path.parent());
-                let sound = session
-                    .show
-                    .sound
-                    .as_ref()
-                    .map(|track| (crate::ui::sound::resolve(&track.path, folder), track.offset_ms));
-                self.stage.start_preview(sound, waker);
-            }
-            ShowAction::Preview(false) => self.stage.stop_preview(),
-            ShowAction::RecordPass(true) => {
-                let Some(session) = &self.session else { return None };
-                if self.passes.begin(&session.show, self.stage.scrub_ms) {
-                    return self.apply(ShowAction::Preview(true), (project, language), waker);
-                }
-            }
-            ShowAction::RecordPass(false) => self.end_pass(),
-            // The editor's Undo takes a pass back (one history): see `undo_pass`.
-            ShowAction::UndoPass => {}
-            ShowAction::Save(path) => {
-                let Some(session) = &mut self.session else { return None };
-                let text = session.show.to_json();
-                if let Err(error) = crate::project::atomic_write_all(&[(path.as_path(), text.as_bytes())]) {
-                    let said = |language: Language| {
-                        crate::say!(language, "show_said.cannot_save", file = path.display(), error)
-                    };
-                    return Some(StatusLine::worded(language, said, true));
-                }
-                session.path = Some(path);
-            }
-            ShowAction::Close => {
-                self.stop();
-                self.let_boards_go();
-                self.session = None;
-            }
-        }
-        None
-    }
-
     /// A pass being recorded takes the axis's value at the time shown, and
     /// shows it on the figure; it ends with the show's end.
     fn follow_pass(&mut self, actions: &mut Vec<crate::ui::Action>) {
