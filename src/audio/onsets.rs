@@ -97,7 +97,19 @@ impl Envelope {
                 (u64::try_from(ms).unwrap_or(u64::MAX).saturating_add(1)).saturating_mul(self.rate).div_ceil(1000);
             let left = next.saturating_sub(self.samples).max(1);
             let (now, rest) = samples.split_at(usize::try_from(left).unwrap_or(usize::MAX).min(samples.len()));
-            let sum: f64 = now.iter().map(|sample| f64::from(sample * sample)).sum();
+            // Eight squares at a time in f32 (a millisecond holds at most 768
+            // samples: exact to a part in 10^6), then in f64: an hour of sound is
+            // 2.3 billion samples at 192 kHz, fast enough even unoptimised.
+            let mut eights = now.chunks_exact(8);
+            let mut sum = 0.0f64;
+            for eight in &mut eights {
+                if let Ok([a, b, c, d, e, f, g, h]) = <[f32; 8]>::try_from(eight) {
+                    sum += f64::from(a * a + b * b + c * c + d * d + e * e + f * f + g * g + h * h);
+                }
+            }
+            for &sample in eights.remainder() {
+                sum += f64::from(sample * sample);
+            }
             // A millisecond's samples: at most 768.
             #[allow(clippy::cast_possible_truncation)]
             let count = now.len() as u32;
