@@ -19,8 +19,9 @@ use std::sync::{Arc, Weak};
 use serde_json::{Value, json};
 
 use crate::show::boards::{Boards, Refused, Run};
+use crate::show::family;
 use crate::show::passes::Axis;
-use crate::show::{Device, Show, Start};
+use crate::show::{Device, Show};
 pub use verbs::{BadRequest, Verb};
 
 /// HTTP, and OSC when asked, serving one [`Remote`] under one [`guard::Guard`]:
@@ -151,19 +152,13 @@ impl Remote {
             }
             Verb::Pose { device, axis, value } => {
                 let (index, device) = self.device(device)?;
-                if device.project.family == crate::project::Family::Rflex {
-                    let name = &device.name;
-                    let said = format!(
-                        "{name} is a base: it has no servo or joint to pose; drive it (POST /devices/{name}/drive)"
-                    );
-                    return Err(Reply::error(422, said));
-                }
                 let axis_of = axis_of(device, axis)?;
                 let took = boards.pose(index, axis_of, *value).map_err(|why| refused(&why))?;
                 Reply::ok(json!({ "device": device.name, "axis": axis, "value": took }))
             }
             Verb::Drive { device, speed_m_s, turn_deg_s } => {
                 let (index, device) = self.device(device)?;
+                family::drives(device.project.family).map_err(|lacks| lacking(device, lacks))?;
                 let drove = boards.drive(index, Some((*speed_m_s, *turn_deg_s))).map_err(|why| refused(&why))?;
                 let (speed, turn) = drove.taken.unwrap_or_default();
                 let mut body = json!({
@@ -179,6 +174,7 @@ impl Remote {
             }
             Verb::Heartbeat(device) => {
                 let (index, device) = self.device(device)?;
+                family::drives(device.project.family).map_err(|lacks| lacking(device, lacks))?;
                 let drove = boards.drive(index, None).map_err(|why| refused(&why))?;
                 Reply::ok(json!({
                     "device": device.name,
@@ -261,59 +257,45 @@ fn listed(device: &Device) -> Value {
     })
 }
 
-/// What `what` names on `device`: a servo board's macro (by id or caption),
-/// a PLEN2's motion (by slot or name) or play list (by name); or 404.
+/// What `what` names on `device`, as its family finds it (a servo board's
+/// macro by id or caption, a PLEN2's motion by slot or name or play list by
+/// name); 404 when it holds none such, 422 naming the family when it runs nothing.
 fn runnable(device: &Device, what: &str) -> Result<(Run, String), Reply> {
-    let project = &device.project;
-    let number: Option<i64> = what.trim().parse().ok();
-    let family = project.family;
-    if family == crate::project::Family::Servo {
-        let found = project.servo.macros.iter().find(|m| number == Some(i64::from(m.id)) || m.caption == what);
-        return found
-            .map(|m| (Run::Start(Start::Macro(m.id)), format!("macro {} {}", m.id, m.caption)))
-            .ok_or_else(|| Reply::error(404, format!("{} has no macro {what:?}", device.name)));
-    }
-    if family == crate::project::Family::Plen2 {
-        let plen2 = &project.plen2;
-        if let Some(m) = plen2.motions.iter().find(|m| number == Some(i64::from(m.slot)) || m.name == what) {
-            return Ok((Run::Start(Start::Slot(m.slot)), format!("motion {} {}", m.slot, m.name)));
-        }
-        if let Some(list) = plen2.play_lists.iter().find(|list| list.name == what) {
-            let entries = list.entries.iter().map(|entry| (entry.slot, entry.plays)).collect();
-            return Ok((Run::List(entries), format!("play list {}", list.name)));
-        }
-        return Err(Reply::error(404, format!("{} has no motion or play list {what:?}", device.name)));
-    }
-    Err(Reply::error(422, format!("{} is a base: drive it (POST /devices/{}/drive)", device.name, device.name)))
+    let runs = family::runs(device.project.family).map_err(|lacks| lacking(device, lacks))?;
+    (runs.find)(&device.project, what).map_err(|none| Reply::error(404, format!("{} has {none}", device.name)))
 }
 
-/// The device's axes a pose may move, named: a servo's id (and caption), a PLEN2 joint's name.
+/// The device's axes a pose may move, named as its family names them (a
+/// servo's id, a PLEN2 joint's name); none when it poses nothing.
 fn axes(device: &Device) -> Vec<(String, Axis)> {
-    let project = &device.project;
-    if project.family == crate::project::Family::Plen2 {
-        return crate::project::plen2::Joint::ALL
-            .iter()
-            .map(|joint| (joint.name().to_string(), Axis::Joint(joint.device_id())))
-            .collect();
-    }
-    project.servo.servos.iter().map(|servo| (servo.id.to_string(), Axis::Servo(servo.id))).collect()
+    family::poses(device.project.family).map(|poses| (poses.axes)(&device.project)).unwrap_or_default()
 }
 
-/// The axis `name` names on `device` (a servo by id or caption, a joint by name or device id); or 404.
+/// The axis `name` names on `device` (by its name, or another it answers
+/// to: a servo's caption, a joint's device id); 404 when none, 422 naming
+/// the family when it poses nothing.
 fn axis_of(device: &Device, name: &str) -> Result<Axis, Reply> {
-    let by_caption = device.project.servo.servos.iter().find(|servo| servo.caption == name).map(|s| Axis::Servo(s.id));
-    let joint_id = name.parse::<u8>().ok().filter(|_| device.project.family == crate::project::Family::Plen2);
-    axes(device)
+    let poses = family::poses(device.project.family).map_err(|lacks| lacking(device, lacks))?;
+    (poses.axes)(&device.project)
         .into_iter()
-        .find(|(axis, found)| axis == name || joint_id.is_some_and(|id| *found == Axis::Joint(id)))
+        .find(|(axis, _)| axis == name)
         .map(|(_, axis)| axis)
-        .or(by_caption)
+        .or_else(|| (poses.alias)(&device.project, name))
         .ok_or_else(|| Reply::error(404, format!("{} has no servo or joint {name:?}", device.name)))
+}
+
+/// `device` refused what its family lacks (422), named: "base: an rFLEX
+/// base cannot pose a servo or joint; drive it (POST /devices/base/drive)".
+fn lacking(device: &Device, lacks: family::Lacks) -> Reply {
+    let name = &device.name;
+    let drives = lacks.lacks != family::Capability::Drive && family::drives(lacks.family).is_ok();
+    let hint = if drives { format!("; drive it (POST /devices/{name}/drive)") } else { String::new() };
+    Reply::error(422, format!("{name}: {lacks}{hint}"))
 }
 
 #[cfg(test)]
 mod tests {
-    use std::sync::Weak;
+    use std::sync::{Arc, Weak};
 
     use proptest::prelude::*;
     use rosc::{OscMessage, OscPacket, OscType};
@@ -382,6 +364,50 @@ mod tests {
                 prop_assert!(speed_m_s.is_finite());
             }
         }
+    }
+
+    /// A verb a device's family cannot carry is refused naming the family
+    /// (and a base told to drive instead), never carried as another family's:
+    /// the test-only echo board plays in no show, a PLEN2 does not drive, a
+    /// base stores nothing to run and has nothing to pose.
+    #[test]
+    fn a_verb_the_family_cannot_carry_is_refused_by_name() {
+        use crate::project::{Family, Project};
+        let echo = Family::from_tag("echo").unwrap();
+        let mut show = Show::of_one("echo", Project::empty(echo));
+        show.add_device("plen", Project::empty(Family::Plen2));
+        show.add_device("base", Project::empty(Family::Rflex));
+        // No device has a port: none is linked, and none is asked anything.
+        let boards = Arc::new(Boards::connect(&show, crate::link::no_waker()).unwrap());
+        let remote = Remote::new(show, Arc::downgrade(&boards), false);
+        let said = |verb: Verb| {
+            let reply = remote.act(&verb);
+            assert_eq!(reply.code, 422, "{verb:?}: {}", reply.body);
+            reply.body["error"].as_str().unwrap().to_string()
+        };
+        let pose = |device: &str| Verb::Pose { device: device.into(), axis: "0".into(), value: 10.0 };
+        assert_eq!(said(pose("echo")), "echo: an Echo board cannot play in a show");
+        assert_eq!(
+            said(Verb::Play { device: "echo".into(), what: "1".into() }),
+            "echo: an Echo board cannot play in a show"
+        );
+        assert_eq!(
+            said(Verb::Drive { device: "plen".into(), speed_m_s: 0.1, turn_deg_s: 0.0 }),
+            "plen: a PLEN2 cannot drive"
+        );
+        assert_eq!(said(Verb::Heartbeat("plen".into())), "plen: a PLEN2 cannot drive");
+        assert_eq!(
+            said(pose("base")),
+            "base: an rFLEX base cannot pose a servo or joint; drive it (POST /devices/base/drive)"
+        );
+        assert_eq!(
+            said(Verb::Play { device: "base".into(), what: "1".into() }),
+            "base: an rFLEX base cannot run a stored macro or motion; drive it (POST /devices/base/drive)"
+        );
+        assert!(
+            listed(&remote.show().devices[0])["axes"].as_array().unwrap().is_empty(),
+            "an echo board lists no axis"
+        );
     }
 
     #[test]

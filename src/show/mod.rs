@@ -8,6 +8,7 @@
 pub mod alive;
 pub mod at;
 pub mod boards;
+pub mod family;
 pub mod passes;
 pub mod play;
 pub mod stages;
@@ -51,15 +52,11 @@ pub struct Device {
 }
 
 impl Device {
-    /// The first thing it stores to start: its lowest macro (servo board) or motion slot (PLEN2).
+    /// The first thing it stores to start, as its family says (a servo
+    /// board's lowest macro, a PLEN2's lowest motion slot); none for a family
+    /// that stores nothing to start or plays in no show.
     pub fn first_stored(&self) -> Option<Start> {
-        match self.project.family {
-            family if family == Family::Servo => self.project.servo.macros.iter().map(|m| m.id).min().map(Start::Macro),
-            family if family == Family::Plen2 => {
-                self.project.plen2.motions.iter().map(|m| m.slot).min().map(Start::Slot)
-            }
-            _ => None,
-        }
+        family::of(self.project.family).ok().and_then(|entry| (entry.first_stored)(&self.project))
     }
 }
 
@@ -108,6 +105,15 @@ pub enum Start {
     },
 }
 
+/// What a remote runs on a device: a cue's start, or a PLEN2's play list (slot, plays).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Run {
+    /// A macro, a motion or a timed drive.
+    Start(Start),
+    /// A play list: each slot played so many times (0: forever), in order.
+    List(Vec<(u8, u8)>),
+}
+
 /// A show file that cannot be read, or a show that cannot be played.
 #[derive(Debug, thiserror::Error)]
 pub enum ShowError {
@@ -146,6 +152,14 @@ pub enum ShowError {
         at_ms: u64,
         /// The name it gives.
         device: String,
+    },
+    /// A device of a family that plays in no show (it has no show stage).
+    #[error("device {device:?}: {lacks}")]
+    PlaysInNoShow {
+        /// The device.
+        device: String,
+        /// Its family, refused by name.
+        lacks: family::Lacks,
     },
     /// A cue starts what its device does not hold.
     #[error("the cue at {at_ms} ms asks {device:?} ({}) to start {start:?}, which it does not hold", .family.name())]
@@ -312,12 +326,15 @@ impl Show {
         }
     }
 
-    /// Every problem of the show itself, in order: a device without a name or
-    /// with another's, a cue that names no device or starts what its device
+    /// Every problem of the show itself, in order: a device of a family that
+    /// plays in no show, without a name or with another's, a cue that names no device or starts what its device
     /// does not hold.
     pub fn problems(&self) -> Vec<ShowError> {
         let mut problems = Vec::new();
         for (index, device) in self.devices.iter().enumerate() {
+            if let Err(lacks) = family::of(device.project.family) {
+                problems.push(ShowError::PlaysInNoShow { device: device.name.clone(), lacks });
+            }
             if device.name.trim().is_empty() {
                 problems.push(ShowError::NoName(index + 1));
             } else if self.devices[..index].iter().any(|other| other.name == device.name) {
@@ -330,15 +347,7 @@ impl Show {
                 continue;
             };
             let family = device.project.family;
-            let holds = match cue.start {
-                Start::Macro(id) => family == Family::Servo && device.project.servo.macro_by_id(id).is_some(),
-                Start::Slot(slot) => {
-                    family == Family::Plen2 && device.project.plen2.motions.iter().any(|m| m.slot == slot)
-                }
-                Start::Drive { speed_m_s, turn_deg_s, .. } => {
-                    family == Family::Rflex && speed_m_s.is_finite() && turn_deg_s.is_finite()
-                }
-            };
+            let holds = family::of(family).is_ok_and(|entry| (entry.holds)(&device.project, &cue.start));
             if !holds {
                 problems.push(ShowError::NotHeld {
                     at_ms: cue.at_ms,

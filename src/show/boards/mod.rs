@@ -75,14 +75,7 @@ enum Order {
     Speed(LiveSpeed),
 }
 
-/// What a remote runs on a device: a cue's start, or a PLEN2's play list (slot, plays).
-#[derive(Clone, Debug, PartialEq)]
-pub enum Run {
-    /// A macro, a motion or a timed drive.
-    Start(Start),
-    /// A play list: each slot played so many times (0: forever), in order.
-    List(Vec<(u8, u8)>),
-}
+pub use super::Run;
 
 /// Why a device of the show was not linked.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
@@ -429,5 +422,5 @@ pub fn play_once(show: &Show, folder: Option<PathBuf>, stop: Receiver<String>, t
 pub fn connect_one(device: &super::Device) -> Result<super::stages::Linked, Unlinked> {
     let Some(port) = &device.port else { return Err(Unlinked::NoPort) };
     let opened = crate::link::by_id::resolve(port).map_err(|error| Unlinked::Failed(format!("{error}")))?;
-    super::stages::connect(&opened, device).map_err(|error| Unlinked::Failed(format!("{error:#}")))
+    super::family::connect(&opened, device).map_err(|error| Unlinked::Failed(format!("{error:#}")))
 }

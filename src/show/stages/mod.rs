@@ -10,13 +10,7 @@ mod servo;
 
 use std::time::{Duration, Instant};
 
-use anyhow::bail;
-
-use super::Device;
 use super::play::Stage;
-use crate::device;
-use crate::link::PortName;
-use crate::project::Family;
 
 /// How many round trips a link's delay is measured from at connect.
 pub const ROUND_TRIPS: usize = 5;
@@ -66,23 +60,6 @@ impl std::fmt::Debug for Linked {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Linked").field("start_delay", &self.start_delay).field("link", &self.link).finish()
     }
-}
-
-/// Connects `device` on `port`, measuring its link; an error when nothing answers there.
-pub fn connect(port: &str, device: &Device) -> anyhow::Result<Linked> {
-    let family = device.project.family;
-    let name = PortName::parse(port)?;
-    let settings = device::line_settings(family);
-    if family == Family::Servo {
-        return servo::connect(&name, device);
-    }
-    if family == Family::Plen2 {
-        return plen2::connect(&name, &settings, device);
-    }
-    if family == Family::Rflex {
-        return rflex::connect(&name, &settings, device);
-    }
-    bail!("a {} cannot play in a show", family.name())
 }
 
 #[cfg(test)]

@@ -14,16 +14,48 @@ use crate::device::plen2::{
 };
 use crate::device::speed::{LiveSpeed, Slew};
 use crate::link::{self, LineSettings, PortName, no_waker};
+use crate::project::Project;
 use crate::project::plen2::Joint;
 use crate::show::alive::{Alive, Loss};
 use crate::show::at::{Now, Posed};
+use crate::show::boards::Run;
 use crate::show::passes::Axis;
 use crate::show::play::Stage;
 use crate::show::{Device, Start};
 
+inventory::submit! {
+    crate::show::family::ShowFamily {
+        family: crate::project::Family::Plen2,
+        connect,
+        first_stored: |project| project.plen2.motions.iter().map(|m| m.slot).min().map(Start::Slot),
+        holds: |project, start| matches!(*start, Start::Slot(slot) if project.plen2.motions.iter().any(|m| m.slot == slot)),
+        runs: Some(crate::show::family::Runs { find: motion_named }),
+        poses: Some(crate::show::family::Poses {
+            axes: |_| Joint::ALL.iter().map(|joint| (joint.name().to_string(), Axis::Joint(joint.device_id()))).collect(),
+            // A joint's device id, as well as its name.
+            alias: |_, name| name.parse::<u8>().ok().and_then(|id| Joint::ALL.iter().find(|joint| joint.device_id() == id)).map(|joint| Axis::Joint(joint.device_id())),
+        }),
+        drives: false,
+    }
+}
+
+/// The motion `what` names (its slot or its name), or the play list (its name).
+fn motion_named(project: &Project, what: &str) -> Result<crate::show::family::Named, String> {
+    let number: Option<i64> = what.trim().parse().ok();
+    let plen2 = &project.plen2;
+    if let Some(m) = plen2.motions.iter().find(|m| number == Some(i64::from(m.slot)) || m.name == what) {
+        return Ok((Run::Start(Start::Slot(m.slot)), format!("motion {} {}", m.slot, m.name)));
+    }
+    if let Some(list) = plen2.play_lists.iter().find(|list| list.name == what) {
+        let entries = list.entries.iter().map(|entry| (entry.slot, entry.plays)).collect();
+        return Ok((Run::List(entries), format!("play list {}", list.name)));
+    }
+    Err(format!("no motion or play list {what:?}"))
+}
+
 /// Connects the PLEN2 on `port`: the driver's own probe (which also sets its
 /// pacing), then its link measured on version questions.
-pub(super) fn connect(port: &PortName, settings: &LineSettings, device: &Device) -> anyhow::Result<Linked> {
+fn connect(port: &PortName, settings: &LineSettings, device: &Device) -> anyhow::Result<Linked> {
     let connection = link::open(port, settings)?;
     let mut handle = Plen2Handle::over(connection, Plen2Options::default(), no_waker())?;
     let requester = handle.requester();

@@ -18,10 +18,25 @@ use crate::show::{Device, Start};
 /// How often a base being connected is looked at for its answers.
 const LOOK_EVERY: Duration = Duration::from_millis(5);
 
+inventory::submit! {
+    crate::show::family::ShowFamily {
+        family: crate::project::Family::Rflex,
+        connect,
+        // Its cues are drives, each given in full: it stores nothing to start.
+        first_stored: |_| None,
+        holds: |_, start| {
+            matches!(*start, Start::Drive { speed_m_s, turn_deg_s, .. } if speed_m_s.is_finite() && turn_deg_s.is_finite())
+        },
+        runs: None,
+        poses: None,
+        drives: true,
+    }
+}
+
 /// Connects the base on `port`: started, then its link measured on status
 /// requests, each waited for; a base that answers none within
 /// [`SILENT_AFTER`] did not answer.
-pub(super) fn connect(port: &PortName, settings: &LineSettings, device: &Device) -> anyhow::Result<Linked> {
+fn connect(port: &PortName, settings: &LineSettings, device: &Device) -> anyhow::Result<Linked> {
     let connection = link::open(port, settings)?;
     let mut base = RflexBase::over(connection, device.project.rflex.robot.conversion(), no_waker())?;
     // The start-up asks for its status once: the first round trip.

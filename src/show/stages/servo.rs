@@ -13,18 +13,43 @@ use crate::audio::together::link_delay;
 use crate::device;
 use crate::device::servo::{DEFAULT_BAUD, RequestError, Requester, ServoBoard, SessionConfig};
 use crate::device::speed::LiveSpeed;
-use crate::link::{LinkEvent, PortName, no_waker};
-use crate::project::Servo;
+use crate::link::{LineSettings, LinkEvent, PortName, no_waker};
+use crate::project::{Project, Servo};
 use crate::protocol::servo::{ALL_SERVOS, Message, ServoMove, ServoSwitches};
 use crate::show::Device;
 use crate::show::Start;
 use crate::show::alive::{Alive, Loss};
 use crate::show::at::{Now, Posed};
+use crate::show::boards::Run;
 use crate::show::passes::Axis;
 use crate::show::play::Stage;
 
-/// Connects the servo board on `port`, its link measured on memory-size questions.
-pub(super) fn connect(port: &PortName, device: &Device) -> anyhow::Result<Linked> {
+inventory::submit! {
+    crate::show::family::ShowFamily {
+        family: crate::project::Family::Servo,
+        connect,
+        first_stored: |project| project.servo.macros.iter().map(|m| m.id).min().map(Start::Macro),
+        holds: |project, start| matches!(*start, Start::Macro(id) if project.servo.macro_by_id(id).is_some()),
+        runs: Some(crate::show::family::Runs { find: macro_named }),
+        poses: Some(crate::show::family::Poses {
+            axes: |project| project.servo.servos.iter().map(|servo| (servo.id.to_string(), Axis::Servo(servo.id))).collect(),
+            alias: |project, name| project.servo.servos.iter().find(|servo| servo.caption == name).map(|s| Axis::Servo(s.id)),
+        }),
+        drives: false,
+    }
+}
+
+/// The macro `what` names (its id or its caption).
+fn macro_named(project: &Project, what: &str) -> Result<crate::show::family::Named, String> {
+    let number: Option<i64> = what.trim().parse().ok();
+    let found = project.servo.macros.iter().find(|m| number == Some(i64::from(m.id)) || m.caption == what);
+    found
+        .map(|m| (Run::Start(Start::Macro(m.id)), format!("macro {} {}", m.id, m.caption)))
+        .ok_or_else(|| format!("no macro {what:?}"))
+}
+
+/// Connects the servo board on `port` (at the protocol's line rate), its link measured on memory-size questions.
+fn connect(port: &PortName, _line: &LineSettings, device: &Device) -> anyhow::Result<Linked> {
     let board = ServoBoard::connect(port, DEFAULT_BAUD, SessionConfig::default(), no_waker())?;
     let requester = board.requester();
     let link = LinkDelay::measured(|| {

@@ -26,6 +26,9 @@ impl Worded for ShowError {
             Self::NoName(index) => say!(language, "show_said.no_name", index),
             Self::SameName(name) => say!(language, "show_said.same_name", name),
             Self::NoDevice { at_ms, device } => say!(language, "show_said.no_device", at_ms, device),
+            Self::PlaysInNoShow { device, lacks } => {
+                say!(language, "show_said.plays_in_no_show", device, family = language.family(lacks.family))
+            }
             Self::NotHeld { at_ms, device, family, .. } => {
                 say!(language, "show_said.not_held", at_ms, device, family = language.family(*family))
             }
@@ -160,6 +163,14 @@ mod tests {
             error.worded(Language::Japanese),
             "「頭」という名前のデバイスが 2 つあります：名前は別々にしてください"
         );
+        // A device of a family that plays in no show, named in every language.
+        let lacks = crate::show::family::Lacks {
+            family: crate::project::Family::Plen2,
+            lacks: crate::show::family::Capability::Show,
+        };
+        let plays_not = ShowError::PlaysInNoShow { device: "頭".into(), lacks };
+        assert_eq!(plays_not.worded(Language::English), "device \"頭\": a PLEN2 cannot play in a show");
+        assert_eq!(plays_not.worded(Language::TraditionalChinese), "裝置「頭」：PLEN2 無法在表演中演出");
         assert_eq!(Unlinked::NoPort.worded(Language::English), Unlinked::NoPort.to_string());
         assert_eq!(Unlinked::NoPort.worded(Language::Japanese), "ポートがありません：接続先を入力してください");
         let refused = ServeError::NoToken { listen: "0.0.0.0:8765".parse().unwrap() };
