@@ -109,7 +109,7 @@ pub fn run(args: &PlayArgs) -> anyhow::Result<()> {
         })?;
         stages.push(stage);
     }
-    let sound = sound(&show, &args.show);
+    let sound = show.sound.as_ref().map(|track| args.show.parent().unwrap_or(Path::new(".")).join(&track.path));
     let (stop, stopped) = crossbeam_channel::unbounded();
     let exit_code = std::sync::Arc::new(std::sync::atomic::AtomicU8::new(0));
     let code = std::sync::Arc::clone(&exit_code);
@@ -129,7 +129,9 @@ pub fn run(args: &PlayArgs) -> anyhow::Result<()> {
         None => None,
     };
     let mut held = false;
-    let mut player = Player { show: &show, stages, sound, stop: stopped.clone() };
+    let mut player = Player::new(&show, stages, sound, stopped.clone(), |error| {
+        say!("no sound output ({error}): playing silent");
+    });
     // Unattended (by the clock or a visitor's button): run after run until stopped, unless --loop says.
     let unattended = !args.at.is_empty() || args.wait_gamepad.is_some();
     let runs = args.runs.unwrap_or(if unattended { u32::MAX } else { 1 });
@@ -267,19 +269,6 @@ fn next_time(at: &[(u32, u32)], run: u32) -> Option<Instant> {
     let wait = (when - now).to_std().unwrap_or_default();
     say!("run {run} waits for {when}");
     Some(Instant::now() + wait)
-}
-
-/// The show's sound through the system's sound server, or silent (said).
-fn sound(show: &Show, show_path: &Path) -> Option<(crate::audio::output::Speakers, PathBuf)> {
-    let track = show.sound.as_ref()?;
-    let path = show_path.parent().unwrap_or(Path::new(".")).join(&track.path);
-    match crate::audio::output::Speakers::connect() {
-        Ok(speakers) => Some((speakers, path)),
-        Err(error) => {
-            say!("no sound output ({error}): playing silent");
-            None
-        }
-    }
 }
 
 fn log_run(run: u32, ran: &Ran, clock: &MonotonicClock) -> anyhow::Result<()> {

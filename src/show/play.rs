@@ -182,6 +182,30 @@ pub struct Player<'a> {
     pub stop: Receiver<String>,
 }
 
+impl<'a> Player<'a> {
+    /// The one way a show's player is made — by `play`, by the show window's
+    /// Play on the boards and by the held boards: `show` on `stages` (one per
+    /// device, in its order), its sound from the file at `sound` through the
+    /// system's sound server, stopped by anything arriving on `stop`. With no
+    /// sound output the show plays silent, and `silent` is told why.
+    pub fn new(
+        show: &'a Show,
+        stages: Vec<Box<dyn Stage>>,
+        sound: Option<PathBuf>,
+        stop: Receiver<String>,
+        silent: impl FnOnce(String),
+    ) -> Self {
+        let sound = sound.and_then(|path| match Speakers::connect() {
+            Ok(speakers) => Some((speakers, path)),
+            Err(error) => {
+                silent(error.to_string());
+                None
+            }
+        });
+        Self { show, stages, sound, stop }
+    }
+}
+
 /// What a run keeps of the devices while it plays.
 #[derive(Default)]
 struct Going {

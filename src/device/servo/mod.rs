@@ -8,6 +8,7 @@ mod handle;
 mod image;
 mod item;
 mod live;
+mod live_pose;
 mod log;
 mod ops;
 mod session;
@@ -45,6 +46,7 @@ pub use doctor::Said;
 pub use handle::{ServoHandle, ServoNotice};
 pub use image::{Difference, ImageError, RecordKind, ServoImage};
 pub use item::Item;
+pub use live_pose::{Known, LivePose};
 pub use log::{fields as message_fields, log_entry};
 pub use ops::{
     CurveCost, ImportFailure, ImportOptions, ImportReport, OpError, Phase, Progress, ServoInfo, backup_path,

@@ -401,17 +401,8 @@ pub fn play_once(show: &Show, folder: Option<PathBuf>, stop: Receiver<String>, t
             }
         }
     }
-    let sound = show.sound.as_ref().and_then(|track| {
-        let path = folder.unwrap_or_default().join(&track.path);
-        match crate::audio::output::Speakers::connect() {
-            Ok(speakers) => Some((speakers, path)),
-            Err(error) => {
-                tell(Told::Silent(error.to_string()));
-                None
-            }
-        }
-    });
-    let mut player = Player { show, stages, sound, stop };
+    let sound = show.sound.as_ref().map(|track| folder.unwrap_or_default().join(&track.path));
+    let mut player = Player::new(show, stages, sound, stop, |error| tell(Told::Silent(error)));
     match player.run() {
         Ok(ran) => tell(Told::Ran(ran)),
         Err(stopped) => tell(Told::Stopped(stopped)),

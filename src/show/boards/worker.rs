@@ -352,14 +352,7 @@ impl Worker {
             })
             .collect();
         // No sound output: the show plays silent, and says so (as `play` and a play from the show window do).
-        let sound = sound.and_then(|path| match crate::audio::output::Speakers::connect() {
-            Ok(out) => Some((out, path)),
-            Err(error) => {
-                tell(Heard::Silent(error.to_string()));
-                None
-            }
-        });
-        let mut player = Player { show, stages, sound, stop: stop.clone() };
+        let mut player = Player::new(show, stages, sound, stop.clone(), |error| tell(Heard::Silent(error)));
         let ran = player.run();
         for (slot, stage) in self.stages.iter_mut().zip(player.stages) {
             *slot = (stage.lost().is_none()).then_some(stage);

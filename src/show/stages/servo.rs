@@ -11,7 +11,7 @@ use super::LinkDelay;
 use super::Linked;
 use crate::audio::together::link_delay;
 use crate::device;
-use crate::device::servo::{DEFAULT_BAUD, RequestError, Requester, ServoBoard, SessionConfig};
+use crate::device::servo::{DEFAULT_BAUD, Known, LivePose, RequestError, Requester, ServoBoard, SessionConfig};
 use crate::device::speed::LiveSpeed;
 use crate::link::{LineSettings, LinkEvent, PortName, no_waker};
 use crate::project::{Project, Servo};
@@ -57,8 +57,17 @@ fn connect(port: &PortName, _line: &LineSettings, device: &Device) -> anyhow::Re
     })?;
     let servos = device.project.servo.servos.clone();
     let alive = Alive::new(Instant::now());
-    let stage =
-        ServoStage { requester, link, board, lost: None, alive, servos, sent: BTreeMap::new(), battery: (None, None) };
+    let stage = ServoStage {
+        requester,
+        link,
+        board,
+        lost: None,
+        alive,
+        servos,
+        sent: BTreeMap::new(),
+        live: LivePose::default(),
+        battery: (None, None),
+    };
     let start_delay = stage.start_delay(&Start::Macro(0));
     Ok(Linked { stage: Box::new(stage), start_delay, link })
 }
@@ -117,6 +126,8 @@ struct ServoStage {
     servos: Vec<Servo>,
     /// What each servo was last told while following, and when.
     sent: BTreeMap<u8, (i16, Instant)>,
+    /// The live-pose rule a remote pose follows, as the editor's sliders do.
+    live: LivePose,
     /// The battery question out, and the last answer (‰).
     battery: (Option<Answer>, Option<i16>),
 }
@@ -140,8 +151,10 @@ impl Stage for ServoStage {
     fn stop(&mut self) {
         let all = ServoSwitches { servo_id: ALL_SERVOS, is_start: false, is_hold: true };
         let _ = self.requester.stop(Message::SetServoParameterRequest(all));
-        // Where they stopped is not known: the next follow eases them in again.
+        // Where they stopped is not known: the next follow eases them in again,
+        // the next pose is timed from the far end of the limits.
         self.sent.clear();
+        self.live.board_moved_them(self.servos.iter().map(|servo| servo.id), Instant::now());
     }
 
     fn resume(&mut self) {
@@ -165,6 +178,8 @@ impl Stage for ServoStage {
                 // Where it is now is not known: eased in, not slammed.
                 None => EASE_IN_10MS,
             };
+            let from = self.live.at(servo.id, at).unwrap_or_else(|| servo.farther_limit(f64::from(degree)));
+            self.live.moved(servo.id, (from, degree), at, interval_10ms);
             self.sent.insert(servo.id, (degree, at));
             moves.push(ServoMove { servo_id: servo.id, degree, interval_10ms });
         }
@@ -186,19 +201,14 @@ impl Stage for ServoStage {
     fn pose(&mut self, axis: Axis, value_deg: f64, speed: LiveSpeed) -> Result<f64, String> {
         let Axis::Servo(id) = axis else { return Err("a servo board's axes are servos".into()) };
         let servo = self.servos.iter().find(|servo| servo.id == id).ok_or(format!("it has no servo {id}"))?;
-        // Degrees of a servo: a finite value within ±180 once clamped.
-        #[allow(clippy::cast_possible_truncation)]
-        let degree = servo.clamp(value_deg.clamp(-180.0, 180.0).round() as i16);
-        let from = match self.sent.get(&id) {
-            Some(&(told, _)) => f64::from(told),
-            // Where it is is not known: as if from the farther limit, so it cannot slam.
-            None => servo.farther_limit(f64::from(degree)),
-        };
-        let interval_10ms = speed.interval_10ms(f64::from(degree) - from, 2);
-        self.sent.insert(id, (degree, Instant::now()));
-        let moves = vec![ServoMove { servo_id: id, degree, interval_10ms }];
-        self.requester.live_move(moves).map_err(|error| error.to_string())?;
-        Ok(f64::from(degree))
+        // The live-pose rule the editor's sliders share: nothing but its own moves tells
+        // where a servo is here, so one not moved since the board was connected or
+        // stopped is timed from the far end of its limits.
+        let now = Instant::now();
+        let moved = self.live.limited_move((servo, value_deg), Known::default(), (speed, 2), now);
+        self.sent.insert(id, (moved.degree, now));
+        self.requester.live_move(vec![moved]).map_err(|error| error.to_string())?;
+        Ok(f64::from(moved.degree))
     }
 
     fn battery(&self) -> Option<String> {

@@ -8,31 +8,13 @@ use super::{CAPTURED_STEP_INTERVAL_10MS, LIVE_MOVE_INTERVAL_10MS, ServoUi};
 use crate::authoring::bake_servo;
 use crate::authoring::fit::{self, Board, ServoBoard};
 use crate::authoring::fitted::{self, SERVO_UPDATE_MS};
-use crate::device::servo::ServoMove;
+use crate::device::servo::{Known, ServoMove};
 use crate::device::speed::LiveSpeed;
 use crate::project::{Action as ProjectAction, Edit, Run, ServoProject, Step, next_free_id};
 use crate::ui::i18n::Worded;
 use crate::ui::servo::captions::ServoWords;
 use crate::ui::shell::Shell;
 use std::collections::BTreeMap;
-
-/// A live move as sent: the board turns the servo linearly from `from` to
-/// `to` over `interval`.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Moving {
-    from: f64,
-    to: i16,
-    start: Instant,
-    interval: Duration,
-}
-
-impl Moving {
-    /// Where the servo is at `now`, by the board's linear move.
-    fn at(&self, now: Instant) -> f64 {
-        let done = now.saturating_duration_since(self.start).as_secs_f64() / self.interval.as_secs_f64().max(1e-9);
-        self.from + (f64::from(self.to) - self.from) * done.min(1.0)
-    }
-}
 
 /// A part of what is played live: steps sent together, then at least
 /// `wait_ms` (a delay) before the next.
@@ -119,31 +101,18 @@ impl ServoUi {
         &mut self,
         speed: LiveSpeed,
         (servo, degree): (&crate::project::Servo, i16),
-        from: (i16, Option<i16>, Option<Instant>),
+        (shown, reading, read_at): (i16, Option<i16>, Option<Instant>),
         least: i16,
     ) -> ServoMove {
-        let now = Instant::now();
-        let (shown, reading, read_at) = from;
-        let unknown = self.unsure.remove(&servo.id).is_some_and(|since| read_at.is_none_or(|at| at <= since));
-        let here = if unknown {
-            servo.farther_limit(f64::from(degree))
-        } else {
-            self.moving.get(&servo.id).map_or_else(|| f64::from(reading.unwrap_or(shown)), |moving| moving.at(now))
-        };
-        let interval_10ms = speed.interval_10ms(f64::from(degree) - here, least);
-        let interval = Duration::from_millis(u64::from(interval_10ms.unsigned_abs()) * 10);
-        self.moving.insert(servo.id, Moving { from: here, to: degree, start: now, interval });
-        ServoMove { servo_id: servo.id, degree, interval_10ms }
+        let known = Known { shown: Some(shown), reading, read_at };
+        self.live.limited_move((servo, f64::from(degree)), known, (speed, least), Instant::now())
     }
 
     /// The board moves the servos on its own from `now` for `running` (a
     /// macro, a remote button, a STOP): where they are is not known until
     /// the board is read after that.
     pub(super) fn board_moved_them(&mut self, project: &ServoProject, now: Instant, running: Duration) {
-        self.moving.clear();
-        for servo in &project.servos {
-            self.unsure.insert(servo.id, now + running);
-        }
+        self.live.board_moved_them(project.servos.iter().map(|servo| servo.id), now + running);
     }
 
     /// Runs a stored macro on the board; with a sound track, the sound starts

@@ -89,11 +89,10 @@ pub struct ServoUi {
     playing: std::collections::VecDeque<live::Part>,
     /// When the part last sent is done.
     playing_until: Option<Instant>,
-    /// The live move each servo was last sent, to tell where it is now (the
-    /// board moves it linearly): the live speed limit counts from there.
-    moving: BTreeMap<u8, live::Moving>,
-    /// Servos the board moved on its own, and after when a reading tells where they are.
-    unsure: BTreeMap<u8, Instant>,
+    /// The servos as the live moves sent left them (the board moves each
+    /// linearly) and those it moved on its own: the live-pose rule every
+    /// sender to a servo board shares.
+    live: crate::device::servo::LivePose,
     /// The sliders being recorded.
     recording: Option<crate::authoring::recording::Recorder>,
     /// A board comparison waiting for the user's go-ahead.
@@ -419,8 +418,7 @@ impl FamilyBoard for ServoUi {
 
     fn disconnected(&mut self) {
         self.polling = false;
-        self.moving.clear();
-        self.unsure.clear();
+        self.live.clear();
         self.playing.clear();
     }
 
