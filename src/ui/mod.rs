@@ -108,7 +108,7 @@ impl Start {
             app.apply(Action::Import(import::ImportAction::Read(path)));
         }
         if let Some(path) = self.show {
-            app.apply(Action::Show(show::ShowAction::Open(path)));
+            app.apply(Action::Show(action::ShowAction::Open(path)));
         }
         app
     }
