@@ -178,5 +178,9 @@ mod tests {
         assert_eq!(problems[0].to_string(), "device \"echo\": an Echo board cannot play in a show");
         assert!(matches!(&problems[1], ShowError::NotHeld { device, .. } if device == "echo"), "{problems:?}");
         assert_eq!(problems.len(), 2);
+        // Nor is it posed as a servo board on the show's timeline.
+        assert!(crate::show::timeline::posed_at(&show, 0, 0).is_some());
+        assert_eq!(crate::show::timeline::posed_at(&show, 1, 0), None);
+        assert_eq!(crate::show::timeline::now_at(&show, 1, 0, None), None);
     }
 }

@@ -259,6 +259,8 @@ impl Timeline {
     pub fn posed_at(&mut self, show: &Show, index: usize, t_ms: u64) -> Option<Posed> {
         let device = show.devices.get(index)?;
         let family = device.project.family;
+        // A family that plays in no show has no pose in one (`Show::problems` names it), never a servo board's.
+        super::family::of(family).ok()?;
         let cues = self.cues_of(show, index);
         // The cues started by then: the latest is what the device does.
         let started = cues.partition_point(|&(at, _)| at <= t_ms);
