@@ -368,13 +368,13 @@ mod tests {
 
     /// A verb a device's family cannot carry is refused naming the family
     /// (and a base told to drive instead), never carried as another family's:
-    /// the test-only echo board plays in no show, a PLEN2 does not drive, a
-    /// base stores nothing to run and has nothing to pose.
+    /// a family that registered nothing for shows (one made up here), a PLEN2
+    /// that does not drive, a base that stores nothing to run and has nothing to pose.
     #[test]
     fn a_verb_the_family_cannot_carry_is_refused_by_name() {
         use crate::project::{Family, Project};
-        let echo = Family::from_tag("echo").unwrap();
-        let mut show = Show::of_one("echo", Project::empty(echo));
+        let bare = Family::named("bare", "Bare board");
+        let mut show = Show::of_one("bare", Project::empty(bare));
         show.add_device("plen", Project::empty(Family::Plen2));
         show.add_device("base", Project::empty(Family::Rflex));
         // No device has a port: none is linked, and none is asked anything.
@@ -386,10 +386,10 @@ mod tests {
             reply.body["error"].as_str().unwrap().to_string()
         };
         let pose = |device: &str| Verb::Pose { device: device.into(), axis: "0".into(), value: 10.0 };
-        assert_eq!(said(pose("echo")), "echo: an Echo board cannot play in a show");
+        assert_eq!(said(pose("bare")), "bare: a Bare board cannot play in a show");
         assert_eq!(
-            said(Verb::Play { device: "echo".into(), what: "1".into() }),
-            "echo: an Echo board cannot play in a show"
+            said(Verb::Play { device: "bare".into(), what: "1".into() }),
+            "bare: a Bare board cannot play in a show"
         );
         assert_eq!(
             said(Verb::Drive { device: "plen".into(), speed_m_s: 0.1, turn_deg_s: 0.0 }),

@@ -26,15 +26,50 @@ pub struct ShowFamily {
     /// Whether a project of the family holds what a cue starts (its macro,
     /// its motion; a drive of finite speed and turn).
     pub holds: fn(&Project, &Start) -> bool,
+    /// Whether a cue's start is of a kind the family takes (a macro, a slot,
+    /// a drive, one of its own [`Self::cues`]), whatever it names.
+    pub takes: fn(&Start) -> bool,
+    /// What a new cue for a device of it starts in the show window (its
+    /// first stored macro or motion, a slow drive of a second…).
+    pub new_cue: fn(&Project) -> Option<Start>,
     /// What a remote may run on it by name; `None`: it stores nothing to run.
     pub runs: Option<Runs>,
     /// What a pose may move; `None`: it has nothing to pose.
     pub poses: Option<Poses>,
     /// Whether it drives (speed and turn, kept up by heartbeats).
     pub drives: bool,
+    /// The kinds of cue it adds to show files ([`FamilyCue`]; the first
+    /// three families' are the show's own: macro, slot, drive).
+    pub cues: &'static [&'static str],
 }
 
 inventory::collect!(ShowFamily);
+
+/// A kind of cue a family added since the first three starts: its key in a
+/// show file (registered in [`ShowFamily::cues`]), and the number it takes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FamilyCue {
+    /// Its kind, as its family registered it (`"move"`).
+    pub kind: &'static str,
+    /// The number it takes (an angle, a motion's index…), finite.
+    pub value: f64,
+}
+
+impl FamilyCue {
+    /// The cue of the registered kind `kind` taking `value`; why not when no
+    /// family registered that kind or the value is not a finite number.
+    pub fn named(kind: &str, value: f64) -> Result<Self, String> {
+        let kind = inventory::iter::<ShowFamily>
+            .into_iter()
+            .flat_map(|entry| entry.cues.iter())
+            .find(|registered| **registered == kind)
+            .ok_or_else(|| format!("no kind of cue is called {kind:?}"))?;
+        if !value.is_finite() {
+            return Err(format!("a {kind} cue takes a finite number"));
+        }
+        Ok(Self { kind, value })
+    }
+}
 
 /// What a remote may run on a device of a family.
 #[derive(Debug)]
@@ -148,8 +183,11 @@ mod tests {
         assert_eq!(lacks.to_string(), "a PLEN2 cannot drive");
     }
 
-    /// Each family that plays in shows says what it can do; one that
-    /// registered nothing (the test-only echo board) is refused by name.
+    /// A family that registered nothing for shows (none of the real ones: one made up here).
+    const BARE: Family = Family::named("bare", "Bare board");
+
+    /// Each family that plays in shows says what it can do (the test-only
+    /// echo board from its own folder); one that registered nothing is refused by name.
     #[test]
     fn each_family_says_what_it_can_do_and_one_that_says_nothing_is_refused_by_name() {
         assert!(runs(Family::Servo).is_ok() && poses(Family::Servo).is_ok() && drives(Family::Servo).is_err());
@@ -159,8 +197,12 @@ mod tests {
         assert_eq!(poses(Family::Rflex).unwrap_err().to_string(), "an rFLEX base cannot pose a servo or joint");
         assert_eq!(runs(Family::Rflex).unwrap_err().lacks, Capability::Run);
         let echo = Family::from_tag("echo").expect("the test-only echo family is registered in unit tests");
-        assert_eq!(of(echo).unwrap_err().to_string(), "an Echo board cannot play in a show");
-        assert_eq!(poses(echo).unwrap_err().lacks, Capability::Show);
+        assert!(poses(echo).is_ok() && runs(echo).is_err() && drives(echo).is_err());
+        assert_eq!(FamilyCue::named("move", 12.0).unwrap().kind, "move", "its kind of cue, registered");
+        assert!(FamilyCue::named("jump", 1.0).unwrap_err().contains("no kind of cue is called \"jump\""));
+        assert!(FamilyCue::named("move", f64::NAN).is_err());
+        assert_eq!(of(BARE).unwrap_err().to_string(), "a Bare board cannot play in a show");
+        assert_eq!(poses(BARE).unwrap_err().lacks, Capability::Show);
     }
 
     /// A show holding a device of a family that plays in no show says so
@@ -169,14 +211,13 @@ mod tests {
     fn a_show_with_a_device_that_plays_in_no_show_names_it() {
         use crate::project::Project;
         use crate::show::{Cue, Show, ShowError};
-        let echo = Family::from_tag("echo").unwrap();
         let mut show = Show::of_one("skull", Project::empty(Family::Servo));
-        show.add_device("echo", Project::empty(echo));
-        show.cues.push(Cue { device: "echo".into(), at_ms: 0, start: Start::Macro(1) });
+        show.add_device("bare", Project::empty(BARE));
+        show.cues.push(Cue { device: "bare".into(), at_ms: 0, start: Start::Macro(1) });
         let problems = show.problems();
-        assert!(matches!(&problems[0], ShowError::PlaysInNoShow { device, .. } if device == "echo"), "{problems:?}");
-        assert_eq!(problems[0].to_string(), "device \"echo\": an Echo board cannot play in a show");
-        assert!(matches!(&problems[1], ShowError::NotHeld { device, .. } if device == "echo"), "{problems:?}");
+        assert!(matches!(&problems[0], ShowError::PlaysInNoShow { device, .. } if device == "bare"), "{problems:?}");
+        assert_eq!(problems[0].to_string(), "device \"bare\": a Bare board cannot play in a show");
+        assert!(matches!(&problems[1], ShowError::NotHeld { device, .. } if device == "bare"), "{problems:?}");
         assert_eq!(problems.len(), 2);
         // Nor is it posed as a servo board on the show's timeline.
         assert!(crate::show::timeline::posed_at(&show, 0, 0).is_some());

@@ -86,9 +86,11 @@ pub struct Cue {
     pub start: Start,
 }
 
-/// What a cue starts on its device.
+/// What a cue starts on its device. In a show file a cue holds one key
+/// naming its kind: `"macro": 3`, `"slot": 2`, `"drive": {…}`, or a kind a
+/// family added since registered (`show::family::ShowFamily::cues`).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
+#[serde(rename_all = "snake_case", try_from = "StartFile", into = "StartFile")]
 pub enum Start {
     /// A servo board's macro, by id.
     Macro(i32),
@@ -103,6 +105,54 @@ pub enum Start {
         /// How long, ms.
         for_ms: u64,
     },
+    /// A kind of cue of a family added since the first three, as it registered it.
+    Family(family::FamilyCue),
+}
+
+/// A cue's start as a show file holds it: the first three kinds by name, any
+/// other under its kind's key, with the number it takes.
+#[derive(Clone, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+enum StartFile {
+    Macro(i32),
+    Slot(u8),
+    Drive {
+        speed_m_s: f64,
+        turn_deg_s: f64,
+        for_ms: u64,
+    },
+    #[serde(untagged)]
+    Family(std::collections::BTreeMap<String, f64>),
+}
+
+impl TryFrom<StartFile> for Start {
+    type Error = String;
+
+    fn try_from(file: StartFile) -> Result<Self, String> {
+        Ok(match file {
+            StartFile::Macro(id) => Self::Macro(id),
+            StartFile::Slot(slot) => Self::Slot(slot),
+            StartFile::Drive { speed_m_s, turn_deg_s, for_ms } => Self::Drive { speed_m_s, turn_deg_s, for_ms },
+            StartFile::Family(keys) => {
+                let mut keys = keys.into_iter();
+                let (Some((kind, value)), None) = (keys.next(), keys.next()) else {
+                    return Err("a cue starts one thing: a macro, a slot, a drive or a family's kind of cue".into());
+                };
+                Self::Family(family::FamilyCue::named(&kind, value)?)
+            }
+        })
+    }
+}
+
+impl From<Start> for StartFile {
+    fn from(start: Start) -> Self {
+        match start {
+            Start::Macro(id) => Self::Macro(id),
+            Start::Slot(slot) => Self::Slot(slot),
+            Start::Drive { speed_m_s, turn_deg_s, for_ms } => Self::Drive { speed_m_s, turn_deg_s, for_ms },
+            Start::Family(cue) => Self::Family(std::iter::once((cue.kind.to_string(), cue.value)).collect()),
+        }
+    }
 }
 
 /// What a remote runs on a device: a cue's start, or a PLEN2's play list (slot, plays).

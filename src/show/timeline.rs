@@ -15,7 +15,7 @@ use super::at::{Now, Posed, arc, driving_at, hold, trace_pose};
 use super::passes::Axis;
 use super::{Place, Show, Start};
 use crate::device::plen2::playback::{self, DEVICE_IDS, Playback, StoredMotions};
-use crate::project::{Family, Run, Trajectories, times_sorted};
+use crate::project::{Family, Project, Run, Trajectories, times_sorted};
 
 /// The longest a motion is played for its length, ms (a motion that loops forever: ten minutes).
 const LONGEST_MOTION_MS: f64 = 600_000.0;
@@ -49,8 +49,35 @@ pub fn cue_length_ms(device: &super::Device, start: &Start) -> u64 {
         Start::Macro(id) => macro_trace(device, id).map_or(0.0, |(_, end)| end),
         Start::Slot(slot) => motion_playback(device, slot, longest_motion_cycles()).duration_ms(),
         Start::Drive { for_ms, .. } => return for_ms,
+        Start::Family(_) => return family_length_ms(device, start),
     };
     whole_ms(ms)
+}
+
+/// A family's part of the show's timeline, for a family added since the
+/// first three (theirs are worked out here), registered by the family beside
+/// its show stage (`inventory::submit!`).
+#[derive(Debug)]
+pub struct FamilyTimeline {
+    /// The family.
+    pub family: Family,
+    /// Where a device holding `project` is `since_ms` after its latest cue
+    /// started `start` (`None`: before its first cue, at home).
+    pub posed: fn(&Project, Option<(&Start, u64)>) -> Posed,
+    /// How long a cue keeps a device holding `project` busy, ms.
+    pub length_ms: fn(&Project, &Start) -> u64,
+}
+
+inventory::collect!(FamilyTimeline);
+
+/// `family`'s part of the timeline, if it registered one.
+fn family_timeline(family: Family) -> Option<&'static FamilyTimeline> {
+    inventory::iter::<FamilyTimeline>.into_iter().find(|entry| entry.family == family)
+}
+
+/// How long a cue of a family added since the first three keeps its device busy, as the family says.
+fn family_length_ms(device: &super::Device, start: &Start) -> u64 {
+    family_timeline(device.project.family).map_or(0, |timeline| (timeline.length_ms)(&device.project, start))
 }
 
 /// A length in ms, whole (a part of one counts as one).
@@ -150,6 +177,7 @@ fn key(show: &Show, projects: u64) -> u64 {
             Start::Drive { speed_m_s, turn_deg_s, for_ms } => {
                 (2u8, speed_m_s.to_bits(), turn_deg_s.to_bits(), for_ms).hash(&mut hasher);
             }
+            Start::Family(cue) => (3u8, cue.kind, cue.value.to_bits()).hash(&mut hasher),
         }
     }
     hasher.finish()
@@ -208,6 +236,7 @@ impl Timeline {
                 self.playback(show, device, slot, cycles).map_or(0.0, Playback::duration_ms)
             }
             Start::Drive { for_ms, .. } => return for_ms,
+            Start::Family(_) => return show.devices.get(device).map_or(0, |owner| family_length_ms(owner, &start)),
         };
         whole_ms(ms)
     }
@@ -259,8 +288,6 @@ impl Timeline {
     pub fn posed_at(&mut self, show: &Show, index: usize, t_ms: u64) -> Option<Posed> {
         let device = show.devices.get(index)?;
         let family = device.project.family;
-        // A family that plays in no show has no pose in one (`Show::problems` names it), never a servo board's.
-        super::family::of(family).ok()?;
         let cues = self.cues_of(show, index);
         // The cues started by then: the latest is what the device does.
         let started = cues.partition_point(|&(at, _)| at <= t_ms);
@@ -269,12 +296,21 @@ impl Timeline {
             return Some(Posed::Base(self.base_at(show, index, started, t_ms)));
         }
         let latest = latest.and_then(|(at, cue)| Some((at, show.cues.get(cue)?.start)));
+        if let Some(timeline) = family_timeline(family) {
+            let since = latest.as_ref().map(|(at_ms, start)| (start, t_ms - at_ms));
+            return Some((timeline.posed)(&device.project, since));
+        }
         if family == Family::Plen2 {
             let mut values = [0; DEVICE_IDS];
             if let Some((at_ms, Start::Slot(slot))) = latest {
                 values = self.joints_at(show, index, slot, t_ms - at_ms);
             }
             return Some(Posed::Joints(values));
+        }
+        if family != Family::Servo {
+            // A family with no place on the timeline (one that plays in no
+            // show: `Show::problems` names it) has no pose, never a servo board's.
+            return None;
         }
         let servo = &device.project.servo;
         let mut angles = servo.servos.iter().map(|s| (s.id, f64::from(s.home_deg))).collect();

@@ -28,6 +28,8 @@ inventory::submit! {
         family: crate::project::Family::Plen2,
         connect,
         first_stored: |project| project.plen2.motions.iter().map(|m| m.slot).min().map(Start::Slot),
+        takes: |start| matches!(start, Start::Slot(_)),
+        new_cue: |project| project.plen2.motions.iter().map(|m| m.slot).min().map(Start::Slot),
         holds: |project, start| matches!(*start, Start::Slot(slot) if project.plen2.motions.iter().any(|m| m.slot == slot)),
         runs: Some(crate::show::family::Runs { find: motion_named }),
         poses: Some(crate::show::family::Poses {
@@ -36,6 +38,7 @@ inventory::submit! {
             alias: |_, name| name.parse::<u8>().ok().and_then(|id| Joint::ALL.iter().find(|joint| joint.device_id() == id)).map(|joint| Axis::Joint(joint.device_id())),
         }),
         drives: false,
+        cues: &[],
     }
 }
 

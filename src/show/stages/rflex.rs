@@ -24,12 +24,16 @@ inventory::submit! {
         connect,
         // Its cues are drives, each given in full: it stores nothing to start.
         first_stored: |_| None,
+        takes: |start| matches!(start, Start::Drive { .. }),
+        // A slow drive of a second, to be set as the show needs.
+        new_cue: |_| Some(Start::Drive { speed_m_s: 0.2, turn_deg_s: 0.0, for_ms: 1000 }),
         holds: |_, start| {
             matches!(*start, Start::Drive { speed_m_s, turn_deg_s, .. } if speed_m_s.is_finite() && turn_deg_s.is_finite())
         },
         runs: None,
         poses: None,
         drives: true,
+        cues: &[],
     }
 }
 

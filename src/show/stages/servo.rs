@@ -29,6 +29,8 @@ inventory::submit! {
         family: crate::project::Family::Servo,
         connect,
         first_stored: |project| project.servo.macros.iter().map(|m| m.id).min().map(Start::Macro),
+        takes: |start| matches!(start, Start::Macro(_)),
+        new_cue: |project| project.servo.macros.iter().map(|m| m.id).min().map(Start::Macro),
         holds: |project, start| matches!(*start, Start::Macro(id) if project.servo.macro_by_id(id).is_some()),
         runs: Some(crate::show::family::Runs { find: macro_named }),
         poses: Some(crate::show::family::Poses {
@@ -36,6 +38,7 @@ inventory::submit! {
             alias: |project, name| project.servo.servos.iter().find(|servo| servo.caption == name).map(|s| Axis::Servo(s.id)),
         }),
         drives: false,
+        cues: &[],
     }
 }
 

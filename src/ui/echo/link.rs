@@ -31,6 +31,16 @@ impl EchoHandle {
         // A closed link is reported by `pump`.
         let _ = self.link.commands().send(EchoCommand::Move(deg));
     }
+
+    /// Stops the servo where it is.
+    pub fn halt(&self) {
+        let _ = self.link.commands().send(EchoCommand::Stop);
+    }
+
+    /// What the link said: each echo (the servo's angle), or its end.
+    pub fn events(&self) -> &crossbeam_channel::Receiver<LinkEvent<i16>> {
+        self.link.events()
+    }
 }
 
 impl FamilyLink for EchoHandle {

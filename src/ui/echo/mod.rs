@@ -6,6 +6,7 @@
 
 mod board;
 mod link;
+mod stage;
 
 use std::time::Instant;
 

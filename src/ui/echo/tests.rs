@@ -150,3 +150,120 @@ fn the_echo_keeps_its_own_project_section_written_read_and_checked() {
     harness.state_mut().apply(Action::Undo);
     assert_eq!(harness.state().document.project.sections.get(Family::Echo), None);
 }
+
+/// What `events` says next that `wanted` picks, within 10 s.
+fn next_board_event<E: std::fmt::Debug>(
+    events: &crossbeam_channel::Receiver<LinkEvent<E>>,
+    what: &str,
+    wanted: impl Fn(&E) -> bool,
+) -> E {
+    let deadline = Instant::now() + Duration::from_secs(10);
+    loop {
+        let left = deadline.saturating_duration_since(Instant::now());
+        match events.recv_timeout(left) {
+            Ok(LinkEvent::Driver(event)) if wanted(&event) => return event,
+            Ok(_) => {}
+            Err(_) => panic!("the board never saw {what}"),
+        }
+    }
+}
+
+/// An HTTP request over a raw socket to the remote control server; its status and body.
+fn http(at: std::net::SocketAddr, method: &str, path: &str, body: &str) -> (u16, serde_json::Value) {
+    use std::io::{Read, Write};
+    let mut stream = std::net::TcpStream::connect(at).unwrap();
+    stream.set_read_timeout(Some(Duration::from_secs(10))).unwrap();
+    let request = format!(
+        "{method} {path} HTTP/1.1\r\nHost: test\r\nContent-Type: application/json\r\nContent-Length: {}\r\nConnection: close\r\n\r\n{body}",
+        body.len()
+    );
+    stream.write_all(request.as_bytes()).unwrap();
+    let mut answer = String::new();
+    stream.read_to_string(&mut answer).unwrap();
+    let code = answer.split(' ').nth(1).and_then(|code| code.parse().ok()).unwrap_or(0);
+    let json = answer.split("\r\n\r\n").nth(1).and_then(|body| serde_json::from_str(body).ok());
+    (code, json.unwrap_or_default())
+}
+
+/// The echo family takes part in shows and remote control through the seam
+/// alone (its show stage, its kind of cue and its axis registered in its own
+/// folder, `stage.rs`): a show file holding its cue reads and writes, the show
+/// plays it beside a servo board's macro, and the server `servo-studio serve`
+/// starts poses it and stops it, asked over a raw socket.
+#[test]
+fn the_echo_board_plays_in_a_show_beside_a_servo_board_and_is_posed_and_stopped_through_serve() {
+    use std::sync::Arc;
+
+    use crate::show::boards::{Boards, Heard};
+    use crate::show::family::FamilyCue;
+    use crate::show::{Cue, Show, Start};
+
+    let fixture = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/project-v2.json");
+    let servo_project = crate::project::load(Path::new(fixture)).unwrap();
+    let macro_id = servo_project.servo.macros.iter().map(|m| m.id).min().expect("the fixture holds a macro");
+    let image = crate::device::servo::ServoImage::from_project(&servo_project.servo).unwrap();
+    let sim_config = crate::sim::SimConfig::default();
+    let skull =
+        crate::sim::spawn_tcp(crate::sim::ServoSim::new(sim_config, image), crate::sim::LOOPBACK_ANY, no_waker())
+            .unwrap();
+    let echo_board = crate::sim::spawn_tcp(board::EchoBoard::default(), crate::sim::LOOPBACK_ANY, no_waker()).unwrap();
+
+    let mut show = Show::of_one("skull", servo_project);
+    show.add_device("echo", Project::empty(Family::Echo));
+    show.devices[0].port = Some(skull.port_name.clone());
+    show.devices[1].port = Some(echo_board.port_name.clone());
+    let moved = Start::Family(FamilyCue::named("move", 30.0).unwrap());
+    show.cues.push(Cue { device: "skull".into(), at_ms: 0, start: Start::Macro(macro_id) });
+    show.cues.push(Cue { device: "echo".into(), at_ms: 100, start: moved });
+    assert_eq!(show.problems().len(), 0, "{:?}", show.problems());
+    // Its cue in the show file: under its own kind's key, read back as written.
+    let text = show.to_json();
+    assert!(text.contains("\"move\": 30.0"), "{text}");
+    assert_eq!(Show::from_text(&text, "show.json").unwrap().cues, show.cues);
+
+    let boards = Arc::new(Boards::connect(&show, no_waker()).unwrap());
+    for _ in 0..2 {
+        match boards.hear_within(Duration::from_secs(10)) {
+            Some(Heard::Linked(_, Ok(_))) => {}
+            other => panic!("each device answers: {other:?}"),
+        }
+    }
+    boards.play(&show, None);
+    let played = loop {
+        match boards.hear_within(Duration::from_secs(10)) {
+            Some(Heard::Played(played)) => break played,
+            Some(_) => {}
+            None => panic!("the show never ended"),
+        }
+    };
+    let ran = played.expect("the show played");
+    assert_eq!(ran.sent.len(), 2, "both devices started: {:?}", ran.sent);
+    next_board_event(
+        skull.events(),
+        "its macro",
+        |event| matches!(event, crate::sim::SimEvent::MacroSteps { macro_id: id, .. } if *id == macro_id),
+    );
+    next_board_event(echo_board.events(), "its cue", |event| *event == BoardEvent::Moved(30));
+
+    // Posed and stopped through the remote control server, as `serve` starts it.
+    let guard = Arc::new(crate::remote::guard::Guard::new("127.0.0.1:0".parse().unwrap(), None).unwrap());
+    let remote = Arc::new(crate::remote::Remote::new(show.clone(), Arc::downgrade(&boards), false));
+    let servers = crate::remote::Servers::start("127.0.0.1:0".parse().unwrap(), None, &guard, remote).unwrap();
+    let at = servers.http.addr();
+    let (code, said) = http(at, "GET", "/devices/echo", "");
+    assert_eq!((code, said["axes"].clone()), (200, serde_json::json!(["servo"])), "{said}");
+    let (code, said) = http(at, "POST", "/devices/echo/pose", r#"{"axis": "servo", "value": 45}"#);
+    assert_eq!((code, said["value"].as_f64()), (200, Some(45.0)), "{said}");
+    next_board_event(echo_board.events(), "the remote's pose", |event| *event == BoardEvent::Moved(45));
+    let (code, said) = http(at, "POST", "/devices/echo/drive", r#"{"speed_m_s": 0.1}"#);
+    assert_eq!(code, 422, "{said}");
+    assert_eq!(said["error"], "echo: an Echo board cannot drive");
+    let (code, said) = http(at, "POST", "/stop", "");
+    assert_eq!(code, 200, "{said}");
+    next_board_event(echo_board.events(), "STOP", |event| *event == BoardEvent::Stopped);
+    next_board_event(
+        skull.events(),
+        "STOP",
+        |event| matches!(event, crate::sim::SimEvent::Handled(crate::protocol::servo::Message::SetServoParameterRequest(switches)) if !switches.is_start),
+    );
+}

@@ -4,8 +4,7 @@
 //! show checked as it is edited.
 
 use super::ShowWords;
-use crate::project::Family;
-use crate::show::{Cue, Show, Start};
+use crate::show::{Cue, Show, Start, family};
 
 /// The cues' table; `editable` while no show plays.
 pub(super) fn cues_ui(ui: &mut egui::Ui, show: &mut Show, editable: bool, words: &ShowWords) {
@@ -84,15 +83,10 @@ fn cue_row(
     ui.add_enabled(editable, egui::Button::new(words.remove)).clicked()
 }
 
-/// What a new cue of a device starts: its lowest macro or motion, or a slow drive of a second.
+/// What a new cue of a device starts, as its family says: its lowest macro
+/// or motion, a slow drive of a second…; none for a family that plays in no show.
 fn first_start(device: &crate::show::Device) -> Option<Start> {
-    device.first_stored().or_else(|| {
-        (device.project.family == Family::Rflex).then_some(Start::Drive {
-            speed_m_s: 0.2,
-            turn_deg_s: 0.0,
-            for_ms: 1000,
-        })
-    })
+    family::of(device.project.family).ok().and_then(|entry| (entry.new_cue)(&device.project))
 }
 
 /// What a cue starts, chosen among what its device holds.
@@ -105,11 +99,7 @@ fn start_ui(
     let Some(device) = device else { return };
     let family = device.project.family;
     // A cue moved to a device of another family starts what that one holds first.
-    let fits = matches!(
-        (*start, family),
-        (Start::Macro(_), f) if f == Family::Servo
-    ) || matches!((*start, family), (Start::Slot(_), f) if f == Family::Plen2)
-        || matches!((*start, family), (Start::Drive { .. }, f) if f == Family::Rflex);
+    let fits = family::of(family).is_ok_and(|entry| (entry.takes)(start));
     if !fits && let Some(first) = first_start(device) {
         *start = first;
     }
@@ -166,6 +156,13 @@ fn start_ui(
                     let ms = (seconds * 1000.0).round().max(0.0) as u64;
                     *for_ms = ms;
                 }
+            });
+        }
+        // A family's own kind of cue: the number it takes, named by its kind.
+        Start::Family(cue) => {
+            ui.horizontal(|ui| {
+                ui.label(cue.kind);
+                ui.add(egui::DragValue::new(&mut cue.value).speed(1.0)).labelled_by(named);
             });
         }
     }

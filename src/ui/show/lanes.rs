@@ -191,5 +191,7 @@ pub(super) fn cue_caption(start: &Start, device: Option<&crate::show::Device>, w
         Start::Drive { speed_m_s, turn_deg_s, .. } => {
             format!("{} {speed_m_s:.2} m/s {turn_deg_s:.0}°/s", words.drive_word)
         }
+        // A family's own kind of cue, by the name it registered.
+        Start::Family(cue) => format!("{} {}", cue.kind, cue.value),
     }
 }
