@@ -205,6 +205,24 @@ mod tests {
         assert_eq!(poses(BARE).unwrap_err().lacks, Capability::Show);
     }
 
+    /// A cue's kind is read from its key: one no family registered is
+    /// refused naming the key, never read as another kind.
+    #[test]
+    fn a_cue_of_a_kind_no_family_registered_is_refused_by_its_key() {
+        use crate::project::Project;
+        use crate::show::{Cue, Show};
+        let mut show = Show::of_one("skull", Project::empty(Family::Servo));
+        show.cues.push(Cue { device: "skull".into(), at_ms: 0, start: Start::Macro(1) });
+        let text = show.to_json();
+        assert!(text.contains("\"macro\": 1"), "{text}");
+        let error = Show::from_text(&text.replace("\"macro\": 1", "\"jump\": 1"), "show.json").unwrap_err();
+        assert!(error.to_string().contains("no kind of cue is called \"jump\""), "{error}");
+        // The echo board's kind, read as its own, is not a servo board's to start.
+        let moved = Show::from_text(&text.replace("\"macro\": 1", "\"move\": 12.5"), "show.json").unwrap_err();
+        let crate::show::ShowError::NotHeld { start, .. } = moved else { panic!("{moved:?}") };
+        assert_eq!(start, Start::Family(FamilyCue { kind: "move", value: 12.5 }));
+    }
+
     /// A show holding a device of a family that plays in no show says so
     /// by name, and none of its cues is taken for another family's.
     #[test]
