@@ -7,10 +7,18 @@
 
 use std::collections::BTreeMap;
 
-use super::passes::Axis;
 use super::{Place, Show, Start};
 use crate::device::plen2::playback::DEVICE_IDS;
 use crate::project::{ServoProject, Trajectories, angle_at, angle_at_sorted};
+
+/// What a pass moves.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Axis {
+    /// A servo board's servo, by id.
+    Servo(u8),
+    /// A PLEN2 joint, by device id (0..18).
+    Joint(u8),
+}
 
 /// A device's state at a moment of the show.
 #[derive(Clone, Debug, PartialEq)]

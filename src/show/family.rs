@@ -6,7 +6,7 @@
 //! without a capability is refused by name ("a PLEN2 cannot drive"), never
 //! handled as another. Nothing here lists the families.
 
-use super::passes::Axis;
+use super::at::Axis;
 use super::stages::Linked;
 use super::{Device, Run, Start};
 use crate::link::{LineSettings, PortName};
@@ -103,6 +103,8 @@ pub enum Capability {
     Pose,
     /// Driving.
     Drive,
+    /// Recording passes.
+    Record,
 }
 
 /// A family refused, by name, what it cannot do.
@@ -122,6 +124,7 @@ impl Capability {
             Self::Run => "run a stored macro or motion",
             Self::Pose => "pose a servo or joint",
             Self::Drive => "drive",
+            Self::Record => "record a pass",
         }
     }
 }

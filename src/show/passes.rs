@@ -4,24 +4,19 @@
 //! joined into one macro (servo board: its actions, each servo on its own
 //! interval) or one motion (PLEN2) fitted within a tolerance, started by one
 //! cue at the first pass's start; joining again replaces what the passes
-//! made before, so each pass stays its own step to undo.
+//! made before, so each pass stays its own step to undo. What a pass may
+//! record on a device, and how its passes join, are its family's to say
+//! (`show::family::Records`, beside its show stage).
 
 use std::collections::BTreeMap;
 
-use super::{Cue, Show, Start};
-use crate::authoring::fit::{self, Budget, FitError, Plen2Board, ServoBoard};
-use crate::authoring::fitted::{self, PLEN2_UPDATE_MS, SERVO_UPDATE_MS};
-use crate::project::plen2::{JOINTS, MAX_FRAMES, Motion};
-use crate::project::{Family, next_free_id};
+use std::ops::RangeInclusive;
 
-/// What a pass moves.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
-pub enum Axis {
-    /// A servo board's servo, by id.
-    Servo(u8),
-    /// A PLEN2 joint, by device id (0..18).
-    Joint(u8),
-}
+use super::family::{Capability, Lacks};
+use super::{Cue, Show, Start};
+use crate::project::{Family, Project};
+
+pub use super::at::Axis;
 
 /// One recorded pass: a device's axis, in degrees, at times of the show (ms).
 #[derive(Clone, Debug, PartialEq)]
@@ -35,20 +30,23 @@ pub struct Pass {
 }
 
 /// What a device's passes made in its project, replaced when they join again.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub enum Made {
-    /// A servo board's actions and the macro running them.
-    Servo {
-        /// The actions' ids.
-        actions: Vec<i32>,
-        /// The macro's id.
-        macro_id: i32,
-    },
-    /// A PLEN2's motion, by slot.
-    Plen2 {
-        /// Its slot.
-        slot: u8,
-    },
+#[derive(Clone, Debug, PartialEq)]
+pub struct Made {
+    /// What its cue starts: the macro or the motion the passes became.
+    pub start: Start,
+    /// What else was added to run it (a servo board's actions), by id.
+    pub parts: Vec<i32>,
+    /// Whether its moves are steps (a servo board) or frames (a PLEN2).
+    pub moves_are: Moves,
+}
+
+/// What a device's moves are called.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Moves {
+    /// Steps, each servo on its own interval (a servo board's actions).
+    Steps,
+    /// Frames of every joint (a PLEN2's motion).
+    Frames,
 }
 
 /// How a join went.
@@ -67,9 +65,17 @@ pub struct Joined {
 /// Why passes could not be joined.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum JoinError {
-    /// The show has no such device, or it is a base.
-    #[error("{0} is not a servo board or a PLEN2 of this show: pick one of those to record a pass of")]
+    /// The show has no such device.
+    #[error("{0} is not a device of this show: pick one of its servo boards or PLEN2s to record a pass of")]
     NoDevice(String),
+    /// The device's family records no passes (a base), named.
+    #[error("{device}: {lacks}")]
+    Cannot {
+        /// The device.
+        device: String,
+        /// Its family, and what it lacks.
+        lacks: Lacks,
+    },
     /// Fewer than two samples.
     #[error("the pass is too short to fit: record for longer")]
     TooShort,
@@ -79,6 +85,42 @@ pub enum JoinError {
     /// No slot left on the PLEN2.
     #[error("{0} has no free motion slot left: remove a motion it does not need from its project, then record again")]
     NoSlot(String),
+}
+
+/// What record passes make on a device of a family, registered by the
+/// family beside its show stage (`inventory::submit!`).
+#[derive(Debug)]
+pub struct FamilyPasses {
+    /// The family.
+    pub family: Family,
+    /// The axes a pass may record, captioned as the show window lists them,
+    /// each with the range it moves in (degrees).
+    pub axes: fn(&Project) -> Vec<Recordable>,
+    /// Joins the passes (the latest of each axis) over `span` (show ms) into
+    /// the project of the device called `device`: what they made, and how.
+    pub join: Join,
+    /// Takes out of the project what passes made before.
+    pub forget: fn(&mut Project, &Made),
+}
+
+/// An axis a pass may record: the axis, its caption, the range it moves in (degrees).
+pub type Recordable = (Axis, String, RangeInclusive<f64>);
+
+/// Joins the passes into a device's project: the project, the latest pass
+/// of each axis, their span (show ms), the device's name.
+pub type Join = fn(&mut Project, &Latest<'_>, (u64, u64), &str) -> Result<Joined, JoinError>;
+
+/// The latest pass of each axis of a device.
+pub type Latest<'a> = BTreeMap<Axis, &'a Pass>;
+
+inventory::collect!(FamilyPasses);
+
+/// What record passes make on `family`'s devices, or that it records none (named).
+pub fn of(family: Family) -> Result<&'static FamilyPasses, Lacks> {
+    inventory::iter::<FamilyPasses>
+        .into_iter()
+        .find(|entry| entry.family == family)
+        .ok_or(Lacks { family, lacks: Capability::Record })
 }
 
 /// The tolerance passes are fitted within, degrees.
@@ -97,38 +139,23 @@ pub fn join(show: &mut Show, passes: &[Pass], device: &str, before: Option<&Made
         axes.insert(pass.axis, pass);
     }
     let family = show.devices[index].project.family;
+    let records = of(family).map_err(|lacks| JoinError::Cannot { device: device.into(), lacks })?;
     forget(show, index, before);
-    let joined = if family == Family::Servo {
-        join_servo(show, index, &axes, (from, to))?
-    } else if family == Family::Plen2 {
-        join_plen2(show, index, &axes, (from, to))?
-    } else {
-        return Err(JoinError::NoDevice(device.into()));
-    };
-    let start = match joined.made {
-        Made::Servo { macro_id, .. } => Start::Macro(macro_id),
-        Made::Plen2 { slot } => Start::Slot(slot),
-    };
-    show.cues.push(Cue { device: device.into(), at_ms: from, start });
+    let joined = (records.join)(&mut show.devices[index].project, &axes, (from, to), device)?;
+    show.cues.push(Cue { device: device.into(), at_ms: from, start: joined.made.start });
     Ok(joined)
 }
 
-/// Takes what passes made before out of the device's project, and its cues.
+/// Takes what passes made before out of the device's project (as its family
+/// made it), and its cues.
 fn forget(show: &mut Show, index: usize, before: Option<&Made>) {
     let Some(made) = before else { return };
     let device = &mut show.devices[index];
-    let name = device.name.clone();
-    match made {
-        Made::Servo { actions, macro_id } => {
-            device.project.servo.actions.retain(|action| !actions.contains(&action.id));
-            device.project.servo.macros.retain(|m| m.id != *macro_id);
-            show.cues.retain(|cue| !(cue.device == name && cue.start == Start::Macro(*macro_id)));
-        }
-        Made::Plen2 { slot } => {
-            device.project.plen2.motions.retain(|m| m.slot != *slot);
-            show.cues.retain(|cue| !(cue.device == name && cue.start == Start::Slot(*slot)));
-        }
+    if let Ok(records) = of(device.project.family) {
+        (records.forget)(&mut device.project, made);
     }
+    let name = device.name.clone();
+    show.cues.retain(|cue| !(cue.device == name && cue.start == made.start));
 }
 
 /// Each axis's value at show time `t_ms`: its pass's samples joined by
@@ -143,8 +170,9 @@ fn value_at(pass: &Pass, t_ms: f64) -> f64 {
     }
 }
 
-/// Rows of every axis at each board update from `from` to `to` (the first: where they start).
-fn rows(axes: &BTreeMap<Axis, &Pass>, (from, to): (u64, u64), update_ms: f64, unit: f64) -> Vec<Vec<f64>> {
+/// Rows of every axis at each board update from `from` to `to` (the first:
+/// where they start), each value times `unit` — what a family's join fits.
+pub fn rows(axes: &BTreeMap<Axis, &Pass>, (from, to): (u64, u64), update_ms: f64, unit: f64) -> Vec<Vec<f64>> {
     // Whole ms of a show: exact in f64; update counts of an hour at most.
     #[allow(clippy::cast_precision_loss, clippy::cast_possible_truncation, clippy::cast_sign_loss)]
     let updates = (((to - from) as f64) / update_ms).ceil().max(1.0) as usize;
@@ -157,93 +185,11 @@ fn rows(axes: &BTreeMap<Axis, &Pass>, (from, to): (u64, u64), update_ms: f64, un
         .collect()
 }
 
-fn join_servo(
-    show: &mut Show,
-    index: usize,
-    axes: &BTreeMap<Axis, &Pass>,
-    span: (u64, u64),
-) -> Result<Joined, JoinError> {
-    let ids: Vec<u8> =
-        axes.keys().filter_map(|axis| if let Axis::Servo(id) = axis { Some(*id) } else { None }).collect();
-    let rows = rows(axes, span, SERVO_UPDATE_MS, 1.0);
-    let rest = rows.get(1..).filter(|rest| !rest.is_empty()).ok_or(JoinError::TooShort)?;
-    let project = &mut show.devices[index].project.servo;
-    // From where the servos are when the cue starts it: home (a board's start of a show).
-    let home = |id: &u8| project.servos.iter().find(|s| s.id == *id).map_or(0, |s| i32::from(s.home_deg));
-    let start: Vec<i32> = ids.iter().map(home).collect();
-    let fitted = fit::fit(&ServoBoard, &start, rest, TOLERANCE_DEG);
-    let macro_id = next_free_id(project.macros.iter().map(|m| m.id));
-    let mut actions = fitted::servo_actions(&fitted, &ids, 0, "pass");
-    for action in &mut actions {
-        action.id = next_free_id(project.actions.iter().map(|known| known.id));
-        project.actions.push(action.clone());
-    }
-    project.macros.push(fitted::macro_running(macro_id, "Recorded passes", &actions));
-    let made = Made::Servo { actions: actions.iter().map(|a| a.id).collect(), macro_id };
-    Ok(Joined { made, moves: actions.len(), max_error_deg: fitted.max_error, tolerance_deg: TOLERANCE_DEG })
-}
-
-fn join_plen2(
-    show: &mut Show,
-    index: usize,
-    axes: &BTreeMap<Axis, &Pass>,
-    span: (u64, u64),
-) -> Result<Joined, JoinError> {
-    let device = &mut show.devices[index];
-    let name = device.name.clone();
-    // All 18 joints, the recorded ones from their passes, the others at home.
-    let recorded = rows(axes, span, PLEN2_UPDATE_MS, 10.0);
-    let joints: Vec<usize> =
-        axes.keys().filter_map(|axis| if let Axis::Joint(id) = axis { Some(usize::from(*id)) } else { None }).collect();
-    let rows: Vec<Vec<f64>> = recorded
-        .iter()
-        .map(|row| {
-            let mut all = vec![0.0; JOINTS];
-            for (&joint, &value) in joints.iter().zip(row) {
-                if let Some(slot) = all.get_mut(joint) {
-                    *slot = value;
-                }
-            }
-            all
-        })
-        .collect();
-    let rest = rows.get(1..).filter(|rest| !rest.is_empty()).ok_or(JoinError::TooShort)?;
-    // From home, where the robot stands before its cue.
-    let start = vec![0; JOINTS];
-    let budget = Budget { tolerance: TOLERANCE_DEG * 10.0, allowed: MAX_FRAMES, resolution: 1.0 };
-    let (fitted, tolerance) = match fit::fit_within(&Plen2Board, &start, rest, budget) {
-        Ok(fitted) => (fitted, budget.tolerance),
-        Err(FitError::Tolerance { .. }) => {
-            let (wider, fitted) = fit::widest_needed(&Plen2Board, &start, rest, budget);
-            (fitted, wider)
-        }
-        Err(FitError::TooLong { .. }) => return Err(JoinError::TooLong(name)),
-    };
-    let used: Vec<u8> = device.project.plen2.motions.iter().map(|m| m.slot).collect();
-    let slot = (0..90u8).rev().find(|slot| !used.contains(slot)).ok_or(JoinError::NoSlot(name))?;
-    let frames = fitted::plen2_frames(&fitted);
-    let moves = frames.len();
-    device.project.plen2.motions.push(Motion {
-        slot,
-        name: "passes".into(),
-        frames,
-        loop_range: None,
-        jump_slot: None,
-    });
-    device.project.plen2.motions.sort_by_key(|m| m.slot);
-    Ok(Joined {
-        made: Made::Plen2 { slot },
-        moves,
-        max_error_deg: fitted.max_error / 10.0,
-        tolerance_deg: tolerance / 10.0,
-    })
-}
-
 #[cfg(test)]
 mod tests {
     #![allow(clippy::unwrap_used)]
     use super::*;
-    use crate::project::{Project, Run, Servo, ServoProject};
+    use crate::project::{Family, Project, Run, Servo, ServoProject};
 
     fn servo_show() -> Show {
         let servos = vec![Servo::new(1, "mouth"), Servo::new(2, "head")];
@@ -267,8 +213,9 @@ mod tests {
         let joined = join(&mut show, &passes, "skull", Some(&first.made)).unwrap();
         let project = &show.devices[0].project.servo;
         assert_eq!(project.macros.len(), 1, "the second join replaced the first");
-        let Made::Servo { macro_id, ref actions } = joined.made else { panic!() };
-        assert_eq!(project.actions.len(), actions.len());
+        let Start::Macro(macro_id) = joined.made.start else { panic!("{:?}", joined.made) };
+        assert_eq!(joined.made.moves_are, Moves::Steps);
+        assert_eq!(project.actions.len(), joined.made.parts.len(), "the first join's actions were taken out");
         assert_eq!(show.cues, vec![Cue { device: "skull".into(), at_ms: 500, start: Start::Macro(macro_id) }]);
         let (trajectories, _) = crate::project::trace(project, Run::Macro { macro_id }, 10_000.0).unwrap();
         for t in (510..2600).step_by(10) {
@@ -295,8 +242,7 @@ mod tests {
         let mut show = Show::of_one("plen", Project::empty(Family::Plen2));
         let arm = pass("plen", Axis::Joint(1), 0, 3000, |t| 45.0 * (std::f64::consts::TAU * t / 1.5).sin());
         let joined = join(&mut show, &[arm], "plen", None).unwrap();
-        let Made::Plen2 { slot } = joined.made else { panic!() };
-        assert_eq!(slot, 89);
+        assert_eq!(joined.made, Made { start: Start::Slot(89), parts: Vec::new(), moves_are: Moves::Frames });
         let motion = &show.devices[0].project.plen2.motions[0];
         assert!((1..=20).contains(&motion.frames.len()), "{}", motion.frames.len());
         assert!(joined.max_error_deg <= joined.tolerance_deg + 1e-9);
@@ -304,5 +250,17 @@ mod tests {
         assert!(show.check().is_ok());
         assert_eq!(join(&mut show, &[], "plen", None), Err(JoinError::TooShort));
         assert_eq!(join(&mut show, &[], "nobody", None), Err(JoinError::NoDevice("nobody".into())));
+    }
+
+    /// A base records no passes: refused naming its family, and nothing is
+    /// added to its project or cued.
+    #[test]
+    fn a_device_whose_family_records_no_passes_is_refused_by_name() {
+        let mut show = Show::of_one("base", Project::empty(Family::Rflex));
+        let before = show.clone();
+        let drive = pass("base", Axis::Servo(1), 0, 1000, |t| t);
+        let refused = join(&mut show, &[drive], "base", None).unwrap_err();
+        assert_eq!(refused.to_string(), "base: an rFLEX base cannot record a pass");
+        assert_eq!(show, before);
     }
 }

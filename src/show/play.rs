@@ -59,7 +59,7 @@ pub trait Stage: Send {
     }
     /// Moves one axis to `value_deg` (a servo's angle; a joint's from home),
     /// within its limits and no faster than `speed` — as a slider does; the value it took.
-    fn pose(&mut self, axis: super::passes::Axis, value_deg: f64, speed: LiveSpeed) -> Result<f64, String> {
+    fn pose(&mut self, axis: super::at::Axis, value_deg: f64, speed: LiveSpeed) -> Result<f64, String> {
         let _ = (axis, value_deg, speed);
         Err("it has no servo or joint to pose: drive it".into())
     }

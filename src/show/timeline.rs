@@ -11,8 +11,8 @@
 use std::collections::HashMap;
 use std::hash::{Hash, Hasher};
 
+use super::at::Axis;
 use super::at::{Now, Posed, arc, driving_at, hold, trace_pose};
-use super::passes::Axis;
 use super::{Place, Show, Start};
 use crate::device::plen2::playback::{self, DEVICE_IDS, Playback, StoredMotions};
 use crate::project::{Family, Project, Run, Trajectories, times_sorted};

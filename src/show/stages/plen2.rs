@@ -8,6 +8,8 @@ use std::time::{Duration, Instant};
 use crossbeam_channel::Receiver;
 
 use super::{LinkDelay, Linked};
+use crate::authoring::fit::{self as fit, Budget, FitError, Plen2Board};
+use crate::authoring::fitted::{self, PLEN2_UPDATE_MS};
 use crate::device::plen2::playback::{CYCLE_US, DEVICE_IDS, Settings, joint_settings};
 use crate::device::plen2::{
     Command as Plen2Command, Plen2Handle, Plen2Notice, Plen2Options, Plen2Requester, ReplyError, start_delay,
@@ -16,10 +18,11 @@ use crate::device::speed::{LiveSpeed, Slew};
 use crate::link::{self, LineSettings, PortName, no_waker};
 use crate::project::Project;
 use crate::project::plen2::Joint;
+use crate::project::plen2::{JOINTS, MAX_FRAMES, Motion};
 use crate::show::alive::{Alive, Loss};
 use crate::show::at::{Now, Posed};
 use crate::show::boards::Run;
-use crate::show::passes::Axis;
+use crate::show::passes::{self, Axis, JoinError, Joined, Made, Moves, TOLERANCE_DEG};
 use crate::show::play::Stage;
 use crate::show::{Device, Start};
 
@@ -40,6 +43,68 @@ inventory::submit! {
         drives: false,
         cues: &[],
     }
+}
+
+/// Every pass of a PLEN2 joined into one motion of at most 20 frames in a
+/// free slot, fitted within the tolerance (widened when the frames need it).
+fn join(project: &mut Project, axes: &passes::Latest<'_>, span: (u64, u64), device: &str) -> Result<Joined, JoinError> {
+    let name = device.to_string();
+    // All 18 joints, the recorded ones from their passes, the others at home.
+    let recorded = passes::rows(axes, span, PLEN2_UPDATE_MS, 10.0);
+    let joints: Vec<usize> =
+        axes.keys().filter_map(|axis| if let Axis::Joint(id) = axis { Some(usize::from(*id)) } else { None }).collect();
+    let rows: Vec<Vec<f64>> = recorded
+        .iter()
+        .map(|row| {
+            let mut all = vec![0.0; JOINTS];
+            for (&joint, &value) in joints.iter().zip(row) {
+                if let Some(slot) = all.get_mut(joint) {
+                    *slot = value;
+                }
+            }
+            all
+        })
+        .collect();
+    let rest = rows.get(1..).filter(|rest| !rest.is_empty()).ok_or(JoinError::TooShort)?;
+    // From home, where the robot stands before its cue.
+    let start = vec![0; JOINTS];
+    let budget = Budget { tolerance: TOLERANCE_DEG * 10.0, allowed: MAX_FRAMES, resolution: 1.0 };
+    let (fitted, tolerance) = match fit::fit_within(&Plen2Board, &start, rest, budget) {
+        Ok(fitted) => (fitted, budget.tolerance),
+        Err(FitError::Tolerance { .. }) => {
+            let (wider, fitted) = fit::widest_needed(&Plen2Board, &start, rest, budget);
+            (fitted, wider)
+        }
+        Err(FitError::TooLong { .. }) => return Err(JoinError::TooLong(name)),
+    };
+    let used: Vec<u8> = project.plen2.motions.iter().map(|m| m.slot).collect();
+    let slot = (0..90u8).rev().find(|slot| !used.contains(slot)).ok_or(JoinError::NoSlot(name))?;
+    let frames = fitted::plen2_frames(&fitted);
+    let moves = frames.len();
+    project.plen2.motions.push(Motion { slot, name: "passes".into(), frames, loop_range: None, jump_slot: None });
+    project.plen2.motions.sort_by_key(|m| m.slot);
+    Ok(Joined {
+        made: Made { start: Start::Slot(slot), parts: Vec::new(), moves_are: Moves::Frames },
+        moves,
+        max_error_deg: fitted.max_error / 10.0,
+        tolerance_deg: tolerance / 10.0,
+    })
+}
+
+/// What a PLEN2's passes made, taken out: their motion.
+fn forget(project: &mut Project, made: &Made) {
+    if let Start::Slot(slot) = made.start {
+        project.plen2.motions.retain(|m| m.slot != slot);
+    }
+}
+
+/// A PLEN2's joints, by name, each within ±90° of home.
+fn recorded_axes(_: &Project) -> Vec<passes::Recordable> {
+    Joint::ALL.iter().map(|joint| (Axis::Joint(joint.device_id()), joint.name().to_string(), -90.0..=90.0)).collect()
+}
+
+inventory::submit! {
+    passes::FamilyPasses { family: crate::project::Family::Plen2, axes: recorded_axes, join, forget }
 }
 
 /// The motion `what` names (its slot or its name), or the play list (its name).

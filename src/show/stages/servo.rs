@@ -10,10 +10,13 @@ use crossbeam_channel::Receiver;
 use super::LinkDelay;
 use super::Linked;
 use crate::audio::together::link_delay;
+use crate::authoring::fit::{self as fit, ServoBoard as FitServo};
+use crate::authoring::fitted::{self, SERVO_UPDATE_MS};
 use crate::device;
 use crate::device::servo::{DEFAULT_BAUD, Known, LivePose, RequestError, Requester, ServoBoard, SessionConfig};
 use crate::device::speed::LiveSpeed;
 use crate::link::{LineSettings, LinkEvent, PortName, no_waker};
+use crate::project::next_free_id;
 use crate::project::{Project, Servo};
 use crate::protocol::servo::{ALL_SERVOS, Message, ServoMove, ServoSwitches};
 use crate::show::Device;
@@ -21,7 +24,7 @@ use crate::show::Start;
 use crate::show::alive::{Alive, Loss};
 use crate::show::at::{Now, Posed};
 use crate::show::boards::Run;
-use crate::show::passes::Axis;
+use crate::show::passes::{self, Axis, JoinError, Joined, Made, Moves, TOLERANCE_DEG};
 use crate::show::play::Stage;
 
 inventory::submit! {
@@ -40,6 +43,55 @@ inventory::submit! {
         drives: false,
         cues: &[],
     }
+}
+
+/// Every pass of a servo board joined into one macro of actions, each
+/// servo on its own interval, fitted within the tolerance; from home, where
+/// the servos are when its cue starts it (a board's start of a show).
+fn join(
+    project: &mut Project,
+    axes: &passes::Latest<'_>,
+    span: (u64, u64),
+    _device: &str,
+) -> Result<Joined, JoinError> {
+    let ids: Vec<u8> =
+        axes.keys().filter_map(|axis| if let Axis::Servo(id) = axis { Some(*id) } else { None }).collect();
+    let rows = passes::rows(axes, span, SERVO_UPDATE_MS, 1.0);
+    let rest = rows.get(1..).filter(|rest| !rest.is_empty()).ok_or(JoinError::TooShort)?;
+    let project = &mut project.servo;
+    let home = |id: &u8| project.servos.iter().find(|s| s.id == *id).map_or(0, |s| i32::from(s.home_deg));
+    let start: Vec<i32> = ids.iter().map(home).collect();
+    let fitted = fit::fit(&FitServo, &start, rest, TOLERANCE_DEG);
+    let macro_id = next_free_id(project.macros.iter().map(|m| m.id));
+    let mut actions = fitted::servo_actions(&fitted, &ids, 0, "pass");
+    for action in &mut actions {
+        action.id = next_free_id(project.actions.iter().map(|known| known.id));
+        project.actions.push(action.clone());
+    }
+    project.macros.push(fitted::macro_running(macro_id, "Recorded passes", &actions));
+    let parts = actions.iter().map(|a| a.id).collect();
+    let made = Made { start: Start::Macro(macro_id), parts, moves_are: Moves::Steps };
+    Ok(Joined { made, moves: actions.len(), max_error_deg: fitted.max_error, tolerance_deg: TOLERANCE_DEG })
+}
+
+/// What a servo board's passes made, taken out: their actions and macro.
+fn forget(project: &mut Project, made: &Made) {
+    project.servo.actions.retain(|action| !made.parts.contains(&action.id));
+    if let Start::Macro(macro_id) = made.start {
+        project.servo.macros.retain(|m| m.id != macro_id);
+    }
+}
+
+/// A servo board's servos, captioned by id and caption, each within its limits.
+fn recorded_axes(project: &Project) -> Vec<passes::Recordable> {
+    let servos = project.servo.servos.iter();
+    servos
+        .map(|s| (Axis::Servo(s.id), format!("{} {}", s.id, s.caption), f64::from(s.min_deg)..=f64::from(s.max_deg)))
+        .collect()
+}
+
+inventory::submit! {
+    passes::FamilyPasses { family: crate::project::Family::Servo, axes: recorded_axes, join, forget }
 }
 
 /// The macro `what` names (its id or its caption).

@@ -10,10 +10,8 @@ use crate::ui::i18n::{Said, Worded};
 use std::collections::BTreeMap;
 
 use super::{ShowAction, ShowWords};
-use crate::project::Family;
-use crate::project::plen2::Joint;
 use crate::show::Show;
-use crate::show::passes::{self, Axis, Made, Pass};
+use crate::show::passes::{self, Axis, Made, Moves, Pass};
 use crate::ui::Action;
 
 /// The passes recorded, the one being recorded, and the steps to undo.
@@ -122,7 +120,7 @@ impl Passes {
                     let cut = cut_short(show, &device, &joined.made, words);
                     let (language, moves) = (words.lang, joined.moves);
                     let (error, tolerance) = (joined.max_error_deg, joined.tolerance_deg);
-                    let line = if matches!(joined.made, Made::Servo { .. }) {
+                    let line = if joined.made.moves_are == Moves::Steps {
                         crate::say!(language, "show.passes_joined_steps", device, passes, moves, error, tolerance)
                     } else {
                         crate::say!(language, "show.passes_joined_frames", device, passes, moves, error, tolerance)
@@ -179,11 +177,7 @@ impl Passes {
 /// What the device's other cues do to what its passes made: a board plays
 /// one macro or motion at a time, so a later cue of it cuts the passes short.
 fn cut_short(show: &Show, device: &str, made: &Made, words: &ShowWords) -> String {
-    use crate::show::Start;
-    let mine = match *made {
-        Made::Servo { macro_id, .. } => Start::Macro(macro_id),
-        Made::Plen2 { slot } => Start::Slot(slot),
-    };
+    let mine = made.start;
     let cue = show.cues.iter().find(|c| c.device == device && c.start == mine).map(|c| c.at_ms);
     let (Some(start), Some(joined)) = (cue, show.device(device)) else { return String::new() };
     let end = start + crate::show::timeline::cue_length_ms(joined, &mine);
@@ -201,30 +195,22 @@ fn cut_short(show: &Show, device: &str, made: &Made, words: &ShowWords) -> Strin
     }
 }
 
-/// The axes a device's passes may record, with their captions.
+/// The axes a device's passes may record, captioned, as its family lists
+/// them (none for a family that records no passes).
 fn axes(show: &Show, device: &str) -> Vec<(Axis, String)> {
+    recordable(show, device).into_iter().map(|(axis, caption, _)| (axis, caption)).collect()
+}
+
+/// Each axis a device's passes may record, its caption and its range, as its family says.
+fn recordable(show: &Show, device: &str) -> Vec<passes::Recordable> {
     let Some(device) = show.device(device) else { return Vec::new() };
-    if device.project.family == Family::Servo {
-        return device
-            .project
-            .servo
-            .servos
-            .iter()
-            .map(|s| (Axis::Servo(s.id), format!("{} {}", s.id, s.caption)))
-            .collect();
-    }
-    if device.project.family == Family::Plen2 {
-        return Joint::ALL.iter().map(|joint| (Axis::Joint(joint.device_id()), joint.name().to_string())).collect();
-    }
-    Vec::new()
+    passes::of(device.project.family).map(|records| (records.axes)(&device.project)).unwrap_or_default()
 }
 
 /// The range an axis moves in, degrees.
 fn range(show: &Show, device: &str, axis: Axis) -> std::ops::RangeInclusive<f64> {
-    let servo = show.device(device).and_then(|d| {
-        if let Axis::Servo(id) = axis { d.project.servo.servos.iter().find(|s| s.id == id) } else { None }
-    });
-    servo.map_or(-90.0..=90.0, |s| f64::from(s.min_deg)..=f64::from(s.max_deg))
+    let found = recordable(show, device).into_iter().find(|(each, _, _)| *each == axis);
+    found.map_or(-90.0..=90.0, |(_, _, range)| range)
 }
 
 /// Where a gamepad axis (−1 … 1) puts an axis moving in `range`: its low end to its high end.
@@ -247,12 +233,8 @@ pub(super) fn passes_ui(
     let recording = passes.recording.is_some();
     ui.horizontal(|ui| {
         let label = ui.label(words.record_pass_of);
-        let recordable: Vec<String> = show
-            .devices
-            .iter()
-            .filter(|d| d.project.family == Family::Servo || d.project.family == Family::Plen2)
-            .map(|d| d.name.clone())
-            .collect();
+        let recordable: Vec<String> =
+            show.devices.iter().filter(|d| passes::of(d.project.family).is_ok()).map(|d| d.name.clone()).collect();
         let (mut device, mut axis) = (passes.device.clone(), passes.axis);
         ui.add_enabled_ui(editable && !recording, |ui| {
             egui::ComboBox::from_id_salt("pass-device")

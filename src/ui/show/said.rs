@@ -97,6 +97,9 @@ impl Worded for JoinError {
     fn worded(&self, language: Language) -> String {
         match self {
             Self::NoDevice(device) => say!(language, "show_said.no_pass_device", device),
+            Self::Cannot { device, lacks } => {
+                say!(language, "show_said.records_no_pass", device, family = language.family(lacks.family))
+            }
             Self::TooShort => say!(language, "show_said.pass_too_short"),
             Self::TooLong(device) => say!(language, "show_said.passes_too_long", device),
             Self::NoSlot(device) => say!(language, "show_said.no_slot", device),
