@@ -137,7 +137,11 @@ impl Worker {
                 tell(Heard::Played(played));
             }
             Order::Run(index, run, queue, reply) => {
-                let _ = reply.send(self.run(index, run, queue));
+                let ran = self.run(index, run, queue);
+                // Published before the answer: what the remote reads next says
+                // what it was just told ("queued" is in the status it asks for).
+                self.publish();
+                let _ = reply.send(ran);
             }
             Order::StopOne(index) => self.stop_one(index),
             Order::Pose(index, axis, value, reply) => {
@@ -146,7 +150,9 @@ impl Worker {
                 let _ = reply.send(posed);
             }
             Order::Drive(index, drive, taken_in, reply) => {
-                let _ = reply.send(self.drive(index, drive, taken_in));
+                let drove = self.drive(index, drive, taken_in);
+                self.publish();
+                let _ = reply.send(drove);
             }
             Order::Speed(speed) => self.speed = speed,
         }
