@@ -4,7 +4,7 @@
 //! at its speed limit), samples taken as they are, a chain played in turn.
 
 use super::map::JointMap;
-use super::source::{Body, Clip, Source, Timing};
+use super::source::{Body, Clip, Key, Link, Source, Timing};
 
 /// How deep chains of chains are followed.
 const MAX_DEPTH: usize = 8;
@@ -38,86 +38,91 @@ pub fn degrees_at(source: &Source, clip: &Clip, map: &JointMap, time_ms: f64) ->
 }
 
 fn raw_at(source: &Source, clip: &Clip, time_ms: f64, depth: usize) -> Vec<Option<f64>> {
-    let width = source.channels.len();
     match &clip.body {
-        Body::Chain(links) => {
-            let mut left = time_ms;
-            let mut last = vec![None; width];
-            for link in links {
-                let Some(inner) = source.clips.get(link.clip) else { continue };
-                if depth >= MAX_DEPTH {
-                    break;
-                }
-                let once = length(source, inner, depth + 1) / link.speed;
-                let whole = once * f64::from(link.plays.max(1));
-                if left <= whole || link.plays == 0 {
-                    let into = if once > 0.0 { left % once } else { 0.0 };
-                    return raw_at(source, inner, into * link.speed, depth + 1);
-                }
-                left -= whole;
-                last = raw_at(source, inner, once * link.speed, depth + 1);
-            }
-            last
-        }
-        Body::Samples { fps, rows } => {
-            let one = clip.duration_ms();
-            let at = if one > 0.0 { (time_ms % (one * f64::from(clip.repeat.max(1)) + 1e-9)).min(one) } else { 0.0 };
-            // Between two samples the file moves straight from one to the next,
-            // as the conversion reads it (`Recording::resample`).
-            let along = (at * clip.speed * fps / 1000.0).max(0.0);
-            // Frame indices of any real animation are far below 2^52.
-            #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-            let frame = (along.floor() as usize).min(rows.len().saturating_sub(1));
-            let next = (frame + 1).min(rows.len().saturating_sub(1));
-            #[allow(clippy::cast_precision_loss)]
-            let part = (along - frame as f64).clamp(0.0, 1.0);
-            match (rows.get(frame), rows.get(next)) {
-                (Some(row), Some(after)) => row.iter().zip(after).map(|(a, b)| Some(a + (b - a) * part)).collect(),
-                _ => vec![None; width],
-            }
-        }
-        Body::Keys(keys) => {
-            let one = clip.duration_ms();
-            let mut left = if one > 0.0 && time_ms < one * f64::from(clip.repeat.max(1)) {
-                time_ms % one
-            } else {
-                time_ms.min(one)
-            };
-            left *= clip.speed;
-            // From where the tool puts each channel at power-up, when it says.
-            let mut at: Vec<Option<f64>> = source.channels.iter().map(|channel| channel.home).collect();
-            for key in keys {
-                let (moving, total) = match key.timing {
-                    Timing::Move { move_ms, hold_ms } => (move_ms, move_ms + hold_ms),
-                    Timing::Frame { duration_ms } => {
-                        (frame_move_ms(source, &at, &key.values).min(duration_ms), duration_ms)
-                    }
-                };
-                if left < moving {
-                    let share = left / moving;
-                    return at
-                        .iter()
-                        .zip(&key.values)
-                        .map(|(from, to)| match (from, to) {
-                            (Some(from), Some(to)) => Some(from + (to - from) * share),
-                            (None, to) => *to,
-                            (from, None) => *from,
-                        })
-                        .collect();
-                }
-                for (value, target) in at.iter_mut().zip(&key.values) {
-                    if target.is_some() {
-                        *value = *target;
-                    }
-                }
-                if left < total {
-                    return at;
-                }
-                left -= total;
-            }
-            at
-        }
+        Body::Chain(links) => chain_at(source, links, time_ms, depth),
+        Body::Samples { fps, rows } => samples_at(source, clip, (*fps, rows), time_ms),
+        Body::Keys(keys) => keys_at(source, clip, keys, time_ms),
     }
+}
+
+/// A chain of clips `time_ms` in: the clip playing then, or where the last one ended.
+fn chain_at(source: &Source, links: &[Link], time_ms: f64, depth: usize) -> Vec<Option<f64>> {
+    let width = source.channels.len();
+    let mut left = time_ms;
+    let mut last = vec![None; width];
+    for link in links {
+        let Some(inner) = source.clips.get(link.clip) else { continue };
+        if depth >= MAX_DEPTH {
+            break;
+        }
+        let once = length(source, inner, depth + 1) / link.speed;
+        let whole = once * f64::from(link.plays.max(1));
+        if left <= whole || link.plays == 0 {
+            let into = if once > 0.0 { left % once } else { 0.0 };
+            return raw_at(source, inner, into * link.speed, depth + 1);
+        }
+        left -= whole;
+        last = raw_at(source, inner, once * link.speed, depth + 1);
+    }
+    last
+}
+
+/// Sampled rows `time_ms` into `clip`, straight between two samples.
+fn samples_at(source: &Source, clip: &Clip, (fps, rows): (f64, &[Vec<f64>]), time_ms: f64) -> Vec<Option<f64>> {
+    let width = source.channels.len();
+    let one = clip.duration_ms();
+    let at = if one > 0.0 { (time_ms % (one * f64::from(clip.repeat.max(1)) + 1e-9)).min(one) } else { 0.0 };
+    // Between two samples the file moves straight from one to the next,
+    // as the conversion reads it (`Recording::resample`).
+    let along = (at * clip.speed * fps / 1000.0).max(0.0);
+    // Frame indices of any real animation are far below 2^52.
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    let frame = (along.floor() as usize).min(rows.len().saturating_sub(1));
+    let next = (frame + 1).min(rows.len().saturating_sub(1));
+    #[allow(clippy::cast_precision_loss)]
+    let part = (along - frame as f64).clamp(0.0, 1.0);
+    match (rows.get(frame), rows.get(next)) {
+        (Some(row), Some(after)) => row.iter().zip(after).map(|(a, b)| Some(a + (b - a) * part)).collect(),
+        _ => vec![None; width],
+    }
+}
+
+/// Keys `time_ms` into `clip`: each moving from the one before, then holding.
+fn keys_at(source: &Source, clip: &Clip, keys: &[Key], time_ms: f64) -> Vec<Option<f64>> {
+    let one = clip.duration_ms();
+    let mut left =
+        if one > 0.0 && time_ms < one * f64::from(clip.repeat.max(1)) { time_ms % one } else { time_ms.min(one) };
+    left *= clip.speed;
+    // From where the tool puts each channel at power-up, when it says.
+    let mut at: Vec<Option<f64>> = source.channels.iter().map(|channel| channel.home).collect();
+    for key in keys {
+        let (moving, total) = match key.timing {
+            Timing::Move { move_ms, hold_ms } => (move_ms, move_ms + hold_ms),
+            Timing::Frame { duration_ms } => (frame_move_ms(source, &at, &key.values).min(duration_ms), duration_ms),
+        };
+        if left < moving {
+            let share = left / moving;
+            return at
+                .iter()
+                .zip(&key.values)
+                .map(|(from, to)| match (from, to) {
+                    (Some(from), Some(to)) => Some(from + (to - from) * share),
+                    (None, to) => *to,
+                    (from, None) => *from,
+                })
+                .collect();
+        }
+        for (value, target) in at.iter_mut().zip(&key.values) {
+            if target.is_some() {
+                *value = *target;
+            }
+        }
+        if left < total {
+            return at;
+        }
+        left -= total;
+    }
+    at
 }
 
 /// How long a Maestro frame's slowest channel moves at its speed limit (0:
