@@ -13,7 +13,7 @@ mod bounds;
 mod check;
 mod convert;
 mod failed;
-mod family;
+pub(crate) mod family;
 mod fit;
 mod follow_audio;
 mod gui;
@@ -26,7 +26,7 @@ mod rflex;
 mod serve;
 mod servo;
 mod signals;
-mod sim;
+pub(crate) mod sim;
 mod trajectory;
 
 use std::path::PathBuf;
@@ -63,8 +63,10 @@ fn parse_robot(text: &str) -> Result<Robot, String> {
 }
 
 fn parse_family(text: &str) -> Result<Family, String> {
-    Family::from_tag(&text.to_ascii_lowercase())
-        .ok_or_else(|| format!("{text:?} is not a family: use servo, plen2 or rflex"))
+    Family::from_tag(&text.to_ascii_lowercase()).ok_or_else(|| {
+        let tags: Vec<&str> = Family::all().iter().map(|family| family.tag()).collect();
+        format!("{text:?} is not a family: use {}", tags.join(", "))
+    })
 }
 
 /// Where the board is and how to talk to it.

@@ -225,7 +225,7 @@ fn default_cue(show: &mut Show) -> anyhow::Result<()> {
     }
     let [device] = show.devices.as_slice() else { bail!("the show has no cue: nothing to play") };
     let Some(start) = device.first_stored() else { bail!("{} has no cue and no macro or motion to play", device.name) };
-    say!("{} has no cue: playing {start:?} from the start", device.name);
+    say!("{} has no cue: playing {start} from the start", device.name);
     show.cues.push(Cue { device: device.name.clone(), at_ms: 0, start });
     Ok(())
 }
@@ -279,14 +279,14 @@ fn log_run(run: u32, ran: &Ran, clock: &MonotonicClock) -> anyhow::Result<()> {
     ))?;
     for sent in &ran.sent {
         line(&format!(
-            "run {run}: {} {:?} due at {} ns, written {:.2} ms late, moving at {} ns ± {:.2} ms (its link's spread{})",
+            "run {run}: {} {} due at {} ns, written {:.2} ms late, moving at {} ns ± {:.2} ms ({})",
             sent.device,
             sent.start,
             clock.ns(sent.due_at),
             sent.late_ms(),
             clock.ns(sent.moving_at),
             sent.uncertain_ms(),
-            if matches!(sent.start, crate::show::Start::Slot(_)) { " and half its cycle" } else { "" },
+            sent.uncertain_of,
         ))?;
     }
     for (device, why) in &ran.lost {

@@ -128,10 +128,10 @@ pub fn run(args: &SimArgs, family: Family) -> anyhow::Result<()> {
     };
     let foreign = args.foreign(emulator);
     if !foreign.is_empty() {
+        let takes = if emulator.takes.is_empty() { "none of these".to_string() } else { emulator.takes.join(", ") };
         bail!(
-            "{} do(es) not apply to the emulated {family} board (it takes {}{}); nothing was started",
+            "{} do(es) not apply to the emulated {family} board (it takes {takes}{}); nothing was started",
             foreign.join(", "),
-            emulator.takes.join(", "),
             emulator.note
         );
     }
@@ -190,7 +190,8 @@ mod tests {
     fn sim_serves_what_a_family_registered_and_names_the_families_that_have_one() {
         let none = Family::named("none", "None board");
         let refused = run(&SimArgs::default(), none).unwrap_err().to_string();
-        assert!(refused.ends_with("has no emulated board to serve; give servo, plen2, rflex"), "{refused}");
+        // The test-only echo board registered its emulator too, from its own folder.
+        assert!(refused.ends_with("has no emulated board to serve; give servo, plen2, rflex, echo"), "{refused}");
         let args = SimArgs { link: Some(LinkKind::Clean), stuffed: true, ..SimArgs::default() };
         let refused = run(&args, Family::Servo).unwrap_err().to_string();
         assert_eq!(

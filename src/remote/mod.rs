@@ -201,7 +201,7 @@ impl Remote {
             .show
             .cues
             .iter()
-            .map(|cue| json!({ "device": cue.device, "at_ms": cue.at_ms, "start": format!("{:?}", cue.start) }))
+            .map(|cue| json!({ "device": cue.device, "at_ms": cue.at_ms, "start": cue.start.to_string() }))
             .collect();
         json!({
             "devices": self.show.devices.iter().map(|device| device.name.clone()).collect::<Vec<_>>(),

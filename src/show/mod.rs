@@ -109,6 +109,21 @@ pub enum Start {
     Family(family::FamilyCue),
 }
 
+/// As a log or a message says it: "macro 3", "slot 2", "drive 0.2 m/s
+/// turning 0°/s for 1000 ms", "move 30" (a family's kind, then its number).
+impl std::fmt::Display for Start {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Macro(id) => write!(f, "macro {id}"),
+            Self::Slot(slot) => write!(f, "slot {slot}"),
+            Self::Drive { speed_m_s, turn_deg_s, for_ms } => {
+                write!(f, "drive {speed_m_s} m/s turning {turn_deg_s}°/s for {for_ms} ms")
+            }
+            Self::Family(cue) => write!(f, "{} {}", cue.kind, cue.value),
+        }
+    }
+}
+
 /// A cue's start as a show file holds it: the first three kinds by name, any
 /// other under its kind's key, with the number it takes.
 #[derive(Clone, Serialize, Deserialize)]
@@ -212,7 +227,7 @@ pub enum ShowError {
         lacks: family::Lacks,
     },
     /// A cue starts what its device does not hold.
-    #[error("the cue at {at_ms} ms asks {device:?} ({}) to start {start:?}, which it does not hold", .family.name())]
+    #[error("the cue at {at_ms} ms asks {device:?} ({}) to start {start}, which it does not hold", .family.name())]
     NotHeld {
         /// When the cue starts, ms.
         at_ms: u64,

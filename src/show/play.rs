@@ -32,6 +32,16 @@ pub trait Stage: Send {
         let _ = start;
         Duration::ZERO
     }
+    /// What that uncertainty is made of, as the play log says it.
+    fn uncertainty_of(&self) -> &'static str {
+        "its link's spread"
+    }
+    /// How long what `start` starts goes on before the player stops the
+    /// device (a timed drive); `None`: it ends by itself.
+    fn lasts(&self, start: &Start) -> Option<Duration> {
+        let _ = start;
+        None
+    }
     /// Writes the start of a cue.
     fn start(&mut self, start: &Start) -> Result<(), String>;
     /// Stops the device where it is (a base stops and brakes).
@@ -135,6 +145,8 @@ pub struct Sent {
     /// How far its start may still be off either way, as far as can be known
     /// (its link's spread; a PLEN2's wait for its next cycle).
     pub uncertain: Duration,
+    /// What that is made of, as the play log says it ("its link's spread").
+    pub uncertain_of: &'static str,
 }
 
 impl Sent {
@@ -242,11 +254,12 @@ impl Player<'_> {
                 self.stop_all();
                 return Err(Stopped::Failed { device, why });
             }
-            if let Start::Drive { for_ms, .. } = start {
-                going.drives.push((moving_at + Duration::from_millis(for_ms), index));
+            if let Some(lasts) = self.stages[index].lasts(&start) {
+                going.drives.push((moving_at + lasts, index));
             }
-            let uncertain = self.stages[index].start_uncertainty(&start);
-            sent.push(Sent { device, start, moving_at, due_at: due, sent_at, uncertain });
+            let stage = &self.stages[index];
+            let (uncertain, uncertain_of) = (stage.start_uncertainty(&start), stage.uncertainty_of());
+            sent.push(Sent { device, start, moving_at, due_at: due, sent_at, uncertain, uncertain_of });
         }
         self.wait_until(end, &mut going)?;
         drop(playing);
@@ -370,7 +383,7 @@ pub fn ran_words(ran: &Ran) -> String {
     let mut lines: Vec<String> = ran
         .sent
         .iter()
-        .map(|sent| format!("{} started {:?}, {:.2} ms late", sent.device, sent.start, sent.late_ms()))
+        .map(|sent| format!("{} started {}, {:.2} ms late", sent.device, sent.start, sent.late_ms()))
         .collect();
     for (device, why) in &ran.lost {
         lines.push(format!("the link to {device} was lost ({why}): the show played on without it"));

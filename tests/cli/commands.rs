@@ -149,7 +149,7 @@ fn check_takes_a_show_and_says_every_problem_of_its_devices_and_cues() {
     assert_eq!(output.status.code(), Some(1), "{said}");
     assert!(said.contains("cuess") && said.contains("unknown key"), "the misspelt key: {said}");
     assert!(said.contains("device \"skull\""), "the device's own project checked: {said}");
-    assert!(said.contains("to start Macro(999), which it does not hold"), "{said}");
+    assert!(said.contains("to start macro 999, which it does not hold"), "{said}");
     assert!(said.contains("\"nobody\", which is not a device of the show"), "{said}");
     assert!(!said.contains("expected servo-studio-project"), "taken as a show: {said}");
 }

@@ -252,7 +252,7 @@ fn a_project_file_plays_as_a_show_of_one_device() {
         .unwrap();
     let (said, stderr) = (String::from_utf8_lossy(&output.stdout), String::from_utf8_lossy(&output.stderr));
     assert_eq!(output.status.code(), Some(0), "{stderr}");
-    assert!(stderr.contains("skull has no cue: playing Macro(1) from the start"), "{stderr}");
+    assert!(stderr.contains("skull has no cue: playing macro 1 from the start"), "{stderr}");
     assert!(said.contains("run 2: ended after"), "{said}");
     let starts = logged_until(&log, "ExecuteMacroRequest", Duration::from_secs(10));
     assert_eq!(starts.iter().filter(|(_, s)| s.contains("ExecuteMacroRequest")).count(), 2, "two runs: {starts:?}");

@@ -194,7 +194,7 @@ fn commands_that_do_not_apply_to_a_family_say_what_to_use_instead() {
     assert!(stderr(&output).contains("servo-studio rflex status"), "{}", stderr(&output));
     let bad = run(&["sim", "--protocol", "nope"]);
     assert_eq!(bad.status.code(), Some(2));
-    assert!(stderr(&bad).contains("use servo, plen2 or rflex"), "{}", stderr(&bad));
+    assert!(stderr(&bad).contains("is not a family: use servo, plen2, rflex"), "{}", stderr(&bad));
 }
 
 /// A servo project file (project id 5) of `section`'s servos, actions and macros, in `dir`.

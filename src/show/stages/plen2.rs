@@ -196,8 +196,12 @@ impl Stage for Plen2Stage {
         self.link.spread + Duration::from_micros(CYCLE_US / 2)
     }
 
+    fn uncertainty_of(&self) -> &'static str {
+        "its link's spread and half its cycle"
+    }
+
     fn start(&mut self, start: &Start) -> Result<(), String> {
-        let Start::Slot(slot) = *start else { return Err(format!("a PLEN2 cannot start {start:?}")) };
+        let Start::Slot(slot) = *start else { return Err(format!("a PLEN2 cannot start {start}")) };
         self.requester.send(Plen2Command::PlayMotion { slot }).map_err(|error| error.to_string())
     }
 

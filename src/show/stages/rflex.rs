@@ -141,9 +141,14 @@ impl Stage for RflexStage {
         self.link.spread
     }
 
+    fn lasts(&self, start: &Start) -> Option<Duration> {
+        let Start::Drive { for_ms, .. } = *start else { return None };
+        Some(Duration::from_millis(for_ms))
+    }
+
     fn start(&mut self, start: &Start) -> Result<(), String> {
         let Start::Drive { speed_m_s, turn_deg_s, .. } = *start else {
-            return Err(format!("an rFLEX base cannot start {start:?}"));
+            return Err(format!("an rFLEX base cannot start {start}"));
         };
         self.set_driving(Some((speed_m_s, turn_deg_s)));
         Ok(())

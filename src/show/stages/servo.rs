@@ -199,7 +199,7 @@ impl Stage for ServoStage {
     }
 
     fn start(&mut self, start: &Start) -> Result<(), String> {
-        let Start::Macro(macro_id) = *start else { return Err(format!("a servo board cannot start {start:?}")) };
+        let Start::Macro(macro_id) = *start else { return Err(format!("a servo board cannot start {start}")) };
         self.requester.send(Message::ExecuteMacroRequest { macro_id }).map_err(|error| error.to_string())
     }
 

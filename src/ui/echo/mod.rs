@@ -5,6 +5,7 @@
 //! declares its `Family` constant and adds itself to the registries here.
 
 mod board;
+mod command;
 mod link;
 mod stage;
 

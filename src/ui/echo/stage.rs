@@ -106,7 +106,7 @@ impl Stage for EchoStage {
     }
 
     fn start(&mut self, start: &Start) -> Result<(), String> {
-        let Start::Family(cue) = start else { return Err(format!("an Echo board cannot start {start:?}")) };
+        let Start::Family(cue) = start else { return Err(format!("an Echo board cannot start {start}")) };
         self.move_to(cue.value);
         Ok(())
     }

@@ -151,20 +151,50 @@ fn the_echo_keeps_its_own_project_section_written_read_and_checked() {
     assert_eq!(harness.state().document.project.sections.get(Family::Echo), None);
 }
 
-/// What `events` says next that `wanted` picks, within 10 s.
-fn next_board_event<E: std::fmt::Debug>(
-    events: &crossbeam_channel::Receiver<LinkEvent<E>>,
-    what: &str,
-    wanted: impl Fn(&E) -> bool,
-) -> E {
-    let deadline = Instant::now() + Duration::from_secs(10);
-    loop {
-        let left = deadline.saturating_duration_since(Instant::now());
-        match events.recv_timeout(left) {
-            Ok(LinkEvent::Driver(event)) if wanted(&event) => return event,
-            Ok(_) => {}
-            Err(_) => panic!("the board never saw {what}"),
-        }
+/// Runs a command line in this process, on a thread of its own (its words as typed after `servo-studio`).
+fn command_line(words: &[&str]) -> std::thread::JoinHandle<std::process::ExitCode> {
+    use clap::Parser;
+    let typed = std::iter::once("servo-studio").chain(words.iter().copied());
+    let command = crate::cli::Cli::try_parse_from(typed).unwrap().command.expect("a command");
+    std::thread::spawn(move || crate::cli::run(command))
+}
+
+/// A loopback address nothing listens on (taken from the system, then let go).
+fn free_address() -> std::net::SocketAddr {
+    std::net::TcpListener::bind("127.0.0.1:0").unwrap().local_addr().unwrap()
+}
+
+/// Waits until something listens at `at` (polling, up to 30 s).
+fn listening(at: std::net::SocketAddr) {
+    let deadline = Instant::now() + Duration::from_secs(30);
+    while std::net::TcpStream::connect(at).is_err() {
+        assert!(Instant::now() < deadline, "nothing listens at {at}");
+        std::thread::sleep(Duration::from_millis(10));
+    }
+}
+
+/// What an emulator's log (`--log`) says, a line each (without the time).
+fn log_lines(path: &Path) -> Vec<String> {
+    let text = std::fs::read_to_string(path).unwrap_or_default();
+    text.lines().filter_map(|line| Some(line.split_once(' ')?.1.to_string())).collect()
+}
+
+/// How many lines of an emulator's log `wanted` picks.
+fn logged(path: &Path, wanted: impl Fn(&str) -> bool) -> usize {
+    log_lines(path).iter().filter(|said| wanted(said)).count()
+}
+
+/// Waits (polling, up to 30 s) until more than `seen` lines of an emulator's log are ones `wanted` picks.
+fn logged_more(path: &Path, seen: usize, wanted: impl Fn(&str) -> bool) {
+    let deadline = Instant::now() + Duration::from_secs(30);
+    while logged(path, &wanted) <= seen {
+        assert!(
+            Instant::now() < deadline,
+            "{} never logged it more than {seen} times: {:?}",
+            path.display(),
+            log_lines(path)
+        );
+        std::thread::sleep(Duration::from_millis(10));
     }
 }
 
@@ -185,33 +215,49 @@ fn http(at: std::net::SocketAddr, method: &str, path: &str, body: &str) -> (u16,
     (code, json.unwrap_or_default())
 }
 
-/// The echo family takes part in shows and remote control through the seam
-/// alone (its show stage, its kind of cue and its axis registered in its own
-/// folder, `stage.rs`): a show file holding its cue reads and writes, the show
-/// plays it beside a servo board's macro, and the server `servo-studio serve`
-/// starts poses it and stops it, asked over a raw socket.
+/// The echo family on the command line, as a user runs it, through the seam
+/// alone (its emulator and board commands registered in `command.rs`, its show
+/// stage, kind of cue and axis in `stage.rs`): `sim --protocol echo` serves
+/// its board beside a servo board's; a show file holding its cue is written
+/// and read; `play` plays it beside the servo board's macro; `serve` holds
+/// both, and over a raw socket a remote poses the echo, is refused a drive by
+/// name and STOPs both; SIGTERM ends `serve` as it ends it for a user.
 #[test]
 fn the_echo_board_plays_in_a_show_beside_a_servo_board_and_is_posed_and_stopped_through_serve() {
-    use std::sync::Arc;
-
-    use crate::show::boards::{Boards, Heard};
     use crate::show::family::FamilyCue;
     use crate::show::{Cue, Show, Start};
 
+    let dir = tempfile::tempdir().unwrap();
+    let log = |name: &str| dir.path().join(format!("{name}.log"));
     let fixture = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/project-v2.json");
     let servo_project = crate::project::load(Path::new(fixture)).unwrap();
     let macro_id = servo_project.servo.macros.iter().map(|m| m.id).min().expect("the fixture holds a macro");
-    let image = crate::device::servo::ServoImage::from_project(&servo_project.servo).unwrap();
-    let sim_config = crate::sim::SimConfig::default();
-    let skull =
-        crate::sim::spawn_tcp(crate::sim::ServoSim::new(sim_config, image), crate::sim::LOOPBACK_ANY, no_waker())
-            .unwrap();
-    let echo_board = crate::sim::spawn_tcp(board::EchoBoard::default(), crate::sim::LOOPBACK_ANY, no_waker()).unwrap();
+
+    // Its board, and a servo board holding the project, served by `sim`.
+    let (skull_at, echo_at) = (free_address(), free_address());
+    let (skull_log, echo_log) = (log("skull"), log("echo"));
+    let (skull_tcp, echo_tcp) = (skull_at.to_string(), echo_at.to_string());
+    let (skull_log_path, echo_log_path) = (skull_log.to_str().unwrap(), echo_log.to_str().unwrap());
+    // Serving on TCP runs until the process ends.
+    drop(command_line(&[
+        "sim",
+        "--protocol",
+        "servo",
+        "--tcp",
+        &skull_tcp,
+        "--state",
+        fixture,
+        "--log",
+        skull_log_path,
+    ]));
+    drop(command_line(&["sim", "--protocol", "echo", "--tcp", &echo_tcp, "--log", echo_log_path]));
+    listening(skull_at);
+    listening(echo_at);
+    let refused = command_line(&["sim", "--protocol", "echo", "--tcp", "127.0.0.1:0", "--stuffed"]).join().unwrap();
+    assert_eq!(refused, std::process::ExitCode::FAILURE, "an option its emulator does not take is refused");
 
     let mut show = Show::of_one("skull", servo_project);
     show.add_device("echo", Project::empty(Family::Echo));
-    show.devices[0].port = Some(skull.port_name.clone());
-    show.devices[1].port = Some(echo_board.port_name.clone());
     let moved = Start::Family(FamilyCue::named("move", 30.0).unwrap());
     show.cues.push(Cue { device: "skull".into(), at_ms: 0, start: Start::Macro(macro_id) });
     show.cues.push(Cue { device: "echo".into(), at_ms: 100, start: moved });
@@ -220,51 +266,42 @@ fn the_echo_board_plays_in_a_show_beside_a_servo_board_and_is_posed_and_stopped_
     let text = show.to_json();
     assert!(text.contains("\"move\": 30.0"), "{text}");
     assert_eq!(Show::from_text(&text, "show.json").unwrap().cues, show.cues);
+    let show_file = dir.path().join("show.json");
+    std::fs::write(&show_file, &text).unwrap();
+    let show_path = show_file.to_str().unwrap();
+    let (skull_port, echo_port) = (format!("skull=tcp://{skull_at}"), format!("echo=tcp://{echo_at}"));
 
-    let boards = Arc::new(Boards::connect(&show, no_waker()).unwrap());
-    for _ in 0..2 {
-        match boards.hear_within(Duration::from_secs(10)) {
-            Some(Heard::Linked(_, Ok(_))) => {}
-            other => panic!("each device answers: {other:?}"),
-        }
-    }
-    boards.play(&show, None);
-    let played = loop {
-        match boards.hear_within(Duration::from_secs(10)) {
-            Some(Heard::Played(played)) => break played,
-            Some(_) => {}
-            None => panic!("the show never ended"),
-        }
-    };
-    let ran = played.expect("the show played");
-    assert_eq!(ran.sent.len(), 2, "both devices started: {:?}", ran.sent);
-    next_board_event(
-        skull.events(),
-        "its macro",
-        |event| matches!(event, crate::sim::SimEvent::MacroSteps { macro_id: id, .. } if *id == macro_id),
-    );
-    next_board_event(echo_board.events(), "its cue", |event| *event == BoardEvent::Moved(30));
+    // `play`: both devices start on their cues, and the show ends.
+    let played = command_line(&["play", show_path, "--device", &skull_port, "--device", &echo_port]);
+    assert_eq!(played.join().unwrap(), std::process::ExitCode::SUCCESS);
+    logged_more(&skull_log, 0, |said| said.contains("ExecuteMacroRequest"));
+    logged_more(&echo_log, 0, |said| said == "M 30");
 
-    // Posed and stopped through the remote control server, as `serve` starts it.
-    let guard = Arc::new(crate::remote::guard::Guard::new("127.0.0.1:0".parse().unwrap(), None).unwrap());
-    let remote = Arc::new(crate::remote::Remote::new(show.clone(), Arc::downgrade(&boards), false));
-    let servers = crate::remote::Servers::start("127.0.0.1:0".parse().unwrap(), None, &guard, remote).unwrap();
-    let at = servers.http.addr();
-    let (code, said) = http(at, "GET", "/devices/echo", "");
+    // `serve`: posed and stopped by a remote over a raw socket.
+    let http_at = free_address();
+    let listen = http_at.to_string();
+    let served =
+        command_line(&["serve", show_path, "--device", &skull_port, "--device", &echo_port, "--listen", &listen]);
+    listening(http_at);
+    let (code, said) = http(http_at, "GET", "/devices/echo", "");
     assert_eq!((code, said["axes"].clone()), (200, serde_json::json!(["servo"])), "{said}");
-    let (code, said) = http(at, "POST", "/devices/echo/pose", r#"{"axis": "servo", "value": 45}"#);
+    let (code, said) = http(http_at, "POST", "/devices/echo/pose", r#"{"axis": "servo", "value": 45}"#);
     assert_eq!((code, said["value"].as_f64()), (200, Some(45.0)), "{said}");
-    next_board_event(echo_board.events(), "the remote's pose", |event| *event == BoardEvent::Moved(45));
-    let (code, said) = http(at, "POST", "/devices/echo/drive", r#"{"speed_m_s": 0.1}"#);
+    logged_more(&echo_log, 0, |said| said == "M 45");
+    let (code, said) = http(http_at, "POST", "/devices/echo/drive", r#"{"speed_m_s": 0.1}"#);
     assert_eq!(code, 422, "{said}");
     assert_eq!(said["error"], "echo: an Echo board cannot drive");
-    let (code, said) = http(at, "POST", "/stop", "");
+    // Every servo switched off, holding (as the servo board's emulator logs it).
+    let holding = |said: &str| said.contains("is_start: false");
+    let stopped = |said: &str| said == "S";
+    // What `play` sent reached the boards before `serve` was let in: these counts are all before STOP.
+    let (echo_stops, skull_stops) = (logged(&echo_log, stopped), logged(&skull_log, holding));
+    let (code, said) = http(http_at, "POST", "/stop", "");
     assert_eq!(code, 200, "{said}");
-    next_board_event(echo_board.events(), "STOP", |event| *event == BoardEvent::Stopped);
-    next_board_event(
-        skull.events(),
-        "STOP",
-        // Every servo switched off, holding (read as the emulator logs it, as the suite's STOP tests do).
-        |event| matches!(event, crate::sim::SimEvent::Handled(message) if format!("{message:?}").contains("is_start: false")),
-    );
+    logged_more(&echo_log, echo_stops, stopped);
+    logged_more(&skull_log, skull_stops, holding);
+
+    // A user's Ctrl-C or kill ends it, every device stopped: exit 143 for SIGTERM.
+    signal_hook::low_level::raise(signal_hook::consts::SIGTERM).unwrap();
+    assert_eq!(served.join().unwrap(), std::process::ExitCode::from(143));
 }

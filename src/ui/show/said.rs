@@ -203,6 +203,7 @@ mod tests {
             due_at: now,
             sent_at: now,
             uncertain: std::time::Duration::ZERO,
+            uncertain_of: "its link's spread",
         };
         let run = Ran { zero: now, sent: vec![sent], ended: now, with_sound: false, lost: Vec::new() };
         let said = ran(&run);
