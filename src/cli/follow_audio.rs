@@ -11,11 +11,8 @@ use anyhow::Context as _;
 use super::bounds;
 use super::fit::{self, FitRequest};
 use crate::audio;
-use crate::authoring::fitted::PLEN2_UPDATE_MS;
-use crate::authoring::follow::{self, Follower};
 use crate::authoring::recording::Recording;
-use crate::project::plen2::{Joint, MAX_FRAMES, Motion, SLOTS};
-use crate::project::{self, Family, Project};
+use crate::project::{self, Family};
 
 /// The sound is followed at this step, ms (the fitter resamples at the board's own update).
 const STEP_MS: usize = 5;
@@ -73,14 +70,37 @@ pub struct FollowArgs {
     pub force: bool,
 }
 
+/// How a family follows a sound, registered by the family
+/// (`inventory::submit!` in `cli/<family>.rs`).
+#[derive(Debug)]
+pub struct SoundFollower {
+    /// The family whose board plays the follow.
+    pub family: Family,
+    /// The recording's one column, as the family names the axis given
+    /// (`--servo`, `--joint`); why not when the axis given is not one of its.
+    pub column: fn(&FollowArgs) -> anyhow::Result<String>,
+    /// Whether it takes `--from-slot`; `Err`: why not, and what it makes instead.
+    pub from_slot: Result<(), &'static str>,
+    /// Fits the curve (`openness`, 0..=1 a ms) to its board and writes it; what it wrote.
+    pub follow: fn(&FollowArgs, &str, &[f64], &str) -> anyhow::Result<String>,
+}
+
+inventory::collect!(SoundFollower);
+
 /// Follows, fits and writes — everything checked before the output is
 /// touched — and says what it wrote.
 pub fn run(args: &FollowArgs) -> anyhow::Result<String> {
     super::output_not_an_input(&args.out, &[&args.sound])?;
     super::writable_output(&args.out, args.force)?;
-    let column = column(args)?;
-    if args.from_slot.is_some() && args.protocol != Family::Plen2 {
-        anyhow::bail!("--from-slot is for a PLEN2's motion slots: a servo board's follow is one macro");
+    let followers = || inventory::iter::<SoundFollower>.into_iter();
+    let Some(follower) = followers().find(|follower| follower.family == args.protocol) else {
+        let follows = |family: &&Family| followers().any(|follower| follower.family == **family);
+        let named: Vec<&str> = Family::all().iter().filter(follows).map(|family| family.tag()).collect();
+        anyhow::bail!("--protocol {}: only {} follow a sound", args.protocol, named.join(" and "));
+    };
+    let column = (follower.column)(args)?;
+    if let (Some(_), Err(why)) = (args.from_slot, follower.from_slot) {
+        anyhow::bail!("{why}");
     }
     let analysis = audio::analyse(&args.sound, 0.5, |_| {})?;
     let settings = audio::follow::Follow {
@@ -96,9 +116,12 @@ pub fn run(args: &FollowArgs) -> anyhow::Result<String> {
         .name
         .clone()
         .unwrap_or_else(|| args.sound.file_stem().map(|stem| stem.to_string_lossy().into_owned()).unwrap_or_default());
-    if args.protocol == Family::Plen2 {
-        return plen2(args, &column, &open, &name);
-    }
+    (follower.follow)(args, &column, &open, &name)
+}
+
+/// Follows as `fit` fits a recording: the curve as one column, sampled
+/// every few ms, fitted by the family's fitter into one macro or motion.
+pub fn fitted(args: &FollowArgs, column: &str, open: &[f64], name: &str) -> anyhow::Result<String> {
     let (closed, opened) = (args.closed, args.open);
     let mut times_ms = Vec::new();
     let mut rows = Vec::new();
@@ -108,132 +131,22 @@ pub fn run(args: &FollowArgs) -> anyhow::Result<String> {
         times_ms.push(ms as f64);
         rows.push(vec![closed + (opened - closed) * open[ms]]);
     }
-    let recording = Recording { names: vec![column], times_ms, rows };
+    let recording = Recording { names: vec![column.to_string()], times_ms, rows };
     let request = FitRequest {
         recording: args.sound.clone(),
         family: args.protocol,
         tolerance_deg: args.tolerance_deg,
         max_frames: args.max_frames,
-        name: Some(name.clone()),
+        name: Some(name.to_string()),
         out: args.out.clone(),
         force: args.force,
     };
-    let fitted = fit::write(&recording, &request, &name)?;
+    let fitted = fit::write(&recording, &request, name)?;
     Ok(fit::said(&fitted, args.protocol, &args.out))
 }
 
-/// A PLEN2 joint follows as the editor's follow does (the same curve at the
-/// robot's cycles, the same fit and chain): one motion.json, or with
-/// `--from-slot` a chain of motions in a project.
-fn plen2(args: &FollowArgs, joint: &str, open: &[f64], name: &str) -> anyhow::Result<String> {
-    let joint = Joint::ALL.into_iter().find(|known| known.name() == joint).context("a PLEN2 joint")?;
-    if !name.is_ascii() || name.len() > 20 {
-        anyhow::bail!("--name {name:?}: a PLEN2 motion's name is at most 20 ASCII characters");
-    }
-    let follower = Follower { closed_deg: args.closed, open_deg: args.open, tolerance_deg: args.tolerance_deg };
-    let (slots, frames_allowed) = match args.from_slot {
-        Some(first) => ((first..SLOTS).collect::<Vec<u8>>(), None),
-        None => (vec![0], Some(args.max_frames.unwrap_or(MAX_FRAMES))),
-    };
-    let fitted = match frames_allowed {
-        Some(allowed) if allowed > MAX_FRAMES => {
-            anyhow::bail!("--max-frames {allowed}: a PLEN2 motion holds at most {MAX_FRAMES} frames")
-        }
-        Some(allowed) if allowed < MAX_FRAMES => follow::plen2_within(open, joint, follower, allowed),
-        _ => follow::plen2(open, joint, follower, slots.len()),
-    };
-    let chain = fitted
-        .map_err(|error| anyhow::anyhow!(fit::fit_error_said(&error, (10.0, "frames"), args.tolerance_deg * 10.0)))?;
-    // Update counts far below 2^52.
-    #[allow(clippy::cast_precision_loss)]
-    let seconds = chain.cycles as f64 * PLEN2_UPDATE_MS / 1000.0;
-    let shifted = if chain.shift_ms == 0 {
-        String::new()
-    } else {
-        format!(
-            ", played {:+} ms against the sound (under half a cycle, where the robot's own start falls anyway)",
-            chain.shift_ms
-        )
-    };
-    let error_deg = chain.max_error_tenths / 10.0;
-    let Some(first) = args.from_slot else {
-        let motion = Motion {
-            slot: 0,
-            name: name.to_string(),
-            frames: chain.motions.concat(),
-            loop_range: None,
-            jump_slot: None,
-        };
-        let written = project::motion_json::motion_to_json(&motion);
-        write(&args.out, &written)?;
-        return Ok(format!(
-            "{} frames for {seconds:.3} s, largest error {error_deg:.2}°{shifted}: wrote {}",
-            motion.frames.len(),
-            args.out.display()
-        ));
-    };
-    let into = existing_plen2(&args.out)?;
-    let (made, replaced) = follow::placed(&into.plen2, &slots, &chain, name);
-    let used: Vec<String> = slots[..chain.motions.len()].iter().map(u8::to_string).collect();
-    write(&args.out, &project::to_json(&Project { plen2: made, ..into }))?;
-    let replaced = if replaced.is_empty() {
-        String::new()
-    } else {
-        let listed: Vec<String> = replaced.iter().map(|(slot, name)| format!("{slot} {name}")).collect();
-        format!("; replaced: {}", listed.join(", "))
-    };
-    Ok(format!(
-        "{} frames in {} motions from slot {first} (slots {}, each jumping to the next) for {seconds:.3} s, largest error {error_deg:.2}°{shifted}{replaced}: wrote {}",
-        chain.frames(),
-        chain.motions.len(),
-        used.join(", "),
-        args.out.display()
-    ))
-}
-
-/// The PLEN2 project `out` holds, to add a chain to; an empty one when there
-/// is no such file yet. Any other file there is refused, never replaced.
-fn existing_plen2(out: &std::path::Path) -> anyhow::Result<Project> {
-    if !out.exists() {
-        return Ok(Project::empty(Family::Plen2));
-    }
-    let text = project::input::read_text(out, project::input::MAX_PROJECT_BYTES)?;
-    match project::from_json(&text) {
-        Ok(project) if project.family == Family::Plen2 => Ok(project),
-        Ok(project) => anyhow::bail!(
-            "{} is a {} project: --from-slot adds motions to a PLEN2 project (give a new file or a PLEN2 project)",
-            out.display(),
-            project.family.name()
-        ),
-        Err(error) => anyhow::bail!(
-            "{} is not a PLEN2 project ({error}): --from-slot adds motions to a PLEN2 project; give a new file or a PLEN2 project",
-            out.display()
-        ),
-    }
-}
-
-fn write(out: &std::path::Path, text: &str) -> anyhow::Result<()> {
+/// Writes `text` to `out` whole, or nothing.
+pub fn write(out: &std::path::Path, text: &str) -> anyhow::Result<()> {
     project::atomic_write(out, |file| std::io::Write::write_all(file, text.as_bytes()))
         .with_context(|| format!("cannot write {}", out.display()))
-}
-
-/// The recording's one column: the servo or the joint, as the family names it.
-fn column(args: &FollowArgs) -> anyhow::Result<String> {
-    match (args.protocol, args.servo, &args.joint) {
-        (Family::Servo, Some(id), None) => Ok(format!("servo {id}")),
-        (Family::Plen2, None, Some(joint)) => {
-            if Joint::ALL.iter().any(|known| known.name() == joint) {
-                return Ok(joint.clone());
-            }
-            let names: Vec<&str> = Joint::ALL.iter().map(|joint| joint.name()).collect();
-            anyhow::bail!("--joint {joint:?} is not a PLEN2 joint (they are: {})", names.join(", "))
-        }
-        (Family::Servo, None, Some(_)) => {
-            anyhow::bail!("--joint names a PLEN2 joint: a servo board follows with --servo N")
-        }
-        (Family::Plen2, Some(_), None) => {
-            anyhow::bail!("--servo is for a servo board: a PLEN2 follows with --joint NAME")
-        }
-        (family, _, _) => anyhow::bail!("--protocol {family}: only servo and plen2 follow a sound"),
-    }
 }

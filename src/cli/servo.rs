@@ -231,5 +231,17 @@ inventory::submit! {
 }
 
 inventory::submit! {
+    super::follow_audio::SoundFollower {
+        family: Family::Servo,
+        column: |args| match (args.servo, &args.joint) {
+            (Some(id), None) => Ok(format!("servo {id}")),
+            _ => anyhow::bail!("--joint names a PLEN2 joint: a servo board follows with --servo N"),
+        },
+        from_slot: Err("--from-slot is for a PLEN2's motion slots: a servo board's follow is one macro"),
+        follow: super::follow_audio::fitted,
+    }
+}
+
+inventory::submit! {
     super::trajectory::Tracer { family: Family::Servo, trace: super::trajectory::servo }
 }

@@ -18,6 +18,7 @@ use std::sync::{Arc, Weak};
 
 use serde_json::{Value, json};
 
+use crate::project::Project;
 use crate::show::boards::{Boards, Refused, Run};
 use crate::show::family;
 use crate::show::passes::Axis;
@@ -245,16 +246,19 @@ fn clamped(device: &Device, (speed, turn): (f64, f64), (taken_speed, taken_turn)
 /// A device as listed: its family, link-free, and what it holds to play and pose.
 fn listed(device: &Device) -> Value {
     let project = &device.project;
-    let servo = &project.servo;
-    let plen2 = &project.plen2;
-    json!({
+    let mut listed = json!({
         "name": device.name,
         "family": project.family.tag(),
-        "macros": servo.macros.iter().map(|m| json!({ "id": m.id, "caption": m.caption })).collect::<Vec<_>>(),
-        "motions": plen2.motions.iter().map(|m| json!({ "slot": m.slot, "name": m.name })).collect::<Vec<_>>(),
-        "play_lists": plen2.play_lists.iter().map(|l| json!({ "name": l.name, "entries": l.entries.len() })).collect::<Vec<_>>(),
         "axes": axes(device).into_iter().map(|(name, _)| name).collect::<Vec<_>>(),
-    })
+    });
+    // Every list any family keeps is in every device's listing (empty when
+    // it keeps none such), then the device's own lists.
+    let every = family::every().filter_map(|entry| Some((entry.runs.as_ref()?.listed)(&Project::empty(entry.family))));
+    let own = family::runs(project.family).map(|runs| (runs.listed)(project)).ok();
+    for (key, items) in every.flatten().chain(own.into_iter().flatten()) {
+        listed[key] = Value::Array(items);
+    }
+    listed
 }
 
 /// What `what` names on `device`, as its family finds it (a servo board's
@@ -304,7 +308,7 @@ mod tests {
     use super::*;
 
     fn remote() -> Remote {
-        let show = Show::of_one("skull", crate::project::Project::empty(crate::project::Family::Servo));
+        let show = Show::of_one("skull", Project::empty(crate::project::Family::Servo));
         Remote::new(show, Weak::new(), false)
     }
 
@@ -404,10 +408,38 @@ mod tests {
             said(Verb::Play { device: "base".into(), what: "1".into() }),
             "base: an rFLEX base cannot run a stored macro or motion; drive it (POST /devices/base/drive)"
         );
-        assert!(
-            listed(&remote.show().devices[0])["axes"].as_array().unwrap().is_empty(),
-            "an echo board lists no axis"
-        );
+        assert!(listed(&remote.show().devices[0])["axes"].as_array().unwrap().is_empty(), "a bare board lists no axis");
+    }
+
+    /// A device's listing holds every list any family keeps to run, each
+    /// under its key: its own filled, the others empty (the documented API).
+    #[test]
+    fn each_device_lists_what_its_family_keeps_under_every_family_s_keys() {
+        use crate::project::plen2::{Motion, PlayEntry, PlayList};
+        use crate::project::{Family, Macro};
+        let mut servo = Project::empty(Family::Servo);
+        servo.servo.macros.push(Macro { id: 3, caption: "wave".into(), commands: Vec::new() });
+        let mut plen = Project::empty(Family::Plen2);
+        plen.plen2.motions.push(Motion {
+            slot: 2,
+            name: "bow".into(),
+            frames: Vec::new(),
+            loop_range: None,
+            jump_slot: None,
+        });
+        let entries = vec![PlayEntry { slot: 2, plays: 3 }];
+        plen.plen2.play_lists.push(PlayList { name: "greet".into(), entries });
+        let mut show = Show::of_one("skull", servo);
+        show.add_device("plen", plen);
+        show.add_device("base", Project::empty(Family::Rflex));
+        let [skull, plen, base] = [0, 1, 2].map(|index| listed(&show.devices[index]));
+        assert_eq!(skull["macros"], json!([{ "id": 3, "caption": "wave" }]));
+        assert_eq!((&skull["motions"], &skull["play_lists"]), (&json!([]), &json!([])));
+        assert_eq!(plen["motions"], json!([{ "slot": 2, "name": "bow" }]));
+        assert_eq!(plen["play_lists"], json!([{ "name": "greet", "entries": 1 }]));
+        assert_eq!(plen["macros"], json!([]));
+        assert_eq!((&base["macros"], &base["motions"], &base["play_lists"]), (&json!([]), &json!([]), &json!([])));
+        assert_eq!((base["family"].as_str(), plen["axes"].as_array().map(Vec::len)), (Some("rflex"), Some(18)));
     }
 
     #[test]

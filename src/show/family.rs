@@ -31,7 +31,8 @@ pub struct ShowFamily {
     pub takes: fn(&Start) -> bool,
     /// What a new cue for a device of it starts in the show window (its
     /// first stored macro or motion, a slow drive of a second…).
-    pub new_cue: fn(&Project) -> Option<Start>,
+    /// `None`: the first it stores ([`Self::first_stored`]).
+    pub new_cue: Option<fn(&Project) -> Option<Start>>,
     /// What a remote may run on it by name; `None`: it stores nothing to run.
     pub runs: Option<Runs>,
     /// What a pose may move; `None`: it has nothing to pose.
@@ -78,7 +79,13 @@ pub struct Runs {
     /// that say what it is ("macro 3 wave"); else what it holds none of
     /// ("no macro \"x\"").
     pub find: fn(&Project, &str) -> Result<Named, String>,
+    /// What it keeps to run, as a remote's listing of the device shows it:
+    /// each list under its key (`"macros"`), every key even when empty.
+    pub listed: fn(&Project) -> Vec<Listed>,
 }
+
+/// One list a family keeps to run, under its key in a remote's listing of the device.
+pub type Listed = (&'static str, Vec<serde_json::Value>);
 
 /// What a remote named: what runs, and the words that say what it is.
 pub type Named = (Run, String);
@@ -144,6 +151,11 @@ pub fn of(family: Family) -> Result<&'static ShowFamily, Lacks> {
         .into_iter()
         .find(|entry| entry.family == family)
         .ok_or(Lacks { family, lacks: Capability::Show })
+}
+
+/// Every family's part of shows, as each registered it.
+pub fn every() -> impl Iterator<Item = &'static ShowFamily> {
+    inventory::iter::<ShowFamily>.into_iter()
 }
 
 /// Connects `device` on `port` as its family connects one, measuring its

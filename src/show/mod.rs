@@ -124,6 +124,21 @@ impl std::fmt::Display for Start {
     }
 }
 
+impl Start {
+    /// Feeds what it starts to `hasher` (a fingerprint of a show's cues).
+    pub fn fingerprint<H: std::hash::Hasher>(&self, hasher: &mut H) {
+        use std::hash::Hash;
+        match *self {
+            Self::Macro(id) => (0u8, i64::from(id)).hash(hasher),
+            Self::Slot(slot) => (1u8, i64::from(slot)).hash(hasher),
+            Self::Drive { speed_m_s, turn_deg_s, for_ms } => {
+                (2u8, speed_m_s.to_bits(), turn_deg_s.to_bits(), for_ms).hash(hasher);
+            }
+            Self::Family(cue) => (3u8, cue.kind, cue.value.to_bits()).hash(hasher),
+        }
+    }
+}
+
 /// A cue's start as a show file holds it: the first three kinds by name, any
 /// other under its kind's key, with the number it takes.
 #[derive(Clone, Serialize, Deserialize)]
@@ -170,13 +185,13 @@ impl From<Start> for StartFile {
     }
 }
 
-/// What a remote runs on a device: a cue's start, or a PLEN2's play list (slot, plays).
+/// What a remote runs on a device: a cue's start, or a play list its device keeps (a PLEN2's).
 #[derive(Clone, Debug, PartialEq)]
 pub enum Run {
-    /// A macro, a motion or a timed drive.
+    /// What a cue starts: a macro, a motion, a timed drive…
     Start(Start),
-    /// A play list: each slot played so many times (0: forever), in order.
-    List(Vec<(u8, u8)>),
+    /// A play list: each start played so many times (0: forever), in order.
+    List(Vec<(Start, u8)>),
 }
 
 /// A show file that cannot be read, or a show that cannot be played.

@@ -62,8 +62,8 @@ pub trait Stage: Send {
         let _ = now;
         Ok(())
     }
-    /// Plays a list of (slot, plays) in order (a PLEN2's play list).
-    fn start_list(&mut self, entries: &[(u8, u8)]) -> Result<(), String> {
+    /// Plays a list of (start, plays) in order (a PLEN2's play list).
+    fn start_list(&mut self, entries: &[(Start, u8)]) -> Result<(), String> {
         let _ = entries;
         Err("it has no play lists".into())
     }

@@ -1,28 +1,24 @@
 //! What each device of a show does over time, worked out once for the show
 //! as it stands and looked up after: how long each cue keeps its device busy
-//! (the lanes' blocks), each servo macro's trace, each PLEN2 motion's
-//! playback and where each base's drives have taken it by each cue. A frame
-//! then costs what it shows, not the show's length: an hour-long show of
-//! four devices draws as fast as a minute's (`benches/ui.rs` measures it).
+//! (the lanes' blocks) and where each device is at each moment, as its family
+//! works it out ([`Lane`], registered beside its show stage: a servo board's
+//! macros traced, a PLEN2's motions played as the firmware plays them, a
+//! base's drives followed from its place). A frame then costs what it shows,
+//! not the show's length: an hour-long show of four devices draws as fast as
+//! a minute's (`benches/ui.rs` measures it).
 //!
-//! Every answer is the one [`super::at`] and [`super::play::cue_length_ms`]
-//! give: they are worked out by the same functions, once.
+//! Every answer is the one [`posed_at`] and [`cue_length_ms`] give: they are
+//! worked out by the same lanes, once.
 
 use std::collections::HashMap;
 use std::hash::{Hash, Hasher};
 
-use super::at::Axis;
-use super::at::{Now, Posed, arc, driving_at, hold, trace_pose};
-use super::{Place, Show, Start};
-use crate::device::plen2::playback::{self, DEVICE_IDS, Playback, StoredMotions};
-use crate::project::{Family, Project, Run, Trajectories, times_sorted};
+use super::at::{Axis, Now, Posed, hold};
+use super::{Device, Show, Start};
+use crate::project::{Family, Project};
 
-/// The longest a motion is played for its length, ms (a motion that loops forever: ten minutes).
-const LONGEST_MOTION_MS: f64 = 600_000.0;
-/// The longest a servo macro is traced, ms: an hour.
-const LONGEST_CUE_MS: f64 = 3_600_000.0;
-
-/// The device at `index` at `t_ms` of the show (`None`: no such device).
+/// The device at `index` at `t_ms` of the show (`None`: no such device, or
+/// one of a family with no place on the timeline).
 /// (The show window keeps a [`Timeline`]: the same answer, worked out once.)
 pub fn posed_at(show: &Show, index: usize, t_ms: u64) -> Option<Posed> {
     Timeline::default().posed_at(show, index, t_ms)
@@ -32,85 +28,75 @@ pub fn posed_at(show: &Show, index: usize, t_ms: u64) -> Option<Posed> {
 /// axis of it held at a value (degrees), the pass being recorded.
 pub fn now_at(show: &Show, index: usize, t_ms: u64, held: Option<(Axis, f64)>) -> Option<Now> {
     let device = show.devices.get(index)?;
-    if device.project.family == Family::Rflex {
-        return Some(Now::Driving(driving_at(show, &device.name, t_ms)));
+    let mut lane = lane_of(device.project.family)?;
+    match lane.now_at(device, &cues_of(show, &device.name), t_ms) {
+        Now::Posed(mut posed) => {
+            if let Some((axis, value)) = held {
+                hold(&mut posed, axis, value);
+            }
+            Some(Now::Posed(posed))
+        }
+        driving => Some(driving),
     }
-    let mut posed = posed_at(show, index, t_ms)?;
-    if let Some((axis, value)) = held {
-        hold(&mut posed, axis, value);
-    }
-    Some(Now::Posed(posed))
 }
 
 /// How long a cue keeps its device busy, ms, from the device's project.
 /// (The show window keeps a [`Timeline`]: the same answer, worked out once.)
-pub fn cue_length_ms(device: &super::Device, start: &Start) -> u64 {
-    let ms = match *start {
-        Start::Macro(id) => macro_trace(device, id).map_or(0.0, |(_, end)| end),
-        Start::Slot(slot) => motion_playback(device, slot, longest_motion_cycles()).duration_ms(),
-        Start::Drive { for_ms, .. } => return for_ms,
-        Start::Family(_) => return family_length_ms(device, start),
-    };
-    whole_ms(ms)
+pub fn cue_length_ms(device: &Device, start: &Start) -> u64 {
+    lane_of(device.project.family).map_or(0, |mut lane| lane.length_ms(&device.project, start))
 }
 
-/// A family's part of the show's timeline, for a family added since the
-/// first three (theirs are worked out here), registered by the family beside
-/// its show stage (`inventory::submit!`).
+/// One device's part of the show's timeline, as its family works it out;
+/// kept while the show is unchanged, so what it works out once (a macro's
+/// trace, a motion's playback) it may keep.
+pub trait Lane: std::fmt::Debug {
+    /// How long `start` keeps a device holding `project` busy, ms (0: a cue it does not take).
+    fn length_ms(&mut self, project: &Project, start: &Start) -> u64;
+    /// Where `device` is `t_ms` into the show; `cues`: its cues (when, what), by when.
+    fn posed_at(&mut self, device: &Device, cues: &[(u64, Start)], t_ms: u64) -> Posed;
+    /// What its board is told to follow at `t_ms`: its pose, unless it drives.
+    fn now_at(&mut self, device: &Device, cues: &[(u64, Start)], t_ms: u64) -> Now {
+        Now::Posed(self.posed_at(device, cues, t_ms))
+    }
+}
+
+/// A family's part of the show's timeline, registered by the family beside
+/// its show stage (`inventory::submit!`): a new lane for a device of it.
 #[derive(Debug)]
 pub struct FamilyTimeline {
     /// The family.
     pub family: Family,
-    /// Where a device holding `project` is `since_ms` after its latest cue
-    /// started `start` (`None`: before its first cue, at home).
-    pub posed: fn(&Project, Option<(&Start, u64)>) -> Posed,
-    /// How long a cue keeps a device holding `project` busy, ms.
-    pub length_ms: fn(&Project, &Start) -> u64,
+    /// A lane for one device of it, nothing worked out yet.
+    pub lane: fn() -> Box<dyn Lane>,
 }
 
 inventory::collect!(FamilyTimeline);
 
-/// `family`'s part of the timeline, if it registered one.
-fn family_timeline(family: Family) -> Option<&'static FamilyTimeline> {
-    inventory::iter::<FamilyTimeline>.into_iter().find(|entry| entry.family == family)
+/// A new lane for a device of `family`; none: it has no place on the timeline.
+fn lane_of(family: Family) -> Option<Box<dyn Lane>> {
+    inventory::iter::<FamilyTimeline>.into_iter().find(|entry| entry.family == family).map(|entry| (entry.lane)())
 }
 
-/// How long a cue of a family added since the first three keeps its device busy, as the family says.
-fn family_length_ms(device: &super::Device, start: &Start) -> u64 {
-    family_timeline(device.project.family).map_or(0, |timeline| (timeline.length_ms)(&device.project, start))
+/// The latest of `cues` (when, what; by when) started by `t_ms`, if any has.
+pub fn latest(cues: &[(u64, Start)], t_ms: u64) -> Option<(u64, Start)> {
+    let started = cues.partition_point(|&(at, _)| at <= t_ms);
+    started.checked_sub(1).map(|k| cues[k])
 }
 
 /// A length in ms, whole (a part of one counts as one).
-fn whole_ms(ms: f64) -> u64 {
+pub fn whole_ms(ms: f64) -> u64 {
     // Non-negative, under an hour.
     #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
     let whole = ms.max(0.0).ceil() as u64;
     whole
 }
 
-/// A servo board's macro traced as the board plays it (at most an hour), and when it ends; none: it does not trace.
-fn macro_trace(device: &super::Device, macro_id: i32) -> Option<(Trajectories, f64)> {
-    if device.project.family != Family::Servo {
-        return None;
-    }
-    crate::project::trace(&device.project.servo, Run::Macro { macro_id }, LONGEST_CUE_MS).ok()
-}
-
-/// A PLEN2's motion in `slot` played from home, at most `cycles` long (plen2.md §6).
-fn motion_playback(device: &super::Device, slot: u8, cycles: usize) -> Playback {
-    if device.project.family != Family::Plen2 {
-        return Playback { from: [0; DEVICE_IDS], cycles: Vec::new(), frames: Vec::new(), ended: true };
-    }
-    let stored = StoredMotions::new(&device.project.plen2);
-    playback::play(&stored, slot, [0; DEVICE_IDS], cycles)
-}
-
-/// The most cycles a cue's motion is followed for its length.
-fn longest_motion_cycles() -> usize {
-    // Cycle counts from a bounded time.
-    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-    let cycles = (LONGEST_MOTION_MS / Playback::CYCLE_MS) as usize;
-    cycles
+/// The cues of the device called `name`: (when, what), by when (in the show's order at the same time).
+fn cues_of(show: &Show, name: &str) -> Vec<(u64, Start)> {
+    let mut cues: Vec<(u64, Start)> =
+        show.cues.iter().filter(|cue| cue.device == name).map(|cue| (cue.at_ms, cue.start)).collect();
+    cues.sort_by_key(|&(at, _)| at);
+    cues
 }
 
 /// A cue on the timeline.
@@ -126,16 +112,6 @@ pub struct Block {
     pub length_ms: u64,
 }
 
-/// A servo macro's trace, when it ends, and whether its times never go back.
-type Traced = (Trajectories, f64, bool);
-
-/// A PLEN2 motion's playback as far as it was asked for.
-#[derive(Debug)]
-struct Played {
-    playback: Playback,
-    asked: usize,
-}
-
 /// The show's devices over time, kept while the show is unchanged.
 #[derive(Debug, Default)]
 pub struct Timeline {
@@ -145,14 +121,10 @@ pub struct Timeline {
     blocks: Option<(Vec<Block>, u64)>,
     /// Each device's blocks, by start.
     lanes: Vec<Vec<Block>>,
-    /// Each device's cues: (start ms, cue index), by start.
-    cues: HashMap<usize, Vec<(u64, usize)>>,
-    /// Each servo macro's trace, its end, and whether its times never go back (none: it does not trace).
-    traces: HashMap<(usize, i32), Option<Traced>>,
-    /// Each PLEN2 motion's playback from home.
-    plays: HashMap<(usize, u8), Played>,
-    /// Each base's place as each of its cues starts, in its cues' order.
-    places: HashMap<usize, Vec<Place>>,
+    /// Each device's cues: (when, what), by when.
+    cues: HashMap<usize, Vec<(u64, Start)>>,
+    /// Each device's lane (none: its family has no place on the timeline).
+    worked: HashMap<usize, Option<Box<dyn Lane>>>,
     /// The show's first problem, once looked for.
     problem: Option<Option<super::ShowError>>,
 }
@@ -171,14 +143,7 @@ fn key(show: &Show, projects: u64) -> u64 {
     show.sound.as_ref().map(|sound| (sound.offset_ms, sound.duration_ms)).hash(&mut hasher);
     for cue in &show.cues {
         (&cue.device, cue.at_ms).hash(&mut hasher);
-        match cue.start {
-            Start::Macro(id) => (0u8, i64::from(id)).hash(&mut hasher),
-            Start::Slot(slot) => (1u8, i64::from(slot)).hash(&mut hasher),
-            Start::Drive { speed_m_s, turn_deg_s, for_ms } => {
-                (2u8, speed_m_s.to_bits(), turn_deg_s.to_bits(), for_ms).hash(&mut hasher);
-            }
-            Start::Family(cue) => (3u8, cue.kind, cue.value.to_bits()).hash(&mut hasher),
-        }
+        cue.start.fingerprint(&mut hasher);
     }
     hasher.finish()
 }
@@ -198,7 +163,8 @@ impl Timeline {
             let mut blocks = Vec::new();
             for (cue_index, cue) in show.cues.iter().enumerate() {
                 let Some(device) = show.devices.iter().position(|d| d.name == cue.device) else { continue };
-                let length_ms = self.length_ms(show, device, cue.start);
+                let project = &show.devices[device].project;
+                let length_ms = self.worked(show, device).map_or(0, |lane| lane.length_ms(project, &cue.start));
                 blocks.push(Block { device, cue: cue_index, at_ms: cue.at_ms, length_ms });
             }
             let mut lanes = vec![Vec::new(); show.devices.len()];
@@ -227,148 +193,20 @@ impl Timeline {
         self.lanes.get(device).map_or(&[], Vec::as_slice)
     }
 
-    /// How long `start` keeps device `device` busy, ms (as [`super::play::cue_length_ms`]).
-    fn length_ms(&mut self, show: &Show, device: usize, start: Start) -> u64 {
-        let ms = match start {
-            Start::Macro(id) => self.trace(show, device, id).map_or(0.0, |(_, end, _)| *end),
-            Start::Slot(slot) => {
-                let cycles = longest_motion_cycles();
-                self.playback(show, device, slot, cycles).map_or(0.0, Playback::duration_ms)
-            }
-            Start::Drive { for_ms, .. } => return for_ms,
-            Start::Family(_) => return show.devices.get(device).map_or(0, |owner| family_length_ms(owner, &start)),
-        };
-        whole_ms(ms)
+    /// Device `index`'s lane, made once; none: no such device, or its family has no place on the timeline.
+    fn worked(&mut self, show: &Show, index: usize) -> Option<&mut Box<dyn Lane>> {
+        let family = show.devices.get(index)?.project.family;
+        self.worked.entry(index).or_insert_with(|| lane_of(family)).as_mut()
     }
 
-    fn trace(&mut self, show: &Show, device: usize, macro_id: i32) -> Option<&Traced> {
-        let entry = self.traces.entry((device, macro_id)).or_insert_with(|| {
-            let (trajectories, end) = macro_trace(show.devices.get(device)?, macro_id)?;
-            let sorted = times_sorted(&trajectories);
-            Some((trajectories, end, sorted))
-        });
-        entry.as_ref()
-    }
-
-    /// The PLEN2 motion's playback, at least `cycles` long unless it ended by itself.
-    fn playback(&mut self, show: &Show, device: usize, slot: u8, cycles: usize) -> Option<&Playback> {
-        let owner = show.devices.get(device)?;
-        if owner.project.family != Family::Plen2 {
-            return None;
-        }
-        let played = self
-            .plays
-            .entry((device, slot))
-            .or_insert_with(|| Played { playback: motion_playback(owner, slot, cycles), asked: cycles });
-        if played.asked < cycles && !played.playback.ended {
-            // Asked past what was played: twice as far (a scrub moving on costs a replay now and then).
-            let asked = cycles.max(played.asked * 2);
-            *played = Played { playback: motion_playback(owner, slot, asked), asked };
-        }
-        Some(&played.playback)
-    }
-
-    /// Device `index`'s cues, by start.
-    fn cues_of(&mut self, show: &Show, index: usize) -> &[(u64, usize)] {
-        self.cues.entry(index).or_insert_with(|| {
-            let name = show.devices.get(index).map(|device| device.name.as_str()).unwrap_or_default();
-            let mut cues: Vec<(u64, usize)> = show
-                .cues
-                .iter()
-                .enumerate()
-                .filter(|(_, cue)| cue.device == name)
-                .map(|(i, cue)| (cue.at_ms, i))
-                .collect();
-            cues.sort_by_key(|&(at, _)| at);
-            cues
-        })
-    }
-
-    /// The device at `index` at `t_ms` of the show, as [`super::at::posed_at`] has it.
+    /// The device at `index` at `t_ms` of the show, as [`posed_at`] has it.
     pub fn posed_at(&mut self, show: &Show, index: usize, t_ms: u64) -> Option<Posed> {
         let device = show.devices.get(index)?;
+        let cues = self.cues.entry(index).or_insert_with(|| cues_of(show, &device.name));
         let family = device.project.family;
-        let cues = self.cues_of(show, index);
-        // The cues started by then: the latest is what the device does.
-        let started = cues.partition_point(|&(at, _)| at <= t_ms);
-        let latest = started.checked_sub(1).map(|k| cues[k]);
-        if family == Family::Rflex {
-            return Some(Posed::Base(self.base_at(show, index, started, t_ms)));
-        }
-        let latest = latest.and_then(|(at, cue)| Some((at, show.cues.get(cue)?.start)));
-        if let Some(timeline) = family_timeline(family) {
-            let since = latest.as_ref().map(|(at_ms, start)| (start, t_ms - at_ms));
-            return Some((timeline.posed)(&device.project, since));
-        }
-        if family == Family::Plen2 {
-            let mut values = [0; DEVICE_IDS];
-            if let Some((at_ms, Start::Slot(slot))) = latest {
-                values = self.joints_at(show, index, slot, t_ms - at_ms);
-            }
-            return Some(Posed::Joints(values));
-        }
-        if family != Family::Servo {
-            // A family with no place on the timeline (one that plays in no
-            // show: `Show::problems` names it) has no pose, never a servo board's.
-            return None;
-        }
-        let servo = &device.project.servo;
-        let mut angles = servo.servos.iter().map(|s| (s.id, f64::from(s.home_deg))).collect();
-        if let Some((at_ms, Start::Macro(macro_id))) = latest
-            && let Some((trajectories, _, sorted)) = self.trace(show, index, macro_id)
-        {
-            // Whole ms of a show: exact in f64.
-            #[allow(clippy::cast_precision_loss)]
-            let since = (t_ms - at_ms) as f64;
-            angles = trace_pose(servo, (trajectories, *sorted), since);
-        }
-        Some(Posed::Servos(angles))
+        let lane = self.worked.entry(index).or_insert_with(|| lane_of(family)).as_mut()?;
+        Some(lane.posed_at(device, cues, t_ms))
     }
-
-    /// A PLEN2's joints `since_ms` after its motion in `slot` started (held at its end).
-    fn joints_at(&mut self, show: &Show, index: usize, slot: u8, since_ms: u64) -> [i16; DEVICE_IDS] {
-        // Whole ms and cycle counts of at most an hour.
-        #[allow(clippy::cast_precision_loss, clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-        let done = (since_ms as f64 / Playback::CYCLE_MS) as usize;
-        if done == 0 {
-            return [0; DEVICE_IDS];
-        }
-        let Some(played) = self.playback(show, index, slot, done) else { return [0; DEVICE_IDS] };
-        // After `done` whole cycles, `done` steps were output (cycles[k] is step k + 1's).
-        played.cycles.get(done - 1).or(played.cycles.last()).copied().unwrap_or(played.from)
-    }
-
-    /// Where a base is at `t_ms`, its first `started` cues begun: from where
-    /// the cue before the latest left it, the latest's arc until now.
-    fn base_at(&mut self, show: &Show, index: usize, started: usize, t_ms: u64) -> Place {
-        let Some(device) = show.devices.get(index) else { return Place::default() };
-        let cues = self.cues_of(show, index).to_vec();
-        let places = self.places.entry(index).or_insert_with(|| {
-            // The place as each cue starts: each drive runs until its time is up or the next cue starts.
-            let mut places = Vec::with_capacity(cues.len());
-            let mut at = device.place;
-            for (k, &(start, cue)) in cues.iter().enumerate() {
-                places.push(at);
-                let next = cues.get(k + 1).map_or(u64::MAX, |&(later, _)| later);
-                at = drive_to(at, show.cues[cue].start, start, next);
-            }
-            places
-        });
-        let Some(latest) = started.checked_sub(1) else { return device.place };
-        let (start, cue) = cues[latest];
-        drive_to(places[latest], show.cues[cue].start, start, t_ms)
-    }
-}
-
-/// Where `start` (a drive begun at `at_ms`) takes a base from `from` by
-/// `until_ms` (or by its end, if sooner); not a drive: where it is.
-fn drive_to(from: Place, start: Start, at_ms: u64, until_ms: u64) -> Place {
-    let Start::Drive { speed_m_s, turn_deg_s, for_ms } = start else { return from };
-    let until = (at_ms + for_ms).min(until_ms);
-    // Whole ms of a show: exact in f64.
-    #[allow(clippy::cast_precision_loss)]
-    let seconds = until.saturating_sub(at_ms) as f64 / 1000.0;
-    arc(from, speed_m_s, turn_deg_s, seconds)
 }
 
 #[cfg(test)]
@@ -427,19 +265,6 @@ mod tests {
         show
     }
 
-    /// Where a base is, worked out from every cue again (the way before the timeline).
-    fn driven_again(show: &Show, index: usize, t_ms: u64) -> Place {
-        let device = &show.devices[index];
-        let mut cues: Vec<&Cue> = show.cues.iter().filter(|c| c.device == device.name && c.at_ms <= t_ms).collect();
-        cues.sort_by_key(|cue| cue.at_ms);
-        let mut at = device.place;
-        for (k, cue) in cues.iter().enumerate() {
-            let next = cues.get(k + 1).map_or(u64::MAX, |later| later.at_ms);
-            at = drive_to(at, cue.start, cue.at_ms, next.min(t_ms));
-        }
-        at
-    }
-
     #[test]
     fn one_timeline_scrubbed_back_and_forth_says_what_a_fresh_look_says() {
         let show = hour();
@@ -452,9 +277,6 @@ mod tests {
                 let fresh = Timeline::default().posed_at(&show, index, t).unwrap();
                 assert_eq!(kept.posed_at(&show, index, t).unwrap(), fresh, "device {index} at {t} ms");
             }
-            let Posed::Base(place) = kept.posed_at(&show, 2, t).unwrap() else { panic!() };
-            let again = driven_again(&show, 2, t);
-            assert!((place.x_m - again.x_m).abs() < 1e-9 && (place.heading_deg - again.heading_deg).abs() < 1e-9);
         }
         // The looping motion is still moving an hour in, as the firmware plays it.
         let Posed::Joints(at) = kept.posed_at(&show, 1, 3_540_500 + 32 * 5 + 10).unwrap() else { panic!() };
@@ -497,6 +319,7 @@ mod at_tests {
     use crate::project::Step;
     use crate::project::plen2::{Frame, Pose};
     use crate::show::Cue;
+    use crate::show::Place;
 
     fn show() -> Show {
         let mut pose = Pose::default();
@@ -551,16 +374,5 @@ mod at_tests {
         let at = place(9000);
         assert!((at.heading_deg - 180.0).abs() < 1e-9 && (at.y_m - 1.0).abs() < 1e-9, "{at:?}");
         assert!(posed_at(&show, 3, 0).is_none());
-    }
-
-    #[test]
-    fn an_arc_ends_where_a_circle_says() {
-        // A quarter circle of radius 1 m from the origin heading +x, turning left.
-        let quarter = std::f64::consts::FRAC_PI_2;
-        let end = arc(Place::default(), quarter, 90.0, 1.0);
-        assert!(
-            (end.x_m - 1.0).abs() < 1e-9 && (end.y_m - 1.0).abs() < 1e-9 && (end.heading_deg - 90.0).abs() < 1e-9,
-            "{end:?}"
-        );
     }
 }

@@ -16,9 +16,9 @@ mod worker;
 
 use std::sync::{Arc, Condvar, Mutex};
 
+use super::Show;
 use super::passes::Axis;
 use super::play::{Player, Stage, Stopped};
-use super::{Show, Start};
 use crate::device::speed::LiveSpeed;
 use crate::link::Waker;
 pub use dead_man::{DeadMan, MOST_GAP, NotDriven};
@@ -172,11 +172,11 @@ fn run_length_ms(device: &super::Device, run: &Run) -> u64 {
         Run::Start(start) => super::timeline::cue_length_ms(device, start),
         Run::List(entries) => entries
             .iter()
-            .map(|&(slot, plays)| {
-                if plays == 0 {
+            .map(|(start, plays)| {
+                if *plays == 0 {
                     return u64::MAX / 4;
                 }
-                super::timeline::cue_length_ms(device, &Start::Slot(slot)).saturating_mul(u64::from(plays))
+                super::timeline::cue_length_ms(device, start).saturating_mul(u64::from(*plays))
             })
             .fold(0, u64::saturating_add),
     }

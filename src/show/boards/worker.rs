@@ -14,11 +14,11 @@ use super::{
     connect_one,
 };
 use crate::device::speed::LiveSpeed;
+use crate::show::Show;
 use crate::show::alive::Loss;
 use crate::show::at::Now;
 use crate::show::play::{Gone, Player, Stage, Stopped};
 use crate::show::timeline::now_at;
-use crate::show::{Show, Start};
 
 /// What a device does for a remote.
 #[derive(Debug, Default)]
@@ -188,6 +188,8 @@ impl Worker {
     fn start(&mut self, index: usize, run: &Run, caption: String) -> Result<(), Refused> {
         let length = super::run_length_ms(&self.show.devices[index], run);
         let stage = self.stage(index)?;
+        // A start that lasts its own time (a timed drive) is the show's, not a remote's stick.
+        let timed = matches!(run, Run::Start(start) if stage.lasts(start).is_some());
         stage.resume();
         let started = match run {
             Run::Start(start) => stage.start(start),
@@ -196,8 +198,8 @@ impl Worker {
         started.map_err(Refused::Cannot)?;
         let until = Instant::now().checked_add(Duration::from_millis(length)).unwrap_or_else(far_future);
         self.doing[index].playing = Some((caption, until));
-        if let Run::Start(Start::Drive { .. }) = *run {
-            // A timed drive is the show's, not a remote's stick: no heartbeat.
+        if timed {
+            // No heartbeat keeps it going.
             self.doing[index].dead_man.release();
         }
         Ok(())

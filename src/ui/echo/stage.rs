@@ -18,7 +18,7 @@ use crate::show::family::{Poses, ShowFamily};
 use crate::show::passes::Axis;
 use crate::show::play::Stage;
 use crate::show::stages::{LinkDelay, Linked, ROUND_TRIPS};
-use crate::show::timeline::FamilyTimeline;
+use crate::show::timeline::{FamilyTimeline, Lane, latest};
 use crate::show::{Device, Start};
 
 /// Its kind of cue in a show file.
@@ -30,7 +30,7 @@ inventory::submit! {
         connect,
         first_stored: |_| None,
         takes: |start| matches!(start, Start::Family(cue) if cue.kind == MOVE),
-        new_cue: |project| crate::show::family::FamilyCue::named(MOVE, f64::from(EchoSection::of(project).home_deg)).ok().map(Start::Family),
+        new_cue: Some(|project| crate::show::family::FamilyCue::named(MOVE, f64::from(EchoSection::of(project).home_deg)).ok().map(Start::Family)),
         holds: |_, start| matches!(start, Start::Family(cue) if cue.kind == MOVE),
         runs: None,
         poses: Some(Poses { axes: |_| vec![("servo".to_string(), Axis::Servo(0))], alias: |_, _| None }),
@@ -39,17 +39,27 @@ inventory::submit! {
     }
 }
 inventory::submit! {
-    // A move is at once: it keeps the board busy for no time.
-    FamilyTimeline { family: Family::Echo, posed, length_ms: |_, _| 0 }
+    FamilyTimeline { family: Family::Echo, lane: || Box::new(EchoLane) }
 }
 
-/// Where the servo is: at home before the first cue, then where the latest moved it.
-fn posed(project: &Project, latest: Option<(&Start, u64)>) -> Posed {
-    let deg = match latest {
-        Some((Start::Family(cue), _)) => cue.value,
-        _ => f64::from(EchoSection::of(project).home_deg),
-    };
-    Posed::Servos(BTreeMap::from([(0, deg)]))
+/// The echo board on the show's timeline: it works nothing out to keep.
+#[derive(Debug)]
+struct EchoLane;
+
+impl Lane for EchoLane {
+    fn length_ms(&mut self, _project: &Project, _start: &Start) -> u64 {
+        // A move is at once: it keeps the board busy for no time.
+        0
+    }
+
+    /// Where the servo is: at home before the first cue, then where the latest moved it.
+    fn posed_at(&mut self, device: &Device, cues: &[(u64, Start)], t_ms: u64) -> Posed {
+        let deg = match latest(cues, t_ms) {
+            Some((_, Start::Family(cue))) => cue.value,
+            _ => f64::from(EchoSection::of(&device.project).home_deg),
+        };
+        Posed::Servos(BTreeMap::from([(0, deg)]))
+    }
 }
 
 /// An angle the echo board takes: whole degrees within ±180.

@@ -16,6 +16,7 @@ mod operations;
 mod pad;
 mod play_lists;
 mod preview;
+mod show_cue;
 mod words;
 
 use crate::authoring::recording::Recorder;

@@ -8,6 +8,7 @@ mod captions;
 mod drive;
 mod link;
 mod pad;
+mod show_cue;
 mod telemetry;
 mod words;
 mod world;

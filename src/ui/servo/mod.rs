@@ -18,6 +18,7 @@ mod pad;
 mod played;
 mod preview;
 mod rig;
+mod show_cue;
 mod sliders;
 mod words;
 

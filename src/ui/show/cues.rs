@@ -1,9 +1,10 @@
 //! The show window's cues, a row each: which device, when (seconds), and
-//! what it starts — one of its macros (servo board) or motions (PLEN2), or
-//! a drive (rFLEX: speed, turn, how long); added, changed and removed, the
-//! show checked as it is edited.
+//! what it starts, chosen as its family registered ([`CueUi`]: one of a
+//! servo board's macros, a PLEN2's motions, a base's drive…); added, changed
+//! and removed, the show checked as it is edited.
 
 use super::ShowWords;
+use crate::project::{Family, Project};
 use crate::show::{Cue, Show, Start, family};
 
 /// The cues' table; `editable` while no show plays.
@@ -86,7 +87,53 @@ fn cue_row(
 /// What a new cue of a device starts, as its family says: its lowest macro
 /// or motion, a slow drive of a second…; none for a family that plays in no show.
 fn first_start(device: &crate::show::Device) -> Option<Start> {
-    family::of(device.project.family).ok().and_then(|entry| (entry.new_cue)(&device.project))
+    family::of(device.project.family)
+        .ok()
+        .and_then(|entry| entry.new_cue.unwrap_or(entry.first_stored)(&device.project))
+}
+
+/// How a family's kinds of cue read and are chosen in the show window,
+/// registered by the family beside its side of the editor
+/// (`ui/<family>/show_cue.rs`). A family's own kind of cue
+/// (`Start::Family`) with none registered reads as its kind and its number,
+/// and is set as a number.
+#[derive(Debug)]
+pub struct CueUi {
+    /// The family.
+    pub family: Family,
+    /// What `start` starts, in these words, named as `project` names it
+    /// when it is known (its macro's caption); none: not a kind of its.
+    pub caption: fn(&Start, Option<&Project>, &ShowWords) -> Option<String>,
+    /// Chooses what a cue (number, label) of a device holding `project`
+    /// starts, among what it holds; `start` is of a kind the family takes.
+    pub choose: fn(&mut egui::Ui, (usize, egui::Id), &mut Start, &Project, &ShowWords),
+}
+
+inventory::collect!(CueUi);
+
+/// Chooses `value` among what a device stores (`items`: each with its
+/// caption), as a cue's (number, label) combo box; `shown`: the one now.
+pub fn stored_choice<T: PartialEq>(
+    ui: &mut egui::Ui,
+    (index, named): (usize, egui::Id),
+    value: &mut T,
+    shown: String,
+    items: impl IntoIterator<Item = (T, String)>,
+) {
+    egui::ComboBox::from_id_salt(("cue-start", index))
+        .selected_text(shown)
+        .width(200.0)
+        .show_ui(ui, |ui| {
+            for (item, caption) in items {
+                ui.selectable_value(value, item, caption);
+            }
+        })
+        .response
+        .labelled_by(named);
+}
+
+fn cue_ui(family: Family) -> Option<&'static CueUi> {
+    inventory::iter::<CueUi>.into_iter().find(|entry| entry.family == family)
 }
 
 /// What a cue starts, chosen among what its device holds.
@@ -103,67 +150,21 @@ fn start_ui(
     if !fits && let Some(first) = first_start(device) {
         *start = first;
     }
-    match start {
-        Start::Macro(id) => {
-            let shown = device.project.servo.macro_by_id(*id).map_or_else(
-                || format!("{} {id}", words.macro_word),
-                |m| format!("{} {id} {}", words.macro_word, m.caption),
-            );
-            egui::ComboBox::from_id_salt(("cue-start", index))
-                .selected_text(shown)
-                .width(200.0)
-                .show_ui(ui, |ui| {
-                    for item in &device.project.servo.macros {
-                        ui.selectable_value(id, item.id, format!("{} {} {}", words.macro_word, item.id, item.caption));
-                    }
-                })
-                .response
-                .labelled_by(named);
-        }
-        Start::Slot(slot) => {
-            let shown = device.project.plen2.motions.iter().find(|m| m.slot == *slot).map_or_else(
-                || format!("{} {slot}", words.motion_word),
-                |m| format!("{} {slot} {}", words.motion_word, m.name),
-            );
-            egui::ComboBox::from_id_salt(("cue-start", index))
-                .selected_text(shown)
-                .width(200.0)
-                .show_ui(ui, |ui| {
-                    for motion in &device.project.plen2.motions {
-                        ui.selectable_value(
-                            slot,
-                            motion.slot,
-                            format!("{} {} {}", words.motion_word, motion.slot, motion.name),
-                        );
-                    }
-                })
-                .response
-                .labelled_by(named);
-        }
-        Start::Drive { speed_m_s, turn_deg_s, for_ms } => {
-            ui.horizontal(|ui| {
-                ui.add(egui::DragValue::new(speed_m_s).range(-1.5..=1.5).speed(0.01).suffix(" m/s")).labelled_by(named);
-                ui.add(egui::DragValue::new(turn_deg_s).range(-180.0..=180.0).speed(1.0).suffix(" °/s"))
-                    .labelled_by(named);
-                let mut seconds = *for_ms as f64 / 1000.0;
-                if ui
-                    .add(egui::DragValue::new(&mut seconds).range(0.0..=600.0).speed(0.05).suffix(" s"))
-                    .labelled_by(named)
-                    .changed()
-                {
-                    // Seconds within ten minutes: whole ms.
-                    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-                    let ms = (seconds * 1000.0).round().max(0.0) as u64;
-                    *for_ms = ms;
-                }
-            });
-        }
+    if let Some(entry) = cue_ui(family) {
+        (entry.choose)(ui, (index, named), start, &device.project, words);
+    } else if let Start::Family(cue) = start {
         // A family's own kind of cue: the number it takes, named by its kind.
-        Start::Family(cue) => {
-            ui.horizontal(|ui| {
-                ui.label(cue.kind);
-                ui.add(egui::DragValue::new(&mut cue.value).speed(1.0)).labelled_by(named);
-            });
-        }
+        ui.horizontal(|ui| {
+            ui.label(cue.kind);
+            ui.add(egui::DragValue::new(&mut cue.value).speed(1.0)).labelled_by(named);
+        });
     }
+}
+
+/// A cue's caption: what it starts, in these words, named as its device
+/// names it (its macro's caption, its motion's name) when it is known.
+pub(super) fn cue_caption(start: &Start, device: Option<&crate::show::Device>, words: &ShowWords) -> String {
+    let own = device.and_then(|device| (cue_ui(device.project.family)?.caption)(start, Some(&device.project), words));
+    own.or_else(|| inventory::iter::<CueUi>.into_iter().find_map(|entry| (entry.caption)(start, None, words)))
+        .unwrap_or_else(|| start.to_string())
 }

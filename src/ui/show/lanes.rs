@@ -2,10 +2,11 @@
 //! cue a block named as its row names it, the seconds under them and the
 //! scrub's line; and each cue said as a line of text too.
 
+use crate::show::Show;
 use crate::show::timeline::{Block, Timeline};
-use crate::show::{Show, Start};
 
 use super::ShowWords;
+use super::cues::cue_caption;
 
 /// The timeline: the sound's lane, then a lane per device with its cues, on
 /// one time axis, and the scrub's time as a line; where a click or a drag on
@@ -173,25 +174,4 @@ fn said_cues(ui: &mut egui::Ui, (show, timeline): (&Show, &mut Timeline), count:
             }
         },
     );
-}
-
-/// A cue's caption: what it starts, in these words, named as its device
-/// names it (its macro's caption, its motion's name) when it is known.
-pub(super) fn cue_caption(start: &Start, device: Option<&crate::show::Device>, words: &ShowWords) -> String {
-    match *start {
-        Start::Macro(id) => {
-            let caption = device.and_then(|d| d.project.servo.macro_by_id(id)).map(|m| m.caption.as_str());
-            format!("{} {id} {}", words.macro_word, caption.unwrap_or_default()).trim_end().to_string()
-        }
-        Start::Slot(slot) => {
-            let name =
-                device.and_then(|d| d.project.plen2.motions.iter().find(|m| m.slot == slot)).map(|m| m.name.as_str());
-            format!("{} {slot} {}", words.motion_word, name.unwrap_or_default()).trim_end().to_string()
-        }
-        Start::Drive { speed_m_s, turn_deg_s, .. } => {
-            format!("{} {speed_m_s:.2} m/s {turn_deg_s:.0}°/s", words.drive_word)
-        }
-        // A family's own kind of cue, by the name it registered.
-        Start::Family(cue) => format!("{} {}", cue.kind, cue.value),
-    }
 }

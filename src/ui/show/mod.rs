@@ -5,7 +5,7 @@
 //! stops every device, bases braking.
 
 mod apply;
-mod cues;
+pub(in crate::ui) mod cues;
 mod devices;
 mod lanes;
 pub mod linked;

@@ -116,7 +116,7 @@ pub fn ran(ran: &Ran) -> Vec<Said> {
         .map(|sent| {
             let (device, late_ms) = (&sent.device, sent.late_ms());
             super::said_by(|words| {
-                let start = super::lanes::cue_caption(&sent.start, None, words);
+                let start = super::cues::cue_caption(&sent.start, None, words);
                 say!(words.lang, "show_said.started", device, start, late_ms)
             })
         })

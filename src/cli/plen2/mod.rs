@@ -1,5 +1,7 @@
 //! The PLEN2's `board info`, `export`, `import` and `sim --protocol plen2`.
 
+mod follow;
+
 use std::path::Path;
 use std::time::Instant;
 

@@ -3,6 +3,8 @@
 //! version twice a second (the robot acknowledges nothing else, so this is
 //! how it is known to be there).
 
+mod lane;
+
 use std::time::{Duration, Instant};
 
 use crossbeam_channel::Receiver;
@@ -12,7 +14,7 @@ use crate::authoring::fit::{self as fit, Budget, FitError, Plen2Board};
 use crate::authoring::fitted::{self, PLEN2_UPDATE_MS};
 use crate::device::plen2::playback::{CYCLE_US, DEVICE_IDS, Settings, joint_settings};
 use crate::device::plen2::{
-    Command as Plen2Command, Plen2Handle, Plen2Notice, Plen2Options, Plen2Requester, ReplyError, start_delay,
+    Command as Plen2Command, Plen2Handle, Plen2Notice, Plen2Options, Plen2Requester, ReplyError, play_motion_delay,
 };
 use crate::device::speed::{LiveSpeed, Slew};
 use crate::link::{self, LineSettings, PortName, no_waker};
@@ -32,13 +34,13 @@ inventory::submit! {
         connect,
         first_stored: |project| project.plen2.motions.iter().map(|m| m.slot).min().map(Start::Slot),
         takes: |start| matches!(start, Start::Slot(_)),
-        new_cue: |project| project.plen2.motions.iter().map(|m| m.slot).min().map(Start::Slot),
+        new_cue: None,
         holds: |project, start| matches!(*start, Start::Slot(slot) if project.plen2.motions.iter().any(|m| m.slot == slot)),
-        runs: Some(crate::show::family::Runs { find: motion_named }),
+        runs: Some(crate::show::family::Runs { find: motion_named, listed: motions_listed }),
         poses: Some(crate::show::family::Poses {
             axes: |_| Joint::ALL.iter().map(|joint| (joint.name().to_string(), Axis::Joint(joint.device_id()))).collect(),
             // A joint's device id, as well as its name.
-            alias: |_, name| name.parse::<u8>().ok().and_then(|id| Joint::ALL.iter().find(|joint| joint.device_id() == id)).map(|joint| Axis::Joint(joint.device_id())),
+            alias: |_, name| name.parse::<u8>().ok().and_then(Joint::from_device_id).map(|joint| Axis::Joint(joint.device_id())),
         }),
         drives: false,
         cues: &[],
@@ -107,6 +109,14 @@ inventory::submit! {
     passes::FamilyPasses { family: crate::project::Family::Plen2, axes: recorded_axes, join, forget }
 }
 
+/// Its motions (slot, name) and play lists (name, how many entries), as a remote lists them.
+fn motions_listed(project: &Project) -> Vec<crate::show::family::Listed> {
+    let plen2 = &project.plen2;
+    let motions = plen2.motions.iter().map(|m| serde_json::json!({ "slot": m.slot, "name": m.name }));
+    let lists = plen2.play_lists.iter().map(|l| serde_json::json!({ "name": l.name, "entries": l.entries.len() }));
+    vec![("motions", motions.collect()), ("play_lists", lists.collect())]
+}
+
 /// The motion `what` names (its slot or its name), or the play list (its name).
 fn motion_named(project: &Project, what: &str) -> Result<crate::show::family::Named, String> {
     let number: Option<i64> = what.trim().parse().ok();
@@ -115,7 +125,7 @@ fn motion_named(project: &Project, what: &str) -> Result<crate::show::family::Na
         return Ok((Run::Start(Start::Slot(m.slot)), format!("motion {} {}", m.slot, m.name)));
     }
     if let Some(list) = plen2.play_lists.iter().find(|list| list.name == what) {
-        let entries = list.entries.iter().map(|entry| (entry.slot, entry.plays)).collect();
+        let entries = list.entries.iter().map(|entry| (Start::Slot(entry.slot), entry.plays)).collect();
         return Ok((Run::List(entries), format!("play list {}", list.name)));
     }
     Err(format!("no motion or play list {what:?}"))
@@ -188,7 +198,7 @@ struct Plen2Stage {
 impl Stage for Plen2Stage {
     fn start_delay(&self, start: &Start) -> Duration {
         let Start::Slot(slot) = *start else { return Duration::ZERO };
-        start_delay(&Plen2Command::PlayMotion { slot }, self.link.one_way)
+        play_motion_delay(slot, self.link.one_way)
     }
 
     fn start_uncertainty(&self, _start: &Start) -> Duration {
@@ -251,7 +261,15 @@ impl Stage for Plen2Stage {
         }
     }
 
-    fn start_list(&mut self, entries: &[(u8, u8)]) -> Result<(), String> {
+    fn start_list(&mut self, entries: &[(Start, u8)]) -> Result<(), String> {
+        let entries = entries
+            .iter()
+            .map(|&(start, plays)| match start {
+                Start::Slot(slot) => Ok((slot, plays)),
+                other => Err(format!("a PLEN2's play list plays motions, not {other}")),
+            })
+            .collect::<Result<Vec<(u8, u8)>, String>>()?;
+        let entries = entries.as_slice();
         self.slew = None;
         self.handle.queue_list(entries);
         self.requester.send(Plen2Command::Pop).map_err(|error| error.to_string())
@@ -259,7 +277,7 @@ impl Stage for Plen2Stage {
 
     fn pose(&mut self, axis: Axis, value_deg: f64, speed: LiveSpeed) -> Result<f64, String> {
         let Axis::Joint(device) = axis else { return Err("a PLEN2's axes are joints".into()) };
-        let joint = Joint::ALL.iter().find(|joint| joint.device_id() == device).ok_or(format!("no joint {device}"))?;
+        let joint = Joint::from_device_id(device).ok_or(format!("no joint {device}"))?;
         let (home, min, max) = self.settings[usize::from(device)];
         // Tenths of a degree of a finite value within ±180°.
         #[allow(clippy::cast_possible_truncation)]

@@ -3,6 +3,8 @@
 //! braked at STOP. It reports ten times a second once started: that is how
 //! it is known to be there.
 
+mod lane;
+
 use std::time::{Duration, Instant};
 
 use super::{LinkDelay, Linked, ROUND_TRIPS};
@@ -26,7 +28,7 @@ inventory::submit! {
         first_stored: |_| None,
         takes: |start| matches!(start, Start::Drive { .. }),
         // A slow drive of a second, to be set as the show needs.
-        new_cue: |_| Some(Start::Drive { speed_m_s: 0.2, turn_deg_s: 0.0, for_ms: 1000 }),
+        new_cue: Some(|_| Some(Start::Drive { speed_m_s: 0.2, turn_deg_s: 0.0, for_ms: 1000 })),
         holds: |_, start| {
             matches!(*start, Start::Drive { speed_m_s, turn_deg_s, .. } if speed_m_s.is_finite() && turn_deg_s.is_finite())
         },

@@ -2,6 +2,8 @@
 //! posed within their limits, asked for its battery twice a second (which
 //! is also how it is known to be there).
 
+mod lane;
+
 use std::collections::BTreeMap;
 use std::time::{Duration, Instant};
 
@@ -33,9 +35,15 @@ inventory::submit! {
         connect,
         first_stored: |project| project.servo.macros.iter().map(|m| m.id).min().map(Start::Macro),
         takes: |start| matches!(start, Start::Macro(_)),
-        new_cue: |project| project.servo.macros.iter().map(|m| m.id).min().map(Start::Macro),
+        new_cue: None,
         holds: |project, start| matches!(*start, Start::Macro(id) if project.servo.macro_by_id(id).is_some()),
-        runs: Some(crate::show::family::Runs { find: macro_named }),
+        runs: Some(crate::show::family::Runs {
+            find: macro_named,
+            listed: |project| {
+                let macros = project.servo.macros.iter().map(|m| serde_json::json!({ "id": m.id, "caption": m.caption }));
+                vec![("macros", macros.collect())]
+            },
+        }),
         poses: Some(crate::show::family::Poses {
             axes: |project| project.servo.servos.iter().map(|servo| (servo.id.to_string(), Axis::Servo(servo.id))).collect(),
             alias: |project, name| project.servo.servos.iter().find(|servo| servo.caption == name).map(|s| Axis::Servo(s.id)),
