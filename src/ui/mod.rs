@@ -29,6 +29,7 @@ mod rows;
 mod servo;
 mod shell;
 pub mod show;
+mod show_cue;
 pub mod sound;
 mod transport;
 pub mod view3d;

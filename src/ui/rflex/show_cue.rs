@@ -3,21 +3,20 @@
 
 use crate::project::{Family, Project};
 use crate::show::Start;
-use crate::ui::show::ShowWords;
-use crate::ui::show::cues::CueUi;
+use crate::ui::show_cue::{CueUi, CueWords};
 
 inventory::submit! {
     CueUi { family: Family::Rflex, caption, choose }
 }
 
 /// "drive 0.20 m/s 15°/s".
-fn caption(start: &Start, _project: Option<&Project>, words: &ShowWords) -> Option<String> {
+fn caption(start: &Start, _project: Option<&Project>, words: &CueWords) -> Option<String> {
     let Start::Drive { speed_m_s, turn_deg_s, .. } = *start else { return None };
     Some(format!("{} {speed_m_s:.2} m/s {turn_deg_s:.0}°/s", words.drive_word))
 }
 
 /// Its speed, turn and length.
-fn choose(ui: &mut egui::Ui, (_, named): (usize, egui::Id), start: &mut Start, _project: &Project, _words: &ShowWords) {
+fn choose(ui: &mut egui::Ui, (_, named): (usize, egui::Id), start: &mut Start, _project: &Project, _words: &CueWords) {
     let Start::Drive { speed_m_s, turn_deg_s, for_ms } = start else { return };
     ui.horizontal(|ui| {
         ui.add(egui::DragValue::new(speed_m_s).range(-1.5..=1.5).speed(0.01).suffix(" m/s")).labelled_by(named);

@@ -1,11 +1,11 @@
 //! The show window's cues, a row each: which device, when (seconds), and
-//! what it starts, chosen as its family registered ([`CueUi`]: one of a
+//! what it starts, chosen as its family registered (`ui::show_cue::CueUi`: one of a
 //! servo board's macros, a PLEN2's motions, a base's drive…); added, changed
 //! and removed, the show checked as it is edited.
 
 use super::ShowWords;
-use crate::project::{Family, Project};
 use crate::show::{Cue, Show, Start, family};
+use crate::ui::show_cue::{self, CueWords};
 
 /// The cues' table; `editable` while no show plays.
 pub(super) fn cues_ui(ui: &mut egui::Ui, show: &mut Show, editable: bool, words: &ShowWords) {
@@ -92,50 +92,6 @@ fn first_start(device: &crate::show::Device) -> Option<Start> {
         .and_then(|entry| entry.new_cue.unwrap_or(entry.first_stored)(&device.project))
 }
 
-/// How a family's kinds of cue read and are chosen in the show window,
-/// registered by the family beside its side of the editor
-/// (`ui/<family>/show_cue.rs`). A family's own kind of cue
-/// (`Start::Family`) with none registered reads as its kind and its number,
-/// and is set as a number.
-#[derive(Debug)]
-pub struct CueUi {
-    /// The family.
-    pub family: Family,
-    /// What `start` starts, in these words, named as `project` names it
-    /// when it is known (its macro's caption); none: not a kind of its.
-    pub caption: fn(&Start, Option<&Project>, &ShowWords) -> Option<String>,
-    /// Chooses what a cue (number, label) of a device holding `project`
-    /// starts, among what it holds; `start` is of a kind the family takes.
-    pub choose: fn(&mut egui::Ui, (usize, egui::Id), &mut Start, &Project, &ShowWords),
-}
-
-inventory::collect!(CueUi);
-
-/// Chooses `value` among what a device stores (`items`: each with its
-/// caption), as a cue's (number, label) combo box; `shown`: the one now.
-pub fn stored_choice<T: PartialEq>(
-    ui: &mut egui::Ui,
-    (index, named): (usize, egui::Id),
-    value: &mut T,
-    shown: String,
-    items: impl IntoIterator<Item = (T, String)>,
-) {
-    egui::ComboBox::from_id_salt(("cue-start", index))
-        .selected_text(shown)
-        .width(200.0)
-        .show_ui(ui, |ui| {
-            for (item, caption) in items {
-                ui.selectable_value(value, item, caption);
-            }
-        })
-        .response
-        .labelled_by(named);
-}
-
-fn cue_ui(family: Family) -> Option<&'static CueUi> {
-    inventory::iter::<CueUi>.into_iter().find(|entry| entry.family == family)
-}
-
 /// What a cue starts, chosen among what its device holds.
 fn start_ui(
     ui: &mut egui::Ui,
@@ -150,8 +106,8 @@ fn start_ui(
     if !fits && let Some(first) = first_start(device) {
         *start = first;
     }
-    if let Some(entry) = cue_ui(family) {
-        (entry.choose)(ui, (index, named), start, &device.project, words);
+    if let Some(entry) = show_cue::of(family) {
+        (entry.choose)(ui, (index, named), start, &device.project, &cue_words(words));
     } else if let Start::Family(cue) = start {
         // A family's own kind of cue: the number it takes, named by its kind.
         ui.horizontal(|ui| {
@@ -164,7 +120,14 @@ fn start_ui(
 /// A cue's caption: what it starts, in these words, named as its device
 /// names it (its macro's caption, its motion's name) when it is known.
 pub(super) fn cue_caption(start: &Start, device: Option<&crate::show::Device>, words: &ShowWords) -> String {
-    let own = device.and_then(|device| (cue_ui(device.project.family)?.caption)(start, Some(&device.project), words));
-    own.or_else(|| inventory::iter::<CueUi>.into_iter().find_map(|entry| (entry.caption)(start, None, words)))
+    let words = &cue_words(words);
+    let own =
+        device.and_then(|device| (show_cue::of(device.project.family)?.caption)(start, Some(&device.project), words));
+    own.or_else(|| show_cue::every().find_map(|entry| (entry.caption)(start, None, words)))
         .unwrap_or_else(|| start.to_string())
+}
+
+/// The words a family's cues are said in, in the show window's language.
+fn cue_words(words: &ShowWords) -> CueWords {
+    CueWords { macro_word: words.macro_word, motion_word: words.motion_word, drive_word: words.drive_word }
 }

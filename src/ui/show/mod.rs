@@ -5,7 +5,7 @@
 //! stops every device, bases braking.
 
 mod apply;
-pub(in crate::ui) mod cues;
+mod cues;
 mod devices;
 mod lanes;
 pub mod linked;
