@@ -4,7 +4,7 @@
 //! records, not a project). Each `crate::a::b::Name` path — in a `use` line,
 //! brace groups expanded, or written out in code — is an arrow from its file
 //! to the file of the deepest module it names. Comments and in-file test
-//! modules do not count.
+//! modules do not count. And no public function is left that nothing calls.
 
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
@@ -264,6 +264,64 @@ fn no_file_is_in_an_import_loop() {
     assert!(arrows.len() > 100, "the sources were read ({} files)", arrows.len());
     let found = loops(&arrows);
     assert!(found.is_empty(), "import loops: {found:#?}");
+}
+
+/// The public functions `code` defines (`pub fn`, `pub(crate) fn`…), by name.
+fn public_functions(code: &str) -> Vec<String> {
+    let mut found = Vec::new();
+    for (at, _) in code.match_indices("pub") {
+        let rest = &code[at + 3..];
+        let rest = if rest.starts_with('(') { rest.split_once(')').map_or("", |(_, after)| after) } else { rest };
+        let rest = rest.trim_start();
+        let rest = rest.strip_prefix("const ").unwrap_or(rest).trim_start();
+        let Some(named) = rest.strip_prefix("fn ") else { continue };
+        let name: String = named.chars().take_while(|c| c.is_alphanumeric() || *c == '_').collect();
+        if !name.is_empty() {
+            found.push(name);
+        }
+    }
+    found
+}
+
+/// How many times each word (letters, digits, `_`) is written in `text`.
+fn word_counts(text: &str) -> BTreeMap<&str, usize> {
+    let mut counts = BTreeMap::new();
+    for word in text.split(|c: char| !(c.is_alphanumeric() || c == '_')).filter(|word| !word.is_empty()) {
+        *counts.entry(word).or_insert(0) += 1;
+    }
+    counts
+}
+
+/// Every public function of `src/` (outside in-file test modules) is
+/// called, or named, somewhere besides its own definition: in `src/`, in
+/// the tests or in the benchmarks. A function nothing calls is removed.
+#[test]
+fn every_public_function_has_a_caller() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files = Vec::new();
+    for dir in ["src", "tests", "benches"] {
+        sources(&root.join(dir), &root.join(dir), &mut files);
+        for file in files.iter_mut().filter(|file| file.is_relative()) {
+            *file = root.join(dir).join(&*file);
+        }
+    }
+    let everything: String = files.iter().map(|file| std::fs::read_to_string(file).unwrap() + "\n").collect();
+    let counts = word_counts(&everything);
+    let mut uncalled = Vec::new();
+    for file in files.iter().filter(|file| file.starts_with(root.join("src"))) {
+        for name in public_functions(&code(&std::fs::read_to_string(file).unwrap())) {
+            if counts.get(name.as_str()).copied().unwrap_or(0) < 2 {
+                uncalled.push(format!("{}: {name}", file.strip_prefix(root).unwrap().display()));
+            }
+        }
+    }
+    assert!(files.len() > 300, "the sources were read ({} files)", files.len());
+    assert!(uncalled.is_empty(), "public functions nothing calls: {uncalled:#?}");
+    assert_eq!(
+        public_functions("pub fn a() {}\npub(crate) fn b_2() {}\npub const fn c() {}\npub struct D;"),
+        ["a", "b_2", "c"]
+    );
+    assert_eq!(word_counts("a_b a ab a(\nxa").get("a"), Some(&2));
 }
 
 #[test]

@@ -122,6 +122,7 @@ pub fn solve(chain: &Chain, base: Placed, angles: &[f32], limb: &Limb, goal: Goa
     best
 }
 
+#[cfg(test)]
 /// Where each of `limbs`' ends is in the pose `angles` with the root at
 /// `base`: what planting them holds.
 pub fn plant(chain: &Chain, base: Placed, angles: &[f32], limbs: &[&Limb]) -> Vec<Placed> {

@@ -47,11 +47,6 @@ fn narrow<T: TryFrom<i64>>(value: i64, what: &str) -> Result<T, String> {
     T::try_from(value).map_err(|_| format!("{what} {value} is out of range"))
 }
 
-/// A motion from the text of a motion.json.
-pub fn motion_from_json(text: &str) -> Result<Motion, String> {
-    read_motion(text).map(|(motion, _)| motion)
-}
-
 /// The keys a motion.json may hold at each level (the official editor's, `@` ones included).
 const MOTION_KEYS: [&str; 7] = ["slot", "name", "codes", "frames", "@frame_length", "@index", "@metadata"];
 const CODE_KEYS: [&str; 2] = ["method", "arguments"];

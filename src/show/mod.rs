@@ -501,6 +501,21 @@ mod tests {
     #![allow(clippy::unwrap_used)]
     use super::*;
 
+    /// A start is said in words in logs, errors and a remote's `GET /show`, never as a Rust value.
+    #[test]
+    fn a_start_is_said_in_words() {
+        let said: Vec<String> = [
+            Start::Macro(3),
+            Start::Slot(2),
+            Start::Drive { speed_m_s: 0.2, turn_deg_s: -15.0, for_ms: 1000 },
+            Start::Family(family::FamilyCue { kind: "move", value: 30.0 }),
+        ]
+        .iter()
+        .map(ToString::to_string)
+        .collect();
+        assert_eq!(said, ["macro 3", "slot 2", "drive 0.2 m/s turning -15°/s for 1000 ms", "move 30"]);
+    }
+
     #[test]
     fn a_project_is_a_show_of_one_device_and_a_show_reads_back_as_written() {
         let project = Project::servo(project::ServoProject::default());

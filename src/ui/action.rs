@@ -266,6 +266,7 @@ impl Action {
         Self::Family(Box::new(action))
     }
 
+    #[cfg(test)]
     /// The family action this is, if it is a `T`.
     pub fn family_action<T: Any>(&self) -> Option<&T> {
         let Self::Family(action) = self else { return None };

@@ -129,11 +129,6 @@ pub fn write_recovery_with(writer: &FileWriter, data_dir: &Path, bytes: &[u8]) -
     writer(&recovery_path(data_dir), bytes)
 }
 
-/// Writes the recovery file atomically.
-pub fn write_recovery(data_dir: &Path, path: Option<&Path>, project: &Project) -> std::io::Result<()> {
-    write_recovery_with(&system_writer(), data_dir, &recovery_bytes(path, project)?)
-}
-
 /// The recovery file left by a session that did not end cleanly, if any:
 /// read only when it is a regular file within a project file's size cap.
 pub fn read_recovery(data_dir: &Path) -> Option<Recovery> {
@@ -166,7 +161,8 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         assert_eq!(read_recovery(dir.path()), None);
         let project = Project::servo(crate::project::ServoProject { project_id: 3, ..Default::default() });
-        write_recovery(dir.path(), Some(Path::new("/tmp/robot.json")), &project).unwrap();
+        let bytes = recovery_bytes(Some(Path::new("/tmp/robot.json")), &project).unwrap();
+        write_recovery_with(&system_writer(), dir.path(), &bytes).unwrap();
         let recovered = read_recovery(dir.path()).unwrap();
         assert_eq!(recovered.project, project);
         assert_eq!(recovered.path.as_deref(), Some(Path::new("/tmp/robot.json")));

@@ -300,7 +300,7 @@ fn a_motion_is_saved_as_motion_json_where_the_user_chose() {
     harness.get_by_label("motion.json…").click();
     common::ui::run_until(&mut harness, "the motion.json", |_| chosen.exists());
     assert_eq!(offered.lock().unwrap().as_deref(), Some("03_Wave.json"), "the name the official editor gives it");
-    let written = servo_studio::project::motion_json::motion_from_json(&std::fs::read_to_string(&chosen).unwrap());
+    let written = servo_studio::project::motion_json::load_motions(&chosen).map(|mut motions| motions.remove(0));
     assert_eq!(written.unwrap(), project().plen2.motions[0]);
     common::ui::run_until(&mut harness, "the status line", |app| {
         app.status.as_ref().is_some_and(|status| status.text == format!("saved {}", chosen.display()))

@@ -320,6 +320,7 @@ impl Session {
         Ok(())
     }
 
+    #[cfg(test)]
     /// Requests waiting, including the one in flight.
     pub fn pending_requests(&self) -> usize {
         self.queue.len() + usize::from(self.in_flight.is_some())
