@@ -266,21 +266,46 @@ fn no_file_is_in_an_import_loop() {
     assert!(found.is_empty(), "import loops: {found:#?}");
 }
 
-/// The public functions `code` defines (`pub fn`, `pub(crate) fn`…), by name.
-fn public_functions(code: &str) -> Vec<String> {
+/// The public functions `code` defines (`pub fn`, `pub(crate) fn`…), by
+/// name, each with whether it exists only for tests (`#[cfg(test)]`, or the
+/// `test-api` feature the tests turn on) as the attributes above it say.
+fn public_functions(code: &str) -> Vec<(String, bool)> {
     let mut found = Vec::new();
     for (at, _) in code.match_indices("pub") {
+        if code[..at].chars().next_back().is_some_and(|c| c.is_alphanumeric() || c == '_') {
+            continue;
+        }
         let rest = &code[at + 3..];
         let rest = if rest.starts_with('(') { rest.split_once(')').map_or("", |(_, after)| after) } else { rest };
         let rest = rest.trim_start();
         let rest = rest.strip_prefix("const ").unwrap_or(rest).trim_start();
         let Some(named) = rest.strip_prefix("fn ") else { continue };
         let name: String = named.chars().take_while(|c| c.is_alphanumeric() || *c == '_').collect();
+        let above = code[..at]
+            .lines()
+            .rev()
+            .skip(1)
+            .map(str::trim)
+            .take_while(|line| line.is_empty() || line.starts_with("#[") || line.starts_with("///"));
+        let for_tests = above.into_iter().any(|line| line.contains("cfg(test)") || line.contains("\"test-api\""));
         if !name.is_empty() {
-            found.push(name);
+            found.push((name, for_tests));
         }
     }
     found
+}
+
+/// `text` as the app is built from it: its in-file test modules
+/// (`#[cfg(test)] mod … {`, to the brace closing it at a line's start) cut out.
+fn built(text: &str) -> String {
+    let mut kept = String::new();
+    let mut rest = text;
+    while let Some(at) = rest.find("#[cfg(test)]\nmod ") {
+        kept.push_str(&rest[..at]);
+        rest = rest[at..].find("\n}\n").map_or("", |end| &rest[at + end + 3..]);
+    }
+    kept.push_str(rest);
+    kept
 }
 
 /// How many times each word (letters, digits, `_`) is written in `text`.
@@ -292,36 +317,57 @@ fn word_counts(text: &str) -> BTreeMap<&str, usize> {
     counts
 }
 
-/// Every public function of `src/` (outside in-file test modules) is
-/// called, or named, somewhere besides its own definition: in `src/`, in
-/// the tests or in the benchmarks. A function nothing calls is removed.
+/// Every public function of `src/` has a caller outside the tests: it is
+/// named, besides its definition, in the code the app is built from or in
+/// a benchmark. One the tests alone reach exists only for them (`cfg(test)`,
+/// or the `test-api` feature the tests turn on: absent from the app). Files
+/// only tests compile (the test-only echo family, `tests.rs` modules) call nothing.
 #[test]
-fn every_public_function_has_a_caller() {
+fn every_public_function_has_a_caller_outside_the_tests() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let mut files = Vec::new();
-    for dir in ["src", "tests", "benches"] {
+    let listed = |dir: &str| {
+        let mut files = Vec::new();
         sources(&root.join(dir), &root.join(dir), &mut files);
-        for file in files.iter_mut().filter(|file| file.is_relative()) {
-            *file = root.join(dir).join(&*file);
-        }
-    }
-    let everything: String = files.iter().map(|file| std::fs::read_to_string(file).unwrap() + "\n").collect();
+        files.into_iter().map(|file| root.join(dir).join(file)).collect::<Vec<PathBuf>>()
+    };
+    let test_only = |file: &PathBuf| file.ends_with("tests.rs") || file.starts_with(root.join("src/ui/echo"));
+    let app: Vec<(PathBuf, String)> = listed("src")
+        .into_iter()
+        .filter(|file| !test_only(file))
+        .map(|file| {
+            let text = built(&std::fs::read_to_string(&file).unwrap());
+            (
+                file,
+                text.lines().map(|line| line.find("//").map_or(line, |at| &line[..at])).collect::<Vec<_>>().join("\n"),
+            )
+        })
+        .collect();
+    let benches: String = listed("benches").iter().map(|file| std::fs::read_to_string(file).unwrap()).collect();
+    let everything: String =
+        app.iter().map(|(_, code)| code.as_str()).chain([benches.as_str()]).collect::<Vec<_>>().join("\n");
     let counts = word_counts(&everything);
     let mut uncalled = Vec::new();
-    for file in files.iter().filter(|file| file.starts_with(root.join("src"))) {
-        for name in public_functions(&code(&std::fs::read_to_string(file).unwrap())) {
-            if counts.get(name.as_str()).copied().unwrap_or(0) < 2 {
+    for (file, code) in &app {
+        for (name, for_tests) in public_functions(code) {
+            if !for_tests && counts.get(name.as_str()).copied().unwrap_or(0) < 2 {
                 uncalled.push(format!("{}: {name}", file.strip_prefix(root).unwrap().display()));
             }
         }
     }
-    assert!(files.len() > 300, "the sources were read ({} files)", files.len());
-    assert!(uncalled.is_empty(), "public functions nothing calls: {uncalled:#?}");
-    assert_eq!(
-        public_functions("pub fn a() {}\npub(crate) fn b_2() {}\npub const fn c() {}\npub struct D;"),
-        ["a", "b_2", "c"]
-    );
+    assert!(app.len() > 300, "the sources were read ({} files)", app.len());
+    assert!(uncalled.is_empty(), "public functions nothing outside the tests calls: {uncalled:#?}");
+}
+
+/// The reading of that: definitions, what only tests get, what the app is built from.
+#[test]
+fn public_functions_and_their_gates_are_read_as_written() {
+    let code = "pub fn a() {}\npub(crate) fn b_2() {}\n#[cfg(test)]\n/// c\npub const fn c() {}\npub struct D;\nrepub fn e() {}\n\
+                #[cfg(any(test, feature = \"test-api\"))]\n    pub fn f(&self) {}\n";
+    let found = public_functions(code);
+    let expected = [("a", false), ("b_2", false), ("c", true), ("f", true)];
+    assert_eq!(found, expected.map(|(name, gated)| (name.to_string(), gated)));
     assert_eq!(word_counts("a_b a ab a(\nxa").get("a"), Some(&2));
+    assert_eq!(built("fn x() {}\n#[cfg(test)]\nmod tests {\n    fn y() {}\n}\nfn z() {}\n"), "fn x() {}\nfn z() {}\n");
 }
 
 #[test]

@@ -98,11 +98,13 @@ impl Connection {
         self
     }
 
+    #[cfg(any(test, feature = "test-api"))]
     /// The reading half (for tests and tools that play the other end).
     pub fn reader_mut(&mut self) -> &mut (dyn Read + Send) {
         &mut *self.reader
     }
 
+    #[cfg(any(test, feature = "test-api"))]
     /// The writing half.
     pub fn writer_mut(&mut self) -> &mut (dyn Write + Send) {
         &mut *self.writer

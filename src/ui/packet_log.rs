@@ -81,6 +81,7 @@ impl PacketLog {
         (0..self.matched.len()).map(|row| self.matched_entry(row)).collect()
     }
 
+    #[cfg(any(test, feature = "test-api"))]
     /// Sets the filter (case-insensitive substring of the line).
     pub fn set_filter(&mut self, filter: &str) {
         self.filter = filter.to_string();

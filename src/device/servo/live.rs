@@ -4,7 +4,9 @@
 use super::client::Requester;
 use super::item::Item;
 use super::ops::OpError;
-use crate::protocol::servo::{AngleUnit, Message, ServoMove, ServoStatus, ServoSwitches};
+#[cfg(any(test, feature = "test-api"))]
+use crate::protocol::servo::{AngleUnit, ServoSwitches};
+use crate::protocol::servo::{Message, ServoMove, ServoStatus};
 
 fn ask(requester: &Requester, item: &Item, message: Message) -> Result<Message, OpError> {
     requester.request(message).map_err(|source| OpError::Request { item: item.clone(), source })
@@ -40,6 +42,7 @@ impl Requester {
         }
     }
 
+    #[cfg(any(test, feature = "test-api"))]
     /// Sets a servo's (or all servos', id 0xFF) run and hold switches (20030).
     pub fn set_servo_switches(&self, switches: ServoSwitches) -> Result<ServoSwitches, OpError> {
         let item = Item::ServoSwitches(switches.servo_id);
@@ -49,6 +52,7 @@ impl Requester {
         }
     }
 
+    #[cfg(any(test, feature = "test-api"))]
     /// Sets a servo's (or all servos', id 0xFF) angle unit (20040).
     pub fn set_angle_unit(&self, servo_id: u8, unit: AngleUnit) -> Result<AngleUnit, OpError> {
         let item = Item::AngleUnit(servo_id);

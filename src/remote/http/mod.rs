@@ -68,6 +68,8 @@ struct Served {
 /// A server taking requests until dropped.
 pub struct HttpServer {
     addr: SocketAddr,
+    /// The connections open, counted for the tests.
+    #[cfg(any(test, feature = "test-api"))]
     conns: Arc<Conns>,
     streams: Arc<Streams>,
     running: Option<Running>,
@@ -99,14 +101,24 @@ impl HttpServer {
             streams: Arc::new(Streams::default()),
             waiting: Arc::new(Semaphore::new(WAITING_FOR_BOARDS)),
         });
-        let (conns, streams) = (Arc::clone(&served.conns), Arc::clone(&served.streams));
+        #[cfg(any(test, feature = "test-api"))]
+        let conns = Arc::clone(&served.conns);
+        let streams = Arc::clone(&served.streams);
         let running = Running::spawn("remote http", runtime, accept(listener, served))?;
         let ending = Arc::new(AtomicBool::new(false));
         let (streaming, remote, ended) = (Arc::clone(&streams), Arc::clone(remote), Arc::clone(&ending));
         let broadcaster = std::thread::Builder::new()
             .name("remote events".into())
             .spawn(move || events::broadcast(&streaming, &remote, &ended))?;
-        Ok(Self { addr, conns, streams, running: Some(running), ending, broadcaster: Some(broadcaster) })
+        Ok(Self {
+            addr,
+            #[cfg(any(test, feature = "test-api"))]
+            conns,
+            streams,
+            running: Some(running),
+            ending,
+            broadcaster: Some(broadcaster),
+        })
     }
 
     /// Where it listens.
@@ -114,6 +126,7 @@ impl HttpServer {
         self.addr
     }
 
+    #[cfg(any(test, feature = "test-api"))]
     /// How many connections are open now.
     pub fn connections(&self) -> usize {
         self.conns.count()

@@ -23,12 +23,14 @@ pub fn system_lister() -> PortLister {
 }
 
 impl StudioApp {
+    #[cfg(any(test, feature = "test-api"))]
     /// Reads ports with `lister` instead of the system's (tests give one that blocks).
     pub fn with_port_lister(mut self, lister: PortLister) -> Self {
         self.links.list_with(lister);
         self
     }
 
+    #[cfg(any(test, feature = "test-api"))]
     /// Writes files with `writer` instead of the system's (tests give one that blocks).
     pub fn with_file_writer(mut self, writer: files::FileWriter) -> Self {
         self.files.work = files::FileWork::start(writer, self.window.waker.clone());

@@ -142,8 +142,9 @@ impl StudioApp {
         self.show_family_tab(family);
     }
 
+    #[cfg(any(test, feature = "test-api"))]
     /// Opens ports with `opener` instead of the system's (tests use a double).
-    pub fn with_opener(mut self, opener: Opener) -> Self {
+    pub fn with_opener(mut self, opener: crate::link::Opener) -> Self {
         self.links.opener = opener;
         self
     }

@@ -121,6 +121,7 @@ impl LinkDesk {
     }
 
     /// Reads ports with `lister` from now on (the scanner starts again).
+    #[cfg(any(test, feature = "test-api"))]
     pub(super) fn list_with(&mut self, lister: PortLister) {
         self.lister = lister;
         self.scanner = None;

@@ -31,7 +31,7 @@ pub use file_desk::FileDesk;
 pub use link_desk::{Connecting, LinkDesk};
 
 use crate::device::speed::LiveSpeed;
-use crate::link::{Opener, PortInfo, Waker};
+use crate::link::{PortInfo, Waker};
 use crate::project::{Family, Project};
 use crate::ui::action::{Action, AfterUnsaved, FileRequest, Tab};
 use crate::ui::board_link::BoardLink;
@@ -148,6 +148,7 @@ impl StudioApp {
         app
     }
 
+    #[cfg(any(test, feature = "test-api"))]
     /// Keeps backups and the recovery file in `data_dir` instead of the
     /// platform's data folder.
     pub fn with_data_dir(mut self, data_dir: PathBuf) -> Self {
@@ -157,6 +158,7 @@ impl StudioApp {
         self
     }
 
+    #[cfg(any(test, feature = "test-api"))]
     /// Asks for files with the editor's own picker, as where no system dialog
     /// can appear (`install`: what would give one).
     pub fn with_own_file_picker(mut self, install: &'static str) -> Self {
@@ -164,6 +166,7 @@ impl StudioApp {
         self
     }
 
+    #[cfg(any(test, feature = "test-api"))]
     /// Opens file dialogs with `picker` instead of the system's (tests answer them).
     pub fn with_picker(mut self, picker: Picker) -> Self {
         self.files.picker = picker;

@@ -46,6 +46,7 @@ impl ImportDesk {
         ));
     }
 
+    #[cfg(any(test, feature = "test-api"))]
     /// Whether what the board plays of the open session, as it stands, is worked out.
     pub fn board_known(&self) -> bool {
         self.session.as_ref().is_some_and(|session| self.board(session).is_some())

@@ -180,11 +180,13 @@ impl Preview {
         }
     }
 
+    #[cfg(any(test, feature = "test-api"))]
     /// The live view's camera, as last drawn.
     pub fn joints_camera(&self) -> Option<crate::ui::view3d::Camera> {
         self.joints_view.drawn().map(|(camera, _)| camera)
     }
 
+    #[cfg(any(test, feature = "test-api"))]
     /// Where on the screen a point of `joint`'s link was last drawn in the
     /// live view (the one farthest from its axis), to touch it there.
     pub fn joint_on_screen(&self, joint: Joint) -> Option<egui::Pos2> {

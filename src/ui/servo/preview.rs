@@ -309,6 +309,7 @@ impl Preview {
         }
     }
 
+    #[cfg(any(test, feature = "test-api"))]
     /// How many meshes the live view drew last.
     pub fn meshes_drawn(&self) -> usize {
         self.live_scene.meshes.len()
@@ -320,6 +321,7 @@ impl Preview {
         self.live_view.on_screen(self.live_scene.ends.get(end)?.at)
     }
 
+    #[cfg(any(test, feature = "test-api"))]
     /// Where on the screen a point of `servo_id`'s link was last drawn in the
     /// live view (the one farthest from its axis), to touch it there.
     pub fn servo_on_screen(&self, servo_id: u8) -> Option<egui::Pos2> {

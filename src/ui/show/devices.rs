@@ -103,6 +103,7 @@ impl Adapters {
     }
 
     /// Whether they were listed at least once.
+    #[cfg(any(test, feature = "test-api"))]
     pub(super) fn listed(&self) -> bool {
         self.listed.is_some()
     }

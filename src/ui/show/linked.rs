@@ -104,6 +104,7 @@ impl Linked {
         taken
     }
 
+    #[cfg(any(test, feature = "test-api"))]
     /// Whether every device answered (none asking, silent or lost).
     pub fn all_answered(&self) -> bool {
         self.states.iter().all(|state| matches!(state, LinkState::Answered(_)))

@@ -314,6 +314,7 @@ impl ShowDesk {
         None
     }
 
+    #[cfg(any(test, feature = "test-api"))]
     /// Whether the USB adapters attached were listed at least once since the window opened.
     pub fn adapters_listed(&self) -> bool {
         self.adapters.listed()

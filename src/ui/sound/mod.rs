@@ -135,6 +135,7 @@ pub fn stored(file: &Path, folder: Option<&Path>) -> String {
 }
 
 impl SoundDesk {
+    #[cfg(any(test, feature = "test-api"))]
     /// A desk that plays through the sound server at `socket` (tests run their own).
     pub fn with_server(socket: PathBuf) -> Self {
         Self { server: Some(socket), ..Self::default() }

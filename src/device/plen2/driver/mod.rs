@@ -190,6 +190,7 @@ impl Plen2Driver {
         self.pacer.mode()
     }
 
+    #[cfg(any(test, feature = "test-api"))]
     /// The delivery delay the adaptive pacing allows for, once it widened.
     pub fn pacing_window(&self) -> Option<Duration> {
         self.pacer.window()
