@@ -288,12 +288,20 @@ fn axis_of(device: &Device, name: &str) -> Result<Axis, Reply> {
         .ok_or_else(|| Reply::error(404, format!("{} has no servo or joint {name:?}", device.name)))
 }
 
-/// `device` refused what its family lacks (422), named: "base: an rFLEX
-/// base cannot pose a servo or joint; drive it (POST /devices/base/drive)".
+/// `device` refused what its family lacks (422), named, with what it can
+/// do instead: "base: an rFLEX base cannot pose a servo or joint; drive it
+/// (POST /devices/base/drive)", "plen: a PLEN2 cannot drive; play what it
+/// stores (POST /devices/plen/play)". A family that plays in no show gets no hint.
 fn lacking(device: &Device, lacks: family::Lacks) -> Reply {
-    let name = &device.name;
-    let drives = lacks.lacks != family::Capability::Drive && family::drives(lacks.family).is_ok();
-    let hint = if drives { format!("; drive it (POST /devices/{name}/drive)") } else { String::new() };
+    use family::Capability;
+    let (name, family) = (&device.name, lacks.family);
+    let can = [
+        (Capability::Run, family::runs(family).is_ok(), "play what it stores", "play"),
+        (Capability::Pose, family::poses(family).is_ok(), "pose it", "pose"),
+        (Capability::Drive, family::drives(family).is_ok(), "drive it", "drive"),
+    ];
+    let instead = can.into_iter().find(|(capability, able, ..)| *capability != lacks.lacks && *able);
+    let hint = instead.map_or_else(String::new, |(_, _, what, verb)| format!("; {what} (POST /devices/{name}/{verb})"));
     Reply::error(422, format!("{name}: {lacks}{hint}"))
 }
 
@@ -397,9 +405,12 @@ mod tests {
         );
         assert_eq!(
             said(Verb::Drive { device: "plen".into(), speed_m_s: 0.1, turn_deg_s: 0.0 }),
-            "plen: a PLEN2 cannot drive"
+            "plen: a PLEN2 cannot drive; play what it stores (POST /devices/plen/play)"
         );
-        assert_eq!(said(Verb::Heartbeat("plen".into())), "plen: a PLEN2 cannot drive");
+        assert_eq!(
+            said(Verb::Heartbeat("plen".into())),
+            "plen: a PLEN2 cannot drive; play what it stores (POST /devices/plen/play)"
+        );
         assert_eq!(
             said(pose("base")),
             "base: an rFLEX base cannot pose a servo or joint; drive it (POST /devices/base/drive)"

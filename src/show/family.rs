@@ -249,7 +249,10 @@ mod tests {
         show.cues.push(Cue { device: "bare".into(), at_ms: 0, start: Start::Macro(1) });
         let problems = show.problems();
         assert!(matches!(&problems[0], ShowError::PlaysInNoShow { device, .. } if device == "bare"), "{problems:?}");
-        assert_eq!(problems[0].to_string(), "device \"bare\": a Bare board cannot play in a show");
+        assert_eq!(
+            problems[0].to_string(),
+            "device \"bare\": a Bare board cannot play in a show; remove it from the show"
+        );
         assert!(matches!(&problems[1], ShowError::NotHeld { device, .. } if device == "bare"), "{problems:?}");
         assert_eq!(problems.len(), 2);
         // Nor is it posed as a servo board on the show's timeline.

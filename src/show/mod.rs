@@ -234,7 +234,7 @@ pub enum ShowError {
         device: String,
     },
     /// A device of a family that plays in no show (it has no show stage).
-    #[error("device {device:?}: {lacks}")]
+    #[error("device {device:?}: {lacks}; remove it from the show")]
     PlaysInNoShow {
         /// The device.
         device: String,

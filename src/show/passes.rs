@@ -69,7 +69,7 @@ pub enum JoinError {
     #[error("{0} is not a device of this show: pick one of its servo boards or PLEN2s to record a pass of")]
     NoDevice(String),
     /// The device's family records no passes (a base), named.
-    #[error("{device}: {lacks}")]
+    #[error("{device}: {lacks}; pick another device's axis")]
     Cannot {
         /// The device.
         device: String,
@@ -260,7 +260,7 @@ mod tests {
         let before = show.clone();
         let drive = pass("base", Axis::Servo(1), 0, 1000, |t| t);
         let refused = join(&mut show, &[drive], "base", None).unwrap_err();
-        assert_eq!(refused.to_string(), "base: an rFLEX base cannot record a pass");
+        assert_eq!(refused.to_string(), "base: an rFLEX base cannot record a pass; pick another device's axis");
         assert_eq!(show, before);
     }
 }

@@ -290,7 +290,7 @@ fn the_echo_board_plays_in_a_show_beside_a_servo_board_and_is_posed_and_stopped_
     logged_more(&echo_log, 0, |said| said == "M 45");
     let (code, said) = http(http_at, "POST", "/devices/echo/drive", r#"{"speed_m_s": 0.1}"#);
     assert_eq!(code, 422, "{said}");
-    assert_eq!(said["error"], "echo: an Echo board cannot drive");
+    assert_eq!(said["error"], "echo: an Echo board cannot drive; pose it (POST /devices/echo/pose)");
     // Every servo switched off, holding (as the servo board's emulator logs it).
     let holding = |said: &str| said.contains("is_start: false");
     let stopped = |said: &str| said == "S";

@@ -172,8 +172,14 @@ mod tests {
             lacks: crate::show::family::Capability::Show,
         };
         let plays_not = ShowError::PlaysInNoShow { device: "頭".into(), lacks };
-        assert_eq!(plays_not.worded(Language::English), "device \"頭\": a PLEN2 cannot play in a show");
-        assert_eq!(plays_not.worded(Language::TraditionalChinese), "裝置「頭」：PLEN2 無法在表演中演出");
+        assert_eq!(
+            plays_not.worded(Language::English),
+            "device \"頭\": a PLEN2 cannot play in a show; remove it from the show"
+        );
+        assert_eq!(
+            plays_not.worded(Language::TraditionalChinese),
+            "裝置「頭」：PLEN2 無法在表演中演出，請將它從表演中移除"
+        );
         assert_eq!(Unlinked::NoPort.worded(Language::English), Unlinked::NoPort.to_string());
         assert_eq!(Unlinked::NoPort.worded(Language::Japanese), "ポートがありません：接続先を入力してください");
         let refused = ServeError::NoToken { listen: "0.0.0.0:8765".parse().unwrap() };
