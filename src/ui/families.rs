@@ -44,10 +44,15 @@ impl std::fmt::Debug for Families {
 }
 
 impl Families {
-    /// Where `family` is in the list (every family of [`Family::all`] has a
-    /// side: a test holds it; any other falls back to the first, the servo board's).
+    /// Where `family` is in the list. Every family of [`Family::all`] has a
+    /// side (a test holds it), and no other can be opened: one asked for all
+    /// the same is a bug, which panics in debug builds and tests (as a
+    /// misrouted action does) and in a release shows the first side rather
+    /// than end the session with the user's work.
     fn place(&self, family: Family) -> usize {
-        self.0.iter().position(|family_ui| family_ui.family() == family).unwrap_or_default()
+        let place = self.0.iter().position(|family_ui| family_ui.family() == family);
+        debug_assert!(place.is_some(), "no side of the editor for the {}", family.name());
+        place.unwrap_or_default()
     }
 
     /// The side of the editor of `family`.
@@ -87,6 +92,14 @@ impl Families {
 mod tests {
     use super::*;
     use crate::project::Project;
+
+    /// A family with no side of the editor is a bug said at once in tests,
+    /// never silently shown as the servo board's side.
+    #[test]
+    #[should_panic(expected = "no side of the editor for the None board")]
+    fn a_family_without_a_side_is_a_bug_not_the_servo_board() {
+        let _ = Families::default().get(Family::named("none", "None board"));
+    }
 
     #[test]
     fn each_family_has_its_own_side_in_menu_order() {
