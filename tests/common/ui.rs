@@ -2,12 +2,13 @@
 //! fonts installed (a caption's missing glyph fails the test), its own data
 //! folder, and a deadline on anything waited for.
 
+use std::sync::{Arc, Condvar, Mutex};
 use std::time::{Duration, Instant};
 
 use egui_kittest::kittest::Queryable;
 use egui_kittest::{Harness, HarnessBuilder};
 use servo_studio::device::servo::ServoHandle;
-use servo_studio::link::no_waker;
+use servo_studio::link::Waker;
 use servo_studio::project::Project;
 use servo_studio::ui::{Action, BoardLink, Plen2Ui, RflexUi, ServoBoardLink as _, ServoUi, StudioApp, Tab};
 
@@ -27,10 +28,45 @@ pub fn window(app: StudioApp, size: (f32, f32)) -> Harness<'static, StudioApp> {
     builder(size).build_ui_state(|ui, app: &mut StudioApp| app.show(ui), app)
 }
 
+/// Whether the editor's threads (its board's link, its workers) said they
+/// have news for the window since the test last looked: what its waker
+/// does, one per test thread.
+#[derive(Default)]
+struct Woken {
+    news: Mutex<bool>,
+    told: Condvar,
+}
+
+thread_local! {
+    static WOKEN: Arc<Woken> = Arc::default();
+}
+
+/// The waker an editor built here gets: it tells this test's thread.
+pub fn waker() -> Waker {
+    let woken = WOKEN.with(Arc::clone);
+    Arc::new(move || {
+        *woken.news.lock().unwrap() = true;
+        woken.told.notify_all();
+    })
+}
+
+/// Between two frames of a test waiting on something: until the editor's
+/// threads have news, or 10 ms have passed (for what moves with time alone,
+/// and for an editor built with another waker). A test waiting on a board
+/// leaves the cores to the others instead of drawing frames nobody needs.
+pub fn wait_for_news() {
+    let at_most = Duration::from_millis(10);
+    WOKEN.with(|woken| {
+        let news = woken.news.lock().unwrap();
+        let (mut news, _) = woken.told.wait_timeout_while(news, at_most, |news| !*news).unwrap();
+        *news = false;
+    });
+}
+
 /// An editor on `project`, keeping its backups and recovery file in a folder of its own.
 pub fn editor(project: impl Into<Project>) -> StudioApp {
     let data = tempfile::tempdir().unwrap().keep();
-    StudioApp::new(project, None, no_waker()).with_data_dir(data)
+    StudioApp::new(project, None, waker()).with_data_dir(data)
 }
 
 /// `app` showing `tab` in a window of `size`, after a few frames.
@@ -48,6 +84,9 @@ pub fn run_until(harness: &mut Harness<'static, StudioApp>, what: &str, done: im
     while !done(harness.state()) {
         assert!(Instant::now() < deadline, "timed out waiting for {what}");
         harness.step();
+        if !done(harness.state()) {
+            wait_for_news();
+        }
     }
     // A connected board keeps the window repainting: it never "settles".
     harness.run_steps(3);

@@ -196,6 +196,7 @@ fn a_curve_picked_for_a_step_shows_its_cost_and_plays_on_the_board_as_sub_steps(
     while sent.last() != Some(&-90) {
         assert!(Instant::now() < deadline, "the curve never ended: {sent:?}");
         harness.step();
+        common::ui::wait_for_news();
         while let Ok(event) = events.try_recv() {
             if let LinkEvent::Driver(SimEvent::Handled(Message::ExecuteActionRequest { moves })) = event {
                 sent.extend(moves.iter().filter(|m| m.servo_id == 1).map(|m| m.degree));

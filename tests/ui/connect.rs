@@ -141,6 +141,7 @@ fn a_tcp_connect_that_times_out_says_so_and_the_window_keeps_drawing() {
     while harness.state().links.connecting.is_some() {
         assert!(woken.recv_deadline(deadline).is_ok(), "the connect never ended");
         harness.step();
+        common::ui::wait_for_news();
     }
     let status = harness.state().status.clone().unwrap();
     assert!(status.is_error);

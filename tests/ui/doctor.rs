@@ -153,6 +153,7 @@ fn a_pulled_cable_reconnects_when_the_same_device_comes_back_and_not_to_another(
     while harness.state().link.is_none() {
         assert!(std::time::Instant::now() < deadline, "the link was never made again");
         harness.step();
+        common::ui::wait_for_news();
     }
     assert_eq!(harness.state().status.as_ref().unwrap().text, reconnected);
     run_until(&mut harness, "the connect probe", |_| was_asked(&second));

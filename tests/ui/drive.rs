@@ -60,6 +60,7 @@ fn an_arrow_key_drives_the_base_and_letting_go_stops_it_within_one_frame() {
     while inspect(&harness).braked {
         assert!(Instant::now() < deadline, "the brake was never released");
         harness.step();
+        common::ui::wait_for_news();
     }
     // The status line no longer says what the connection said.
     assert_eq!(status(&harness), "Brake released: the base can drive");
@@ -118,6 +119,7 @@ fn a_lost_link_is_reported_and_the_pad_stops_sending() {
     while harness.state().link.is_some() {
         assert!(Instant::now() < deadline, "the lost link was never noticed");
         harness.step();
+        common::ui::wait_for_news();
     }
     let status = harness.state().status.clone().unwrap();
     assert!(status.is_error && status.text.starts_with("The board link ended"), "{status:?}");

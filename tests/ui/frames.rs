@@ -100,6 +100,7 @@ fn a_stuck_port_scan_and_a_slow_save_leave_the_window_drawing_and_stop_working()
     while harness.state().links.ports.is_empty() {
         woken.recv_timeout(WAIT).expect("the port list arrives");
         harness.step();
+        common::ui::wait_for_news();
     }
     assert_eq!(harness.state().links.ports[0].name, "/dev/ttyTEST0");
 }

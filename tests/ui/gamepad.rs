@@ -349,6 +349,7 @@ mod other_families {
             let deadline = std::time::Instant::now() + std::time::Duration::from_secs(10);
             while std::time::Instant::now() < deadline {
                 harness.step();
+                common::ui::wait_for_news();
                 for event in events.try_iter() {
                     if let LinkEvent::Driver(SimEvent::Handled(message)) = event
                         && wanted(&message)

@@ -95,6 +95,7 @@ fn robot_reaches(harness: &mut Harness<'static, StudioApp>, joint: Joint, angle:
     loop {
         assert!(Instant::now() < deadline, "the robot never turned {joint:?} to {angle}");
         harness.step();
+        common::ui::wait_for_news();
         while let Ok(event) = events.try_recv() {
             if let LinkEvent::Driver(Plen2SimEvent::Executed(Command::SetAngle { device, angle: a })) = event
                 && device == joint.device_id()

@@ -21,6 +21,7 @@ fn the_log_shows_decoded_frames_and_filters_them() {
     while harness.state().link.as_ref().unwrap().log.len() < 8 {
         assert!(Instant::now() < deadline, "the log stayed empty");
         harness.step();
+        common::ui::wait_for_news();
     }
     harness.run_steps(2);
     assert!(harness.query_all_by_label_contains("→ QueryProjectIDRequest").next().is_some());

@@ -140,6 +140,7 @@ fn play_from_here_sends_the_macro_from_that_command_and_moves_the_preview_there(
     while sent.len() < 3 {
         assert!(Instant::now() < deadline, "the loops never all played: {sent:?}");
         harness.step();
+        common::ui::wait_for_news();
         while let Ok(event) = events.try_recv() {
             if let LinkEvent::Driver(SimEvent::Handled(Message::ExecuteActionRequest { moves })) = event {
                 sent.extend(moves.iter().map(|m| (m.servo_id, m.degree, m.interval_10ms)));

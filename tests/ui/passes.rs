@@ -27,6 +27,7 @@ fn record(harness: &mut Harness<'static, StudioApp>, until_ms: u64, hand: impl F
         let t = harness.state().desks.show.stage.scrub_ms as f64 / 1000.0;
         harness.state_mut().desks.show.passes.value = hand(t);
         harness.step();
+        common::ui::wait_for_news();
     }
     harness.get_by_label("■ Stop pass").click();
     harness.run_steps(3);

@@ -71,6 +71,7 @@ fn walked(harness: &mut Harness<'static, StudioApp>, what: &str, wanted: impl Fn
     loop {
         assert!(Instant::now() < deadline, "the robot never executed {what}");
         harness.step();
+        common::ui::wait_for_news();
         while let Ok(event) = events.try_recv() {
             if let LinkEvent::Driver(Plen2SimEvent::Executed(command)) = event
                 && wanted(&command)
@@ -99,6 +100,7 @@ fn a_joint_moves_live_within_its_limits_and_stop_sends_ri_then_hp() {
     while angles.last() != Some(&900) {
         assert!(Instant::now() < deadline, "the knee never reached 90°: {angles:?}");
         harness.step();
+        common::ui::wait_for_news();
         while let Ok(event) = events.try_recv() {
             if let LinkEvent::Driver(Plen2SimEvent::Executed(Command::SetAngle { device: 6, angle })) = event {
                 angles.push(angle);
@@ -145,6 +147,7 @@ fn the_robot_panel_uploads_verifies_and_a_play_list_queues_its_motions() {
     while harness.state().operation.is_some() || common::ui::plen2_ui(harness.state()).result.is_none() {
         assert!(Instant::now() < deadline, "the upload never ended");
         harness.step();
+        common::ui::wait_for_news();
     }
     let result = shown_result(harness.state());
     assert!(result.contains("Uploaded and verified, items: 1/1"), "{result}");
@@ -176,6 +179,7 @@ fn the_robot_panel_uploads_verifies_and_a_play_list_queues_its_motions() {
     while harness.state().operation.is_some() {
         assert!(Instant::now() < deadline, "the read never ended");
         harness.step();
+        common::ui::wait_for_news();
     }
     let robot = common::ui::plen2_ui(harness.state()).robot.clone().unwrap();
     assert_eq!(robot.motions, harness.state().document.project.plen2.motions);

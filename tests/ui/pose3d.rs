@@ -66,6 +66,7 @@ fn robot_reaches(harness: &mut Harness<'static, StudioApp>, angle: i16) {
     loop {
         assert!(Instant::now() < deadline, "the robot never turned the shoulder to {angle}");
         harness.step();
+        common::ui::wait_for_news();
         while let Ok(event) = events.try_recv() {
             if let LinkEvent::Driver(Plen2SimEvent::Executed(Command::SetAngle { device: d, angle: a })) = event
                 && d == device

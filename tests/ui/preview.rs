@@ -198,6 +198,7 @@ fn step_until(
     while !done(harness) {
         assert!(Instant::now() < deadline, "never: {what}");
         harness.step();
+        common::ui::wait_for_news();
     }
 }
 

@@ -234,6 +234,7 @@ fn a_record_pass_joins_into_the_show_and_is_undone_on_its_own() {
         let t = harness.state().desks.show.stage.scrub_ms as f64 / 1000.0;
         harness.state_mut().desks.show.passes.value = 40.0 * t;
         harness.step();
+        common::ui::wait_for_news();
     }
     assert!(harness.state().desks.show.passes.recording.is_some(), "still recording past the show's 1.5 s");
     harness.get_by_label("■ Stop pass").click();
@@ -279,6 +280,7 @@ fn a_record_pass_follows_a_gamepad_axis() {
         let t = i32::try_from(harness.state().desks.show.stage.scrub_ms).unwrap();
         harness.state_mut().desks.pad.state = Some(stick(-100 + t * 200 / 1500));
         harness.step();
+        common::ui::wait_for_news();
     }
     harness.state_mut().desks.pad.state = Some(stick(100));
     harness.step();

@@ -89,6 +89,7 @@ fn held_boards_follow_a_record_pass_together_and_stop_stops_them_all() {
                 lines_after(&stage, name, from)
             );
             harness.step();
+            common::ui::wait_for_news();
         }
     };
     wait(&mut harness, "skull", before[0], &|line| line.contains("degree: 25"));
