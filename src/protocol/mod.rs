@@ -3,8 +3,10 @@
 //!
 //! [`servo`]: the servo controller board (all 60 messages, streaming decoder).
 //! [`plen2`]: the PLEN2 humanoid (device map and field limits so far).
+//! [`dynamixel`]: DYNAMIXEL servos' packets, Protocol 1.0 and 2.0.
 //! [`rflex`]: rFLEX mobile bases (robot presets so far). See `docs/ARCHITECTURE.md`.
 
+pub mod dynamixel;
 pub mod plen2;
 pub mod rflex;
 pub mod servo;
