@@ -18,15 +18,22 @@ fn the_manual_s_protocol_2_examples_are_written_and_read_byte_for_byte() {
         (Packet::instruction(Protocol::Two, 1, instruction::PING, vec![]), "FF FF FD 00 01 03 00 01 19 4E"),
         (Packet::status(Protocol::Two, 1, 0, vec![0x06, 0x04, 0x26]), "FF FF FD 00 01 07 00 55 00 06 04 26 65 5D"),
         // Read 4 bytes at 132 (Present Position); its status: 166.
-        (Packet::instruction(Protocol::Two, 1, instruction::READ, vec![0x84, 0x00, 0x04, 0x00]), "FF FF FD 00 01 07 00 02 84 00 04 00 1D 15"),
+        (
+            Packet::instruction(Protocol::Two, 1, instruction::READ, vec![0x84, 0x00, 0x04, 0x00]),
+            "FF FF FD 00 01 07 00 02 84 00 04 00 1D 15",
+        ),
         (Packet::status(Protocol::Two, 1, 0, vec![0xA6, 0, 0, 0]), "FF FF FD 00 01 08 00 55 00 A6 00 00 00 8C C0"),
         // Write 512 at 116 (Goal Position); its status.
-        (Packet::instruction(Protocol::Two, 1, instruction::WRITE, vec![0x74, 0x00, 0x00, 0x02, 0x00, 0x00]), "FF FF FD 00 01 09 00 03 74 00 00 02 00 00 CA 89"),
+        (
+            Packet::instruction(Protocol::Two, 1, instruction::WRITE, vec![0x74, 0x00, 0x00, 0x02, 0x00, 0x00]),
+            "FF FF FD 00 01 09 00 03 74 00 00 02 00 00 CA 89",
+        ),
         (Packet::status(Protocol::Two, 1, 0, vec![]), "FF FF FD 00 01 04 00 55 00 A1 0C"),
     ];
     for (packet, printed) in examples {
         assert_eq!(packet.to_bytes(), hex(printed), "{packet:?}");
-        let mut reader = if matches!(packet.kind, Kind::Status(_)) { Packets::statuses() } else { Packets::instructions() };
+        let mut reader =
+            if matches!(packet.kind, Kind::Status(_)) { Packets::statuses() } else { Packets::instructions() };
         assert_eq!(reader.push(&hex(printed)), [Read::Packet(packet)]);
     }
 }
@@ -43,7 +50,8 @@ fn the_manual_s_protocol_1_examples_are_written_and_read_byte_for_byte() {
     ];
     for (packet, printed) in examples {
         assert_eq!(packet.to_bytes(), hex(printed), "{packet:?}");
-        let mut reader = if matches!(packet.kind, Kind::Status(_)) { Packets::statuses() } else { Packets::instructions() };
+        let mut reader =
+            if matches!(packet.kind, Kind::Status(_)) { Packets::statuses() } else { Packets::instructions() };
         assert_eq!(reader.push(&hex(printed)), [Read::Packet(packet)]);
     }
 }

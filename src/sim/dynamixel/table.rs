@@ -1,0 +1,254 @@
+//! Control tables of the emulated models, as the ROBOTIS e-Manual lays them
+//! out (XL430-W250 and XM430-W350: "Control Table of EEPROM Area" and "of
+//! RAM Area"; AX-12A: its control table), the fields the emulator serves:
+//! address, size, factory value, and whether a controller may write it.
+//! A field written outside these is refused as the servos refuse it.
+
+use crate::protocol::dynamixel::Protocol;
+
+/// One field of a control table.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Field {
+    /// Its address.
+    pub addr: u16,
+    /// Its size in bytes (1, 2 or 4, little-endian).
+    pub size: u8,
+    /// Its value at the factory.
+    pub default: u32,
+    /// Whether a controller may write it.
+    pub writable: bool,
+}
+
+const fn r(addr: u16, size: u8, default: u32) -> Field {
+    Field { addr, size, default, writable: false }
+}
+
+const fn w(addr: u16, size: u8, default: u32) -> Field {
+    Field { addr, size, default, writable: true }
+}
+
+/// A model the emulator knows.
+#[derive(Debug)]
+pub struct Model {
+    /// Its model number (what a ping answers).
+    pub number: u16,
+    /// Its name.
+    pub name: &'static str,
+    /// The protocol it speaks.
+    pub protocol: Protocol,
+    /// Its firmware version, as emulated.
+    pub firmware: u8,
+    /// Its control table.
+    pub fields: &'static [Field],
+    /// Where its table's fields are (their addresses).
+    pub at: Addresses,
+    /// Position units in a turn (4096 for X-series; the AX's 1024 span 300°).
+    pub units_per_turn: f64,
+    /// Its top speed, position units a second, with no profile (or speed) set.
+    pub top_speed: f64,
+}
+
+/// Where a model keeps what the emulator moves and reports.
+#[derive(Clone, Copy, Debug)]
+pub struct Addresses {
+    /// Its ID.
+    pub id: u16,
+    /// Its return delay time (2 µs units).
+    pub return_delay: u16,
+    /// Its status return level (0: ping only, 1: and reads, 2: all).
+    pub status_return: u16,
+    /// Torque enable: the EEPROM area (below it, on X-series) is locked while on.
+    pub torque: u16,
+    /// Its goal position.
+    pub goal: u16,
+    /// Its profile velocity (X) or moving speed (AX): 0 is top speed.
+    pub speed: u16,
+    /// Its present position.
+    pub present: u16,
+    /// Moving (1 while it moves).
+    pub moving: u16,
+    /// Hardware error status (X) or none (AX: errors ride in the status's error byte).
+    pub hardware_error: Option<u16>,
+    /// Its present temperature, °C.
+    pub temperature: u16,
+    /// The EEPROM area ends here: written only with the torque off (X-series).
+    pub eeprom_end: Option<u16>,
+    /// Speed units, position units a second for one unit of `speed`.
+    pub speed_unit: f64,
+}
+
+/// XL430-W250: Protocol 2.0, 4096 a turn.
+pub static XL430_W250: Model = Model {
+    number: 1060,
+    name: "XL430-W250",
+    protocol: Protocol::Two,
+    firmware: 46,
+    fields: &X_SERIES_XL,
+    at: X_AT,
+    units_per_turn: 4096.0,
+    // Velocity Limit 265 × 0.229 rev/min.
+    top_speed: 265.0 * 0.229 / 60.0 * 4096.0,
+};
+
+/// XM430-W350: Protocol 2.0, 4096 a turn.
+pub static XM430_W350: Model = Model {
+    number: 1020,
+    name: "XM430-W350",
+    protocol: Protocol::Two,
+    firmware: 46,
+    fields: &X_SERIES_XM,
+    at: X_AT,
+    units_per_turn: 4096.0,
+    // Velocity Limit 200 × 0.229 rev/min.
+    top_speed: 200.0 * 0.229 / 60.0 * 4096.0,
+};
+
+/// AX-12A: Protocol 1.0, 1024 over 300°.
+pub static AX_12A: Model = Model {
+    number: 12,
+    name: "AX-12A",
+    protocol: Protocol::One,
+    firmware: 24,
+    fields: &AX_FIELDS,
+    at: Addresses {
+        id: 3,
+        return_delay: 5,
+        status_return: 16,
+        torque: 24,
+        goal: 30,
+        speed: 32,
+        present: 36,
+        moving: 46,
+        hardware_error: None,
+        temperature: 43,
+        eeprom_end: None,
+        // 0.111 rev/min a unit, 1024 units over 300° (1228.8 a turn).
+        speed_unit: 0.111 / 60.0 * 1228.8,
+    },
+    units_per_turn: 1228.8,
+    // 114 rev/min, its no-load speed at 12 V.
+    top_speed: 114.0 / 60.0 * 1228.8,
+};
+
+/// Every model the emulator knows.
+pub static MODELS: [&Model; 3] = [&XL430_W250, &XM430_W350, &AX_12A];
+
+const X_AT: Addresses = Addresses {
+    id: 7,
+    return_delay: 9,
+    status_return: 68,
+    torque: 64,
+    goal: 116,
+    speed: 112,
+    present: 132,
+    moving: 122,
+    hardware_error: Some(70),
+    temperature: 146,
+    eeprom_end: Some(64),
+    // 0.229 rev/min a unit.
+    speed_unit: 0.229 / 60.0 * 4096.0,
+};
+
+const X_SERIES_XL: [Field; 35] = x_series(1060, 72, 140, 60, 265);
+const X_SERIES_XM: [Field; 35] = x_series(1020, 80, 160, 95, 200);
+
+/// An X-series table; what differs between the models as arguments.
+const fn x_series(
+    model: u32,
+    temperature_limit: u32,
+    max_volts: u32,
+    min_volts: u32,
+    velocity_limit: u32,
+) -> [Field; 35] {
+    [
+        r(0, 2, model),
+        r(2, 4, 0),
+        r(6, 1, 46),
+        w(7, 1, 1),
+        w(8, 1, 1),
+        w(9, 1, 250),
+        w(10, 1, 0),
+        w(11, 1, 3),
+        w(12, 1, 255),
+        w(13, 1, 2),
+        w(20, 4, 0),
+        w(24, 4, 10),
+        w(31, 1, temperature_limit),
+        w(32, 2, max_volts),
+        w(34, 2, min_volts),
+        w(36, 2, 885),
+        w(44, 4, velocity_limit),
+        w(48, 4, 4095),
+        w(52, 4, 0),
+        w(63, 1, 52),
+        w(64, 1, 0),
+        w(65, 1, 0),
+        w(68, 1, 2),
+        r(69, 1, 0),
+        r(70, 1, 0),
+        w(104, 4, 0),
+        w(108, 4, 0),
+        w(112, 4, 0),
+        w(116, 4, 2048),
+        r(122, 1, 0),
+        r(126, 2, 0),
+        r(128, 4, 0),
+        r(132, 4, 2048),
+        r(144, 2, 120),
+        r(146, 1, 32),
+    ]
+}
+
+const AX_FIELDS: [Field; 27] = [
+    r(0, 2, 12),
+    r(2, 1, 24),
+    w(3, 1, 1),
+    w(4, 1, 1),
+    w(5, 1, 250),
+    w(6, 2, 0),
+    w(8, 2, 1023),
+    w(11, 1, 70),
+    w(12, 1, 60),
+    w(13, 1, 140),
+    w(14, 2, 1023),
+    w(16, 1, 2),
+    w(17, 1, 36),
+    w(18, 1, 36),
+    w(24, 1, 0),
+    w(25, 1, 0),
+    w(26, 1, 1),
+    w(27, 1, 1),
+    w(28, 1, 32),
+    w(29, 1, 32),
+    w(30, 2, 512),
+    w(32, 2, 0),
+    w(34, 2, 1023),
+    r(36, 2, 512),
+    r(42, 1, 120),
+    r(43, 1, 32),
+    r(46, 1, 0),
+];
+
+impl Model {
+    /// The table's bytes as the factory leaves them (addresses no field covers read 0).
+    pub fn factory(&self) -> Vec<u8> {
+        let end = self.fields.iter().map(|field| usize::from(field.addr) + usize::from(field.size)).max().unwrap_or(0);
+        let mut bytes = vec![0; end];
+        for field in self.fields {
+            let at = usize::from(field.addr);
+            bytes[at..at + usize::from(field.size)]
+                .copy_from_slice(&field.default.to_le_bytes()[..usize::from(field.size)]);
+        }
+        bytes
+    }
+
+    /// Whether a controller may write `len` bytes at `addr`: every byte in a writable field.
+    pub fn writable(&self, addr: u16, len: usize) -> bool {
+        (usize::from(addr)..usize::from(addr) + len).all(|byte| {
+            self.fields.iter().any(|field| {
+                field.writable
+                    && (usize::from(field.addr)..usize::from(field.addr) + usize::from(field.size)).contains(&byte)
+            })
+        })
+    }
+}
