@@ -193,8 +193,9 @@ impl DynamixelBus {
             let answer = self.answer(index, code, &packet.params);
             let servo = &self.servos[index];
             let asked = match code {
-                // A ping is always answered (2.0: broadcast too, each in turn).
-                instruction::PING => packet.id == id || protocol == Protocol::Two,
+                // A ping is always answered, broadcast or not, whatever the level (the
+                // RX-28 and AX-12 manuals' PING: "a Status Packet is always returned").
+                instruction::PING => true,
                 instruction::READ => packet.id == id && level >= 1,
                 _ => packet.id == id && level >= 2,
             };

@@ -31,6 +31,9 @@ fn each_servo_answers_a_ping_in_its_own_protocol_only() {
     assert!(ask(&mut bus, now, &two(3, instruction::PING, vec![])).is_empty(), "the AX speaks 1.0 only");
     let answers = ask(&mut bus, now, &Packet::instruction(Protocol::One, 3, instruction::PING, vec![]));
     assert_eq!(answers, [Packet::status(Protocol::One, 3, 0, vec![])]);
+    // 1.0 too answers a broadcast ping (its one servo here).
+    let answers = ask(&mut bus, now, &Packet::instruction(Protocol::One, BROADCAST, instruction::PING, vec![]));
+    assert_eq!(answers, [Packet::status(Protocol::One, 3, 0, vec![])]);
     let answers = ask(&mut bus, now, &two(BROADCAST, instruction::PING, vec![]));
     let ids: Vec<(u8, Vec<u8>)> = answers.into_iter().map(|answer| (answer.id, answer.params)).collect();
     assert_eq!(ids, [(1, vec![0x24, 0x04, 46]), (2, vec![0xFC, 0x03, 46])], "XM430-W350: model 1020");
