@@ -10,7 +10,10 @@ mod rflex;
 mod runner;
 mod servo;
 
-pub use dynamixel::{AX_12A, BusEvent, DynamixelBus, MODELS, Model, Servo as DynamixelServo, XL430_W250, XM430_W350};
+pub use dynamixel::{
+    AX_12A, BusCommand, BusEvent, DynamixelBus, Fault as DynamixelFault, MODELS, Model, Servo as DynamixelServo,
+    XL430_W250, XM430_W350,
+};
 pub use faults::{Faults, FaultsError, LineNoise, LineNoiseError};
 pub use log::{Logged, MonotonicClock, Received};
 pub use plen2::{Bridge, JointLimits, LinkKind, Plen2Sim, Plen2SimCommand, Plen2SimEvent, Plen2State, Plen2Timing};

@@ -45,6 +45,8 @@ mod error_one {
 pub struct Servo {
     model: &'static Model,
     table: Vec<u8>,
+    /// 1.0: the error bits its statuses carry (2.0 keeps them in its table).
+    errors: u8,
     /// Where it is, in position units (fractional while it moves).
     at: f64,
 }
@@ -52,7 +54,7 @@ pub struct Servo {
 impl Servo {
     /// A servo of `model` with ID `id`, as the factory leaves it otherwise.
     pub fn new(model: &'static Model, id: u8) -> Self {
-        let mut servo = Self { model, table: model.factory(), at: 0.0 };
+        let mut servo = Self { model, table: model.factory(), errors: 0, at: 0.0 };
         servo.table[usize::from(model.at.id)] = id;
         servo.at = f64::from(servo.read(model.at.present, 2));
         servo
@@ -222,7 +224,7 @@ impl DynamixelBus {
                 said.push(servo.model.firmware);
                 Some((alert(servo), said))
             }
-            instruction::PING => Some((0, Vec::new())),
+            instruction::PING => Some((alert(servo), Vec::new())),
             instruction::READ => {
                 let len = match (two, rest) {
                     (true, [low, high]) => usize::from(u16::from_le_bytes([*low, *high])),
@@ -282,19 +284,93 @@ fn delay(servo: &Servo) -> Duration {
     Duration::from_micros(2 * u64::from(servo.read(servo.model.at.return_delay, 1)))
 }
 
-/// The alert bit of a 2.0 status when `servo` has a hardware error.
+/// A status's error byte for what `servo` suffers: 2.0's alert bit while
+/// its hardware error status holds any error; 1.0's error bits themselves.
 fn alert(servo: &Servo) -> u8 {
     match servo.model.at.hardware_error {
         Some(addr) if servo.read(addr, 1) != 0 => result::ALERT,
-        _ => 0,
+        Some(_) => 0,
+        None => servo.errors,
     }
 }
 
+/// A hardware error a servo can suffer (the bit it has in 2.0's Hardware
+/// Error Status, in 1.0's status error byte and in both's Shutdown field).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Fault {
+    /// Its input voltage is outside its limits.
+    InputVoltage,
+    /// It is hotter than its temperature limit.
+    Overheating,
+    /// It is held against more load than it can move.
+    Overload,
+}
+
+impl Fault {
+    /// Its bit: the same in 2.0's Hardware Error Status, in 1.0's status
+    /// error byte, and in both's Shutdown field.
+    fn bit(self) -> u8 {
+        match self {
+            Self::InputVoltage => 0x01,
+            Self::Overheating => 0x04,
+            Self::Overload => 0x20,
+        }
+    }
+}
+
+/// What a test or `sim` does to the bus while it runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BusCommand {
+    /// Servo `id` suffers `fault`: it says so in every status from now on
+    /// and, when its Shutdown field holds the fault, lets its torque go.
+    Fault {
+        /// The servo.
+        id: u8,
+        /// What it suffers.
+        fault: Fault,
+    },
+}
+
+impl Servo {
+    /// Suffers `fault`, as the firmware reports and acts on it.
+    fn suffer(&mut self, fault: Fault) {
+        let at = self.model.at;
+        let bit = fault.bit();
+        let shutdown = match at.hardware_error {
+            Some(addr) => {
+                self.write(addr, self.read(addr, 1) | u32::from(bit), 1);
+                self.read(SHUTDOWN_TWO, 1)
+            }
+            None => {
+                self.errors |= bit;
+                self.read(SHUTDOWN_ONE, 1)
+            }
+        };
+        if fault == Fault::Overheating {
+            // Past its limit: what a controller reads as the cause.
+            let limit = self.read(if at.hardware_error.is_some() { 31 } else { 11 }, 1);
+            self.write(at.temperature, limit + 3, 1);
+        }
+        if shutdown & u32::from(bit) != 0 {
+            self.write(at.torque, 0, 1);
+        }
+    }
+}
+
+/// The Shutdown field: 2.0 (X-series) and 1.0 (AX).
+const SHUTDOWN_TWO: u16 = 63;
+const SHUTDOWN_ONE: u16 = 18;
+
 impl Driver for DynamixelBus {
-    type Command = ();
+    type Command = BusCommand;
     type Event = BusEvent;
 
-    fn handle_command(&mut self, _now: Instant, (): ()) {}
+    fn handle_command(&mut self, _now: Instant, command: BusCommand) {
+        let BusCommand::Fault { id, fault } = command;
+        if let Some(servo) = self.servos.iter_mut().find(|servo| servo.id() == id) {
+            servo.suffer(fault);
+        }
+    }
 
     fn handle_input(&mut self, now: Instant, bytes: &[u8]) {
         for read in self.packets.push(bytes) {

@@ -111,6 +111,32 @@ fn a_sync_write_and_a_sync_read_reach_every_servo_listed() {
     assert_eq!(leds, [(2, vec![1]), (1, vec![1])], "both LEDs on, answered in the order asked");
 }
 
+/// A hardware error is said in every status from then on (2.0: the alert
+/// bit, the cause in Hardware Error Status; 1.0: the error bit itself), and a
+/// fault the Shutdown field holds (the factory's: overheating, overload…)
+/// lets the torque go.
+#[test]
+fn a_hardware_error_is_said_in_every_status_and_shuts_the_torque_off() {
+    let mut bus = DynamixelBus::demo();
+    let now = Instant::now();
+    ask(&mut bus, now, &two(1, instruction::WRITE, vec![64, 0, 1]));
+    bus.handle_command(now, BusCommand::Fault { id: 1, fault: Fault::Overheating });
+    let pinged = ask(&mut bus, now, &two(1, instruction::PING, vec![]));
+    assert_eq!(pinged[0].kind, Kind::Status(0x80), "the alert bit");
+    let read =
+        |bus: &mut DynamixelBus, addr: u8| ask(bus, now, &two(1, instruction::READ, vec![addr, 0, 1, 0]))[0].params[0];
+    assert_eq!(read(&mut bus, 70), 0x04, "overheating, in Hardware Error Status");
+    assert_eq!(read(&mut bus, 64), 0, "the torque let go (Shutdown 52 holds overheating)");
+    assert_eq!(read(&mut bus, 146), 75, "hotter than its 72 °C limit");
+    // The AX-12A says an overload in its status's error byte, and lets go too (Shutdown 36).
+    let one = |code, params| Packet::instruction(Protocol::One, 3, code, params);
+    ask(&mut bus, now, &one(instruction::WRITE, vec![24, 1]));
+    bus.handle_command(now, BusCommand::Fault { id: 3, fault: Fault::Overload });
+    assert_eq!(ask(&mut bus, now, &one(instruction::PING, vec![]))[0].kind, Kind::Status(0x20));
+    let torque = ask(&mut bus, now, &one(instruction::READ, vec![24, 1]));
+    assert_eq!((torque[0].kind, torque[0].params.clone()), (Kind::Status(0x20), vec![0]));
+}
+
 /// The official ROBOTIS DynamixelSDK (Python, from PyPI) accepts the emulated
 /// bus as a bus: over a pseudo-terminal it pings each servo (and all at once),
 /// reads and writes in both protocols, is refused an EEPROM write with the
