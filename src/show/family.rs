@@ -60,11 +60,12 @@ impl FamilyCue {
     /// The cue of the registered kind `kind` taking `value`; why not when no
     /// family registered that kind or the value is not a finite number.
     pub fn named(kind: &str, value: f64) -> Result<Self, String> {
-        let kind = inventory::iter::<ShowFamily>
-            .into_iter()
-            .flat_map(|entry| entry.cues.iter())
-            .find(|registered| **registered == kind)
-            .ok_or_else(|| format!("no kind of cue is called {kind:?}"))?;
+        let kind =
+            every().flat_map(|entry| entry.cues.iter()).find(|registered| **registered == kind).ok_or_else(|| {
+                let known: Vec<&str> =
+                    super::FILE_KINDS.into_iter().chain(every().flat_map(|entry| entry.cues.iter().copied())).collect();
+                format!("no kind of cue is called {kind:?}; a cue starts one of: {}", known.join(", "))
+            })?;
         if !value.is_finite() {
             return Err(format!("a {kind} cue takes a finite number"));
         }

@@ -139,6 +139,10 @@ impl Start {
     }
 }
 
+/// The keys of the kinds of cue show files have always had (`StartFile`'s
+/// named variants); a family added since registers its own.
+const FILE_KINDS: [&str; 3] = ["macro", "slot", "drive"];
+
 /// A cue's start as a show file holds it: the first three kinds by name, any
 /// other under its kind's key, with the number it takes.
 #[derive(Clone, Serialize, Deserialize)]

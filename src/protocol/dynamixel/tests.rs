@@ -10,6 +10,16 @@ fn hex(text: &str) -> Vec<u8> {
     text.split_whitespace().map(|byte| u8::from_str_radix(byte, 16).unwrap()).collect()
 }
 
+/// Each packet written as `printed`, and read back from it by a reader of its side of the bus.
+fn written_and_read_as_printed<const N: usize>(examples: [(Packet, &str); N]) {
+    for (packet, printed) in examples {
+        assert_eq!(packet.to_bytes(), hex(printed), "{packet:?}");
+        let mut reader =
+            if matches!(packet.kind, Kind::Status(_)) { Packets::statuses() } else { Packets::instructions() };
+        assert_eq!(reader.push(&hex(printed)), [Read::Packet(packet)]);
+    }
+}
+
 /// Protocol 2.0's examples: each written as the manual prints it, and each read back.
 #[test]
 fn the_manual_s_protocol_2_examples_are_written_and_read_byte_for_byte() {
@@ -30,12 +40,7 @@ fn the_manual_s_protocol_2_examples_are_written_and_read_byte_for_byte() {
         ),
         (Packet::status(Protocol::Two, 1, 0, vec![]), "FF FF FD 00 01 04 00 55 00 A1 0C"),
     ];
-    for (packet, printed) in examples {
-        assert_eq!(packet.to_bytes(), hex(printed), "{packet:?}");
-        let mut reader =
-            if matches!(packet.kind, Kind::Status(_)) { Packets::statuses() } else { Packets::instructions() };
-        assert_eq!(reader.push(&hex(printed)), [Read::Packet(packet)]);
-    }
+    written_and_read_as_printed(examples);
 }
 
 /// Protocol 1.0's examples: a ping of ID 1 and its status; a read of the
@@ -48,12 +53,7 @@ fn the_manual_s_protocol_1_examples_are_written_and_read_byte_for_byte() {
         (Packet::instruction(Protocol::One, 1, instruction::READ, vec![0x2B, 0x01]), "FF FF 01 04 02 2B 01 CC"),
         (Packet::status(Protocol::One, 1, 0, vec![0x20]), "FF FF 01 03 00 20 DB"),
     ];
-    for (packet, printed) in examples {
-        assert_eq!(packet.to_bytes(), hex(printed), "{packet:?}");
-        let mut reader =
-            if matches!(packet.kind, Kind::Status(_)) { Packets::statuses() } else { Packets::instructions() };
-        assert_eq!(reader.push(&hex(printed)), [Read::Packet(packet)]);
-    }
+    written_and_read_as_printed(examples);
 }
 
 /// `FF FF FD` inside a 2.0 packet is stuffed as it is sent (LEN and CRC

@@ -78,30 +78,42 @@ pub struct Addresses {
 }
 
 /// XL430-W250: Protocol 2.0, 4096 a turn.
-pub static XL430_W250: Model = Model {
-    number: 1060,
-    name: "XL430-W250",
-    protocol: Protocol::Two,
-    firmware: 46,
-    fields: &X_SERIES_XL,
-    at: X_AT,
-    units_per_turn: 4096.0,
-    // Velocity Limit 265 × 0.229 rev/min.
-    top_speed: 265.0 * 0.229 / 60.0 * 4096.0,
-};
+pub static XL430_W250: Model = x_model("XL430-W250", &X_SERIES_XL);
 
 /// XM430-W350: Protocol 2.0, 4096 a turn.
-pub static XM430_W350: Model = Model {
-    number: 1020,
-    name: "XM430-W350",
-    protocol: Protocol::Two,
-    firmware: 46,
-    fields: &X_SERIES_XM,
-    at: X_AT,
-    units_per_turn: 4096.0,
-    // Velocity Limit 200 × 0.229 rev/min.
-    top_speed: 200.0 * 0.229 / 60.0 * 4096.0,
-};
+pub static XM430_W350: Model = x_model("XM430-W350", &X_SERIES_XM);
+
+/// An X-series model whose table is `fields`: its model number and its top
+/// speed (its Velocity Limit, 0.229 rev/min a unit) read from the table.
+// A model number is a 2-byte field.
+#[allow(clippy::cast_possible_truncation)]
+const fn x_model(name: &'static str, fields: &'static [Field; 35]) -> Model {
+    Model {
+        number: factory(fields, 0) as u16,
+        name,
+        protocol: Protocol::Two,
+        firmware: X_FIRMWARE,
+        fields,
+        at: X_AT,
+        units_per_turn: 4096.0,
+        top_speed: factory(fields, 44) as f64 * X_AT.speed_unit,
+    }
+}
+
+/// The factory value of the field at `addr` of `fields` (0 where none is).
+const fn factory(fields: &[Field], addr: u16) -> u32 {
+    let mut index = 0;
+    while index < fields.len() {
+        if fields[index].addr == addr {
+            return fields[index].default;
+        }
+        index += 1;
+    }
+    0
+}
+
+/// The X-series firmware version emulated.
+const X_FIRMWARE: u8 = 46;
 
 /// AX-12A: Protocol 1.0, 1024 over 300°.
 pub static AX_12A: Model = Model {
@@ -149,8 +161,8 @@ const X_AT: Addresses = Addresses {
     speed_unit: 0.229 / 60.0 * 4096.0,
 };
 
-const X_SERIES_XL: [Field; 35] = x_series(1060, 72, 140, 60, 265);
-const X_SERIES_XM: [Field; 35] = x_series(1020, 80, 160, 95, 200);
+static X_SERIES_XL: [Field; 35] = x_series(1060, 72, 140, 60, 265);
+static X_SERIES_XM: [Field; 35] = x_series(1020, 80, 160, 95, 200);
 
 /// An X-series table; what differs between the models as arguments.
 const fn x_series(
@@ -163,7 +175,7 @@ const fn x_series(
     [
         r(0, 2, model),
         r(2, 4, 0),
-        r(6, 1, 46),
+        r(6, 1, X_FIRMWARE as u32),
         w(7, 1, 1),
         w(8, 1, 1),
         w(9, 1, 250),
