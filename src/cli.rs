@@ -12,6 +12,7 @@
 mod bounds;
 mod check;
 mod convert;
+mod dynamixel;
 mod failed;
 pub(crate) mod family;
 mod fit;

@@ -1291,7 +1291,7 @@ _servo__studio() {
             return 0
             ;;
         servo__subcmd__studio__subcmd__sim)
-            opts="-h --pty --tcp --state --baud --turnaround-ms --memory --faults --body-panels-only --stuffed --noise --robot --room --start --link --log --protocol --help"
+            opts="-h --pty --tcp --state --baud --turnaround-ms --memory --faults --body-panels-only --stuffed --noise --robot --room --start --link --hardware-error --log --protocol --help"
             if [[ ${cur} == -* || ${COMP_CWORD} -eq 2 ]] ; then
                 COMPREPLY=( $(compgen -W "${opts}" -- "${cur}") )
                 return 0
@@ -1338,6 +1338,10 @@ _servo__studio() {
                     return 0
                     ;;
                 --link)
+                    COMPREPLY=($(compgen -f "${cur}"))
+                    return 0
+                    ;;
+                --hardware-error)
                     COMPREPLY=($(compgen -f "${cur}"))
                     return 0
                     ;;

@@ -64,6 +64,10 @@ pub struct SimArgs {
     /// (writes held back up to MS ms) or slow=BAUD.
     #[arg(long)]
     pub link: Option<LinkKind>,
+    /// A servo bus: a servo's hardware error, ID:KIND@SECONDS after the bus first hears a
+    /// packet (KIND: input-voltage, overheating, overload), e.g. 2:overheating@5; repeatable.
+    #[arg(long, value_name = "ID:KIND@SECONDS")]
+    pub hardware_error: Vec<String>,
     /// Write every command the board receives to FILE, a line each: the system's monotonic
     /// clock in nanoseconds when the board took it in, then the command (any family).
     #[arg(long, value_name = "FILE")]
@@ -72,7 +76,7 @@ pub struct SimArgs {
 
 impl SimArgs {
     /// Every option only some emulators take, by name, and whether it was given.
-    fn given(&self) -> [(&'static str, bool); 12] {
+    fn given(&self) -> [(&'static str, bool); 13] {
         [
             ("--state", self.state.is_some()),
             ("--baud", self.baud.is_some()),
@@ -86,6 +90,7 @@ impl SimArgs {
             ("--room", self.room.is_some()),
             ("--start", self.start.is_some()),
             ("--link", self.link.is_some()),
+            ("--hardware-error", !self.hardware_error.is_empty()),
         ]
     }
 
@@ -191,7 +196,10 @@ mod tests {
         let none = Family::named("none", "None board");
         let refused = run(&SimArgs::default(), none).unwrap_err().to_string();
         // The test-only echo board registered its emulator too, from its own folder.
-        assert!(refused.ends_with("has no emulated board to serve; give servo, plen2, rflex, echo"), "{refused}");
+        assert!(
+            refused.ends_with("has no emulated board to serve; give servo, plen2, rflex, dynamixel, echo"),
+            "{refused}"
+        );
         let args = SimArgs { link: Some(LinkKind::Clean), stuffed: true, ..SimArgs::default() };
         let refused = run(&args, Family::Servo).unwrap_err().to_string();
         assert_eq!(

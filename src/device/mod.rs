@@ -6,6 +6,7 @@
 //! needs, the family-neutral packet-log entry, and what long operations share
 //! (cancel, backups, what a failed upload left).
 
+pub mod dynamixel;
 pub mod family;
 mod operation;
 pub mod plen2;

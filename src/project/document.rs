@@ -31,7 +31,7 @@ pub struct Project {
 /// The project sections of families the document does not name by field (the
 /// first three — servo, PLEN2, rFLEX — are typed fields, read everywhere by
 /// type): each is kept under its family's tag as the JSON its family reads and
-/// writes, and registers how it is checked ([`super::section::Section`]).
+/// writes, and registers how it is checked ([`super::kept_section::Section`]).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Sections(BTreeMap<String, serde_json::Value>);
 
@@ -75,7 +75,11 @@ impl Project {
 
     /// An empty project for `family`.
     pub fn empty(family: Family) -> Self {
-        Self { family, ..Self::default() }
+        let mut project = Self { family, ..Self::default() };
+        if let Some(section) = super::kept_section::fresh(family) {
+            project.sections.set(family, section);
+        }
+        project
     }
 }
 

@@ -282,7 +282,7 @@ pub fn parse(text: &str) -> Result<Loaded, LoadError> {
             Ok(Loaded { project: Project::servo(servo), unknown_keys, unknown_keys_not_kept })
         }
         Some(2) => {
-            let tags = super::section::tags();
+            let tags = super::kept_section::tags();
             let (sections, unknown_keys, unknown_keys_not_kept): (Sections, _, _) = deserialize_noting(text, &tags)?;
             let project = Project {
                 family: sections.family,
@@ -313,7 +313,7 @@ pub fn to_json(project: &Project) -> String {
         rflex: wanted(Family::Rflex, project.rflex == RflexProject::default()).then_some(&project.rflex),
         gamepad: (!project.gamepad.is_empty()).then_some(&project.gamepad),
         sound: project.sound.as_ref(),
-        sections: project.sections.iter().filter(|(tag, _)| super::section::tags().contains(tag)).collect(),
+        sections: project.sections.iter().filter(|(tag, _)| super::kept_section::tags().contains(tag)).collect(),
     };
     // Serializing plain structs of strings and integers to a String cannot fail.
     let mut text = serde_json::to_string_pretty(&envelope).unwrap_or_default();

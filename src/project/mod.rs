@@ -4,6 +4,7 @@
 
 mod bounded;
 mod document;
+pub mod dynamixel;
 mod easing;
 mod edit;
 mod family;
@@ -11,6 +12,7 @@ mod file;
 pub mod gamepad;
 mod history;
 pub mod input;
+mod kept_section;
 pub mod motion_json;
 pub mod plen2;
 mod read;
@@ -32,7 +34,8 @@ pub use file::{
     from_json, load, output_path, parse, read, save, to_json,
 };
 pub use history::{History, LivePose, MAX_UNDO_STEPS, Step as UndoStep};
-pub use section::{Section, validate};
+pub use kept_section::Section;
+pub use section::validate;
 pub use servo::{
     Action, Button, Command, JoystickTable, LinkMesh, Macro, RigAxis, RigEnd, RigJoint, Run, Servo, ServoIndex,
     ServoProject, Step,

@@ -1,28 +1,10 @@
-//! The project sections of families added since the first three: each family
-//! registers its own (`inventory::submit!` in its own files) — that it keeps a
-//! section under its tag in [`Project::sections`], and how that section is
-//! checked. The project file reads and writes them; validation reports their
-//! problems after the document's own.
+//! Validation of the sections families added since the first three keep
+//! (`kept_section.rs` registers them): their problems are reported after the
+//! document's own.
 
 use super::document::Project;
-use super::family::Family;
+use super::kept_section::Section;
 use super::validate::{Location, Problem, ProblemKind, Problems, Severity};
-
-/// A family's section of the project, kept under its tag.
-#[derive(Debug)]
-pub struct Section {
-    /// The family.
-    pub family: Family,
-    /// What is wrong with the section as kept, in the family's words (none: nothing).
-    pub check: fn(&serde_json::Value) -> Vec<String>,
-}
-
-inventory::collect!(Section);
-
-/// The tags of every family that keeps a section of its own.
-pub fn tags() -> Vec<&'static str> {
-    inventory::iter::<Section>.into_iter().map(|section| section.family.tag()).collect()
-}
 
 /// Every problem of the project: its own family's typed section and gamepad
 /// bindings (`validate::validate`), then its family's kept section, if it

@@ -2,7 +2,7 @@
 //! them (in-process, pseudo-terminal, TCP): the servo board, the PLEN2 humanoid
 //! and the rFLEX base.
 
-mod dynamixel;
+pub mod dynamixel;
 mod faults;
 mod log;
 mod plen2;
@@ -10,10 +10,6 @@ mod rflex;
 mod runner;
 mod servo;
 
-pub use dynamixel::{
-    AX_12A, BusCommand, BusEvent, DynamixelBus, Fault as DynamixelFault, MODELS, Model, Servo as DynamixelServo,
-    XL430_W250, XM430_W350,
-};
 pub use faults::{Faults, FaultsError, LineNoise, LineNoiseError};
 pub use log::{Logged, MonotonicClock, Received};
 pub use plen2::{Bridge, JointLimits, LinkKind, Plen2Sim, Plen2SimCommand, Plen2SimEvent, Plen2State, Plen2Timing};

@@ -22,6 +22,7 @@ fn every_family() -> Vec<Box<dyn FamilyUi>> {
         Box::<crate::ui::servo::ServoUi>::default(),
         Box::<crate::ui::plen2::Plen2Ui>::default(),
         Box::<crate::ui::rflex::RflexUi>::default(),
+        Box::<crate::ui::dynamixel::DynamixelUi>::default(),
     ];
     #[cfg(test)]
     families.push(Box::<crate::ui::echo::EchoUi>::default());

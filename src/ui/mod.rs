@@ -7,6 +7,7 @@ mod board_link;
 mod connection_bar;
 mod derive;
 mod document;
+mod dynamixel;
 #[cfg(test)]
 mod echo;
 mod families;
@@ -159,4 +160,19 @@ pub fn run(mut start: Start) -> eframe::Result {
             Ok(Box::new(app))
         }),
     )
+}
+
+/// The editor on `project` in a test harness of `size`, keeping its backups
+/// in a folder of its own, drawn with the app's fonts (CJK included).
+#[cfg(test)]
+fn test_editor(project: crate::project::Project, size: egui::Vec2) -> egui_kittest::Harness<'static, StudioApp> {
+    let data = tempfile::tempdir().unwrap().keep();
+    let app = StudioApp::new(project, None, crate::link::no_waker()).with_data_dir(data);
+    egui_kittest::Harness::builder()
+        .with_size(size)
+        .with_context_setup(|ctx| {
+            fonts::install(ctx);
+            Costing::IN_FRAME.install(ctx);
+        })
+        .build_ui_state(|ui, app: &mut StudioApp| app.show(ui), app)
 }

@@ -2,6 +2,7 @@
 
 mod audio;
 mod commands;
+mod dynamixel;
 mod follow_audio;
 mod honest;
 mod hostile;

@@ -14,6 +14,7 @@
 //! a status packet carries its error byte where the instruction was.
 
 mod stream;
+pub mod table;
 
 pub use stream::{Packets, Read};
 

@@ -4,6 +4,7 @@
 //! trips ([`LinkDelay`]); while held, each is asked whether it is still there
 //! (`alive`) and called lost once it stops answering, link open or not.
 
+mod dynamixel;
 mod plen2;
 mod rflex;
 mod servo;

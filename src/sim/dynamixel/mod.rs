@@ -7,12 +7,10 @@
 //! X-series, to its EEPROM area while its torque is on); each with its torque
 //! on moving toward its goal at its profile velocity (AX: moving speed).
 
-mod table;
-
 use std::collections::VecDeque;
 use std::time::{Duration, Instant};
 
-pub use table::{AX_12A, MODELS, Model, XL430_W250, XM430_W350};
+pub use crate::protocol::dynamixel::table::{AX_12A, MODELS, Model, XL430_W250, XM430_W350};
 
 use crate::link::Driver;
 use crate::protocol::dynamixel::{BROADCAST, Kind, Packet, Packets, Protocol, Read, instruction};
@@ -84,7 +82,7 @@ impl Servo {
 
     /// The size a position takes in its table: 4 bytes on X-series, 2 on the AX.
     fn position_size(&self) -> usize {
-        if self.model.protocol == Protocol::Two { 4 } else { 2 }
+        usize::from(self.model.at.position_size)
     }
 
     /// Moves on toward its goal for `dt`; whether it is still moving.
@@ -146,6 +144,10 @@ pub struct DynamixelBus {
     events: VecDeque<BusEvent>,
     /// When the servos last moved on (none: none was moving).
     moved: Option<Instant>,
+    /// What happens to the bus, how long after it first hears a packet.
+    scheduled: VecDeque<(Duration, BusCommand)>,
+    /// When it first heard a packet.
+    began: Option<Instant>,
 }
 
 impl DynamixelBus {
@@ -157,6 +159,26 @@ impl DynamixelBus {
             answers: VecDeque::new(),
             events: VecDeque::new(),
             moved: None,
+            scheduled: VecDeque::new(),
+            began: None,
+        }
+    }
+
+    /// The bus, with `command` carried out `after` it first hears a packet
+    /// (`sim --hardware-error 2:overheating@5`), each in the order of its time.
+    pub fn scheduling(mut self, after: Duration, command: BusCommand) -> Self {
+        let at = self.scheduled.partition_point(|(then, _)| *then <= after);
+        self.scheduled.insert(at, (after, command));
+        self
+    }
+
+    /// What was scheduled and is due by `now`, carried out.
+    fn carry_out_scheduled(&mut self, now: Instant) {
+        let Some(began) = self.began else { return };
+        while self.scheduled.front().is_some_and(|(after, _)| began + *after <= now) {
+            if let Some((_, command)) = self.scheduled.pop_front() {
+                self.handle_command(now, command);
+            }
         }
     }
 
@@ -307,6 +329,16 @@ pub enum Fault {
 }
 
 impl Fault {
+    /// The fault named as `sim --hardware-error` names it.
+    pub fn named(name: &str) -> Option<Self> {
+        match name {
+            "input-voltage" => Some(Self::InputVoltage),
+            "overheating" => Some(Self::Overheating),
+            "overload" => Some(Self::Overload),
+            _ => None,
+        }
+    }
+
     /// Its bit: the same in 2.0's Hardware Error Status, in 1.0's status
     /// error byte, and in both's Shutdown field.
     fn bit(self) -> u8 {
@@ -329,6 +361,14 @@ pub enum BusCommand {
         /// What it suffers.
         fault: Fault,
     },
+    /// A hand turns servo `id` to `position` (its units): a servo with its
+    /// torque off stays there; one with its torque on pulls back to its goal.
+    Hand {
+        /// The servo.
+        id: u8,
+        /// Where the hand leaves it.
+        position: u32,
+    },
 }
 
 impl Servo {
@@ -339,16 +379,16 @@ impl Servo {
         let shutdown = match at.hardware_error {
             Some(addr) => {
                 self.write(addr, self.read(addr, 1) | u32::from(bit), 1);
-                self.read(SHUTDOWN_TWO, 1)
+                self.read(at.shutdown, 1)
             }
             None => {
                 self.errors |= bit;
-                self.read(SHUTDOWN_ONE, 1)
+                self.read(at.shutdown, 1)
             }
         };
         if fault == Fault::Overheating {
             // Past its limit: what a controller reads as the cause.
-            let limit = self.read(if at.hardware_error.is_some() { 31 } else { 11 }, 1);
+            let limit = self.read(at.temperature_limit, 1);
             self.write(at.temperature, limit + 3, 1);
         }
         if shutdown & u32::from(bit) != 0 {
@@ -357,22 +397,33 @@ impl Servo {
     }
 }
 
-/// The Shutdown field: 2.0 (X-series) and 1.0 (AX).
-const SHUTDOWN_TWO: u16 = 63;
-const SHUTDOWN_ONE: u16 = 18;
-
 impl Driver for DynamixelBus {
     type Command = BusCommand;
     type Event = BusEvent;
 
-    fn handle_command(&mut self, _now: Instant, command: BusCommand) {
-        let BusCommand::Fault { id, fault } = command;
-        if let Some(servo) = self.servos.iter_mut().find(|servo| servo.id() == id) {
-            servo.suffer(fault);
+    fn handle_command(&mut self, now: Instant, command: BusCommand) {
+        match command {
+            BusCommand::Fault { id, fault } => {
+                if let Some(servo) = self.servos.iter_mut().find(|servo| servo.id() == id) {
+                    servo.suffer(fault);
+                }
+            }
+            BusCommand::Hand { id, position } => {
+                if let Some(servo) = self.servos.iter_mut().find(|servo| servo.id() == id) {
+                    servo.at = f64::from(position);
+                    let (at, size) = (servo.model.at.present, servo.position_size());
+                    servo.write(at, position, size);
+                    if servo.table[usize::from(servo.model.at.torque)] != 0 {
+                        self.moved.get_or_insert(now);
+                    }
+                }
+            }
         }
     }
 
     fn handle_input(&mut self, now: Instant, bytes: &[u8]) {
+        self.began.get_or_insert(now);
+        self.carry_out_scheduled(now);
         for read in self.packets.push(bytes) {
             match read {
                 Read::Packet(packet) => {
@@ -389,6 +440,7 @@ impl Driver for DynamixelBus {
     }
 
     fn handle_timeout(&mut self, now: Instant) {
+        self.carry_out_scheduled(now);
         if let Some(then) = self.moved {
             let dt = now.saturating_duration_since(then);
             // Every servo moves on, whether or not another still moves.
@@ -418,7 +470,8 @@ impl Driver for DynamixelBus {
     fn poll_timeout(&self) -> Option<Instant> {
         let answer = self.answers.front().map(|(due, _)| *due);
         let motion = self.moved.map(|then| then + MOTION_STEP);
-        answer.into_iter().chain(motion).min()
+        let scheduled = self.began.zip(self.scheduled.front()).map(|(began, (after, _))| began + *after);
+        answer.into_iter().chain(motion).chain(scheduled).min()
     }
 }
 

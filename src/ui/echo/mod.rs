@@ -31,10 +31,10 @@ impl Family {
 // The registries: the family, after the three real ones, its project section,
 // and its side of the editor.
 inventory::submit! {
-    crate::project::Registered { family: Family::Echo, rank: 3 }
+    crate::project::Registered { family: Family::Echo, rank: 4 }
 }
 inventory::submit! {
-    crate::project::Section { family: Family::Echo, check: EchoSection::check }
+    crate::project::Section { family: Family::Echo, check: EchoSection::check, fresh: || serde_json::to_value(EchoSection::default()).unwrap_or_default() }
 }
 
 #[allow(non_upper_case_globals)]

@@ -9,19 +9,11 @@ use egui_kittest::kittest::Queryable;
 
 use super::board::BoardEvent;
 use super::*;
-use crate::link::{LinkEvent, no_waker};
+use crate::link::LinkEvent;
 use crate::ui::StudioApp;
 
 fn editor() -> Harness<'static, StudioApp> {
-    let data = tempfile::tempdir().unwrap().keep();
-    let app = StudioApp::new(Project::empty(Family::Echo), None, no_waker()).with_data_dir(data);
-    Harness::builder()
-        .with_size(egui::vec2(1100.0, 700.0))
-        .with_context_setup(|ctx| {
-            crate::ui::fonts::install(ctx);
-            crate::ui::Costing::IN_FRAME.install(ctx);
-        })
-        .build_ui_state(|ui, app: &mut StudioApp| app.show(ui), app)
+    crate::ui::test_editor(Project::empty(Family::Echo), egui::vec2(1100.0, 700.0))
 }
 
 fn run_until(harness: &mut Harness<'static, StudioApp>, what: &str, done: impl Fn(&StudioApp) -> bool) {
@@ -148,7 +140,10 @@ fn the_echo_keeps_its_own_project_section_written_read_and_checked() {
 
     // One undo step takes the section away again.
     harness.state_mut().apply(Action::Undo);
-    assert_eq!(harness.state().document.project.sections.get(Family::Echo), None);
+    assert_eq!(
+        harness.state().document.project.sections.get(Family::Echo),
+        Some(&serde_json::json!({ "home_deg": 0 }))
+    );
 }
 
 /// Runs a command line in this process, on a thread of its own (its words as typed after `servo-studio`).

@@ -117,9 +117,25 @@ fn strings(value: &toml::Value) -> Vec<&str> {
 /// Whether `text` reads the same in every language: no English word of three
 /// letters or more outside its holes, names (PLEN2, rFLEX, JSON…) and units.
 fn reads_the_same_everywhere(text: &str) -> bool {
-    const NAMES: [&str; 16] = [
-        "PLEN2", "rFLEX", "JSON", "Maestro", "Blender", "RoboPlus", "Motion", "Servo", "Studio", "ROBOTIS", "mtnx",
-        "mtn", "OSC", "HTTP", "USB", "socket",
+    const NAMES: [&str; 18] = [
+        "PLEN2",
+        "rFLEX",
+        "JSON",
+        "Maestro",
+        "Blender",
+        "RoboPlus",
+        "Motion",
+        "Servo",
+        "Studio",
+        "ROBOTIS",
+        "mtnx",
+        "mtn",
+        "OSC",
+        "HTTP",
+        "USB",
+        "socket",
+        "DYNAMIXEL",
+        "LED",
     ];
     let mut bare = text.to_string();
     for hole in holes(text) {

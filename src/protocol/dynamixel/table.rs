@@ -1,10 +1,12 @@
-//! Control tables of the emulated models, as the ROBOTIS e-Manual lays them
-//! out (XL430-W250 and XM430-W350: "Control Table of EEPROM Area" and "of
-//! RAM Area"; AX-12A: its control table), the fields the emulator serves:
-//! address, size, factory value, and whether a controller may write it.
-//! A field written outside these is refused as the servos refuse it.
+//! Control tables, as the ROBOTIS e-Manual lays them out (XL430-W250 and
+//! XM430-W350: "Control Table of EEPROM Area" and "of RAM Area"; AX-12A: its
+//! control table): address, size, factory value, and whether a controller
+//! may write it. The emulator serves these tables (a field written outside
+//! them is refused as the servos refuse it); the driver reads and writes a
+//! servo through its model's [`Addresses`], found by the model number its
+//! ping or its first bytes say ([`known`]).
 
-use crate::protocol::dynamixel::Protocol;
+use super::Protocol;
 
 /// One field of a control table.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -27,7 +29,7 @@ const fn w(addr: u16, size: u8, default: u32) -> Field {
     Field { addr, size, default, writable: true }
 }
 
-/// A model the emulator knows.
+/// A model: its number, protocol and control table.
 #[derive(Debug)]
 pub struct Model {
     /// Its model number (what a ping answers).
@@ -36,7 +38,7 @@ pub struct Model {
     pub name: &'static str,
     /// The protocol it speaks.
     pub protocol: Protocol,
-    /// Its firmware version, as emulated.
+    /// Its firmware version, as emulated (what the driver reads is the servo's own).
     pub firmware: u8,
     /// Its control table.
     pub fields: &'static [Field],
@@ -48,8 +50,8 @@ pub struct Model {
     pub top_speed: f64,
 }
 
-/// Where a model keeps what the emulator moves and reports.
-#[derive(Clone, Copy, Debug)]
+/// Where a model keeps what the driver and the emulator read and write.
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Addresses {
     /// Its ID.
     pub id: u16,
@@ -75,6 +77,22 @@ pub struct Addresses {
     pub eeprom_end: Option<u16>,
     /// Speed units, position units a second for one unit of `speed`.
     pub speed_unit: f64,
+    /// Its LED (1 lit).
+    pub led: u16,
+    /// Its position limits: (the lowest, the highest) position's fields.
+    pub limits: (u16, u16),
+    /// Its temperature limit, °C.
+    pub temperature_limit: u16,
+    /// Its present load (X: signed, 0.1 % a unit; AX: 0..=1023 and bit 10 the direction).
+    pub load: u16,
+    /// Its present input voltage (X: 2 bytes, AX: 1 byte; 0.1 V a unit).
+    pub voltage: u16,
+    /// Its profile acceleration (X), none on the AX.
+    pub acceleration: Option<u16>,
+    /// The size of a position field (4 on 2.0, 2 on 1.0).
+    pub position_size: u8,
+    /// Its Shutdown field (which errors let the torque go).
+    pub shutdown: u16,
 }
 
 /// XL430-W250: Protocol 2.0, 4096 a turn.
@@ -136,13 +154,22 @@ pub static AX_12A: Model = Model {
         eeprom_end: None,
         // 0.111 rev/min a unit, 1024 units over 300° (1228.8 a turn).
         speed_unit: 0.111 / 60.0 * 1228.8,
+        led: 25,
+        // CW Angle Limit, CCW Angle Limit.
+        limits: (6, 8),
+        temperature_limit: 11,
+        load: 40,
+        voltage: 42,
+        acceleration: None,
+        position_size: 2,
+        shutdown: 18,
     },
     units_per_turn: 1228.8,
     // 114 rev/min, its no-load speed at 12 V.
     top_speed: 114.0 / 60.0 * 1228.8,
 };
 
-/// Every model the emulator knows.
+/// Every model whose whole table is kept here (what the emulator can be).
 pub static MODELS: [&Model; 3] = [&XL430_W250, &XM430_W350, &AX_12A];
 
 const X_AT: Addresses = Addresses {
@@ -159,6 +186,15 @@ const X_AT: Addresses = Addresses {
     eeprom_end: Some(64),
     // 0.229 rev/min a unit.
     speed_unit: 0.229 / 60.0 * 4096.0,
+    led: 65,
+    // Min Position Limit, Max Position Limit.
+    limits: (52, 48),
+    temperature_limit: 31,
+    load: 126,
+    voltage: 144,
+    acceleration: Some(108),
+    position_size: 4,
+    shutdown: 63,
 };
 
 static X_SERIES_XL: [Field; 35] = x_series(1060, 72, 140, 60, 265);
@@ -211,7 +247,7 @@ const fn x_series(
     ]
 }
 
-const AX_FIELDS: [Field; 27] = [
+const AX_FIELDS: [Field; 32] = [
     r(0, 2, 12),
     r(2, 1, 24),
     w(3, 1, 1),
@@ -236,9 +272,14 @@ const AX_FIELDS: [Field; 27] = [
     w(32, 2, 0),
     w(34, 2, 1023),
     r(36, 2, 512),
+    r(38, 2, 0),
+    r(40, 2, 0),
     r(42, 1, 120),
     r(43, 1, 32),
+    r(44, 1, 0),
     r(46, 1, 0),
+    w(47, 1, 0),
+    w(48, 2, 32),
 ];
 
 impl Model {
@@ -262,5 +303,87 @@ impl Model {
                     && (usize::from(field.addr)..usize::from(field.addr) + usize::from(field.size)).contains(&byte)
             })
         })
+    }
+}
+
+/// How a model family lays out its control table, as the driver reads it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Layout {
+    /// Where its fields are.
+    pub at: Addresses,
+    /// Position units in a turn (X and MX: 4096; AX: 1024 over 300°, 1228.8 a turn).
+    pub units_per_turn: f64,
+    /// The highest position (X and MX: 4095; AX: 1023).
+    pub top_position: u32,
+}
+
+/// The X-series layout (MX 2.0 and the XL330 keep the same addresses).
+pub const X_LAYOUT: Layout = Layout { at: X_AT, units_per_turn: 4096.0, top_position: 4095 };
+/// The AX layout (AX-12, AX-18).
+pub const AX_LAYOUT: Layout = Layout { at: AX_12A.at, units_per_turn: 1228.8, top_position: 1023 };
+/// MX on Protocol 1.0: the AX's addresses, 4096 over 360°.
+pub const MX_ONE_LAYOUT: Layout = Layout { at: AX_12A.at, units_per_turn: 4096.0, top_position: 4095 };
+
+/// A model a scan may find, by the number its control table starts with.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Known {
+    /// Its model number.
+    pub number: u16,
+    /// Its name, as ROBOTIS writes it.
+    pub name: &'static str,
+    /// How its table is laid out.
+    pub layout: Layout,
+}
+
+/// The models the driver knows by number (the e-Manual's "Model Number" of
+/// each): Bioloid's AX and MX 1.0, and the X-series and MX 2.0 labs build with.
+pub static KNOWN: [Known; 19] = [
+    Known { number: 12, name: "AX-12A", layout: AX_LAYOUT },
+    Known { number: 300, name: "AX-12W", layout: AX_LAYOUT },
+    Known { number: 18, name: "AX-18A", layout: AX_LAYOUT },
+    Known { number: 29, name: "MX-28", layout: MX_ONE_LAYOUT },
+    Known { number: 310, name: "MX-64", layout: MX_ONE_LAYOUT },
+    Known { number: 320, name: "MX-106", layout: MX_ONE_LAYOUT },
+    Known { number: 30, name: "MX-28(2.0)", layout: X_LAYOUT },
+    Known { number: 311, name: "MX-64(2.0)", layout: X_LAYOUT },
+    Known { number: 321, name: "MX-106(2.0)", layout: X_LAYOUT },
+    Known { number: 1060, name: "XL430-W250", layout: X_LAYOUT },
+    Known { number: 1090, name: "2XL430-W250", layout: X_LAYOUT },
+    Known { number: 1190, name: "XL330-M077", layout: X_LAYOUT },
+    Known { number: 1200, name: "XL330-M288", layout: X_LAYOUT },
+    Known { number: 1020, name: "XM430-W350", layout: X_LAYOUT },
+    Known { number: 1030, name: "XM430-W210", layout: X_LAYOUT },
+    Known { number: 1010, name: "XH430-W210", layout: X_LAYOUT },
+    Known { number: 1000, name: "XH430-W350", layout: X_LAYOUT },
+    Known { number: 1120, name: "XM540-W270", layout: X_LAYOUT },
+    Known { number: 1110, name: "XM540-W150", layout: X_LAYOUT },
+];
+
+/// The model numbered `number`, if the driver knows its table.
+pub fn known(number: u16) -> Option<&'static Known> {
+    KNOWN.iter().find(|model| model.number == number)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// What the driver reads of a model agrees with the table the emulator serves.
+    #[test]
+    fn each_kept_table_is_known_by_its_number_with_the_same_addresses() {
+        for model in MODELS {
+            let known = known(model.number).unwrap();
+            assert_eq!(known.name, model.name);
+            assert_eq!(known.layout.at, model.at);
+            assert!((known.layout.units_per_turn - model.units_per_turn).abs() < 1e-9);
+            let sized = |addr: u16| model.fields.iter().find(|field| field.addr == addr).map(|field| field.size);
+            let at = model.at;
+            assert_eq!(sized(at.goal), Some(at.position_size), "{}", model.name);
+            assert_eq!(sized(at.present), Some(at.position_size), "{}", model.name);
+            for addr in [at.led, at.limits.0, at.limits.1, at.temperature_limit, at.load, at.voltage, at.shutdown] {
+                assert!(sized(addr).is_some(), "{}: no field at {addr}", model.name);
+            }
+        }
+        assert_eq!(known(7), None);
     }
 }

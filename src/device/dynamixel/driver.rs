@@ -1,0 +1,647 @@
+//! The DYNAMIXEL driver the I/O thread runs, sans IO: one packet on the bus
+//! at a time (the bus is half duplex: a packet that waits for a status waits
+//! for it, or for its deadline, before the next leaves). What it sends, in
+//! order of need: the owner's commands (torque, LED, profile, hold), then the
+//! newest goal of each servo (coalesced, one sync write for each protocol),
+//! then the readings it keeps (each found servo's present position, load,
+//! voltage, temperature and errors, a round every [`READ_EVERY`]).
+//!
+//! A scan pings Protocol 2.0 by broadcast (each servo answers in turn), then
+//! Protocol 1.0 ID by ID; a servo found is read for its model, firmware and
+//! limits. A status that comes after its deadline still counts for the servo
+//! it names. A servo that misses [`SILENT_AFTER_MISSES`] reads in a row, with
+//! nothing heard from it for [`SILENT_AFTER`], is said silent (and said
+//! again when it answers).
+
+use std::collections::{BTreeMap, VecDeque};
+use std::time::{Duration, Instant};
+
+use crate::link::Driver;
+use crate::protocol::dynamixel::table::{Known, known};
+use crate::protocol::dynamixel::{BROADCAST, Kind, Packet, Packets, Protocol, Read, instruction};
+
+use super::{DynamixelCommand, DynamixelEvent, Found, Limits, Reading};
+
+/// How long a packet waits for its status (a U2D2's latency timer and the
+/// servo's return delay with room to spare, as the SDK's packet timeout).
+pub const ANSWER_WAIT: Duration = Duration::from_millis(30);
+/// How long a scan's 1.0 ping waits for its answer before the next ID is
+/// pinged (an answer that comes later still counts: it names its servo), so
+/// that the 253 IDs take under 3 s.
+pub const PING_WAIT: Duration = Duration::from_millis(10);
+/// How long a broadcast ping waits after its last answer for another.
+pub const BROADCAST_WAIT: Duration = Duration::from_millis(60);
+/// A round of readings of every found servo starts this often (50 Hz).
+pub const READ_EVERY: Duration = Duration::from_millis(20);
+/// Reads a servo must miss in a row before it is said silent…
+pub const SILENT_AFTER_MISSES: u32 = 3;
+/// …with nothing heard from it for this long.
+pub const SILENT_AFTER: Duration = Duration::from_millis(300);
+
+/// What a packet on the bus waits for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Wait {
+    /// No status (a sync write, a broadcast).
+    Nothing,
+    /// Statuses to a 2.0 broadcast ping, as many as come.
+    Pings,
+    /// The status of servo `id`, for `purpose`.
+    Status { id: u8, purpose: Purpose },
+}
+
+/// What a read or a write is for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Purpose {
+    /// A 1.0 ping of a scan.
+    Ping,
+    /// A ping the owner asked for.
+    Pong,
+    /// The model number and firmware (1.0: the table's first 3 bytes).
+    Identity,
+    /// The limits.
+    Limits,
+    /// A round's reading.
+    Reading,
+    /// The hardware error status (2.0, read when a status raised its alert).
+    HardwareError,
+    /// A write, named for its refusal.
+    Write(&'static str),
+}
+
+/// A packet waiting to go.
+#[derive(Clone, Debug)]
+struct Outgoing {
+    packet: Packet,
+    wait: Wait,
+}
+
+/// A servo the scan found.
+#[derive(Clone, Debug)]
+struct Servo {
+    found: Found,
+    known: Option<&'static Known>,
+    misses: u32,
+    heard: Instant,
+    silent: bool,
+    /// Its last reading's position (what a hold holds it at).
+    present: Option<u32>,
+    /// Its hardware error status, as last read (2.0) or said (1.0).
+    hardware_error: u8,
+}
+
+/// A scan under way.
+#[derive(Clone, Debug)]
+struct Scan {
+    /// 1.0 IDs still to ping.
+    one: VecDeque<u8>,
+    /// How many IDs were to ping in all (for progress).
+    of: usize,
+}
+
+/// The client side of a DYNAMIXEL bus.
+#[derive(Debug)]
+pub struct DynamixelDriver {
+    packets: Packets,
+    urgent: VecDeque<Outgoing>,
+    goals: BTreeMap<u8, u32>,
+    servos: BTreeMap<u8, Servo>,
+    scan: Option<Scan>,
+    /// What is on the bus, waiting, and until when.
+    on_bus: Option<(Wait, Instant)>,
+    out: VecDeque<Vec<u8>>,
+    events: VecDeque<DynamixelEvent>,
+    /// Whether readings are kept up, and the next round's start and servos.
+    reading: bool,
+    next_round: Option<Instant>,
+    round: VecDeque<u8>,
+    stream: Option<Stream>,
+}
+
+/// A stream being played.
+#[derive(Clone, Debug)]
+struct Stream {
+    frames: Vec<Vec<(u8, u32)>>,
+    every: Duration,
+    start: Instant,
+    /// The next frame to send.
+    next: usize,
+}
+
+impl Stream {
+    fn due(&self, index: usize) -> Instant {
+        self.start + self.every * u32::try_from(index).unwrap_or(u32::MAX)
+    }
+}
+
+impl Default for DynamixelDriver {
+    fn default() -> Self {
+        Self {
+            packets: Packets::statuses(),
+            urgent: VecDeque::new(),
+            goals: BTreeMap::new(),
+            servos: BTreeMap::new(),
+            scan: None,
+            on_bus: None,
+            out: VecDeque::new(),
+            events: VecDeque::new(),
+            reading: true,
+            next_round: None,
+            round: VecDeque::new(),
+            stream: None,
+        }
+    }
+}
+
+/// A read of `len` bytes at `addr` of servo `id`, in its protocol.
+fn read(protocol: Protocol, id: u8, addr: u16, len: u16) -> Packet {
+    let params = match protocol {
+        Protocol::Two => [addr.to_le_bytes(), len.to_le_bytes()].concat(),
+        // 1.0 addresses and lengths are one byte each (its tables end below 256).
+        #[allow(clippy::cast_possible_truncation)]
+        Protocol::One => vec![addr as u8, len as u8],
+    };
+    Packet::instruction(protocol, id, instruction::READ, params)
+}
+
+/// A write of `value` in `size` bytes at `addr` of servo `id`.
+fn write(protocol: Protocol, id: u8, addr: u16, value: u32, size: u8) -> Packet {
+    let mut params = match protocol {
+        Protocol::Two => addr.to_le_bytes().to_vec(),
+        #[allow(clippy::cast_possible_truncation)]
+        Protocol::One => vec![addr as u8],
+    };
+    params.extend(&value.to_le_bytes()[..usize::from(size)]);
+    Packet::instruction(protocol, id, instruction::WRITE, params)
+}
+
+/// A sync write of `size` bytes at `addr`, each servo its value.
+fn sync_write(protocol: Protocol, addr: u16, size: u8, values: &[(u8, u32)]) -> Packet {
+    let mut params = match protocol {
+        Protocol::Two => [addr.to_le_bytes(), u16::from(size).to_le_bytes()].concat(),
+        #[allow(clippy::cast_possible_truncation)]
+        Protocol::One => vec![addr as u8, size],
+    };
+    for (id, value) in values {
+        params.push(*id);
+        params.extend(&value.to_le_bytes()[..usize::from(size)]);
+    }
+    Packet::instruction(protocol, BROADCAST, instruction::SYNC_WRITE, params)
+}
+
+/// `len` (≤ 4) little-endian bytes of `data` at `at`, if it holds them.
+fn le(data: &[u8], at: usize, len: usize) -> Option<u32> {
+    let bytes = data.get(at..at + len)?;
+    let mut word = [0; 4];
+    word[..len].copy_from_slice(bytes);
+    Some(u32::from_le_bytes(word))
+}
+
+/// The span a round reads of a model: from its load to past its temperature
+/// (2.0: 126..=146; 1.0: 36..=43, from its present position).
+fn reading_span(model: &Known) -> (u16, u16) {
+    let at = model.layout.at;
+    let first = at.present.min(at.load).min(at.voltage).min(at.temperature);
+    let last = at.present.max(at.load).max(at.voltage).max(at.temperature);
+    (first, last - first + 1)
+}
+
+impl DynamixelDriver {
+    fn say(&mut self, event: DynamixelEvent) {
+        self.events.push_back(event);
+    }
+
+    /// Queues a write to servo `id` (or every found servo), where its model has the field.
+    fn write_each(
+        &mut self,
+        id: Option<u8>,
+        name: &'static str,
+        field: impl Fn(&Known) -> Option<(u16, u8)>,
+        value: u32,
+    ) {
+        let targets: Vec<(u8, Protocol, &'static Known)> = self
+            .servos
+            .values()
+            .filter(|servo| id.is_none_or(|id| servo.found.id == id))
+            .filter_map(|servo| servo.known.map(|known| (servo.found.id, servo.found.protocol, known)))
+            .collect();
+        for (id, protocol, known) in targets {
+            if let Some((addr, size)) = field(known) {
+                let packet = write(protocol, id, addr, value, size);
+                self.urgent.push_back(Outgoing { packet, wait: Wait::Status { id, purpose: Purpose::Write(name) } });
+            }
+        }
+    }
+
+    /// The next packet to put on the bus, if any is due.
+    fn next_outgoing(&mut self, now: Instant) -> Option<Outgoing> {
+        if let Some(outgoing) = self.urgent.pop_front() {
+            return Some(outgoing);
+        }
+        self.stream_due(now);
+        if !self.goals.is_empty() {
+            return self.goals_packet();
+        }
+        if let Some(scan) = &mut self.scan {
+            let id = scan.one.pop_front();
+            let (left, of) = (scan.one.len(), scan.of);
+            return match id {
+                Some(id) => {
+                    self.say(DynamixelEvent::Scanning { done: of - left, of });
+                    let packet = Packet::instruction(Protocol::One, id, instruction::PING, Vec::new());
+                    Some(Outgoing { packet, wait: Wait::Status { id, purpose: Purpose::Ping } })
+                }
+                None => {
+                    self.scan = None;
+                    let found = self.servos.len();
+                    self.say(DynamixelEvent::Scanned { found });
+                    self.next_outgoing(now)
+                }
+            };
+        }
+        self.reading_packet(now)
+    }
+
+    /// The newest frame of the stream that is due becomes the goals.
+    fn stream_due(&mut self, now: Instant) {
+        let Some(stream) = &mut self.stream else { return };
+        let mut due = None;
+        while stream.next < stream.frames.len() && stream.due(stream.next) <= now {
+            due = Some(stream.next);
+            stream.next += 1;
+        }
+        let Some(index) = due else { return };
+        let frame = std::mem::take(&mut stream.frames[index]);
+        let ended = stream.next == stream.frames.len();
+        for (id, position) in frame {
+            self.goal(id, position);
+        }
+        if ended {
+            self.stream = None;
+            self.say(DynamixelEvent::Streamed);
+        }
+    }
+
+    /// Servo `id`'s newest goal, within its table.
+    fn goal(&mut self, id: u8, position: u32) {
+        if let Some(known) = self.servos.get(&id).and_then(|servo| servo.known) {
+            self.goals.insert(id, position.min(known.layout.top_position));
+        }
+    }
+
+    /// One sync write for each protocol of the goals waiting (a servo's newest only).
+    fn goals_packet(&mut self) -> Option<Outgoing> {
+        let protocol = self.goals.keys().find_map(|id| self.servos.get(id)).map(|servo| servo.found.protocol);
+        let Some(protocol) = protocol else {
+            // Goals for servos never found go nowhere.
+            self.goals.clear();
+            return None;
+        };
+        let mut values = Vec::new();
+        let mut at = None;
+        self.goals.retain(|id, position| {
+            let Some(servo) = self.servos.get(id) else { return false };
+            let Some(known) = servo.known else { return false };
+            if servo.found.protocol != protocol {
+                return true;
+            }
+            at = Some((known.layout.at.goal, known.layout.at.position_size));
+            values.push((*id, *position));
+            false
+        });
+        let (addr, size) = at?;
+        Some(Outgoing { packet: sync_write(protocol, addr, size, &values), wait: Wait::Nothing })
+    }
+
+    /// The next read of the round, when readings are kept and one is due.
+    fn reading_packet(&mut self, now: Instant) -> Option<Outgoing> {
+        if !self.reading || self.servos.is_empty() {
+            return None;
+        }
+        if self.round.is_empty() {
+            if self.next_round.is_some_and(|next| now < next) {
+                return None;
+            }
+            self.next_round = Some(self.next_round.map_or(now, |next| next + READ_EVERY).max(now - READ_EVERY));
+            self.round = self.servos.keys().copied().collect();
+        }
+        while let Some(id) = self.round.pop_front() {
+            let servo = &self.servos[&id];
+            let Some(known) = servo.known else { continue };
+            let (addr, len) = reading_span(known);
+            let packet = read(servo.found.protocol, id, addr, len);
+            return Some(Outgoing { packet, wait: Wait::Status { id, purpose: Purpose::Reading } });
+        }
+        None
+    }
+
+    /// Puts what is next on the bus, if the bus is free.
+    fn send_next(&mut self, now: Instant) {
+        while self.on_bus.is_none() {
+            let Some(outgoing) = self.next_outgoing(now) else { return };
+            self.out.push_back(outgoing.packet.to_bytes());
+            match outgoing.wait {
+                Wait::Nothing => {}
+                Wait::Pings => self.on_bus = Some((Wait::Pings, now + BROADCAST_WAIT)),
+                wait @ Wait::Status { purpose: Purpose::Ping, .. } => self.on_bus = Some((wait, now + PING_WAIT)),
+                wait => self.on_bus = Some((wait, now + ANSWER_WAIT)),
+            }
+        }
+    }
+
+    /// A status came.
+    fn status(&mut self, now: Instant, packet: &Packet) {
+        let Kind::Status(error) = packet.kind else { return };
+        let id = packet.id;
+        match self.on_bus {
+            Some((Wait::Pings, _)) if packet.protocol == Protocol::Two => {
+                self.found_two(now, id, &packet.params);
+                // Wait on for the next servo's answer.
+                self.on_bus = Some((Wait::Pings, now + BROADCAST_WAIT));
+                return;
+            }
+            Some((Wait::Status { id: waited, purpose }, _)) if waited == id => {
+                self.on_bus = None;
+                self.answered(now, id, purpose, error, packet);
+                return;
+            }
+            _ => {}
+        }
+        // A late status still says its servo is there.
+        if let Some(servo) = self.servos.get_mut(&id) {
+            servo.heard = now;
+        } else if self.scan.is_some() && packet.protocol == Protocol::One && packet.params.is_empty() {
+            self.found_one(id);
+        }
+    }
+
+    /// A 2.0 ping's answer: its model number and firmware.
+    fn found_two(&mut self, now: Instant, id: u8, params: &[u8]) {
+        if self.servos.contains_key(&id) {
+            return;
+        }
+        let (Some(number), Some(firmware)) = (le(params, 0, 2), params.get(2)) else { return };
+        // Two bytes.
+        #[allow(clippy::cast_possible_truncation)]
+        let number = number as u16;
+        self.add(now, Found { id, protocol: Protocol::Two, model_number: number, firmware: *firmware });
+    }
+
+    /// A 1.0 servo answered its ping: its model and firmware are read next.
+    fn found_one(&mut self, id: u8) {
+        if self.servos.contains_key(&id) {
+            return;
+        }
+        let packet = read(Protocol::One, id, 0, 3);
+        self.urgent.push_back(Outgoing { packet, wait: Wait::Status { id, purpose: Purpose::Identity } });
+    }
+
+    fn add(&mut self, now: Instant, found: Found) {
+        let known = known(found.model_number);
+        let id = found.id;
+        self.servos
+            .insert(id, Servo { found, known, misses: 0, heard: now, silent: false, present: None, hardware_error: 0 });
+        self.say(DynamixelEvent::Found(found));
+        if let Some(known) = known {
+            let at = known.layout.at;
+            let first = at.temperature_limit.min(at.limits.0).min(at.limits.1);
+            let end = (at.limits.0.max(at.limits.1) + u16::from(at.position_size)).max(at.temperature_limit + 1);
+            let len = end - first;
+            let packet = read(found.protocol, id, first, len);
+            self.urgent.push_back(Outgoing { packet, wait: Wait::Status { id, purpose: Purpose::Limits } });
+        }
+    }
+
+    /// Servo `id` answered what it was asked for.
+    fn answered(&mut self, now: Instant, id: u8, purpose: Purpose, error: u8, packet: &Packet) {
+        let params = &packet.params;
+        if purpose == Purpose::Ping {
+            self.found_one(id);
+            return;
+        }
+        if purpose == Purpose::Identity {
+            if let (Some(number), Some(firmware)) = (le(params, 0, 2), params.get(2)) {
+                #[allow(clippy::cast_possible_truncation)]
+                let model_number = number as u16;
+                self.add(now, Found { id, protocol: Protocol::One, model_number, firmware: *firmware });
+            }
+            return;
+        }
+        let Some(servo) = self.servos.get_mut(&id) else { return };
+        servo.heard = now;
+        servo.misses = 0;
+        if servo.silent {
+            servo.silent = false;
+            self.events.push_back(DynamixelEvent::Answering { id });
+        }
+        let Some(known) = servo.known else { return };
+        let at = known.layout.at;
+        let two = packet.protocol == Protocol::Two;
+        // 2.0's alert bit: the cause is in Hardware Error Status. 1.0: the bits themselves.
+        if two && error & 0x80 != 0 && purpose != Purpose::HardwareError {
+            if let Some(addr) = at.hardware_error {
+                let packet = read(Protocol::Two, id, addr, 1);
+                self.urgent.push_back(Outgoing { packet, wait: Wait::Status { id, purpose: Purpose::HardwareError } });
+            }
+        } else if !two {
+            servo.hardware_error = error;
+        } else if error & 0x80 == 0 {
+            servo.hardware_error = 0;
+        }
+        let result = if two { error & 0x7F } else { error & !0x25 };
+        match purpose {
+            Purpose::Write(what) if result != 0 => {
+                self.events.push_back(DynamixelEvent::Refused { id, what, error });
+            }
+            Purpose::Limits => {
+                let base = at.temperature_limit.min(at.limits.0).min(at.limits.1);
+                let field = |addr: u16, len: u8| le(params, usize::from(addr - base), usize::from(len));
+                let size = at.position_size;
+                if let (Some(lowest), Some(highest), Some(temperature)) =
+                    (field(at.limits.0, size), field(at.limits.1, size), field(at.temperature_limit, 1))
+                {
+                    // An AX whose limits are both 0 turns as a wheel: its range is its whole table.
+                    let (lowest, highest) =
+                        if lowest == 0 && highest == 0 { (0, known.layout.top_position) } else { (lowest, highest) };
+                    #[allow(clippy::cast_possible_truncation)]
+                    let limits = Limits { lowest, highest, temperature_limit_c: temperature as u8 };
+                    self.events.push_back(DynamixelEvent::Limits { id, limits });
+                }
+            }
+            Purpose::Pong => self.events.push_back(DynamixelEvent::Pong { id }),
+            Purpose::HardwareError => {
+                if let Some(bits) = params.first() {
+                    servo.hardware_error = *bits;
+                }
+            }
+            Purpose::Reading => {
+                let (base, _) = reading_span(known);
+                let field = |addr: u16, len: u8| le(params, usize::from(addr - base), usize::from(len));
+                let voltage_size = if two { 2 } else { 1 };
+                if let (Some(position), Some(load), Some(voltage), Some(temperature)) = (
+                    field(at.present, at.position_size),
+                    field(at.load, 2),
+                    field(at.voltage, voltage_size),
+                    field(at.temperature, 1),
+                ) {
+                    servo.present = Some(position);
+                    let load_percent = if two {
+                        // A signed 2-byte value, 0.1 % a unit.
+                        #[allow(clippy::cast_possible_truncation)]
+                        let signed = load as u16 as i16;
+                        f64::from(signed) / 10.0
+                    } else {
+                        // 0..=1023 of the most torque, bit 10 the direction (clockwise negative).
+                        let magnitude = f64::from(load & 0x3FF) / 1023.0 * 100.0;
+                        if load & 0x400 != 0 { -magnitude } else { magnitude }
+                    };
+                    #[allow(clippy::cast_possible_truncation)]
+                    let reading = Reading {
+                        position,
+                        load_percent,
+                        volts: f64::from(voltage) / 10.0,
+                        temperature_c: temperature as u8,
+                        hardware_error: servo.hardware_error,
+                        at: now,
+                    };
+                    self.events.push_back(DynamixelEvent::Reading { id, reading });
+                }
+            }
+            _ => {}
+        }
+    }
+
+    /// What was on the bus waited its time out.
+    fn waited_out(&mut self, now: Instant, wait: Wait) {
+        let Wait::Status { id, purpose } = wait else { return };
+        if matches!(purpose, Purpose::Ping | Purpose::Identity) {
+            return;
+        }
+        let Some(servo) = self.servos.get_mut(&id) else { return };
+        servo.misses += 1;
+        if !servo.silent && servo.misses >= SILENT_AFTER_MISSES && now.duration_since(servo.heard) >= SILENT_AFTER {
+            servo.silent = true;
+            self.events.push_back(DynamixelEvent::Silent { id });
+        }
+    }
+
+    /// Every found servo held where it is (its goal set to its present position).
+    fn hold(&mut self) {
+        self.goals.clear();
+        self.stream = None;
+        let held: Vec<(u8, u32)> =
+            self.servos.values().filter_map(|servo| Some((servo.found.id, servo.present?))).collect();
+        for protocol in [Protocol::Two, Protocol::One] {
+            let values: Vec<(u8, u32)> =
+                held.iter().copied().filter(|(id, _)| self.servos[id].found.protocol == protocol).collect();
+            let at = values.first().and_then(|(id, _)| self.servos[id].known).map(|known| known.layout.at);
+            if let Some(at) = at {
+                let packet = sync_write(protocol, at.goal, at.position_size, &values);
+                self.urgent.push_front(Outgoing { packet, wait: Wait::Nothing });
+            }
+        }
+    }
+}
+
+impl Driver for DynamixelDriver {
+    type Command = DynamixelCommand;
+    type Event = DynamixelEvent;
+
+    fn handle_command(&mut self, now: Instant, command: DynamixelCommand) {
+        match command {
+            DynamixelCommand::Scan { one } => {
+                self.servos.clear();
+                self.goals.clear();
+                self.round.clear();
+                let ids: VecDeque<u8> = one.collect();
+                self.scan = Some(Scan { of: ids.len(), one: ids });
+                let packet = Packet::instruction(Protocol::Two, BROADCAST, instruction::PING, Vec::new());
+                self.urgent.push_back(Outgoing { packet, wait: Wait::Pings });
+            }
+            DynamixelCommand::Goal { id, position } => self.goal(id, position),
+            DynamixelCommand::Stream { frames, every } => {
+                self.stream = Some(Stream { frames, every, start: now, next: 0 });
+            }
+            DynamixelCommand::Torque { id, on } => {
+                self.write_each(id, "torque", |known| Some((known.layout.at.torque, 1)), u32::from(on));
+            }
+            DynamixelCommand::Led { id, on } => {
+                self.write_each(Some(id), "LED", |known| Some((known.layout.at.led, 1)), u32::from(on));
+            }
+            DynamixelCommand::Profile { id, velocity, acceleration } => {
+                self.write_each(
+                    Some(id),
+                    "profile velocity",
+                    |known| Some((known.layout.at.speed, known.layout.at.position_size)),
+                    velocity,
+                );
+                self.write_each(
+                    Some(id),
+                    "profile acceleration",
+                    |known| known.layout.at.acceleration.map(|addr| (addr, 4)),
+                    acceleration,
+                );
+            }
+            DynamixelCommand::Ping { id, protocol } => {
+                let packet = Packet::instruction(protocol, id, instruction::PING, Vec::new());
+                self.urgent.push_back(Outgoing { packet, wait: Wait::Status { id, purpose: Purpose::Pong } });
+            }
+            DynamixelCommand::Read(on) => {
+                self.reading = on;
+                self.round.clear();
+            }
+            DynamixelCommand::Hold => self.hold(),
+        }
+    }
+
+    fn handle_input(&mut self, now: Instant, bytes: &[u8]) {
+        for read in self.packets.push(bytes) {
+            if let Read::Packet(packet) = read {
+                self.status(now, &packet);
+            }
+        }
+    }
+
+    fn handle_timeout(&mut self, now: Instant) {
+        if let Some((wait, until)) = self.on_bus
+            && now >= until
+        {
+            self.on_bus = None;
+            self.waited_out(now, wait);
+        }
+    }
+
+    fn handle_disconnect(&mut self, _reason: &str) {
+        self.stream = None;
+        self.urgent.clear();
+        self.goals.clear();
+        self.on_bus = None;
+        self.scan = None;
+    }
+
+    /// What is next on the bus: taken only when the I/O thread asks, after
+    /// every command waiting was handled, so goals sent together coalesce.
+    fn poll_transmit(&mut self, now: Instant) -> Option<Vec<u8>> {
+        if self.out.is_empty() {
+            self.send_next(now);
+        }
+        self.out.pop_front()
+    }
+
+    fn poll_event(&mut self) -> Option<DynamixelEvent> {
+        self.events.pop_front()
+    }
+
+    fn poll_timeout(&self) -> Option<Instant> {
+        if let Some((_, until)) = self.on_bus {
+            return Some(until);
+        }
+        let round = if self.reading && !self.servos.is_empty() { self.next_round } else { None };
+        let frame = self.stream.as_ref().map(|stream| stream.due(stream.next));
+        round.into_iter().chain(frame).min()
+    }
+
+    fn is_last_word(&self, command: &DynamixelCommand) -> bool {
+        // STOP and relax on the way out still reach the servos.
+        matches!(command, DynamixelCommand::Hold | DynamixelCommand::Torque { .. })
+    }
+}

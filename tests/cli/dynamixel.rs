@@ -1,0 +1,185 @@
+//! The DYNAMIXEL family on the command line, run as a user runs it: an
+//! emulated bus served by `sim` (logged, with a hardware error on a
+//! schedule), scanned by `board info` and `export`, refused by `import` with
+//! what to do instead; a show of three families with a DYNAMIXEL arm, its
+//! motion streamed as the other boards start; and a lost bus stopping it.
+
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::cast_precision_loss)]
+
+use std::io::{BufRead, BufReader};
+use std::process::Command as Process;
+use std::time::Duration;
+
+use servo_studio::project::dynamixel::{DynamixelSection, Motion, ServoSetup, Step};
+use servo_studio::project::{self, Easing, Family, Project};
+use servo_studio::show::family::FamilyCue;
+use servo_studio::show::{Cue, Show, Start};
+
+use super::play::{Stage, device, first, logged_until, swinging, waving};
+use crate::common;
+
+const EXE: &str = env!("CARGO_BIN_EXE_servo-studio");
+
+/// An arm of an XL430 (ID 1) and an AX-12A (ID 3) holding one motion of `seconds`, a swing there and back.
+fn arm(seconds: u32) -> Project {
+    let half = seconds * 500;
+    let section = DynamixelSection {
+        servos: vec![
+            ServoSetup { id: 1, name: "肩 shoulder".into(), model_number: 1060 },
+            ServoSetup { id: 3, name: "手".into(), model_number: 12 },
+        ],
+        motions: vec![Motion {
+            name: "揮手 wave".into(),
+            steps: vec![
+                Step { duration_ms: half, easing: Easing::EaseInOut, positions: [(1, 2548), (3, 612)].into() },
+                Step { duration_ms: half, easing: Easing::Linear, positions: [(1, 2048), (3, 512)].into() },
+            ],
+        }],
+    };
+    let mut project = Project::empty(Family::Dynamixel);
+    project.sections.set(Family::Dynamixel, section.kept());
+    project
+}
+
+fn motion_cue(number: f64) -> Start {
+    Start::Family(FamilyCue::named("motion", number).unwrap())
+}
+
+#[test]
+fn board_info_and_export_scan_the_emulated_bus_and_import_says_what_to_do_instead() {
+    let dir = tempfile::tempdir().unwrap();
+    let log = dir.path().join("bus.log");
+    let sim = common::sim(&[
+        "--protocol",
+        "dynamixel",
+        "--log",
+        log.to_str().unwrap(),
+        "--hardware-error",
+        "2:overheating@0",
+    ]);
+    let info =
+        Process::new(EXE).args(["board", "info", "--protocol", "dynamixel", "--port", &sim.port]).output().unwrap();
+    let said = String::from_utf8_lossy(&info.stdout);
+    assert_eq!(info.status.code(), Some(0), "{}", String::from_utf8_lossy(&info.stderr));
+    let lines: Vec<&str> = said.lines().collect();
+    assert_eq!(lines.len(), 3, "{said}");
+    assert!(
+        lines[0].contains("ID   1") && lines[0].contains("XL430-W250") && lines[0].contains("model  1060"),
+        "{said}"
+    );
+    assert!(lines[0].contains("firmware  46") && lines[0].contains("protocol 2.0"), "{said}");
+    assert!(lines[0].contains("positions 0..=4095, 72 °C at most"), "{said}");
+    assert!(lines[1].contains("XM430-W350") && lines[1].contains("80 °C"), "{said}");
+    assert!(lines[2].contains("ID   3") && lines[2].contains("AX-12A") && lines[2].contains("protocol 1.0"), "{said}");
+    assert!(lines[2].contains("positions 0..=1023, 70 °C at most"), "{said}");
+    // The bus logged what it heard: the broadcast ping first.
+    let heard = logged_until(&log, "Instruction(1)", Duration::from_secs(10));
+    assert!(heard[0].1.contains("id: 254"), "{heard:?}");
+
+    let out = dir.path().join("found.json");
+    let export = Process::new(EXE)
+        .args(["export", "--protocol", "dynamixel", "--port", &sim.port, "--out", out.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert_eq!(export.status.code(), Some(0), "{}", String::from_utf8_lossy(&export.stderr));
+    let exported = project::load(&out).unwrap();
+    assert_eq!(exported.family, Family::Dynamixel);
+    let kept: Vec<(u8, u16)> =
+        DynamixelSection::of(&exported).servos.iter().map(|servo| (servo.id, servo.model_number)).collect();
+    assert_eq!(kept, [(1, 1060), (2, 1020), (3, 12)]);
+
+    let import = Process::new(EXE)
+        .args(["import", "--protocol", "dynamixel", "--port", &sim.port, "--in", out.to_str().unwrap(), "--yes"])
+        .output()
+        .unwrap();
+    let refused = String::from_utf8_lossy(&import.stderr);
+    assert_ne!(import.status.code(), Some(0));
+    assert!(
+        refused.contains("a DYNAMIXEL stores no motion to import") && refused.contains("Nothing was written"),
+        "{refused}"
+    );
+}
+
+#[test]
+fn sim_refuses_a_hardware_error_it_cannot_read_and_a_model_it_does_not_emulate() {
+    let wrong = Process::new(EXE)
+        .args(["sim", "--protocol", "dynamixel", "--tcp", "127.0.0.1:0", "--hardware-error", "2:melting@1"])
+        .output()
+        .unwrap();
+    assert_ne!(wrong.status.code(), Some(0));
+    assert!(String::from_utf8_lossy(&wrong.stderr).contains("write ID:KIND@SECONDS"));
+    let dir = tempfile::tempdir().unwrap();
+    let state = dir.path().join("mx.json");
+    let mut project = Project::empty(Family::Dynamixel);
+    let section = DynamixelSection {
+        servos: vec![ServoSetup { id: 5, name: String::new(), model_number: 29 }],
+        motions: Vec::new(),
+    };
+    project.sections.set(Family::Dynamixel, section.kept());
+    project::save(&state, &project).unwrap();
+    let refused = Process::new(EXE)
+        .args(["sim", "--protocol", "dynamixel", "--tcp", "127.0.0.1:0", "--state", state.to_str().unwrap()])
+        .output()
+        .unwrap();
+    let said = String::from_utf8_lossy(&refused.stderr);
+    assert!(said.contains("servo 5: model 29 is not emulated (use one of XL430-W250 (1060)"), "{said}");
+}
+
+#[test]
+fn a_dynamixel_arm_plays_its_motion_in_a_show_with_a_servo_board_and_a_plen2() {
+    let show = Show {
+        devices: vec![device("skull", swinging(2)), device("plen", waving()), device("arm", arm(1))],
+        sound: None,
+        cues: vec![
+            Cue { device: "skull".into(), at_ms: 0, start: Start::Macro(1) },
+            Cue { device: "plen".into(), at_ms: 0, start: Start::Slot(2) },
+            Cue { device: "arm".into(), at_ms: 0, start: motion_cue(1.0) },
+        ],
+    };
+    let stage = Stage::new(&show, &[]);
+    let mut child = stage.play(&[]);
+    let stdout = BufReader::new(child.stdout.take().unwrap()).lines().map(Result::unwrap).collect::<Vec<_>>();
+    let (code, stderr) = common::ended(child, Duration::from_secs(60));
+    assert_eq!(code, Some(0), "{stderr}");
+    assert!(stderr.contains("arm (DYNAMIXEL) answered"), "{stderr}");
+    let said = stdout.join("\n");
+    assert!(said.contains("arm motion 1 due at"), "{said}");
+    // The arm's bus took the motion's frames in as sync writes, started with the servo board's macro.
+    let arm = logged_until(stage.log("arm"), "Instruction(131)", Duration::from_secs(10));
+    let skull =
+        first(&logged_until(stage.log("skull"), "ExecuteMacroRequest", Duration::from_secs(10)), "ExecuteMacroRequest");
+    let streamed = first(&arm, "Instruction(131)");
+    let apart_ms = (streamed as f64 - skull as f64).abs() / 1e6;
+    assert!(apart_ms < 300.0, "the arm and the skull are cued together; {apart_ms:.1} ms apart");
+    // A second's motion at 50 frames a second: about 50 sync writes for each protocol.
+    let arm = logged_until(stage.log("arm"), "params: [30, 2, 3, 0, 2]", Duration::from_secs(10));
+    let frames =
+        arm.iter().filter(|(_, said)| said.contains("Instruction(131)") && said.contains("protocol: One")).count();
+    assert!((40..=60).contains(&frames), "{frames} frames to the AX-12A");
+    eprintln!("figures: |arm − skull| = {apart_ms:.2} ms (cued 0); {frames} frames streamed to the AX-12A");
+}
+
+#[test]
+fn a_lost_bus_stops_the_show_and_says_which() {
+    let show = Show {
+        devices: vec![device("skull", swinging(200)), device("arm", arm(60))],
+        sound: None,
+        cues: vec![
+            Cue { device: "skull".into(), at_ms: 0, start: Start::Macro(1) },
+            Cue { device: "arm".into(), at_ms: 0, start: motion_cue(1.0) },
+        ],
+    };
+    let mut stage = Stage::new(&show, &[]);
+    let child = stage.play(&[]);
+    logged_until(stage.log("arm"), "Instruction(131)", Duration::from_secs(30));
+    // The U2D2's cable is pulled: the bus goes.
+    let index = stage.sims.iter().position(|(name, ..)| name == "arm").unwrap();
+    let (_, mut gone, _) = stage.sims.remove(index);
+    gone.child.kill().unwrap();
+    gone.child.wait().unwrap();
+    let (code, stderr) = common::ended(child, Duration::from_secs(30));
+    assert_eq!(code, Some(1), "{stderr}");
+    assert!(stderr.contains("the link to arm was lost") && stderr.contains("every device was stopped"), "{stderr}");
+    let skull = logged_until(stage.log("skull"), "SetServoParameterRequest", Duration::from_secs(10));
+    assert!(skull.iter().any(|(_, said)| said.contains("is_start: false")), "{skull:?}");
+}
