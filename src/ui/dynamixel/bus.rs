@@ -60,6 +60,8 @@ pub fn ui(family: &mut DynamixelUi, ui: &mut egui::Ui, view: &ShellView<'_>, act
     }
     let section = DynamixelSection::of(view.project);
     egui::ScrollArea::both().auto_shrink([false, false]).show(ui, |ui| {
+        // Sliders long enough to place a servo to a tenth of a degree by hand.
+        ui.spacing_mut().slider_width = (ui.available_width() - 760.0).clamp(160.0, 420.0);
         egui::Grid::new("dynamixel_bus").striped(true).num_columns(12).show(ui, |ui| {
             for heading in
                 ["id", "model", "caption", "position", "torque", "led", "load", "voltage", "temperature", "errors"]
@@ -77,8 +79,9 @@ pub fn ui(family: &mut DynamixelUi, ui: &mut egui::Ui, view: &ShellView<'_>, act
                 let kept = section.servo(id).map_or("", |setup| setup.name.as_str());
                 let mut renamed = family.with_bus(view.project);
                 let draft = family.captions.entry(id).or_insert_with(|| kept.to_string());
-                let edited = ui.add(
-                    egui::TextEdit::singleline(draft).desired_width(90.0).hint_text(word("dynamixel.caption_hint")),
+                let edited = ui.add_sized(
+                    [150.0, ui.spacing().interact_size.y],
+                    egui::TextEdit::singleline(draft).hint_text(word("dynamixel.caption_hint")),
                 );
                 if edited.lost_focus() && draft != kept {
                     if let Some(setup) = renamed.servos.iter_mut().find(|setup| setup.id == id) {

@@ -114,11 +114,11 @@ impl DynamixelUi {
                 Self::keep(shell, &section);
             }
             DynamixelAction::Edit(section) => Self::keep(shell, &section),
-            DynamixelAction::Play(index) => self.play(shell, index, language),
+            DynamixelAction::Play(index) => self.play(shell, index),
             DynamixelAction::Relax => {
                 Self::send(shell, DynamixelCommand::Hold);
                 self.apply(shell, DynamixelAction::Torque { id: None, on: false });
-                shell.report(language.word("dynamixel.relaxed"), false);
+                shell.say(|language| language.word("dynamixel.relaxed"), false);
             }
         }
     }
@@ -148,7 +148,7 @@ impl DynamixelUi {
     fn capture(&mut self, shell: &mut Shell<'_>, language: Language) {
         let positions = self.bus.present();
         if positions.is_empty() {
-            shell.report(language.word("dynamixel.nothing_to_capture"), true);
+            shell.say(|language| language.word("dynamixel.nothing_to_capture"), true);
             return;
         }
         let mut section = self.with_bus(&shell.document.project);
@@ -160,48 +160,49 @@ impl DynamixelUi {
         self.motion = self.motion.min(section.motions.len() - 1);
         let motion = &mut section.motions[self.motion];
         motion.steps.push(Step { duration_ms: 1000, easing: Easing::Linear, positions });
-        let said = say!(language, "dynamixel.captured", step = motion.steps.len(), motion = motion.name.clone());
+        let (step, motion) = (motion.steps.len(), motion.name.clone());
         Self::keep(shell, &section);
-        shell.report(said, false);
+        shell.say(move |language| say!(language, "dynamixel.captured", step, motion = motion.clone()), false);
     }
 
     /// Starts a recording, or ends one and fits it into the motion shown (one undo step).
     fn record(&mut self, shell: &mut Shell<'_>, start: bool, language: Language) {
         if start {
             self.recording = Some(Recording::new(self.bus.present()));
-            shell.report(language.word("dynamixel.recording"), false);
+            shell.say(|language| language.word("dynamixel.recording"), false);
             return;
         }
         let Some(recording) = self.recording.take() else { return };
         let tolerance = if self.tolerance_deg > 0.0 { self.tolerance_deg } else { record::TOLERANCE_DEG };
         let Some(steps) = recording.fit(&self.bus, tolerance) else {
-            shell.report(language.word("dynamixel.recorded_nothing"), true);
+            shell.say(|language| language.word("dynamixel.recorded_nothing"), true);
             return;
         };
         let mut section = self.with_bus(&shell.document.project);
         let name = say!(language, "dynamixel.new_motion", number = section.motions.len() + 1);
-        let said = say!(
-            language,
-            "dynamixel.recorded",
-            samples = recording.samples(),
-            steps = steps.len(),
-            tolerance = format!("{tolerance:.1}")
-        );
+        let (samples, count) = (recording.samples(), steps.len());
+        let said = move |language: Language| {
+            say!(language, "dynamixel.recorded", samples, steps = count, tolerance = format!("{tolerance:.1}"))
+        };
         section.motions.push(Motion { name, steps });
         self.motion = section.motions.len() - 1;
         Self::keep(shell, &section);
-        shell.report(said, false);
+        shell.say(said, false);
     }
 
     /// Streams motion `index` from where the servos are.
-    fn play(&mut self, shell: &mut Shell<'_>, index: usize, language: Language) {
+    fn play(&mut self, shell: &mut Shell<'_>, index: usize) {
         let section = DynamixelSection::of(&shell.document.project);
         let Some(motion) = section.motions.get(index) else { return };
         if Self::handle(shell).is_none() {
-            shell.report(language.word("dynamixel.connect_first"), true);
+            shell.say(|language| language.word("dynamixel.connect_first"), true);
             return;
         }
         let frames = state::frames(motion, &self.bus);
+        // The sliders follow the servos while the motion moves them.
+        for servo in self.bus.servos.values_mut() {
+            servo.goal = None;
+        }
         Self::send(shell, DynamixelCommand::Stream { frames, every: state::FRAME });
         self.playing = Some((index, Instant::now()));
         self.motion = index;
@@ -209,7 +210,6 @@ impl DynamixelUi {
 
     /// What the bus said.
     fn heard(&mut self, shell: &mut Shell<'_>, event: DynamixelEvent) {
-        let language = shell.language;
         match event {
             DynamixelEvent::Scanning { done, of } => self.bus.scanning = Some((done, of)),
             DynamixelEvent::Found(found) => {
@@ -217,8 +217,7 @@ impl DynamixelUi {
             }
             DynamixelEvent::Scanned { found } => {
                 self.bus.scanning = None;
-                let said = say!(language, "dynamixel.scanned", count = found);
-                shell.report(said, found == 0);
+                shell.say(move |language| say!(language, "dynamixel.scanned", count = found), found == 0);
             }
             DynamixelEvent::Limits { id, limits } => {
                 if let Some(servo) = self.bus.servos.get_mut(&id) {
@@ -233,22 +232,26 @@ impl DynamixelUi {
                     recording.heard(id, reading.position, reading.at);
                 }
                 if new_errors != 0 {
-                    let what: Vec<&str> = HARDWARE_ERRORS
-                        .iter()
-                        .filter(|(bit, _)| new_errors & bit != 0)
-                        .map(|(_, name)| language.word(&format!("dynamixel.error_{}", name.replace(' ', "_"))))
-                        .collect();
-                    shell.report(say!(language, "dynamixel.hardware_error", id, what = what.join(", ")), true);
+                    let said = move |language: Language| {
+                        let what: Vec<&str> = HARDWARE_ERRORS
+                            .iter()
+                            .filter(|(bit, _)| new_errors & bit != 0)
+                            .map(|(_, name)| language.word(&format!("dynamixel.error_{}", name.replace(' ', "_"))))
+                            .collect();
+                        say!(language, "dynamixel.hardware_error", id, what = what.join(", "))
+                    };
+                    shell.say(said, true);
                 }
             }
             DynamixelEvent::Refused { id, what, error } => {
-                shell.report(say!(language, "dynamixel.refused", id, what, error = format!("0x{error:02X}")), true);
+                let error = format!("0x{error:02X}");
+                shell.say(move |language| say!(language, "dynamixel.refused", id, what, error = error.clone()), true);
             }
             DynamixelEvent::Silent { id } => {
                 if let Some(servo) = self.bus.servos.get_mut(&id) {
                     servo.silent = true;
                 }
-                shell.report(say!(language, "dynamixel.silent", id), true);
+                shell.say(move |language| say!(language, "dynamixel.silent", id), true);
             }
             DynamixelEvent::Answering { id } => {
                 if let Some(servo) = self.bus.servos.get_mut(&id) {
@@ -329,8 +332,7 @@ impl FamilyBoard for DynamixelUi {
         for servo in self.bus.servos.values_mut() {
             servo.goal = None;
         }
-        let said = shell.language.word("dynamixel.stopped");
-        shell.report(said, false);
+        shell.say(|language| language.word("dynamixel.stopped"), false);
     }
 
     fn halt(&mut self) -> bool {

@@ -101,7 +101,7 @@ pub fn ui(family: &mut DynamixelUi, ui: &mut egui::Ui, view: &ShellView<'_>, act
                         }
                     }
                 }
-                if ui.small_button("🗑").on_hover_text(word("dynamixel.delete_step")).clicked() {
+                if ui.small_button("−").on_hover_text(word("dynamixel.delete_step")).clicked() {
                     let mut removed = section.clone();
                     removed.motions[shown].steps.remove(index);
                     edited = Some(removed);
@@ -148,15 +148,20 @@ fn plot(
             (ms, motion.pose_at(&start, ms))
         })
         .collect();
-    Plot::new("dynamixel_motion_plot").allow_scroll(false).x_axis_label("ms").y_axis_label("°").show(ui, |plot| {
-        for id in start.keys() {
-            let points: Vec<[f64; 2]> =
-                samples.iter().map(|(ms, pose)| [*ms, degrees(model_of(*id), pose[id])]).collect();
-            let name = section.servo(*id).map_or_else(|| id.to_string(), |setup| format!("{id} {}", setup.name));
-            plot.line(Line::new(name, PlotPoints::from(points)).width(2.0));
-        }
-        if let Some(ms) = playing_ms {
-            plot.vline(VLine::new("", ms).width(1.5));
-        }
-    });
+    Plot::new("dynamixel_motion_plot")
+        .legend(egui_plot::Legend::default())
+        .allow_scroll(false)
+        .x_axis_label("ms")
+        .y_axis_label("°")
+        .show(ui, |plot| {
+            for id in start.keys() {
+                let points: Vec<[f64; 2]> =
+                    samples.iter().map(|(ms, pose)| [*ms, degrees(model_of(*id), pose[id])]).collect();
+                let name = section.servo(*id).map_or_else(|| id.to_string(), |setup| format!("{id} {}", setup.name));
+                plot.line(Line::new(name, PlotPoints::from(points)).width(2.0));
+            }
+            if let Some(ms) = playing_ms {
+                plot.vline(VLine::new("", ms).width(1.5));
+            }
+        });
 }

@@ -81,7 +81,7 @@ impl Recording {
         let first = self.heard.values().filter_map(|samples| samples.first().map(|(at, _)| *at)).min()?;
         let last = self.heard.values().filter_map(|samples| samples.last().map(|(at, _)| *at)).max()?;
         // Frames to the last sample, the last one at it (the hand's last place is kept).
-        let frames = (last - first).as_millis().div_ceil(FRAME.as_millis());
+        let frames = (last - first).as_micros().div_ceil(FRAME.as_micros());
         if frames < 2 || ids.is_empty() {
             return None;
         }
