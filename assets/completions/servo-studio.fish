@@ -186,7 +186,7 @@ complete -c servo-studio -n "__fish_servo_studio_using_subcommand trajectory" -l
 complete -c servo-studio -n "__fish_servo_studio_using_subcommand trajectory" -l force -d 'Replace the output file even when it is read-only'
 complete -c servo-studio -n "__fish_servo_studio_using_subcommand trajectory" -s h -l help -d 'Print help'
 complete -c servo-studio -n "__fish_servo_studio_using_subcommand convert" -l from -d 'Its format (default: told from the content): maestro, mtn, mtnx or blender' -r
-complete -c servo-studio -n "__fish_servo_studio_using_subcommand convert" -l to -d 'What to write: servo (a project), plen2 (a project), maestro (a settings file) or blender (add-on JSON)' -r
+complete -c servo-studio -n "__fish_servo_studio_using_subcommand convert" -l to -d 'What to write: servo, plen2 or dynamixel (a project), maestro (a settings file) or blender (add-on JSON)' -r
 complete -c servo-studio -n "__fish_servo_studio_using_subcommand convert" -l map -d 'A joint map (JSON): which channel drives which servo or joint, with offset, direction and scale' -r -F
 complete -c servo-studio -n "__fish_servo_studio_using_subcommand convert" -l sequence -d 'Only this Maestro sequence / R+ page or flow (and what it plays); exporting: this macro or motion' -r
 complete -c servo-studio -n "__fish_servo_studio_using_subcommand convert" -l page -d 'Only this RoboPlus page (and the pages it leads to); exporting a PLEN2 motion: its slot' -r

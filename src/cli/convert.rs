@@ -25,7 +25,7 @@ pub struct ConvertArgs {
     /// Its format (default: told from the content): maestro, mtn, mtnx or blender.
     #[arg(long, value_parser = parse_from)]
     pub from: Option<Format>,
-    /// What to write: servo (a project), plen2 (a project), maestro (a settings file) or blender (add-on JSON).
+    /// What to write: servo, plen2 or dynamixel (a project), maestro (a settings file) or blender (add-on JSON).
     #[arg(long, value_parser = parse_to)]
     pub to: To,
     /// A joint map (JSON): which channel drives which servo or joint, with offset, direction and scale.
@@ -65,6 +65,8 @@ pub enum To {
     Maestro,
     /// Blender add-on JSON.
     Blender,
+    /// A DYNAMIXEL project: each channel the servo of that ID, in its own units.
+    Dynamixel,
 }
 
 /// `--to`'s words.
@@ -74,7 +76,8 @@ pub fn parse_to(text: &str) -> Result<To, String> {
         "plen2" => Ok(To::Plen2),
         "maestro" => Ok(To::Maestro),
         "blender" => Ok(To::Blender),
-        _ => Err(format!("{text:?}: convert to servo, plen2, maestro or blender")),
+        "dynamixel" => Ok(To::Dynamixel),
+        _ => Err(format!("{text:?}: convert to servo, plen2, dynamixel, maestro or blender")),
     }
 }
 
@@ -210,9 +213,15 @@ fn foreign(
     source: &interchange::Source,
     given: Option<&JointMap>,
 ) -> anyhow::Result<(String, Report, Option<JointMap>)> {
+    if request.to == To::Dynamixel {
+        // Onto the IDs the file names, in the servos' own units: no joint map to guess.
+        let (project, report) =
+            interchange::dynamixel::build(source, &selection(request)).context("nothing was written")?;
+        return Ok((project::to_json(&project), report, None));
+    }
     let family = match request.to {
         To::Plen2 => Family::Plen2,
-        To::Servo | To::Maestro => Family::Servo,
+        To::Servo | To::Maestro | To::Dynamixel => Family::Servo,
         // Through the family the map drives (servos unless it names PLEN2 joints).
         To::Blender => {
             let joints = given
@@ -233,7 +242,7 @@ fn foreign(
     }
     let mut report = built.report;
     let written = match request.to {
-        To::Servo | To::Plen2 => project::to_json(&built.project),
+        To::Servo | To::Plen2 | To::Dynamixel => project::to_json(&built.project),
         To::Maestro => merge(&mut report, export::maestro(&built.project.servo, Some(&map))?),
         To::Blender => {
             let mut request = request.clone();
@@ -259,7 +268,7 @@ fn merge(report: &mut Report, (text, more): (String, Report)) -> String {
 fn ours(request: &ConvertRequest, project: &Project, map: Option<&JointMap>) -> anyhow::Result<(String, Report)> {
     let name = request.input.display();
     match request.to {
-        To::Servo | To::Plen2 => {
+        To::Servo | To::Plen2 | To::Dynamixel => {
             anyhow::bail!("{name} is a Servo Studio file already: convert it --to maestro or --to blender")
         }
         To::Maestro if project.family != Family::Servo => {

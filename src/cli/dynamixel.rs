@@ -101,12 +101,37 @@ fn emulate(args: &SimArgs) -> anyhow::Result<()> {
 /// What a scan found: each servo and its limits.
 type Scanned = Vec<(Found, Option<Limits>)>;
 
-/// Scans the bus at `port` (2.0 by broadcast, 1.0 ID by ID), progress on stderr.
-fn scan(port: &PortArgs) -> anyhow::Result<Scanned> {
+/// The line rates a scan tries, in order, when none is given: the X-series'
+/// factory rate, the AX's, then the others ROBOTIS's tools offer.
+pub const USUAL_RATES: [u32; 7] = [57_600, 1_000_000, 115_200, 2_000_000, 3_000_000, 4_000_000, 9_600];
+
+/// Scans the bus at `port`: at `--baud` when given (and over TCP, which has
+/// no rate), else at each of [`USUAL_RATES`] until servos answer (a bus runs
+/// at one rate). The rate they answered at (none over TCP) and what was found.
+fn scan(port: &PortArgs) -> anyhow::Result<(Option<u32>, Scanned)> {
     let name = PortName::parse(&port.port)?;
-    let settings =
-        link::LineSettings { baud: port.baud(Family::Dynamixel), ..crate::device::line_settings(Family::Dynamixel) };
-    let connection = link::open(&name, &settings)?;
+    let tcp = matches!(name, PortName::Tcp(_));
+    let rates: Vec<u32> = match port.baud {
+        _ if tcp => vec![port.baud(Family::Dynamixel)],
+        Some(baud) => vec![baud],
+        None => USUAL_RATES.to_vec(),
+    };
+    for (tried, &baud) in rates.iter().enumerate() {
+        if tried > 0 {
+            say!("no servo answered at {} baud; trying {baud}", rates[tried - 1]);
+        }
+        let found = scan_at(&name, baud)?;
+        if !found.is_empty() {
+            return Ok(((!tcp).then_some(baud), found));
+        }
+    }
+    Ok((None, Vec::new()))
+}
+
+/// Scans the bus at `name` at `baud` (2.0 by broadcast, 1.0 ID by ID), progress on stderr.
+fn scan_at(name: &PortName, baud: u32) -> anyhow::Result<Scanned> {
+    let settings = link::LineSettings { baud, ..crate::device::line_settings(Family::Dynamixel) };
+    let connection = link::open(name, &settings)?;
     let handle =
         DynamixelHandle::over(connection, no_waker()).with_context(|| format!("cannot start talking to {name}"))?;
     handle.send(DynamixelCommand::Read(false));
@@ -158,11 +183,17 @@ fn scan(port: &PortArgs) -> anyhow::Result<Scanned> {
 
 /// `board info --protocol dynamixel`: every servo found, a line each.
 fn info(port: &PortArgs) -> anyhow::Result<()> {
-    let found = scan(port)?;
+    let (rate, found) = scan(port)?;
+    if let Some(rate) = rate {
+        say!("{} servo(s) answered at {rate} baud", found.len());
+    }
     if found.is_empty() {
+        let tried = match port.baud {
+            Some(baud) => format!("at {baud} baud"),
+            None => format!("at any of {} baud", USUAL_RATES.map(|rate| rate.to_string()).join(", ")),
+        };
         bail!(
-            "no servo answered at {} baud in either protocol: check the power, the IDs and the line rate (X-series leave the factory at 57600, AX at 1000000)",
-            port.baud(Family::Dynamixel)
+            "no servo answered {tried} in either protocol: check the power and the cable (X-series leave the factory at 57600, AX at 1000000)"
         );
     }
     for (servo, limits) in &found {
@@ -186,11 +217,16 @@ fn info(port: &PortArgs) -> anyhow::Result<()> {
 
 /// `export --protocol dynamixel`: the servos found, into a project's section.
 fn export(port: &PortArgs, out: &Path, _slots: Option<&Slots>) -> anyhow::Result<()> {
-    let found = scan(port)?;
+    let (_, found) = scan(port)?;
     let section = DynamixelSection {
         servos: found
             .iter()
-            .map(|(servo, _)| ServoSetup { id: servo.id, name: String::new(), model_number: servo.model_number })
+            .map(|(servo, _)| ServoSetup {
+                id: servo.id,
+                name: String::new(),
+                model_number: servo.model_number,
+                profile: None,
+            })
             .collect(),
         motions: Vec::new(),
     };

@@ -12,6 +12,7 @@
 mod blender;
 pub mod bounds;
 pub mod build;
+pub mod dynamixel;
 pub mod export;
 mod format;
 mod maestro;

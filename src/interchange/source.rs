@@ -32,12 +32,14 @@ pub struct Channel {
     pub home: Option<f64>,
     /// Maestro: the speed limit, raw units per 10 ms (0 = as fast as the servo goes).
     pub speed: Option<f64>,
+    /// The servo the file says drives it (R+ Motion's skeleton: "AX-12A", "XL-320"), if it says.
+    pub motor: Option<String>,
 }
 
 impl Channel {
     /// A channel with no name, limits, home or speed.
     pub fn new(key: impl Into<String>, unit: Unit) -> Self {
-        Self { key: key.into(), name: String::new(), unit, limits: None, home: None, speed: None }
+        Self { key: key.into(), name: String::new(), unit, limits: None, home: None, speed: None, motor: None }
     }
 }
 

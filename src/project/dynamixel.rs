@@ -52,6 +52,34 @@ pub struct ServoSetup {
     /// Its model number, as its table says (0: not known yet).
     #[serde(default)]
     pub model_number: u16,
+    /// How it moves to a goal set live (none: [`Profile::LIVE`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub profile: Option<Profile>,
+}
+
+/// A servo's own profile: how fast and how sharply it moves to a goal (its
+/// Profile Velocity and Profile Acceleration; an AX: its Moving Speed).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Profile {
+    /// Profile Velocity (X: 0.229 rev/min a unit; AX Moving Speed: 0.111 rev/min); 0 is as fast as it can.
+    pub velocity: u32,
+    /// Profile Acceleration (X: 214.577 rev/min² a unit); 0 is at once. An AX has none.
+    #[serde(default)]
+    pub acceleration: u32,
+}
+
+impl Profile {
+    /// What a servo is given for live moves unless its project says: about
+    /// 137°/s on an X-series (67°/s on an AX), never a slam to a far goal.
+    pub const LIVE: Self = Self { velocity: 100, acceleration: 20 };
+}
+
+impl ServoSetup {
+    /// Its profile for live moves.
+    pub fn live_profile(&self) -> Profile {
+        self.profile.unwrap_or(Profile::LIVE)
+    }
 }
 
 /// A motion: steps played one after another.
@@ -243,7 +271,7 @@ mod tests {
     #[test]
     fn a_section_is_checked_in_its_own_words() {
         let section = DynamixelSection {
-            servos: vec![ServoSetup { id: 1, name: "肩".into(), model_number: 1060 }],
+            servos: vec![ServoSetup { id: 1, name: "肩".into(), model_number: 1060, profile: None }],
             motions: vec![Motion { name: String::new(), steps: vec![step(0, Easing::Linear, &[(1, 0), (9, 0)])] }],
         };
         assert_eq!(

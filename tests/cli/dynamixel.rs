@@ -25,8 +25,8 @@ fn arm(seconds: u32) -> Project {
     let half = seconds * 500;
     let section = DynamixelSection {
         servos: vec![
-            ServoSetup { id: 1, name: "肩 shoulder".into(), model_number: 1060 },
-            ServoSetup { id: 3, name: "手".into(), model_number: 12 },
+            ServoSetup { id: 1, name: "肩 shoulder".into(), model_number: 1060, profile: None },
+            ServoSetup { id: 3, name: "手".into(), model_number: 12, profile: None },
         ],
         motions: vec![Motion {
             name: "揮手 wave".into(),
@@ -112,7 +112,7 @@ fn sim_refuses_a_hardware_error_it_cannot_read_and_a_model_it_does_not_emulate()
     let state = dir.path().join("mx.json");
     let mut project = Project::empty(Family::Dynamixel);
     let section = DynamixelSection {
-        servos: vec![ServoSetup { id: 5, name: String::new(), model_number: 29 }],
+        servos: vec![ServoSetup { id: 5, name: String::new(), model_number: 29, profile: None }],
         motions: Vec::new(),
     };
     project.sections.set(Family::Dynamixel, section.kept());
@@ -182,4 +182,177 @@ fn a_lost_bus_stops_the_show_and_says_which() {
     assert!(stderr.contains("the link to arm was lost") && stderr.contains("every device was stopped"), "{stderr}");
     let skull = logged_until(stage.log("skull"), "SetServoParameterRequest", Duration::from_secs(10));
     assert!(skull.iter().any(|(_, said)| said.contains("is_start: false")), "{skull:?}");
+}
+
+/// A Bioloid's RoboPlus file, converted onto its AX-12As' IDs, plays on the
+/// emulated AX-12As: the bus takes the motion's frames in and ends on the
+/// page's last pose, value for value as the file wrote it.
+#[test]
+fn a_bioloid_roboplus_file_converted_plays_on_emulated_ax_12s() {
+    let dir = tempfile::tempdir().unwrap();
+    let mtn =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/interchange/roboplus/walk-as-saved.mtn");
+    let converted = dir.path().join("bioloid.json");
+    let convert = Process::new(EXE)
+        .args(["convert", mtn.to_str().unwrap(), "--to", "dynamixel", "--out", converted.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert_eq!(convert.status.code(), Some(0), "{}", String::from_utf8_lossy(&convert.stderr));
+    let project = project::load(&converted).unwrap();
+    let section = DynamixelSection::of(&project);
+    let getup = section.motions.iter().position(|motion| motion.name.ends_with("Getup")).unwrap();
+    let last = section.motions[getup].steps.last().unwrap().positions.clone();
+    // The bus of 18 AX-12As the project lists, and a show that plays Getup on it.
+    let show = Show {
+        devices: vec![device("bioloid", project)],
+        sound: None,
+        cues: vec![Cue { device: "bioloid".into(), at_ms: 0, start: motion_cue((getup + 1) as f64) }],
+    };
+    let stage = Stage::new(&show, &[]);
+    let mut child = stage.play(&[]);
+    let _ = BufReader::new(child.stdout.take().unwrap()).lines().count();
+    let (code, stderr) = common::ended(child, Duration::from_secs(60));
+    assert_eq!(code, Some(0), "{stderr}");
+    // The last frame: a 1.0 sync write of Goal Position (30), 2 bytes, each ID with its value.
+    let mut params = vec![30, 2];
+    for (id, value) in &last {
+        params.push(*id);
+        params.extend(u16::try_from(*value).unwrap().to_le_bytes());
+    }
+    let wanted = format!("params: {params:?}");
+    let heard = logged_until(stage.log("bioloid"), &wanted, Duration::from_secs(10));
+    let frames = heard.iter().filter(|(_, said)| said.contains("Instruction(131)")).count();
+    let seconds = section.motions[getup].steps.iter().map(|step| f64::from(step.duration_ms)).sum::<f64>() / 1000.0;
+    assert!(frames as f64 >= seconds * 40.0, "{frames} frames for a {seconds:.2} s motion");
+}
+
+/// A remote drives a DYNAMIXEL arm through `serve`: its motions listed, one
+/// played by name, a servo posed by caption (clamped to its range), a drive
+/// refused with what to do instead, and STOP ending the stream — the bus's
+/// own log shows no frame after the hold while it goes on being read.
+#[test]
+fn serve_plays_poses_and_stops_a_dynamixel_arm() {
+    use servo_studio::sim::MonotonicClock;
+    let show = Show {
+        devices: vec![device("skull", swinging(400)), device("arm", arm(60))],
+        sound: None,
+        cues: vec![Cue { device: "skull".into(), at_ms: 0, start: Start::Macro(1) }],
+    };
+    let stage = Stage::new(&show, &[]);
+    let served = super::serve::serve(&stage, &["--listen", "127.0.0.1:0"]);
+    let (code, listed) = super::serve::ask("GET", &format!("{}/devices", served.url), None, &[]);
+    assert_eq!(code, 200);
+    assert_eq!(listed["devices"][1]["motions"][0]["name"], "揮手 wave", "{listed}");
+    let (code, said) = super::serve::post(&served, "/devices/arm/play", Some(r#"{"what": "揮手 wave"}"#));
+    assert_eq!(code, 200, "{said}");
+    logged_until(stage.log("arm"), "Instruction(131)", Duration::from_secs(30));
+    let (code, posed) = super::serve::post(&served, "/devices/arm/pose", Some(r#"{"axis": "手", "value": 170}"#));
+    assert_eq!(code, 200, "{posed}");
+    let deg = posed["value"].as_f64().unwrap();
+    assert!((deg - 149.7).abs() < 0.1, "an AX-12A turns to its last position, 149.7°: {posed}");
+    let (code, said) =
+        super::serve::post(&served, "/devices/arm/drive", Some(r#"{"speed_m_s": 0.1, "turn_deg_s": 0}"#));
+    assert_eq!(code, 422, "{said}");
+    assert!(said["error"].as_str().unwrap().contains("play what it stores"), "{said}");
+
+    let clock = MonotonicClock::now();
+    let stopped_ns = clock.ns(std::time::Instant::now());
+    assert_eq!(super::serve::post(&served, "/stop", None).0, 200);
+    // Thirty reads of the bus after STOP (about 300 ms of it, on the bus's own log).
+    let after = |lines: &[(u128, String)], what: &str| {
+        lines.iter().filter(|(ns, said)| *ns > stopped_ns && said.contains(what)).count()
+    };
+    let deadline = std::time::Instant::now() + Duration::from_secs(30);
+    let lines = loop {
+        let lines = logged_until(stage.log("arm"), "Instruction(2)", Duration::from_secs(30));
+        if after(&lines, "Instruction(2)") >= 30 {
+            break lines;
+        }
+        assert!(std::time::Instant::now() < deadline, "the bus was not read after STOP");
+        std::thread::yield_now();
+    };
+    let writes = after(&lines, "Instruction(131)");
+    assert!(writes <= 3, "{writes} sync writes after STOP: the hold (one a protocol), not a stream");
+}
+
+/// With no `--baud`, a scan tries the usual rates in turn until servos
+/// answer: a pseudo-terminal whose bus (an AX-12A, ID 7) hears only at
+/// 1000000 baud, as an AX leaves the factory — read from the line's own
+/// settings — is found at that rate, after 57600 went unanswered.
+#[cfg(unix)]
+#[test]
+fn board_info_tries_the_usual_rates_until_the_bus_answers() {
+    use serialport::SerialPort;
+    use servo_studio::link::Driver;
+    use servo_studio::sim::dynamixel::{AX_12A, DynamixelBus, Servo};
+    use std::io::{Read, Write};
+    let (mut master, slave) = serialport::TTYPort::pair().unwrap();
+    let port = slave.name().unwrap();
+    master.set_timeout(Duration::from_millis(5)).unwrap();
+    let (stop, stopped) = crossbeam_channel::bounded::<()>(0);
+    let peer = std::thread::spawn(move || {
+        let mut bus = DynamixelBus::new(vec![Servo::new(&AX_12A, 7)]);
+        let mut heard = std::collections::BTreeSet::new();
+        let mut bytes = [0u8; 512];
+        while matches!(stopped.try_recv(), Err(crossbeam_channel::TryRecvError::Empty)) {
+            let Ok(count) = master.read(&mut bytes) else { continue };
+            let rate = master.baud_rate().unwrap();
+            heard.insert(rate);
+            if count == 0 || rate != 1_000_000 {
+                // At another rate the servo hears only noise.
+                continue;
+            }
+            let now = std::time::Instant::now();
+            bus.handle_input(now, &bytes[..count]);
+            while let Some(answer) = bus.poll_transmit(now + Duration::from_secs(1)) {
+                master.write_all(&answer).unwrap();
+            }
+        }
+        heard
+    });
+    let info = Process::new(EXE).args(["board", "info", "--protocol", "dynamixel", "--port", &port]).output().unwrap();
+    let (said, stderr) = (String::from_utf8_lossy(&info.stdout), String::from_utf8_lossy(&info.stderr));
+    assert_eq!(info.status.code(), Some(0), "{stderr}");
+    assert!(said.contains("ID   7") && said.contains("AX-12A"), "{said}");
+    assert!(stderr.contains("no servo answered at 57600 baud; trying 1000000"), "{stderr}");
+    assert!(stderr.contains("1 servo(s) answered at 1000000 baud"), "{stderr}");
+    drop(stop);
+    let heard = peer.join().unwrap();
+    assert_eq!(heard.into_iter().collect::<Vec<_>>(), [57_600, 1_000_000], "tried in order, stopped where it answered");
+    drop(slave);
+}
+
+/// A device that takes the connection and never answers: the scan says no
+/// servo answered, and a show will not start on it, naming it.
+#[test]
+fn a_silent_device_is_never_taken_for_a_bus() {
+    let listener = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+    let address = listener.local_addr().unwrap();
+    std::thread::spawn(move || {
+        // Accepts, reads and says nothing, forever.
+        let mut held = Vec::new();
+        for stream in listener.incoming() {
+            let Ok(mut stream) = stream else { return };
+            let mut sink = stream.try_clone().unwrap();
+            std::thread::spawn(move || std::io::copy(&mut sink, &mut std::io::sink()));
+            held.push(stream.try_clone().unwrap());
+            let _ = &mut stream;
+        }
+    });
+    let port = format!("tcp://{address}");
+    let info = Process::new(EXE).args(["board", "info", "--protocol", "dynamixel", "--port", &port]).output().unwrap();
+    let stderr = String::from_utf8_lossy(&info.stderr);
+    assert_ne!(info.status.code(), Some(0));
+    assert!(stderr.contains("no servo answered") && stderr.contains("either protocol"), "{stderr}");
+    // A show holding an arm there does not start.
+    let dir = tempfile::tempdir().unwrap();
+    let show = Show { devices: vec![device("arm", arm(1))], sound: None, cues: Vec::new() };
+    std::fs::write(dir.path().join("show.json"), show.to_json()).unwrap();
+    let play = Process::new(EXE)
+        .args(["play", dir.path().join("show.json").to_str().unwrap(), "--device", &format!("arm={port}")])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&play.stderr);
+    assert_ne!(play.status.code(), Some(0), "{stderr}");
+    assert!(stderr.contains("arm") && stderr.contains("servo 1 of its project did not answer"), "{stderr}");
 }

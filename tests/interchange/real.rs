@@ -448,3 +448,107 @@ fn every_blender_export_goes_to_a_board_and_back_within_the_tolerance() {
         }
     }
 }
+
+/// A RoboPlus file straight onto DYNAMIXEL IDs: each enabled column the AX-12A
+/// of that ID, its values kept as written (AX units), and each page a motion
+/// whose steps end when RoboPlus's controller reaches each pose and ends each
+/// pause, at the page's speed rate — worked out here from the format's own
+/// rules, to the rounding of a whole millisecond.
+#[test]
+fn a_roboplus_file_goes_onto_dynamixel_ids_in_ax_units_timed_as_the_controller_plays_it() {
+    use servo_studio::project::dynamixel::DynamixelSection;
+    let source = read(&fixture("roboplus/walk-as-saved.mtn"));
+    let (project, report) = servo_studio::interchange::dynamixel::build(&source, &build::Selection::All).unwrap();
+    assert_eq!(project.family, Family::Dynamixel);
+    assert!(servo_studio::project::validate(&project).is_empty(), "{:?}", servo_studio::project::validate(&project));
+    let section = DynamixelSection::of(&project);
+    let ids: Vec<(u8, u16)> = section.servos.iter().map(|servo| (servo.id, servo.model_number)).collect();
+    assert_eq!(ids, (1..=18).map(|id| (id, 12)).collect::<Vec<_>>(), "ids 1–18 enabled, AX-12A units");
+    let text = walk_text();
+    // Every step line's values, page by page, as written.
+    let mut written: Vec<Vec<Vec<u32>>> = Vec::new();
+    for line in text.lines() {
+        if line == "page_begin" {
+            written.push(Vec::new());
+        } else if let Some(values) = line.strip_prefix("step=") {
+            let values: Vec<u32> = values.split_whitespace().take(26).map(|word| word.parse().unwrap()).collect();
+            written.last_mut().unwrap().push(values);
+        }
+    }
+    let mut checked = 0;
+    for ((page, values), motion) in
+        pages(&text).iter().zip(&written).filter(|(page, _)| !page.steps.is_empty()).zip(&section.motions)
+    {
+        assert!(motion.name.ends_with(&page.name), "{} for {}", motion.name, page.name);
+        let (times, _) = boundaries(page, 0.0);
+        let mut end_ms = 0u64;
+        let ends: Vec<u64> = motion
+            .steps
+            .iter()
+            .map(|step| {
+                end_ms += u64::from(step.duration_ms);
+                end_ms
+            })
+            .collect();
+        if page.repeat == 1 {
+            assert_eq!(times.len(), ends.len(), "{}: a step for each move and each pause", page.name);
+        }
+        for ((want, _), got) in times.iter().zip(&ends) {
+            assert!((*got as f64 - want).abs() <= 1.0, "{}: a key at {want:.2} ms ends at {got} ms", page.name);
+            checked += 1;
+        }
+        // Each pose as written: the move to it and its pause hold the file's values.
+        let poses: Vec<&std::collections::BTreeMap<u8, u32>> =
+            motion.steps.iter().map(|step| &step.positions).collect();
+        let mut poses = poses.into_iter();
+        for row in values {
+            let pose = poses.next().unwrap();
+            for id in 1..=18u8 {
+                assert_eq!(pose[&id], row[usize::from(id)], "{}: servo {id}", page.name);
+            }
+            if poses.clone().next().is_some_and(|next| next == pose) {
+                poses.next();
+            }
+        }
+    }
+    assert!(checked >= 12, "{checked}");
+    assert!(report.converted.len() == section.motions.len());
+}
+
+/// R+ poses in degrees go onto the servos the file's robot declares, in their
+/// own units: an XL-320's and an AX-12A's 1024 over 300°, a pose at 150° its last position.
+#[test]
+fn r_plus_poses_go_onto_the_declared_servos_in_their_own_units() {
+    use servo_studio::project::dynamixel::DynamixelSection;
+    for (file, model) in [("rplus/robot-xl320.mtnx", 350), ("rplus/bioloid-ax12.mtnx", 12)] {
+        let source = read(&fixture(file));
+        let (project, _) = servo_studio::interchange::dynamixel::build(&source, &build::Selection::All).unwrap();
+        assert!(servo_studio::project::validate(&project).is_empty(), "{file}");
+        let section = DynamixelSection::of(&project);
+        assert!(section.servos.iter().all(|servo| servo.model_number == model), "{file}: {:?}", section.servos);
+        for motion in &section.motions {
+            for step in &motion.steps {
+                assert!(step.positions.values().all(|position| *position <= 1023), "{file}: {step:?}");
+            }
+        }
+    }
+    // Bow's poses reached at 51, 114 and 191 / 128 s, as on a servo board.
+    let source = read(&fixture("rplus/robot-xl320.mtnx"));
+    let (project, _) =
+        servo_studio::interchange::dynamixel::build(&source, &build::Selection::Named("Bow".into())).unwrap();
+    let section = DynamixelSection::of(&project);
+    let mut end = 0u32;
+    let ends: Vec<u32> = section.motions[0]
+        .steps
+        .iter()
+        .map(|step| {
+            end += step.duration_ms;
+            end
+        })
+        .collect();
+    let want = [51.0, 114.0, 191.0].map(|frame: f64| frame * 1000.0 / 128.0);
+    assert_eq!(ends.len(), 3);
+    for (got, want) in ends.iter().zip(want) {
+        assert!((f64::from(*got) - want).abs() <= 0.5, "Bow: a pose at {want:.2} ms reached at {got} ms");
+    }
+}

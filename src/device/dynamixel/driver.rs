@@ -115,6 +115,8 @@ pub struct DynamixelDriver {
     next_round: Option<Instant>,
     round: VecDeque<u8>,
     stream: Option<Stream>,
+    /// Each servo's live profile (velocity, acceleration), put back after a stream.
+    live: BTreeMap<u8, (u32, u32)>,
 }
 
 /// A stream being played.
@@ -148,6 +150,7 @@ impl Default for DynamixelDriver {
             next_round: None,
             round: VecDeque::new(),
             stream: None,
+            live: BTreeMap::new(),
         }
     }
 }
@@ -278,6 +281,31 @@ impl DynamixelDriver {
         if ended {
             self.stream = None;
             self.say(DynamixelEvent::Streamed);
+            self.profiles_back();
+        }
+    }
+
+    /// Servo `id` (or every servo) moves at `velocity` and `acceleration` (where its model has them).
+    fn profile(&mut self, id: Option<u8>, velocity: u32, acceleration: u32) {
+        self.write_each(
+            id,
+            "profile velocity",
+            |known| Some((known.layout.at.speed, known.layout.at.position_size)),
+            velocity,
+        );
+        self.write_each(
+            id,
+            "profile acceleration",
+            |known| known.layout.at.acceleration.map(|addr| (addr, 4)),
+            acceleration,
+        );
+    }
+
+    /// Each servo's live profile, as it was before a stream took it off.
+    fn profiles_back(&mut self) {
+        let live: Vec<(u8, (u32, u32))> = self.live.iter().map(|(id, profile)| (*id, *profile)).collect();
+        for (id, (velocity, acceleration)) in live {
+            self.profile(Some(id), velocity, acceleration);
         }
     }
 
@@ -527,7 +555,9 @@ impl DynamixelDriver {
     /// Every found servo held where it is (its goal set to its present position).
     fn hold(&mut self) {
         self.goals.clear();
-        self.stream = None;
+        if self.stream.take().is_some() {
+            self.profiles_back();
+        }
         let held: Vec<(u8, u32)> =
             self.servos.values().filter_map(|servo| Some((servo.found.id, servo.present?))).collect();
         for protocol in [Protocol::Two, Protocol::One] {
@@ -559,6 +589,10 @@ impl Driver for DynamixelDriver {
             }
             DynamixelCommand::Goal { id, position } => self.goal(id, position),
             DynamixelCommand::Stream { frames, every } => {
+                // The frames are the motion: no profile of the servos' own may smooth or slow them.
+                if self.stream.is_none() {
+                    self.profile(None, 0, 0);
+                }
                 self.stream = Some(Stream { frames, every, start: now, next: 0 });
             }
             DynamixelCommand::Torque { id, on } => {
@@ -568,18 +602,10 @@ impl Driver for DynamixelDriver {
                 self.write_each(Some(id), "LED", |known| Some((known.layout.at.led, 1)), u32::from(on));
             }
             DynamixelCommand::Profile { id, velocity, acceleration } => {
-                self.write_each(
-                    Some(id),
-                    "profile velocity",
-                    |known| Some((known.layout.at.speed, known.layout.at.position_size)),
-                    velocity,
-                );
-                self.write_each(
-                    Some(id),
-                    "profile acceleration",
-                    |known| known.layout.at.acceleration.map(|addr| (addr, 4)),
-                    acceleration,
-                );
+                self.live.insert(id, (velocity, acceleration));
+                if self.stream.is_none() {
+                    self.profile(Some(id), velocity, acceleration);
+                }
             }
             DynamixelCommand::Ping { id, protocol } => {
                 let packet = Packet::instruction(protocol, id, instruction::PING, Vec::new());

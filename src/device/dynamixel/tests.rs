@@ -263,3 +263,44 @@ fn a_stream_sends_each_frame_on_its_own_clock_and_stop_ends_it() {
     assert_eq!(wire.last_reading(1).unwrap().position, held, "held, not played on");
     assert!((2250..=2350).contains(&held), "{held}");
 }
+
+/// A live move goes at the servo's own profile; a stream takes the profile
+/// off (its frames are the motion) and puts it back when it ends.
+#[test]
+fn a_live_move_keeps_to_the_servos_profile_and_a_stream_lifts_it_while_it_plays() {
+    use crate::protocol::dynamixel::{Kind, Packets, Read};
+    let mut wire = Wire::new();
+    wire.scanned();
+    wire.ask(DynamixelCommand::Profile { id: 1, velocity: 100, acceleration: 20 });
+    wire.ask(DynamixelCommand::Torque { id: None, on: true });
+    wire.run(Duration::from_millis(50));
+    wire.ask(DynamixelCommand::Goal { id: 1, position: 3072 });
+    wire.run(Duration::from_millis(200));
+    // 100 units of 0.229 rev/min: about 1563 position units a second.
+    let moved = wire.last_reading(1).unwrap().position - 2048;
+    assert!((250..=340).contains(&moved), "{moved} units in 200 ms at its profile");
+    wire.run(Duration::from_secs(1));
+    assert_eq!(wire.last_reading(1).unwrap().position, 3072);
+
+    wire.sent.clear();
+    let frames: Vec<Vec<(u8, u32)>> = (0..=10).map(|k| vec![(1, 3072 - k * 50)]).collect();
+    wire.ask(DynamixelCommand::Stream { frames, every: Duration::from_millis(20) });
+    wire.run(Duration::from_millis(400));
+    let mut reader = Packets::instructions();
+    // Each write of Profile Velocity (112) to servo 1: its value.
+    let velocities: Vec<u32> = wire
+        .sent
+        .iter()
+        .flat_map(|bytes| reader.push(bytes))
+        .filter_map(|read| match read {
+            Read::Packet(packet)
+                if packet.kind == Kind::Instruction(0x03) && packet.id == 1 && packet.params[..2] == [112, 0] =>
+            {
+                Some(u32::from_le_bytes(packet.params[2..6].try_into().unwrap()))
+            }
+            _ => None,
+        })
+        .collect();
+    assert_eq!(velocities, [0, 100], "off while it streams, back when it ends");
+    assert_eq!(wire.last_reading(1).unwrap().position, 2572, "the frames followed, not slowed");
+}

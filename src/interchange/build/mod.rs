@@ -164,7 +164,7 @@ impl Input<'_> {
 }
 
 /// The clips a selection names, with every clip they lead to.
-fn selected(source: &Source, selection: &Selection) -> Result<Vec<usize>, BuildError> {
+pub(crate) fn selected(source: &Source, selection: &Selection) -> Result<Vec<usize>, BuildError> {
     if source.clips.is_empty() {
         return Err(BuildError::Empty);
     }

@@ -375,6 +375,7 @@ impl Robot {
             }
             let mut channel = Channel::new(key, Unit::DEGREES);
             channel.limits = motor_range(motor).map(|half| (-half, half));
+            channel.motor = (!motor.is_empty()).then(|| motor.to_string());
             if self.is_bioloid() {
                 channel.name = super::map::bioloid_joint(&channel.key).unwrap_or_default().replace('_', " ");
             }

@@ -321,6 +321,36 @@ pub struct Layout {
 pub const X_LAYOUT: Layout = Layout { at: X_AT, units_per_turn: 4096.0, top_position: 4095 };
 /// The AX layout (AX-12, AX-18).
 pub const AX_LAYOUT: Layout = Layout { at: AX_12A.at, units_per_turn: 1228.8, top_position: 1023 };
+/// The XL-320 (Protocol 2.0, 1024 over 300°): the AX's first addresses
+/// (limits, torque, LED, goal at 30, speed at 32), then its own — present
+/// position at 37, load at 41, voltage at 45, temperature at 46, moving at
+/// 49, Hardware Error Status at 50 (its e-Manual's control table).
+pub const XL320_LAYOUT: Layout = Layout {
+    at: Addresses {
+        id: 3,
+        return_delay: 5,
+        status_return: 17,
+        torque: 24,
+        goal: 30,
+        speed: 32,
+        present: 37,
+        moving: 49,
+        hardware_error: Some(50),
+        temperature: 46,
+        eeprom_end: Some(24),
+        speed_unit: 0.111 / 60.0 * 1228.8,
+        led: 25,
+        limits: (6, 8),
+        temperature_limit: 12,
+        load: 41,
+        voltage: 45,
+        acceleration: None,
+        position_size: 2,
+        shutdown: 18,
+    },
+    units_per_turn: 1228.8,
+    top_position: 1023,
+};
 /// MX on Protocol 1.0: the AX's addresses, 4096 over 360°.
 pub const MX_ONE_LAYOUT: Layout = Layout { at: AX_12A.at, units_per_turn: 4096.0, top_position: 4095 };
 
@@ -337,10 +367,11 @@ pub struct Known {
 
 /// The models the driver knows by number (the e-Manual's "Model Number" of
 /// each): Bioloid's AX and MX 1.0, and the X-series and MX 2.0 labs build with.
-pub static KNOWN: [Known; 19] = [
+pub static KNOWN: [Known; 20] = [
     Known { number: 12, name: "AX-12A", layout: AX_LAYOUT },
     Known { number: 300, name: "AX-12W", layout: AX_LAYOUT },
     Known { number: 18, name: "AX-18A", layout: AX_LAYOUT },
+    Known { number: 350, name: "XL-320", layout: XL320_LAYOUT },
     Known { number: 29, name: "MX-28", layout: MX_ONE_LAYOUT },
     Known { number: 310, name: "MX-64", layout: MX_ONE_LAYOUT },
     Known { number: 320, name: "MX-106", layout: MX_ONE_LAYOUT },

@@ -1,7 +1,7 @@
 //! What the DYNAMIXEL panels ask of the editor.
 
 use crate::project::Family;
-use crate::project::dynamixel::DynamixelSection;
+use crate::project::dynamixel::{DynamixelSection, Profile};
 use crate::ui::action::ActionOf;
 
 /// The DYNAMIXEL panels' requests.
@@ -29,6 +29,13 @@ pub enum DynamixelAction {
         id: u8,
         /// Lit or not.
         on: bool,
+    },
+    /// Servo `id` moves live at `profile`, kept in the project (one undo step).
+    Profile {
+        /// The servo.
+        id: u8,
+        /// Its profile.
+        profile: Profile,
     },
     /// Where every servo is becomes a step of the motion shown (one undo step).
     Capture,

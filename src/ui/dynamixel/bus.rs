@@ -7,7 +7,7 @@ use egui::{Color32, RichText};
 
 use super::{DynamixelAction, DynamixelUi, degrees, units};
 use crate::device::dynamixel::HARDWARE_ERRORS;
-use crate::project::dynamixel::DynamixelSection;
+use crate::project::dynamixel::{DynamixelSection, Profile, ServoSetup};
 use crate::ui::action::Action;
 use crate::ui::i18n::Language;
 use crate::ui::shell::ShellView;
@@ -62,10 +62,20 @@ pub fn ui(family: &mut DynamixelUi, ui: &mut egui::Ui, view: &ShellView<'_>, act
     egui::ScrollArea::both().auto_shrink([false, false]).show(ui, |ui| {
         // Sliders long enough to place a servo to a tenth of a degree by hand.
         ui.spacing_mut().slider_width = (ui.available_width() - 760.0).clamp(160.0, 420.0);
-        egui::Grid::new("dynamixel_bus").striped(true).num_columns(12).show(ui, |ui| {
-            for heading in
-                ["id", "model", "caption", "position", "torque", "led", "load", "voltage", "temperature", "errors"]
-            {
+        egui::Grid::new("dynamixel_bus").striped(true).num_columns(13).show(ui, |ui| {
+            for heading in [
+                "id",
+                "model",
+                "caption",
+                "position",
+                "speed",
+                "torque",
+                "led",
+                "load",
+                "voltage",
+                "temperature",
+                "errors",
+            ] {
                 ui.strong(word(&format!("dynamixel.col_{heading}")));
             }
             ui.end_row();
@@ -92,7 +102,8 @@ pub fn ui(family: &mut DynamixelUi, ui: &mut egui::Ui, view: &ShellView<'_>, act
                     // Undone or replaced: the kept caption shows again.
                     *draft = kept.to_string();
                 }
-                row(ui, servo, language, actions);
+                let profile = section.servo(id).map_or(Profile::LIVE, ServoSetup::live_profile);
+                row(ui, servo, profile, language, actions);
                 ui.end_row();
             }
         });
@@ -100,7 +111,7 @@ pub fn ui(family: &mut DynamixelUi, ui: &mut egui::Ui, view: &ShellView<'_>, act
 }
 
 /// One servo's row.
-fn row(ui: &mut egui::Ui, servo: &super::BusServo, language: Language, actions: &mut Vec<Action>) {
+fn row(ui: &mut egui::Ui, servo: &super::BusServo, profile: Profile, language: Language, actions: &mut Vec<Action>) {
     let id = servo.found.id;
     let model = servo.found.model_number;
     let (lowest, highest) = servo.range();
@@ -112,6 +123,17 @@ fn row(ui: &mut egui::Ui, servo: &super::BusServo, language: Language, actions: 
     // servo is (clamped into its range as it draws) sends nothing.
     if moved.changed() && (moved.dragged() || moved.has_focus()) {
         actions.push(Action::family(DynamixelAction::Goal { id, position: servo.clamp(units(model, deg)) }));
+    }
+    // Its own profile: how fast a live move goes (0: as fast as it can), said in degrees a second.
+    let mut velocity = profile.velocity;
+    let per_unit =
+        servo.found.model().map_or(0.0, |model| model.layout.at.speed_unit * 360.0 / model.layout.units_per_turn);
+    #[allow(clippy::cast_precision_loss)]
+    let shown = if velocity == 0 { "max".to_string() } else { format!("≈{:.0}°/s", f64::from(velocity) * per_unit) };
+    let speed = ui.add(egui::DragValue::new(&mut velocity).range(0..=1023).speed(2).suffix(format!(" ({shown})")));
+    if speed.changed() {
+        let profile = Profile { velocity, ..profile };
+        actions.push(Action::family(DynamixelAction::Profile { id, profile }));
     }
     let mut torque = servo.torque;
     if ui.checkbox(&mut torque, "").changed() {

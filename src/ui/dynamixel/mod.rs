@@ -20,7 +20,7 @@ pub use action::DynamixelAction;
 pub use state::{BusServo, degrees, units};
 
 use crate::device::dynamixel::{DynamixelCommand, DynamixelEvent, DynamixelHandle, HARDWARE_ERRORS, ONE_IDS};
-use crate::project::dynamixel::{DynamixelSection, Motion, ServoSetup, Step};
+use crate::project::dynamixel::{DynamixelSection, Motion, Profile, ServoSetup, Step};
 use crate::project::{Easing, Edit, Family, Project};
 use crate::say;
 use crate::ui::action::{Action, FamilyAction, Tab};
@@ -114,6 +114,15 @@ impl DynamixelUi {
                 Self::keep(shell, &section);
             }
             DynamixelAction::Edit(section) => Self::keep(shell, &section),
+            DynamixelAction::Profile { id, profile } => {
+                let mut section = self.with_bus(&shell.document.project);
+                if let Some(setup) = section.servos.iter_mut().find(|setup| setup.id == id) {
+                    setup.profile = Some(profile);
+                }
+                Self::keep(shell, &section);
+                let (velocity, acceleration) = (profile.velocity, profile.acceleration);
+                Self::send(shell, DynamixelCommand::Profile { id, velocity, acceleration });
+            }
             DynamixelAction::Play(index) => self.play(shell, index),
             DynamixelAction::Relax => {
                 Self::send(shell, DynamixelCommand::Hold);
@@ -137,6 +146,7 @@ impl DynamixelUi {
                     id: servo.found.id,
                     name: String::new(),
                     model_number: servo.found.model_number,
+                    profile: None,
                 });
             }
         }
@@ -214,6 +224,11 @@ impl DynamixelUi {
             DynamixelEvent::Scanning { done, of } => self.bus.scanning = Some((done, of)),
             DynamixelEvent::Found(found) => {
                 self.bus.servos.insert(found.id, BusServo::new(found));
+                // Live moves at the servo's own profile: the project's, else a gentle one.
+                let section = DynamixelSection::of(&shell.document.project);
+                let profile = section.servo(found.id).map_or(Profile::LIVE, ServoSetup::live_profile);
+                let (velocity, acceleration) = (profile.velocity, profile.acceleration);
+                Self::send(shell, DynamixelCommand::Profile { id: found.id, velocity, acceleration });
             }
             DynamixelEvent::Scanned { found } => {
                 self.bus.scanning = None;

@@ -153,8 +153,8 @@ fn a_performance_recorded_by_hand_is_fitted_into_steps_within_the_tolerance() {
 fn a_motion_is_streamed_to_the_servos_as_its_plot_draws_it_and_stop_holds_them() {
     let section = DynamixelSection {
         servos: vec![
-            ServoSetup { id: 1, name: "肩 shoulder".into(), model_number: 1060 },
-            ServoSetup { id: 3, name: "腕".into(), model_number: 12 },
+            ServoSetup { id: 1, name: "肩 shoulder".into(), model_number: 1060, profile: None },
+            ServoSetup { id: 3, name: "腕".into(), model_number: 12, profile: None },
         ],
         motions: vec![Motion {
             name: "揮手 wave".into(),
@@ -205,7 +205,10 @@ fn shared_files_naming_dynamixel() -> Vec<String> {
     let own: Vec<PathBuf> = ["protocol", "device", "sim", "ui", "show/stages"]
         .iter()
         .map(|layer| root.join("src").join(layer).join("dynamixel"))
-        .chain([root.join("src/cli/dynamixel.rs"), root.join("src/project/dynamixel.rs")])
+        .chain(
+            ["src/cli/dynamixel.rs", "src/project/dynamixel.rs", "src/interchange/dynamixel.rs"]
+                .map(|own| root.join(own)),
+        )
         .collect();
     let mut found = Vec::new();
     let mut folders = vec![root.join("src")];

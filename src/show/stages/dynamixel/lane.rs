@@ -61,7 +61,7 @@ mod tests {
     #[test]
     fn a_cue_plays_its_motion_from_where_the_cue_before_left_the_servos() {
         let section = DynamixelSection {
-            servos: vec![ServoSetup { id: 1, name: "臂".into(), model_number: 1060 }],
+            servos: vec![ServoSetup { id: 1, name: "臂".into(), model_number: 1060, profile: None }],
             motions: vec![Motion {
                 name: "lift".into(),
                 steps: vec![Step { duration_ms: 1000, easing: Easing::Linear, positions: [(1, 3072)].into() }],

@@ -142,6 +142,12 @@ fn connect(port: &PortName, line: &LineSettings, device: &Device) -> anyhow::Res
             Err(_) => anyhow::bail!("the bus did not say where its servos are within {} s", SILENT_AFTER.as_secs() + 5),
         }
     }
+    // Live moves (a remote's pose) at each servo's own profile, as the editor sets it.
+    for servo in &section.servos {
+        let profile = servo.live_profile();
+        let (velocity, acceleration) = (profile.velocity, profile.acceleration);
+        handle.send(DynamixelCommand::Profile { id: servo.id, velocity, acceleration });
+    }
     let first = section.servos[0].id;
     let protocol = found[&first].0.protocol;
     let mut round_trips = Vec::with_capacity(ROUND_TRIPS);
