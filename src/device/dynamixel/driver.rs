@@ -25,10 +25,13 @@ use super::{DynamixelCommand, DynamixelEvent, Found, Limits, Reading};
 /// How long a packet waits for its status (a U2D2's latency timer and the
 /// servo's return delay with room to spare, as the SDK's packet timeout).
 pub const ANSWER_WAIT: Duration = Duration::from_millis(30);
-/// How long a scan's 1.0 ping waits for its answer before the next ID is
+/// The longest a scan's 1.0 ping waits for its answer before the next ID is
 /// pinged (an answer that comes later still counts: it names its servo), so
-/// that the 253 IDs take under 3 s.
+/// that the 253 IDs take under 3 s; on a link whose 2.0 servos answered the
+/// broadcast, four of its round trips, at least [`PING_WAIT_LEAST`].
 pub const PING_WAIT: Duration = Duration::from_millis(10);
+/// The least a scan's 1.0 ping waits.
+pub const PING_WAIT_LEAST: Duration = Duration::from_millis(2);
 /// How long a broadcast ping waits after its last answer for another.
 pub const BROADCAST_WAIT: Duration = Duration::from_millis(60);
 /// A round of readings of every found servo starts this often (50 Hz).
@@ -96,6 +99,10 @@ struct Scan {
     one: VecDeque<u8>,
     /// How many IDs were to ping in all (for progress).
     of: usize,
+    /// When the 2.0 broadcast ping went out.
+    broadcast: Option<Instant>,
+    /// How long a 1.0 ping waits: [`PING_WAIT`], or four round trips of the broadcast's first answer.
+    ping_wait: Duration,
 }
 
 /// The client side of a DYNAMIXEL bus.
@@ -349,7 +356,9 @@ impl DynamixelDriver {
             if self.next_round.is_some_and(|next| now < next) {
                 return None;
             }
-            self.next_round = Some(self.next_round.map_or(now, |next| next + READ_EVERY).max(now - READ_EVERY));
+            self.next_round = Some(
+                self.next_round.map_or(now, |next| next + READ_EVERY).max(now.checked_sub(READ_EVERY).unwrap_or(now)),
+            );
             self.round = self.servos.keys().copied().collect();
         }
         while let Some(id) = self.round.pop_front() {
@@ -369,8 +378,16 @@ impl DynamixelDriver {
             self.out.push_back(outgoing.packet.to_bytes());
             match outgoing.wait {
                 Wait::Nothing => {}
-                Wait::Pings => self.on_bus = Some((Wait::Pings, now + BROADCAST_WAIT)),
-                wait @ Wait::Status { purpose: Purpose::Ping, .. } => self.on_bus = Some((wait, now + PING_WAIT)),
+                Wait::Pings => {
+                    if let Some(scan) = &mut self.scan {
+                        scan.broadcast = Some(now);
+                    }
+                    self.on_bus = Some((Wait::Pings, now + BROADCAST_WAIT));
+                }
+                wait @ Wait::Status { purpose: Purpose::Ping, .. } => {
+                    let waits = self.scan.as_ref().map_or(PING_WAIT, |scan| scan.ping_wait);
+                    self.on_bus = Some((wait, now + waits));
+                }
                 wait => self.on_bus = Some((wait, now + ANSWER_WAIT)),
             }
         }
@@ -382,6 +399,11 @@ impl DynamixelDriver {
         let id = packet.id;
         match self.on_bus {
             Some((Wait::Pings, _)) if packet.protocol == Protocol::Two => {
+                if let Some(scan) = &mut self.scan
+                    && let Some(sent) = scan.broadcast.take()
+                {
+                    scan.ping_wait = (now.saturating_duration_since(sent) * 4).clamp(PING_WAIT_LEAST, PING_WAIT);
+                }
                 self.found_two(now, id, &packet.params);
                 // Wait on for the next servo's answer.
                 self.on_bus = Some((Wait::Pings, now + BROADCAST_WAIT));
@@ -583,7 +605,7 @@ impl Driver for DynamixelDriver {
                 self.goals.clear();
                 self.round.clear();
                 let ids: VecDeque<u8> = one.collect();
-                self.scan = Some(Scan { of: ids.len(), one: ids });
+                self.scan = Some(Scan { of: ids.len(), one: ids, broadcast: None, ping_wait: PING_WAIT });
                 let packet = Packet::instruction(Protocol::Two, BROADCAST, instruction::PING, Vec::new());
                 self.urgent.push_back(Outgoing { packet, wait: Wait::Pings });
             }

@@ -148,6 +148,8 @@ pub struct DynamixelBus {
     scheduled: VecDeque<(Duration, BusCommand)>,
     /// When it first heard a packet.
     began: Option<Instant>,
+    /// Whether its cable was pulled.
+    unplugged: bool,
 }
 
 impl DynamixelBus {
@@ -161,6 +163,7 @@ impl DynamixelBus {
             moved: None,
             scheduled: VecDeque::new(),
             began: None,
+            unplugged: false,
         }
     }
 
@@ -361,6 +364,8 @@ pub enum BusCommand {
         /// What it suffers.
         fault: Fault,
     },
+    /// The cable is pulled: the bus closes its link.
+    Unplug,
     /// A hand turns servo `id` to `position` (its units): a servo with its
     /// torque off stays there; one with its torque on pulls back to its goal.
     Hand {
@@ -408,6 +413,7 @@ impl Driver for DynamixelBus {
                     servo.suffer(fault);
                 }
             }
+            BusCommand::Unplug => self.unplugged = true,
             BusCommand::Hand { id, position } => {
                 if let Some(servo) = self.servos.iter_mut().find(|servo| servo.id() == id) {
                     servo.at = f64::from(position);
@@ -461,6 +467,10 @@ impl Driver for DynamixelBus {
             return self.answers.pop_front().map(|(_, bytes)| bytes);
         }
         None
+    }
+
+    fn wants_close(&self) -> bool {
+        self.unplugged
     }
 
     fn poll_event(&mut self) -> Option<BusEvent> {

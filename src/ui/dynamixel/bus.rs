@@ -36,7 +36,8 @@ pub fn ui(family: &mut DynamixelUi, ui: &mut egui::Ui, view: &ShellView<'_>, act
         }
         let recording = family.recording.is_some();
         let record_label = if recording { word("dynamixel.record_stop") } else { word("dynamixel.record") };
-        if ui.add_enabled(connected, egui::Button::new(record_label).selected(recording)).clicked() {
+        // A recording whose cable was pulled can still be stopped and kept.
+        if ui.add_enabled(connected || recording, egui::Button::new(record_label).selected(recording)).clicked() {
             actions.push(Action::family(DynamixelAction::Record(!recording)));
         }
         ui.label(word("dynamixel.tolerance"));

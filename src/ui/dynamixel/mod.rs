@@ -178,13 +178,13 @@ impl DynamixelUi {
     /// Starts a recording, or ends one and fits it into the motion shown (one undo step).
     fn record(&mut self, shell: &mut Shell<'_>, start: bool, language: Language) {
         if start {
-            self.recording = Some(Recording::new(self.bus.present()));
+            self.recording = Some(Recording::new(&self.bus));
             shell.say(|language| language.word("dynamixel.recording"), false);
             return;
         }
         let Some(recording) = self.recording.take() else { return };
         let tolerance = if self.tolerance_deg > 0.0 { self.tolerance_deg } else { record::TOLERANCE_DEG };
-        let Some(steps) = recording.fit(&self.bus, tolerance) else {
+        let Some(steps) = recording.fit(tolerance) else {
             shell.say(|language| language.word("dynamixel.recorded_nothing"), true);
             return;
         };
@@ -365,7 +365,7 @@ impl FamilyBoard for DynamixelUi {
     fn disconnected(&mut self) {
         self.bus = Bus::default();
         self.playing = None;
-        self.recording = None;
+        // A recording outlives a pulled cable: Stop recording keeps what it holds.
     }
 
     fn tick(&mut self, _shell: &mut Shell<'_>, _now: Instant) -> bool {

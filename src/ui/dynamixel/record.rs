@@ -49,19 +49,23 @@ impl Board for Stream {
     }
 }
 
-/// A recording under way.
+/// A recording under way. It keeps each servo's model from when it began,
+/// so that a recording whose cable was pulled still fits what it holds.
 #[derive(Debug)]
 pub struct Recording {
     /// Where the servos were when it started.
     start: BTreeMap<u8, u32>,
+    /// Each servo's model number, by ID.
+    models: BTreeMap<u8, u16>,
     /// Each servo's readings, with when they came.
     heard: BTreeMap<u8, Vec<(Instant, u32)>>,
 }
 
 impl Recording {
-    /// A recording from where the servos are.
-    pub fn new(start: BTreeMap<u8, u32>) -> Self {
-        Self { start, heard: BTreeMap::new() }
+    /// A recording of the servos on `bus`, from where they are.
+    pub fn new(bus: &Bus) -> Self {
+        let models = bus.servos.values().map(|servo| (servo.found.id, servo.found.model_number)).collect();
+        Self { start: bus.present(), models, heard: BTreeMap::new() }
     }
 
     /// Servo `id` said it is at `position`.
@@ -76,8 +80,8 @@ impl Recording {
 
     /// The fewest steps that play it back within `tolerance_deg` at every
     /// frame (none: it holds less than two frames).
-    pub fn fit(&self, bus: &Bus, tolerance_deg: f64) -> Option<Vec<Step>> {
-        let ids: Vec<u8> = self.heard.keys().copied().filter(|id| bus.servos.contains_key(id)).collect();
+    pub fn fit(&self, tolerance_deg: f64) -> Option<Vec<Step>> {
+        let ids: Vec<u8> = self.heard.keys().copied().filter(|id| self.models.contains_key(id)).collect();
         let first = self.heard.values().filter_map(|samples| samples.first().map(|(at, _)| *at)).min()?;
         let last = self.heard.values().filter_map(|samples| samples.last().map(|(at, _)| *at)).max()?;
         // Frames to the last sample, the last one at it (the hand's last place is kept).
@@ -85,7 +89,7 @@ impl Recording {
         if frames < 2 || ids.is_empty() {
             return None;
         }
-        let model = |id: u8| bus.servos[&id].found.model_number;
+        let model = |id: u8| self.models[&id];
         // Each frame: every servo's position then, in tenths of a degree (the latest reading at or before it).
         let rows: Vec<Vec<f64>> = (1..=frames)
             .map(|k| {

@@ -149,6 +149,28 @@ fn a_performance_recorded_by_hand_is_fitted_into_steps_within_the_tolerance() {
     assert!(DynamixelSection::of(&harness.state().document.project).motions.is_empty(), "one recording undone");
 }
 
+/// A recording whose cable is pulled mid-way is not lost: Stop recording,
+/// with no bus any more, still fits what it took into a motion.
+#[test]
+fn a_recording_outlives_a_pulled_cable() {
+    let mut harness = on_the_demo_bus(Project::empty(Family::Dynamixel));
+    harness.state_mut().apply(Action::family(DynamixelAction::Torque { id: None, on: false }));
+    harness.state_mut().apply(Action::family(DynamixelAction::Record(true)));
+    for position in [2100, 2200, 2300] {
+        on_bus(&harness, BusCommand::Hand { id: 1, position });
+        run_until(&mut harness, "the hand read", |app| at(app, 1) == Some(position));
+    }
+    on_bus(&harness, BusCommand::Unplug);
+    run_until(&mut harness, "the link lost", |app| app.link.is_none());
+    harness.run_steps(2);
+    harness.get_by_label("■ Stop recording").click();
+    harness.run_steps(2);
+    let section = DynamixelSection::of(&harness.state().document.project);
+    let motion = section.motions.last().expect("the recording kept as a motion");
+    let end = motion.steps.last().unwrap().positions[&1];
+    assert!(end.abs_diff(2300) <= 12, "it ends where the hand last was: {end}");
+}
+
 #[test]
 fn a_motion_is_streamed_to_the_servos_as_its_plot_draws_it_and_stop_holds_them() {
     let section = DynamixelSection {
