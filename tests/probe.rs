@@ -123,7 +123,26 @@ fn each_emulator_is_found_as_its_own_family() {
     let found = probe(&rflex.port).found.expect("the base answers");
     assert!(matches!(found.identity.said::<rflex::Said>(), Some(rflex::Said { braked: true, .. })), "{found:?}");
     assert_eq!(found.baud, 115_200);
-    assert!(plan(None).iter().map(|(_, families)| families.len()).sum::<usize>() == 3);
+
+    // A DYNAMIXEL bus: its first 2.0 servo answers the broadcast. The emulator
+    // hears at any rate, so the first rate the doctor asks a bus at finds it
+    // (a bus heard at one rate only: tests/cli/dynamixel.rs).
+    let bus = sim(&["--protocol", "dynamixel"]);
+    let found = probe(&bus.port).found.expect("the bus answers");
+    assert_eq!(found.identity.to_string(), "DYNAMIXEL XL430-W250, ID 1, Protocol 2.0, firmware 46");
+    assert_eq!(found.baud, 115_200);
+    // Each family at its own rate, a DYNAMIXEL bus at the rates its servos leave the factory at too.
+    let plan: Vec<(u32, Vec<&str>)> =
+        plan(None).into_iter().map(|(baud, families)| (baud, families.iter().map(|f| f.tag()).collect())).collect();
+    assert_eq!(
+        plan,
+        [
+            (2_000_000, vec!["plen2"]),
+            (115_200, vec!["servo", "rflex", "dynamixel"]),
+            (57_600, vec!["dynamixel"]),
+            (1_000_000, vec!["dynamixel"])
+        ]
+    );
 }
 
 /// Over a Bluetooth-like line the doctor says how the link delivers: late, in

@@ -33,6 +33,25 @@ pub struct Doctor {
 
 inventory::collect!(Registered);
 
+/// More line rates the doctor asks a family at, besides its own line's: a
+/// family whose devices leave the factory at several (DYNAMIXEL servos: an
+/// X-series at 57600, an AX at 1000000).
+#[derive(Debug)]
+pub struct MoreRates {
+    /// The family.
+    pub family: Family,
+    /// The rates, in the order they are tried after its own.
+    pub rates: &'static [u32],
+}
+
+inventory::collect!(MoreRates);
+
+/// The rates the doctor asks `family` at: its line's, then any more it registered.
+pub fn doctor_rates(family: Family, line_baud: u32) -> Vec<u32> {
+    let more = inventory::iter::<MoreRates>.into_iter().filter(|entry| entry.family == family);
+    std::iter::once(line_baud).chain(more.flat_map(|entry| entry.rates.iter().copied())).collect()
+}
+
 /// The device layer's entry of `family`, if it registered one.
 pub fn registered(family: Family) -> Option<&'static Registered> {
     inventory::iter::<Registered>.into_iter().find(|entry| entry.family == family)

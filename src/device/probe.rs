@@ -288,10 +288,11 @@ pub fn plan(baud: Option<u32>) -> Vec<(u32, Vec<Family>)> {
     let mut groups: Vec<(u32, Vec<Family>)> = Vec::new();
     // In the doctor's order (the PLEN2 first: USB CDC answers at any rate, and fastest).
     for (family, _) in doctored() {
-        let baud = super::line_settings(family).baud;
-        match groups.iter_mut().find(|(rate, _)| *rate == baud) {
-            Some((_, families)) => families.push(family),
-            None => groups.push((baud, vec![family])),
+        for baud in super::family::doctor_rates(family, super::line_settings(family).baud) {
+            match groups.iter_mut().find(|(rate, _)| *rate == baud) {
+                Some((_, families)) => families.push(family),
+                None => groups.push((baud, vec![family])),
+            }
         }
     }
     groups

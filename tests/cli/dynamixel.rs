@@ -276,7 +276,7 @@ fn serve_plays_poses_and_stops_a_dynamixel_arm() {
 }
 
 /// With no `--baud`, a scan tries the usual rates in turn until servos
-/// answer: a pseudo-terminal whose bus (an AX-12A, ID 7) hears only at
+/// answer: a pseudo-terminal whose bus (an AX-12A, ID 1) hears only at
 /// 1000000 baud, as an AX leaves the factory — read from the line's own
 /// settings — is found at that rate, after 57600 went unanswered.
 #[cfg(unix)]
@@ -291,7 +291,7 @@ fn board_info_tries_the_usual_rates_until_the_bus_answers() {
     master.set_timeout(Duration::from_millis(5)).unwrap();
     let (stop, stopped) = crossbeam_channel::bounded::<()>(0);
     let peer = std::thread::spawn(move || {
-        let mut bus = DynamixelBus::new(vec![Servo::new(&AX_12A, 7)]);
+        let mut bus = DynamixelBus::new(vec![Servo::new(&AX_12A, 1)]);
         let mut heard = std::collections::BTreeSet::new();
         let mut bytes = [0u8; 512];
         while matches!(stopped.try_recv(), Err(crossbeam_channel::TryRecvError::Empty)) {
@@ -313,12 +313,18 @@ fn board_info_tries_the_usual_rates_until_the_bus_answers() {
     let info = Process::new(EXE).args(["board", "info", "--protocol", "dynamixel", "--port", &port]).output().unwrap();
     let (said, stderr) = (String::from_utf8_lossy(&info.stdout), String::from_utf8_lossy(&info.stderr));
     assert_eq!(info.status.code(), Some(0), "{stderr}");
-    assert!(said.contains("ID   7") && said.contains("AX-12A"), "{said}");
+    assert!(said.contains("ID   1") && said.contains("AX-12A"), "{said}");
     assert!(stderr.contains("no servo answered at 57600 baud; trying 1000000"), "{stderr}");
     assert!(stderr.contains("1 servo(s) answered at 1000000 baud"), "{stderr}");
+    // The connection doctor (the editor's too) finds it at that rate.
+    let probe = Process::new(EXE).args(["probe", "--port", &port]).output().unwrap();
+    let said = String::from_utf8_lossy(&probe.stdout);
+    assert_eq!(probe.status.code(), Some(0), "{said}{}", String::from_utf8_lossy(&probe.stderr));
+    assert!(said.contains("DYNAMIXEL servo, ID 1, Protocol 1.0") && said.contains("1000000"), "{said}");
     drop(stop);
     let heard = peer.join().unwrap();
-    assert_eq!(heard.into_iter().collect::<Vec<_>>(), [57_600, 1_000_000], "tried in order, stopped where it answered");
+    assert!(heard.contains(&57_600) && heard.contains(&1_000_000), "{heard:?}");
+    assert!(!heard.contains(&3_000_000), "a scan stops where the bus answered: {heard:?}");
     drop(slave);
 }
 

@@ -7,6 +7,7 @@
 //! stops answering is said silent. A DYNAMIXEL stores no motion: what it
 //! plays is streamed from the computer as goals.
 
+mod doctor;
 mod driver;
 #[cfg(test)]
 mod tests;
@@ -14,6 +15,7 @@ mod tests;
 use std::ops::RangeInclusive;
 use std::time::Instant;
 
+pub use doctor::Said;
 pub use driver::{ANSWER_WAIT, DynamixelDriver, READ_EVERY, SILENT_AFTER, SILENT_AFTER_MISSES};
 
 use crate::link::{self, Connection, LinkEvent, LinkHandle, Waker};
@@ -26,8 +28,13 @@ inventory::submit! {
         family: Family::Dynamixel,
         // The X-series' factory line rate (an AX leaves the factory at 1 Mbps).
         line: || link::LineSettings::new(57_600),
-        doctor: None,
+        // After the families that answer at their own rates: a ping is harmless to them all.
+        doctor: Some(crate::device::family::Doctor { rank: 3, recogniser: doctor::recogniser }),
     }
+}
+inventory::submit! {
+    // An AX leaves the factory at 1 Mbps; 115200 is the other rate Bioloid kits ship at.
+    crate::device::family::MoreRates { family: Family::Dynamixel, rates: &[1_000_000, 115_200] }
 }
 
 /// The IDs a scan pings one by one in Protocol 1.0 (2.0 is pinged by broadcast).

@@ -13,6 +13,7 @@ mod motions;
 mod record;
 mod show_cue;
 mod state;
+mod words;
 
 use std::time::Instant;
 
