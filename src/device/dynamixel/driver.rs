@@ -20,7 +20,8 @@ use crate::link::Driver;
 use crate::protocol::dynamixel::table::{Known, known};
 use crate::protocol::dynamixel::{BROADCAST, Kind, Packet, Packets, Protocol, Read, instruction};
 
-use super::{DynamixelCommand, DynamixelEvent, Found, Limits, Reading};
+use super::{DynamixelCommand, DynamixelEvent, Found, Limits, Logged, Reading};
+use crate::device::Direction;
 
 /// How long a packet waits for its status (a U2D2's latency timer and the
 /// servo's return delay with room to spare, as the SDK's packet timeout).
@@ -124,6 +125,8 @@ pub struct DynamixelDriver {
     stream: Option<Stream>,
     /// Each servo's live profile (velocity, acceleration), put back after a stream.
     live: BTreeMap<u8, (u32, u32)>,
+    /// When the link was first heard of (the packet log's seconds count from it).
+    opened: Option<Instant>,
 }
 
 /// A stream being played.
@@ -158,6 +161,7 @@ impl Default for DynamixelDriver {
             round: VecDeque::new(),
             stream: None,
             live: BTreeMap::new(),
+            opened: None,
         }
     }
 }
@@ -371,11 +375,42 @@ impl DynamixelDriver {
         None
     }
 
+    /// A packet (or bytes that were none) for the packet log.
+    fn log(&mut self, now: Instant, direction: Direction, packet: Option<&Packet>, bytes: &[u8], why: &'static str) {
+        self.log_of(now, direction, packet, (bytes, bytes.len()), why);
+    }
+
+    /// As [`Self::log`], of `total` bytes of which `bytes` are known.
+    fn log_of(
+        &mut self,
+        now: Instant,
+        direction: Direction,
+        packet: Option<&Packet>,
+        (bytes, total): (&[u8], usize),
+        why: &'static str,
+    ) {
+        let opened = *self.opened.get_or_insert(now);
+        let mut head = [0; 24];
+        let shown = bytes.len().min(head.len());
+        head[..shown].copy_from_slice(&bytes[..shown]);
+        self.events.push_back(DynamixelEvent::Logged(Logged {
+            seconds: now.saturating_duration_since(opened).as_secs_f64(),
+            direction,
+            packet: packet.map(|packet| (packet.protocol, packet.id, packet.kind, packet.params.len())),
+            head,
+            shown: u8::try_from(shown).unwrap_or(u8::MAX),
+            total,
+            why,
+        }));
+    }
+
     /// Puts what is next on the bus, if the bus is free.
     fn send_next(&mut self, now: Instant) {
         while self.on_bus.is_none() {
             let Some(outgoing) = self.next_outgoing(now) else { return };
-            self.out.push_back(outgoing.packet.to_bytes());
+            let bytes = outgoing.packet.to_bytes();
+            self.log(now, Direction::Sent, Some(&outgoing.packet), &bytes, "");
+            self.out.push_back(bytes);
             match outgoing.wait {
                 Wait::Nothing => {}
                 Wait::Pings => {
@@ -643,8 +678,13 @@ impl Driver for DynamixelDriver {
 
     fn handle_input(&mut self, now: Instant, bytes: &[u8]) {
         for read in self.packets.push(bytes) {
-            if let Read::Packet(packet) = read {
-                self.status(now, &packet);
+            match read {
+                Read::Packet(packet) => {
+                    self.log(now, Direction::Received, Some(&packet), &packet.to_bytes(), "");
+                    self.status(now, &packet);
+                }
+                // The reader says how many bytes it skipped, not which.
+                Read::Skipped { bytes, why } => self.log_of(now, Direction::Skipped, None, (&[], bytes), why),
             }
         }
     }

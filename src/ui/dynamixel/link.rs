@@ -3,7 +3,7 @@
 
 use std::time::Instant;
 
-use crate::device::dynamixel::{DynamixelCommand, DynamixelHandle, ONE_IDS};
+use crate::device::dynamixel::{DynamixelCommand, DynamixelEvent, DynamixelHandle, ONE_IDS};
 use crate::link::{Connection, LinkEvent, Waker};
 use crate::project::{Family, Project};
 use crate::sim::dynamixel::DynamixelBus;
@@ -16,14 +16,16 @@ impl FamilyLink for DynamixelHandle {
         Family::Dynamixel
     }
 
-    fn pump(&mut self, _now: Instant, _polling: bool, _log: &mut PacketLog) -> Vec<LinkNotice> {
-        self.events()
-            .try_iter()
-            .map(|event| match event {
-                LinkEvent::Driver(event) => LinkNotice::Family(FamilyNotice::new(event)),
-                LinkEvent::Disconnected { reason } => LinkNotice::Disconnected(reason),
-            })
-            .collect()
+    fn pump(&mut self, _now: Instant, _polling: bool, log: &mut PacketLog) -> Vec<LinkNotice> {
+        let mut notices = Vec::new();
+        for event in self.events().try_iter() {
+            match event {
+                LinkEvent::Driver(DynamixelEvent::Logged(logged)) => log.record(logged.entry()),
+                LinkEvent::Driver(event) => notices.push(LinkNotice::Family(FamilyNotice::new(event))),
+                LinkEvent::Disconnected { reason } => notices.push(LinkNotice::Disconnected(reason)),
+            }
+        }
+        notices
     }
 
     /// STOP: every servo held where it is (never fails; a lost link is said by `pump`).

@@ -275,8 +275,8 @@ impl DynamixelUi {
                 }
             }
             DynamixelEvent::Streamed => self.playing = None,
-            // The editor pings nothing: a show's stage measures its link so.
-            DynamixelEvent::Pong { .. } => {}
+            // The editor pings nothing (a show's stage measures its link so); the log is the link's.
+            DynamixelEvent::Pong { .. } | DynamixelEvent::Logged(_) => {}
         }
     }
 }

@@ -64,6 +64,15 @@ fn the_demo_bus_is_scanned_in_both_protocols_and_each_servo_moves_live_within_it
         assert!(harness.query_by_label(listed).is_some(), "{listed} is listed");
     }
     assert_eq!(harness.state().status.as_ref().unwrap().text, "Scan done: 3 servos found");
+    // The packet log holds the scan: the broadcast ping out, each servo's status back.
+    let log = &mut harness.state_mut().link.as_mut().unwrap().log;
+    let lines: Vec<String> = log.visible().iter().map(|entry| entry.line()).collect();
+    assert!(
+        lines.iter().any(|line| line.contains("→ PING ID all · 2.0 · 0 bytes [ff ff fd 00 fe 03 00 01 31 42]")),
+        "{lines:?}"
+    );
+    assert!(lines.iter().any(|line| line.contains("← STATUS ID 1 · 2.0 · error 0x00 · 3 bytes")), "{lines:?}");
+    assert!(lines.iter().any(|line| line.contains("→ PING ID 3 · 1.0")), "{lines:?}");
     harness.get_by_label("Torque on (all)").click();
     harness.step();
     harness.state_mut().apply(Action::family(DynamixelAction::Goal { id: 1, position: 3072 }));
