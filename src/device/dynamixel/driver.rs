@@ -20,7 +20,12 @@ use crate::link::Driver;
 use crate::protocol::dynamixel::table::{Known, known};
 use crate::protocol::dynamixel::{BROADCAST, Kind, Packet, Packets, Protocol, Read, instruction};
 
-use super::{DynamixelCommand, DynamixelEvent, Found, Limits, Logged, Reading};
+use super::fields::{
+    LED, PROFILE_ACCELERATION, PROFILE_VELOCITY, TORQUE, Writable, le, limits_of, limits_span, read, reading_of,
+    reading_span, sync_write, write,
+};
+use super::stream::Stream;
+use super::{DynamixelCommand, DynamixelEvent, Found, Logged};
 use crate::device::Direction;
 
 /// How long a packet waits for its status (a U2D2's latency timer and the
@@ -129,22 +134,6 @@ pub struct DynamixelDriver {
     opened: Option<Instant>,
 }
 
-/// A stream being played.
-#[derive(Clone, Debug)]
-struct Stream {
-    frames: Vec<Vec<(u8, u32)>>,
-    every: Duration,
-    start: Instant,
-    /// The next frame to send.
-    next: usize,
-}
-
-impl Stream {
-    fn due(&self, index: usize) -> Instant {
-        self.start + self.every * u32::try_from(index).unwrap_or(u32::MAX)
-    }
-}
-
 impl Default for DynamixelDriver {
     fn default() -> Self {
         Self {
@@ -166,72 +155,13 @@ impl Default for DynamixelDriver {
     }
 }
 
-/// A read of `len` bytes at `addr` of servo `id`, in its protocol.
-fn read(protocol: Protocol, id: u8, addr: u16, len: u16) -> Packet {
-    let params = match protocol {
-        Protocol::Two => [addr.to_le_bytes(), len.to_le_bytes()].concat(),
-        // 1.0 addresses and lengths are one byte each (its tables end below 256).
-        #[allow(clippy::cast_possible_truncation)]
-        Protocol::One => vec![addr as u8, len as u8],
-    };
-    Packet::instruction(protocol, id, instruction::READ, params)
-}
-
-/// A write of `value` in `size` bytes at `addr` of servo `id`.
-fn write(protocol: Protocol, id: u8, addr: u16, value: u32, size: u8) -> Packet {
-    let mut params = match protocol {
-        Protocol::Two => addr.to_le_bytes().to_vec(),
-        #[allow(clippy::cast_possible_truncation)]
-        Protocol::One => vec![addr as u8],
-    };
-    params.extend(&value.to_le_bytes()[..usize::from(size)]);
-    Packet::instruction(protocol, id, instruction::WRITE, params)
-}
-
-/// A sync write of `size` bytes at `addr`, each servo its value.
-fn sync_write(protocol: Protocol, addr: u16, size: u8, values: &[(u8, u32)]) -> Packet {
-    let mut params = match protocol {
-        Protocol::Two => [addr.to_le_bytes(), u16::from(size).to_le_bytes()].concat(),
-        #[allow(clippy::cast_possible_truncation)]
-        Protocol::One => vec![addr as u8, size],
-    };
-    for (id, value) in values {
-        params.push(*id);
-        params.extend(&value.to_le_bytes()[..usize::from(size)]);
-    }
-    Packet::instruction(protocol, BROADCAST, instruction::SYNC_WRITE, params)
-}
-
-/// `len` (≤ 4) little-endian bytes of `data` at `at`, if it holds them.
-fn le(data: &[u8], at: usize, len: usize) -> Option<u32> {
-    let bytes = data.get(at..at + len)?;
-    let mut word = [0; 4];
-    word[..len].copy_from_slice(bytes);
-    Some(u32::from_le_bytes(word))
-}
-
-/// The span a round reads of a model: from its load to past its temperature
-/// (2.0: 126..=146; 1.0: 36..=43, from its present position).
-fn reading_span(model: &Known) -> (u16, u16) {
-    let at = model.layout.at;
-    let first = at.present.min(at.load).min(at.voltage).min(at.temperature);
-    let last = at.present.max(at.load).max(at.voltage).max(at.temperature);
-    (first, last - first + 1)
-}
-
 impl DynamixelDriver {
     fn say(&mut self, event: DynamixelEvent) {
         self.events.push_back(event);
     }
 
     /// Queues a write to servo `id` (or every found servo), where its model has the field.
-    fn write_each(
-        &mut self,
-        id: Option<u8>,
-        name: &'static str,
-        field: impl Fn(&Known) -> Option<(u16, u8)>,
-        value: u32,
-    ) {
+    fn write_each(&mut self, id: Option<u8>, (name, field): Writable, value: u32) {
         let targets: Vec<(u8, Protocol, &'static Known)> = self
             .servos
             .values()
@@ -277,15 +207,7 @@ impl DynamixelDriver {
 
     /// The newest frame of the stream that is due becomes the goals.
     fn stream_due(&mut self, now: Instant) {
-        let Some(stream) = &mut self.stream else { return };
-        let mut due = None;
-        while stream.next < stream.frames.len() && stream.due(stream.next) <= now {
-            due = Some(stream.next);
-            stream.next += 1;
-        }
-        let Some(index) = due else { return };
-        let frame = std::mem::take(&mut stream.frames[index]);
-        let ended = stream.next == stream.frames.len();
+        let Some((frame, ended)) = self.stream.as_mut().and_then(|stream| stream.take_due(now)) else { return };
         for (id, position) in frame {
             self.goal(id, position);
         }
@@ -298,18 +220,8 @@ impl DynamixelDriver {
 
     /// Servo `id` (or every servo) moves at `velocity` and `acceleration` (where its model has them).
     fn profile(&mut self, id: Option<u8>, velocity: u32, acceleration: u32) {
-        self.write_each(
-            id,
-            "profile velocity",
-            |known| Some((known.layout.at.speed, known.layout.at.position_size)),
-            velocity,
-        );
-        self.write_each(
-            id,
-            "profile acceleration",
-            |known| known.layout.at.acceleration.map(|addr| (addr, 4)),
-            acceleration,
-        );
+        self.write_each(id, PROFILE_VELOCITY, velocity);
+        self.write_each(id, PROFILE_ACCELERATION, acceleration);
     }
 
     /// Each servo's live profile, as it was before a stream took it off.
@@ -376,32 +288,16 @@ impl DynamixelDriver {
     }
 
     /// A packet (or bytes that were none) for the packet log.
-    fn log(&mut self, now: Instant, direction: Direction, packet: Option<&Packet>, bytes: &[u8], why: &'static str) {
-        self.log_of(now, direction, packet, (bytes, bytes.len()), why);
-    }
-
-    /// As [`Self::log`], of `total` bytes of which `bytes` are known.
-    fn log_of(
+    fn log(
         &mut self,
         now: Instant,
         direction: Direction,
         packet: Option<&Packet>,
-        (bytes, total): (&[u8], usize),
+        bytes: (&[u8], usize),
         why: &'static str,
     ) {
         let opened = *self.opened.get_or_insert(now);
-        let mut head = [0; 24];
-        let shown = bytes.len().min(head.len());
-        head[..shown].copy_from_slice(&bytes[..shown]);
-        self.events.push_back(DynamixelEvent::Logged(Logged {
-            seconds: now.saturating_duration_since(opened).as_secs_f64(),
-            direction,
-            packet: packet.map(|packet| (packet.protocol, packet.id, packet.kind, packet.params.len())),
-            head,
-            shown: u8::try_from(shown).unwrap_or(u8::MAX),
-            total,
-            why,
-        }));
+        self.say(DynamixelEvent::Logged(Logged::of((opened, now), direction, packet, bytes, why)));
     }
 
     /// Puts what is next on the bus, if the bus is free.
@@ -409,7 +305,7 @@ impl DynamixelDriver {
         while self.on_bus.is_none() {
             let Some(outgoing) = self.next_outgoing(now) else { return };
             let bytes = outgoing.packet.to_bytes();
-            self.log(now, Direction::Sent, Some(&outgoing.packet), &bytes, "");
+            self.log(now, Direction::Sent, Some(&outgoing.packet), (&bytes, bytes.len()), "");
             self.out.push_back(bytes);
             match outgoing.wait {
                 Wait::Nothing => {}
@@ -487,10 +383,7 @@ impl DynamixelDriver {
             .insert(id, Servo { found, known, misses: 0, heard: now, silent: false, present: None, hardware_error: 0 });
         self.say(DynamixelEvent::Found(found));
         if let Some(known) = known {
-            let at = known.layout.at;
-            let first = at.temperature_limit.min(at.limits.0).min(at.limits.1);
-            let end = (at.limits.0.max(at.limits.1) + u16::from(at.position_size)).max(at.temperature_limit + 1);
-            let len = end - first;
+            let (first, len) = limits_span(known);
             let packet = read(found.protocol, id, first, len);
             self.urgent.push_back(Outgoing { packet, wait: Wait::Status { id, purpose: Purpose::Limits } });
         }
@@ -538,17 +431,7 @@ impl DynamixelDriver {
                 self.events.push_back(DynamixelEvent::Refused { id, what, error });
             }
             Purpose::Limits => {
-                let base = at.temperature_limit.min(at.limits.0).min(at.limits.1);
-                let field = |addr: u16, len: u8| le(params, usize::from(addr - base), usize::from(len));
-                let size = at.position_size;
-                if let (Some(lowest), Some(highest), Some(temperature)) =
-                    (field(at.limits.0, size), field(at.limits.1, size), field(at.temperature_limit, 1))
-                {
-                    // An AX whose limits are both 0 turns as a wheel: its range is its whole table.
-                    let (lowest, highest) =
-                        if lowest == 0 && highest == 0 { (0, known.layout.top_position) } else { (lowest, highest) };
-                    #[allow(clippy::cast_possible_truncation)]
-                    let limits = Limits { lowest, highest, temperature_limit_c: temperature as u8 };
+                if let Some(limits) = limits_of(known, params) {
                     self.events.push_back(DynamixelEvent::Limits { id, limits });
                 }
             }
@@ -559,35 +442,8 @@ impl DynamixelDriver {
                 }
             }
             Purpose::Reading => {
-                let (base, _) = reading_span(known);
-                let field = |addr: u16, len: u8| le(params, usize::from(addr - base), usize::from(len));
-                let voltage_size = if two { 2 } else { 1 };
-                if let (Some(position), Some(load), Some(voltage), Some(temperature)) = (
-                    field(at.present, at.position_size),
-                    field(at.load, 2),
-                    field(at.voltage, voltage_size),
-                    field(at.temperature, 1),
-                ) {
-                    servo.present = Some(position);
-                    let load_percent = if two {
-                        // A signed 2-byte value, 0.1 % a unit.
-                        #[allow(clippy::cast_possible_truncation)]
-                        let signed = load as u16 as i16;
-                        f64::from(signed) / 10.0
-                    } else {
-                        // 0..=1023 of the most torque, bit 10 the direction (clockwise negative).
-                        let magnitude = f64::from(load & 0x3FF) / 1023.0 * 100.0;
-                        if load & 0x400 != 0 { -magnitude } else { magnitude }
-                    };
-                    #[allow(clippy::cast_possible_truncation)]
-                    let reading = Reading {
-                        position,
-                        load_percent,
-                        volts: f64::from(voltage) / 10.0,
-                        temperature_c: temperature as u8,
-                        hardware_error: servo.hardware_error,
-                        at: now,
-                    };
+                if let Some(reading) = reading_of(known, two, params, servo.hardware_error, now) {
+                    servo.present = Some(reading.position);
                     self.events.push_back(DynamixelEvent::Reading { id, reading });
                 }
             }
@@ -650,13 +506,13 @@ impl Driver for DynamixelDriver {
                 if self.stream.is_none() {
                     self.profile(None, 0, 0);
                 }
-                self.stream = Some(Stream { frames, every, start: now, next: 0 });
+                self.stream = Some(Stream::new(frames, every, now));
             }
             DynamixelCommand::Torque { id, on } => {
-                self.write_each(id, "torque", |known| Some((known.layout.at.torque, 1)), u32::from(on));
+                self.write_each(id, TORQUE, u32::from(on));
             }
             DynamixelCommand::Led { id, on } => {
-                self.write_each(Some(id), "LED", |known| Some((known.layout.at.led, 1)), u32::from(on));
+                self.write_each(Some(id), LED, u32::from(on));
             }
             DynamixelCommand::Profile { id, velocity, acceleration } => {
                 self.live.insert(id, (velocity, acceleration));
@@ -680,11 +536,12 @@ impl Driver for DynamixelDriver {
         for read in self.packets.push(bytes) {
             match read {
                 Read::Packet(packet) => {
-                    self.log(now, Direction::Received, Some(&packet), &packet.to_bytes(), "");
+                    let bytes = packet.to_bytes();
+                    self.log(now, Direction::Received, Some(&packet), (&bytes, bytes.len()), "");
                     self.status(now, &packet);
                 }
                 // The reader says how many bytes it skipped, not which.
-                Read::Skipped { bytes, why } => self.log_of(now, Direction::Skipped, None, (&[], bytes), why),
+                Read::Skipped { bytes, why } => self.log(now, Direction::Skipped, None, (&[], bytes), why),
             }
         }
     }
@@ -724,7 +581,7 @@ impl Driver for DynamixelDriver {
             return Some(until);
         }
         let round = if self.reading && !self.servos.is_empty() { self.next_round } else { None };
-        let frame = self.stream.as_ref().map(|stream| stream.due(stream.next));
+        let frame = self.stream.as_ref().map(Stream::next_due);
         round.into_iter().chain(frame).min()
     }
 

@@ -9,6 +9,9 @@
 
 mod doctor;
 mod driver;
+mod fields;
+mod logged;
+mod stream;
 #[cfg(test)]
 mod tests;
 
@@ -17,6 +20,7 @@ use std::time::Instant;
 
 pub use doctor::Said;
 pub use driver::{ANSWER_WAIT, DynamixelDriver, READ_EVERY, SILENT_AFTER, SILENT_AFTER_MISSES};
+pub use logged::Logged;
 
 use crate::link::{self, Connection, LinkEvent, LinkHandle, Waker};
 use crate::project::Family;
@@ -160,66 +164,6 @@ pub enum DynamixelCommand {
     Read(bool),
     /// STOP: what streams ends, and every servo is held where it last said it is.
     Hold,
-}
-
-/// A packet on the bus, for the packet log: which way it went, what it was,
-/// and its first bytes (a long sync write is shown cut).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Logged {
-    /// Seconds since the link opened.
-    pub seconds: f64,
-    /// Sent, received, or bytes skipped.
-    pub direction: crate::device::Direction,
-    /// The packet's protocol, ID, kind and parameter count (none: bytes that were no packet).
-    pub packet: Option<(Protocol, u8, crate::protocol::dynamixel::Kind, usize)>,
-    /// Its first bytes.
-    pub head: [u8; 24],
-    /// How many of `head` are its bytes.
-    pub shown: u8,
-    /// How many bytes it had in all.
-    pub total: usize,
-    /// Why bytes were skipped.
-    pub why: &'static str,
-}
-
-impl Logged {
-    /// A packet-log entry, as the log panel shows it.
-    pub fn entry(&self) -> crate::device::LogEntry {
-        use crate::protocol::dynamixel::{Kind, instruction as i};
-        let mut hex = crate::device::hex(&self.head[..usize::from(self.shown)]);
-        if self.total > usize::from(self.shown) {
-            hex.push_str(" …");
-        }
-        let (name, fields) = match self.packet {
-            Some((protocol, id, kind, params)) => {
-                let protocol = if protocol == Protocol::Two { "2.0" } else { "1.0" };
-                let id = if id == crate::protocol::dynamixel::BROADCAST { "all".to_string() } else { id.to_string() };
-                match kind {
-                    Kind::Status(error) => (
-                        "STATUS".to_string(),
-                        format!("ID {id} · {protocol} · error 0x{error:02X} · {}", crate::device::bytes(params)),
-                    ),
-                    Kind::Instruction(code) => {
-                        let name = match code {
-                            i::PING => "PING",
-                            i::READ => "READ",
-                            i::WRITE => "WRITE",
-                            i::REG_WRITE => "REG_WRITE",
-                            i::ACTION => "ACTION",
-                            i::FACTORY_RESET => "FACTORY_RESET",
-                            i::REBOOT => "REBOOT",
-                            i::SYNC_READ => "SYNC_READ",
-                            i::SYNC_WRITE => "SYNC_WRITE",
-                            _ => "INSTRUCTION",
-                        };
-                        (name.to_string(), format!("ID {id} · {protocol} · {}", crate::device::bytes(params)))
-                    }
-                }
-            }
-            None => (format!("skipped {}", crate::device::bytes(self.total)), self.why.to_string()),
-        };
-        crate::device::LogEntry { seconds: self.seconds, direction: self.direction, name, fields, hex }
-    }
 }
 
 /// What the bus said.

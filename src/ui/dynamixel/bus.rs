@@ -17,35 +17,7 @@ pub fn ui(family: &mut DynamixelUi, ui: &mut egui::Ui, view: &ShellView<'_>, act
     let language = view.language;
     let word = |key: &str| language.word(key);
     let connected = view.link.is_some();
-    ui.horizontal_wrapped(|ui| {
-        if ui.add_enabled(connected, egui::Button::new(word("dynamixel.scan"))).clicked() {
-            actions.push(Action::family(DynamixelAction::Scan));
-        }
-        if ui.add_enabled(connected, egui::Button::new(word("dynamixel.torque_all_on"))).clicked() {
-            actions.push(Action::family(DynamixelAction::Torque { id: None, on: true }));
-        }
-        if ui.add_enabled(connected, egui::Button::new(word("dynamixel.relax"))).clicked() {
-            actions.push(Action::family(DynamixelAction::Relax));
-        }
-        ui.separator();
-        let capture = ui.add_enabled(connected, egui::Button::new(word("dynamixel.capture")));
-        let typed_c =
-            connected && ui.input(|input| input.key_pressed(egui::Key::C)) && !ui.ctx().egui_wants_keyboard_input();
-        if capture.clicked() || typed_c {
-            actions.push(Action::family(DynamixelAction::Capture));
-        }
-        let recording = family.recording.is_some();
-        let record_label = if recording { word("dynamixel.record_stop") } else { word("dynamixel.record") };
-        // A recording whose cable was pulled can still be stopped and kept.
-        if ui.add_enabled(connected || recording, egui::Button::new(record_label).selected(recording)).clicked() {
-            actions.push(Action::family(DynamixelAction::Record(!recording)));
-        }
-        ui.label(word("dynamixel.tolerance"));
-        if family.tolerance_deg <= 0.0 {
-            family.tolerance_deg = super::record::TOLERANCE_DEG;
-        }
-        ui.add(egui::DragValue::new(&mut family.tolerance_deg).range(0.1..=20.0).speed(0.1).suffix("°"));
-    });
+    toolbar(family, ui, view, actions);
     if let Some((done, of)) = family.bus.scanning {
         #[allow(clippy::cast_precision_loss)]
         let part = done as f32 / of.max(1) as f32;
@@ -108,6 +80,41 @@ pub fn ui(family: &mut DynamixelUi, ui: &mut egui::Ui, view: &ShellView<'_>, act
                 ui.end_row();
             }
         });
+    });
+}
+
+/// The bus's buttons: scan, torque on, relax; capture (C), record and its tolerance.
+fn toolbar(family: &mut DynamixelUi, ui: &mut egui::Ui, view: &ShellView<'_>, actions: &mut Vec<Action>) {
+    let word = |key: &str| view.language.word(key);
+    let connected = view.link.is_some();
+    ui.horizontal_wrapped(|ui| {
+        if ui.add_enabled(connected, egui::Button::new(word("dynamixel.scan"))).clicked() {
+            actions.push(Action::family(DynamixelAction::Scan));
+        }
+        if ui.add_enabled(connected, egui::Button::new(word("dynamixel.torque_all_on"))).clicked() {
+            actions.push(Action::family(DynamixelAction::Torque { id: None, on: true }));
+        }
+        if ui.add_enabled(connected, egui::Button::new(word("dynamixel.relax"))).clicked() {
+            actions.push(Action::family(DynamixelAction::Relax));
+        }
+        ui.separator();
+        let capture = ui.add_enabled(connected, egui::Button::new(word("dynamixel.capture")));
+        let typed_c =
+            connected && ui.input(|input| input.key_pressed(egui::Key::C)) && !ui.ctx().egui_wants_keyboard_input();
+        if capture.clicked() || typed_c {
+            actions.push(Action::family(DynamixelAction::Capture));
+        }
+        let recording = family.recording.is_some();
+        let record_label = if recording { word("dynamixel.record_stop") } else { word("dynamixel.record") };
+        // A recording whose cable was pulled can still be stopped and kept.
+        if ui.add_enabled(connected || recording, egui::Button::new(record_label).selected(recording)).clicked() {
+            actions.push(Action::family(DynamixelAction::Record(!recording)));
+        }
+        ui.label(word("dynamixel.tolerance"));
+        if family.tolerance_deg <= 0.0 {
+            family.tolerance_deg = super::record::TOLERANCE_DEG;
+        }
+        ui.add(egui::DragValue::new(&mut family.tolerance_deg).range(0.1..=20.0).speed(0.1).suffix("°"));
     });
 }
 

@@ -38,7 +38,6 @@ pub fn ui(family: &mut DynamixelUi, ui: &mut egui::Ui, view: &ShellView<'_>, act
         ui.label(word("dynamixel.no_motions"));
         return;
     };
-    let model_of = |id: u8| section.servo(id).map_or(0, |setup| setup.model_number);
     ui.horizontal(|ui| {
         let mut name = motion.name.clone();
         if ui.add(egui::TextEdit::singleline(&mut name).desired_width(200.0)).lost_focus() && name != motion.name {
@@ -58,6 +57,28 @@ pub fn ui(family: &mut DynamixelUi, ui: &mut egui::Ui, view: &ShellView<'_>, act
             actions.push(Action::family(DynamixelAction::Play(shown)));
         }
     });
+    let edited = steps(ui, &section, shown, view.language);
+    if let Some(section) = edited {
+        actions.push(Action::family(DynamixelAction::Edit(Box::new(section))));
+    }
+    let playing_ms = family
+        .playing
+        .filter(|(index, _)| *index == shown)
+        .map(|(_, since)| Instant::now().duration_since(since).as_secs_f64() * 1000.0);
+    plot(ui, motion, &family.bus.present(), &section, playing_ms);
+}
+
+/// The motion's steps as a table (time, curve, each servo's angle, delete):
+/// the section as edited, if it was.
+fn steps(
+    ui: &mut egui::Ui,
+    section: &DynamixelSection,
+    shown: usize,
+    language: crate::ui::i18n::Language,
+) -> Option<DynamixelSection> {
+    let word = |key: &str| language.word(key);
+    let motion = &section.motions[shown];
+    let model_of = |id: u8| section.servo(id).map_or(0, |setup| setup.model_number);
     let ids: Vec<u8> = section.servos.iter().map(|servo| servo.id).collect();
     let mut edited: Option<DynamixelSection> = None;
     egui::ScrollArea::vertical().max_height(ui.available_height() * 0.45).show(ui, |ui| {
@@ -115,14 +136,7 @@ pub fn ui(family: &mut DynamixelUi, ui: &mut egui::Ui, view: &ShellView<'_>, act
             }
         });
     });
-    if let Some(section) = edited {
-        actions.push(Action::family(DynamixelAction::Edit(Box::new(section))));
-    }
-    let playing_ms = family
-        .playing
-        .filter(|(index, _)| *index == shown)
-        .map(|(_, since)| Instant::now().duration_since(since).as_secs_f64() * 1000.0);
-    plot(ui, motion, &family.bus.present(), &section, playing_ms);
+    edited
 }
 
 /// Each servo's angle over the motion, from where the servos are: the poses the stream sends.

@@ -26,8 +26,8 @@ inventory::submit! {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::device::dynamixel::Protocol;
     use crate::device::probe::Identity;
-    use crate::protocol::dynamixel::Protocol;
 
     #[test]
     fn a_servo_is_worded_in_chinese_by_its_family_and_in_english_by_the_device_layer() {
